@@ -1,0 +1,44 @@
+"""Steady flow through the gap of an annular duct: SI kernels (plain floats or numpy arrays, vectorised).
+
+One module per flow situation:
+
+* :mod:`~erdesign.flow.newtonian` - Hagen-Poiseuille flow, thin-gap (Makris eq 4) and exact annulus.
+* :mod:`~erdesign.flow.bingham` - Bingham plastic through a stationary gap (valve mode, Makris eqs 5-7, corrected).
+
+The unit-aware versions of these functions (pint quantities in and out) are in the top-level ``erdesign``
+namespace.
+"""
+
+from .bingham import (
+    BinghamSlitFlow,
+    bingham_flow_rate,
+    bingham_number,
+    bingham_plug_fraction,
+    bingham_pressure_drop,
+    bingham_slit_flow,
+    yield_pressure_drop,
+)
+from .newtonian import (
+    annulus_conductance_ratio,
+    annulus_flow_rate,
+    annulus_pressure_drop,
+    slit_flow_rate,
+    slit_pressure_drop,
+    thin_gap_error,
+)
+
+__all__ = [
+    "BinghamSlitFlow",
+    "bingham_flow_rate",
+    "bingham_number",
+    "bingham_plug_fraction",
+    "bingham_pressure_drop",
+    "bingham_slit_flow",
+    "yield_pressure_drop",
+    "annulus_conductance_ratio",
+    "annulus_flow_rate",
+    "annulus_pressure_drop",
+    "slit_flow_rate",
+    "slit_pressure_drop",
+    "thin_gap_error",
+]

@@ -1,0 +1,251 @@
+r"""Steady flow of a Bingham plastic through a thin annular gap with stationary walls (SI kernels).
+
+The valve (flow) mode of Makris's damper: fluid pushed through a stationary annular duct of mean diameter ``d``,
+gap ``h`` and length ``L``.  In the thin-gap limit the duct is a slit of width :math:`\pi d`.  The shear stress is
+linear across the gap (Makris eq 2); where it is below the yield stress :math:`\tau_y` the fluid moves as a rigid
+plug, of thickness :math:`\delta = 2\tau_y L/\Delta p`; the layers beside the walls are sheared (Makris eq 5).
+
+With the plug fraction :math:`\phi = \delta/h = \Delta p_y/\Delta p` and the blocking (yield) pressure drop
+:math:`\Delta p_y = 2\tau_y L/h`, the flow rate is the Buckingham-Reiner form for a slit
+
+.. math::
+    Q = \frac{\pi d h^3 \Delta p}{12 \eta L}\left(1 - \frac{3}{2}\phi + \frac{1}{2}\phi^3\right),
+    \qquad |\Delta p| > \Delta p_y ,
+
+which is Makris eq 6 written for Q.  Makris prints eq 6 and eq 7 with :math:`h^2` in the viscous term; dimensional
+consistency needs :math:`h^3` (the :math:`\tau_y \to 0` limit must be his eq 4, which has :math:`h^3`).  The
+corrected cubic in :math:`\Delta p` is
+
+.. math::
+    \Delta p^3 - \left(3\tau_y\frac{L}{h} + \frac{12\eta L Q}{\pi d h^3}\right)\Delta p^2
+    + 4\tau_y^3\left(\frac{L}{h}\right)^3 = 0 .
+
+Dividing by :math:`\Delta p^3` turns it into a depressed cubic in the plug fraction,
+:math:`\phi^3 - (3 + 2N)\phi + 2 = 0` with :math:`N = \Delta p_N/\Delta p_y = 6/\mathrm{Bi}`
+(:math:`\Delta p_N` the Newtonian pressure drop of eq 4, Bi the Bingham number), whose physical root
+(:math:`0 < \phi \le 1`) has the closed form
+
+.. math::
+    \phi = 2m\,\sin\!\left(\tfrac{1}{3}\arcsin m^{-3}\right), \qquad m = \sqrt{1 + 2N/3}.
+
+This trigonometric root is exact, branch-free and well conditioned from the blocked gap (N = 0, phi = 1) to the
+Newtonian limit (N -> infinity, phi -> 1/N), so :func:`bingham_pressure_drop` needs neither ``np.roots`` nor an
+iteration.  tests/test_flow_bingham.py derives the cubic with sympy, checks it against ``np.roots`` element by
+element and checks the printed h^2 form fails a pint dimension check.
+
+All functions take SI floats or numpy arrays that broadcast against each other.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+__all__ = [
+    "yield_pressure_drop",
+    "bingham_number",
+    "bingham_flow_rate",
+    "bingham_pressure_drop",
+    "bingham_plug_fraction",
+    "bingham_slit_flow",
+    "BinghamSlitFlow",
+]
+
+
+def yield_pressure_drop(tau_y, L, h):
+    r"""Pressure drop at which a Bingham plastic starts to flow through a gap with stationary walls.
+
+    .. math:: \Delta p_y = \frac{2\,\tau_y\,L}{h}
+
+    Parameters
+    ----------
+    tau_y : float or array
+        Yield stress, [Pa].
+    L : float or array
+        Duct length, [m].
+    h : float or array
+        Gap, [m].
+
+    Returns
+    -------
+    float or array
+        Yield (blocking) pressure drop, [Pa].  Below it the plug fills the gap and nothing flows.
+
+    Examples
+    --------
+    >>> yield_pressure_drop(tau_y=1800.0, L=0.0546, h=0.0008)   # Makris duct at 3 kV/mm
+    245700.0
+
+    References
+    ----------
+    Makris et al., eq 2 with the stress reaching tau_y at both walls (r = h/2 from the centre plane).
+    """
+    return 2.0 * tau_y * L / h
+
+
+def bingham_number(Q, tau_y, eta, d, h):
+    r"""Bingham number of slit flow: yield stress over the viscous stress scale of the mean velocity.
+
+    .. math:: \mathrm{Bi} = \frac{\tau_y h}{\eta \bar u}, \qquad \bar u = \frac{|Q|}{\pi d h}
+
+    Parameters
+    ----------
+    Q : float or array
+        Flow rate, [m^3/s].
+    tau_y : float or array
+        Yield stress, [Pa].
+    eta : float or array
+        Plastic viscosity, [Pa s].
+    d, h : float or array
+        Mean diameter and gap, [m].
+
+    Returns
+    -------
+    float or array
+        Bi [-]; 0 for a Newtonian fluid, infinite for a blocked gap (Q = 0).  It relates to the ratio used in
+        :func:`bingham_pressure_drop` by :math:`\Delta p_N / \Delta p_y = 6/\mathrm{Bi}`.
+    """
+    with np.errstate(divide="ignore"):
+        return tau_y * h * np.pi * d * h / (eta * np.abs(Q))
+
+
+def bingham_flow_rate(dp, tau_y, eta, L, d, h):
+    r"""Flow rate of a Bingham plastic through a thin annular gap for a given pressure drop (explicit).
+
+    .. math::
+        Q = \operatorname{sgn}(\Delta p)\,\frac{\pi d h^3 |\Delta p|}{12 \eta L}
+            \left(1 - \tfrac{3}{2}\phi + \tfrac{1}{2}\phi^3\right), \quad \phi = \frac{\Delta p_y}{|\Delta p|},
+
+    and :math:`Q = 0` for :math:`|\Delta p| \le \Delta p_y = 2\tau_y L/h` (the plug fills the gap).
+
+    Parameters
+    ----------
+    dp : float or array
+        Pressure drop along the duct, signed, [Pa].
+    tau_y : float or array
+        Yield stress, [Pa]; zero gives Hagen-Poiseuille flow (Makris eq 4).
+    eta : float or array
+        Plastic viscosity, [Pa s].
+    L : float or array
+        Duct length, [m].
+    d : float or array
+        Mean diameter of the annulus, [m].
+    h : float or array
+        Gap, [m].
+
+    Returns
+    -------
+    float or array
+        Flow rate, [m^3/s], with the sign of ``dp``.
+
+    Notes
+    -----
+    Thin-gap (parallel-plate) approximation, laminar, steady, no wall slip.  The exact annulus differs by
+    O((h/d)^2); see :mod:`erdesign.flow.newtonian` and docs/theory.md.
+
+    References
+    ----------
+    Makris et al., eq 6 (printed with h^2; h^3 is dimensionally right).  Phillips (1969) for the derivation.
+    """
+    dp_abs = np.abs(dp)
+    dp_y = yield_pressure_drop(tau_y, L, h)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        phi = np.where(dp_abs > dp_y, dp_y / dp_abs, 1.0)
+    shape = 1.0 - 1.5 * phi + 0.5 * phi**3
+    return np.sign(dp) * np.pi * d * h**3 * dp_abs / (12.0 * eta * L) * shape
+
+
+def _plug_fraction_of_ratio(N):
+    """Physical root phi in (0, 1] of phi^3 - (3 + 2N) phi + 2 = 0, for N = dp_newtonian/dp_yield >= 0."""
+    m = np.sqrt(1.0 + (2.0 / 3.0) * N)
+    return 2.0 * m * np.sin(np.arcsin(m**-3) / 3.0)
+
+
+class BinghamSlitFlow(NamedTuple):
+    """Result of :func:`bingham_slit_flow`."""
+
+    pressure_drop: float | np.ndarray
+    """Pressure drop with the sign of the flow, [Pa]."""
+    plug_fraction: float | np.ndarray
+    """Plug thickness over gap, [-]: 0 Newtonian, 1 blocked gap."""
+
+
+def bingham_slit_flow(Q, tau_y, eta, L, d, h):
+    r"""Pressure drop and plug fraction of Bingham flow through a thin annular gap, for a given flow rate.
+
+    Solves the corrected Makris cubic (eq 7 with h^3) in closed form, see the module notes:
+
+    .. math::
+        \Delta p = \frac{\Delta p_y}{\phi}, \quad \phi = 2m\sin\!\left(\tfrac13\arcsin m^{-3}\right),
+        \quad m = \sqrt{1 + \tfrac{2}{3}\frac{\Delta p_N}{\Delta p_y}},
+        \quad \Delta p_N = \frac{12\eta L |Q|}{\pi d h^3}, \quad \Delta p_y = \frac{2\tau_y L}{h}
+
+    Parameters
+    ----------
+    Q : float or array
+        Flow rate through the duct, signed, [m^3/s].
+    tau_y : float or array
+        Yield stress, [Pa], >= 0.
+    eta : float or array
+        Plastic viscosity, [Pa s], > 0.
+    L : float or array
+        Duct length, [m].
+    d : float or array
+        Mean diameter of the annulus, [m].
+    h : float or array
+        Gap, [m].
+
+    Returns
+    -------
+    BinghamSlitFlow
+        ``pressure_drop`` [Pa] with the sign of ``Q`` and ``plug_fraction`` [-].
+
+    Notes
+    -----
+    At ``Q = 0`` the gap is blocked: any pressure drop up to :math:`\Delta p_y` is in equilibrium with no flow.
+    The function returns the break-away value :math:`\Delta p_y` (the limit :math:`Q \to 0^+`; the sign is taken
+    from the sign bit of ``Q``, so ``-0.0`` gives :math:`-\Delta p_y`) and a plug fraction of 1.
+    For :math:`\tau_y = 0` it returns Makris eq 4 and a plug fraction of 0.
+
+    Examples
+    --------
+    Makris's duct at 1 in/s piston speed and 3 kV/mm (tau_y = 1.8 kPa, eta = 13 Pa s):
+
+    >>> Ap = 3.141592653589793 / 4 * (0.0334**2 - 0.01125**2)
+    >>> r = bingham_slit_flow(Q=0.0254 * Ap, tau_y=1800.0, eta=13.0, L=0.0546, d=0.0143, h=0.0008)
+    >>> round(r.pressure_drop / 1e6, 3), round(r.plug_fraction, 3)
+    (7.674, 0.032)
+
+    References
+    ----------
+    Makris et al., eqs 5-7 (printed with h^2 where h^3 is dimensionally right).
+    """
+    Q_abs = np.abs(Q)
+    dp_y = yield_pressure_drop(tau_y, L, h)
+    dp_n = 12.0 * eta * L * Q_abs / (np.pi * d * h**3)
+    plastic = dp_y > 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        phi = _plug_fraction_of_ratio(dp_n / np.where(plastic, dp_y, 1.0))
+        dp_abs = np.where(plastic, dp_y / phi, dp_n)
+    phi = np.where(plastic, phi, 0.0)
+    dp = np.copysign(dp_abs, Q)
+    if np.ndim(dp) == 0:
+        return BinghamSlitFlow(float(dp), float(phi))
+    return BinghamSlitFlow(dp, phi)
+
+
+def bingham_pressure_drop(Q, tau_y, eta, L, d, h):
+    """Pressure drop of Bingham flow through a thin annular gap for a flow rate, [Pa].
+
+    The ``pressure_drop`` of :func:`bingham_slit_flow`; see there for the equation, parameters and notes.
+    """
+    return bingham_slit_flow(Q, tau_y, eta, L, d, h).pressure_drop
+
+
+def bingham_plug_fraction(Q, tau_y, eta, L, d, h):
+    """Plug thickness over gap of Bingham flow through a thin annular gap for a flow rate, [-].
+
+    The ``plug_fraction`` of :func:`bingham_slit_flow`; see there.
+    """
+    return bingham_slit_flow(Q, tau_y, eta, L, d, h).plug_fraction
