@@ -1,3 +1,47 @@
-"""erdesign: design, simulation and diagnosis of electro- and magnetorheological dampers with annular ducts."""
+"""erdesign: design, simulation and diagnosis of electro- and magnetorheological dampers with annular ducts.
+
+Three layers (docs/architecture.md):
+
+* kernels - :mod:`erdesign.flow` (steady gap flow) and :mod:`erdesign.constitutive` (stress in time): plain SI
+  floats and numpy arrays, vectorised;
+* objects - :class:`Fluid`, :class:`Geometry`, :class:`Damper`: built from pint quantities or strings, checked;
+* workflows - sizing (:meth:`Damper.size`), the damper file (:func:`load_damper`), the command line (``erdesign``).
+
+The functions in this namespace take pint quantities or strings and return quantities:
+
+>>> import erdesign
+>>> dp = erdesign.bingham_pressure_drop('1 mL/s', '1.8 kPa', '13 Pa*s', '54.6 mm', '14.3 mm', '0.8 mm')
+>>> print(f"{dp.to('kPa'):.1f~P}")
+724.7 kPa
+"""
+
+from . import flow
+from .api import (
+    annulus_pressure_drop,
+    bingham_flow_rate,
+    bingham_number,
+    bingham_plug_fraction,
+    bingham_pressure_drop,
+    slit_pressure_drop,
+    thin_gap_error,
+    yield_pressure_drop,
+)
+from .damper import Damper, QuasiSteadyState, SineResponse, SizingResult
+from .damper_file import load_damper, load_example
+from .errors import DamperFileError, ErdesignError, ErdesignWarning, UnitError, ValidityWarning
+from .fluid import Fluid
+from .geometry import Geometry
+from .metrics import energy_per_cycle, equivalent_damping, esr
+from .units import Q_, ureg
 
 __version__ = "0.1.0"
+
+__all__ = [
+    "Damper", "QuasiSteadyState", "SineResponse", "SizingResult", "Fluid", "Geometry",
+    "load_damper", "load_example",
+    "annulus_pressure_drop", "bingham_flow_rate", "bingham_number", "bingham_plug_fraction",
+    "bingham_pressure_drop", "slit_pressure_drop", "thin_gap_error", "yield_pressure_drop",
+    "energy_per_cycle", "equivalent_damping", "esr",
+    "ErdesignError", "UnitError", "DamperFileError", "ErdesignWarning", "ValidityWarning",
+    "Q_", "ureg", "flow",
+]

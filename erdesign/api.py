@@ -1,0 +1,29 @@
+"""Unit-aware public versions of the SI kernels: pint quantities or strings in, quantities out.
+
+Each function here is the kernel of the same name in :mod:`erdesign.flow` (or :mod:`erdesign.constitutive`)
+wrapped by :func:`erdesign.units.unit_aware`, which checks every argument's dimension (the error names the
+argument) and converts to SI before calling the kernel.  The kernel itself is reachable as ``func.kernel``.
+"""
+
+from __future__ import annotations
+
+from .flow import bingham as _bingham
+from .flow import newtonian as _newtonian
+from .units import unit_aware
+
+__all__ = [
+    "slit_pressure_drop", "annulus_pressure_drop", "thin_gap_error",
+    "yield_pressure_drop", "bingham_number", "bingham_flow_rate", "bingham_pressure_drop", "bingham_plug_fraction",
+]
+
+_DUCT = dict(L="m", d="m", h="m")
+
+slit_pressure_drop = unit_aware("Pa", Q="m^3/s", eta="Pa*s", **_DUCT)(_newtonian.slit_pressure_drop)
+annulus_pressure_drop = unit_aware("Pa", Q="m^3/s", eta="Pa*s", **_DUCT)(_newtonian.annulus_pressure_drop)
+thin_gap_error = unit_aware("", h_over_d="")(_newtonian.thin_gap_error)
+
+yield_pressure_drop = unit_aware("Pa", tau_y="Pa", L="m", h="m")(_bingham.yield_pressure_drop)
+bingham_number = unit_aware("", Q="m^3/s", tau_y="Pa", eta="Pa*s", d="m", h="m")(_bingham.bingham_number)
+bingham_flow_rate = unit_aware("m^3/s", dp="Pa", tau_y="Pa", eta="Pa*s", **_DUCT)(_bingham.bingham_flow_rate)
+bingham_pressure_drop = unit_aware("Pa", Q="m^3/s", tau_y="Pa", eta="Pa*s", **_DUCT)(_bingham.bingham_pressure_drop)
+bingham_plug_fraction = unit_aware("", Q="m^3/s", tau_y="Pa", eta="Pa*s", **_DUCT)(_bingham.bingham_plug_fraction)

@@ -1,0 +1,370 @@
+r"""The physics damper: geometry + fluid + seal friction -> quasi-steady force, and the design figures.
+
+Quasi-steady means the gap flow is taken as steady at each instant (no fluid inertia, no compressibility, no
+pre-yield elasticity); those and other effects are added on top by the diagnosis work.
+
+Valve damper (Makris et al., eq 14):
+
+.. math::
+    F = \Delta p\,A_p + F_s \operatorname{sgn}(v), \qquad Q_\text{duct} = \frac{v A_p}{n}
+
+with :math:`\Delta p` from the Bingham gap flow (:mod:`erdesign.flow.bingham`; the exact annulus of
+:mod:`erdesign.flow.annulus_bingham` when the gap is not thin).
+
+Mixed (moving-electrode) damper (Kamath and Wereley, seed 000, section II): pressure drag plus shear drag of the
+moving head, :math:`F = \Delta p\,A_p + \tau_w \pi D_p L + F_s \operatorname{sgn}(v)`, from the Couette-Poiseuille
+Bingham flow of :mod:`erdesign.flow.mixed_mode`.
+
+At ``v = 0`` the force is the break-away force (the limit ``v -> 0+``): the gap is blocked and any force up to it
+is held with no motion.
+
+Design figures: small-velocity damping constant (Makris eq 15), Reynolds number (Makris eq 1) and laminar check,
+yield (controllable) force, dynamic range F(E)/F(0), energy per cycle and equivalent damping (seed 000 eqs 1-2).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from ._util import scalar_or_array
+from .errors import ErdesignError, ValidityWarning
+from .flow.bingham import bingham_slit_flow, yield_pressure_drop
+from .fluid import Fluid
+from .geometry import THIN_GAP_LIMIT, Geometry
+from .metrics import energy_per_cycle, equivalent_damping
+from .units import Q_, to_si
+
+__all__ = ["Damper", "QuasiSteadyState", "SizingResult", "SineResponse", "CRITICAL_REYNOLDS", "FLOW_MODELS"]
+
+#: Reynolds number below which the duct flow is taken as laminar (Makris et al., section 2: R_crit = 2300).
+CRITICAL_REYNOLDS = 2300.0
+
+FLOW_MODELS = ("auto", "thin_gap", "annulus")
+
+
+class QuasiSteadyState(NamedTuple):
+    """Quasi-steady state of the damper at a piston velocity and control, SI (floats or arrays)."""
+
+    force: Any
+    """Total force on the piston, with the sign of the velocity, [N]."""
+    pressure_drop: Any
+    """Pressure drop across the piston, [Pa]."""
+    pressure_force: Any
+    """Pressure drop times piston area, [N]."""
+    shear_force: Any
+    """Shear drag of the moving electrode (mixed mode; 0 for valve), [N]."""
+    friction_force: Any
+    """Seal friction F_s sgn(v), [N]."""
+    flow_rate: Any
+    """Total volumetric flow displaced by the piston, v A_p, [m^3/s]."""
+    flow_per_duct: Any
+    """Flow through one duct (valve) or through the gap (mixed), [m^3/s]."""
+    plug_fraction: Any
+    """Plug thickness over gap, [-]: 0 fully yielded / Newtonian, 1 blocked."""
+    reynolds: Any
+    """Reynolds number of the gap flow (Makris eq 1), [-]."""
+    yield_stress: Any
+    """Yield stress at the control, [Pa]."""
+    viscosity: Any
+    """Plastic viscosity at the control, [Pa s]."""
+
+
+@dataclass(frozen=True)
+class SizingResult:
+    """Design point of a damper (``erdesign size``): every figure as a pint quantity.
+
+    :meth:`as_json` gives the plain-SI dictionary of shared/CONTRACTS.md section 3.
+    """
+
+    velocity: Any
+    field: Any
+    piston_area: Any
+    flow_rate: Any
+    flow_per_duct: Any
+    pressure_drop: Any
+    force: Any
+    zero_field_force: Any
+    dynamic_range: float | None
+    damping_constant: Any
+    yield_force: Any
+    seal_friction: Any
+    reynolds: float
+    laminar: bool
+    plug_fraction: float
+    yield_stress: Any
+    viscosity: Any
+    gap_ratio: float
+    flow_model: str
+
+    def as_json(self) -> dict:
+        """The keys of ``erdesign size --json``, plain SI numbers (``dynamic_range`` is null when undefined)."""
+        return {
+            "piston_area_m2": self.piston_area.to("m^2").magnitude,
+            "flow_m3_per_s": self.flow_rate.to("m^3/s").magnitude,
+            "pressure_drop_Pa": self.pressure_drop.to("Pa").magnitude,
+            "force_N": self.force.to("N").magnitude,
+            "zero_field_force_N": self.zero_field_force.to("N").magnitude,
+            "dynamic_range": self.dynamic_range,
+            "damping_constant_N_s_per_m": self.damping_constant.to("N*s/m").magnitude,
+            "reynolds": self.reynolds,
+            "laminar": self.laminar,
+            "plug_fraction": self.plug_fraction,
+        }
+
+
+@dataclass(frozen=True)
+class SineResponse:
+    """Quasi-steady response to a sinusoidal displacement x = X0 sin(2 pi f t), SI arrays and cycle figures."""
+
+    time: np.ndarray
+    """[s]"""
+    displacement: np.ndarray
+    """[m]"""
+    velocity: np.ndarray
+    """[m/s]"""
+    force: np.ndarray
+    """[N]"""
+    energy_per_cycle: float
+    """Energy dissipated per cycle, seed 000 eq 1, [J]."""
+    equivalent_damping: float
+    """C_eqv = U / (pi Omega X0^2), seed 000 eq 2, [N s/m]."""
+
+
+@dataclass(frozen=True)
+class Damper:
+    """A physics damper: geometry, fluid and seal friction.
+
+    Build it from a damper file with :func:`erdesign.load_damper` or directly:
+
+    >>> from erdesign import Damper, Fluid, Geometry
+    >>> g = Geometry.create(configuration="valve", duct_length="54.6 mm", duct_mean_diameter="14.3 mm",
+    ...                     gap="0.8 mm", piston_diameter="33.4 mm", rod_diameter="11.25 mm")
+    >>> f = Fluid.create(viscosity="7 Pa*s", yield_stress="1.8 kPa", reference_field="3 kV/mm",
+    ...                  yield_exponent=2.0, density="1100 kg/m^3")
+    >>> d = Damper(geometry=g, fluid=f, seal_friction=112.0)
+    >>> round(d.damping_constant().to("kN*s/m").magnitude, 1)     # Makris eq 15: 120 kN s/m
+    120.3
+
+    Attributes
+    ----------
+    geometry : Geometry
+    fluid : Fluid
+    seal_friction : float
+        Coulomb friction of seals and bearings, F_s (Makris eq 14), [N].
+    name : str
+    flow_model : str
+        ``"thin_gap"`` (parallel plates, Makris's equations), ``"annulus"`` (exact concentric annulus, valve only)
+        or ``"auto"`` (thin gap up to h/d = :data:`~erdesign.geometry.THIN_GAP_LIMIT`, exact annulus above).
+    """
+
+    geometry: Geometry
+    fluid: Fluid
+    seal_friction: float = 0.0
+    name: str = ""
+    flow_model: str = "auto"
+
+    def __post_init__(self) -> None:
+        if self.flow_model not in FLOW_MODELS:
+            raise ErdesignError(f"flow_model: must be one of {', '.join(FLOW_MODELS)}, got {self.flow_model!r}")
+        if self.flow_model == "annulus" and self.geometry.configuration == "mixed":
+            raise ErdesignError("flow_model: the exact annulus is available for the valve configuration only")
+        if not (np.isfinite(self.seal_friction) and self.seal_friction >= 0):
+            raise ErdesignError(f"seal_friction: must be a finite force >= 0, got {self.seal_friction!r} N")
+
+    # ------------------------------------------------------------------ SI layer (floats / arrays)
+    @property
+    def uses_exact_annulus(self) -> bool:
+        """True when the valve gap flow is computed for the exact annulus rather than parallel plates."""
+        if self.geometry.configuration != "valve":
+            return False
+        return self.flow_model == "annulus" or (
+            self.flow_model == "auto" and self.geometry.gap_ratio > THIN_GAP_LIMIT
+        )
+
+    def state(self, v, field=0.0) -> QuasiSteadyState:
+        """Quasi-steady state at piston velocity ``v`` [m/s] and control ``field`` (SI magnitude), vectorised.
+
+        ``v`` and ``field`` broadcast against each other.  See the module notes for the equations.
+        """
+        g, fl = self.geometry, self.fluid
+        v = np.asarray(v, dtype=float)
+        field = np.asarray(field, dtype=float)
+        tau_y = np.asarray(fl.yield_stress_at(field), dtype=float)
+        eta = np.asarray(fl.viscosity_at(field), dtype=float)
+        Ap = g.piston_area
+        Q_total = v * Ap
+        friction = np.copysign(self.seal_friction, v)
+        if g.configuration == "valve":
+            Q = Q_total / g.ducts
+            if self.uses_exact_annulus:
+                from .flow.annulus_bingham import annulus_bingham_slit_flow
+
+                dp, phi = annulus_bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
+            else:
+                dp, phi = bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
+            pressure_force = dp * Ap
+            shear_force = np.zeros(np.broadcast(dp, v).shape)
+            mean_velocity = np.abs(Q) / (np.pi * g.duct_mean_diameter * g.gap)
+        else:
+            from .flow.mixed_mode import mixed_mode_damper_force
+
+            m = mixed_mode_damper_force(v, tau_y, eta, g.duct_length, g.piston_diameter, g.rod_diameter, g.gap)
+            dp, phi = m.pressure_drop, m.plug_fraction
+            pressure_force, shear_force = m.pressure_force, m.shear_force
+            Q = Q_total
+            # The fluid in the gap moves at up to the wall speed |v| as well as at the mean flow speed.
+            mean_velocity = np.maximum(np.abs(Q) / (np.pi * g.duct_mean_diameter * g.gap), np.abs(v))
+        reynolds = mean_velocity * g.gap * fl.density / eta  # Makris eq 1: Re = v_mean h / nu = Q / (pi d nu)
+        force = pressure_force + shear_force + friction
+        return QuasiSteadyState(*(scalar_or_array(a) for a in (
+            force, dp, pressure_force, shear_force, friction, Q_total, Q, phi, reynolds, tau_y, eta)))
+
+    def force_si(self, v, field=0.0):
+        """Quasi-steady force [N] at velocity ``v`` [m/s] and control ``field`` (SI), vectorised."""
+        return self.state(v, field).force
+
+    def damping_constant_si(self) -> float:
+        r"""Small-velocity damping constant of the zero-field fluid, [N s/m].
+
+        Valve (Makris eq 15, n ducts in parallel):
+
+        .. math:: C = \frac{12\,\eta_0\,L\,A_p^2}{n\,\pi\,d\,h^3}
+
+        Mixed: the slope F/v of the Newtonian Couette-Poiseuille solution (pressure + shear drag), which is exact
+        for the zero-field fluid at any velocity.  Seal friction is not part of C.
+        """
+        g, eta0 = self.geometry, self.fluid.viscosity
+        if g.configuration == "valve":
+            if self.uses_exact_annulus:
+                from .flow.newtonian import annulus_conductance_ratio
+
+                ratio = annulus_conductance_ratio(g.duct_mean_diameter, g.gap)
+            else:
+                ratio = 1.0
+            return 12.0 * eta0 * g.duct_length * g.piston_area**2 / (
+                g.ducts * math.pi * g.duct_mean_diameter * g.gap**3 * ratio)
+        from .flow.mixed_mode import mixed_mode_damper_force
+
+        m = mixed_mode_damper_force(1.0, 0.0, eta0, g.duct_length, g.piston_diameter, g.rod_diameter, g.gap)
+        return float(m.pressure_force + m.shear_force)
+
+    def yield_force_si(self, field) -> Any:
+        """Controllable (yield) force of the fluid at control ``field`` (SI): the fluid force as v -> 0+, [N].
+
+        Valve: :math:`2\\tau_y L A_p / h`; mixed: :math:`\\tau_y (2 L A_p / h + \\pi D_p L)`.  Seal friction is
+        not included.
+        """
+        g = self.geometry
+        tau_y = np.asarray(self.fluid.yield_stress_at(np.asarray(field, dtype=float)))
+        f = yield_pressure_drop(tau_y, g.duct_length, g.gap) * g.piston_area + tau_y * g.shear_area
+        return scalar_or_array(f)
+
+    # ------------------------------------------------------------------ unit-aware layer
+    def _velocity(self, velocity, name="velocity"):
+        return to_si(velocity, "m/s", name)
+
+    def force(self, velocity: Any, field: Any = None):
+        """Quasi-steady force at a velocity (quantity or string, may be an array) and a control, as a quantity."""
+        return Q_(self.force_si(self._velocity(velocity), self.fluid.field_si(field)), "N")
+
+    def damping_constant(self):
+        """Small-velocity damping constant of the zero-field fluid (Makris eq 15), quantity [N s/m]."""
+        return Q_(self.damping_constant_si(), "N*s/m")
+
+    def yield_force(self, field: Any = None):
+        """Controllable (yield) force of the fluid at a control, quantity [N]."""
+        return Q_(self.yield_force_si(self.fluid.field_si(field)), "N")
+
+    def dynamic_range(self, velocity: Any, field: Any):
+        """F(v, E) / F(v, 0), [-]: how much the control multiplies the force at each velocity (array or float)."""
+        v = self._velocity(velocity)
+        E = self.fluid.field_si(field)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return scalar_or_array(np.asarray(self.force_si(v, E)) / np.asarray(self.force_si(v, 0.0)))
+
+    def size(self, velocity: Any, field: Any = None) -> SizingResult:
+        """Quasi-steady design point at one piston velocity and control (``erdesign size``).
+
+        Warns (:class:`~erdesign.errors.ValidityWarning`) when the flow is not laminar.
+
+        Examples
+        --------
+        >>> from erdesign import load_example
+        >>> r = load_example("makris").size(velocity="1 in/s", field="3 kV/mm")
+        >>> print(f"{r.force.to('kN'):.3~P}  range {r.dynamic_range:.2f}  Re {r.reynolds:.3f}")
+        6.07 kN  range 1.92  Re 0.044
+        """
+        v = self._velocity(velocity)
+        if np.ndim(v) != 0:
+            raise ErdesignError("velocity: size takes one velocity; use Damper.state or Damper.force for sweeps")
+        E = self.fluid.field_si(field)
+        if np.ndim(E) != 0:
+            raise ErdesignError("field: size takes one value of the control")
+        s = self.state(v, E)
+        s0 = self.state(v, 0.0)
+        dyn = s.force / s0.force if s0.force != 0 else None
+        laminar = bool(s.reynolds < CRITICAL_REYNOLDS)
+        if not laminar:
+            warnings.warn(
+                f"velocity: Reynolds number {s.reynolds:.4g} exceeds {CRITICAL_REYNOLDS:g}; the laminar gap-flow "
+                "model does not hold (Makris eq 1)", ValidityWarning, stacklevel=2)
+        unit = self.fluid.control_unit
+        return SizingResult(
+            velocity=Q_(v, "m/s"),
+            field=Q_(E, unit),
+            piston_area=Q_(self.geometry.piston_area, "m^2"),
+            flow_rate=Q_(s.flow_rate, "m^3/s"),
+            flow_per_duct=Q_(s.flow_per_duct, "m^3/s"),
+            pressure_drop=Q_(s.pressure_drop, "Pa"),
+            force=Q_(s.force, "N"),
+            zero_field_force=Q_(s0.force, "N"),
+            dynamic_range=None if dyn is None else float(dyn),
+            damping_constant=self.damping_constant(),
+            yield_force=Q_(self.yield_force_si(E), "N"),
+            seal_friction=Q_(self.seal_friction, "N"),
+            reynolds=float(s.reynolds),
+            laminar=laminar,
+            plug_fraction=float(s.plug_fraction),
+            yield_stress=Q_(s.yield_stress, "Pa"),
+            viscosity=Q_(s.viscosity, "Pa*s"),
+            gap_ratio=self.geometry.gap_ratio,
+            flow_model="exact annulus" if self.uses_exact_annulus else "thin gap",
+        )
+
+    def sine_response(self, amplitude: Any, frequency: Any, field: Any = None, *, cycles: int = 1,
+                      samples_per_cycle: int = 2000) -> SineResponse:
+        """Quasi-steady force for x = X0 sin(2 pi f t), with energy per cycle and C_eqv (seed 000 eqs 1-2).
+
+        Parameters
+        ----------
+        amplitude : quantity or str
+            Displacement amplitude X0 (a length).
+        frequency : quantity or str
+            Frequency f (Hz).
+        field : quantity or str, optional
+            Control (default zero).
+        cycles : int
+            Whole cycles to simulate.
+        samples_per_cycle : int
+            Samples per cycle.
+        """
+        X0 = to_si(amplitude, "m", "amplitude")
+        f = to_si(frequency, "Hz", "frequency")
+        if not (X0 > 0 and f > 0):
+            raise ErdesignError("amplitude and frequency: must be positive")
+        if not (isinstance(cycles, int) and cycles >= 1 and isinstance(samples_per_cycle, int)
+                and samples_per_cycle >= 16):
+            raise ErdesignError("cycles must be a whole number >= 1 and samples_per_cycle >= 16")
+        E = self.fluid.field_si(field)
+        omega = 2 * math.pi * f
+        t = np.linspace(0.0, cycles / f, cycles * samples_per_cycle + 1)
+        x = X0 * np.sin(omega * t)
+        v = X0 * omega * np.cos(omega * t)
+        F = np.asarray(self.force_si(v, E), dtype=float)
+        U = energy_per_cycle(t, x, F, frequency=f)
+        return SineResponse(t, x, v, F, U, equivalent_damping(U, omega, X0))

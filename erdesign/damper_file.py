@@ -1,0 +1,150 @@
+"""Read damper files (TOML, shared/CONTRACTS.md section 1) into :class:`~erdesign.damper.Damper` objects.
+
+Every problem is a :class:`~erdesign.errors.DamperFileError` whose message starts with the file name and names the
+key (``makris.toml: geometry.gap: expected a length ...``).  Unknown keys are errors, so that a misspelt key is never
+silently ignored.
+
+Example
+-------
+>>> d = load_example("makris")
+>>> d.geometry.configuration, round(d.geometry.gap * 1e3, 4), d.seal_friction
+('valve', 0.8, 112.0)
+"""
+
+from __future__ import annotations
+
+import sys
+from importlib import resources
+from pathlib import Path
+from typing import Any, Mapping
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from . import materials
+from .damper import Damper
+from .errors import DamperFileError, ErdesignError
+from .fluid import Fluid
+from .geometry import Geometry
+from .units import to_si
+
+__all__ = ["load_damper", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
+           "GEOMETRY_KEYS", "FLUID_KEYS"]
+
+GEOMETRY_KEYS = ("configuration", "duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter",
+                 "ducts")
+FLUID_KEYS = ("material", "viscosity", "yield_stress", "reference_field", "yield_exponent", "density",
+              "viscosity_at_reference_field", "shear_modulus", "seal_friction")
+_TOP_KEYS = ("name", "geometry", "fluid")
+_REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density")
+
+
+def read_toml(path: str | Path) -> dict:
+    """Parse a TOML file; a missing file or a syntax error is a :class:`DamperFileError` naming the file."""
+    path = Path(path)
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh)
+    except FileNotFoundError:
+        raise DamperFileError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise DamperFileError(f"{path}: is a directory, expected a TOML file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise DamperFileError(f"{path}: invalid TOML: {exc}") from None
+    except UnicodeDecodeError:
+        raise DamperFileError(f"{path}: not a text (UTF-8) file") from None
+
+
+def _check_keys(table: Any, allowed: tuple[str, ...], where: str) -> Mapping[str, Any]:
+    if not isinstance(table, Mapping):
+        raise DamperFileError(f"{where}: expected a table, got {table!r}")
+    unknown = [k for k in table if k not in allowed]
+    if unknown:
+        prefix = f"{where}." if where else ""
+        raise DamperFileError(
+            f"{prefix}{unknown[0]}: unknown key" + (f" in [{where}]" if where else "")
+            + f"; allowed keys: {', '.join(allowed)}")
+    return table
+
+
+def parse_fluid_table(table: Mapping[str, Any], where: str = "fluid") -> tuple[Fluid, float]:
+    """A :class:`Fluid` and the seal friction [N] from a ``[fluid]`` table (damper or requirements file).
+
+    A ``material`` key takes the values of that material from the materials database; keys given here override
+    them.
+    """
+    table = dict(_check_keys(table, FLUID_KEYS, where))
+    if "material" in table:
+        name = table.pop("material")
+        if not isinstance(name, str):
+            raise DamperFileError(f"{where}.material: expected the name of a material as a string, got {name!r}")
+        try:
+            base = materials.fluid_values(name)
+        except ErdesignError as exc:
+            raise DamperFileError(f"{where}.material: {exc}") from None
+        table = {**base, **table}
+    missing = [k for k in _REQUIRED_FLUID if k not in table]
+    if missing:
+        raise DamperFileError(f"{where}.{missing[0]}: missing (required: {', '.join(_REQUIRED_FLUID)})")
+    exponent = table["yield_exponent"]
+    if isinstance(exponent, bool) or not isinstance(exponent, (int, float)):
+        raise DamperFileError(f"{where}.yield_exponent: expected a number, got {exponent!r}")
+    seal = table.get("seal_friction")
+    seal_friction = 0.0 if seal is None else to_si(seal, "N", f"{where}.seal_friction")
+    if seal_friction < 0:
+        raise DamperFileError(f"{where}.seal_friction: must not be negative, got {seal!r}")
+    fluid = Fluid.create(
+        viscosity=table["viscosity"],
+        yield_stress=table["yield_stress"],
+        reference_field=table["reference_field"],
+        yield_exponent=float(exponent),
+        density=table["density"],
+        viscosity_at_reference_field=table.get("viscosity_at_reference_field"),
+        shear_modulus=table.get("shear_modulus"),
+        name=str(table.get("name", "")),
+    )
+    return fluid, seal_friction
+
+
+def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_model: str = "auto") -> Damper:
+    """A :class:`Damper` from the parsed content of a damper file.  ``source`` prefixes error messages."""
+    try:
+        _check_keys(data, _TOP_KEYS, "")
+        for key in ("geometry", "fluid"):
+            if key not in data:
+                raise DamperFileError(f"[{key}]: missing table")
+        geo = dict(_check_keys(data["geometry"], GEOMETRY_KEYS, "geometry"))
+        if "configuration" not in geo:
+            raise DamperFileError("geometry.configuration: missing (\"valve\" or \"mixed\")")
+        for key in ("duct_length", "gap", "piston_diameter", "rod_diameter"):
+            if key not in geo:
+                raise DamperFileError(f"geometry.{key}: missing")
+        geometry = Geometry.create(**geo)
+        fluid, seal_friction = parse_fluid_table(data["fluid"])
+        name = data.get("name", "")
+        if not isinstance(name, str):
+            raise DamperFileError(f"name: expected text, got {name!r}")
+        return Damper(geometry=geometry, fluid=fluid, seal_friction=seal_friction, name=name,
+                      flow_model=flow_model)
+    except ErdesignError as exc:
+        raise type(exc)(f"{source}: {exc}") from None
+
+
+def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
+    """Read a damper file (TOML, shared/CONTRACTS.md section 1)."""
+    return damper_from_dict(read_toml(path), source=str(path), flow_model=flow_model)
+
+
+def example_names() -> list[str]:
+    """Names of the damper files shipped in examples/ (``makris``, ...)."""
+    return sorted(p.name[:-5] for p in resources.files("erdesign.examples").iterdir() if p.name.endswith(".toml"))
+
+
+def load_example(name: str = "makris") -> Damper:
+    """One of the damper files shipped in examples/, by name (``"makris"`` is Makris et al.'s ER damper)."""
+    if name not in example_names():
+        raise ErdesignError(f"example: unknown example {name!r}; available: {', '.join(example_names())}")
+    with resources.as_file(resources.files("erdesign.examples") / f"{name}.toml") as path:
+        return damper_from_dict(read_toml(path), source=f"examples/{name}.toml")

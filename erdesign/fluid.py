@@ -1,0 +1,201 @@
+r"""The controllable fluid: plastic viscosity, yield stress as a function of the control, density.
+
+The control is whatever sets the yield stress and is known to the user: an electric field (ER, V/m), a magnetic
+field (MR, A/m or T), or, where only that is measured, the coil current (A) or driver voltage (V).  The dimension
+of :attr:`Fluid.reference_field` fixes which; every control value given later must have the same dimension.
+
+Field law (seed 001, Butz and von Stryk, section 2: :math:`\tau_y \propto E^n`, n from 1.2 to 2.5):
+
+.. math:: \tau_y(E) = \tau_\text{ref} \left(\frac{|E|}{E_\text{ref}}\right)^n
+
+Optional field-dependent plastic viscosity (Makris et al. measured 7 Pa s at 0 and 13 Pa s at 3 kV/mm):
+
+.. math:: \eta(E) = \eta_0 + (\eta_\text{ref} - \eta_0) \left(\frac{|E|}{E_\text{ref}}\right)^n
+
+Only the two end points are published; between them erdesign assumes the viscosity rises like the yield stress
+(the same exponent), which is a modelling choice, stated in docs/theory.md.  Without ``viscosity_at_reference_field``
+the viscosity does not depend on the field.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ._util import scalar_or_array
+from .errors import UnitError
+from .units import Q_, dimension_name, to_si, ureg
+
+__all__ = ["Fluid", "CONTROL_UNITS", "control_kind"]
+
+# SI unit of each kind of control, and what it is called in messages.
+CONTROL_UNITS = {
+    "electric field": "V/m",
+    "magnetic field": "A/m",
+    "magnetic flux density": "T",
+    "current": "A",
+    "voltage": "V",
+}
+
+
+def control_kind(value: Any, name: str = "reference_field") -> str:
+    """Kind of control (a key of :data:`CONTROL_UNITS`) of a quantity or string such as ``"3 kV/mm"``."""
+    q = Q_(value) if isinstance(value, str) else value
+    dim = getattr(q, "dimensionality", None)
+    for kind, unit in CONTROL_UNITS.items():
+        if dim == ureg.Unit(unit).dimensionality:
+            return kind
+    shown = f"{q:~P}" if hasattr(q, "units") else repr(value)
+    raise UnitError(
+        f"{name}: expected an electric field (V/m, kV/mm), a magnetic field (A/m, kA/m, T), a coil current (A) or "
+        f"a driver voltage (V); got '{shown}'"
+        + (f" ({dimension_name(dim)})" if dim is not None else "")
+    )
+
+
+def _unit_text(value: Any) -> str:
+    q = Q_(value) if isinstance(value, str) else value
+    return f"{q.units:~}" if hasattr(q, "units") else ""
+
+
+@dataclass(frozen=True)
+class Fluid:
+    """A Bingham-plastic controllable fluid in SI units.
+
+    Build it with :meth:`Fluid.create` from quantities or strings; the fields hold SI floats.
+
+    Attributes
+    ----------
+    viscosity : float
+        Plastic viscosity at zero field, eta_0, [Pa s].
+    yield_stress : float
+        Yield stress at the reference control, tau_ref, [Pa].
+    reference_field : float
+        Control at which ``yield_stress`` holds, E_ref, in the SI unit of its kind (V/m, A/m, T, A or V).
+    control : str
+        Kind of control, a key of :data:`CONTROL_UNITS`.
+    yield_exponent : float
+        Exponent n of the field law, [-].
+    density : float
+        Density, rho, [kg/m^3].
+    viscosity_at_reference_field : float or None
+        Plastic viscosity at the reference control, [Pa s]; None: viscosity independent of the field.
+    shear_modulus : float or None
+        Pre-yield shear modulus G (Makris eq 8), [Pa].
+    name : str
+        Free text.
+    """
+
+    viscosity: float
+    yield_stress: float
+    reference_field: float
+    control: str
+    yield_exponent: float
+    density: float
+    viscosity_at_reference_field: float | None = None
+    shear_modulus: float | None = None
+    name: str = ""
+    display_unit: str = ""
+    """Unit the reference field was given in (``"kV/mm"``), for display; SI when empty."""
+
+    def __post_init__(self) -> None:
+        checks = [
+            ("viscosity", self.viscosity > 0, "must be positive"),
+            ("yield_stress", self.yield_stress >= 0, "must not be negative"),
+            ("reference_field", self.reference_field > 0, "must be positive"),
+            ("yield_exponent", 0 < self.yield_exponent <= 5, "must lie in (0, 5] (seed 001 reports 1.2 to 2.5)"),
+            ("density", self.density > 0, "must be positive"),
+        ]
+        if self.viscosity_at_reference_field is not None:
+            checks.append(("viscosity_at_reference_field", self.viscosity_at_reference_field > 0, "must be positive"))
+        if self.shear_modulus is not None:
+            checks.append(("shear_modulus", self.shear_modulus > 0, "must be positive"))
+        for key, ok, why in checks:
+            if not ok:
+                raise UnitError(f"fluid.{key}: {why}, got {getattr(self, key)!r} (SI)")
+        if self.control not in CONTROL_UNITS:
+            raise UnitError(f"fluid.control: unknown kind of control {self.control!r}")
+
+    @classmethod
+    def create(
+        cls,
+        *,
+        viscosity: Any,
+        yield_stress: Any,
+        reference_field: Any,
+        yield_exponent: float,
+        density: Any,
+        viscosity_at_reference_field: Any = None,
+        shear_modulus: Any = None,
+        name: str = "",
+    ) -> "Fluid":
+        """Fluid from pint quantities or strings (``viscosity="7 Pa*s"``, ``reference_field="3 kV/mm"``).
+
+        Examples
+        --------
+        >>> f = Fluid.create(viscosity="7 Pa*s", yield_stress="1.8 kPa", reference_field="3 kV/mm",
+        ...                  yield_exponent=2.0, density="1100 kg/m^3", viscosity_at_reference_field="13 Pa*s")
+        >>> f.control, f.reference_field
+        ('electric field', 3000000.0)
+        >>> round(f.yield_stress_at(1.5e6), 1), round(f.viscosity_at(1.5e6), 2)   # half the field
+        (450.0, 8.5)
+        """
+        kind = control_kind(reference_field, "fluid.reference_field")
+        exponent = to_si(yield_exponent, "", "fluid.yield_exponent")
+        return cls(
+            viscosity=to_si(viscosity, "Pa*s", "fluid.viscosity"),
+            yield_stress=to_si(yield_stress, "Pa", "fluid.yield_stress"),
+            reference_field=to_si(reference_field, CONTROL_UNITS[kind], "fluid.reference_field"),
+            control=kind,
+            yield_exponent=float(exponent),
+            density=to_si(density, "kg/m^3", "fluid.density"),
+            viscosity_at_reference_field=(
+                None
+                if viscosity_at_reference_field is None
+                else to_si(viscosity_at_reference_field, "Pa*s", "fluid.viscosity_at_reference_field")
+            ),
+            shear_modulus=None if shear_modulus is None else to_si(shear_modulus, "Pa", "fluid.shear_modulus"),
+            name=name,
+            display_unit=_unit_text(reference_field),
+        )
+
+    @property
+    def control_unit(self) -> str:
+        """SI unit of the control (``"V/m"``, ``"A/m"``, ``"T"``, ``"A"`` or ``"V"``)."""
+        return CONTROL_UNITS[self.control]
+
+    @property
+    def field_unit(self) -> str:
+        """Unit to show control values in: the one the reference field was given in, else SI."""
+        return self.display_unit or self.control_unit
+
+    def field_si(self, field: Any, name: str = "field") -> float | np.ndarray:
+        """SI magnitude of a control value, checked against the kind of this fluid's reference field."""
+        if field is None:
+            return 0.0
+        return to_si(field, self.control_unit, name)
+
+    def _field_ratio(self, field):
+        return (np.abs(field) / self.reference_field) ** self.yield_exponent
+
+    def yield_stress_at(self, field):
+        r"""Yield stress at the control ``field`` (SI magnitude), [Pa]: :math:`\tau_\text{ref}(|E|/E_\text{ref})^n`."""
+        return scalar_or_array(self.yield_stress * self._field_ratio(field))
+
+    def viscosity_at(self, field):
+        r"""Plastic viscosity at the control ``field`` (SI magnitude), [Pa s].
+
+        :math:`\eta_0 + (\eta_\text{ref} - \eta_0)(|E|/E_\text{ref})^n`, or :math:`\eta_0` when no
+        ``viscosity_at_reference_field`` is given.
+        """
+        if self.viscosity_at_reference_field is None:
+            return scalar_or_array(self.viscosity + 0.0 * np.asarray(field, dtype=float))
+        rise = self.viscosity_at_reference_field - self.viscosity
+        return scalar_or_array(self.viscosity + rise * self._field_ratio(field))
+
+    def with_changes(self, **changes: Any) -> "Fluid":
+        """Copy with some SI fields replaced (``fluid.with_changes(viscosity=9.0)``)."""
+        return dataclasses.replace(self, **changes)

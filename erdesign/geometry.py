@@ -1,0 +1,176 @@
+r"""Damper geometry: the annular duct(s), the piston and the rod, in SI units, with checks.
+
+Two configurations (shared/CONTRACTS.md, damper file ``[geometry]``):
+
+``valve``
+    Makris's damper: a double-ended piston pushes the fluid through ``ducts`` stationary annular ducts in parallel,
+    each of length L, mean diameter d and gap h.  The electrodes do not move relative to each other.
+``mixed``
+    Kamath and Wereley's moving-electrode damper: the piston head (diameter Dp, length L) is the inner electrode.
+    The fluid it displaces flows back through the gap h between head and cylinder while the head shears it (flow +
+    shear, "mixed mode").  The mean diameter of that gap is ``Dp + h``.
+
+Piston (head) area with a double-ended rod of diameter dr, the same on both sides:
+
+.. math:: A_p = \frac{\pi}{4}\left(D_p^2 - d_r^2\right)
+
+The thin-gap (parallel-plate) flow formulas need ``h << d``; :attr:`Geometry.thin_gap_error` is the error they make
+for a Newtonian fluid (:func:`erdesign.flow.newtonian.thin_gap_error`).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from typing import Any
+
+from .errors import DamperFileError, ValidityWarning
+from .flow.newtonian import thin_gap_error
+from .units import to_si
+
+__all__ = ["Geometry", "CONFIGURATIONS", "THIN_GAP_LIMIT"]
+
+CONFIGURATIONS = ("valve", "mixed")
+
+#: Largest h/d for which erdesign uses the thin-gap formulas without comment.  At h/d = 0.1 the thin-gap
+#: Newtonian pressure drop is 0.07 % high; above it the valve damper uses the exact annulus and warns.
+THIN_GAP_LIMIT = 0.1
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """Geometry of a valve or mixed-mode damper, SI floats.  Build it with :meth:`Geometry.create`.
+
+    Attributes
+    ----------
+    configuration : str
+        ``"valve"`` or ``"mixed"``.
+    duct_length : float
+        L, duct length (mixed: length of the piston head), [m].
+    duct_mean_diameter : float
+        d, mean diameter of the annular gap, [m].
+    gap : float
+        h, radial gap, [m].
+    piston_diameter : float
+        Dp, piston (head) diameter, [m].
+    rod_diameter : float
+        dr, rod diameter (double-ended rod), [m].
+    ducts : int
+        Number of parallel ducts (valve), [-].
+    """
+
+    configuration: str
+    duct_length: float
+    duct_mean_diameter: float
+    gap: float
+    piston_diameter: float
+    rod_diameter: float
+    ducts: int = 1
+
+    def __post_init__(self) -> None:
+        def bad(key: str, why: str) -> DamperFileError:
+            return DamperFileError(f"geometry.{key}: {why}")
+
+        if self.configuration not in CONFIGURATIONS:
+            raise bad("configuration", f"must be one of {', '.join(map(repr, CONFIGURATIONS))}, "
+                                       f"got {self.configuration!r}")
+        for key in ("duct_length", "duct_mean_diameter", "gap", "piston_diameter"):
+            value = getattr(self, key)
+            if not value > 0:
+                raise bad(key, f"must be positive, got {value:g} m")
+        if self.rod_diameter < 0:
+            raise bad("rod_diameter", f"must not be negative, got {self.rod_diameter:g} m")
+        if self.rod_diameter >= self.piston_diameter:
+            raise bad("rod_diameter", f"must be smaller than the piston diameter ({self.rod_diameter * 1e3:g} mm "
+                                      f">= {self.piston_diameter * 1e3:g} mm)")
+        if self.gap >= self.duct_mean_diameter:
+            raise bad("gap", f"must be smaller than the mean diameter of the annulus ({self.gap * 1e3:g} mm >= "
+                             f"{self.duct_mean_diameter * 1e3:g} mm): the inner wall would have no diameter left")
+        if not (isinstance(self.ducts, int) and self.ducts >= 1):
+            raise bad("ducts", f"must be a whole number >= 1, got {self.ducts!r}")
+        if self.configuration == "mixed":
+            if self.ducts != 1:
+                raise bad("ducts", "applies to the valve configuration only (a mixed damper has one gap)")
+            expected = self.piston_diameter + self.gap
+            if not math.isclose(self.duct_mean_diameter, expected, rel_tol=1e-3):
+                raise bad("duct_mean_diameter", f"for a mixed damper it is piston_diameter + gap = "
+                                                f"{expected * 1e3:.4g} mm, got {self.duct_mean_diameter * 1e3:.4g} mm")
+        if self.gap_ratio > THIN_GAP_LIMIT:
+            warnings.warn(
+                f"geometry.gap: h/d = {self.gap_ratio:.3g} is not small; the thin-gap formulas are off by "
+                f"{100 * self.thin_gap_error:.2g} % for a Newtonian fluid"
+                + ("; the exact annulus is used" if self.configuration == "valve" else
+                   "; the mixed-mode model keeps the thin-gap form (compare erdesign.flow.numerical in annular "
+                   "coordinates)"),
+                ValidityWarning,
+                stacklevel=3,
+            )
+
+    @classmethod
+    def create(
+        cls,
+        *,
+        configuration: str,
+        duct_length: Any,
+        gap: Any,
+        piston_diameter: Any,
+        rod_diameter: Any,
+        duct_mean_diameter: Any = None,
+        ducts: int = 1,
+    ) -> "Geometry":
+        """Geometry from pint quantities or strings, checked.
+
+        ``duct_mean_diameter`` may be omitted for a mixed damper (it is ``piston_diameter + gap``).
+
+        Examples
+        --------
+        >>> g = Geometry.create(configuration="valve", duct_length="54.6 mm", duct_mean_diameter="14.3 mm",
+        ...                     gap="0.8 mm", piston_diameter="33.4 mm", rod_diameter="11.25 mm")
+        >>> round(g.piston_area * 1e4, 4)   # cm^2
+        7.7676
+        """
+        if configuration not in CONFIGURATIONS:
+            raise DamperFileError(f"geometry.configuration: must be one of "
+                                  f"{', '.join(map(repr, CONFIGURATIONS))}, got {configuration!r}")
+        L = to_si(duct_length, "m", "geometry.duct_length")
+        h = to_si(gap, "m", "geometry.gap")
+        Dp = to_si(piston_diameter, "m", "geometry.piston_diameter")
+        dr = to_si(rod_diameter, "m", "geometry.rod_diameter")
+        if duct_mean_diameter is None:
+            if configuration == "valve":
+                raise DamperFileError("geometry.duct_mean_diameter: missing (required for a valve damper)")
+            d = Dp + h
+        else:
+            d = to_si(duct_mean_diameter, "m", "geometry.duct_mean_diameter")
+        if isinstance(ducts, bool) or not isinstance(ducts, int):
+            raise DamperFileError(f"geometry.ducts: must be a whole number >= 1, got {ducts!r}")
+        return cls(configuration, L, d, h, Dp, dr, ducts)
+
+    @property
+    def piston_area(self) -> float:
+        """A_p = pi/4 (Dp^2 - dr^2), the area that displaces fluid, [m^2]."""
+        return math.pi / 4.0 * (self.piston_diameter**2 - self.rod_diameter**2)
+
+    @property
+    def gap_ratio(self) -> float:
+        """h/d, [-]."""
+        return self.gap / self.duct_mean_diameter
+
+    @property
+    def thin_gap_error(self) -> float:
+        """Relative error of the thin-gap Newtonian pressure drop against the exact annulus, [-]."""
+        return float(thin_gap_error(self.gap_ratio))
+
+    @property
+    def shear_area(self) -> float:
+        """Area of the moving electrode that shears the fluid (mixed: pi Dp L; valve: 0), [m^2]."""
+        return math.pi * self.piston_diameter * self.duct_length if self.configuration == "mixed" else 0.0
+
+    @property
+    def active_fluid_volume(self) -> float:
+        """Volume of fluid between the electrodes, pi d h L per duct times the number of ducts, [m^3].
+
+        The volume seed 000 (Kamath and Wereley, section III.C) divides the dissipated energy by.
+        """
+        return math.pi * self.duct_mean_diameter * self.gap * self.duct_length * self.ducts

@@ -1,0 +1,104 @@
+r"""Figures of merit computed from a force record: energy per cycle, equivalent damping, ESR.
+
+Energy dissipated per cycle (seed 000, Kamath and Wereley, eq 1) and equivalent viscous damping (eq 2):
+
+.. math::
+    U = \oint F\,dx = \int_0^{2\pi/\Omega} F v\,dt, \qquad C_\text{eqv} = \frac{U}{\pi \Omega X_0^2}
+
+Equivalent-error measure ESR (seed 002, eq 7; shared/CONTRACTS.md section 4):
+
+.. math:: \mathrm{ESR} = \frac{\sum (F - F_\text{model})^2}{\sum (F - \bar F)^2}
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.integrate import trapezoid
+
+from .errors import ErdesignError
+
+__all__ = ["energy_per_cycle", "equivalent_damping", "esr"]
+
+
+def energy_per_cycle(t, x, F, frequency):
+    r"""Energy dissipated per cycle, the area of the force-displacement loop averaged over the record, [J].
+
+    .. math:: U = \frac{1}{N_c}\oint F\,dx, \qquad N_c = f\,(t_\text{end} - t_0)
+
+    Parameters
+    ----------
+    t : array
+        Time, [s]; the record should span a whole number of cycles.
+    x : array
+        Displacement, [m].
+    F : array
+        Force the damper resists with (same sign as the velocity when dissipating), [N].
+    frequency : float
+        Excitation frequency f, [Hz].
+
+    Returns
+    -------
+    float
+        U, [J].
+
+    Notes
+    -----
+    Trapezoidal integration of F dx, which for a sampled sine converges as the square of the step.
+
+    Examples
+    --------
+    A linear dashpot F = C v dissipates pi C Omega X0^2 per cycle:
+
+    >>> import numpy as np
+    >>> t = np.linspace(0, 1, 4001); x = 0.01 * np.sin(2 * np.pi * t); F = 1000 * np.gradient(x, t, edge_order=2)
+    >>> round(energy_per_cycle(t, x, F, frequency=1.0) / (np.pi * 1000 * 2 * np.pi * 0.01**2), 5)
+    1.0
+
+    References
+    ----------
+    Kamath and Wereley (seed 000), eq 1.
+    """
+    t, x, F = (np.asarray(a, dtype=float) for a in (t, x, F))
+    if not (t.shape == x.shape == F.shape and t.ndim == 1 and t.size >= 3):
+        raise ErdesignError("energy_per_cycle: t, x and F must be 1-D arrays of the same length (at least 3)")
+    n_cycles = frequency * (t[-1] - t[0])
+    if n_cycles <= 0:
+        raise ErdesignError("energy_per_cycle: the record must span a positive time")
+    return float(trapezoid(F, x) / n_cycles)
+
+
+def equivalent_damping(energy, omega, amplitude):
+    r"""Equivalent viscous damping constant of a cycle, C_eqv = U / (pi Omega X0^2), [N s/m].
+
+    Parameters
+    ----------
+    energy : float
+        Energy per cycle U, [J].
+    omega : float
+        Angular frequency Omega, [rad/s].
+    amplitude : float
+        Displacement amplitude X0, [m].
+
+    References
+    ----------
+    Kamath and Wereley (seed 000), eq 2.
+    """
+    return energy / (math.pi * omega * amplitude**2)
+
+
+def esr(F_measured, F_model):
+    """Equivalent-error ratio: residual sum of squares over the variance sum of the measurement, [-].
+
+    0 is a perfect fit, 1 predicts no better than the mean (seed 002, eq 7).
+
+    >>> esr([1.0, 2.0, 3.0], [1.0, 2.0, 3.0]), esr([1.0, 2.0, 3.0], [2.0, 2.0, 2.0])
+    (0.0, 1.0)
+    """
+    F = np.asarray(F_measured, dtype=float)
+    M = np.asarray(F_model, dtype=float)
+    spread = np.sum((F - F.mean()) ** 2)
+    if spread == 0:
+        raise ErdesignError("esr: the measured force is constant, so the ESR is undefined")
+    return float(np.sum((F - M) ** 2) / spread)
