@@ -152,14 +152,15 @@ def bingham_flow_rate(dp, tau_y, eta, L, d, h):
     dp_y = yield_pressure_drop(tau_y, L, h)
     with np.errstate(divide="ignore", invalid="ignore"):
         phi = np.where(dp_abs > dp_y, dp_y / dp_abs, 1.0)
-    shape = 1.0 - 1.5 * phi + 0.5 * phi**3
+    shape = 0.5 * (1.0 - phi) ** 2 * (2.0 + phi)  # = 1 - 3 phi/2 + phi^3/2, factored: accurate as phi -> 1
     return np.sign(dp) * np.pi * d * h**3 * dp_abs / (12.0 * eta * L) * shape
 
 
 def _plug_fraction_of_ratio(N):
     """Physical root phi in (0, 1] of phi^3 - (3 + 2N) phi + 2 = 0, for N = dp_newtonian/dp_yield >= 0."""
     m = np.sqrt(1.0 + (2.0 / 3.0) * N)
-    return 2.0 * m * np.sin(np.arcsin(m**-3) / 3.0)
+    # At N = 0 the formula gives 1 - 1e-16 (sin(pi/6) rounds down); the blocked gap is exactly phi = 1.
+    return np.where(N == 0.0, 1.0, 2.0 * m * np.sin(np.arcsin(m**-3) / 3.0))
 
 
 class BinghamSlitFlow(NamedTuple):

@@ -103,13 +103,14 @@ def annulus_conductance_ratio(d, h):
     is a difference of nearly equal terms.  Below ``h/d = 1e-2`` the series is used (its first omitted term,
 ``107 e^6/4725``, is below 3e-14 there).
     """
-    e = np.asarray(h / d, dtype=float)
+    e = np.asarray(h, dtype=float) / np.asarray(d, dtype=float)
     # R2/R1 = (1 + e)/(1 - e); R2^4 - R1^4 = d^4 e (1 + e^2)/2; (R2^2 - R1^2)^2 = d^4 e^2.
     with np.errstate(divide="ignore", invalid="ignore"):
         log_ratio = np.log1p(e) - np.log1p(-e)
         exact = 1.5 / e**3 * (0.5 * e * (1.0 + e * e) - e * e / log_ratio)
-    series = 1.0 + e * e / 15.0 + 11.0 * e**4 / 315.0
-    out = np.where(e < 1e-2, series, exact)
+    e2 = e * e
+    series = 1.0 + e2 * (1.0 / 15.0 + e2 * (11.0 / 315.0 + e2 * (107.0 / 4725.0 + e2 * 2549.0 / 155925.0)))
+    out = np.where(e < 0.05, series, exact)
     return out if out.ndim else float(out)
 
 
