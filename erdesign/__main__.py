@@ -1,0 +1,5 @@
+"""``python -m erdesign`` runs the command line."""
+
+from .cli import run
+
+run()
