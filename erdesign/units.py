@@ -104,13 +104,15 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     UnitError
         The value has another dimension, an unknown unit, no unit where one is needed, or is not finite.
     """
+    given = value
     value = _parse(value, name)
     target = ureg.Unit(unit)
     if isinstance(value, pint.Quantity):
         if value.dimensionality != target.dimensionality:
+            shown = given if isinstance(given, str) else f"{value:~P}"
             raise UnitError(
                 f"{name}: expected {dimension_name(target.dimensionality)} (a value with a unit such as "
-                f"'{unit}'), got '{value:~P}' ({dimension_name(value.dimensionality)})"
+                f"'{unit}'), got '{shown}' ({dimension_name(value.dimensionality)})"
             )
         magnitude = value.to(target).magnitude
     else:
