@@ -15,13 +15,15 @@ The functions in this namespace take pint quantities or strings and return quant
 724.7 kPa
 """
 
-from . import flow
+from . import constitutive, flow
 from .api import (
     annulus_pressure_drop,
     bingham_flow_rate,
     bingham_number,
     bingham_plug_fraction,
     bingham_pressure_drop,
+    makris_stress,
+    maxwell_stress,
     slit_pressure_drop,
     thin_gap_error,
     yield_pressure_drop,
@@ -41,7 +43,8 @@ __all__ = [
     "load_damper", "load_example",
     "annulus_pressure_drop", "bingham_flow_rate", "bingham_number", "bingham_plug_fraction",
     "bingham_pressure_drop", "slit_pressure_drop", "thin_gap_error", "yield_pressure_drop",
+    "makris_stress", "maxwell_stress",
     "energy_per_cycle", "equivalent_damping", "esr",
     "ErdesignError", "UnitError", "DamperFileError", "ErdesignWarning", "ValidityWarning",
-    "Q_", "ureg", "flow",
+    "Q_", "ureg", "flow", "constitutive",
 ]

@@ -7,6 +7,7 @@ argument) and converts to SI before calling the kernel.  The kernel itself is re
 
 from __future__ import annotations
 
+from .constitutive import makris as _makris
 from .flow import bingham as _bingham
 from .flow import newtonian as _newtonian
 from .units import unit_aware
@@ -14,6 +15,7 @@ from .units import unit_aware
 __all__ = [
     "slit_pressure_drop", "annulus_pressure_drop", "thin_gap_error",
     "yield_pressure_drop", "bingham_number", "bingham_flow_rate", "bingham_pressure_drop", "bingham_plug_fraction",
+    "makris_stress", "maxwell_stress",
 ]
 
 _DUCT = dict(L="m", d="m", h="m")
@@ -27,3 +29,6 @@ bingham_number = unit_aware("", Q="m^3/s", tau_y="Pa", eta="Pa*s", d="m", h="m")
 bingham_flow_rate = unit_aware("m^3/s", dp="Pa", tau_y="Pa", eta="Pa*s", **_DUCT)(_bingham.bingham_flow_rate)
 bingham_pressure_drop = unit_aware("Pa", Q="m^3/s", tau_y="Pa", eta="Pa*s", **_DUCT)(_bingham.bingham_pressure_drop)
 bingham_plug_fraction = unit_aware("", Q="m^3/s", tau_y="Pa", eta="Pa*s", **_DUCT)(_bingham.bingham_plug_fraction)
+
+makris_stress = unit_aware("Pa", t="s", gamma="", tau_y="Pa", eta="Pa*s", G="Pa", tau0="Pa")(_makris.makris_stress)
+maxwell_stress = unit_aware("Pa", t="s", gamma="", eta="Pa*s", G="Pa", tau0="Pa")(_makris.maxwell_stress)

@@ -161,8 +161,7 @@ def unit_aware(returns: str | tuple[str, ...] | Mapping[str, str], **units: str)
 
         @functools.wraps(kernel)
         def wrapper(*args, **kwargs):
-            bound = signature.bind(*args, **kwargs)
-            bound.apply_defaults()
+            bound = signature.bind(*args, **kwargs)  # the kernel's own defaults (SI) apply to omitted arguments
             si = {
                 key: (to_si(val, units[key], key) if key in units and val is not None else val)
                 for key, val in bound.arguments.items()

@@ -98,16 +98,20 @@ def test_printed_a_to_minus_a_rule_fails_in_closed_form_for_small_a():
 
 
 def test_eq11_tends_to_maxwell_and_eq12_is_its_small_a_form():
-    phase = np.pi / 2
+    phases = np.linspace(-np.pi / 2, np.pi / 2, 101)
+    x = np.tan(phases / 2)
     for a in (1e-2, 1e-3, 1e-4):
-        bracket = integration_factor_exponent(phase, a, 1.0, 1.0, 1.0)       # G/(eta omega) = 1
-        eq12 = phase - a * np.log((1 + a + np.tan(phase / 2)) / (1 + a - np.tan(phase / 2)))
-        # Makris eq 12: eq 11 with a/sqrt(1-a^2) -> a and sqrt((1+a)/(1-a)) -> 1+a; the neglected terms are
-        # O(a^2 ln(1/a)) (bounded here by 2a^2 ln(2/a), derived in docs/theory/makris.md)
-        assert abs(bracket - eq12) <= 2 * a**2 * np.log(2 / a)
-        # text after eq 12: the exponent tends to G t / eta; the gap is a ln((2+a)/a) to first order
-        assert abs(bracket - phase) == pytest.approx(a * np.log((2 + a) / a), rel=2 * a)
-    assert abs(integration_factor_exponent(phase, 0.0, G, ETA, 10.0) - G * phase / (ETA * 10.0)) < 1e-12 * G
+        bracket = integration_factor_exponent(phases, a, 1.0, 1.0, 1.0)     # G/(eta omega) = 1
+        eq12 = phases - a * np.log((1 + a + x) / (1 + a - x))
+        # Makris eq 12 is eq 11 with a/sqrt(1-a^2) -> a and sqrt((1+a)/(1-a)) -> 1+a; the terms it drops add up
+        # to a^2/2 + O(a^3 ln a) at the ends of the interval (docs/theory/makris.md; measured 0.475 a^2 at
+        # a = 0.01, 0.4995 a^2 at 1e-4), so it is a consistent first-order form with no misprint
+        gap = np.abs(bracket - eq12).max()
+        assert 0.4 * a**2 < gap < 0.51 * a**2
+        # text after eq 12: the exponent tends to G t / eta, the gap at wt = pi/2 being a ln((2+a)/a) to first
+        # order (the printed "a ln(2+a)/a"); measured relative deviation 9e-4 at a = 0.01, below 2a
+        assert abs(bracket[-1] - phases[-1]) == pytest.approx(a * np.log((2 + a) / a), rel=2 * a)
+    assert abs(integration_factor_exponent(np.pi / 2, 0.0, G, ETA, 10.0) - G * np.pi / 2 / (ETA * 10.0)) < 1e-12 * G
 
 
 # --- 2. the exact-step integrator against solve_ivp ------------------------------------------------------------
@@ -178,26 +182,36 @@ def test_maxwell_steady_state_is_the_complex_modulus():
     steady = np.imag(modulus * gamma0 * np.exp(1j * omega * t))
     tau = maxwell_stress(t, gamma, ETA, G)
     last = slice(-4001, None)                                        # transient e^{-t/lam} gone after 10 cycles
-    # O(dt^2) interpolation error: (omega dt)^2/12 ~ 2e-7
-    np.testing.assert_allclose(tau[last], steady[last], rtol=0, atol=1e-6 * np.abs(modulus) * gamma0)
+    # the step replaces gdot by its mean over the step; weighted by e^{-(t - xi)/lam} this leaves a relative error
+    # (omega dt)(dt/lam)/12 = 4.3e-6 when omega lam << 1 (derived in docs/theory/makris.md); measured 4.3e-6
+    dt = t[1] - t[0]
+    tolerance = 2 * (omega * dt) * (dt / lam) / 12
+    np.testing.assert_allclose(tau[last], steady[last], rtol=0, atol=tolerance * np.abs(modulus) * gamma0)
 
 
-@pytest.mark.parametrize("deborah", [0.1, 0.3, 1.0, 3.0, 10.0])
+@pytest.mark.parametrize("deborah", [0.1, 0.5, 1.0, 10.0])
 def test_small_a_tends_to_maxwell(deborah):
     """Fig 4 (bottom): a = 0.05 against the Maxwell model (eq 13), and the approach as a -> 0."""
     omega = deborah * G / ETA                                        # Deborah number eta omega / G
     gaps = []
     for a in (0.05, 0.0125, 0.003125):
         gamma0 = TAU_Y / (a * ETA * omega)
-        t, gamma = harmonic(omega, gamma0, 5, 1000)
-        last = slice(-1001, None)
+        per_cycle = max(1000, 4 * int(10 / a))                       # >= 6 samples across the |cos wt| < a zone
+        t, gamma = harmonic(omega, gamma0, 5, per_cycle)
+        last = slice(-per_cycle - 1, None)
         maxwell = maxwell_stress(t, gamma, ETA, G)[last]
-        gap = np.abs(makris_stress(t, gamma, TAU_Y, ETA, G)[last] - maxwell).max() / np.abs(maxwell).max()
-        # the stress gap is bounded by the term a ln((2+a)/a) that eq 12 drops from the exponent (Makris, text
-        # after eq 12); measured gap / bound between 0.09 (De = 10) and 0.8 (De = 1)
-        assert gap < a * np.log((2 + a) / a)
-        gaps.append(gap)
-    assert gaps[0] > gaps[1] > gaps[2]                               # converges to Maxwell as a -> 0
+        gaps.append(np.abs(makris_stress(t, gamma, TAU_Y, ETA, G)[last] - maxwell).max() / np.abs(maxwell).max())
+        # scale of the gap: the term a ln((2+a)/a) that eq 12 drops from the exponent (text after eq 12).  Measured
+        # gap / that term: 0.09 (De = 10) to 1.06 (De = 0.5, a = 0.003); 1.5 is the margin
+        assert gaps[-1] < 1.5 * a * np.log((2 + a) / a)
+    # convergence to Maxwell at first order in a up to the log: a ln(2/a) predicts 0.34 per factor 4 in a,
+    # pure a 0.25, sqrt(a) 0.5; measured 0.33-0.37
+    ratios = np.array(gaps[1:]) / np.array(gaps[:-1])
+    assert np.all((ratios > 0.25) & (ratios < 0.45)), ratios
+    if deborah >= 10.0:
+        # Makris, Fig 4 bottom: "the two responses are almost identical" holds at high Deborah number (measured
+        # 1.6 % at De = 10, but 17 % at De = 0.5; the paper does not give its De)
+        assert gaps[0] < 0.02
 
 
 # --- 4. the large-a and G -> infinity limits --------------------------------------------------------------------
@@ -219,8 +233,23 @@ def test_elastic_plastic_closed_form_on_monotone_loading_and_against_eta_zero():
         tau_r = sol.y[0, -1]
         assert tau[end] == pytest.approx(tau_r, abs=1e-6 * TAU_Y)        # LSODA rtol 1e-11 at ~tau_y
     # slope just after the reversal at gamma = 0.8: G (1 + tau_r/tau_y) (derived from eq 8 as gdot -> 0)
-    slope = (tau[51] - tau[49]) / (gamma[51] - gamma[49])
-    assert slope == pytest.approx(G * (1 + tau[49] / TAU_Y), rel=0.01)   # one-sided secant, curvature G/tau_y
+    tip = elastic_plastic_stress([0.0, 0.8, 0.8 - 1e-6], TAU_Y, G)
+    slope = (tip[2] - tip[1]) / -1e-6
+    # secant over 1e-6 of strain: curvature (G/tau_y) * 1e-6 / 2 = 5e-6 relative
+    assert slope == pytest.approx(G * (1 + tip[1] / TAU_Y), rel=2e-5)
+
+
+def test_elastic_plastic_closed_form_on_a_random_path_with_rests():
+    """Branch-wise closed form against the step-by-step law (eta = 0) on a path with many reversals and rests."""
+    rng = np.random.default_rng(4)
+    steps = rng.normal(0.0, 0.05, 300) * (rng.random(300) > 0.2)      # a fifth of the steps are rests
+    gamma = np.concatenate([[0.0, 0.0], np.cumsum(steps)])              # starts with a rest too
+    tau = elastic_plastic_stress(gamma, TAU_Y, G, tau0=500.0)
+    step = makris_stress(np.arange(gamma.size, dtype=float), gamma, TAU_Y, 0.0, G, tau0=500.0)
+    assert tau[1] == 500.0                                               # rest: stress held
+    # same law (eq 8, eta = 0), two evaluation orders: round-off of a few ulps of tau_y per branch
+    np.testing.assert_allclose(tau, step, rtol=0, atol=1e-11 * TAU_Y)
+    assert np.abs(tau).max() < TAU_Y                                     # bounded by the yield stress
 
 
 def test_a_2000_matches_the_zero_frequency_closed_form():
@@ -272,12 +301,14 @@ def fig3_loops():
 
 def test_fig3_slope_after_reversal_and_at_zero_stress(fig3_loops):
     for omega, gamma, tau in fig3_loops.values():
-        i = 3 * 4000 + 1000                                          # gamma = +gamma0, start of the 4th cycle's unloading
+        i = 3 * 4000 + 1000                           # gamma = +gamma0: start of the 4th cycle's unloading
         tau_r = tau[i]
         slope = (tau[i + 1] - tau[i]) / (gamma[i + 1] - gamma[i])
         # eq 8 as gdot -> 0: d tau/d gamma = G (1 + |tau_r|/tau_y), not G (Makris's text reads "the slope of the
-        # loop at maximum strain is equal to G" for the experiment); curvature over the first step ~ 2e-5
-        assert slope == pytest.approx(G * (1 + tau_r / TAU_Y), rel=1e-4)
+        # loop at maximum strain is equal to G" for the experiment).  Tolerance: over the first step the rate is
+        # not 0 but omega gamma0 (omega dt)/2, adding eta|gdot|/tau_y <= 3.6e-4 (10 Hz) to the denominator;
+        # curvature of the branch adds 6e-6 (measured 2e-4 at 10 Hz)
+        assert slope == pytest.approx(G * (1 + tau_r / TAU_Y), rel=5e-4)
         assert 1.9 * G < slope < 2.3 * G
         # where the unloading branch crosses tau = 0 the slope is exactly G (eq 8 with tau = 0)
         j = i + np.flatnonzero(tau[i:] < 0)[0]
@@ -311,10 +342,10 @@ def test_fig3_loop_area_grows_with_frequency(fig3_loops):
 def test_fig3_periodic_steady_state(fig3_loops):
     for omega, gamma, tau in fig3_loops.values():
         # the offset from the periodic solution decays by exp(-int R dt) per cycle (eq 10), with int R dt over a
-        # cycle = 4 E(pi/2) from eq 11 >= 76 here: cycles 3 and 4 agree to round-off of the ~2 kPa stress
+        # cycle = 4 E(pi/2) from eq 11 = 36, 32, 28 at 1, 5, 10 Hz: cycles 3 and 4 agree to round-off
         a = TAU_Y / (ETA * omega * FIG3_GAMMA0)
-        assert 4 * integration_factor_exponent(np.pi / 2, a, G, ETA, omega) > 70
-        np.testing.assert_allclose(tau[-4001:], tau[-8002:-4001], rtol=0, atol=1e-9 * TAU_Y)
+        assert 4 * integration_factor_exponent(np.pi / 2, a, G, ETA, omega) > 25
+        np.testing.assert_allclose(tau[-4001:], tau[-8001:-4000], rtol=0, atol=1e-9 * TAU_Y)
 
 
 # --- interface --------------------------------------------------------------------------------------------------
