@@ -85,7 +85,8 @@ def _size_table(damper, r) -> str:
          else f"{r.dynamic_range:.4g}"),
         ("yield force of the fluid", q(r.yield_force)),
         ("seal friction", q(r.seal_friction, "N")),
-        ("damping constant C (eq 15)", q(r.damping_constant, "kN*s/m")),
+        ("damping constant C (eq 15)" if g.configuration == "valve" else "damping constant C (zero field)",
+         q(r.damping_constant, "kN*s/m")),
         ("Reynolds number (eq 1)", f"{r.reynolds:.4g} ({'laminar' if r.laminar else 'NOT laminar: > 2300'})"),
         ("plug fraction", f"{r.plug_fraction:.4g}"),
     ]

@@ -138,3 +138,38 @@ def test_parallel_ducts_share_the_flow():
     s1, s3 = one.state(0.03, 3e6), three.state(0.09, 3e6)
     assert s3.pressure_drop == pytest.approx(s1.pressure_drop, rel=1e-14)
     assert three.damping_constant_si() == pytest.approx(one.damping_constant_si() / 3, rel=1e-14)
+
+
+# ---------------------------------------------------------------- mixed mode (moving electrode, seed 000)
+
+
+def test_mixed_damping_constant_is_newtonian_couette_poiseuille():
+    # Zero field: thin-gap Couette-Poiseuille, derived by hand (docs/theory/mixed_mode.md): the gap carries
+    # q = -v A_p / b back while the head drags at v; g = 12 eta v (h/2 + A_p/b) / h^3, and
+    # F = g L A_p + (eta v / h + g h / 2) pi Dp L.
+    d = erdesign.load_example("kamath_wereley")
+    g, eta = d.geometry, d.fluid.viscosity
+    b = math.pi * g.duct_mean_diameter
+    grad = 12 * eta * (g.gap / 2 + g.piston_area / b) / g.gap**3
+    C = grad * g.duct_length * g.piston_area + (eta / g.gap + grad * g.gap / 2) * math.pi * g.piston_diameter * \
+        g.duct_length
+    assert d.damping_constant_si() == pytest.approx(C, rel=1e-12)
+    assert d.force_si(0.05, 0.0) == pytest.approx(C * 0.05, rel=1e-12)     # no seal friction in this file
+
+
+def test_mixed_yield_force_and_small_velocity_limit():
+    # Mixed damper: F -> tau_y (2 L A_p / h + pi Dp L) + F_s as v -> 0+ (plug floats, g h / tau_y -> 2).
+    d = erdesign.load_example("mr_mixed")
+    g = d.geometry
+    Fy = 75e3 * (2 * g.duct_length * g.piston_area / g.gap + math.pi * g.piston_diameter * g.duct_length)
+    assert d.yield_force("200 kA/m").to("N").magnitude == pytest.approx(Fy, rel=1e-12)
+    assert d.force_si(1e-9, 2e5) == pytest.approx(Fy + 40.0, rel=1e-3)
+    s = d.state(np.array([-0.2, 0.2]), 2e5)
+    np.testing.assert_allclose(s.force, s.pressure_force + s.shear_force + np.array([-40.0, 40.0]), rtol=1e-14)
+    assert s.force[1] == pytest.approx(-s.force[0], rel=1e-12) and np.all(s.shear_force * [-1, 1] > 0)
+
+
+def test_mixed_dynamic_range_falls_with_velocity():
+    d = erdesign.load_example("mr_mixed")
+    rng = d.dynamic_range(Q_(np.geomspace(1e-3, 2.0, 25), "m/s"), "200 kA/m")
+    assert np.all(np.diff(rng) < 0) and rng[0] > 50

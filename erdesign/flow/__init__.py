@@ -4,6 +4,7 @@ One module per flow situation:
 
 * :mod:`~erdesign.flow.newtonian` - Hagen-Poiseuille flow, thin-gap (Makris eq 4) and exact annulus.
 * :mod:`~erdesign.flow.bingham` - Bingham plastic through a stationary gap (valve mode, Makris eqs 5-7, corrected).
+* :mod:`~erdesign.flow.mixed_mode` - Couette-Poiseuille Bingham flow with a moving wall (moving-electrode damper).
 
 The unit-aware versions of these functions (pint quantities in and out) are in the top-level ``erdesign``
 namespace.
@@ -18,6 +19,15 @@ from .bingham import (
     bingham_slit_flow,
     yield_pressure_drop,
 )
+from .mixed_mode import (
+    CouettePoiseuilleBingham,
+    GapFlowRegime,
+    MixedModeDamperForce,
+    couette_poiseuille_bingham,
+    couette_poiseuille_bingham_velocity,
+    mixed_mode_damper_force,
+    mixed_mode_yield_force,
+)
 from .newtonian import (
     annulus_conductance_ratio,
     annulus_flow_rate,
@@ -28,6 +38,13 @@ from .newtonian import (
 )
 
 __all__ = [
+    "CouettePoiseuilleBingham",
+    "GapFlowRegime",
+    "MixedModeDamperForce",
+    "couette_poiseuille_bingham",
+    "couette_poiseuille_bingham_velocity",
+    "mixed_mode_damper_force",
+    "mixed_mode_yield_force",
     "BinghamSlitFlow",
     "bingham_flow_rate",
     "bingham_number",
