@@ -1,0 +1,92 @@
+"""The ``erdesign`` command group, its entry point and the helpers the commands share.
+
+The commands themselves live one per module beside this one (``size.py`` ...) and are registered in
+``erdesign/cli/__init__.py``.  Contract (shared/CONTRACTS.md section 3):
+
+Every command takes ``--json``: stdout is then exactly one JSON object.  Errors go to stderr as one line without a
+traceback and the exit code is 1 (bad input) or 2 (bad command-line usage); warnings go to stderr as
+``warning: ...`` lines.  The commands hold no physics: they call the library and print its results.
+
+Values on the command line are strings with units (``--velocity "1 in/s"``, ``--field "3 kV/mm"``).  A plain number
+is read in SI units (m/s; the field in the SI unit of the damper's control: V/m, A/m, T, A or V).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+import warnings
+from typing import Any
+
+import click
+
+from .. import __version__
+from ..errors import ErdesignError
+from ..units import Q_
+
+__all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number"]
+
+
+def value_arg(text: str, si_unit: str) -> Any:
+    """A command-line value: a quantity string, or a plain number in SI units."""
+    try:
+        return Q_(float(text), si_unit)
+    except ValueError:
+        return text
+
+
+def emit_json(obj: dict) -> None:
+    click.echo(json.dumps(obj, allow_nan=False))
+
+
+def json_number(x: float | None) -> float | None:
+    return None if x is None or not math.isfinite(x) else x
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="erdesign")
+def cli() -> None:
+    """erdesign: design and diagnose ER and MR dampers with annular ducts."""
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``erdesign`` console script; returns the exit code."""
+    args = sys.argv[1:] if argv is None else argv
+
+    def show_warning(message, category, filename, lineno, file=None, line=None):
+        click.echo(f"warning: {message}", err=True)
+
+    warnings.showwarning = show_warning
+    try:
+        cli.main(args=args, prog_name="erdesign", standalone_mode=False)
+    except click.exceptions.Abort:
+        click.echo("erdesign: aborted", err=True)
+        return 1
+    except click.UsageError as exc:
+        command = exc.ctx.command_path if exc.ctx else "erdesign"
+        click.echo(f"{command}: {exc.format_message()} (see '{command} --help')", err=True)
+        return 2
+    except click.ClickException as exc:
+        click.echo(f"erdesign: {exc.format_message()}", err=True)
+        return exc.exit_code or 1
+    except ErdesignError as exc:
+        click.echo(f"error: {' '.join(str(exc).split())}", err=True)
+        return 1
+    except OSError as exc:
+        click.echo(f"error: {exc}", err=True)
+        return 1
+    except Exception as exc:  # a bug, not bad input: still one line, but say so
+        click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
+                   "(please report this with the command that caused it)", err=True)
+        return 3
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
+
+
+def run() -> None:
+    """Console-script wrapper: exit with :func:`main`'s code."""
+    sys.exit(main())

@@ -1,0 +1,60 @@
+"""``erdesign size DAMPER.toml --velocity V [--field E] [--json]``: the quasi-steady design point."""
+
+from __future__ import annotations
+
+import click
+
+from ..damper_file import load_damper
+from ..units import format_quantity
+from .main import cli, emit_json, json_number, value_arg
+
+__all__ = ["size"]
+
+
+@cli.command()
+@click.argument("damper_file", metavar="DAMPER.toml")
+@click.option("--velocity", required=True, help='Piston velocity, e.g. "1 in/s" or "0.0254" (m/s).')
+@click.option("--field", default=None, help='Control: field, current or voltage, e.g. "3 kV/mm" (default 0).')
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units) instead of a table.")
+def size(damper_file: str, velocity: str, field: str | None, as_json: bool) -> None:
+    """Quasi-steady design point of a damper at one piston velocity and control."""
+    damper = load_damper(damper_file)
+    r = damper.size(velocity=value_arg(velocity, "m/s"),
+                    field=None if field is None else value_arg(field, damper.fluid.control_unit))
+    if as_json:
+        out = r.as_json()
+        out["dynamic_range"] = json_number(out["dynamic_range"])
+        emit_json(out)
+        return
+    click.echo(_size_table(damper, r))
+
+
+def _size_table(damper, r) -> str:
+    g = damper.geometry
+
+    def q(x, unit=None, digits=4):
+        return format_quantity(x.to(unit) if unit else x.to_compact(), None, digits)
+
+    config = f"{g.configuration}, {r.flow_model}, h/d = {r.gap_ratio:.3g}"
+    rows = [
+        ("piston area A_p", q(r.piston_area, "cm^2")),
+        ("flow rate Q = v A_p", q(r.flow_rate, "mL/s")
+         + (f"  ({q(r.flow_per_duct, 'mL/s')} per duct)" if g.ducts > 1 else "")),
+        ("yield stress / viscosity", f"{q(r.yield_stress, 'kPa')} / {q(r.viscosity, 'Pa*s')}"),
+        ("pressure drop", q(r.pressure_drop, "MPa")),
+        ("force (with seal friction)", q(r.force)),
+        ("zero-field force", q(r.zero_field_force)),
+        ("dynamic range F(E)/F(0)", "undefined (zero-field force is 0)" if r.dynamic_range is None
+         else f"{r.dynamic_range:.4g}"),
+        ("yield force of the fluid", q(r.yield_force)),
+        ("seal friction", q(r.seal_friction, "N")),
+        ("damping constant C (eq 15)" if g.configuration == "valve" else "damping constant C (zero field)",
+         q(r.damping_constant, "kN*s/m")),
+        ("Reynolds number (eq 1)", f"{r.reynolds:.4g} ({'laminar' if r.laminar else 'NOT laminar: > 2300'})"),
+        ("plug fraction", f"{r.plug_fraction:.4g}"),
+    ]
+    width = max(len(k) for k, _ in rows)
+    head = (f"{damper.name or 'damper'} ({config})\n"
+            f"at v = {format_quantity(r.velocity.to_compact())}, "
+            f"control = {format_quantity(r.field.to(damper.fluid.field_unit))}")
+    return head + "\n" + "\n".join(f"  {k:<{width}}  {v}" for k, v in rows)
