@@ -1,0 +1,403 @@
+r"""Measured (or simulated) damper records: CSV files with units in the header -> SI arrays; derivatives.
+
+File format (shared/CONTRACTS.md section 2): the first line that is not a ``#`` comment names the columns, each
+with its unit in square brackets; then one numeric row per sample.  Column order is free.
+
+=====================  ===========================================================================
+column                 unit (any pint unit of the right dimension)
+=====================  ===========================================================================
+``time``               required, a time; strictly increasing
+``displacement``       required, a length
+``force``              required, a force
+``field``              optional control: V/m, kV/mm, A/m, kA/m or T
+``current``            optional control: coil current, A (MR)
+``voltage``            optional control: command voltage of a current driver, V
+``velocity``           optional, a velocity (else derived from the displacement)
+``temperature``        optional, a temperature (degC, K, degF)
+=====================  ===========================================================================
+
+At most one control column; none means zero field.  Every problem is a :class:`MeasurementError` naming the line
+and the column.
+
+Derivatives (:func:`derivatives`): Savitzky-Golay differentiation (local cubic least-squares fit over a window
+that spans 1/16 of the dominant period by default).  Kamath and Wereley (seed 000, section II) filtered the
+displacement by Fourier decomposition and used a fourth-order central difference; tests/test_measurement.py
+shows the Savitzky-Golay derivative is at least as accurate on a noisy sine and, unlike the Fourier filter, needs
+neither a periodic record nor a whole number of cycles.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pint
+from scipy.signal import savgol_filter
+
+from .errors import ErdesignError
+from .fluid import CONTROL_UNITS
+from .units import Q_, dimension_name, ureg
+
+__all__ = ["Measurement", "MeasurementError", "read_measurement", "write_measurement", "derivatives",
+           "COLUMNS", "CONTROL_COLUMNS"]
+
+
+class MeasurementError(ErdesignError):
+    """A measurement file or record is malformed; the message names the line and column."""
+
+
+#: Column name -> SI unit (its dimension is the one required).
+COLUMNS = {
+    "time": "s",
+    "displacement": "m",
+    "force": "N",
+    "velocity": "m/s",
+    "temperature": "K",
+}
+#: Control columns: name -> kinds of control (keys of erdesign.fluid.CONTROL_UNITS) it may hold.
+CONTROL_COLUMNS = {
+    "field": ("electric field", "magnetic field", "magnetic flux density"),
+    "current": ("current",),
+    "voltage": ("voltage",),
+}
+_HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*\[(.+)\]\s*$")
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """A damper record in SI units: time, displacement, force, control and the derived velocity / acceleration.
+
+    Build it with :func:`read_measurement` or :meth:`Measurement.from_arrays`.  ``force`` may be None for a pure
+    motion record (an input to simulate).
+
+    Attributes
+    ----------
+    time : ndarray
+        [s], strictly increasing.
+    displacement : ndarray
+        x, [m].
+    force : ndarray or None
+        F, [N].
+    velocity : ndarray
+        v, [m/s]: the measured column if there was one, else derived (:func:`derivatives`).
+    acceleration : ndarray
+        a, [m/s^2], derived.
+    control : ndarray
+        The control in the SI unit of its kind (V/m, A/m, T, A or V); zeros when the record has none.
+    control_kind : str or None
+        Kind of control (a key of :data:`erdesign.fluid.CONTROL_UNITS`); None when the record has no control column.
+    temperature : ndarray or None
+        [K].
+    name : str
+        Where it came from (file name).
+    """
+
+    time: np.ndarray
+    displacement: np.ndarray
+    force: np.ndarray | None
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    control: np.ndarray
+    control_kind: str | None = None
+    temperature: np.ndarray | None = None
+    name: str = ""
+    units: dict = field(default_factory=dict)
+    """Units the columns were given in (for display and for writing back)."""
+
+    @classmethod
+    def from_arrays(cls, time, displacement, force=None, *, control=None, control_kind=None, velocity=None,
+                    temperature=None, name: str = "", window: int | None = None) -> "Measurement":
+        """A record from SI arrays; velocity and acceleration are derived when not given.
+
+        Parameters
+        ----------
+        time, displacement : array
+            [s], [m].
+        force : array, optional
+            [N].
+        control : array or float, optional
+            Control in SI units of ``control_kind``.
+        control_kind : str, optional
+            A key of :data:`erdesign.fluid.CONTROL_UNITS`; required with ``control``.
+        velocity : array, optional
+            Measured velocity [m/s]; otherwise derived.
+        temperature : array, optional
+            [K].
+        window : int, optional
+            Savitzky-Golay window (samples) for the derivatives; default from the dominant period.
+        """
+        t = _as_1d(time, "time")
+        n = t.size
+        x = _as_1d(displacement, "displacement", n)
+        F = None if force is None else _as_1d(force, "force", n)
+        if control is not None and control_kind not in CONTROL_UNITS:
+            raise MeasurementError(f"control_kind: must be one of {', '.join(CONTROL_UNITS)} when a control is "
+                                   f"given, got {control_kind!r}")
+        u = np.zeros(n) if control is None else _as_1d(np.broadcast_to(np.asarray(control, float), (n,)), "control", n)
+        T = None if temperature is None else _as_1d(temperature, "temperature", n)
+        _check_time(t, lambda i: f"time: sample {i}")
+        v_derived, a = derivatives(t, x, window=window)
+        v = v_derived if velocity is None else _as_1d(velocity, "velocity", n)
+        return cls(t, x, F, v, a, u, control_kind if control is not None else None, T, name)
+
+    def __len__(self) -> int:
+        return self.time.size
+
+    @property
+    def sample_rate(self) -> float:
+        """Mean sampling rate, [Hz]."""
+        return (self.time.size - 1) / (self.time[-1] - self.time[0])
+
+    @property
+    def duration(self) -> float:
+        """[s]"""
+        return float(self.time[-1] - self.time[0])
+
+    def select(self, mask_or_slice) -> "Measurement":
+        """The samples picked by a boolean mask or slice (derivatives are kept, not recomputed)."""
+        pick = (lambda a: None if a is None else a[mask_or_slice])
+        return replace(self, time=self.time[mask_or_slice], displacement=self.displacement[mask_or_slice],
+                       force=pick(self.force), velocity=self.velocity[mask_or_slice],
+                       acceleration=self.acceleration[mask_or_slice], control=self.control[mask_or_slice],
+                       temperature=pick(self.temperature))
+
+    def with_force(self, force) -> "Measurement":
+        """The same motion with another force (e.g. a model's prediction)."""
+        return replace(self, force=_as_1d(force, "force", len(self)))
+
+    def require_force(self) -> np.ndarray:
+        if self.force is None:
+            raise MeasurementError(f"{self.name or 'record'}: has no force column")
+        return self.force
+
+
+def _as_1d(values, name: str, n: int | None = None) -> np.ndarray:
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise MeasurementError(f"{name}: not numeric") from None
+    if arr.ndim != 1:
+        raise MeasurementError(f"{name}: expected a 1-D array, got shape {arr.shape}")
+    if n is not None and arr.size != n:
+        raise MeasurementError(f"{name}: expected {n} samples (as many as time), got {arr.size}")
+    bad = np.flatnonzero(~np.isfinite(arr))
+    if bad.size:
+        raise MeasurementError(f"{name}: sample {bad[0]} is not finite ({arr[bad[0]]})")
+    return arr
+
+
+def _check_time(t: np.ndarray, where) -> None:
+    if t.size < 5:
+        raise MeasurementError(f"time: a record needs at least 5 samples, got {t.size}")
+    steps = np.diff(t)
+    bad = np.flatnonzero(steps <= 0)
+    if bad.size:
+        raise MeasurementError(f"{where(bad[0] + 1)}: time must increase strictly "
+                               f"({t[bad[0]]:g} s then {t[bad[0] + 1]:g} s)")
+
+
+def _dominant_frequency(t: np.ndarray, x: np.ndarray) -> float:
+    """Frequency [Hz] of the largest Fourier component of the detrended signal (resampled if uneven)."""
+    n = t.size
+    tu = np.linspace(t[0], t[-1], n)
+    xu = np.interp(tu, t, x)
+    xu = xu - np.polyval(np.polyfit(tu, xu, 1), tu)
+    spectrum = np.abs(np.fft.rfft(xu * np.hanning(n)))
+    freqs = np.fft.rfftfreq(n, d=(tu[-1] - tu[0]) / (n - 1))
+    spectrum[0] = 0.0
+    return float(freqs[int(np.argmax(spectrum))]) if spectrum.max() > 0 else 0.0
+
+
+def derivatives(t, x, *, window: int | None = None, polyorder: int = 3):
+    r"""Velocity and acceleration of a sampled displacement, robust to measurement noise.
+
+    Savitzky-Golay differentiation: over a sliding window of ``window`` samples, fit a polynomial of degree
+    ``polyorder`` by least squares and differentiate it (:func:`scipy.signal.savgol_filter` with ``deriv=1, 2``).
+
+    Parameters
+    ----------
+    t : array
+        Time, [s]; should be (nearly) evenly sampled - steps varying by more than 1 % are resampled onto a uniform
+        grid and interpolated back.
+    x : array
+        Displacement, [m].
+    window : int, optional
+        Window length in samples (odd).  Default: the samples in 1/16 of the dominant period (at least
+        ``polyorder + 2``, at most a third of the record).
+    polyorder : int
+        Degree of the local polynomial.
+
+    Returns
+    -------
+    (v, a) : tuple of arrays
+        [m/s], [m/s^2].
+
+    Notes
+    -----
+    A cubic fit over 1/16 of a period passes a sine with a derivative bias of about 3e-6 of the amplitude inside the
+    record and 1e-4 at its ends, and attenuates white noise roughly as window^-1.5; the error of the derivative of a
+    noisy sine is tested against the Fourier filter plus fourth-order central difference of seed 000.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 2, 2001); x = 0.01 * np.sin(2 * np.pi * t)
+    >>> v, a = derivatives(t, x)
+    >>> round(float(np.max(np.abs(v - 0.01 * 2 * np.pi * np.cos(2 * np.pi * t)))) / (0.02 * np.pi), 4)
+    0.0001
+    """
+    t = np.asarray(t, dtype=float)
+    x = np.asarray(x, dtype=float)
+    n = t.size
+    dt = (t[-1] - t[0]) / (n - 1)
+    steps = np.diff(t)
+    uneven = np.max(np.abs(steps - dt)) > 0.01 * dt
+    tu = np.linspace(t[0], t[-1], n) if uneven else t
+    xu = np.interp(tu, t, x) if uneven else x
+    if window is None:
+        f0 = _dominant_frequency(tu, xu)
+        window = int(round(1.0 / (16.0 * f0 * dt))) if f0 > 0 else n // 3
+    window = max(polyorder + 2, min(int(window), max(polyorder + 2, n // 3)))
+    window += 1 - window % 2  # odd
+    if window > n:
+        raise MeasurementError(f"derivatives: the record ({n} samples) is too short for a window of {window}")
+    v = savgol_filter(xu, window, polyorder, deriv=1, delta=dt, mode="interp")
+    a = savgol_filter(xu, window, polyorder, deriv=2, delta=dt, mode="interp")
+    if uneven:
+        v, a = np.interp(t, tu, v), np.interp(t, tu, a)
+    return v, a
+
+
+def _parse_header(cells: list[str], lineno: int, path: str) -> list[tuple[str, str, Any]]:
+    columns = []
+    seen: dict[str, int] = {}
+    for col, cell in enumerate(cells, start=1):
+        m = _HEADER.match(cell)
+        if not m:
+            raise MeasurementError(f"{path}: line {lineno}, column {col} ({cell.strip()!r}): expected a name with "
+                                   f"its unit in square brackets, e.g. 'time [s]'")
+        name, unit = m[1].lower(), m[2].strip()
+        where = f"{path}: line {lineno}, column {col} ({name})"
+        if name not in COLUMNS and name not in CONTROL_COLUMNS:
+            raise MeasurementError(f"{where}: unknown column; known: {', '.join([*COLUMNS, *CONTROL_COLUMNS])}")
+        if name in seen:
+            raise MeasurementError(f"{where}: column '{name}' appears twice (also column {seen[name]})")
+        seen[name] = col
+        try:
+            q = Q_(1.0, unit)
+        except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, AttributeError,
+                AssertionError, TypeError, ValueError) as exc:
+            raise MeasurementError(f"{where}: unknown unit {unit!r} ({exc})") from None
+        if name in COLUMNS:
+            if q.dimensionality != ureg.Unit(COLUMNS[name]).dimensionality:
+                raise MeasurementError(f"{where}: unit {unit!r} is {dimension_name(q.dimensionality)}; expected "
+                                       f"{dimension_name(ureg.Unit(COLUMNS[name]).dimensionality)}")
+            kind = None
+        else:
+            kind = next((k for k in CONTROL_COLUMNS[name]
+                         if q.dimensionality == ureg.Unit(CONTROL_UNITS[k]).dimensionality), None)
+            if kind is None:
+                allowed = " or ".join(CONTROL_UNITS[k] for k in CONTROL_COLUMNS[name])
+                raise MeasurementError(f"{where}: unit {unit!r} is {dimension_name(q.dimensionality)}; a '{name}' "
+                                       f"column takes {allowed}")
+        columns.append((name, unit, kind))
+    missing = [c for c in ("time", "displacement", "force") if c not in seen]
+    if missing:
+        raise MeasurementError(f"{path}: line {lineno}: missing required column '{missing[0]} [...]'")
+    controls = [c for c in seen if c in CONTROL_COLUMNS]
+    if len(controls) > 1:
+        raise MeasurementError(f"{path}: line {lineno}: more than one control column ({', '.join(controls)}); "
+                               "give one of field, current or voltage")
+    return columns
+
+
+def read_measurement(path: str | Path, *, window: int | None = None) -> Measurement:
+    """Read a measurement CSV file (shared/CONTRACTS.md section 2) into SI arrays.
+
+    Raises :class:`MeasurementError` naming the line and column of the first problem: no units in the header,
+    unknown unit or column, wrong dimension, non-numeric or empty cell, NaN or infinity, wrong number of cells,
+    non-increasing time, fewer than 5 samples.
+    """
+    path = Path(path)
+    label = str(path)
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
+            lines = list(csv.reader(fh))
+    except FileNotFoundError:
+        raise MeasurementError(f"{label}: no such file") from None
+    except UnicodeDecodeError:
+        raise MeasurementError(f"{label}: not a text (UTF-8) file") from None
+    rows = [(i, r) for i, r in enumerate(lines, start=1) if r and not r[0].lstrip().startswith("#")
+            and any(c.strip() for c in r)]
+    if not rows:
+        raise MeasurementError(f"{label}: empty file (expected a header line such as 'time [s],displacement [mm],"
+                               "force [N]')")
+    header_line, header = rows[0]
+    columns = _parse_header(header, header_line, label)
+    data = np.empty((len(rows) - 1, len(columns)))
+    for r, (lineno, cells) in enumerate(rows[1:]):
+        if len(cells) != len(columns):
+            raise MeasurementError(f"{label}: line {lineno}: {len(cells)} cells, expected {len(columns)} "
+                                   f"(one per header column)")
+        for c, cell in enumerate(cells):
+            try:
+                value = float(cell)
+            except ValueError:
+                raise MeasurementError(f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): "
+                                       f"{cell.strip()!r} is not a number") from None
+            if not math.isfinite(value):
+                raise MeasurementError(f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): "
+                                       f"{cell.strip()!r} is not a finite number")
+            data[r, c] = value
+    if data.shape[0] < 5:
+        raise MeasurementError(f"{label}: {data.shape[0]} data rows; a record needs at least 5")
+    si: dict[str, np.ndarray] = {}
+    kind = None
+    units = {}
+    for c, (name, unit, col_kind) in enumerate(columns):
+        target = COLUMNS.get(name) or CONTROL_UNITS[col_kind]
+        si[name] = Q_(data[:, c], unit).to(target).magnitude
+        units[name] = unit
+        if col_kind:
+            kind = col_kind
+    t = si["time"]
+    line_of = [lineno for lineno, _ in rows[1:]]
+    _check_time(t, lambda i: f"{label}: line {line_of[i]}, column {[c[0] for c in columns].index('time') + 1} "
+                             f"(time)")
+    control_name = next((c for c in si if c in CONTROL_COLUMNS), None)
+    m = Measurement.from_arrays(
+        t, si["displacement"], si["force"],
+        control=si.get(control_name) if control_name else None, control_kind=kind,
+        velocity=si.get("velocity"), temperature=si.get("temperature"), name=path.name, window=window)
+    return replace(m, units=units)
+
+
+def write_measurement(path: str | Path, m: Measurement, *, units: dict[str, str] | None = None,
+                      comment: str = "") -> None:
+    """Write a record as a measurement CSV file (SI units unless ``units`` maps column -> unit)."""
+    units = {**m.units, **(units or {})}
+    cols: list[tuple[str, np.ndarray, str]] = [("time", m.time, "s"), ("displacement", m.displacement, "m")]
+    if m.force is not None:
+        cols.append(("force", m.force, "N"))
+    if m.control_kind is not None:
+        name = next(c for c, kinds in CONTROL_COLUMNS.items() if m.control_kind in kinds)
+        cols.append((name, m.control, CONTROL_UNITS[m.control_kind]))
+    if m.temperature is not None:
+        cols.append(("temperature", m.temperature, "K"))
+    header, table = [], []
+    for name, values, si_unit in cols:
+        unit = units.get(name, si_unit)
+        header.append(f"{name} [{unit}]")
+        table.append(Q_(values, si_unit).to(unit).magnitude)
+    with open(path, "w", newline="") as fh:
+        for line in comment.splitlines():
+            fh.write(f"# {line}\n")
+        w = csv.writer(fh)
+        w.writerow(header)
+        for row in np.column_stack(table):
+            w.writerow([f"{v:.10g}" for v in row])

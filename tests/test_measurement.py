@@ -1,0 +1,130 @@
+"""Measurement files (shared/CONTRACTS.md section 2) and noise-robust derivatives (seed 000 section II)."""
+
+import numpy as np
+import pytest
+
+from erdesign.measurement import Measurement, MeasurementError, derivatives, read_measurement, write_measurement
+
+GOOD = """# a comment before the header
+time [s],displacement [in],force [lbf],field [kV/mm],temperature [degC]
+0.000,0.0,1.0,3,25
+0.001,0.1,2.0,3,25
+# a comment between rows
+0.002,0.2,3.0,3,25
+0.003,0.3,4.0,3,25
+0.004,0.4,5.0,3,25
+0.005,0.5,6.0,3,25
+"""
+
+
+def write(tmp_path, text, name="m.csv"):
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def test_reads_any_units_into_si(tmp_path):
+    m = read_measurement(write(tmp_path, GOOD))
+    np.testing.assert_allclose(m.displacement[:3], [0.0, 0.00254, 0.00508])       # 1 in = 25.4 mm exactly
+    np.testing.assert_allclose(m.force[0], 4.4482216152605)                       # 1 lbf, exact definition
+    np.testing.assert_allclose(m.control, 3e6)
+    assert m.control_kind == "electric field"
+    np.testing.assert_allclose(m.temperature, 298.15)
+    assert len(m) == 6 and m.units["displacement"] == "in"
+
+
+def test_current_control_and_missing_control(tmp_path):
+    text = "displacement [mm],time [ms],force [kN],current [A]\n" + "\n".join(
+        f"{i},{i},{i},0.5" for i in range(8))
+    m = read_measurement(write(tmp_path, text))
+    assert m.control_kind == "current" and m.control[0] == 0.5 and m.time[1] == pytest.approx(1e-3)
+    text = "time [s],displacement [mm],force [N]\n" + "\n".join(f"{i},{i},{i}" for i in range(8))
+    m = read_measurement(write(tmp_path, text, "n.csv"))
+    assert m.control_kind is None and np.all(m.control == 0)
+
+
+@pytest.mark.parametrize(
+    "old, new, message",
+    [
+        ("time [s]", "time", r"line 2, column 1 \('time'\): expected a name with its unit"),
+        ("force [lbf]", "force [flurb]", r"line 2, column 3 \(force\): unknown unit 'flurb'"),
+        ("force [lbf]", "force [mm]", r"line 2, column 3 \(force\): unit 'mm' is a length; expected a force"),
+        ("field [kV/mm]", "field [A]", r"line 2, column 4 \(field\): unit 'A' is an electric current"),
+        ("field [kV/mm]", "pressure [Pa]", r"line 2, column 4 \(pressure\): unknown column"),
+        ("0.002,0.2,3.0", "0.002,abc,3.0", r"line 6, column 2 \(displacement\): 'abc' is not a number"),
+        ("0.002,0.2,3.0", "0.002,nan,3.0", r"line 6, column 2 \(displacement\): 'nan' is not a finite number"),
+        ("0.002,0.2,3.0", "0.002,,3.0", r"line 6, column 2 \(displacement\): '' is not a number"),
+        ("0.003,0.3,4.0", "0.001,0.3,4.0", r"line 7, column 1 \(time\): time must increase strictly"),
+        ("0.004,0.4,5.0,3,25", "0.004,0.4,5.0,3", r"line 8: 4 cells, expected 5"),
+        ("force [lbf],", "", r"line 2: missing required column 'force"),
+    ],
+)
+def test_bad_files_name_line_and_column(tmp_path, old, new, message):
+    assert old in GOOD
+    with pytest.raises(MeasurementError, match=message):
+        read_measurement(write(tmp_path, GOOD.replace(old, new, 1)))
+
+
+def test_two_controls_and_too_few_rows(tmp_path):
+    with pytest.raises(MeasurementError, match="more than one control column"):
+        read_measurement(write(tmp_path, "time [s],displacement [m],force [N],field [kV/mm],current [A]\n1,1,1,1,1\n"))
+    with pytest.raises(MeasurementError, match="3 data rows; a record needs at least 5"):
+        read_measurement(write(tmp_path, "time [s],displacement [m],force [N]\n0,0,0\n1,1,1\n2,2,2\n", "s.csv"))
+    with pytest.raises(MeasurementError, match="no such file"):
+        read_measurement(tmp_path / "absent.csv")
+
+
+def test_round_trip_through_write(tmp_path):
+    t = np.linspace(0, 1, 501)
+    m = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), 100 * np.cos(2 * np.pi * t),
+                                control=2e5, control_kind="magnetic field")
+    p = tmp_path / "w.csv"
+    write_measurement(p, m, units={"displacement": "mm", "field": "kA/m"}, comment="written by a test")
+    back = read_measurement(p)
+    np.testing.assert_allclose(back.displacement, m.displacement, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(back.control, 2e5)
+    assert back.control_kind == "magnetic field" and back.units["field"] == "kA/m"
+
+
+def _fourier_and_fourth_order(t, x, harmonics=5):
+    """Seed 000's method: Fourier filtering of the displacement, then a fourth-order central difference."""
+    n = t.size - 1                                   # whole number of cycles: drop the duplicated end point
+    X = np.fft.rfft(x[:n])
+    X[harmonics + 1:] = 0
+    xf = np.fft.irfft(X, n)
+    xf = np.concatenate([xf, xf[:1]])
+    dt = t[1] - t[0]
+    v = np.gradient(xf, dt)
+    v[2:-2] = (-xf[4:] + 8 * xf[3:-1] - 8 * xf[1:-3] + xf[:-4]) / (12 * dt)
+    return v
+
+
+@pytest.mark.parametrize("noise", [1e-4, 1e-3, 1e-2])
+def test_derivative_of_a_noisy_sine_beats_plain_differences_and_matches_seed_000(noise):
+    # Known signal: x = X0 sin(2 pi f t), 4 cycles at 1 kHz, white noise of `noise` X0 (a good LVDT has ~1e-3).
+    rng = np.random.default_rng(7)
+    f, X0 = 2.0, 0.01
+    t = np.linspace(0, 2.0, 2001)
+    x = X0 * np.sin(2 * np.pi * f * t) + noise * X0 * rng.standard_normal(t.size)
+    exact_v = X0 * 2 * np.pi * f * np.cos(2 * np.pi * f * t)
+    scale = X0 * 2 * np.pi * f
+    inner = slice(50, -50)
+    v, a = derivatives(t, x)
+    err = np.sqrt(np.mean((v - exact_v)[inner] ** 2)) / scale
+    err_gradient = np.sqrt(np.mean((np.gradient(x, t) - exact_v)[inner] ** 2)) / scale
+    err_seed = np.sqrt(np.mean((_fourier_and_fourth_order(t, x) - exact_v)[inner] ** 2)) / scale
+    # Noise amplification of a plain difference is ~ noise / (2 pi f dt) = 80 x noise; the smoothed derivative must
+    # be at least 10 x better.
+    assert err < err_gradient / 10
+    assert err < 0.05
+    assert err_seed < err_gradient / 10           # the reference method itself works on this record
+
+
+def test_derivatives_of_an_unevenly_sampled_record():
+    rng = np.random.default_rng(3)
+    t = np.sort(rng.uniform(0, 1, 3000))
+    t[0], t[-1] = 0.0, 1.0
+    x = np.sin(2 * np.pi * 3 * t)
+    v, _ = derivatives(t, x)
+    # Resampled onto a uniform grid and back: interpolation error of ~(dt)^2 x'' ~ 1e-4 relative is the limit.
+    assert np.max(np.abs(v - 2 * np.pi * 3 * np.cos(2 * np.pi * 3 * t))[100:-100]) / (6 * np.pi) < 2e-3
