@@ -1,0 +1,141 @@
+"""The one model interface: anything that predicts a damper force from a motion record.
+
+Physics dampers (the quasi-steady damper plus effects) and the phenomenological models of the literature both
+implement :class:`Model`, so that fitting (:mod:`erdesign.fit`), metrics, diagnosis, plots and the app treat them
+alike.  A model is a description (name, source, parameters with units and bounds) plus one function,
+:meth:`Model.force`, that maps a motion record and parameter values (SI floats) to a force array (N).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from ..errors import ErdesignError
+from ..measurement import Measurement
+from ..units import Q_, format_quantity
+
+__all__ = ["Parameter", "Model", "ParameterError"]
+
+
+class ParameterError(ErdesignError):
+    """Unknown parameter name, or a value outside its physical bounds."""
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter of a model.
+
+    Attributes
+    ----------
+    name : str
+        snake_case name, unique within the model (``c0``, ``f_c``, ``viscosity_factor``).
+    unit : str
+        SI unit of the value (``"N*s/m"``; ``""`` for dimensionless).
+    default : float
+        Typical value (SI), also the default starting guess.
+    lower, upper : float
+        Physical bounds (SI); ``-inf`` / ``inf`` allowed.
+    description : str
+        What it is, in a few words.
+    log_scale : bool
+        Positive and spanning decades: fitted in log space (needs ``lower > 0``).
+    """
+
+    name: str
+    unit: str
+    default: float
+    lower: float = -math.inf
+    upper: float = math.inf
+    description: str = ""
+    log_scale: bool = False
+
+    def __post_init__(self) -> None:
+        if not self.lower <= self.default <= self.upper:
+            raise ParameterError(f"{self.name}: default {self.default} outside its bounds "
+                                 f"[{self.lower}, {self.upper}]")
+        if self.log_scale and not self.lower > 0:
+            raise ParameterError(f"{self.name}: a log-scale parameter needs a positive lower bound")
+
+    def quantity(self, value: float):
+        """``value`` (SI) as a pint quantity in this parameter's unit."""
+        return Q_(value, self.unit)
+
+    def format(self, value: float, digits: int = 4) -> str:
+        """``value`` with its unit, as text (``"5000 N·s/m"``)."""
+        return format_quantity(self.quantity(value), None, digits)
+
+
+class Model:
+    """Base class of every damper model.
+
+    Subclasses set :attr:`name`, :attr:`title`, :attr:`source`, :attr:`parameters` (and :attr:`uses_control` when
+    parameters depend on the field / current / voltage) and implement :meth:`force`.
+    """
+
+    name: str = ""
+    """Registry name, snake_case and stable (shared/CONTRACTS.md, model names)."""
+    title: str = ""
+    """Human name (``"BingMax (Makris)"``)."""
+    source: str = ""
+    """Where the equations come from: paper and equation numbers."""
+    parameters: tuple[Parameter, ...] = ()
+    uses_control: bool = False
+    """True when the force depends on the record's control (field, current or voltage)."""
+
+    # ------------------------------------------------------------------ to implement
+    def force(self, record: Measurement, values: Mapping[str, float]) -> np.ndarray:
+        """Model force [N] for the record's motion, one value per sample, from SI parameter values."""
+        raise NotImplementedError
+
+    def initial_guess(self, record: Measurement) -> dict[str, float]:
+        """Starting values for fitting ``record`` (SI).  Default: the parameters' defaults; override with a guess
+        from the data where one exists (e.g. a damping constant from the force-velocity slope)."""
+        return self.defaults()
+
+    # ------------------------------------------------------------------ provided
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        return tuple(p.name for p in self.parameters)
+
+    def parameter(self, name: str) -> Parameter:
+        for p in self.parameters:
+            if p.name == name:
+                return p
+        raise ParameterError(f"{self.name}: no parameter {name!r}; parameters: {', '.join(self.parameter_names)}")
+
+    def defaults(self) -> dict[str, float]:
+        return {p.name: p.default for p in self.parameters}
+
+    def check_values(self, values: Mapping[str, float]) -> dict[str, float]:
+        """All parameter values (defaults filled in), checked: names known, finite, within bounds."""
+        unknown = [k for k in values if k not in self.parameter_names]
+        if unknown:
+            raise ParameterError(f"{self.name}: unknown parameter {unknown[0]!r}; "
+                                 f"parameters: {', '.join(self.parameter_names)}")
+        full = {**self.defaults(), **values}
+        for p in self.parameters:
+            v = full[p.name]
+            if not (np.isfinite(v) and p.lower <= v <= p.upper):
+                raise ParameterError(f"{self.name}: {p.name} = {v!r} {p.unit} is outside its bounds "
+                                     f"[{p.lower:g}, {p.upper:g}] {p.unit}")
+        return full
+
+    def simulate(self, record: Measurement, values: Mapping[str, float] | None = None) -> np.ndarray:
+        """Force [N] for ``record`` with checked parameter values (defaults where not given)."""
+        return np.asarray(self.force(record, self.check_values(values or {})), dtype=float)
+
+    def describe(self) -> dict:
+        """The registry entry of ``erdesign models --json``."""
+        return {"name": self.name, "source": self.source,
+                "parameters": [{"name": p.name, "unit": p.unit, "default": p.default} for p in self.parameters]}
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self.name!r}: {', '.join(self.parameter_names)}>"
+
+
+def values_from_vector(names: Sequence[str], vector: Sequence[float]) -> dict[str, float]:
+    return {n: float(v) for n, v in zip(names, vector)}
