@@ -17,6 +17,8 @@ The functions in this namespace take pint quantities or strings and return quant
 
 from . import constitutive, flow
 from .api import (
+    annulus_bingham_flow_rate,
+    annulus_bingham_pressure_drop,
     annulus_pressure_drop,
     bingham_flow_rate,
     bingham_number,
@@ -48,6 +50,7 @@ __all__ = [
     "bingham_pressure_drop", "slit_pressure_drop", "thin_gap_error", "yield_pressure_drop",
     "makris_stress", "maxwell_stress",
     "couette_poiseuille_bingham", "mixed_mode_damper_force", "mixed_mode_yield_force",
+    "annulus_bingham_pressure_drop", "annulus_bingham_flow_rate",
     "energy_per_cycle", "equivalent_damping", "esr",
     "ErdesignError", "UnitError", "DamperFileError", "ErdesignWarning", "ValidityWarning",
     "Q_", "ureg", "flow", "constitutive",

@@ -8,6 +8,7 @@ argument) and converts to SI before calling the kernel.  The kernel itself is re
 from __future__ import annotations
 
 from .constitutive import makris as _makris
+from .flow import annulus_bingham as _annulus_bingham
 from .flow import bingham as _bingham
 from .flow import mixed_mode as _mixed
 from .flow import newtonian as _newtonian
@@ -18,6 +19,7 @@ __all__ = [
     "yield_pressure_drop", "bingham_number", "bingham_flow_rate", "bingham_pressure_drop", "bingham_plug_fraction",
     "makris_stress", "maxwell_stress",
     "couette_poiseuille_bingham", "mixed_mode_damper_force", "mixed_mode_yield_force",
+    "annulus_bingham_pressure_drop", "annulus_bingham_flow_rate",
 ]
 
 _DUCT = dict(L="m", d="m", h="m")
@@ -43,3 +45,8 @@ mixed_mode_damper_force = unit_aware(
     dict(force="N", pressure_drop="Pa", pressure_force="N", shear_force="N", flow_rate="m^3/s", plug_fraction=""),
     v="m/s", tau_y="Pa", eta="Pa*s", L="m", Dp="m", dr="m", h="m")(_mixed.mixed_mode_damper_force)
 mixed_mode_yield_force = unit_aware("N", tau_y="Pa", L="m", Dp="m", dr="m", h="m")(_mixed.mixed_mode_yield_force)
+
+annulus_bingham_pressure_drop = unit_aware("Pa", Q="m^3/s", tau_y="Pa", eta="Pa*s", **_DUCT)(
+    _annulus_bingham.annulus_bingham_pressure_drop)
+annulus_bingham_flow_rate = unit_aware("m^3/s", dp="Pa", tau_y="Pa", eta="Pa*s", **_DUCT)(
+    _annulus_bingham.annulus_bingham_flow_rate)

@@ -33,7 +33,9 @@ import numpy as np
 
 from ._util import scalar_or_array
 from .errors import ErdesignError, ValidityWarning
+from .flow.annulus_bingham import annulus_bingham_flow
 from .flow.bingham import bingham_slit_flow, yield_pressure_drop
+from .flow.mixed_mode import mixed_mode_damper_force
 from .fluid import Fluid
 from .geometry import THIN_GAP_LIMIT, Geometry
 from .metrics import energy_per_cycle, equivalent_damping
@@ -202,17 +204,14 @@ class Damper:
         if g.configuration == "valve":
             Q = Q_total / g.ducts
             if self.uses_exact_annulus:
-                from .flow.annulus_bingham import annulus_bingham_slit_flow
-
-                dp, phi = annulus_bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
+                r = annulus_bingham_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
+                dp, phi = r.pressure_drop, r.plug_fraction
             else:
                 dp, phi = bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
             pressure_force = dp * Ap
             shear_force = np.zeros(np.broadcast(dp, v).shape)
             mean_velocity = np.abs(Q) / (np.pi * g.duct_mean_diameter * g.gap)
         else:
-            from .flow.mixed_mode import mixed_mode_damper_force
-
             m = mixed_mode_damper_force(v, tau_y, eta, g.duct_length, g.piston_diameter, g.rod_diameter, g.gap)
             dp, phi = m.pressure_drop, m.plug_fraction
             pressure_force, shear_force = m.pressure_force, m.shear_force
@@ -248,8 +247,6 @@ class Damper:
                 ratio = 1.0
             return 12.0 * eta0 * g.duct_length * g.piston_area**2 / (
                 g.ducts * math.pi * g.duct_mean_diameter * g.gap**3 * ratio)
-        from .flow.mixed_mode import mixed_mode_damper_force
-
         m = mixed_mode_damper_force(1.0, 0.0, eta0, g.duct_length, g.piston_diameter, g.rod_diameter, g.gap)
         return float(m.pressure_force + m.shear_force)
 

@@ -173,3 +173,30 @@ def test_mixed_dynamic_range_falls_with_velocity():
     d = erdesign.load_example("mr_mixed")
     rng = d.dynamic_range(Q_(np.geomspace(1e-3, 2.0, 25), "m/s"), "200 kA/m")
     assert np.all(np.diff(rng) < 0) and rng[0] > 50
+
+
+# ---------------------------------------------------------------- thick gaps: the exact annulus
+
+
+def test_thick_gap_valve_uses_the_exact_annulus_and_the_difference_is_the_thin_gap_error():
+    # h/d = 0.35: the thin-gap pressure drop is high by thin_gap_error_bingham(h/d, Bi) (docs/theory/thin_gap.md);
+    # the damper built with flow_model="auto" must give the exact-annulus force, "thin_gap" the slit force.
+    from erdesign.flow import thin_gap_error_bingham, bingham_number
+
+    base = _plain_valve(tau_y="1.8 kPa", eta="13 Pa*s")
+    g = base.geometry
+    with pytest.warns(ValidityWarning):
+        thick = Geometry("valve", g.duct_length, g.duct_mean_diameter, 5e-3, g.piston_diameter, g.rod_diameter)
+    exact = Damper(geometry=thick, fluid=base.fluid, flow_model="auto")
+    slit = Damper(geometry=thick, fluid=base.fluid, flow_model="thin_gap")
+    assert exact.uses_exact_annulus and not slit.uses_exact_annulus
+    v = np.array([0.05, 0.5])
+    dp_exact, dp_slit = exact.state(v, 3e6).pressure_drop, slit.state(v, 3e6).pressure_drop
+    bi = bingham_number(v * g.piston_area, 1800.0, 13.0, g.duct_mean_diameter, 5e-3)
+    np.testing.assert_allclose(dp_slit / dp_exact - 1, thin_gap_error_bingham(5e-3 / g.duct_mean_diameter, bi),
+                               rtol=1e-6)
+    # Zero field: the damping constant is eq 15 divided by the exact-annulus conductance ratio.
+    from erdesign.flow import annulus_conductance_ratio
+    assert exact.damping_constant_si() == pytest.approx(
+        slit.damping_constant_si() / annulus_conductance_ratio(g.duct_mean_diameter, 5e-3), rel=1e-12)
+    assert exact.force_si(0.01, 0.0) == pytest.approx(exact.damping_constant_si() * 0.01, rel=1e-9)

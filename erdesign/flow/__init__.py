@@ -5,11 +5,24 @@ One module per flow situation:
 * :mod:`~erdesign.flow.newtonian` - Hagen-Poiseuille flow, thin-gap (Makris eq 4) and exact annulus.
 * :mod:`~erdesign.flow.bingham` - Bingham plastic through a stationary gap (valve mode, Makris eqs 5-7, corrected).
 * :mod:`~erdesign.flow.mixed_mode` - Couette-Poiseuille Bingham flow with a moving wall (moving-electrode damper).
+* :mod:`~erdesign.flow.annulus_bingham` - exact Bingham flow through a concentric annulus (Fredrickson and Bird).
+* :mod:`~erdesign.flow.numerical` - independent regularised (Papanastasiou) finite-difference solver, slit and
+  annulus, with a moving wall: the check on all the closed forms.
 
 The unit-aware versions of these functions (pint quantities in and out) are in the top-level ``erdesign``
 namespace.
 """
 
+from .annulus_bingham import (
+    AnnulusBinghamFlow,
+    annulus_bingham_flow,
+    annulus_bingham_flow_rate,
+    annulus_bingham_plug_fraction,
+    annulus_bingham_pressure_drop,
+    annulus_bingham_shape,
+    annulus_bingham_velocity,
+    thin_gap_error_bingham,
+)
 from .bingham import (
     BinghamSlitFlow,
     bingham_flow_rate,
@@ -28,6 +41,7 @@ from .mixed_mode import (
     mixed_mode_damper_force,
     mixed_mode_yield_force,
 )
+from .numerical import ConvergenceError, GapFlow, gap_grid, solve_gap_flow
 from .newtonian import (
     annulus_conductance_ratio,
     annulus_flow_rate,
@@ -38,6 +52,18 @@ from .newtonian import (
 )
 
 __all__ = [
+    "AnnulusBinghamFlow",
+    "annulus_bingham_flow",
+    "annulus_bingham_flow_rate",
+    "annulus_bingham_plug_fraction",
+    "annulus_bingham_pressure_drop",
+    "annulus_bingham_shape",
+    "annulus_bingham_velocity",
+    "thin_gap_error_bingham",
+    "ConvergenceError",
+    "GapFlow",
+    "gap_grid",
+    "solve_gap_flow",
     "CouettePoiseuilleBingham",
     "GapFlowRegime",
     "MixedModeDamperForce",
