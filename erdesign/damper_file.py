@@ -28,10 +28,10 @@ from .damper import Damper
 from .errors import DamperFileError, ErdesignError
 from .fluid import Fluid
 from .geometry import Geometry
-from .units import to_si
+from .units import same_dimension, to_si
 
 __all__ = ["load_damper", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
-           "GEOMETRY_KEYS", "FLUID_KEYS"]
+           "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS"]
 
 GEOMETRY_KEYS = ("configuration", "duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter",
                  "ducts")
@@ -69,22 +69,41 @@ def _check_keys(table: Any, allowed: tuple[str, ...], where: str) -> Mapping[str
     return table
 
 
+#: Keys of a damper file's [fluid] table that define the power law; giving any of them replaces a material's curve.
+POWER_LAW_KEYS = ("yield_stress", "reference_field", "yield_exponent")
+
+
 def parse_fluid_table(table: Mapping[str, Any], where: str = "fluid") -> tuple[Fluid, float]:
     """A :class:`Fluid` and the seal friction [N] from a ``[fluid]`` table (damper or requirements file).
 
-    A ``material`` key takes the values of that material from the materials database; keys given here override
-    them.
+    A ``material`` key takes the values of that material from the materials database (docs/materials.md); keys
+    given here override them:
+
+    * every key overrides the material's value of the same name;
+    * the fluid follows the material's yield curve (``[yield_curve]``: saturating law or table) unless the table
+      gives any of ``yield_stress``, ``reference_field``, ``yield_exponent``; then it follows the power law of the
+      merged values (the table's, completed by the material's power-law summary);
+    * the material's field range (``[range] field``) stays, unless ``reference_field`` changes the kind of control
+      (a coil current instead of a magnetic field): asking for a control outside it warns.
     """
     table = dict(_check_keys(table, FLUID_KEYS, where))
+    field_law = None
+    field_range = None
+    material = ""
     if "material" in table:
         name = table.pop("material")
         if not isinstance(name, str):
             raise DamperFileError(f"{where}.material: expected the name of a material as a string, got {name!r}")
         try:
-            base = materials.fluid_values(name)
+            spec = materials.material_fluid(name)
         except ErdesignError as exc:
             raise DamperFileError(f"{where}.material: {exc}") from None
-        table = {**base, **table}
+        if not any(k in table for k in POWER_LAW_KEYS):
+            field_law = spec.yield_curve
+        table = {**spec.values, **table}
+        material = name
+        if spec.field_range is not None and same_dimension(spec.field_range[1], table["reference_field"]):
+            field_range = spec.field_range
     missing = [k for k in _REQUIRED_FLUID if k not in table]
     if missing:
         raise DamperFileError(f"{where}.{missing[0]}: missing (required: {', '.join(_REQUIRED_FLUID)})")
@@ -103,7 +122,10 @@ def parse_fluid_table(table: Mapping[str, Any], where: str = "fluid") -> tuple[F
         density=table["density"],
         viscosity_at_reference_field=table.get("viscosity_at_reference_field"),
         shear_modulus=table.get("shear_modulus"),
-        name=str(table.get("name", "")),
+        name=material,
+        field_law=field_law,
+        field_range=field_range,
+        material=material,
     )
     return fluid, seal_friction
 

@@ -129,10 +129,13 @@ class _Transform:
         return np.where(self.log, np.exp(np.where(self.log, z, 0.0)), 1.0)
 
 
-def _finite_box(lo: np.ndarray, hi: np.ndarray, z0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Box for sampling starts: the bounds, or +-(1 + |z0|) * 3 around the start where a bound is infinite."""
+def _finite_box(lo: np.ndarray, hi: np.ndarray, z0: np.ndarray, log: np.ndarray | None = None):
+    """Box for sampling starts around the start z0, within the bounds: two decades either way for log-scale
+    parameters, +-3 (1 + |z0|) otherwise (physical bounds such as 1e7 N are far too wide to sample uniformly)."""
     span = 3.0 * (1.0 + np.abs(z0))
-    return np.where(np.isfinite(lo), lo, z0 - span), np.where(np.isfinite(hi), hi, z0 + span)
+    if log is not None:
+        span = np.where(log, np.log(100.0), span)
+    return np.maximum(lo, z0 - span), np.minimum(hi, z0 + span)
 
 
 def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
@@ -165,10 +168,17 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     FitResult
     """
     F = record.require_force()
-    fixed = dict(fixed or {})
+    check = getattr(model, "check_record", None)
+    if check is not None:
+        check(record)
     names = model.parameter_names
-    for k in fixed:
+    for k in list(fixed or {}) + list(free or ()):
         model.parameter(k)  # unknown names are errors
+    # Parameters chosen a priori, and control slopes when the record has no control column, stay at their defaults
+    # unless the caller names them in ``free``.
+    auto = {k: v for k, v in (model.fixed_for(record) if hasattr(model, "fixed_for") else {}).items()
+            if free is None or k not in free}
+    fixed = {**auto, **dict(fixed or {})}
     free = tuple(n for n in (free if free is not None else names) if n not in fixed)
     for k in free:
         model.parameter(k)
@@ -196,7 +206,7 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     if not np.all(np.isfinite(model.force(record, full_values(z0)))):
         raise FitError(f"{model.name}: the model gives non-finite forces at the starting values")
     candidates = [z0]
-    box_lo, box_hi = _finite_box(lo, hi, z0)
+    box_lo, box_hi = _finite_box(lo, hi, z0, None if global_search else tr.log)
     if global_search:
         de = differential_evolution(lambda z: float(np.sum(residual(z) ** 2)), list(zip(box_lo, box_hi)),
                                     seed=seed, tol=1e-8, polish=False, maxiter=200, popsize=15, init="sobol")
@@ -226,17 +236,21 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
 
 
 def _uncertainty(jac: np.ndarray, z: np.ndarray, tr: _Transform, rss: float, n: int, k: int):
-    """Standard errors and correlations of the free parameters from the Jacobian at the optimum (SVD pseudo-inverse:
-    directions the data do not constrain get NaN errors instead of garbage)."""
-    J = np.asarray(jac, dtype=float) * tr.dvalue_dz(z)[np.newaxis, :]  # d residual / d value
+    """Standard errors and correlations of the free parameters from the Jacobian at the optimum.
+
+    The Jacobian columns are scaled to unit norm before the SVD pseudo-inverse (parameters in N, N s/m and 1/m^2
+    differ by many decades; unscaled, the well-determined but small columns would look singular); directions the
+    data do not constrain get NaN errors instead of garbage."""
+    J = np.asarray(jac, dtype=float) / tr.dvalue_dz(z)[np.newaxis, :]  # d residual / d value (chain rule)
     s2 = rss / max(n - k, 1)
-    U, sv, Vt = np.linalg.svd(J, full_matrices=False)
-    tol = sv.max() * max(J.shape) * np.finfo(float).eps if sv.size else 0.0
-    good = sv > tol * 1e3
+    norms = np.linalg.norm(J, axis=0)
+    scale = np.where(norms > 0, norms, 1.0)
+    U, sv, Vt = np.linalg.svd(J / scale, full_matrices=False)
+    good = sv > (sv.max() if sv.size else 0.0) * 1e-10
     inv = np.where(good, 1.0 / np.where(good, sv, 1.0) ** 2, 0.0)
-    cov = (Vt.T * inv) @ Vt * s2
+    cov = ((Vt.T * inv) @ Vt) * s2 / np.outer(scale, scale)
     var = np.diag(cov).copy()
-    unidentifiable = np.abs(Vt[~good]).max(axis=0) > 1e-3 if (~good).any() else np.zeros(k, bool)
+    unidentifiable = (np.abs(Vt[~good]).max(axis=0) > 1e-3 if (~good).any() else np.zeros(k, bool)) | (norms == 0)
     se = np.where(unidentifiable | (var < 0), np.nan, np.sqrt(np.maximum(var, 0.0)))
     with np.errstate(invalid="ignore", divide="ignore"):
         d = np.sqrt(np.maximum(var, 0.0))

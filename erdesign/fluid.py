@@ -15,18 +15,29 @@ Optional field-dependent plastic viscosity (Makris et al. measured 7 Pa s at 0 a
 Only the two end points are published; between them erdesign assumes the viscosity rises like the yield stress
 (the same exponent), which is a modelling choice, stated in docs/theory.md.  Without ``viscosity_at_reference_field``
 the viscosity does not depend on the field.
+
+A fluid may instead follow a richer law of the field (:mod:`erdesign.field_laws`: a saturating law or a tabulated
+curve, as the materials database gives for MR fluids), in :attr:`Fluid.field_law`.  Then the yield stress follows
+that law and the viscosity rises in proportion to it, :math:`\eta_0 + (\eta_\text{ref} - \eta_0)\,
+\tau_y(E)/\tau_y(E_\text{ref})`, which is the formula above for the power law.
+
+A fluid may know the control range it was characterised on (:attr:`Fluid.field_range`, from a material's
+``[range]``); a control asked for through :meth:`Fluid.field_si` outside that range issues a
+:class:`~erdesign.errors.ValidityWarning`.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ._util import scalar_or_array
-from .errors import UnitError
+from .errors import UnitError, ValidityWarning
+from .field_laws import FieldLaw, PowerLaw
 from .units import Q_, dimension_name, to_si, ureg
 
 __all__ = ["Fluid", "CONTROL_UNITS", "control_kind"]
@@ -87,6 +98,14 @@ class Fluid:
         Pre-yield shear modulus G (Makris eq 8), [Pa].
     name : str
         Free text.
+    field_law : FieldLaw or None
+        Law of the yield stress in the control (:mod:`erdesign.field_laws`); None: the power law of
+        ``yield_stress``, ``reference_field`` and ``yield_exponent``.  With a law, ``yield_stress`` and
+        ``yield_exponent`` are the power-law summary (exact at the reference field) that the damper file shows.
+    field_range : (float, float) or None
+        Control range the fluid was characterised on, SI; None: unknown (no check).
+    material : str
+        Name of the material (materials database) the values came from, or empty.
     """
 
     viscosity: float
@@ -100,6 +119,9 @@ class Fluid:
     name: str = ""
     display_unit: str = ""
     """Unit the reference field was given in (``"kV/mm"``), for display; SI when empty."""
+    field_law: FieldLaw | None = None
+    field_range: tuple[float, float] | None = None
+    material: str = ""
 
     def __post_init__(self) -> None:
         checks = [
@@ -118,6 +140,19 @@ class Fluid:
                 raise UnitError(f"fluid.{key}: {why}, got {getattr(self, key)!r} (SI)")
         if self.control not in CONTROL_UNITS:
             raise UnitError(f"fluid.control: unknown kind of control {self.control!r}")
+        if self.field_law is not None:
+            if not isinstance(self.field_law, FieldLaw):
+                raise UnitError(f"fluid.field_law: expected a FieldLaw (erdesign.field_laws), got {self.field_law!r}")
+            if self.field_law.control_unit != self.control_unit:
+                raise UnitError(f"fluid.field_law: its control is in {self.field_law.control_unit}, the reference "
+                                f"field in {self.control_unit}; both must be of the same kind")
+            if not float(self.field_law.yield_stress(self.reference_field)) > 0:
+                raise UnitError("fluid.field_law: the yield stress at the reference field must be positive")
+        if self.field_range is not None:
+            lo, hi = self.field_range
+            if not (0 <= lo < hi and np.isfinite(hi)):
+                raise UnitError(f"fluid.field_range: need 0 <= low < high, got {self.field_range!r} "
+                                f"({self.control_unit})")
 
     @classmethod
     def create(
@@ -131,8 +166,14 @@ class Fluid:
         viscosity_at_reference_field: Any = None,
         shear_modulus: Any = None,
         name: str = "",
+        field_law: FieldLaw | None = None,
+        field_range: Any = None,
+        material: str = "",
     ) -> "Fluid":
         """Fluid from pint quantities or strings (``viscosity="7 Pa*s"``, ``reference_field="3 kV/mm"``).
+
+        ``field_law`` (a :class:`~erdesign.field_laws.FieldLaw`) replaces the power law; ``field_range`` is a
+        pair ``(low, high)`` of controls (``("0 kV/mm", "3 kV/mm")``) outside which :meth:`field_si` warns.
 
         Examples
         --------
@@ -160,6 +201,9 @@ class Fluid:
             shear_modulus=None if shear_modulus is None else to_si(shear_modulus, "Pa", "fluid.shear_modulus"),
             name=name,
             display_unit=_unit_text(reference_field),
+            field_law=field_law,
+            field_range=None if field_range is None else _field_range(field_range, CONTROL_UNITS[kind]),
+            material=material,
         )
 
     @property
@@ -172,30 +216,83 @@ class Fluid:
         """Unit to show control values in: the one the reference field was given in, else SI."""
         return self.display_unit or self.control_unit
 
+    @property
+    def yield_law(self) -> FieldLaw:
+        """The law of the yield stress in the control: :attr:`field_law`, or the power law of the attributes."""
+        if self.field_law is not None:
+            return self.field_law
+        return PowerLaw(self.control_unit, yield_stress_ref=self.yield_stress, reference_field=self.reference_field,
+                        exponent=self.yield_exponent)
+
     def field_si(self, field: Any, name: str = "field") -> float | np.ndarray:
-        """SI magnitude of a control value, checked against the kind of this fluid's reference field."""
+        """SI magnitude of a control value, checked against the kind of this fluid's reference field.
+
+        Warns (:class:`~erdesign.errors.ValidityWarning`) when the value lies outside :attr:`field_range`.
+        """
         if field is None:
             return 0.0
-        return to_si(field, self.control_unit, name)
+        value = to_si(field, self.control_unit, name)
+        self.check_field(value, name)
+        return value
 
-    def _field_ratio(self, field):
-        return (np.abs(field) / self.reference_field) ** self.yield_exponent
+    def check_field(self, field, name: str = "field") -> bool:
+        """True when every |control| (SI) lies in :attr:`field_range` (or no range is known); warns otherwise.
+
+        The zero control (the off state) is always inside.
+        """
+        if self.field_range is None:
+            return True
+        lo, hi = self.field_range
+        E = np.abs(np.asarray(field, dtype=float))
+        outside = (E != 0) & ((E > hi * (1 + 1e-9)) | (E < lo * (1 - 1e-9)))
+        if not np.any(outside):
+            return True
+        unit = self.field_unit
+        worst = float(E[outside].max() if E.ndim else E)
+        shown = Q_(worst, self.control_unit).to(unit).magnitude
+        lo_u, hi_u = (Q_(x, self.control_unit).to(unit).magnitude for x in (lo, hi))
+        unit = f"{Q_(1.0, unit).units:~P}"
+        owner = f"material '{self.material}'" if self.material else "this fluid"
+        warnings.warn(
+            f"{name}: {shown:.4g} {unit} is outside the range {lo_u:.4g} to {hi_u:.4g} {unit} on which {owner} is "
+            "characterised; the yield stress there is extrapolated", ValidityWarning, stacklevel=3)
+        return False
+
+    def _yield_ratio(self, field):
+        """tau_y(E) / tau_y(E_ref), [-]: (|E|/E_ref)^n for the power law."""
+        if self.field_law is None:
+            return (np.abs(field) / self.reference_field) ** self.yield_exponent
+        at_ref = float(self.field_law.yield_stress(self.reference_field))
+        return np.asarray(self.field_law.yield_stress(field), dtype=float) / at_ref
 
     def yield_stress_at(self, field):
-        r"""Yield stress at the control ``field`` (SI magnitude), [Pa]: :math:`\tau_\text{ref}(|E|/E_\text{ref})^n`."""
-        return scalar_or_array(self.yield_stress * self._field_ratio(field))
+        r"""Yield stress at the control ``field`` (SI magnitude), [Pa].
+
+        :math:`\tau_\text{ref}(|E|/E_\text{ref})^n`, or the fluid's :attr:`field_law` when it has one.
+        """
+        if self.field_law is not None:
+            return scalar_or_array(self.field_law.yield_stress(field))
+        return scalar_or_array(self.yield_stress * self._yield_ratio(field))
 
     def viscosity_at(self, field):
         r"""Plastic viscosity at the control ``field`` (SI magnitude), [Pa s].
 
-        :math:`\eta_0 + (\eta_\text{ref} - \eta_0)(|E|/E_\text{ref})^n`, or :math:`\eta_0` when no
-        ``viscosity_at_reference_field`` is given.
+        :math:`\eta_0 + (\eta_\text{ref} - \eta_0)\,\tau_y(E)/\tau_y(E_\text{ref})` (for the power law
+        :math:`(|E|/E_\text{ref})^n`), or :math:`\eta_0` when no ``viscosity_at_reference_field`` is given.
         """
         if self.viscosity_at_reference_field is None:
             return scalar_or_array(self.viscosity + 0.0 * np.asarray(field, dtype=float))
         rise = self.viscosity_at_reference_field - self.viscosity
-        return scalar_or_array(self.viscosity + rise * self._field_ratio(field))
+        return scalar_or_array(self.viscosity + rise * self._yield_ratio(field))
 
     def with_changes(self, **changes: Any) -> "Fluid":
         """Copy with some SI fields replaced (``fluid.with_changes(viscosity=9.0)``)."""
         return dataclasses.replace(self, **changes)
+
+
+def _field_range(value: Any, si_unit: str) -> tuple[float, float]:
+    """``(low, high)`` controls (quantities or strings) in SI, checked."""
+    if isinstance(value, (str, bytes)) or len(value) != 2:
+        raise UnitError(f"fluid.field_range: expected a pair (low, high) of controls, got {value!r}")
+    lo, hi = (to_si(v, si_unit, f"fluid.field_range[{i}]") for i, v in enumerate(value))
+    return float(lo), float(hi)

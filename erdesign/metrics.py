@@ -13,13 +13,14 @@ Equivalent-error measure ESR (seed 002, eq 7; shared/CONTRACTS.md section 4):
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from scipy.integrate import trapezoid
 
 from .errors import ErdesignError
 
-__all__ = ["energy_per_cycle", "equivalent_damping", "esr"]
+__all__ = ["energy_per_cycle", "equivalent_damping", "esr", "objective_j", "difference_signal", "loops", "Loops"]
 
 
 def energy_per_cycle(t, x, F, frequency):
@@ -102,3 +103,62 @@ def esr(F_measured, F_model):
     if spread == 0:
         raise ErdesignError("esr: the measured force is constant, so the ESR is undefined")
     return float(np.sum((F - M) ** 2) / spread)
+
+
+def objective_j(F_measured, F_model):
+    r"""Identification objective of Kamath and Wereley, the sum of squared force errors, [N^2].
+
+    .. math:: J = \sum_{i=1}^{N} (F_i - F_{m,i})^2
+
+    >>> objective_j([1.0, 2.0], [1.5, 2.0])
+    0.25
+
+    References
+    ----------
+    Kamath and Wereley (seed 000), eq 13.
+    """
+    F = np.asarray(F_measured, dtype=float)
+    M = np.asarray(F_model, dtype=float)
+    return float(np.sum((F - M) ** 2))
+
+
+def difference_signal(F_measured, F_model):
+    """Peak value and root mean square of the difference signal F - F_model, [N] (Makris's PV and RMS).
+
+    >>> difference_signal([0.0, 3.0, -4.0], [0.0, 0.0, 0.0])
+    (4.0, 2.886751345948129)
+
+    References
+    ----------
+    Makris et al. (seed 004), section 4.1: Maxwell PV = 257 lb, RMS = 56 lb; BingMax PV = 109 lb, RMS = 31 lb.
+    """
+    d = np.asarray(F_measured, dtype=float) - np.asarray(F_model, dtype=float)
+    return float(np.max(np.abs(d))), float(np.sqrt(np.mean(d**2)))
+
+
+class Loops(NamedTuple):
+    """Force-displacement and force-velocity loops as plain arrays, for plots (SI)."""
+
+    displacement: np.ndarray
+    velocity: np.ndarray
+    force_measured: np.ndarray | None
+    force_model: np.ndarray | None
+
+
+def loops(record, force_model=None, *, last_cycles: float | None = None, frequency: float | None = None) -> Loops:
+    """The loops of a record (and a model's force on it), optionally only the last ``last_cycles`` cycles of
+    the excitation at ``frequency`` [Hz].
+
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 201); r = Measurement.from_arrays(t, np.sin(2 * np.pi * t), np.cos(2 * np.pi * t))
+    >>> len(loops(r, last_cycles=1, frequency=1.0).displacement)
+    101
+    """
+    keep = slice(None)
+    if last_cycles is not None:
+        if not frequency or frequency <= 0:
+            raise ErdesignError("loops: last_cycles needs the excitation frequency [Hz]")
+        keep = record.time >= record.time[-1] - last_cycles / frequency - 1e-12
+    pick = (lambda a: None if a is None else np.asarray(a, dtype=float)[keep])
+    return Loops(record.displacement[keep], record.velocity[keep], pick(record.force), pick(force_model))

@@ -18,11 +18,16 @@ from ..errors import ErdesignError
 from ..measurement import Measurement
 from ..units import Q_, format_quantity
 
-__all__ = ["Parameter", "Model", "ParameterError"]
+__all__ = ["Parameter", "Model", "ParameterError", "ModelInputError"]
 
 
 class ParameterError(ErdesignError):
     """Unknown parameter name, or a value outside its physical bounds."""
+
+
+class ModelInputError(ErdesignError):
+    """A record a model cannot use: too few samples, uneven time steps where the model needs even ones, or no
+    control column for a model whose force needs the field / current / voltage."""
 
 
 @dataclass(frozen=True)
@@ -43,6 +48,10 @@ class Parameter:
         What it is, in a few words.
     log_scale : bool
         Positive and spanning decades: fitted in log space (needs ``lower > 0``).
+    fitted : bool
+        Identified by default (False: chosen a priori, like the shape-function widths of Kamath and Wereley, or
+        a redundant scale of the Bouc-Wen family; :func:`erdesign.fit.fit` holds it at its start value unless it is
+        named in ``free``).
     """
 
     name: str
@@ -52,6 +61,7 @@ class Parameter:
     upper: float = math.inf
     description: str = ""
     log_scale: bool = False
+    fitted: bool = True
 
     def __post_init__(self) -> None:
         if not self.lower <= self.default <= self.upper:
@@ -85,6 +95,17 @@ class Model:
     parameters: tuple[Parameter, ...] = ()
     uses_control: bool = False
     """True when the force depends on the record's control (field, current or voltage)."""
+    requires_control: bool = False
+    """True when the model has no meaning without a control column (a record without one is an error)."""
+    control_parameters: tuple[str, ...] = ()
+    """Parameters that only act through the control (slopes of field-dependent coefficients, filter rates).  For a
+    record without a control column they are held at their defaults (zero slopes): the field-dependent coefficients
+    are then identified as constants."""
+    needs_uniform_time: bool = False
+    """True when the model's discrete-time filters assume an even time step."""
+    min_samples: int = 5
+    control_reference: float = 1.0
+    """Control (SI: V/m, A/m, T, A or V) that maps to the dimensionless control u = 1 of the model's equations."""
 
     # ------------------------------------------------------------------ to implement
     def force(self, record: Measurement, values: Mapping[str, float]) -> np.ndarray:
@@ -97,6 +118,40 @@ class Model:
         return self.defaults()
 
     # ------------------------------------------------------------------ provided
+    def check_record(self, record: Measurement) -> None:
+        """Raise :class:`ModelInputError` naming the problem when ``record`` cannot drive this model."""
+        n = len(record)
+        if n < self.min_samples:
+            raise ModelInputError(f"{self.name}: the record {record.name or ''} has {n} samples; this model needs at "
+                                  f"least {self.min_samples}".replace("  ", " "))
+        if self.requires_control and record.control_kind is None:
+            raise ModelInputError(f"{self.name}: the force depends on the field / current / voltage, but the record "
+                                  f"{record.name or ''} has no control column (field, current or voltage)"
+                                  .replace("  ", " "))
+        if self.needs_uniform_time:
+            dt = np.diff(record.time)
+            mean = (record.time[-1] - record.time[0]) / (n - 1)
+            worst = float(np.max(np.abs(dt - mean)) / mean)
+            if worst > 0.01:
+                raise ModelInputError(f"{self.name}: needs evenly spaced time samples (its filters are exact for one "
+                                      f"step size); the steps of {record.name or 'the record'} vary by "
+                                      f"{100 * worst:.3g} % - resample it first")
+
+    def control(self, record: Measurement) -> np.ndarray:
+        """Dimensionless control u = control / :attr:`control_reference` (zeros when the record has none)."""
+        return np.asarray(record.control, dtype=float) / self.control_reference
+
+    def fixed_for(self, record: Measurement) -> dict[str, float]:
+        """Values to hold fixed when fitting ``record``: the control parameters at their defaults if the record has
+        no control column, and every parameter that is not ``fitted`` at its initial guess (its default unless the
+        model guesses it from the data, like the scales of the Chebyshev fit)."""
+        a_priori = [p.name for p in self.parameters if not p.fitted]
+        guess = self.initial_guess(record) if a_priori else {}
+        fixed = {k: guess.get(k, self.parameter(k).default) for k in a_priori}
+        if record.control_kind is None:
+            fixed.update({k: self.parameter(k).default for k in self.control_parameters})
+        return fixed
+
     @property
     def parameter_names(self) -> tuple[str, ...]:
         return tuple(p.name for p in self.parameters)
@@ -125,7 +180,8 @@ class Model:
         return full
 
     def simulate(self, record: Measurement, values: Mapping[str, float] | None = None) -> np.ndarray:
-        """Force [N] for ``record`` with checked parameter values (defaults where not given)."""
+        """Force [N] for ``record`` with checked parameter values (defaults where not given) and a checked record."""
+        self.check_record(record)
         return np.asarray(self.force(record, self.check_values(values or {})), dtype=float)
 
     def describe(self) -> dict:

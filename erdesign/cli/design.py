@@ -1,0 +1,77 @@
+"""``erdesign design REQUIREMENTS.toml [--json] [--out designs.csv]``: geometries that meet the requirements."""
+
+from __future__ import annotations
+
+import click
+
+from ..design import design as run_design
+from ..design import read_requirements
+from .main import cli, emit_json
+
+__all__ = ["design"]
+
+
+@cli.command()
+@click.argument("requirements_file", metavar="REQUIREMENTS.toml")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units) instead of a table.")
+@click.option("--out", "out", default=None, metavar="designs.csv",
+              help="Also write the ranked designs, the Pareto front (and the nearest design when nothing is "
+                   "feasible) to a CSV file with units in the header.")
+def design(requirements_file: str, as_json: bool, out: str | None) -> None:
+    """Feasible damper geometries ranked by the objective, or the conflicts when there are none."""
+    result = run_design(read_requirements(requirements_file))
+    if out is not None:
+        result.write_csv(out)
+    if as_json:
+        emit_json(result.as_json())
+        return
+    click.echo(_table(result))
+
+
+def _geometry_cells(rec: dict) -> list[str]:
+    g = rec["geometry"]
+
+    def mm(key: str) -> str:
+        return g[key].removesuffix(" mm") if key in g else "-"
+
+    return [mm("gap"), mm("duct_length"), mm("duct_mean_diameter"), mm("piston_diameter"), mm("rod_diameter"),
+            str(g.get("ducts", 1))]
+
+
+def _row(rec: dict, label: str) -> list[str]:
+    dyn = rec["dynamic_range"]
+    return [label, *_geometry_cells(rec), f"{rec['force_N'] / 1e3:.4g}", f"{rec['zero_field_force_N'] / 1e3:.4g}",
+            "-" if dyn is None else f"{dyn:.4g}", f"{rec['fluid_volume_m3'] * 1e6:.4g}",
+            f"{rec['outer_diameter_m'] * 1e3:.4g}", f"{rec['length_m'] * 1e3:.4g}",
+            f"{rec['bingham_number']:.3g}" if rec["bingham_number"] is not None else "-",
+            f"{rec['plug_fraction']:.3g}", f"{rec['gap_ratio']:.3g}"]
+
+
+_HEAD = ["#", "h [mm]", "L [mm]", "d [mm]", "Dp [mm]", "dr [mm]", "n", "F [kN]", "F0 [kN]", "F/F0", "V [cm3]",
+         "OD [mm]", "len [mm]", "Bi", "phi", "h/d"]
+
+
+def _grid(rows: list[list[str]]) -> str:
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+    return "\n".join("  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in rows)
+
+
+def _table(result) -> str:
+    req = result.requirements
+    p = req.points[0]
+    lines = [f"{req.name or 'requirements'}: {req.configuration} damper, objective {req.objective}",
+             (f"{result.evaluated} candidates evaluated, {result.feasible_count} feasible "
+              f"(figures at point 1: v = {p.velocity:.4g} m/s)")]
+    if result.feasible:
+        lines.append(_grid([_HEAD] + [_row(d, str(d["rank"])) for d in result.designs]))
+        lines.append("active constraints:")
+        lines += [f"  {d['rank']}: {', '.join(d['active_constraints']) or '-'}" for d in result.designs]
+        lines.append(f"Pareto front ({', '.join(req.search.pareto)}): {len(result.pareto)} designs "
+                     "(--out writes them)")
+    else:
+        lines.append("no feasible design; conflicts:")
+        lines += [f"  - {c}" for c in result.conflicts]
+        if result.nearest is not None:
+            lines.append("nearest design:")
+            lines.append(_grid([_HEAD] + [_row(result.nearest, "-")]))
+    return "\n".join(lines)

@@ -1,0 +1,458 @@
+r"""Vectorised evaluation of candidate damper geometries: figures, non-dimensional groups and constraint margins.
+
+Every candidate is a set of SI arrays (gap ``h``, duct length ``L``, mean diameter ``d``, piston ``Dp``, rod
+``dr``, ``n`` ducts) evaluated at every design point straight from the flow kernels, with no Python loop per design
+and no :class:`~erdesign.damper.Damper` object per candidate.  The expressions are those of
+:meth:`erdesign.damper.Damper.state`, operation for operation, so that a design re-checked with
+:meth:`~erdesign.damper.Damper.size` gives the same numbers (tests/test_design.py checks it).
+
+Valve damper (Makris et al., seed 004, eqs 1, 7 corrected, 14), per duct :math:`Q = v A_p / n`:
+
+.. math::
+    F = \Delta p(Q, \tau_y, \eta)\,A_p + F_s, \qquad F_0 = \frac{12\eta_0 L Q}{\pi d h^3} A_p + F_s, \qquad
+    \mathrm{Re} = \frac{\bar u h \rho}{\eta}, \quad \bar u = \frac{Q}{\pi d h}
+
+Mixed damper (Kamath and Wereley, seed 000, section II): pressure plus shear drag from
+:func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`, with :math:`\bar u = \max(v A_p/(\pi d h), v)`.
+
+Non-dimensional groups reported for each design (why a design behaves as it does): the Bingham number
+:math:`\mathrm{Bi} = \tau_y h/(\eta \bar u)` (yield over viscous stress; Bi >> 1: the field dominates, large dynamic
+range), the plug fraction :math:`\phi` (0 fully yielded, 1 blocked) and the thin-gap ratio :math:`h/d`.
+
+Constraint margins are relative: :math:`m = x/x_\text{min} - 1` for a lower limit and :math:`m = 1 - x/x_\text{max}`
+for an upper one, so that :math:`m \ge 0` is met and :math:`-m` is the shortfall as a fraction of the limit.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
+
+from .._util import scalar_or_array
+from ..damper import CRITICAL_REYNOLDS
+from ..flow.bingham import bingham_slit_flow
+from ..flow.mixed_mode import mixed_mode_damper_force
+from ..flow.newtonian import slit_pressure_drop
+from ..geometry import THIN_GAP_LIMIT
+from . import envelope
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .requirements import Requirements
+
+__all__ = [
+    "PointFigures",
+    "valve_point_figures",
+    "mixed_point_figures",
+    "CandidateFigures",
+    "Constraint",
+    "Figure",
+    "constraints_for",
+    "evaluate_candidates",
+    "FIGURES",
+    "OBJECTIVES",
+]
+
+
+class Figure(NamedTuple):
+    """A figure of merit of a design (registry :data:`FIGURES`)."""
+
+    attribute: str
+    """Attribute of :class:`CandidateFigures` holding it."""
+    per_point: bool
+    """True: one value per design point (the first point is used for ranking and Pareto fronts)."""
+    unit: str
+    """SI unit."""
+    better: str
+    """``"max"`` or ``"min"``."""
+    description: str
+
+
+#: Figures a design is ranked or traded off by (``design.search.pareto`` and the objectives).
+FIGURES = {
+    "force": Figure("force", True, "N", "max", "total force at the design point"),
+    "controllable_force": Figure("controllable_force", True, "N", "max", "force at field minus force at zero field"),
+    "zero_field_force": Figure("zero_field_force", True, "N", "min", "force at zero field (passive force)"),
+    "dynamic_range": Figure("dynamic_range", True, "", "max", "force at field / force at zero field"),
+    "fluid_volume": Figure("fluid_volume", False, "m^3", "min", "active fluid volume between the electrodes"),
+    "total_fluid_volume": Figure("total_fluid_volume", False, "m^3", "min", "fluid in cylinder and ducts"),
+    "outer_diameter": Figure("outer_diameter", False, "m", "min", "outer diameter of the body"),
+    "length": Figure("length", False, "m", "min", "body length"),
+}
+
+#: Objectives of ``design.objective``: name -> figure of :data:`FIGURES` (its ``better`` gives the sense).
+OBJECTIVES = {
+    "min_fluid_volume": "fluid_volume",
+    "max_dynamic_range": "dynamic_range",
+    "min_zero_field_force": "zero_field_force",
+    "min_total_fluid_volume": "total_fluid_volume",
+    "min_outer_diameter": "outer_diameter",
+    "min_length": "length",
+}
+
+
+class PointFigures(NamedTuple):
+    """Quasi-steady figures of candidate designs at one design point, SI arrays."""
+
+    force: np.ndarray
+    """Force at the field, seal friction included, [N]."""
+    zero_field_force: np.ndarray
+    """Force at zero field, [N]."""
+    pressure_drop: np.ndarray
+    """Pressure drop across the piston at the field, [Pa]."""
+    zero_field_pressure_drop: np.ndarray
+    """Pressure drop at zero field, [Pa]."""
+    plug_fraction: np.ndarray
+    """Plug thickness over gap at the field, [-]."""
+    reynolds: np.ndarray
+    """Reynolds number (Makris eq 1) at the field, [-]."""
+    zero_field_reynolds: np.ndarray
+    """Reynolds number at zero field (lower viscosity, so usually the larger), [-]."""
+    bingham_number: np.ndarray
+    """tau_y h / (eta u), [-]."""
+
+
+def valve_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, d, Ap, n):
+    r"""Force, zero-field force and flow groups of valve dampers at one design point (vectorised).
+
+    .. math::
+        Q = \frac{v A_p}{n}, \quad F = \Delta p\,A_p + F_s, \quad F_0 = \frac{12\eta_0 L Q}{\pi d h^3}A_p + F_s,
+        \quad \mathrm{Re} = \frac{\bar u h\rho}{\eta}, \quad \mathrm{Bi} = \frac{\tau_y h}{\eta\bar u},
+        \quad \bar u = \frac{Q}{\pi d h}
+
+    with :math:`\Delta p` the Bingham pressure drop of :func:`erdesign.flow.bingham.bingham_slit_flow`.
+
+    Parameters
+    ----------
+    v : float
+        Piston velocity, [m/s], > 0.
+    tau_y : float
+        Yield stress at the field, [Pa].
+    eta, eta0 : float
+        Plastic viscosity at the field and at zero field, [Pa s].
+    rho : float
+        Density, [kg/m^3].
+    seal_friction : float
+        Seal friction F_s, [N].
+    h, L, d : float or array
+        Gap, duct length, duct mean diameter, [m].
+    Ap : float or array
+        Piston area, [m^2].
+    n : int or array
+        Number of ducts in parallel.
+
+    Returns
+    -------
+    PointFigures
+
+    Notes
+    -----
+    Thin gap (parallel plates), laminar, quasi-steady; see :mod:`erdesign.flow.bingham`.  The candidate search
+    keeps :math:`h/d \le 0.1` (a constraint), where :class:`~erdesign.damper.Damper` also uses the thin gap.
+
+    Examples
+    --------
+    Makris's damper at 1 in/s and 3 kV/mm (seed 004; 6.07 kN as ``erdesign size`` gives):
+
+    >>> from math import pi
+    >>> Ap = pi / 4 * (0.0334**2 - 0.01125**2)
+    >>> r = valve_point_figures(0.0254, 1800.0, 13.0, 7.0, 1290.0, 112.0, 0.0008, 0.0546, 0.0143, Ap, 1)
+    >>> round(r.force / 1e3, 2), round(r.force / r.zero_field_force, 2), round(r.bingham_number, 2)
+    (6.07, 1.92, 0.2)
+
+    Bi = 0.2 and a plug of 3 % of the gap: at 1 in/s this duct is viscous-dominated, and most of its dynamic
+    range comes from the viscosity rising from 7 to 13 Pa s with the field (seed 004, section 3).
+
+    References
+    ----------
+    Makris et al. (seed 004), eqs 1, 4, 7 (with h^3) and 14.
+    """
+    Q = v * Ap / n
+    dp, phi = bingham_slit_flow(Q, tau_y, eta, L, d, h)
+    dp0 = slit_pressure_drop(Q, eta0, L, d, h)
+    friction = np.copysign(seal_friction, v)
+    mean_velocity = np.abs(Q) / (np.pi * d * h)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bingham = tau_y * h / (eta * mean_velocity)
+    return PointFigures._make(scalar_or_array(a) for a in (
+        dp * Ap + friction, dp0 * Ap + friction, dp, dp0, phi, mean_velocity * h * rho / eta,
+        mean_velocity * h * rho / eta0, bingham))
+
+
+def mixed_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, Dp, dr):
+    r"""Force, zero-field force and flow groups of mixed-mode (moving-electrode) dampers at one point (vectorised).
+
+    .. math::
+        F = \Delta p\,A_p - \tau_0\,\pi D_p L + F_s, \quad
+        \bar u = \max\!\left(\frac{v A_p}{\pi d h}, v\right), \quad d = D_p + h
+
+    with :math:`\Delta p, \tau_0` from :func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`; Re and Bi as in
+    :func:`valve_point_figures` with this :math:`\bar u`.
+
+    Parameters
+    ----------
+    v, tau_y, eta, eta0, rho, seal_friction
+        As in :func:`valve_point_figures`.
+    h : float or array
+        Gap between head and cylinder, [m].
+    L : float or array
+        Length of the piston head (electrode), [m].
+    Dp, dr : float or array
+        Head and rod diameters, [m].
+
+    Returns
+    -------
+    PointFigures
+
+    Notes
+    -----
+    Each element is a bracketed root (about 5 us per element on one core), two orders slower than the closed
+    form of the valve damper; the zero-field figures are closed form.
+
+    Examples
+    --------
+    >>> r = mixed_point_figures(0.05, 2000.0, 0.1, 0.1, 1200.0, 0.0, 1e-3, 0.02, 0.03, 0.01)
+    >>> round(r.force, 1), round(r.plug_fraction, 2)
+    (71.1, 0.76)
+
+    References
+    ----------
+    Kamath and Wereley (seed 000), section II; docs/theory/mixed_mode.md.
+    """
+    m = mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h)
+    m0 = mixed_mode_damper_force(v, 0.0, eta0, L, Dp, dr, h)
+    friction = np.copysign(seal_friction, v)
+    Ap = np.pi / 4.0 * (Dp**2 - dr**2)
+    d = Dp + h
+    mean_velocity = np.maximum(np.abs(v * Ap) / (np.pi * d * h), np.abs(v))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bingham = tau_y * h / (eta * mean_velocity)
+    return PointFigures._make(scalar_or_array(a) for a in (
+        m.pressure_force + m.shear_force + friction, m0.pressure_force + m0.shear_force + friction,
+        m.pressure_drop, m0.pressure_drop, m.plug_fraction, mean_velocity * h * rho / eta,
+        mean_velocity * h * rho / eta0, bingham))
+
+
+@dataclass(frozen=True)
+class CandidateFigures:
+    """Figures of N candidate designs at P design points, SI arrays (shape (N,) or (P, N)).
+
+    ``margins`` has one row per constraint of :func:`constraints_for` (shape (C, N)); ``feasible`` is True where
+    the geometry is valid and every margin is >= 0.
+    """
+
+    gap: np.ndarray
+    duct_length: np.ndarray
+    duct_mean_diameter: np.ndarray
+    piston_diameter: np.ndarray
+    rod_diameter: np.ndarray
+    ducts: np.ndarray
+    valid: np.ndarray
+    """Geometry is buildable: rod thinner than piston, gap smaller than the mean diameter, all positive."""
+    piston_area: np.ndarray
+    gap_ratio: np.ndarray
+    fluid_volume: np.ndarray
+    total_fluid_volume: np.ndarray
+    outer_diameter: np.ndarray
+    length: np.ndarray
+    force: np.ndarray
+    zero_field_force: np.ndarray
+    controllable_force: np.ndarray
+    dynamic_range: np.ndarray
+    pressure_drop: np.ndarray
+    zero_field_pressure_drop: np.ndarray
+    plug_fraction: np.ndarray
+    reynolds: np.ndarray
+    zero_field_reynolds: np.ndarray
+    bingham_number: np.ndarray
+    voltage: np.ndarray
+    """Electrode voltage E h (ER; the control times the gap for other controls), [V]."""
+    margins: np.ndarray
+
+    @property
+    def feasible(self) -> np.ndarray:
+        return self.valid & np.all(self.margins >= 0.0, axis=0)
+
+    def __len__(self) -> int:
+        return self.gap.shape[0]
+
+    def figure(self, name: str) -> np.ndarray:
+        """Figure ``name`` of :data:`FIGURES` for every candidate (at the first design point), shape (N,)."""
+        fig = FIGURES[name]
+        value = getattr(self, fig.attribute)
+        return value[0] if fig.per_point else value
+
+    def take(self, index) -> "CandidateFigures":
+        """The candidates selected by ``index`` (integer or boolean array)."""
+        out = {}
+        for key, value in self.__dict__.items():
+            out[key] = value[..., index] if value.ndim == 2 else value[index]
+        return CandidateFigures(**out)
+
+
+class Constraint(NamedTuple):
+    """One requirement as a constraint on candidate designs."""
+
+    name: str
+    """Shown in ``active_constraints`` and ``conflicts``: the requirement's key, with its point if any."""
+    value: Callable[[CandidateFigures], np.ndarray]
+    """The constrained quantity of every candidate, SI, shape (N,)."""
+    limit: float
+    upper: bool
+    """True: value <= limit; False: value >= limit."""
+    unit: str
+    """Unit to show value and limit in (pint), e.g. ``"kN"``."""
+    scale: float
+    """SI value of one ``unit`` (1000 for kN), for messages."""
+
+    def margin(self, figures: CandidateFigures) -> np.ndarray:
+        """Relative margin, >= 0 when met: 1 - value/limit (upper) or value/limit - 1 (lower)."""
+        ratio = self.value(figures) / self.limit
+        return 1.0 - ratio if self.upper else ratio - 1.0
+
+
+def _per_point(attribute: str, i: int):
+    return lambda f: getattr(f, attribute)[i]
+
+
+def _peak(a: str, b: str, i: int, absolute: bool = True):
+    if absolute:
+        return lambda f: np.maximum(np.abs(getattr(f, a)[i]), np.abs(getattr(f, b)[i]))
+    return lambda f: np.maximum(getattr(f, a)[i], getattr(f, b)[i])
+
+
+def constraints_for(req: "Requirements") -> tuple[Constraint, ...]:
+    """The constraints a requirements set puts on candidate designs, in a fixed order."""
+    out: list[Constraint] = []
+    unit = req.fluid.field_unit
+    from ..units import Q_
+
+    field_scale = float(Q_(1.0, unit).to(req.fluid.control_unit).magnitude)
+    for i, p in enumerate(req.points):
+        tag = f" (point {i + 1})"
+        if p.min_force is not None:
+            out.append(Constraint("min_force" + tag, _per_point("force", i), p.min_force, False, "kN", 1e3))
+        if p.min_dynamic_range is not None:
+            out.append(Constraint("min_dynamic_range" + tag, _per_point("dynamic_range", i), p.min_dynamic_range,
+                                  False, "", 1.0))
+        if p.max_zero_field_force is not None:
+            out.append(Constraint("max_zero_field_force" + tag, _per_point("zero_field_force", i),
+                                  p.max_zero_field_force, True, "kN", 1e3))
+        if req.limits.max_pressure is not None:
+            out.append(Constraint("max_pressure" + tag, _peak("pressure_drop", "zero_field_pressure_drop", i),
+                                  req.limits.max_pressure, True, "MPa", 1e6))
+        if req.limits.laminar:
+            out.append(Constraint("laminar" + tag, _peak("reynolds", "zero_field_reynolds", i, absolute=False),
+                                  CRITICAL_REYNOLDS, True, "", 1.0))
+        if req.limits.max_field is not None:
+            out.append(Constraint("max_field" + tag, (lambda f, E=p.field: np.full(len(f), E)),
+                                  req.limits.max_field, True, unit, field_scale))
+        if req.limits.max_voltage is not None:
+            out.append(Constraint("max_voltage" + tag, _per_point("voltage", i), req.limits.max_voltage, True, "kV",
+                                  1e3))
+    lim = req.limits
+    if lim.max_outer_diameter is not None:
+        out.append(Constraint("max_outer_diameter", lambda f: f.outer_diameter, lim.max_outer_diameter, True, "mm",
+                              1e-3))
+    if lim.max_length is not None:
+        out.append(Constraint("max_length", lambda f: f.length, lim.max_length, True, "mm", 1e-3))
+    if lim.min_gap is not None:
+        out.append(Constraint("min_gap", lambda f: f.gap, lim.min_gap, False, "mm", 1e-3))
+    out.append(Constraint("thin_gap", lambda f: f.gap_ratio, THIN_GAP_LIMIT, True, "", 1.0))
+    if req.configuration == "valve" and req.envelope.duct_placement == "around":
+        wall = req.envelope.wall
+        out.append(Constraint("duct_around_cylinder",
+                              lambda f: envelope.duct_clearance_ratio(f.piston_diameter, f.gap, f.duct_mean_diameter,
+                                                                      wall), 1.0, False, "", 1.0))
+    return tuple(out)
+
+
+def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diameter, piston_diameter, rod_diameter,
+                        ducts, constraints: tuple[Constraint, ...] | None = None) -> CandidateFigures:
+    r"""Figures and constraint margins of N candidate geometries at every design point of ``req`` (vectorised).
+
+    Parameters
+    ----------
+    req : Requirements
+        Fluid, configuration, design points, limits and envelope.
+    gap, duct_length, piston_diameter, rod_diameter : array
+        Candidate geometry, [m], shape (N,).
+    duct_mean_diameter : array or None
+        [m]; ignored for a mixed damper (it is ``piston_diameter + gap``).
+    ducts : array
+        Number of ducts, whole numbers (1 for mixed).
+    constraints : tuple of Constraint, optional
+        :func:`constraints_for(req) <constraints_for>` (pass it when calling repeatedly).
+
+    Returns
+    -------
+    CandidateFigures
+        Shape (N,) geometric figures, (P, N) point figures, (C, N) margins.
+
+    Notes
+    -----
+    Invalid geometries (rod not thinner than the piston, gap not smaller than the mean diameter, a non-positive
+    length) are evaluated with a placeholder geometry so that the kernels never see them; their margins are NaN
+    and ``valid`` is False.  Memory is about 40 (P + C) bytes per candidate: pass chunks (the search in
+    :mod:`erdesign.design.search` uses 65536 by default).
+    """
+    if constraints is None:
+        constraints = constraints_for(req)
+    h = np.asarray(gap, dtype=float)
+    L = np.asarray(duct_length, dtype=float)
+    Dp = np.asarray(piston_diameter, dtype=float)
+    dr = np.asarray(rod_diameter, dtype=float)
+    mixed = req.configuration == "mixed"
+    d = Dp + h if mixed else np.asarray(duct_mean_diameter, dtype=float)
+    n = np.ones_like(h) if mixed else np.asarray(ducts, dtype=float)
+    h, L, d, Dp, dr, n = np.broadcast_arrays(*(np.atleast_1d(a) for a in (h, L, d, Dp, dr, n)))
+    valid = (h > 0) & (L > 0) & (dr >= 0) & (dr < Dp) & (h < d) & (n >= 1)
+    all_valid = bool(np.all(valid))
+    if not all_valid:  # placeholder geometry, so that no kernel sees an impossible duct
+        h, L, d, Dp, dr, n = (np.where(valid, a, s) for a, s in
+                              zip((h, L, d, Dp, dr, n), (1e-3, 0.05, 0.02, 0.04, 0.01, 1.0)))
+    Ap = np.pi / 4.0 * (Dp**2 - dr**2)
+    fl, env = req.fluid, req.envelope
+    rows = []
+    for p in req.points:
+        tau_y = float(fl.yield_stress_at(p.field))
+        eta = float(fl.viscosity_at(p.field))
+        if mixed:
+            rows.append(mixed_point_figures(p.velocity, tau_y, eta, fl.viscosity, fl.density, req.seal_friction,
+                                            h, L, Dp, dr))
+        else:
+            rows.append(valve_point_figures(p.velocity, tau_y, eta, fl.viscosity, fl.density, req.seal_friction,
+                                            h, L, d, Ap, n))
+    if len(rows) == 1:   # a view, no copy (the common case of one design point)
+        stacked = {key: np.broadcast_to(getattr(rows[0], key), h.shape)[None, :] for key in PointFigures._fields}
+    else:
+        stacked = {key: np.stack([np.broadcast_to(getattr(r, key), h.shape) for r in rows])
+                   for key in PointFigures._fields}
+    fields = np.array([p.field for p in req.points])[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        dynamic_range = stacked["force"] / stacked["zero_field_force"]
+    figures = CandidateFigures(
+        gap=h, duct_length=L, duct_mean_diameter=d, piston_diameter=Dp, rod_diameter=dr, ducts=n,
+        valid=valid,
+        piston_area=Ap,
+        gap_ratio=h / d,
+        fluid_volume=envelope.active_fluid_volume(h, L, d, n),
+        total_fluid_volume=envelope.total_fluid_volume(Ap, h, L, d, n, env.stroke, req.configuration),
+        outer_diameter=envelope.outer_diameter(Dp, h, d, env.wall, req.configuration, env.duct_placement),
+        length=np.broadcast_to(envelope.body_length(L, env.stroke, env.head_length, env.end_allowance,
+                                                    req.configuration), h.shape),
+        controllable_force=stacked["force"] - stacked["zero_field_force"],
+        dynamic_range=dynamic_range,
+        voltage=fields * h,
+        margins=np.empty((0, h.shape[0])),
+        **stacked,
+    )
+    margins = np.empty((len(constraints), h.shape[0]))
+    for j, c in enumerate(constraints):
+        margins[j] = c.margin(figures)
+    if not all_valid:
+        margins[:, ~valid] = np.nan
+    object.__setattr__(figures, "margins", margins)
+    return figures

@@ -1,0 +1,493 @@
+r"""The requirements file of ``erdesign design``: what the damper must do, its envelope, and the free geometry.
+
+The file (shared/CONTRACTS.md section 3, "erdesign design") has a ``[fluid]`` table exactly as a damper file and a
+``[design]`` table.  Every dimensional value is a string with a unit; unknown keys are errors that name the key.
+The keys beyond the contract are listed below and in docs/design.md.
+
+``[design]``
+    ``configuration`` ("valve" or "mixed"), ``objective`` (a key of :data:`~erdesign.design.evaluate.OBJECTIVES`,
+    default ``"min_fluid_volume"``), one or more ``[[design.point]]`` tables, and the optional tables
+    ``[design.limits]``, ``[design.bounds]`` (required), ``[design.envelope]`` and ``[design.search]``.
+``[[design.point]]``
+    ``velocity`` (> 0), ``field`` (the control, default 0), ``min_force``, ``min_dynamic_range`` and, beyond the
+    contract, ``max_zero_field_force`` (a ceiling on the passive force).  At least one requirement per point.
+``[design.limits]``
+    ``max_outer_diameter``, ``max_length``, ``max_pressure``, ``laminar`` (contract), and ``min_gap`` (the
+    manufacturable minimum gap), ``max_field`` (default: 4 kV/mm for an ER fluid, 250 kA/m for an MR fluid given
+    in A/m, seed 001 Table 1 "maximum field"; none for other controls) and ``max_voltage`` (electrode voltage
+    E h across the gap, ER fluids only; seed 001 Table 1 gives 2 to 5 kV for typical supplies).
+``[design.bounds]``
+    ``gap``, ``duct_length``, ``duct_mean_diameter`` (valve only), ``piston_diameter``, ``rod_diameter``:
+    ``[low, high]`` or a single value (fixed); ``ducts``: ``[low, high]`` whole numbers or one (default 1; valve
+    only).
+``[design.envelope]`` (all optional; the envelope model of :mod:`erdesign.design.envelope`)
+    ``stroke`` (default 50 mm), ``wall`` (wall allowance of the cylinder, default 5 mm), ``head_length`` (valve
+    piston head, default 20 mm), ``end_allowance`` (each end cap with seal and bearing, default 25 mm),
+    ``duct_placement`` (valve: ``"beside"`` the cylinder as in Makris Fig 1, default, or ``"around"`` it).
+``[design.search]`` (all optional)
+    ``samples`` (default 131072), ``sampling`` (``"sobol"`` or ``"lhs"``), ``seed`` (default 0),
+    ``chunk`` (candidates evaluated at once, default 65536), ``refine`` (default true), ``designs`` (how many to
+    return, default 10), ``pareto`` (two or three figures of :data:`~erdesign.design.evaluate.FIGURES`, default
+    ``["dynamic_range", "fluid_volume", "outer_diameter"]``; see docs/design.md for why not controllable force,
+    dynamic range and fluid volume, which a valve damper ties together) and ``active_tolerance`` (relative margin below
+    which a constraint counts as active, default 0.01).
+
+Example
+-------
+>>> req = requirements_from_dict({
+...     "fluid": {"material": "makris-zeolite-silicone"},
+...     "design": {"configuration": "valve",
+...                "point": [{"velocity": "1 in/s", "field": "3 kV/mm", "min_force": "5 kN"}],
+...                "bounds": {"gap": ["0.5 mm", "2 mm"], "duct_length": ["20 mm", "150 mm"],
+...                           "duct_mean_diameter": ["5 mm", "40 mm"], "piston_diameter": "33.4 mm",
+...                           "rod_diameter": "11.25 mm"}}})
+>>> req.objective, req.points[0].min_force, req.bounds["piston_diameter"], req.limits.max_field
+('min_fluid_volume', 5000.0, (0.0334, 0.0334), 4000000.0)
+>>> requirements_from_dict({"fluid": {}, "desing": {}})
+Traceback (most recent call last):
+...
+erdesign.design.requirements.RequirementsError: requirements: desing: unknown key; allowed keys: name, fluid, design
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from ..damper_file import parse_fluid_table, read_toml
+from ..errors import ErdesignError
+from ..fluid import Fluid
+from ..geometry import CONFIGURATIONS
+from ..units import to_si
+from .evaluate import FIGURES, OBJECTIVES
+
+__all__ = [
+    "Requirements",
+    "DesignPoint",
+    "Limits",
+    "Envelope",
+    "SearchSettings",
+    "RequirementsError",
+    "read_requirements",
+    "requirements_from_dict",
+    "load_example_requirements",
+    "example_requirements_names",
+    "VARIABLES",
+    "FIELD_LIMITS",
+    "DUCT_PLACEMENTS",
+]
+
+#: The free geometric variables, in the order of the sampler's columns (the keys of ``[design.bounds]``).
+VARIABLES = ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter", "ducts")
+
+#: Default field limits by kind of control, SI: seed 001 (Butz and von Stryk), Table 1, "maximum field":
+#: ca. 4 kV/mm for ER fluids (dielectric breakdown) and ca. 250 kA/m for MR fluids (magnetic saturation).
+FIELD_LIMITS = {"electric field": 4.0e6, "magnetic field": 250.0e3}
+
+#: Where the valve ducts sit: beside the cylinder (Makris Fig 1: external bypass tubes) or around it (one
+#: concentric annulus outside the cylinder tube).
+DUCT_PLACEMENTS = ("beside", "around")
+
+SAMPLINGS = ("sobol", "lhs")
+
+_TOP_KEYS = ("name", "fluid", "design")
+_DESIGN_KEYS = ("configuration", "objective", "point", "limits", "bounds", "envelope", "search")
+_POINT_KEYS = ("velocity", "field", "min_force", "min_dynamic_range", "max_zero_field_force")
+_LIMIT_KEYS = ("max_outer_diameter", "max_length", "max_pressure", "laminar", "min_gap", "max_field", "max_voltage")
+_ENVELOPE_KEYS = ("stroke", "wall", "head_length", "end_allowance", "duct_placement")
+_SEARCH_KEYS = ("samples", "sampling", "seed", "chunk", "refine", "designs", "pareto", "active_tolerance")
+
+
+class RequirementsError(ErdesignError):
+    """A requirements file is malformed or self-contradictory; the message names the key."""
+
+
+@dataclass(frozen=True)
+class DesignPoint:
+    """One operating point the damper must meet, SI.
+
+    Attributes
+    ----------
+    velocity : float
+        Piston velocity, [m/s], > 0.
+    field : float
+        Control (SI unit of the fluid's control: V/m, A/m, T, A or V).
+    min_force : float or None
+        Least total force (with seal friction) at ``velocity`` and ``field``, [N].
+    min_dynamic_range : float or None
+        Least F(v, E) / F(v, 0), [-].
+    max_zero_field_force : float or None
+        Largest force at ``velocity`` with no field, [N] (beyond the contract).
+    """
+
+    velocity: float
+    field: float = 0.0
+    min_force: float | None = None
+    min_dynamic_range: float | None = None
+    max_zero_field_force: float | None = None
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Limits every design must respect, SI; None: no limit."""
+
+    max_outer_diameter: float | None = None
+    """Outer diameter of the cylinder (bore + 2 wall), [m]."""
+    max_length: float | None = None
+    """Body length of the envelope model, [m]."""
+    max_pressure: float | None = None
+    """Pressure drop across the piston, at field and at zero field, [Pa]."""
+    laminar: bool = False
+    """Reynolds number (Makris eq 1) below 2300 at every point, at field and at zero field."""
+    min_gap: float | None = None
+    """Manufacturable minimum gap, [m]."""
+    max_field: float | None = None
+    """Largest control the fluid takes (SI unit of the control)."""
+    max_voltage: float | None = None
+    """Largest electrode voltage E h, [V] (ER only)."""
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """Parameters of the envelope model (:mod:`erdesign.design.envelope`), SI."""
+
+    stroke: float = 0.050
+    """Full piston stroke, [m]."""
+    wall: float = 0.005
+    """Wall allowance of the cylinder (and of an outer duct tube), [m]."""
+    head_length: float = 0.020
+    """Length of the valve damper's piston head, [m] (mixed: the head is the electrode, length L)."""
+    end_allowance: float = 0.025
+    """Length of each end cap with its seal and bearing, [m]."""
+    duct_placement: str = "beside"
+    """Valve only: ``"beside"`` or ``"around"`` the cylinder."""
+
+
+@dataclass(frozen=True)
+class SearchSettings:
+    """How the design space is searched and what is returned."""
+
+    samples: int = 2**17
+    sampling: str = "sobol"
+    seed: int = 0
+    chunk: int = 2**16
+    refine: bool = True
+    designs: int = 10
+    pareto: tuple[str, ...] = ("dynamic_range", "fluid_volume", "outer_diameter")
+    active_tolerance: float = 0.01
+
+
+@dataclass(frozen=True)
+class Requirements:
+    """A parsed requirements file (SI).  Build it with :func:`read_requirements` or :func:`requirements_from_dict`.
+
+    ``bounds`` maps each name of :data:`VARIABLES` to ``(low, high)`` in SI (``ducts`` as whole numbers); for a
+    mixed damper ``duct_mean_diameter`` is ``None`` (it is ``piston_diameter + gap``).
+    """
+
+    fluid: Fluid
+    seal_friction: float
+    fluid_table: Mapping[str, Any]
+    configuration: str
+    objective: str
+    points: tuple[DesignPoint, ...]
+    bounds: Mapping[str, tuple[float, float] | None]
+    limits: Limits = field(default_factory=Limits)
+    envelope: Envelope = field(default_factory=Envelope)
+    search: SearchSettings = field(default_factory=SearchSettings)
+    name: str = ""
+
+    def with_search(self, **changes: Any) -> "Requirements":
+        """Copy with some search settings changed (``req.with_search(samples=4096, refine=False)``)."""
+        search = dataclasses.replace(self.search, **changes)
+        _check_search(search, "design.search")
+        return dataclasses.replace(self, search=search)
+
+    @property
+    def free_variables(self) -> tuple[str, ...]:
+        """Names of the variables whose bounds are a range (low < high)."""
+        return tuple(k for k in VARIABLES if self.bounds.get(k) is not None and self.bounds[k][0] < self.bounds[k][1])
+
+
+# ---------------------------------------------------------------------------------------------------- parsing
+def read_requirements(path: str | Path) -> Requirements:
+    """Read a requirements file (TOML); errors name the file and the key."""
+    return requirements_from_dict(read_toml(path), source=str(path))
+
+
+def example_requirements_names() -> list[str]:
+    """Names of the requirements files shipped in examples/requirements/ (``makris_requirements``, ...)."""
+    folder = resources.files("erdesign.examples") / "requirements"
+    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".toml"))
+
+
+def load_example_requirements(name: str = "makris_requirements") -> Requirements:
+    """One of the requirements files shipped in examples/requirements/, by name.
+
+    Examples
+    --------
+    >>> load_example_requirements("mr_requirements").configuration
+    'mixed'
+    """
+    if name not in example_requirements_names():
+        raise RequirementsError(f"example: unknown requirements example {name!r}; available: "
+                                f"{', '.join(example_requirements_names())}")
+    with resources.as_file(resources.files("erdesign.examples") / "requirements" / f"{name}.toml") as path:
+        return requirements_from_dict(read_toml(path), source=f"examples/requirements/{name}.toml")
+
+
+def requirements_from_dict(data: Mapping[str, Any], *, source: str = "requirements") -> Requirements:
+    """:class:`Requirements` from the parsed content of a requirements file.  ``source`` prefixes errors."""
+    try:
+        return _parse(data)
+    except ErdesignError as exc:
+        raise RequirementsError(f"{source}: {exc}") from None
+
+
+def _table(value: Any, where: str, allowed: tuple[str, ...]) -> Mapping[str, Any]:
+    if not isinstance(value, Mapping):
+        raise RequirementsError(f"{where}: expected a table, got {value!r}")
+    for key in value:
+        if key not in allowed:
+            prefix = f"{where}." if where else ""
+            raise RequirementsError(f"{prefix}{key}: unknown key; allowed keys: {', '.join(allowed)}")
+    return value
+
+
+def _quantity(table: Mapping[str, Any], key: str, unit: str, where: str, *, positive: bool = True):
+    if key not in table:
+        return None
+    name = f"{where}.{key}"
+    value = table[key]
+    if not isinstance(value, str):
+        raise RequirementsError(f"{name}: expected a value with a unit as a string (e.g. \"1 {unit}\"), got {value!r}")
+    si = to_si(value, unit, name)
+    if positive and not si > 0:
+        raise RequirementsError(f"{name}: must be positive, got {value!r}")
+    return si
+
+
+def _number(table: Mapping[str, Any], key: str, where: str, *, kind: type = float, low: float | None = None):
+    if key not in table:
+        return None
+    value = table[key]
+    ok = not isinstance(value, bool) and (isinstance(value, int) if kind is int else isinstance(value, (int, float)))
+    if not ok:
+        what = "a whole number" if kind is int else "a plain number"
+        raise RequirementsError(f"{where}.{key}: expected {what}, got {value!r}")
+    if low is not None and not value >= low:
+        raise RequirementsError(f"{where}.{key}: must be >= {low:g}, got {value!r}")
+    return kind(value)
+
+
+def _choice(table: Mapping[str, Any], key: str, where: str, choices, default=None):
+    value = table.get(key, default)
+    if value is None:
+        raise RequirementsError(f"{where}.{key}: missing (one of {', '.join(map(repr, choices))})")
+    if value not in choices:
+        raise RequirementsError(f"{where}.{key}: must be one of {', '.join(map(repr, choices))}, got {value!r}")
+    return value
+
+
+def _parse(data: Mapping[str, Any]) -> Requirements:
+    data = _table(data, "", _TOP_KEYS)
+    for key in ("fluid", "design"):
+        if key not in data:
+            raise RequirementsError(f"[{key}]: missing table")
+    name = data.get("name", "")
+    if not isinstance(name, str):
+        raise RequirementsError(f"name: expected text, got {name!r}")
+    if not isinstance(data["fluid"], Mapping):
+        raise RequirementsError(f"fluid: expected a table, got {data['fluid']!r}")
+    fluid_table = dict(data["fluid"])
+    fluid, seal_friction = parse_fluid_table(fluid_table, "fluid")
+
+    design = _table(data["design"], "design", _DESIGN_KEYS)
+    configuration = _choice(design, "configuration", "design", CONFIGURATIONS)
+    objective = _choice(design, "objective", "design", tuple(OBJECTIVES), default="min_fluid_volume")
+
+    points = _parse_points(design.get("point"), fluid)
+    limits = _parse_limits(design.get("limits", {}), fluid)
+    envelope = _parse_envelope(design.get("envelope", {}), configuration)
+    if "bounds" not in design:
+        raise RequirementsError("design.bounds: missing table (the free variables and their ranges)")
+    bounds = _parse_bounds(design["bounds"], configuration, envelope)
+    search = _parse_search(design.get("search", {}))
+    return Requirements(fluid=fluid, seal_friction=seal_friction, fluid_table=fluid_table,
+                        configuration=configuration, objective=objective, points=points, bounds=bounds,
+                        limits=limits, envelope=envelope, search=search, name=name)
+
+
+def _parse_points(value: Any, fluid: Fluid) -> tuple[DesignPoint, ...]:
+    if value is None:
+        raise RequirementsError("design.point: missing (at least one [[design.point]] table)")
+    if isinstance(value, Mapping):
+        value = [value]
+    if not isinstance(value, list) or not value:
+        raise RequirementsError(f"design.point: expected one or more [[design.point]] tables, got {value!r}")
+    points = []
+    for i, table in enumerate(value, start=1):
+        where = f"design.point[{i}]"
+        table = _table(table, where, _POINT_KEYS)
+        if "velocity" not in table:
+            raise RequirementsError(f"{where}.velocity: missing")
+        velocity = _quantity(table, "velocity", "m/s", where)
+        field_value = 0.0
+        if "field" in table:
+            if not isinstance(table["field"], str):
+                raise RequirementsError(f"{where}.field: expected a value with a unit as a string, "
+                                        f"got {table['field']!r}")
+            field_value = fluid.field_si(table["field"], f"{where}.field")
+            if field_value < 0:
+                raise RequirementsError(f"{where}.field: must not be negative, got {table['field']!r}")
+        point = DesignPoint(
+            velocity=velocity,
+            field=field_value,
+            min_force=_quantity(table, "min_force", "N", where),
+            min_dynamic_range=_number(table, "min_dynamic_range", where),
+            max_zero_field_force=_quantity(table, "max_zero_field_force", "N", where),
+        )
+        if point.min_dynamic_range is not None and not point.min_dynamic_range > 0:
+            raise RequirementsError(f"{where}.min_dynamic_range: must be positive, got {point.min_dynamic_range!r}")
+        if point.min_force is None and point.min_dynamic_range is None and point.max_zero_field_force is None:
+            raise RequirementsError(f"{where}: states no requirement (give min_force, min_dynamic_range or "
+                                    "max_zero_field_force)")
+        points.append(point)
+    return tuple(points)
+
+
+def _parse_limits(table: Any, fluid: Fluid) -> Limits:
+    where = "design.limits"
+    table = _table(table, where, _LIMIT_KEYS)
+    laminar = table.get("laminar", False)
+    if not isinstance(laminar, bool):
+        raise RequirementsError(f"{where}.laminar: expected true or false, got {laminar!r}")
+    max_field = FIELD_LIMITS.get(fluid.control)
+    if "max_field" in table:
+        if not isinstance(table["max_field"], str):
+            raise RequirementsError(f"{where}.max_field: expected a value with a unit as a string, "
+                                    f"got {table['max_field']!r}")
+        max_field = fluid.field_si(table["max_field"], f"{where}.max_field")
+        if not max_field > 0:
+            raise RequirementsError(f"{where}.max_field: must be positive, got {table['max_field']!r}")
+    max_voltage = _quantity(table, "max_voltage", "V", where)
+    if max_voltage is not None and fluid.control != "electric field":
+        raise RequirementsError(f"{where}.max_voltage: applies to an ER fluid controlled by an electric field "
+                                f"(this fluid's control is a {fluid.control})")
+    return Limits(
+        max_outer_diameter=_quantity(table, "max_outer_diameter", "m", where),
+        max_length=_quantity(table, "max_length", "m", where),
+        max_pressure=_quantity(table, "max_pressure", "Pa", where),
+        laminar=laminar,
+        min_gap=_quantity(table, "min_gap", "m", where),
+        max_field=max_field,
+        max_voltage=max_voltage,
+    )
+
+
+def _parse_envelope(table: Any, configuration: str) -> Envelope:
+    where = "design.envelope"
+    table = _table(table, where, _ENVELOPE_KEYS)
+    defaults = Envelope()
+    values = {}
+    for key in ("stroke", "wall", "head_length", "end_allowance"):
+        si = _quantity(table, key, "m", where, positive=False)
+        if si is not None and si < 0:
+            raise RequirementsError(f"{where}.{key}: must not be negative, got {table[key]!r}")
+        values[key] = getattr(defaults, key) if si is None else si
+    placement = _choice(table, "duct_placement", where, DUCT_PLACEMENTS, default="beside")
+    if "duct_placement" in table and configuration != "valve":
+        raise RequirementsError(f"{where}.duct_placement: applies to the valve configuration only")
+    return Envelope(duct_placement=placement, **values)
+
+
+def _parse_bounds(table: Any, configuration: str, envelope: Envelope) -> dict:
+    where = "design.bounds"
+    table = _table(table, where, VARIABLES)
+    bounds: dict[str, tuple[float, float] | None] = {}
+    for key in VARIABLES[:-1]:
+        name = f"{where}.{key}"
+        if key == "duct_mean_diameter" and configuration == "mixed":
+            if key in table:
+                raise RequirementsError(f"{name}: not a free variable of a mixed damper (it is piston_diameter + "
+                                        "gap); remove it")
+            bounds[key] = None
+            continue
+        if key not in table:
+            raise RequirementsError(f"{name}: missing ([low, high] or a single value)")
+        value = table[key]
+        items = value if isinstance(value, list) else [value]
+        if not 1 <= len(items) <= 2 or not all(isinstance(v, str) for v in items):
+            raise RequirementsError(f"{name}: expected [\"low unit\", \"high unit\"] or one value with a unit, "
+                                    f"got {value!r}")
+        lo, hi = (to_si(v, "m", name) for v in (items[0], items[-1]))
+        if not lo > 0:
+            raise RequirementsError(f"{name}: must be positive, got {items[0]!r}")
+        if lo > hi:
+            raise RequirementsError(f"{name}: low {items[0]!r} is above high {items[-1]!r}")
+        bounds[key] = (lo, hi)
+    value = table.get("ducts", 1)
+    items = value if isinstance(value, list) else [value]
+    if not 1 <= len(items) <= 2 or not all(isinstance(v, int) and not isinstance(v, bool) for v in items):
+        raise RequirementsError(f"{where}.ducts: expected [low, high] whole numbers or one, got {value!r}")
+    lo, hi = items[0], items[-1]
+    if lo < 1 or lo > hi:
+        raise RequirementsError(f"{where}.ducts: expected 1 <= low <= high, got {value!r}")
+    if configuration == "mixed" and hi != 1:
+        raise RequirementsError(f"{where}.ducts: a mixed damper has one gap (ducts must be 1), got {value!r}")
+    if envelope.duct_placement == "around" and hi != 1:
+        raise RequirementsError(f"{where}.ducts: one annulus fits around the cylinder (duct_placement = "
+                                f"\"around\"), got {value!r}")
+    bounds["ducts"] = (lo, hi)
+    lo_dr, hi_dp = bounds["rod_diameter"][0], bounds["piston_diameter"][1]
+    if lo_dr >= hi_dp:
+        raise RequirementsError(f"{where}.rod_diameter: the smallest rod ({lo_dr * 1e3:g} mm) is not smaller than "
+                                f"the largest piston ({hi_dp * 1e3:g} mm)")
+    if bounds["duct_mean_diameter"] is not None and bounds["gap"][0] >= bounds["duct_mean_diameter"][1]:
+        raise RequirementsError(f"{where}.gap: the smallest gap is not smaller than the largest duct_mean_diameter")
+    return bounds
+
+
+def _parse_search(table: Any) -> SearchSettings:
+    where = "design.search"
+    table = _table(table, where, _SEARCH_KEYS)
+    defaults = SearchSettings()
+    values: dict[str, Any] = {}
+    for key, low in (("samples", 1), ("seed", 0), ("chunk", 1024), ("designs", 1)):
+        v = _number(table, key, where, kind=int, low=low)
+        values[key] = getattr(defaults, key) if v is None else v
+    values["sampling"] = _choice(table, "sampling", where, SAMPLINGS, default=defaults.sampling)
+    refine = table.get("refine", defaults.refine)
+    if not isinstance(refine, bool):
+        raise RequirementsError(f"{where}.refine: expected true or false, got {refine!r}")
+    values["refine"] = refine
+    pareto = table.get("pareto", list(defaults.pareto))
+    if not isinstance(pareto, list):
+        raise RequirementsError(f"{where}.pareto: expected a list of two or three figure names, got {pareto!r}")
+    values["pareto"] = tuple(pareto)
+    tol = _number(table, "active_tolerance", where)
+    values["active_tolerance"] = defaults.active_tolerance if tol is None else tol
+    search = SearchSettings(**values)
+    _check_search(search, where)
+    return search
+
+
+def _check_search(search: SearchSettings, where: str) -> None:
+    if not 2 <= len(search.pareto) <= 3 or len(set(search.pareto)) != len(search.pareto):
+        raise RequirementsError(f"{where}.pareto: expected two or three different figures, got {list(search.pareto)!r}")
+    for name in search.pareto:
+        if name not in FIGURES:
+            raise RequirementsError(f"{where}.pareto: unknown figure {name!r}; known: {', '.join(FIGURES)}")
+    if not 0 <= search.active_tolerance < 1:
+        raise RequirementsError(f"{where}.active_tolerance: must lie in [0, 1), got {search.active_tolerance!r}")
+    if search.sampling not in SAMPLINGS:
+        raise RequirementsError(f"{where}.sampling: must be one of {', '.join(map(repr, SAMPLINGS))}")
+    for key in ("samples", "designs"):
+        if not (isinstance(getattr(search, key), int) and getattr(search, key) >= 1):
+            raise RequirementsError(f"{where}.{key}: must be a whole number >= 1")
+    if not (isinstance(search.chunk, int) and search.chunk >= 1024):
+        raise RequirementsError(f"{where}.chunk: must be a whole number >= 1024")

@@ -1,0 +1,451 @@
+r"""Design synthesis: sweep the design space in chunks, refine the best designs, rank them, explain infeasibility.
+
+:func:`design` is the workflow behind ``erdesign design``:
+
+1. **Sweep.**  Candidate geometries fill the bounds (:mod:`~erdesign.design.sampling`) and are evaluated chunk by
+   chunk with :func:`~erdesign.design.evaluate.evaluate_candidates`; only running summaries are kept between
+   chunks (the best feasible designs, the Pareto front, the designs nearest to feasibility, and counts of which
+   constraints the candidates violate), so memory is proportional to a chunk, not to the sweep.
+2. **Refine.**  From the best feasible samples, :func:`scipy.optimize.minimize` (SLSQP) improves the objective in
+   the logarithms of the free continuous variables (the number of ducts stays fixed), subject to every constraint
+   margin being at least :data:`SAFETY` and to the bounds.  Gradients are forward differences computed in one
+   vectorised call of the evaluator.
+3. **Round and re-check.**  Each design is written as a damper-file ``[geometry]`` table (six significant figures,
+   more if needed) and evaluated again from those strings, so the figures reported are those of the geometry
+   printed, and a design is returned only if that geometry meets every constraint.
+4. **Explain.**  With no feasible sample, the designs with the smallest sum of squared relative violations are
+   refined the same way (minimising that sum), and the conflicts are written out: what the nearest design misses
+   and by how much, which constraints every sample violates, and which constraints, relaxed alone or in pairs,
+   would admit sampled designs.
+
+:func:`sweep` evaluates a whole sample at once and returns the arrays, for plots and studies.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from scipy.optimize import minimize
+
+from .evaluate import FIGURES, OBJECTIVES, CandidateFigures, Constraint, constraints_for, evaluate_candidates
+from .pareto import pareto_mask
+from .requirements import VARIABLES, Requirements
+from .result import DesignResult, design_record
+from .sampling import candidate_chunks
+
+__all__ = ["design", "sweep", "SAFETY", "PARETO_LIMIT", "FRONT_STORE"]
+
+#: Margin every refined design keeps on each constraint (relative): 1e-4, so that rounding the geometry to six
+#: significant figures (a relative change of at most 5e-6 in each dimension, up to about 4e-5 in a force) cannot
+#: push a design over a limit.
+SAFETY = 1e-4
+
+#: Largest number of Pareto designs reported (thinned evenly along the first figure beyond it).
+PARETO_LIMIT = 100
+
+#: Largest number of Pareto designs kept between chunks.  Beyond it the stored front is thinned to one design per
+#: cell of a logarithmic grid of its figures (cells of 0.1 %, doubled until the front fits): an epsilon-Pareto
+#: archive, so that memory stays bounded even when every feasible design is non-dominated.
+FRONT_STORE = 8192
+
+_KEEP_FACTOR = 4     # keep this many times ``designs`` best samples as refinement starts
+_NEAREST = 4         # samples kept as starts for the nearest infeasible design
+_MAX_STARTS = 8      # SLSQP runs at most (fewer for mixed, whose evaluation is slower)
+
+
+def sweep(req: Requirements, samples: int | None = None, seed: int | None = None) -> CandidateFigures:
+    """Evaluate ``samples`` candidate geometries of ``req`` at once and return every figure as arrays.
+
+    Memory grows with ``samples`` (about 40 (P + C) + 100 bytes per candidate for P design points and C
+    constraints); :func:`design` uses chunks instead.
+
+    Examples
+    --------
+    >>> from erdesign.design import load_example_requirements
+    >>> s = sweep(load_example_requirements("makris_requirements"), samples=4096)
+    >>> len(s), s.force.shape, bool(s.feasible.any())
+    (4096, (1, 4096), True)
+    """
+    n = req.search.samples if samples is None else samples
+    (x,) = list(candidate_chunks(req, samples=n, chunk=max(n, 1024), seed=seed))
+    return _evaluate(req, x)
+
+
+def _evaluate(req: Requirements, x: dict, constraints=None) -> CandidateFigures:
+    return evaluate_candidates(req, x["gap"], x["duct_length"], x["duct_mean_diameter"], x["piston_diameter"],
+                               x["rod_diameter"], x["ducts"], constraints=constraints)
+
+
+# ------------------------------------------------------------------------------------------- running summaries
+def _stack(fig: CandidateFigures, index=slice(None)) -> np.ndarray:
+    """(N, 6) array of the variables (rows ``index``) in the order of VARIABLES (mixed: the derived d)."""
+    return np.column_stack([getattr(fig, k)[index] for k in VARIABLES])
+
+
+def _unstack(X: np.ndarray, req: Requirements) -> dict:
+    x = {k: X[:, j] for j, k in enumerate(VARIABLES)}
+    if req.configuration == "mixed":
+        x["duct_mean_diameter"] = None
+    return x
+
+
+def _objective_key(fig: CandidateFigures, objective: str) -> np.ndarray:
+    name = OBJECTIVES[objective]
+    value = fig.figure(name)
+    return value if FIGURES[name].better == "min" else -value
+
+
+def _violation(margins: np.ndarray) -> np.ndarray:
+    """Sum of squared relative violations, per candidate (NaN margins: invalid geometry, infinite)."""
+    v = np.sum(np.minimum(margins, 0.0) ** 2, axis=0)
+    return np.where(np.isnan(v), np.inf, v)
+
+
+@dataclass
+class _Summary:
+    """What the sweep keeps between chunks."""
+
+    constraints: tuple[Constraint, ...]
+    keep: int
+    evaluated: int = 0
+    valid: int = 0
+    feasible: int = 0
+    best_X: np.ndarray = field(default_factory=lambda: np.empty((0, 6)))
+    best_key: np.ndarray = field(default_factory=lambda: np.empty(0))
+    front_X: np.ndarray = field(default_factory=lambda: np.empty((0, 6)))
+    front_Y: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
+    near_X: np.ndarray = field(default_factory=lambda: np.empty((0, 6)))
+    near_v: np.ndarray = field(default_factory=lambda: np.empty(0))
+    violated: np.ndarray = field(init=False)
+    """Per constraint: valid candidates that violate it."""
+    single: np.ndarray = field(init=False)
+    """Per constraint: valid candidates that violate it and nothing else."""
+    pair: np.ndarray = field(init=False)
+    """[i, j], i < j: valid candidates that violate exactly constraints i and j."""
+
+    def __post_init__(self) -> None:
+        c = len(self.constraints)
+        self.violated = np.zeros(c, dtype=np.int64)
+        self.single = np.zeros(c, dtype=np.int64)
+        self.pair = np.zeros((c, c), dtype=np.int64)
+
+    def add(self, fig: CandidateFigures, objective: str, pareto: tuple[str, ...]) -> None:
+        self.evaluated += len(fig)
+        valid = fig.valid
+        self.valid += int(np.count_nonzero(valid))
+        margins = fig.margins
+        broken = margins < 0.0                               # NaN (invalid) compares False
+        feasible = valid & ~np.any(broken, axis=0)
+        self.feasible += int(np.count_nonzero(feasible))
+        if feasible.any():
+            idx = np.flatnonzero(feasible)
+            X = _stack(fig, idx)
+            key = _objective_key(fig, objective)[idx]
+            self.best_X, self.best_key = _smallest(np.vstack([self.best_X, X]),
+                                                   np.concatenate([self.best_key, key]), self.keep)
+            Y = np.column_stack([fig.figure(name)[idx] for name in pareto])
+            maximize = [FIGURES[name].better == "max" for name in pareto]
+            on = pareto_mask(Y, maximize)
+            allX = np.vstack([self.front_X, X[on]])
+            allY = np.vstack([self.front_Y.reshape(-1, len(pareto)), Y[on]])
+            keep = pareto_mask(allY, maximize)
+            self.front_X, self.front_Y = _thin(allX[keep], allY[keep], FRONT_STORE)
+        if self.feasible == 0:
+            v = _violation(margins)
+            few = np.argpartition(v, _NEAREST - 1)[:_NEAREST] if v.size > _NEAREST else np.arange(v.size)
+            self.near_X, self.near_v = _smallest(np.vstack([self.near_X, _stack(fig, few)]),
+                                                 np.concatenate([self.near_v, v[few]]), _NEAREST)
+        nv = np.count_nonzero(broken, axis=0)
+        self.violated += np.count_nonzero(broken & valid, axis=1)
+        one = valid & (nv == 1)
+        if one.any():
+            self.single += np.bincount(np.argmax(broken[:, one], axis=0), minlength=len(self.constraints))
+        two = valid & (nv == 2)
+        if two.any():
+            b = broken[:, two]
+            first, last = np.argmax(b, axis=0), b.shape[0] - 1 - np.argmax(b[::-1], axis=0)
+            np.add.at(self.pair, (first, last), 1)
+
+
+def _thin(X: np.ndarray, Y: np.ndarray, limit: int) -> tuple[np.ndarray, np.ndarray]:
+    """At most ``limit`` rows: one per cell of a logarithmic grid of the figures, coarsened until they fit."""
+    eps = 1e-3
+    logs = np.log(np.abs(Y) + 1e-300)
+    while len(X) > limit:
+        _, first = np.unique(np.floor(logs / eps).astype(np.int64), axis=0, return_index=True)
+        first.sort()
+        X, Y, logs = X[first], Y[first], logs[first]
+        eps *= 2.0
+    return X, Y
+
+
+def _smallest(X: np.ndarray, key: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    if key.size > k:
+        part = np.argpartition(key, k - 1)[:k]
+        X, key = X[part], key[part]
+    order = np.argsort(key, kind="stable")
+    return X[order], key[order]
+
+
+# ------------------------------------------------------------------------------------------------- refinement
+class _LocalProblem:
+    """Objective and constraints of one design in the logs of its free continuous variables, for SLSQP.
+
+    One vectorised evaluation at z and at z + step e_i gives values and forward-difference derivatives together.
+    """
+
+    STEP = 1e-7
+
+    def __init__(self, req, constraints, x0: np.ndarray, free: list[int], mode: str, objective: str):
+        self.req, self.constraints, self.x0, self.free = req, constraints, x0, free
+        self.mode, self.objective = mode, objective
+        self._z = None
+
+    def point(self, z: np.ndarray) -> np.ndarray:
+        x = self.x0.copy()
+        x[self.free] = np.exp(z)
+        if self.req.configuration == "mixed":
+            x[2] = x[3] + x[0]
+        return x
+
+    def _values(self, X: np.ndarray):
+        fig = _evaluate(self.req, _unstack(X, self.req), self.constraints)
+        margins = np.where(np.isnan(fig.margins), -1.0, fig.margins)
+        # keep the rod thinner than the piston (the geometry stays valid between constraint evaluations)
+        rod = 1.0 - 1e-3 - X[:, 4] / X[:, 3]
+        if self.mode == "objective":
+            key = _objective_key(fig, self.objective)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                f = np.log(np.abs(key))
+            f = np.where(fig.valid & np.isfinite(f), f, 1e3)
+            cons = np.vstack([margins - SAFETY, rod])
+        else:
+            f = _violation(margins)
+            f = np.where(np.isfinite(f), f, 1e3)
+            cons = rod[None, :]
+        return f, cons
+
+    def _update(self, z: np.ndarray) -> None:
+        if self._z is not None and np.array_equal(z, self._z):
+            return
+        k = z.size
+        Z = np.tile(z, (k + 1, 1)) + np.vstack([np.zeros(k), np.eye(k) * self.STEP])
+        X = np.array([self.point(zi) for zi in Z])
+        f, cons = self._values(X)
+        self._z = z.copy()
+        self.f, self.c = f[0], cons[:, 0]
+        self.df = (f[1:] - f[0]) / self.STEP
+        self.dc = ((cons[:, 1:] - cons[:, :1]) / self.STEP)
+
+    def fun(self, z):
+        self._update(z)
+        return self.f, self.df
+
+    def cons(self, z):
+        self._update(z)
+        return self.c
+
+    def cons_jac(self, z):
+        self._update(z)
+        return self.dc
+
+
+def _refine(req, constraints, x0: np.ndarray, mode: str) -> np.ndarray:
+    """SLSQP from x0; returns the improved point, or x0 when the optimiser ends somewhere worse or infeasible."""
+    free = [VARIABLES.index(k) for k in req.free_variables if k != "ducts"]
+    if not free:
+        return x0
+    prob = _LocalProblem(req, constraints, x0, free, mode, req.objective)
+    lo = np.log([req.bounds[VARIABLES[j]][0] for j in free])
+    hi = np.log([req.bounds[VARIABLES[j]][1] for j in free])
+    z0 = np.clip(np.log(x0[free]), lo, hi)
+    res = minimize(prob.fun, z0, jac=True, method="SLSQP", bounds=list(zip(lo, hi)),
+                   constraints=[{"type": "ineq", "fun": prob.cons, "jac": prob.cons_jac}],
+                   options={"maxiter": 100, "ftol": 1e-9})
+    x1 = prob.point(np.clip(res.x, lo, hi))
+    f0, _ = prob._values(x0[None, :])
+    f1, c1 = prob._values(x1[None, :])
+    if mode == "objective":
+        fig = _evaluate(req, _unstack(x1[None, :], req), constraints)
+        if fig.feasible[0] and f1[0] <= f0[0]:
+            return x1
+        return x0
+    return x1 if f1[0] <= f0[0] and c1[-1, 0] >= 0 else x0
+
+
+# ------------------------------------------------------------------------------------------- rounding/re-check
+def _geometry_table(req: Requirements, x: np.ndarray, digits: int) -> dict:
+    def mm(v: float) -> str:
+        return f"{v * 1e3:.{digits}g} mm"
+
+    table: dict[str, Any] = {"configuration": req.configuration, "duct_length": mm(x[1])}
+    if req.configuration == "valve":
+        table["duct_mean_diameter"] = mm(x[2])
+    table.update(gap=mm(x[0]), piston_diameter=mm(x[3]), rod_diameter=mm(x[4]))
+    if req.configuration == "valve":
+        table["ducts"] = round(x[5])
+    return table
+
+
+def _metres(text: str) -> float:
+    """SI value of a length written by :func:`_geometry_table` ("54.6 mm"): the product pint forms, value x 1e-3."""
+    return float(text.removesuffix(" mm")) * 1e-3
+
+
+def _parse_geometry(req: Requirements, table: dict) -> np.ndarray:
+    h = _metres(table["gap"])
+    Dp = _metres(table["piston_diameter"])
+    d = _metres(table["duct_mean_diameter"]) if "duct_mean_diameter" in table else Dp + h
+    return np.array([h, _metres(table["duct_length"]), d, Dp, _metres(table["rod_diameter"]),
+                     float(table.get("ducts", 1))])
+
+
+def _rounded(req, constraints, X: np.ndarray, need_feasible: bool):
+    """Round every design to a [geometry] table and re-evaluate it from the strings; drop those that fail.
+
+    Six significant figures first; a design that fails only because of the rounding is tried with more.
+    """
+    tables: list = [None] * len(X)
+    rows = np.array(X, dtype=float, copy=True)
+    pending = np.arange(len(X))
+    for digits in (6, 8, 10, 12, 15):
+        if pending.size == 0:
+            break
+        tabs = [_geometry_table(req, X[i], digits) for i in pending]
+        R = np.array([_parse_geometry(req, t) for t in tabs])
+        ok = _evaluate(req, _unstack(R, req), constraints).feasible | (not need_feasible)
+        for j in np.flatnonzero(ok):
+            tables[pending[j]], rows[pending[j]] = tabs[j], R[j]
+        pending = pending[~ok]
+    keep = [i for i in range(len(X)) if tables[i] is not None]
+    if not keep:
+        return [], None
+    return [tables[i] for i in keep], _evaluate(req, _unstack(rows[keep], req), constraints)
+
+
+# ----------------------------------------------------------------------------------------------------- design
+def design(req: Requirements) -> DesignResult:
+    """Feasible designs ranked by the objective, the Pareto front, or the conflicts when nothing is feasible.
+
+    Parameters
+    ----------
+    req : Requirements
+        From :func:`~erdesign.design.read_requirements`; ``req.search`` sets the sample size, seed, chunk size,
+        refinement, number of designs and Pareto figures (``req.with_search(samples=...)`` changes them).
+
+    Returns
+    -------
+    DesignResult
+        ``designs`` best first (each a record whose ``geometry`` is a damper-file [geometry] table), ``pareto``,
+        ``conflicts`` and ``nearest`` (when infeasible); :meth:`DesignResult.as_json` is the ``--json`` output.
+
+    Examples
+    --------
+    >>> from erdesign.design import load_example_requirements
+    >>> r = design(load_example_requirements("makris_requirements").with_search(samples=4096))
+    >>> r.feasible, r.designs[0]["force_N"] >= 5700.0, r.conflicts
+    (True, True, [])
+    """
+    constraints = constraints_for(req)
+    s = req.search
+    summary = _Summary(constraints, keep=max(_KEEP_FACTOR * s.designs, _MAX_STARTS))
+    for x in candidate_chunks(req):
+        summary.add(_evaluate(req, x, constraints), req.objective, s.pareto)
+
+    tol = s.active_tolerance
+    result = DesignResult(requirements=req, constraints=constraints, evaluated=summary.evaluated,
+                          feasible_count=summary.feasible)
+    if summary.feasible:
+        X = summary.best_X
+        if s.refine:
+            starts = min(len(X), _MAX_STARTS if req.configuration == "valve" else 3, max(s.designs, 3))
+            refined = np.array([_refine(req, constraints, x, "objective") for x in X[:starts]])
+            X = np.vstack([refined, X])
+            origin = ["refined"] * starts + ["sampled"] * len(summary.best_X)
+        else:
+            origin = ["sampled"] * len(X)
+        tables, fig = _rounded(req, constraints, X, need_feasible=True)
+        seen, records = set(), []
+        if fig is not None:
+            key = _objective_key(fig, req.objective)
+            for i in np.argsort(key, kind="stable"):
+                ident = tuple(sorted(tables[i].items()))
+                if ident in seen:
+                    continue
+                seen.add(ident)
+                records.append(design_record(req, constraints, fig.take([i]), tables[i], tol, origin[i]))
+                if len(records) == s.designs:
+                    break
+        for rank, rec in enumerate(records, start=1):
+            rec["rank"] = rank
+        result.designs = records
+        result.pareto = _pareto_records(req, constraints, summary, tol)
+    else:
+        result.nearest, result.conflicts = _explain(req, constraints, summary, tol)
+    result.feasible = bool(result.designs)
+    if not result.feasible and not result.conflicts:  # pragma: no cover - feasible samples that fail rounding
+        result.conflicts = ["feasible samples were found but none survived rounding to a geometry table"]
+    return result
+
+
+def _pareto_records(req, constraints, summary: _Summary, tol: float) -> list[dict]:
+    X, Y = summary.front_X, summary.front_Y
+    if len(X) == 0:
+        return []
+    order = np.argsort(Y[:, 0], kind="stable")
+    if len(order) > PARETO_LIMIT:
+        order = order[np.unique(np.linspace(0, len(order) - 1, PARETO_LIMIT).round().astype(int))]
+    tables, fig = _rounded(req, constraints, X[order], need_feasible=True)
+    if fig is None:
+        return []
+    return [design_record(req, constraints, fig.take([i]), tables[i], tol, "sampled") for i in range(len(tables))]
+
+
+def _explain(req, constraints, summary: _Summary, tol: float):
+    """Nearest design and the list of conflicts, for a sweep with no feasible sample."""
+    conflicts: list[str] = []
+    if summary.valid == 0:
+        return None, [("no sampled geometry is buildable: check that rod_diameter < piston_diameter and gap < "
+                       "duct_mean_diameter can hold within design.bounds")]
+    X = summary.near_X[np.isfinite(summary.near_v)]
+    if req.search.refine:
+        X = np.vstack([np.array([_refine(req, constraints, x, "violation") for x in X[:3]]), X])
+    fig = _evaluate(req, _unstack(X, req), constraints)
+    best = int(np.argmin(_violation(fig.margins)))
+    tables, near = _rounded(req, constraints, X[[best]], need_feasible=False)
+    record = design_record(req, constraints, near, tables[0], tol, "nearest")
+    margins = near.margins[:, 0]
+    for j in np.flatnonzero(margins < 0):
+        conflicts.append(_shortfall_text(constraints[j], near, margins[j]))
+    always = [c.name for j, c in enumerate(constraints) if summary.violated[j] == summary.valid]
+    if always:
+        conflicts.append("violated by every sampled design: " + ", ".join(always))
+    singles = [(int(summary.single[j]), constraints[j].name) for j in np.flatnonzero(summary.single)]
+    if singles:
+        for count, name in sorted(singles, reverse=True)[:3]:
+            conflicts.append(f"relaxing {name} alone would admit {count} of {summary.evaluated} sampled designs")
+    else:
+        i, j = np.nonzero(summary.pair)
+        pairs = sorted(((int(summary.pair[a, b]), constraints[a].name, constraints[b].name) for a, b in zip(i, j)),
+                       reverse=True)
+        for count, a, b in pairs[:3]:
+            conflicts.append(f"relaxing {a} and {b} together would admit {count} of {summary.evaluated} sampled "
+                             "designs")
+        if not pairs:
+            conflicts.append("every sampled design violates three or more constraints")
+    record["violations"] = {constraints[j].name: float(-margins[j]) for j in np.flatnonzero(margins < 0)}
+    return record, conflicts
+
+
+def _shortfall_text(c: Constraint, fig: CandidateFigures, margin: float) -> str:
+    value = float(c.value(fig)[0])
+    sign = "<=" if c.upper else ">="
+    unit = f" {c.unit}" if c.unit else ""
+
+    def show(x: float) -> str:
+        return f"{x / c.scale:.4g}{unit}"
+
+    return (f"{c.name}: the nearest design reaches {show(value)}, the requirement is {sign} {show(c.limit)} "
+            f"(off by {100 * abs(margin):.3g} % of the limit)")

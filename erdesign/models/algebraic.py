@@ -1,0 +1,274 @@
+r"""Algebraic (memoryless) hysteresis models: Eyring-plastic, Weng arctan, Kwok tanh and the magic formula.
+
+Each maps the present displacement, velocity and acceleration (and control) to a force with no internal state, so
+they are vectorised outright and their inverses (control for a desired force) are explicit where the control enters
+linearly (seed 003 Table 1 marks Kwok and the magic formula invertible; :mod:`erdesign.inverse`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .base import Model, Parameter
+
+__all__ = ["EyringPlastic", "WengArctan", "KwokTanh", "MagicFormula"]
+
+
+def _fit_sign_viscous(record):
+    v, F = record.velocity, record.force
+    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
+    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
+    return float(max(fy, 1.0)), float(max(c, 0.0)), float(f0), float(np.max(np.abs(v))) or 1.0
+
+
+class EyringPlastic(Model):
+    r"""Eyring-plastic model (Bitman et al.; seed 002 eq 8).
+
+    .. math:: F = F_\alpha\operatorname{arcsinh}(\lambda_1\dot z - \lambda_2 z)\,(1 + \beta_1 e^{-\beta_2|\dot z|})
+              + c_1\dot z + c_3\dot z^3 + f_0, \qquad F_\alpha = F_{\alpha,0} + F_{\alpha,u}u
+
+    Parameters (SI): ``F_alpha``, ``F_alpha_u``, ``f0`` [N], ``lambda1`` [s/m], ``lambda2`` [1/m], ``beta1`` [-],
+    ``beta2`` [s/m], ``c1`` [N s/m], ``c3`` [N s^3/m^3].
+
+    Notes
+    -----
+    The source makes every parameter an undefined function of the actuation and frequency; here only the yield
+    amplitude depends (linearly) on the control.  The offset f0 is added (the source's data were centred).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> bool(np.all(np.isfinite(EyringPlastic().simulate(rec))))
+    True
+
+    References
+    ----------
+    Seed 002 eq 8 and Table 6 (ESR 0.08-0.20 on its ER damper).
+    """
+
+    name = "eyring_plastic"
+    title = "Eyring-plastic (Bitman)"
+    source = "seed 002 eq 8"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("F_alpha_u",)
+    parameters = (
+        Parameter("F_alpha", "N", 300.0, 0.0, 1e7, "yield force amplitude"),
+        Parameter("lambda1", "s/m", 200.0, 0.0, 1e7, "pre-yield slope"),
+        Parameter("lambda2", "1/m", 0.0, -1e7, 1e7, "pre-yield hysteresis"),
+        Parameter("beta1", "", 0.0, -0.99, 100.0, "yield force correction"),
+        Parameter("beta2", "s/m", 10.0, 0.0, 1e6, "yield force correction rate"),
+        Parameter("c1", "N*s/m", 1000.0, -1e8, 1e8, "post-yield damping"),
+        Parameter("c3", "N*s^3/m^3", 0.0, -1e12, 1e12, "cubic post-yield damping"),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("F_alpha_u", "N", 0.0, -1e7, 1e7, "yield amplitude per unit control"),
+    )
+
+    def force(self, record, values):
+        v, x = record.velocity, record.displacement
+        Fa = values["F_alpha"] + values["F_alpha_u"] * self.control(record)
+        return Fa * np.arcsinh(values["lambda1"] * v - values["lambda2"] * x) * (
+            1.0 + values["beta1"] * np.exp(-values["beta2"] * np.abs(v))) + values["c1"] * v + values["c3"] * v**3 \
+            + values["f0"]
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, vmax = _fit_sign_viscous(record)
+            g.update(F_alpha=fy / 3.0, lambda1=100.0 / vmax, c1=c, f0=f0, beta2=1.0 / vmax)
+        return g
+
+
+class WengArctan(Model):
+    r"""Weng's arctangent model, with the inertia term of Cesmeci and Engin.
+
+    .. math:: F = f_0 + c_b\dot x + \frac{2}{\pi}f_y\arctan\{k[\dot x - \dot x_0\operatorname{sgn}(\ddot x)]\}
+              + m\ddot x, \qquad f_y = f_{y,0} + f_{y,u} u,\ c_b = c_{b,0} + c_{b,u} u
+
+    Parameters (SI): ``f0``, ``f_y``, ``f_y_u`` [N], ``c_b``, ``c_b_u`` [N s/m], ``k`` [s/m], ``v0`` [m/s],
+    ``m`` [kg] (m = 0 is Weng's eq 88; seed 003 eq 89 adds it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = WengArctan().simulate(rec, {"f_y": 500.0, "c_b": 0.0, "k": 1e6, "v0": 0.0})
+    >>> round(float(F.max()), 0)
+    500.0
+
+    References
+    ----------
+    Review (seed 003) eqs 88-89 (Weng et al.; Cesmeci and Engin).
+    """
+
+    name = "weng_arctan"
+    title = "Weng arctangent (with inertia)"
+    source = "seed 003 eqs 88-89"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("f_y_u", "c_b_u")
+    parameters = (
+        Parameter("f_y", "N", 500.0, 0.0, 1e7, "yield force"),
+        Parameter("c_b", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
+        Parameter("k", "s/m", 200.0, 0.0, 1e7, "shape (slope) coefficient"),
+        Parameter("v0", "m/s", 0.002, -10.0, 10.0, "hysteretic velocity"),
+        Parameter("m", "kg", 0.0, -1e5, 1e5, "virtual (fluid) mass"),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "preload (accumulator)"),
+        Parameter("f_y_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
+        Parameter("c_b_u", "N*s/m", 0.0, -1e8, 1e8, "damping per unit control"),
+    )
+
+    def control_affine(self, record, values):
+        v, a = record.velocity, record.acceleration
+        shape = 2.0 / np.pi * np.arctan(values["k"] * (v - values["v0"] * np.sign(a)))
+        P = values["f0"] + values["c_b"] * v + values["f_y"] * shape + values["m"] * a
+        Q = values["c_b_u"] * v + values["f_y_u"] * shape
+        return P, Q
+
+    def force(self, record, values):
+        P, Q = self.control_affine(record, values)
+        return P + Q * self.control(record)
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, vmax = _fit_sign_viscous(record)
+            g.update(f_y=fy, c_b=c, f0=f0, k=20.0 / vmax, v0=0.0)
+        return g
+
+
+class KwokTanh(Model):
+    r"""Kwok's hyperbolic-tangent model.
+
+    .. math:: F = k x + c\dot x + \alpha\tanh(\beta\dot x + \delta\operatorname{sgn}x) + f_0,
+              \qquad \alpha = \alpha_0 + \alpha_u u,\ c = c_0 + c_u u
+
+    Parameters (SI): ``k`` [N/m], ``c``, ``c_u`` [N s/m], ``alpha``, ``alpha_u``, ``f0`` [N], ``beta`` [s/m],
+    ``delta`` [-].
+
+    Notes
+    -----
+    The force is affine in the control, so the inverse model is explicit (seed 003: invertible).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = KwokTanh().simulate(rec, {"k": 0.0, "c": 0.0, "alpha": 700.0, "beta": 1e4, "delta": 0.0})
+    >>> round(float(F.max()), 0)
+    700.0
+
+    References
+    ----------
+    Review (seed 003) eq 95 (Kwok et al.), section 8.2.
+    """
+
+    name = "kwok_tanh"
+    title = "Kwok hyperbolic tangent"
+    source = "seed 003 eq 95 (Table 1: eq 89)"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("alpha_u", "c_u")
+    parameters = (
+        Parameter("k", "N/m", 0.0, -1e8, 1e8, "stiffness"),
+        Parameter("c", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
+        Parameter("alpha", "N", 600.0, 0.0, 1e7, "hysteresis scale (height of the loop)"),
+        Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
+        Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop"),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("alpha_u", "N", 0.0, -1e7, 1e7, "hysteresis scale per unit control"),
+        Parameter("c_u", "N*s/m", 0.0, -1e8, 1e8, "damping per unit control"),
+    )
+
+    def control_affine(self, record, values):
+        v, x = record.velocity, record.displacement
+        z = np.tanh(values["beta"] * v + values["delta"] * np.sign(x))
+        P = values["k"] * x + values["c"] * v + values["alpha"] * z + values["f0"]
+        Q = values["c_u"] * v + values["alpha_u"] * z
+        return P, Q
+
+    def force(self, record, values):
+        P, Q = self.control_affine(record, values)
+        return P + Q * self.control(record)
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, vmax = _fit_sign_viscous(record)
+            g.update(alpha=fy, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
+        return g
+
+
+class MagicFormula(Model):
+    r"""Magic-formula damper model (Pacejka's tyre formula applied to the MR damper).
+
+    .. math::
+        F = D\sin\{C\arctan[B(1 - E)s + E\arctan(Bs)]\} + k_c\dot x + k x + f_0,
+        \qquad s = \dot x + A x,\quad D = D_0 + D_u u
+
+    Parameters (SI): ``D``, ``D_u``, ``f0`` [N], ``C``, ``E`` [-], ``B`` [s/m], ``A`` [1/s], ``k_c`` [N s/m],
+    ``k`` [N/m].
+
+    Notes
+    -----
+    Departure from the source: seed 003 eq 100 prints the argument as :math:`\dot x + A|x|` (and a misplaced
+    bracket).  With :math:`|x|` the two branches of a sinusoidal cycle have the same :math:`|x|` at the same
+    velocity, so the term cannot open the force-velocity loop that A is said to set ("the half-width of the
+    hysteresis curve"); :math:`\dot x + A x` opens it by :math:`A X_0` in velocity, as described.  The bracket follows
+    the standard magic formula (eq 99).  D enters linearly: invertible in the control (seed 003 Table 1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = MagicFormula().simulate(rec, {"D": 800.0, "C": 1.0, "E": 0.0, "B": 1e5, "A": 0.0, "k_c": 0.0})
+    >>> round(float(F.max()), 1)
+    800.0
+
+    References
+    ----------
+    Review (seed 003) eqs 99-100, section 9.
+    """
+
+    name = "magic_formula"
+    title = "magic formula (Pacejka form)"
+    source = "seed 003 eqs 99-100"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("D_u",)
+    parameters = (
+        Parameter("D", "N", 600.0, 0.0, 1e7, "peak factor (saturation force)"),
+        Parameter("C", "", 1.0, 0.1, 2.0, "shape factor"),
+        Parameter("B", "s/m", 200.0, 0.0, 1e7, "stiffness factor"),
+        Parameter("E", "", 0.0, -10.0, 1.0, "curvature factor"),
+        Parameter("A", "1/s", 1.0, -1e4, 1e4, "hysteretic factor"),
+        Parameter("k_c", "N*s/m", 2000.0, -1e8, 1e8, "viscous damping"),
+        Parameter("k", "N/m", 0.0, -1e8, 1e8, "stiffness"),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("D_u", "N", 0.0, -1e7, 1e7, "peak factor per unit control"),
+    )
+
+    def control_affine(self, record, values):
+        v, x = record.velocity, record.displacement
+        s = v + values["A"] * x
+        B, E = values["B"], values["E"]
+        shape = np.sin(values["C"] * np.arctan(B * (1.0 - E) * s + E * np.arctan(B * s)))
+        P = values["D"] * shape + values["k_c"] * v + values["k"] * x + values["f0"]
+        Q = values["D_u"] * shape
+        return P, Q
+
+    def force(self, record, values):
+        P, Q = self.control_affine(record, values)
+        return P + Q * self.control(record)
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, vmax = _fit_sign_viscous(record)
+            g.update(D=fy, k_c=c, f0=f0, B=10.0 / vmax, A=0.0)
+        return g

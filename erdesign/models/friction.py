@@ -1,0 +1,281 @@
+r"""Dynamic friction models of the MR damper: Dahl (modified), viscous Dahl, LuGre and Sakai's modified LuGre.
+
+Their internal states obey equations linear in the state for a given motion, so on a step where the displacement
+changes linearly they have exact solutions, and the whole record is one affine recurrence solved by a prefix scan
+(:func:`erdesign.models._kernels.dahl_state`, :func:`lugre_state`): no loop per sample.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..constitutive.makris import _affine_recurrence
+from ._kernels import dahl_state
+from .base import Model, Parameter
+
+__all__ = ["Dahl", "DahlViscous", "LuGre", "LuGreModified", "lugre_state"]
+
+
+def lugre_state(x, kappa, z0=0.0):
+    r"""Bristle deflection of the LuGre model, :math:`\dot z = \dot x - \kappa|\dot x| z`, [m].
+
+    On a step with direction s and travel :math:`|\Delta x|` (``kappa`` [1/m] one value per step or a scalar),
+
+    .. math:: z_{n+1} = z_n e^{-\kappa|\Delta x|} + s\,\frac{1 - e^{-\kappa|\Delta x|}}{\kappa}
+
+    exactly (the second term tends to :math:`\Delta x` as :math:`\kappa \to 0`).
+
+    Examples
+    --------
+    The deflection saturates at 1/kappa:
+
+    >>> import numpy as np
+    >>> round(float(lugre_state(np.linspace(0, 1, 101), 100.0)[-1]), 9)
+    0.01
+    """
+    dx = np.diff(np.asarray(x, dtype=float))
+    kappa = np.broadcast_to(np.asarray(kappa, dtype=float), dx.shape)
+    L = np.abs(dx)
+    e = np.exp(-kappa * L)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        gain = np.where(kappa * L > 1e-12, -np.expm1(-kappa * L) / np.where(kappa == 0, 1.0, kappa), L)
+    return _affine_recurrence(e, np.sign(dx) * gain, z0)
+
+
+def _viscous_guess(record):
+    v, F = record.velocity, record.force
+    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
+    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
+    X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
+    return float(max(fy, 1.0)), float(max(c, 0.0)), float(f0), X
+
+
+class Dahl(Model):
+    r"""Modified Dahl model (Zhou et al.): spring, dashpot and a Dahl friction element in parallel.
+
+    .. math:: F = k_0 x + c_0\dot x + f_d z + f_0, \qquad \dot z = \rho(\dot x - |\dot x| z),
+              \qquad f_d = f_{d,0} + f_{d,u}u
+
+    Parameters (SI): ``k0`` [N/m], ``c0`` [N s/m], ``f_d``, ``f_d_u``, ``f0`` [N], ``rho`` [1/m].
+
+    Notes
+    -----
+    z is dimensionless and bounded by 1; its step is exact (:func:`~erdesign.models._kernels.dahl_state`).  The
+    source writes :math:`- f_0`; the sign is absorbed in f0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = Dahl().simulate(rec, {"k0": 0.0, "c0": 0.0, "f_d": 500.0, "rho": 1e4})
+    >>> round(float(F.max()), 3)
+    500.0
+
+    References
+    ----------
+    Review (seed 003) eqs 103-104 (Dahl; modified Dahl of Zhou et al.).
+    """
+
+    name = "dahl"
+    title = "modified Dahl (Zhou)"
+    source = "seed 003 eqs 103-104"
+    uses_control = True
+    control_parameters = ("f_d_u",)
+    parameters = (
+        Parameter("k0", "N/m", 0.0, -1e8, 1e8, "stiffness"),
+        Parameter("c0", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
+        Parameter("f_d", "N", 500.0, 0.0, 1e7, "Coulomb (Dahl) force"),
+        Parameter("rho", "1/m", 1000.0, 1e-2, 1e8, "Dahl rate (1 / pre-sliding displacement)", log_scale=True),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset (seals, bias)"),
+        Parameter("f_d_u", "N", 0.0, -1e7, 1e7, "Coulomb force per unit control"),
+    )
+
+    def force(self, record, values):
+        z = dahl_state(record.displacement, values["rho"])
+        fd = values["f_d"] + values["f_d_u"] * self.control(record)
+        return values["k0"] * record.displacement + values["c0"] * record.velocity + fd * z + values["f0"]
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, X = _viscous_guess(record)
+            g.update(f_d=fy, c0=c, f0=f0, rho=20.0 / X)
+        return g
+
+
+class DahlViscous(Model):
+    r"""Viscous Dahl model (Ikhouane et al.): viscous term plus a Dahl state, gains linear in the control.
+
+    .. math:: F = (k_x + k_{x,u}u)\,\dot x + (k_w + k_{w,u}u)\,w + f_0, \qquad \dot w = \rho(\dot x - |\dot x| w)
+
+    Parameters (SI): ``k_x``, ``k_x_u`` [N s/m], ``k_w``, ``k_w_u``, ``f0`` [N], ``rho`` [1/m].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> bool(np.all(np.isfinite(DahlViscous().simulate(rec))))
+    True
+
+    References
+    ----------
+    Review (seed 003) eq 105 with the Dahl state of eq 103 (Ikhouane and Dyke; Table 1: "viscous Dahl, voltage").
+    """
+
+    name = "dahl_viscous"
+    title = "viscous Dahl (Ikhouane)"
+    source = "seed 003 eqs 103, 105"
+    uses_control = True
+    control_parameters = ("k_x_u", "k_w_u")
+    parameters = (
+        Parameter("k_x", "N*s/m", 2000.0, 0.0, 1e8, "viscous coefficient"),
+        Parameter("k_w", "N", 500.0, 0.0, 1e7, "friction coefficient"),
+        Parameter("rho", "1/m", 1000.0, 1e-2, 1e8, "Dahl rate", log_scale=True),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("k_x_u", "N*s/m", 0.0, -1e8, 1e8, "viscous coefficient per unit control"),
+        Parameter("k_w_u", "N", 0.0, -1e7, 1e7, "friction coefficient per unit control"),
+    )
+
+    def control_affine(self, record, values):
+        w = dahl_state(record.displacement, values["rho"])
+        v = record.velocity
+        return values["k_x"] * v + values["k_w"] * w + values["f0"], values["k_x_u"] * v + values["k_w_u"] * w
+
+    def force(self, record, values):
+        P, Q = self.control_affine(record, values)
+        return P + Q * self.control(record)
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, X = _viscous_guess(record)
+            g.update(k_w=fy, k_x=c, f0=f0, rho=20.0 / X)
+        return g
+
+
+class LuGre(Model):
+    r"""LuGre dynamic friction model (Canudas de Wit et al.) of the MR damper.
+
+    .. math:: F = \sigma_0 z + \sigma_1\dot z + \sigma_2\dot x + f_0, \qquad \dot z = \dot x - \sigma_0 a_0|\dot x| z
+
+    Parameters (SI): ``sigma0`` [N/m], ``sigma1``, ``sigma2`` [N s/m], ``a0`` [1/N], ``f0`` [N].
+
+    Notes
+    -----
+    :math:`1/a_0` is the sliding friction force (z saturates at :math:`1/(\sigma_0 a_0)`).  Exact steps
+    (:func:`lugre_state`); :math:`\dot z` at the samples from the state equation.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = LuGre().simulate(rec, {"sigma0": 1e7, "sigma1": 0.0, "sigma2": 0.0, "a0": 1 / 500})
+    >>> round(float(F.max()), 2)
+    500.0
+
+    References
+    ----------
+    Review (seed 003) eq 57 (section 4).
+    """
+
+    name = "lugre"
+    title = "LuGre"
+    source = "seed 003 eq 57"
+    parameters = (
+        Parameter("sigma0", "N/m", 1e6, 1.0, 1e11, "bristle stiffness", log_scale=True),
+        Parameter("sigma1", "N*s/m", 0.0, 0.0, 1e8, "bristle damping"),
+        Parameter("sigma2", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
+        Parameter("a0", "1/N", 2e-3, 1e-9, 1.0, "inverse of the sliding friction force", log_scale=True),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+    )
+
+    def force(self, record, values):
+        kappa = values["sigma0"] * values["a0"]
+        z = lugre_state(record.displacement, kappa)
+        v = record.velocity
+        zd = v - kappa * np.abs(v) * z
+        return values["sigma0"] * z + values["sigma1"] * zd + values["sigma2"] * v + values["f0"]
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, X = _viscous_guess(record)
+            g.update(a0=1.0 / fy, sigma2=c, f0=f0, sigma0=fy * 20.0 / X)
+        return g
+
+
+class LuGreModified(Model):
+    r"""Sakai's modified LuGre model: field-dependent and invertible.
+
+    .. math::
+        F = \sigma_0 z u + \sigma_1\dot z + \sigma_2\dot x + \sigma_a z + \sigma_b\dot x u + f_0, \qquad
+        \dot z = \dot x - \sigma_0 a_0|\dot x| z(1 + a_1 u)
+
+    Parameters (SI): ``sigma0``, ``sigma_a`` [N/m], ``sigma1``, ``sigma2``, ``sigma_b`` [N s/m], ``a0`` [1/N],
+    ``a1`` [-], ``f0`` [N]; u is the dimensionless control.
+
+    Notes
+    -----
+    Needs a control column (the hysteretic force is proportional to it).  At each step the force is affine in u
+    (:meth:`control_affine`), which gives the inverse model used by :mod:`erdesign.inverse`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401)
+    >>> rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=1.0, control_kind="voltage")
+    >>> bool(np.all(np.isfinite(LuGreModified().simulate(rec))))
+    True
+
+    References
+    ----------
+    Review (seed 003) eqs 58-59 (Alvarez and Jimenez; Sakai et al.), Table 1: invertible.
+    """
+
+    name = "lugre_modified"
+    title = "modified LuGre (Sakai)"
+    source = "seed 003 eqs 58-59"
+    uses_control = True
+    requires_control = True
+    parameters = (
+        Parameter("sigma0", "N/m", 1e6, 1.0, 1e11, "bristle stiffness (per unit control in the force)",
+                  log_scale=True),
+        Parameter("sigma1", "N*s/m", 0.0, 0.0, 1e8, "bristle damping"),
+        Parameter("sigma2", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
+        Parameter("sigma_a", "N/m", 0.0, -1e11, 1e11, "control-independent bristle stiffness"),
+        Parameter("sigma_b", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
+        Parameter("a0", "1/N", 2e-3, 1e-9, 1.0, "inverse friction force scale", log_scale=True),
+        Parameter("a1", "", 0.0, -0.99, 1e3, "control dependence of the saturation"),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+    )
+
+    def state(self, record, values, u=None):
+        u = self.control(record) if u is None else u
+        kappa = values["sigma0"] * values["a0"] * (1.0 + values["a1"] * u)
+        return lugre_state(record.displacement, np.maximum(kappa[:-1], 0.0)), kappa
+
+    def control_affine(self, record, values, z):
+        """(P, Q) with F = P + Q u at each sample, for the state z (the inverse model steps z itself)."""
+        v = record.velocity
+        k0 = values["sigma0"] * values["a0"]
+        P = values["sigma1"] * (v - k0 * np.abs(v) * z) + values["sigma2"] * v + values["sigma_a"] * z + values["f0"]
+        Q = values["sigma0"] * z + values["sigma_b"] * v - values["sigma1"] * k0 * values["a1"] * np.abs(v) * z
+        return P, Q
+
+    def force(self, record, values):
+        u = self.control(record)
+        z, _ = self.state(record, values, u)
+        P, Q = self.control_affine(record, values, z)
+        return P + Q * u
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, X = _viscous_guess(record)
+            umax = float(np.max(np.abs(self.control(record)))) or 1.0
+            g.update(a0=1.0 / fy, sigma2=c, f0=f0, sigma0=fy * 20.0 / X / umax)
+        return g

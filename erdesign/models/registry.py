@@ -1,0 +1,123 @@
+"""The model registry: contract name -> model factory, with one dispatcher (:func:`get_model`).
+
+Names are those of shared/CONTRACTS.md section 3 ("Model names").  Every factory returns a fresh :class:`Model`;
+``physics`` (the physics damper of a damper file, with effects) is imported lazily from :mod:`erdesign.physics`
+and needs ``damper=`` (a :class:`~erdesign.damper.Damper` or a damper-file path).
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+from typing import Callable
+
+from ..errors import ErdesignError
+from .algebraic import EyringPlastic, KwokTanh, MagicFormula, WengArctan
+from .base import Model
+from .bingham import Bingham, BinghamExtended
+from .biviscous import Biviscous, BiviscousHysteretic
+from .bouc_wen import BoucWen, BoucWenModified, BoucWenNormalized
+from .chebyshev import Chebyshev
+from .friction import Dahl, DahlViscous, LuGre, LuGreModified
+from .kamath_wereley import KamathWereley4, KamathWereley6
+from .maxwell import BingMax, Maxwell, MaxwellNeural
+from .powell import Powell
+from .semiactive import SemiactiveGeneral
+
+__all__ = ["MODELS", "get_model", "model_names", "describe_models", "UnknownModelError", "INVERTIBLE"]
+
+
+class UnknownModelError(ErdesignError):
+    """No model of that name in the registry (or it needs an option that was not given)."""
+
+
+def _physics(damper=None, effects=(), **options) -> Model:
+    """The physics damper (erdesign.physics) of a damper file with effects, as a Model."""
+    try:
+        physics = importlib.import_module("erdesign.physics")
+    except ModuleNotFoundError as exc:
+        if exc.name != "erdesign.physics":
+            raise
+        raise UnknownModelError("physics: the physics damper model (erdesign.physics) is not available in this "
+                                "installation") from None
+    if damper is None:
+        raise UnknownModelError("physics: needs the damper (--damper DAMPER.toml on the command line)")
+    if isinstance(damper, str) or hasattr(damper, "__fspath__"):
+        from ..damper_file import load_damper
+        damper = load_damper(damper)
+    for attr in ("physics_model", "PhysicsModel", "PhysicsDamper"):
+        factory = getattr(physics, attr, None)
+        if factory is not None:
+            break
+    else:
+        candidates = [c for _, c in inspect.getmembers(physics, inspect.isclass)
+                      if issubclass(c, Model) and c is not Model and c.__module__ == physics.__name__]
+        if not candidates:
+            raise UnknownModelError("physics: erdesign.physics defines no Model subclass")
+        factory = candidates[0]
+    return factory(damper, effects=tuple(effects), **options)
+
+
+#: name -> factory (a class or a function returning a Model).
+MODELS: dict[str, Callable[..., Model]] = {
+    "bingham": Bingham,
+    "bingham_extended": BinghamExtended,
+    "powell": Powell,
+    "bingmax": BingMax,
+    "maxwell": Maxwell,
+    "bouc_wen": BoucWen,
+    "bouc_wen_modified": BoucWenModified,
+    "bouc_wen_normalized": BoucWenNormalized,
+    "kamath_wereley_4": KamathWereley4,
+    "kamath_wereley_6": KamathWereley6,
+    "biviscous": Biviscous,
+    "biviscous_hysteretic": BiviscousHysteretic,
+    "eyring_plastic": EyringPlastic,
+    "semiactive_general": SemiactiveGeneral,
+    "dahl": Dahl,
+    "dahl_viscous": DahlViscous,
+    "lugre": LuGre,
+    "lugre_modified": LuGreModified,
+    "weng_arctan": WengArctan,
+    "kwok_tanh": KwokTanh,
+    "magic_formula": MagicFormula,
+    "chebyshev": Chebyshev,
+    "maxwell_neural": MaxwellNeural,
+    "physics": _physics,
+}
+
+#: Models whose control for a desired force has a closed form or a bracketed root (seed 003 Table 1 marks Kwok,
+#: the magic formula, the modified LuGre and the modified normalised Bouc-Wen invertible).
+INVERTIBLE = ("kwok_tanh", "magic_formula", "lugre_modified", "bouc_wen_normalized", "physics")
+
+
+def model_names() -> list[str]:
+    """Registry names, in the order of the contract."""
+    return list(MODELS)
+
+
+def get_model(name: str, **options) -> Model:
+    """A fresh model by registry name; ``options`` go to its factory (``damper=`` for ``physics``,
+    ``degree=`` for ``chebyshev``, ``hidden=`` for ``maxwell_neural``)."""
+    try:
+        factory = MODELS[name]
+    except KeyError:
+        raise UnknownModelError(f"unknown model {name!r}; known: {', '.join(MODELS)}") from None
+    try:
+        return factory(**options)
+    except TypeError as exc:
+        raise UnknownModelError(f"{name}: {exc}") from None
+
+
+def describe_models(include_physics: bool = True) -> list[dict]:
+    """Registry entries for ``erdesign models --json``.  ``physics`` is described without a damper (its
+    parameters depend on the damper and effects, so the list is empty)."""
+    out = []
+    for name in MODELS:
+        if name == "physics":
+            if include_physics:
+                out.append({"name": "physics", "source": "the damper of a damper file with effects "
+                            "(erdesign.physics; Makris eqs 1-16, Kamath-Wereley mixed mode)", "parameters": []})
+            continue
+        out.append(get_model(name).describe())
+    return out

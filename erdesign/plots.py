@@ -1,0 +1,130 @@
+"""Plotly figures of a damper's behaviour, shared by the report and the Streamlit app.
+
+Each builder takes the numbers the library computed (a :class:`~erdesign.report.sweep.VelocitySweep`, a
+:class:`~erdesign.report.sweep.SineLoops`, an error history) and returns a :class:`plotly.graph_objects.Figure`;
+none computes physics.  Axes are labelled with their units, chosen once per axis so that the numbers read between
+1 and 1000 (:func:`erdesign.report.formatting.pick_unit`); conversions go through pint.
+
+>>> from erdesign import load_example
+>>> from erdesign.report.sweep import velocity_sweep
+>>> sweep = velocity_sweep(load_example("makris"), np.linspace(0, 0.05, 11), [0.0, 3e6])
+>>> fig = force_velocity_figure(sweep)
+>>> [t.name for t in fig.data], fig.layout.yaxis.title.text
+(['E = 0 kV/mm', 'E = 3 kV/mm'], 'force F [kN]')
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+import plotly.graph_objects as go
+from plotly.subplots import make_subplots
+
+from .report.formatting import pick_unit
+from .units import Q_
+
+__all__ = [
+    "pressure_drop_figure",
+    "force_velocity_figure",
+    "dynamic_range_figure",
+    "sine_loops_figure",
+    "error_history_figure",
+    "measured_loops_figure",
+]
+
+_LAYOUT = dict(template="plotly_white", height=420, margin=dict(l=70, r=20, t=50, b=60),
+               legend=dict(orientation="h", yanchor="bottom", y=1.02, xanchor="right", x=1))
+
+
+def _convert(values: Any, si_unit: str, unit: str) -> np.ndarray:
+    return np.asarray(Q_(np.asarray(values, dtype=float), si_unit).to(unit).magnitude)
+
+
+def _unit_label(unit: str) -> str:
+    return f"{Q_(1.0, unit).units:~P}" if unit else "-"
+
+
+def _by_field(sweep, values: np.ndarray, si_unit: str, kind: str, title: str, y_label: str,
+              skip_zero: bool = False) -> go.Figure:
+    v_unit = pick_unit(Q_(sweep.velocity, "m/s"), "velocity")
+    y_unit = pick_unit(Q_(values, si_unit), kind) if kind else ""
+    x = _convert(sweep.velocity, "m/s", v_unit)
+    fig = go.Figure()
+    for label, E, row in zip(sweep.field_labels(), sweep.field, values):
+        if skip_zero and E == 0:
+            continue
+        y = _convert(row, si_unit, y_unit) if kind else np.asarray(row)
+        fig.add_trace(go.Scatter(x=x, y=y, mode="lines", name=label))
+    fig.update_layout(title=title, xaxis_title=f"piston velocity v [{_unit_label(v_unit)}]",
+                      yaxis_title=f"{y_label} [{_unit_label(y_unit)}]", **_LAYOUT)
+    return fig
+
+
+def pressure_drop_figure(sweep) -> go.Figure:
+    """Pressure drop across the piston versus velocity, one line per control."""
+    return _by_field(sweep, sweep.pressure_drop, "Pa", "pressure", "Pressure drop versus velocity",
+                     "pressure drop Δp")
+
+
+def force_velocity_figure(sweep) -> go.Figure:
+    """Quasi-steady damper force versus velocity, one line per control."""
+    return _by_field(sweep, sweep.force, "N", "force", "Force versus velocity", "force F")
+
+
+def dynamic_range_figure(sweep) -> go.Figure:
+    """Dynamic range F(v, E) / F(v, 0) versus velocity, one line per nonzero control."""
+    return _by_field(sweep, sweep.dynamic_range, "", "", "Dynamic range versus velocity",
+                     "dynamic range F(E)/F(0)", skip_zero=True)
+
+
+def sine_loops_figure(loops) -> go.Figure:
+    """Force-displacement and force-velocity loops of a sine, side by side, one loop per control."""
+    x_unit = pick_unit(Q_(loops.amplitude, "m"), "length")
+    v_unit = pick_unit(Q_(np.concatenate([r.velocity for r in loops.responses]), "m/s"), "velocity")
+    f_unit = pick_unit(Q_(np.concatenate([r.force for r in loops.responses]), "N"), "force")
+    fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
+    for i, (label, r) in enumerate(zip(loops.field_labels(), loops.responses)):
+        F = _convert(r.force, "N", f_unit)
+        common = dict(mode="lines", name=label, legendgroup=label, line=dict(color=_colour(i)))
+        fig.add_trace(go.Scatter(x=_convert(r.displacement, "m", x_unit), y=F, **common), row=1, col=1)
+        fig.add_trace(go.Scatter(x=_convert(r.velocity, "m/s", v_unit), y=F, showlegend=False, **common),
+                      row=1, col=2)
+    amp = Q_(loops.amplitude, "m").to(x_unit).magnitude
+    fig.update_layout(title=f"Sine loops: X0 = {amp:.4g} {_unit_label(x_unit)}, f = {loops.frequency:.4g} Hz",
+                      **_LAYOUT)
+    fig.update_xaxes(title_text=f"displacement x [{_unit_label(x_unit)}]", row=1, col=1)
+    fig.update_xaxes(title_text=f"velocity v [{_unit_label(v_unit)}]", row=1, col=2)
+    fig.update_yaxes(title_text=f"force F [{_unit_label(f_unit)}]", row=1, col=1)
+    return fig
+
+
+def error_history_figure(history: Sequence[Any]) -> go.Figure:
+    """ESR after each step of a diagnosis (bars labelled with the effect added)."""
+    fig = go.Figure(go.Bar(x=[f"{h.step}: {h.effect}" for h in history], y=[h.esr for h in history]))
+    fig.update_layout(title="Error history", xaxis_title="step: effect added", yaxis_title="ESR [-]", **_LAYOUT)
+    return fig
+
+
+def measured_loops_figure(displacement, velocity, force_measured, force_model) -> go.Figure:
+    """Measured and model force against displacement and velocity (SI arrays)."""
+    x_unit = pick_unit(Q_(displacement, "m"), "length")
+    v_unit = pick_unit(Q_(velocity, "m/s"), "velocity")
+    f_unit = pick_unit(Q_(np.concatenate([np.ravel(force_measured), np.ravel(force_model)]), "N"), "force")
+    fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
+    for name, F, colour in (("measured", force_measured, "#444444"), ("model", force_model, _colour(1))):
+        y = _convert(F, "N", f_unit)
+        common = dict(mode="lines", name=name, legendgroup=name, line=dict(color=colour))
+        fig.add_trace(go.Scatter(x=_convert(displacement, "m", x_unit), y=y, **common), row=1, col=1)
+        fig.add_trace(go.Scatter(x=_convert(velocity, "m/s", v_unit), y=y, showlegend=False, **common), row=1, col=2)
+    fig.update_layout(title="Measurement and model", **_LAYOUT)
+    fig.update_xaxes(title_text=f"displacement x [{_unit_label(x_unit)}]", row=1, col=1)
+    fig.update_xaxes(title_text=f"velocity v [{_unit_label(v_unit)}]", row=1, col=2)
+    fig.update_yaxes(title_text=f"force F [{_unit_label(f_unit)}]", row=1, col=1)
+    return fig
+
+
+def _colour(i: int) -> str:
+    palette = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf")
+    return palette[i % len(palette)]

@@ -1,0 +1,585 @@
+r"""Build the content of an engineering report on a damper: inputs, derived quantities, equations, checks, figures.
+
+:func:`build_report` gathers everything a report shows into a :class:`Report` of plain records; the rendering
+(:mod:`erdesign.report.render`) only lays them out.  Every number in a :class:`Report` is a
+:class:`~erdesign.report.formatting.Shown`, made by the one helper :func:`~erdesign.report.formatting.show`.
+
+Defaults when the caller gives none:
+
+* controls: 0, 1/3, 2/3 and 1 times the fluid's reference field (zero is always added);
+* velocity range: 0 to :math:`v_\text{max}`, the smaller of :math:`30\,F_y(E_\text{ref})/C` (thirty times the
+  velocity at which the zero-field viscous force equals the yield force) and the velocity at which the zero-field
+  Reynolds number reaches 230 (a tenth of the laminar limit), rounded up to 1, 2 or 5 times a power of ten;
+  the design point is the top of the range;
+* sine: amplitude 10 mm, frequency such that the peak velocity is the top of the velocity range.
+
+Validity checks (status ``pass``, ``warn`` or ``info`` when nothing can be checked):
+
+* laminar flow: the largest Reynolds number of the sweep below 2300 (Makris eq 1);
+* thin gap: h/d at most :data:`~erdesign.geometry.THIN_GAP_LIMIT` (the thin-gap error is shown);
+* field range: every control asked for inside the fluid's characterised range (materials ``[range]``);
+* plug: plug fraction at the design velocity and the largest control at most :data:`PLUG_FRACTION_LIMIT`;
+* seal friction: its share of the zero-field force at the design velocity at most :data:`SEAL_SHARE_LIMIT`.
+
+The optional measurement section is rendered only when :class:`MeasurementComparison` or an error history
+(:class:`ErrorHistoryStep` items, or ``(step, effect, esr)`` tuples) is given.
+"""
+
+from __future__ import annotations
+
+import datetime
+import math
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from dataclasses import field as dc_field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .. import materials
+from ..damper import CRITICAL_REYNOLDS, Damper
+from ..damper_file import damper_from_dict, read_toml
+from ..errors import ErdesignError
+from ..geometry import THIN_GAP_LIMIT
+from ..units import Q_, to_si
+from .equations import Equation, equations_for
+from .formatting import Shown, pick_unit, show
+from .sweep import SineLoops, VelocitySweep, sine_loops, velocity_sweep
+
+__all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison",
+           "ErrorHistoryStep", "build_report", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
+
+#: Plug fraction above which the report warns: each sheared layer is then thinner than 5 % of the gap, the force
+#: is set almost wholly by the yield stress, and pre-yield elasticity (Makris eq 8), which the quasi-steady
+#: Bingham flow leaves out, shapes the response.  A modelling judgement, not a published limit.
+PLUG_FRACTION_LIMIT = 0.9
+#: Share of the zero-field force taken by seal friction above which the report warns: the off-state force, and so
+#: the dynamic range, then depends mostly on the seals, which the model treats as a constant Coulomb force.
+SEAL_SHARE_LIMIT = 0.2
+#: Sine amplitude of the loops when none is given.
+DEFAULT_AMPLITUDE = "10 mm"
+_VELOCITY_POINTS = 81
+_TABLE_POINTS = 11
+
+# Display of the SI units of each input key of a damper file.
+_GEOMETRY_SI = {"duct_length": "m", "duct_mean_diameter": "m", "gap": "m", "piston_diameter": "m",
+                "rod_diameter": "m"}
+_FLUID_SI = {"viscosity": "Pa*s", "yield_stress": "Pa", "density": "kg/m^3", "viscosity_at_reference_field": "Pa*s",
+             "shear_modulus": "Pa", "seal_friction": "N"}
+
+
+@dataclass(frozen=True)
+class Row:
+    """A labelled quantity."""
+
+    key: str
+    label: str
+    value: Shown
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class InputRow:
+    """One input: as given (text) and in SI, and where it came from."""
+
+    section: str
+    key: str
+    given: str
+    si: Shown | None
+    origin: str
+
+
+@dataclass(frozen=True)
+class Check:
+    """A validity check."""
+
+    key: str
+    name: str
+    status: str
+    """``"pass"``, ``"warn"`` or ``"info"`` (nothing to check against)."""
+    value: Shown | None
+    limit: Shown | None
+    detail: str
+    source: str
+
+
+@dataclass(frozen=True)
+class Table:
+    """A table of quantities: column headers (name and unit) and rows of :class:`Shown`."""
+
+    key: str
+    columns: tuple[str, ...]
+    rows: tuple[tuple[Shown, ...], ...]
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    """A figure: its plotly figure (HTML) and a table of sampled values (Markdown)."""
+
+    key: str
+    title: str
+    figure: Any
+    table: Table | None
+    caption: str = ""
+
+
+@dataclass(frozen=True)
+class MeasurementComparison:
+    """A measurement compared with the model (the diagnosis work fills this in; all optional but ``esr``).
+
+    Attributes
+    ----------
+    label : str
+        What was measured (file name, test).
+    esr : float
+        ESR of the model against the measurement (seed 002 eq 7), [-].
+    samples : int or None
+    rms_error : quantity or None
+        RMS of F - F_model (a force).
+    peak_force_measured, peak_force_model : quantity or None
+        Largest |F| of the measurement and the model (forces).
+    displacement, velocity, force_measured, force_model : array or None
+        SI arrays [m, m/s, N, N] for the loop figure (all four or none).
+    notes : str
+    """
+
+    label: str
+    esr: float
+    samples: int | None = None
+    rms_error: Any = None
+    peak_force_measured: Any = None
+    peak_force_model: Any = None
+    displacement: Any = None
+    velocity: Any = None
+    force_measured: Any = None
+    force_model: Any = None
+    notes: str = ""
+
+
+@dataclass(frozen=True)
+class ErrorHistoryStep:
+    """One step of a diagnosis: the effect added at that step and the ESR after refitting, [-]."""
+
+    step: int
+    effect: str
+    esr: float
+
+
+@dataclass(frozen=True)
+class Report:
+    """Everything a report shows (see the module notes).  Render with :func:`erdesign.report.render_html` or
+    :func:`erdesign.report.render_markdown`."""
+
+    title: str
+    source: str
+    generated: str
+    version: str
+    configuration: str
+    notes: tuple[str, ...]
+    settings: tuple[Row, ...]
+    inputs: tuple[InputRow, ...]
+    material: Mapping[str, Any] | None
+    derived: tuple[Row, ...]
+    design_table: Table
+    sine_table: Table
+    equations: tuple[Equation, ...]
+    checks: tuple[Check, ...]
+    figures: tuple[FigureSpec, ...]
+    comparison: Mapping[str, Any] | None
+    history: tuple[ErrorHistoryStep, ...]
+    sweep: VelocitySweep = dc_field(repr=False)
+    loops: SineLoops = dc_field(repr=False)
+
+    @property
+    def warnings(self) -> int:
+        """Number of checks that warn."""
+        return sum(c.status == "warn" for c in self.checks)
+
+
+def _nice_ceiling(x: float) -> float:
+    """Smallest 1, 2 or 5 times a power of ten that is >= x."""
+    e = math.floor(math.log10(x))
+    for m in (1.0, 2.0, 5.0, 10.0):
+        if m * 10.0**e >= x * (1 - 1e-12):
+            return m * 10.0**e
+    return 10.0 ** (e + 1)  # pragma: no cover
+
+
+def default_velocity_max(damper: Damper) -> float:
+    """Top of the default velocity range, [m/s] (module notes)."""
+    fluid = damper.fluid
+    C = damper.damping_constant_si()
+    v_yield = float(damper.yield_force_si(fluid.reference_field)) / C
+    s = damper.state(1.0, 0.0)
+    v_laminar = 0.1 * CRITICAL_REYNOLDS / float(s.reynolds)   # Re is proportional to v at zero field
+    return _nice_ceiling(min(30.0 * v_yield, v_laminar))
+
+
+def _as_history(history: Iterable[Any] | None) -> tuple[ErrorHistoryStep, ...]:
+    out = []
+    for i, item in enumerate(history or ()):
+        step = item if isinstance(item, ErrorHistoryStep) else ErrorHistoryStep(*item)
+        if isinstance(step.step, bool) or not isinstance(step.step, (int, np.integer)):
+            raise ErdesignError(f"history[{i}].step: expected a whole number, got {step.step!r}")
+        if not (isinstance(step.esr, (int, float)) and math.isfinite(step.esr) and step.esr >= 0):
+            raise ErdesignError(f"history[{i}].esr: expected a finite number >= 0, got {step.esr!r}")
+        out.append(ErrorHistoryStep(int(step.step), str(step.effect), float(step.esr)))
+    return tuple(out)
+
+
+def _inputs(data: Mapping[str, Any] | None, damper: Damper) -> tuple[tuple[InputRow, ...], dict | None]:
+    """Input rows from a damper file's content (as given, in SI, origin); the material record if one is named."""
+    rows: list[InputRow] = []
+    fluid = damper.fluid
+    control = fluid.control_unit
+    if data is None:   # a Damper built in Python: show its SI values
+        g = damper.geometry
+        for key, unit in _GEOMETRY_SI.items():
+            rows.append(InputRow("geometry", key, "", show(Q_(getattr(g, key), unit), unit, name=key), "Python"))
+        for key in ("viscosity", "yield_stress", "density"):
+            rows.append(InputRow("fluid", key, "", show(Q_(getattr(fluid, key), _FLUID_SI[key]), _FLUID_SI[key],
+                                                        name=key), "Python"))
+        rows.append(InputRow("fluid", "reference_field", "", show(Q_(fluid.reference_field, control), control,
+                                                                  name="reference_field"), "Python"))
+        return tuple(rows), None
+    geometry = data.get("geometry", {})
+    for key, value in geometry.items():
+        unit = _GEOMETRY_SI.get(key)
+        if key == "ducts":
+            si = show(float(value), "", name="geometry.ducts")
+        else:
+            si = show(Q_(to_si(value, unit, f"geometry.{key}"), unit), unit, name=f"geometry.{key}") if unit else None
+        rows.append(InputRow("geometry", key, str(value), si, "damper file"))
+    table = dict(data.get("fluid", {}))
+    record = None
+    merged: dict[str, tuple[Any, str]] = {}
+    if "material" in table:
+        record = materials.load(table["material"])
+        for key, value in record["fluid"].items():
+            merged[key] = (value, f"material {table['material']}")
+    for key, value in table.items():
+        if key != "material":
+            merged[key] = (value, "damper file")
+    for key, (value, origin) in merged.items():
+        if key == "yield_exponent":
+            si = show(float(value), "", name=f"fluid.{key}")
+        elif key == "reference_field":
+            si = show(Q_(to_si(value, control, f"fluid.{key}"), control), control, name=f"fluid.{key}")
+        else:
+            unit = _FLUID_SI[key]
+            si = show(Q_(to_si(value, unit, f"fluid.{key}"), unit), unit, name=f"fluid.{key}")
+        rows.append(InputRow("fluid", key, str(value), si, origin))
+    return tuple(rows), record
+
+
+def _material_section(record: Mapping[str, Any] | None, damper: Damper) -> dict | None:
+    if record is None:
+        return None
+    fluid = damper.fluid
+    return {
+        "name": record["name"],
+        "kind": record["kind"],
+        "description": record["description"],
+        "law": fluid.yield_law.describe(fluid.field_unit),
+        "law_in_use": ("the material's yield curve" if fluid.field_law is not None
+                       else "the power law of [fluid] (the damper file sets yield_stress, reference_field or "
+                            "yield_exponent)" if "yield_curve" in record else "the power law of [fluid]"),
+        "range": {k: " to ".join(v) for k, v in record.get("range", {}).items()},
+        "references": [f"{r['key']}: {r['citation']} ({r['date']})" for r in record["references"]],
+    }
+
+
+def _checks(damper: Damper, sweep: VelocitySweep, fields: np.ndarray, v_design: float) -> tuple[Check, ...]:
+    g, fluid = damper.geometry, damper.fluid
+    out = []
+    re_max = float(np.nanmax(sweep.reynolds))
+    out.append(Check(
+        "laminar", "Laminar flow (Reynolds number)", "pass" if re_max < CRITICAL_REYNOLDS else "warn",
+        show(re_max, "", name="largest Reynolds number"), show(CRITICAL_REYNOLDS, "", name="critical Reynolds"),
+        "largest Re of the velocity and control sweep" + ("" if re_max < CRITICAL_REYNOLDS else
+                                                           ": the laminar gap-flow model does not hold"),
+        "Makris et al. (seed 004), eq 1"))
+    ratio = g.gap_ratio
+    thin_ok = ratio <= THIN_GAP_LIMIT
+    detail = f"thin-gap error {g.thin_gap_error * 100:.3g} % of the Newtonian pressure drop"
+    if not thin_ok:
+        detail += ("; the valve flow uses the exact annulus" if damper.uses_exact_annulus else
+                   "; the mixed-mode model keeps the thin-gap form and carries this error")
+    out.append(Check("thin_gap", "Thin gap (h/d)", "pass" if thin_ok or damper.uses_exact_annulus else "warn",
+                     show(ratio, "", name="h/d"), show(THIN_GAP_LIMIT, "", name="h/d limit"), detail,
+                     "Bird, Stewart and Lightfoot (2002), eq 2.4-17 (erdesign.flow.newtonian.thin_gap_error)"))
+    unit = fluid.field_unit
+    if fluid.field_range is None:
+        out.append(Check("field_range", "Control within the fluid's range", "info", None, None,
+                         "the fluid states no characterised range (name a material to check it)", "materials/"))
+    else:
+        lo, hi = fluid.field_range
+        E = np.abs(fields)
+        outside = E[(E != 0) & ((E > hi * (1 + 1e-9)) | (E < lo * (1 - 1e-9)))]
+        worst = float(E.max())
+        out.append(Check(
+            "field_range", "Control within the fluid's range", "warn" if outside.size else "pass",
+            show(Q_(worst, fluid.control_unit), unit, name="largest control"),
+            show(Q_(hi, fluid.control_unit), unit, name="top of the range"),
+            (f"{outside.size} control(s) outside {show(Q_(lo, fluid.control_unit), unit, name='range low')} to "
+             f"{show(Q_(hi, fluid.control_unit), unit, name='range high')}: the yield stress is extrapolated")
+            if outside.size else "every control asked for is inside the characterised range",
+            f"materials/{fluid.material}.toml [range]" if fluid.material else "fluid.field_range"))
+    i_design = int(np.argmin(np.abs(sweep.velocity - v_design)))
+    i_field = int(np.argmax(np.abs(sweep.field)))
+    phi = float(sweep.plug_fraction[i_field, i_design])
+    out.append(Check(
+        "plug", "Plug does not block the gap", "pass" if phi <= PLUG_FRACTION_LIMIT else "warn",
+        show(phi, "", name="plug fraction"), show(PLUG_FRACTION_LIMIT, "", name="plug fraction limit"),
+        "plug thickness over gap at the design velocity and the largest control"
+        + ("" if phi <= PLUG_FRACTION_LIMIT else ": the gap is nearly blocked, the force is set by the yield stress "
+                                                  "and pre-yield elasticity (Makris eq 8), not modelled here, matters"),
+        "Makris et al. (seed 004), eqs 2 and 5 (plug of thickness 2 tau_y L / dp)"))
+    if damper.seal_friction == 0:
+        out.append(Check("seal_friction", "Seal friction share of the force", "info", None, None,
+                         "no seal friction given (fluid.seal_friction)", "Makris et al. (seed 004), eq 14"))
+    else:
+        F0 = float(sweep.zero_field_force[i_design])
+        share = damper.seal_friction / abs(F0)
+        out.append(Check(
+            "seal_friction", "Seal friction share of the force", "pass" if share <= SEAL_SHARE_LIMIT else "warn",
+            show(Q_(share, ""), "percent", name="seal friction share"),
+            show(Q_(SEAL_SHARE_LIMIT, ""), "percent", name="seal friction share limit"),
+            "seal friction over the zero-field force at the design velocity"
+            + ("" if share <= SEAL_SHARE_LIMIT else ": the off-state force and the dynamic range depend mostly on "
+                                                      "the seals"),
+            "Makris et al. (seed 004), eq 14"))
+    return tuple(out)
+
+
+def _field_table(key: str, x_label: str, x: np.ndarray, x_si: str, x_kind: str, sweep: VelocitySweep,
+                 values: np.ndarray, si_unit: str, kind: str, skip_zero: bool = False) -> Table:
+    """A table of a figure's values at up to 11 of its points: x column, one column per control."""
+    idx = np.unique(np.linspace(0, x.size - 1, min(_TABLE_POINTS, x.size)).round().astype(int))
+    x_unit = pick_unit(Q_(x, x_si), x_kind)
+    y_unit = pick_unit(Q_(values, si_unit), kind) if kind else ""
+    keep = [i for i, E in enumerate(sweep.field) if not (skip_zero and E == 0)]
+    labels = [sweep.field_labels()[i] for i in keep]
+    unit_text = f" [{Q_(1.0, y_unit).units:~P}]" if y_unit else ""
+    columns = (f"{x_label} [{Q_(1.0, x_unit).units:~P}]",) + tuple(f"{lab}{unit_text}" for lab in labels)
+    rows = []
+    for j in idx:
+        row = [show(Q_(x[j], x_si), x_unit, name=x_label)]
+        for i in keep:
+            value = values[i, j]
+            row.append(show(Q_(value, si_unit) if si_unit else float(value), y_unit, name=f"{key}[{i}, {j}]"))
+        rows.append(tuple(row))
+    return Table(key, columns, tuple(rows))
+
+
+def _loop_table(loops: SineLoops) -> Table:
+    """A sine's loops at 12 instants of the cycle (phases 15, 45, ... 345 degrees): x, v, the force per control."""
+    r0 = loops.responses[0]
+    n = r0.time.size - 1
+    idx = ((2 * np.arange(12) + 1) * n) // 24
+    x_unit = pick_unit(Q_(loops.amplitude, "m"), "length")
+    v_unit = pick_unit(Q_(r0.velocity, "m/s"), "velocity")
+    F_all = Q_(np.concatenate([r.force for r in loops.responses]), "N")
+    f_unit = pick_unit(F_all, "force")
+    fu = f"{Q_(1.0, f_unit).units:~P}"
+    columns = (f"displacement x [{Q_(1.0, x_unit).units:~P}]", f"velocity v [{Q_(1.0, v_unit).units:~P}]") + tuple(
+        f"{label} [{fu}]" for label in loops.field_labels())
+    rows = tuple(
+        (show(Q_(r0.displacement[j], "m"), x_unit, name="displacement"),
+         show(Q_(r0.velocity[j], "m/s"), v_unit, name="velocity"))
+        + tuple(show(Q_(r.force[j], "N"), f_unit, name="force") for r in loops.responses)
+        for j in idx)
+    return Table("sine_loops", columns, rows)
+
+
+def build_report(source: str | Path | Damper, *, velocity_range: Sequence[Any] | None = None,
+                 fields: Sequence[Any] | None = None, amplitude: Any = None, frequency: Any = None,
+                 comparison: MeasurementComparison | None = None, history: Iterable[Any] | None = None,
+                 title: str | None = None) -> Report:
+    """The content of an engineering report on a damper.
+
+    Parameters
+    ----------
+    source : path or Damper
+        A damper file (its values are shown as given and in SI) or a :class:`~erdesign.Damper`.
+    velocity_range : (velocity, velocity), optional
+        Lowest and highest piston velocity (quantities or strings, ``("0 mm/s", "50 mm/s")``); the top is the design
+        velocity.  Default in the module notes.
+    fields : sequence of controls, optional
+        Controls to evaluate (quantities or strings of the fluid's kind); zero is added.  Default: 0, 1/3, 2/3, 1
+        times the reference field.
+    amplitude, frequency : quantity or str, optional
+        The sine of the loops.  Default amplitude 10 mm and a frequency that gives the top velocity as peak.
+    comparison : MeasurementComparison, optional
+    history : iterable of ErrorHistoryStep or (step, effect, esr), optional
+        Render the optional measurement section.
+    title : str, optional
+
+    Returns
+    -------
+    Report
+    """
+    from .. import __version__, plots
+
+    if isinstance(source, Damper):
+        damper, data, where = source, None, source.name or "damper"
+    else:
+        data = read_toml(source)
+        damper = damper_from_dict(data, source=str(source))
+        where = str(source)
+    fluid, g = damper.fluid, damper.geometry
+    control = fluid.control_unit
+
+    # --- settings
+    if fields is None:
+        E = fluid.reference_field * np.array([0.0, 1 / 3, 2 / 3, 1.0])
+    else:
+        E = np.array([to_si(f, control, f"field[{i}]") for i, f in enumerate(fields)], dtype=float)
+        fluid.check_field(E, "field")
+        E = np.unique(np.concatenate([[0.0], np.abs(E)]))
+    if velocity_range is None:
+        v_lo, v_hi = 0.0, default_velocity_max(damper)
+    else:
+        if len(velocity_range) != 2:
+            raise ErdesignError("velocity_range: expected two velocities (lowest, highest)")
+        v_lo, v_hi = (float(to_si(v, "m/s", f"velocity_range[{i}]")) for i, v in enumerate(velocity_range))
+        if not (0 <= v_lo < v_hi):
+            raise ErdesignError(f"velocity_range: need 0 <= lowest < highest, got {velocity_range!r}")
+    v = np.linspace(v_lo, v_hi, _VELOCITY_POINTS)
+    X0 = float(to_si(amplitude if amplitude is not None else DEFAULT_AMPLITUDE, "m", "amplitude"))
+    f = float(to_si(frequency, "Hz", "frequency")) if frequency is not None else v_hi / (2 * math.pi * X0)
+    if not (X0 > 0 and f > 0):
+        raise ErdesignError("amplitude and frequency: must be positive")
+
+    sweep = velocity_sweep(damper, v, E)
+    loops = sine_loops(damper, X0, f, E)
+
+    v_unit = pick_unit(Q_(v, "m/s"), "velocity")
+    e_unit = fluid.field_unit
+    settings = [
+        Row("velocity_min", "lowest velocity", show(Q_(v_lo, "m/s"), v_unit, name="lowest velocity")),
+        Row("velocity_design", "highest (design) velocity", show(Q_(v_hi, "m/s"), v_unit, name="design velocity")),
+        Row("amplitude", "sine amplitude X0", show(Q_(X0, "m"), pick_unit(Q_(X0, "m"), "length"), name="amplitude")),
+        Row("frequency", "sine frequency f", show(Q_(f, "Hz"), pick_unit(Q_(f, "Hz"), "frequency"), name="frequency")),
+    ] + [Row(f"field_{i}", f"control {i + 1}", show(Q_(e, control), e_unit, name="control")) for i, e in enumerate(E)]
+
+    inputs, record = _inputs(data, damper)
+
+    # --- derived quantities
+    Ap = Q_(g.piston_area, "m^2")
+    C = damper.damping_constant()
+    derived = [
+        Row("piston_area", "piston area A_p", show(Ap, pick_unit(Ap, "area"), name="piston area"), "geometry"),
+        Row("gap_ratio", "gap over mean diameter h/d", show(g.gap_ratio, "", name="h/d")),
+        Row("thin_gap_error", "thin-gap error of the Newtonian pressure drop",
+            show(Q_(g.thin_gap_error, ""), "percent", name="thin-gap error"), "Bird, Stewart and Lightfoot eq 2.4-17"),
+        Row("active_volume", "fluid volume between the electrodes",
+            show(Q_(g.active_fluid_volume, "m^3"), pick_unit(Q_(g.active_fluid_volume, "m^3"), "volume"),
+                 name="active volume"), "Kamath and Wereley (seed 000), section III.C"),
+        Row("damping_constant", "damping constant C (zero field)", show(C, pick_unit(C, "damping"), name="C"),
+            "Makris eq 15" if g.configuration == "valve" else "Newtonian mixed mode"),
+        Row("seal_friction", "seal friction F_s", show(Q_(damper.seal_friction, "N"),
+                                                       pick_unit(Q_(damper.seal_friction, "N"), "force"),
+                                                       name="seal friction"), "Makris eq 14"),
+    ]
+
+    # --- design table: the state at the design velocity, one row per control
+    s = damper.state(np.full(E.shape, v_hi), E)
+    s0 = damper.state(v_hi, 0.0)
+    Fy = np.asarray(damper.yield_force_si(E), dtype=float) * np.ones_like(E)
+    units = dict(tau=pick_unit(Q_(np.asarray(s.yield_stress), "Pa"), "pressure"),
+                 eta=pick_unit(Q_(np.asarray(s.viscosity), "Pa*s"), "viscosity"),
+                 dp=pick_unit(Q_(np.asarray(s.pressure_drop), "Pa"), "pressure"),
+                 F=pick_unit(Q_(np.concatenate([np.ravel(s.force), Fy]), "N"), "force"))
+
+    def u(unit: str) -> str:
+        return f"{Q_(1.0, unit).units:~P}"
+
+    columns = (f"control [{u(e_unit)}]", f"yield stress τ_y [{u(units['tau'])}]", f"viscosity η [{u(units['eta'])}]",
+               f"pressure drop Δp [{u(units['dp'])}]", f"force F [{u(units['F'])}]", "dynamic range F/F(0) [-]",
+               "Reynolds number Re [-]", "plug fraction φ [-]", f"yield force F_y [{u(units['F'])}]")
+    design_rows = []
+    for i, e in enumerate(E):
+        dyn = float(s.force[i] / s0.force) if s0.force != 0 else float("nan")
+        design_rows.append((
+            show(Q_(e, control), e_unit, name="control"),
+            show(Q_(s.yield_stress[i], "Pa"), units["tau"], name="yield stress"),
+            show(Q_(s.viscosity[i], "Pa*s"), units["eta"], name="viscosity"),
+            show(Q_(s.pressure_drop[i], "Pa"), units["dp"], name="pressure drop"),
+            show(Q_(s.force[i], "N"), units["F"], name="force"),
+            show(dyn, "", name="dynamic range"),
+            show(float(s.reynolds[i]), "", name="Reynolds number"),
+            show(float(s.plug_fraction[i]), "", name="plug fraction"),
+            show(Q_(Fy[i], "N"), units["F"], name="yield force"),
+        ))
+    design_table = Table("design", columns, tuple(design_rows))
+
+    # --- sine table: energy per cycle and equivalent damping per control
+    F_peak = Q_(np.array([np.abs(r.force).max() for r in loops.responses]), "N")
+    U = Q_(np.array([r.energy_per_cycle for r in loops.responses]), "J")
+    Ceq = Q_(np.array([r.equivalent_damping for r in loops.responses]), "N*s/m")
+    fu, uu, cu = pick_unit(F_peak, "force"), pick_unit(U, "energy"), pick_unit(Ceq, "damping")
+    sine_table = Table("sine", (f"control [{u(e_unit)}]", f"peak force [{u(fu)}]", f"energy per cycle U [{u(uu)}]",
+                                f"equivalent damping C_eqv [{u(cu)}]"),
+                       tuple((show(Q_(e, control), e_unit, name="control"), show(F_peak[i], fu, name="peak force"),
+                              show(U[i], uu, name="energy per cycle"), show(Ceq[i], cu, name="C_eqv"))
+                             for i, e in enumerate(E)))
+
+    # --- figures
+    figures = [
+        FigureSpec("pressure_drop", "Pressure drop versus velocity", plots.pressure_drop_figure(sweep),
+                   _field_table("pressure_drop", "velocity v", v, "m/s", "velocity", sweep, sweep.pressure_drop,
+                                "Pa", "pressure")),
+        FigureSpec("force", "Force versus velocity", plots.force_velocity_figure(sweep),
+                   _field_table("force", "velocity v", v, "m/s", "velocity", sweep, sweep.force, "N", "force")),
+        FigureSpec("dynamic_range", "Dynamic range versus velocity", plots.dynamic_range_figure(sweep),
+                   _field_table("dynamic_range", "velocity v", v, "m/s", "velocity", sweep, sweep.dynamic_range,
+                                "", "", skip_zero=True)),
+        FigureSpec("sine_loops", "Force-displacement and force-velocity loops", plots.sine_loops_figure(loops),
+                   _loop_table(loops), "quasi-steady response to the sine of the settings (energy and C_eqv in "
+                                       "the table of section 3)"),
+    ]
+
+    comparison_data = None
+    steps = _as_history(history)
+    if comparison is not None:
+        comparison_data = _comparison(comparison)
+        if comparison_data.pop("has_loops"):
+            figures.append(FigureSpec("measurement", "Measurement and model", plots.measured_loops_figure(
+                comparison.displacement, comparison.velocity, comparison.force_measured, comparison.force_model),
+                None))
+    if steps:
+        figures.append(FigureSpec("history", "Error history", plots.error_history_figure(steps), None))
+
+    notes = [(f"flow model: {'exact annulus' if damper.uses_exact_annulus else 'thin gap'} "
+             f"({g.configuration} configuration{'' if g.ducts == 1 else f', {g.ducts} ducts'})"),
+             f"field law: {fluid.yield_law.describe(fluid.field_unit)}",
+             "quasi-steady: no fluid inertia, compressibility or pre-yield elasticity"]
+    return Report(
+        title=title or f"Damper report: {damper.name or Path(where).stem}",
+        source=where, generated=datetime.date.today().isoformat(), version=__version__,
+        configuration=g.configuration, notes=tuple(notes), settings=tuple(settings), inputs=inputs,
+        material=_material_section(record, damper), derived=tuple(derived), design_table=design_table,
+        sine_table=sine_table, equations=tuple(equations_for(damper)),
+        checks=_checks(damper, sweep, E, v_hi), figures=tuple(figures), comparison=comparison_data,
+        history=steps, sweep=sweep, loops=loops)
+
+
+def _comparison(c: MeasurementComparison) -> dict:
+    """Shown values of a measurement comparison (dimension-checked)."""
+    if not (isinstance(c.esr, (int, float)) and math.isfinite(c.esr) and c.esr >= 0):
+        raise ErdesignError(f"comparison.esr: expected a finite number >= 0, got {c.esr!r}")
+    rows = [Row("esr", "ESR (seed 002 eq 7)", show(float(c.esr), "", name="ESR"))]
+    if c.samples is not None:
+        rows.append(Row("samples", "samples", show(float(c.samples), "", name="samples")))
+    for key, label, value in (("rms_error", "RMS force error", c.rms_error),
+                              ("peak_force_measured", "peak force, measured", c.peak_force_measured),
+                              ("peak_force_model", "peak force, model", c.peak_force_model)):
+        if value is not None:
+            q = Q_(value) if isinstance(value, str) else value
+            rows.append(Row(key, label, show(q, pick_unit(q, "force"), name=f"comparison.{key}")))
+    arrays = (c.displacement, c.velocity, c.force_measured, c.force_model)
+    if any(a is not None for a in arrays) and not all(a is not None for a in arrays):
+        raise ErdesignError("comparison: give displacement, velocity, force_measured and force_model together")
+    return {"label": c.label, "rows": tuple(rows), "notes": c.notes, "has_loops": all(a is not None for a in arrays)}

@@ -1,0 +1,358 @@
+"""Engineering reports: the numbers printed are the library's, every quantity has a unit, the HTML is offline.
+
+The Makris damper (seed 004) is the reference case: the report must print its damping constant (eq 15,
+120 kN s/m), its forces and Reynolds numbers as the library computes them.  Numbers are printed to 4 significant
+figures, so a printed value agrees with the library to 5e-4 relative (half a unit in the 4th digit of a number
+whose leading digit is 1); that is the tolerance of every comparison below.
+"""
+
+import json
+import re
+import warnings
+from html.parser import HTMLParser
+from pathlib import Path
+
+import jinja2
+import numpy as np
+import pytest
+
+import erdesign.cli.report  # noqa: F401  (registers the command until erdesign/cli/__init__.py imports it)
+from erdesign import load_example
+from erdesign.cli import main
+from erdesign.damper_file import load_damper
+from erdesign.errors import ErdesignError, UnitError, ValidityWarning
+from erdesign.report import (
+    ErrorHistoryStep,
+    MeasurementComparison,
+    build_report,
+    render_html,
+    render_markdown,
+    show,
+    write_report,
+)
+from erdesign.units import Q_
+
+ROUNDING = 5e-4     # 4 significant figures (module docstring)
+ROOT = Path(__file__).resolve().parents[1]
+MAKRIS = str(ROOT / "examples" / "makris.toml")
+
+
+@pytest.fixture(scope="module")
+def makris_report():
+    return build_report(MAKRIS, velocity_range=("0 in/s", "2 in/s"), fields=["1.5 kV/mm", "3 kV/mm"])
+
+
+@pytest.fixture(scope="module")
+def html(makris_report):
+    return render_html(makris_report)
+
+
+@pytest.fixture(scope="module")
+def markdown(makris_report):
+    return render_markdown(makris_report)
+
+
+def parse_quantity(text):
+    """A printed quantity back into pint ("120.3 kN·s/m", "7.768 cm²", "1.8 %", "0.04366")."""
+    t = text.replace("·", "*").replace("²", "**2").replace("³", "**3").replace("%", "percent")
+    q = Q_(t)
+    return q if hasattr(q, "units") else Q_(float(q), "")
+
+
+def close(printed, expected):
+    """printed (text) equals expected (quantity) to the rounding of 4 significant figures."""
+    q = parse_quantity(printed)
+    assert q.dimensionality == expected.dimensionality, (printed, expected)
+    assert q.to(expected.units).magnitude == pytest.approx(expected.magnitude, rel=ROUNDING, abs=1e-12), printed
+
+
+class Spans(HTMLParser):
+    """Collect the quantity spans of a report and the text of its value cells outside them."""
+
+    def __init__(self):
+        super().__init__()
+        self.spans, self.cells = {}, []
+        self._span = None
+        self._cell = None
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "td" and a.get("class") == "value":
+            self._cell = ""
+        if tag == "span" and a.get("class") == "q":
+            self._span = {"id": a.get("id"), "si": float(a["data-si"]), "si_unit": a["data-si-unit"], "text": ""}
+
+    def handle_endtag(self, tag):
+        if tag == "span" and self._span is not None:
+            self.spans[self._span["id"] or f"anon{len(self.spans)}"] = self._span
+            self._span = None
+        if tag == "td" and self._cell is not None:
+            self.cells.append(self._cell)
+            self._cell = None
+
+    def handle_data(self, data):
+        if self._span is not None:
+            self._span["text"] += data
+        elif self._cell is not None:
+            self._cell += data
+
+
+@pytest.fixture(scope="module")
+def spans(html):
+    parser = Spans()
+    parser.feed(re.sub(r"<script.*?</script>", "", html, flags=re.DOTALL))
+    return parser
+
+
+# ------------------------------------------------------------------------------------- numbers against the library
+def test_html_damping_constant_and_area_are_the_librarys(spans):
+    d = load_example("makris")
+    # Makris eq 15: C = 120 kN s/m for this damper (the paper's own number, 690 lb s/in).
+    close(spans.spans["q-damping_constant"]["text"], Q_(120.3e3, "N*s/m"))
+    close(spans.spans["q-damping_constant"]["text"], d.damping_constant())
+    close(spans.spans["q-piston_area"]["text"], Q_(d.geometry.piston_area, "m^2"))
+
+
+def test_html_design_table_is_the_librarys_state(makris_report, spans):
+    d = load_example("makris")
+    v = 2 * 0.0254                                           # the design velocity: top of the range, 2 in/s
+    cols = makris_report.design_table.columns
+    i_force = cols.index(next(c for c in cols if c.startswith("force F")))
+    i_re = cols.index(next(c for c in cols if c.startswith("Reynolds")))
+    i_dp = cols.index(next(c for c in cols if c.startswith("pressure drop")))
+    for i, E in enumerate([0.0, 1.5e6, 3e6]):
+        s = d.state(v, E)
+        close(spans.spans[f"q-design-{i}-{i_force}"]["text"], Q_(s.force, "N"))
+        close(spans.spans[f"q-design-{i}-{i_dp}"]["text"], Q_(s.pressure_drop, "Pa"))
+        close(spans.spans[f"q-design-{i}-{i_re}"]["text"], Q_(s.reynolds, ""))
+
+
+def test_html_sine_energy_is_the_librarys(makris_report, spans):
+    d = load_example("makris")
+    X0, f = 0.01, 2 * 0.0254 / (2 * np.pi * 0.01)            # default 10 mm; peak velocity = top of the range
+    for i, E in enumerate(["0 kV/mm", "1.5 kV/mm", "3 kV/mm"]):
+        r = d.sine_response(Q_(X0, "m"), Q_(f, "Hz"), E, samples_per_cycle=480)
+        close(spans.spans[f"q-sine-{i}-2"]["text"], Q_(r.energy_per_cycle, "J"))
+        close(spans.spans[f"q-sine-{i}-3"]["text"], Q_(r.equivalent_damping, "N*s/m"))
+
+
+def test_checks_carry_the_librarys_numbers(makris_report, spans):
+    d = load_example("makris")
+    # The largest Reynolds number of the sweep is at the top velocity and zero field (lowest viscosity).
+    close(spans.spans["q-check-laminar-value"]["text"], Q_(d.state(2 * 0.0254, 0.0).reynolds, ""))
+    close(spans.spans["q-check-thin_gap-value"]["text"], Q_(0.8 / 14.3, ""))
+    share = 112.0 / d.state(2 * 0.0254, 0.0).force
+    close(spans.spans["q-check-seal_friction-value"]["text"], Q_(share * 100, "percent"))
+    assert [c.status for c in makris_report.checks] == ["pass", "pass", "info", "pass", "pass"]
+
+
+def test_inputs_are_shown_as_given_and_in_si(makris_report, spans, markdown):
+    gap = next(r for r in makris_report.inputs if r.key == "gap")
+    assert gap.given == "0.8 mm" and gap.origin == "damper file"
+    close(spans.spans["q-input-geometry-gap"]["text"], Q_(0.8e-3, "m"))
+    assert "| fluid | `reference_field` | `3 kV/mm` | 3000000 V/m | damper file |" in markdown
+
+
+def test_markdown_numbers_are_the_librarys(makris_report, markdown):
+    d = load_example("makris")
+    row = next(r for r in makris_report.derived if r.key == "damping_constant")
+    line = next(ln for ln in markdown.splitlines() if ln.startswith(f"| {row.label} |"))
+    close(line.split("|")[2].strip(), d.damping_constant())
+    # The force-velocity table of the figure section: 11 velocities from 0 to 2 in/s, one column per control.
+    table = tables(markdown)["Force versus velocity"]
+    for cells in table["rows"]:
+        v = parse_quantity(cells[0]).to("m/s").magnitude
+        for E, cell in zip([0.0, 1.5e6, 3e6], cells[1:]):
+            close(cell, Q_(d.state(v, E).force, "N"))
+
+
+def test_markdown_loop_table_is_the_sine_through_the_library(markdown):
+    # The loop table samples x = X0 sin(phi), v = X0 Omega cos(phi) at phi = 15, 45, ..., 345 degrees; the force is
+    # the library's quasi-steady force at that velocity (independent of the sine integration).
+    d = load_example("makris")
+    X0, v_peak = 0.01, 2 * 0.0254
+    table = tables(markdown)["Force-displacement and force-velocity loops"]
+    assert len(table["rows"]) == 12
+    for k, cells in enumerate(table["rows"]):
+        phi = np.radians(15 + 30 * k)
+        close(cells[0], Q_(X0 * np.sin(phi), "m"))
+        close(cells[1], Q_(v_peak * np.cos(phi), "m/s"))
+        for E, cell in zip([0.0, 1.5e6, 3e6], cells[2:]):
+            close(cell, Q_(d.state(v_peak * np.cos(phi), E).force, "N"))
+
+
+# ------------------------------------------------------------------------------------------- every number's unit
+def test_every_html_quantity_has_its_unit_and_si_value(spans):
+    assert len(spans.spans) > 60
+    for key, s in spans.spans.items():
+        q = parse_quantity(s["text"])
+        if s["si_unit"] == "dimensionless":
+            assert q.dimensionless, (key, s)
+        else:
+            expected = Q_(1.0, s["si_unit"])
+            assert q.dimensionality == expected.dimensionality and not q.dimensionless, (key, s)
+        # The printed number is the SI value, rounded.
+        assert q.to_base_units().magnitude == pytest.approx(s["si"], rel=ROUNDING, abs=1e-12), (key, s)
+        digits = re.sub(r"[^0-9]", "", s["text"].split()[0].lstrip("0.").split("e")[0])
+        assert len(digits.rstrip("0")) <= 4, (key, s)            # consistent significant figures
+
+
+def test_no_bare_number_in_a_value_cell(spans):
+    # Every value cell prints its numbers through the unit helper (inside quantity spans) or says "(text)".
+    for cell in spans.cells:
+        assert not re.search(r"\d", cell), cell
+
+
+def tables(markdown):
+    """Markdown tables by the heading above them: {heading: {"columns": [...], "rows": [[...], ...]}}."""
+    out, heading, lines = {}, None, markdown.splitlines()
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("#"):
+            heading = lines[i].lstrip("#").strip()
+        if lines[i].startswith("|") and i + 1 < len(lines) and re.match(r"^\|[ :-]+\|", lines[i + 1]):
+            columns = [c.strip() for c in lines[i].strip().strip("|").split("|")]
+            rows = []
+            i += 2
+            while i < len(lines) and lines[i].startswith("|"):
+                rows.append([c.strip() for c in lines[i].strip().strip("|").split("|")])
+                i += 1
+            out[heading] = {"columns": columns, "rows": rows}
+            continue
+        i += 1
+    return out
+
+
+def test_every_markdown_quantity_has_the_unit_of_its_column(markdown):
+    checked = 0
+    for heading, t in tables(markdown).items():
+        for j, column in enumerate(t["columns"]):
+            m = re.search(r"\[([^\]]+)\]$", column)
+            if m is None:
+                continue
+            unit = m[1].replace("·", "*").replace("²", "**2").replace("³", "**3")
+            for row in t["rows"]:
+                q = parse_quantity(row[j])
+                if unit == "-":
+                    assert q.dimensionless, (heading, column, row[j])
+                else:
+                    assert q.dimensionality == Q_(1.0, unit).dimensionality, (heading, column, row[j])
+                    assert not q.dimensionless and row[j].split()[-1] == m[1], (heading, column, row[j])
+                checked += 1
+    assert checked > 150
+
+
+# ---------------------------------------------------------------------------------------------- offline, strict
+def test_html_embeds_plotly_once_and_loads_nothing(html, makris_report):
+    assert not re.search(r"<script[^>]*\bsrc\s*=", html)
+    assert not re.search(r"<link[^>]*\bhref\s*=\s*[\"']https?:", html)
+    assert len(re.findall(r"plotly\.js v\d", html)) == 1                # the library, embedded once
+    assert html.count('class="plotly-graph-div"') == len(makris_report.figures) == 4
+
+
+def test_templates_are_strict(makris_report):
+    class Incomplete:          # has what the renderer reads in Python, lacks what the template reads
+        title = "x"
+        history = ()
+
+    with pytest.raises(jinja2.UndefinedError):
+        render_markdown(Incomplete())
+
+
+def test_the_unit_helper_fails_loudly():
+    assert show(Q_(120345.6, "N*s/m"), "kN*s/m", name="C").text == "120.3 kN·s/m"
+    with pytest.raises(UnitError, match=r"report: force: cannot show 3 kg \(a mass\) in kN \(a force\)"):
+        show(Q_(3, "kg"), "kN", name="force")
+    with pytest.raises(UnitError, match="report: force: the number 3.0 has no unit"):
+        show(3.0, "kN", name="force")
+    assert show(float("nan"), "", name="dynamic range").text == "undefined"
+
+
+# ------------------------------------------------------------------------------------------------- the checks
+def test_low_velocity_warns_of_seal_friction_and_of_the_plug():
+    d = load_example("makris")
+    r = build_report(d, velocity_range=("0 mm/s", "0.01 mm/s"), fields=["3 kV/mm"])
+    status = {c.key: c for c in r.checks}
+    # At 0.01 mm/s the zero-field force is C v + F_s = 1.2 N + 112 N: the seals take 99 %.
+    assert status["seal_friction"].status == "warn"
+    assert parse_quantity(status["seal_friction"].value.text).to("").magnitude == pytest.approx(
+        112.0 / d.state(0.01e-3, 0.0).force, rel=ROUNDING)
+    # At 3 kV/mm the plug fills 91 % of the gap (Makris eqs 5-7); the check warns above 90 %.
+    close(status["plug"].value.text, Q_(d.state(0.01e-3, 3e6).plug_fraction, ""))
+    assert status["plug"].status == "warn"
+
+
+def test_field_outside_the_material_range_warns(tmp_path):
+    path = tmp_path / "mr.toml"
+    path.write_text(
+        'name = "mr"\n[geometry]\nconfiguration = "mixed"\nduct_length = "25 mm"\ngap = "1 mm"\n'
+        'piston_diameter = "40 mm"\nrod_diameter = "12 mm"\n[fluid]\nmaterial = "lord-mrf-132dg"\n')
+    with pytest.warns(ValidityWarning, match="300 kA/m is outside the range 0 to 250 kA/m"):
+        r = build_report(path, fields=["300 kA/m"], velocity_range=("0 m/s", "20 m/s"))
+    status = {c.key: c.status for c in r.checks}
+    assert status["field_range"] == "warn"
+    assert status["laminar"] == "warn"            # 20 m/s in a 1 mm gap of a 0.112 Pa s fluid: Re about 5000
+    assert r.material["name"] == "lord-mrf-132dg" and "saturating law" in r.material["law"]
+    origins = {row.key: row.origin for row in r.inputs}
+    assert origins["viscosity"] == "material lord-mrf-132dg"
+
+
+# ------------------------------------------------------------------------------------------ the optional section
+def test_measurement_section_only_when_given(markdown, html):
+    assert "Measurement comparison" not in markdown and "Measurement comparison" not in html
+    d = load_example("makris")
+    x = np.linspace(0, 1, 50)
+    r = build_report(d, fields=["3 kV/mm"],
+                     comparison=MeasurementComparison("test.csv", esr=0.082, samples=50, rms_error="85 N",
+                                                      displacement=x * 1e-3, velocity=x * 1e-2, force_measured=x * 1e3,
+                                                      force_model=x * 1.1e3),
+                     history=[(0, "baseline", 0.31), ErrorHistoryStep(1, "seal_friction", 0.082)])
+    md = render_markdown(r)
+    assert "## 7. Measurement comparison and error history (optional)" in md
+    assert "| ESR (seed 002 eq 7) | 0.082 |" in md and "| RMS force error | 85 N |" in md
+    assert "| 1 | seal_friction | 0.082 |" in md
+    assert [f.key for f in r.figures][-2:] == ["measurement", "history"]
+    page = render_html(r)
+    assert 'id="measurement"' in page and page.count('class="plotly-graph-div"') == 6
+    assert re.search(r'id="q-history-1"[^>]*>0.082</span>', page)
+    with pytest.raises(ErdesignError, match=r"history\[0\].esr"):
+        build_report(d, fields=["3 kV/mm"], history=[(0, "baseline", float("nan"))])
+
+
+# ------------------------------------------------------------------------------------------------------ the CLI
+def test_cli_writes_markdown_and_reports_json(tmp_path, capsys):
+    out = tmp_path / "r.md"
+    code = main(["report", MAKRIS, "--velocity-range", "0 in/s", "1 in/s", "--field", "3 kV/mm",
+                 "--out", str(out), "--json"])
+    stdout, stderr = capsys.readouterr()
+    data = json.loads(stdout)
+    assert code == 0 and stderr == "" and data["format"] == "md" and data["warnings"] == 0
+    assert [c["check"] for c in data["checks"]] == ["laminar", "thin_gap", "field_range", "plug", "seal_friction"]
+    text = out.read_text()
+    assert text.startswith("# Damper report: makris-1996") and "| 3 kV/mm |" in text
+
+
+def test_cli_html_and_errors(tmp_path, capsys):
+    out = tmp_path / "r.html"
+    assert main(["report", MAKRIS, "--field", "3 kV/mm", "--out", str(out)]) == 0
+    assert out.read_text().startswith("<!DOCTYPE html>") and "wrote" in capsys.readouterr().out
+    code = main(["report", MAKRIS, "--field", "40 kA/m", "--out", str(out), "--json"])
+    stdout, stderr = capsys.readouterr()
+    assert code == 1 and stdout == "" and stderr.count("\n") == 1
+    assert "field[0]: expected an electric field" in stderr
+
+
+def test_write_report_chooses_the_format_from_the_suffix(tmp_path, makris_report):
+    assert write_report(makris_report, tmp_path / "a.md").read_text().startswith("# ")
+    with pytest.raises(ErdesignError, match="format: expected one of html, md"):
+        write_report(makris_report, tmp_path / "a.pdf", "pdf")
+
+
+def test_report_of_a_mixed_damper_from_python():
+    d = load_damper(ROOT / "examples" / "kamath_wereley.toml")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = build_report(d, velocity_range=("0 m/s", "0.1 m/s"), fields=["3 kV/mm"])
+    keys = [e.key for e in r.equations]
+    assert r.configuration == "mixed" and "flow" in keys and "damping_constant" in keys
+    assert all(row.origin == "Python" for row in r.inputs)
