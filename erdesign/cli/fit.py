@@ -1,0 +1,29 @@
+"""``erdesign fit MEASUREMENT.csv --damper DAMPER.toml [--effects a,b] [--json]``: calibrate the physics damper."""
+
+from __future__ import annotations
+
+import click
+
+from ..damper_file import load_damper
+from ..diagnose import calibrate
+from ..measurement import read_measurement
+from .main import cli, emit_json, json_number
+
+__all__ = ["fit"]
+
+
+@cli.command()
+@click.argument("measurement", metavar="MEASUREMENT.csv")
+@click.option("--damper", "damper_file", required=True, metavar="DAMPER.toml", help="Damper file (geometry, fluid).")
+@click.option("--effects", default="", help="Effects to add to the baseline, comma separated (e.g. seal_friction).")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
+def fit(measurement: str, damper_file: str, effects: str, as_json: bool) -> None:
+    """Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects."""
+    damper = load_damper(damper_file)
+    record = read_measurement(measurement)
+    result = calibrate(damper, record, effects)
+    if as_json:
+        emit_json({"esr": json_number(result.esr),
+                   "parameters": {k: v.strip() for k, v in result.parameters_with_units().items()}})
+        return
+    click.echo(result.report())

@@ -1,0 +1,497 @@
+r"""Compare the physics damper with a measurement, see where it fails, find the missing effect, add it, refit.
+
+The workflow (docs/diagnosis.md explains how it judges):
+
+1. **Calibrate** the baseline (quasi-steady damper of the file, with a viscosity and a yield-stress factor, plus the
+   effects already accepted) to the record by bounded least squares (:func:`erdesign.fit.fit`).
+2. **Residual analysis** (:func:`residual_analysis`): where in the cycle the error lives (reversals / pre-yield,
+   post-yield, high speed, late in the test, after field changes) and what it looks like, by regressing the
+   residual on the signatures of the effects (seed 002 Table 2: characteristic -> diagram -> model term), said in
+   words ("residual is odd in velocity and flat in magnitude: Coulomb-like, about 110 N: seal friction").
+3. **Candidates**: every effect not yet in the model is added in turn and the model refitted.  The improvement is
+   judged honestly: by the Bayesian information criterion with the number of samples reduced to the effective
+   number of independent residuals the candidate leaves (lag-1 autocorrelation), by a minimum relative gain, and for the best
+   candidates on held-out cycles (fitted on two thirds of the record, scored on the rest).  When no candidate
+   passes, the answer is "no significant missing effect" (``missing_effect`` is None).
+4. **Improve** (:func:`improve`): add the missing effect, refit, re-rank, until nothing significant is left; the
+   history shows the ESR falling step by step.
+
+Long records are analysed on an evenly thinned copy of at most ``max_samples`` samples (derivatives are taken on
+the full record first); the ESRs reported are those of the full record.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from .damper import Damper
+from .effects import EFFECT_NAMES, EFFECTS, EffectError, parse_effect_names
+from .effects.base import peak_speed, reversal_count
+from .errors import ErdesignError
+from .fit import FitResult, fit
+from .measurement import Measurement
+from .metrics import esr
+from .models.base import Model
+from .physics import PhysicsDamper, check_control
+
+__all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
+           "improve", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD", "MAX_SAMPLES"]
+
+#: A candidate must lower the residual sum of squares by at least this fraction ...
+MIN_GAIN = 0.05
+#: ... and the effective BIC by at least this much (Kass and Raftery: > 10 is "very strong" evidence).
+BIC_THRESHOLD = 10.0
+#: Records longer than this are thinned for the analysis.
+MAX_SAMPLES = 4000
+#: Fraction of the held-out residual sum of squares the candidate must remove.
+HELD_OUT_GAIN = 0.02
+
+
+class DiagnosisError(ErdesignError):
+    """The record cannot be diagnosed (too short, wrong control, unknown effect)."""
+
+
+# ---------------------------------------------------------------------------------------------------- fitting
+def _free_parameters(model: PhysicsDamper, record: Measurement) -> list[str]:
+    free = list(model.parameter_names)
+    if not np.any(np.abs(record.control) > 0) or model.damper.fluid.yield_stress == 0:
+        free.remove("yield_stress_factor")        # no field: the yield stress cannot be seen
+    return free
+
+
+def calibrate(damper: Damper, record: Measurement, effects: Sequence[str] | str = (), *,
+              start: Mapping[str, float] | None = None) -> FitResult:
+    """Fit the baseline (two calibration factors) plus ``effects`` to ``record``.
+
+    Raises a one-line error when the record's control does not match the damper or an effect cannot be seen in
+    the record.
+    """
+    model = PhysicsDamper(damper, effects)
+    model.check_effects(record)
+    return _fit(model, record, start)
+
+
+def _fit(model: PhysicsDamper, record: Measurement, start=None, mask=None) -> FitResult:
+    free = _free_parameters(model, record)
+    guess = {**model.initial_guess(record), **{k: v for k, v in (start or {}).items()
+                                                if k in model.parameter_names}}
+    fixed = {} if "yield_stress_factor" in free else {"yield_stress_factor": guess.get("yield_stress_factor", 1.0)}
+    if mask is None:
+        return fit(model, record, free=free, fixed=fixed, start=guess, max_nfev=200)
+    masked = _Masked(model, record, mask)
+    return fit(masked, record.select(mask), free=free, fixed=fixed, start=guess, max_nfev=200)
+
+
+class _Masked(Model):
+    """A model simulated on the whole record but compared on the samples of a mask (held-out validation)."""
+
+    def __init__(self, model: PhysicsDamper, record: Measurement, mask: np.ndarray):
+        self.inner, self.full, self.mask = model, record, mask
+        self.name, self.title, self.parameters = model.name, model.title, model.parameters
+
+    def initial_guess(self, record):
+        return self.inner.initial_guess(self.full)
+
+    def force(self, record, values):
+        return self.inner.force(self.full, values)[self.mask]
+
+
+# ---------------------------------------------------------------------------------------------------- residuals
+@dataclass
+class ResidualAnalysis:
+    """Where the residual of a fitted model lives and what it looks like."""
+
+    rms: float
+    """RMS residual, [N]."""
+    regions: dict[str, tuple[float, float]]
+    """region -> (fraction of samples, RMS residual there over the overall RMS)."""
+    signatures: dict[str, float]
+    """signature -> fitted size (N, kg, N/m ...) of the residual projected on it."""
+    shares: dict[str, float]
+    """signature -> fraction of the residual variance it explains alone."""
+    findings: list[str]
+    """The readable conclusions, strongest first."""
+
+    def report(self) -> str:
+        lines = [f"  RMS residual {self.rms:.4g} N; where it lives (share of samples, RMS there / overall):"]
+        for name, (frac, ratio) in self.regions.items():
+            lines.append(f"    {name:<24} {100 * frac:5.1f} %   {ratio:5.2f}")
+        if self.findings:
+            lines.append("  what it looks like:")
+            lines.extend(f"    - {f}" for f in self.findings)
+        else:
+            lines.append("  what it looks like: no pattern stands out of the noise")
+        return "\n".join(lines)
+
+
+def _regions(record: Measurement, weight: np.ndarray | None = None) -> dict[str, np.ndarray]:
+    v = record.velocity
+    peak = max(peak_speed(record), 1e-12)
+    t = record.time
+    T = t[-1] - t[0]
+    on = np.abs(record.control) > 0
+    regions = {
+        "pre-yield (|v| < 5 %)": (np.abs(v) < 0.05 * peak) & on,
+        "reversals (|v| < 15 %)": np.abs(v) < 0.15 * peak,
+        "post-yield (|v| >= 15 %)": np.abs(v) >= 0.15 * peak,
+        "high velocity (> 70 %)": np.abs(v) > 0.7 * peak,
+        "first third": t < t[0] + T / 3,
+        "late in the test": t > t[0] + 2 * T / 3,
+    }
+    u = np.abs(record.control)
+    if u.max() > 0:
+        change = np.flatnonzero(np.abs(np.diff(u)) > 0.1 * u.max())
+        after = np.zeros(len(record), bool)
+        for i in change:
+            after[(t > t[i]) & (t < t[i] + 0.03)] = True
+        if after.any():
+            regions["30 ms after field changes"] = after
+    return regions
+
+
+def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measurement) -> ResidualAnalysis:
+    """Locate the residual of ``result`` in the cycle and project it on the signatures of the effects.
+
+    Signatures (each a regressor, fitted one at a time to say how much of the residual it explains alone):
+    ``sgn(v)`` (Coulomb friction), ``a`` (inertia), ``x`` and a constant (gas spring), time x model force (heating),
+    the residual near reversals (pre-yield elasticity, compressibility, leakage) and after field changes (lag).
+    """
+    r = record.require_force() - model.force(record, result.values)
+    rms = float(np.sqrt(np.mean(r**2))) or 1e-300
+    regions = {}
+    for name, m in _regions(record).items():
+        if m.any():
+            regions[name] = (float(m.mean()), float(np.sqrt(np.mean(r[m] ** 2)) / rms))
+    comps = model.components(record, result.values)
+    t = record.time
+    tn = (t - t[0]) / max(t[-1] - t[0], 1e-12)
+    peak = max(peak_speed(record), 1e-12)
+    basis = {
+        "coulomb": np.tanh(record.velocity / (0.01 * peak)),
+        "acceleration": record.acceleration,
+        "displacement": record.displacement - record.displacement.mean(),
+        "offset": np.ones(len(record)),
+        "drift": (tn - tn.mean()) * comps["fluid"],
+    }
+    var = float(np.sum((r - r.mean()) ** 2)) or 1e-300
+    sizes, shares = {}, {}
+    for name, b in basis.items():
+        bb = b if name == "offset" else b - b.mean()
+        denom = float(np.dot(bb, bb))
+        if denom <= 0:
+            continue
+        c = float(np.dot(bb, r - (0 if name == "offset" else r.mean())) / denom)
+        sizes[name] = c
+        shares[name] = float(c**2 * denom / (var if name != "offset" else float(np.sum(r**2)) or 1e-300))
+    findings = []
+    words = {
+        "coulomb": lambda c: (f"residual is odd in velocity and flat in magnitude: Coulomb-like, about {abs(c):.3g} N"
+                              f"{'' if c > 0 else ' (negative: less friction than assumed)'}: seal friction"),
+        "acceleration": lambda c: (f"residual follows the acceleration: an extra mass of about {c:.3g} kg: fluid "
+                                   f"inertia (prior {EFFECTS['fluid_inertia'].prior(model.damper)['slug_mass']:.3g} kg)"),
+        "displacement": lambda c: f"residual grows with the displacement: a spring of about {c:.3g} N/m: gas spring",
+        "offset": lambda c: f"residual has a constant offset of about {c:.3g} N: gas-spring preload (or load-cell zero)",
+        "drift": lambda c: (f"the model force is {'too high' if c < 0 else 'too low'} late in the test "
+                            f"(by about {abs(c) * 100:.2g} % of the fluid force over the record): "
+                            f"{'viscous heating' if c < 0 else 'a drift (cooling, warm-up of the rig?)'}"),
+    }
+    for name in sorted(shares, key=shares.get, reverse=True):
+        if shares[name] > 0.1:
+            findings.append(f"{words[name](sizes[name])} [explains {100 * shares[name]:.0f} % of the residual]")
+    rev = regions.get("reversals (|v| < 15 %)")
+    if rev and rev[1] > 1.5:
+        findings.append(f"the error is concentrated at the reversals ({rev[1]:.2g} x the overall RMS there): "
+                        "the force does not jump as the rigid-plastic model does: pre-yield elasticity, "
+                        "compressibility (zero field too) or leakage (creep below yield)")
+    after = regions.get("30 ms after field changes")
+    if after and after[1] > 1.5:
+        findings.append(f"the error is concentrated right after field changes ({after[1]:.2g} x the overall RMS): "
+                        "the fluid follows the field late: field lag")
+    high = regions.get("high velocity (> 70 %)")
+    if high and high[1] > 1.5:
+        findings.append(f"the error is largest at high speed ({high[1]:.2g} x the overall RMS): the force-velocity "
+                        "curve bends (shear thinning) or lags (compressibility)")
+    late, first = regions.get("late in the test"), regions.get("first third")
+    if late and first and late[1] > 1.5 * first[1]:
+        findings.append(f"the error grows over the test (late / early RMS {late[1] / max(first[1], 1e-12):.2g}): "
+                        "something changes with time: viscous heating")
+    return ResidualAnalysis(rms, regions, sizes, shares, findings)
+
+
+# ---------------------------------------------------------------------------------------------------- judging
+@dataclass
+class Candidate:
+    """One effect added to the model and refitted."""
+
+    effect: str
+    result: FitResult | None
+    esr: float
+    """ESR after adding it and refitting (full record)."""
+    delta_bic: float
+    """Effective BIC of the candidate minus that of the current model (negative: better)."""
+    gain: float
+    """Fraction of the residual sum of squares removed."""
+    held_out_gain: float | None = None
+    """Fraction of the held-out residual sum of squares removed (None: not checked)."""
+    plausibility: str = ""
+    significant: bool = False
+    note: str = ""
+
+    def parameters(self, digits: int = 4) -> dict[str, str]:
+        """The effect's fitted parameters with units (strings)."""
+        if self.result is None:
+            return {}
+        names = [p.name for p in EFFECTS[self.effect].parameters(self.result.model.damper)]
+        return {n: self.result.model.parameter(n).format(self.result.values[n], digits).strip() for n in names}
+
+    def uncertainties(self) -> dict[str, str]:
+        if self.result is None:
+            return {}
+        out = {}
+        for p in EFFECTS[self.effect].parameters(self.result.model.damper):
+            se = self.result.stderr.get(p.name, math.nan)
+            out[p.name] = p.format(se, 2) if math.isfinite(se) else "not identifiable"
+        return out
+
+
+def _effective_n(residual: np.ndarray) -> float:
+    """Number of independent residuals: n (1 - rho1)/(1 + rho1) for lag-1 autocorrelation rho1 >= 0."""
+    r = residual - residual.mean()
+    denom = float(np.dot(r, r))
+    rho = float(np.dot(r[1:], r[:-1]) / denom) if denom > 0 else 0.0
+    rho = min(max(rho, 0.0), 0.99)
+    return max(r.size * (1 - rho) / (1 + rho), 10.0)
+
+
+def _bic(rss: float, n: int, k: int, n_eff: float) -> float:
+    return n_eff * math.log(max(rss / n, 1e-300)) + k * math.log(n_eff)
+
+
+def _held_out_mask(record: Measurement, blocks: int = 12) -> np.ndarray:
+    """True on the held-out samples: every third of ``blocks`` equal time blocks (interleaved, so every part of a
+    sweep is in both the training and the held-out set)."""
+    t = record.time
+    idx = np.minimum(((t - t[0]) / max(t[-1] - t[0], 1e-12) * blocks).astype(int), blocks - 1)
+    return idx % 3 == 1
+
+
+@dataclass
+class Diagnosis:
+    """The outcome of :func:`diagnose`."""
+
+    effects: tuple[str, ...]
+    """Effects already in the model."""
+    baseline: FitResult
+    baseline_esr: float
+    analysis: ResidualAnalysis
+    ranking: list[Candidate]
+    missing_effect: str | None
+    not_judged: dict[str, str]
+    """effect -> why this record cannot show it."""
+    record_name: str = ""
+    samples: tuple[int, int] = (0, 0)
+    """(samples of the record, samples analysed)."""
+
+    def as_json(self) -> dict:
+        """The keys of ``erdesign diagnose --json`` (shared/CONTRACTS.md section 3)."""
+        return {"baseline_esr": self.baseline_esr,
+                "ranking": [{"effect": c.effect, "esr": c.esr, "parameters": c.parameters()} for c in self.ranking],
+                "missing_effect": self.missing_effect}
+
+    def report(self) -> str:
+        """A readable report: calibration, where it fails, the ranking with parameters and plausibility, verdict."""
+        model = "baseline" + (f" + {', '.join(self.effects)}" if self.effects else "")
+        lines = [f"Diagnosis of {self.record_name or 'the record'} ({self.samples[0]} samples"
+                 + (f", analysed on {self.samples[1]}" if self.samples[1] != self.samples[0] else "") + ")",
+                 f"model: {model}; calibrated ESR {self.baseline_esr:.4g}"]
+        for name in self.baseline.model.parameter_names:
+            p = self.baseline.model.parameter(name)
+            se = self.baseline.stderr.get(name)
+            unc = "" if se is None else (f" ± {p.format(se, 2)}" if math.isfinite(se) else " (not identifiable)")
+            lines.append(f"  {name:<22} {p.format(self.baseline.values[name])}{unc}")
+        lines.append("where the model fails:")
+        lines.append(self.analysis.report())
+        lines.append("candidate effects (best first; ESR after adding it, effective-BIC change, gain):")
+        for i, c in enumerate(self.ranking, 1):
+            mark = "*" if c.significant else " "
+            held = "" if c.held_out_gain is None else f", held-out gain {100 * c.held_out_gain:.1f} %"
+            lines.append(f" {mark}{i}. {c.effect:<20} ESR {c.esr:.4g}  dBIC {c.delta_bic:+.1f}  "
+                         f"gain {100 * c.gain:.1f} %{held}")
+            unc = c.uncertainties()
+            for n, v in c.parameters().items():
+                lines.append(f"      {n} = {v} ± {unc.get(n, '?')}")
+            if c.plausibility:
+                lines.append(f"      against the prior: {c.plausibility}")
+            if c.note:
+                lines.append(f"      {c.note}")
+        for e, why in self.not_judged.items():
+            lines.append(f"  not judged: {e}: {why}")
+        if self.missing_effect:
+            c = self.ranking[0]
+            lines.append(f"verdict: missing effect: {self.missing_effect} ({EFFECTS[self.missing_effect].mechanism}) "
+                         f"ESR {self.baseline_esr:.4g} -> {c.esr:.4g}")
+        else:
+            lines.append("verdict: no significant missing effect (no candidate improves the fit beyond what noise "
+                         "and extra parameters explain)")
+        return "\n".join(lines)
+
+
+def _analysis_record(record: Measurement, max_samples: int) -> Measurement:
+    if len(record) <= max_samples:
+        return record
+    step = int(math.ceil(len(record) / max_samples))
+    return record.select(slice(None, None, step))
+
+
+def _check_record(record: Measurement) -> None:
+    if record.force is None:
+        raise DiagnosisError(f"{record.name or 'record'}: has no force column")
+    if len(record) < 50:
+        raise DiagnosisError(f"{record.name or 'record'}: {len(record)} samples are too few to judge any effect "
+                             "(need at least 50, over at least one cycle)")
+    if reversal_count(record.velocity) < 2:
+        raise DiagnosisError(f"{record.name or 'record'}: the piston reverses fewer than twice; at least one full "
+                             "cycle is needed to judge any effect")
+
+
+def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str = (), *,
+             candidates: Sequence[str] | None = None, max_samples: int = MAX_SAMPLES) -> Diagnosis:
+    """Calibrate the baseline (+ ``effects``), analyse the residual and rank every other effect of the library.
+
+    Parameters
+    ----------
+    damper : Damper
+    record : Measurement
+    effects : sequence of str or "a,b"
+        Effects already in the model.
+    candidates : sequence of str, optional
+        Effects to judge (default: all others in the library).
+    max_samples : int
+        Longer records are thinned evenly for the analysis.
+
+    Returns
+    -------
+    Diagnosis
+    """
+    effects = parse_effect_names(effects)
+    check_control(damper, record)
+    _check_record(record)
+    base_model = PhysicsDamper(damper, effects)
+    for e in base_model.effects:
+        why = e.check(record, damper)
+        if why:
+            raise EffectError(f"{e.name}: cannot be judged from {record.name or 'this record'}: {why}")
+    work = _analysis_record(record, max_samples)
+    base = _fit(base_model, work)
+    analysis = residual_analysis(base_model, base, work)
+    n = base.n
+    names = [c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES)
+             if c not in effects]
+    ranking: list[Candidate] = []
+    not_judged: dict[str, str] = {}
+    for name in names:
+        why = EFFECTS[name].check(work, damper)
+        if why:
+            not_judged[name] = why
+            continue
+        model = base_model.with_effects(effects + (name,))
+        try:
+            res = _fit(model, work, start=base.values)
+            if res.rss > base.rss:
+                # a fit that ends worse than the model without the effect went astray: start again from the
+                # effect switched off (the baseline's own optimum) and keep the better
+                again = _fit(model, work, start={**res.values, **base.values,
+                                                 **EFFECTS[name].neutral_values(damper)})
+                res = again if again.rss < res.rss else res
+        except ErdesignError as exc:
+            not_judged[name] = f"the fit failed: {exc}"
+            continue
+        # effective sample size of what the candidate leaves: white if it captured the structure
+        n_eff = _effective_n(res.residual)
+        delta_bic = _bic(res.rss, n, res.k, n_eff) - _bic(base.rss, n, base.k, n_eff)
+        cand = Candidate(name, res, res.esr, delta_bic, 1 - res.rss / base.rss if base.rss > 0 else 0.0,
+                         plausibility=EFFECTS[name].plausibility(damper, res.values))
+        ranking.append(cand)
+    ranking.sort(key=lambda c: c.delta_bic)
+    missing = None
+    for c in ranking[:3]:
+        if not (c.delta_bic < -BIC_THRESHOLD and c.gain > MIN_GAIN):
+            continue
+        c.held_out_gain = _held_out_gain(base_model, c, work)
+        if c.held_out_gain > HELD_OUT_GAIN:
+            c.significant = True
+            missing = c.effect
+            break
+        c.note = "does not improve the held-out cycles: fits noise or the calibration, not a mechanism"
+    if missing is not None:
+        ranking.sort(key=lambda c: (not c.significant, c.delta_bic))
+    # ESRs of the full record
+    if work is not record:
+        base_esr = esr(record.force, base_model.simulate(record, base.values))
+        for c in ranking:
+            c.esr = esr(record.force, c.result.model.simulate(record, c.result.values))
+    else:
+        base_esr = base.esr
+    return Diagnosis(effects, base, base_esr, analysis, ranking, missing, not_judged, record.name,
+                     (len(record), len(work)))
+
+
+def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measurement) -> float:
+    """Fraction of the held-out RSS the candidate removes, both models fitted on the training cycles only."""
+    held = _held_out_mask(record)
+    train = ~held
+    F = record.force
+    b = _fit(base_model, record, start=cand.result.values, mask=train)
+    c = _fit(cand.result.model, record, start=cand.result.values, mask=train)
+    rb = np.sum((F[held] - base_model.force(record, b.values)[held]) ** 2)
+    rc = np.sum((F[held] - cand.result.model.force(record, c.values)[held]) ** 2)
+    return float(1 - rc / rb) if rb > 0 else 0.0
+
+
+@dataclass
+class History:
+    """Rounds of :func:`improve`: the effects and ESR after each, and each round's diagnosis."""
+
+    steps: list[tuple[tuple[str, ...], float]] = field(default_factory=list)
+    diagnoses: list[Diagnosis] = field(default_factory=list)
+
+    @property
+    def effects(self) -> tuple[str, ...]:
+        return self.steps[-1][0] if self.steps else ()
+
+    def report(self) -> str:
+        lines = ["history of the error:"]
+        for effects, e in self.steps:
+            lines.append(f"  ESR {e:.4g}   baseline{' + ' + ' + '.join(effects) if effects else ''}")
+        return "\n".join(lines)
+
+
+def improve(damper: Damper, record: Measurement, effects: Sequence[str] | str = (), *, max_rounds: int = 3,
+            max_samples: int = MAX_SAMPLES) -> History:
+    """Diagnose, add the missing effect, refit, re-rank - until no significant effect is missing.
+
+    Examples
+    --------
+    >>> from erdesign import load_example
+    >>> from erdesign.rig import run_rig, sweep
+    >>> motion = sweep([0.005], [2.0], [0.0, 3e6], cycles=2, rate=200)     # friction and yield stress apart
+    >>> rig = run_rig(load_example("makris"), motion, hidden={"seal_friction": {"friction_force": 400.0}},
+    ...               viscosity_factor=1.2, seed=2)
+    >>> h = improve(load_example("makris"), rig.record, max_rounds=2)
+    >>> h.effects, h.steps[-1][1] < h.steps[0][1] / 3
+    (('seal_friction',), True)
+    """
+    effects = parse_effect_names(effects)
+    history = History()
+    for _ in range(max_rounds + 1):
+        d = diagnose(damper, record, effects, max_samples=max_samples)
+        history.diagnoses.append(d)
+        history.steps.append((effects, d.baseline_esr))
+        if d.missing_effect is None:
+            break
+        effects = effects + (d.missing_effect,)
+    return history

@@ -1,0 +1,207 @@
+r"""What every physical effect of the effect library is, and the exact discrete filter they share.
+
+An :class:`Effect` is a physical mechanism that the quasi-steady damper (:mod:`erdesign.damper`) leaves out.  It
+says, in words, what the mechanism is and what it does to the residual of the quasi-steady model (its *signature*,
+in the spirit of seed 002 Table 2), lists its parameters with units and physical bounds
+(:class:`~erdesign.models.base.Parameter`), computes a prior from the geometry and fluid where one exists, and
+tells whether a record can show it at all (:meth:`Effect.check`).  How the effects compose with the quasi-steady
+gap flow is :mod:`erdesign.physics`; the kernels of each mechanism live in the effect's own module.
+
+The state-dependent effects (compressibility, pre-yield elasticity, field lag, viscous heating) are first-order
+relaxations :math:`\dot y = r(t)\,(u(t) - y)`.  :func:`relaxation_filter` solves them exactly between samples
+(rate held over the step, target linear between samples) with a vectorised prefix scan, so no Python loop over
+time is needed.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Mapping
+
+import numpy as np
+
+from ..constitutive.makris import _affine_recurrence
+from ..damper import Damper
+from ..errors import ErdesignError
+from ..measurement import Measurement
+from ..models.base import Parameter
+
+__all__ = ["Effect", "EffectError", "relaxation_filter", "reversal_count"]
+
+
+class EffectError(ErdesignError):
+    """Unknown effect name, or a record that cannot show an effect (the message says which and why)."""
+
+
+class Effect:
+    """Base class of a physical effect.  Subclasses set the class attributes and :meth:`parameters`.
+
+    Attributes
+    ----------
+    name : str
+        Contract name (shared/CONTRACTS.md section 3, effect names).
+    title : str
+        Human name.
+    mechanism : str
+        The physics in one or two sentences.
+    signature : str
+        What the effect leaves in the residual of a model that lacks it.
+    composition : str
+        How it enters the damper force: ``"additive"``, ``"series"``, ``"parallel"``, ``"state"`` or
+        ``"constitutive"`` (see :mod:`erdesign.physics`).
+    source : str
+        Seed paper and equation.
+    """
+
+    name: str = ""
+    title: str = ""
+    mechanism: str = ""
+    signature: str = ""
+    composition: str = ""
+    source: str = ""
+
+    def parameters(self, damper: Damper) -> tuple[Parameter, ...]:
+        """Parameters (SI units, physical bounds; defaults from the prior where there is one)."""
+        raise NotImplementedError
+
+    def prior(self, damper: Damper) -> dict[str, float]:
+        """Values expected from the geometry and fluid alone, SI (empty when none can be computed)."""
+        return {}
+
+    def start(self, damper: Damper, record: Measurement) -> dict[str, float]:
+        """Starting values for a fit: the defaults of :meth:`parameters` (override for a guess from the data)."""
+        return {p.name: p.default for p in self.parameters(damper)}
+
+    #: parameter -> "lower" or "upper": the bound at which the effect vanishes (a second start for a fit that went
+    #: astray; e.g. an infinitely stiff fluid column has no compressibility).
+    neutral: dict = {}
+
+    def neutral_values(self, damper: Damper) -> dict[str, float]:
+        """Parameter values (near) where the effect vanishes: the model is then the one without it."""
+        out = {}
+        for p in self.parameters(damper):
+            side = self.neutral.get(p.name, "lower")
+            if side in ("lower", "upper"):
+                out[p.name] = p.lower if side == "lower" else p.upper
+            else:
+                out[p.name] = float(side)
+        return out
+
+    def check(self, record: Measurement, damper: Damper) -> str | None:
+        """Why ``record`` cannot show this effect (a sentence), or None when it can."""
+        return None
+
+    def plausibility(self, damper: Damper, values: Mapping[str, float]) -> str:
+        """A short judgement of fitted values against the prior: ``"plausible"``, ``"implausible (...)"`` or
+        ``"no prior"``.  A value within a factor of 5 of its prior counts as plausible (priors come from nominal
+        geometry and handbook properties, good to a factor of a few)."""
+        prior = self.prior(damper)
+        if not prior:
+            return "no prior"
+        notes = []
+        for name, p in prior.items():
+            v = values.get(name)
+            if v is None or p == 0:
+                continue
+            ratio = v / p
+            if not (0.2 <= ratio <= 5.0):
+                notes.append(f"{name} is {ratio:.3g} x its prior")
+        return "plausible" if not notes else "implausible (" + "; ".join(notes) + ")"
+
+    def describe(self) -> dict:
+        return {"name": self.name, "title": self.title, "mechanism": self.mechanism, "signature": self.signature,
+                "composition": self.composition, "source": self.source}
+
+    def __repr__(self) -> str:
+        return f"<Effect {self.name!r}>"
+
+
+def relaxation_filter(t, target, rate, y0=None):
+    r"""Exact solution at the samples of the first-order relaxation :math:`\dot y = r(t)\,(u(t) - y)`.
+
+    Over each step the rate is held at its value at the start of the step, :math:`r_n`, and the target is linear
+    between the samples; then, with :math:`a_n = e^{-r_n \Delta t_n}`,
+
+    .. math::
+        y_{n+1} = a_n y_n + u_{n+1} - a_n u_n - (u_{n+1} - u_n)\,\frac{1 - a_n}{r_n \Delta t_n},
+
+    an affine recurrence evaluated with a vectorised prefix scan (:mod:`erdesign.constitutive.makris`).
+
+    Parameters
+    ----------
+    t : array, shape (N,)
+        Time, strictly increasing, [s].
+    target : array, shape (N,)
+        u, the value y relaxes towards, [any unit].
+    rate : float or array, shape (N,)
+        r >= 0, [1/s]; ``inf`` makes y follow the target.
+    y0 : float, optional
+        y at ``t[0]``; default ``target[0]`` (settled).
+
+    Returns
+    -------
+    array, shape (N,)
+        y at the samples, in the unit of ``target``.
+
+    Notes
+    -----
+    Exact for a piecewise-linear target and piecewise-constant rate at any step size (no stability limit: every
+    step is a convex combination); for smooth inputs the error is second order in the step.  With a constant rate
+    it is the first-order-hold discretisation of a first-order low-pass filter.
+
+    Examples
+    --------
+    A step held at 1 from t = 0 relaxes as 1 - exp(-r t):
+
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 1.0, 11)
+    >>> y = relaxation_filter(t, np.ones(11), 2.0, y0=0.0)
+    >>> bool(abs(y[-1] - (1 - np.exp(-2.0))) < 1e-12)
+    True
+
+    References
+    ----------
+    Seed 001 (Butz and von Stryk), eq 16 (first-order filter); seed 004 (Makris et al.), eqs 9-10 (the same
+    linear first-order form with a time-varying rate).
+    """
+    t = np.asarray(t, dtype=float)
+    u = np.asarray(target, dtype=float)
+    r = np.broadcast_to(np.asarray(rate, dtype=float), u.shape)[:-1]
+    dt = np.diff(t)
+    x = r * dt
+    with np.errstate(invalid="ignore", over="ignore"):
+        a = np.exp(-x)
+        one_minus_a = -np.expm1(-x)
+        # (1 - a)/x -> 1 as x -> 0 and -> 0 as x -> inf
+        phi = np.where(x > 1e-12, one_minus_a / np.where(x > 1e-12, x, 1.0), 1.0 - 0.5 * x)
+        phi = np.where(np.isinf(x), 0.0, phi)
+        a = np.where(np.isinf(x), 0.0, a)
+    du = np.diff(u)
+    d = u[1:] - a * u[:-1] - du * phi
+    y0 = u[0] if y0 is None else float(y0)
+    return _affine_recurrence(a, d, y0)
+
+
+def reversal_count(v) -> int:
+    """Number of sign changes of the velocity (two per cycle of a periodic stroke), ignoring the noise band
+    below 5 % of the peak speed."""
+    v = np.asarray(v, dtype=float)
+    peak = np.max(np.abs(v)) if v.size else 0.0
+    if peak == 0:
+        return 0
+    s = np.sign(v[np.abs(v) > 0.05 * peak])
+    return int(np.count_nonzero(np.diff(s) != 0))
+
+
+def geometric_damping(damper: Damper) -> float:
+    """Damping constant per unit plastic viscosity, C / eta_0, [m^3] (valve: 12 L Ap^2 / (n pi d h^3))."""
+    return damper.damping_constant_si() / damper.fluid.viscosity
+
+
+def peak_speed(record: Measurement) -> float:
+    """Robust peak speed of a record, the 99th percentile of |v|, [m/s]."""
+    return float(np.percentile(np.abs(record.velocity), 99.0)) if len(record) else 0.0
+
+
+def is_finite_positive(x: float) -> bool:
+    return bool(math.isfinite(x) and x > 0)

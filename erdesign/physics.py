@@ -1,0 +1,303 @@
+r"""The physics damper as a :class:`~erdesign.models.base.Model`: calibrated quasi-steady baseline plus effects.
+
+Baseline: the quasi-steady force of the damper's configuration (valve: Bingham flow through the annular ducts,
+Makris eqs 5-7 and 14; mixed: Couette-Poiseuille Bingham flow, seed 000) with the fluid of the damper file scaled
+by two calibration factors, because nominal fluid properties are uncertain by tens of percent:
+
+.. math::
+    \eta = k_\eta\,\eta(E), \qquad \tau_y = k_\tau\,\tau_y(E), \qquad
+    F = \Delta p\,A_p + F_\text{shear} + F_s\tanh(v/v_s)
+
+(the seal friction :math:`F_s` of the damper file is held fixed unless ``seal_friction`` is among the effects).
+
+Effects (:mod:`erdesign.effects`) compose physically, in this order:
+
+1. *state of the control* - ``field_lag``: the fluid sees the control through a first-order lag;
+2. *constitutive* - ``shear_thinning``: Herschel-Bulkley instead of Bingham gap flow;
+3. *parallel* - ``leakage``: the flow splits between ducts and a laminar bypass (vectorised root per sample);
+4. *thermal state* - ``viscous_heating``: the viscosity falls with the temperature rise driven by the dissipated
+   power (fixed-point passes over the record);
+5. *series* - ``compressibility``: the pressure force lags its quasi-steady value (exact first-order filter);
+6. *constitutive, in time* - ``preyield_elasticity``: Makris eq 8 at the damper level (exact-step scan);
+7. *additive* - ``seal_friction``, ``fluid_inertia``, ``gas_spring``.
+
+The break-away jump of the rigid-plastic gap flow at a reversal (from minus to plus the yield force) and the sign of
+the seal friction are resolved over the noise band of the velocity, :math:`v_s` = 1 % of the record's peak speed:
+:math:`F \to F - F_y\operatorname{sgn}(v)\,(1 - \tanh(|v|/v_s))`, which leaves the force unchanged (to 1e-8 of
+:math:`F_y`) above :math:`10 v_s` and makes it pass through zero at the reversal instead of jumping on a sample
+whose derived velocity has the wrong sign (with ``leakage`` the creep below yield already makes it continuous).
+
+Everything is vectorised over the samples; the linear time-varying recurrences use the exact-step prefix scan of
+:func:`erdesign.effects.base.relaxation_filter`.  The internal states start settled (quasi-steady) at the first
+sample.  Effects that re-solve the gap flow (leakage, shear thinning) use the thin-gap formulas.
+"""
+
+from __future__ import annotations
+
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from .damper import Damper
+from .effects import EFFECTS, EffectError, parse_effect_names
+from .effects.base import geometric_damping
+from .effects.compressibility import compliant_pressure_force
+from .effects.field_lag import lagged_control
+from .effects.fluid_inertia import FluidInertia
+from .effects.gas_spring import gas_spring_force
+from .effects.leakage import leaky_pressure_drop
+from .effects.preyield_elasticity import elastic_stiffness, elastic_viscoplastic_force
+from .effects.seal_friction import SealFriction, coulomb_friction
+from .effects.shear_thinning import REFERENCE_SHEAR_RATE, herschel_bulkley_pressure_drop
+from .effects.viscous_heating import TEMPERATURE_COEFFICIENT, heated_viscosity_factor, temperature_rise
+from .errors import ErdesignError
+from .flow.bingham import bingham_slit_flow
+from .flow.mixed_mode import couette_poiseuille_bingham
+from .fluid import CONTROL_UNITS
+from .measurement import Measurement
+from .models.base import Model, Parameter
+
+__all__ = ["PhysicsDamper", "BASE_PARAMETERS", "check_control", "HEATING_PASSES"]
+
+#: Calibration factors of the baseline.
+BASE_PARAMETERS = (
+    Parameter("viscosity_factor", "", 1.0, 0.05, 20.0, "plastic viscosity over its nominal value", log_scale=True),
+    Parameter("yield_stress_factor", "", 1.0, 0.0, 20.0, "yield stress over its nominal value"),
+)
+
+#: Most fixed-point passes of the heating coupling (the error falls by alpha*dT per pass; they stop when the
+#: viscosity factor changes by less than 1e-9).
+HEATING_PASSES = 12
+
+
+def check_control(damper: Damper, record: Measurement) -> None:
+    """Raise a one-line error when the record's control column does not match the damper's reference field."""
+    kind = record.control_kind
+    if kind is not None and kind != damper.fluid.control:
+        raise ErdesignError(
+            f"{record.name or 'measurement'}: its control column is {_article(kind)} {kind} ({CONTROL_UNITS[kind]}) but "
+            f"the damper file's reference_field is {_article(damper.fluid.control)} {damper.fluid.control} "
+            f"({damper.fluid.field_unit}); the control column must have the dimension of the fluid's reference_field "
+            f"(e.g. kV/mm data need an ER fluid with reference_field in kV/mm)")
+
+
+def _article(word: str) -> str:
+    return "an" if word[0] in "aeiou" else "a"
+
+
+class PhysicsDamper(Model):
+    """The damper of a damper file, calibrated, with any subset of the effect library.
+
+    Parameters
+    ----------
+    damper : Damper
+        Geometry and nominal fluid (and known seal friction).
+    effects : sequence of str or str
+        Effect names (shared/CONTRACTS.md), e.g. ``("seal_friction", "fluid_inertia")`` or ``"a,b"``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign import load_example
+    >>> from erdesign.measurement import Measurement
+    >>> t = np.linspace(0, 1, 501); x = 0.005 * np.sin(2 * np.pi * 2 * t)
+    >>> rec = Measurement.from_arrays(t, x, control=3e6, control_kind="electric field")
+    >>> model = PhysicsDamper(load_example("makris"), ["seal_friction"])
+    >>> model.parameter_names
+    ('viscosity_factor', 'yield_stress_factor', 'friction_force')
+    >>> F = model.simulate(rec)
+    >>> round(float(F.max()) / 1e3, 2)           # kN at the peak speed 63 mm/s and 3 kV/mm
+    14.44
+    """
+
+    name = "physics"
+    source = "Makris et al. (seed 004) eqs 5-7, 14; Kamath and Wereley (seed 000); erdesign.effects"
+    uses_control = True
+
+    def __init__(self, damper: Damper, effects: Sequence[str] | str = ()):
+        self.damper = damper
+        self.effect_names = parse_effect_names(effects)
+        self.effects = tuple(EFFECTS[n] for n in self.effect_names)
+        params = list(BASE_PARAMETERS)
+        for e in self.effects:
+            params.extend(e.parameters(damper))
+        self.parameters = tuple(params)
+        self.title = "physics damper" + (f" + {', '.join(self.effect_names)}" if self.effect_names else " (baseline)")
+
+    def has(self, name: str) -> bool:
+        return name in self.effect_names
+
+    def with_effects(self, effects: Sequence[str]) -> "PhysicsDamper":
+        """Another physics damper with the same damper and the given effects."""
+        return PhysicsDamper(self.damper, effects)
+
+    def initial_guess(self, record: Measurement) -> dict[str, float]:
+        guess = {"viscosity_factor": 1.0, "yield_stress_factor": 1.0}
+        for e in self.effects:
+            guess.update(e.start(self.damper, record))
+        return guess
+
+    # ------------------------------------------------------------------ the gap flow
+    def _gap_pressure_drop(self, u, v_wall, tau_y, eta, m):
+        """Pressure drop [Pa] of the gap passing the flow of a piston at speed u (wall speed v_wall, mixed)."""
+        g = self.damper.geometry
+        if g.configuration == "valve":
+            Q = u * g.piston_area / g.ducts
+            if m != 1.0:
+                K = eta * REFERENCE_SHEAR_RATE ** (1.0 - m)
+                return herschel_bulkley_pressure_drop(Q, tau_y, K, m, g.duct_length, g.duct_mean_diameter, g.gap)
+            return bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap).pressure_drop
+        return self._mixed(u, v_wall, tau_y, eta, m)[0]
+
+    def _mixed_table(self):
+        """Dimensionless Couette-Poiseuille Bingham solution of this head, tabulated once (see :meth:`_mixed`)."""
+        if getattr(self, "_table", None) is None:
+            g = self.damper.geometry
+            # grid uniform in w = sqrt(1 - s): the solution varies like sqrt(1 - s) as the plug fills the gap
+            w = np.linspace(0.0, 1.0, 4001)
+            s = 1.0 - w**2
+            h = g.gap
+            # U = 1 m/s, eta = 1 Pa s; tau_y from the Bingham number B = s / (1 - s) = tau_y h / (eta U)
+            with np.errstate(divide="ignore"):
+                B = np.where(s < 1.0, s / (1.0 - np.minimum(s, 1 - 1e-16)), np.inf)
+            tau_y = np.where(np.isfinite(B), B / h, 1.0)
+            U = np.where(np.isfinite(B), 1.0, 0.0)
+            eta = np.where(np.isfinite(B), 1.0, 1e-300)
+            sol = couette_poiseuille_bingham(U, -U * g.piston_area / (np.pi * (g.piston_diameter + h)), tau_y, eta, h)
+            scale = eta * U + tau_y * h                      # eta U + tau_y h
+            self._table = (w, sol.pressure_gradient * h**2 / scale, sol.wall_stress_moving * h / scale)
+        return self._table
+
+    def _mixed(self, u, v_wall, tau_y, eta, m):
+        """Pressure drop [Pa] and shear drag [N] of the moving-electrode gap.
+
+        The flow q = -u A_p / (pi d) and the wall speed are taken equal (u = v_wall, as without a bypass): the
+        solution then depends on the Bingham number alone and is read from a table of
+        :func:`~erdesign.flow.mixed_mode.couette_poiseuille_bingham` (linear interpolation on 4001 points of
+        sqrt(1 - B/(1+B)), relative error below 1e-5).  With a bypass (u < v_wall) the shear drag is taken at the flow
+        speed too, which is good when the pressure drag dominates (by about D_p / 2h)."""
+        g = self.damper.geometry
+        h = g.gap
+        if m != 1.0:
+            q = u * g.piston_area / (np.pi * (g.piston_diameter + h))
+            rate = 6 * np.abs(q) / h**2 + np.abs(v_wall) / h
+            rate = np.maximum(rate, 1e-3 * REFERENCE_SHEAR_RATE)
+            eta = eta * (rate / REFERENCE_SHEAR_RATE) ** (m - 1.0)
+        w_grid, gn, tn = self._mixed_table()
+        scale = eta * np.abs(u) + tau_y * h
+        with np.errstate(divide="ignore", invalid="ignore"):
+            w = np.sqrt(np.where(scale > 0, eta * np.abs(u) / scale, 1.0))
+        sign = np.copysign(1.0, u)
+        dp = sign * np.interp(w, w_grid, gn) * scale / h**2 * g.duct_length
+        shear = -sign * np.interp(w, w_grid, tn) * scale / h * np.pi * g.piston_diameter * g.duct_length
+        return dp, shear
+
+    def _fluid_forces(self, v, tau_y, eta, values):
+        """Pressure force and shear drag [N] of the gap flow at piston speed v (leakage and shear thinning)."""
+        g = self.damper.geometry
+        m = values.get("flow_index", 1.0) if self.has("shear_thinning") else 1.0
+        valve = g.configuration == "valve"
+        if valve and m == 1.0 and not self.has("leakage"):
+            # the quasi-steady kernels of Damper.state, called with per-sample tau_y and eta
+            return self._valve_state(v, tau_y, eta), np.zeros_like(v)
+        tau_y = np.broadcast_to(tau_y, v.shape)
+        eta = np.broadcast_to(eta, v.shape)
+        if self.has("leakage"):
+            C_l = values["bypass_damping"]
+
+            def gap(u, v_wall, tau_y, eta):
+                return self._gap_pressure_drop(u, v_wall, tau_y, eta, m)
+
+            dp0 = gap(v, v, tau_y, eta)
+            dp = leaky_pressure_drop(v, g.piston_area, C_l, gap, args=(v, tau_y, eta), quasi_steady_drop=dp0)
+            u = v - dp * g.piston_area / C_l
+        else:
+            u = v
+            dp = self._gap_pressure_drop(u, v, tau_y, eta, m)
+        if valve:
+            return dp * g.piston_area, np.zeros_like(v)
+        # the pressure drop is the root (on the break-away jump when creeping); the shear drag at the duct flow
+        return dp * g.piston_area, self._mixed(u, v, tau_y, eta, m)[1]
+
+    def _valve_state(self, v, tau_y, eta):
+        g = self.damper.geometry
+        Q = v * g.piston_area / g.ducts
+        if self.damper.uses_exact_annulus:
+            from .flow.annulus_bingham import annulus_bingham_slit_flow
+
+            dp, _ = annulus_bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
+        else:
+            dp = bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap).pressure_drop
+        return np.asarray(dp, dtype=float) * g.piston_area
+
+    # ------------------------------------------------------------------ the force
+    def components(self, record: Measurement, values: Mapping[str, float]) -> dict[str, np.ndarray]:
+        """The force and its parts, [N]: ``fluid``, ``friction``, ``inertia``, ``gas_spring``, ``force``, and the
+        ``yield_force`` of the calibrated fluid at the control the fluid sees (for residual analysis)."""
+        vals = dict(values)
+        d, fl = self.damper, self.damper.fluid
+        t, v = record.time, np.asarray(record.velocity, dtype=float)
+        E = np.asarray(record.control, dtype=float)
+        if self.has("field_lag"):
+            E = lagged_control(t, E, vals["field_time_constant"])
+        k_eta, k_tau = vals["viscosity_factor"], vals["yield_stress_factor"]
+        tau_y = k_tau * np.asarray(fl.yield_stress_at(E), dtype=float) * np.ones_like(v)
+        eta_nominal = k_eta * np.asarray(fl.viscosity_at(E), dtype=float) * np.ones_like(v)
+        heat = 1.0
+        passes = HEATING_PASSES if self.has("viscous_heating") else 1
+        v_s = SealFriction.smoothing_speed(record)
+        # the break-away jump of the rigid-plastic gap flow, resolved over the noise band of the velocity
+        g = d.geometry
+        yield_pressure = k_tau * np.asarray(fl.yield_stress_at(E), dtype=float) * 2 * g.duct_length / g.gap
+        # (with a bypass the piston creeps below yield and there is no jump to resolve)
+        smooth = 0.0 if self.has("leakage") else 1.0 - np.tanh(np.abs(v) / v_s)
+        jump_P = -np.sign(v) * yield_pressure * g.piston_area * smooth
+        jump_S = -np.sign(v) * tau_y * g.shear_area * smooth
+        for _ in range(passes):
+            eta = eta_nominal * heat
+            P, S = self._fluid_forces(v, tau_y, eta, vals)
+            P, S = P + jump_P, S + jump_S
+            if self.has("viscous_heating"):
+                dT = temperature_rise(t, (P + S) * v, vals["thermal_mass"], vals["cooling_time"])
+                new = heated_viscosity_factor(dT, TEMPERATURE_COEFFICIENT)
+                converged = np.max(np.abs(new - heat)) < 1e-9
+                heat = new
+                if converged:
+                    break
+        if self.has("compressibility"):
+            C = geometric_damping(d) * eta
+            P = compliant_pressure_force(t, P, C, vals["hydraulic_stiffness"])
+        fluid = P + S
+        if self.has("preyield_elasticity"):
+            fluid = elastic_viscoplastic_force(t, v, fluid, elastic_stiffness(vals["shear_modulus"], d),
+                                               initial=fluid[0])
+        F_s = vals["friction_force"] if self.has("seal_friction") else d.seal_friction
+        friction = coulomb_friction(v, F_s, v_s)
+        inertia = FluidInertia.force(record.acceleration, vals["slug_mass"]) if self.has("fluid_inertia") \
+            else np.zeros_like(v)
+        gas = gas_spring_force(record.displacement, vals["gas_preload"], vals["gas_stiffness"]) \
+            if self.has("gas_spring") else np.zeros_like(v)
+        yield_force = k_tau * np.asarray(d.yield_force_si(E), dtype=float) * np.ones_like(v)
+        return {"fluid": fluid, "friction": friction, "inertia": inertia, "gas_spring": gas,
+                "force": fluid + friction + inertia + gas, "yield_force": yield_force}
+
+    def force(self, record: Measurement, values: Mapping[str, float]) -> np.ndarray:
+        # extreme trial values of an optimiser (a bypass 1e6 x the ducts) overflow harmlessly to inf; the fit
+        # treats non-finite forces as a huge residual
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            return self.components(record, values)["force"]
+
+    def check_record(self, record: Measurement) -> None:
+        """Raise a one-line error when the record cannot drive this damper (control of the wrong kind)."""
+        base_check = getattr(super(), "check_record", None)
+        if base_check is not None:
+            base_check(record)
+        check_control(self.damper, record)
+
+    def check_effects(self, record: Measurement) -> None:
+        """Raise when an effect of the model cannot be seen in ``record`` (says which and why)."""
+        self.check_record(record)
+        for e in self.effects:
+            why = e.check(record, self.damper)
+            if why:
+                raise EffectError(f"{e.name}: cannot be judged from {record.name or 'this record'}: {why}")

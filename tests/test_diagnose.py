@@ -1,0 +1,179 @@
+"""Diagnosis on the virtual rig: every hidden effect is found, nothing is found in clean data, two in two rounds.
+
+Magnitudes are set relative to each damper's own forces so that the same rule hides a visible effect in the ER
+valve damper of Makris (viscous-dominated) and in the MR mixed damper (yield-dominated); the true fluid always
+differs from the nominal one (viscosity x 1.2, yield stress x 0.8) so that calibration matters.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from erdesign import load_example
+from erdesign.diagnose import DiagnosisError, diagnose, improve, residual_analysis, calibrate
+from erdesign.effects import EFFECT_NAMES, EffectError
+from erdesign.physics import PhysicsDamper
+from erdesign.rig import field_steps, run_rig, sine, sweep
+
+TRUE_FLUID = dict(viscosity_factor=1.2, yield_stress_factor=0.8)
+
+
+def _motion(damper, rate=300.0):
+    E = damper.fluid.reference_field
+    return sweep([0.004, 0.008], [1.0, 2.5], [0.0, E, 0.6 * E], cycles=2, rate=rate)
+
+
+def _hidden(damper, name, motion):
+    """A hidden effect of a visible but modest size for this damper and motion."""
+    E = damper.fluid.reference_field
+    C = damper.damping_constant_si()
+    Fy = damper.yield_force_si(0.8 * E)
+    v_peak = np.max(np.abs(motion.velocity))
+    x_peak = np.max(np.abs(motion.displacement))
+    a_peak = np.max(np.abs(motion.acceleration))
+    F_peak = float(np.max(np.abs(damper.state(motion.velocity, motion.control).force)))
+    omega = 2 * math.pi * 2.5
+    if name == "viscous_heating":
+        P = np.abs(damper.state(motion.velocity, motion.control).force * motion.velocity)
+        energy = float(np.sum(P) * (motion.time[1] - motion.time[0]))
+        return {"thermal_mass": energy / 30.0, "cooling_time": 600.0}     # about 30 K over the record
+    return {
+        "seal_friction": {"friction_force": 0.04 * F_peak},
+        "fluid_inertia": {"slug_mass": 0.06 * F_peak / a_peak},
+        "compressibility": {"hydraulic_stiffness": 1.2 * C * omega / 0.3},       # lag angle about 0.3 rad
+        "leakage": {"bypass_damping": Fy / (0.2 * v_peak)},                      # creep at 20 % of peak speed
+        "field_lag": {"field_time_constant": 0.03},
+        "shear_thinning": {"flow_index": 0.5},
+        "gas_spring": {"gas_preload": 0.03 * F_peak, "gas_stiffness": 0.04 * F_peak / x_peak},
+        "preyield_elasticity": {"shear_modulus": Fy / (0.15 * x_peak) * damper.fluid.viscosity / C},
+    }[name]
+
+
+def _check_found(damper, name, seed=1, noise=0.005):
+    motion = _motion(damper)
+    rig = run_rig(damper, motion, hidden={name: _hidden(damper, name, motion)}, force_noise=noise, seed=seed,
+                  **TRUE_FLUID)
+    d = diagnose(damper, rig.record)
+    ranks = [c.effect for c in d.ranking]
+    assert d.missing_effect == name, (name, ranks, d.report())
+    assert ranks[0] == name
+    # "adding it lowers the ESR by a clear margin": by at least a quarter, and on held-out cycles by at least 30 %.
+    # Measured: the ESR falls 2x to 30000x, except for the viscosity-borne effects (heating, shear thinning) in
+    # the yield-dominated MR damper, where it falls by about a third (held-out gain 0.64-0.78).
+    assert d.ranking[0].esr < 0.75 * d.baseline_esr
+    assert d.ranking[0].held_out_gain > 0.3
+    return d, rig
+
+
+@pytest.mark.parametrize("example, name", [("makris", "seal_friction"), ("mr_mixed", "compressibility"),
+                                           ("makris", "field_lag")])
+def test_a_hidden_effect_is_found(example, name):
+    _check_found(load_example(example), name)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("example", ["makris", "mr_mixed"])
+@pytest.mark.parametrize("name", EFFECT_NAMES)
+def test_every_hidden_effect_is_found_er_valve_and_mr_mixed(example, name):
+    _check_found(load_example(example), name, seed=3)
+
+
+def test_seal_friction_is_found_with_its_size_and_said_in_words():
+    damper = load_example("makris")
+    d, rig = _check_found(damper, "seal_friction")
+    true = rig.truth["friction_force"]
+    cand = d.ranking[0]
+    # the fitted friction within 3 standard errors and 5 % of the hidden value (noise 0.5 % of the RMS force)
+    fitted = cand.result.values["friction_force"]
+    assert abs(fitted - true) < max(3 * cand.result.stderr["friction_force"], 0.05 * true)
+    words = " ".join(d.analysis.findings)
+    assert "odd in velocity and flat in magnitude: Coulomb-like" in words and "seal friction" in words
+    # the size read from the residual alone, before refitting, is rough: the calibrated yield stress absorbs part
+    # of a friction that also jumps at each reversal (measured 0.49 x the hidden value); within 0.3-1.5 x
+    assert 0.3 * true < d.analysis.signatures["coulomb"] < 1.5 * true
+    assert "plausible" in cand.plausibility or "prior" in cand.plausibility
+
+
+@pytest.mark.parametrize("example, noise", [("makris", 0.005), ("mr_mixed", 0.02), ("kamath_wereley", 0.01)])
+def test_no_hidden_effect_gives_no_missing_effect(example, noise):
+    damper = load_example(example)
+    rig = run_rig(damper, _motion(damper), force_noise=noise, seed=4, **TRUE_FLUID)
+    d = diagnose(damper, rig.record)
+    assert d.missing_effect is None, d.report()
+    assert "no significant missing effect" in d.report()
+    # calibration recovers the true fluid: viscosity within 2 % (noise up to 2 % of the RMS force)
+    assert d.baseline.values["viscosity_factor"] == pytest.approx(1.2, rel=0.02)
+    assert d.as_json()["missing_effect"] is None
+
+
+def test_two_hidden_effects_are_resolved_in_two_rounds():
+    damper = load_example("makris")
+    motion = _motion(damper)
+    hidden = {"seal_friction": _hidden(damper, "seal_friction", motion),
+              "fluid_inertia": _hidden(damper, "fluid_inertia", motion)}
+    rig = run_rig(damper, motion, hidden=hidden, seed=5, **TRUE_FLUID)
+    h = improve(damper, rig.record, max_rounds=3)
+    assert sorted(h.effects) == sorted(hidden)
+    assert len(h.steps) == 3                       # baseline, + first, + second, then nothing more
+    esrs = [e for _, e in h.steps]
+    assert esrs[0] > esrs[1] > esrs[2]
+    assert h.diagnoses[-1].missing_effect is None
+    # the final model reaches the noise floor: ESR ~ noise^2 (0.005^2 = 2.5e-5) within a factor 2
+    assert esrs[-1] < 5e-5
+    assert "history of the error" in h.report()
+
+
+def test_effects_already_in_the_model_are_not_candidates():
+    damper = load_example("makris")
+    motion = _motion(damper)
+    rig = run_rig(damper, motion, hidden={"seal_friction": _hidden(damper, "seal_friction", motion)}, seed=6,
+                  **TRUE_FLUID)
+    d = diagnose(damper, rig.record, effects="seal_friction")
+    assert "seal_friction" not in [c.effect for c in d.ranking] and d.missing_effect is None
+
+
+def test_residual_analysis_locates_a_field_lag_after_field_changes():
+    damper = load_example("makris")
+    motion = field_steps(0.006, 2.0, damper.fluid.reference_field, cycles=4, step_period=0.3, rate=500)
+    rig = run_rig(damper, motion, hidden={"field_lag": {"field_time_constant": 0.01}}, seed=7, **TRUE_FLUID)
+    model = PhysicsDamper(damper)
+    res = calibrate(damper, rig.record)
+    a = residual_analysis(model, res, rig.record)
+    frac, ratio = a.regions["30 ms after field changes"]
+    assert ratio > 2                                # the error lives right after the field changes
+    assert any("field lag" in f for f in a.findings)
+
+
+# ------------------------------------------------------------------------------------------------- bad input
+def test_unknown_effect_name_is_a_one_line_error():
+    damper = load_example("makris")
+    rig = run_rig(damper, _motion(damper), seed=1)
+    with pytest.raises(EffectError, match="unknown effect 'stiction'; known effects: seal_friction"):
+        diagnose(damper, rig.record, effects="seal_friction,stiction")
+
+
+def test_er_data_for_an_mr_damper_is_rejected():
+    er = load_example("makris")
+    rig = run_rig(er, _motion(er), seed=1)
+    with pytest.raises(Exception, match="electric field .* magnetic field"):
+        diagnose(load_example("mr_mixed"), rig.record)
+
+
+def test_records_too_short_say_which_effect_and_why():
+    damper = load_example("makris")
+    # half a cycle: nothing can be judged
+    short = run_rig(damper, sine(0.005, 2.0, 3e6, cycles=0.45, rate=300), seed=1)
+    with pytest.raises(DiagnosisError, match="reverses fewer than twice"):
+        diagnose(damper, short.record)
+    # two cycles at constant field: field lag cannot be seen, heating needs three cycles
+    rig = run_rig(damper, sine(0.005, 2.0, 3e6, cycles=2, rate=300), seed=1)
+    with pytest.raises(EffectError, match="field_lag: cannot be judged .* the field never changes"):
+        diagnose(damper, rig.record, effects="field_lag")
+    d = diagnose(damper, rig.record)
+    assert "field never changes" in d.not_judged["field_lag"]
+    assert "fewer than three cycles" in d.not_judged["viscous_heating"]
+    # zero field: no pre-yield regime, leakage indistinguishable from the viscosity factor
+    rig0 = run_rig(damper, sine(0.005, 2.0, 0.0, cycles=4, rate=300), seed=1)
+    d0 = diagnose(damper, rig0.record)
+    assert "no field" in d0.not_judged["preyield_elasticity"] and "no field" in d0.not_judged["leakage"]
