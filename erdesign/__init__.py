@@ -5,7 +5,9 @@ Three layers (docs/architecture.md):
 * kernels - :mod:`erdesign.flow` (steady gap flow) and :mod:`erdesign.constitutive` (stress in time): plain SI
   floats and numpy arrays, vectorised;
 * objects - :class:`Fluid`, :class:`Geometry`, :class:`Damper`: built from pint quantities or strings, checked;
-* workflows - sizing (:meth:`Damper.size`), the damper file (:func:`load_damper`), the command line (``erdesign``).
+* workflows - sizing (:meth:`Damper.size`), design synthesis (:mod:`erdesign.design`), identification
+  (:func:`fit`, :mod:`erdesign.models`), diagnosis (:mod:`erdesign.diagnose`), reports (:mod:`erdesign.report`),
+  the command line (``erdesign``) and the app (``erdesign app``).
 
 The functions in this namespace take pint quantities or strings and return quantities:
 
@@ -15,7 +17,7 @@ The functions in this namespace take pint quantities or strings and return quant
 724.7 kPa
 """
 
-from . import constitutive, flow
+from . import constitutive, design, diagnose, effects, field_laws, flow, models, plots, report
 from .api import (
     annulus_bingham_flow_rate,
     annulus_bingham_pressure_drop,
@@ -35,6 +37,12 @@ from .api import (
 )
 from .damper import Damper, QuasiSteadyState, SineResponse, SizingResult
 from .damper_file import load_damper, load_example
+from .diagnose import calibrate, improve
+from .fit import FitResult, fit
+from .measurement import Measurement, read_measurement, write_measurement
+from .models.registry import get_model, model_names
+from .physics import PhysicsDamper
+from .rig import run_rig
 from .errors import DamperFileError, ErdesignError, ErdesignWarning, UnitError, ValidityWarning
 from .fluid import Fluid
 from .geometry import Geometry
@@ -46,6 +54,8 @@ __version__ = "0.1.0"
 __all__ = [
     "Damper", "QuasiSteadyState", "SineResponse", "SizingResult", "Fluid", "Geometry",
     "load_damper", "load_example",
+    "Measurement", "read_measurement", "write_measurement",
+    "fit", "FitResult", "get_model", "model_names", "PhysicsDamper", "calibrate", "improve", "run_rig",
     "annulus_pressure_drop", "bingham_flow_rate", "bingham_number", "bingham_plug_fraction",
     "bingham_pressure_drop", "slit_pressure_drop", "thin_gap_error", "yield_pressure_drop",
     "makris_stress", "maxwell_stress",
@@ -53,5 +63,5 @@ __all__ = [
     "annulus_bingham_pressure_drop", "annulus_bingham_flow_rate",
     "energy_per_cycle", "equivalent_damping", "esr",
     "ErdesignError", "UnitError", "DamperFileError", "ErdesignWarning", "ValidityWarning",
-    "Q_", "ureg", "flow", "constitutive",
+    "Q_", "ureg", "flow", "constitutive", "design", "diagnose", "effects", "field_laws", "models", "plots", "report",
 ]

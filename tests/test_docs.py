@@ -38,7 +38,7 @@ def test_readme_console_example_matches_the_command():
 def test_readme_starts_with_the_two_setup_commands():
     text = (ROOT / "README.md").read_text()
     first_two = blocks(ROOT / "README.md", "bash")[:2]
-    assert "erdesign" in first_two[0] and "pytest" in first_two[1]
+    assert "streamlit run app.py" in first_two[0] and "pytest" in first_two[1]
     assert text.index(first_two[0]) < text.index("##")          # before any section
     ci = (ROOT / ".ci" / "run").read_text()
     assert "second bash block" in ci

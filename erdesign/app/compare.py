@@ -1,0 +1,207 @@
+"""Compare and diagnose page: a measurement against the physics damper of the design, the missing effect, the refit.
+
+The record comes from an upload (:func:`erdesign.measurement.read_measurement`) or the built-in examples; the
+diagnosis is :func:`erdesign.diagnose.diagnose` (calibration, residual analysis in words, ranking of the effects);
+"add effect and refit" diagnoses again with the effect accepted, and the error history shows the ESR after each step.
+"""
+
+from __future__ import annotations
+
+import math
+
+import streamlit as st
+
+from erdesign import plots
+from erdesign.app import figures, state
+from erdesign.effects import EFFECTS
+from erdesign.errors import ErdesignError
+from erdesign.report.builder import ErrorHistoryStep
+
+__all__ = ["render", "history_steps"]
+
+_BUILT_IN, _UPLOAD = "built-in example (hidden effect)", "upload a measurement CSV"
+
+
+def _record_source() -> tuple[bytes, str, bool] | None:
+    """Draw the source inputs; return (CSV bytes, name, built in) or None."""
+    source = state.widget(st.radio, "measurement", "cmp.source", _BUILT_IN, options=[_BUILT_IN, _UPLOAD],
+                          horizontal=True)
+    if source == _BUILT_IN:
+        name = state.widget(st.selectbox, "example", "cmp.example", state.example_records()[0],
+                            options=state.example_records(),
+                            help="Measured on the virtual rig (erdesign.rig) with effects the quasi-steady model "
+                                 "leaves out; the diagnosis has to find them.")
+        return state.example_record_bytes(name), name, True
+    upload = st.file_uploader("measurement CSV", type=["csv", "txt"], key="cmp.upload",
+                              help="Columns with units in brackets: time [s], displacement [mm], force [N], "
+                                   "optionally field [kV/mm] (docs/cli.md).")
+    if upload is None:
+        st.info("Upload a CSV file with a header such as `time [s],displacement [mm],force [N],field [kV/mm]`.")
+        return None
+    return upload.getvalue(), upload.name, False
+
+
+def history_steps(diagnoses) -> list[ErrorHistoryStep]:
+    """The error history: the calibrated baseline, then one step per accepted effect, with the ESR after it.
+
+    ``diagnoses`` are the diagnoses with 0, 1, 2 ... accepted effects (each adds one to the previous).
+    """
+    steps = []
+    for i, d in enumerate(diagnoses):
+        steps.append(ErrorHistoryStep(i, "baseline" if i == 0 else d.effects[-1], float(d.baseline_esr)))
+    return steps
+
+
+def _parameters_table(result) -> list[dict]:
+    rows = []
+    for name in result.model.parameter_names:
+        p = result.model.parameter(name)
+        se = result.stderr.get(name)
+        if se is None:
+            unc = "fixed"
+        elif math.isfinite(se):
+            unc = "± " + p.format(se, 2).strip()
+        else:
+            unc = "not identifiable"
+        rows.append({"parameter": name, "value": p.format(result.values[name]).strip(), "uncertainty (1 σ)": unc,
+                     "description": p.description})
+    return rows
+
+
+def _ranking_table(diagnosis) -> list[dict]:
+    rows = []
+    for i, c in enumerate(diagnosis.ranking, 1):
+        unc = c.uncertainties()
+        rows.append({
+            "rank": i, "effect": c.effect, "significant": "yes" if c.significant else "",
+            "ESR after adding": f"{c.esr:.4g}", "ΔBIC": f"{c.delta_bic:+.1f}", "gain": f"{100 * c.gain:.1f} %",
+            "fitted": "; ".join(f"{n} = {v} ± {unc.get(n, '?')}" for n, v in c.parameters().items()),
+            "against the prior": c.plausibility, "note": c.note})
+    return rows
+
+
+def _add_effect() -> None:
+    """Callback of the refit button: accept the chosen effect."""
+    chosen = st.session_state.get("cmp.add")
+    work = st.session_state.setdefault(state.DIAGNOSIS, {"effects": []})
+    if chosen and chosen not in work["effects"]:
+        work["effects"] = [*work["effects"], chosen]
+
+
+def _reset(source_key: str) -> dict:
+    work = st.session_state.get(state.DIAGNOSIS)
+    if work is None or work.get("source") != source_key:
+        work = {"source": source_key, "effects": [], "run": False}
+        st.session_state[state.DIAGNOSIS] = work
+    return work
+
+
+def render() -> None:
+    """Draw the Compare and diagnose page."""
+    st.title("Compare and diagnose")
+    source = _record_source()
+    if source is None:
+        return
+    data, name, built_in = source
+    spec = state.current_spec()
+    example = state.example_damper_for(data) if built_in else None
+    if example is not None and state.example_spec(example).get("name") != spec.get("name"):
+        spec = state.example_spec(example)
+        st.caption(f"This example was measured on the damper of examples/{example}.toml: it is compared with that "
+                   "damper, not with the design of the Size page.")
+    text = state.spec_text(spec)
+    try:
+        damper, _ = state.build_damper(text)
+    except ErdesignError as exc:
+        st.error(f"The design of the Size page is not valid: {exc}")
+        return
+    st.caption(f"Model: the physics damper of {damper.name or 'the design'}, calibrated to the record "
+               "(viscosity and yield-stress factors) plus the effects accepted below.")
+    try:
+        record = state.read_record(data, name)
+    except ErdesignError as exc:
+        st.error(f"Cannot read the measurement: {exc}")
+        return
+    control = record.control_kind or "no control column (zero field)"
+    st.caption(f"{name}: {len(record)} samples over {record.duration:.3g} s; {control}.")
+    work = _reset(f"{name}:{hash(data)}:{text}")
+    if not work["run"]:
+        if st.button("Diagnose", type="primary", key="cmp.run"):
+            work["run"] = True
+        else:
+            st.info("Press **Diagnose** to calibrate the model to the record and rank the missing effects.")
+            return
+    effects = tuple(work["effects"])
+    diagnoses = []
+    try:
+        with st.status("Diagnosing: calibrating the baseline and refitting with each effect ...",
+                       expanded=False) as status:
+            for k in range(len(effects) + 1):
+                status.update(label=f"Diagnosing with {', '.join(effects[:k]) or 'the baseline'} ...")
+                diagnoses.append(state.run_diagnosis(text, data, name, effects[:k]))
+            status.update(label="Diagnosis done", state="complete")
+    except ErdesignError as exc:
+        st.error(f"The diagnosis failed: {exc}")
+        return
+    diagnosis, record, model_force = diagnoses[-1]
+    _show(diagnosis, record, model_force, [d[0] for d in diagnoses], name)
+
+
+def _show(diagnosis, record, model_force, chain, name) -> None:
+    F = record.force
+    steps = history_steps(chain)
+    st.session_state["report.comparison"] = (
+        name, float(diagnosis.baseline_esr), len(record), record.displacement, record.velocity, F, model_force)
+    st.session_state["report.history"] = tuple((s.step, s.effect, s.esr) for s in steps)
+    model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
+    c = st.columns([1, 2, 1])
+    c[0].metric("ESR of the calibrated model", f"{diagnosis.baseline_esr:.4g}",
+                delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}", delta_color="inverse",
+                help="Error-to-signal ratio (seed 002 eq 7): residual variance over force variance.")
+    c[1].metric("model", model)
+    c[2].metric("RMS residual", f"{diagnosis.analysis.rms:.4g} N")
+    if diagnosis.missing_effect:
+        effect = EFFECTS[diagnosis.missing_effect]
+        st.success(f"**Missing effect: {diagnosis.missing_effect}** ({effect.title}). {effect.mechanism}")
+    else:
+        st.info("No significant missing effect: no candidate improves the fit beyond what noise and extra "
+                "parameters explain.")
+
+    tabs = st.tabs(["overlay", "residual", "missing effects", "parameters", "error history"])
+    with tabs[0]:
+        st.plotly_chart(plots.measured_loops_figure(record.displacement, record.velocity, F, model_force),
+                        key="cmp.fig.loops")
+        st.plotly_chart(figures.time_figure(record.time, model_force, label="model", measured=F), key="cmp.fig.time")
+    with tabs[1]:
+        st.plotly_chart(figures.residual_figure(record.time, record.velocity, F - model_force), key="cmp.fig.res")
+        st.markdown("**Where the model fails** (share of samples, RMS there over overall RMS):")
+        st.dataframe([{"region": k, "share of samples %": round(100 * a, 1), "RMS ratio": round(b, 2)}
+                      for k, (a, b) in diagnosis.analysis.regions.items()], hide_index=True)
+    with tabs[2]:
+        st.markdown("**What the residual looks like:**")
+        for finding in diagnosis.analysis.findings or ["no pattern stands out of the noise"]:
+            st.markdown(f"- {finding}")
+        st.markdown("**Ranked candidate effects** (best first; each added to the model and refitted):")
+        st.table(_ranking_table(diagnosis))
+        for e, why in diagnosis.not_judged.items():
+            st.caption(f"not judged: {e}: {why}")
+        options = [c.effect for c in diagnosis.ranking]
+        if options:
+            default = diagnosis.missing_effect or options[0]
+            if st.session_state.get("cmp.add") not in options:
+                st.session_state["cmp.add"] = default
+            cols = st.columns([2, 1])
+            cols[0].selectbox("effect to add", options, key="cmp.add",
+                              format_func=lambda e: f"{e}: {EFFECTS[e].title}")
+            cols[1].button("Add effect and refit", on_click=_add_effect, key="cmp.refit", type="primary")
+    with tabs[3]:
+        st.markdown(f"**Calibrated parameters** of {model} (standard errors from the fit):")
+        st.dataframe(_parameters_table(diagnosis.baseline), hide_index=True, key="cmp.parameters")
+    with tabs[4]:
+        st.plotly_chart(plots.error_history_figure(steps), key="cmp.fig.history")
+        st.dataframe([{"step": s.step, "effect added": s.effect, "ESR": round(s.esr, 5)} for s in steps],
+                     hide_index=True)
+
+
+if __name__ == "__main__":
+    render()

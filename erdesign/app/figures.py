@@ -1,0 +1,121 @@
+"""Plotly figures of the app that :mod:`erdesign.plots` does not have (yet): the geometry trade-off of the sweep
+explorer, the loops of one simulated force, the time overlay and the residual plots of a comparison.
+
+Like :mod:`erdesign.plots`, each builder takes numbers the library computed (SI arrays) and only draws them, with
+units on every axis chosen by :func:`erdesign.report.formatting.pick_unit`.  Candidates to move into
+:mod:`erdesign.plots` so that the report can use them too.
+
+>>> import numpy as np
+>>> t = np.linspace(0, 1, 101); x = 0.005 * np.sin(2 * np.pi * t); v = 0.01 * np.pi * np.cos(2 * np.pi * t)
+>>> fig = loops_figure(x, v, 1e3 * v / v.max(), label="model")
+>>> [tr.name for tr in fig.data], fig.layout.yaxis.title.text
+(['model', 'model'], 'force F [kN]')
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import plotly.graph_objects as go
+from plotly.subplots import make_subplots
+
+from ..report.formatting import pick_unit
+from ..units import Q_
+
+__all__ = ["tradeoff_figure", "loops_figure", "time_figure", "residual_figure"]
+
+_LAYOUT = dict(template="plotly_white", margin=dict(l=70, r=20, t=60, b=60),
+               legend=dict(orientation="h", yanchor="bottom", y=1.02, xanchor="right", x=1))
+_MEASURED, _MODEL, _OTHER = "#444444", "#d62728", "#1f77b4"
+
+
+def _in(values, si_unit: str, kind: str) -> tuple[np.ndarray, str]:
+    """SI values converted to the unit :func:`pick_unit` chooses for them, and that unit as printed."""
+    values = np.asarray(values, dtype=float)
+    finite = values[np.isfinite(values)]
+    unit = pick_unit(Q_(finite if finite.size else np.zeros(1), si_unit), kind)
+    return np.asarray(Q_(values, si_unit).to(unit).magnitude), f"{Q_(1.0, unit).units:~P}"
+
+
+def tradeoff_figure(sweep: dict, label: str, field_label: str, velocity_label: str) -> go.Figure:
+    """Force, dynamic range and Reynolds number against one geometry value (the sweep explorer).
+
+    ``sweep`` is the dictionary of :func:`erdesign.app.state.geometry_sweep` (SI arrays).
+    """
+    x, x_unit = _in(sweep["value"], "m", "length")
+    F, f_unit = _in(np.concatenate([sweep["force"], sweep["zero_field_force"]]), "N", "force")
+    n = x.size
+    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06,
+                        subplot_titles=(f"force at {velocity_label}", f"dynamic range F({field_label}) / F(0)",
+                                        "Reynolds number"))
+    fig.add_trace(go.Scatter(x=x, y=F[:n], mode="lines+markers", name=field_label, line=dict(color=_MODEL)),
+                  row=1, col=1)
+    fig.add_trace(go.Scatter(x=x, y=F[n:], mode="lines+markers", name="zero field", line=dict(color=_OTHER)),
+                  row=1, col=1)
+    fig.add_trace(go.Scatter(x=x, y=sweep["dynamic_range"], mode="lines+markers", name="dynamic range",
+                             line=dict(color=_MEASURED), showlegend=False), row=2, col=1)
+    fig.add_trace(go.Scatter(x=x, y=sweep["reynolds"], mode="lines+markers", name="Reynolds number",
+                             line=dict(color="#2ca02c"), showlegend=False), row=3, col=1)
+    fig.update_yaxes(title_text=f"F [{f_unit}]", row=1, col=1)
+    fig.update_yaxes(title_text="F(E)/F(0) [-]", row=2, col=1)
+    fig.update_yaxes(title_text="Re [-]", type="log", row=3, col=1)
+    fig.update_xaxes(title_text=f"{label} [{x_unit}]", row=3, col=1)
+    fig.update_layout(title=f"Trade-off: varying the {label}", height=720, **_LAYOUT)
+    return fig
+
+
+def loops_figure(displacement, velocity, force, *, label: str = "model", measured=None) -> go.Figure:
+    """Force-displacement and force-velocity loops of one force record (and the measured force, when given)."""
+    x, x_unit = _in(displacement, "m", "length")
+    v, v_unit = _in(velocity, "m/s", "velocity")
+    both = force if measured is None else np.concatenate([np.ravel(force), np.ravel(measured)])
+    _, f_unit = _in(both, "N", "force")
+    fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
+    traces = [] if measured is None else [("measured", measured, _MEASURED)]
+    traces.append((label, force, _MODEL))
+    for name, F, colour in traces:
+        y = np.asarray(Q_(np.asarray(F, dtype=float), "N").to(_unit_of(f_unit)).magnitude)
+        common = dict(mode="lines", name=name, legendgroup=name, line=dict(color=colour))
+        fig.add_trace(go.Scatter(x=x, y=y, **common), row=1, col=1)
+        fig.add_trace(go.Scatter(x=v, y=y, showlegend=False, **common), row=1, col=2)
+    fig.update_xaxes(title_text=f"displacement x [{x_unit}]", row=1, col=1)
+    fig.update_xaxes(title_text=f"velocity v [{v_unit}]", row=1, col=2)
+    fig.update_yaxes(title_text=f"force F [{f_unit}]", row=1, col=1)
+    fig.update_layout(title="Loops", height=420, **_LAYOUT)
+    return fig
+
+
+def _unit_of(printed: str) -> str:
+    """pint reads its own printed units back (``kN``, ``N·s/m``)."""
+    return printed.replace("·", "*")
+
+
+def time_figure(time, force, *, label: str = "model", measured=None) -> go.Figure:
+    """Force against time: the model (and the measurement, when given)."""
+    t = np.asarray(time, dtype=float)
+    both = force if measured is None else np.concatenate([np.ravel(force), np.ravel(measured)])
+    _, f_unit = _in(both, "N", "force")
+    fig = go.Figure()
+    if measured is not None:
+        fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
+                                 mode="lines", name="measured", line=dict(color=_MEASURED)))
+    fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(force, float), "N").to(_unit_of(f_unit)).magnitude,
+                             mode="lines", name=label, line=dict(color=_MODEL)))
+    fig.update_layout(title="Force against time", xaxis_title="time t [s]", yaxis_title=f"force F [{f_unit}]",
+                      height=380, **_LAYOUT)
+    return fig
+
+
+def residual_figure(time, velocity, residual) -> go.Figure:
+    """Residual (measured minus model force) against time and against velocity."""
+    t = np.asarray(time, dtype=float)
+    v, v_unit = _in(velocity, "m/s", "velocity")
+    r, r_unit = _in(residual, "N", "force")
+    fig = make_subplots(rows=1, cols=2, subplot_titles=("residual - time", "residual - velocity"))
+    common = dict(mode="markers", marker=dict(size=3, color=_OTHER), showlegend=False)
+    fig.add_trace(go.Scatter(x=t, y=r, name="residual", **common), row=1, col=1)
+    fig.add_trace(go.Scatter(x=v, y=r, name="residual", **common), row=1, col=2)
+    fig.update_xaxes(title_text="time t [s]", row=1, col=1)
+    fig.update_xaxes(title_text=f"velocity v [{v_unit}]", row=1, col=2)
+    fig.update_yaxes(title_text=f"F - F_model [{r_unit}]", row=1, col=1)
+    fig.update_layout(title="Residual: measured minus model force", height=380, **_LAYOUT)
+    return fig

@@ -1,0 +1,146 @@
+"""Simulate page: a model (the physics damper with effects, or any model of the library) driven by an excitation.
+
+Excitations come from the virtual rig (:mod:`erdesign.rig`: sine, sine sweep, earthquake-like record) or from the
+displacement of an uploaded measurement CSV; forces from :meth:`erdesign.models.base.Model.simulate`
+(:func:`erdesign.app.state.simulate`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import streamlit as st
+
+from erdesign.app import figures, state
+from erdesign.effects import EFFECT_NAMES, EFFECTS
+from erdesign.errors import ErdesignError
+from erdesign.models.registry import get_model, model_names
+from erdesign.units import Q_, to_si
+
+__all__ = ["render", "EXCITATIONS"]
+
+EXCITATIONS = {"sine": "sine", "sweep": "sine sweep (two amplitudes and frequencies)",
+               "earthquake": "earthquake-like record", "upload": "uploaded displacement (measurement CSV)"}
+
+
+def _excitation(control_unit: str):
+    """Draw the excitation inputs; return the excitation as plain data (SI) for :func:`state.simulate` and the
+    uploaded file (or None), or None when the inputs are not complete."""
+    kind = state.widget(st.selectbox, "excitation", "sim.kind", "sine", options=list(EXCITATIONS),
+                        format_func=EXCITATIONS.get)
+    field_text = state.widget(st.text_input, "field E", "sim.field", "3 kV/mm",
+                              help="The control during the test, with its unit.")
+    try:
+        E = float(to_si(field_text, control_unit, "field"))
+        if kind == "sine":
+            c = st.columns(3)
+            X0 = to_si(state.widget(c[0].text_input, "amplitude X0", "sim.amplitude", "10 mm"), "m", "amplitude")
+            f = to_si(state.widget(c[1].text_input, "frequency f", "sim.frequency", "1 Hz"), "Hz", "frequency")
+            cycles = state.widget(c[2].number_input, "cycles", "sim.cycles", 2, min_value=1, max_value=20)
+            return (("kind", "sine"), ("amplitude", float(X0)), ("frequency", float(f)), ("field", E),
+                    ("cycles", float(cycles)), ("rate", _rate(float(f)))), None
+        if kind == "sweep":
+            c = st.columns(2)
+            A = [to_si(state.widget(c[0].text_input, f"amplitude {i + 1}", f"sim.sweep.a{i}", a), "m", "amplitude")
+                 for i, a in enumerate(("5 mm", "15 mm"))]
+            f = [to_si(state.widget(c[1].text_input, f"frequency {i + 1}", f"sim.sweep.f{i}", q), "Hz", "frequency")
+                 for i, q in enumerate(("2 Hz", "0.5 Hz"))]
+            return (("kind", "sweep"), ("amplitudes", tuple(map(float, A))), ("frequencies", tuple(map(float, f))),
+                    ("fields", (E, E)), ("cycles", 2.0), ("rate", _rate(max(f)))), None
+        if kind == "earthquake":
+            c = st.columns(3)
+            peak = to_si(state.widget(c[0].text_input, "peak displacement", "sim.peak", "10 mm"), "m", "peak")
+            duration = to_si(state.widget(c[1].text_input, "duration", "sim.duration", "8 s"), "s", "duration")
+            seed = state.widget(c[2].number_input, "random seed", "sim.seed", 0, min_value=0, max_value=10_000)
+            return (("kind", "earthquake"), ("peak", float(peak)), ("field", E), ("duration", float(duration)),
+                    ("rate", 500.0), ("seed", int(seed))), None
+    except ErdesignError as exc:
+        st.error(str(exc))
+        return None
+    upload = st.file_uploader("measurement CSV (time, displacement and force columns with units)", type=["csv"],
+                              key="sim.upload")
+    if upload is None:
+        st.info("Upload a measurement CSV: its displacement drives the model, its force is shown for comparison. "
+                "Without a field column the field above is applied.")
+        return None
+    return (("kind", "upload"), ("field", E)), upload
+
+
+def _rate(frequency: float) -> float:
+    """Sampling rate of a rig excitation: 400 samples per cycle of the fastest frequency, at least 200 Hz."""
+    return max(200.0, 400.0 * frequency)
+
+
+def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]] | None:
+    names = model_names()
+    name = state.widget(st.selectbox, "model", "sim.model", "physics", options=names,
+                        help="physics: the damper of the Size page with effects; the others are the "
+                             "phenomenological models of the library (erdesign models).")
+    effects: tuple[str, ...] = ()
+    if name == "physics":
+        effects = tuple(state.widget(st.multiselect, "effects", "sim.effects", [], options=list(EFFECT_NAMES),
+                                     help="Physical effects added to the quasi-steady damper (erdesign.effects)."))
+        for e in effects:
+            st.caption(f"**{e}**: {EFFECTS[e].mechanism}")
+        model = get_model("physics", damper=damper, effects=effects)
+    else:
+        model = get_model(name)
+        st.caption(model.source)
+    rows = [{"parameter": p.name, "value": p.default, "unit": p.unit or "-", "description": p.description}
+            for p in model.parameters]
+    key = f"sim.values.{name}.{','.join(effects)}"
+    edited = st.data_editor(rows, key=key, disabled=["parameter", "unit", "description"], hide_index=True,
+                            width="stretch")
+    try:
+        values = tuple((r["parameter"], float(r["value"])) for r in edited)
+        model.check_values(dict(values))
+    except (ErdesignError, TypeError, ValueError) as exc:
+        st.error(f"Parameter values: {exc}")
+        return None
+    return name, effects, values
+
+
+def render() -> None:
+    """Draw the Simulate page."""
+    st.title("Simulate")
+    spec = state.current_spec()
+    text = state.spec_text(spec)
+    try:
+        damper, _ = state.build_damper(text)
+    except ErdesignError as exc:
+        st.error(f"The design of the Size page is not valid: {exc}")
+        return
+    st.caption(f"Damper: {damper.name or 'design'} ({damper.geometry.configuration}); change it on the Size page.")
+    left, right = st.columns([1, 2], gap="large")
+    with left:
+        st.subheader("Model")
+        chosen = _model(damper)
+        st.subheader("Excitation")
+        excitation = _excitation(damper.fluid.control_unit)
+    with right:
+        if chosen is None or excitation is None:
+            return
+        excitation, file = excitation
+        upload, upload_name = (None, "") if file is None else (file.getvalue(), file.name)
+        name, effects, values = chosen
+        try:
+            with st.spinner("Simulating ..."):
+                sim = state.simulate(text, name, effects, values, excitation, upload, upload_name)
+        except ErdesignError as exc:
+            st.error(str(exc))
+            return
+        st.session_state["sim.last"] = {"title": sim["title"], "description": sim["description"]}
+        st.caption(f"{sim['title']}: {sim['description']}")
+        F = sim["force"]
+        peak = Q_(float(np.max(np.abs(F))), "N")
+        c = st.columns(3)
+        c[0].metric("peak force", f"{peak.to('kN').magnitude:.4g} kN")
+        c[1].metric("samples", f"{F.size}")
+        c[2].metric("duration", f"{sim['time'][-1] - sim['time'][0]:.3g} s")
+        st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=sim["title"],
+                                             measured=sim["measured"]), key="sim.fig.loops")
+        st.plotly_chart(figures.time_figure(sim["time"], F, label=sim["title"], measured=sim["measured"]),
+                        key="sim.fig.time")
+
+
+if __name__ == "__main__":
+    render()

@@ -1,0 +1,341 @@
+"""Session state and cached calls into the library, shared by the pages of the app.
+
+The current design lives in ``st.session_state`` as a *damper spec*: the content of a damper file as plain data
+(``{"name": ..., "geometry": {...}, "fluid": {...}}``, values as strings with units), exactly what
+:func:`erdesign.damper_file.damper_from_dict` reads.  The pages pass it to the cached functions below as its JSON
+text (:func:`spec_text`), so that ``st.cache_data`` hashes plain data and never a library object.
+
+Widgets keep their values across page switches through :func:`widget` (Streamlit forgets the state of a widget
+that a run does not draw; the value is kept under a second key and put back when the page is drawn again).
+
+Every cached function returns plain data or library records that pickle (``st.cache_data`` stores a copy).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import tempfile
+import warnings
+from importlib import resources
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+import streamlit as st
+
+from .. import materials
+from ..damper import Damper
+from ..damper_file import damper_from_dict, example_names, read_toml
+from ..errors import ErdesignError
+from ..geometry import Geometry
+from ..measurement import Measurement, read_measurement
+from ..units import Q_
+
+__all__ = [
+    "DEFAULT_EXAMPLE", "SPEC", "DIAGNOSIS", "widget", "forget", "example_spec", "current_spec", "set_spec",
+    "spec_text", "build_damper", "caught", "velocity_sweep", "geometry_sweep", "GEOMETRY_SWEEPS", "read_record",
+    "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
+    "render_report", "clear_caches", "material_names", "set_widget",
+]
+
+#: The damper the app opens on.
+DEFAULT_EXAMPLE = "makris"
+#: Session-state key of the current damper spec (plain data).
+SPEC = "spec"
+#: Session-state key of the diagnosis work (record, accepted effects, error history).
+DIAGNOSIS = "diagnosis"
+_KEEP = "_keep."
+
+
+# ------------------------------------------------------------------------------------------------ widgets
+def widget(factory: Callable[..., Any], label: str, key: str, default: Any, **kwargs: Any) -> Any:
+    """Draw ``factory(label, key=key, **kwargs)`` (``st.text_input``, ``st.selectbox`` ...) with a value that
+    survives page switches; ``default`` is its first value."""
+    if key not in st.session_state:
+        st.session_state[key] = st.session_state.get(_KEEP + key, default)
+    value = factory(label, key=key, **kwargs)
+    st.session_state[_KEEP + key] = value
+    return value
+
+
+def set_widget(key: str, value: Any) -> None:
+    """Give a widget drawn by :func:`widget` a new value (from a callback, or before the widget is drawn)."""
+    st.session_state[key] = value
+    st.session_state[_KEEP + key] = value
+
+
+def forget(prefix: str) -> None:
+    """Drop the kept values of every widget whose key starts with ``prefix`` (they return to their defaults)."""
+    for key in [k for k in st.session_state if k.startswith(prefix) or k.startswith(_KEEP + prefix)]:
+        del st.session_state[key]
+
+
+# ------------------------------------------------------------------------------------------------ the design
+def example_spec(name: str = DEFAULT_EXAMPLE) -> dict:
+    """The damper spec of a shipped example damper file (``makris``, ...)."""
+    if name not in example_names():
+        raise ErdesignError(f"example: unknown example {name!r}; available: {', '.join(example_names())}")
+    with resources.as_file(resources.files("erdesign.examples") / f"{name}.toml") as path:
+        return read_toml(path)
+
+
+def current_spec() -> dict:
+    """The design the user is working on (the Makris damper until the Size page changes it)."""
+    if SPEC not in st.session_state:
+        st.session_state[SPEC] = example_spec(DEFAULT_EXAMPLE)
+    return st.session_state[SPEC]
+
+
+def set_spec(spec: dict) -> None:
+    st.session_state[SPEC] = spec
+
+
+def spec_text(spec: dict) -> str:
+    """The spec as canonical JSON text: the hashable form the cached functions take."""
+    return json.dumps(spec, sort_keys=True)
+
+
+def caught(call: Callable[[], Any]) -> tuple[Any, list[str]]:
+    """``call()`` and the messages of the warnings it issued (validity warnings are shown in the page)."""
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        value = call()
+    messages = []
+    for w in seen:
+        text = " ".join(str(w.message).split())
+        if text not in messages:
+            messages.append(text)
+    return value, messages
+
+
+def build_damper(text: str) -> tuple[Damper, list[str]]:
+    """The :class:`~erdesign.damper.Damper` of a spec (JSON text) and the validity warnings building it gave.
+
+    Raises :class:`~erdesign.errors.ErdesignError` (naming the key) for an invalid spec.
+    """
+    return caught(lambda: damper_from_dict(json.loads(text), source="design"))
+
+
+def material_names() -> list[str]:
+    return materials.names()
+
+
+# ------------------------------------------------------------------------------------------------ sizing
+@st.cache_data(show_spinner=False, max_entries=64)
+def velocity_sweep(text: str, v_max: float, fields: tuple[float, ...], points: int = 81):
+    """:func:`erdesign.report.sweep.velocity_sweep` of the spec from 0 to ``v_max`` [m/s] at ``fields`` (SI)."""
+    from ..report.sweep import velocity_sweep as sweep
+
+    damper, _ = build_damper(text)
+    return caught(lambda: sweep(damper, np.linspace(0.0, v_max, points), np.asarray(fields, dtype=float)))[0]
+
+
+#: Geometry values the sweep explorer varies: key -> label.
+GEOMETRY_SWEEPS = {"gap": "gap h", "duct_length": "duct length L", "piston_diameter": "piston diameter Dp"}
+
+
+@st.cache_data(show_spinner=False, max_entries=64)
+def geometry_sweep(text: str, parameter: str, values: tuple[float, ...], velocity: float, field: float) -> dict:
+    """Design figures of the spec with one geometry value (``GEOMETRY_SWEEPS``) replaced by each of ``values`` [m].
+
+    Returns SI arrays: ``value``, ``force``, ``zero_field_force``, ``dynamic_range``, ``reynolds``, ``gap_ratio``
+    (NaN where the geometry is not buildable) and ``invalid`` (the first reason a value was rejected, or "").
+    Each point is :meth:`erdesign.damper.Damper.state` of the damper with that geometry.
+    """
+    if parameter not in GEOMETRY_SWEEPS:
+        raise ErdesignError(f"sweep: unknown parameter {parameter!r}; choose one of {', '.join(GEOMETRY_SWEEPS)}")
+    damper, _ = build_damper(text)
+    g = damper.geometry
+    n = len(values)
+    out = {k: np.full(n, np.nan) for k in ("force", "zero_field_force", "dynamic_range", "reynolds", "gap_ratio")}
+    invalid = ""
+    for i, value in enumerate(values):
+        geo = {k: getattr(g, k) for k in ("duct_length", "duct_mean_diameter", "gap", "piston_diameter",
+                                          "rod_diameter")}
+        geo[parameter] = float(value)
+        if g.configuration == "mixed":
+            del geo["duct_mean_diameter"]            # the mixed gap's mean diameter follows Dp + h
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")      # the thin-gap warning: the sweep shows h/d instead
+                geometry = Geometry.create(configuration=g.configuration, ducts=g.ducts,
+                                           **{k: Q_(v, "m") for k, v in geo.items()})
+                d = dataclasses.replace(damper, geometry=geometry)
+                s, s0 = d.state(velocity, field), d.state(velocity, 0.0)
+        except ErdesignError as exc:
+            invalid = invalid or f"{Q_(value, 'm').to('mm').magnitude:.4g} mm: {exc}"
+            continue
+        out["force"][i], out["zero_field_force"][i] = s.force, s0.force
+        out["dynamic_range"][i] = s.force / s0.force if s0.force != 0 else np.nan
+        out["reynolds"][i], out["gap_ratio"][i] = s.reynolds, geometry.gap_ratio
+    out["value"] = np.asarray(values, dtype=float)
+    out["invalid"] = invalid
+    return out
+
+
+# ------------------------------------------------------------------------------------------------ records
+@st.cache_data(show_spinner=False, max_entries=32)
+def read_record(data: bytes, name: str) -> Measurement:
+    """A measurement CSV given as bytes (an upload), read by :func:`erdesign.measurement.read_measurement`.
+
+    Raises :class:`~erdesign.measurement.MeasurementError` whose message starts with ``name``.
+    """
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / (Path(name).name or "upload.csv")
+        path.write_bytes(data)
+        record = read_measurement(path)
+    return record
+
+
+#: Built-in records made on the virtual rig (:mod:`erdesign.rig`) with the Makris damper, offered while the package
+#: ships no example measurements: name -> (hidden effects, true fluid over nominal).  Sine sweeps at two
+#: amplitudes, frequencies and fields, 2 % force noise.
+RIG_EXAMPLES = {
+    "rig: makris, hidden effect A": ({"seal_friction": {"friction_force": 400.0}}, 1.2),
+    "rig: makris, hidden effect B": ({"gas_spring": {"gas_preload": 300.0, "gas_stiffness": 3e4}}, 0.9),
+}
+
+
+def example_records() -> list[str]:
+    """Names of the built-in example measurements: the CSV files of ``erdesign/examples/measurements`` or, while
+    there are none, the virtual-rig records of :data:`RIG_EXAMPLES`."""
+    try:
+        folder = resources.files("erdesign.examples") / "measurements"
+        files = sorted(p.name for p in folder.iterdir() if p.name.endswith(".csv"))
+    except (FileNotFoundError, NotADirectoryError):
+        files = []
+    return files or list(RIG_EXAMPLES)
+
+
+def example_damper_for(data: bytes) -> str | None:
+    """The shipped example damper a built-in record was measured on, or None.
+
+    The rig writes ``# virtual rig: <damper name>; ...`` as the first line of its records; the name is matched
+    against the ``name`` of the example damper files.
+    """
+    first = data[:400].decode("utf-8", "replace").splitlines()[0] if data else ""
+    if not first.startswith("# virtual rig:"):
+        return None
+    damper_name = first[len("# virtual rig:"):].split(";")[0].strip()
+    for example in example_names():
+        if example_spec(example).get("name") == damper_name:
+            return example
+    return None
+
+
+@st.cache_data(show_spinner=False, max_entries=8)
+def example_record_bytes(name: str) -> bytes:
+    """The CSV text of a built-in example measurement (:func:`example_records`)."""
+    if name not in RIG_EXAMPLES:
+        return (resources.files("erdesign.examples") / "measurements" / name).read_bytes()
+    from ..damper_file import load_example
+    from ..measurement import write_measurement
+    from ..rig import run_rig, sweep
+
+    hidden, viscosity_factor = RIG_EXAMPLES[name]
+    rig = run_rig(load_example("makris"), sweep([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500),
+                  hidden=hidden, viscosity_factor=viscosity_factor, force_noise=0.02, seed=2,
+                  name=name.replace(" ", "_"))
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "rig.csv"
+        write_measurement(path, rig.record, units={"displacement": "mm", "field": "kV/mm"},
+                          comment="virtual rig (erdesign.rig); the hidden effect is for the diagnosis to find")
+        return path.read_bytes()
+
+
+# ------------------------------------------------------------------------------------------------ simulate
+@st.cache_data(show_spinner=False, max_entries=32)
+def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple[tuple[str, float], ...],
+             excitation: tuple[tuple[str, Any], ...], upload: bytes | None = None, upload_name: str = "") -> dict:
+    """Force of a model (``physics`` with ``effects``, or a registry model) for an excitation.
+
+    ``excitation`` is plain data: ``kind`` (``sine``, ``sweep``, ``earthquake`` or ``upload``) and its numbers
+    (SI), handed to :mod:`erdesign.rig` (``upload``: the displacement of a measurement CSV).  Returns SI arrays
+    ``time``, ``displacement``, ``velocity``, ``control``, ``force``, the measured force of an upload (or None),
+    the parameter values used, and the description of the motion.
+    """
+    from .. import rig
+    from ..models.registry import get_model
+
+    damper, _ = build_damper(text)
+    ex = dict(excitation)
+    kind = ex.pop("kind")
+    measured = None
+    if kind == "upload":
+        record = read_record(upload, upload_name)
+        if record.control_kind is None:
+            record = dataclasses.replace(record, control=np.full(len(record), float(ex["field"])),
+                                         control_kind=damper.fluid.control)
+        measured = record.force
+        description = f"displacement of {upload_name} ({len(record)} samples)"
+    else:
+        motion = {"sine": rig.sine, "sweep": rig.sweep, "earthquake": rig.earthquake_motion}[kind](**ex)
+        record = Measurement(time=motion.time, displacement=motion.displacement, force=None,
+                             velocity=motion.velocity, acceleration=motion.acceleration, control=motion.control,
+                             control_kind=damper.fluid.control, name=kind)
+        description = motion.description
+    if model_name == "physics":
+        model = get_model("physics", damper=damper, effects=effects)
+    else:
+        model = get_model(model_name)
+        model.control_reference = damper.fluid.reference_field   # u = 1 at the fluid's reference control
+    used = model.check_values(dict(values))
+    force = model.simulate(record, used)
+    return {"time": record.time, "displacement": record.displacement, "velocity": record.velocity,
+            "control": record.control, "force": force, "measured": measured, "values": used,
+            "units": {p.name: p.unit for p in model.parameters}, "description": description,
+            "title": model.title or model.name}
+
+
+# ------------------------------------------------------------------------------------------------ diagnosis
+@st.cache_data(show_spinner=False, max_entries=16)
+def run_diagnosis(text: str, data: bytes, name: str, effects: tuple[str, ...]):
+    """:func:`erdesign.diagnose.diagnose` of the record (CSV bytes) against the spec's damper with ``effects``.
+
+    Returns the :class:`~erdesign.diagnose.Diagnosis`, the record and the calibrated model's force on the whole
+    record, [N].
+    """
+    from ..diagnose import diagnose
+
+    damper, _ = build_damper(text)
+    record = read_record(data, name)
+    diagnosis = caught(lambda: diagnose(damper, record, effects))[0]
+    model = diagnosis.baseline
+    return diagnosis, record, model.model.simulate(record, model.values)
+
+
+# ------------------------------------------------------------------------------------------------ report
+@st.cache_data(show_spinner=False, max_entries=8)
+def render_report(text: str, v_max: float, fields: tuple[float, ...], comparison: tuple | None,
+                  history: tuple[tuple[int, str, float], ...], fmt: str) -> str:
+    """The engineering report of the spec (:func:`erdesign.report.build_report`) as HTML or Markdown text.
+
+    ``comparison`` is ``(label, esr, samples, x, v, F_measured, F_model)`` with SI arrays as tuples, or None.
+    """
+    from ..report import build_report, render_html, render_markdown
+    from ..report.builder import ErrorHistoryStep, MeasurementComparison
+
+    damper, _ = build_damper(text)
+    unit = damper.fluid.control_unit
+    comp = None
+    if comparison is not None:
+        label, esr_value, samples, x, v, Fm, Fmod = comparison
+        Fm, Fmod = np.asarray(Fm), np.asarray(Fmod)
+        comp = MeasurementComparison(
+            label=label, esr=esr_value, samples=samples,
+            rms_error=Q_(float(np.sqrt(np.mean((Fm - Fmod) ** 2))), "N"),
+            peak_force_measured=Q_(float(np.max(np.abs(Fm))), "N"),
+            peak_force_model=Q_(float(np.max(np.abs(Fmod))), "N"),
+            displacement=np.asarray(x), velocity=np.asarray(v), force_measured=Fm, force_model=Fmod)
+    report = caught(lambda: build_report(
+        damper, velocity_range=(Q_(0.0, "m/s"), Q_(v_max, "m/s")), fields=[Q_(f, unit) for f in fields],
+        comparison=comp, history=[ErrorHistoryStep(*h) for h in history] or None))[0]
+    return render_html(report) if fmt == "html" else render_markdown(report)
+
+
+def clear_caches() -> None:
+    """Empty every cache of the app (tests call it between tests)."""
+    for fn in (velocity_sweep, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
+               render_report):
+        fn.clear()

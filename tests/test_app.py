@@ -1,0 +1,281 @@
+"""The Streamlit app through Streamlit's AppTest (issue 6): every page, inputs change outputs, bad uploads give a
+message (never a traceback), figures checked through their data, state survives page switches.
+
+The app holds no physics, so most expected numbers come from the library; where a published number or a limit
+applies it is used instead and cited at the assert.  Caches are cleared before each test.
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import streamlit as st
+from streamlit.testing.v1 import AppTest
+
+from erdesign import load_example
+from erdesign.app import state
+from erdesign.units import Q_
+
+MAIN = str(Path(state.__file__).with_name("main.py"))
+#: Generous per-run limit: the first run imports scipy and plotly; each test still takes a few seconds.
+TIMEOUT = 60
+#: Metrics show 4 significant figures (erdesign.report.formatting.SIGNIFICANT_DIGITS): half a unit of the 4th.
+FOUR_FIGURES = 5e-4
+
+
+@pytest.fixture(autouse=True)
+def _clear_caches():
+    state.clear_caches()
+    st.cache_data.clear()
+    yield
+
+
+@pytest.fixture
+def app() -> AppTest:
+    at = AppTest.from_file(MAIN, default_timeout=TIMEOUT).run()
+    assert not at.exception, at.exception
+    return at
+
+
+def metric(at: AppTest, label: str):
+    """A metric's value as a quantity (or float)."""
+    (m,) = [m for m in at.metric if m.label == label]
+    return Q_(m.value.replace("·", "*")) if " " in m.value else float(m.value)
+
+
+def figure(at: AppTest, key_part: str) -> dict:
+    """The plotly figure (as JSON data) of the chart whose key contains ``key_part``."""
+    charts = [c for c in at.get("plotly_chart") if key_part in c.proto.id]
+    assert charts, f"no chart {key_part!r}"
+    return json.loads(charts[0].proto.spec)
+
+
+def values(data) -> np.ndarray:
+    """Trace data as an array: plotly 6+ stores numpy arrays as ``{"dtype": ..., "bdata": base64}``."""
+    if isinstance(data, dict) and "bdata" in data:
+        a = np.frombuffer(base64.b64decode(data["bdata"]), dtype=np.dtype(data["dtype"]))
+        return a.reshape(data["shape"]) if "shape" in data else a
+    return np.asarray(data, dtype=float)
+
+
+def no_error(at: AppTest) -> None:
+    assert not at.exception, at.exception
+    assert not at.error, [e.value for e in at.error]
+
+
+# ------------------------------------------------------------------------------------------------ Size
+def test_opens_on_the_makris_damper(app):
+    no_error(app)
+    assert app.text_input(key="size.geo.gap").value == "0.8 mm"
+    assert app.text_input(key="size.geo.duct_length").value == "54.6 mm"
+    # Makris et al. (seed 004) eq 15: C = 120 kN s/m for this damper (the library gives 120.3).
+    assert metric(app, "damping constant C").to("kN*s/m").magnitude == pytest.approx(120.0, rel=0.01)
+    # The design point is the library's Damper.size, shown to 4 figures.
+    r = load_example("makris").size(velocity=app.text_input(key="size.velocity").value, field="3 kV/mm")
+    assert metric(app, "force F").to("N").magnitude == pytest.approx(r.force.to("N").magnitude, rel=FOUR_FIGURES)
+    assert metric(app, "dynamic range F(E)/F(0)") == pytest.approx(r.dynamic_range, rel=FOUR_FIGURES)
+    assert app.success, "the validity checks should pass for the Makris damper"
+
+
+def test_size_gap_changes_force_and_curves(app):
+    before = metric(app, "force F").to("N").magnitude
+    app.text_input(key="size.geo.gap").set_value("0.5 mm").run()
+    no_error(app)
+    after = metric(app, "force F").to("N").magnitude
+    # A smaller gap raises the Bingham pressure drop (viscous part ~ 1/h^3, yield part ~ 1/h): more force.
+    assert after > 2 * before
+    fig = figure(app, "size.fig.force")
+    assert [t["name"] for t in fig["data"]] == ["E = 0 kV/mm", "E = 1 kV/mm", "E = 2 kV/mm", "E = 3 kV/mm"]
+    # The top of each curve is the damper's force at the top velocity (50 mm/s) and that field, in kN.
+    damper, _ = state.build_damper(state.spec_text(app.session_state[state.SPEC]))
+    expected = damper.state(0.05, np.array([0.0, 1e6, 2e6, 3e6])).force / 1e3
+    got = [values(t["y"])[-1] for t in fig["data"]]
+    assert got == pytest.approx(expected, rel=1e-12)     # the same numbers, converted N -> kN
+
+
+def test_size_bad_value_shows_a_message(app):
+    app.text_input(key="size.geo.gap").set_value("0.8 kg").run()
+    assert not app.exception
+    assert any("geometry.gap" in e.value for e in app.error)
+
+
+def test_size_validity_warning(app):
+    # Makris eq 1: Re = Q/(pi d nu) is about 0.04 at 25 mm/s; 1000 times the speed with a thin fluid leaves the
+    # laminar range (Re > 2300), which must be said in the page.
+    app.text_input(key="size.fluid.viscosity").set_value("0.001 Pa*s").run()
+    app.text_input(key="size.fluid.viscosity_at_reference_field").set_value("").run()
+    app.text_input(key="size.velocity").set_value("5 m/s").run()
+    assert not app.exception
+    assert metric(app, "Reynolds number Re") > 2300
+    assert any("Reynolds" in w.value for w in app.warning)
+
+
+def test_material_picker_and_override(app):
+    app.selectbox(key="size.material").select("lord-mrf-132dg").run()
+    no_error(app)
+    assert app.text_input(key="size.field").value == "250 kA/m"
+    spec = app.session_state[state.SPEC]
+    # Only what differs from the material is written, so the material's yield curve stays in force.
+    assert spec["fluid"] == {"material": "lord-mrf-132dg", "seal_friction": "112 N"}
+    F0 = metric(app, "zero-field force F(0)").to("N").magnitude
+    app.text_input(key="size.fluid.viscosity").set_value("0.224 Pa*s").run()
+    no_error(app)
+    assert app.session_state[state.SPEC]["fluid"]["viscosity"] == "0.224 Pa*s"
+    # Zero field: F = C v + F_s with C proportional to the viscosity (Makris eq 15): doubling eta doubles C v.
+    F0_twice = metric(app, "zero-field force F(0)").to("N").magnitude
+    assert F0_twice - 112.0 == pytest.approx(2 * (F0 - 112.0), rel=2 * FOUR_FIGURES)
+
+
+def test_mixed_example(app):
+    app.selectbox(key="size.example").select("mr_mixed").run()
+    no_error(app)
+    assert app.radio(key="size.configuration").value == "mixed"
+    assert "size.geo.duct_mean_diameter" not in [t.key for t in app.text_input]
+    r = load_example("mr_mixed").size(velocity=app.text_input(key="size.velocity").value, field="200 kA/m")
+    assert metric(app, "force F").to("N").magnitude == pytest.approx(r.force.to("N").magnitude, rel=FOUR_FIGURES)
+
+
+def test_sweep_explorer(app):
+    app.text_input(key="size.sweep.from.gap").set_value("0.4 mm")
+    app.text_input(key="size.sweep.to.gap").set_value("1.6 mm")
+    app.slider(key="size.sweep.points").set_value(13).run()
+    no_error(app)
+    fig = figure(app, "size.fig.tradeoff")
+    force, zero, dyn, re_ = fig["data"]
+    x = values(force["x"])
+    assert x[0] == pytest.approx(0.4) and x[-1] == pytest.approx(1.6)        # mm
+    i = int(np.argmin(np.abs(x - 0.8)))
+    # Round trip: the sweep point at the design's own gap is the design point.
+    design = metric(app, "force F").to("kN").magnitude
+    assert values(force["y"])[i] == pytest.approx(design, rel=FOUR_FIGURES)
+    # Makris eq 1: Re = v_mean h / nu = Q / (pi d nu) does not depend on the gap at a given piston speed.
+    Re = values(re_["y"])
+    assert np.ptp(Re) == pytest.approx(0.0, abs=1e-12 * Re.max())
+    # Zero field, thin gap (h/d <= 0.1): F(0) - F_s = C v with C ~ 1/h^3 (Makris eq 15), so (F(0) - F_s) h^3 is
+    # the same at every gap of the sweep (to rounding: the same formula, evaluated at each h).
+    thin = x / 14.3 <= 0.1
+    F0 = values(zero["y"]) * 1e3 - 112.0                 # kN -> N, minus the seal friction of examples/makris.toml
+    assert np.ptp(F0[thin] * x[thin] ** 3) == pytest.approx(0.0, abs=1e-9 * np.max(F0[thin] * x[thin] ** 3))
+    assert values(dyn["y"]) == pytest.approx(values(force["y"]) / values(zero["y"]), rel=1e-12)
+
+
+def test_state_survives_page_switches(app):
+    app.text_input(key="size.velocity").set_value("1 in/s").run()
+    app.switch_page("simulate.py").run()
+    assert not app.exception
+    app.switch_page("size.py").run()
+    assert app.text_input(key="size.velocity").value == "1 in/s"
+    # Damper.size's doctest: 6.07 kN at 1 in/s and 3 kV/mm.
+    assert metric(app, "force F").to("kN").magnitude == pytest.approx(6.07, abs=0.005)
+
+
+# ------------------------------------------------------------------------------------------------ Simulate
+def test_simulate_sine(app):
+    app.switch_page("simulate.py").run()
+    no_error(app)
+    fig = figure(app, "sim.fig.loops")
+    v = values(fig["data"][1]["x"])                # mm/s
+    # Peak velocity of x = X0 sin(2 pi f t): X0 * 2 pi f = 10 mm * 2 pi * 1 Hz (sampled at the peak, t = 0).
+    assert v.max() == pytest.approx(20 * math.pi, rel=1e-4)
+    peak = metric(app, "peak force").to("N").magnitude
+    app.text_input(key="sim.amplitude").set_value("20 mm").run()
+    no_error(app)
+    assert metric(app, "peak force").to("N").magnitude > peak
+
+
+def test_simulate_library_model_and_effects(app):
+    app.switch_page("simulate.py").run()
+    app.multiselect(key="sim.effects").select("seal_friction").run()
+    no_error(app)
+    assert "seal_friction" in app.caption[0].value or any("seal_friction" in c.value for c in app.caption)
+    app.selectbox(key="sim.model").select("bingham").run()
+    no_error(app)
+    fig = figure(app, "sim.fig.loops")
+    F = values(fig["data"][0]["y"])
+    assert np.all(np.isfinite(F)) and np.ptp(F) > 0
+
+
+def test_simulate_bad_upload(app):
+    app.switch_page("simulate.py").run()
+    app.selectbox(key="sim.kind").select("upload").run()
+    app.file_uploader(key="sim.upload").set_value(("motion.csv", b"time [s],displacement [mm]\n0,1\n1,2\n",
+                                                   "text/csv")).run()
+    assert not app.exception
+    assert any("missing required column 'force" in e.value for e in app.error)
+
+
+# ------------------------------------------------------------------------------------------------ Compare
+def test_compare_bad_upload(app):
+    app.switch_page("compare.py").run()
+    app.radio(key="cmp.source").set_value("upload a measurement CSV").run()
+    app.file_uploader(key="cmp.upload").set_value(("broken.csv", b"time,displacement,force\n1,2,3\n",
+                                                   "text/csv")).run()
+    assert not app.exception
+    (err,) = app.error
+    assert "broken.csv" in err.value and "unit in square brackets" in err.value
+
+
+def test_compare_diagnose_add_effect_refit(app):
+    app.switch_page("compare.py").run()
+    examples = app.selectbox(key="cmp.example").options
+    example = next(e for e in examples if "seal_friction" in e) if any("seal_friction" in e for e in examples) \
+        else examples[0]
+    app.selectbox(key="cmp.example").select(example).run()
+    app.button(key="cmp.run").click().run()
+    no_error(app)
+    # The record hides seal friction (examples/measurements/make_examples.py or state.RIG_EXAMPLES): found, named
+    # first in the ranking, explained in words.
+    assert any("Missing effect: seal_friction" in s.value for s in app.success)
+    ranking = app.table[0].value
+    assert ranking["effect"].iloc[0] == "seal_friction"
+    assert any("seal friction" in m.value for m in app.markdown)
+    esr0 = float(app.metric[0].value)
+    app.button(key="cmp.refit").click().run()
+    no_error(app)
+    esr1 = float(app.metric[0].value)
+    assert esr1 < esr0 / 3                                   # the hidden effect carried most of the error
+    bars = figure(app, "cmp.fig.history")["data"][0]
+    assert list(bars["x"]) == ["0: baseline", "1: seal_friction"]
+    assert list(values(bars["y"])) == pytest.approx([esr0, esr1], rel=FOUR_FIGURES)
+    params = app.dataframe[-2].value if len(app.dataframe) > 1 else app.dataframe[0].value
+    rows = {r["parameter"]: r for r in params.to_dict("records")} if "parameter" in params else {}
+    assert "friction_force" in rows and rows["friction_force"]["uncertainty (1 σ)"].startswith("± ")
+    assert rows["friction_force"]["value"].endswith(" N")
+
+
+# ------------------------------------------------------------------------------------------------ Report
+def test_report_page(app):
+    app.switch_page("report.py").run()
+    no_error(app)
+    buttons = app.get("download_button")
+    assert buttons and "makris-1996-report.html" in buttons[0].proto.label
+    html = state.render_report(state.spec_text(state.example_spec("makris")), 0.05, (1e6, 2e6, 3e6), None, (),
+                               "html")
+    assert "120.3 kN·s/m" in html                             # Makris eq 15, as on the Size page
+    app.radio(key="rep.format").set_value("md").run()
+    no_error(app)
+    assert "makris-1996-report.md" in app.get("download_button")[0].proto.label
+
+
+# ------------------------------------------------------------------------------------------------ CLI
+def test_cli_app_runs_streamlit_on_the_package_app(monkeypatch):
+    import subprocess
+
+    from click.testing import CliRunner
+
+    from erdesign.cli import app as cli_app
+    from erdesign.cli.main import cli
+
+    calls = []
+    monkeypatch.setattr(subprocess, "call", lambda cmd: calls.append(cmd) or 0)
+    result = CliRunner().invoke(cli, ["app", "--port", "8765", "--headless"])
+    assert result.exit_code == 0, result.output
+    (cmd,) = calls
+    assert cmd[1:4] == ["-m", "streamlit", "run"] and Path(cmd[4]) == Path(MAIN)
+    assert cmd[5:] == ["--server.port", "8765", "--server.headless", "true"]
+    assert cli_app.streamlit_command()[4] == cmd[4]
