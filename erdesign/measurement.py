@@ -392,7 +392,8 @@ def derivatives(t, x, *, window: int | None = None, polyorder: int = 3):
     return v, a
 
 
-def _parse_header(cells: list[str], lineno: int, path: str) -> list[tuple[str, str, Any]]:
+def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool = True
+                  ) -> list[tuple[str, str, Any]]:
     columns = []
     seen: dict[str, int] = {}
     for col, cell in enumerate(cells, start=1):
@@ -425,7 +426,8 @@ def _parse_header(cells: list[str], lineno: int, path: str) -> list[tuple[str, s
                 raise MeasurementError(f"{where}: unit {unit!r} is {dimension_name(q.dimensionality)}; a '{name}' "
                                        f"column takes {allowed}")
         columns.append((name, unit, kind))
-    missing = [c for c in ("time", "displacement", "force") if c not in seen]
+    required = ("time", "displacement", "force") if require_force else ("time", "displacement")
+    missing = [c for c in required if c not in seen]
     if missing:
         raise MeasurementError(f"{path}: line {lineno}: missing required column '{missing[0]} [...]'")
     controls = [c for c in seen if c in CONTROL_COLUMNS]
@@ -435,8 +437,11 @@ def _parse_header(cells: list[str], lineno: int, path: str) -> list[tuple[str, s
     return columns
 
 
-def read_measurement(path: str | Path, *, window: int | None = None) -> Measurement:
+def read_measurement(path: str | Path, *, window: int | None = None, require_force: bool = True) -> Measurement:
     """Read a measurement CSV file (shared/CONTRACTS.md section 2) into SI arrays.
+
+    With ``require_force=False`` a file without a force column is read as a motion record (``force`` is None), e.g.
+    a displacement history to simulate a model on.
 
     Raises :class:`MeasurementError` naming the line and column of the first problem: no units in the header,
     unknown unit or column, wrong dimension, non-numeric or empty cell, NaN or infinity, wrong number of cells,
@@ -457,7 +462,7 @@ def read_measurement(path: str | Path, *, window: int | None = None) -> Measurem
         raise MeasurementError(f"{label}: empty file (expected a header line such as 'time [s],displacement [mm],"
                                "force [N]')")
     header_line, header = rows[0]
-    columns = _parse_header(header, header_line, label)
+    columns = _parse_header(header, header_line, label, require_force)
     data = np.empty((len(rows) - 1, len(columns)))
     for r, (lineno, cells) in enumerate(rows[1:]):
         if len(cells) != len(columns):
@@ -490,7 +495,7 @@ def read_measurement(path: str | Path, *, window: int | None = None) -> Measurem
                              f"(time)")
     control_name = next((c for c in si if c in CONTROL_COLUMNS), None)
     m = Measurement.from_arrays(
-        t, si["displacement"], si["force"],
+        t, si["displacement"], si.get("force"),
         control=si.get(control_name) if control_name else None, control_kind=kind,
         velocity=si.get("velocity"), temperature=si.get("temperature"), name=path.name, window=window)
     return replace(m, units=units)

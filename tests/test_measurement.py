@@ -168,3 +168,15 @@ def test_derivatives_of_an_unevenly_sampled_record():
     v, _ = derivatives(t, x)
     # Resampled onto a uniform grid and back: interpolation error of ~(dt)^2 x'' ~ 1e-4 relative is the limit.
     assert np.max(np.abs(v - 2 * np.pi * 3 * np.cos(2 * np.pi * 3 * t))[100:-100]) / (6 * np.pi) < 2e-3
+
+
+def test_motion_record_without_force(tmp_path):
+    # A displacement history to simulate on: the force column may be left out when asked for.
+    text = "time [s],displacement [mm]\n" + "\n".join(f"{i / 100},{i}" for i in range(10))
+    p = write(tmp_path, text)
+    with pytest.raises(MeasurementError, match="missing required column 'force"):
+        read_measurement(p)
+    m = read_measurement(p, require_force=False)
+    assert m.force is None and m.displacement[3] == pytest.approx(0.003)
+    with pytest.raises(MeasurementError, match="has no force column"):
+        m.require_force()

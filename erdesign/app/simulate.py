@@ -56,11 +56,12 @@ def _excitation(control_unit: str):
     except ErdesignError as exc:
         st.error(str(exc))
         return None
-    upload = st.file_uploader("measurement CSV (time, displacement and force columns with units)", type=["csv"],
+    upload = st.file_uploader("displacement CSV (time and displacement columns with units; force optional)",
+                              type=["csv"],
                               key="sim.upload")
     if upload is None:
-        st.info("Upload a measurement CSV: its displacement drives the model, its force is shown for comparison. "
-                "Without a field column the field above is applied.")
+        st.info("Upload a CSV with time and displacement columns: the displacement drives the model; a force column, "
+                "if there is one, is shown for comparison. Without a field column the field above is applied.")
         return None
     return (("kind", "upload"), ("field", E)), upload
 

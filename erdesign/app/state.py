@@ -176,15 +176,17 @@ def geometry_sweep(text: str, parameter: str, values: tuple[float, ...], velocit
 
 # ------------------------------------------------------------------------------------------------ records
 @st.cache_data(show_spinner=False, max_entries=32)
-def read_record(data: bytes, name: str) -> Measurement:
+def read_record(data: bytes, name: str, require_force: bool = True) -> Measurement:
     """A measurement CSV given as bytes (an upload), read by :func:`erdesign.measurement.read_measurement`.
+
+    ``require_force=False`` accepts a displacement-only record (Simulate's uploaded displacement).
 
     Raises :class:`~erdesign.measurement.MeasurementError` whose message starts with ``name``.
     """
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / (Path(name).name or "upload.csv")
         path.write_bytes(data)
-        record = read_measurement(path)
+        record = read_measurement(path, require_force=require_force)
     return record
 
 
@@ -263,7 +265,7 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
     kind = ex.pop("kind")
     measured = None
     if kind == "upload":
-        record = read_record(upload, upload_name)
+        record = read_record(upload, upload_name, require_force=False)
         if record.control_kind is None:
             record = dataclasses.replace(record, control=np.full(len(record), float(ex["field"])),
                                          control_kind=damper.fluid.control)
