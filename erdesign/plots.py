@@ -101,9 +101,16 @@ def sine_loops_figure(loops) -> go.Figure:
 
 
 def error_history_figure(history: Sequence[Any]) -> go.Figure:
-    """ESR after each step of a diagnosis (bars labelled with the effect added)."""
-    fig = go.Figure(go.Bar(x=[f"{h.step}: {h.effect}" for h in history], y=[h.esr for h in history]))
-    fig.update_layout(title="Error history", xaxis_title="step: effect added", yaxis_title="ESR [-]", **_LAYOUT)
+    """ESR after each step of a diagnosis (bars labelled with the effect added).
+
+    The ESR axis is logarithmic: each added effect typically divides the error by a factor, and a linear axis would
+    hide every step after the first.
+    """
+    fig = go.Figure(go.Bar(x=[f"{h.step}: {h.effect}" for h in history], y=[h.esr for h in history],
+                           text=[f"{h.esr:.3g}" for h in history], textposition="outside"))
+    fig.update_layout(title="Error history", xaxis_title="step: effect added", yaxis_title="ESR [-] (log scale)",
+                      **_LAYOUT)
+    fig.update_yaxes(type="log")
     return fig
 
 
