@@ -42,3 +42,12 @@ def test_readme_starts_with_the_two_setup_commands():
     assert text.index(first_two[0]) < text.index("##")          # before any section
     ci = (ROOT / ".ci" / "run").read_text()
     assert "second bash block" in ci
+
+
+def test_images_in_docs_exist_and_are_png():
+    # Every image a doc shows is committed (made by a script under docs/) and is a real PNG.
+    for path in DOCS:
+        for target in re.findall(r"!\[[^\]]*\]\(([^)]+)\)", path.read_text()):
+            image = (path.parent / target).resolve()
+            assert image.exists(), f"{path.name}: missing image {target}"
+            assert image.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", f"{path.name}: {target} is not a PNG"
