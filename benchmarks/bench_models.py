@@ -5,16 +5,21 @@
 2. Identification of the six-parameter Kamath-Wereley model on 20,000 samples (one core).
 """
 
+import os
 import time
 
-import numpy as np
-from scipy.integrate import solve_ivp
+# "one core": small least-squares SVDs run ~40x slower with multithreaded BLAS on a busy 2-core machine
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
-from erdesign.fit import fit
-from erdesign.measurement import Measurement
-from erdesign.models.bouc_wen import SPENCER_PASSIVE
-from erdesign.models.kamath_wereley import KAMATH_WERELEY_TABLE1
-from erdesign.models.registry import get_model
+import numpy as np  # noqa: E402
+from scipy.integrate import solve_ivp  # noqa: E402
+
+from erdesign.fit import fit  # noqa: E402
+from erdesign.measurement import Measurement  # noqa: E402
+from erdesign.models.bouc_wen import SPENCER_PASSIVE  # noqa: E402
+from erdesign.models.kamath_wereley import KAMATH_WERELEY_TABLE1  # noqa: E402
+from erdesign.models.registry import get_model  # noqa: E402
 
 
 def bouc_wen_speed(n=100_000, duration=100.0):

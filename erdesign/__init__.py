@@ -17,7 +17,9 @@ The functions in this namespace take pint quantities or strings and return quant
 724.7 kPa
 """
 
-from . import constitutive, design, diagnose, effects, field_laws, flow, models, plots, report
+# Subpackages and workflow modules; functions named like a module (design.design, diagnose.diagnose,
+# identify.identify) are deliberately not lifted here, so that the module stays reachable by its name.
+from . import constitutive, design, diagnose, effects, field_laws, flow, identify, models, plots, report
 from .api import (
     annulus_bingham_flow_rate,
     annulus_bingham_pressure_drop,
@@ -39,6 +41,8 @@ from .damper import Damper, QuasiSteadyState, SineResponse, SizingResult
 from .damper_file import load_damper, load_example
 from .diagnose import calibrate, improve
 from .fit import FitResult, fit
+from .identify import cross_validation, identify_joint
+from .inverse import inverse_control
 from .measurement import Measurement, read_measurement, write_measurement
 from .models.registry import get_model, model_names
 from .physics import PhysicsDamper
@@ -55,7 +59,8 @@ __all__ = [
     "Damper", "QuasiSteadyState", "SineResponse", "SizingResult", "Fluid", "Geometry",
     "load_damper", "load_example",
     "Measurement", "read_measurement", "write_measurement",
-    "fit", "FitResult", "get_model", "model_names", "PhysicsDamper", "calibrate", "improve", "run_rig",
+    "fit", "FitResult", "get_model", "model_names", "identify_joint", "cross_validation",
+    "inverse_control", "PhysicsDamper", "calibrate", "improve", "run_rig",
     "annulus_pressure_drop", "bingham_flow_rate", "bingham_number", "bingham_plug_fraction",
     "bingham_pressure_drop", "slit_pressure_drop", "thin_gap_error", "yield_pressure_drop",
     "makris_stress", "maxwell_stress",
@@ -63,5 +68,6 @@ __all__ = [
     "annulus_bingham_pressure_drop", "annulus_bingham_flow_rate",
     "energy_per_cycle", "equivalent_damping", "esr",
     "ErdesignError", "UnitError", "DamperFileError", "ErdesignWarning", "ValidityWarning",
-    "Q_", "ureg", "flow", "constitutive", "design", "diagnose", "effects", "field_laws", "models", "plots", "report",
+    "Q_", "ureg", "flow", "constitutive", "design", "diagnose", "effects", "field_laws", "identify", "models", "plots",
+    "report",
 ]

@@ -1,6 +1,7 @@
 """``erdesign models`` and ``erdesign identify`` (shared/CONTRACTS.md section 3)."""
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -61,3 +62,41 @@ def test_identify_physics_needs_the_module_or_a_damper(capsys, bingham_csv):
     code, out, err = run(capsys, "identify", str(bingham_csv), "--model", "physics", "--json")
     assert code == 1 and out == ""
     assert "erdesign.physics" in err or "--damper" in err
+
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "erdesign" / "examples"
+
+
+def test_physics_model_from_the_registry():
+    physics = pytest.importorskip("erdesign.physics", reason="erdesign.physics (the physics damper) is not built yet")
+    from erdesign import load_example
+    model = get_model("physics", damper=EXAMPLES / "makris.toml", effects=("seal_friction",))
+    assert isinstance(model, physics.PhysicsDamper)
+    assert model.parameter_names == ("viscosity_factor", "yield_stress_factor", "friction_force")
+    t = np.linspace(0, 1, 501)
+    rec = Measurement.from_arrays(t, 0.005 * np.sin(4 * np.pi * t), control=3e6, control_kind="electric field")
+    # the registry's model is the physics damper itself: the same force as built directly
+    direct = physics.PhysicsDamper(load_example("makris"), ["seal_friction"])
+    assert np.array_equal(model.simulate(rec), direct.simulate(rec))
+
+
+def test_identify_physics_recovers_the_hidden_seal_friction(capsys):
+    pytest.importorskip("erdesign.physics", reason="erdesign.physics (the physics damper) is not built yet")
+    csv = EXAMPLES / "measurements" / "makris_hidden_seal_friction.csv"
+    code, out, err = run(capsys, "identify", str(csv), "--model", "physics", "--damper",
+                         str(EXAMPLES / "makris.toml"), "--effects", "seal_friction", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    p = {k: float(v.split()[0]) for k, v in data["parameters"].items()}
+    # the virtual rig's hidden truth (header of the CSV): friction 800 N, viscosity x 1.2, yield stress x 0.8,
+    # force noise 0.5 % of RMS -> ESR floor ~2.5e-5 (measured 3.0e-5; 796 N, 1.201, 0.805)
+    assert p["friction_force"] == pytest.approx(800.0, rel=0.02)
+    assert p["viscosity_factor"] == pytest.approx(1.2, rel=0.02)
+    assert p["yield_stress_factor"] == pytest.approx(0.8, rel=0.03)
+    assert data["esr"] < 1e-4
+    assert data["parameters"]["viscosity_factor"] == data["parameters"]["viscosity_factor"].strip()
+    # without the effect the baseline cannot explain the friction: ESR two decades worse (measured 2.2e-3)
+    code, out, err = run(capsys, "identify", str(csv), "--model", "physics", "--damper",
+                         str(EXAMPLES / "makris.toml"), "--json")
+    assert code == 0, err
+    assert json.loads(out)["esr"] > 30 * data["esr"]

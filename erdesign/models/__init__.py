@@ -1,7 +1,16 @@
-"""Damper models behind one interface (:class:`Model`): phenomenological models of the literature and, through the
-diagnosis work, the physics damper with effects.  The registry of named models lives in
-:mod:`erdesign.models.registry` once the model library exists."""
+"""Damper models behind one interface (:class:`Model`): the phenomenological models of the literature and the
+physics damper with effects (registry name ``physics``).
 
-from .base import Model, Parameter, ParameterError
+* :mod:`~erdesign.models.base` - :class:`Model` and :class:`Parameter`, the interface every model implements;
+* one module per model family (``bingham.py``, ``bouc_wen.py``, ``kamath_wereley.py``, ...);
+* :mod:`~erdesign.models.registry` - name -> model, with source and equation numbers (``erdesign models``).
 
-__all__ = ["Model", "Parameter", "ParameterError"]
+Fitting is :func:`erdesign.fit.fit`; identification workflows are in :mod:`erdesign.identify`.  Every model's
+equation and source: docs/models.md.
+"""
+
+from .base import Model, ModelInputError, Parameter, ParameterError
+from .registry import INVERTIBLE, MODELS, UnknownModelError, describe_models, get_model, model_names
+
+__all__ = ["Model", "ModelInputError", "Parameter", "ParameterError", "INVERTIBLE", "MODELS", "UnknownModelError",
+           "describe_models", "get_model", "model_names"]

@@ -76,7 +76,7 @@ class Parameter:
 
     def format(self, value: float, digits: int = 4) -> str:
         """``value`` with its unit, as text (``"5000 N·s/m"``)."""
-        return format_quantity(self.quantity(value), None, digits)
+        return format_quantity(self.quantity(value), None, digits).strip()
 
 
 class Model:

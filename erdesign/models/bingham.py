@@ -45,6 +45,7 @@ class Bingham(Model):
     """
 
     name = "bingham"
+    memoryless = True
     title = "Bingham (Stanway)"
     source = "seed 001 eq 2 (Stanway); seed 003 eqs 2, 7"
     uses_control = True

@@ -116,15 +116,18 @@ class BoucWenModified(Model):
 
         \dot z = -\gamma|\dot x - \dot y| z|z|^{n-1} - \beta(\dot x - \dot y)|z|^n + \delta(\dot x - \dot y),
 
-        \alpha = \alpha_a + \alpha_b u_f,\quad c_1 = c_{1a} + c_{1b} u_f,\quad c_0 = c_{0a} + c_{0b} u_f,
+        \alpha = \alpha_a + \alpha_b u_f + \alpha_c u_f^2,\quad c_1 = c_{1a} + c_{1b} u_f,\quad c_0 = c_{0a} + c_{0b} u_f,
         \qquad \dot u_f = -\eta(u_f - u).
 
     Parameters (SI): ``c0a``, ``c0b``, ``c1a``, ``c1b`` [N s/m], ``k0``, ``k1`` [N/m], ``x0`` [m], ``alpha_a``,
-    ``alpha_b`` [N/m], ``beta``, ``gamma`` [1/m^n], ``delta``, ``n`` [-], ``eta`` [1/s].
+    ``alpha_b``, ``alpha_c`` [N/m], ``beta``, ``gamma`` [1/m^n], ``delta``, ``n`` [-], ``eta`` [1/s].
 
     Notes
     -----
-    Defaults: the passive parameters of seed 001 section 4.3 (:data:`SPENCER_PASSIVE`).  The filter is an exact
+    Defaults: the passive parameters of seed 001 section 4.3 (:data:`SPENCER_PASSIVE`).  The quadratic term
+    :math:`\alpha_c u_f^2` is not in seed 001 (eq 13 is linear in u): it is the saturation of the MR yield force
+    with coil current used by Quiroz (2022, the UTFSM data of docs/real_data.md); ``alpha_c = 0`` (the default)
+    is Spencer's law.  The filter is an exact
     discrete first-order lag of the control (:func:`~erdesign.models._kernels.first_order_lag`); the two states y, z
     are stepped by Heun's method in y with exact z steps (:func:`~erdesign.models._kernels.modified_bouc_wen`),
     which tests/test_models.py checks against :func:`scipy.integrate.solve_ivp` at tight tolerance.  States start
@@ -148,7 +151,7 @@ class BoucWenModified(Model):
     title = "modified Bouc-Wen (Spencer 1997)"
     source = "seed 001 eqs 10-16, section 4.3 (Spencer et al. 1997); seed 003 eqs 17-19"
     uses_control = True
-    control_parameters = ("c0b", "c1b", "alpha_b", "eta")
+    control_parameters = ("c0b", "c1b", "alpha_b", "alpha_c", "eta")
     parameters = (
         Parameter("c0a", "N*s/m", 5300.0, 1.0, 1e8, "viscous damping at large velocity", log_scale=True),
         Parameter("c1a", "N*s/m", 93000.0, 1.0, 1e9, "dashpot for the roll-off at low velocity", log_scale=True),
@@ -160,6 +163,7 @@ class BoucWenModified(Model):
         Parameter("c0b", "N*s/m", 0.0, -1e8, 1e8, "c0 per unit control"),
         Parameter("c1b", "N*s/m", 0.0, -1e9, 1e9, "c1 per unit control"),
         Parameter("alpha_b", "N/m", 0.0, -1e10, 1e10, "alpha per unit control"),
+        Parameter("alpha_c", "N/m", 0.0, -1e10, 1e10, "alpha per unit control squared (saturation; Quiroz 2022)"),
         Parameter("eta", "1/s", 190.0, 1e-3, 1e6, "rate of the first-order control filter", log_scale=True),
     )
 
@@ -167,7 +171,7 @@ class BoucWenModified(Model):
         """(filtered control u_f, w = x - y, z) on the record."""
         u = self.control(record)
         uf = first_order_lag(record.time, u, 1.0 / values["eta"], y0=float(u[0])) if np.any(u) else u
-        al = values["alpha_a"] + values["alpha_b"] * uf
+        al = values["alpha_a"] + (values["alpha_b"] + values["alpha_c"] * uf) * uf
         c0 = values["c0a"] + values["c0b"] * uf
         c1 = values["c1a"] + values["c1b"] * uf
         w, z = modified_bouc_wen(record.time, record.displacement, al, c0, c1, values["k0"], values["beta"],
@@ -176,7 +180,7 @@ class BoucWenModified(Model):
 
     def force(self, record, values):
         uf, w, z = self.states(record, values)
-        al = values["alpha_a"] + values["alpha_b"] * uf
+        al = values["alpha_a"] + (values["alpha_b"] + values["alpha_c"] * uf) * uf
         c0 = values["c0a"] + values["c0b"] * uf
         c1 = values["c1a"] + values["c1b"] * uf
         x = record.displacement

@@ -267,7 +267,7 @@ class MaxwellNeural(Maxwell):
         def jac(w):
             return np.vstack([_mlp_jacobian(w, qs, self.hidden), regularisation * np.eye(size)])
 
-        res = least_squares(resid, w0, jac=jac, method="trf", max_nfev=200)
+        res = least_squares(resid, w0, jac=jac, method="lm", max_nfev=200)  # MINPACK QR: no SVD per step
         self.weights = res.x * np.r_[np.ones(size - self.hidden - 1), np.full(self.hidden + 1, norm)]
         return float(np.sqrt(np.mean((target - self.network(record)) ** 2)))
 

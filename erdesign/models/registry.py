@@ -55,7 +55,11 @@ def _physics(damper=None, effects=(), **options) -> Model:
         if not candidates:
             raise UnknownModelError("physics: erdesign.physics defines no Model subclass")
         factory = candidates[0]
-    return factory(damper, effects=tuple(effects), **options)
+    model = factory(damper, effects=tuple(effects), **options)
+    if "yield_stress_factor" in model.parameter_names and not model.control_parameters:
+        # without a field the yield stress cannot be seen: held at its nominal value (factor 1) for such records
+        model.control_parameters = ("yield_stress_factor",)
+    return model
 
 
 #: name -> factory (a class or a function returning a Model).

@@ -1,0 +1,128 @@
+"""Write docs/real_data.md (and docs/real_data.json) from the real-data study, so that its numbers cannot drift.
+
+Run from the repository root:  python docs/make_real_data.py [--render-only]   (needs ../shared/data/quiroz2022_utfsm_mr; about a
+minute).  tests/test_real_data.py re-computes the ESRs from docs/real_data.json and checks that this file's
+:func:`render` of it is docs/real_data.md.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from erdesign.identify import (QUIROZ_CURRENTS, QUIROZ_STUDY_MODELS, QUIROZ_TESTS, QUIROZ_VALIDATION_CURRENTS,
+                               quiroz_folder, quiroz_source_values, real_data_study)
+from erdesign.models.registry import get_model
+
+DOCS = Path(__file__).resolve().parent
+JSON_PATH = DOCS / "real_data.json"
+MD_PATH = DOCS / "real_data.md"
+TITLES = {"bouc_wen_modified": "modified Bouc-Wen", "bingham": "Bingham", "kwok_tanh": "Kwok tanh"}
+
+
+def _esr_grid(training_esr: dict) -> list[str]:
+    head = "| test | " + " | ".join(f"{i:g} A" for i in QUIROZ_CURRENTS) + " |"
+    rows = [head, "|---" * (len(QUIROZ_CURRENTS) + 1) + "|"]
+    for test, _ in QUIROZ_TESTS:
+        cells = [f"{training_esr[f'{test} {i:g} A']:.3f}" for i in QUIROZ_CURRENTS]
+        rows.append(f"| {test.replace('x', '.')} | " + " | ".join(cells) + " |")
+    return rows
+
+
+def render(out: dict) -> str:
+    """The Markdown of docs/real_data.md from the study's JSON."""
+    models = out["models"]
+    lines = [
+        "# Real data: an MR damper at five coil currents (Quiroz 2022, UTFSM)",
+        "",
+        "<!-- Written by docs/make_real_data.py from docs/real_data.json; do not edit by hand. -->",
+        "",
+        "Data: `../shared/data/quiroz2022_utfsm_mr/` (MIT licence; not copied into this repository; see",
+        "shared/data/README.md). Training: the 30 preprocessed sinusoids (10 mm 1 Hz; 25 mm 0.1, 0.25, 0.5 Hz;",
+        "2 mm 5 Hz; 5 mm 3 Hz, each at 0, 0.25, 0.5, 0.75 and 1 A), the last 2.5 periods of each, resampled to 200",
+        "samples per period (`erdesign.identify.read_quiroz_sinusoid`). Validation: the earthquake-type record",
+        "`validation/validacion.mat` at 0.2, 0.4, 0.6, 0.8 and 1 A (every second sample, 500 Hz), never seen in",
+        "training. Each model is identified once on all 30 training records jointly",
+        "(`erdesign.identify.identify_joint`: one parameter set, current-dependent coefficients, each record",
+        "weighted by 1 / its force standard deviation), and simulated from rest at the first sample of every record.",
+        "ESR = sum (F - F_model)^2 / sum (F - mean F)^2 (seed 002 eq 7).",
+        "",
+        "## ESR on the validation record (earthquake-type motion, not used in training)",
+        "",
+        "| model | " + " | ".join(f"{i:g} A" for i in QUIROZ_VALIDATION_CURRENTS) + " | mean | training mean |",
+        "|---" * (len(QUIROZ_VALIDATION_CURRENTS) + 3) + "|",
+    ]
+    rows = [(TITLES[n], d["validation_esr"], d["training_esr"]) for n, d in models.items()]
+    rows += [(f"source's parameters ({label})", d["validation_esr"], d["training_esr"])
+             for label, d in out["source"].items()]
+    for title, val, train in rows:
+        v = [val[f"earthquake {i:g} A"] for i in QUIROZ_VALIDATION_CURRENTS]
+        lines.append(f"| {title} | " + " | ".join(f"{x:.3f}" for x in v)
+                     + f" | {np.mean(v):.3f} | {np.mean(list(train.values())):.3f} |")
+    lines += ["", "## ESR on the training sinusoids", ""]
+    for name, d in models.items():
+        lines += [f"### {TITLES[name]} (identified in {d['seconds']:.1f} s)", "", *_esr_grid(d["training_esr"]), ""]
+    lines += ["## Identified parameters (SI)", ""]
+    for name, d in models.items():
+        model = get_model(name)
+        held = QUIROZ_STUDY_MODELS[name]
+        cells = [f"{k} = {model.parameter(k).format(v, 5)}" + (" (held)" if k in held else "")
+                 for k, v in d["values"].items()]
+        lines += [f"- **{TITLES[name]}** (`{name}`, control u = current / 1 A): " + "; ".join(cells) + "."]
+    folder = quiroz_folder(DOCS.parent)
+    values = models.get("bouc_wen_modified", {}).get("values")
+    if values and folder is not None:
+        lines += ["", "## Modified Bouc-Wen: damping laws against the source's own fit", "",
+                  "The source (parametros_ajuste2.mat) fitted c0 = p9 i + p10 and c1 = p11 i + p12 [N s/mm]; here",
+                  "c0 = c0a + c0b u and c1 = c1a + c1b u [N s/m]. These two are comparable whatever the scaling of z:",
+                  "", "| current | c0 here [N s/m] | c0 source | c1 here [N s/m] | c1 source |", "|---|---|---|---|---|"]
+        for i in QUIROZ_CURRENTS:
+            s = quiroz_source_values(folder, i)
+            lines.append(f"| {i:g} A | {values['c0a'] + values['c0b'] * i:.0f} | {s['c0a']:.0f} | "
+                         f"{values['c1a'] + values['c1b'] * i:.0f} | {s['c1a']:.0f} |")
+    lines += [
+        "",
+        "## Reading these numbers",
+        "",
+        "- The source's alpha(i) and gamma(i) multiply a Bouc-Wen variable whose beta, A and n sit in a binary",
+        "  Simulink file that is not part of the data set. With A = 1, n = 2, beta = gamma its parameters do not",
+        "  reproduce the force; with n = 2 and only A and beta / gamma estimated from the training records",
+        "  (`erdesign.identify.quiroz_hidden_constants`, all twelve published parameters held) they do, which",
+        "  supports reading the published numbers that way. Its own figure of merit (RMS error over one cycle /",
+        "  peak force) differs from the ESR.",
+        "- The modified Bouc-Wen here has alpha = alpha_a + alpha_b u + alpha_c u^2 (the source's quadratic law",
+        "  in current) with constant beta, gamma; the source let gamma fall exponentially with current.",
+        "  The Bingham and Kwok models have forces linear in the current, while the measured force amplitude",
+        "  grows S-shaped with it (at 10 mm 1 Hz by 300, 395, 365 and 208 N per 0.25 A step): their ESR rises at",
+        "  the ends of the current range, most at 1 A.",
+        "- Smoothing: the source filtered x and F alike with a causal moving average (a tenth of a period for the",
+        "  sinusoids, 300 samples = 0.3 s for the earthquake record). Both carry the same lag, so their phase is",
+        "  kept, but the force's sharp changes at reversals are averaged over the window while the models respond to",
+        "  the averaged motion: part of the validation ESR is this smoothing, not the model.",
+        "- Swapped channels and event lines concern only the raw DAQ files, which this study does not use.",
+        "- The control filter rate eta is held (every record has a constant current, so it cannot be seen).",
+    ]
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if "--render-only" in argv:  # after a change of wording: re-render the committed JSON
+        MD_PATH.write_text(render(json.loads(JSON_PATH.read_text())))
+        return 0
+    folder = quiroz_folder(DOCS.parent)
+    if folder is None:
+        print("../shared/data/quiroz2022_utfsm_mr is absent: nothing written", file=sys.stderr)
+        return 1
+    out = real_data_study(folder)
+    JSON_PATH.write_text(json.dumps(out, indent=1, sort_keys=False) + "\n")
+    MD_PATH.write_text(render(out))
+    print(f"wrote {MD_PATH} and {JSON_PATH}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
