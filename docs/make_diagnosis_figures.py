@@ -8,7 +8,6 @@ the tutorial shows, and, when kaleido is missing, self-contained HTML files inst
 import sys
 from pathlib import Path
 
-import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
