@@ -9,8 +9,8 @@ Fitting is :func:`erdesign.fit.fit`; identification workflows are in :mod:`erdes
 equation and source: docs/models.md.
 """
 
-from .base import Model, ModelInputError, Parameter, ParameterError
+from .base import ControlAffineModel, Model, ModelInputError, Parameter, ParameterError
 from .registry import INVERTIBLE, MODELS, UnknownModelError, describe_models, get_model, model_names
 
-__all__ = ["Model", "ModelInputError", "Parameter", "ParameterError", "INVERTIBLE", "MODELS", "UnknownModelError",
+__all__ = ["ControlAffineModel", "Model", "ModelInputError", "Parameter", "ParameterError", "INVERTIBLE", "MODELS", "UnknownModelError",
            "describe_models", "get_model", "model_names"]

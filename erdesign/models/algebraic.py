@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Parameter
+from .base import ControlAffineModel, Model, Parameter
 
 __all__ = ["EyringPlastic", "WengArctan", "KwokTanh", "MagicFormula"]
 
@@ -81,7 +81,7 @@ class EyringPlastic(Model):
         return g
 
 
-class WengArctan(Model):
+class WengArctan(ControlAffineModel):
     r"""Weng's arctangent model, with the inertia term of Cesmeci and Engin.
 
     .. math:: F = f_0 + c_b\dot x + \frac{2}{\pi}f_y\arctan\{k[\dot x - \dot x_0\operatorname{sgn}(\ddot x)]\}
@@ -128,9 +128,6 @@ class WengArctan(Model):
         Q = values["c_b_u"] * v + values["f_y_u"] * shape
         return P, Q
 
-    def force(self, record, values):
-        P, Q = self.control_affine(record, values)
-        return P + Q * self.control(record)
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -140,7 +137,7 @@ class WengArctan(Model):
         return g
 
 
-class KwokTanh(Model):
+class KwokTanh(ControlAffineModel):
     r"""Kwok's hyperbolic-tangent model.
 
     .. math:: F = k x + c\dot x + \alpha\tanh(\beta\dot x + \delta\operatorname{sgn}x) + f_0,
@@ -191,9 +188,6 @@ class KwokTanh(Model):
         Q = values["c_u"] * v + values["alpha_u"] * z
         return P, Q
 
-    def force(self, record, values):
-        P, Q = self.control_affine(record, values)
-        return P + Q * self.control(record)
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -203,7 +197,7 @@ class KwokTanh(Model):
         return g
 
 
-class MagicFormula(Model):
+class MagicFormula(ControlAffineModel):
     r"""Magic-formula damper model (Pacejka's tyre formula applied to the MR damper).
 
     .. math::
@@ -262,9 +256,6 @@ class MagicFormula(Model):
         Q = values["D_u"] * shape
         return P, Q
 
-    def force(self, record, values):
-        P, Q = self.control_affine(record, values)
-        return P + Q * self.control(record)
 
     def initial_guess(self, record):
         g = self.defaults()

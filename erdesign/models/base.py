@@ -18,7 +18,7 @@ from ..errors import ErdesignError
 from ..measurement import Measurement
 from ..units import Q_, format_quantity
 
-__all__ = ["Parameter", "Model", "ParameterError", "ModelInputError"]
+__all__ = ["ControlAffineModel", "Parameter", "Model", "ParameterError", "ModelInputError"]
 
 
 class ParameterError(ErdesignError):
@@ -195,3 +195,19 @@ class Model:
 
 def values_from_vector(names: Sequence[str], vector: Sequence[float]) -> dict[str, float]:
     return {n: float(v) for n, v in zip(names, vector)}
+
+
+class ControlAffineModel(Model):
+    """A model whose force is affine in the dimensionless control: F = P(x, v, a) + Q(x, v, a) u.
+
+    Subclasses implement :meth:`control_affine`; the force follows, and :mod:`erdesign.inverse` inverts it
+    explicitly (seed 003 calls such models invertible).
+    """
+
+    def control_affine(self, record: Measurement, values: Mapping[str, float]) -> tuple[np.ndarray, np.ndarray]:
+        """The two parts (P, Q) of F = P + Q u, [N] each."""
+        raise NotImplementedError
+
+    def force(self, record: Measurement, values: Mapping[str, float]) -> np.ndarray:
+        P, Q = self.control_affine(record, values)
+        return P + Q * self.control(record)

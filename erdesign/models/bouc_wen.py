@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._kernels import bouc_wen_state, first_order_lag, modified_bouc_wen
-from .base import Model, Parameter
+from .base import ControlAffineModel, Model, Parameter
 
 __all__ = ["BoucWen", "BoucWenModified", "BoucWenNormalized", "SPENCER_PASSIVE"]
 
@@ -201,7 +201,7 @@ class BoucWenModified(Model):
         return g
 
 
-class BoucWenNormalized(Model):
+class BoucWenNormalized(ControlAffineModel):
     r"""Normalised Bouc-Wen model (Ikhouane-Rodellar form) with control-dependent gains.
 
     .. math::
@@ -266,9 +266,6 @@ class BoucWenNormalized(Model):
         Q = values["k_v_u"] * v + values["k_w_u"] * w
         return P, Q
 
-    def force(self, record, values):
-        P, Q = self.control_affine(record, values)
-        return P + Q * self.control(record)
 
     def initial_guess(self, record):
         g = self.defaults()

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..constitutive.makris import _affine_recurrence
 from ._kernels import dahl_state
-from .base import Model, Parameter
+from .base import ControlAffineModel, Model, Parameter
 
 __all__ = ["Dahl", "DahlViscous", "LuGre", "LuGreModified", "lugre_state"]
 
@@ -104,7 +104,7 @@ class Dahl(Model):
         return g
 
 
-class DahlViscous(Model):
+class DahlViscous(ControlAffineModel):
     r"""Viscous Dahl model (Ikhouane et al.): viscous term plus a Dahl state, gains linear in the control.
 
     .. math:: F = (k_x + k_{x,u}u)\,\dot x + (k_w + k_{w,u}u)\,w + f_0, \qquad \dot w = \rho(\dot x - |\dot x| w)
@@ -143,9 +143,6 @@ class DahlViscous(Model):
         v = record.velocity
         return values["k_x"] * v + values["k_w"] * w + values["f0"], values["k_x_u"] * v + values["k_w_u"] * w
 
-    def force(self, record, values):
-        P, Q = self.control_affine(record, values)
-        return P + Q * self.control(record)
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -207,7 +204,7 @@ class LuGre(Model):
         return g
 
 
-class LuGreModified(Model):
+class LuGreModified(ControlAffineModel):
     r"""Sakai's modified LuGre model: field-dependent and invertible.
 
     .. math::
