@@ -124,9 +124,18 @@ def _shoot(page, path: Path) -> Path:
     return path
 
 
+def _idle(page) -> None:
+    """Wait until the script run triggered by the last interaction has finished (Streamlit shows its "Running"
+    status widget meanwhile); until then stale and new elements can coexist, and a locator can match both."""
+    page.wait_for_timeout(300)
+    sync_api.expect(page.get_by_test_id("stStatusWidget")).to_be_hidden()
+
+
 def _go(page, title: str) -> None:
     """Switch page through the sidebar navigation (same session: state must survive)."""
+    _idle(page)
     page.get_by_test_id("stSidebarNav").get_by_text(title, exact=True).click()
+    _idle(page)
 
 
 def test_app_end_to_end(page, app_url, tmp_path):
@@ -160,8 +169,9 @@ def test_app_end_to_end(page, app_url, tmp_path):
     expect(page.get_by_role("heading", name="Compare and diagnose")).to_be_visible()
     page.get_by_role("button", name="Diagnose").click()
     verdict = page.get_by_test_id("stAlertContentSuccess").filter(has_text="Missing effect")
-    expect(verdict).to_be_visible()
-    effect = re.search(r"Missing effect: (\w+)", verdict.inner_text()).group(1)
+    expect(verdict.first).to_be_visible()
+    _idle(page)
+    effect = re.search(r"Missing effect: (\w+)", verdict.first.inner_text()).group(1)
     tab = page.get_by_role("tab", name="missing effects")
     expect(tab).to_have_count(1)
     tab.click()
@@ -172,8 +182,9 @@ def test_app_end_to_end(page, app_url, tmp_path):
     _shoot(page, tmp_path / "compare.png")
     # add it and refit: the error history gets a second bar and the ESR falls
     page.get_by_role("button", name="Add effect and refit").click()
-    model = page.get_by_test_id("stMetric").filter(has=page.get_by_text("model", exact=True))
-    expect(model).to_contain_text(f"baseline + {effect}")
+    refitted = page.get_by_test_id("stMetric").filter(has_text=f"baseline + {effect}")
+    expect(refitted.first).to_be_visible()
+    _idle(page)
     history_tab = page.get_by_role("tab", name="error history")
     expect(history_tab).to_have_count(1)          # the rerun has replaced the previous run's elements
     history_tab.click()
