@@ -110,10 +110,8 @@ def render() -> None:
         st.caption(f"This example was measured on the damper of examples/{example}.toml: it is compared with that "
                    "damper, not with the design of the Size page.")
     text = state.spec_text(spec)
-    try:
-        damper, _ = state.build_damper(text)
-    except ErdesignError as exc:
-        st.error(f"The design of the Size page is not valid: {exc}")
+    damper = state.damper_or_error(text)
+    if damper is None:
         return
     st.caption(f"Model: the physics damper of {damper.name or 'the design'}, calibrated to the record "
                "(viscosity and yield-stress factors) plus the effects accepted below.")

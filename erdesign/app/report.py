@@ -33,10 +33,8 @@ def render() -> None:
     st.title("Report")
     spec = state.current_spec()
     text = state.spec_text(spec)
-    try:
-        damper, _ = state.build_damper(text)
-    except ErdesignError as exc:
-        st.error(f"The design of the Size page is not valid: {exc}")
+    damper = state.damper_or_error(text)
+    if damper is None:
         return
     keep = st.session_state
     v_top_text = keep.get("_keep.size.v_top") or "50 mm/s"

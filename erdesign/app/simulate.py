@@ -105,10 +105,8 @@ def render() -> None:
     st.title("Simulate")
     spec = state.current_spec()
     text = state.spec_text(spec)
-    try:
-        damper, _ = state.build_damper(text)
-    except ErdesignError as exc:
-        st.error(f"The design of the Size page is not valid: {exc}")
+    damper = state.damper_or_error(text)
+    if damper is None:
         return
     st.caption(f"Damper: {damper.name or 'design'} ({damper.geometry.configuration}); change it on the Size page.")
     left, right = st.columns([1, 2], gap="large")

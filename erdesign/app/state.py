@@ -34,7 +34,8 @@ from ..units import Q_
 
 __all__ = [
     "DEFAULT_EXAMPLE", "SPEC", "DIAGNOSIS", "widget", "forget", "example_spec", "current_spec", "set_spec",
-    "spec_text", "build_damper", "caught", "velocity_sweep", "geometry_sweep", "GEOMETRY_SWEEPS", "read_record",
+    "spec_text", "build_damper", "damper_or_error", "caught", "velocity_sweep", "geometry_sweep", "GEOMETRY_SWEEPS",
+    "read_record",
     "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
     "render_report", "clear_caches", "material_names", "set_widget",
 ]
@@ -115,6 +116,15 @@ def build_damper(text: str) -> tuple[Damper, list[str]]:
     Raises :class:`~erdesign.errors.ErdesignError` (naming the key) for an invalid spec.
     """
     return caught(lambda: damper_from_dict(json.loads(text), source="design"))
+
+
+def damper_or_error(text: str) -> Damper | None:
+    """The damper of a spec for a page to use, or None after showing in the page why the design is not valid."""
+    try:
+        return build_damper(text)[0]
+    except ErdesignError as exc:
+        st.error(f"The design of the Size page is not valid: {exc}")
+        return None
 
 
 def material_names() -> list[str]:

@@ -24,6 +24,6 @@ def fit(measurement: str, damper_file: str, effects: str, as_json: bool) -> None
     result = calibrate(damper, record, effects)
     if as_json:
         emit_json({"esr": json_number(result.esr),
-                   "parameters": {k: v.strip() for k, v in result.parameters_with_units().items()}})
+                   "parameters": result.parameters_with_units()})
         return
     click.echo(result.report())
