@@ -1,0 +1,218 @@
+r"""Compiled kernels of the truth rig: flow paths in parallel, the steady force, and the time-stepping loop.
+
+Sign convention (shared with :mod:`erdesign.rig` and the effect library): ``x`` grows as the rod goes in
+(compression), and the force ``F`` is the force the test machine applies in the direction of ``+x``, so that a
+damper resists with ``F`` of the sign of ``v``.  Compression is ``v > 0``, rebound (extension) ``v < 0``.
+
+The fluid element is a set of flow paths in parallel between the two chambers, all driven by the same pressure
+drop :math:`\Delta p = F/A` (``A`` the area of the pressurised chamber: the compression or the rebound area):
+
+* ``ducts`` annular ducts with the Herschel-Bulkley / Bingham slit law of :mod:`erdesign.truthrig.valve`;
+* a laminar bypass, :math:`Q_l = g_l \Delta p` (``g_l = A_p^2 / C_l``);
+* a rebound blow-off valve, :math:`Q_b = g_b (\Delta p - p_c)` above its cracking pressure, in rebound only.
+
+:func:`passed_speed` is the piston speed these paths pass at a force, :math:`v_d(F) = \sum Q / A`, monotone
+non-decreasing in ``F``; every force in the rig is a root of a monotone scalar equation built on it
+(:func:`monotone_root`, Newton steps inside a shrinking bracket, bisection as the fall-back).
+
+:func:`run` integrates, on a fine grid of substeps, the states that need time stepping (each optional):
+
+* compliance with the slug in series, states :math:`P` (pressure force) and :math:`w` (speed the ducts pass),
+  :math:`\dot P = k_c (v - w)`, :math:`m \dot w = P - F_v(w)`, backward Euler with the exact stroke increment
+  :math:`\Delta x` in place of :math:`h v`; eliminating :math:`P` leaves one monotone equation in the valve force
+  :math:`F_v` per step, :math:`F_v + (m/h + k_c h)\,v_d(F_v) = m w/h + P + k_c \Delta x`;
+* the damper-level Makris eq 8 (pre-yield), linear in the force over a step and integrated exactly with the rate
+  coefficient frozen at mid-step;
+* the lumped temperature rise, trapezoidal rule on its linear cooling and the energy dissipated in the step,
+  which makes heat stored + heat lost = work dissipated hold to round-off over every step.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from .valve import slit_flow, slit_flow_slope
+
+__all__ = ["N_PARAMETERS", "passed_speed", "steady_force", "monotone_root", "run", "first_order_lag",
+           "play_operator"]
+
+# Indices into the parameter vector of the kernels (SI).
+I_L, I_B, I_H, I_DUCTS, I_M, I_GAMMA_REF = 0, 1, 2, 3, 4, 5
+I_GL, I_GB, I_PC = 6, 7, 8                  # bypass conductance, blow-off conductance, cracking pressure
+I_AC, I_AR, I_CAP = 9, 10, 11               # compression area, rebound area, rebound force cap (inf: none)
+I_KC, I_MSLUG, I_KPRE = 12, 13, 14          # compliance stiffness, slug mass, pre-yield stiffness (0: off)
+I_HEAT_CAPACITY, I_COOLING_TIME, I_ALPHA = 15, 16, 17   # heat capacity 0: no thermal state
+N_PARAMETERS = 18
+
+
+@numba.njit(cache=True)
+def _area(direction, p):
+    return p[I_AC] if direction > 0 else p[I_AR]
+
+
+@numba.njit(cache=True)
+def passed_speed(F, direction, tau_y, eta, thermal, p):
+    """Piston speed [m/s] passed by all flow paths at force magnitude ``F`` >= 0 [N] in ``direction`` (+1
+    compression, -1 rebound); ``thermal`` = eta(T)/eta(T0) scales the bypass conductance."""
+    A = _area(direction, p)
+    dp = F / A
+    m = p[I_M]
+    K = eta * p[I_GAMMA_REF] ** (1.0 - m)
+    q = p[I_DUCTS] * slit_flow(dp, tau_y, K, m, p[I_L], p[I_B], p[I_H])
+    q += p[I_GL] / thermal * dp
+    if direction < 0 and dp > p[I_PC]:
+        q += p[I_GB] * (dp - p[I_PC])
+    return q / A
+
+
+@numba.njit(cache=True)
+def _passed_speed_slope(F, direction, tau_y, eta, thermal, p):
+    A = _area(direction, p)
+    dp = F / A
+    m = p[I_M]
+    K = eta * p[I_GAMMA_REF] ** (1.0 - m)
+    s = p[I_DUCTS] * slit_flow_slope(dp, tau_y, K, m, p[I_L], p[I_B], p[I_H]) + p[I_GL] / thermal
+    if direction < 0 and dp > p[I_PC]:
+        s += p[I_GB]
+    return s / (A * A)
+
+
+@numba.njit(cache=True)
+def monotone_root(c0, c1, R, direction, tau_y, eta, thermal, p):
+    """F >= 0 with c0 F + c1 v_d(F) = R (R >= 0; c0, c1 >= 0, not both 0): the function is non-decreasing in F and
+    -R at F = 0.  Converged to a relative 1e-14 of F (or the bracket collapsed)."""
+    if R <= 0.0:
+        return 0.0
+    lo = 0.0
+    if c0 > 0.0:
+        hi = R / c0
+    else:
+        # the Bingham bound dp <= dp_Newtonian + 1.5 dp_y for a start, doubled until it brackets (Herschel-Bulkley)
+        A = _area(direction, p)
+        K = eta * p[I_GAMMA_REF] ** (1.0 - p[I_M])
+        cond = p[I_DUCTS] * p[I_B] * p[I_H] ** 3 / (12.0 * K * p[I_L])
+        hi = A * (1.5 * 2.0 * tau_y * p[I_L] / p[I_H] + R / c1 * A / cond) * 1.01 + 1e-300
+        for _ in range(2000):
+            if c0 * hi + c1 * passed_speed(hi, direction, tau_y, eta, thermal, p) >= R:
+                break
+            lo = hi
+            hi *= 2.0
+    x = 0.5 * (lo + hi)
+    for _ in range(200):
+        f = c0 * x + c1 * passed_speed(x, direction, tau_y, eta, thermal, p) - R
+        if f == 0.0:
+            return x
+        if f < 0.0:
+            lo = x
+        else:
+            hi = x
+        slope = c0 + c1 * _passed_speed_slope(x, direction, tau_y, eta, thermal, p)
+        x_new = x - f / slope if slope > 0.0 else 0.5 * (lo + hi)
+        if not (lo < x_new < hi):
+            x_new = 0.5 * (lo + hi)
+        if abs(x_new - x) <= 1e-14 * x_new or hi - lo <= 1e-15 * hi:
+            return x_new
+        x = x_new
+    return x
+
+
+@numba.njit(cache=True)
+def steady_force(v, tau_y, eta, thermal, p):
+    """Signed steady force [N] of the rigid fluid at piston speed ``v`` [m/s] (0 at v = 0), rebound cap applied."""
+    if v == 0.0:
+        return 0.0
+    direction = 1 if v > 0.0 else -1
+    F = monotone_root(0.0, 1.0, abs(v), direction, tau_y, eta, thermal, p)
+    if direction < 0:
+        F = min(F, p[I_CAP])
+    return direction * F
+
+
+@numba.njit(cache=True)
+def run(v, dx, h, tau_y, eta, p):
+    """Integrate the fluid element over a fine grid (module notes).
+
+    Parameters: piston velocity ``v`` at the grid points, stroke increment ``dx`` and step ``h`` of the step that
+    ends at each point (index 0 unused), yield stress and plastic viscosity (at T0) seen at each point, and the
+    parameter vector.  Returns the fluid force on the piston, the valve force (the force the ducts carry), the
+    temperature rise and the energy dissipated in each step, all at the grid points.
+    """
+    n = v.size
+    force = np.zeros(n)
+    valve = np.zeros(n)
+    theta = np.zeros(n)
+    dissipated = np.zeros(n)
+    kc, mass, kpre = p[I_KC], p[I_MSLUG], p[I_KPRE]
+    heat_capacity, cooling_time, alpha = p[I_HEAT_CAPACITY], p[I_COOLING_TIME], p[I_ALPHA]
+    cap = p[I_CAP]
+    P, w, T = 0.0, 0.0, 0.0  # stateful elements start unloaded and at rest, at the ambient temperature
+    if kc == 0.0 and kpre == 0.0:
+        force[0] = steady_force(v[0], tau_y[0], eta[0], 1.0, p)
+        valve[0] = force[0]
+    for i in range(1, n):
+        thermal = math.exp(-alpha * T) if heat_capacity > 0.0 else 1.0
+        eta_i = eta[i] * thermal
+        hi = h[i]
+        if kc > 0.0:
+            c = mass / hi + kc * hi
+            R = mass * w / hi + P + kc * dx[i]
+            direction = 1 if R >= 0.0 else -1
+            Fv = monotone_root(1.0, c, abs(R), direction, tau_y[i], eta_i, thermal, p)
+            w = direction * passed_speed(Fv, direction, tau_y[i], eta_i, thermal, p)
+            Fv *= direction
+            P = P + kc * (dx[i] - hi * w)
+            if P < -cap:
+                P = -cap
+            energy = hi * Fv * w
+            force[i], valve[i] = P, Fv
+        elif kpre > 0.0:
+            v_mid = 0.5 * (v[i - 1] + v[i])
+            lam = 0.0
+            if v_mid != 0.0:
+                Fr = abs(steady_force(v_mid, tau_y[i], eta_i, thermal, p))
+                if Fr > 0.0:
+                    lam = kpre * abs(v_mid) / Fr
+            z = lam * hi
+            phi = (1.0 - math.exp(-z)) / z if z > 1e-8 else 1.0 - 0.5 * z
+            F_new = P * math.exp(-z) + kpre * dx[i] * phi
+            if F_new < -cap:
+                F_new = -cap
+            energy = 0.5 * (P + F_new) * dx[i] - (F_new * F_new - P * P) / (2.0 * kpre)
+            P = F_new
+            force[i], valve[i] = P, P
+        else:
+            F = steady_force(v[i], tau_y[i], eta_i, thermal, p)
+            energy = 0.5 * (force[i - 1] * v[i - 1] + F * v[i]) * hi
+            force[i], valve[i] = F, F
+        if heat_capacity > 0.0:
+            k = 0.5 * hi / cooling_time
+            T = (T * (1.0 - k) + energy / heat_capacity) / (1.0 + k)
+        theta[i] = T
+        dissipated[i] = energy
+    return force, valve, theta, dissipated
+
+
+@numba.njit(cache=True)
+def first_order_lag(command, h, time_constant, initial):
+    """Exact response of u' = (c - u)/T at the grid points to a command ``command[i-1]`` held over step i."""
+    n = command.size
+    u = np.empty(n)
+    u[0] = initial
+    for i in range(1, n):
+        e = math.exp(-h[i] / time_constant)
+        u[i] = command[i - 1] + (u[i - 1] - command[i - 1]) * e
+    return u
+
+
+@numba.njit(cache=True)
+def play_operator(x, half_width, initial):
+    """Play (backlash) operator: y follows x only when |x - y| reaches ``half_width``."""
+    y = np.empty(x.size)
+    yi = initial
+    for i in range(x.size):
+        yi = max(x[i] - half_width, min(x[i] + half_width, yi))
+        y[i] = yi
+    return y
