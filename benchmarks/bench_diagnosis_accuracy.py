@@ -1,0 +1,405 @@
+"""Benchmark: how often ``erdesign diagnose`` names the right missing effect on records of the independent truth rig.
+
+Every case of the catalogue (:func:`erdesign.truthrig.cases.benchmark_cases`) is simulated by the truth rig, written
+to a CSV file and read back with :func:`erdesign.measurement.read_measurement` (the reader users use), and diagnosed
+with :func:`erdesign.diagnose.diagnose`.  Correct means: a clean record -> verdict ``nothing_missing``; a mechanism
+outside the effect library -> ``unexplained``; library mechanism(s) -> ``missing_effect`` naming one of them.  An
+exception is a failure of the tool (``diagnose`` must never crash) and is listed with its message.
+
+Run::
+
+    python benchmarks/bench_diagnosis_accuracy.py --subset fast                 # seven cases, about a minute
+    python benchmarks/bench_diagnosis_accuracy.py --jobs 2 --out results.json --write-docs   # the catalogue
+
+Options: ``--subset fast|full``, ``--jobs N`` (processes, default 2), ``--cases PATTERN`` (shell pattern or
+substring of case names), ``--out FILE`` (JSON of every case), ``--write-docs`` (docs/diagnosis_benchmark.md),
+``--no-long`` (skip the timing of one 60 s record at 1 kHz, target < 30 s), ``--no-detectability``.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):   # one core per process
+    os.environ.setdefault(_var, "1")
+
+import argparse  # noqa: E402
+import datetime  # noqa: E402
+import fnmatch  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+import traceback  # noqa: E402
+from collections import Counter, defaultdict  # noqa: E402
+from concurrent.futures import ProcessPoolExecutor, as_completed  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = ROOT / "docs" / "diagnosis_benchmark.md"
+LONG_TARGET = 30.0
+VERDICTS = ("nothing_missing", "unexplained", "missing_effect")
+
+
+# ---------------------------------------------------------------------------------------------------- one case
+def verdict_of(diagnosis) -> str:
+    """The three-way verdict; derived from ``missing_effect`` where the Diagnosis does not give one yet."""
+    v = getattr(diagnosis, "verdict", None)
+    if v:
+        return str(v)
+    return "missing_effect" if getattr(diagnosis, "missing_effect", None) else "nothing_missing"
+
+
+def is_correct(case, verdict: str, missing: str | None) -> bool:
+    if case.expected in ("nothing_missing", "unexplained"):
+        return verdict == case.expected
+    return verdict == "missing_effect" and missing in case.accepted
+
+
+def _finite(x):
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        return None
+    return x if math.isfinite(x) else None
+
+
+def _error(exc: BaseException) -> str:
+    last = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
+    where = f" ({Path(last.filename).name}:{last.lineno})" if last else ""
+    return f"{type(exc).__name__}: {exc}{where}"
+
+
+def run_case(case, detectability: bool = True) -> dict:
+    """Simulate, write, read back and diagnose one case; never raises."""
+    from erdesign.diagnose import diagnose
+    from erdesign.measurement import read_measurement
+
+    row = {"name": case.name, "damper": case.damper, "excitation": case.excitation, "noise": case.noise,
+           "kind": case.kind, "size": case.size, "mechanisms": {k: dict(v) for k, v in case.mechanisms.items()},
+           "expected": case.expected, "accepted": sorted(case.accepted), "seed": case.seed,
+           "duration_s": case.duration, "rate_Hz": case.rate, "samples": None,
+           "verdict": None, "missing_effect": None, "baseline_esr": None, "noise_floor_esr": None,
+           "ranking": None, "correct": False, "error": None, "error_stage": None, "time_s": None,
+           "effect_esr": None, "effect_size_over_noise": None}
+    try:
+        rec = case.make()
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp) / f"{case.name}.csv"
+            rec.write(path)
+            record = read_measurement(path)
+        damper = case.load_damper()
+        row["samples"] = len(record)
+    except Exception as exc:  # a failure of the truth rig or the reader, not of diagnose
+        row.update(error=_error(exc), error_stage="record")
+        return row
+    if detectability:
+        try:
+            det = case.detectability()
+            row["effect_esr"] = _finite(det["effect_esr"])
+            row["effect_size_over_noise"] = _finite(det["effect_size_over_noise"])
+        except Exception as exc:
+            row["detectability_error"] = _error(exc)
+    t0 = time.perf_counter()
+    try:
+        d = diagnose(damper, record)
+    except Exception as exc:
+        row.update(error=_error(exc), error_stage="diagnose", time_s=time.perf_counter() - t0)
+        return row
+    row["time_s"] = time.perf_counter() - t0
+    verdict = verdict_of(d)
+    missing = getattr(d, "missing_effect", None)
+    row.update(verdict=verdict, missing_effect=missing, baseline_esr=_finite(getattr(d, "baseline_esr", None)),
+               noise_floor_esr=_finite(getattr(d, "noise_floor_esr", None)),
+               ranking=[[getattr(c, "effect", "?"), _finite(getattr(c, "esr", None))]
+                        for c in (getattr(d, "ranking", None) or [])[:3]],
+               correct=is_correct(case, verdict, missing))
+    return row
+
+
+def run_long(detail: bool = True) -> dict:
+    """Diagnose one 60 s record sampled at 1 kHz (timing requirement: under 30 s)."""
+    from dataclasses import replace
+
+    from erdesign.diagnose import diagnose
+    from erdesign.measurement import read_measurement
+    from erdesign.truthrig.cases import benchmark_cases
+
+    base = next(c for c in benchmark_cases("full") if c.name.startswith("seal_friction-large-mr_valve-"))
+    case = replace(base, name="long-60s-1kHz", duration=60.0, rate=1000.0)
+    out = {"name": case.name, "samples": None, "time_s": None, "verdict": None, "missing_effect": None,
+           "error": None, "target_s": LONG_TARGET}
+    try:
+        rec = case.make()
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp) / "long.csv"
+            rec.write(path)
+            record = read_measurement(path)
+        out["samples"] = len(record)
+        t0 = time.perf_counter()
+        d = diagnose(case.load_damper(), record)
+        out.update(time_s=time.perf_counter() - t0, verdict=verdict_of(d),
+                   missing_effect=getattr(d, "missing_effect", None))
+    except Exception as exc:
+        out["error"] = _error(exc)
+    return out
+
+
+# ---------------------------------------------------------------------------------------------------- summary
+def _true_class(row) -> str:
+    if row["kind"] == "clean":
+        return "clean"
+    if row["kind"] == "out_of_library":
+        return "out of library"
+    if row["kind"] == "pair":
+        return "pair"
+    return row["expected"]
+
+
+def _said(row) -> str:
+    if row["error"]:
+        return "exception"
+    if row["verdict"] == "missing_effect":
+        return row["missing_effect"] or "missing_effect (no name)"
+    return row["verdict"]
+
+
+def summarise(rows: list[dict]) -> dict:
+    from erdesign.effects import EFFECT_NAMES
+    from erdesign.truthrig.cases import UNDETECTABLE
+
+    n = len(rows)
+    classes = ["clean", "out of library", *EFFECT_NAMES, "pair"]
+    per_class = {}
+    for cls in classes:
+        sel = [r for r in rows if _true_class(r) == cls]
+        if sel:
+            per_class[cls] = {"cases": len(sel), "correct": sum(r["correct"] for r in sel)}
+    columns = ["nothing_missing", "unexplained", *EFFECT_NAMES, "exception"]
+    confusion = {cls: Counter(_said(r) for r in rows if _true_class(r) == cls) for cls in classes}
+    extra = sorted({s for c in confusion.values() for s in c} - set(columns))
+    columns += extra
+    by = {}
+    for key in ("damper", "excitation", "noise", "size"):
+        groups = defaultdict(list)
+        for r in rows:
+            groups[str(r[key]) or "-"].append(r["correct"])
+        by[key] = {k: [sum(v), len(v)] for k, v in sorted(groups.items())}
+    times = [r["time_s"] for r in rows if r["time_s"] is not None]
+    detect = [r for r in rows if r["effect_size_over_noise"] is not None]
+    undetectable = [r for r in detect if r["effect_size_over_noise"] < UNDETECTABLE]
+    detectable_rows = [r for r in rows if r not in undetectable]
+    return {
+        "cases": n, "correct": sum(r["correct"] for r in rows),
+        "accuracy": sum(r["correct"] for r in rows) / n if n else math.nan,
+        "accuracy_detectable": (sum(r["correct"] for r in detectable_rows) / len(detectable_rows)
+                                if detectable_rows else math.nan),
+        "per_class": per_class, "confusion_columns": columns,
+        "confusion": {k: dict(v) for k, v in confusion.items() if sum(v.values())},
+        "by": by,
+        "exceptions": [[r["name"], r["error_stage"], r["error"]] for r in rows if r["error"]],
+        "time_mean_s": sum(times) / len(times) if times else None, "time_max_s": max(times) if times else None,
+        "slowest": sorted(([r["name"], r["time_s"]] for r in rows if r["time_s"] is not None),
+                          key=lambda x: -x[1])[:8],
+        "undetectable": [[r["name"], r["effect_size_over_noise"]] for r in undetectable],
+        "effect_size_over_noise": {s: sorted(r["effect_size_over_noise"] for r in detect if r["size"] == s)
+                                   for s in ("moderate", "large")},
+        "wrong": [[r["name"], r["expected"], _said(r), r["effect_size_over_noise"]] for r in rows
+                  if not r["correct"]],
+    }
+
+
+def _pct(a, b) -> str:
+    return f"{a}/{b} ({100 * a / b:.0f} %)" if b else "-"
+
+
+def _quantiles(values) -> str:
+    if not values:
+        return "-"
+    v = sorted(values)
+    q = lambda p: v[min(len(v) - 1, int(p * (len(v) - 1) + 0.5))]  # noqa: E731
+    return f"min {v[0]:.3g}, median {q(0.5):.3g}, max {v[-1]:.3g}"
+
+
+def confusion_table(summary: dict) -> list[str]:
+    short = {"nothing_missing": "nothing", "unexplained": "unexpl.", "seal_friction": "seal_fr",
+             "fluid_inertia": "inertia", "compressibility": "compress", "leakage": "leakage",
+             "viscous_heating": "heating", "field_lag": "lag", "shear_thinning": "thinning",
+             "gas_spring": "gas_spr", "preyield_elasticity": "preyield", "exception": "EXC"}
+    cols = summary["confusion_columns"]
+    head = "| true \\ said | " + " | ".join(short.get(c, c) for c in cols) + " |"
+    lines = [head, "|" + "---|" * (len(cols) + 1)]
+    for cls, counts in summary["confusion"].items():
+        lines.append(f"| {cls} | " + " | ".join(str(counts.get(c, 0) or "") for c in cols) + " |")
+    return lines
+
+
+def report_lines(summary: dict, long: dict | None, wall: float, meta: dict) -> list[str]:
+    s = summary
+    out = [f"cases: {s['cases']}; correct: {_pct(s['correct'], s['cases'])}; on the detectable cases: "
+           f"{100 * s['accuracy_detectable']:.0f} %",
+           f"diagnose: erdesign/diagnose.py at {meta['diagnose_commit'][:10]}"
+           f"{' + uncommitted changes' if meta['diagnose_dirty'] else ''}; wall time {wall:.0f} s on "
+           f"{meta['jobs']} processes", "", "per class (clean: no false 'missing'; out of library: 'unexplained'; "
+           "library effect: recall; pair: one of the two named):"]
+    for cls, c in s["per_class"].items():
+        out.append(f"  {cls:<22} {_pct(c['correct'], c['cases'])}")
+    for key, groups in s["by"].items():
+        out.append(f"by {key}: " + ", ".join(f"{k} {_pct(a, b)}" for k, (a, b) in groups.items()))
+    out += ["", "confusion matrix (rows: true class; columns: verdict or named effect):", *confusion_table(s), ""]
+    out.append(f"exceptions: {len(s['exceptions'])}")
+    out += [f"  {name} [{stage}]: {msg}" for name, stage, msg in s["exceptions"]]
+    if s["time_mean_s"] is not None:
+        out.append(f"diagnose wall time per case: mean {s['time_mean_s']:.1f} s, max {s['time_max_s']:.1f} s")
+        out.append("slowest: " + ", ".join(f"{n} {t:.1f} s" for n, t in s["slowest"][:5]))
+    for size, v in s["effect_size_over_noise"].items():
+        out.append(f"effect size over noise, {size}: {_quantiles(v)}")
+    if s["undetectable"]:
+        out.append(f"undetectable by design (effect < 3 x noise): {len(s['undetectable'])}: "
+                   + ", ".join(f"{n} ({x:.2g})" for n, x in s["undetectable"]))
+    if long:
+        if long["error"]:
+            out.append(f"60 s record at 1 kHz: exception: {long['error']}")
+        else:
+            out.append(f"60 s record at 1 kHz ({long['samples']} samples): diagnose {long['time_s']:.1f} s "
+                       f"(target < {LONG_TARGET:g} s: {'met' if long['time_s'] < LONG_TARGET else 'NOT met'}); "
+                       f"verdict {long['verdict']}, {long['missing_effect']}")
+    return out
+
+
+def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset: str, command: str) -> None:
+    s = summary
+    lines = ["# Diagnosis benchmark", "",
+             "How often `erdesign diagnose` names the right missing effect on records made by the independent "
+             "truth rig (`erdesign/truthrig/`, which shares no code with the fitted model). The catalogue is "
+             "`erdesign/truthrig/cases.py` (`benchmark_cases()`); its docstring gives the design rules and "
+             "`mechanism_parameters` the physical size of every mechanism. Each record is written to CSV and read "
+             "back with `read_measurement` before it is diagnosed.", "",
+             "Correct means: clean record (the true damper is exactly Bingham, calibration factors perturbed) -> "
+             "`nothing_missing`; mechanism outside the library (blow-off, single rod, cavitation, free play) -> "
+             "`unexplained`; library mechanism(s) -> `missing_effect` naming it (for a pair: either).", "",
+             f"Latest run: {meta['date']}, subset `{subset}`, {s['cases']} cases, erdesign/diagnose.py at "
+             f"`{meta['diagnose_commit'][:10]}`{' (with uncommitted changes)' if meta['diagnose_dirty'] else ''}, "
+             f"{meta['jobs']} processes, {wall:.0f} s.", "",
+             "Regenerate:", "", "```bash", command, "```", "",
+             "## Result", "",
+             f"Overall: **{_pct(s['correct'], s['cases'])}** correct; on the cases detectable by design "
+             f"(effect at least 3 x the noise): {100 * s['accuracy_detectable']:.0f} %.", "",
+             "| true class | correct |", "|---|---|"]
+    lines += [f"| {cls} | {_pct(c['correct'], c['cases'])} |" for cls, c in s["per_class"].items()]
+    lines += ["", "By damper, excitation, force noise and size:", ""]
+    for key, groups in s["by"].items():
+        lines.append(f"- {key}: " + ", ".join(f"{k} {_pct(a, b)}" for k, (a, b) in groups.items()))
+    lines += ["", "## Confusion matrix", "", "Rows: the true class; columns: the verdict, or the effect named.", "",
+              *confusion_table(s), ""]
+    lines += ["## Detectability", "",
+              "Energy of the force change the hidden mechanisms make (noise-free truth runs with and without them) "
+              "over the energy of the force noise:", ""]
+    for size, v in s["effect_size_over_noise"].items():
+        lines.append(f"- {size}: {_quantiles(v)}")
+    if s["undetectable"]:
+        lines += ["", f"Undetectable by design (below 3 x the noise), kept in the catalogue: "
+                      f"{', '.join(f'`{n}` ({x:.2g})' for n, x in s['undetectable'])}."]
+    lines += ["", "## Timing", ""]
+    if s["time_mean_s"] is not None:
+        lines.append(f"Diagnose per case: mean {s['time_mean_s']:.1f} s, max {s['time_max_s']:.1f} s "
+                     f"(slowest: {', '.join(f'`{n}` {t:.1f} s' for n, t in s['slowest'][:5])}).")
+    if long:
+        if long["error"]:
+            lines.append(f"\nOne 60 s record at 1 kHz: exception `{long['error']}`.")
+        else:
+            lines.append(f"\nOne 60 s record at 1 kHz ({long['samples']} samples): {long['time_s']:.1f} s "
+                         f"(target < {LONG_TARGET:g} s).")
+    lines += ["", "## Exceptions", ""]
+    lines += [f"- `{n}` [{stage}]: {msg}" for n, stage, msg in s["exceptions"]] or ["None."]
+    lines += ["", "## Misdiagnosed cases", "", "| case | expected | said | effect / noise |", "|---|---|---|---|"]
+    for name, exp, said, det in s["wrong"]:
+        lines.append(f"| `{name}` | {exp} | {said} | {'-' if det is None else f'{det:.3g}'} |")
+    DOCS.write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+# ---------------------------------------------------------------------------------------------------- main
+def _git(*args) -> str:
+    try:
+        return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
+    except Exception:
+        return ""
+
+
+def select(cases, pattern: str | None):
+    if not pattern:
+        return cases
+    if any(ch in pattern for ch in "*?["):
+        return [c for c in cases if fnmatch.fnmatch(c.name, pattern)]
+    return [c for c in cases if pattern in c.name]
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--subset", choices=("fast", "full"), default="full")
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--cases", default=None, help="shell pattern or substring of case names")
+    p.add_argument("--out", default=None, help="JSON file of every case")
+    p.add_argument("--write-docs", action="store_true", help=f"write {DOCS.relative_to(ROOT)}")
+    p.add_argument("--no-long", action="store_true", help="skip the 60 s, 1 kHz timing record")
+    p.add_argument("--no-detectability", action="store_true", help="skip the noise-free detectability runs")
+    args = p.parse_args(argv)
+
+    sys.path.insert(0, str(ROOT))
+    from erdesign.truthrig.cases import benchmark_cases
+
+    cases = select(benchmark_cases(args.subset), args.cases)
+    if not cases:
+        print(f"no case matches {args.cases!r}", file=sys.stderr)
+        return 2
+    meta = {"date": datetime.date.today().isoformat(),
+            "diagnose_commit": _git("log", "-1", "--format=%H", "--", "erdesign/diagnose.py") or "unknown",
+            "diagnose_dirty": bool(_git("status", "--porcelain", "--", "erdesign/diagnose.py", "erdesign/physics.py",
+                                        "erdesign/effects")),
+            "head": _git("rev-parse", "HEAD"), "jobs": args.jobs}
+    print(f"{len(cases)} cases ({args.subset}) on {args.jobs} processes", flush=True)
+    t0 = time.perf_counter()
+    rows = []
+    detect = not args.no_detectability
+    if args.jobs <= 1:
+        results = (run_case(c, detect) for c in cases)
+        for row in results:
+            rows.append(row)
+            _progress(row, len(rows), len(cases))
+    else:
+        with ProcessPoolExecutor(max_workers=args.jobs) as pool:
+            futures = [pool.submit(run_case, c, detect) for c in cases]
+            for fut in as_completed(futures):
+                rows.append(fut.result())
+                _progress(rows[-1], len(rows), len(cases))
+    wall = time.perf_counter() - t0
+    order = {c.name: i for i, c in enumerate(cases)}
+    rows.sort(key=lambda r: order[r["name"]])
+    long = None if args.no_long else run_long()
+    summary = summarise(rows)
+    print()
+    print("\n".join(report_lines(summary, long, wall, meta)))
+    if args.out:
+        Path(args.out).write_text(json.dumps({"meta": meta, "subset": args.subset, "summary": summary,
+                                              "long_record": long, "cases": rows}, indent=1), encoding="utf-8")
+    if args.write_docs:
+        command = ("python benchmarks/bench_diagnosis_accuracy.py --subset " + args.subset
+                   + f" --jobs {args.jobs} --out results.json --write-docs")
+        write_docs(summary, long, wall, meta, args.subset, command)
+        print(f"wrote {DOCS.relative_to(ROOT)}")
+    return 0
+
+
+def _progress(row, done, total) -> None:
+    mark = "ok " if row["correct"] else ("EXC" if row["error"] else "-- ")
+    said = row["error"] if row["error"] else f"{row['verdict']} {row['missing_effect'] or ''}"
+    t = f"{row['time_s']:.1f} s" if row["time_s"] is not None else "-"
+    det = row["effect_size_over_noise"]
+    print(f"[{done:3d}/{total}] {mark} {row['name']:<60} {t:>7}  E/N {'-' if det is None else f'{det:8.3g}'}  "
+          f"{said}", flush=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

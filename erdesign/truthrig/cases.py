@@ -1,0 +1,466 @@
+r"""The catalogue of the diagnosis benchmark: records made by the truth rig whose missing effect is known.
+
+Each :class:`Case` says which damper of ``examples/`` is measured, how it is driven (a sine programme, band-limited
+random motion or an earthquake-like record), how noisy the force is, which mechanisms of the truth rig
+(:data:`erdesign.truthrig.MECHANISMS`) the true damper has and at what size, and what a correct diagnosis says:
+
+* no mechanism ("clean": the true damper is exactly Bingham, with perturbed calibration factors) -> the verdict
+  ``"nothing_missing"``;
+* a mechanism outside the effect library (blow-off valve, single rod, cavitation, free play) -> ``"unexplained"``;
+* one or two mechanisms of the library -> ``"missing_effect"`` naming one of them (:attr:`Case.accepted`).
+
+The catalogue is deterministic (every seed is fixed) and is built by :func:`benchmark_cases`.
+
+Design rules (docs/diagnosis_benchmark.md shows the resulting counts):
+
+* every library effect at two sizes, ``moderate`` and ``large``, on five dampers (ER valve, MR valve in kA/m, MR valve
+  controlled by the coil current, ER and MR mixed mode), cycling through the three excitations and the two noise
+  levels (1 % and 3 % of the RMS force; displacement noise 1e-4 of the peak);
+* every pair of library effects once (both at the large size; either name is correct);
+* clean cases and out-of-library cases on every damper;
+* the control is a staircase 0 / full / half reference field, one step every :data:`STEP_PERIOD`, each step moved
+  to the nearest speed peak so that a lagging field is seen while the fluid flows; it is on for two thirds of the
+  record (the yield stress and its effects are seen) and off for one third (the viscosity and the seal friction
+  are seen apart from it);
+* sizes are physical: each is a multiple of the value expected from the damper's own geometry and fluid (the slug
+  mass :math:`\rho L A_p^2/(n\pi d h)`, a bulk modulus with entrained air of 0.05-1 GPa, a seal friction of a few
+  percent of the damper force, a coil time constant of 10-40 ms, ...) (:func:`mechanism_parameters`);
+* detectability is measured, not assumed: :func:`effect_size_over_noise` runs the truth rig without noise with and
+  without the mechanisms and compares the energy of the difference with that of the force noise.  Cases below
+  :data:`UNDETECTABLE` are reported as undetectable by design (kept in the catalogue, counted apart).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from itertools import combinations
+from typing import Mapping
+
+import numpy as np
+
+from ..damper import Damper
+from ..damper_file import load_example
+from ..rig import Motion, earthquake_motion, random_motion, sweep
+from .simulate import MIXED_MECHANISMS, UNSUPPORTED
+
+__all__ = ["Case", "benchmark_cases", "mechanism_parameters", "effect_size_over_noise", "build_motion",
+           "control_staircase", "LIBRARY_MECHANISMS", "OUT_OF_LIBRARY", "DAMPERS", "EXCITATIONS", "NOISES",
+           "SIZES", "STEP_PERIOD", "UNDETECTABLE", "SUBSETS", "supported", "unsupported_pairs"]
+
+#: Library effect -> the truth rig's mechanism that produces it.
+LIBRARY_MECHANISMS = {
+    "seal_friction": "stribeck_friction",
+    "fluid_inertia": "slug_inertia",
+    "compressibility": "compliance",
+    "leakage": "bypass",
+    "viscous_heating": "thermal",
+    "field_lag": "coil_lag",
+    "shear_thinning": "herschel_bulkley",
+    "gas_spring": "accumulator",
+    "preyield_elasticity": "preyield",
+}
+#: Mechanisms of the truth rig that no library effect describes.
+OUT_OF_LIBRARY = ("blowoff", "single_rod", "cavitation", "free_play")
+#: Example dampers (names of examples/*.toml) measured by the benchmark.
+DAMPERS = ("makris", "mr_valve", "mr_valve_current", "mr_mixed", "kamath_wereley")
+EXCITATIONS = ("sine", "random", "earthquake")
+#: Force noise, standard deviation as a fraction of the RMS force.
+NOISES = (0.01, 0.03)
+#: Displacement noise, standard deviation as a fraction of the peak displacement.
+DISPLACEMENT_NOISE = 1e-4
+SIZES = ("moderate", "large")
+#: Time between steps of the control staircase, [s].
+STEP_PERIOD = 0.75
+#: Levels of the control staircase, fractions of the reference field.
+STEP_LEVELS = (0.0, 1.0, 0.5, 0.0, 0.5, 1.0)
+#: Effect energy over noise energy below which a case is undetectable by design.
+UNDETECTABLE = 3.0
+SUBSETS = ("full", "fast")
+
+
+@dataclass(frozen=True)
+class _Scale:
+    """How a damper is driven: peak piston speed [m/s] and the centre frequency of the excitation [Hz]."""
+
+    speed: float
+    frequency: float
+
+
+# Peak speeds where each damper works: Makris's ER damper at its design point of about 25 mm/s (its zero-field
+# damping constant is about 1e5 N s/m), the MR dampers at automotive speeds.
+_SCALES = {
+    "makris": _Scale(0.03, 1.0),
+    "mr_valve": _Scale(0.25, 2.5),
+    "mr_valve_current": _Scale(0.25, 2.0),
+    "mr_mixed": _Scale(0.25, 2.5),
+    "kamath_wereley": _Scale(0.1, 2.0),
+}
+
+
+# ---------------------------------------------------------------------------------------------------- sizes
+def _scales(damper: Damper, speed: float) -> dict[str, float]:
+    """Physical scales of a damper: piston area, zero-field damping constant, yield force, slug mass, force."""
+    g, f = damper.geometry, damper.fluid
+    Ap = g.piston_area
+    n = g.ducts if g.configuration == "valve" else 1
+    # thin-gap Newtonian duct (Makris eq 15) and the yield pressure drop 2 tau_y L / h of a blocked slit
+    C0 = 12 * f.viscosity * g.duct_length * Ap**2 / (n * math.pi * g.duct_mean_diameter * g.gap**3)
+    Fy = 2 * f.yield_stress * g.duct_length / g.gap * Ap
+    slug = f.density * g.duct_length * Ap**2 / (n * math.pi * g.duct_mean_diameter * g.gap)
+    return {"Ap": Ap, "C0": C0, "Fy": Fy, "slug": slug, "force": Fy + C0 * speed,
+            "volume": 2 * Ap * 0.08 + n * math.pi * g.duct_mean_diameter * g.gap * g.duct_length}
+
+
+def mechanism_parameters(mechanism: str, size: str, damper: Damper, speed: float,
+                         frequency: float = 1.0) -> dict[str, float]:
+    """Parameters (SI) of a truth-rig mechanism at a ``"moderate"`` or ``"large"`` size for ``damper`` driven at
+    peak speed ``speed`` [m/s] around ``frequency`` [Hz].
+
+    Each size is a multiple of what the damper's geometry and fluid make physically expected (``F`` the damper
+    force F_y + C0 v_peak, ``F_y`` the yield force 2 tau_y L A_p / h at the reference control, ``C0`` the zero-field
+    damping constant, ``X`` the amplitude v_peak / (2 pi f)):
+
+    ==================  =========================================================================================
+    compliance          bulk modulus 0.4 / 0.1 GPa (oil with a little / more entrained air), chamber volume
+                        A_p x 60 mm each
+    herschel_bulkley    flow index 0.7 / 0.5 (ER and MR fluids thin by that much between 10 and 1e4 1/s)
+    bypass              bypass damping 10 / 3 x max(F_y / v_peak, C0) (a leak past the piston that carries the
+                        flow below the yield force up to a tenth / a third of the peak speed)
+    accumulator         charge pressure 2 / 4 MPa, gas volume 20 / 10 cm^3, polytropic index 1.2 / 1.4
+    stribeck_friction   Coulomb force 7 / 15 % of F, static force 1.5 x, Stribeck speed 2 % of v_peak
+    slug_inertia        slug mass 2.5 / 5 x rho L A_p^2 / (n pi d h)
+    coil_lag            time constant 15 / 40 ms (coil L/R and eddy currents)
+    thermal             heat capacity of a quarter / a tenth of the fluid (A_p x 2 x 80 mm plus the ducts): the
+                        fluid in and near the ducts heats first, the record is too short to warm the rest; cooling
+                        time 300 s, viscosity coefficient 0.025 / 0.03 1/K
+    preyield            shear modulus for a yield strain of 0.15 / 0.4
+    blowoff             a rebound relief valve cracking at 0.8 / 0.5 x F, damping 0.2 C0 once open
+    single_rod          no parameters (the rod on one side only)
+    cavitation          the rebound chamber cavitates at a pressure drop of 0.8 / 0.5 x F / A_p
+    free_play           backlash of half-width 3 / 6 % of X
+    ==================  =========================================================================================
+    """
+    if size not in SIZES:
+        raise ValueError(f"size: must be one of {', '.join(SIZES)}, got {size!r}")
+    big = size == "large"
+    s = _scales(damper, speed)
+    f = damper.fluid
+    if mechanism == "compliance":
+        return {"bulk_modulus": 1e8 if big else 4e8, "chamber_volume": s["Ap"] * 0.06}
+    if mechanism == "herschel_bulkley":
+        return {"flow_index": 0.5 if big else 0.7}
+    if mechanism == "bypass":
+        return {"bypass_damping": (3.0 if big else 10.0) * max(s["Fy"] / speed, s["C0"])}
+    if mechanism == "accumulator":
+        return {"charge_pressure": 4e6 if big else 2e6, "gas_volume": 10e-6 if big else 20e-6,
+                "polytropic_index": 1.4 if big else 1.2}
+    if mechanism == "stribeck_friction":
+        Fc = (0.15 if big else 0.07) * s["force"]
+        return {"coulomb_force": Fc, "static_force": 1.5 * Fc, "stribeck_speed": 0.02 * speed}
+    if mechanism == "slug_inertia":
+        return {"slug_mass": (5.0 if big else 2.5) * s["slug"]}
+    if mechanism == "coil_lag":
+        return {"time_constant": 0.04 if big else 0.015}
+    if mechanism == "thermal":
+        C = 1800.0 * s["volume"] * f.density    # J/K: fluid specific heat ~1.5-2 kJ/(kg K)
+        return {"heat_capacity": C / 10 if big else C / 4, "cooling_time": 300.0,
+                "temperature_coefficient": 0.03 if big else 0.025}
+    if mechanism == "preyield":
+        return {"shear_modulus": f.yield_stress / (0.4 if big else 0.15)}
+    share = 0.5 if big else 0.8
+    if mechanism == "blowoff":
+        return {"cracking_force": share * s["force"], "blowoff_damping": 0.2 * s["C0"]}
+    if mechanism == "single_rod":
+        return {}
+    if mechanism == "cavitation":
+        return {"charge_pressure": 2e3 + share * s["force"] / s["Ap"], "vapour_pressure": 2e3}
+    if mechanism == "free_play":
+        return {"half_width": (0.06 if big else 0.03) * speed / (2 * math.pi * frequency)}
+    raise ValueError(f"mechanism: unknown {mechanism!r}")
+
+
+# ---------------------------------------------------------------------------------------------------- motions
+def control_staircase(time: np.ndarray, velocity: np.ndarray, reference: float, *,
+                      step_period: float = STEP_PERIOD, levels=STEP_LEVELS) -> np.ndarray:
+    """The control: ``levels`` x ``reference``, one step every ``step_period`` [s], each step moved to the speed
+    peak within a third of a period of its nominal time (a lagging field is then seen at speed)."""
+    t = np.asarray(time)
+    speed = np.abs(np.asarray(velocity))
+    control = np.empty(t.size)
+    edges = [0]
+    k = 1
+    while t[0] + k * step_period < t[-1]:
+        nominal = t[0] + k * step_period
+        window = np.flatnonzero(np.abs(t - nominal) <= step_period / 3)
+        edges.append(int(window[np.argmax(speed[window])]) if window.size else int(np.searchsorted(t, nominal)))
+        k += 1
+    edges.append(t.size)
+    for i, (a, b) in enumerate(zip(edges[:-1], edges[1:])):
+        control[a:b] = levels[i % len(levels)] * reference
+    return control
+
+
+def _scaled(m: Motion, factor: float) -> Motion:
+    return replace(m, displacement=m.displacement * factor, velocity=m.velocity * factor,
+                   acceleration=m.acceleration * factor)
+
+
+def build_motion(excitation: str, damper: Damper, *, duration: float, rate: float, seed: int,
+                 speed: float, frequency: float, control_scale: float = 1.0) -> Motion:
+    """The motion of a case: ``excitation`` at peak piston speed ``speed`` [m/s] around ``frequency`` [Hz], with
+    the control staircase of :func:`control_staircase` up to ``control_scale`` x the reference field."""
+    if excitation == "sine":
+        # four segments over frequency and speed (amplitude): the viscous and yield parts apart, and the rate effects
+        f = frequency * np.array([1.0, 2.0, 1.5, 3.0])
+        v = speed * np.array([0.6, 1.0, 0.4, 0.8])
+        m = sweep(v / (2 * np.pi * f), f, [0.0], cycles=duration / float(np.sum(1 / f)), rate=rate)
+    elif excitation == "random":
+        m = random_motion(1.0, (0.4 * frequency, 4 * frequency), duration=duration, rate=rate, seed=seed)
+        m = _scaled(m, speed / np.max(np.abs(m.velocity)))
+    elif excitation == "earthquake":
+        m = earthquake_motion(1.0, duration=duration, rate=rate, ground_frequency=1.5 * frequency, seed=seed)
+        m = _scaled(m, speed / np.max(np.abs(m.velocity)))
+    else:
+        raise ValueError(f"excitation: must be one of {', '.join(EXCITATIONS)}, got {excitation!r}")
+    control = control_staircase(m.time, m.velocity, control_scale * damper.fluid.reference_field)
+    return replace(m, control=control, description=f"{m.description}; control staircase 0 / 1 / 0.5 x "
+                                                   f"{control_scale:g} x reference every {STEP_PERIOD:g} s, "
+                                                   "steps at speed")
+
+
+# ---------------------------------------------------------------------------------------------------- cases
+@dataclass(frozen=True)
+class Case:
+    """One benchmark record: a damper, an excitation, noise, the true mechanisms and the correct answer."""
+
+    name: str
+    damper: str
+    """Example damper (``erdesign.load_example`` name)."""
+    excitation: str
+    """``"sine"``, ``"random"`` or ``"earthquake"``."""
+    noise: float
+    """Force noise, fraction of the RMS force."""
+    mechanisms: Mapping[str, Mapping[str, float]]
+    """Truth-rig mechanism -> parameters (SI)."""
+    expected: str
+    """``"nothing_missing"``, ``"unexplained"`` or a library effect name."""
+    accepted: frozenset
+    """Effect names that count as a correct ``missing_effect`` (empty for clean and out-of-library cases)."""
+    seed: int
+    size: str = ""
+    """``"moderate"`` or ``"large"`` (empty for clean cases)."""
+    duration: float = 6.0
+    """[s]"""
+    rate: float = 500.0
+    """[Hz]"""
+    speed: float = 0.1
+    """Peak piston speed, [m/s]."""
+    frequency: float = 1.0
+    """Centre frequency of the excitation, [Hz]."""
+    viscosity_factor: float = 1.0
+    yield_stress_factor: float = 1.0
+    control_scale: float = 1.0
+    """Top of the control staircase over the reference field."""
+
+    @property
+    def kind(self) -> str:
+        """``"clean"``, ``"out_of_library"``, ``"single"`` or ``"pair"``."""
+        if self.expected == "nothing_missing":
+            return "clean"
+        if self.expected == "unexplained":
+            return "out_of_library"
+        return "pair" if len(self.accepted) > 1 else "single"
+
+    def load_damper(self) -> Damper:
+        return load_example(self.damper)
+
+    def motion(self, damper: Damper | None = None) -> Motion:
+        return build_motion(self.excitation, damper or self.load_damper(), duration=self.duration, rate=self.rate,
+                            seed=self.seed, speed=self.speed, frequency=self.frequency,
+                            control_scale=self.control_scale)
+
+    def truth(self, damper: Damper | None = None, mechanisms: Mapping | None = None):
+        """The true damper (:class:`erdesign.truthrig.TruthDamper`)."""
+        from . import TruthDamper
+        mech = self.mechanisms if mechanisms is None else mechanisms
+        return TruthDamper(damper or self.load_damper(), mechanisms={k: dict(v) for k, v in mech.items()},
+                           viscosity_factor=self.viscosity_factor, yield_stress_factor=self.yield_stress_factor)
+
+    def make(self, rng_seed: int | None = None):
+        """Simulate the case on the truth rig: a :class:`erdesign.truthrig.TruthRecord` (noise seed ``rng_seed``,
+        default :attr:`seed`)."""
+        from . import simulate_truth
+        damper = self.load_damper()
+        return simulate_truth(self.truth(damper), self.motion(damper), force_noise=self.noise,
+                              displacement_noise=DISPLACEMENT_NOISE, seed=self.seed if rng_seed is None else rng_seed,
+                              name=self.name)
+
+    def detectability(self) -> dict[str, float | None]:
+        """:func:`effect_size_over_noise` of this case."""
+        return effect_size_over_noise(self)
+
+
+def effect_size_over_noise(case: Case) -> dict[str, float | None]:
+    """How visible the case's mechanisms are: noise-free truth runs with and without them.
+
+    .. math::
+        D = \frac{\sum (F_\text{with} - F_\text{without})^2}{\sum (F_\text{without} - \bar F_\text{without})^2},
+        \qquad \frac{D}{D_\text{noise}}, \quad
+        D_\text{noise} = \frac{n\,(\sigma F_\text{rms})^2}{\sum (F_\text{without} - \bar F_\text{without})^2}
+
+    (:math:`\sigma` the force noise as a fraction of the RMS force): the energy of the change the mechanisms make
+    over the energy of the noise.  Part of the change may be absorbed by recalibrating the two fluid factors, so
+    this is an upper bound of what a diagnosis can see.  Returns ``effect_esr`` (D), ``noise_esr``
+    (:math:`D_\text{noise}`) and ``effect_size_over_noise``; all None for a clean case.
+    """
+    if not case.mechanisms:
+        return {"effect_esr": None, "noise_esr": None, "effect_size_over_noise": None}
+    from . import simulate_truth
+    damper = case.load_damper()
+    motion = case.motion(damper)
+    runs = []
+    for mech in (case.mechanisms, {}):
+        rec = simulate_truth(case.truth(damper, mech), motion, force_noise=0.0, displacement_noise=0.0,
+                             seed=case.seed, name=case.name)
+        runs.append(np.asarray(rec.true_force, float))
+    with_, without = runs
+    var = float(np.sum((without - without.mean()) ** 2))
+    effect = float(np.sum((with_ - without) ** 2)) / var
+    noise = with_.size * (case.noise * float(np.sqrt(np.mean(with_**2)))) ** 2 / var
+    return {"effect_esr": effect, "noise_esr": noise, "effect_size_over_noise": effect / noise}
+
+
+# Calibration factors of the true fluid (the nominal file is off by tens of percent), cycled over the cases.
+_FACTORS = ((1.15, 0.9), (0.85, 1.1), (1.25, 0.8), (0.9, 1.2), (1.05, 0.95), (0.8, 1.05), (1.2, 1.15))
+# Faster excitations for the mechanisms whose force grows with frequency faster than the viscous force.
+_FREQUENCY_BOOST = {"slug_inertia": 6.0, "compliance": 1.5}
+# Lower control levels where the yield force would hide a small force of another kind.
+_CONTROL_SCALE = {"slug_inertia": 0.4}
+# Sampling rate [Hz] by mechanism: 1 kHz where a few milliseconds matter.
+_RATE = {"slug_inertia": 1000.0, "coil_lag": 1000.0, "compliance": 1000.0}
+# Record length [s] by mechanism: heating needs time to warm the fluid.
+_DURATION = {"thermal": 20.0}
+
+
+_DAMPER_CACHE: dict[str, Damper] = {}
+
+
+def _example(name: str) -> Damper:
+    if name not in _DAMPER_CACHE:
+        _DAMPER_CACHE[name] = load_example(name)
+    return _DAMPER_CACHE[name]
+
+
+def _case(name, damper_name, excitation, noise, mechanisms, expected, accepted, seed, size="", duration=None,
+          rate=None) -> Case:
+    damper = _example(damper_name)
+    scale = _SCALES[damper_name]
+    boost = max([_FREQUENCY_BOOST.get(m, 1.0) for m in mechanisms] or [1.0])
+    params = {}
+    for mech, sz in mechanisms.items():
+        params[mech] = mechanism_parameters(mech, sz, damper, scale.speed, scale.frequency * boost)
+    dur = duration or max([_DURATION.get(m, 6.0) for m in mechanisms] or [6.0])
+    rt = rate or max([_RATE.get(m, 500.0) for m in mechanisms] or [500.0])
+    kv, ky = _FACTORS[seed % len(_FACTORS)]
+    control = min([_CONTROL_SCALE.get(m, 1.0) for m in mechanisms] or [1.0])
+    return Case(name, damper_name, excitation, noise, params, expected, frozenset(accepted), seed, size, dur, rt,
+                scale.speed, scale.frequency * boost, kv, ky, control)
+
+
+def supported(mechanisms, damper_name: str) -> bool:
+    """Whether the truth rig can simulate ``mechanisms`` together on the example damper ``damper_name`` (the
+    mixed-mode damper has no valve law for some; some pairs are not combined, :data:`~.simulate.UNSUPPORTED`)."""
+    names = set(mechanisms)
+    if any(pair <= names for pair in UNSUPPORTED):
+        return False
+    return _example(damper_name).geometry.configuration != "mixed" or names <= set(MIXED_MECHANISMS)
+
+
+def unsupported_pairs() -> list[tuple[str, str]]:
+    """Pairs of library effects the truth rig cannot simulate together on any damper (left out of the catalogue)."""
+    return [(a, b) for a, b in combinations(LIBRARY_MECHANISMS, 2)
+            if not any(supported({LIBRARY_MECHANISMS[a], LIBRARY_MECHANISMS[b]}, d) for d in DAMPERS)]
+
+
+def _full() -> list[Case]:
+    cases: list[Case] = []
+    seed = 1000
+    effects = list(LIBRARY_MECHANISMS)
+    # single effects: 9 effects x 2 sizes x 5 slots, one per damper where the truth rig can simulate the effect on
+    # it (otherwise the slot goes to another damper with another excitation); excitation and noise cycle so that
+    # each effect meets all
+    for ie, effect in enumerate(effects):
+        mech = LIBRARY_MECHANISMS[effect]
+        dampers = [d for d in DAMPERS if supported({mech}, d)]
+        for isz, size in enumerate(SIZES):
+            for k in range(len(DAMPERS)):
+                dname = dampers[k % len(dampers)]
+                exc = EXCITATIONS[(k + ie + isz + k // len(dampers)) % 3]
+                noise = NOISES[(k + isz) % 2]
+                seed += 1
+                cases.append(_case(f"{effect}-{size}-{dname}-{exc}-{round(100 * noise)}pct", dname, exc, noise,
+                                   {mech: size}, effect, {effect}, seed, size))
+    # every pair of library effects once, both large, that the truth rig can simulate together
+    impossible = set(unsupported_pairs())
+    for ip, (a, b) in enumerate(combinations(effects, 2)):
+        if (a, b) in impossible:
+            continue
+        pair = {LIBRARY_MECHANISMS[a], LIBRARY_MECHANISMS[b]}
+        dname = next(DAMPERS[(ip + j) % len(DAMPERS)] for j in range(len(DAMPERS))
+                     if supported(pair, DAMPERS[(ip + j) % len(DAMPERS)]))
+        exc = EXCITATIONS[ip % 3]
+        noise = NOISES[(ip // 3) % 2]
+        seed += 1
+        cases.append(_case(f"pair-{a}+{b}-{dname}-{exc}-{round(100 * noise)}pct", dname, exc, noise,
+                           {LIBRARY_MECHANISMS[a]: "large", LIBRARY_MECHANISMS[b]: "large"}, a, {a, b}, seed,
+                           "large"))
+    # clean: exactly Bingham with perturbed calibration factors
+    for ic in range(15):
+        dname = DAMPERS[ic % len(DAMPERS)]
+        exc = EXCITATIONS[ic % 3]
+        noise = NOISES[(ic // 5) % 2]
+        seed += 1
+        cases.append(_case(f"clean-{dname}-{exc}-{round(100 * noise)}pct-{ic}", dname, exc, noise, {},
+                           "nothing_missing", (), seed))
+    # outside the library
+    for io, (mech, dname) in enumerate((m, d) for m in OUT_OF_LIBRARY for d in DAMPERS[:3]):
+        exc = EXCITATIONS[io % 3]
+        noise = NOISES[io % 2]
+        seed += 1
+        cases.append(_case(f"outside-{mech}-{dname}-{exc}-{round(100 * noise)}pct", dname, exc, noise,
+                           {mech: "large"}, "unexplained", (), seed, "large"))
+    return cases
+
+
+def _fast() -> list[Case]:
+    """Seven short records: one clean, one out of the library, five single effects on different dampers."""
+    specs = [
+        ("clean", "mr_valve", "sine", {}, "nothing_missing", ()),
+        ("outside-blowoff", "mr_valve_current", "sine", {"blowoff": "large"}, "unexplained", ()),
+        ("seal_friction", "makris", "sine", {"stribeck_friction": "large"}, "seal_friction", {"seal_friction"}),
+        ("compressibility", "mr_valve", "random", {"compliance": "large"}, "compressibility", {"compressibility"}),
+        ("field_lag", "mr_valve_current", "sine", {"coil_lag": "large"}, "field_lag", {"field_lag"}),
+        ("fluid_inertia", "mr_mixed", "sine", {"slug_inertia": "large"}, "fluid_inertia", {"fluid_inertia"}),
+        ("gas_spring", "kamath_wereley", "earthquake", {"accumulator": "large"}, "gas_spring", {"gas_spring"}),
+    ]
+    cases = []
+    for i, (label, dname, exc, mech, expected, accepted) in enumerate(specs):
+        cases.append(_case(f"fast-{label}-{dname}-{exc}", dname, exc, 0.01, mech, expected, accepted, 100 + i,
+                           "large" if mech else "", duration=4.0))
+    return cases
+
+
+def benchmark_cases(subset: str = "full") -> list[Case]:
+    """The benchmark's cases: ``"full"`` (the catalogue, 153 cases) or ``"fast"`` (seven short ones for the
+    test suite).
+
+    >>> cases = benchmark_cases()
+    >>> len(cases) >= 150, sum(c.kind == "clean" for c in cases), sum(c.kind == "pair" for c in cases)
+    (True, 15, 36)
+    """
+    if subset == "full":
+        return _full()
+    if subset == "fast":
+        return _fast()
+    raise ValueError(f"subset: must be one of {', '.join(SUBSETS)}, got {subset!r}")
