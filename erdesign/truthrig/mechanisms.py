@@ -46,6 +46,12 @@ def _chamber_volume(damper) -> float:
     return g.piston_area * g.piston_diameter
 
 
+def _heat_capacity(damper) -> float:
+    # the fluid of both chambers plus a steel body of ten chamber volumes (7850 kg/m^3, 460 J/(kg K))
+    V = _chamber_volume(damper)
+    return damper.fluid.density * SPECIFIC_HEAT * 2.0 * V + 7850.0 * 460.0 * 10.0 * V
+
+
 def _slug_mass(damper) -> float:
     g = damper.geometry
     return damper.fluid.density * g.duct_length * g.piston_area**2 / (
@@ -125,10 +131,10 @@ MECHANISMS: dict[str, Mechanism] = {m.name: m for m in (
         "field_lag", {"time_constant": "s"}, lambda d: {"time_constant": 0.02}),
     Mechanism(
         "thermal", "Viscous heating",
-        "A lumped thermal mass heated by the power the fluid dissipates and cooled to ambient, "
+        "A lumped thermal mass (default: the fluid of both chambers and a steel body of ten chamber volumes) heated by the power the fluid dissipates and cooled to ambient, "
         "C dT/dt = P - C (T - T0) / tau; the plastic viscosity falls as eta0 exp(-alpha (T - T0)).",
         "viscous_heating", {"heat_capacity": "J/K", "cooling_time": "s", "temperature_coefficient": "1/K"},
-        lambda d: {"heat_capacity": d.fluid.density * SPECIFIC_HEAT * 2.0 * _chamber_volume(d),
+        lambda d: {"heat_capacity": _heat_capacity(d),
                    "cooling_time": 300.0, "temperature_coefficient": 0.02}),
     Mechanism(
         "preyield", "Pre-yield elasticity",
