@@ -395,7 +395,7 @@ def simulate_truth(truth: TruthDamper, motion: Motion, *, force_noise: float = 0
     >>> truth = TruthDamper(load_example("makris"), {"compliance": {}, "coil_lag": {}}, viscosity_factor=1.1)
     >>> rec = simulate_truth(truth, sine(0.005, 2.0, 3e6, cycles=2, rate=500), seed=1, name="case-001")
     >>> len(rec.measured), rec.measured.control_kind, round(float(abs(rec.true_force).max()), -2)
-    (501, 'electric field', 6700.0)
+    (501, 'electric field', 15800.0)
     """
     if not isinstance(truth, TruthDamper):
         raise ErdesignError("truth: must be a TruthDamper")

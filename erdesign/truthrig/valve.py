@@ -134,7 +134,7 @@ def bingham_valve_flow(dp, tau_y, eta, L, d, h):
 
     >>> q = bingham_valve_flow(1e6, 0.0, 7.0, 0.0546, 0.0143, 0.8e-3)
     >>> round(q * 1e6, 3)        # cm^3/s
-    5.618
+    5.015
     >>> bingham_valve_flow(2 * 1800 * 0.0546 / 0.8e-3, 1800.0, 13.0, 0.0546, 0.0143, 0.8e-3)   # at yield
     0.0
 
