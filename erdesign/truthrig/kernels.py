@@ -21,10 +21,26 @@ non-decreasing in ``F``; every force in the rig is a root of a monotone scalar e
   :math:`\dot P = k_c (v - w)`, :math:`m \dot w = P - F_v(w)`, backward Euler with the exact stroke increment
   :math:`\Delta x` in place of :math:`h v`; eliminating :math:`P` leaves one monotone equation in the valve force
   :math:`F_v` per step, :math:`F_v + (m/h + k_c h)\,v_d(F_v) = m w/h + P + k_c \Delta x`;
-* the damper-level Makris eq 8 (pre-yield), linear in the force over a step and integrated exactly with the rate
-  coefficient frozen at mid-step;
+* the damper-level Makris eq 8 (pre-yield), :math:`\dot F = K v\,(1 - F / F_r(v))`, linear in the force over a
+  step and integrated exactly with the rate coefficient frozen at mid-step;
 * the lumped temperature rise, trapezoidal rule on its linear cooling and the energy dissipated in the step,
   which makes heat stored + heat lost = work dissipated hold to round-off over every step.
+
+Departures from the printed Makris eq 8,
+:math:`\tau + [(\eta\dot\gamma + \tau_y \operatorname{sgn}\dot\gamma)/(G\dot\gamma)]\,\dot\tau
+= \eta\dot\gamma + \tau_y \operatorname{sgn}\dot\gamma` (its right side prints :math:`\nu_0` for
+:math:`\eta_0`): (1) it is used multiplied through by :math:`G\dot\gamma/(\eta\dot\gamma + \tau_y
+\operatorname{sgn}\dot\gamma)`, which is the same law where both are defined and regular at
+:math:`\dot\gamma = 0`, where the printed coefficient is 0/0 (the stress is then held); (2) it is written for the
+damper, not a material point: stress -> force, :math:`G\dot\gamma \to K v` with
+:math:`K = 12 G L A_p^2/(n\pi d h^3)` (an elastic solid in the slit deflects in the parabola the Newtonian fluid
+flows in), and the steady stress :math:`\eta\dot\gamma + \tau_y\operatorname{sgn}\dot\gamma` -> the exact
+steady force :math:`F_r(v)` of the flow paths (Buckingham-Reiner, not :math:`C v + F_y`), so that the law relaxes
+onto the rigid damper at large amplitude.  With :math:`\tau_y = 0` it is the Maxwell element (Makris eq 13).
+
+References
+----------
+Makris, Burton, Hill and Jordan (1996), eqs 6, 8 and 13 (seed 004).
 """
 
 from __future__ import annotations

@@ -396,6 +396,11 @@ def simulate_truth(truth: TruthDamper, motion: Motion, *, force_noise: float = 0
     >>> rec = simulate_truth(truth, sine(0.005, 2.0, 3e6, cycles=2, rate=500), seed=1, name="case-001")
     >>> len(rec.measured), rec.measured.control_kind, round(float(abs(rec.true_force).max()), -2)
     (501, 'electric field', 15800.0)
+
+    References
+    ----------
+    Makris, Burton, Hill and Jordan (1996), eqs 6, 8, 13 and 14 (seed 004); Kamath and Wereley, section II
+    (seed 000) for the mixed-mode damper.
     """
     if not isinstance(truth, TruthDamper):
         raise ErdesignError("truth: must be a TruthDamper")
