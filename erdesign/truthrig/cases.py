@@ -302,7 +302,7 @@ class Case:
 
 
 def effect_size_over_noise(case: Case) -> dict[str, float | None]:
-    """How visible the case's mechanisms are: noise-free truth runs with and without them.
+    r"""How visible the case's mechanisms are: noise-free truth runs with and without them.
 
     .. math::
         D = \frac{\sum (F_\text{with} - F_\text{without})^2}{\sum (F_\text{without} - \bar F_\text{without})^2},
@@ -452,12 +452,12 @@ def _fast() -> list[Case]:
 
 
 def benchmark_cases(subset: str = "full") -> list[Case]:
-    """The benchmark's cases: ``"full"`` (the catalogue, 153 cases) or ``"fast"`` (seven short ones for the
+    """The benchmark's cases: ``"full"`` (the catalogue, 152 cases) or ``"fast"`` (seven short ones for the
     test suite).
 
     >>> cases = benchmark_cases()
     >>> len(cases) >= 150, sum(c.kind == "clean" for c in cases), sum(c.kind == "pair" for c in cases)
-    (True, 15, 36)
+    (True, 15, 35)
     """
     if subset == "full":
         return _full()
