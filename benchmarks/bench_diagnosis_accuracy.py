@@ -13,7 +13,8 @@ Run::
 
 Options: ``--subset fast|full``, ``--jobs N`` (processes, default 2), ``--cases PATTERN`` (shell pattern or
 substring of case names), ``--out FILE`` (JSON of every case), ``--write-docs`` (docs/diagnosis_benchmark.md),
-``--no-long`` (skip the timing of one 60 s record at 1 kHz, target < 30 s), ``--no-detectability``.
+``--no-long`` (skip the timing of one 60 s record at 1 kHz, target < 30 s), ``--no-detectability``,
+``--from-json FILE`` (summarise a previous ``--out`` file, with ``--write-docs`` rewrite the page from it).
 """
 
 from __future__ import annotations
@@ -345,7 +346,23 @@ def main(argv=None) -> int:
     p.add_argument("--write-docs", action="store_true", help=f"write {DOCS.relative_to(ROOT)}")
     p.add_argument("--no-long", action="store_true", help="skip the 60 s, 1 kHz timing record")
     p.add_argument("--no-detectability", action="store_true", help="skip the noise-free detectability runs")
+    p.add_argument("--from-json", default=None, help="summarise (and --write-docs) a previous --out file, no runs")
     args = p.parse_args(argv)
+    if args.from_json:
+        data = json.loads(Path(args.from_json).read_text(encoding="utf-8"))
+        rows = data["cases"]
+        if args.cases:
+            rows = [r for r in rows if fnmatch.fnmatch(r["name"], args.cases) or args.cases in r["name"]]
+        summary = summarise(rows)
+        wall = data.get("wall_s", math.nan)
+        print("\n".join(report_lines(summary, data.get("long_record"), wall, data["meta"])))
+        if args.write_docs:
+            command = ("python benchmarks/bench_diagnosis_accuracy.py --subset " + data["subset"]
+                       + f" --jobs {data['meta']['jobs']} --out results.json --write-docs")
+            subset = data["subset"] + (f"` (partial run, {len(rows)} cases done`" if data.get("partial") else "")
+            write_docs(summary, data.get("long_record"), wall, data["meta"], subset, command)
+            print(f"wrote {DOCS.relative_to(ROOT)}")
+        return 0
 
     sys.path.insert(0, str(ROOT))
     from erdesign.truthrig.cases import benchmark_cases
@@ -363,17 +380,27 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     rows = []
     detect = not args.no_detectability
+    def save(partial: bool, long=None, summary=None) -> None:
+        if args.out:
+            wall = time.perf_counter() - t0
+            Path(args.out).write_text(json.dumps({"meta": meta, "subset": args.subset, "wall_s": wall,
+                                                  "partial": partial, "summary": summary, "long_record": long,
+                                                  "cases": rows}, indent=1), encoding="utf-8")
+
+    # interleaved over the classes, so that a run stopped early has seen every class
+    queue = _interleaved(cases)
     if args.jobs <= 1:
-        results = (run_case(c, detect) for c in cases)
-        for row in results:
-            rows.append(row)
-            _progress(row, len(rows), len(cases))
+        for c in queue:
+            rows.append(run_case(c, detect))
+            _progress(rows[-1], len(rows), len(cases))
+            save(True)
     else:
         with ProcessPoolExecutor(max_workers=args.jobs) as pool:
-            futures = [pool.submit(run_case, c, detect) for c in cases]
+            futures = [pool.submit(run_case, c, detect) for c in queue]
             for fut in as_completed(futures):
                 rows.append(fut.result())
                 _progress(rows[-1], len(rows), len(cases))
+                save(True)
     wall = time.perf_counter() - t0
     order = {c.name: i for i, c in enumerate(cases)}
     rows.sort(key=lambda r: order[r["name"]])
@@ -381,15 +408,25 @@ def main(argv=None) -> int:
     summary = summarise(rows)
     print()
     print("\n".join(report_lines(summary, long, wall, meta)))
-    if args.out:
-        Path(args.out).write_text(json.dumps({"meta": meta, "subset": args.subset, "summary": summary,
-                                              "long_record": long, "cases": rows}, indent=1), encoding="utf-8")
+    save(False, long, summary)
     if args.write_docs:
         command = ("python benchmarks/bench_diagnosis_accuracy.py --subset " + args.subset
                    + f" --jobs {args.jobs} --out results.json --write-docs")
         write_docs(summary, long, wall, meta, args.subset, command)
         print(f"wrote {DOCS.relative_to(ROOT)}")
     return 0
+
+
+def _interleaved(cases):
+    groups = defaultdict(list)
+    for c in cases:
+        groups[c.expected if c.kind == "single" else c.kind].append(c)
+    out = []
+    while any(groups.values()):
+        for g in groups.values():
+            if g:
+                out.append(g.pop(0))
+    return out
 
 
 def _progress(row, done, total) -> None:
