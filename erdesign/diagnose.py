@@ -23,7 +23,7 @@ the full record first); the ESRs reported are those of the full record.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Mapping, Sequence
 
 import numpy as np
@@ -36,10 +36,11 @@ from .fit import FitResult, fit
 from .measurement import Measurement
 from .metrics import esr
 from .models.base import Model
-from .physics import PhysicsDamper, check_control
+from .noise import noise_floor_esr, velocity_noise
+from .physics import SIGN_WIDTH, PhysicsDamper, check_control
 
 __all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
-           "improve", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD", "MAX_SAMPLES"]
+           "improve", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD", "MAX_SAMPLES", "VERDICTS"]
 
 #: A candidate must lower the residual sum of squares by at least this fraction ...
 MIN_GAIN = 0.05
@@ -141,6 +142,8 @@ def _regions(record: Measurement, weight: np.ndarray | None = None) -> dict[str,
         "high velocity (> 70 %)": np.abs(v) > 0.7 * peak,
         "first third": t < t[0] + T / 3,
         "late in the test": t > t[0] + 2 * T / 3,
+        "moving in + (v > 0)": v > 0.15 * peak,
+        "moving in - (v < 0)": v < -0.15 * peak,
     }
     u = np.abs(record.control)
     if u.max() > 0:
@@ -215,6 +218,13 @@ def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measureme
     if high and high[1] > 1.5:
         findings.append(f"the error is largest at high speed ({high[1]:.2g} x the overall RMS): the force-velocity "
                         "curve bends (shear thinning) or lags (compressibility)")
+    plus, minus = regions.get("moving in + (v > 0)"), regions.get("moving in - (v < 0)")
+    if plus and minus and max(plus[1], minus[1]) > 1.5 * max(min(plus[1], minus[1]), 1e-12):
+        big = "+" if plus[1] > minus[1] else "-"
+        findings.append(f"the residual is asymmetric: {max(plus[1], minus[1]) / max(min(plus[1], minus[1]), 1e-12):.2g} "
+                        f"x larger moving in {big} than in the other direction: something acts one way only (a "
+                        "blow-off or check valve, the unequal areas of a single-ended rod, cavitation); no effect of "
+                        "the library is one-sided")
     late, first = regions.get("late in the test"), regions.get("first third")
     if late and first and late[1] > 1.5 * first[1]:
         findings.append(f"the error grows over the test (late / early RMS {late[1] / max(first[1], 1e-12):.2g}): "
@@ -225,37 +235,71 @@ def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measureme
 # ---------------------------------------------------------------------------------------------------- judging
 @dataclass
 class Candidate:
-    """One effect added to the model and refitted."""
+    """One effect (or a pair) added to the model and refitted."""
 
     effect: str
     result: FitResult | None
-    esr: float
-    """ESR after adding it and refitting (full record)."""
-    delta_bic: float
+    esr: float | None
+    """ESR after adding it and refitting (full record); None when it could not be evaluated (see :attr:`reason`)."""
+    delta_bic: float = math.inf
     """Effective BIC of the candidate minus that of the current model (negative: better)."""
-    gain: float
+    gain: float = 0.0
     """Fraction of the residual sum of squares removed."""
     held_out_gain: float | None = None
     """Fraction of the held-out residual sum of squares removed (None: not checked)."""
     plausibility: str = ""
     significant: bool = False
     note: str = ""
+    explained: float = 0.0
+    """Fraction of the baseline's excess over the noise floor that the candidate removes."""
+    implausible: list = field(default_factory=list)
+    """What is implausible about its fitted size (empty: nothing)."""
+    at_bounds: list = field(default_factory=list)
+    """Its parameters that ended at a bound of their range."""
+    reason: str = ""
+    """Why it could not be evaluated (then :attr:`esr` is None) - or why it was not named."""
+    effects: tuple = ()
+    """The effects it adds: ``(effect,)``, or two for a pair."""
+
+    def __post_init__(self):
+        if not self.effects:
+            self.effects = (self.effect,)
+
+    @property
+    def evaluated(self) -> bool:
+        return self.result is not None and self.esr is not None
 
     def parameters(self, digits: int = 4) -> dict[str, str]:
-        """The effect's fitted parameters with units (strings)."""
+        """The effects' fitted parameters with units (strings)."""
         if self.result is None:
             return {}
-        names = [p.name for p in EFFECTS[self.effect].parameters(self.result.model.damper)]
-        return {n: self.result.model.parameter(n).format(self.result.values[n], digits).strip() for n in names}
+        out = {}
+        for e in self.effects:
+            for p in EFFECTS[e].parameters(self.result.model.damper):
+                out[p.name] = self.result.model.parameter(p.name).format(self.result.values[p.name], digits).strip()
+        return out
 
     def uncertainties(self) -> dict[str, str]:
         if self.result is None:
             return {}
         out = {}
-        for p in EFFECTS[self.effect].parameters(self.result.model.damper):
-            se = self.result.stderr.get(p.name, math.nan)
-            out[p.name] = p.format(se, 2) if math.isfinite(se) else "not identifiable"
+        for e in self.effects:
+            for p in EFFECTS[e].parameters(self.result.model.damper):
+                se = self.result.stderr.get(p.name, math.nan)
+                out[p.name] = p.format(se, 2) if math.isfinite(se) else "not identifiable"
         return out
+
+    def as_json(self) -> dict:
+        out = {"effect": self.effect, "esr": _finite_or_none(self.esr), "parameters": self.parameters()}
+        if len(self.effects) > 1:
+            out["effects"] = list(self.effects)
+        if self.reason:
+            out["reason"] = self.reason
+        return out
+
+
+def _finite_or_none(x):
+    return float(x) if x is not None and math.isfinite(x) else None
 
 
 def _effective_n(residual: np.ndarray) -> float:
@@ -279,6 +323,28 @@ def _held_out_mask(record: Measurement, blocks: int = 12) -> np.ndarray:
     return idx % 3 == 1
 
 
+def _at_bounds(result: FitResult, names) -> list[str]:
+    """Free parameters among ``names`` that ended at (within 1e-6 of the range of) a bound."""
+    out = []
+    for name in names:
+        if name not in result.free:
+            continue
+        p = result.model.parameter(name)
+        v = result.values[name]
+        lo, hi = p.lower, p.upper
+        if p.log_scale:
+            v, lo, hi = math.log(v), math.log(lo), (math.log(hi) if math.isfinite(hi) else hi)
+        span = (hi - lo) if math.isfinite(hi - lo) else max(abs(v), 1.0)
+        if v - lo <= 1e-6 * span:
+            out.append(f"{name} at its lower bound {p.format(p.lower)}")
+        elif math.isfinite(hi) and hi - v <= 1e-6 * span:
+            out.append(f"{name} at its upper bound {p.format(p.upper)}")
+    return out
+
+
+VERDICTS = ("missing_effect", "nothing_missing", "unexplained")
+
+
 @dataclass
 class Diagnosis:
     """The outcome of :func:`diagnose`."""
@@ -295,48 +361,78 @@ class Diagnosis:
     record_name: str = ""
     samples: tuple[int, int] = (0, 0)
     """(samples of the record, samples analysed)."""
+    verdict: str = "nothing_missing"
+    """``"missing_effect"``, ``"nothing_missing"`` or ``"unexplained"`` (shared/CONTRACTS.md section 3)."""
+    noise_floor_esr: float = 0.0
+    """ESR that the record's noise alone would leave (:func:`erdesign.noise.noise_floor_esr`)."""
+    reason: str = ""
+    """The verdict in words: why, and for ``"unexplained"`` what the residual looks like and where it lives."""
+    pair: tuple[str, ...] = ()
+    """When two effects are missing together: both (``missing_effect`` is the first)."""
+    warnings: list = field(default_factory=list)
+    """Things the user should check (a calibration at its bounds, a baseline worse than the mean ...)."""
 
     def as_json(self) -> dict:
-        """The keys of ``erdesign diagnose --json`` (shared/CONTRACTS.md section 3)."""
-        return {"baseline_esr": self.baseline_esr,
-                "ranking": [{"effect": c.effect, "esr": c.esr, "parameters": c.parameters()} for c in self.ranking],
-                "missing_effect": self.missing_effect}
+        """The keys of ``erdesign diagnose --json`` (shared/CONTRACTS.md section 3); no value is NaN or infinite."""
+        out = {"baseline_esr": _finite_or_none(self.baseline_esr),
+               "ranking": [c.as_json() for c in self.ranking],
+               "missing_effect": self.missing_effect,
+               "verdict": self.verdict,
+               "noise_floor_esr": _finite_or_none(self.noise_floor_esr),
+               "reason": self.reason}
+        if self.pair:
+            out["missing_effects"] = list(self.pair)
+        if self.warnings:
+            out["warnings"] = list(self.warnings)
+        return out
 
     def report(self) -> str:
         """A readable report: calibration, where it fails, the ranking with parameters and plausibility, verdict."""
         model = "baseline" + (f" + {', '.join(self.effects)}" if self.effects else "")
         lines = [f"Diagnosis of {self.record_name or 'the record'} ({self.samples[0]} samples"
                  + (f", analysed on {self.samples[1]}" if self.samples[1] != self.samples[0] else "") + ")",
-                 f"model: {model}; calibrated ESR {self.baseline_esr:.4g}"]
+                 f"model: {model}; calibrated ESR {self.baseline_esr:.4g}; noise floor ESR {self.noise_floor_esr:.3g} "
+                 f"(what the record's noise alone would leave)"]
         for name in self.baseline.model.parameter_names:
             p = self.baseline.model.parameter(name)
             se = self.baseline.stderr.get(name)
             unc = "" if se is None else (f" ± {p.format(se, 2)}" if math.isfinite(se) else " (not identifiable)")
             lines.append(f"  {name:<22} {p.format(self.baseline.values[name])}{unc}")
+        for w in self.warnings:
+            lines.append(f"  warning: {w}")
         lines.append("where the model fails:")
         lines.append(self.analysis.report())
-        lines.append("candidate effects (best first; ESR after adding it, effective-BIC change, gain):")
+        lines.append("candidate effects (best first; ESR after adding it, effective-BIC change, share of the excess "
+                     "over the noise floor it explains):")
         for i, c in enumerate(self.ranking, 1):
             mark = "*" if c.significant else " "
+            if not c.evaluated:
+                lines.append(f" {mark}{i}. {c.effect:<20} not evaluated: {c.reason}")
+                continue
             held = "" if c.held_out_gain is None else f", held-out gain {100 * c.held_out_gain:.1f} %"
-            lines.append(f" {mark}{i}. {c.effect:<20} ESR {c.esr:.4g}  dBIC {c.delta_bic:+.1f}  "
-                         f"gain {100 * c.gain:.1f} %{held}")
+            name = " + ".join(c.effects)
+            lines.append(f" {mark}{i}. {name:<20} ESR {c.esr:.4g}  dBIC {c.delta_bic:+.1f}  "
+                         f"explains {100 * c.explained:.0f} %{held}")
             unc = c.uncertainties()
             for n, v in c.parameters().items():
                 lines.append(f"      {n} = {v} ± {unc.get(n, '?')}")
             if c.plausibility:
                 lines.append(f"      against the prior: {c.plausibility}")
+            if c.at_bounds:
+                lines.append(f"      at bounds: {'; '.join(c.at_bounds)}")
             if c.note:
                 lines.append(f"      {c.note}")
         for e, why in self.not_judged.items():
             lines.append(f"  not judged: {e}: {why}")
-        if self.missing_effect:
-            c = self.ranking[0]
-            lines.append(f"verdict: missing effect: {self.missing_effect} ({EFFECTS[self.missing_effect].mechanism}) "
-                         f"ESR {self.baseline_esr:.4g} -> {c.esr:.4g}")
+        if self.verdict == "missing_effect":
+            c = next(c for c in self.ranking if c.significant)
+            what = " and ".join(f"{e} ({EFFECTS[e].mechanism})" for e in (self.pair or (self.missing_effect,)))
+            lines.append(f"verdict: missing effect: {what} ESR {self.baseline_esr:.4g} -> {c.esr:.4g} "
+                         f"(noise floor {self.noise_floor_esr:.3g})")
+        elif self.verdict == "unexplained":
+            lines.append("verdict: unexplained: " + self.reason)
         else:
-            lines.append("verdict: no significant missing effect (no candidate improves the fit beyond what noise "
-                         "and extra parameters explain)")
+            lines.append("verdict: nothing missing: " + self.reason)
         return "\n".join(lines)
 
 
@@ -344,7 +440,8 @@ def _analysis_record(record: Measurement, max_samples: int) -> Measurement:
     if len(record) <= max_samples:
         return record
     step = int(math.ceil(len(record) / max_samples))
-    return record.select(slice(None, None, step))
+    # the thinned copy keeps the velocity noise of the full record (its velocity was derived there)
+    return replace(record.select(slice(None, None, step)), velocity_noise=velocity_noise(record))
 
 
 def _check_record(record: Measurement) -> None:
@@ -356,11 +453,63 @@ def _check_record(record: Measurement) -> None:
     if reversal_count(record.velocity) < 2:
         raise DiagnosisError(f"{record.name or 'record'}: the piston reverses fewer than twice; at least one full "
                              "cycle is needed to judge any effect")
+    for name, a in (("force", record.force), ("displacement", record.displacement), ("velocity", record.velocity)):
+        if not np.all(np.isfinite(a)):
+            raise DiagnosisError(f"{record.name or 'record'}: the {name} has non-finite values")
+
+
+#: The baseline's ESR counts as "at the noise floor" up to this multiple of the floor (plus ABSOLUTE_SLACK) ...
+AT_FLOOR = 2.0
+#: ... and as "well above" it (something is missing) beyond this multiple.
+WELL_ABOVE = 3.0
+#: ESR slack for records with almost no noise (model and derivative round-off).
+ABSOLUTE_SLACK = 2e-4
+#: A named effect must remove at least this share of the baseline's excess over the noise floor.
+EXPLAINS = 0.6
+#: Below this share explained by the best single effect, pairs are searched jointly.
+PAIR_SEARCH_BELOW = 0.85
+#: How many of the best single candidates enter the pair search.
+PAIR_POOL = 4
+
+
+def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, effects: tuple, added: tuple,
+              damper: Damper, start=None) -> Candidate:
+    """Fit the model with ``added`` effects; a candidate that cannot be evaluated says why (never raises)."""
+    name = added[0] if len(added) == 1 else " + ".join(added)
+    model = base_model.with_effects(effects + added)
+    starts = [{**base.values, **(start or {})}]
+    starts.append({**base.values, **{k: v for e in added for k, v in EFFECTS[e].neutral_values(damper).items()}})
+    res, errors = None, []
+    for s in starts:
+        try:
+            r = _fit(model, work, start=s)
+        except (ErdesignError, FloatingPointError, ValueError, ZeroDivisionError) as exc:
+            errors.append(str(exc))
+            continue
+        if not math.isfinite(r.rss):
+            errors.append("the fit ended at non-finite forces")
+            continue
+        if res is None or r.rss < res.rss:
+            res = r
+        if res.rss <= base.rss:
+            break
+    if res is None:
+        return Candidate(name, None, None, reason="could not be evaluated: " + (errors[0] if errors else "no fit"),
+                         effects=added)
+    n_eff = _effective_n(res.residual)
+    delta_bic = _bic(res.rss, base.n, res.k, n_eff) - _bic(base.rss, base.n, base.k, n_eff)
+    cand = Candidate(name, res, res.esr, delta_bic, 1 - res.rss / base.rss if base.rss > 0 else 0.0, effects=added)
+    names = [p.name for e in added for p in EFFECTS[e].parameters(damper)]
+    cand.at_bounds = _at_bounds(res, names)
+    cand.implausible = [f"{e}: {note}" for e in added for note in EFFECTS[e].implausible(damper, res.values)]
+    cand.plausibility = "; ".join(EFFECTS[e].plausibility(damper, res.values) for e in added)
+    return cand
 
 
 def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str = (), *,
-             candidates: Sequence[str] | None = None, max_samples: int = MAX_SAMPLES) -> Diagnosis:
-    """Calibrate the baseline (+ ``effects``), analyse the residual and rank every other effect of the library.
+             candidates: Sequence[str] | None = None, max_samples: int = MAX_SAMPLES,
+             pairs: bool = True) -> Diagnosis:
+    """Calibrate the baseline (+ ``effects``), analyse the residual, rank every other effect, give a verdict.
 
     Parameters
     ----------
@@ -372,10 +521,16 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         Effects to judge (default: all others in the library).
     max_samples : int
         Longer records are thinned evenly for the analysis.
+    pairs : bool
+        Search pairs of effects jointly when the best single one leaves much of the excess unexplained.
 
     Returns
     -------
     Diagnosis
+        ``verdict`` is ``"missing_effect"`` (``missing_effect`` names it), ``"nothing_missing"`` (the residual is
+        at the noise floor, or nothing beyond it can be told from noise) or ``"unexplained"`` (the residual stays
+        well above the noise floor and no effect of the library explains it plausibly; ``reason`` says what the
+        residual looks like).
     """
     effects = parse_effect_names(effects)
     check_control(damper, record)
@@ -388,7 +543,8 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
     work = _analysis_record(record, max_samples)
     base = _fit(base_model, work)
     analysis = residual_analysis(base_model, base, work)
-    n = base.n
+    floor = noise_floor_esr(work, base.residual, band=3.0 * SIGN_WIDTH)
+    warnings_ = [f"the calibration ends at a bound: {b}" for b in _at_bounds(base, base.free)]
     names = [c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES)
              if c not in effects]
     ranking: list[Candidate] = []
@@ -398,46 +554,143 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         if why:
             not_judged[name] = why
             continue
-        model = base_model.with_effects(effects + (name,))
-        try:
-            res = _fit(model, work, start=base.values)
-            if res.rss > base.rss:
-                # a fit that ends worse than the model without the effect went astray: start again from the
-                # effect switched off (the baseline's own optimum) and keep the better
-                again = _fit(model, work, start={**res.values, **base.values,
-                                                 **EFFECTS[name].neutral_values(damper)})
-                res = again if again.rss < res.rss else res
-        except ErdesignError as exc:
-            not_judged[name] = f"the fit failed: {exc}"
-            continue
-        # effective sample size of what the candidate leaves: white if it captured the structure
-        n_eff = _effective_n(res.residual)
-        delta_bic = _bic(res.rss, n, res.k, n_eff) - _bic(base.rss, n, base.k, n_eff)
-        cand = Candidate(name, res, res.esr, delta_bic, 1 - res.rss / base.rss if base.rss > 0 else 0.0,
-                         plausibility=EFFECTS[name].plausibility(damper, res.values))
-        ranking.append(cand)
-    ranking.sort(key=lambda c: c.delta_bic)
-    missing = None
-    for c in ranking[:3]:
-        if not (c.delta_bic < -BIC_THRESHOLD and c.gain > MIN_GAIN):
-            continue
-        c.held_out_gain = _held_out_gain(base_model, c, work)
-        if c.held_out_gain > HELD_OUT_GAIN:
-            c.significant = True
-            missing = c.effect
-            break
-        c.note = "does not improve the held-out cycles: fits noise or the calibration, not a mechanism"
-    if missing is not None:
-        ranking.sort(key=lambda c: (not c.significant, c.delta_bic))
+        ranking.append(_evaluate(base_model, base, work, effects, (name,), damper))
+    excess = base.esr - floor
+    for c in ranking:
+        if c.evaluated:
+            c.explained = (base.esr - c.esr) / excess if excess > 0 else 0.0
+    ranking.sort(key=lambda c: (not c.evaluated, c.delta_bic))
+    at_floor = base.esr <= AT_FLOOR * floor + ABSOLUTE_SLACK
+    well_above = base.esr > WELL_ABOVE * floor + ABSOLUTE_SLACK
+    broken = not base.esr < 1.0
+    if broken:
+        warnings_.append(f"the calibrated baseline leaves {100 * base.esr:.0f} % of the force variance: the damper "
+                         "file does not describe this record (a unit in the header, the wrong damper, or a mechanism "
+                         "far outside the model)")
+    missing, pair, verdict, reason = None, (), "nothing_missing", ""
+    if not at_floor and not broken:
+        named = _judge_singles(base_model, base, work, ranking)
+        if named is None and pairs and well_above:
+            best = max((c.explained for c in ranking if c.evaluated), default=0.0)
+            if best < PAIR_SEARCH_BELOW:
+                named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess)
+        if named is not None:
+            missing, pair = named.effects[0], (named.effects if len(named.effects) > 1 else ())
+            verdict = "missing_effect"
+            reason = (f"adding {' and '.join(named.effects)} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} "
+                      f"(noise floor {floor:.3g}), {100 * named.explained:.0f} % of the excess, with plausible values")
+    if verdict != "missing_effect":
+        if broken:
+            verdict = "unexplained"
+            reason = ("the baseline cannot be calibrated to this record: " + "; ".join(warnings_))
+        elif at_floor:
+            reason = (f"the calibrated baseline's ESR {base.esr:.3g} is at the noise floor {floor:.3g}: what is left "
+                      "is noise")
+        elif not well_above:
+            reason = (f"the calibrated baseline's ESR {base.esr:.3g} is within {WELL_ABOVE:g} x the noise floor "
+                      f"{floor:.3g} and no effect removes a significant part of the rest")
+        else:
+            verdict = "unexplained"
+            reason = _unexplained_reason(base.esr, floor, ranking, analysis, base_model, base, work)
+    ranking.sort(key=lambda c: (not c.significant, not c.evaluated, c.delta_bic))
     # ESRs of the full record
     if work is not record:
         base_esr = esr(record.force, base_model.simulate(record, base.values))
         for c in ranking:
-            c.esr = esr(record.force, c.result.model.simulate(record, c.result.values))
+            if c.evaluated:
+                with np.errstate(all="ignore"):
+                    e = esr(record.force, c.result.model.simulate(record, c.result.values))
+                c.esr = e if math.isfinite(e) else None
+                if c.esr is None:
+                    c.reason = "non-finite forces on the full record"
     else:
         base_esr = base.esr
     return Diagnosis(effects, base, base_esr, analysis, ranking, missing, not_judged, record.name,
-                     (len(record), len(work)))
+                     (len(record), len(work)), verdict, floor, reason, pair, warnings_)
+
+
+def _judge_singles(base_model, base, work, ranking) -> Candidate | None:
+    """The best single candidate that is significant (effective BIC, gain, held-out cycles), plausible and explains
+    enough of the excess over the noise floor; notes on the others say why they were not named."""
+    blocked_by = None
+    for c in [c for c in ranking if c.evaluated][:4]:
+        if not (c.delta_bic < -BIC_THRESHOLD and c.gain > MIN_GAIN):
+            continue
+        if c.implausible:
+            c.note = "not named: its fitted size is implausible (" + "; ".join(c.implausible) + ")"
+            blocked_by = blocked_by or c
+            continue
+        if blocked_by is not None and c.explained < blocked_by.explained - 0.1:
+            c.note = (f"not named: {blocked_by.effect} fits much better ({100 * blocked_by.explained:.0f} % of the "
+                      f"excess against {100 * c.explained:.0f} %) but with an implausible size, so neither is the "
+                      "answer")
+            continue
+        if c.explained < EXPLAINS:
+            c.note = (f"not named alone: it explains only {100 * c.explained:.0f} % of the excess over the noise "
+                      "floor")
+            continue
+        c.held_out_gain = _held_out_gain(base_model, c, work)
+        if c.held_out_gain > HELD_OUT_GAIN:
+            c.significant = True
+            return c
+        c.note = "does not improve the held-out cycles: fits noise or the calibration, not a mechanism"
+    return None
+
+
+def _judge_pairs(base_model, base, work, effects, ranking, damper, excess) -> Candidate | None:
+    """Pairs of the best single candidates fitted jointly (not greedily); the best significant, plausible pair
+    that explains enough of the excess, or None."""
+    pool = [c for c in ranking if c.evaluated and c.gain > 0][:PAIR_POOL]
+    found = []
+    for i in range(len(pool)):
+        for j in range(i + 1, len(pool)):
+            a, b = pool[i], pool[j]
+            start = {**a.result.values, **{k: v for k, v in b.result.values.items()
+                                           if k not in a.result.values or k in b.parameters()}}
+            c = _evaluate(base_model, base, work, effects, (a.effect, b.effect), damper, start=start)
+            if not c.evaluated:
+                continue
+            c.explained = (base.esr - c.esr) / excess if excess > 0 else 0.0
+            best_single = min(a.result.rss, b.result.rss)
+            n_eff = _effective_n(c.result.residual)
+            better = _bic(c.result.rss, base.n, c.result.k, n_eff) < _bic(best_single, base.n, c.result.k - 1,
+                                                                           n_eff) - BIC_THRESHOLD
+            if better and not c.implausible and c.explained >= EXPLAINS and c.delta_bic < -BIC_THRESHOLD:
+                found.append(c)
+    if not found:
+        return None
+    best = min(found, key=lambda c: c.delta_bic)
+    best.held_out_gain = _held_out_gain(base_model, best, work)
+    if best.held_out_gain <= HELD_OUT_GAIN:
+        return None
+    best.significant = True
+    # name first the effect that does more alone
+    singles = {c.effect: c for c in pool}
+    best.effects = tuple(sorted(best.effects, key=lambda e: singles[e].delta_bic))
+    best.effect = " + ".join(best.effects)
+    ranking.insert(0, best)
+    return best
+
+
+def _unexplained_reason(base_esr, floor, ranking, analysis, base_model, base, work) -> str:
+    """What the residual looks like and where it lives, and why no effect of the library explains it."""
+    parts = [f"the calibrated baseline's ESR {base_esr:.3g} is {base_esr / max(floor, 1e-12):.3g} x the noise floor "
+             f"{floor:.3g}"]
+    ev = [c for c in ranking if c.evaluated]
+    if ev:
+        c = max(ev, key=lambda c: c.explained)
+        why = (f"its fitted size is implausible ({'; '.join(c.implausible)})" if c.implausible else
+               f"it explains only {100 * max(c.explained, 0):.0f} % of the excess")
+        parts.append(f"the best effect of the library, {c.effect}, does not explain it: {why}")
+    looks = analysis.findings[:3]
+    if looks:
+        parts.append("the residual: " + "; ".join(looks))
+    where = sorted(analysis.regions.items(), key=lambda kv: -kv[1][1])
+    if where:
+        name, (frac, ratio) = where[0]
+        parts.append(f"it is largest {name} ({ratio:.2g} x the overall RMS on {100 * frac:.0f} % of the samples)")
+    return "; ".join(parts) + ". A mechanism outside the effect library (a blow-off valve, asymmetric areas, " \
+        "cavitation, free play, a clipped or filtered signal) or a wrong damper file may be at work."
 
 
 def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measurement) -> float:
@@ -445,10 +698,16 @@ def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measureme
     held = _held_out_mask(record)
     train = ~held
     F = record.force
-    b = _fit(base_model, record, start=cand.result.values, mask=train)
-    c = _fit(cand.result.model, record, start=cand.result.values, mask=train)
-    rb = np.sum((F[held] - base_model.force(record, b.values)[held]) ** 2)
-    rc = np.sum((F[held] - cand.result.model.force(record, c.values)[held]) ** 2)
+    try:
+        b = _fit(base_model, record, start=cand.result.values, mask=train)
+        c = _fit(cand.result.model, record, start=cand.result.values, mask=train)
+    except ErdesignError:
+        return 0.0
+    with np.errstate(all="ignore"):
+        rb = np.sum((F[held] - base_model.force(record, b.values)[held]) ** 2)
+        rc = np.sum((F[held] - cand.result.model.force(record, c.values)[held]) ** 2)
+    if not (math.isfinite(rb) and math.isfinite(rc)):
+        return 0.0
     return float(1 - rc / rb) if rb > 0 else 0.0
 
 
@@ -491,7 +750,7 @@ def improve(damper: Damper, record: Measurement, effects: Sequence[str] | str = 
         d = diagnose(damper, record, effects, max_samples=max_samples)
         history.diagnoses.append(d)
         history.steps.append((effects, d.baseline_esr))
-        if d.missing_effect is None:
+        if d.verdict != "missing_effect":
             break
-        effects = effects + (d.missing_effect,)
+        effects = effects + (d.pair or (d.missing_effect,))
     return history

@@ -108,6 +108,9 @@ class Measurement:
     name: str = ""
     units: dict = field(default_factory=dict)
     """Units the columns were given in (for display and for writing back)."""
+    velocity_noise: float | None = None
+    """Standard deviation of the noise of :attr:`velocity`, [m/s], when known (a thinned copy of a record keeps the
+    value of the full record); None: estimate it from the record (:func:`erdesign.noise.velocity_noise`)."""
 
     @classmethod
     def from_arrays(cls, time, displacement, force=None, *, control=None, control_kind=None, velocity=None,

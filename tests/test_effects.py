@@ -10,7 +10,6 @@ from scipy.optimize import brentq
 from erdesign import load_example
 from erdesign.constitutive.makris import makris_stress
 from erdesign.effects import EFFECT_NAMES, EFFECTS, EffectError, get_effect, parse_effect_names, relaxation_filter
-from erdesign.effects.compressibility import compliant_pressure_force
 from erdesign.effects.field_lag import lagged_control
 from erdesign.effects.fluid_inertia import slug_mass
 from erdesign.effects.preyield_elasticity import elastic_viscoplastic_force
@@ -112,20 +111,19 @@ def test_compressibility_zero_field_is_the_exact_maxwell_element():
     w = 2 * np.pi * f
     sol = solve_ivp(lambda t, P: k * (X0 * w * np.cos(w * t) - P / C), (0, rec.time[-1]), [C * X0 * w],
                     t_eval=rec.time, **TIGHT)
-    P = compliant_pressure_force(rec.time, C * rec.velocity, C, k)
-    # the filter takes the target linear between samples: error O((w dt)^2) of the force, ~1e-6 at 1000 samples
-    # per cycle
-    np.testing.assert_allclose(P, sol.y[0], atol=2e-5 * np.max(np.abs(sol.y[0])))
+    # backward Euler (4 substeps per sample, L-stable): first order in the substep; at 3000 Hz the error is
+    # k dt_sub / (2 C) of the transient and less than 1e-3 of the peak on the sine (measured 4e-4)
     # and the physics damper uses it: the model force minus seal friction
     m = PhysicsDamper(d, ["compressibility"])
     comps = m.components(rec, {"viscosity_factor": 1.0, "yield_stress_factor": 1.0, "hydraulic_stiffness": k})
-    np.testing.assert_allclose(comps["fluid"], sol.y[0], atol=2e-5 * np.max(np.abs(sol.y[0])))
+    np.testing.assert_allclose(comps["fluid"], sol.y[0], atol=1e-3 * np.max(np.abs(sol.y[0])))
 
 
 def test_compressibility_with_yield_stress_agrees_with_the_nonlinear_series_model():
     # Independent: the full series law dP/dt = k (v - v_d(P)), v_d from the explicit Bingham flow rate of the duct
-    # (Makris eq 6 with h^3) - no linearisation.  The lag law is first order in C/k: with C/k = 0.6 ms against a
-    # 167 ms period the two agree to a few percent of the peak force.
+    # (Makris eq 6 with h^3, erdesign.flow.bingham) integrated by LSODA at tight tolerance; the library integrates
+    # the same law by backward Euler with its own flow-rate kernel.  Agreement to 0.5 % of the peak force after the
+    # start (first order in the substep of 83 us against the lag time C/k = 0.6 ms).
     d = load_example("makris")
     g = d.geometry
     k = 2.0e8
@@ -145,7 +143,7 @@ def test_compressibility_with_yield_stress_agrees_with_the_nonlinear_series_mode
     fluid = m.components(rec, {"viscosity_factor": 1.0, "yield_stress_factor": 1.0,
                                "hydraulic_stiffness": k})["fluid"]
     err = np.abs(fluid - sol.y[0]) / np.max(np.abs(sol.y[0]))
-    assert np.max(err[rec.time > 0.1]) < 0.03
+    assert np.max(err[rec.time > 0.1]) < 0.005
 
 
 def test_leakage_flow_split_against_brentq_per_sample():

@@ -19,6 +19,7 @@ import math
 from typing import Mapping
 
 import numpy as np
+from scipy.special import erf
 
 from ..constitutive.makris import _affine_recurrence
 from ..damper import Damper
@@ -26,7 +27,7 @@ from ..errors import ErdesignError
 from ..measurement import Measurement
 from ..models.base import Parameter
 
-__all__ = ["Effect", "EffectError", "relaxation_filter", "reversal_count"]
+__all__ = ["Effect", "EffectError", "relaxation_filter", "reversal_count", "sign_expectation"]
 
 
 class EffectError(ErdesignError):
@@ -91,21 +92,32 @@ class Effect:
         """Why ``record`` cannot show this effect (a sentence), or None when it can."""
         return None
 
-    def plausibility(self, damper: Damper, values: Mapping[str, float]) -> str:
-        """A short judgement of fitted values against the prior: ``"plausible"``, ``"implausible (...)"`` or
-        ``"no prior"``.  A value within a factor of 5 of its prior counts as plausible (priors come from nominal
-        geometry and handbook properties, good to a factor of a few)."""
-        prior = self.prior(damper)
-        if not prior:
-            return "no prior"
+    #: parameter -> (low, high): the fitted value over its prior that still counts as plausible.  Priors come from
+    #: nominal geometry and handbook properties, good to a factor of a few; an effect may widen the window where
+    #: the physics allows it (entrained air softens a fluid column by tens of times, never stiffens it).
+    plausible_ratio: dict = {}
+    #: default window for parameters not in :attr:`plausible_ratio`.
+    PLAUSIBLE_RATIO = (0.2, 5.0)
+
+    def implausible(self, damper: Damper, values: Mapping[str, float]) -> list[str]:
+        """What is implausible about fitted ``values`` against the prior (empty list: nothing)."""
         notes = []
-        for name, p in prior.items():
+        for name, p in self.prior(damper).items():
+            window = self.plausible_ratio.get(name, self.PLAUSIBLE_RATIO)
             v = values.get(name)
-            if v is None or p == 0:
+            if v is None or p == 0 or window is None:
                 continue
             ratio = v / p
-            if not (0.2 <= ratio <= 5.0):
-                notes.append(f"{name} is {ratio:.3g} x its prior")
+            if not (window[0] <= ratio <= window[1]):
+                notes.append(f"{name} is {ratio:.3g} x its prior (plausible: {window[0]:g} to {window[1]:g} x)")
+        return notes
+
+    def plausibility(self, damper: Damper, values: Mapping[str, float]) -> str:
+        """A short judgement of fitted values against the prior: ``"plausible"``, ``"implausible (...)"`` or
+        ``"no prior"`` (window per parameter: :attr:`plausible_ratio`, default 0.2 to 5 x the prior)."""
+        if not self.prior(damper):
+            return "no prior"
+        notes = self.implausible(damper, values)
         return "plausible" if not notes else "implausible (" + "; ".join(notes) + ")"
 
     def describe(self) -> dict:
@@ -180,6 +192,39 @@ def relaxation_filter(t, target, rate, y0=None):
     d = u[1:] - a * u[:-1] - du * phi
     y0 = u[0] if y0 is None else float(y0)
     return _affine_recurrence(a, d, y0)
+
+
+def sign_expectation(v, sigma):
+    r"""Expected sign of the true velocity given a measured one with Gaussian noise of standard deviation sigma.
+
+    .. math:: \operatorname{E}[\operatorname{sgn} v_\text{true} \mid v] = \operatorname{erf}\!\left(\frac{v}{\sqrt2\,\sigma}\right)
+
+    A force that jumps with the sign of the velocity (the yield force of a rigid-plastic fluid, Coulomb friction) is
+    predicted best, in the least-squares sense, by its expectation over the velocity noise; with ``sigma = 0`` it is
+    the sharp sign.  The width comes from the record (:func:`erdesign.noise.velocity_noise`), not from a fixed
+    fraction of the peak speed.
+
+    Parameters
+    ----------
+    v : float or array
+        Measured (derived) velocity, [m/s].
+    sigma : float
+        Standard deviation of its noise, [m/s], >= 0.
+
+    Returns
+    -------
+    float or array
+        In [-1, 1].
+
+    Examples
+    --------
+    >>> float(sign_expectation(0.0, 0.01)), round(float(sign_expectation(0.02, 0.01)), 4)
+    (0.0, 0.9545)
+    """
+    v = np.asarray(v, dtype=float)
+    if not sigma > 0:
+        return np.sign(v)
+    return erf(v / (math.sqrt(2.0) * sigma))
 
 
 def reversal_count(v) -> int:

@@ -75,6 +75,8 @@ class FluidInertia(Effect):
                  "square of the frequency, the same at every field")
     composition = "additive"
     neutral = {"slug_mass": "lower"}
+    # the chamber fluid, fittings and the moving parts between load cell and piston add to the duct slug
+    plausible_ratio = {"slug_mass": (0.2, 10.0)}
     source = "Kamath and Wereley (seed 000) eq 10"
 
     def parameters(self, damper):

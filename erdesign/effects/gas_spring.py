@@ -66,6 +66,8 @@ class GasSpring(Effect):
                  "speed and field")
     composition = "additive"
     neutral = {"gas_preload": 0.0, "gas_stiffness": "lower"}
+    # the damper file says nothing about an accumulator: its prior is a guide, not a test
+    plausible_ratio = {"gas_preload": None, "gas_stiffness": None}
     source = "Seed 003 eqs 2 and 23; seed 002 eq 3"
 
     def parameters(self, damper):

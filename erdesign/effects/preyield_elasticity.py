@@ -89,6 +89,8 @@ class PreyieldElasticity(Effect):
                  "where the model jumps by twice the yield force; grows with the field, absent at zero field")
     composition = "constitutive"
     neutral = {"shear_modulus": "upper"}
+    # pre-yield moduli of ER / MR fluids scatter over a decade with particle loading and field
+    plausible_ratio = {"shear_modulus": (0.1, 10.0)}
     source = "Makris et al. (seed 004) eq 8"
 
     def parameters(self, damper):

@@ -69,6 +69,8 @@ class SealFriction(Effect):
                  "field: Coulomb-like")
     composition = "additive"
     neutral = {"friction_force": "lower"}
+    # the file's value is the seals alone, new; bearings, rig fixtures and worn or dry seals add several times it
+    plausible_ratio = {"friction_force": (0.1, 20.0)}
     source = "Makris et al. (seed 004) eq 14; Kamath and Wereley (seed 000) eq 7"
 
     def parameters(self, damper):

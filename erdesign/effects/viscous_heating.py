@@ -82,6 +82,8 @@ class ViscousHeating(Effect):
                  "most at high speed where the viscous force dominates")
     composition = "state"
     neutral = {"thermal_mass": "upper", "cooling_time": 600.0}
+    # how much of the cylinder warms with the fluid is not known: a wide window; the cooling time has no prior
+    plausible_ratio = {"thermal_mass": (0.05, 20.0), "cooling_time": None}
     source = "Lumped thermal model; Makris et al. (seed 004) report scatter from heating"
 
     def parameters(self, damper):
