@@ -37,7 +37,7 @@ from .measurement import Measurement
 from .metrics import esr
 from .models.base import Model
 from .noise import noise_floor_esr, velocity_noise
-from .physics import SIGN_WIDTH, PhysicsDamper, check_control
+from .physics import PhysicsDamper, check_control
 
 __all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
            "improve", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD", "MAX_SAMPLES", "VERDICTS"]
@@ -458,6 +458,8 @@ def _check_record(record: Measurement) -> None:
             raise DiagnosisError(f"{record.name or 'record'}: the {name} has non-finite values")
 
 
+#: Widths of the expected sign at a reversal tried in the baseline calibration, in units of the velocity noise.
+SIGN_WIDTHS = (0.0, 0.5, 1.0, 2.0)
 #: The baseline's ESR counts as "at the noise floor" up to this multiple of the floor (plus ABSOLUTE_SLACK) ...
 AT_FLOOR = 2.0
 #: ... and as "well above" it (something is missing) beyond this multiple.
@@ -541,9 +543,20 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         if why:
             raise EffectError(f"{e.name}: cannot be judged from {record.name or 'this record'}: {why}")
     work = _analysis_record(record, max_samples)
-    base = _fit(base_model, work)
+    # the width of the sign at the reversals: the velocity's noise band, scaled by the factor that fits the record
+    # best (a derived velocity is often better than its noise level near a reversal, where the filter's error is
+    # small; the band is at most two noise levels wide, far narrower than any effect's signature)
+    sigma_v = velocity_noise(work)
+    base, width = None, 0.0
+    for f in SIGN_WIDTHS if sigma_v > 0 else (0.0,):
+        trial = replace(work, velocity_noise=f * sigma_v)
+        res = _fit(base_model, trial, start=None if base is None else base.values)
+        if base is None or res.rss < base.rss:
+            base, width, best_work = res, f, trial
+    work = best_work
+    record = replace(record, velocity_noise=width * sigma_v)
     analysis = residual_analysis(base_model, base, work)
-    floor = noise_floor_esr(work, base.residual, band=3.0 * SIGN_WIDTH)
+    floor = noise_floor_esr(work, base.residual, sigma_v=sigma_v)
     warnings_ = [f"the calibration ends at a bound: {b}" for b in _at_bounds(base, base.free)]
     names = [c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES)
              if c not in effects]
@@ -555,6 +568,11 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
             not_judged[name] = why
             continue
         ranking.append(_evaluate(base_model, base, work, effects, (name,), damper))
+    # a model that explains the record leaves only noise in the reversal band: the floor is the least any model
+    # leaves there (the baseline's band residual holds the missing effect too when much is missing)
+    for c in ranking:
+        if c.evaluated:
+            floor = min(floor, noise_floor_esr(work, c.result.residual, sigma_v=sigma_v))
     excess = base.esr - floor
     for c in ranking:
         if c.evaluated:
@@ -562,13 +580,12 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
     ranking.sort(key=lambda c: (not c.evaluated, c.delta_bic))
     at_floor = base.esr <= AT_FLOOR * floor + ABSOLUTE_SLACK
     well_above = base.esr > WELL_ABOVE * floor + ABSOLUTE_SLACK
-    broken = not base.esr < 1.0
-    if broken:
+    if not base.esr < 1.0:
         warnings_.append(f"the calibrated baseline leaves {100 * base.esr:.0f} % of the force variance: the damper "
                          "file does not describe this record (a unit in the header, the wrong damper, or a mechanism "
                          "far outside the model)")
     missing, pair, verdict, reason = None, (), "nothing_missing", ""
-    if not at_floor and not broken:
+    if not at_floor:
         named = _judge_singles(base_model, base, work, ranking)
         if named is None and pairs and well_above:
             best = max((c.explained for c in ranking if c.evaluated), default=0.0)
@@ -580,10 +597,7 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
             reason = (f"adding {' and '.join(named.effects)} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} "
                       f"(noise floor {floor:.3g}), {100 * named.explained:.0f} % of the excess, with plausible values")
     if verdict != "missing_effect":
-        if broken:
-            verdict = "unexplained"
-            reason = ("the baseline cannot be calibrated to this record: " + "; ".join(warnings_))
-        elif at_floor:
+        if at_floor:
             reason = (f"the calibrated baseline's ESR {base.esr:.3g} is at the noise floor {floor:.3g}: what is left "
                       "is noise")
         elif not well_above:
@@ -592,6 +606,8 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         else:
             verdict = "unexplained"
             reason = _unexplained_reason(base.esr, floor, ranking, analysis, base_model, base, work)
+            if warnings_:
+                reason += " Check first: " + "; ".join(warnings_) + "."
     ranking.sort(key=lambda c: (not c.significant, not c.evaluated, c.delta_bic))
     # ESRs of the full record
     if work is not record:

@@ -92,7 +92,7 @@ def velocity_noise(record: Measurement) -> float:
     return sigma
 
 
-def noise_floor_esr(record: Measurement, residual, *, band: float = 3.0) -> float:
+def noise_floor_esr(record: Measurement, residual, *, band: float = 3.0, sigma_v: float | None = None) -> float:
     """ESR that noise alone would leave on ``record`` for a model that leaves ``residual`` (module notes).
 
     Parameters
@@ -104,6 +104,8 @@ def noise_floor_esr(record: Measurement, residual, *, band: float = 3.0) -> floa
     band : float
         Half-width of the reversal band in units of the velocity noise: samples with |v| < band sigma_v count
         as noise whatever their residual (the sign of the velocity is not known there).
+    sigma_v : float, optional
+        The velocity noise, [m/s]; default :func:`velocity_noise` of the record.
 
     Returns
     -------
@@ -124,7 +126,7 @@ def noise_floor_esr(record: Measurement, residual, *, band: float = 3.0) -> floa
     if not ss > 0:
         return 0.0
     sF = force_noise(record)
-    sv = velocity_noise(record)
+    sv = velocity_noise(record) if sigma_v is None else float(sigma_v)
     r = np.asarray(residual, dtype=float)
     in_band = np.abs(record.velocity) < band * sv
     extra = float(np.sum(np.maximum(r[in_band] ** 2 - sF**2, 0.0))) if sv > 0 else 0.0

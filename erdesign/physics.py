@@ -68,10 +68,10 @@ BASE_PARAMETERS = (
     Parameter("yield_stress_factor", "", 1.0, 0.0, 20.0, "yield stress over its nominal value"),
 )
 
-#: Width of the expected sign at a reversal in units of the record's velocity noise.  The error of a derived
-#: velocity is not white but correlated over the filter's width, so sign errors come in runs; on noisy records
-#: of the virtual rig 1.5-2 sigma_v gave the smallest residual of an exact model (1 sigma_v: 30 % more).
-SIGN_WIDTH = 1.5
+#: Width of the expected sign at a reversal in units of the record's velocity noise
+#: (:attr:`erdesign.measurement.Measurement.velocity_noise`; diagnosis chooses that width per record, see
+#: :func:`erdesign.diagnose.diagnose`).
+SIGN_WIDTH = 1.0
 
 #: Most fixed-point passes of the heating coupling (the error falls by alpha*dT per pass; they stop when the
 #: viscosity factor changes by less than 1e-9).
