@@ -378,12 +378,7 @@ class Diagnosis:
                "ranking": [c.as_json() for c in self.ranking],
                "missing_effect": self.missing_effect,
                "verdict": self.verdict,
-               "noise_floor_esr": _finite_or_none(self.noise_floor_esr),
-               "reason": self.reason}
-        if self.pair:
-            out["missing_effects"] = list(self.pair)
-        if self.warnings:
-            out["warnings"] = list(self.warnings)
+               "noise_floor_esr": _finite_or_none(self.noise_floor_esr)}
         return out
 
     def report(self) -> str:
