@@ -240,8 +240,12 @@ def test_compare_diagnose_add_effect_refit(app):
     # The record hides seal friction (examples/measurements/make_examples.py or state.RIG_EXAMPLES): found, named
     # first in the ranking, explained in words.
     assert any("Missing effect: seal_friction" in s.value for s in app.success)
+    assert not app.warning
     ranking = app.table[0].value
     assert ranking["effect"].iloc[0] == "seal_friction"
+    # the named effect removes at least erdesign.diagnose.EXPLAINS (60 %) of the excess over the noise floor
+    assert int(ranking["explains"].iloc[0].split()[0]) >= 60
+    assert metric(app, "noise floor ESR") < float(app.metric[0].value)
     assert any("seal friction" in m.value for m in app.markdown)
     esr0 = float(app.metric[0].value)
     app.button(key="cmp.refit").click().run()
@@ -255,6 +259,92 @@ def test_compare_diagnose_add_effect_refit(app):
     rows = {r["parameter"]: r for r in params.to_dict("records")} if "parameter" in params else {}
     assert "friction_force" in rows and rows["friction_force"]["uncertainty (1 σ)"].startswith("± ")
     assert rows["friction_force"]["value"].endswith(" N")
+
+
+@pytest.fixture(scope="module")
+def truth_csv(tmp_path_factory):
+    """CSV bytes of records of the truth rig (erdesign.truthrig, physics independent of the diagnosed model) on
+    the Makris damper: ``clean`` (nothing missing) and ``blowoff`` (a rebound blow-off valve, outside the effect
+    library).  Short sweeps at 100 samples/s keep each diagnosis to a fraction of a second."""
+    from erdesign.rig import sweep
+    from erdesign.truthrig import TruthDamper, simulate_truth
+
+    folder = tmp_path_factory.mktemp("truth")
+    motion = sweep([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
+    out = {}
+    for name, mechanisms in (("clean", {}), ("blowoff", {"blowoff": {}})):
+        rec = simulate_truth(TruthDamper(load_example("makris"), mechanisms), motion, seed=1, name=name)
+        out[name] = rec.write(folder / f"{name}.csv").read_bytes()
+    return out
+
+
+@pytest.fixture
+def few_candidates(monkeypatch):
+    """Judge only two candidate effects (the page's handling of the verdict is under test, not the library's
+    ranking, which tests/test_diagnose.py covers); ``spoil`` names a candidate to show as not evaluated."""
+    import erdesign.diagnose
+
+    real = erdesign.diagnose.diagnose
+    spoil = []
+
+    def diagnose(damper, record, effects=(), **kwargs):
+        d = real(damper, record, effects, candidates=("gas_spring", "seal_friction"), **kwargs)
+        for c in d.ranking:
+            if c.effect in spoil:
+                c.result, c.esr, c.reason = None, None, "could not be evaluated: a test says so"
+        return d
+
+    monkeypatch.setattr(erdesign.diagnose, "diagnose", diagnose)
+    return spoil
+
+
+def upload_and_diagnose(app: AppTest, name: str, data: bytes) -> AppTest:
+    app.switch_page("compare.py").run()
+    app.radio(key="cmp.source").set_value("upload a measurement CSV").run()
+    app.file_uploader(key="cmp.upload").set_value((name, data, "text/csv")).run()
+    app.button(key="cmp.run").click().run()
+    return app
+
+
+def test_compare_nothing_missing(app, truth_csv, few_candidates):
+    few_candidates.append("gas_spring")
+    upload_and_diagnose(app, "clean.csv", truth_csv["clean"])
+    no_error(app)
+    assert not app.success and not app.warning
+    (info,) = [i.value for i in app.info]
+    assert info.startswith("**Nothing missing: the residual is at the noise floor.**")
+    # The record's own noise floor is shown next to the ESR; nothing is missing, so the ESR is within the
+    # factor erdesign.diagnose.AT_FLOOR of it.
+    from erdesign.diagnose import ABSOLUTE_SLACK, AT_FLOOR
+
+    esr, floor = metric(app, "ESR of the calibrated model"), metric(app, "noise floor ESR")
+    assert 0 < floor and esr <= AT_FLOOR * floor * (1 + FOUR_FIGURES) + ABSOLUTE_SLACK
+    rows = {r["effect"]: r for r in app.table[0].value.to_dict("records")}
+    assert rows["gas_spring"]["ESR after adding"] == "not evaluated"
+    assert rows["gas_spring"]["note"] == "could not be evaluated: a test says so"
+    assert rows["seal_friction"]["explains"].endswith(" % of the excess")
+    # only an evaluated candidate can be added
+    assert [o.split(":")[0] for o in app.selectbox(key="cmp.add").options] == ["seal_friction"]
+
+
+def test_compare_unexplained_and_refit(app, truth_csv, few_candidates):
+    upload_and_diagnose(app, "blowoff.csv", truth_csv["blowoff"])
+    no_error(app)
+    assert not app.success
+    verdicts = [w.value for w in app.warning if w.value.startswith("**Unexplained:**")]
+    assert len(verdicts) == 1 and "noise floor" in verdicts[0] and "outside the effect library" in verdicts[0]
+    # A one-sided relief valve is far from the baseline: the ESR stays many times the noise floor
+    # (erdesign.diagnose.WELL_ABOVE is the least for "unexplained").
+    assert metric(app, "ESR of the calibrated model") > 10 * metric(app, "noise floor ESR")
+    # the calibration's warnings are shown too
+    assert all(w.value.startswith("Check: ") for w in app.warning if w.value not in verdicts)
+    # adding an effect anyway keeps working: the page diagnoses again with it
+    app.selectbox(key="cmp.add").set_value("seal_friction").run()
+    app.button(key="cmp.refit").click().run()
+    no_error(app)
+    assert [m.value for m in app.metric if m.label == "model"] == ["baseline + seal_friction"]
+    bars = figure(app, "cmp.fig.history")["data"][0]
+    assert list(bars["x"]) == ["0: baseline", "1: seal_friction"]
 
 
 # ------------------------------------------------------------------------------------------------ Report

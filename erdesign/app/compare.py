@@ -1,7 +1,8 @@
 """Compare and diagnose page: a measurement against the physics damper of the design, the missing effect, the refit.
 
 The record comes from an upload (:func:`erdesign.measurement.read_measurement`) or the built-in examples; the
-diagnosis is :func:`erdesign.diagnose.diagnose` (calibration, residual analysis in words, ranking of the effects);
+diagnosis is :func:`erdesign.diagnose.diagnose` (calibration, residual analysis in words, ranking of the effects,
+and a verdict: a missing effect, nothing missing - the residual is at the noise floor -, or unexplained);
 "add effect and refit" diagnoses again with the effect accepted, and the error history shows the ESR after each step.
 """
 
@@ -69,23 +70,43 @@ def _parameters_table(result) -> list[dict]:
 
 
 def _ranking_table(diagnosis) -> list[dict]:
+    """One row per candidate; a candidate that could not be evaluated says "not evaluated" and why."""
     rows = []
     for i, c in enumerate(diagnosis.ranking, 1):
+        row = {"rank": i, "effect": c.effect, "significant": "yes" if c.significant else ""}
+        if not c.evaluated:
+            row.update({"ESR after adding": "not evaluated", "explains": "", "ΔBIC": "", "gain": "", "fitted": "",
+                        "against the prior": "", "note": c.reason or c.note})
+            rows.append(row)
+            continue
         unc = c.uncertainties()
-        rows.append({
-            "rank": i, "effect": c.effect, "significant": "yes" if c.significant else "",
-            "ESR after adding": f"{c.esr:.4g}", "ΔBIC": f"{c.delta_bic:+.1f}", "gain": f"{100 * c.gain:.1f} %",
+        notes = [c.note] if c.note else []
+        if c.at_bounds:
+            notes.append("at bounds: " + "; ".join(c.at_bounds))
+        row.update({
+            "ESR after adding": f"{c.esr:.4g}",
+            # a negative share is a refit that ended a hair worse than the baseline: nothing explained
+            "explains": f"{100 * max(c.explained, 0.0):.0f} % of the excess",
+            "ΔBIC": f"{c.delta_bic:+.1f}" if math.isfinite(c.delta_bic) else "",
+            "gain": f"{100 * c.gain:.1f} %",
             "fitted": "; ".join(f"{n} = {v} ± {unc.get(n, '?')}" for n, v in c.parameters().items()),
-            "against the prior": c.plausibility, "note": c.note})
+            "against the prior": c.plausibility, "note": "; ".join(notes)})
+        rows.append(row)
     return rows
 
 
+def _effect_title(option: str) -> str:
+    """An effect to add (or two joined by " + ") with its title."""
+    return " + ".join(f"{e}: {EFFECTS[e].title}" for e in option.split(" + "))
+
+
 def _add_effect() -> None:
-    """Callback of the refit button: accept the chosen effect."""
+    """Callback of the refit button: accept the chosen effect (both of a pair)."""
     chosen = st.session_state.get("cmp.add")
     work = st.session_state.setdefault(state.DIAGNOSIS, {"effects": []})
-    if chosen and chosen not in work["effects"]:
-        work["effects"] = [*work["effects"], chosen]
+    for effect in (chosen.split(" + ") if chosen else []):
+        if effect not in work["effects"]:
+            work["effects"] = [*work["effects"], effect]
 
 
 def _reset(source_key: str) -> dict:
@@ -152,18 +173,18 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
         name, float(diagnosis.baseline_esr), len(record), record.displacement, record.velocity, F, model_force)
     st.session_state["report.history"] = tuple((s.step, s.effect, s.esr) for s in steps)
     model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
-    c = st.columns([1, 2, 1])
+    c = st.columns([1, 1, 2, 1])
     c[0].metric("ESR of the calibrated model", f"{diagnosis.baseline_esr:.4g}",
                 delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}", delta_color="inverse",
                 help="Error-to-signal ratio (seed 002 eq 7): residual variance over force variance.")
-    c[1].metric("model", model)
-    c[2].metric("RMS residual", f"{diagnosis.analysis.rms:.4g} N")
-    if diagnosis.missing_effect:
-        effect = EFFECTS[diagnosis.missing_effect]
-        st.success(f"**Missing effect: {diagnosis.missing_effect}** ({effect.title}). {effect.mechanism}")
-    else:
-        st.info("No significant missing effect: no candidate improves the fit beyond what noise and extra "
-                "parameters explain.")
+    c[1].metric("noise floor ESR", f"{diagnosis.noise_floor_esr:.3g}",
+                help="The ESR that the record's noise alone would leave (force noise, and the velocity noise at "
+                     "the reversals), estimated from the record: docs/diagnosis.md.")
+    c[2].metric("model", model)
+    c[3].metric("RMS residual", f"{diagnosis.analysis.rms:.4g} N")
+    _verdict(diagnosis)
+    for warning in diagnosis.warnings:
+        st.warning(f"Check: {warning}")
 
     tabs = st.tabs(["overlay", "residual", "missing effects", "parameters", "error history"])
     with tabs[0]:
@@ -183,14 +204,15 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
         st.table(_ranking_table(diagnosis))
         for e, why in diagnosis.not_judged.items():
             st.caption(f"not judged: {e}: {why}")
-        options = [c.effect for c in diagnosis.ranking]
+        # a candidate that could not be evaluated cannot be added; a pair is added as both its effects
+        options = [c.effect for c in diagnosis.ranking if c.evaluated]
         if options:
-            default = diagnosis.missing_effect or options[0]
+            named = " + ".join(diagnosis.pair) if diagnosis.pair else diagnosis.missing_effect
+            default = named if named in options else options[0]
             if st.session_state.get("cmp.add") not in options:
                 st.session_state["cmp.add"] = default
             cols = st.columns([2, 1])
-            cols[0].selectbox("effect to add", options, key="cmp.add",
-                              format_func=lambda e: f"{e}: {EFFECTS[e].title}")
+            cols[0].selectbox("effect to add", options, key="cmp.add", format_func=_effect_title)
             cols[1].button("Add effect and refit", on_click=_add_effect, key="cmp.refit", type="primary")
     with tabs[3]:
         st.markdown(f"**Calibrated parameters** of {model} (standard errors from the fit):")
@@ -199,6 +221,26 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
         st.plotly_chart(plots.error_history_figure(steps), key="cmp.fig.history")
         st.dataframe([{"step": s.step, "effect added": s.effect, "ESR": round(s.esr, 5)} for s in steps],
                      hide_index=True)
+
+
+def _verdict(diagnosis) -> None:
+    """The verdict of the diagnosis, prominently, with its reason (shared/CONTRACTS.md section 3)."""
+    if diagnosis.verdict == "missing_effect":
+        named = diagnosis.pair or (diagnosis.missing_effect,)
+        what = " ".join(f"{e} ({EFFECTS[e].title}): {EFFECTS[e].mechanism}" for e in named)
+        st.success(f"**Missing effect: {' + '.join(named)}**. {what}\n\n{_sentence(diagnosis.reason)}")
+    elif diagnosis.verdict == "unexplained":
+        st.warning(f"**Unexplained:** {_sentence(diagnosis.reason)}")
+    else:
+        st.info(f"**Nothing missing: the residual is at the noise floor.** {_sentence(diagnosis.reason)}")
+
+
+def _sentence(text: str) -> str:
+    """``text`` with a capital first letter and a full stop."""
+    text = text.strip()
+    if not text:
+        return ""
+    return text[0].upper() + text[1:] + ("" if text.endswith(".") else ".")
 
 
 if __name__ == "__main__":
