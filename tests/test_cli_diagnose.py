@@ -2,6 +2,7 @@
 one-line errors."""
 
 import json
+import math
 
 import pytest
 
@@ -35,19 +36,96 @@ def run(capsys, *args):
     return code, out, err
 
 
+#: Keys of ``erdesign diagnose --json`` (shared/CONTRACTS.md section 3).
+CONTRACT_KEYS = {"baseline_esr", "ranking", "missing_effect", "verdict", "noise_floor_esr"}
+VERDICTS = {"missing_effect", "nothing_missing", "unexplained"}
+
+
+def _no_constant(name):
+    raise AssertionError(f"{name} in the JSON output")
+
+
+def strict_json(out: str) -> dict:
+    """Exactly one JSON object, with no NaN, Infinity or -Infinity anywhere."""
+    return json.loads(out, parse_constant=_no_constant)
+
+
+def check_contract(data: dict) -> None:
+    assert set(data) == CONTRACT_KEYS
+    assert data["verdict"] in VERDICTS
+    assert (data["missing_effect"] is not None) == (data["verdict"] == "missing_effect")
+    assert isinstance(data["noise_floor_esr"], float) and math.isfinite(data["noise_floor_esr"])
+    assert isinstance(data["baseline_esr"], float) and math.isfinite(data["baseline_esr"])
+    for r in data["ranking"]:
+        assert {"effect", "esr", "parameters"} <= set(r) <= {"effect", "esr", "parameters", "reason", "effects"}
+        if r["esr"] is None:
+            assert r["reason"], r                  # a candidate that could not be evaluated says why
+        else:
+            assert isinstance(r["esr"], float) and math.isfinite(r["esr"])
+
+
 def test_diagnose_json_has_exactly_the_contract_keys(capsys, friction_csv):
     code, out, err = run(capsys, "diagnose", friction_csv, "--damper", MAKRIS, "--json")
     assert code == 0, err
-    data = json.loads(out)                         # exactly one JSON object on stdout
-    assert set(data) == {"baseline_esr", "ranking", "missing_effect"}
+    data = strict_json(out)                        # exactly one JSON object on stdout
+    check_contract(data)
+    assert data["verdict"] == "missing_effect"
     assert data["missing_effect"] == "seal_friction"
     assert [r["effect"] for r in data["ranking"]][0] == "seal_friction"
-    for r in data["ranking"]:
-        assert set(r) == {"effect", "esr", "parameters"}
+    assert 0 < data["noise_floor_esr"] < data["ranking"][0]["esr"] < data["baseline_esr"]
     # the friction in N with its unit: 800 N hidden, noise 0.5 % of the RMS force -> within 3 %
     value, unit = data["ranking"][0]["parameters"]["friction_force"].split()
     assert unit == "N" and float(value) == pytest.approx(800.0, rel=0.03)
     assert data["ranking"][0]["esr"] < data["baseline_esr"] / 3
+
+
+@pytest.fixture(scope="module")
+def truth_csvs(tmp_path_factory):
+    """Records of the truth rig on the Makris damper (physics independent of the diagnosed model): nothing hidden,
+    and a rebound blow-off valve (outside the effect library)."""
+    from erdesign.truthrig import TruthDamper, simulate_truth
+
+    folder = tmp_path_factory.mktemp("truth")
+    motion = sweep([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
+    return {name: str(simulate_truth(TruthDamper(load_example("makris"), mechanisms), motion, seed=1, name=name)
+                      .write(folder / f"{name}.csv"))
+            for name, mechanisms in (("clean", {}), ("blowoff", {"blowoff": {}}))}
+
+
+@pytest.fixture
+def two_candidates(monkeypatch):
+    """The command judging two candidates only (fast; the ranking itself is tests/test_diagnose.py's), with
+    ``seal_friction`` shown as not evaluated: the JSON must carry a null ESR and the reason."""
+    real = erdesign.cli.diagnose.run_diagnosis
+
+    def diagnose(damper, record, effects=()):
+        d = real(damper, record, effects, candidates=("gas_spring", "seal_friction"))
+        for c in d.ranking:
+            if c.effect == "seal_friction":
+                c.result, c.esr, c.reason = None, None, "could not be evaluated: a test says so"
+        return d
+
+    monkeypatch.setattr(erdesign.cli.diagnose, "run_diagnosis", diagnose)
+
+
+@pytest.mark.parametrize("record, verdict", [("clean", "nothing_missing"), ("blowoff", "unexplained")])
+def test_diagnose_json_verdicts_exit_0(capsys, truth_csvs, two_candidates, record, verdict):
+    code, out, err = run(capsys, "diagnose", truth_csvs[record], "--damper", MAKRIS, "--json")
+    assert code == 0, err
+    data = strict_json(out)
+    check_contract(data)
+    assert data["verdict"] == verdict and data["missing_effect"] is None
+    (spoiled,) = [r for r in data["ranking"] if r["effect"] == "seal_friction"]
+    assert spoiled["esr"] is None and spoiled["reason"] == "could not be evaluated: a test says so"
+    if verdict == "unexplained":
+        # a one-sided relief valve leaves far more than erdesign.diagnose.WELL_ABOVE x the noise floor
+        assert data["baseline_esr"] > 10 * data["noise_floor_esr"]
+    code, out, _ = run(capsys, "diagnose", truth_csvs[record], "--damper", MAKRIS)
+    assert code == 0
+    assert f"verdict: {verdict.replace('_', ' ')}: " in out
+    if verdict == "unexplained":
+        assert "outside the effect library" in out
+    assert "seal_friction        not evaluated: could not be evaluated: a test says so" in out
 
 
 def test_diagnose_report_is_readable(capsys, friction_csv):
