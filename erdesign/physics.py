@@ -279,8 +279,9 @@ class PhysicsDamper(Model):
         sign = sign_expectation(v, sigma_v)
         g = d.geometry
         yield_pressure = k_tau * np.asarray(fl.yield_stress_at(E), dtype=float) * 2 * g.duct_length / g.gap
-        # (a bypass makes the piston creep below yield, a compliant column makes the force continuous: no jump)
-        exact_jump = self.has("leakage") or self.has("compressibility")
+        # (a bypass makes the piston creep below yield, a compliant column or pre-yield elasticity makes the force
+        # continuous: no jump to resolve, and the elastic law must relax onto the sharp rigid-plastic force)
+        exact_jump = self.has("leakage") or self.has("compressibility") or self.has("preyield_elasticity")
         smooth = 0.0 if exact_jump else sign - np.sign(v)
         jump_P = yield_pressure * g.piston_area * smooth
         jump_S = tau_y * g.shear_area * smooth

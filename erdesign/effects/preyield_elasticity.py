@@ -24,6 +24,9 @@ from .base import Effect, geometric_damping, relaxation_filter
 
 __all__ = ["PreyieldElasticity", "elastic_viscoplastic_force", "elastic_stiffness"]
 
+#: Substeps per sample of the elastic-viscoplastic relaxation.
+SUBSTEPS = 8
+
 
 def elastic_stiffness(G, damper) -> float:
     """Damper-level pre-yield stiffness k_G = G C / eta_0 = 12 G L Ap^2 / (n pi d h^3) (valve), [N/m]."""
@@ -55,7 +58,7 @@ def elastic_viscoplastic_force(t, v, quasi_steady_force, stiffness, initial=0.0)
 
     Notes
     -----
-    Solved exactly between samples with the rate held over each step (the update of
+    Solved exactly between samples with the rate held over each step at its mean speed (the update of
     :func:`erdesign.constitutive.makris.makris_stress`, which is the special case of a linear Bingham target).
     Where both the speed and the quasi-steady force vanish the rate is taken as zero (the stress is held).
 
@@ -73,11 +76,25 @@ def elastic_viscoplastic_force(t, v, quasi_steady_force, stiffness, initial=0.0)
     ----------
     Makris et al. (seed 004), eqs 8-10.
     """
+    t = np.asarray(t, dtype=float)
     v = np.asarray(v, dtype=float)
     Fq = np.asarray(quasi_steady_force, dtype=float)
+    # On SUBSTEPS substeps per sample (speed and |F_qs| linear between samples, the sign of the target that of the
+    # interpolated speed): at a reversal the speed grows from zero within a step and a stiff fluid yields again
+    # before the step ends, which a rate held over the whole step (zero at the reversal) would miss by a sample.
+    S = SUBSTEPS
+    n = v.size
+    frac = np.arange(S) / S
+    idx = np.repeat(np.arange(n - 1), S)
+    w = np.tile(frac, n - 1)
+    tf = np.append(t[idx] + w * (t[idx + 1] - t[idx]), t[-1])
+    vf = np.append(v[idx] + w * (v[idx + 1] - v[idx]), v[-1])
+    af = np.abs(Fq)
+    Ff = np.append(af[idx] + w * (af[idx + 1] - af[idx]), af[-1])
+    target = np.where(vf != 0, np.sign(vf), np.append(np.sign(Fq[idx]), np.sign(Fq[-1]))) * Ff
     with np.errstate(divide="ignore", invalid="ignore"):
-        rate = np.where(np.abs(Fq) > 0, stiffness * np.abs(v) / np.abs(Fq), 0.0)
-    return relaxation_filter(t, Fq, rate, initial)
+        rate = np.where(Ff > 0, stiffness * np.abs(vf) / Ff, 0.0)
+    return relaxation_filter(tf, target, rate, initial)[::S]
 
 
 class PreyieldElasticity(Effect):
