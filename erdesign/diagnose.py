@@ -439,6 +439,31 @@ def _analysis_record(record: Measurement, max_samples: int) -> Measurement:
     return replace(record.select(slice(None, None, step)), velocity_noise=velocity_noise(record))
 
 
+def _implausible_record(record: Measurement, damper: Damper) -> list[str]:
+    """Possible but implausible records for this damper (a likely unit mistake in a column header)."""
+    out = []
+    stroke = float(np.ptp(record.displacement))
+    speed = float(np.max(np.abs(record.velocity)))
+    Dp = damper.geometry.piston_diameter
+    unit = lambda col: record.units.get(col, "SI")  # noqa: E731
+    if stroke > 50 * Dp:
+        out.append(f"the stroke is {stroke:.3g} m, {stroke / Dp:.3g} x the piston diameter: is the displacement "
+                   f"column's unit [{unit('displacement')}] right?")
+    if speed > 20.0:
+        out.append(f"the piston speed reaches {speed:.3g} m/s, beyond any damper test: is the displacement or time "
+                   "column's unit right?")
+    F = record.force
+    if F is not None:
+        Fy = float(np.max(np.abs(damper.yield_force_si(record.control)))) + damper.seal_friction
+        Fpred = float(np.max(np.abs(damper.force_si(np.clip(record.velocity, -20, 20), record.control))))
+        Fmax = float(np.max(np.abs(F)))
+        ref = max(Fpred, Fy, 1e-9)
+        if Fmax > 1e3 * ref or Fmax < 1e-3 * ref:
+            out.append(f"the measured force peaks at {Fmax:.3g} N where the damper file predicts about {ref:.3g} N: "
+                       f"is the force column's unit [{unit('force')}] right?")
+    return out
+
+
 def _check_record(record: Measurement) -> None:
     if record.force is None:
         raise DiagnosisError(f"{record.name or 'record'}: has no force column")
@@ -553,6 +578,8 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
     analysis = residual_analysis(base_model, base, work)
     floor = noise_floor_esr(work, base.residual, sigma_v=sigma_v)
     warnings_ = [f"the calibration ends at a bound: {b}" for b in _at_bounds(base, base.free)]
+    suspicious = _implausible_record(record, damper)
+    warnings_ += suspicious
     names = [c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES)
              if c not in effects]
     ranking: list[Candidate] = []
@@ -580,7 +607,10 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
                          "file does not describe this record (a unit in the header, the wrong damper, or a mechanism "
                          "far outside the model)")
     missing, pair, verdict, reason = None, (), "nothing_missing", ""
-    if not at_floor:
+    if suspicious:
+        verdict = "unexplained"
+        reason = ("the record is implausible for this damper, so no effect is named: " + "; ".join(suspicious))
+    elif not at_floor:
         named = _judge_singles(base_model, base, work, ranking)
         if named is None and pairs and well_above:
             best = max((c.explained for c in ranking if c.evaluated), default=0.0)
@@ -591,11 +621,13 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
             verdict = "missing_effect"
             reason = (f"adding {' and '.join(named.effects)} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} "
                       f"(noise floor {floor:.3g}), {100 * named.explained:.0f} % of the excess, with plausible values")
-    if verdict != "missing_effect":
-        if at_floor:
-            reason = (f"the calibrated baseline's ESR {base.esr:.3g} is at the noise floor {floor:.3g}: what is left "
-                      "is noise")
-        elif not well_above:
+    if verdict == "missing_effect" or suspicious:
+        pass
+    elif at_floor:
+        reason = (f"the calibrated baseline's ESR {base.esr:.3g} is at the noise floor {floor:.3g}: what is left "
+                  "is noise")
+    else:
+        if not well_above:
             reason = (f"the calibrated baseline's ESR {base.esr:.3g} is within {WELL_ABOVE:g} x the noise floor "
                       f"{floor:.3g} and no effect removes a significant part of the rest")
         else:
@@ -635,6 +667,9 @@ def _judge_singles(base_model, base, work, ranking) -> Candidate | None:
             c.note = (f"not named: {blocked_by.effect} fits much better ({100 * blocked_by.explained:.0f} % of the "
                       f"excess against {100 * c.explained:.0f} %) but with an implausible size, so neither is the "
                       "answer")
+            continue
+        if not c.esr < 0.5:
+            c.note = "not named: the model with it still leaves half the force variance unexplained"
             continue
         if c.explained < EXPLAINS:
             c.note = (f"not named alone: it explains only {100 * c.explained:.0f} % of the excess over the noise "
