@@ -226,9 +226,13 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
 def _verdict(diagnosis) -> None:
     """The verdict of the diagnosis, prominently, with its reason (shared/CONTRACTS.md section 3)."""
     if diagnosis.verdict == "missing_effect":
-        named = diagnosis.pair or (diagnosis.missing_effect,)
-        what = " ".join(f"{e} ({EFFECTS[e].title}): {EFFECTS[e].mechanism}" for e in named)
-        st.success(f"**Missing effect: {' + '.join(named)}**. {what}\n\n{_sentence(diagnosis.reason)}")
+        if diagnosis.pair:
+            what = " ".join(f"{e} ({EFFECTS[e].title}): {EFFECTS[e].mechanism}" for e in diagnosis.pair)
+            head = f"**Missing effect: {' + '.join(diagnosis.pair)}** (two effects, fitted jointly). {what}"
+        else:
+            effect = EFFECTS[diagnosis.missing_effect]
+            head = f"**Missing effect: {diagnosis.missing_effect}** ({effect.title}). {effect.mechanism}"
+        st.success(f"{head}\n\n{_sentence(diagnosis.reason)}")
     elif diagnosis.verdict == "unexplained":
         st.warning(f"**Unexplained:** {_sentence(diagnosis.reason)}")
     else:
