@@ -490,6 +490,10 @@ ABSOLUTE_SLACK = 2e-4
 EXPLAINS = 0.6
 #: Below this share explained by the best single effect, pairs are searched jointly.
 PAIR_SEARCH_BELOW = 0.85
+#: With the baseline within AT_FLOOR x the estimated floor, a candidate is named only on overwhelming evidence:
+#: an effective-BIC fall beyond STRICT_BIC and a held-out gain beyond STRICT_HELD_OUT.
+STRICT_BIC = 100.0
+STRICT_HELD_OUT = 0.2
 #: How many of the best single candidates enter the pair search.
 PAIR_POOL = 4
 
@@ -610,8 +614,9 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
     if suspicious:
         verdict = "unexplained"
         reason = ("the record is implausible for this damper, so no effect is named: " + "; ".join(suspicious))
-    elif not at_floor:
-        named = _judge_singles(base_model, base, work, ranking)
+    else:
+        # at the (estimated) noise floor an effect must be overwhelming to be named: the floor is an estimate
+        named = _judge_singles(base_model, base, work, ranking, strict=at_floor)
         if named is None and pairs and well_above:
             best = max((c.explained for c in ranking if c.evaluated), default=0.0)
             if best < PAIR_SEARCH_BELOW:
@@ -652,12 +657,12 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
                      (len(record), len(work)), verdict, floor, reason, pair, warnings_)
 
 
-def _judge_singles(base_model, base, work, ranking) -> Candidate | None:
+def _judge_singles(base_model, base, work, ranking, strict: bool = False) -> Candidate | None:
     """The best single candidate that is significant (effective BIC, gain, held-out cycles), plausible and explains
     enough of the excess over the noise floor; notes on the others say why they were not named."""
     blocked_by = None
     for c in [c for c in ranking if c.evaluated][:4]:
-        if not (c.delta_bic < -BIC_THRESHOLD and c.gain > MIN_GAIN):
+        if not (c.delta_bic < -(STRICT_BIC if strict else BIC_THRESHOLD) and c.gain > MIN_GAIN):
             continue
         if c.implausible:
             c.note = "not named: its fitted size is implausible (" + "; ".join(c.implausible) + ")"
@@ -676,7 +681,7 @@ def _judge_singles(base_model, base, work, ranking) -> Candidate | None:
                       "floor")
             continue
         c.held_out_gain = _held_out_gain(base_model, c, work)
-        if c.held_out_gain > HELD_OUT_GAIN:
+        if c.held_out_gain > (STRICT_HELD_OUT if strict else HELD_OUT_GAIN):
             c.significant = True
             return c
         c.note = "does not improve the held-out cycles: fits noise or the calibration, not a mechanism"

@@ -225,10 +225,12 @@ def bingham_slit_flow(Q, tau_y, eta, L, d, h):
     Q_abs = np.abs(Q)
     dp_y = yield_pressure_drop(tau_y, L, h)
     dp_n = 12.0 * eta * L * Q_abs / (np.pi * d * h**3)
-    plastic = dp_y > 0.0
+    # a yield stress 1e-12 of the viscous pressure drop (or a denormal one, e.g. a field decaying through a lag)
+    # leaves a plug fraction that underflows; there the large-ratio limit dp_n + 3/2 dp_y is exact to 1e-12
+    plastic = dp_y > 1e-12 * dp_n
     with np.errstate(divide="ignore", invalid="ignore"):
         phi = _plug_fraction_of_ratio(dp_n / np.where(plastic, dp_y, 1.0))
-        dp_abs = np.where(plastic, dp_y / phi, dp_n)
+        dp_abs = np.where(plastic, dp_y / phi, dp_n + 1.5 * dp_y)
     phi = np.where(plastic, phi, 0.0)
     dp = np.copysign(dp_abs, Q)
     if np.ndim(dp) == 0:
