@@ -493,7 +493,7 @@ PAIR_SEARCH_BELOW = 0.85
 #: With the baseline within AT_FLOOR x the estimated floor, a candidate is named only on overwhelming evidence:
 #: an effective-BIC fall beyond STRICT_BIC and a held-out gain beyond STRICT_HELD_OUT.
 STRICT_BIC = 100.0
-STRICT_HELD_OUT = 0.2
+STRICT_HELD_OUT = 0.3
 #: How many of the best single candidates enter the pair search.
 PAIR_POOL = 4
 

@@ -61,8 +61,8 @@ def velocity_noise(record: Measurement) -> float:
     --------
     >>> import numpy as np
     >>> t = np.linspace(0, 2, 2001); x = 0.01 * np.sin(2 * np.pi * t)
-    >>> velocity_noise(Measurement.from_arrays(t, x))       # no noise at all
-    0.0
+    >>> velocity_noise(Measurement.from_arrays(t, x)) < 1e-9        # no noise but round-off
+    True
     """
     if record.velocity_noise is not None:
         return float(record.velocity_noise)
@@ -118,8 +118,9 @@ def noise_floor_esr(record: Measurement, residual, *, band: float = 3.0, sigma_v
     >>> rng = np.random.default_rng(0); t = np.linspace(0, 2, 2001)
     >>> F = 1000 * np.cos(2 * np.pi * t) + 10 * rng.standard_normal(2001)
     >>> rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), F)
-    >>> round(noise_floor_esr(rec, F - 1000 * np.cos(2 * np.pi * t)) / (10**2 / (1000**2 / 2)), 1)   # noise / variance
-    1.0
+    >>> ratio = noise_floor_esr(rec, F - 1000 * np.cos(2 * np.pi * t)) / (10**2 / (1000**2 / 2))  # floor / noise
+    >>> bool(0.8 < ratio < 1.2)           # the 4th-difference estimate of 2001 samples is good to about 10 %
+    True
     """
     F = record.require_force()
     ss = float(np.sum((F - F.mean()) ** 2))
