@@ -637,7 +637,7 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
                       f"{floor:.3g} and no effect removes a significant part of the rest")
         else:
             verdict = "unexplained"
-            reason = _unexplained_reason(base.esr, floor, ranking, analysis, base_model, base, work)
+            reason = _unexplained_reason(base.esr, floor, ranking, analysis)
             if warnings_:
                 reason += " Check first: " + "; ".join(warnings_) + "."
     ranking.sort(key=lambda c: (not c.significant, not c.evaluated, c.delta_bic))
@@ -696,8 +696,9 @@ def _judge_pairs(base_model, base, work, effects, ranking, damper, excess) -> Ca
     for i in range(len(pool)):
         for j in range(i + 1, len(pool)):
             a, b = pool[i], pool[j]
-            start = {**a.result.values, **{k: v for k, v in b.result.values.items()
-                                           if k not in a.result.values or k in b.parameters()}}
+            # each effect starts from its own single fit, the calibration from the first
+            start = {**b.result.values, **a.result.values,
+                     **{p.name: b.result.values[p.name] for p in EFFECTS[b.effect].parameters(damper)}}
             c = _evaluate(base_model, base, work, effects, (a.effect, b.effect), damper, start=start)
             if not c.evaluated:
                 continue
@@ -723,7 +724,7 @@ def _judge_pairs(base_model, base, work, effects, ranking, damper, excess) -> Ca
     return best
 
 
-def _unexplained_reason(base_esr, floor, ranking, analysis, base_model, base, work) -> str:
+def _unexplained_reason(base_esr, floor, ranking, analysis) -> str:
     """What the residual looks like and where it lives, and why no effect of the library explains it."""
     parts = [f"the calibrated baseline's ESR {base_esr:.3g} is {base_esr / max(floor, 1e-12):.3g} x the noise floor "
              f"{floor:.3g}"]

@@ -68,10 +68,6 @@ BASE_PARAMETERS = (
     Parameter("yield_stress_factor", "", 1.0, 0.0, 20.0, "yield stress over its nominal value"),
 )
 
-#: Width of the expected sign at a reversal in units of the record's velocity noise
-#: (:attr:`erdesign.measurement.Measurement.velocity_noise`; diagnosis chooses that width per record, see
-#: :func:`erdesign.diagnose.diagnose`).
-SIGN_WIDTH = 1.0
 
 #: Most fixed-point passes of the heating coupling (the error falls by alpha*dT per pass; they stop when the
 #: viscosity factor changes by less than 1e-9).
@@ -275,7 +271,8 @@ class PhysicsDamper(Model):
         heat = 1.0
         passes = HEATING_PASSES if self.has("viscous_heating") else 1
         # the velocity's noise band: a force that jumps with the sign of v is predicted by its expectation there
-        sigma_v = SIGN_WIDTH * velocity_noise(record)
+        # (diagnosis scales the record's velocity_noise to the width that fits the record best)
+        sigma_v = velocity_noise(record)
         sign = sign_expectation(v, sigma_v)
         g = d.geometry
         yield_pressure = k_tau * np.asarray(fl.yield_stress_at(E), dtype=float) * 2 * g.duct_length / g.gap

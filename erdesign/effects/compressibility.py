@@ -234,7 +234,8 @@ class Compressibility(Effect):
     name = "compressibility"
     title = "Compressibility (fluid and accumulator compliance)"
     mechanism = ("The fluid in the chambers is compressed before it flows: a spring k_h = 2 beta A_p^2 / V in series "
-                 "with the ducts, so the pressure force lags the motion by C/k_h.")
+                 "with the ducts, so after each reversal the force ramps over 2 F_y / k_h of stroke until the ducts "
+                 "yield again, and lags the motion by C/k_h after that.")
     signature = ("residual in phase with the displacement at high speed (the loop leans and rounds off at the ends "
                  "of the stroke, force lags velocity), present at zero field too")
     composition = "series"

@@ -4,8 +4,9 @@ r"""Seal friction: Coulomb-like friction of the rod seals and bearings (Makris e
 
 Makris writes the seal force as :math:`P_y\operatorname{sgn}\dot u` (eq 14, :math:`P_y` = 112 N for his damper);
 Kamath and Wereley smooth the sign with a hyperbolic tangent of the velocity (seed 000 eq 7, smoothing factor
-:math:`\epsilon_c` chosen a priori).  erdesign does the same with a smoothing speed :math:`v_s` fixed at 1 % of the
-record's peak speed: the sign is then resolved everywhere except within the noise band of the derived velocity.
+:math:`\epsilon_c` chosen a priori).  The physics damper (:mod:`erdesign.physics`) takes instead the expected sign
+over the record's own velocity noise (:func:`erdesign.effects.base.sign_expectation`), the same that resolves the
+yield jump; :func:`coulomb_friction` is the tanh form of seed 000 for a chosen smoothing speed.
 """
 
 from __future__ import annotations
@@ -13,12 +14,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..models.base import Parameter
-from .base import Effect, peak_speed, reversal_count
+from .base import Effect, reversal_count
 
-__all__ = ["SealFriction", "coulomb_friction", "SMOOTHING_FRACTION"]
-
-#: Smoothing speed of the sign function as a fraction of the record's peak speed.
-SMOOTHING_FRACTION = 0.01
+__all__ = ["SealFriction", "coulomb_friction"]
 
 
 def coulomb_friction(v, friction_force, smoothing_speed):
@@ -91,7 +89,3 @@ class SealFriction(Effect):
             return ("the field is on and the same throughout, so a friction that flips with the motion cannot be "
                     "told from the yield stress (measure at two fields, e.g. zero and on)")
         return None
-
-    @staticmethod
-    def smoothing_speed(record) -> float:
-        return SMOOTHING_FRACTION * max(peak_speed(record), 1e-12)
