@@ -98,18 +98,71 @@ def test_extended_bingham_matches_a_tight_radau_solution():
     F_ref = k2 * (X * np.sin(w * t) - ref.y[0] - ref.y[1])
     F = extended_bingham_force(t, X * np.sin(w * t), c0, fc, k1, c1, k2)
     err = np.sqrt(np.mean((F - F_ref) ** 2)) / np.std(F_ref)
-    # first order in the step: 4 sub-steps of 0.25 ms give ~2e-3 relative RMS (measured 1.4e-3); halving the
-    # step must halve the error (convergence, not luck)
-    assert err < 3e-3
+    # first order in the step: the default 64 sub-steps of 1/64 ms give 5e-5 relative RMS (issue 12 asks 1e-4)
+    assert err < 1e-4
+    # convergence, not luck: halving the step from 4 to 8 sub-steps halves the error (measured 5.5e-4 -> 2.8e-4)
+    F4 = extended_bingham_force(t, X * np.sin(w * t), c0, fc, k1, c1, k2, substeps=4)
+    err4 = np.sqrt(np.mean((F4 - F_ref) ** 2)) / np.std(F_ref)
     F8 = extended_bingham_force(t, X * np.sin(w * t), c0, fc, k1, c1, k2, substeps=8)
     err8 = np.sqrt(np.mean((F8 - F_ref) ** 2)) / np.std(F_ref)
-    assert 0.4 < err8 / err < 0.6
+    assert 0.4 < err8 / err4 < 0.6
+
+
+#: Spencer, Dyke, Sain and Carlson (1997), Table 1 (as in shared/data/README.md), SI: N, m, s, V.
+SPENCER_1997 = dict(c0a=2100.0, c0b=350.0, k0=4690.0, c1a=28300.0, c1b=295.0, k1=500.0, x0=0.143, alpha_a=14000.0,
+                    alpha_b=69500.0, alpha_c=0.0, gamma=3.63e6, beta=3.63e6, delta=301.0, n=2.0, eta=190.0)
+
+
+def _piecewise_linear_reference(t, x, u, p):
+    """(u_f, w, z) of the modified Bouc-Wen model for x and u linear between samples, by LSODA at rtol 1e-11 on
+    each sample interval (the input's slope is discontinuous at the samples, so each interval is one smooth ODE)."""
+    state = np.array([u[0], 0.0, 0.0])
+    out = [state]
+    for i in range(t.size - 1):
+        h = t[i + 1] - t[i]
+        xd, r = (x[i + 1] - x[i]) / h, (u[i + 1] - u[i]) / h
+
+        def rhs(s, y, i=i, xd=xd, r=r):
+            uf, w, z = y
+            al = p["alpha_a"] + p["alpha_b"] * uf
+            c0, c1 = p["c0a"] + p["c0b"] * uf, p["c1a"] + p["c1b"] * uf
+            wd = (c1 * xd - al * z - p["k0"] * w) / (c0 + c1)
+            zd = -p["gamma"] * abs(wd) * z * abs(z) - p["beta"] * wd * z * z + p["delta"] * wd
+            return [-p["eta"] * (uf - u[i] - r * s), wd, zd]
+
+        state = solve_ivp(rhs, (0.0, h), state, method="LSODA", rtol=1e-11, atol=1e-15).y[:, -1]
+        out.append(state)
+    return np.array(out).T
+
+
+def test_modified_bouc_wen_matches_solve_ivp_at_3_khz_with_a_random_voltage():
+    """Spencer et al. (1997) parameters with their voltage filter; band-limited random displacement (to 1.1 cm,
+    like Dyke's ransim records) and a command voltage switched at random between 0 and 2.25 V every 20 ms, sampled
+    at 3 kHz.  Reference: LSODA at rtol 1e-11 for the same piecewise-linear inputs (independent of the compiled
+    kernel's RK4 / exact-Riccati scheme).  Required: 1e-4 of the force range (issue 12; measured 4e-6)."""
+    p = SPENCER_1997
+    rng = np.random.default_rng(0)
+    t = np.arange(0.0, 0.5, 1 / 3000.0)
+    f, phase = rng.uniform(0.5, 15.0, 12), rng.uniform(0, 2 * np.pi, 12)
+    x = np.sum(np.sin(2 * np.pi * f[:, None] * t + phase[:, None]), axis=0)
+    x *= 0.011 / np.max(np.abs(x))
+    u = np.repeat(rng.uniform(0.0, 2.25, 26), 60)[:t.size]
+    v = np.gradient(x, t)
+    rec = Measurement.from_arrays(t, x, control=u, control_kind="voltage", velocity=v)
+    model = get_model("bouc_wen_modified")
+    F = model.simulate(rec, p)
+    uf, w, z = _piecewise_linear_reference(t, x, u, p)
+    al, c0, c1 = p["alpha_a"] + p["alpha_b"] * uf, p["c0a"] + p["c0b"] * uf, p["c1a"] + p["c1b"] * uf
+    F_ref = c1 * (al * z + c0 * v + p["k0"] * w) / (c0 + c1) + p["k1"] * (x - p["x0"])
+    assert np.max(np.abs(F - F_ref)) < 1e-4 * np.ptp(F_ref)
 
 
 def test_modified_bouc_wen_matches_solve_ivp_with_spencer_parameters():
-    """Seed 001 section 4.3 parameters; reference: LSODA at rtol 1e-10 on the analytic sine velocity."""
+    """Seed 001 section 4.3 parameters (passive); reference: LSODA at rtol 1e-10 on the analytic sine velocity.
+    At 3 kHz the piecewise-linear reading of the sampled sine differs from the sine by (omega h)^2 / 24 ~ 2e-7 of
+    the velocity, so the kernel must agree to 1e-4 of the force range (measured 3e-5)."""
     p = SPENCER_PASSIVE
-    rec = sine(0.01, 1.0, cycles=2, n_per_cycle=1000)
+    rec = sine(0.01, 1.0, cycles=2, n_per_cycle=3000)
     F = get_model("bouc_wen_modified").simulate(rec, p)
 
     def rhs(t, s):
@@ -122,19 +175,32 @@ def test_modified_bouc_wen_matches_solve_ivp_with_spencer_parameters():
     w, z = ref.y
     wd = (p["c1a"] * rec.velocity - p["alpha_a"] * z - p["k0"] * w) / (p["c0a"] + p["c1a"])
     F_ref = p["c1a"] * (rec.velocity - wd) + p["k1"] * rec.displacement
-    # 1000 samples per cycle: the exact-z / Heun-w step is within 0.5 % of the force range (measured 0.3 %)
-    assert np.max(np.abs(F - F_ref)) < 5e-3 * np.ptp(F_ref)
+    assert np.max(np.abs(F - F_ref)) < 1e-4 * np.ptp(F_ref)
 
 
-def test_bouc_wen_closed_form_step_agrees_with_rk4_substeps():
+@pytest.mark.parametrize("beta,gamma,delta,n", [(2e6, 2e6, 207.0, 2.0),      # Spencer's passive damper (n = 2)
+                                                (-1e6, 3e6, 207.0, 2.0),     # beta < 0: the tan branch
+                                                (0.0, 1500.0, 1500.0, 1.0),  # normalised form, sigma = 1, n = 1
+                                                (2e8, 2e8, 207.0, 3.0)])     # n = 3: RK4 in the travel
+def test_bouc_wen_state_matches_radau(beta, gamma, delta, n):
+    """The Bouc-Wen variable (seed 001 eq 9) on a 1 Hz, 1 cm sine sampled at 3 kHz against Radau at rtol 1e-10
+    on the analytic velocity.  The kernel is exact for n = 1, 2 (closed form) given the piecewise-linear input,
+    which differs from the sine by ~2e-7: 1e-4 of the range of z is required (issue 12)."""
     from erdesign.models._kernels import bouc_wen_state
-    x = 0.01 * np.sin(np.linspace(0, 6 * np.pi, 3001))
-    z2 = bouc_wen_state(x, 2e6, 2e6, 207.0, 2.0)
-    z2b = bouc_wen_state(x, 2e6, 2e6, 207.0, 2.0 + 1e-12)  # forces the RK4 path
-    # RK4 sub-steps with h * lambda <= 0.5 carry a local error of order (0.5)^5 / 120 ~ 3e-4: measured 4e-5
-    assert np.max(np.abs(z2 - z2b)) < 1e-4 * np.max(np.abs(z2))
-    # saturation (delta / (beta + gamma))^(1/n), Bouc-Wen's bound
-    assert np.max(np.abs(z2)) == pytest.approx(math.sqrt(207 / 4e6), rel=1e-6)
+    t = np.linspace(0, 2, 6001)
+    x = 0.01 * np.sin(2 * np.pi * t)
+    z = bouc_wen_state(x, beta, gamma, delta, n)
+
+    def rhs(tt, s):
+        xd = 0.01 * 2 * np.pi * math.cos(2 * np.pi * tt)
+        q = s[0]
+        return [-gamma * abs(xd) * q * abs(q) ** (n - 1) - beta * xd * abs(q) ** n + delta * xd]
+
+    ref = solve_ivp(rhs, (0, 2), [0.0], t_eval=t, method="Radau", rtol=1e-10, atol=1e-14, max_step=1e-3).y[0]
+    assert np.max(np.abs(z - ref)) < 1e-4 * np.ptp(ref)
+    if n == 2.0 and beta == gamma:
+        # saturation (delta / (beta + gamma))^(1/n), Bouc-Wen's bound
+        assert np.max(np.abs(z)) == pytest.approx(math.sqrt(delta / (beta + gamma)), rel=1e-6)
 
 
 def _round_trip(name, true, record, *, free=None, fixed=None, noise_frac=0.01, starts=1, tol=0.05, seed=1):
