@@ -47,16 +47,23 @@ def _unit_label(unit: str) -> str:
 
 
 def _by_field(sweep, values: np.ndarray, si_unit: str, kind: str, title: str, y_label: str,
-              skip_zero: bool = False) -> go.Figure:
-    v_unit = pick_unit(Q_(sweep.velocity, "m/s"), "velocity")
-    y_unit = pick_unit(Q_(values, si_unit), kind) if kind else ""
-    x = _convert(sweep.velocity, "m/s", v_unit)
+              skip_zero: bool = False, baseline=None, baseline_values=None) -> go.Figure:
+    both = values if baseline is None else np.concatenate([np.ravel(values), np.ravel(baseline_values)])
+    speeds = sweep.velocity if baseline is None else np.concatenate([sweep.velocity, baseline.velocity])
+    v_unit = pick_unit(Q_(speeds, "m/s"), "velocity")
+    y_unit = pick_unit(Q_(both, si_unit), kind) if kind else ""
     fig = go.Figure()
-    for label, E, row in zip(sweep.field_labels(), sweep.field, values):
-        if skip_zero and E == 0:
-            continue
-        y = _convert(row, si_unit, y_unit) if kind else np.asarray(row)
-        fig.add_trace(go.Scatter(x=x, y=y, mode="lines", name=label))
+    sets = [("", sweep, values, "solid")]
+    if baseline is not None:
+        sets.append(("baseline, ", baseline, baseline_values, "dash"))
+    for prefix, sw, vals, dash in sets:
+        x = _convert(sw.velocity, "m/s", v_unit)
+        for i, (label, E, row) in enumerate(zip(sw.field_labels(), sw.field, vals)):
+            if skip_zero and E == 0:
+                continue
+            y = _convert(row, si_unit, y_unit) if kind else np.asarray(row)
+            fig.add_trace(go.Scatter(x=x, y=y, mode="lines", name=prefix + label,
+                                     line=dict(color=_colour(i), dash=dash, width=2.5 if not prefix else 1.5)))
     fig.update_layout(title=title, xaxis_title=f"piston velocity v [{_unit_label(v_unit)}]",
                       yaxis_title=f"{y_label} [{_unit_label(y_unit)}]", **_LAYOUT)
     return fig
@@ -68,9 +75,12 @@ def pressure_drop_figure(sweep) -> go.Figure:
                      "pressure drop Δp")
 
 
-def force_velocity_figure(sweep) -> go.Figure:
-    """Quasi-steady damper force versus velocity, one line per control."""
-    return _by_field(sweep, sweep.force, "N", "force", "Force versus velocity", "force F")
+def force_velocity_figure(sweep, baseline=None) -> go.Figure:
+    """Quasi-steady damper force versus velocity, one line per control; with ``baseline`` (another sweep), its
+    curves dashed beside them (the comparison of two designs)."""
+    return _by_field(sweep, sweep.force, "N", "force", "Force versus velocity" if baseline is None else
+                     "Force versus velocity: this design (solid) and the baseline (dashed)", "force F",
+                     baseline=baseline, baseline_values=None if baseline is None else baseline.force)
 
 
 def dynamic_range_figure(sweep) -> go.Figure:

@@ -10,6 +10,9 @@ from __future__ import annotations
 import base64
 import json
 import math
+import re
+from html import unescape
+from html.parser import HTMLParser
 from pathlib import Path
 
 import numpy as np
@@ -348,17 +351,123 @@ def test_compare_unexplained_and_refit(app, truth_csv, few_candidates):
 
 
 # ------------------------------------------------------------------------------------------------ Report
-def test_report_page(app):
+@pytest.fixture
+def downloads(monkeypatch) -> dict:
+    """The files of the app's download buttons, by file name (recorded as Streamlit stores them)."""
+    from streamlit.runtime.memory_media_file_storage import MemoryMediaFileStorage
+
+    files: dict[str, bytes] = {}
+    real = MemoryMediaFileStorage.load_and_get_id
+
+    def load_and_get_id(self, path_or_data, mimetype, kind, filename=None):
+        if filename:
+            files[filename] = path_or_data if isinstance(path_or_data, bytes) else str(path_or_data).encode()
+        return real(self, path_or_data, mimetype, kind, filename)
+
+    monkeypatch.setattr(MemoryMediaFileStorage, "load_and_get_id", load_and_get_id)
+    return files
+
+
+class Quantities(HTMLParser):
+    """The quantity spans of a report, by id: ``{"q-point-force": "5.984 kN", ...}``."""
+
+    def __init__(self, html: str):
+        super().__init__()
+        self.spans: dict[str, str] = {}
+        self._id = None
+        self.feed(html)
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "span" and a.get("class") == "q" and a.get("id"):
+            self._id = a["id"]
+
+    def handle_data(self, data):
+        if self._id:
+            self.spans[self._id] = self.spans.get(self._id, "") + data
+
+    def handle_endtag(self, tag):
+        if tag == "span":
+            self._id = None
+
+
+def test_report_page(app, downloads):
     app.switch_page("report.py").run()
     no_error(app)
     buttons = app.get("download_button")
     assert buttons and "makris-1996-report.html" in buttons[0].proto.label
-    html = state.render_report(state.spec_text(state.example_spec("makris")), 0.05, (1e6, 2e6, 3e6), None, (),
-                               "html")
+    html = downloads["makris-1996-report.html"].decode()
     assert "120.3 kN·s/m" in html                             # Makris eq 15, as on the Size page
     app.radio(key="rep.format").set_value("md").run()
     no_error(app)
     assert "makris-1996-report.md" in app.get("download_button")[0].proto.label
+    assert "| damping constant C | 120.3 kN·s/m |" in downloads["makris-1996-report.md"].decode()
+
+
+def test_the_report_is_the_design_on_screen(app, downloads):
+    """Issue 14: sized at one velocity and field, the report said another; its checks differed from the page's;
+    its "as given" column was empty.  Now the report is built from the design on screen."""
+    app.text_input(key="size.geo.gap").set_value("0.0315 in").run()       # Makris's own unit (seed 004)
+    app.text_input(key="size.velocity").set_value("1 in/s").run()
+    app.text_input(key="size.field").set_value("2 kV/mm").run()
+    no_error(app)
+    shown = {m.label: m.value for m in app.metric}
+    checks = app.dataframe[0].value.to_dict("records")
+    app.switch_page("report.py").run()
+    no_error(app)
+    html = downloads["makris-1996-report.html"].decode()
+    q = Quantities(html).spans
+    # the design point typed on the Size page, in the report
+    assert q["q-design-velocity"] == "25.4 mm/s" and q["q-design-field"] == "2 kV/mm"
+    assert "At the design velocity 25.4 mm/s" in html
+    # every figure the Size page showed, with the same text, in the report's design-point table
+    from erdesign.report import build_report
+
+    report = build_report(load_example("makris"), design_velocity="1 in/s", design_field="2 kV/mm")
+    for row in report.design_point:
+        if row.key in ("velocity", "field"):
+            continue
+        assert q[f"q-point-{row.key}"] == shown[row.label], row.label
+    # an independent number: Damper.size at the design point (not the top of the curves' range)
+    r = load_example("makris").size(velocity="1 in/s", field="2 kV/mm")
+    assert Q_(q["q-point-force"]).to("N").magnitude == pytest.approx(r.force.to("N").magnitude, rel=FOUR_FIGURES)
+    # the same validity checks, status by status
+    statuses = re.findall(r'<tr id="check-(\w+)"><td>([^<]+)</td><td class="status-(\w+)"', html)
+    assert [(unescape(name), status) for _, name, status in statuses] == \
+        [(c["check"], c["status"].split()[-1]) for c in checks]
+    # inputs as typed, with their units
+    assert re.search(r"<code>gap</code></td><td><code>0.0315 in</code>", html)
+    assert "as typed in the app" in html and "Python" not in re.sub(r"<script.*?</script>", "", html, flags=re.S)
+
+
+def test_a_bad_value_keeps_the_last_good_design(app):
+    force = metric(app, "force F")
+    app.text_input(key="size.geo.gap").set_value("0.8 kg").run()
+    assert not app.exception
+    (err,) = app.error
+    assert "geometry.gap" in err.value and "last valid design" in err.value
+    assert metric(app, "force F") == force                          # still shown
+    assert app.session_state[state.DESIGN]["spec"]["geometry"]["gap"] == "0.8 mm"
+    app.text_input(key="size.geo.gap").set_value("0.8 mm")
+    app.text_input(key="size.velocity").set_value("fast").run()
+    assert not app.exception and [e.value for e in app.error if "design velocity" in e.value]
+    assert metric(app, "force F") == force
+    app.switch_page("report.py").run()                              # the report keeps the last good design
+    no_error(app)
+
+
+def test_unit_systems_and_fields_in_their_own_unit(app):
+    F = metric(app, "force F").to("N").magnitude
+    app.radio(key=state.UNITS).set_value("in-lbf-s").run()
+    no_error(app)
+    (m,) = [m for m in app.metric if m.label == "force F"]
+    assert m.value.endswith(" lbf")
+    assert Q_(m.value).to("N").magnitude == pytest.approx(F, rel=FOUR_FIGURES)
+    assert [m.value for m in app.metric if m.label == "pressure drop Δp"][0].endswith(" psi")
+    assert "3 kV/mm" in app.caption[0].value or any("E = 3 kV/mm" in c.value for c in app.caption)
+    assert not any("e+0" in c.value for c in app.caption)
+    app.radio(key=state.UNITS).set_value("mm-kN-s").run()
+    assert [m.value for m in app.metric if m.label == "force F"][0].endswith(" kN")
 
 
 # ------------------------------------------------------------------------------------------------ CLI

@@ -7,9 +7,13 @@ harness (``AppTest.switch_page("size.py")``) address them by file.
 
 from __future__ import annotations
 
+import logging
 from pathlib import Path
 
 import streamlit as st
+
+from erdesign.app import state
+from erdesign.report.formatting import UNIT_SYSTEMS, use_unit_system
 
 __all__ = ["main", "PAGES"]
 
@@ -31,9 +35,18 @@ def main() -> None:
              for i, (file, title, icon, url) in enumerate(PAGES)]
     page = st.navigation(pages)
     with st.sidebar:
+        system = state.widget(st.radio, "units of displayed numbers", state.UNITS, "SI", options=list(UNIT_SYSTEMS),
+                              help="Numbers shown and reported in this unit system; controls stay in the fluid's "
+                                   "own unit (kV/mm, kA/m, A, V). Inputs take any unit you type.")
         st.caption("erdesign: design and diagnose ER and MR dampers with annular ducts. The design you enter on "
                    "the Size page is used by every page.")
-    page.run()
+    with use_unit_system(system):
+        try:
+            page.run()
+        except Exception as exc:  # a bug, not bad input: one line in the page, never a traceback or a server path
+            logging.getLogger("erdesign.app").exception("internal error on page %s", page.title)
+            st.error(f"Internal error: {type(exc).__name__}: {state.clean_message(str(exc))} (please report it "
+                     "with the steps that led here).")
 
 
 if __name__ == "__main__":

@@ -8,8 +8,9 @@ curves from :func:`erdesign.report.sweep.velocity_sweep` drawn by :mod:`erdesign
 
 from __future__ import annotations
 
-import json
+import re
 import sys
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -25,11 +26,11 @@ from erdesign.app import figures, state
 from erdesign.damper_file import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
 from erdesign.materials import fluid_values
-from erdesign.report.builder import default_velocity_max
-from erdesign.report.formatting import pick_unit, show
+from erdesign.report.export import csv_text, damper_toml, rows_csv
+from erdesign.report.formatting import field_text, pick_unit, show
 from erdesign.units import Q_, to_si
 
-__all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets"]
+__all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets", "design_comment"]
 
 #: Material choice meaning "the values of the damper file".
 FILE_VALUES = "(values of the damper file)"
@@ -59,13 +60,26 @@ def _text(value: Any) -> str:
     return "" if value is None else str(value)
 
 
-def _quantity_text(q) -> str:
-    """``"25 mm/s"``: a quantity as an input shows it (and pint reads it back)."""
-    return f"{q.magnitude:.4g} {q.units:~C}"
+#: The comment line of a damper file written by the app that carries the design point it was sized for.
+_POINT_LINE = re.compile(r"^#\s*design point:\s*v\s*=\s*(?P<v>[^;]+);\s*E\s*=\s*(?P<E>[^;]+?)"
+                         r"(?:;\s*curves to\s*(?P<top>[^;]+?))?\s*$", re.MULTILINE)
 
 
-def _load(spec: dict, source: str) -> None:
-    """Put a damper spec into the widgets (a callback: runs before the widgets are drawn)."""
+def design_comment(design: dict) -> str:
+    """The comment at the top of a damper file downloaded from the app: what it is and its design point.
+
+    >>> print(design_comment({"spec": {"name": "d"}, "velocity": "25 mm/s", "field": "3 kV/mm", "v_top": "50 mm/s"}))
+    damper file of the design d, written by the erdesign app; read it with `erdesign size` or the app's upload
+    design point: v = 25 mm/s; E = 3 kV/mm; curves to 50 mm/s
+    """
+    return (f"damper file of the design {design['spec'].get('name') or 'design'}, written by the erdesign app; "
+            "read it with `erdesign size` or the app's upload\n"
+            f"design point: v = {design['velocity']}; E = {design['field']}; curves to {design['v_top']}")
+
+
+def _load(spec: dict, source: str, point: dict | None = None) -> None:
+    """Put a damper spec (and a design point, else the default one) into the widgets (a callback: runs before
+    the widgets are drawn)."""
     geo, fluid = spec.get("geometry", {}), dict(spec.get("fluid", {}))
     state.set_widget("size.configuration", geo.get("configuration", "valve"))
     for key in GEOMETRY_FIELDS:
@@ -73,18 +87,14 @@ def _load(spec: dict, source: str) -> None:
     state.set_widget("size.geo.ducts", int(geo.get("ducts", 1)))
     material = fluid.pop("material", None)
     st.session_state["size.file_fluid"] = fluid
-    st.session_state["size.file_name"] = spec.get("name", source)
+    state.set_widget("size.name", str(spec.get("name") or Path(source).stem))
     state.set_widget("size.material", material or FILE_VALUES)
     base = fluid_values(material) if material else {}
     for key in FLUID_FIELDS:
         state.set_widget(f"size.fluid.{key}", _text(fluid.get(key, base.get(key))))
-    with_units = Q_(_text(fluid.get("reference_field", base.get("reference_field"))))
-    damper, _ = state.caught(lambda: damper_from_dict(spec, source=source))
-    v_top = default_velocity_max(damper)
-    unit = pick_unit(Q_(v_top, "m/s"), "velocity")
-    state.set_widget("size.velocity", _quantity_text(Q_(v_top / 2, "m/s").to(unit)))
-    state.set_widget("size.v_top", _quantity_text(Q_(v_top, "m/s").to(unit)))
-    state.set_widget("size.field", _quantity_text(with_units))
+    design = {**state.default_design(spec), **(point or {})}
+    for key in ("velocity", "field", "v_top", "levels"):
+        state.set_widget(f"size.{key}", design[key])
     state.forget("size.sweep.")
 
 
@@ -100,19 +110,27 @@ def _on_upload() -> None:
     st.session_state.pop(_ERROR, None)
     if upload is None:
         return
+    name = Path(upload.name).name
     try:
-        data = tomllib.loads(upload.getvalue().decode("utf-8"))
-        damper_from_dict(data, source=upload.name)      # check before taking it
+        text = upload.getvalue().decode("utf-8")
+        data = tomllib.loads(text)
+        damper_from_dict(data, source=name)      # check before taking it
     except UnicodeDecodeError:
-        st.session_state[_ERROR] = f"{upload.name}: not a text (UTF-8) file; expected a damper file (TOML)"
+        st.session_state[_ERROR] = f"{name}: not a text (UTF-8) file; expected a damper file (TOML)"
         return
     except tomllib.TOMLDecodeError as exc:
-        st.session_state[_ERROR] = f"{upload.name}: invalid TOML: {exc}"
+        st.session_state[_ERROR] = f"{name}: invalid TOML: {exc}"
         return
     except ErdesignError as exc:
-        st.session_state[_ERROR] = str(exc)
+        st.session_state[_ERROR] = state.clean_message(str(exc))
         return
-    _load(data, upload.name)
+    point = None
+    match = _POINT_LINE.search(text)
+    if match:      # a file the app wrote: take its design point back too
+        point = {"velocity": match["v"].strip(), "field": match["E"].strip()}
+        if match["top"]:
+            point["v_top"] = match["top"].strip()
+    _load(data, name, point)
     state.set_widget("size.example", UPLOADED)
 
 
@@ -169,6 +187,8 @@ def spec_from_widgets(values: dict) -> dict:
 def _inputs() -> dict:
     """Draw the inputs; return their values."""
     values: dict[str, Any] = {}
+    values["name"] = state.widget(st.text_input, "design name", "size.name", "design",
+                                  help="Names the damper file and the report you download.")
     st.subheader("Geometry")
     values["configuration"] = state.widget(
         st.radio, "configuration", "size.configuration", "valve", options=["valve", "mixed"], horizontal=True,
@@ -191,71 +211,132 @@ def _inputs() -> dict:
     for key, (label, helptext) in FLUID_FIELDS.items():
         values[key] = state.widget(st.text_input, label, f"size.fluid.{key}", "",
                                    help=(helptext + " With its unit.").strip())
-    values["name"] = st.session_state.get("size.file_name", "design")
     return values
 
 
-def _metric(column, label: str, q, kind: str, help: str = "") -> None:
-    if kind:
-        text = show(q, pick_unit(q, kind), name=label).text
-    else:
-        text = "undefined" if q is None or not np.isfinite(q) else f"{q:.4g}"
-    column.metric(label, text, help=help or None)
+def _point_inputs() -> dict:
+    """Draw the design point's inputs (as typed); return them."""
+    cols = st.columns([1, 1, 1, 1])
+    point = {
+        "velocity": state.widget(cols[0].text_input, "design velocity v", "size.velocity", "25 mm/s",
+                                 help="Piston velocity of the design point, with its unit (mm/s, in/s, m/s)."),
+        "field": state.widget(cols[1].text_input, "design field E", "size.field", "3 kV/mm",
+                              help="The control, with its unit (kV/mm, kA/m, T or A)."),
+        "v_top": state.widget(cols[2].text_input, "top velocity of the curves", "size.v_top", "50 mm/s"),
+        "levels": int(state.widget(cols[3].number_input, "field levels of the curves", "size.levels", 4, min_value=1,
+                                   max_value=6, step=1, help="Controls from the design field down to 0.")),
+    }
+    return point
 
 
-def _outputs(damper, velocity_text: str, field_text: str) -> tuple[float, float] | None:
-    """The design point; returns (velocity, field) in SI, or None after showing the error."""
+def _candidate(values: dict, point: dict) -> tuple[dict | None, Any, str]:
+    """The design of the inputs and its report, or (None, None, why) when an input is not valid."""
     try:
-        v = float(to_si(velocity_text, "m/s", "design velocity"))
-        result, messages = state.caught(lambda: damper.size(velocity=Q_(v, "m/s"), field=field_text))
+        spec = spec_from_widgets(values)
+        design = {"spec": spec, **point}
+        to_si(point["v_top"], "m/s", "top velocity of the curves")
+        return design, state.design_report(state.design_text(design), state.unit_system()), ""
     except ErdesignError as exc:
-        st.error(str(exc))
-        return None
-    E = float(result.field.to(damper.fluid.control_unit).magnitude)
-    cols = st.columns(3)
-    _metric(cols[0], "force F", result.force, "force", "Quasi-steady force at the design velocity and field.")
-    _metric(cols[1], "zero-field force F(0)", result.zero_field_force, "force")
-    _metric(cols[2], "dynamic range F(E)/F(0)", result.dynamic_range, "")
-    cols = st.columns(3)
-    _metric(cols[0], "pressure drop Δp", result.pressure_drop, "pressure")
-    _metric(cols[1], "yield force Fy", result.yield_force, "force", "Controllable force of the fluid.")
-    _metric(cols[2], "damping constant C", result.damping_constant, "damping", "Makris eq 15, zero field.")
-    cols = st.columns(3)
-    _metric(cols[0], "Reynolds number Re", result.reynolds, "", "Makris eq 1; laminar below 2300.")
-    _metric(cols[1], "plug fraction", result.plug_fraction, "", "Plug thickness over gap: 1 = blocked.")
-    _metric(cols[2], "flow rate Q", result.flow_rate, "flow", "Volume the piston displaces per second.")
-    st.caption(f"Flow model: {result.flow_model} (h/d = {result.gap_ratio:.3g}); piston area "
-               f"{show(result.piston_area, 'cm^2', name='piston area').text}.")
-    st.session_state["size.messages"] = st.session_state.get("size.messages", []) + messages
-    return v, E
+        return None, None, state.clean_message(str(exc))
 
 
-def _warnings() -> None:
-    messages = list(dict.fromkeys(st.session_state.pop("size.messages", [])))
-    if messages:
-        for m in messages:
-            st.warning(m, icon="⚠️")
+def _metrics(report) -> None:
+    """The design point as metrics, three to a row (labels and numbers of the report's design-point table)."""
+    rows = [r for r in report.design_point if r.key not in ("velocity", "field")]
+    for i in range(0, len(rows), 3):
+        cols = st.columns(3)
+        for col, row in zip(cols, rows[i:i + 3]):
+            col.metric(row.label, row.value.text, help=row.note or None)
+
+
+_STATUS = {"pass": "✅ pass", "warn": "⚠️ warn", "info": "ℹ️ info"}
+
+
+def _checks(report) -> None:
+    """The validity checks of the report (the same records), and the library's validity warnings."""
+    for m in report.validity_messages:
+        st.warning(m, icon="⚠️")
+    if report.warnings == 0 and not report.validity_messages:
+        st.success(f"Validity checks: {len(report.checks)} pass or info, none warns (the report's section 4).")
     else:
-        st.success("Validity checks pass: laminar flow, thin gap or exact annulus, field within the fluid's range.")
+        st.warning(f"Validity checks: {report.warnings} of {len(report.checks)} warn (the report's section 4).")
+    st.dataframe([{"check": c.name, "status": _STATUS[c.status], "value": c.value.text if c.value else "",
+                   "limit": c.limit.text if c.limit else "", "detail": c.detail} for c in report.checks],
+                 hide_index=True, key="size.checks", width="stretch")
 
 
-def _curves(text: str, damper, E: float) -> None:
-    v_top_text = state.widget(st.text_input, "top velocity of the curves", "size.v_top", "50 mm/s")
-    levels = state.widget(st.slider, "field levels (0 to the design field)", "size.levels", 4, min_value=2,
-                          max_value=6)
-    try:
-        v_top = float(to_si(v_top_text, "m/s", "top velocity"))
-        if not v_top > 0:
-            raise ErdesignError(f"top velocity: must be positive, got {v_top_text!r}")
-    except ErdesignError as exc:
-        st.error(str(exc))
+def _curves_csv(report) -> str:
+    sweep = report.sweep
+    columns = [("velocity", "m/s", sweep.velocity)]
+    for label, row in zip(sweep.field_labels(), sweep.force):
+        columns.append((f"force at {label}", "N", row))
+    for label, row in zip(sweep.field_labels(), sweep.pressure_drop):
+        columns.append((f"pressure drop at {label}", "Pa", row))
+    for label, E, row in zip(sweep.field_labels(), sweep.field, sweep.dynamic_range):
+        if E != 0:
+            columns.append((f"dynamic range at {label}", "", row))
+    for label, row in zip(sweep.field_labels(), sweep.reynolds):
+        columns.append((f"Reynolds number at {label}", "", row))
+    return csv_text(columns, comment=f"quasi-steady curves of {report.title} (erdesign.report.sweep)")
+
+
+def _downloads(design: dict, report) -> None:
+    stem = state.file_stem(design["spec"].get("name") or "design")
+    cols = st.columns(3)
+    cols[0].download_button("Damper file (TOML)", damper_toml(design["spec"], comment=design_comment(design)),
+                            file_name=f"{stem}.toml", mime="application/toml", key="size.dl.toml",
+                            icon=":material/download:", help="Opens again with the upload above, and in "
+                            "`erdesign size`; the design point is kept as a comment.")
+    cols[1].download_button("Curves (CSV)", _curves_csv(report), file_name=f"{stem}-curves.csv", mime="text/csv",
+                            key="size.dl.curves", icon=":material/download:")
+    point = rows_csv([{"quantity": r.label, "value": r.value.number, "unit": r.value.unit, "note": r.note}
+                      for r in report.design_point]
+                     + [{"quantity": f"check: {c.name}", "value": c.status, "unit": "",
+                         "note": c.detail} for c in report.checks])
+    cols[2].download_button("Design point and checks (CSV)", point, file_name=f"{stem}-design-point.csv",
+                            mime="text/csv", key="size.dl.point", icon=":material/download:")
+
+
+def _baseline(design: dict, report) -> None:
+    """Pin the design as a baseline; show the current design beside it (figures and curves)."""
+    st.subheader("Compare designs")
+    base = st.session_state.get(state.BASELINE)
+    cols = st.columns([1, 1, 3])
+    if cols[0].button("Pin this design as the baseline", key="size.pin", icon=":material/push_pin:"):
+        st.session_state[state.BASELINE] = base = design
+    if base is not None and cols[1].button("Unpin", key="size.unpin"):
+        st.session_state.pop(state.BASELINE, None)
+        base = None
+    if base is None:
+        cols[2].caption("Pin a design, then change the inputs: the new design is shown beside the pinned one.")
         return
-    fields = tuple(float(x) for x in np.linspace(0.0, abs(E), levels)) if E else (0.0,)
-    with st.spinner("Computing the curves ..."):
-        sweep = state.velocity_sweep(text, v_top, fields)
-    tab_f, tab_d = st.tabs(["force - velocity", "dynamic range - velocity"])
-    tab_f.plotly_chart(plots.force_velocity_figure(sweep), key="size.fig.force")
-    tab_d.plotly_chart(plots.dynamic_range_figure(sweep), key="size.fig.range")
+    try:
+        old = state.design_report(state.design_text(base), state.unit_system())
+    except ErdesignError as exc:     # a baseline from before a change of the library: drop it
+        st.session_state.pop(state.BASELINE, None)
+        st.info(f"The pinned design can no longer be evaluated ({state.clean_message(str(exc))}); unpinned.")
+        return
+    rows = []
+    inputs = {(r.section, r.key): r.given for r in old.inputs}
+    now = {(r.section, r.key): r.given for r in report.inputs}
+    for key in dict.fromkeys([*inputs, *now]):
+        if inputs.get(key) != now.get(key):
+            rows.append({"": f"{key[0]}.{key[1]}", "baseline": inputs.get(key, ""), "this design": now.get(key, ""),
+                         "change": ""})
+    for a, b in zip(old.design_point, report.design_point):
+        change = ""
+        if b.value.si and a.value.si and a.value.si != 0 and np.isfinite(a.value.si) and np.isfinite(b.value.si):
+            change = f"{100 * (b.value.si / a.value.si - 1):+.1f} %"
+        rows.append({"": a.label, "baseline": a.value.text, "this design": b.value.text, "change": change})
+    st.dataframe(rows, hide_index=True, key="size.compare", width="stretch")
+    st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare")
+
+
+def _curves(report) -> None:
+    tab_f, tab_d, tab_p = st.tabs(["force - velocity", "dynamic range - velocity", "pressure drop - velocity"])
+    tab_f.plotly_chart(plots.force_velocity_figure(report.sweep), key="size.fig.force")
+    tab_d.plotly_chart(plots.dynamic_range_figure(report.sweep), key="size.fig.range")
+    tab_p.plotly_chart(plots.pressure_drop_figure(report.sweep), key="size.fig.pressure")
 
 
 def _explorer(text: str, damper, v: float, E: float) -> None:
@@ -282,18 +363,25 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
         result = state.geometry_sweep(text, parameter, tuple(np.linspace(lo, hi, points)), v, E)
     if result["invalid"]:
         st.info(f"Some values give no buildable damper and are left out, e.g. {result['invalid']}")
-    field_label = f"{Q_(E, damper.fluid.control_unit).to(damper.fluid.field_unit):.4g~P}"
-    velocity_label = f"{Q_(v, 'm/s').to(pick_unit(Q_(v, 'm/s'), 'velocity')):.4g~P}"
+    field_label = field_text(E, damper.fluid.control_unit, damper.fluid.field_unit)
+    velocity_label = show(Q_(v, "m/s"), pick_unit(Q_(v, "m/s"), "velocity"), name="velocity").text
     st.plotly_chart(figures.tradeoff_figure(result, state.GEOMETRY_SWEEPS[parameter], field_label,
                                             velocity_label), key="size.fig.tradeoff")
+    data = csv_text([(parameter, "m", result["value"]), (f"force at {field_label}", "N", result["force"]),
+                     ("zero-field force", "N", result["zero_field_force"]),
+                     ("dynamic range", "", result["dynamic_range"]), ("Reynolds number", "", result["reynolds"]),
+                     ("gap ratio h/d", "", result["gap_ratio"])],
+                    comment=f"sweep of the {state.GEOMETRY_SWEEPS[parameter]} at {velocity_label} and {field_label}")
+    st.download_button("Sweep (CSV)", data, file_name=f"sweep-{parameter}.csv", mime="text/csv",
+                       key="size.dl.sweep", icon=":material/download:")
 
 
 def render() -> None:
     """Draw the Size page."""
     st.title("Size a damper")
     if "size.configuration" not in st.session_state and "_keep.size.configuration" not in st.session_state:
-        spec = state.current_spec()
-        _load(spec, "design")
+        design = state.current_design()
+        _load(design["spec"], "design", {k: design[k] for k in ("velocity", "field", "v_top", "levels")})
         st.session_state.setdefault("_keep.size.example", state.DEFAULT_EXAMPLE)
     top = st.columns([2, 3])
     examples = example_names() + ([UPLOADED] if st.session_state.get("_keep.size.example") == UPLOADED else [])
@@ -307,28 +395,33 @@ def render() -> None:
         values = _inputs()
     with right:
         st.subheader("Design point")
-        cols = st.columns(2)
-        velocity_text = state.widget(cols[0].text_input, "design velocity v", "size.velocity", "25 mm/s")
-        field_text = state.widget(cols[1].text_input, "design field E", "size.field", "3 kV/mm",
-                                  help="The control, with its unit (kV/mm, kA/m, T or A).")
-        try:
-            spec = spec_from_widgets(values)
-            text = state.spec_text(spec)
-            damper, messages = state.build_damper(text)
-        except ErdesignError as exc:
-            st.error(f"The design is not valid: {exc}")
-            return
-        state.set_spec(spec)
-        st.session_state["size.messages"] = messages
-        point = _outputs(damper, velocity_text, field_text)
-        _warnings()
-        if point is None:
-            return
-        v, E = point
-        _curves(text, damper, E)
+        point = _point_inputs()
+        design, report, why = _candidate(values, point)
+        if design is None:
+            st.error(f"{why}. The pages keep the last valid design until this is corrected.", icon="🚫")
+            design = state.current_design()
+            try:
+                report = state.design_report(state.design_text(design), state.unit_system())
+            except ErdesignError:
+                return
+            st.caption(f"Showing the last valid design: v = {design['velocity']}, E = {design['field']}.")
+        else:
+            state.set_design(design)
+        _metrics(report)
+        flow = next(n for n in report.notes if n.startswith("flow model"))
+        st.caption(f"At v = {report.setting('velocity_design').value.text} and E = "
+                   f"{report.setting('field_design').value.text}; {flow}.")
+        _checks(report)
+        _curves(report)
+        _downloads(design, report)
+    text = state.spec_text(design["spec"])
+    damper, _ = state.build_damper(text)
+    _baseline(design, report)
+    v = report.setting("velocity_design").value.si
+    E = float(to_si(design["field"], damper.fluid.control_unit, "design field"))
     _explorer(text, damper, v, E)
-    with st.expander("damper file of this design (TOML-like, as data)"):
-        st.code(json.dumps(spec, indent=2), language="json")
+    with st.expander("damper file of this design (TOML)"):
+        st.code(damper_toml(design["spec"], comment=design_comment(design)), language="toml")
 
 
 if __name__ == "__main__":

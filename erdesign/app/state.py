@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import re
 import tempfile
 import warnings
 from importlib import resources
@@ -30,10 +31,12 @@ from ..damper_file import damper_from_dict, example_names, read_toml
 from ..errors import ErdesignError
 from ..geometry import Geometry
 from ..measurement import Measurement, read_measurement
-from ..units import Q_
+from ..units import Q_, to_si
 
 __all__ = [
-    "DEFAULT_EXAMPLE", "SPEC", "DIAGNOSIS", "widget", "forget", "example_spec", "current_spec", "set_spec",
+    "DEFAULT_EXAMPLE", "SPEC", "DESIGN", "DIAGNOSIS", "BASELINE", "UNITS", "widget", "forget", "example_spec",
+    "current_spec", "set_spec", "default_design", "current_design", "set_design", "design_text", "design_report",
+    "unit_system", "report_inputs", "clean_message", "file_stem",
     "spec_text", "build_damper", "damper_or_error", "caught", "velocity_sweep", "geometry_sweep", "GEOMETRY_SWEEPS",
     "read_record",
     "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
@@ -44,8 +47,16 @@ __all__ = [
 DEFAULT_EXAMPLE = "makris"
 #: Session-state key of the current damper spec (plain data).
 SPEC = "spec"
+#: Session-state key of the design: the spec, the design point and the curves' settings, as typed
+#: (``{"spec": ..., "velocity": "25 mm/s", "field": "3 kV/mm", "v_top": "50 mm/s", "levels": 4}``).  The Size page
+#: writes it when its inputs are valid; the report, Simulate and Compare pages read it.
+DESIGN = "design"
 #: Session-state key of the diagnosis work (record, accepted effects, error history).
 DIAGNOSIS = "diagnosis"
+#: Session-state key of the design pinned as the baseline of the comparison on the Size page.
+BASELINE = "baseline"
+#: Widget key of the unit system of displayed numbers (sidebar).
+UNITS = "app.units"
 _KEEP = "_keep."
 
 
@@ -95,6 +106,113 @@ def set_spec(spec: dict) -> None:
 def spec_text(spec: dict) -> str:
     """The spec as canonical JSON text: the hashable form the cached functions take."""
     return json.dumps(spec, sort_keys=True)
+
+
+def _quantity_text(q) -> str:
+    """``"25 mm/s"``: a quantity as an input shows it (and pint reads it back)."""
+    return f"{q.magnitude:.4g} {q.units:~C}"
+
+
+def file_stem(name: str, suffix: str = "") -> str:
+    """A file name from a design name: ``file_stem("my damper / v2", "-report")`` -> ``"my-damper-v2-report"``.
+
+    >>> file_stem("makris-1996", "-report"), file_stem("../../etc")
+    ('makris-1996-report', 'etc')
+    """
+    stem = re.sub(r"[^A-Za-z0-9_-]+", "-", name).strip("-.") or "erdesign"
+    return f"{stem}{suffix}"
+
+
+def default_design(spec: dict) -> dict:
+    """The design point a spec opens with: half the top velocity of its curves (module notes of
+    :mod:`erdesign.report.builder`) at the fluid's reference field, as the user would type them."""
+    from ..report.builder import default_velocity_max
+    from ..report.formatting import pick_unit
+
+    damper = caught(lambda: damper_from_dict(spec, source="design"))[0]
+    v_top = default_velocity_max(damper)
+    unit = pick_unit(Q_(v_top, "m/s"), "velocity")
+    fluid = damper.fluid
+    return {"spec": spec, "velocity": _quantity_text(Q_(v_top / 2, "m/s").to(unit)),
+            "field": _quantity_text(Q_(fluid.reference_field, fluid.control_unit).to(fluid.field_unit)),
+            "v_top": _quantity_text(Q_(v_top, "m/s").to(unit)), "levels": 4}
+
+
+def current_design() -> dict:
+    """The design every page works on (:data:`DESIGN`): the last valid one the Size page saw."""
+    if DESIGN not in st.session_state:
+        st.session_state[DESIGN] = default_design(current_spec())
+    return st.session_state[DESIGN]
+
+
+def set_design(design: dict) -> None:
+    st.session_state[DESIGN] = design
+    st.session_state[SPEC] = design["spec"]
+
+
+def design_text(design: dict) -> str:
+    """The design as canonical JSON text (hashable, for the cached functions)."""
+    return json.dumps(design, sort_keys=True)
+
+
+def unit_system() -> str:
+    """The unit system chosen in the sidebar (``SI`` until changed)."""
+    return st.session_state.get(UNITS) or st.session_state.get(_KEEP + UNITS) or "SI"
+
+
+def report_inputs(design: dict, control_unit: str) -> dict:
+    """The keyword arguments of :func:`erdesign.report.build_report` for a design: the curves from 0 to the top
+    velocity at ``levels`` controls from 0 to the design control, the design point as typed."""
+    E = abs(float(to_si(design["field"], control_unit, "design field")))
+    levels = int(design.get("levels", 4))
+    fields = [Q_(float(x), control_unit) for x in np.linspace(0.0, E, levels)[1:]] if E else []
+    return {"velocity_range": (Q_(0.0, "m/s"), design["v_top"]), "fields": fields or None,
+            "design_velocity": design["velocity"], "design_field": design["field"], "origin": "as typed in the app"}
+
+
+@st.cache_data(show_spinner=False, max_entries=32)
+def design_report(text: str, system: str, comparison: tuple | None = None,
+                  history: tuple[tuple[int, str, float], ...] = ()):
+    """:func:`erdesign.report.build_report` of a design (:func:`design_text`) in the unit system ``system``.
+
+    The Size page shows its design point, checks and curves; the Report page renders it: one computation, so the
+    numbers on screen and in the download are the same.  ``comparison`` is ``(label, esr, samples, x, v,
+    F_measured, F_model)`` with SI arrays as tuples, or None.
+
+    Raises :class:`~erdesign.errors.ErdesignError` for an invalid design.
+    """
+    from ..report import build_report
+    from ..report.builder import ErrorHistoryStep, MeasurementComparison
+    from ..report.formatting import use_unit_system
+
+    design = json.loads(text)
+    damper, _ = build_damper(spec_text(design["spec"]))
+    comp = None
+    if comparison is not None:
+        label, esr_value, samples, x, v, Fm, Fmod = comparison
+        Fm, Fmod = np.asarray(Fm), np.asarray(Fmod)
+        comp = MeasurementComparison(
+            label=label, esr=esr_value, samples=samples,
+            rms_error=Q_(float(np.sqrt(np.mean((Fm - Fmod) ** 2))), "N"),
+            peak_force_measured=Q_(float(np.max(np.abs(Fm))), "N"),
+            peak_force_model=Q_(float(np.max(np.abs(Fmod))), "N"),
+            displacement=np.asarray(x), velocity=np.asarray(v), force_measured=Fm, force_model=Fmod)
+    with use_unit_system(system):
+        return caught(lambda: build_report(
+            design["spec"], **report_inputs(design, damper.fluid.control_unit), comparison=comp,
+            history=[ErrorHistoryStep(*h) for h in history] or None))[0]
+
+
+_PATH = re.compile(r"(?:[A-Za-z]:)?(?:[\\/][^\\/\s:'\"]+)+[\\/]([^\\/\s:'\"]+)")
+
+
+def clean_message(text: str) -> str:
+    """An error message for the page: one line, server paths cut to the file name.
+
+    >>> clean_message("/tmp/tmpab12/upload.csv: line 2, column 'force': not a number")
+    "upload.csv: line 2, column 'force': not a number"
+    """
+    return _PATH.sub(lambda m: m.group(1), " ".join(str(text).split()))
 
 
 def caught(call: Callable[[], Any]) -> tuple[Any, list[str]]:
@@ -193,10 +311,15 @@ def read_record(data: bytes, name: str, require_force: bool = True) -> Measureme
 
     Raises :class:`~erdesign.measurement.MeasurementError` whose message starts with ``name``.
     """
+    from ..measurement import MeasurementError
+
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / (Path(name).name or "upload.csv")
         path.write_bytes(data)
-        record = read_measurement(path, require_force=require_force)
+        try:
+            record = read_measurement(path, require_force=require_force)
+        except MeasurementError as exc:     # the message names the temporary file: show the upload's name
+            raise MeasurementError(clean_message(str(exc).replace(str(path), path.name))) from None
     return record
 
 
@@ -313,41 +436,25 @@ def run_diagnosis(text: str, data: bytes, name: str, effects: tuple[str, ...]):
     damper, _ = build_damper(text)
     record = read_record(data, name)
     diagnosis = caught(lambda: diagnose(damper, record, effects))[0]
-    model = diagnosis.baseline
-    return diagnosis, record, model.model.simulate(record, model.values)
+    fitted = diagnosis.baseline
+    # the diagnosis may fit on part of the record (a mask wrapper with ``inner``): the force on the whole record
+    model = getattr(fitted.model, "inner", fitted.model)
+    return diagnosis, record, model.simulate(record, fitted.values)
 
 
 # ------------------------------------------------------------------------------------------------ report
 @st.cache_data(show_spinner=False, max_entries=8)
-def render_report(text: str, v_max: float, fields: tuple[float, ...], comparison: tuple | None,
-                  history: tuple[tuple[int, str, float], ...], fmt: str) -> str:
-    """The engineering report of the spec (:func:`erdesign.report.build_report`) as HTML or Markdown text.
+def render_report(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
+                  fmt: str) -> str:
+    """The report of a design (:func:`design_report`) as HTML or Markdown text."""
+    from ..report import render_html, render_markdown
 
-    ``comparison`` is ``(label, esr, samples, x, v, F_measured, F_model)`` with SI arrays as tuples, or None.
-    """
-    from ..report import build_report, render_html, render_markdown
-    from ..report.builder import ErrorHistoryStep, MeasurementComparison
-
-    damper, _ = build_damper(text)
-    unit = damper.fluid.control_unit
-    comp = None
-    if comparison is not None:
-        label, esr_value, samples, x, v, Fm, Fmod = comparison
-        Fm, Fmod = np.asarray(Fm), np.asarray(Fmod)
-        comp = MeasurementComparison(
-            label=label, esr=esr_value, samples=samples,
-            rms_error=Q_(float(np.sqrt(np.mean((Fm - Fmod) ** 2))), "N"),
-            peak_force_measured=Q_(float(np.max(np.abs(Fm))), "N"),
-            peak_force_model=Q_(float(np.max(np.abs(Fmod))), "N"),
-            displacement=np.asarray(x), velocity=np.asarray(v), force_measured=Fm, force_model=Fmod)
-    report = caught(lambda: build_report(
-        damper, velocity_range=(Q_(0.0, "m/s"), Q_(v_max, "m/s")), fields=[Q_(f, unit) for f in fields],
-        comparison=comp, history=[ErrorHistoryStep(*h) for h in history] or None))[0]
+    report = design_report(text, system, comparison, history)
     return render_html(report) if fmt == "html" else render_markdown(report)
 
 
 def clear_caches() -> None:
     """Empty every cache of the app (tests call it between tests)."""
     for fn in (velocity_sweep, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
-               render_report):
+               design_report, render_report):
         fn.clear()

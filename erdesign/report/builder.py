@@ -10,7 +10,9 @@ Defaults when the caller gives none:
 * velocity range: 0 to :math:`v_\text{max}`, the smaller of :math:`30\,F_y(E_\text{ref})/C` (thirty times the
   velocity at which the zero-field viscous force equals the yield force) and the velocity at which the zero-field
   Reynolds number reaches 230 (a tenth of the laminar limit), rounded up to 1, 2 or 5 times a power of ten;
-  the design point is the top of the range;
+* design point: ``design_velocity`` (default: the top of the velocity range, which is widened to contain it) and
+  ``design_field`` (default: the largest control); the report's "Design point" section is :func:`design_point_rows`,
+  the rows the app's Size page shows;
 * sine: amplitude 10 mm, frequency such that the peak velocity is the top of the velocity range.
 
 Validity checks (status ``pass``, ``warn`` or ``info`` when nothing can be checked):
@@ -29,6 +31,7 @@ from __future__ import annotations
 
 import datetime
 import math
+import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from dataclasses import field as dc_field
@@ -40,7 +43,7 @@ import numpy as np
 from .. import materials
 from ..damper import CRITICAL_REYNOLDS, Damper
 from ..damper_file import damper_from_dict, read_toml
-from ..errors import ErdesignError
+from ..errors import ErdesignError, ValidityWarning
 from ..geometry import THIN_GAP_LIMIT
 from ..units import Q_, to_si
 from .equations import Equation, equations_for
@@ -48,7 +51,8 @@ from .formatting import Shown, pick_unit, show
 from .sweep import SineLoops, VelocitySweep, sine_loops, velocity_sweep
 
 __all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison",
-           "ErrorHistoryStep", "build_report", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
+           "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
+           "default_velocity_max", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
 
 #: Plug fraction above which the report warns: each sheared layer is then thinner than 5 % of the gap, the force
 #: is set almost wholly by the yield stress, and pre-yield elasticity (Makris eq 8), which the quasi-steady
@@ -190,11 +194,22 @@ class Report:
     history: tuple[ErrorHistoryStep, ...]
     sweep: VelocitySweep = dc_field(repr=False)
     loops: SineLoops = dc_field(repr=False)
+    design_point: tuple[Row, ...] = ()
+    """The design point (:func:`design_point_rows`): velocity, control and the figures the Size page shows."""
+    validity_messages: tuple[str, ...] = ()
+    """Validity warnings the library gave building the damper and sizing it (as the app shows them)."""
 
     @property
     def warnings(self) -> int:
         """Number of checks that warn."""
         return sum(c.status == "warn" for c in self.checks)
+
+    def setting(self, key: str) -> Row:
+        """The settings row ``key`` (``"velocity_design"``, ``"field_design"``, ``"amplitude"`` ...)."""
+        for row in self.settings:
+            if row.key == key:
+                return row
+        raise KeyError(key)
 
 
 def _nice_ceiling(x: float) -> float:
@@ -228,7 +243,8 @@ def _as_history(history: Iterable[Any] | None) -> tuple[ErrorHistoryStep, ...]:
     return tuple(out)
 
 
-def _inputs(data: Mapping[str, Any] | None, damper: Damper) -> tuple[tuple[InputRow, ...], dict | None]:
+def _inputs(data: Mapping[str, Any] | None, damper: Damper,
+            origin: str = "damper file") -> tuple[tuple[InputRow, ...], dict | None]:
     """Input rows from a damper file's content (as given, in SI, origin); the material record if one is named."""
     rows: list[InputRow] = []
     fluid = damper.fluid
@@ -250,7 +266,7 @@ def _inputs(data: Mapping[str, Any] | None, damper: Damper) -> tuple[tuple[Input
             si = show(float(value), "", name="geometry.ducts")
         else:
             si = show(Q_(to_si(value, unit, f"geometry.{key}"), unit), unit, name=f"geometry.{key}") if unit else None
-        rows.append(InputRow("geometry", key, str(value), si, "damper file"))
+        rows.append(InputRow("geometry", key, str(value), si, origin))
     table = dict(data.get("fluid", {}))
     record = None
     merged: dict[str, tuple[Any, str]] = {}
@@ -260,7 +276,7 @@ def _inputs(data: Mapping[str, Any] | None, damper: Damper) -> tuple[tuple[Input
             merged[key] = (value, f"material {table['material']}")
     for key, value in table.items():
         if key != "material":
-            merged[key] = (value, "damper file")
+            merged[key] = (value, origin)
     for key, (value, origin) in merged.items():
         if key == "yield_exponent":
             si = show(float(value), "", name=f"fluid.{key}")
@@ -290,7 +306,13 @@ def _material_section(record: Mapping[str, Any] | None, damper: Damper) -> dict 
     }
 
 
-def _checks(damper: Damper, sweep: VelocitySweep, fields: np.ndarray, v_design: float) -> tuple[Check, ...]:
+def validity_checks(damper: Damper, sweep: VelocitySweep, fields: np.ndarray, v_design: float,
+                    field_design: float | None = None) -> tuple[Check, ...]:
+    """The validity checks of a design (module notes): the report's section 4 and the app's Size page.
+
+    ``sweep`` is the velocity sweep of :func:`report_grid`'s grid; ``fields`` every control asked for (SI);
+    ``v_design`` the design velocity [m/s] and ``field_design`` the design control (SI; default the largest).
+    """
     g, fluid = damper.geometry, damper.fluid
     out = []
     re_max = float(np.nanmax(sweep.reynolds))
@@ -327,12 +349,13 @@ def _checks(damper: Damper, sweep: VelocitySweep, fields: np.ndarray, v_design: 
             if outside.size else "every control asked for is inside the characterised range",
             f"materials/{fluid.material}.toml [range]" if fluid.material else "fluid.field_range"))
     i_design = int(np.argmin(np.abs(sweep.velocity - v_design)))
-    i_field = int(np.argmax(np.abs(sweep.field)))
+    i_field = (int(np.argmax(np.abs(sweep.field))) if field_design is None
+               else int(np.argmin(np.abs(np.abs(sweep.field) - abs(field_design)))))
     phi = float(sweep.plug_fraction[i_field, i_design])
     out.append(Check(
         "plug", "Plug does not block the gap", "pass" if phi <= PLUG_FRACTION_LIMIT else "warn",
         show(phi, "", name="plug fraction"), show(PLUG_FRACTION_LIMIT, "", name="plug fraction limit"),
-        "plug thickness over gap at the design velocity and the largest control"
+        "plug thickness over gap at the design velocity and control"
         + ("" if phi <= PLUG_FRACTION_LIMIT else ": the gap is nearly blocked, the force is set by the yield stress "
                                                   "and pre-yield elasticity (Makris eq 8), not modelled here, matters"),
         "Makris et al. (seed 004), eqs 2 and 5 (plug of thickness 2 tau_y L / dp)"))
@@ -393,19 +416,94 @@ def _loop_table(loops: SineLoops) -> Table:
     return Table("sine_loops", columns, rows)
 
 
-def build_report(source: str | Path | Damper, *, velocity_range: Sequence[Any] | None = None,
+def report_grid(damper: Damper, velocity_range: Sequence[Any] | None, fields: Sequence[Any] | None,
+                design_velocity: Any = None, design_field: Any = None) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """The velocities and controls a report (and the app's Size page) evaluates, and the design point.
+
+    Returns ``(v, E, v_design, E_design)``, SI: ``v`` the sweep velocities (the range, widened to contain the design
+    velocity, which is one of the points), ``E`` the controls (zero, ``fields`` and the design control, sorted,
+    no repeats), the design velocity and the design control.  Arguments as :func:`build_report` takes them.
+    """
+    fluid = damper.fluid
+    control = fluid.control_unit
+    if fields is None:
+        E = fluid.reference_field * np.array([0.0, 1 / 3, 2 / 3, 1.0])
+    else:
+        E = np.array([to_si(f, control, f"field[{i}]") for i, f in enumerate(fields)], dtype=float)
+    E_design = float(np.max(np.abs(E))) if design_field is None else abs(float(to_si(design_field, control,
+                                                                                   "design field")))
+    E = np.unique(np.concatenate([[0.0], np.abs(E), [E_design]]))
+    if fields is not None or design_field is not None:
+        fluid.check_field(E, "field")
+    if velocity_range is None:
+        v_lo, v_hi = 0.0, default_velocity_max(damper)
+    else:
+        if len(velocity_range) != 2:
+            raise ErdesignError("velocity_range: expected two velocities (lowest, highest)")
+        v_lo, v_hi = (float(to_si(v, "m/s", f"velocity_range[{i}]")) for i, v in enumerate(velocity_range))
+        if not (0 <= v_lo < v_hi):
+            raise ErdesignError(f"velocity_range: need 0 <= lowest < highest, got {velocity_range!r}")
+    if design_velocity is None:
+        v_design = v_hi
+    else:
+        v_design = abs(float(to_si(design_velocity, "m/s", "design velocity")))
+        if not v_design > 0:
+            raise ErdesignError(f"design velocity: must be positive, got {design_velocity!r}")
+        v_lo, v_hi = min(v_lo, v_design), max(v_hi, v_design)
+    v = np.unique(np.concatenate([np.linspace(v_lo, v_hi, _VELOCITY_POINTS), [v_design]]))
+    return v, E, v_design, E_design
+
+
+def design_point_rows(damper: Damper, velocity: float, field: float) -> tuple[Row, ...]:
+    """The design point as the app's Size page shows it and the report prints it: :meth:`Damper.size` at
+    ``velocity`` [m/s] and ``field`` (SI unit of the control), each figure in the unit of the current unit system.
+
+    Row keys: ``velocity``, ``field``, ``force``, ``zero_field_force``, ``dynamic_range``, ``pressure_drop``,
+    ``yield_force``, ``damping_constant``, ``reynolds``, ``plug_fraction``, ``flow_rate``, ``piston_area``.
+    """
+    fluid = damper.fluid
+    r = damper.size(velocity=Q_(velocity, "m/s"), field=Q_(field, fluid.control_unit))
+
+    def q(key: str, label: str, value: Any, kind: str, note: str = "") -> Row:
+        unit = pick_unit(value, kind)
+        return Row(key, label, show(value, unit, name=label), note)
+
+    dyn = float("nan") if r.dynamic_range is None else r.dynamic_range
+    c_note = "Makris eq 15, zero field" if damper.geometry.configuration == "valve" else "Newtonian mixed mode"
+    return (
+        q("velocity", "design velocity v", r.velocity, "velocity"),
+        Row("field", "design control E", show(r.field, fluid.field_unit, name="design control")),
+        q("force", "force F", r.force, "force", "quasi-steady force at the design velocity and control, with the "
+                                                "seal friction (Makris eq 14)"),
+        q("zero_field_force", "zero-field force F(0)", r.zero_field_force, "force"),
+        Row("dynamic_range", "dynamic range F(E)/F(0)", show(dyn, "", name="dynamic range")),
+        q("pressure_drop", "pressure drop Δp", r.pressure_drop, "pressure"),
+        q("yield_force", "yield force Fy", r.yield_force, "force", "controllable force of the fluid"),
+        q("damping_constant", "damping constant C", r.damping_constant, "damping", c_note),
+        Row("reynolds", "Reynolds number Re", show(r.reynolds, "", name="Reynolds number"),
+            "Makris eq 1; laminar below 2300"),
+        Row("plug_fraction", "plug fraction", show(r.plug_fraction, "", name="plug fraction"),
+            "plug thickness over gap: 1 = blocked"),
+        q("flow_rate", "flow rate Q", r.flow_rate, "flow", "volume the piston displaces per second"),
+        q("piston_area", "piston area A_p", r.piston_area, "area"),
+    )
+
+
+def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_range: Sequence[Any] | None = None,
                  fields: Sequence[Any] | None = None, amplitude: Any = None, frequency: Any = None,
                  comparison: MeasurementComparison | None = None, history: Iterable[Any] | None = None,
-                 title: str | None = None) -> Report:
+                 title: str | None = None, design_velocity: Any = None, design_field: Any = None,
+                 origin: str | None = None) -> Report:
     """The content of an engineering report on a damper.
 
     Parameters
     ----------
-    source : path or Damper
-        A damper file (its values are shown as given and in SI) or a :class:`~erdesign.Damper`.
+    source : path, Damper or mapping
+        A damper file (its values are shown as given and in SI), the content of one as a mapping (the app's design:
+        values as typed), or a :class:`~erdesign.Damper`.
     velocity_range : (velocity, velocity), optional
-        Lowest and highest piston velocity (quantities or strings, ``("0 mm/s", "50 mm/s")``); the top is the design
-        velocity.  Default in the module notes.
+        Lowest and highest piston velocity of the curves (quantities or strings, ``("0 mm/s", "50 mm/s")``).
+        Default in the module notes.
     fields : sequence of controls, optional
         Controls to evaluate (quantities or strings of the fluid's kind); zero is added.  Default: 0, 1/3, 2/3, 1
         times the reference field.
@@ -415,6 +513,10 @@ def build_report(source: str | Path | Damper, *, velocity_range: Sequence[Any] |
     history : iterable of ErrorHistoryStep or (step, effect, esr), optional
         Render the optional measurement section.
     title : str, optional
+    design_velocity, design_field : quantity or str, optional
+        The design point (default: the top of the velocity range and the largest control).
+    origin : str, optional
+        Where the inputs came from, for the inputs table (default ``"damper file"``, ``"Python"`` for a Damper).
 
     Returns
     -------
@@ -422,31 +524,29 @@ def build_report(source: str | Path | Damper, *, velocity_range: Sequence[Any] |
     """
     from .. import __version__, plots
 
-    if isinstance(source, Damper):
-        damper, data, where = source, None, source.name or "damper"
-    else:
-        data = read_toml(source)
-        damper = damper_from_dict(data, source=str(source))
-        where = str(source)
-    fluid, g = damper.fluid, damper.geometry
-    control = fluid.control_unit
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        if isinstance(source, Damper):
+            damper, data, where = source, None, source.name or "damper"
+        elif isinstance(source, Mapping):
+            data = dict(source)
+            where = str(data.get("name") or "design")
+            damper = damper_from_dict(data, source=where)
+        else:
+            data = read_toml(source)
+            damper = damper_from_dict(data, source=str(source))
+            where = str(source)
+        fluid, g = damper.fluid, damper.geometry
+        control = fluid.control_unit
 
-    # --- settings
-    if fields is None:
-        E = fluid.reference_field * np.array([0.0, 1 / 3, 2 / 3, 1.0])
-    else:
-        E = np.array([to_si(f, control, f"field[{i}]") for i, f in enumerate(fields)], dtype=float)
-        fluid.check_field(E, "field")
-        E = np.unique(np.concatenate([[0.0], np.abs(E)]))
-    if velocity_range is None:
-        v_lo, v_hi = 0.0, default_velocity_max(damper)
-    else:
-        if len(velocity_range) != 2:
-            raise ErdesignError("velocity_range: expected two velocities (lowest, highest)")
-        v_lo, v_hi = (float(to_si(v, "m/s", f"velocity_range[{i}]")) for i, v in enumerate(velocity_range))
-        if not (0 <= v_lo < v_hi):
-            raise ErdesignError(f"velocity_range: need 0 <= lowest < highest, got {velocity_range!r}")
-    v = np.linspace(v_lo, v_hi, _VELOCITY_POINTS)
+        # --- settings
+        v, E, v_design, E_design = report_grid(damper, velocity_range, fields, design_velocity, design_field)
+        design_point = design_point_rows(damper, v_design, E_design)
+    messages = tuple(dict.fromkeys(" ".join(str(w.message).split()) for w in seen
+                                   if issubclass(w.category, ValidityWarning)))
+    for w in seen:      # hand the warnings on to the caller, as before
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    v_lo, v_hi = float(v[0]), float(v[-1])
     X0 = float(to_si(amplitude if amplitude is not None else DEFAULT_AMPLITUDE, "m", "amplitude"))
     f = float(to_si(frequency, "Hz", "frequency")) if frequency is not None else v_hi / (2 * math.pi * X0)
     if not (X0 > 0 and f > 0):
@@ -457,14 +557,18 @@ def build_report(source: str | Path | Damper, *, velocity_range: Sequence[Any] |
 
     v_unit = pick_unit(Q_(v, "m/s"), "velocity")
     e_unit = fluid.field_unit
+    dv_unit = pick_unit(Q_(v_design, "m/s"), "velocity")
     settings = [
-        Row("velocity_min", "lowest velocity", show(Q_(v_lo, "m/s"), v_unit, name="lowest velocity")),
-        Row("velocity_design", "highest (design) velocity", show(Q_(v_hi, "m/s"), v_unit, name="design velocity")),
+        Row("velocity_design", "design velocity v", show(Q_(v_design, "m/s"), dv_unit, name="design velocity")),
+        Row("field_design", "design control E", show(Q_(E_design, control), e_unit, name="design control")),
+        Row("velocity_min", "lowest velocity of the curves", show(Q_(v_lo, "m/s"), v_unit, name="lowest velocity")),
+        Row("velocity_max", "highest velocity of the curves", show(Q_(v_hi, "m/s"), v_unit,
+                                                                    name="highest velocity")),
         Row("amplitude", "sine amplitude X0", show(Q_(X0, "m"), pick_unit(Q_(X0, "m"), "length"), name="amplitude")),
         Row("frequency", "sine frequency f", show(Q_(f, "Hz"), pick_unit(Q_(f, "Hz"), "frequency"), name="frequency")),
     ] + [Row(f"field_{i}", f"control {i + 1}", show(Q_(e, control), e_unit, name="control")) for i, e in enumerate(E)]
 
-    inputs, record = _inputs(data, damper)
+    inputs, record = _inputs(data, damper, origin or "damper file")
 
     # --- derived quantities
     Ap = Q_(g.piston_area, "m^2")
@@ -485,8 +589,8 @@ def build_report(source: str | Path | Damper, *, velocity_range: Sequence[Any] |
     ]
 
     # --- design table: the state at the design velocity, one row per control
-    s = damper.state(np.full(E.shape, v_hi), E)
-    s0 = damper.state(v_hi, 0.0)
+    s = damper.state(np.full(E.shape, v_design), E)
+    s0 = damper.state(v_design, 0.0)
     Fy = np.asarray(damper.yield_force_si(E), dtype=float) * np.ones_like(E)
     units = dict(tau=pick_unit(Q_(np.asarray(s.yield_stress), "Pa"), "pressure"),
                  eta=pick_unit(Q_(np.asarray(s.viscosity), "Pa*s"), "viscosity"),
@@ -562,8 +666,8 @@ def build_report(source: str | Path | Damper, *, velocity_range: Sequence[Any] |
         configuration=g.configuration, notes=tuple(notes), settings=tuple(settings), inputs=inputs,
         material=_material_section(record, damper), derived=tuple(derived), design_table=design_table,
         sine_table=sine_table, equations=tuple(equations_for(damper)),
-        checks=_checks(damper, sweep, E, v_hi), figures=tuple(figures), comparison=comparison_data,
-        history=steps, sweep=sweep, loops=loops)
+        checks=validity_checks(damper, sweep, E, v_design, E_design), figures=tuple(figures), comparison=comparison_data,
+        history=steps, sweep=sweep, loops=loops, design_point=design_point, validity_messages=messages)
 
 
 def _comparison(c: MeasurementComparison) -> dict:

@@ -11,8 +11,10 @@ largest magnitude between 1 and 1000, so that a column reads in one unit.
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,7 +24,8 @@ import pint
 from ..errors import UnitError
 from ..units import Q_, dimension_name, ureg
 
-__all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES"]
+__all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
+           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text"]
 
 #: Significant figures of every quantity a report prints.
 SIGNIFICANT_DIGITS = 4
@@ -44,6 +47,57 @@ UNIT_CHOICES: dict[str, tuple[str, ...]] = {
     "magnetic field": ("A/m", "kA/m", "MA/m"),
     "density": ("kg/m^3",),
 }
+
+#: Unit systems for displayed numbers: name -> the units of each kind that differ from :data:`UNIT_CHOICES`.
+#: ``"SI"`` picks among SI multiples (:data:`UNIT_CHOICES`); the others fix one unit per kind, so that every
+#: number of a kind reads in the same unit.  Controls (fields, currents, voltages) are never converted to a unit
+#: system: they are shown in the unit of the fluid's control (kV/mm, kA/m, A, V).
+UNIT_SYSTEMS: dict[str, dict[str, tuple[str, ...]]] = {
+    "SI": {},
+    "mm-kN-s": {
+        "force": ("kN",), "pressure": ("MPa",), "length": ("mm",), "velocity": ("mm/s",), "area": ("mm^2",),
+        "volume": ("mm^3",), "flow": ("mm^3/s",), "viscosity": ("Pa*s",), "damping": ("kN*s/mm",),
+        "energy": ("kN*mm",), "density": ("kg/m^3",),
+    },
+    "in-lbf-s": {
+        "force": ("lbf",), "pressure": ("psi",), "length": ("in",), "velocity": ("in/s",), "area": ("in^2",),
+        "volume": ("in^3",), "flow": ("in^3/s",), "viscosity": ("psi*s",), "damping": ("lbf*s/in",),
+        "energy": ("in*lbf",), "density": ("lb/in^3",),
+    },
+}
+
+_SYSTEM: contextvars.ContextVar[str] = contextvars.ContextVar("erdesign_unit_system", default="SI")
+
+
+def unit_system() -> str:
+    """The unit system displayed numbers are shown in (:data:`UNIT_SYSTEMS`; ``"SI"`` unless changed)."""
+    return _SYSTEM.get()
+
+
+@contextlib.contextmanager
+def use_unit_system(name: str) -> Iterator[str]:
+    """Show numbers in the unit system ``name`` inside the ``with`` block (this thread or task only).
+
+    >>> with use_unit_system("in-lbf-s"):
+    ...     pick_unit(Q_(6070.0, "N"), "force"), pick_unit(Q_(3e6, "V/m"), "electric field")
+    ('lbf', 'kV/mm')
+    """
+    if name not in UNIT_SYSTEMS:
+        raise UnitError(f"unit system: expected one of {', '.join(UNIT_SYSTEMS)}, got {name!r}")
+    token = _SYSTEM.set(name)
+    try:
+        yield name
+    finally:
+        _SYSTEM.reset(token)
+
+
+def field_text(value: float, control_unit: str, field_unit: str) -> str:
+    """A control (SI magnitude in ``control_unit``) in the fluid's own unit, ``"3 kV/mm"``; never ``3e+06``.
+
+    >>> field_text(3e6, "V/m", "kV/mm"), field_text(2.5e5, "A/m", "kA/m"), field_text(0.5, "A", "A")
+    ('3 kV/mm', '250 kA/m', '0.5 A')
+    """
+    return show(Q_(value, control_unit), field_unit, name="control").text
 
 
 def round_significant(x: float, digits: int = SIGNIFICANT_DIGITS) -> str:
@@ -146,12 +200,13 @@ def _is_plain_ratio(unit: pint.Unit) -> bool:
 def pick_unit(values: Any, kind: str) -> str:
     """The unit of ``UNIT_CHOICES[kind]`` in which the largest |value| lies in [1, 1000) (else the nearest end).
 
-    ``values`` is a quantity (scalar or array).
+    ``values`` is a quantity (scalar or array).  In a unit system other than SI (:func:`use_unit_system`) the
+    choices are that system's.
 
     >>> pick_unit(Q_([120.0, 6070.0], "N"), "force"), pick_unit(Q_(3e6, "V/m"), "electric field")
     ('kN', 'kV/mm')
     """
-    choices = UNIT_CHOICES[kind]
+    choices = UNIT_SYSTEMS[_SYSTEM.get()].get(kind) or UNIT_CHOICES[kind]
     mags = np.abs(np.asarray(values.to(choices[0]).magnitude, dtype=float))
     biggest = float(np.nanmax(mags)) if mags.size and np.any(np.isfinite(mags)) else 0.0
     if biggest == 0.0:

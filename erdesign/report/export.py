@@ -1,0 +1,128 @@
+"""Files a user takes away: the damper file (TOML) of a design and CSV tables with units in their headers.
+
+:func:`damper_toml` writes the content of a damper file (shared/CONTRACTS.md section 1: the plain data that
+:func:`erdesign.damper_file.damper_from_dict` reads) as TOML text that ``erdesign size`` and the app's upload read
+back; :func:`csv_text` writes columns of numbers with ``name [unit]`` headers, the form of a measurement file
+(section 2), so that a time history written here can be read again as a measurement; :func:`rows_csv` writes a
+table of text (a ranking, a list of parameters).
+
+>>> text = damper_toml({"name": "d", "geometry": {"configuration": "valve", "gap": "0.8 mm", "ducts": 1},
+...                     "fluid": {"yield_exponent": 2.0}})
+>>> print(text.split("\\n\\n", 1)[1])
+name = "d"
+<BLANKLINE>
+[geometry]
+configuration = "valve"
+gap = "0.8 mm"
+ducts = 1
+<BLANKLINE>
+[fluid]
+yield_exponent = 2.0
+<BLANKLINE>
+>>> print(csv_text([("time", "s", [0.0, 0.5]), ("force", "N", [1.25, -3.0])]), end="")
+time [s],force [N]
+0,1.25
+0.5,-3
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from ..errors import ErdesignError
+
+__all__ = ["damper_toml", "csv_text", "rows_csv"]
+
+_TABLES = ("geometry", "fluid")
+
+
+def _toml_value(value: Any, where: str) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        x = float(value)
+        if not math.isfinite(x):
+            raise ErdesignError(f"{where}: cannot write {x!r} to a damper file")
+        text = repr(x)
+        return text if any(c in text for c in ".en") else text + ".0"
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)     # a TOML basic string: JSON's escapes are TOML's
+    raise ErdesignError(f"{where}: cannot write {value!r} ({type(value).__name__}) to a damper file")
+
+
+def damper_toml(spec: Mapping[str, Any], *, comment: str = "") -> str:
+    """The damper file (TOML text) of a damper spec: ``name``, ``[geometry]`` and ``[fluid]``, values as given.
+
+    Parameters
+    ----------
+    spec : mapping
+        The content of a damper file (values as strings with units, ``ducts`` and ``yield_exponent`` numbers).
+    comment : str
+        Written as ``#`` comment lines at the top (what the file is, the design point it was sized for).
+
+    Raises
+    ------
+    ErdesignError
+        A key outside the damper file's tables, or a value TOML cannot hold, naming it.
+    """
+    lines = [f"# {line}".rstrip() for line in (comment or "damper file written by erdesign").splitlines()]
+    lines.append("")
+    unknown = [k for k in spec if k not in ("name", *_TABLES)]
+    if unknown:
+        raise ErdesignError(f"{unknown[0]}: not a key of a damper file (name, [geometry], [fluid])")
+    if "name" in spec:
+        lines.append(f"name = {_toml_value(str(spec['name']), 'name')}")
+    for table in _TABLES:
+        values = spec.get(table)
+        if values is None:
+            continue
+        lines += ["", f"[{table}]"]
+        lines += [f"{key} = {_toml_value(value, f'{table}.{key}')}" for key, value in values.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _number(x: float) -> str:
+    return "" if not math.isfinite(x) else f"{x:.10g}"
+
+
+def csv_text(columns: Sequence[tuple[str, str, Any]], *, comment: str = "") -> str:
+    """Columns of numbers as CSV: first line ``name [unit]`` per column (``[1]`` for a ratio), then the rows.
+
+    ``columns`` are ``(name, unit, values)``, all of one length; numbers get 10 significant figures, a missing
+    (non-finite) value is an empty cell.  ``comment`` lines come first, each starting with ``#`` (a measurement
+    file allows them).
+    """
+    arrays = [np.asarray(values, dtype=float).ravel() for _, _, values in columns]
+    n = {a.size for a in arrays}
+    if len(n) > 1:
+        raise ErdesignError(f"csv: columns of different lengths {sorted(n)}")
+    out = io.StringIO()
+    for line in comment.splitlines():
+        out.write(f"# {line}\n")
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow([f"{name} [{unit or '1'}]" for name, unit, _ in columns])
+    for row in zip(*arrays):
+        writer.writerow([_number(float(x)) for x in row])
+    return out.getvalue()
+
+
+def rows_csv(rows: Sequence[Mapping[str, Any]], *, comment: str = "") -> str:
+    """A table of rows (dicts with the same keys, values as text or numbers) as CSV with a header line."""
+    out = io.StringIO()
+    for line in comment.splitlines():
+        out.write(f"# {line}\n")
+    if not rows:
+        return out.getvalue()
+    writer = csv.DictWriter(out, fieldnames=list(rows[0]), lineterminator="\n", extrasaction="ignore")
+    writer.writeheader()
+    writer.writerows(rows)
+    return out.getvalue()
