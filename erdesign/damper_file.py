@@ -31,13 +31,17 @@ from .geometry import Geometry
 from .units import same_dimension, to_si
 
 __all__ = ["load_damper", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
-           "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS"]
+           "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS", "coil_fluid", "COIL_CURRENT_SPAN"]
 
 GEOMETRY_KEYS = ("configuration", "duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter",
                  "ducts")
 FLUID_KEYS = ("material", "viscosity", "yield_stress", "reference_field", "yield_exponent", "density",
               "viscosity_at_reference_field", "shear_modulus", "seal_friction")
-_TOP_KEYS = ("name", "geometry", "fluid")
+_TOP_KEYS = ("name", "geometry", "fluid", "coil")
+#: [fluid] keys a damper with a [coil] may not give: the magnetic circuit gives the yield stress at each current.
+_COIL_COMPUTED_KEYS = ("yield_stress", "yield_exponent")
+#: The tabulated law tau_y(I) of a damper with a [coil] spans 0 to this many times the rated current.
+COIL_CURRENT_SPAN = 3.0
 _REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density")
 
 
@@ -144,7 +148,10 @@ def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_mo
             if key not in geo:
                 raise DamperFileError(f"geometry.{key}: missing")
         geometry = Geometry.create(**geo)
-        fluid, seal_friction = parse_fluid_table(data["fluid"])
+        if "coil" in data:
+            fluid, seal_friction = coil_fluid(data, geometry)
+        else:
+            fluid, seal_friction = parse_fluid_table(data["fluid"])
         name = data.get("name", "")
         if not isinstance(name, str):
             raise DamperFileError(f"name: expected text, got {name!r}")
@@ -152,6 +159,53 @@ def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_mo
                       flow_model=flow_model)
     except ErdesignError as exc:
         raise type(exc)(f"{source}: {exc}") from None
+
+
+def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, float]:
+    """The fluid of a damper file with a ``[coil]`` (shared/CONTRACTS.md section 5), and its seal friction [N].
+
+    The control is the coil current: ``fluid.reference_field`` is the rated current (in A) and ``fluid.material``
+    names an MR fluid with a B-H curve and a yield curve against field strength.  The yield stress at any current
+    follows the magnetic circuit (:mod:`erdesign.magnetics`): the fluid's law is tau_y(I) tabulated from 0 to
+    :data:`COIL_CURRENT_SPAN` times the rated current (beyond it the last value is held, and asking for a current
+    outside that range warns); its power-law summary (``yield_stress``, ``yield_exponent``) is fitted to it over
+    (0, rated current], so the file must not give those two keys.
+    """
+    from .magnetics import build_circuit, coil_from_table, current_yield_law
+
+    table = _check_keys(data["fluid"], FLUID_KEYS, "fluid")
+    for key in _COIL_COMPUTED_KEYS:
+        if key in table:
+            raise DamperFileError(f"fluid.{key}: not allowed with a [coil]: the magnetic circuit gives the yield "
+                                  "stress at each current (erdesign magnetics)")
+    if "material" not in table:
+        raise DamperFileError("fluid.material: missing; a damper with a [coil] takes the fluid's B-H and yield "
+                              "curves from the materials database")
+    if "reference_field" not in table:
+        raise DamperFileError("fluid.reference_field: missing; with a [coil] it is the rated coil current, e.g. "
+                              "\"2 A\"")
+    try:
+        I_ref = to_si(table["reference_field"], "A", "fluid.reference_field")
+    except ErdesignError as exc:
+        raise DamperFileError(f"{exc} (with a [coil] the control is the coil current)") from None
+    if not (isinstance(I_ref, float) and I_ref > 0):
+        raise DamperFileError(f"fluid.reference_field: the rated current must be positive, got "
+                              f"{table['reference_field']!r}")
+    if I_ref > 20.0:
+        import warnings
+        from .errors import ValidityWarning
+        warnings.warn(f"fluid.reference_field: a rated coil current of {I_ref:.3g} A is implausibly large for an "
+                      "MR damper coil; check the unit", ValidityWarning, stacklevel=3)
+    coil = coil_from_table(data["coil"])
+    circuit = build_circuit(geometry, coil, table["material"], name=str(data.get("name", "")))
+    law = current_yield_law(circuit, COIL_CURRENT_SPAN * I_ref)
+    fit = law.fit(I_ref)
+    values = dict(table)
+    values["yield_stress"] = f"{float(law.yield_stress(I_ref))!r} Pa"
+    values["yield_exponent"] = float(fit.yield_exponent)
+    fluid, seal_friction = parse_fluid_table(values)
+    fluid = fluid.with_changes(field_law=law, field_range=(0.0, COIL_CURRENT_SPAN * I_ref))
+    return fluid, seal_friction
 
 
 def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:

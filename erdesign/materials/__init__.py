@@ -22,6 +22,14 @@ File layout (``<name>.toml``)::
     [[references]]               # key, citation, date (of the document or its revision), optional note
     key = "makris1996"
 
+MR fluids may also give their magnetisation curve (``[magnetization]``: ``law = "carlson"`` with
+``volume_fraction``, or ``law = "table"``; :func:`erdesign.magnetics.bh.bh_curve_from_dict`), which the magnetic
+circuit of a damper with a ``[coil]`` needs.
+
+Steels (the core, poles and housing of an MR damper's magnetic circuit) are files named ``steel-<grade>.toml`` with
+``kind = "steel"``, a ``[magnetization]`` table, ``[sources]`` and ``[[references]]`` and no ``[fluid]``; they are
+listed by :func:`steel_names` and read by :func:`load_steel` / :func:`steel_curve`, not by :func:`names`.
+
 Functions: :func:`names`, :func:`load` (the checked record), :func:`fluid_values` (its ``[fluid]`` table),
 :func:`material_fluid` (what a damper file takes from it: values, yield curve, field range) and :func:`summary`
 (the JSON of ``erdesign materials --json``).
@@ -47,10 +55,13 @@ from ..errors import ErdesignError
 from ..field_laws import FieldLaw, control_unit_of, field_law_from_dict
 from ..units import Q_, to_si
 
-__all__ = ["names", "load", "fluid_values", "material_fluid", "MaterialFluid", "summary", "check_record",
+__all__ = ["names", "load", "fluid_values", "steel_names", "load_steel", "steel_curve", "magnetization_curve", "material_fluid", "MaterialFluid", "summary", "check_record",
            "read_material_file", "parse_quantity", "MATERIAL_KEYS", "MATERIAL_FLUID_KEYS", "RANGE_KEYS"]
 
-MATERIAL_KEYS = ("name", "kind", "description", "fluid", "yield_curve", "range", "spread", "sources", "references")
+MATERIAL_KEYS = ("name", "kind", "description", "fluid", "yield_curve", "magnetization", "range", "spread", "sources",
+                 "references")
+STEEL_KEYS = ("name", "kind", "description", "magnetization", "sources", "references")
+_STEEL_PREFIX = "steel-"
 MATERIAL_FLUID_KEYS = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density",
                        "viscosity_at_reference_field", "shear_modulus")
 _REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density")
@@ -74,8 +85,15 @@ class MaterialFluid(NamedTuple):
 
 
 def names() -> list[str]:
-    """Names of the materials in the database."""
-    return sorted(p.name[:-5] for p in resources.files(__name__).iterdir() if p.name.endswith(".toml"))
+    """Names of the fluids in the database (the steels are listed by :func:`steel_names`)."""
+    return sorted(p.name[:-5] for p in resources.files(__name__).iterdir()
+                  if p.name.endswith(".toml") and not p.name.startswith(_STEEL_PREFIX))
+
+
+def steel_names() -> list[str]:
+    """Names of the steels in the database (``steel-1018``, ...)."""
+    return sorted(p.name[:-5] for p in resources.files(__name__).iterdir()
+                  if p.name.endswith(".toml") and p.name.startswith(_STEEL_PREFIX))
 
 
 def parse_quantity(value: Any, name: str) -> pint.Quantity:
@@ -135,6 +153,11 @@ def check_record(record: Mapping[str, Any], where: str) -> None:
             if "fit_range" not in record["yield_curve"]:
                 raise ErdesignError("yield_curve.fit_range: missing (the range of the power-law summary of [fluid])")
             _pair(record["yield_curve"]["fit_range"], "yield_curve.fit_range", control)
+        if "magnetization" in record:
+            if record["kind"] != "MR":
+                raise ErdesignError("magnetization: only MR fluids have a magnetisation curve")
+            from ..magnetics.bh import bh_curve_from_dict
+            bh_curve_from_dict(record["magnetization"], name=record["name"])
         for key, value in record.get("range", {}).items():
             if key not in RANGE_KEYS:
                 raise ErdesignError(f"range.{key}: unknown key; allowed keys: {', '.join(RANGE_KEYS)}")
@@ -154,7 +177,7 @@ def check_record(record: Mapping[str, Any], where: str) -> None:
             raise ErdesignError(f"{where}: references[{i}]: needs key, citation and date (optional note)"
                                 + (f"; unknown key {bad[0]!r}" if bad else ""))
     sources = record["sources"]
-    for key in list(fluid) + [k for k in ("yield_curve", "range", "spread") if k in record]:
+    for key in list(fluid) + [k for k in ("yield_curve", "magnetization", "range", "spread") if k in record]:
         if key not in sources:
             raise ErdesignError(f"{where}: sources.{key}: missing (every value needs its source)")
 
@@ -232,3 +255,60 @@ def summary(name: str) -> dict[str, Any]:
         }
     return out
 
+
+
+def _check_references(record: Mapping[str, Any], where: str) -> None:
+    refs = record["references"]
+    if not (isinstance(refs, list) and refs):
+        raise ErdesignError(f"{where}: references: expected a list of [[references]] tables")
+    for i, ref in enumerate(refs):
+        bad = [k for k in ref if k not in _REFERENCE_KEYS]
+        if bad or not all(k in ref for k in ("key", "citation", "date")):
+            raise ErdesignError(f"{where}: references[{i}]: needs key, citation and date (optional note)"
+                                + (f"; unknown key {bad[0]!r}" if bad else ""))
+
+
+def load_steel(name: str) -> dict[str, Any]:
+    """The whole record of a steel (``steel-1018``), checked: keys, magnetisation curve, sources, references."""
+    if name not in steel_names():
+        raise ErdesignError(f"unknown steel {name!r}; known steels: {', '.join(steel_names())}")
+    where = f"materials/{name}.toml"
+    with resources.as_file(resources.files(__name__) / f"{name}.toml") as path:
+        with open(path, "rb") as fh:
+            record = tomllib.load(fh)
+    unknown = [k for k in record if k not in STEEL_KEYS]
+    if unknown:
+        raise ErdesignError(f"{where}: {unknown[0]}: unknown key; allowed keys: {', '.join(STEEL_KEYS)}")
+    for key in STEEL_KEYS:
+        if key not in record:
+            raise ErdesignError(f"{where}: {key}: missing")
+    if record["kind"] != "steel" or record["name"] != name:
+        raise ErdesignError(f"{where}: kind must be \"steel\" and name {name!r}")
+    if "magnetization" not in record["sources"]:
+        raise ErdesignError(f"{where}: sources.magnetization: missing (every value needs its source)")
+    _check_references(record, where)
+    from ..magnetics.bh import bh_curve_from_dict
+    try:
+        bh_curve_from_dict(record["magnetization"], name=name)
+    except ErdesignError as exc:
+        raise ErdesignError(f"{where}: {exc}") from None
+    return record
+
+
+def steel_curve(name: str):
+    """The :class:`~erdesign.magnetics.bh.BHCurve` of a steel of the database."""
+    from ..magnetics.bh import bh_curve_from_dict
+    record = load_steel(name)
+    return bh_curve_from_dict(record["magnetization"], name=name, source=record["sources"]["magnetization"])
+
+
+def magnetization_curve(name: str):
+    """The :class:`~erdesign.magnetics.bh.BHCurve` of an MR fluid of the database; an error naming the material when
+    its record has no ``[magnetization]``."""
+    from ..magnetics.bh import bh_curve_from_dict
+    record = load(name)
+    if "magnetization" not in record:
+        raise ErdesignError(f"material {name!r}: no [magnetization] (B-H curve) in materials/{name}.toml; the "
+                            f"magnetic circuit needs one (materials with one: "
+                            f"{', '.join(n for n in names() if 'magnetization' in load(n))})")
+    return bh_curve_from_dict(record["magnetization"], name=name, source=record["sources"]["magnetization"])

@@ -1,0 +1,148 @@
+r"""The coil of an MR piston head: the ``[coil]`` table of a damper file, the winding window and the copper.
+
+The coil is wound on the steel core (diameter :math:`d_c`) between the two poles and fills the window up to the
+outer radius of the head :math:`R_p`; its axial length is the head length less the two poles,
+:math:`L_c = L - 2 L_p`.  Its resistance follows from the mean turn length (the circumference at the mean radius of
+the window) and the copper's resistivity:
+
+.. math:: R = \rho_\text{Cu}(T)\,\frac{N\,\pi(r_c + R_p)}{\pi d_w^2/4},\qquad
+          \rho_\text{Cu}(T) = \rho_{20}\,[1 + \alpha_{20}(T - 20\,^\circ\mathrm{C})]
+
+with the International Annealed Copper Standard :math:`\rho_{20} = 1/58` ohm mm^2/m = 1.7241e-8 ohm m and
+:math:`\alpha_{20}` = 0.00393 1/K (US Bureau of Standards, Circular 31, Copper wire tables, 1914; the IEC standard of
+resistance for copper, IEC 60028).  Magnet wire is commonly 97-101 % IACS; the enamel is not part of
+``wire_diameter`` (the bare copper diameter) but takes room in the window: the copper fill factor
+:math:`N\pi d_w^2/4 / ((R_p - r_c)L_c)` of a round-wire coil lies near 0.5-0.6 and cannot exceed
+:math:`\pi/(2\sqrt3)` = 0.907 (hexagonal packing of bare wires).
+
+Example
+-------
+>>> round(coil_resistance(turns=400, wire_diameter=0.5e-3, inner_radius=9e-3, outer_radius=20e-3), 3)   # ohm
+3.2
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from ..errors import DamperFileError, ErdesignError, ValidityWarning
+from ..units import to_si
+
+__all__ = ["Coil", "coil_from_table", "coil_resistance", "COIL_KEYS", "COPPER_RESISTIVITY_20C",
+           "COPPER_TEMPERATURE_COEFFICIENT", "MAX_FILL_FACTOR"]
+
+#: Keys of a damper file's ``[coil]`` table (shared/CONTRACTS.md section 5).
+COIL_KEYS = ("turns", "wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter", "steel")
+
+#: Resistivity of annealed copper at 20 degC [ohm m]: 100 % IACS = 58 MS/m (Circular 31, 1914; IEC 60028).
+COPPER_RESISTIVITY_20C = 1.0 / 58.0e6
+#: Temperature coefficient of the resistance of annealed copper at 20 degC [1/K] (the same sources).
+COPPER_TEMPERATURE_COEFFICIENT = 0.00393
+#: Largest copper fill factor of a round-wire coil (hexagonal packing of bare wires), [-].
+MAX_FILL_FACTOR = math.pi / (2.0 * math.sqrt(3.0))
+
+
+def coil_resistance(turns, wire_diameter, inner_radius, outer_radius, temperature=20.0):
+    r"""DC resistance of a coil filling the window between two radii.
+
+    .. math:: R = \rho_{20}[1 + \alpha_{20}(T - 20)]\,\frac{N\pi(r_i + r_o)}{\pi d_w^2/4}
+
+    Parameters
+    ----------
+    turns : float
+        N, [-].
+    wire_diameter : float
+        Bare copper diameter d_w, [m].
+    inner_radius, outer_radius : float
+        Radii of the winding window r_i (the core) and r_o, [m].
+    temperature : float
+        Copper temperature, [degC].
+
+    Returns
+    -------
+    float
+        Resistance, [ohm].
+
+    Notes
+    -----
+    The mean turn length is the circumference at the mean radius of the window, exact for a uniformly filled
+    rectangular window.  Resistivity: 100 % IACS (US Bureau of Standards, Circular 31, 1914).
+
+    Examples
+    --------
+    >>> round(coil_resistance(1, 1e-3, 0.5 / math.pi, 0.5 / math.pi), 6)   # 1 m of 1 mm wire: 21.95 mohm
+    0.021952
+
+    References
+    ----------
+    US Bureau of Standards, Copper wire tables, Circular 31 (1914): 0.15328 ohm (m, g) at 20 degC, 58 MS/m.
+    """
+    rho = COPPER_RESISTIVITY_20C * (1.0 + COPPER_TEMPERATURE_COEFFICIENT * (temperature - 20.0))
+    return rho * turns * math.pi * (inner_radius + outer_radius) / (math.pi * wire_diameter ** 2 / 4.0)
+
+
+@dataclass(frozen=True)
+class Coil:
+    """The ``[coil]`` table of a damper file in SI units (lengths in m); ``steel`` names a steel of materials/."""
+
+    turns: int
+    wire_diameter: float
+    core_diameter: float
+    pole_length: float
+    housing_outer_diameter: float
+    steel: str = "steel-1018"
+
+    def as_table(self) -> dict[str, Any]:
+        """The ``[coil]`` table of a damper file (strings with units)."""
+        return {"turns": self.turns, "wire_diameter": f"{self.wire_diameter * 1e3:.6g} mm",
+                "core_diameter": f"{self.core_diameter * 1e3:.6g} mm", "pole_length": f"{self.pole_length * 1e3:.6g} mm",
+                "housing_outer_diameter": f"{self.housing_outer_diameter * 1e3:.6g} mm", "steel": self.steel}
+
+
+def coil_from_table(table: Any, where: str = "coil") -> Coil:
+    """A :class:`Coil` from a ``[coil]`` table; a bad value is a :class:`DamperFileError` naming the key.
+
+    Only the table itself is checked here (types, units, signs, the steel's name); how the coil fits the head is
+    checked with the geometry (:func:`erdesign.magnetics.circuit.piston_head`).
+
+    >>> coil_from_table({"turns": 400, "wire_diameter": "0.5 mm", "core_diameter": "18 mm",
+    ...                  "pole_length": "8 mm", "housing_outer_diameter": "50 mm", "steel": "steel-1018"}).turns
+    400
+    """
+    from .. import materials
+
+    if not isinstance(table, Mapping):
+        raise DamperFileError(f"{where}: expected a table, got {table!r}")
+    unknown = [k for k in table if k not in COIL_KEYS]
+    if unknown:
+        raise DamperFileError(f"{where}.{unknown[0]}: unknown key in [{where}]; allowed keys: {', '.join(COIL_KEYS)}")
+    missing = [k for k in COIL_KEYS if k not in table]
+    if missing:
+        raise DamperFileError(f"{where}.{missing[0]}: missing (required: {', '.join(COIL_KEYS)})")
+    turns = table["turns"]
+    if isinstance(turns, bool) or not isinstance(turns, int) or turns < 1:
+        raise DamperFileError(f"{where}.turns: expected a positive whole number of turns, got {turns!r}")
+    lengths = {}
+    for key in ("wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter"):
+        try:
+            value = to_si(table[key], "m", f"{where}.{key}")
+        except ErdesignError as exc:
+            raise DamperFileError(str(exc)) from None
+        if not (isinstance(value, float) and value > 0 and math.isfinite(value)):
+            raise DamperFileError(f"{where}.{key}: must be a positive length, got {table[key]!r}")
+        lengths[key] = value
+    steel = table["steel"]
+    if not isinstance(steel, str) or steel not in materials.steel_names():
+        raise DamperFileError(f"{where}.steel: unknown steel {steel!r}; known steels: "
+                              f"{', '.join(materials.steel_names())}")
+    d_w = lengths["wire_diameter"]
+    if not 0.05e-3 <= d_w <= 3e-3:
+        warnings.warn(f"{where}.wire_diameter: {d_w * 1e3:.4g} mm is outside the usual magnet-wire range "
+                      "0.05-3 mm; check the unit", ValidityWarning, stacklevel=2)
+    if turns > 20000:
+        warnings.warn(f"{where}.turns: {turns} turns is implausibly many for a damper piston coil",
+                      ValidityWarning, stacklevel=2)
+    return Coil(turns=turns, steel=steel, **lengths)
