@@ -119,3 +119,82 @@ def test_thick_gap_warns_and_uses_the_exact_annulus(tmp_path):
     with pytest.warns(ValidityWarning, match=r"h/d = 0\.355.*exact annulus is used"):
         d = load_damper(write(tmp_path, text))
     assert d.uses_exact_annulus
+
+
+# ------------------------------------------------------------------------------ [coil] (CONTRACTS section 5)
+MR_COIL = """
+name = "coil"
+[geometry]
+configuration = "mixed"
+duct_length = "36 mm"
+gap = "1 mm"
+piston_diameter = "40 mm"
+rod_diameter = "12 mm"
+[fluid]
+material = "lord-mrf-132dg"
+reference_field = "2 A"
+[coil]
+turns = 300
+wire_diameter = "0.5 mm"
+core_diameter = "24 mm"
+pole_length = "8 mm"
+housing_outer_diameter = "52 mm"
+steel = "steel-1018"
+"""
+
+
+def test_coil_file_follows_the_magnetic_circuit(tmp_path):
+    from erdesign.magnetics import load_magnetic_circuit
+    path = write(tmp_path, MR_COIL)
+    d = load_damper(path)
+    circuit = load_magnetic_circuit(path)
+    assert d.fluid.control_unit == "A" and d.fluid.reference_field == 2.0
+    # the fluid's yield stress at a current is the circuit's (to the table interpolation between 46 points; the rated current is one of them)
+    for I in (0.4, 1.0, 2.0, 3.3):
+        assert d.fluid.yield_stress_at(I) == pytest.approx(float(circuit.state(I).yield_stress[0]), rel=5e-3)
+    assert d.fluid.yield_stress == pytest.approx(float(circuit.state(2.0).yield_stress[0]), rel=1e-9)
+    # the same file in inches and mA reads the same
+    inch = (MR_COIL.replace('"0.5 mm"', '"0.019685 in"').replace('"2 A"', '"2000 mA"'))
+    d2 = load_damper(write(tmp_path, inch, "inch.toml"))
+    assert d2.fluid.yield_stress == pytest.approx(d.fluid.yield_stress, rel=1e-4)
+
+
+@pytest.mark.parametrize("change, message", [
+    (('turns = 300', 'turns = 300.5'), r"coil\.turns: expected a positive whole number"),
+    (('turns = 300', 'turns = 0'), r"coil\.turns: expected a positive whole number"),
+    (('wire_diameter = "0.5 mm"', 'wire_diameter = "0.5 kg"'), r"coil\.wire_diameter: expected a length"),
+    (('wire_diameter = "0.5 mm"', 'wire_diameter = "-0.5 mm"'), r"coil\.wire_diameter: must be a positive length"),
+    (('steel = "steel-1018"', 'steel = "unobtainium"'), r"coil\.steel: unknown steel 'unobtainium'"),
+    (('steel = "steel-1018"', 'steel = "steel-1018"\ncolour = "red"'), r"coil\.colour: unknown key"),
+    (('turns = 300\n', ''), r"coil\.turns: missing"),
+    (('pole_length = "8 mm"', 'pole_length = "18 mm"'), r"coil\.pole_length: .*no room for the coil"),
+    (('core_diameter = "24 mm"', 'core_diameter = "40 mm"'), r"coil\.core_diameter: .*no room for the winding"),
+    (('housing_outer_diameter = "52 mm"', 'housing_outer_diameter = "41 mm"'),
+     r"coil\.housing_outer_diameter: .*not larger than the bore"),
+    (('turns = 300', 'turns = 3000'), r"coil\.turns: 3000 turns .*fill factor of 3\.68"),
+    (('reference_field = "2 A"', 'reference_field = "2 A"\nyield_stress = "30 kPa"'),
+     r"fluid\.yield_stress: not allowed with a \[coil\]"),
+    (('reference_field = "2 A"', 'reference_field = "200 kA/m"'), r"fluid\.reference_field: expected an electric current"),
+    (('material = "lord-mrf-132dg"', 'material = "typical-mr"'), r"fluid\.material: .*no \[magnetization\]"),
+])
+def test_coil_errors_name_the_field(tmp_path, change, message):
+    text = MR_COIL.replace(*change)
+    with pytest.raises(DamperFileError, match=message) as info:
+        load_damper(write(tmp_path, text))
+    assert str(info.value).startswith(str(tmp_path)) and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("change, message", [
+    (('housing_outer_diameter = "52 mm"', 'housing_outer_diameter = "43.5 mm"'), r"housing wall 0\.75 mm"),
+    (('turns = 300', 'turns = 600'), r"copper fill factor 0\.74"),
+    (('wire_diameter = "0.5 mm"\n', 'wire_diameter = "0.01 mm"\n'), r"coil\.wire_diameter: 0\.01 mm is outside"),
+    (('reference_field = "2 A"', 'reference_field = "50 A"'), r"rated coil current of 50 A is implausibly large"),
+])
+def test_implausible_coil_values_warn(tmp_path, change, message):
+    with pytest.warns(ValidityWarning, match=message):
+        load_damper(write(tmp_path, MR_COIL.replace(*change)))
+
+
+def test_files_without_coil_are_unchanged(makris):
+    # no [coil]: the power law of the file, as before
+    assert makris.fluid.field_law is None and makris.fluid.control_unit == "V/m"

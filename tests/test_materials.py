@@ -368,3 +368,46 @@ def test_materials_table_names_every_material(capsys):
     for name in materials.names():
         assert name in out
     assert "saturating law" in out and "range 0 kV/mm to 3 kV/mm" in out
+
+
+# ------------------------------------------------------------------------------ steels and magnetisation curves
+def test_steels_are_listed_apart_from_the_fluids():
+    assert materials.steel_names() == ["steel-1010", "steel-1018", "steel-1020"]
+    assert not any(n.startswith("steel-") for n in materials.names())
+
+
+@pytest.mark.parametrize("name", ["steel-1010", "steel-1018", "steel-1020"])
+def test_steel_records_carry_their_source(name):
+    record = materials.load_steel(name)
+    assert "femm42" in record["sources"]["magnetization"]
+    assert record["references"][0]["key"] == "femm42" and "544172cc" in record["references"][0]["citation"]
+    curve = materials.steel_curve(name)
+    # every low-carbon steel: initial mu_r in the hundreds to a few thousand, knee between 1.2 and 1.7 T
+    assert 300 < curve.initial_relative_permeability() < 3000
+    assert 1.2 < curve.knee()[0] < 1.7
+
+
+def test_steel_values_as_in_the_femm_library():
+    # FEMM 4.2 matlib.dat, "1010 Steel": 1.422981 T at 1001.821011 A/m; "1020 Steel": 2.106184 T at 25164.606052 A/m
+    assert float(materials.steel_curve("steel-1010").B_of_H(1001.821011)) == pytest.approx(1.422981, rel=1e-6)
+    assert float(materials.steel_curve("steel-1020").B_of_H(25164.606052)) == pytest.approx(2.106184, rel=1e-6)
+
+
+@pytest.mark.parametrize("name, phi", [("lord-mrf-122eg", 0.22), ("lord-mrf-132dg", 0.32), ("lord-mrf-140cg", 0.40)])
+def test_lord_fluids_have_carlson_magnetisation(name, phi):
+    from erdesign.magnetics import carlson_flux_density
+    record = materials.load(name)
+    assert record["magnetization"] == {"law": "carlson", "volume_fraction": phi}
+    assert "NOT VERIFIED" in record["sources"]["magnetization"]
+    curve = materials.magnetization_curve(name)
+    assert float(curve.B_of_H(100e3)) == pytest.approx(float(carlson_flux_density(100e3, phi)), rel=1e-4)
+
+
+def test_magnetization_of_an_er_fluid_is_an_error(tmp_path):
+    text = (materials.resources.files("erdesign.materials") / "typical-er.toml").read_text()
+    text += '\n[magnetization]\nlaw = "carlson"\nvolume_fraction = 0.3\n'
+    text = text.replace("[sources]", '[sources]\nmagnetization = "x"')
+    path = tmp_path / "typical-er.toml"
+    path.write_text(text)
+    with pytest.raises(ErdesignError, match="magnetization: only MR fluids"):
+        materials.read_material_file(path)

@@ -132,8 +132,9 @@ def build_circuit(geometry: Any, coil: Coil, fluid_material: str, *, temperature
     return _Circuit(head, steel, fluid, law, temperature=temperature, name=name)
 
 
-def current_yield_law(circuit: MagneticCircuit, max_current: float, points: int = 41) -> TabulatedLaw:
-    """tau_y(I): the fluid's yield stress against coil current through the circuit, tabulated on [0, I_max]."""
+def current_yield_law(circuit: MagneticCircuit, max_current: float, points: int = 46) -> TabulatedLaw:
+    """tau_y(I): the fluid's yield stress against coil current through the circuit, tabulated at ``points`` evenly
+    spaced currents on [0, I_max] (46 points on three times the rated current put the rated current on a point)."""
     I = np.linspace(0.0, float(max_current), points)
     tau = np.maximum.accumulate(np.asarray(circuit.state(I).yield_stress, dtype=float))
     return TabulatedLaw("A", fields=tuple(I.tolist()), stresses=tuple(tau.tolist()))

@@ -298,11 +298,11 @@ class MagneticCircuit:
             target = NI[on]
             hi = target / (2 * self.head.gap)            # all the MMF across the two gaps: NI(hi) >= target
 
-            def f(Hg, t):
-                return self._network(Hg)["NI"] - t
+            def f(Hg, t):  # relative residual: one tolerance fits every current of the batch
+                return self._network(Hg)["NI"] / t - 1.0
 
             res = elementwise.find_root(f, (np.zeros_like(target), hi), args=(target,),
-                                        tolerances={"xrtol": 1e-12, "fatol": 1e-9 * float(target.max())})
+                                        tolerances={"xrtol": 1e-12, "fatol": 1e-11})
             if not np.all(res.success):  # pragma: no cover - the bracket is valid by construction
                 raise ErdesignError("magnetic circuit: the operating point did not converge")
             out[on] = res.x
