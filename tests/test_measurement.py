@@ -180,3 +180,61 @@ def test_motion_record_without_force(tmp_path):
     assert m.force is None and m.displacement[3] == pytest.approx(0.003)
     with pytest.raises(MeasurementError, match="has no force column"):
         m.require_force()
+
+
+@pytest.mark.parametrize("variant", ["plain", "crlf", "blank lines", "comments among rows", "spaces", "quoted"])
+def test_fast_reader_gives_the_line_by_line_result(tmp_path, variant):
+    """read_measurement parses well-formed files with numpy's C parser and falls back to the line-by-line reader
+    for anything irregular; both must give the same arrays (the fallback is forced with a quoted cell)."""
+    rng = np.random.default_rng(1)
+    rows = [f"{i / 1000:.6f},{x:.6g},{f:.6g},{u:.4g}" for i, (x, f, u) in
+            enumerate(zip(rng.normal(0, 5, 200), rng.normal(0, 300, 200), rng.uniform(0, 2, 200)))]
+    head = ["# header comment", "time [s],displacement [mm],force [N],voltage [V]"]
+    if variant == "blank lines":
+        rows[50:50] = ["", "  ", ",,,"]
+    if variant == "comments among rows":
+        rows[20:20] = ["# calibration changed", "  # indented comment"]
+    if variant == "spaces":
+        rows = [" " + r.replace(",", " , ") for r in rows]
+    text = "\n".join(head + rows) + "\n"
+    if variant == "crlf":
+        text = text.replace("\n", "\r\n")
+    fast = read_measurement(write(tmp_path, text))
+    slow = read_measurement(write(tmp_path, text.replace(rows[0], '"' + rows[0].replace(",", '","') + '"'),
+                                  "slow.csv"))
+    for k in ("time", "displacement", "force", "control", "velocity"):
+        assert np.array_equal(getattr(fast, k), getattr(slow, k)), k
+    assert fast.control_kind == slow.control_kind == "voltage" and len(fast) == 200
+
+
+def test_fast_reader_errors_name_the_line(tmp_path):
+    text = GOOD.replace("0.003,0.3,4.0,3,25", "0.003,0.3,nan,3,25")
+    with pytest.raises(MeasurementError, match="line 7, column 3 \\(force\\): 'nan' is not a finite number"):
+        read_measurement(write(tmp_path, text))
+    text = GOOD.replace("0.004,0.4", "0.002,0.4")
+    with pytest.raises(MeasurementError, match="line 8, column 1 \\(time\\)"):
+        read_measurement(write(tmp_path, text))
+
+
+def test_clipped_force_samples_are_found():
+    from erdesign.measurement import clipped_samples
+    t = np.linspace(0, 2, 2001)
+    F = 1000 * np.sin(2 * np.pi * t) + np.random.default_rng(0).normal(0, 5, t.size)
+    assert not clipped_samples(F).any()            # a noisy peak reaches its extreme once
+    clipped = np.minimum(F, 900.0)                 # a load cell saturating at 900 N
+    mask = clipped_samples(clipped)
+    assert np.array_equal(mask, F >= 900.0)
+
+
+def test_a_velocity_column_that_disagrees_with_the_displacement_is_warned_about():
+    from erdesign.errors import ErdesignWarning
+    t = np.linspace(0, 2, 2001)
+    x = 0.01 * np.sin(2 * np.pi * t)
+    v = 0.01 * 2 * np.pi * np.cos(2 * np.pi * t)
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        m = Measurement.from_arrays(t, x, velocity=v)     # consistent: no warning, the column is used as given
+    assert np.array_equal(m.velocity, v)
+    with pytest.warns(ErdesignWarning, match="velocity column is 10 x the derivative"):
+        Measurement.from_arrays(t, x, velocity=10 * v)    # cm/s written as m/s
