@@ -26,6 +26,9 @@ from .report.formatting import pick_unit
 from .units import Q_
 
 __all__ = [
+    "MEASURED_STYLE",
+    "MODEL_STYLE",
+    "spans_decades",
     "pressure_drop_figure",
     "force_velocity_figure",
     "dynamic_range_figure",
@@ -34,8 +37,27 @@ __all__ = [
     "measured_loops_figure",
 ]
 
-_LAYOUT = dict(template="plotly_white", height=420, margin=dict(l=70, r=20, t=50, b=60),
-               legend=dict(orientation="h", yanchor="bottom", y=1.02, xanchor="right", x=1))
+# The legend sits to the right of the plot area, outside it and below the title, so that it never covers the
+# title or the data.
+_LAYOUT = dict(template="plotly_white", height=420, margin=dict(l=70, r=20, t=60, b=60),
+               legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"))
+
+#: Measured data: a thin light line with light markers, so that the model drawn over it stays readable.
+MEASURED_STYLE = dict(mode="lines+markers", line=dict(color="#b0b0b0", width=1),
+                      marker=dict(color="#b0b0b0", size=3, opacity=0.6))
+#: A model against measured data: a bold line in a colour that contrasts with the light grey of the data.
+MODEL_STYLE = dict(mode="lines", line=dict(color="#c0392b", width=3))
+
+
+def spans_decades(values: Any, decades: float = 1.0) -> bool:
+    """True when the positive finite values span more than ``decades`` decades (draw them on a log axis).
+
+    >>> spans_decades([100.0, 3000.0]), spans_decades([1.0, 2.0]), spans_decades([0.0, -1.0])
+    (True, False, False)
+    """
+    v = np.asarray(values, dtype=float).ravel()
+    v = v[np.isfinite(v) & (v > 0)]
+    return bool(v.size >= 2 and np.log10(v.max() / v.min()) > decades)
 
 
 def _convert(values: Any, si_unit: str, unit: str) -> np.ndarray:
@@ -110,16 +132,20 @@ def sine_loops_figure(loops) -> go.Figure:
     return fig
 
 
-def error_history_figure(history: Sequence[Any]) -> go.Figure:
-    """ESR after each step of a diagnosis (bars labelled with the effect added).
+def error_history_figure(history: Sequence[Any], noise_floor: float | None = None) -> go.Figure:
+    """ESR after each step of a diagnosis (bars labelled with the effect added), and the noise floor when given.
 
     The ESR axis is logarithmic: each added effect typically divides the error by a factor, and a linear axis would
     hide every step after the first.
     """
     fig = go.Figure(go.Bar(x=[f"{h.step}: {h.effect}" for h in history], y=[h.esr for h in history],
-                           text=[f"{h.esr:.3g}" for h in history], textposition="outside"))
+                           text=[f"{h.esr:.3g}" for h in history], textposition="outside", name="ESR",
+                           marker_color="#1f77b4", cliponaxis=False))
+    if noise_floor is not None and noise_floor > 0:
+        fig.add_hline(y=noise_floor, line=dict(color="#2ca02c", dash="dash"),
+                      annotation_text=f"noise floor {noise_floor:.3g}", annotation_position="bottom right")
     fig.update_layout(title="Error history", xaxis_title="step: effect added", yaxis_title="ESR [-] (log scale)",
-                      **_LAYOUT)
+                      **{**_LAYOUT, "showlegend": False})
     fig.update_yaxes(type="log")
     return fig
 
@@ -130,9 +156,9 @@ def measured_loops_figure(displacement, velocity, force_measured, force_model) -
     v_unit = pick_unit(Q_(velocity, "m/s"), "velocity")
     f_unit = pick_unit(Q_(np.concatenate([np.ravel(force_measured), np.ravel(force_model)]), "N"), "force")
     fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
-    for name, F, colour in (("measured", force_measured, "#444444"), ("model", force_model, _colour(1))):
+    for name, F, style in (("measured", force_measured, MEASURED_STYLE), ("model", force_model, MODEL_STYLE)):
         y = _convert(F, "N", f_unit)
-        common = dict(mode="lines", name=name, legendgroup=name, line=dict(color=colour))
+        common = dict(name=name, legendgroup=name, **style)
         fig.add_trace(go.Scatter(x=_convert(displacement, "m", x_unit), y=y, **common), row=1, col=1)
         fig.add_trace(go.Scatter(x=_convert(velocity, "m/s", v_unit), y=y, showlegend=False, **common), row=1, col=2)
     fig.update_layout(title="Measurement and model", **_LAYOUT)

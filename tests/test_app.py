@@ -167,6 +167,55 @@ def test_sweep_explorer(app):
     assert values(dyn["y"]) == pytest.approx(values(force["y"]) / values(zero["y"]), rel=1e-12)
 
 
+def test_damper_file_round_trip(app, downloads, tmp_path, capsys):
+    """The design downloads as a damper file that `erdesign size` and the app's upload read back."""
+    app.text_input(key="size.geo.gap").set_value("0.0315 in")
+    app.text_input(key="size.fluid.seal_friction").set_value("25 lbf")
+    app.text_input(key="size.velocity").set_value("1 in/s").run()
+    no_error(app)
+    force = metric(app, "force F")
+    toml = downloads["makris-1996.toml"].decode()
+    path = tmp_path / "makris-1996.toml"
+    path.write_text(toml)
+    from erdesign.cli import main
+
+    assert main(["size", str(path), "--velocity", "1 in/s", "--field", "3 kV/mm", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["force_N"] == pytest.approx(force.to("N").magnitude, rel=FOUR_FIGURES)
+    # Upload it into a fresh app: the same inputs as typed, the same design point and force.
+    fresh = AppTest.from_file(MAIN, default_timeout=TIMEOUT).run()
+    fresh.file_uploader(key="size.upload").set_value(("makris-1996.toml", toml.encode(), "application/toml")).run()
+    no_error(fresh)
+    assert fresh.text_input(key="size.geo.gap").value == "0.0315 in"
+    assert fresh.text_input(key="size.fluid.seal_friction").value == "25 lbf"
+    assert fresh.text_input(key="size.velocity").value == "1 in/s"
+    assert fresh.session_state[state.DESIGN]["spec"] == app.session_state[state.DESIGN]["spec"]
+    assert metric(fresh, "force F") == force
+    # a broken file says why, names the file and nothing of the server
+    fresh.file_uploader(key="size.upload").set_value(("bad.toml", b"[geometry]\ngap = '1 kg'\n",
+                                                      "application/toml")).run()
+    assert not fresh.exception
+    (err,) = fresh.error
+    assert err.value.startswith("bad.toml: ") and "/tmp" not in err.value
+
+
+def test_pin_a_baseline_and_compare(app):
+    F0 = metric(app, "force F")
+    app.button(key="size.pin").click().run()
+    app.text_input(key="size.geo.gap").set_value("0.6 mm").run()
+    no_error(app)
+    F1 = metric(app, "force F")
+    (table,) = [d.value for d in app.dataframe if "baseline" in d.value]
+    rows = {r[""]: r for r in table.to_dict("records")}
+    assert rows["geometry.gap"]["baseline"] == "0.8 mm" and rows["geometry.gap"]["this design"] == "0.6 mm"
+    assert Q_(rows["force F"]["baseline"]) == F0 and Q_(rows["force F"]["this design"]) == F1
+    change = float(rows["force F"]["change"].split()[0])
+    assert change == pytest.approx(100 * (F1 / F0 - 1).to("").magnitude, abs=0.1)
+    fig = figure(app, "size.fig.compare")
+    names = [t["name"] for t in fig["data"]]
+    assert "E = 3 kV/mm" in names and "baseline, E = 3 kV/mm" in names
+
+
 def test_state_survives_page_switches(app):
     app.text_input(key="size.velocity").set_value("1 in/s").run()
     app.switch_page("simulate.py").run()
@@ -189,6 +238,20 @@ def test_simulate_sine(app):
     app.text_input(key="sim.amplitude").set_value("20 mm").run()
     no_error(app)
     assert metric(app, "peak force").to("N").magnitude > peak
+
+
+def test_simulated_history_downloads_as_a_measurement(app, downloads, tmp_path):
+    app.switch_page("simulate.py").run()
+    no_error(app)
+    (name,) = [k for k in downloads if k.endswith("-simulated.csv")]
+    path = tmp_path / name
+    path.write_bytes(downloads[name])
+    from erdesign.measurement import read_measurement
+
+    record = read_measurement(path)
+    F = values(figure(app, "sim.fig.time")["data"][-1]["y"])           # kN on the page
+    assert record.force / 1e3 == pytest.approx(F, rel=1e-9, abs=1e-9 * np.abs(F).max())
+    assert record.control_kind is not None and record.control.max() == pytest.approx(3e6)    # 3 kV/mm
 
 
 def test_simulate_library_model_and_effects(app):
@@ -232,7 +295,7 @@ def test_compare_bad_upload(app):
     assert "broken.csv" in err.value and "unit in square brackets" in err.value
 
 
-def test_compare_diagnose_add_effect_refit(app):
+def test_compare_diagnose_add_effect_refit(app, downloads):
     app.switch_page("compare.py").run()
     examples = app.selectbox(key="cmp.example").options
     example = next(e for e in examples if "seal_friction" in e) if any("seal_friction" in e for e in examples) \
@@ -251,17 +314,39 @@ def test_compare_diagnose_add_effect_refit(app):
     assert metric(app, "noise floor ESR") < float(app.metric[0].value)
     assert any("seal friction" in m.value for m in app.markdown)
     esr0 = float(app.metric[0].value)
-    app.button(key="cmp.refit").click().run()
+    # the verdict box carries the button that adds the named effect and refits
+    assert app.button(key="cmp.add_named").label == "Add seal_friction and refit"
+    app.button(key="cmp.add_named").click().run()
     no_error(app)
     esr1 = float(app.metric[0].value)
     assert esr1 < esr0 / 3                                   # the hidden effect carried most of the error
-    bars = figure(app, "cmp.fig.history")["data"][0]
-    assert list(bars["x"]) == ["0: baseline", "1: seal_friction"]
-    assert list(values(bars["y"])) == pytest.approx([esr0, esr1], rel=FOUR_FIGURES)
-    params = app.dataframe[-2].value if len(app.dataframe) > 1 else app.dataframe[0].value
-    rows = {r["parameter"]: r for r in params.to_dict("records")} if "parameter" in params else {}
+    assert any(m.value == "**Model:** baseline + seal_friction" for m in app.markdown)
+    bars = figure(app, "cmp.fig.history")
+    assert list(bars["data"][0]["x"]) == ["0: baseline", "1: seal_friction"]
+    assert list(values(bars["data"][0]["y"])) == pytest.approx([esr0, esr1], rel=FOUR_FIGURES)
+    # the noise floor is drawn on the history, at the value of its metric
+    (floor,) = [sh["y0"] for sh in bars["layout"]["shapes"]]
+    assert floor == pytest.approx(metric(app, "noise floor ESR"), rel=5e-3)
+    (params,) = [d.value for d in app.dataframe if "parameter" in d.value]
+    rows = {r["parameter"]: r for r in params.to_dict("records")}
     assert "friction_force" in rows and rows["friction_force"]["uncertainty (1 σ)"].startswith("± ")
     assert rows["friction_force"]["value"].endswith(" N")
+    # downloads: time histories with the residual, ranking, parameters, history
+    files = {k: v.decode() for k, v in downloads.items() if k.endswith(".csv")}
+    (history,) = [v for k, v in files.items() if k.endswith("-model.csv")]
+    lines = [l for l in history.splitlines() if not l.startswith("#")]
+    assert lines[0] == ("time [s],displacement [m],velocity [m/s],force [N],model force [N],residual [N]")
+    data = np.loadtxt(lines[1:], delimiter=",")
+    assert np.allclose(data[:, 3] - data[:, 4], data[:, 5], atol=1e-6 * np.abs(data[:, 3]).max())
+    (ranking,) = [v for k, v in files.items() if k.endswith("-ranking.csv")]
+    assert ranking.splitlines()[1].startswith("rank,effect")
+    (params_csv,) = [v for k, v in files.items() if k.endswith("-parameters.csv")]
+    assert "friction_force" in params_csv and "± " in params_csv
+    (steps,) = [v for k, v in files.items() if k.endswith("-error-history.csv")]
+    head, *rows_ = steps.splitlines()
+    assert head == "step,effect added,ESR [1]"
+    assert [r.split(",")[1] for r in rows_] == ["baseline", "seal_friction", "noise floor"]
+    assert [float(r.split(",")[2]) for r in rows_[:2]] == pytest.approx([esr0, esr1], rel=FOUR_FIGURES)
 
 
 @pytest.fixture(scope="module")
@@ -345,7 +430,8 @@ def test_compare_unexplained_and_refit(app, truth_csv, few_candidates):
     app.selectbox(key="cmp.add").set_value("seal_friction").run()
     app.button(key="cmp.refit").click().run()
     no_error(app)
-    assert [m.value for m in app.metric if m.label == "model"] == ["baseline + seal_friction"]
+    assert [m.value for m in app.markdown if m.value.startswith("**Model:**")] == \
+        ["**Model:** baseline + seal_friction"]
     bars = figure(app, "cmp.fig.history")["data"][0]
     assert list(bars["x"]) == ["0: baseline", "1: seal_friction"]
 

@@ -166,3 +166,17 @@ def test_record_too_short_is_one_line(capsys, tmp_path):
     code, out, err = run(capsys, "diagnose", str(p), "--damper", MAKRIS, "--effects", "field_lag")
     assert code == 1 and "field_lag: cannot be judged" in err and "field never changes" in err
     assert err.count("\n") == 1
+
+
+def test_diagnose_text_ends_with_the_next_command(capsys, friction_csv):
+    """Issue 14: after a missing effect the text report prints the command that adds it; the JSON is unchanged."""
+    code, out, _ = run(capsys, "diagnose", friction_csv, "--damper", MAKRIS)
+    assert code == 0
+    last = out.strip().splitlines()[-1].strip()
+    assert last == f"erdesign diagnose {friction_csv} --damper {MAKRIS} --effects seal_friction"
+    # run it: the effect is in the model now, and the verdict no longer names it
+    code, out, _ = run(capsys, *last.split()[1:], "--json")
+    assert code == 0
+    data = strict_json(out)
+    check_contract(data)
+    assert data["missing_effect"] != "seal_friction"

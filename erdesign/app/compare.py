@@ -9,6 +9,7 @@ and a verdict: a missing effect, nothing missing - the residual is at the noise 
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import streamlit as st
 
@@ -17,6 +18,9 @@ from erdesign.app import figures, state
 from erdesign.effects import EFFECTS
 from erdesign.errors import ErdesignError
 from erdesign.report.builder import ErrorHistoryStep
+from erdesign.report.export import csv_text, rows_csv
+from erdesign.report.formatting import pick_unit, show
+from erdesign.units import Q_
 
 __all__ = ["render", "history_steps"]
 
@@ -100,9 +104,9 @@ def _effect_title(option: str) -> str:
     return " + ".join(f"{e}: {EFFECTS[e].title}" for e in option.split(" + "))
 
 
-def _add_effect() -> None:
-    """Callback of the refit button: accept the chosen effect (both of a pair)."""
-    chosen = st.session_state.get("cmp.add")
+def _add_effect(chosen: str | None = None) -> None:
+    """Callback of the refit buttons: accept ``chosen`` (or the effect of the selectbox; both of a pair)."""
+    chosen = chosen or st.session_state.get("cmp.add")
     work = st.session_state.setdefault(state.DIAGNOSIS, {"effects": []})
     for effect in (chosen.split(" + ") if chosen else []):
         if effect not in work["effects"]:
@@ -124,7 +128,7 @@ def render() -> None:
     if source is None:
         return
     data, name, built_in = source
-    spec = state.current_spec()
+    spec = state.current_design()["spec"]
     example = state.example_damper_for(data) if built_in else None
     if example is not None and state.example_spec(example).get("name") != spec.get("name"):
         spec = state.example_spec(example)
@@ -139,7 +143,7 @@ def render() -> None:
     try:
         record = state.read_record(data, name)
     except ErdesignError as exc:
-        st.error(f"Cannot read the measurement: {exc}")
+        st.error(f"Cannot read the measurement: {state.clean_message(str(exc))}")
         return
     control = record.control_kind or "no control column (zero field)"
     st.caption(f"{name}: {len(record)} samples over {record.duration:.3g} s; {control}.")
@@ -160,7 +164,7 @@ def render() -> None:
                 diagnoses.append(state.run_diagnosis(text, data, name, effects[:k]))
             status.update(label="Diagnosis done", state="complete")
     except ErdesignError as exc:
-        st.error(f"The diagnosis failed: {exc}")
+        st.error(f"The diagnosis failed: {state.clean_message(str(exc))}")
         return
     diagnosis, record, model_force = diagnoses[-1]
     _show(diagnosis, record, model_force, [d[0] for d in diagnoses], name)
@@ -173,20 +177,26 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
         name, float(diagnosis.baseline_esr), len(record), record.displacement, record.velocity, F, model_force)
     st.session_state["report.history"] = tuple((s.step, s.effect, s.esr) for s in steps)
     model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
-    c = st.columns([1, 1, 2, 1])
+    st.markdown(f"**Model:** {model}")
+    c = st.columns(3)
     c[0].metric("ESR of the calibrated model", f"{diagnosis.baseline_esr:.4g}",
                 delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}", delta_color="inverse",
                 help="Error-to-signal ratio (seed 002 eq 7): residual variance over force variance.")
     c[1].metric("noise floor ESR", f"{diagnosis.noise_floor_esr:.3g}",
                 help="The ESR that the record's noise alone would leave (force noise, and the velocity noise at "
                      "the reversals), estimated from the record: docs/diagnosis.md.")
-    c[2].metric("model", model)
-    c[3].metric("RMS residual", f"{diagnosis.analysis.rms:.4g} N")
-    _verdict(diagnosis)
-    for warning in diagnosis.warnings:
-        st.warning(f"Check: {warning}")
+    rms = Q_(float(diagnosis.analysis.rms), "N")
+    c[2].metric("RMS residual", show(rms, pick_unit(rms, "force"), name="RMS residual").text)
+    left, right = st.columns([3, 2], gap="large")
+    with left:
+        _verdict(diagnosis)
+        for warning in diagnosis.warnings:
+            st.warning(f"Check: {warning}")
+    with right:       # the error history stays in view while effects are added
+        st.plotly_chart(plots.error_history_figure(steps, noise_floor=float(diagnosis.noise_floor_esr)),
+                        key="cmp.fig.history")
 
-    tabs = st.tabs(["overlay", "residual", "missing effects", "parameters", "error history"])
+    tabs = st.tabs(["overlay", "residual", "missing effects", "parameters", "downloads"])
     with tabs[0]:
         st.plotly_chart(plots.measured_loops_figure(record.displacement, record.velocity, F, model_force),
                         key="cmp.fig.loops")
@@ -196,12 +206,13 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
         st.markdown("**Where the model fails** (share of samples, RMS there over overall RMS):")
         st.dataframe([{"region": k, "share of samples %": round(100 * a, 1), "RMS ratio": round(b, 2)}
                       for k, (a, b) in diagnosis.analysis.regions.items()], hide_index=True)
+    ranking = _ranking_table(diagnosis)
     with tabs[2]:
         st.markdown("**What the residual looks like:**")
         for finding in diagnosis.analysis.findings or ["no pattern stands out of the noise"]:
             st.markdown(f"- {finding}")
         st.markdown("**Ranked candidate effects** (best first; each added to the model and refitted):")
-        st.table(_ranking_table(diagnosis))
+        st.table(ranking)
         for e, why in diagnosis.not_judged.items():
             st.caption(f"not judged: {e}: {why}")
         # a candidate that could not be evaluated cannot be added; a pair is added as both its effects
@@ -213,26 +224,57 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
                 st.session_state["cmp.add"] = default
             cols = st.columns([2, 1])
             cols[0].selectbox("effect to add", options, key="cmp.add", format_func=_effect_title)
-            cols[1].button("Add effect and refit", on_click=_add_effect, key="cmp.refit", type="primary")
+            cols[1].button("Add effect and refit", on_click=_add_effect, key="cmp.refit")
+    parameters = _parameters_table(diagnosis.baseline)
     with tabs[3]:
         st.markdown(f"**Calibrated parameters** of {model} (standard errors from the fit):")
-        st.dataframe(_parameters_table(diagnosis.baseline), hide_index=True, key="cmp.parameters")
+        st.dataframe(parameters, hide_index=True, key="cmp.parameters")
     with tabs[4]:
-        st.plotly_chart(plots.error_history_figure(steps), key="cmp.fig.history")
-        st.dataframe([{"step": s.step, "effect added": s.effect, "ESR": round(s.esr, 5)} for s in steps],
-                     hide_index=True)
+        _downloads(name, record, model_force, ranking, parameters, steps, diagnosis)
+
+
+def _downloads(name, record, model_force, ranking, parameters, steps, diagnosis) -> None:
+    """CSV files of the comparison: time histories and residual, ranking, fitted parameters, error history."""
+    stem = state.file_stem(Path(name).stem)
+    F = record.force
+    columns = [("time", "s", record.time), ("displacement", "m", record.displacement),
+               ("velocity", "m/s", record.velocity), ("force", "N", F), ("model force", "N", model_force),
+               ("residual", "N", F - model_force)]
+    model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
+    histories = csv_text(columns, comment=f"{name}: measured force, force of the calibrated model ({model}) and "
+                                          "residual (measured minus model)")
+    st.markdown("Each file is CSV with units in the header; the time histories read back as a measurement.")
+    cols = st.columns(4)
+    cols[0].download_button("Time histories and residual", histories, file_name=f"{stem}-model.csv",
+                            mime="text/csv", key="cmp.dl.history", icon=":material/download:")
+    cols[1].download_button("Ranking of the effects", rows_csv(ranking, comment=f"diagnosis of {name} ({model})"),
+                            file_name=f"{stem}-ranking.csv", mime="text/csv", key="cmp.dl.ranking",
+                            icon=":material/download:")
+    cols[2].download_button("Fitted parameters", rows_csv(parameters, comment=f"calibrated {model} on {name}"),
+                            file_name=f"{stem}-parameters.csv", mime="text/csv", key="cmp.dl.parameters",
+                            icon=":material/download:")
+    cols[3].download_button("Error history", rows_csv(
+        [{"step": s.step, "effect added": s.effect, "ESR [1]": f"{s.esr:.6g}"} for s in steps]
+        + [{"step": "", "effect added": "noise floor", "ESR [1]": f"{diagnosis.noise_floor_esr:.6g}"}]),
+        file_name=f"{stem}-error-history.csv", mime="text/csv", key="cmp.dl.steps", icon=":material/download:")
 
 
 def _verdict(diagnosis) -> None:
-    """The verdict of the diagnosis, prominently, with its reason (shared/CONTRACTS.md section 3)."""
+    """The verdict of the diagnosis, prominently, with its reason (shared/CONTRACTS.md section 3) and, for a
+    missing effect, the button that adds it and refits."""
     if diagnosis.verdict == "missing_effect":
         if diagnosis.pair:
             what = " ".join(f"{e} ({EFFECTS[e].title}): {EFFECTS[e].mechanism}" for e in diagnosis.pair)
             head = f"**Missing effect: {' + '.join(diagnosis.pair)}** (two effects, fitted jointly). {what}"
+            named = " + ".join(diagnosis.pair)
         else:
             effect = EFFECTS[diagnosis.missing_effect]
             head = f"**Missing effect: {diagnosis.missing_effect}** ({effect.title}). {effect.mechanism}"
-        st.success(f"{head}\n\n{_sentence(diagnosis.reason)}")
+            named = diagnosis.missing_effect
+        with st.container(border=True):
+            st.success(f"{head}\n\n{_sentence(diagnosis.reason)}")
+            st.button(f"Add {named} and refit", on_click=_add_effect, args=(named,), key="cmp.add_named",
+                      type="primary", icon=":material/add:")
     elif diagnosis.verdict == "unexplained":
         st.warning(f"**Unexplained:** {_sentence(diagnosis.reason)}")
     else:

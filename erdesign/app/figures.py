@@ -18,14 +18,15 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
+from ..plots import MEASURED_STYLE, MODEL_STYLE, spans_decades
 from ..report.formatting import pick_unit
 from ..units import Q_
 
 __all__ = ["tradeoff_figure", "loops_figure", "time_figure", "residual_figure"]
 
 _LAYOUT = dict(template="plotly_white", margin=dict(l=70, r=20, t=60, b=60),
-               legend=dict(orientation="h", yanchor="bottom", y=1.02, xanchor="right", x=1))
-_MEASURED, _MODEL, _OTHER = "#444444", "#d62728", "#1f77b4"
+               legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"))
+_MEASURED, _MODEL, _OTHER = "#444444", "#c0392b", "#1f77b4"
 
 
 def _in(values, si_unit: str, kind: str) -> tuple[np.ndarray, str]:
@@ -55,7 +56,8 @@ def tradeoff_figure(sweep: dict, label: str, field_label: str, velocity_label: s
                              line=dict(color=_MEASURED), showlegend=False), row=2, col=1)
     fig.add_trace(go.Scatter(x=x, y=sweep["reynolds"], mode="lines+markers", name="Reynolds number",
                              line=dict(color="#2ca02c"), showlegend=False), row=3, col=1)
-    fig.update_yaxes(title_text=f"F [{f_unit}]", row=1, col=1)
+    fig.update_yaxes(title_text=f"F [{f_unit}]" + (" (log)" if spans_decades(F) else ""),
+                     type="log" if spans_decades(F) else "linear", row=1, col=1)
     fig.update_yaxes(title_text="F(E)/F(0) [-]", row=2, col=1)
     fig.update_yaxes(title_text="Re [-]", type="log", row=3, col=1)
     fig.update_xaxes(title_text=f"{label} [{x_unit}]", row=3, col=1)
@@ -70,11 +72,11 @@ def loops_figure(displacement, velocity, force, *, label: str = "model", measure
     both = force if measured is None else np.concatenate([np.ravel(force), np.ravel(measured)])
     _, f_unit = _in(both, "N", "force")
     fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
-    traces = [] if measured is None else [("measured", measured, _MEASURED)]
-    traces.append((label, force, _MODEL))
-    for name, F, colour in traces:
+    traces = [] if measured is None else [("measured", measured, MEASURED_STYLE)]
+    traces.append((label, force, MODEL_STYLE))
+    for name, F, style in traces:
         y = np.asarray(Q_(np.asarray(F, dtype=float), "N").to(_unit_of(f_unit)).magnitude)
-        common = dict(mode="lines", name=name, legendgroup=name, line=dict(color=colour))
+        common = dict(name=name, legendgroup=name, **style)
         fig.add_trace(go.Scatter(x=x, y=y, **common), row=1, col=1)
         fig.add_trace(go.Scatter(x=v, y=y, showlegend=False, **common), row=1, col=2)
     fig.update_xaxes(title_text=f"displacement x [{x_unit}]", row=1, col=1)
@@ -97,9 +99,9 @@ def time_figure(time, force, *, label: str = "model", measured=None) -> go.Figur
     fig = go.Figure()
     if measured is not None:
         fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
-                                 mode="lines", name="measured", line=dict(color=_MEASURED)))
+                                 name="measured", **MEASURED_STYLE))
     fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(force, float), "N").to(_unit_of(f_unit)).magnitude,
-                             mode="lines", name=label, line=dict(color=_MODEL)))
+                             name=label, **MODEL_STYLE))
     fig.update_layout(title="Force against time", xaxis_title="time t [s]", yaxis_title=f"force F [{f_unit}]",
                       height=380, **_LAYOUT)
     return fig

@@ -14,6 +14,8 @@ from erdesign.app import figures, state
 from erdesign.effects import EFFECT_NAMES, EFFECTS
 from erdesign.errors import ErdesignError
 from erdesign.models.registry import get_model, model_names
+from erdesign.report.export import csv_text
+from erdesign.report.formatting import pick_unit, show
 from erdesign.units import Q_, to_si
 
 __all__ = ["render", "EXCITATIONS"]
@@ -22,13 +24,14 @@ EXCITATIONS = {"sine": "sine", "sweep": "sine sweep (two amplitudes and frequenc
                "earthquake": "earthquake-like record", "upload": "uploaded displacement (measurement CSV)"}
 
 
-def _excitation(control_unit: str):
+def _excitation(control_unit: str, design_field: str):
     """Draw the excitation inputs; return the excitation as plain data (SI) for :func:`state.simulate` and the
     uploaded file (or None), or None when the inputs are not complete."""
     kind = state.widget(st.selectbox, "excitation", "sim.kind", "sine", options=list(EXCITATIONS),
                         format_func=EXCITATIONS.get)
-    field_text = state.widget(st.text_input, "field E", "sim.field", "3 kV/mm",
-                              help="The control during the test, with its unit.")
+    field_text = state.widget(st.text_input, "field E", "sim.field", design_field,
+                              help="The control during the test, with its unit (the design field of the Size "
+                                   "page to start with).")
     try:
         E = float(to_si(field_text, control_unit, "field"))
         if kind == "sine":
@@ -54,7 +57,7 @@ def _excitation(control_unit: str):
             return (("kind", "earthquake"), ("peak", float(peak)), ("field", E), ("duration", float(duration)),
                     ("rate", 500.0), ("seed", int(seed))), None
     except ErdesignError as exc:
-        st.error(str(exc))
+        st.error(state.clean_message(str(exc)))
         return None
     upload = st.file_uploader("displacement CSV (time and displacement columns with units; force optional)",
                               type=["csv"],
@@ -103,8 +106,8 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
 def render() -> None:
     """Draw the Simulate page."""
     st.title("Simulate")
-    spec = state.current_spec()
-    text = state.spec_text(spec)
+    design = state.current_design()
+    text = state.spec_text(design["spec"])
     damper = state.damper_or_error(text)
     if damper is None:
         return
@@ -114,7 +117,7 @@ def render() -> None:
         st.subheader("Model")
         chosen = _model(damper)
         st.subheader("Excitation")
-        excitation = _excitation(damper.fluid.control_unit)
+        excitation = _excitation(damper.fluid.control_unit, design["field"])
     with right:
         if chosen is None or excitation is None:
             return
@@ -125,20 +128,43 @@ def render() -> None:
             with st.spinner("Simulating ..."):
                 sim = state.simulate(text, name, effects, values, excitation, upload, upload_name)
         except ErdesignError as exc:
-            st.error(str(exc))
+            st.error(state.clean_message(str(exc)))
             return
         st.session_state["sim.last"] = {"title": sim["title"], "description": sim["description"]}
         st.caption(f"{sim['title']}: {sim['description']}")
         F = sim["force"]
         peak = Q_(float(np.max(np.abs(F))), "N")
         c = st.columns(3)
-        c[0].metric("peak force", f"{peak.to('kN').magnitude:.4g} kN")
+        c[0].metric("peak force", show(peak, pick_unit(peak, "force"), name="peak force").text)
         c[1].metric("samples", f"{F.size}")
         c[2].metric("duration", f"{sim['time'][-1] - sim['time'][0]:.3g} s")
         st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=sim["title"],
                                              measured=sim["measured"]), key="sim.fig.loops")
         st.plotly_chart(figures.time_figure(sim["time"], F, label=sim["title"], measured=sim["measured"]),
                         key="sim.fig.time")
+        _download(sim, damper, name, effects, values)
+
+
+def _download(sim: dict, damper, name: str, effects, values) -> None:
+    """The simulated time history as a measurement file (CSV, units in the header): it reads back as a record."""
+    fluid = damper.fluid
+    column = {"A": "current", "V": "voltage"}.get(fluid.control_unit, "field")
+    unit = fluid.field_unit
+    columns = [("time", "s", sim["time"]), ("displacement", "mm", Q_(sim["displacement"], "m").to("mm").magnitude),
+               ("velocity", "mm/s", Q_(sim["velocity"], "m/s").to("mm/s").magnitude),
+               ("force", "N", sim["force"]),
+               (column, unit, Q_(np.asarray(sim["control"], float), fluid.control_unit).to(unit).magnitude)]
+    if sim["measured"] is not None:
+        columns.append(("measured force", "N", sim["measured"]))
+    model = name + ("".join(f" + {e}" for e in effects) if name == "physics" else "")
+    parameters = ", ".join(f"{k} = {v:.6g} {sim['units'].get(k) or ''}".strip() for k, v in dict(values).items())
+    comment = (f"simulated by erdesign: {model} on {sim['description']}\n"
+               f"damper: {damper.name or 'design'}; parameters: {parameters or 'none'}")
+    stem = state.file_stem(damper.name or "design", f"-{name}-simulated")
+    st.download_button("Simulated time history (CSV)", csv_text(columns, comment=comment),
+                       file_name=f"{stem}.csv", mime="text/csv", key="sim.dl.history", icon=":material/download:",
+                       help="time, displacement, velocity, force and control with units in the header: it reads "
+                            "back as a measurement (Compare page).")
 
 
 if __name__ == "__main__":
