@@ -99,3 +99,21 @@ def test_module_entry_point():
     res = subprocess.run([sys.executable, "-m", "erdesign", "size", MAKRIS, "--velocity", "1 in/s", "--json"],
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 0 and "force_N" in json.loads(res.stdout)
+
+
+def test_a_bare_number_for_a_dimension_warns(capsys):
+    """Issue 14: `--velocity 25` (meant mm/s) silently meant m/s.  It still reads SI (the contract) but says so."""
+    code, out, err = run(capsys, "size", MAKRIS, "--velocity", "0.0254", "--field", "3 kV/mm", "--json")
+    assert code == 0 and json.loads(out)["force_N"] > 0
+    assert err == 'warning: --velocity 0.0254: a bare number, read as 0.0254 m/s; give the unit, e.g. "0.0254 m/s"\n'
+    code, _, err = run(capsys, "size", MAKRIS, "--velocity", "1 in/s", "--field", "0", "--json")
+    assert code == 0 and err == ""              # zero is zero in any unit
+
+
+@pytest.mark.parametrize("command", ["size", "report", "design", "diagnose"])
+def test_help_has_examples(capsys, command):
+    import erdesign.cli.design  # noqa: F401
+    import erdesign.cli.report  # noqa: F401
+
+    code, out, _ = run(capsys, command, "--help")
+    assert code == 0 and "Examples:" in out and f"erdesign {command} " in out.split("Examples:")[1]

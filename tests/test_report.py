@@ -336,7 +336,7 @@ def test_cli_html_and_errors(tmp_path, capsys):
     out = tmp_path / "r.html"
     assert main(["report", MAKRIS, "--field", "3 kV/mm", "--out", str(out)]) == 0
     assert out.read_text().startswith("<!DOCTYPE html>") and "wrote" in capsys.readouterr().out
-    code = main(["report", MAKRIS, "--field", "40 kA/m", "--out", str(out), "--json"])
+    code = main(["report", MAKRIS, "--field", "40 kA/m", "--out", str(out), "--force", "--json"])
     stdout, stderr = capsys.readouterr()
     assert code == 1 and stdout == "" and stderr.count("\n") == 1
     assert "field[0]: expected an electric field" in stderr
@@ -356,3 +356,61 @@ def test_report_of_a_mixed_damper_from_python():
     keys = [e.key for e in r.equations]
     assert r.configuration == "mixed" and "flow" in keys and "damping_constant" in keys
     assert all(row.origin == "Python" for row in r.inputs)
+
+
+def test_cli_default_name_no_overwrite_never_the_input(tmp_path, capsys, monkeypatch):
+    """Issue 14: without --out the report is <damper name>-report.html; an existing file needs --force; the damper
+    file itself is never overwritten."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["report", MAKRIS]) == 0
+    out, _ = capsys.readouterr()
+    written = tmp_path / "makris-1996-report.html"
+    assert written.read_text().startswith("<!DOCTYPE html>") and f"wrote {written.name}" in out
+    before = written.stat().st_mtime_ns
+    code = main(["report", MAKRIS])
+    _, err = capsys.readouterr()
+    assert code == 1 and "makris-1996-report.html: exists; give --force" in err and err.count("\n") == 1
+    assert written.stat().st_mtime_ns == before
+    assert main(["report", MAKRIS, "--force", "--format", "md"]) == 0
+    assert (tmp_path / "makris-1996-report.md").read_text().startswith("# Damper report")
+    copy = tmp_path / "d.toml"
+    copy.write_text(Path(MAKRIS).read_text())
+    code = main(["report", str(copy), "--out", str(copy), "--force"])
+    _, err = capsys.readouterr()
+    assert code == 1 and "that is the damper file itself" in err
+    assert copy.read_text() == Path(MAKRIS).read_text()
+
+
+def test_cli_design_point_and_bare_numbers(tmp_path, capsys):
+    out = tmp_path / "r.md"
+    code = main(["report", MAKRIS, "--design-velocity", "25 mm/s", "--design-field", "2 kV/mm", "--out", str(out)])
+    stdout, stderr = capsys.readouterr()
+    assert code == 0 and "at the design point 25 mm/s and 2 kV/mm" in stdout and stderr == ""
+    text = out.read_text()
+    force = load_damper(MAKRIS).size(velocity="25 mm/s", field="2 kV/mm").force
+    (row,) = [line for line in text.splitlines() if line.startswith("| force F |")]
+    close(row.split("|")[2].strip(), force)
+    # a bare number is read in SI units, with a warning that says so
+    code = main(["report", MAKRIS, "--design-velocity", "0.025", "--out", str(out), "--force"])
+    _, stderr = capsys.readouterr()
+    assert code == 0 and 'warning: --design-velocity 0.025: a bare number, read as 0.025 m/s' in stderr
+
+
+def test_report_from_the_content_of_a_damper_file_at_a_design_point():
+    """The app's path: the spec as typed (a mapping), a design point inside the curves' range."""
+    from erdesign.damper_file import read_toml
+
+    spec = read_toml(MAKRIS)
+    spec["geometry"]["gap"] = "0.0315 in"
+    r = build_report(spec, velocity_range=("0 mm/s", "50 mm/s"), design_velocity="1 in/s", design_field="3 kV/mm",
+                     origin="as typed in the app")
+    assert r.setting("velocity_design").value.text == "25.4 mm/s"
+    assert r.setting("velocity_max").value.text == "50 mm/s"
+    gap = [row for row in r.inputs if row.key == "gap"][0]
+    assert (gap.given, gap.origin) == ("0.0315 in", "as typed in the app")
+    rows = {row.key: row for row in r.design_point}
+    # Damper.size's doctest: 6.07 kN at 1 in/s and 3 kV/mm (the gap 0.0315 in is Makris's 0.8 mm to 0.01 %)
+    assert rows["force"].value.text.startswith("6.07")
+    # the design table's row at the design control is the design point
+    (design_row,) = [row for row in r.design_table.rows if row[0].text == "3 kV/mm"]
+    assert design_row[4].si == pytest.approx(rows["force"].value.si, rel=1e-12)

@@ -10,8 +10,19 @@ from .main import cli, emit_json
 
 __all__ = ["design"]
 
+_EXAMPLES = """
+\b
+Examples:
+  erdesign design requirements.toml
+  erdesign design requirements.toml --out designs.csv
+  erdesign design requirements.toml --json > designs.json
+\b
+Rounding and ties ([design.search] of the requirements file):
+  gap_tolerance = "0.01 mm"      length_tolerance = "0.1 mm"      secondary = "min_outer_diameter"
+"""
 
-@cli.command()
+
+@cli.command(epilog=_EXAMPLES)
 @click.argument("requirements_file", metavar="REQUIREMENTS.toml")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units) instead of a table.")
 @click.option("--out", "out", default=None, metavar="designs.csv",
@@ -61,11 +72,13 @@ def _table(result) -> str:
     p = req.points[0]
     lines = [f"{req.name or 'requirements'}: {req.configuration} damper, objective {req.objective}",
              (f"{result.evaluated} candidates evaluated, {result.feasible_count} feasible "
-              f"(figures at point 1: v = {p.velocity:.4g} m/s)")]
+              f"(figures at point 1: v = {p.velocity * 1e3:.4g} mm/s)"),
+             result.ranking_note()]
     if result.feasible:
         lines.append(_grid([_HEAD] + [_row(d, str(d["rank"])) for d in result.designs]))
-        lines.append("active constraints:")
-        lines += [f"  {d['rank']}: {', '.join(d['active_constraints']) or '-'}" for d in result.designs]
+        lines.append("active constraints: (the limits each design sits on, within the active tolerance)")
+        lines += [f"  {d['rank']}: {', '.join(d['active_constraints']) or 'none (inside every limit)'}"
+                  for d in result.designs]
         lines.append(f"Pareto front ({', '.join(req.search.pareto)}): {len(result.pareto)} designs "
                      "(--out writes them)")
     else:

@@ -2,25 +2,61 @@
 
 from __future__ import annotations
 
+import math
+import warnings
+from typing import Any
+
 import click
 
 from ..damper_file import load_damper
-from ..units import format_quantity
-from .main import cli, emit_json, json_number, value_arg
+from ..errors import ErdesignWarning
+from ..units import Q_, format_quantity
+from .main import cli, emit_json, json_number
 
-__all__ = ["size"]
+__all__ = ["size", "quantity_option"]
+
+_EXAMPLES = """
+\b
+Examples:
+  erdesign size makris.toml --velocity "1 in/s" --field "3 kV/mm"
+  erdesign size mr_valve.toml --velocity "50 mm/s" --field "200 kA/m" --json
+  erdesign size mr_valve_current.toml --velocity "0.1 m/s" --field "1.5 A"
+"""
 
 
-@cli.command()
+def quantity_option(text: str, si_unit: str, option: str) -> Any:
+    """A dimensional command-line value: a quantity string as given, or a bare number read in ``si_unit`` with a
+    warning on stderr (a number without its unit is the commonest slip: ``--velocity 25`` meant mm/s).
+
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as w:
+    ...     warnings.simplefilter("always")
+    ...     q = quantity_option("0.0254", "m/s", "--velocity")
+    >>> q, str(w[0].message)
+    (<Quantity(0.0254, 'meter / second')>, '--velocity 0.0254: a bare number, read as 0.0254 m/s; give the unit, e.g. "0.0254 m/s"')
+    """
+    try:
+        value = float(text)
+    except ValueError:
+        return text
+    if value != 0 and math.isfinite(value):      # 0 is 0 in any unit; NaN is an error of its own
+        unit = f"{Q_(1.0, si_unit).units:~P}"
+        warnings.warn(f"{option} {text}: a bare number, read as {text} {unit}; give the unit, e.g. "
+                      f"\"{text} {unit}\"", ErdesignWarning, stacklevel=2)
+    return Q_(value, si_unit)
+
+
+@cli.command(epilog=_EXAMPLES)
 @click.argument("damper_file", metavar="DAMPER.toml")
-@click.option("--velocity", required=True, help='Piston velocity, e.g. "1 in/s" or "0.0254" (m/s).')
+@click.option("--velocity", required=True,
+              help='Piston velocity with its unit, e.g. "1 in/s" (a bare number is read in m/s, with a warning).')
 @click.option("--field", default=None, help='Control: field, current or voltage, e.g. "3 kV/mm" (default 0).')
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units) instead of a table.")
 def size(damper_file: str, velocity: str, field: str | None, as_json: bool) -> None:
     """Quasi-steady design point of a damper at one piston velocity and control."""
     damper = load_damper(damper_file)
-    r = damper.size(velocity=value_arg(velocity, "m/s"),
-                    field=None if field is None else value_arg(field, damper.fluid.control_unit))
+    r = damper.size(velocity=quantity_option(velocity, "m/s", "--velocity"),
+                    field=None if field is None else quantity_option(field, damper.fluid.control_unit, "--field"))
     if as_json:
         out = r.as_json()
         out["dynamic_range"] = json_number(out["dynamic_range"])

@@ -29,8 +29,11 @@ The keys beyond the contract are listed below and in docs/design.md.
     ``chunk`` (candidates evaluated at once, default 65536), ``refine`` (default true), ``designs`` (how many to
     return, default 10), ``pareto`` (two or three figures of :data:`~erdesign.design.evaluate.FIGURES`, default
     ``["dynamic_range", "fluid_volume", "outer_diameter"]``; see docs/design.md for why not controllable force,
-    dynamic range and fluid volume, which a valve damper ties together) and ``active_tolerance`` (relative margin below
-    which a constraint counts as active, default 0.01).
+    dynamic range and fluid volume, which a valve damper ties together), ``active_tolerance`` (relative margin below
+    which a constraint counts as active, default 0.01), ``gap_tolerance`` and ``length_tolerance`` (the grid the
+    returned dimensions are rounded to, then re-checked: default ``"0.01 mm"`` for the gap, ``"0.1 mm"`` for the
+    other lengths; ``"0 mm"`` keeps six significant figures) and ``secondary`` (the objective that breaks ties
+    of the objective, default per objective: :data:`~erdesign.design.search.SECONDARY`).
 
 Example
 -------
@@ -99,7 +102,8 @@ _DESIGN_KEYS = ("configuration", "objective", "point", "limits", "bounds", "enve
 _POINT_KEYS = ("velocity", "field", "min_force", "min_dynamic_range", "max_zero_field_force")
 _LIMIT_KEYS = ("max_outer_diameter", "max_length", "max_pressure", "laminar", "min_gap", "max_field", "max_voltage")
 _ENVELOPE_KEYS = ("stroke", "wall", "head_length", "end_allowance", "duct_placement")
-_SEARCH_KEYS = ("samples", "sampling", "seed", "chunk", "refine", "designs", "pareto", "active_tolerance")
+_SEARCH_KEYS = ("samples", "sampling", "seed", "chunk", "refine", "designs", "pareto", "active_tolerance",
+                "gap_tolerance", "length_tolerance", "secondary")
 
 
 class RequirementsError(ErdesignError):
@@ -179,6 +183,12 @@ class SearchSettings:
     designs: int = 10
     pareto: tuple[str, ...] = ("dynamic_range", "fluid_volume", "outer_diameter")
     active_tolerance: float = 0.01
+    gap_tolerance: float = 1e-5
+    """Grid the returned gap is rounded to, [m] (0: six significant figures)."""
+    length_tolerance: float = 1e-4
+    """Grid the other returned lengths are rounded to, [m] (0: six significant figures)."""
+    secondary: str | None = None
+    """Objective that breaks ties of the objective (None: the default of the objective)."""
 
 
 @dataclass(frozen=True)
@@ -471,6 +481,17 @@ def _parse_search(table: Any) -> SearchSettings:
     values["pareto"] = tuple(pareto)
     tol = _number(table, "active_tolerance", where)
     values["active_tolerance"] = defaults.active_tolerance if tol is None else tol
+    for key in ("gap_tolerance", "length_tolerance"):
+        if key in table:
+            try:
+                grid = float(to_si(table[key], "m", f"{where}.{key}"))
+            except ErdesignError as exc:
+                raise RequirementsError(str(exc)) from None
+            if not 0 <= grid <= 1e-2:
+                raise RequirementsError(f"{where}.{key}: must lie between 0 and 10 mm, got {table[key]!r}")
+            values[key] = grid
+    if "secondary" in table:
+        values["secondary"] = _choice(table, "secondary", where, tuple(OBJECTIVES))
     search = SearchSettings(**values)
     _check_search(search, where)
     return search

@@ -170,7 +170,23 @@ class DesignResult:
             "pareto_figures": list(req.search.pareto),
             "pareto": self.pareto,
             "nearest": self.nearest,
+            "ranking": self.ranking_note(),
+            "gap_tolerance_m": req.search.gap_tolerance,
+            "length_tolerance_m": req.search.length_tolerance,
         }
+
+    def ranking_note(self) -> str:
+        """How the designs are rounded and ranked, in words (the table and the JSON state it)."""
+        from .search import TIE, secondary_objective
+
+        s = self.requirements.search
+        if s.gap_tolerance and s.length_tolerance:
+            rounding = (f"dimensions rounded to {s.gap_tolerance * 1e3:g} mm (gap) and {s.length_tolerance * 1e3:g} mm "
+                        "(other lengths), then re-checked")
+        else:
+            rounding = "dimensions to six significant figures, re-checked"
+        return (f"{rounding}; ranked by {self.requirements.objective}, designs within {TIE * 100:g} % of each other "
+                f"by {secondary_objective(self.requirements)}")
 
     def csv_rows(self) -> list[dict]:
         """Rows of the CSV file: ranked designs, then the Pareto front, then the nearest infeasible design."""

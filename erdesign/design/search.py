@@ -10,10 +10,17 @@ r"""Design synthesis: sweep the design space in chunks, refine the best designs,
    the logarithms of the free continuous variables (the number of ducts stays fixed), subject to every constraint
    margin being at least :data:`SAFETY` and to the bounds.  Gradients are forward differences computed in one
    vectorised call of the evaluator.
-3. **Round and re-check.**  Each design is written as a damper-file ``[geometry]`` table (six significant figures,
-   more if needed) and evaluated again from those strings, so the figures reported are those of the geometry
-   printed, and a design is returned only if that geometry meets every constraint.
-4. **Explain.**  With no feasible sample, the designs with the smallest sum of squared relative violations are
+3. **Round and re-check.**  Each design is rounded to a manufacturing grid (``gap_tolerance``, default 0.01 mm,
+   and ``length_tolerance``, default 0.1 mm, of ``[design.search]``): the nearest grid point if it meets every
+   constraint, else the best of the neighbouring grid points (each dimension rounded down or up) that does.  It is
+   written as a damper-file ``[geometry]`` table with the decimals of the grid and evaluated again from those
+   strings, so the figures reported are those of the geometry printed, and a design is returned only if that
+   geometry meets every constraint and the bounds.  (With a tolerance of 0: six significant figures, more if
+   needed.)
+4. **Rank.**  By the objective; designs whose objective lies within :data:`TIE` of each other are ranked by the
+   secondary objective (:data:`SECONDARY`, or ``secondary`` of ``[design.search]``), so that designs equal to the
+   figures shown are not ordered by noise.
+5. **Explain.**  With no feasible sample, the designs with the smallest sum of squared relative violations are
    refined the same way (minimising that sum), and the conflicts are written out: what the nearest design misses
    and by how much, which constraints every sample violates, and which constraints, relaxed alone or in pairs,
    would admit sampled designs.
@@ -35,7 +42,25 @@ from .requirements import VARIABLES, Requirements
 from .result import DesignResult, design_record
 from .sampling import candidate_chunks
 
-__all__ = ["design", "sweep", "SAFETY", "PARETO_LIMIT", "FRONT_STORE"]
+__all__ = ["design", "sweep", "SAFETY", "PARETO_LIMIT", "FRONT_STORE", "SECONDARY", "TIE", "secondary_objective"]
+
+#: The objective that breaks ties of each objective: a compact damper first, then a small fluid volume.
+SECONDARY = {
+    "min_fluid_volume": "min_outer_diameter",
+    "max_dynamic_range": "min_fluid_volume",
+    "min_zero_field_force": "min_fluid_volume",
+    "min_total_fluid_volume": "min_outer_diameter",
+    "min_outer_diameter": "min_length",
+    "min_length": "min_outer_diameter",
+}
+#: Designs whose objective differs by less than this (relative) tie: the secondary objective ranks them.  The
+#: figures are printed to four significant figures, so a difference below 0.1 % is not one a reader can see.
+TIE = 1e-3
+
+
+def secondary_objective(req: Requirements) -> str:
+    """The objective that breaks ties: ``[design.search] secondary`` or :data:`SECONDARY` of the objective."""
+    return req.search.secondary or SECONDARY[req.objective]
 
 #: Margin every refined design keeps on each constraint (relative): 1e-4, so that rounding the geometry to six
 #: significant figures (a relative change of at most 5e-6 in each dimension, up to about 4e-5 in a force) cannot
@@ -276,14 +301,21 @@ def _refine(req, constraints, x0: np.ndarray, mode: str) -> np.ndarray:
 
 
 # ------------------------------------------------------------------------------------------- rounding/re-check
-def _geometry_table(req: Requirements, x: np.ndarray, digits: int) -> dict:
-    def mm(v: float) -> str:
-        return f"{v * 1e3:.{digits}g} mm"
+def _geometry_table(req: Requirements, x: np.ndarray, digits: int | None = None) -> dict:
+    """The [geometry] table of design ``x``: ``digits`` significant figures, or (None) the decimals of the grid."""
+    s = req.search
 
-    table: dict[str, Any] = {"configuration": req.configuration, "duct_length": mm(x[1])}
+    def mm(v: float, grid: float) -> str:
+        if digits is not None:
+            return f"{v * 1e3:.{digits}g} mm"
+        decimals = max(0, int(np.ceil(-np.log10(grid * 1e3) - 1e-9)))
+        return f"{v * 1e3:.{decimals}f} mm"
+
+    g, L = s.gap_tolerance, s.length_tolerance
+    table: dict[str, Any] = {"configuration": req.configuration, "duct_length": mm(x[1], L)}
     if req.configuration == "valve":
-        table["duct_mean_diameter"] = mm(x[2])
-    table.update(gap=mm(x[0]), piston_diameter=mm(x[3]), rod_diameter=mm(x[4]))
+        table["duct_mean_diameter"] = mm(x[2], L)
+    table.update(gap=mm(x[0], g), piston_diameter=mm(x[3], L), rod_diameter=mm(x[4], L))
     if req.configuration == "valve":
         table["ducts"] = round(x[5])
     return table
@@ -302,7 +334,71 @@ def _parse_geometry(req: Requirements, table: dict) -> np.ndarray:
                      float(table.get("ducts", 1))])
 
 
+def _within_bounds(req: Requirements, R: np.ndarray) -> np.ndarray:
+    ok = np.ones(len(R), dtype=bool)
+    for j, name in enumerate(VARIABLES):
+        b = req.bounds.get(name)
+        if b is None or name not in req.free_variables:
+            continue
+        lo, hi = b
+        ok &= (R[:, j] >= lo * (1 - 1e-9)) & (R[:, j] <= hi * (1 + 1e-9))
+    return ok
+
+
 def _rounded(req, constraints, X: np.ndarray, need_feasible: bool):
+    """Round every design to the grid (module notes, step 3) and re-evaluate it from the strings; drop those that
+    fail (unless ``need_feasible`` is False: then the nearest grid point is kept)."""
+    s = req.search
+    if s.gap_tolerance == 0 or s.length_tolerance == 0:
+        return _rounded_digits(req, constraints, X, need_feasible)
+    grid = np.array([s.gap_tolerance, s.length_tolerance, s.length_tolerance, s.length_tolerance,
+                     s.length_tolerance])
+    mixed = req.configuration == "mixed"
+    free = [0, 1, 3, 4] if mixed else [0, 1, 2, 3, 4]          # mixed: d = Dp + h follows
+    corners = np.array(np.meshgrid(*[[0, 1]] * len(free), indexing="ij")).reshape(len(free), -1).T
+
+    def on_grid(rows: np.ndarray):
+        """Rows through the strings of their tables (the figures are those of the table printed), and whether
+        each meets every constraint and bound."""
+        if mixed:
+            rows[:, 2] = rows[:, 3] + rows[:, 0]
+        tables = [_geometry_table(req, r) for r in rows]
+        R = np.array([_parse_geometry(req, t) for t in tables])
+        fig = _evaluate(req, _unstack(R, req), constraints)
+        ok = fig.feasible & _within_bounds(req, R) & np.all(R[:, :5] > 0, axis=1)
+        return tables, R, ok, _objective_key(fig, req.objective)
+
+    X = np.asarray(X, dtype=float)
+    near = X.copy()
+    near[:, :5] = np.round(X[:, :5] / grid) * grid
+    tables, R, ok, _ = on_grid(near)
+    keep_tables, keep_rows = [], []
+    for i, x in enumerate(X):
+        if ok[i]:
+            keep_tables.append(tables[i])
+            keep_rows.append(R[i])
+            continue
+        # the nearest grid point fails: the best neighbour that meets every constraint (one design at a time, so
+        # that memory stays that of a few dozen candidates)
+        lo = np.floor(x[:5] / grid + 1e-9) * grid
+        hi = np.ceil(x[:5] / grid - 1e-9) * grid
+        rows = np.repeat(x[None, :], len(corners), axis=0)
+        for k, c in enumerate(corners):
+            rows[k, free] = np.where(c == 1, hi[free], lo[free])
+        t_n, R_n, ok_n, key_n = on_grid(rows)
+        if ok_n.any():
+            j = int(np.flatnonzero(ok_n)[np.argmin(key_n[ok_n])])
+            keep_tables.append(t_n[j])
+            keep_rows.append(R_n[j])
+        elif not need_feasible:
+            keep_tables.append(tables[i])
+            keep_rows.append(R[i])
+    if not keep_tables:
+        return [], None
+    return keep_tables, _evaluate(req, _unstack(np.array(keep_rows), req), constraints)
+
+
+def _rounded_digits(req, constraints, X: np.ndarray, need_feasible: bool):
     """Round every design to a [geometry] table and re-evaluate it from the strings; drop those that fail.
 
     Six significant figures first; a design that fails only because of the rounding is tried with more.
@@ -323,6 +419,19 @@ def _rounded(req, constraints, X: np.ndarray, need_feasible: bool):
     if not keep:
         return [], None
     return [tables[i] for i in keep], _evaluate(req, _unstack(rows[keep], req), constraints)
+
+
+def _ranked(req: Requirements, fig: CandidateFigures) -> np.ndarray:
+    """Order of the designs of ``fig``: by the objective, ties (within :data:`TIE`) by the secondary objective."""
+    key = _objective_key(fig, req.objective)
+    second = _objective_key(fig, secondary_objective(req))
+    order = np.argsort(key, kind="stable")
+    groups, current, start = np.empty(len(key), dtype=int), 0, None
+    for rank, i in enumerate(order):
+        if start is None or abs(key[i] - start) > TIE * max(abs(start), 1e-300):
+            current, start = rank, key[i]
+        groups[i] = current
+    return np.lexsort((second, groups))
 
 
 # ----------------------------------------------------------------------------------------------------- design
@@ -369,8 +478,7 @@ def design(req: Requirements) -> DesignResult:
         tables, fig = _rounded(req, constraints, X, need_feasible=True)
         seen, records = set(), []
         if fig is not None:
-            key = _objective_key(fig, req.objective)
-            for i in np.argsort(key, kind="stable"):
+            for i in _ranked(req, fig):
                 ident = tuple(sorted(tables[i].items()))
                 if ident in seen:
                     continue
