@@ -36,7 +36,7 @@ from .fit import FitResult, fit
 from .measurement import Measurement
 from .metrics import esr
 from .models.base import Model
-from .noise import noise_floor_esr, velocity_noise
+from .noise import force_noise_esr, noise_floor_esr, sign_known, velocity_noise
 from .physics import PhysicsDamper, check_control
 
 __all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
@@ -97,8 +97,17 @@ class _Masked(Model):
     def initial_guess(self, record):
         return self.inner.initial_guess(self.full)
 
+    @property
+    def damper(self):
+        return self.inner.damper
+
     def force(self, record, values):
         return self.inner.force(self.full, values)[self.mask]
+
+
+def _model(result: FitResult) -> PhysicsDamper:
+    """The physics model of a fit (unwrapped when it was fitted on a mask of the record)."""
+    return getattr(result.model, "inner", result.model)
 
 
 # ---------------------------------------------------------------------------------------------------- residuals
@@ -156,20 +165,24 @@ def _regions(record: Measurement, weight: np.ndarray | None = None) -> dict[str,
     return regions
 
 
-def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measurement) -> ResidualAnalysis:
-    """Locate the residual of ``result`` in the cycle and project it on the signatures of the effects.
+def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measurement,
+                      mask: np.ndarray | None = None) -> ResidualAnalysis:
+    """Locate the residual of ``result`` in the cycle and project it on the signatures of the effects (on the
+    samples of ``mask`` only, when given: diagnosis leaves out those where the velocity's sign is unknown).
 
     Signatures (each a regressor, fitted one at a time to say how much of the residual it explains alone):
     ``sgn(v)`` (Coulomb friction), ``a`` (inertia), ``x`` and a constant (gas spring), time x model force (heating),
     the residual near reversals (pre-yield elasticity, compressibility, leakage) and after field changes (lag).
     """
-    r = record.require_force() - model.force(record, result.values)
+    keep = np.ones(len(record), dtype=bool) if mask is None else np.asarray(mask, dtype=bool)
+    comps = model.components(record, result.values)
+    r = (record.require_force() - comps["force"])[keep]
     rms = float(np.sqrt(np.mean(r**2))) or 1e-300
     regions = {}
     for name, m in _regions(record).items():
+        m = m[keep]
         if m.any():
             regions[name] = (float(m.mean()), float(np.sqrt(np.mean(r[m] ** 2)) / rms))
-    comps = model.components(record, result.values)
     t = record.time
     tn = (t - t[0]) / max(t[-1] - t[0], 1e-12)
     peak = max(peak_speed(record), 1e-12)
@@ -183,6 +196,7 @@ def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measureme
     var = float(np.sum((r - r.mean()) ** 2)) or 1e-300
     sizes, shares = {}, {}
     for name, b in basis.items():
+        b = b[keep]
         bb = b if name == "offset" else b - b.mean()
         denom = float(np.dot(bb, bb))
         if denom <= 0:
@@ -274,9 +288,10 @@ class Candidate:
         if self.result is None:
             return {}
         out = {}
+        model = _model(self.result)
         for e in self.effects:
-            for p in EFFECTS[e].parameters(self.result.model.damper):
-                out[p.name] = self.result.model.parameter(p.name).format(self.result.values[p.name], digits).strip()
+            for p in EFFECTS[e].parameters(model.damper):
+                out[p.name] = model.parameter(p.name).format(self.result.values[p.name], digits).strip()
         return out
 
     def uncertainties(self) -> dict[str, str]:
@@ -284,7 +299,7 @@ class Candidate:
             return {}
         out = {}
         for e in self.effects:
-            for p in EFFECTS[e].parameters(self.result.model.damper):
+            for p in EFFECTS[e].parameters(_model(self.result).damper):
                 se = self.result.stderr.get(p.name, math.nan)
                 out[p.name] = p.format(se, 2) if math.isfinite(se) else "not identifiable"
         return out
@@ -371,6 +386,14 @@ class Diagnosis:
     """When two effects are missing together: both (``missing_effect`` is the first)."""
     warnings: list = field(default_factory=list)
     """Things the user should check (a calibration at its bounds, a baseline worse than the mean ...)."""
+    judged_share: float = 1.0
+    """Share of the samples the verdict was judged on: those where the sign of the velocity is known
+    (:func:`erdesign.noise.sign_known`)."""
+    judged_esr: float | None = None
+    """The calibrated baseline's ESR on the judged samples."""
+    judged_floor: float | None = None
+    """The force noise's ESR on the judged samples (:func:`erdesign.noise.force_noise_esr`): the floor the verdict
+    compares ``judged_esr`` with."""
 
     def as_json(self) -> dict:
         """The keys of ``erdesign diagnose --json`` (shared/CONTRACTS.md section 3); no value is NaN or infinite."""
@@ -388,6 +411,9 @@ class Diagnosis:
                  + (f", analysed on {self.samples[1]}" if self.samples[1] != self.samples[0] else "") + ")",
                  f"model: {model}; calibrated ESR {self.baseline_esr:.4g}; noise floor ESR {self.noise_floor_esr:.3g} "
                  f"(what the record's noise alone would leave)"]
+        if self.judged_esr is not None and self.judged_floor is not None:
+            lines.append(f"judged where the sign of the velocity is known ({100 * self.judged_share:.0f} % of the "
+                         f"samples): ESR {self.judged_esr:.4g}, force noise alone {self.judged_floor:.3g}")
         for name in self.baseline.model.parameter_names:
             p = self.baseline.model.parameter(name)
             se = self.baseline.stderr.get(name)
@@ -481,11 +507,11 @@ def _check_record(record: Measurement) -> None:
 #: Widths of the expected sign at a reversal tried in the baseline calibration, in units of the velocity noise.
 SIGN_WIDTHS = (0.0, 0.5, 1.0, 2.0)
 #: The baseline's ESR counts as "at the noise floor" up to this multiple of the floor (plus ABSOLUTE_SLACK) ...
-AT_FLOOR = 2.0
+AT_FLOOR = 1.5
 #: ... and as "well above" it (something is missing) beyond this multiple.
 WELL_ABOVE = 3.0
 #: ESR slack for records with almost no noise (model and derivative round-off).
-ABSOLUTE_SLACK = 2e-4
+ABSOLUTE_SLACK = 2e-5
 #: A named effect must remove at least this share of the baseline's excess over the noise floor.
 EXPLAINS = 0.6
 #: Below this share explained by the best single effect, pairs are searched jointly.
@@ -499,7 +525,7 @@ PAIR_POOL = 4
 
 
 def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, effects: tuple, added: tuple,
-              damper: Damper, start=None) -> Candidate:
+              damper: Damper, start=None, mask=None) -> Candidate:
     """Fit the model with ``added`` effects; a candidate that cannot be evaluated says why (never raises)."""
     name = added[0] if len(added) == 1 else " + ".join(added)
     model = base_model.with_effects(effects + added)
@@ -508,7 +534,7 @@ def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, eff
     res, errors = None, []
     for s in starts:
         try:
-            r = _fit(model, work, start=s)
+            r = _fit(model, work, start=s, mask=mask)
         except (ErdesignError, FloatingPointError, ValueError, ZeroDivisionError) as exc:
             errors.append(str(exc))
             continue
@@ -567,20 +593,29 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         if why:
             raise EffectError(f"{e.name}: cannot be judged from {record.name or 'this record'}: {why}")
     work = _analysis_record(record, max_samples)
-    # the width of the sign at the reversals: the velocity's noise band, scaled by the factor that fits the record
-    # best (a derived velocity is often better than its noise level near a reversal, where the filter's error is
-    # small; the band is at most two noise levels wide, far narrower than any effect's signature)
+    # Models are fitted and judged on the samples where the sign of the velocity is known (noise.sign_known): at a
+    # reversal a yield-stress force jumps by twice the yield force, and where the record cannot tell the sign no
+    # model can predict the force - that error would swamp the load cell's noise and every mechanism's signature.
+    # There the floor is the force noise alone, estimated to a few per cent.
     sigma_v = velocity_noise(work)
-    base, width = None, 0.0
+    known = sign_known(work, sigma_v)
+    mask = None if known.all() else known
+    judged = replace(work, velocity_noise=sigma_v)
+    base = _fit(base_model, judged, mask=mask)
+    # the full record's force at the reversals: the expected sign over the width that fits the record best (a
+    # derived velocity is often better than its noise level near a reversal, where the filter's error is small)
+    F = work.force
+    best = None
     for f in SIGN_WIDTHS if sigma_v > 0 else (0.0,):
         trial = replace(work, velocity_noise=f * sigma_v)
-        res = _fit(base_model, trial, start=None if base is None else base.values)
-        if base is None or res.rss < base.rss:
-            base, width, best_work = res, f, trial
-    work = best_work
+        with np.errstate(all="ignore"):
+            rss = float(np.sum((F - base_model.force(trial, base.values)) ** 2))
+        if best is None or rss < best[0]:
+            best = (rss, f, trial)
+    _, width, work = best
     record = replace(record, velocity_noise=width * sigma_v)
-    analysis = residual_analysis(base_model, base, work)
-    floor = noise_floor_esr(work, base.residual, sigma_v=sigma_v)
+    analysis = residual_analysis(base_model, base, work, mask)
+    floor = force_noise_esr(work, mask)
     warnings_ = [f"the calibration ends at a bound: {b}" for b in _at_bounds(base, base.free)]
     suspicious = _implausible_record(record, damper)
     warnings_ += suspicious
@@ -593,12 +628,7 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         if why:
             not_judged[name] = why
             continue
-        ranking.append(_evaluate(base_model, base, work, effects, (name,), damper))
-    # a model that explains the record leaves only noise in the reversal band: the floor is the least any model
-    # leaves there (the baseline's band residual holds the missing effect too when much is missing)
-    for c in ranking:
-        if c.evaluated:
-            floor = min(floor, noise_floor_esr(work, c.result.residual, sigma_v=sigma_v))
+        ranking.append(_evaluate(base_model, base, work, effects, (name,), damper, mask=mask))
     excess = base.esr - floor
     for c in ranking:
         if c.evaluated:
@@ -616,11 +646,11 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         reason = ("the record is implausible for this damper, so no effect is named: " + "; ".join(suspicious))
     else:
         # at the (estimated) noise floor an effect must be overwhelming to be named: the floor is an estimate
-        named = _judge_singles(base_model, base, work, ranking, strict=at_floor)
+        named = _judge_singles(base_model, base, work, ranking, strict=at_floor, mask=mask)
         if named is None and pairs and well_above:
-            best = max((c.explained for c in ranking if c.evaluated), default=0.0)
-            if best < PAIR_SEARCH_BELOW:
-                named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess)
+            best_share = max((c.explained for c in ranking if c.evaluated), default=0.0)
+            if best_share < PAIR_SEARCH_BELOW:
+                named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=mask)
         if named is not None:
             missing, pair = named.effects[0], (named.effects if len(named.effects) > 1 else ())
             verdict = "missing_effect"
@@ -640,24 +670,32 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
             reason = _unexplained_reason(base.esr, floor, ranking, analysis)
             if warnings_:
                 reason += " Check first: " + "; ".join(warnings_) + "."
+    if mask is not None and reason and not suspicious:
+        reason += (f" (judged on the {100 * known.mean():.0f} % of the samples where the sign of the velocity is "
+                   "known)")
     ranking.sort(key=lambda c: (not c.significant, not c.evaluated, c.delta_bic))
-    # ESRs of the full record
-    if work is not record:
+    # ESRs of the full record (all samples, the reversals too) and the floor on the same footing: the force noise
+    # plus what the best model leaves where the sign of the velocity is unknown
+    with np.errstate(all="ignore"):
         base_esr = esr(record.force, base_model.simulate(record, base.values))
+        least = work.force - base_model.force(work, base.values)
         for c in ranking:
             if c.evaluated:
-                with np.errstate(all="ignore"):
-                    e = esr(record.force, c.result.model.simulate(record, c.result.values))
+                e = esr(record.force, _model(c.result).simulate(record, c.result.values))
                 c.esr = e if math.isfinite(e) else None
                 if c.esr is None:
                     c.reason = "non-finite forces on the full record"
-    else:
-        base_esr = base.esr
+                    continue
+                r = work.force - _model(c.result).force(work, c.result.values)
+                if np.all(np.isfinite(r)) and np.sum(r**2) < np.sum(least**2):
+                    least = r
+    full_floor = noise_floor_esr(work, least, unknown=None if mask is None else ~known)
     return Diagnosis(effects, base, base_esr, analysis, ranking, missing, not_judged, record.name,
-                     (len(record), len(work)), verdict, floor, reason, pair, warnings_)
+                     (len(record), len(work)), verdict, full_floor, reason, pair, warnings_,
+                     float(known.mean()), base.esr, floor)
 
 
-def _judge_singles(base_model, base, work, ranking, strict: bool = False) -> Candidate | None:
+def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=None) -> Candidate | None:
     """The best single candidate that is significant (effective BIC, gain, held-out cycles), plausible and explains
     enough of the excess over the noise floor; notes on the others say why they were not named."""
     blocked_by = None
@@ -680,7 +718,7 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False) -> Can
             c.note = (f"not named alone: it explains only {100 * c.explained:.0f} % of the excess over the noise "
                       "floor")
             continue
-        c.held_out_gain = _held_out_gain(base_model, c, work)
+        c.held_out_gain = _held_out_gain(base_model, c, work, mask)
         if c.held_out_gain > (STRICT_HELD_OUT if strict else HELD_OUT_GAIN):
             c.significant = True
             return c
@@ -688,7 +726,7 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False) -> Can
     return None
 
 
-def _judge_pairs(base_model, base, work, effects, ranking, damper, excess) -> Candidate | None:
+def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=None) -> Candidate | None:
     """Pairs of the best single candidates fitted jointly (not greedily); the best significant, plausible pair
     that explains enough of the excess, or None."""
     pool = [c for c in ranking if c.evaluated and c.gain > 0][:PAIR_POOL]
@@ -699,7 +737,7 @@ def _judge_pairs(base_model, base, work, effects, ranking, damper, excess) -> Ca
             # each effect starts from its own single fit, the calibration from the first
             start = {**b.result.values, **a.result.values,
                      **{p.name: b.result.values[p.name] for p in EFFECTS[b.effect].parameters(damper)}}
-            c = _evaluate(base_model, base, work, effects, (a.effect, b.effect), damper, start=start)
+            c = _evaluate(base_model, base, work, effects, (a.effect, b.effect), damper, start=start, mask=mask)
             if not c.evaluated:
                 continue
             c.explained = (base.esr - c.esr) / excess if excess > 0 else 0.0
@@ -712,7 +750,7 @@ def _judge_pairs(base_model, base, work, effects, ranking, damper, excess) -> Ca
     if not found:
         return None
     best = min(found, key=lambda c: c.delta_bic)
-    best.held_out_gain = _held_out_gain(base_model, best, work)
+    best.held_out_gain = _held_out_gain(base_model, best, work, mask)
     if best.held_out_gain <= HELD_OUT_GAIN:
         return None
     best.significant = True
@@ -745,19 +783,23 @@ def _unexplained_reason(base_esr, floor, ranking, analysis) -> str:
         "cavitation, free play, a clipped or filtered signal) or a wrong damper file may be at work."
 
 
-def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measurement) -> float:
-    """Fraction of the held-out RSS the candidate removes, both models fitted on the training cycles only."""
+def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measurement, mask=None) -> float:
+    """Fraction of the held-out RSS the candidate removes, both models fitted on the training cycles only (both
+    sets restricted to ``mask``, the samples judged)."""
     held = _held_out_mask(record)
     train = ~held
+    if mask is not None:
+        held, train = held & mask, train & mask
     F = record.force
+    model = _model(cand.result)
     try:
         b = _fit(base_model, record, start=cand.result.values, mask=train)
-        c = _fit(cand.result.model, record, start=cand.result.values, mask=train)
+        c = _fit(model, record, start=cand.result.values, mask=train)
     except ErdesignError:
         return 0.0
     with np.errstate(all="ignore"):
         rb = np.sum((F[held] - base_model.force(record, b.values)[held]) ** 2)
-        rc = np.sum((F[held] - cand.result.model.force(record, c.values)[held]) ** 2)
+        rc = np.sum((F[held] - model.force(record, c.values)[held]) ** 2)
     if not (math.isfinite(rb) and math.isfinite(rc)):
         return 0.0
     return float(1 - rc / rb) if rb > 0 else 0.0
