@@ -148,6 +148,11 @@ def earthquake_motion(peak: float, field: float = 0.0, *, duration: float = 8.0,
     t1 = 0.15 * duration
     env = np.where(t < t1, (t / t1) ** 2, np.exp(-(t - t1) / (0.3 * duration)))
     env *= np.clip((t[-1] - t) / (0.05 * duration), 0, 1) ** 2  # come to rest
+    # the pieces meet with a kink; smoothed over 0.1 s (Hann window) the envelope, and so the piston's velocity,
+    # is continuous: a kinked envelope makes the velocity jump, which no actuator does and no derivative filter
+    # of a sampled displacement can follow
+    w = np.hanning(max(3, int(round(0.1 / (t[1] - t[0])))))
+    env = np.convolve(env, w / w.sum(), mode="same")
     x = x * env
     x *= peak / np.max(np.abs(x))
     return _finish(t, x, np.full(t.size, float(field)), f"earthquake-like motion, peak {peak * 1e3:g} mm")
