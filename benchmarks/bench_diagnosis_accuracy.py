@@ -84,7 +84,7 @@ def run_case(case, detectability: bool = True) -> dict:
            "duration_s": case.duration, "rate_Hz": case.rate, "samples": None,
            "verdict": None, "missing_effect": None, "baseline_esr": None, "noise_floor_esr": None,
            "ranking": None, "correct": False, "error": None, "error_stage": None, "time_s": None,
-           "effect_esr": None, "effect_size_over_noise": None}
+           "effect_esr": None, "effect_size_over_noise": None, "visible_over_noise": None}
     try:
         rec = case.make()
         with tempfile.TemporaryDirectory() as tmp:
@@ -96,11 +96,14 @@ def run_case(case, detectability: bool = True) -> dict:
     except Exception as exc:  # a failure of the truth rig or the reader, not of diagnose
         row.update(error=_error(exc), error_stage="record")
         return row
-    if detectability:
+    if isinstance(detectability, dict):         # measured by an earlier run on the same case
+        row.update({k: detectability.get(k) for k in ("effect_esr", "effect_size_over_noise", "visible_over_noise")})
+    elif detectability:
         try:
             det = case.detectability()
             row["effect_esr"] = _finite(det["effect_esr"])
             row["effect_size_over_noise"] = _finite(det["effect_size_over_noise"])
+            row["visible_over_noise"] = _finite(det["visible_over_noise"])
         except Exception as exc:
             row["detectability_error"] = _error(exc)
     t0 = time.perf_counter()
@@ -167,6 +170,13 @@ def _said(row) -> str:
     return row["verdict"]
 
 
+def _visible(row):
+    """What no recalibration of the clean damper removes, over the noise (``visible_over_noise`` of
+    :func:`erdesign.truthrig.cases.effect_size_over_noise`); runs before it had only ``effect_size_over_noise``."""
+    v = row.get("visible_over_noise")
+    return v if v is not None else row.get("effect_size_over_noise")
+
+
 def summarise(rows: list[dict]) -> dict:
     from erdesign.effects import EFFECT_NAMES
     from erdesign.truthrig.cases import UNDETECTABLE
@@ -190,7 +200,7 @@ def summarise(rows: list[dict]) -> dict:
         by[key] = {k: [sum(v), len(v)] for k, v in sorted(groups.items())}
     times = [r["time_s"] for r in rows if r["time_s"] is not None]
     detect = [r for r in rows if r["effect_size_over_noise"] is not None]
-    undetectable = [r for r in detect if r["effect_size_over_noise"] < UNDETECTABLE]
+    undetectable = [r for r in detect if _visible(r) is not None and _visible(r) < UNDETECTABLE]
     detectable_rows = [r for r in rows if r not in undetectable]
     return {
         "cases": n, "correct": sum(r["correct"] for r in rows),
@@ -204,11 +214,12 @@ def summarise(rows: list[dict]) -> dict:
         "time_mean_s": sum(times) / len(times) if times else None, "time_max_s": max(times) if times else None,
         "slowest": sorted(([r["name"], r["time_s"]] for r in rows if r["time_s"] is not None),
                           key=lambda x: -x[1])[:8],
-        "undetectable": [[r["name"], r["effect_size_over_noise"]] for r in undetectable],
+        "undetectable": [[r["name"], _visible(r)] for r in undetectable],
         "effect_size_over_noise": {s: sorted(r["effect_size_over_noise"] for r in detect if r["size"] == s)
                                    for s in ("moderate", "large")},
-        "wrong": [[r["name"], r["expected"], _said(r), r["effect_size_over_noise"]] for r in rows
-                  if not r["correct"]],
+        "visible_over_noise": {s: sorted(_visible(r) for r in detect if r["size"] == s and _visible(r) is not None)
+                               for s in ("moderate", "large")},
+        "wrong": [[r["name"], r["expected"], _said(r), _visible(r)] for r in rows if not r["correct"]],
     }
 
 
@@ -347,6 +358,9 @@ def main(argv=None) -> int:
     p.add_argument("--no-long", action="store_true", help="skip the 60 s, 1 kHz timing record")
     p.add_argument("--no-detectability", action="store_true", help="skip the noise-free detectability runs")
     p.add_argument("--from-json", default=None, help="summarise (and --write-docs) a previous --out file, no runs")
+    p.add_argument("--detectability-from", default=None,
+                   help="take the detectability of each case from a previous --out file where the case (name and "
+                        "mechanism parameters) is the same; measure it for the others")
     args = p.parse_args(argv)
     if args.from_json:
         data = json.loads(Path(args.from_json).read_text(encoding="utf-8"))
@@ -380,6 +394,15 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     rows = []
     detect = not args.no_detectability
+    known = {}
+    if args.detectability_from and detect:
+        for r in json.loads(Path(args.detectability_from).read_text(encoding="utf-8"))["cases"]:
+            if r.get("visible_over_noise") is not None:
+                known[r["name"]] = r
+    def detect_of(c):
+        r = known.get(c.name)
+        same = r is not None and r["mechanisms"] == {k: dict(v) for k, v in c.mechanisms.items()}
+        return r if same else detect
     def save(partial: bool, long=None, summary=None) -> None:
         if args.out:
             wall = time.perf_counter() - t0
@@ -391,12 +414,12 @@ def main(argv=None) -> int:
     queue = _interleaved(cases)
     if args.jobs <= 1:
         for c in queue:
-            rows.append(run_case(c, detect))
+            rows.append(run_case(c, detect_of(c)))
             _progress(rows[-1], len(rows), len(cases))
             save(True)
     else:
         with ProcessPoolExecutor(max_workers=args.jobs) as pool:
-            futures = [pool.submit(run_case, c, detect) for c in queue]
+            futures = [pool.submit(run_case, c, detect_of(c)) for c in queue]
             for fut in as_completed(futures):
                 rows.append(fut.result())
                 _progress(rows[-1], len(rows), len(cases))

@@ -13,8 +13,9 @@ import pytest
 
 from erdesign.effects import EFFECT_NAMES
 from erdesign.truthrig import MECHANISMS
-from erdesign.truthrig.cases import (DAMPERS, EXCITATIONS, LIBRARY_MECHANISMS, NOISES, OUT_OF_LIBRARY, STEP_PERIOD,
-                                     benchmark_cases, supported, unsupported_pairs)
+from erdesign.truthrig.cases import (DAMPERS, EXCITATIONS, LIBRARY_MECHANISMS, NOISES, NOT_VISIBLE_ON, OUT_OF_LIBRARY,
+                                     EXCITATION_OF,
+                                     STEP_PERIOD, benchmark_cases, supported, unsupported_pairs)
 
 BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_diagnosis_accuracy.py"
 
@@ -56,12 +57,14 @@ def test_catalogue_meets_the_coverage_rules(catalogue):
         for size in ("moderate", "large"):
             at_size = [c for c in singles if c.size == size]
             # on four dampers or more; an effect the truth rig cannot simulate on the mixed-mode damper (no valve
-            # law there) on every damper it can simulate it on
-            possible = {d for d in DAMPERS if supported({LIBRARY_MECHANISMS[effect]}, d)}
+            # law there) on every damper it can simulate it on, except where it cannot be seen at a physical size
+            mech = LIBRARY_MECHANISMS[effect]
+            possible = {d for d in DAMPERS if supported({mech}, d) and d not in NOT_VISIBLE_ON.get(mech, ())}
             assert {c.damper for c in at_size} == possible and len(possible) >= 3, (effect, size)
             if len(possible) >= 4:
                 assert len({c.damper for c in at_size}) >= 4
-        assert {c.excitation for c in singles} == set(EXCITATIONS), effect
+        assert {c.excitation for c in singles} == ({EXCITATION_OF[mech]} if mech in EXCITATION_OF
+                                                   else set(EXCITATIONS)), effect
         assert {c.noise for c in singles} == set(NOISES), effect
     pairs = {frozenset(c.accepted) for c in catalogue if c.kind == "pair"}
     impossible = {frozenset(p) for p in unsupported_pairs()}

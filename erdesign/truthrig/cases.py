@@ -46,7 +46,8 @@ from .simulate import MIXED_MECHANISMS, UNSUPPORTED
 
 __all__ = ["Case", "benchmark_cases", "mechanism_parameters", "effect_size_over_noise", "build_motion",
            "control_staircase", "LIBRARY_MECHANISMS", "OUT_OF_LIBRARY", "DAMPERS", "EXCITATIONS", "NOISES",
-           "SIZES", "STEP_PERIOD", "UNDETECTABLE", "SUBSETS", "supported", "unsupported_pairs"]
+           "SIZES", "STEP_PERIOD", "UNDETECTABLE", "SUBSETS", "supported", "unsupported_pairs", "NOT_VISIBLE_ON",
+           "EXCITATION_OF"]
 
 #: Library effect -> the truth rig's mechanism that produces it.
 LIBRARY_MECHANISMS = {
@@ -301,7 +302,7 @@ class Case:
         return effect_size_over_noise(self)
 
 
-def effect_size_over_noise(case: Case) -> dict[str, float | None]:
+def effect_size_over_noise(case: Case, recalibrate: bool = True) -> dict[str, float | None]:
     r"""How visible the case's mechanisms are: noise-free truth runs with and without them.
 
     .. math::
@@ -310,25 +311,47 @@ def effect_size_over_noise(case: Case) -> dict[str, float | None]:
         D_\text{noise} = \frac{n\,(\sigma F_\text{rms})^2}{\sum (F_\text{without} - \bar F_\text{without})^2}
 
     (:math:`\sigma` the force noise as a fraction of the RMS force): the energy of the change the mechanisms make
-    over the energy of the noise.  Part of the change may be absorbed by recalibrating the two fluid factors, so
-    this is an upper bound of what a diagnosis can see.  Returns ``effect_esr`` (D), ``noise_esr``
-    (:math:`D_\text{noise}`) and ``effect_size_over_noise``; all None for a clean case.
+    over the energy of the noise (``effect_size_over_noise``).  Part of the change is absorbed by recalibrating the
+    two fluid factors (a shear-thinning fluid looks much like a Bingham fluid with another viscosity), so with
+    ``recalibrate`` the run without the mechanisms is also fitted to the run with them - the truth rig's own
+    viscosity and yield-stress factors, bounded least squares, nothing of the diagnosed model - and
+    ``visible_over_noise`` is what is left over the noise: what no calibration of the clean damper can remove,
+    the size a diagnosis can see.  Samples where the velocity is within 1 % of its peak of zero are left out of
+    both sums (there the sign of a measured velocity is not known, :func:`erdesign.noise.sign_known`).  All None for
+    a clean case.
     """
+    keys = ("effect_esr", "noise_esr", "effect_size_over_noise", "visible_esr", "visible_over_noise")
     if not case.mechanisms:
-        return {"effect_esr": None, "noise_esr": None, "effect_size_over_noise": None}
+        return dict.fromkeys(keys)
+    from scipy.optimize import least_squares
+
     from . import simulate_truth
     damper = case.load_damper()
     motion = case.motion(damper)
-    runs = []
-    for mech in (case.mechanisms, {}):
-        rec = simulate_truth(case.truth(damper, mech), motion, force_noise=0.0, displacement_noise=0.0,
-                             seed=case.seed, name=case.name)
-        runs.append(np.asarray(rec.true_force, float))
-    with_, without = runs
+
+    def run(mech, kv=None, ky=None):
+        truth = case.truth(damper, mech)
+        if kv is not None:
+            truth = replace(truth, viscosity_factor=kv, yield_stress_factor=ky)
+        rec = simulate_truth(truth, motion, force_noise=0.0, displacement_noise=0.0, seed=case.seed, name=case.name)
+        return np.asarray(rec.true_force, float)
+
+    with_, without = run(case.mechanisms), run({})
     var = float(np.sum((without - without.mean()) ** 2))
     effect = float(np.sum((with_ - without) ** 2)) / var
     noise = with_.size * (case.noise * float(np.sqrt(np.mean(with_**2)))) ** 2 / var
-    return {"effect_esr": effect, "noise_esr": noise, "effect_size_over_noise": effect / noise}
+    out = {"effect_esr": effect, "noise_esr": noise, "effect_size_over_noise": effect / noise,
+           "visible_esr": None, "visible_over_noise": None}
+    if recalibrate:
+        keep = np.abs(motion.velocity) > 0.01 * np.max(np.abs(motion.velocity))
+        k0 = np.array([case.viscosity_factor, case.yield_stress_factor])
+        fit = least_squares(lambda k: (with_ - run({}, k[0], k[1]))[keep], k0, bounds=([0.05, 0.05], [20.0, 20.0]),
+                            x_scale=k0, diff_step=1e-4, max_nfev=60)
+        visible = float(np.sum(fit.fun**2)) / var
+        noise_kept = noise * keep.mean()
+        out["visible_esr"] = visible
+        out["visible_over_noise"] = visible / noise_kept
+    return out
 
 
 # Calibration factors of the true fluid (the nominal file is off by tens of percent), cycled over the cases.
@@ -336,7 +359,20 @@ _FACTORS = ((1.15, 0.9), (0.85, 1.1), (1.25, 0.8), (0.9, 1.2), (1.05, 0.95), (0.
 # Faster excitations for the mechanisms whose force grows with frequency faster than the viscous force.
 _FREQUENCY_BOOST = {"slug_inertia": 6.0, "compliance": 1.5}
 # Lower control levels where the yield force would hide a small force of another kind.
-_CONTROL_SCALE = {"slug_inertia": 0.4}
+_CONTROL_SCALE = {"slug_inertia": 0.4, "herschel_bulkley": 0.25}
+# Faster strokes for the mechanisms that show in the viscous force only (heating lowers the viscosity, not the yield
+# stress): the viscous share of the force and the heating power grow with the speed.
+_SPEED_BOOST = {"thermal": 2.0}
+# Where a mechanism cannot be seen at physical sizes, its single-effect slots go elsewhere (measured with
+# effect_size_over_noise's recalibrated ``visible_over_noise``, docs/diagnosis_benchmark.md):
+# - the fluid slug of Makris's ER damper, driven at its design speed of 25 mm/s, weighs too little to be felt;
+NOT_VISIBLE_ON = {"slug_inertia": {"makris"}}
+# - heating needs sustained power: sine programmes (a decaying earthquake record or random motion heats too little);
+EXCITATION_OF = {"thermal": "sine"}
+# - heating and shear thinning change only the viscous part of the force, which is small beside an MR fluid's
+#   yield force: on the MR dampers they are measured with the quieter load cell.
+QUIET_ON_MR = {"thermal", "herschel_bulkley"}
+_MR_DAMPERS = {"mr_valve", "mr_valve_current", "mr_mixed"}
 # Sampling rate [Hz] by mechanism: 1 kHz where a few milliseconds matter.
 _RATE = {"slug_inertia": 1000.0, "coil_lag": 1000.0, "compliance": 1000.0}
 # Record length [s] by mechanism: heating needs time to warm the fluid.
@@ -357,15 +393,16 @@ def _case(name, damper_name, excitation, noise, mechanisms, expected, accepted, 
     damper = _example(damper_name)
     scale = _SCALES[damper_name]
     boost = max([_FREQUENCY_BOOST.get(m, 1.0) for m in mechanisms] or [1.0])
+    speed = scale.speed * max([_SPEED_BOOST.get(m, 1.0) for m in mechanisms] or [1.0])
     params = {}
     for mech, sz in mechanisms.items():
-        params[mech] = mechanism_parameters(mech, sz, damper, scale.speed, scale.frequency * boost)
+        params[mech] = mechanism_parameters(mech, sz, damper, speed, scale.frequency * boost)
     dur = duration or max([_DURATION.get(m, 6.0) for m in mechanisms] or [6.0])
     rt = rate or max([_RATE.get(m, 500.0) for m in mechanisms] or [500.0])
     kv, ky = _FACTORS[seed % len(_FACTORS)]
     control = min([_CONTROL_SCALE.get(m, 1.0) for m in mechanisms] or [1.0])
     return Case(name, damper_name, excitation, noise, params, expected, frozenset(accepted), seed, size, dur, rt,
-                scale.speed, scale.frequency * boost, kv, ky, control)
+                speed, scale.frequency * boost, kv, ky, control)
 
 
 def supported(mechanisms, damper_name: str) -> bool:
@@ -392,15 +429,17 @@ def _full() -> list[Case]:
     # each effect meets all
     for ie, effect in enumerate(effects):
         mech = LIBRARY_MECHANISMS[effect]
-        dampers = [d for d in DAMPERS if supported({mech}, d)]
+        dampers = [d for d in DAMPERS if supported({mech}, d) and d not in NOT_VISIBLE_ON.get(mech, ())]
         for isz, size in enumerate(SIZES):
             for k in range(len(DAMPERS)):
                 dname = dampers[k % len(dampers)]
-                exc = EXCITATIONS[(k + ie + isz + k // len(dampers)) % 3]
-                noise = NOISES[(k + isz) % 2]
+                exc = EXCITATION_OF.get(mech, EXCITATIONS[(k + ie + isz + k // len(dampers)) % 3])
+                noise = NOISES[0] if mech in QUIET_ON_MR and dname in _MR_DAMPERS else NOISES[(k + isz) % 2]
                 seed += 1
-                cases.append(_case(f"{effect}-{size}-{dname}-{exc}-{round(100 * noise)}pct", dname, exc, noise,
-                                   {mech: size}, effect, {effect}, seed, size))
+                name = f"{effect}-{size}-{dname}-{exc}-{round(100 * noise)}pct"
+                if any(c.name == name for c in cases):     # the same conditions again (another noise seed)
+                    name += f"-{k}"
+                cases.append(_case(name, dname, exc, noise, {mech: size}, effect, {effect}, seed, size))
     # every pair of library effects once, both large, that the truth rig can simulate together
     impossible = set(unsupported_pairs())
     for ip, (a, b) in enumerate(combinations(effects, 2)):
