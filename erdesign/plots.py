@@ -43,10 +43,11 @@ _LAYOUT = dict(template="plotly_white", height=420, margin=dict(l=70, r=20, t=60
                legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"))
 
 #: Measured data: a thin light line with light markers, so that the model drawn over it stays readable.
-MEASURED_STYLE = dict(mode="lines+markers", line=dict(color="#b0b0b0", width=1),
-                      marker=dict(color="#b0b0b0", size=3, opacity=0.6))
-#: A model against measured data: a bold line in a colour that contrasts with the light grey of the data.
-MODEL_STYLE = dict(mode="lines", line=dict(color="#c0392b", width=3))
+MEASURED_STYLE = dict(mode="lines+markers", line=dict(color="rgba(90, 90, 90, 0.35)", width=1),
+                      marker=dict(color="rgba(60, 60, 60, 0.45)", size=3))
+#: A model against measured data: a bold line in a colour that contrasts with the light grey of the data.  Drawn
+#: first, so that the measured markers stay visible over it.
+MODEL_STYLE = dict(mode="lines", line=dict(color="rgba(192, 57, 43, 0.85)", width=3.5))
 
 
 def spans_decades(values: Any, decades: float = 1.0) -> bool:
@@ -141,12 +142,19 @@ def error_history_figure(history: Sequence[Any], noise_floor: float | None = Non
     fig = go.Figure(go.Bar(x=[f"{h.step}: {h.effect}" for h in history], y=[h.esr for h in history],
                            text=[f"{h.esr:.3g}" for h in history], textposition="outside", name="ESR",
                            marker_color="#1f77b4", cliponaxis=False))
+    esr = [h.esr for h in history if h.esr > 0]
+    lows = esr + ([noise_floor] if noise_floor is not None and noise_floor > 0 else [])
     if noise_floor is not None and noise_floor > 0:
-        fig.add_hline(y=noise_floor, line=dict(color="#2ca02c", dash="dash"),
-                      annotation_text=f"noise floor {noise_floor:.3g}", annotation_position="bottom right")
+        fig.add_hline(y=noise_floor, line=dict(color="#2ca02c", dash="dash"))
+        # plotly places a line's own annotation wrongly on a log axis: annotate at log10(y) instead
+        fig.add_annotation(x=1, xref="paper", xanchor="right", y=float(np.log10(noise_floor)), yref="y",
+                           yanchor="top", text=f"noise floor {noise_floor:.3g}", showarrow=False,
+                           font=dict(color="#1e7b1e"), bgcolor="rgba(255, 255, 255, 0.85)")
     fig.update_layout(title="Error history", xaxis_title="step: effect added", yaxis_title="ESR [-] (log scale)",
                       **{**_LAYOUT, "showlegend": False})
     fig.update_yaxes(type="log")
+    if lows:      # the range holds the bars, their labels and the noise floor
+        fig.update_yaxes(range=[float(np.log10(min(lows))) - 0.5, float(np.log10(max(esr or lows))) + 0.6])
     return fig
 
 
@@ -156,7 +164,8 @@ def measured_loops_figure(displacement, velocity, force_measured, force_model) -
     v_unit = pick_unit(Q_(velocity, "m/s"), "velocity")
     f_unit = pick_unit(Q_(np.concatenate([np.ravel(force_measured), np.ravel(force_model)]), "N"), "force")
     fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
-    for name, F, style in (("measured", force_measured, MEASURED_STYLE), ("model", force_model, MODEL_STYLE)):
+    # the model first, the measured markers over it: visible also where the model follows them closely
+    for name, F, style in (("model", force_model, MODEL_STYLE), ("measured", force_measured, MEASURED_STYLE)):
         y = _convert(F, "N", f_unit)
         common = dict(name=name, legendgroup=name, **style)
         fig.add_trace(go.Scatter(x=_convert(displacement, "m", x_unit), y=y, **common), row=1, col=1)

@@ -20,6 +20,7 @@ import time
 import urllib.request
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 CHROMIUM = Path("/usr/bin/chromium")
@@ -138,22 +139,74 @@ def _go(page, title: str) -> None:
     _idle(page)
 
 
-def test_app_end_to_end(page, app_url, tmp_path):
+def _download(page, button_name, folder: Path) -> Path:
+    """Click the download button called ``button_name``; the downloaded file, saved in ``folder``."""
+    with page.expect_download() as info:
+        page.get_by_role("button", name=button_name).first.click()
+    download = info.value
+    path = folder / download.suggested_filename
+    download.save_as(str(path))
+    return path
+
+
+@pytest.fixture(scope="module")
+def friction_csv(tmp_path_factory) -> Path:
+    """A measurement of the virtual rig on the Makris damper with 800 N of hidden seal friction (the record of
+    tests/test_cli_diagnose.py), displacement in inches and force in lbf as a user's file might have them."""
+    from erdesign import load_example
+    from erdesign.measurement import write_measurement
+    from erdesign.rig import run_rig, sweep
+
+    rig = run_rig(load_example("makris"), sweep([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300),
+                  hidden={"seal_friction": {"friction_force": 800.0}}, viscosity_factor=1.2,
+                  yield_stress_factor=0.8, seed=1)
+    path = tmp_path_factory.mktemp("measurement") / "friction-test.csv"
+    write_measurement(path, rig.record, units={"displacement": "in", "force": "lbf", "field": "kV/mm"},
+                      comment=rig.comment)
+    return path
+
+
+def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
+    """Issue 14: size -> save the damper file -> reload it -> simulate -> upload a measurement -> diagnose -> add
+    the effect -> download the report; the downloaded files are checked, a screenshot is taken of each page."""
     expect = sync_api.expect
     page.goto(app_url)
 
-    # Size: opens on the built-in Makris damper (seed 004) at 25 mm/s and 3 kV/mm.
+    # Size: opens on the built-in Makris damper (seed 004).
     expect(page.get_by_role("heading", name="Size a damper")).to_be_visible()
     expect(page.get_by_label("gap h", exact=True)).to_have_value("0.8 mm")
+    expect(_metric(page, "force F").first).to_be_visible()
+    _idle(page)
     before = _metric(page, "force F").first.inner_text()
     # 1 in/s: the design point of `erdesign size` in the library's doctest (Damper.size): 6.07 kN.
     _commit(page, "design velocity v", "1 in/s")
     expect(_metric(page, "force F").first).to_have_text(SIX_KN)
     assert not SIX_KN.match(before)
+    _commit(page, "seal friction Fs", "25 lbf")          # Makris's P_y in his unit (eq 14)
+    _idle(page)
     expect(page.locator(".js-plotly-plot").first).to_be_visible()
     _shoot(page, tmp_path / "size.png")
 
-    # Simulate: a sine on the physics damper; a larger amplitude gives a larger peak force.
+    # Save the damper file; it reads back in the library as typed.
+    toml = _download(page, "Damper file (TOML)", tmp_path)
+    assert toml.name == "makris-1996.toml"
+    text = toml.read_text()
+    assert 'seal_friction = "25 lbf"' in text and "design point: v = 1 in/s; E = 3 kV/mm" in text
+    from erdesign.damper_file import load_damper
+
+    assert load_damper(toml).seal_friction == pytest.approx(111.2, rel=1e-3)      # 25 lbf in N
+
+    # Reload it after changing the page: the upload puts back the inputs and the design point.
+    _commit(page, "gap h", "0.6 mm")
+    _commit(page, "design velocity v", "50 mm/s")
+    _idle(page)
+    page.get_by_test_id("stFileUploader").first.locator("input[type=file]").set_input_files(str(toml))
+    _idle(page)
+    expect(page.get_by_label("gap h", exact=True)).to_have_value("0.8 mm")
+    expect(page.get_by_label("design velocity v", exact=True)).to_have_value("1 in/s")
+    expect(_metric(page, "force F").first).to_have_text(SIX_KN)
+
+    # Simulate: a sine on the physics damper; a larger amplitude gives a larger peak force; the history downloads.
     _go(page, "Simulate")
     expect(page.get_by_role("heading", name="Simulate")).to_be_visible()
     peak = _metric(page, "peak force")
@@ -161,43 +214,57 @@ def test_app_end_to_end(page, app_url, tmp_path):
     first = peak.inner_text()
     _commit(page, "amplitude X0", "20 mm")
     expect(peak).not_to_have_text(first)
+    _idle(page)
     _shoot(page, tmp_path / "simulate.png")
+    simulated = _download(page, "Simulated time history (CSV)", tmp_path)
+    from erdesign.measurement import read_measurement
 
-    # Compare and diagnose: the built-in example hides seal friction (erdesign.app.state.RIG_EXAMPLES or the
-    # package's example measurements); the diagnosis must name an effect and rank it first.
+    record = read_measurement(simulated)
+    assert np.abs(record.displacement).max() == pytest.approx(0.020, rel=1e-3)       # the 20 mm typed
+
+    # Compare and diagnose: upload the measurement; the diagnosis names the hidden seal friction.
     _go(page, "Compare and diagnose")
     expect(page.get_by_role("heading", name="Compare and diagnose")).to_be_visible()
+    page.get_by_text("upload a measurement CSV").click()
+    _idle(page)
+    page.get_by_test_id("stFileUploader").first.locator("input[type=file]").set_input_files(str(friction_csv))
+    _idle(page)
+    expect(page.get_by_text("friction-test.csv:")).to_be_visible()
     page.get_by_role("button", name="Diagnose").click()
     verdict = page.get_by_test_id("stAlertContentSuccess").filter(has_text="Missing effect")
     expect(verdict.first).to_be_visible()
     _idle(page)
     effect = re.search(r"Missing effect: (\w+)", verdict.first.inner_text()).group(1)
-    tab = page.get_by_role("tab", name="missing effects")
-    expect(tab).to_have_count(1)
-    tab.click()
-    ranking = page.get_by_test_id("stTable")
-    expect(ranking).to_contain_text(effect)
-    first_row = ranking.locator("tbody tr").first
-    expect(first_row).to_contain_text(effect)
+    assert effect == "seal_friction"
+    esr0 = float(_metric(page, "ESR of the calibrated model").first.inner_text())
     _shoot(page, tmp_path / "compare.png")
-    # add it and refit: the error history gets a second bar and the ESR falls
-    page.get_by_role("button", name="Add effect and refit").click()
-    refitted = page.get_by_test_id("stMetric").filter(has_text=f"baseline + {effect}")
-    expect(refitted.first).to_be_visible()
+    # the verdict box carries the button: add the effect and refit; the error history (in view) gets a 2nd bar
+    page.get_by_role("button", name=f"Add {effect} and refit").click()
+    expect(page.get_by_text(f"Model: baseline + {effect}")).to_be_visible()
     _idle(page)
-    history_tab = page.get_by_role("tab", name="error history")
-    expect(history_tab).to_have_count(1)          # the rerun has replaced the previous run's elements
-    history_tab.click()
-    _shoot(page, tmp_path / "compare_history.png")
+    esr1 = float(_metric(page, "ESR of the calibrated model").first.inner_text())
+    assert esr1 < esr0 / 3
+    _shoot(page, tmp_path / "compare_refit.png")
+    page.get_by_role("tab", name="downloads").click()
+    params = _download(page, "Fitted parameters", tmp_path).read_text()
+    assert "friction_force" in params and "± " in params
+    history = _download(page, "Error history", tmp_path).read_text().splitlines()
+    assert [line.split(",")[1] for line in history[1:]] == ["baseline", effect, "noise floor"]
 
-    # Report: the download of the design with the diagnosis.
+    # Report: the download is the design of the Size page (1 in/s, 3 kV/mm) with the diagnosis.
     _go(page, "Report")
     expect(page.get_by_role("heading", name="Report")).to_be_visible()
-    expect(page.get_by_role("button", name=re.compile(r"Download .*-report\.html"))).to_be_visible()
     expect(page.get_by_text("include the comparison")).to_be_visible()
     _shoot(page, tmp_path / "report.png")
+    report = _download(page, re.compile(r"Download .*-report\.html"), tmp_path)
+    html = report.read_text()
+    assert 'id="q-design-velocity"' in html and ">25.4 mm/s</span>" in html and ">3 kV/mm</span>" in html
+    assert "<code>25 lbf</code>" in html                                   # the input as typed
+    assert f"<td>{effect}</td>" in html and "friction-test.csv" in html      # the error history and the record
+    # look at the report as a reader would
+    page.goto(report.as_uri())
+    _shoot(page, tmp_path / "report_html.png")
 
-    # Back to Size: the input changed at the start survived the page switches (session state).
-    _go(page, "Size")
-    expect(page.get_by_label("design velocity v", exact=True)).to_have_value("1 in/s")
-    expect(_metric(page, "force F").first).to_have_text(SIX_KN)
+    # Back in the app, on Size: the design survived the page switches (session state).
+    page.goto(app_url)
+    _idle(page)

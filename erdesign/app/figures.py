@@ -72,8 +72,9 @@ def loops_figure(displacement, velocity, force, *, label: str = "model", measure
     both = force if measured is None else np.concatenate([np.ravel(force), np.ravel(measured)])
     _, f_unit = _in(both, "N", "force")
     fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
-    traces = [] if measured is None else [("measured", measured, MEASURED_STYLE)]
-    traces.append((label, force, MODEL_STYLE))
+    traces = [(label, force, MODEL_STYLE)]          # the model first, the measured markers over it
+    if measured is not None:
+        traces.append(("measured", measured, MEASURED_STYLE))
     for name, F, style in traces:
         y = np.asarray(Q_(np.asarray(F, dtype=float), "N").to(_unit_of(f_unit)).magnitude)
         common = dict(name=name, legendgroup=name, **style)
@@ -97,11 +98,11 @@ def time_figure(time, force, *, label: str = "model", measured=None) -> go.Figur
     both = force if measured is None else np.concatenate([np.ravel(force), np.ravel(measured)])
     _, f_unit = _in(both, "N", "force")
     fig = go.Figure()
-    if measured is not None:
-        fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
-                                 name="measured", **MEASURED_STYLE))
     fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(force, float), "N").to(_unit_of(f_unit)).magnitude,
                              name=label, **MODEL_STYLE))
+    if measured is not None:      # over the model, so that both stay visible where they agree
+        fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
+                                 name="measured", **MEASURED_STYLE))
     fig.update_layout(title="Force against time", xaxis_title="time t [s]", yaxis_title=f"force F [{f_unit}]",
                       height=380, **_LAYOUT)
     return fig

@@ -223,8 +223,8 @@ def _point_inputs() -> dict:
         "field": state.widget(cols[1].text_input, "design field E", "size.field", "3 kV/mm",
                               help="The control, with its unit (kV/mm, kA/m, T or A)."),
         "v_top": state.widget(cols[2].text_input, "top velocity of the curves", "size.v_top", "50 mm/s"),
-        "levels": int(state.widget(cols[3].number_input, "field levels of the curves", "size.levels", 4, min_value=1,
-                                   max_value=6, step=1, help="Controls from the design field down to 0.")),
+        "levels": int(state.widget(cols[3].number_input, "field levels", "size.levels", 4, min_value=1,
+                                   max_value=6, step=1, help="Controls of the curves, from the design field down to 0.")),
     }
     return point
 
@@ -249,7 +249,7 @@ def _metrics(report) -> None:
             col.metric(row.label, row.value.text, help=row.note or None)
 
 
-_STATUS = {"pass": "✅ pass", "warn": "⚠️ warn", "info": "ℹ️ info"}
+_STATUS = {"pass": "pass", "warn": "WARN", "info": "info"}
 
 
 def _checks(report) -> None:
@@ -260,9 +260,9 @@ def _checks(report) -> None:
         st.success(f"Validity checks: {len(report.checks)} pass or info, none warns (the report's section 4).")
     else:
         st.warning(f"Validity checks: {report.warnings} of {len(report.checks)} warn (the report's section 4).")
-    st.dataframe([{"check": c.name, "status": _STATUS[c.status], "value": c.value.text if c.value else "",
-                   "limit": c.limit.text if c.limit else "", "detail": c.detail} for c in report.checks],
-                 hide_index=True, key="size.checks", width="stretch")
+    # a table, not a dataframe: the details wrap instead of being cut off
+    st.table([{"check": c.name, "status": _STATUS[c.status], "value": c.value.text if c.value else "",
+               "limit": c.limit.text if c.limit else "", "detail": c.detail} for c in report.checks])
 
 
 def _curves_csv(report) -> str:
@@ -293,7 +293,7 @@ def _downloads(design: dict, report) -> None:
                       for r in report.design_point]
                      + [{"quantity": f"check: {c.name}", "value": c.status, "unit": "",
                          "note": c.detail} for c in report.checks])
-    cols[2].download_button("Design point and checks (CSV)", point, file_name=f"{stem}-design-point.csv",
+    cols[2].download_button("Design point (CSV)", point, file_name=f"{stem}-design-point.csv",
                             mime="text/csv", key="size.dl.point", icon=":material/download:")
 
 
