@@ -6,19 +6,23 @@ of seed 002 Table 4 (identify on one experiment, score the ESR on every other).
 from __future__ import annotations
 
 import math
+import time as _time
 from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 import numpy as np
 from scipy.optimize import least_squares
 
+from .errors import ErdesignError
+from .models._kernels import coarse_steps
 from .fit import FitError, FitResult, fit
 from .measurement import Measurement
 from .metrics import esr
 from .models.base import Model
 
 __all__ = ["identify", "identify_joint", "cross_validation", "CrossValidation", "JointResult",
-           "choose_control_reference"]
+           "choose_control_reference", "score", "simulate", "Simulation", "resolve_parameters", "ParameterSource",
+           "fit_report", "result_json", "parameter_table", "strong_correlations", "fit_statistics"]
 
 
 def choose_control_reference(model: Model, records: Sequence[Measurement]) -> float:
@@ -30,23 +34,474 @@ def choose_control_reference(model: Model, records: Sequence[Measurement]) -> fl
     return ref
 
 
+class _OutOfTime(Exception):
+    """Raised inside the residual when the time budget is spent (the best point so far is kept)."""
+
+
+class _Stalled(Exception):
+    """Raised inside the residual when the best sum of squares has improved by less than STALL_RTOL over the last
+    STALL_JACOBIANS Jacobians' worth of simulations: the optimiser is polishing digits the data do not hold (its
+    finite-difference steps also see the sub-step count of the kernels switch)."""
+
+
+STALL_RTOL = 1e-4
+STALL_JACOBIANS = 3
+
+
+class _Tracker:
+    """Residual of one record (optionally on a subset of samples) that counts simulations, keeps the best point,
+    reports progress and enforces the time budget."""
+
+    def __init__(self, model, record, F, mask, full_values, deadline, progress, label, stall_rtol=None):
+        self.stall_rtol = STALL_RTOL if stall_rtol is None else stall_rtol
+        self.model, self.record, self.F, self.mask = model, record, F, mask
+        self.full_values, self.deadline, self.progress, self.label = full_values, deadline, progress, label
+        self.best_cost, self.best_z, self.calls = math.inf, None, 0
+        self.history: list[float] = []
+        self.spread = float(np.sum((F[mask] - F[mask].mean()) ** 2)) if mask is not None else \
+            float(np.sum((F - F.mean()) ** 2))
+        self.last_report = _time.monotonic()
+
+    def __call__(self, z):
+        if self.deadline is not None and _time.monotonic() > self.deadline:
+            raise _OutOfTime
+        r = self.model.force(self.record, self.full_values(z)) - self.F
+        if self.mask is not None:
+            r = r[self.mask]
+        r = np.where(np.isfinite(r), r, 1e12)
+        cost = float(np.dot(r, r))
+        self.calls += 1
+        if cost < self.best_cost:
+            self.best_cost, self.best_z = cost, np.array(z, dtype=float)
+        self.history.append(self.best_cost)
+        window = STALL_JACOBIANS * (len(z) + 1)
+        if len(self.history) > window + 2 * (len(z) + 1) and \
+                self.history[-window - 1] <= self.best_cost * (1.0 + self.stall_rtol):
+            raise _Stalled
+        now = _time.monotonic()
+        if self.progress is not None and now - self.last_report > 2.0:
+            self.last_report = now
+            self.progress(f"{self.label}: {self.calls} simulations, best ESR {self.best_cost / self.spread:.4g}")
+        return r
+
+
+#: Singular value (of the Jacobian with unit-norm columns) below which a direction of parameter space is taken as
+#: not seen by the data: exact redundancies leave ~1e-8 (finite-difference noise), real information 1e-3 and up.
+NULL_SV = 1e-6
+
+
+def _null_parameters(J, z, tr, names, prefer=()):
+    """The fewest parameters to hold so that the data fix the rest: for each near-null direction of the scaled
+    Jacobian, the parameter with the largest share of it (a control slope when it has a comparable share: the
+    record then cannot show the control dependence)."""
+    Js = np.asarray(J, dtype=float) / tr.dvalue_dz(z)[np.newaxis, :]
+    norms = np.linalg.norm(Js, axis=0)
+    held = [n for n, q in zip(names, norms) if q == 0]
+    live = [i for i, q in enumerate(norms) if q > 0]
+    if len(live) < 2:
+        return held
+    _, sv, Vt = np.linalg.svd(Js[:, live] / norms[live], full_matrices=False)
+    for v in Vt[sv < NULL_SV * sv.max()]:
+        share = np.abs(v)
+        order = [live[i] for i in np.argsort(-share)]
+        top = share.max()
+        pick = next((i for i in order if names[i] in prefer and share[live.index(i)] > 0.3 * top
+                     and names[i] not in held), None)
+        if pick is None:
+            pick = next((i for i in order if names[i] not in held), None)
+        if pick is not None:
+            held.append(names[pick])
+    return held
+
+
+class _StalledResult:
+    """Stands in for scipy's OptimizeResult when the optimiser was stopped for lack of progress."""
+
+    def __init__(self, z, tracker):
+        self.x = z
+        self.cost = 0.5 * tracker.best_cost
+        self.status = 2
+        self.success = True
+        self.nfev = tracker.calls
+        self.jac = None
+        self.message = (f"converged: the sum of squares improved by less than {100 * STALL_RTOL:g} % over the last "
+                        f"{STALL_JACOBIANS} Jacobians")
+
+
+def _fd_jacobian(fun, z, lo, hi, r0):
+    """Forward-difference Jacobian of ``fun`` at z (steps inside the bounds)."""
+    J = np.empty((r0.size, z.size))
+    for j in range(z.size):
+        h = 1.49e-8 * max(1.0, abs(z[j]))
+        if z[j] + h > hi[j]:
+            h = -h
+        zp = z.copy()
+        zp[j] += h
+        J[:, j] = (fun(zp) - r0) / h
+    return J
+
+
+#: Relative decrease of the sum of squares below which the optimiser stops: 1e-6 changes the ESR in its sixth
+#: digit, far below what a record can tell (scipy's default 1e-8 spends hundreds of simulations on such digits).
+FTOL = 1e-6
+#: A start "fails" when the optimiser stops without converging or leaves more than this fraction of the variance
+#: that a linear viscous-plus-friction fit leaves (F ~ c v + f sgn v + f0): extra starts are then tried.
+FAIL_RATIO = 1.0
+
+
+def _baseline_esr(record, F, mask):
+    v = record.velocity
+    A = np.column_stack([v, np.sign(v), np.ones_like(v)])
+    if mask is not None:
+        A, F = A[mask], F[mask]
+    coef, *_ = np.linalg.lstsq(A, F, rcond=None)
+    return esr(F, A @ coef)
+
+
 def identify(model: Model, record: Measurement, *, starts: int = 4, global_search: bool = False,
-             **options) -> FitResult:
-    """Identify ``model`` on ``record``: choose the control reference, fit (multi-start), and train the network
-    of a hybrid model (``maxwell_neural``) on the residual of its parametric part."""
+             max_time: float | None = None, decimate: int = 1, exclude_clipped: bool = False, progress=None,
+             free: Sequence[str] | None = None, fixed: Mapping[str, float] | None = None,
+             start: Mapping[str, float] | None = None, seed: int = 0, max_nfev: int | None = None,
+             fix_unidentifiable: bool = True) -> FitResult:
+    """Identify ``model`` on ``record`` by bounded least squares, at the scale of real records.
+
+    * The control reference is chosen from the record (:func:`choose_control_reference`); a control column of zeros
+      holds the control slopes, as no control column does.
+    * One local start (trust-region reflective, :func:`scipy.optimize.least_squares`) from the model's guess;
+      further starts (Latin hypercube around it, as :func:`erdesign.fit.fit`) only when it fails: the optimiser did
+      not converge, or the fit is no better than a linear viscous-plus-friction fit.  ``starts`` bounds the number.
+    * Long records (> 20,000 samples) are first fitted on every k-th sample (about 15,000 left; the models read the
+      motion as linear between samples, which is still fine at that rate for a warm start), then polished on all
+      samples.  ``decimate`` > 1 fits on every ``decimate``-th sample only (the scores are still on all samples).
+    * ``max_time`` [s] bounds the wall time: the best point found so far is returned (``success`` False, with a
+      message saying so).  ``progress`` (a callable taking a string) receives a line every few seconds.
+    * ``exclude_clipped``: force samples at a flat top or bottom (:func:`erdesign.measurement.clipped_samples`) are
+      left out of the residual and the scores.
+    * Parameters the data cannot identify (a null direction of the Jacobian) are held at their start values and
+      the fit repeated (``fix_unidentifiable``); they are listed in ``result.extra["not_identifiable"]``.
+
+    Returns a :class:`~erdesign.fit.FitResult` whose ``extra`` carries the report's content (initial values,
+    parameters at a bound, strong correlations, warnings, fit statistics; :func:`fit_report`).
+    """
+    from scipy.optimize import least_squares
+
+    from .fit import _finite_box, _Transform, _uncertainty
+    from .measurement import clipped_samples
+
+    t_start = _time.monotonic()
+    deadline = None if max_time is None else t_start + float(max_time)
+    say = progress or (lambda msg: None)
+    F_all = record.require_force()
+    check = getattr(model, "check_record", None)
+    if check is not None:
+        check(record)
+    notes: list[str] = []
     choose_control_reference(model, [record])
+    fixed = dict(fixed or {})
     if record.control_kind is not None and not np.any(record.control):
-        # a control column of zeros shows no more of the control dependence than none: hold the slopes too
-        free = options.get("free")
         held = {k: model.parameter(k).default for k in model.control_parameters if free is None or k not in free}
-        options["fixed"] = {**held, **dict(options.get("fixed") or {})}
-    result = fit(model, record, starts=starts, global_search=global_search, **options)
+        fixed = {**held, **fixed}
+    if record.control_kind is not None and np.ptp(record.control) > 0 and not model.uses_control:
+        notes.append(f"{model.name} has no control dependence, but the record's {record.control_kind} varies "
+                     f"({np.min(record.control):.4g} to {np.max(record.control):.4g} SI): the fit averages over it")
+    names = model.parameter_names
+    for k in list(fixed) + list(free or ()):
+        model.parameter(k)
+    auto = {k: v for k, v in (model.fixed_for(record) if hasattr(model, "fixed_for") else {}).items()
+            if free is None or k not in free}
+    fixed = {**auto, **fixed}
+    free_names = tuple(n for n in (free if free is not None else names) if n not in fixed)
+    if not free_names:
+        raise FitError(f"{model.name}: no free parameter to fit")
+    clipped = clipped_samples(F_all)
+    mask = ~clipped if exclude_clipped and clipped.any() else None
+    if clipped.any() and not exclude_clipped:
+        notes.append(f"{int(clipped.sum())} force samples sit at a flat top or bottom ({F_all[clipped][0]:.6g} N): "
+                     "a load cell at its limit? --exclude-clipped leaves them out")
+    n_scored = int(F_all.size if mask is None else mask.sum())
+    if n_scored <= len(free_names):
+        raise FitError(f"{record.name or 'record'}: {n_scored} samples cannot determine {len(free_names)} "
+                       "parameters")
+    guess = {**model.initial_guess(record), **(start or {})}
+    base = model.check_values({**{k: v for k, v in guess.items() if k in names}, **fixed})
+    initial = dict(base)
+
+    def run(free_names, base, z_start, stage_records, label):
+        """Least squares over ``free_names`` on each (record, force, mask) of ``stage_records`` in turn."""
+        tr = _Transform(model, free_names)
+        lo, hi = tr.bounds()
+        z = np.clip(tr.to_search([base[n] for n in free_names]) if z_start is None else z_start, lo, hi)
+
+        def full_values(zz):
+            vals = dict(base)
+            vals.update(zip(free_names, (float(v) for v in tr.to_values(zz))))
+            return vals
+
+        res = None
+        out_of_time = False
+        tracker = None
+        for k, (rec, F, m, stage) in enumerate(stage_records):
+            tracker = _Tracker(model, rec, F, m, full_values, deadline, progress, f"{label}, {stage}",
+                               stall.get(k, STALL_RTOL))
+            try:
+                with coarse_steps():
+                    res = least_squares(tracker, z, bounds=(lo, hi), method="trf", x_scale="jac",
+                                        max_nfev=max_nfev, ftol=FTOL, xtol=1e-8)
+                z = res.x
+            except _Stalled:
+                z = tracker.best_z
+                res = _StalledResult(z, tracker)
+            except _OutOfTime:
+                out_of_time = True
+                if tracker.best_z is not None:
+                    z = tracker.best_z
+                res = None
+                break
+        return tr, z, res, out_of_time, full_values, tracker
+
+    # stages: a decimated warm start on long records, then all samples (or only the decimated record)
+    decimate = max(1, int(decimate))
+    fit_rec = record if decimate == 1 else record.select(slice(None, None, decimate))
+    fit_mask = mask if decimate == 1 or mask is None else mask[::decimate]
+    stages = []
+    stall: dict[int, float] = {}
+    if decimate == 1 and len(record) > 20_000:
+        # at least 1 kHz kept: coarser, the motion read as linear between samples cuts reversals enough to move
+        # the optimum of a hysteretic model (on Dyke's 3 kHz record every 5th sample gave ESR 0.121 on all samples
+        # for an optimum of 0.101 on the decimated copy)
+        k = int(max(2, min(math.ceil(len(record) / 15_000), math.floor(record.sample_rate / 1000.0))))
+        coarse = record.select(slice(None, None, k))
+        stages.append((coarse, coarse.force, None if mask is None else mask[::k], f"every {k}th sample"))
+        stall = {0: 1e-3}  # the warm start needs no more than three digits
+    stages.append((fit_rec, fit_rec.force, fit_mask, "all samples" if decimate == 1 else
+                   f"every {decimate}th sample"))
+    baseline = _baseline_esr(record, F_all, mask)
+
+    tr0 = _Transform(model, free_names)
+    lo0, hi0 = tr0.bounds()
+    z0 = np.clip(tr0.to_search([base[n] for n in free_names]), lo0, hi0)
+    candidates = [z0]
+    if starts > 1:
+        from scipy.stats import qmc
+        box_lo, box_hi = _finite_box(lo0, hi0, z0, tr0.log)
+        candidates.extend(qmc.scale(qmc.LatinHypercube(d=len(free_names), seed=seed).random(starts - 1),
+                                    box_lo, box_hi))
+    if global_search:
+        from scipy.optimize import differential_evolution
+        box_lo, box_hi = _finite_box(lo0, hi0, z0, None)
+        probe = _Tracker(model, fit_rec, fit_rec.force, fit_mask,
+                         lambda zz: {**base, **dict(zip(free_names, map(float, tr0.to_values(zz))))}, deadline,
+                         progress, "global search")
+        try:
+            de = differential_evolution(lambda zz: float(np.sum(probe(zz) ** 2)), list(zip(box_lo, box_hi)),
+                                        seed=seed, tol=1e-8, polish=False, maxiter=200, popsize=15, init="sobol")
+            candidates.insert(1, de.x)
+        except _OutOfTime:
+            if probe.best_z is not None:
+                candidates.insert(1, probe.best_z)
+    best = None
+    tried = 0
+    for i, zc in enumerate(candidates):
+        if deadline is not None and _time.monotonic() > deadline:
+            break
+        tried += 1
+        if i:
+            say(f"start {i + 1} of at most {len(candidates)}")
+        out = run(free_names, base, zc, stages, f"start {i + 1}")
+        tr, z, res, out_of_time, full_values, tracker = out
+        cost = tracker.best_cost if res is None else 2.0 * res.cost
+        if best is None or cost < best[0]:
+            best = (cost, out)
+        spread = tracker.spread
+        failed = out_of_time or res is None or res.status <= 0 or cost / spread > FAIL_RATIO * baseline
+        if not failed:
+            break
+        if i + 1 < len(candidates):
+            say(f"start {i + 1} failed (ESR {cost / spread:.4g}; linear viscous-plus-friction fit "
+                f"{baseline:.4g}): trying another start")
+    _, (tr, z, res, out_of_time, full_values, tracker) = best
+    values = full_values(z)
+
+    def full_residual(zz, names=free_names, trn=tr, base=base):
+        vals = dict(base)
+        vals.update(zip(names, (float(v) for v in trn.to_values(zz))))
+        r = model.force(record, vals) - F_all
+        r = r if mask is None else r[mask]
+        return np.where(np.isfinite(r), r, 1e12)
+
+    r_full = full_residual(z)
+    if res is not None and res.jac is not None and stages[-1][0] is record and np.array_equal(res.x, z):
+        J = res.jac
+    else:
+        J = _fd_jacobian(full_residual, z, *tr.bounds(), r_full)
+    rss = float(np.dot(r_full, r_full))
+    k = len(free_names)
+    stderr, corr = _uncertainty(J, z, tr, rss, n_scored, k)
+    not_identifiable = _null_parameters(J, z, tr, free_names, model.control_parameters)
+    if not_identifiable and fix_unidentifiable and len(not_identifiable) < k and not out_of_time:
+        say(f"not identifiable from this record: {', '.join(not_identifiable)}; held at their start values")
+        held = {n: initial[n] for n in not_identifiable}
+        result = identify(model, record, starts=1, max_time=None if deadline is None else
+                          max(1.0, deadline - _time.monotonic()), decimate=decimate, exclude_clipped=exclude_clipped,
+                          progress=progress, free=[n for n in free_names if n not in held],
+                          fixed={**fixed, **held}, start={**values, **held}, seed=seed, max_nfev=max_nfev,
+                          fix_unidentifiable=False)
+        result.extra["not_identifiable"] = sorted(set(not_identifiable) | set(result.extra["not_identifiable"]))
+        result.extra["initial"] = initial
+        result.extra["warnings"] = [*notes, *[w for w in result.extra["warnings"] if w not in notes]]
+        result.extra["seconds"] = _time.monotonic() - t_start
+        return result
+    force = model.force(record, values)
+    resid = F_all - force
+    scored = resid if mask is None else resid[mask]
+    rss_n = max(rss / n_scored, np.finfo(float).tiny)
+    message = str(res.message) if res is not None else "stopped by --max-time: the best point found so far"
+    if out_of_time:
+        notes.append(f"stopped at --max-time {max_time:g} s before the optimiser converged: the values are the best "
+                     "found so far")
+    result = FitResult(
+        model=model, values=values, free=free_names, stderr=dict(zip(free_names, stderr)), correlation=corr,
+        force=force, residual=resid, esr=esr(F_all if mask is None else F_all[mask], force if mask is None else
+                                            force[mask]),
+        rss=rss, n=n_scored, aic=n_scored * math.log(rss_n) + 2 * k, bic=n_scored * math.log(rss_n) + k *
+        math.log(n_scored), success=bool(res is not None and res.success and not out_of_time), message=message,
+        record_name=record.name,
+        extra={"initial": initial, "not_identifiable": not_identifiable, "warnings": notes, "starts_tried": tried,
+               "simulations": tracker.calls if tracker else 0, "seconds": _time.monotonic() - t_start,
+               "baseline_esr": baseline, "clipped_samples": int(clipped.sum()),
+               "excluded_samples": 0 if mask is None else int(clipped.sum()), "decimate": decimate,
+               "nfev": int(res.nfev) if res is not None else 0, "mask": mask})
+    _ = scored
     if hasattr(model, "train"):
         model.train(record, result.values)
         result.force = model.simulate(record, result.values)
-        result.residual = record.require_force() - result.force
-        result.esr = esr(record.require_force(), result.force)
+        result.residual = F_all - result.force
+        result.esr = esr(F_all, result.force)
     return result
+
+
+def _at_bound(model, name, value) -> str | None:
+    p = model.parameter(name)
+    for bound, label in ((p.lower, "lower"), (p.upper, "upper")):
+        if math.isfinite(bound) and abs(value - bound) <= 1e-6 * max(abs(bound), abs(value), 1e-300) + (
+                1e-12 if bound == 0 else 0.0):
+            return label
+    return None
+
+
+def parameter_table(result: FitResult) -> dict[str, dict]:
+    """Per parameter: SI value, unit, standard error (None where not available), initial value and status
+    ("free", "fixed", "not identifiable", "at lower bound", "at upper bound")."""
+    model = result.model
+    initial = result.extra.get("initial", {})
+    unident = set(result.extra.get("not_identifiable", ()))
+    out = {}
+    for name in model.parameter_names:
+        v = float(result.values[name])
+        se = result.stderr.get(name)
+        if name in unident:
+            status = "not identifiable"
+        elif name not in result.free:
+            status = "fixed"
+        else:
+            bound = _at_bound(model, name, v)
+            status = f"at {bound} bound" if bound else "free"
+        out[name] = {"value": v, "unit": model.parameter(name).unit,
+                     "stderr": None if se is None or not math.isfinite(se) or status.startswith("at ") else float(se),
+                     "initial": None if name not in initial else float(initial[name]), "status": status}
+    return out
+
+
+def strong_correlations(result: FitResult, threshold: float = 0.9) -> list[tuple[str, str, float]]:
+    """Pairs of free parameters whose correlation exceeds ``threshold`` in magnitude, strongest first."""
+    pairs = []
+    for i in range(result.k):
+        for j in range(i + 1, result.k):
+            c = result.correlation[i, j]
+            if np.isfinite(c) and abs(c) > threshold:
+                pairs.append((result.free[i], result.free[j], float(c)))
+    return sorted(pairs, key=lambda p: -abs(p[2]))
+
+
+def fit_statistics(result: FitResult) -> dict:
+    """ESR, R^2, RMS residual, reduced chi-square (RSS / (n - k), N^2: no measurement error is known), AIC, BIC."""
+    n, k = result.n, result.k
+    return {"esr": result.esr, "r_squared": 1.0 - result.esr, "rms_residual_N": math.sqrt(result.rss / n),
+            "reduced_chi_square_N2": result.rss / max(n - k, 1), "aic": result.aic, "bic": result.bic,
+            "samples": n, "free_parameters": k}
+
+
+def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -> str:
+    """The identification report (the content of lmfit's): statistics, parameters with standard errors and
+    initial values, parameters at a bound or not identifiable said so, strong correlations, warnings."""
+    model = result.model
+    st = fit_statistics(result)
+    ex = result.extra
+    lines = [f"[[Fit]] {model.title or model.name} on {result.record_name or 'record'}",
+             f"  samples {st['samples']}" + (f" ({ex['excluded_samples']} clipped left out)"
+                                            if ex.get("excluded_samples") else "")
+             + f", free parameters {st['free_parameters']}, simulations {ex.get('simulations', '?')}, "
+             f"{ex.get('seconds', 0.0):.1f} s" + ("" if result.success else f"  - {result.message}"),
+             "[[Statistics]]",
+             f"  ESR {st['esr']:.4g}   R^2 {st['r_squared']:.4g}   RMS residual {st['rms_residual_N']:.4g} N   "
+             f"reduced chi-square {st['reduced_chi_square_N2']:.4g} N^2",
+             f"  AIC {st['aic']:.1f}   BIC {st['bic']:.1f}"
+             + (f"   (linear viscous-plus-friction fit: ESR {ex['baseline_esr']:.4g})" if "baseline_esr" in ex
+                else ""),
+             "[[Parameters]]"]
+    table = parameter_table(result)
+    width = max(len(n) for n in table)
+    for name, row in table.items():
+        p = model.parameter(name)
+        text = p.format(row["value"])
+        if row["status"] == "free" and row["stderr"] is not None:
+            rel = abs(row["stderr"] / row["value"]) if row["value"] else math.inf
+            text += f" +/- {p.format(row['stderr'], 2)}" + (f" ({100 * rel:.2g} %)" if math.isfinite(rel) else "")
+        elif row["status"] == "not identifiable":
+            text = f"not identifiable from this record (held at {p.format(row['value'])})"
+        elif row["status"] == "fixed":
+            text += " (fixed)"
+        else:
+            text += f" ({row['status']}: no standard error)" if row["status"].startswith("at ") else ""
+        if row["initial"] is not None and row["status"] not in ("fixed", "not identifiable"):
+            text += f"   init {p.format(row['initial'])}"
+        lines.append(f"  {name:<{width}}  {text}")
+    corr = strong_correlations(result)
+    if corr:
+        lines.append("[[Correlations]] (|r| > 0.9: these combinations, not the single values, are what the data fix)")
+        lines += [f"  {a}, {b}: {c:+.3f}" for a, b, c in corr]
+    if validation:
+        lines.append("[[Validation]] (the identified set on other records)")
+        lines += [f"  {name}: ESR {m['esr']:.4g}, RMS residual {m['rms_residual_N']:.4g} N" for name, m in validation]
+    warnings = list(ex.get("warnings", ()))
+    if warnings:
+        lines.append("[[Warnings]]")
+        lines += [f"  {w}" for w in warnings]
+    return "\n".join(lines)
+
+
+def result_json(result: FitResult, model_name: str, control_reference: str | None,
+                validation: Sequence[tuple[str, dict]] = ()) -> dict:
+    """The ``identify --json`` object: the contract's ``model``, ``esr``, ``parameters`` (strings) and, in SI,
+    ``parameters_si`` (value, unit, stderr, initial, status), ``statistics``, ``correlations``,
+    ``not_identifiable``, ``at_bounds``, ``warnings``, ``control_reference`` and ``validation``.  No NaN or inf."""
+    def num(x):
+        return None if x is None or not math.isfinite(x) else float(x)
+
+    table = parameter_table(result)
+    st = {k: (num(v) if isinstance(v, float) else v) for k, v in fit_statistics(result).items()}
+    ex = result.extra
+    return {"model": model_name, "esr": num(result.esr), "parameters": result.parameters_with_units(),
+            "parameters_si": table, "statistics": st, "control_reference": control_reference,
+            "correlations": [{"a": a, "b": b, "r": c} for a, b, c in strong_correlations(result)],
+            "not_identifiable": [n for n, r in table.items() if r["status"] == "not identifiable"],
+            "at_bounds": [n for n, r in table.items() if r["status"].startswith("at ")],
+            "success": bool(result.success), "message": result.message,
+            "simulations": ex.get("simulations"), "seconds": num(ex.get("seconds")),
+            "clipped_samples": ex.get("clipped_samples", 0), "excluded_samples": ex.get("excluded_samples", 0),
+            "warnings": list(ex.get("warnings", ())),
+            "validation": [{"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
+                           for name, m in validation]}
 
 
 @dataclass
@@ -141,6 +596,151 @@ def cross_validation(model_factory, records: Sequence[Measurement], **fit_option
         for i, other in enumerate(records):
             table[i, j] = r.esr if i == j else esr(other.require_force(), model.simulate(other, r.values))
     return CrossValidation([r.name or f"record {k}" for k, r in enumerate(records)], table)
+
+
+# ------------------------------------------------------------------------------------------- simulate and score
+def score(force, model_force, mask=None) -> dict:
+    """Figures of merit of a model force against a measured one, over the samples of ``mask`` (all by default).
+
+    Keys (SI): ``esr`` (seed 002 eq 7), ``r_squared`` (1 - ESR), ``rms_residual_N`` and ``peak_residual_N``
+    (Makris's RMS and PV of the difference signal), ``samples_scored``.
+    """
+    F = np.asarray(force, dtype=float)
+    M = np.asarray(model_force, dtype=float)
+    if mask is not None:
+        F, M = F[mask], M[mask]
+    e = esr(F, M)
+    d = F - M
+    return {"esr": e, "r_squared": 1.0 - e, "rms_residual_N": float(np.sqrt(np.mean(d**2))),
+            "peak_residual_N": float(np.max(np.abs(d))), "samples_scored": int(F.size)}
+
+
+@dataclass
+class ParameterSource:
+    """Where a parameter set came from: ``kind`` is "published", "json" or "list"."""
+
+    kind: str
+    label: str
+    source: str = ""
+    note: str = ""
+
+
+@dataclass
+class Simulation:
+    """A model run with given parameters on a record, and its scores."""
+
+    model: Model
+    values: dict[str, float]
+    force: np.ndarray
+    """Model force [N] at every sample."""
+    metrics: dict
+    clipped: int
+    """Force samples of the record at a flat top or bottom (:func:`erdesign.measurement.clipped_samples`)."""
+    excluded: int
+    """Samples left out of the scores (the clipped ones when asked)."""
+    source: ParameterSource | None = None
+    warnings: list[str] | None = None
+
+
+def _control_reference_from_text(text: str, record: Measurement, where: str) -> float:
+    from .fluid import CONTROL_UNITS
+    from .units import Q_
+    try:
+        q = Q_(text)
+        return float(q.to(CONTROL_UNITS[record.control_kind]).magnitude)
+    except Exception:
+        raise ErdesignError(f"{where}: control_reference {text!r} is not a {record.control_kind} "
+                            f"(the record's control)") from None
+
+
+def resolve_parameters(model: Model, spec: str, record: Measurement, *,
+                       control_reference: str | None = None) -> tuple[dict[str, float], ParameterSource, list[str]]:
+    """SI values of ``model`` from a parameter specification, and the control reference set on the model.
+
+    ``spec`` is one of: a JSON file written by ``erdesign identify --json`` (its ``parameters_si`` when present,
+    else its ``parameters`` strings, and its ``control_reference``); a list ``"name=value unit, ..."``; or the name
+    of a published set of the model (:mod:`erdesign.models.published`).  Returns (values, source, warnings).
+    """
+    import json
+    from pathlib import Path
+    from .models.published import parse_parameter_list, parse_parameter_values, published_set
+    notes: list[str] = []
+    kind = record.control_kind
+    path = Path(spec)
+    if spec.lower().endswith(".json") or path.is_file():
+        try:
+            data = json.loads(path.read_text())
+        except FileNotFoundError:
+            raise ErdesignError(f"--params: no such file {spec}") from None
+        except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+            raise ErdesignError(f"--params: {spec} is not a JSON file ({exc})") from None
+        if not isinstance(data, dict) or not isinstance(data.get("parameters"), dict):
+            raise ErdesignError(f"--params: {spec} has no 'parameters' object (expected the output of "
+                                "'erdesign identify --json')")
+        if data.get("model") not in (None, model.name):
+            raise ErdesignError(f"--params: {spec} holds parameters of model {data['model']}, not {model.name}")
+        ref_text = control_reference or data.get("control_reference")
+        if model.uses_control and kind is not None:
+            if ref_text:
+                model.control_reference = _control_reference_from_text(ref_text, record, "--params")
+            else:
+                ref = choose_control_reference(model, [record])
+                notes.append(f"{spec} gives no control_reference: u = {kind} / {ref:g} (SI), the rule identify "
+                             "uses on this record")
+        si = data.get("parameters_si")
+        if isinstance(si, dict) and si:
+            values = {k: float(v["value"] if isinstance(v, dict) else v) for k, v in si.items()}
+            for k in values:
+                model.parameter(k)
+        else:
+            values = parse_parameter_values(model, data["parameters"], control_kind=kind,
+                                            control_reference=model.control_reference, where=spec)
+        return values, ParameterSource("json", spec), notes
+    if "=" in spec:
+        texts = parse_parameter_list(spec)
+        if model.uses_control and kind is not None:
+            if control_reference:
+                model.control_reference = _control_reference_from_text(control_reference, record,
+                                                                       "--control-reference")
+            else:
+                choose_control_reference(model, [record])
+        values = parse_parameter_values(model, texts, control_kind=kind, control_reference=model.control_reference)
+        return values, ParameterSource("list", "--params list"), notes
+    pub = published_set(model.name, spec)
+    if pub.control_kind is not None:
+        if kind is None:
+            notes.append(f"{spec} is for a record with a {pub.control_kind} column; {record.name or 'the record'} "
+                         "has none: the control is taken as zero")
+        elif kind != pub.control_kind:
+            raise ErdesignError(f"--params: {spec} is for a {pub.control_kind} control (its coefficients are per "
+                                f"unit {pub.control_kind}); the record's control is a {kind}")
+        model.control_reference = pub.control_reference
+    elif model.uses_control and kind is not None and np.ptp(record.control) > 0:
+        notes.append(f"{spec} describes one fixed field; the record's {kind} varies and is ignored by its "
+                     "coefficients")
+    return dict(pub.values), ParameterSource("published", spec, pub.source, pub.note), notes
+
+
+def simulate(model: Model, record: Measurement, values: Mapping[str, float], *, exclude_clipped: bool = False,
+             source: ParameterSource | None = None) -> Simulation:
+    """Run ``model`` with ``values`` on the record's motion and control (from rest at the first sample) and score
+    it against the record's force (all samples, or without the clipped ones when ``exclude_clipped``)."""
+    from .measurement import clipped_samples
+    F = record.require_force()
+    force = model.simulate(record, values)
+    clipped = clipped_samples(F)
+    mask = ~clipped if exclude_clipped and clipped.any() else None
+    metrics = score(F, force, mask)
+    notes = []
+    if not np.all(np.isfinite(force)):
+        raise ErdesignError(f"{model.name}: the parameters give non-finite forces on {record.name or 'the record'}")
+    if clipped.any() and not exclude_clipped:
+        level = F[clipped]
+        notes.append(f"{int(clipped.sum())} force samples sit at a flat {'top' if level[0] > 0 else 'bottom'} "
+                     f"({level[0]:.6g} N): a load cell or amplifier at its limit; --exclude-clipped scores without "
+                     f"them")
+    return Simulation(model, model.check_values(values), force, metrics, int(clipped.sum()),
+                      int(clipped.sum()) if mask is not None else 0, source, notes)
 
 
 # ------------------------------------------------------------------------------------------------ real-data study

@@ -44,7 +44,11 @@ def test_identify_json_recovers_bingham(capsys, bingham_csv):
     code, out, err = run(capsys, "identify", str(bingham_csv), "--model", "bingham", "--json")
     assert code == 0, err
     data = json.loads(out)
-    assert set(data) == {"model", "esr", "parameters"} and data["model"] == "bingham"
+    assert {"model", "esr", "parameters"} <= set(data) and data["model"] == "bingham"
+    # SI numbers with standard errors beside the contract's strings (issue 12)
+    c0 = data["parameters_si"]["c0"]
+    assert c0["unit"] == "N*s/m" and c0["status"] == "free" and 0 < c0["stderr"] < 0.01 * c0["value"]
+    assert data["statistics"]["r_squared"] == pytest.approx(1 - data["esr"])
     # 1 N noise on a ~600 N signal: ESR ~ 1 / var(F) ~ 6e-6
     assert data["esr"] < 1e-4
     value, unit = data["parameters"]["c0"].split(" ", 1)
@@ -102,3 +106,26 @@ def test_identify_physics_recovers_the_hidden_seal_friction(capsys):
                          str(EXAMPLES / "makris.toml"), "--json")
     assert code == 0, err
     assert json.loads(out)["esr"] > 15 * data["esr"]
+
+
+def test_identify_reports_what_the_data_cannot_tell(capsys, tmp_path):
+    """A Bingham record at one constant current: the yield force f_c and its slope per unit current f_c_u act
+    only through f_c + f_c_u u, so the pair is not identifiable from it; identify holds them and says so instead of
+    printing two values with huge standard errors (issue 12, item 4)."""
+    from erdesign.identify import identify
+    t = np.linspace(0, 2, 1001)
+    rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=0.5, control_kind="current")
+    F = get_model("bingham").simulate(rec, {"c0": 4000.0, "f_c": 300.0, "f_c_u": 400.0})
+    rec = rec.with_force(F + np.random.default_rng(0).standard_normal(t.size))
+    model = get_model("bingham")
+    r = identify(model, rec)
+    # one of each redundant pair held, the control slope (the record cannot show the control dependence)
+    assert sorted(r.extra["not_identifiable"]) == ["c0_u", "f_c_u"]
+    u = float(model.control(rec)[0])
+    # what the record does fix: the yield force and damping at 0.5 A, to the 1 N noise on 600 N forces
+    assert r.values["f_c"] + u * r.values["f_c_u"] == pytest.approx(500.0, rel=0.005)
+    assert r.values["c0"] + u * r.values["c0_u"] == pytest.approx(4000.0, rel=0.005)
+    path = tmp_path / "c.csv"
+    write_measurement(path, rec)
+    code, out, err = run(capsys, "identify", str(path), "--model", "bingham")
+    assert code == 0 and "not identifiable from this record" in out

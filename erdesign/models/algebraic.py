@@ -171,7 +171,7 @@ class KwokTanh(ControlAffineModel):
     memoryless = True
     control_parameters = ("alpha_u", "c_u")
     parameters = (
-        Parameter("k", "N/m", 0.0, -1e8, 1e8, "stiffness"),
+        Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("c", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
         Parameter("alpha", "N", 600.0, 0.0, 1e7, "hysteresis scale (height of the loop)"),
         Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
@@ -242,7 +242,7 @@ class MagicFormula(ControlAffineModel):
         Parameter("E", "", 0.0, -10.0, 1.0, "curvature factor"),
         Parameter("A", "1/s", 1.0, -1e4, 1e4, "hysteretic factor"),
         Parameter("k_c", "N*s/m", 2000.0, -1e8, 1e8, "viscous damping"),
-        Parameter("k", "N/m", 0.0, -1e8, 1e8, "stiffness"),
+        Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
         Parameter("D_u", "N", 0.0, -1e7, 1e7, "peak factor per unit control"),
     )

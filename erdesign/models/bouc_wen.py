@@ -78,7 +78,7 @@ class BoucWen(Model):
     control_parameters = ("c0b", "alpha_b")
     parameters = (
         Parameter("c0a", "N*s/m", 5300.0, 0.0, 1e8, "viscous damping"),
-        Parameter("k0", "N/m", 1400.0, -1e8, 1e8, "stiffness (accumulator)"),
+        Parameter("k0", "N/m", 1400.0, 0.0, 1e8, "stiffness of the accumulator (a spring: not negative)"),
         Parameter("x0", "m", 0.0, -1.0, 1.0, "initial displacement of the spring"),
         Parameter("alpha_a", "N/m", 96300.0, 0.0, 1e10, "scale of the hysteretic force"),
         *_hysteresis_parameters(),
@@ -156,7 +156,7 @@ class BoucWenModified(Model):
         Parameter("c0a", "N*s/m", 5300.0, 1.0, 1e8, "viscous damping at large velocity", log_scale=True),
         Parameter("c1a", "N*s/m", 93000.0, 1.0, 1e9, "dashpot for the roll-off at low velocity", log_scale=True),
         Parameter("k0", "N/m", 1400.0, 0.0, 1e8, "stiffness at large velocity"),
-        Parameter("k1", "N/m", 540.0, -1e8, 1e8, "accumulator stiffness"),
+        Parameter("k1", "N/m", 540.0, 0.0, 1e8, "accumulator stiffness (a spring: not negative)"),
         Parameter("x0", "m", 0.0, -1.0, 1.0, "initial displacement of the accumulator spring"),
         Parameter("alpha_a", "N/m", 96300.0, 0.0, 1e10, "scale of the hysteretic force"),
         *_hysteresis_parameters(),
@@ -238,7 +238,7 @@ class BoucWenNormalized(ControlAffineModel):
     uses_control = True
     control_parameters = ("k_v_u", "k_w_u")
     parameters = (
-        Parameter("k_x", "N/m", 0.0, -1e8, 1e8, "stiffness"),
+        Parameter("k_x", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("k_v", "N*s/m", 5000.0, 0.0, 1e8, "viscous damping"),
         Parameter("k_w", "N", 500.0, 0.0, 1e7, "hysteretic force amplitude"),
         Parameter("rho", "1/m", 1000.0, 1e-3, 1e7, "rate of the normalised state", log_scale=True),

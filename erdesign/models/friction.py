@@ -83,7 +83,7 @@ class Dahl(Model):
     uses_control = True
     control_parameters = ("f_d_u",)
     parameters = (
-        Parameter("k0", "N/m", 0.0, -1e8, 1e8, "stiffness"),
+        Parameter("k0", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("c0", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
         Parameter("f_d", "N", 500.0, 0.0, 1e7, "Coulomb (Dahl) force"),
         Parameter("rho", "1/m", 1000.0, 1e-2, 1e8, "Dahl rate (1 / pre-sliding displacement)", log_scale=True),

@@ -68,7 +68,7 @@ class SemiactiveGeneral(Model):
         Parameter("f0", "N", 0.0, -1e7, 1e7, "accumulator force"),
         Parameter("c_p_pos", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping, extension"),
         Parameter("c_p_neg", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping, compression"),
-        Parameter("k_p", "N/m", 0.0, -1e8, 1e8, "stiffness"),
+        Parameter("k_p", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("m_D", "kg", 0.0, -1e5, 1e5, "virtual damper mass"),
         Parameter("f_f", "N", 300.0, -1e7, 1e7, "friction amplitude"),
         Parameter("v_f", "s/m", 100.0, 0.0, 1e7, "friction velocity gain"),
