@@ -314,7 +314,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
             best = (cost, out)
         spread = tracker.spread
         failed = out_of_time or res is None or res.status <= 0 or cost / spread > FAIL_RATIO * baseline
-        if not failed:
+        if not failed or out_of_time:
             break
         if i + 1 < len(candidates):
             say(f"start {i + 1} failed (ESR {cost / spread:.4g}; linear viscous-plus-friction fit "
@@ -380,11 +380,15 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     return result
 
 
-def _at_bound(model, name, value) -> str | None:
+def _at_bound(model, name, value, stderr=None) -> str | None:
+    """"lower" / "upper" when the value sits on a bound: within 1e-6 of it, or within one standard error."""
     p = model.parameter(name)
     for bound, label in ((p.lower, "lower"), (p.upper, "upper")):
-        if math.isfinite(bound) and abs(value - bound) <= 1e-6 * max(abs(bound), abs(value), 1e-300) + (
-                1e-12 if bound == 0 else 0.0):
+        if not math.isfinite(bound):
+            continue
+        gap = abs(value - bound)
+        if gap <= 1e-6 * max(abs(bound), abs(value)) or (stderr is not None and math.isfinite(stderr)
+                                                          and gap < stderr):
             return label
     return None
 
@@ -404,7 +408,7 @@ def parameter_table(result: FitResult) -> dict[str, dict]:
         elif name not in result.free:
             status = "fixed"
         else:
-            bound = _at_bound(model, name, v)
+            bound = _at_bound(model, name, v, se)
             status = f"at {bound} bound" if bound else "free"
         out[name] = {"value": v, "unit": model.parameter(name).unit,
                      "stderr": None if se is None or not math.isfinite(se) or status.startswith("at ") else float(se),

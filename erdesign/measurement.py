@@ -40,7 +40,6 @@ from typing import Any
 
 import numpy as np
 import pint
-from scipy.signal import savgol_filter
 
 from .errors import ErdesignError, ErdesignWarning
 from .fluid import CONTROL_UNITS
@@ -433,6 +432,7 @@ def derivatives(t, x, *, window: int | None = None, polyorder: int = 3):
         window += 1 - window % 2  # odd
         if window > n:
             raise MeasurementError(f"derivatives: the record ({n} samples) is too short for a window of {window}")
+        from scipy.signal import savgol_filter  # imported on use: scipy.signal costs start-up time
         v = savgol_filter(xu, window, polyorder, deriv=1, delta=dt, mode="interp")
         a = savgol_filter(xu, window, polyorder, deriv=2, delta=dt, mode="interp")
     else:

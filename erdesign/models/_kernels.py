@@ -18,7 +18,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.signal import lfilter
 
 from ..constitutive.makris import _affine_recurrence
 
@@ -53,6 +52,7 @@ def first_order_lag(t, u, tau, y0=0.0):
         a = [1.0, -e]
         # Initial condition of the direct-form II transposed filter for y[0] = y0 with u[-1] = u[0].
         zi = np.array([y0 - b[0] * u[0]])
+        from scipy.signal import lfilter  # imported on use: scipy.signal costs start-up time
         y, _ = lfilter(b, a, u, zi=zi)
         return y
     h = np.diff(t)

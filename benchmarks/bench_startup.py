@@ -1,0 +1,58 @@
+"""Start-up cost of the command line (not a timed test): run `python benchmarks/bench_startup.py`.
+
+CPU time (user + system, of the child process) of
+
+* `python -c "import numpy"` - the yardstick;
+* `erdesign --help` and `erdesign size <makris example> --velocity 0.0254 --json`;
+* `python -c "import erdesign"` - the package's own import, which every command pays;
+* `python -c "import erdesign.cli.main"` with a stub parent package - what the command line would cost if the
+  package's top level (erdesign/__init__.py) imported its subpackages lazily.
+
+Issue 12 asks for `erdesign --help` < 3 x and `erdesign size` < 6 x the yardstick.  Each figure is the median of
+five runs.
+"""
+
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "erdesign" / "examples" / "makris.toml"
+STUB = ("import sys, types, pathlib; p = types.ModuleType('erdesign'); "
+        f"p.__path__ = [{str(ROOT / 'erdesign')!r}]; p.__version__ = '0'; sys.modules['erdesign'] = p; ")
+
+
+def cpu_seconds(argv, repeat=5):
+    times = []
+    for _ in range(repeat):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False, cwd=ROOT)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        times.append((after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime))
+    return statistics.median(times)
+
+
+def main():
+    exe = shutil.which("erdesign") or "erdesign"
+    py = sys.executable
+    base = cpu_seconds([py, "-c", "import numpy"])
+    rows = [
+        ("erdesign --help", [exe, "--help"], 3.0),
+        ("erdesign size (makris example)", [exe, "size", str(EXAMPLE), "--velocity", "0.0254", "--json"], 6.0),
+        ("python -c 'import erdesign'", [py, "-c", "import erdesign"], None),
+        ("import erdesign.cli.main (stub package)", [py, "-c", STUB + "import erdesign.cli.main"], None),
+    ]
+    print(f"yardstick python -c 'import numpy': {base:.3f} s CPU")
+    for label, argv, target in rows:
+        t = cpu_seconds(argv)
+        goal = f"   (target < {target:g} x: {'met' if t / base < target else 'NOT met'})" if target else ""
+        print(f"  {label:<42} {t:6.3f} s CPU   {t / base:5.1f} x{goal}")
+
+
+if __name__ == "__main__":
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    main()
