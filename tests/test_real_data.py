@@ -38,7 +38,9 @@ def _make_script():
 
 def test_doc_is_the_rendering_of_the_study():
     # the Markdown is generated from the JSON, never edited by hand
-    assert (ROOT / "docs" / "real_data.md").read_text() == _make_script().render(STUDY)
+    # (the generated part ends where the hand-written command-line study of Dyke's record begins)
+    assert (ROOT / "docs" / "real_data.md").read_text().split("\n<!-- dyke-cli -->")[0] == \
+        _make_script().render(STUDY).rstrip("\n") + ("\n" if _make_script().render(STUDY).endswith("\n") else "")
 
 
 def test_documented_training_esrs_reproduce(training):
@@ -92,8 +94,10 @@ def test_source_parameters_with_the_hidden_constants():
     mean = {k: np.mean(list(d["validation_esr"].values())) for k, d in (("plain", plain), ("est", estimated))}
     # the source's twelve published parameters with A = 1, beta = gamma do not reproduce the force (measured
     # validation ESR 0.77); with only A and beta/gamma estimated they do about as well as our joint fit
-    # (measured 0.060 vs 0.061): evidence that A ~ 95 and beta ~ -0.34 gamma sit in the source's Simulink model
+    # (measured 0.064 vs 0.066): evidence that A of order 100 sits in the source's Simulink model.  The two are
+    # poorly determined: with the Heun kernel of the modified Bouc-Wen model (0.3 % of the force range) the
+    # estimate was A = 95.5, beta = -0.34 gamma; with the compiled RK4 kernel (4e-6) another basin wins,
+    # A = 179, beta = 0.14 gamma (training ESR 0.022 against 0.036), so only the order of A is asserted
     assert mean["plain"] > 0.5
     assert mean["est"] < 0.1
-    assert estimated["A"] == pytest.approx(95.5, rel=0.05) and estimated["beta_ratio"] == pytest.approx(-0.336,
-                                                                                                      abs=0.02)
+    assert 50.0 < estimated["A"] < 300.0
