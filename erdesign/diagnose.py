@@ -507,7 +507,7 @@ def _check_record(record: Measurement) -> None:
 #: Widths of the expected sign at a reversal tried in the baseline calibration, in units of the velocity noise.
 SIGN_WIDTHS = (0.0, 0.5, 1.0, 2.0)
 #: The baseline's ESR counts as "at the noise floor" up to this multiple of the floor (plus ABSOLUTE_SLACK) ...
-AT_FLOOR = 1.5
+AT_FLOOR = 1.25
 #: ... and as "well above" it (something is missing) beyond this multiple.
 WELL_ABOVE = 3.0
 #: ESR slack for records with almost no noise (model and derivative round-off).
@@ -629,6 +629,11 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
             not_judged[name] = why
             continue
         ranking.append(_evaluate(base_model, base, work, effects, (name,), damper, mask=mask))
+    # the force noise estimate takes a force that varies fast (a fluid slug on band-limited random motion) for noise;
+    # the floor cannot lie above what a model of the library reaches (k parameters fitted to n samples)
+    for c in ranking:
+        if c.evaluated and c.result.n > c.result.k:
+            floor = min(floor, c.esr * c.result.n / (c.result.n - c.result.k))
     excess = base.esr - floor
     for c in ranking:
         if c.evaluated:
@@ -640,7 +645,7 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         warnings_.append(f"the calibrated baseline leaves {100 * base.esr:.0f} % of the force variance: the damper "
                          "file does not describe this record (a unit in the header, the wrong damper, or a mechanism "
                          "far outside the model)")
-    missing, pair, verdict, reason = None, (), "nothing_missing", ""
+    missing, pair, verdict, reason, one_sided = None, (), "nothing_missing", "", None
     if suspicious:
         verdict = "unexplained"
         reason = ("the record is implausible for this damper, so no effect is named: " + "; ".join(suspicious))
@@ -651,12 +656,22 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
             best_share = max((c.explained for c in ranking if c.evaluated), default=0.0)
             if best_share < PAIR_SEARCH_BELOW:
                 named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=mask)
+        one_sided = None if named is None else _one_sided(named, work, mask, floor)
+        if one_sided is not None:
+            named.significant = False
+            named.note = "not named: " + one_sided
+            verdict = "unexplained"
+            reason = (f"{named.effect} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} (noise floor "
+                      f"{floor:.3g}), but what it leaves is one-sided: {one_sided}. No effect of the library acts in "
+                      "one direction only: a blow-off or check valve, the unequal areas of a single-ended rod or "
+                      "cavitation may be at work.")
+            named = None
         if named is not None:
             missing, pair = named.effects[0], (named.effects if len(named.effects) > 1 else ())
             verdict = "missing_effect"
             reason = (f"adding {' and '.join(named.effects)} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} "
                       f"(noise floor {floor:.3g}), {100 * named.explained:.0f} % of the excess, with plausible values")
-    if verdict == "missing_effect" or suspicious:
+    if verdict == "missing_effect" or suspicious or one_sided:
         pass
     elif at_floor:
         reason = (f"the calibrated baseline's ESR {base.esr:.3g} is at the noise floor {floor:.3g}: what is left "
@@ -675,21 +690,18 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
                    "known)")
     ranking.sort(key=lambda c: (not c.significant, not c.evaluated, c.delta_bic))
     # ESRs of the full record (all samples, the reversals too) and the floor on the same footing: the force noise
-    # plus what the best model leaves where the sign of the velocity is unknown
+    # plus what the unknown sign of the velocity costs at the reversals (noise.noise_floor_esr)
     with np.errstate(all="ignore"):
         base_esr = esr(record.force, base_model.simulate(record, base.values))
-        least = work.force - base_model.force(work, base.values)
         for c in ranking:
             if c.evaluated:
                 e = esr(record.force, _model(c.result).simulate(record, c.result.values))
                 c.esr = e if math.isfinite(e) else None
                 if c.esr is None:
                     c.reason = "non-finite forces on the full record"
-                    continue
-                r = work.force - _model(c.result).force(work, c.result.values)
-                if np.all(np.isfinite(r)) and np.sum(r**2) < np.sum(least**2):
-                    least = r
-    full_floor = noise_floor_esr(work, least, unknown=None if mask is None else ~known)
+    comps = base_model.components(work, base.values)
+    jump = comps["yield_force"] + base.values.get("friction_force", damper.seal_friction)
+    full_floor = noise_floor_esr(work, jump, sigma_v=sigma_v)
     return Diagnosis(effects, base, base_esr, analysis, ranking, missing, not_judged, record.name,
                      (len(record), len(work)), verdict, full_floor, reason, pair, warnings_,
                      float(known.mean()), base.esr, floor)
@@ -760,6 +772,46 @@ def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=
     best.effect = " + ".join(best.effects)
     ranking.insert(0, best)
     return best
+
+
+#: What a named model leaves is one-sided (the force larger in one direction than the model's odd law allows) when
+#: the one-sided term lowers the residual sum of squares by more than ONE_SIDED noise variances (a chi-square of one
+#: degree of freedom: far beyond chance) ...
+ONE_SIDED = 50.0
+#: ... and removes at least this share of what the model leaves above the floor.
+ONE_SIDED_SHARE = 0.5
+
+
+def _one_sided(cand: Candidate, work: Measurement, mask, floor: float) -> str | None:
+    """Whether the residual of the named model is one-sided, and how (None: it is not).
+
+    Every effect of the library keeps the fluid force odd in the velocity; a single-ended rod (unequal areas), a
+    blow-off or check valve and cavitation make it larger in one direction than in the other.  Their signature is
+    an even term proportional to the size of the fluid force: the residual is regressed on :math:`|F_\text{fluid}|`
+    (centred) over the judged samples.
+    """
+    model = _model(cand.result)
+    with np.errstate(all="ignore"):
+        comps = model.components(work, cand.result.values)
+    keep = np.ones(len(work), dtype=bool) if mask is None else mask
+    F = work.force[keep]
+    r = (work.force - comps["force"])[keep]
+    h = np.abs(comps["fluid"])[keep]
+    if not (np.all(np.isfinite(r)) and np.all(np.isfinite(h))):
+        return None
+    h, r0 = h - h.mean(), r - r.mean()
+    hh = float(np.dot(h, h))
+    ss = float(np.sum((F - F.mean()) ** 2))
+    if not (hh > 0 and ss > 0):
+        return None
+    c = float(np.dot(h, r0)) / hh
+    drop = c * c * hh / ss                         # ESR the one-sided term removes
+    left = float(np.sum(r**2)) / ss - floor        # what the named model leaves above the floor
+    if drop * F.size > ONE_SIDED * floor and drop > ONE_SIDED_SHARE * left:
+        side = "+" if c > 0 else "-"
+        return (f"the force is {100 * abs(c):.2g} % of the fluid force larger moving in {side} than the model "
+                f"allows (this removes {drop / max(left, 1e-300) * 100:.0f} % of what it leaves above the floor)")
+    return None
 
 
 def _unexplained_reason(base_esr, floor, ranking, analysis) -> str:
