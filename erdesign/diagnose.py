@@ -16,7 +16,10 @@ The workflow (docs/diagnosis.md explains how it judges):
 4. **Improve** (:func:`improve`): add the missing effect, refit, re-rank, until nothing significant is left; the
    history shows the ESR falling step by step.
 
-Long records are analysed on an evenly thinned copy of at most ``max_samples`` samples (derivatives are taken on
+Every model is fitted and judged on the samples where the sign of the velocity is known
+(:func:`erdesign.noise.sign_known`): at a reversal the force of a yield-stress fluid jumps by twice the yield force,
+and where the record cannot tell the sign no model can predict it.  There the noise floor is the load cell's noise
+alone.  Long records are analysed on an evenly thinned copy of at most ``max_samples`` samples (derivatives are taken on
 the full record first); the ESRs reported are those of the full record.
 """
 

@@ -14,7 +14,7 @@ import pytest
 from erdesign.effects import EFFECT_NAMES
 from erdesign.truthrig import MECHANISMS
 from erdesign.truthrig.cases import (DAMPERS, EXCITATIONS, LIBRARY_MECHANISMS, NOISES, NOT_VISIBLE_ON, OUT_OF_LIBRARY,
-                                     EXCITATION_OF,
+                                     EXCITATIONS_OF,
                                      STEP_PERIOD, benchmark_cases, supported, unsupported_pairs)
 
 BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_diagnosis_accuracy.py"
@@ -63,8 +63,7 @@ def test_catalogue_meets_the_coverage_rules(catalogue):
             assert {c.damper for c in at_size} == possible and len(possible) >= 3, (effect, size)
             if len(possible) >= 4:
                 assert len({c.damper for c in at_size}) >= 4
-        assert {c.excitation for c in singles} == ({EXCITATION_OF[mech]} if mech in EXCITATION_OF
-                                                   else set(EXCITATIONS)), effect
+        assert {c.excitation for c in singles} == set(EXCITATIONS_OF.get(mech, EXCITATIONS)), effect
         assert {c.noise for c in singles} == set(NOISES), effect
     pairs = {frozenset(c.accepted) for c in catalogue if c.kind == "pair"}
     impossible = {frozenset(p) for p in unsupported_pairs()}

@@ -25,9 +25,15 @@ Design rules (docs/diagnosis_benchmark.md shows the resulting counts):
 * sizes are physical: each is a multiple of the value expected from the damper's own geometry and fluid (the slug
   mass :math:`\rho L A_p^2/(n\pi d h)`, a bulk modulus with entrained air of 0.05-1 GPa, a seal friction of a few
   percent of the damper force, a coil time constant of 10-40 ms, ...) (:func:`mechanism_parameters`);
+* effects are placed where they can be seen at physical sizes: no slug inertia on Makris's slow ER damper
+  (:data:`NOT_VISIBLE_ON`), heating on sine programmes at twice the speed, slug inertia not on earthquake records
+  (:data:`EXCITATIONS_OF`), shear thinning at
+  a quarter of the reference field, heating and shear thinning on MR dampers with the quieter load cell
+  (:data:`QUIET_ON_MR`): they change only the viscous part of the force, small beside an MR fluid's yield force;
 * detectability is measured, not assumed: :func:`effect_size_over_noise` runs the truth rig without noise with and
-  without the mechanisms and compares the energy of the difference with that of the force noise.  Cases below
-  :data:`UNDETECTABLE` are reported as undetectable by design (kept in the catalogue, counted apart).
+  without the mechanisms, refits the clean damper's two fluid factors to the run with them (the truth rig's own,
+  nothing of the diagnosed model) and compares the energy of what is left with that of the force noise.  Cases
+  below :data:`UNDETECTABLE` are reported as undetectable by design (kept in the catalogue, counted apart).
 """
 
 from __future__ import annotations
@@ -47,7 +53,7 @@ from .simulate import MIXED_MECHANISMS, UNSUPPORTED
 __all__ = ["Case", "benchmark_cases", "mechanism_parameters", "effect_size_over_noise", "build_motion",
            "control_staircase", "LIBRARY_MECHANISMS", "OUT_OF_LIBRARY", "DAMPERS", "EXCITATIONS", "NOISES",
            "SIZES", "STEP_PERIOD", "UNDETECTABLE", "SUBSETS", "supported", "unsupported_pairs", "NOT_VISIBLE_ON",
-           "EXCITATION_OF"]
+           "EXCITATIONS_OF"]
 
 #: Library effect -> the truth rig's mechanism that produces it.
 LIBRARY_MECHANISMS = {
@@ -368,7 +374,8 @@ _SPEED_BOOST = {"thermal": 2.0}
 # - the fluid slug of Makris's ER damper, driven at its design speed of 25 mm/s, weighs too little to be felt;
 NOT_VISIBLE_ON = {"slug_inertia": {"makris"}}
 # - heating needs sustained power: sine programmes (a decaying earthquake record or random motion heats too little);
-EXCITATION_OF = {"thermal": "sine"}
+#   a fluid slug needs acceleration: not the earthquake records, whose energy lies below 25 Hz;
+EXCITATIONS_OF = {"thermal": ("sine",), "slug_inertia": ("sine", "random")}
 # - heating and shear thinning change only the viscous part of the force, which is small beside an MR fluid's
 #   yield force: on the MR dampers they are measured with the quieter load cell.
 QUIET_ON_MR = {"thermal", "herschel_bulkley"}
@@ -441,7 +448,8 @@ def _full() -> list[Case]:
         for isz, size in enumerate(SIZES):
             for k in range(len(DAMPERS)):
                 dname = dampers[k % len(dampers)]
-                exc = EXCITATION_OF.get(mech, EXCITATIONS[(k + ie + isz + k // len(dampers)) % 3])
+                choices = EXCITATIONS_OF.get(mech, EXCITATIONS)
+                exc = choices[(k + ie + isz + k // len(dampers)) % len(choices)]
                 noise = NOISES[0] if mech in QUIET_ON_MR and dname in _MR_DAMPERS else NOISES[(k + isz) % 2]
                 seed += 1
                 name = f"{effect}-{size}-{dname}-{exc}-{round(100 * noise)}pct"
