@@ -705,6 +705,10 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
     comps = base_model.components(work, base.values)
     jump = comps["yield_force"] + base.values.get("friction_force", damper.seal_friction)
     full_floor = noise_floor_esr(work, jump, sigma_v=sigma_v)
+    # an expectation; it cannot lie above what a model of the library reaches on the record
+    for c in ranking:
+        if c.evaluated and c.result.n > c.result.k:
+            full_floor = min(full_floor, c.esr * c.result.n / (c.result.n - c.result.k))
     return Diagnosis(effects, base, base_esr, analysis, ranking, missing, not_judged, record.name,
                      (len(record), len(work)), verdict, full_floor, reason, pair, warnings_,
                      float(known.mean()), base.esr, floor)

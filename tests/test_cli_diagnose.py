@@ -72,7 +72,10 @@ def test_diagnose_json_has_exactly_the_contract_keys(capsys, friction_csv):
     assert data["verdict"] == "missing_effect"
     assert data["missing_effect"] == "seal_friction"
     assert [r["effect"] for r in data["ranking"]][0] == "seal_friction"
-    assert 0 < data["noise_floor_esr"] < data["ranking"][0]["esr"] < data["baseline_esr"]
+    # the friction explains the record down to its noise: the named model at the floor (a fitted model may leave a
+    # little less than the noise, by k/n), the baseline far above it
+    assert 0 < data["noise_floor_esr"] < data["baseline_esr"] / 10
+    assert 0.5 * data["noise_floor_esr"] < data["ranking"][0]["esr"] < 2 * data["noise_floor_esr"]
     # the friction in N with its unit: 800 N hidden, noise 0.5 % of the RMS force -> within 3 %
     value, unit = data["ranking"][0]["parameters"]["friction_force"].split()
     assert unit == "N" and float(value) == pytest.approx(800.0, rel=0.03)
