@@ -168,14 +168,7 @@ def check_record(record: Mapping[str, Any], where: str) -> None:
             _pair(value, f"spread.{key}", "" if key == "yield_exponent" else (_FLUID_SI.get(key) or control))
     except ErdesignError as exc:
         raise type(exc)(f"{where}: {exc}") from None
-    refs = record["references"]
-    if not (isinstance(refs, list) and refs):
-        raise ErdesignError(f"{where}: references: expected a list of [[references]] tables")
-    for i, ref in enumerate(refs):
-        bad = [k for k in ref if k not in _REFERENCE_KEYS]
-        if bad or not all(k in ref for k in ("key", "citation", "date")):
-            raise ErdesignError(f"{where}: references[{i}]: needs key, citation and date (optional note)"
-                                + (f"; unknown key {bad[0]!r}" if bad else ""))
+    _check_references(record, where)
     sources = record["sources"]
     for key in list(fluid) + [k for k in ("yield_curve", "magnetization", "range", "spread") if k in record]:
         if key not in sources:
