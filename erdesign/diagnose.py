@@ -634,9 +634,7 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         ranking.append(_evaluate(base_model, base, work, effects, (name,), damper, mask=mask))
     # the force noise estimate takes a force that varies fast (a fluid slug on band-limited random motion) for noise;
     # the floor cannot lie above what a model of the library reaches (k parameters fitted to n samples)
-    for c in ranking:
-        if c.evaluated and c.result.n > c.result.k:
-            floor = min(floor, c.esr * c.result.n / (c.result.n - c.result.k))
+    floor = min(floor, _least_noise(ranking))
     excess = base.esr - floor
     for c in ranking:
         if c.evaluated:
@@ -706,12 +704,17 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
     jump = comps["yield_force"] + base.values.get("friction_force", damper.seal_friction)
     full_floor = noise_floor_esr(work, jump, sigma_v=sigma_v)
     # an expectation; it cannot lie above what a model of the library reaches on the record
-    for c in ranking:
-        if c.evaluated and c.result.n > c.result.k:
-            full_floor = min(full_floor, c.esr * c.result.n / (c.result.n - c.result.k))
+    full_floor = min(full_floor, _least_noise(ranking))
     return Diagnosis(effects, base, base_esr, analysis, ranking, missing, not_judged, record.name,
                      (len(record), len(work)), verdict, full_floor, reason, pair, warnings_,
                      float(known.mean()), base.esr, floor)
+
+
+def _least_noise(ranking) -> float:
+    """The largest noise ESR the candidates allow: noise cannot exceed what a model leaves, its ESR times
+    n / (n - k) for k parameters fitted to n samples (inf when none was evaluated)."""
+    return min((c.esr * c.result.n / (c.result.n - c.result.k) for c in ranking
+                if c.evaluated and c.result.n > c.result.k), default=math.inf)
 
 
 def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=None) -> Candidate | None:
