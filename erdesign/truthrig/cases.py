@@ -408,16 +408,15 @@ def _case(name, damper_name, excitation, noise, mechanisms, expected, accepted, 
     rt = rate or max([_RATE.get(m, 500.0) for m in mechanisms] or [500.0])
     kv, ky = _FACTORS[seed % len(_FACTORS)]
     control = min([_CONTROL_SCALE.get(m, 1.0) for m in mechanisms] or [1.0])
-    case = Case(name, damper_name, excitation, noise, params, expected, frozenset(accepted), seed, size, dur, rt,
-                speed, scale.frequency * boost, kv, ky, control)
     if "accumulator" in params:
         # the rod must not fill the gas: at least twice the largest volume it pushes in (long earthquake strokes)
         from .simulate import rod_area
-        x = case.motion(damper).displacement
+        x = build_motion(excitation, damper, duration=dur, rate=rt, seed=seed, speed=speed,
+                         frequency=scale.frequency * boost, control_scale=control).displacement
         need = 2.0 * rod_area(damper) * float(np.max(np.abs(x)))
-        if params["accumulator"]["gas_volume"] < need:
-            params["accumulator"] = {**params["accumulator"], "gas_volume": need}
-    return case
+        params["accumulator"]["gas_volume"] = max(params["accumulator"]["gas_volume"], need)
+    return Case(name, damper_name, excitation, noise, params, expected, frozenset(accepted), seed, size, dur, rt,
+                speed, scale.frequency * boost, kv, ky, control)
 
 
 def supported(mechanisms, damper_name: str) -> bool:
