@@ -7,14 +7,15 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
+from scipy.integrate import quad, solve_ivp
 
 from erdesign.damper_file import load_example
 from erdesign.errors import ErdesignError
 from erdesign.flow.bingham import bingham_pressure_drop
 from erdesign.rig import Motion, sine
+from erdesign.flow.mixed_mode import couette_poiseuille_bingham
 from erdesign.truthrig import (MECHANISMS, TruthDamper, bingham_valve_flow, herschel_bulkley_valve_flow,
-                               mechanism_names, simulate_truth)
+                               mechanism_names, mixed_gap_flow, simulate_truth)
 from erdesign.truthrig.mechanisms import ATMOSPHERIC_PRESSURE
 
 MAKRIS = load_example("makris")
@@ -60,7 +61,7 @@ def test_registry_names_library_effects_and_parameters():
     ({"viscous_heating": {}}, "unknown mechanism 'viscous_heating'"),
     ({"coil_lag": {"tau": 1.0}}, "unknown parameter 'tau'"),
     ({"compliance": {"bulk_modulus": -1.0}}, "bulk_modulus: must be finite and > 0"),
-    (["compliance", "preyield"], "compliance and preyield cannot be combined"),
+    (["compliance", "preyield", "slug_inertia"], "compliance and preyield and slug_inertia cannot be combined"),
     (["free_play", "accumulator"], "accumulator and free_play cannot be combined"),
 ])
 def test_bad_settings_are_clear_errors(mechanisms, message):
@@ -69,8 +70,10 @@ def test_bad_settings_are_clear_errors(mechanisms, message):
 
 
 def test_mixed_damper_refuses_valve_mechanisms():
-    with pytest.raises(ErdesignError, match="compliance need the valve law"):
-        TruthDamper(load_example("mr_mixed"), ["compliance", "coil_lag"])
+    with pytest.raises(ErdesignError, match="blowoff need the valve's chambers"):
+        TruthDamper(load_example("mr_mixed"), ["blowoff", "coil_lag"])
+    with pytest.raises(ErdesignError, match="compliance and preyield cannot be combined on the mixed-mode"):
+        TruthDamper(load_example("mr_mixed"), ["compliance", "preyield"])
 
 
 def test_every_library_mechanism_runs_alone_and_deterministically():
@@ -342,6 +345,149 @@ def test_mixed_mode_rigid_force_equals_damper_state():
     moving = motion.velocity != 0
     ref = damper.state(motion.velocity, motion.control).force
     np.testing.assert_allclose(rec.true_force[moving], ref[moving], rtol=1e-12)
+
+
+MIXED, KW = load_example("mr_mixed"), load_example("kamath_wereley")
+
+
+@pytest.mark.parametrize("U, q, tau_y, eta", [
+    (0.05, -1e-3, 2000.0, 0.1),        # floating plug (the damper's regime)
+    (0.2, -5e-3, 75e3, 0.25),
+    (-0.2, 5e-3, 75e3, 0.25),          # rebound: all signs reverse
+    (0.01, -1e-5, 75e3, 0.25),         # creeping head, nearly blocked gap
+    (0.1, 2e-5, 100.0, 0.3),           # forward flow, plug at a wall
+    (0.1, 7e-5, 500.0, 0.2),           # fully yielded
+    (0.1, -2e-4, 0.0, 0.2),            # Newtonian
+])
+def test_mixed_gap_flow_inverts_the_couette_poiseuille_solver(U, q, tau_y, eta):
+    # Two independent routes: erdesign.flow solves for the pressure gradient from the flow (scipy find_root on its
+    # own regime equations), the rig for the flow from the pressure drop (Newton on the wall stress): they agree to
+    # round-off of the nested roots.
+    h, L, d = 1e-3, 0.025, 0.041
+    ref = couette_poiseuille_bingham(U, q, tau_y, eta, h)
+    Q, tau = mixed_gap_flow(ref.pressure_gradient * L, U, tau_y, eta, 1.0, L, d, h)
+    assert Q == pytest.approx(math.pi * d * q, rel=1e-10, abs=1e-16)
+    assert tau == pytest.approx(-ref.wall_stress_moving, rel=1e-10)       # the traction on the head is -tau
+
+
+@pytest.mark.parametrize("m", [0.5, 0.7])
+def test_mixed_gap_flow_herschel_bulkley_equals_quadrature(m):
+    # The profile from the returned wall stress: tau(y) = tau_h - g (h - y), rate from the law, u(0) = 0; its
+    # integral must reach the head's speed at y = h and carry the returned flow (quad, breakpoints at the yield
+    # surfaces).
+    tau_y, eta, L, d, h, dp, U = 3e3, 0.3, 0.03, 0.04, 1e-3, 4e5, 0.15
+    Q, tau_h = mixed_gap_flow(dp, U, tau_y, eta, m, L, d, h)
+    K, g = eta * 1000.0 ** (1 - m), dp / L
+
+    def rate(y):
+        tau = tau_h - g * (h - y)
+        return math.copysign((max(abs(tau) - tau_y, 0.0) / K) ** (1 / m), tau)
+
+    kinks = [y for y in ((tau_h - g * h - s) / -g for s in (tau_y, -tau_y)) if 0 < y < h]
+
+    def u(y):
+        return quad(rate, 0.0, y, points=[k for k in kinks if k < y] or None, epsabs=0, epsrel=1e-11)[0]
+
+    assert u(h) == pytest.approx(U, rel=1e-9)
+    assert quad(u, 0.0, h, points=kinks or None, epsrel=1e-11)[0] * math.pi * d == pytest.approx(Q, rel=1e-8)
+
+
+def _newtonian_mixed_force(damper, v, eta, bypass_damping=math.inf):
+    # plane Couette-Poiseuille flow of a Newtonian fluid: Q_gap = b (v h / 2 - h^3 dp / (12 eta L)), the bypass
+    # passes A_p^2 dp / C_l, together A_p v; the head feels dp A_p plus (eta v / h + dp h / (2 L)) on its wall
+    g = damper.geometry
+    Ap, b, h, L = g.piston_area, math.pi * g.duct_mean_diameter, g.gap, g.duct_length
+    dp = (Ap * v + b * v * h / 2) / (b * h**3 / (12 * eta * L) + Ap**2 / bypass_damping)
+    return dp * Ap + (eta * v / h + dp * h / (2 * L)) * math.pi * g.piston_diameter * L
+
+
+def test_mixed_newtonian_head_with_bypass_is_the_closed_form():
+    Cl = 400.0
+    motion = manual_motion(np.linspace(-0.3, 0.3, 41), control=0.0)
+    rec = run(KW, {"bypass": {"bypass_damping": Cl}}, motion)
+    eta = float(KW.fluid.viscosity_at(0.0))
+    np.testing.assert_allclose(rec.components["fluid"], _newtonian_mixed_force(KW, motion.velocity, eta, Cl),
+                               rtol=1e-11, atol=1e-12)
+
+
+def test_mixed_preyield_stiffness_and_limits():
+    G = 4e5
+    truth = TruthDamper(MIXED, {"preyield": {"shear_modulus": G}})
+    assert truth.preyield_stiffness == pytest.approx(_newtonian_mixed_force(MIXED, 1.0, G), rel=1e-12)
+    Kpre, Fy = truth.preyield_stiffness, abs(float(run(MIXED, {}, manual_motion([1e-6], 2e5)).true_force[0]))
+    X0 = 0.01 * Fy / Kpre                    # small amplitude: a spring of stiffness K within 1 %
+    F = run(MIXED, {"preyield": {"shear_modulus": G}}, sine(X0, 1.0, 2e5, cycles=1, rate=1000)).components["fluid"]
+    assert np.polyfit(sine(X0, 1.0, 2e5, cycles=1, rate=1000).displacement, F, 1)[0] == pytest.approx(Kpre, rel=0.02)
+    big = sine(0.02, 2.0, 2e5, cycles=2, rate=1000)
+    F = run(MIXED, {"preyield": {"shear_modulus": G}}, big).components["fluid"]
+    fast = (big.time > 0.5) & (np.abs(big.velocity) > 0.5 * np.abs(big.velocity).max())
+    np.testing.assert_allclose(F[fast], run(MIXED, {}, big).components["fluid"][fast], rtol=5e-3)
+
+
+def test_mixed_compliance_at_zero_field_follows_its_linear_ode():
+    # Newtonian fluid: P' = k_c (v + Q(P/A_p, v) / A_p) is linear in P; solve_ivp at tight tolerance is the
+    # independent route.  Backward Euler on substeps of 0.1 ms takes the head's drag term at the step's end: an
+    # error O(w h / 2) ~ 1e-3 of the force, after the start-up transient (time constant C / k_c = 0.28 ms).
+    g = KW.geometry
+    Ap, b, h, L = g.piston_area, math.pi * g.duct_mean_diameter, g.gap, g.duct_length
+    beta, eta = 5e6, float(KW.fluid.viscosity_at(0.0))
+    motion = sine(0.004, 3.0, 0.0, cycles=3, rate=1000)
+    truth = TruthDamper(KW, {"compliance": {"bulk_modulus": beta}})
+    kc = truth.compliance_stiffness
+    rec = simulate_truth(truth, motion, force_noise=0.0, displacement_noise=0.0)
+    X0, w = 0.004, 2 * math.pi * 3.0
+
+    def rhs(t, P):
+        v = X0 * w * math.cos(w * t)
+        return kc * (v + b * (v * h / 2 - h**3 * P / (Ap * 12 * eta * L)) / Ap)
+
+    t = motion.time
+    P = solve_ivp(rhs, (0, t[-1]), [0.0], t_eval=t, rtol=1e-11, atol=1e-9, method="LSODA").y[0]
+    v = motion.velocity
+    F = P + (eta * v / h + P / Ap * h / (2 * L)) * math.pi * g.piston_diameter * L
+    scale = np.abs(F).max()
+    assert np.abs(rec.components["fluid"] - F)[5:].max() < 2e-3 * scale
+    assert np.abs(F - _newtonian_mixed_force(KW, v, eta)).max() > 0.2 * scale      # the column matters here
+
+
+def test_mixed_compliance_energy_balance():
+    # work done on the head = energy dissipated in the gap + energy stored in the column, to the quadrature error
+    beta = 3e7
+    motion = sine(0.01, 2.0, 2e5, cycles=2, rate=1000)
+    truth = TruthDamper(MIXED, {"compliance": {"bulk_modulus": beta}})
+    rec = simulate_truth(truth, motion, force_noise=0.0, displacement_noise=0.0)
+    work = np.trapezoid(rec.components["fluid"] * motion.velocity, motion.time)
+    P = rec.states["valve_force"]
+    stored = P[-1] ** 2 / (2 * truth.compliance_stiffness)
+    assert np.sum(rec.states["dissipated"]) + stored == pytest.approx(work, rel=2e-3)
+
+
+def test_compliance_in_series_with_preyield_limits_and_stiffness():
+    # one force through the column (k_c) and the elastic fluid (K): a stiff column gives the pre-yield element
+    # alone, a stiff fluid the column alone, and at small amplitude the series spring 1 / (1/k_c + 1/K)
+    # (a soft fluid, G = 1 kPa, so that both springs matter: K = 2.3 k_c; a real MR fluid is 100-1000 x stiffer)
+    motion = sine(0.01, 1.0, E_MR, cycles=1.5, rate=1000)
+    G, beta = 1e3, 5e7
+    both = run(MR, {"compliance": {"bulk_modulus": beta}, "preyield": {"shear_modulus": G}}, motion).true_force
+    pre = run(MR, {"preyield": {"shear_modulus": G}}, motion).true_force
+    col = run(MR, {"compliance": {"bulk_modulus": beta}}, motion).true_force
+    stiff_col = run(MR, {"compliance": {"bulk_modulus": 1e14}, "preyield": {"shear_modulus": G}}, motion).true_force
+    stiff_fluid = run(MR, {"compliance": {"bulk_modulus": beta}, "preyield": {"shear_modulus": 1e12}},
+                      motion).true_force
+    scale = np.abs(pre).max()
+    assert np.abs(stiff_col - pre).max() < 1e-3 * scale
+    assert np.abs(stiff_fluid - col).max() < 1e-2 * scale
+    assert np.abs(both - pre).max() > 0.05 * scale and np.abs(both - col).max() > 0.05 * scale
+    truth = TruthDamper(MR, {"compliance": {"bulk_modulus": beta}, "preyield": {"shear_modulus": G}})
+    k = 1 / (1 / truth.compliance_stiffness + 1 / truth.preyield_stiffness)
+    X0 = 0.01 * yield_force(MR, E_MR) / k
+    small = sine(X0, 1.0, E_MR, cycles=1, rate=1000)
+    F = run(MR, {"compliance": {"bulk_modulus": beta}, "preyield": {"shear_modulus": G}}, small).true_force
+    assert np.polyfit(small.displacement, F - rec_friction(small), 1)[0] == pytest.approx(k, rel=0.02)
+
+
+def rec_friction(motion):
+    return MR.seal_friction * np.sign(motion.velocity)
 
 
 def test_record_round_trip_through_the_csv_reader(tmp_path):

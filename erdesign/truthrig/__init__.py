@@ -16,7 +16,7 @@ single-ended rod, cavitation, free play).
 
 from .mechanisms import MECHANISMS, Mechanism, mechanism_names
 from .simulate import TruthDamper, TruthRecord, simulate_truth
-from .valve import bingham_valve_flow, herschel_bulkley_valve_flow
+from .valve import bingham_valve_flow, herschel_bulkley_valve_flow, mixed_gap_flow
 
 __all__ = ["MECHANISMS", "Mechanism", "mechanism_names", "TruthDamper", "TruthRecord", "simulate_truth",
-           "bingham_valve_flow", "herschel_bulkley_valve_flow"]
+           "bingham_valve_flow", "herschel_bulkley_valve_flow", "mixed_gap_flow"]

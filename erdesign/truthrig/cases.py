@@ -48,7 +48,7 @@ import numpy as np
 from ..damper import Damper
 from ..damper_file import load_example
 from ..rig import Motion, earthquake_motion, random_motion, sweep
-from .simulate import MIXED_MECHANISMS, UNSUPPORTED
+from .simulate import MIXED_MECHANISMS, UNSUPPORTED, UNSUPPORTED_MIXED
 
 __all__ = ["Case", "benchmark_cases", "mechanism_parameters", "effect_size_over_noise", "build_motion",
            "control_staircase", "LIBRARY_MECHANISMS", "OUT_OF_LIBRARY", "DAMPERS", "EXCITATIONS", "NOISES",
@@ -421,11 +421,14 @@ def _case(name, damper_name, excitation, noise, mechanisms, expected, accepted, 
 
 def supported(mechanisms, damper_name: str) -> bool:
     """Whether the truth rig can simulate ``mechanisms`` together on the example damper ``damper_name`` (the
-    mixed-mode damper has no valve law for some; some pairs are not combined, :data:`~.simulate.UNSUPPORTED`)."""
+    mixed-mode damper has no chambers for the out-of-library valves; some sets are not combined,
+    :data:`~.simulate.UNSUPPORTED` and :data:`~.simulate.UNSUPPORTED_MIXED`)."""
     names = set(mechanisms)
-    if any(pair <= names for pair in UNSUPPORTED):
+    if any(group <= names for group in UNSUPPORTED):
         return False
-    return _example(damper_name).geometry.configuration != "mixed" or names <= set(MIXED_MECHANISMS)
+    if _example(damper_name).geometry.configuration != "mixed":
+        return True
+    return names <= set(MIXED_MECHANISMS) and not any(group <= names for group in UNSUPPORTED_MIXED)
 
 
 def unsupported_pairs() -> list[tuple[str, str]]:

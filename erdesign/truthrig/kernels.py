@@ -15,14 +15,27 @@ drop :math:`\Delta p = F/A` (``A`` the area of the pressurised chamber: the comp
 non-decreasing in ``F``; every force in the rig is a root of a monotone scalar equation built on it
 (:func:`monotone_root`, Newton steps inside a shrinking bracket, bisection as the fall-back).
 
+The moving-electrode (mixed-mode) head has one gap whose inner wall is the head itself: the gap's flow depends on
+the pressure drop and on the head's speed (:func:`erdesign.truthrig.valve.moving_wall_flow`), and the head feels the
+wall stress besides the pressure.  Its steady force (:func:`mixed_steady_force`) is the pressure drop at which the
+gap and the bypass send the displaced volume :math:`A_p v` back past the head, a root of a monotone equation in
+:math:`\Delta p` (:func:`mixed_pressure`, the Illinois method on a doubled bracket), plus wall stress times wall
+area.  No blow-off, cavitation or single rod for this head (:data:`erdesign.truthrig.simulate.MIXED_MECHANISMS`).
+
 :func:`run` integrates, on a fine grid of substeps, the states that need time stepping (each optional):
 
 * compliance with the slug in series, states :math:`P` (pressure force) and :math:`w` (speed the ducts pass),
   :math:`\dot P = k_c (v - w)`, :math:`m \dot w = P - F_v(w)`, backward Euler with the exact stroke increment
   :math:`\Delta x` in place of :math:`h v`; eliminating :math:`P` leaves one monotone equation in the valve force
-  :math:`F_v` per step, :math:`F_v + (m/h + k_c h)\,v_d(F_v) = m w/h + P + k_c \Delta x`;
+  :math:`F_v` per step, :math:`F_v + (m/h + k_c h)\,v_d(F_v) = m w/h + P + k_c \Delta x`; on the mixed head
+  (no slug in series: its slug is rigid) :math:`P = P_0 + k_c(\Delta x + h\,Q(P/A_p, v)/A_p)`, monotone in
+  :math:`P`, and the force on the head adds the wall stress at that pressure;
 * the damper-level Makris eq 8 (pre-yield), :math:`\dot F = K v\,(1 - F / F_r(v))`, linear in the force over a
   step and integrated exactly with the rate coefficient frozen at mid-step;
+* compliance and pre-yield together: the column's spring in series with the Makris element, one force through
+  both; per step the element's stroke :math:`\Delta u` solves
+  :math:`M(P, \Delta u) = P + k_c(\Delta x - \Delta u)`, with :math:`M` the exact step of the element above at
+  its speed :math:`\Delta u/h` (Illinois method; the residual grows without bound both ways);
 * the lumped temperature rise, trapezoidal rule on its linear cooling and the energy dissipated in the step,
   which makes heat stored + heat lost = work dissipated hold to round-off over every step.
 
@@ -50,9 +63,10 @@ import math
 import numba
 import numpy as np
 
-from .valve import slit_flow, slit_flow_slope
+from .valve import moving_wall_flow, slit_flow, slit_flow_slope
 
-__all__ = ["N_PARAMETERS", "passed_speed", "steady_force", "monotone_root", "run", "first_order_lag",
+__all__ = ["N_PARAMETERS", "passed_speed", "steady_force", "monotone_root", "mixed_flow", "mixed_pressure",
+           "mixed_steady_force", "any_steady_force", "series_step", "run", "first_order_lag",
            "play_operator"]
 
 # Indices into the parameter vector of the kernels (SI).
@@ -61,7 +75,8 @@ I_GL, I_GB, I_PC = 6, 7, 8                  # bypass conductance, blow-off condu
 I_AC, I_AR, I_CAP = 9, 10, 11               # compression area, rebound area, rebound force cap (inf: none)
 I_KC, I_MSLUG, I_KPRE = 12, 13, 14          # compliance stiffness, slug mass, pre-yield stiffness (0: off)
 I_HEAT_CAPACITY, I_COOLING_TIME, I_ALPHA = 15, 16, 17   # heat capacity 0: no thermal state
-N_PARAMETERS = 18
+I_MIXED, I_AWALL = 18, 19                   # 1: moving-electrode head (0: valve); area of the head's wall
+N_PARAMETERS = 20
 
 
 @numba.njit(cache=True)
@@ -147,6 +162,147 @@ def steady_force(v, tau_y, eta, thermal, p):
     return direction * F
 
 
+# ---------------------------------------------------------------------------------------------------- mixed mode
+@numba.njit(cache=True)
+def mixed_flow(dp, U, tau_y, eta, thermal, p):
+    """(Q, tau_h) of the moving-electrode head: flow along the head's motion through its gap and the bypass
+    [m^3/s] at pressure drop ``dp`` (ahead minus behind) and head speed ``U``, and the stress on the head's wall
+    [Pa] (:func:`erdesign.truthrig.valve.moving_wall_flow`)."""
+    m = p[I_M]
+    K = eta * p[I_GAMMA_REF] ** (1.0 - m)
+    q, tau_h = moving_wall_flow(dp, U, tau_y, K, m, p[I_L], p[I_H])
+    return p[I_B] * q - p[I_GL] / thermal * dp, tau_h
+
+
+@numba.njit(cache=True)
+def mixed_pressure(c0, c1, R, U, tau_y, eta, thermal, p):
+    """The pressure drop dp with c0 dp - c1 Q(dp, U) = R (c0 >= 0, c1 > 0; Q of :func:`mixed_flow` falls as dp
+    rises, so the left side increases): a bracket doubled until it holds the root, then the Illinois method."""
+    A = p[I_AC]
+    # a scale: the yield pressure, the Newtonian drop of the flow R / c1 plus the Couette flow, R / c0
+    w = p[I_B] * p[I_H] ** 3 / (12.0 * eta * p[I_L])
+    scale = 2.0 * tau_y * p[I_L] / p[I_H] + (abs(R) / c1 + p[I_B] * p[I_H] * abs(U)) / w
+    if c0 > 0.0:
+        scale = min(scale, abs(R) / c0 + 2.0 * tau_y * p[I_L] / p[I_H] + 1e-300) if R != 0.0 else scale
+    scale = max(scale, 1e-12 * A)
+    lo, hi = -scale, scale
+    f_lo = c0 * lo - c1 * mixed_flow(lo, U, tau_y, eta, thermal, p)[0] - R
+    f_hi = c0 * hi - c1 * mixed_flow(hi, U, tau_y, eta, thermal, p)[0] - R
+    for _ in range(200):
+        if f_lo <= 0.0:
+            break
+        hi, f_hi = lo, f_lo
+        lo *= 2.0
+        f_lo = c0 * lo - c1 * mixed_flow(lo, U, tau_y, eta, thermal, p)[0] - R
+    for _ in range(200):
+        if f_hi >= 0.0:
+            break
+        lo, f_lo = hi, f_hi
+        hi *= 2.0
+        f_hi = c0 * hi - c1 * mixed_flow(hi, U, tau_y, eta, thermal, p)[0] - R
+    if f_lo == 0.0:
+        return lo
+    if f_hi == 0.0:
+        return hi
+    side = 0
+    x = hi
+    for _ in range(300):
+        x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+        if not (lo < x < hi):
+            x = 0.5 * (lo + hi)
+        f = c0 * x - c1 * mixed_flow(x, U, tau_y, eta, thermal, p)[0] - R
+        if f == 0.0 or hi - lo <= 1e-14 * max(abs(lo), abs(hi)):
+            return x
+        if f < 0.0:
+            lo, f_lo = x, f
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi, f_hi = x, f
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+    return x
+
+
+@numba.njit(cache=True)
+def mixed_steady_force(v, tau_y, eta, thermal, p):
+    """Signed steady force [N] of the rigid moving-electrode head at speed ``v`` (0 at v = 0): the pressure drop
+    that sends the displaced volume A_p v back past the head, times A_p, plus the wall stress times the head's wall
+    area."""
+    if v == 0.0:
+        return 0.0
+    dp = mixed_pressure(0.0, 1.0, p[I_AC] * v, v, tau_y, eta, thermal, p)
+    return dp * p[I_AC] + mixed_flow(dp, v, tau_y, eta, thermal, p)[1] * p[I_AWALL]
+
+
+@numba.njit(cache=True)
+def any_steady_force(v, tau_y, eta, thermal, p):
+    """:func:`steady_force` of the valve or :func:`mixed_steady_force` of the moving-electrode head."""
+    if p[I_MIXED] > 0.0:
+        return mixed_steady_force(v, tau_y, eta, thermal, p)
+    return steady_force(v, tau_y, eta, thermal, p)
+
+
+@numba.njit(cache=True)
+def _makris_step(F, du, kpre, tau_y, eta, thermal, hi, p):
+    """Force after a step of the damper-level Makris eq 8 element that strokes by ``du`` in time ``hi`` from force
+    ``F`` (rate coefficient at the step's mean speed, exact for it frozen)."""
+    if du == 0.0:
+        return F
+    Fr = abs(any_steady_force(du / hi, tau_y, eta, thermal, p))
+    if Fr <= 0.0:
+        return 0.0
+    z = kpre * abs(du) / Fr
+    phi = (1.0 - math.exp(-z)) / z if z > 1e-8 else 1.0 - 0.5 * z
+    return F * math.exp(-z) + kpre * du * phi
+
+
+@numba.njit(cache=True)
+def series_step(P, dxi, hi, kc, kpre, tau_y, eta, thermal, p):
+    """Column compliance ``kc`` in series with the Makris element (stiffness ``kpre``): the element's stroke du in a
+    step with stroke ``dxi``, where the spring's force P + kc (dxi - du) equals the element's; returns the force.
+    The residual grows without bound in du both ways, so a doubled bracket holds a root (Illinois method)."""
+    a = abs(dxi) + abs(P) / kc + 1e-300
+    lo, hi_ = -a, a
+    f_lo = _makris_step(P, lo, kpre, tau_y, eta, thermal, hi, p) - P - kc * (dxi - lo)
+    f_hi = _makris_step(P, hi_, kpre, tau_y, eta, thermal, hi, p) - P - kc * (dxi - hi_)
+    for _ in range(200):
+        if f_lo <= 0.0:
+            break
+        lo *= 2.0
+        f_lo = _makris_step(P, lo, kpre, tau_y, eta, thermal, hi, p) - P - kc * (dxi - lo)
+    for _ in range(200):
+        if f_hi >= 0.0:
+            break
+        hi_ *= 2.0
+        f_hi = _makris_step(P, hi_, kpre, tau_y, eta, thermal, hi, p) - P - kc * (dxi - hi_)
+    x = 0.5 * (lo + hi_)
+    side = 0
+    for _ in range(300):
+        if f_hi == f_lo:
+            x = 0.5 * (lo + hi_)
+        else:
+            x = (lo * f_hi - hi_ * f_lo) / (f_hi - f_lo)
+        if not (lo < x < hi_):
+            x = 0.5 * (lo + hi_)
+        f = _makris_step(P, x, kpre, tau_y, eta, thermal, hi, p) - P - kc * (dxi - x)
+        if f == 0.0 or hi_ - lo <= 1e-14 * max(abs(lo), abs(hi_)):
+            break
+        if f < 0.0:
+            lo, f_lo = x, f
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi_, f_hi = x, f
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+    return P + kc * (dxi - x)
+
+
 @numba.njit(cache=True)
 def run(v, dx, h, tau_y, eta, p):
     """Integrate the fluid element over a fine grid (module notes).
@@ -164,15 +320,36 @@ def run(v, dx, h, tau_y, eta, p):
     kc, mass, kpre = p[I_KC], p[I_MSLUG], p[I_KPRE]
     heat_capacity, cooling_time, alpha = p[I_HEAT_CAPACITY], p[I_COOLING_TIME], p[I_ALPHA]
     cap = p[I_CAP]
+    mixed = p[I_MIXED] > 0.0
     P, w, T = 0.0, 0.0, 0.0  # stateful elements start unloaded and at rest, at the ambient temperature
     if kc == 0.0 and kpre == 0.0:
-        force[0] = steady_force(v[0], tau_y[0], eta[0], 1.0, p)
+        force[0] = any_steady_force(v[0], tau_y[0], eta[0], 1.0, p)
         valve[0] = force[0]
+    elif mixed and kpre == 0.0:
+        force[0] = mixed_flow(0.0, v[0], tau_y[0], eta[0], 1.0, p)[1] * p[I_AWALL]   # the wall's drag, unloaded
     for i in range(1, n):
         thermal = math.exp(-alpha * T) if heat_capacity > 0.0 else 1.0
         eta_i = eta[i] * thermal
         hi = h[i]
-        if kc > 0.0:
+        if kc > 0.0 and kpre > 0.0:
+            # the compliant column in series with the elastic-viscoplastic fluid: one force through both
+            P_new = series_step(P, dx[i], hi, kc, kpre, tau_y[i], eta_i, thermal, p)
+            if P_new < -cap:
+                P_new = -cap
+            energy = 0.5 * (P + P_new) * dx[i] - (P_new * P_new - P * P) * (0.5 / kc + 0.5 / kpre)
+            P = P_new
+            force[i], valve[i] = P, P
+        elif kc > 0.0 and mixed:
+            # the head's pressure force P = A_p dp compresses the column; the gap's flow (with the head's wall
+            # dragging it) relieves it: backward Euler, P = P_old + kc (dx + h Q(P / A_p, v) / A_p)
+            Ap = p[I_AC]
+            dp = mixed_pressure(Ap, kc * hi / Ap, P + kc * dx[i], v[i], tau_y[i], eta_i, thermal, p)
+            P_old = P
+            P = dp * Ap
+            F = P + mixed_flow(dp, v[i], tau_y[i], eta_i, thermal, p)[1] * p[I_AWALL]
+            energy = F * dx[i] - (P * P - P_old * P_old) / (2.0 * kc)
+            force[i], valve[i] = F, P
+        elif kc > 0.0:
             c = mass / hi + kc * hi
             R = mass * w / hi + P + kc * dx[i]
             direction = 1 if R >= 0.0 else -1
@@ -188,7 +365,7 @@ def run(v, dx, h, tau_y, eta, p):
             v_mid = 0.5 * (v[i - 1] + v[i])
             lam = 0.0
             if v_mid != 0.0:
-                Fr = abs(steady_force(v_mid, tau_y[i], eta_i, thermal, p))
+                Fr = abs(any_steady_force(v_mid, tau_y[i], eta_i, thermal, p))
                 if Fr > 0.0:
                     lam = kpre * abs(v_mid) / Fr
             z = lam * hi
@@ -200,7 +377,7 @@ def run(v, dx, h, tau_y, eta, p):
             P = F_new
             force[i], valve[i] = P, P
         else:
-            F = steady_force(v[i], tau_y[i], eta_i, thermal, p)
+            F = any_steady_force(v[i], tau_y[i], eta_i, thermal, p)
             energy = 0.5 * (force[i - 1] * v[i - 1] + F * v[i]) * hi
             force[i], valve[i] = F, F
         if heat_capacity > 0.0:

@@ -16,9 +16,11 @@ The force on the rod, with ``x`` growing in compression (the convention of :mod:
     F = F_\text{fluid} + F_\text{inertia} + F_\text{friction} + F_\text{gas}
 
 * :math:`F_\text{fluid}`: the valve damper's parallel flow paths (ducts, bypass, blow-off) at the piston speed,
-  or the pressure force of the compliant column, or the damper-level Makris eq 8 force; for the mixed-mode damper
-  the pressure drag plus shear drag of :func:`erdesign.flow.mixed_mode.couette_poiseuille_bingham`;
-* :math:`F_\text{inertia} = m_\text{slug} a` (rigid column; with compliance the slug sits inside the fluid state);
+  or the pressure force of the compliant column, or the damper-level Makris eq 8 force, or the column in series
+  with the Makris element; for the mixed-mode damper the pressure drag plus the shear drag of its moving-wall gap
+  (:func:`erdesign.truthrig.valve.mixed_gap_flow`), with the same optional states;
+* :math:`F_\text{inertia} = m_\text{slug} a` (rigid column; with compliance on a valve damper the slug sits inside
+  the fluid state);
 * :math:`F_\text{friction}`: the damper file's Coulomb seal friction :math:`F_s \operatorname{sgn} v`, or the
   Stribeck law;
 * :math:`F_\text{gas}`: the accumulator.
@@ -43,7 +45,6 @@ import numpy as np
 
 from ..damper import Damper
 from ..errors import ErdesignError
-from ..flow.mixed_mode import couette_poiseuille_bingham
 from ..measurement import CONTROL_COLUMNS, Measurement, read_measurement, write_measurement
 from ..rig import Motion
 from . import kernels as K
@@ -51,15 +52,15 @@ from .mechanisms import ATMOSPHERIC_PRESSURE, MECHANISMS, rod_area
 from .valve import REFERENCE_SHEAR_RATE
 
 __all__ = ["TruthDamper", "TruthRecord", "simulate_truth", "SUBSTEPS", "UNSUPPORTED", "MIXED_MECHANISMS",
-           "FILE_UNITS"]
+           "UNSUPPORTED_MIXED", "FILE_UNITS"]
 
 #: Default substeps per sample for the time-stepped states.
 SUBSTEPS = 10
 
 #: Pairs of mechanisms the rig does not combine, with the reason.
 UNSUPPORTED = {
-    frozenset({"compliance", "preyield"}): "both are springs in series with the valve and the rig integrates "
-                                           "only one fluid state",
+    frozenset({"compliance", "preyield", "slug_inertia"}): "the column in series with the elastic fluid is "
+                                                           "integrated without the slug inside it",
     frozenset({"free_play", "compliance"}): "a compliant column stores force across the gap, so the piston no "
                                             "longer follows the play operator",
     frozenset({"free_play", "preyield"}): "pre-yield elasticity stores force across the gap, so the piston no "
@@ -68,8 +69,15 @@ UNSUPPORTED = {
     frozenset({"single_rod", "compliance"}): "the compliance is written for two equal chambers",
 }
 
-#: Mechanisms available for the mixed-mode (moving-electrode) damper: those that do not need the valve law.
-MIXED_MECHANISMS = ("stribeck_friction", "accumulator", "slug_inertia", "coil_lag", "free_play")
+#: Mechanisms available for the mixed-mode (moving-electrode) damper (no blow-off valve, single rod or cavitation:
+#: they are written for the valve's chambers).
+MIXED_MECHANISMS = ("compliance", "herschel_bulkley", "bypass", "thermal", "preyield", "stribeck_friction",
+                    "accumulator", "slug_inertia", "coil_lag", "free_play")
+#: Sets of mechanisms the rig does not combine on the mixed-mode damper, with the reason.
+UNSUPPORTED_MIXED = {
+    frozenset({"compliance", "preyield"}): "the column carries the pressure force only, the elastic fluid also the "
+                                           "wall's shear drag",
+}
 
 #: Units of the CSV columns :meth:`TruthRecord.write` uses for each kind of control.
 FILE_UNITS = {"electric field": "kV/mm", "magnetic field": "kA/m", "current": "A"}
@@ -141,15 +149,19 @@ class TruthDamper:
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
                 raise ErdesignError(f"{name}: must be a finite number > 0, got {value!r}")
         names = set(settings)
-        for pair, why in UNSUPPORTED.items():
-            if pair <= names:
-                a, b = sorted(pair)
-                raise ErdesignError(f"mechanisms: {a} and {b} cannot be combined in the truth rig: {why}")
+        for group, why in UNSUPPORTED.items():
+            if group <= names:
+                raise ErdesignError(f"mechanisms: {' and '.join(sorted(group))} cannot be combined in the truth "
+                                    f"rig: {why}")
         if self.damper.geometry.configuration == "mixed":
             bad = sorted(names - set(MIXED_MECHANISMS))
             if bad:
-                raise ErdesignError(f"mechanisms: {', '.join(bad)} need the valve law and are not available for "
-                                    f"the mixed-mode damper; available: {', '.join(MIXED_MECHANISMS)}")
+                raise ErdesignError(f"mechanisms: {', '.join(bad)} need the valve's chambers and are not available "
+                                    f"for the mixed-mode damper; available: {', '.join(MIXED_MECHANISMS)}")
+            for group, why in UNSUPPORTED_MIXED.items():
+                if group <= names:
+                    raise ErdesignError(f"mechanisms: {' and '.join(sorted(group))} cannot be combined on the "
+                                        f"mixed-mode damper in the truth rig: {why}")
         values = {}
         for name, given in settings.items():
             defaults = MECHANISMS[name].parameters(self.damper)
@@ -190,27 +202,49 @@ class TruthDamper:
         return 2.0 * c["bulk_modulus"] * self.damper.geometry.piston_area**2 / c["chamber_volume"]
 
     @property
-    def preyield_stiffness(self) -> float:
-        """K = 12 G L Ap^2 / (n pi d h^3), [N/m]: the damping constant with eta replaced by G (0 without preyield).
+    def mixed(self) -> bool:
+        """True for the moving-electrode (mixed-mode) head."""
+        return self.damper.geometry.configuration == "mixed"
 
-        A solid of shear modulus G in the slit, loaded by a pressure gradient, deflects in the same parabola as the
-        Newtonian fluid flows, so the elastic stiffness is the Newtonian damping constant with eta -> G.
+    @property
+    def preyield_stiffness(self) -> float:
+        """The damper's elastic stiffness below yield, [N/m]: its Newtonian damping constant with eta replaced by G
+        (0 without preyield); K = 12 G L Ap^2 / (n pi d h^3) for the valve.
+
+        A solid of shear modulus G in the gap, loaded by a pressure gradient (and, on the mixed head, by the head's
+        wall), deflects in the same profile as the Newtonian fluid flows (the equations are the same with velocity
+        -> displacement), so the elastic stiffness is the Newtonian damping constant with eta -> G.
         """
         if not self.has("preyield"):
             return 0.0
         g = self.damper.geometry
         G = self.values["preyield"]["shear_modulus"]
-        return 12.0 * G * g.duct_length * g.piston_area**2 / (g.ducts * math.pi * g.duct_mean_diameter * g.gap**3)
+        if not self.mixed:
+            return 12.0 * G * g.duct_length * g.piston_area**2 / (
+                g.ducts * math.pi * g.duct_mean_diameter * g.gap**3)
+        p = self._geometry_vector()
+        p[K.I_M] = 1.0
+        return float(K.mixed_steady_force(1.0, 0.0, G, 1.0, p))
+
+    def _geometry_vector(self) -> np.ndarray:
+        g = self.damper.geometry
+        p = np.zeros(K.N_PARAMETERS)
+        p[K.I_L], p[K.I_B], p[K.I_H] = g.duct_length, math.pi * g.duct_mean_diameter, g.gap
+        p[K.I_DUCTS] = g.ducts
+        p[K.I_GAMMA_REF] = REFERENCE_SHEAR_RATE
+        p[K.I_AC] = p[K.I_AR] = g.piston_area
+        p[K.I_PC] = p[K.I_CAP] = math.inf
+        if self.mixed:
+            p[K.I_MIXED] = 1.0
+            p[K.I_AWALL] = math.pi * g.piston_diameter * g.duct_length
+        return p
 
     def parameter_vector(self) -> np.ndarray:
         """The SI parameter vector of :mod:`erdesign.truthrig.kernels`."""
         g, v = self.damper.geometry, self.values
         Ap = g.piston_area
-        p = np.zeros(K.N_PARAMETERS)
-        p[K.I_L], p[K.I_B], p[K.I_H] = g.duct_length, math.pi * g.duct_mean_diameter, g.gap
-        p[K.I_DUCTS] = g.ducts
+        p = self._geometry_vector()
         p[K.I_M] = v["herschel_bulkley"]["flow_index"] if self.has("herschel_bulkley") else 1.0
-        p[K.I_GAMMA_REF] = REFERENCE_SHEAR_RATE
         if self.has("bypass"):
             p[K.I_GL] = Ap**2 / v["bypass"]["bypass_damping"]
         p[K.I_PC] = math.inf
@@ -218,12 +252,11 @@ class TruthDamper:
             p[K.I_GB] = Ap**2 / v["blowoff"]["blowoff_damping"]
             p[K.I_PC] = v["blowoff"]["cracking_force"] / Ap
         p[K.I_AC], p[K.I_AR] = self.piston_areas
-        p[K.I_CAP] = math.inf
         if self.has("cavitation"):
             c = v["cavitation"]
             p[K.I_CAP] = (c["charge_pressure"] - c["vapour_pressure"]) * Ap
         p[K.I_KC] = self.compliance_stiffness
-        if self.has("compliance") and self.has("slug_inertia"):
+        if self.has("compliance") and self.has("slug_inertia") and not self.mixed:
             p[K.I_MSLUG] = v["slug_inertia"]["slug_mass"]
         p[K.I_KPRE] = self.preyield_stiffness
         if self.has("thermal"):
@@ -333,17 +366,6 @@ def _control_seen(truth: TruthDamper, command: np.ndarray, h: np.ndarray, subste
     return K.first_order_lag(held, h, truth.values["coil_lag"]["time_constant"], float(command[0]))
 
 
-def _mixed_force(truth: TruthDamper, v, tau_y, eta):
-    g = truth.damper.geometry
-    Ap = g.piston_area
-    b = math.pi * g.duct_mean_diameter
-    # the head moves at U = v and the volume it displaces returns through the gap: q = -v Ap / b (fixed frame)
-    r = couette_poiseuille_bingham(v, -v * Ap / b, tau_y, eta, g.gap)
-    F = np.asarray(r.pressure_gradient) * g.duct_length * Ap - np.asarray(r.wall_stress_moving) * (
-        math.pi * g.piston_diameter * g.duct_length)
-    return np.where(v == 0.0, 0.0, F)
-
-
 def _friction(truth: TruthDamper, v):
     if truth.has("stribeck_friction"):
         s = truth.values["stribeck_friction"]
@@ -426,17 +448,13 @@ def simulate_truth(truth: TruthDamper, motion: Motion, *, force_noise: float = 0
 
     states: dict[str, np.ndarray] = {"piston_displacement": xp, "piston_velocity": vp, "control_seen": seen[::S]}
     inertia = np.zeros_like(t)
-    if truth.has("slug_inertia") and not truth.has("compliance"):
+    if truth.has("slug_inertia") and (truth.mixed or not truth.has("compliance")):
         inertia = truth.values["slug_inertia"]["slug_mass"] * ap
-    if damper.geometry.configuration == "mixed":
-        fluid = _mixed_force(truth, vp, tau_y, eta)
-        states.update(valve_force=fluid, temperature_rise=np.zeros_like(t), dissipated=np.zeros_like(t))
-    else:
-        dx = np.concatenate([[0.0], np.diff(xf)])
-        force, valve, theta, dissipated = K.run(vf, dx, h, tau_y, eta, truth.parameter_vector())
-        fluid = force[::S]
-        per_sample = np.concatenate([[0.0], np.add.reduceat(dissipated[1:], np.arange(0, dissipated.size - 1, S))])
-        states.update(valve_force=valve[::S], temperature_rise=theta[::S], dissipated=per_sample)
+    dx = np.concatenate([[0.0], np.diff(xf)])
+    force, valve, theta, dissipated = K.run(vf, dx, h, tau_y, eta, truth.parameter_vector())
+    fluid = force[::S]
+    per_sample = np.concatenate([[0.0], np.add.reduceat(dissipated[1:], np.arange(0, dissipated.size - 1, S))])
+    states.update(valve_force=valve[::S], temperature_rise=theta[::S], dissipated=per_sample)
     components = {"fluid": fluid, "inertia": inertia, "friction": _friction(truth, vp),
                   "gas_spring": _gas(truth, xp)}
     true_force = sum(components.values())
