@@ -63,7 +63,7 @@ import math
 import numba
 import numpy as np
 
-from .valve import moving_wall_flow, slit_flow, slit_flow_slope
+from .valve import moving_wall_flow_from, slit_flow, slit_flow_slope
 
 __all__ = ["N_PARAMETERS", "passed_speed", "steady_force", "monotone_root", "mixed_flow", "mixed_pressure",
            "mixed_steady_force", "any_steady_force", "series_step", "run", "first_order_lag",
@@ -164,77 +164,87 @@ def steady_force(v, tau_y, eta, thermal, p):
 
 # ---------------------------------------------------------------------------------------------------- mixed mode
 @numba.njit(cache=True)
-def mixed_flow(dp, U, tau_y, eta, thermal, p):
-    """(Q, tau_h) of the moving-electrode head: flow along the head's motion through its gap and the bypass
-    [m^3/s] at pressure drop ``dp`` (ahead minus behind) and head speed ``U``, and the stress on the head's wall
-    [Pa] (:func:`erdesign.truthrig.valve.moving_wall_flow`)."""
+def mixed_flow(dp, U, tau_y, eta, thermal, p, guess=math.nan):
+    """(Q, tau_h, tau_0) of the moving-electrode head: flow along the head's motion through its gap and the bypass
+    [m^3/s] at pressure drop ``dp`` (ahead minus behind) and head speed ``U``, the stress on the head's wall [Pa],
+    and the stress on the cylinder's wall (``guess`` for the next call; :func:`erdesign.truthrig.valve.
+    moving_wall_flow`)."""
     m = p[I_M]
     K = eta * p[I_GAMMA_REF] ** (1.0 - m)
-    q, tau_h = moving_wall_flow(dp, U, tau_y, K, m, p[I_L], p[I_H])
-    return p[I_B] * q - p[I_GL] / thermal * dp, tau_h
+    q, tau_h, tau0 = moving_wall_flow_from(dp, U, tau_y, K, m, p[I_L], p[I_H], guess)
+    return p[I_B] * q - p[I_GL] / thermal * dp, tau_h, tau0
 
 
 @numba.njit(cache=True)
-def mixed_pressure(c0, c1, R, U, tau_y, eta, thermal, p):
+def mixed_pressure(c0, c1, R, U, tau_y, eta, thermal, p, guess=math.nan):
     """The pressure drop dp with c0 dp - c1 Q(dp, U) = R (c0 >= 0, c1 > 0; Q of :func:`mixed_flow` falls as dp
-    rises, so the left side increases): a bracket doubled until it holds the root, then the Illinois method."""
+    rises, so the left side increases), started from ``guess`` (the previous step's root): a bracket widened until
+    it holds the root, then the Illinois method.  Returns (dp, tau_h at dp)."""
     A = p[I_AC]
-    # a scale: the yield pressure, the Newtonian drop of the flow R / c1 plus the Couette flow, R / c0
+    yield_drop = 2.0 * tau_y * p[I_L] / p[I_H]
     w = p[I_B] * p[I_H] ** 3 / (12.0 * eta * p[I_L])
-    scale = 2.0 * tau_y * p[I_L] / p[I_H] + (abs(R) / c1 + p[I_B] * p[I_H] * abs(U)) / w
-    if c0 > 0.0:
-        scale = min(scale, abs(R) / c0 + 2.0 * tau_y * p[I_L] / p[I_H] + 1e-300) if R != 0.0 else scale
-    scale = max(scale, 1e-12 * A)
-    lo, hi = -scale, scale
-    f_lo = c0 * lo - c1 * mixed_flow(lo, U, tau_y, eta, thermal, p)[0] - R
-    f_hi = c0 * hi - c1 * mixed_flow(hi, U, tau_y, eta, thermal, p)[0] - R
-    for _ in range(200):
+    scale = yield_drop + (abs(R) / c1 + p[I_B] * p[I_H] * abs(U)) / w + 1e-12 * A
+    if guess == guess:
+        step = 1e-3 * (abs(guess) + yield_drop) + 1e-12 * A
+        lo, hi = guess - step, guess + step
+    else:
+        step = scale
+        lo, hi = -scale, scale
+    f_lo, _, t_lo = mixed_flow(lo, U, tau_y, eta, thermal, p)
+    f_lo = c0 * lo - c1 * f_lo - R
+    f_hi, _, t_hi = mixed_flow(hi, U, tau_y, eta, thermal, p, t_lo)
+    f_hi = c0 * hi - c1 * f_hi - R
+    for _ in range(400):
         if f_lo <= 0.0:
             break
-        hi, f_hi = lo, f_lo
-        lo *= 2.0
-        f_lo = c0 * lo - c1 * mixed_flow(lo, U, tau_y, eta, thermal, p)[0] - R
-    for _ in range(200):
+        hi, f_hi, t_hi = lo, f_lo, t_lo
+        step *= 2.0
+        lo -= step
+        f_lo, _, t_lo = mixed_flow(lo, U, tau_y, eta, thermal, p, t_lo)
+        f_lo = c0 * lo - c1 * f_lo - R
+    for _ in range(400):
         if f_hi >= 0.0:
             break
-        lo, f_lo = hi, f_hi
-        hi *= 2.0
-        f_hi = c0 * hi - c1 * mixed_flow(hi, U, tau_y, eta, thermal, p)[0] - R
+        lo, f_lo, t_lo = hi, f_hi, t_hi
+        step *= 2.0
+        hi += step
+        f_hi, _, t_hi = mixed_flow(hi, U, tau_y, eta, thermal, p, t_hi)
+        f_hi = c0 * hi - c1 * f_hi - R
+    x, t_x = hi, t_hi
     if f_lo == 0.0:
-        return lo
-    if f_hi == 0.0:
-        return hi
-    side = 0
-    x = hi
-    for _ in range(300):
-        x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-        if not (lo < x < hi):
-            x = 0.5 * (lo + hi)
-        f = c0 * x - c1 * mixed_flow(x, U, tau_y, eta, thermal, p)[0] - R
-        if f == 0.0 or hi - lo <= 1e-14 * max(abs(lo), abs(hi)):
-            return x
-        if f < 0.0:
-            lo, f_lo = x, f
-            if side == -1:
-                f_hi *= 0.5
-            side = -1
-        else:
-            hi, f_hi = x, f
-            if side == 1:
-                f_lo *= 0.5
-            side = 1
-    return x
+        x, t_x = lo, t_lo
+    elif f_hi != 0.0:
+        side = 0
+        for _ in range(300):
+            x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+            if not (lo < x < hi):
+                x = 0.5 * (lo + hi)
+            f, _, t_x = mixed_flow(x, U, tau_y, eta, thermal, p, 0.5 * (t_lo + t_hi))
+            f = c0 * x - c1 * f - R
+            if f == 0.0 or hi - lo <= 1e-14 * max(abs(lo), abs(hi)):
+                break
+            if f < 0.0:
+                lo, f_lo, t_lo = x, f, t_x
+                if side == -1:
+                    f_hi *= 0.5
+                side = -1
+            else:
+                hi, f_hi, t_hi = x, f, t_x
+                if side == 1:
+                    f_lo *= 0.5
+                side = 1
+    return x, mixed_flow(x, U, tau_y, eta, thermal, p, t_x)[1]
 
 
 @numba.njit(cache=True)
-def mixed_steady_force(v, tau_y, eta, thermal, p):
+def mixed_steady_force(v, tau_y, eta, thermal, p, guess=math.nan):
     """Signed steady force [N] of the rigid moving-electrode head at speed ``v`` (0 at v = 0): the pressure drop
     that sends the displaced volume A_p v back past the head, times A_p, plus the wall stress times the head's wall
-    area."""
+    area; ``guess`` a pressure drop to start from."""
     if v == 0.0:
         return 0.0
-    dp = mixed_pressure(0.0, 1.0, p[I_AC] * v, v, tau_y, eta, thermal, p)
-    return dp * p[I_AC] + mixed_flow(dp, v, tau_y, eta, thermal, p)[1] * p[I_AWALL]
+    dp, tau_h = mixed_pressure(0.0, 1.0, p[I_AC] * v, v, tau_y, eta, thermal, p, guess)
+    return dp * p[I_AC] + tau_h * p[I_AWALL]
 
 
 @numba.njit(cache=True)
@@ -243,6 +253,18 @@ def any_steady_force(v, tau_y, eta, thermal, p):
     if p[I_MIXED] > 0.0:
         return mixed_steady_force(v, tau_y, eta, thermal, p)
     return steady_force(v, tau_y, eta, thermal, p)
+
+
+@numba.njit(cache=True)
+def _steady_from(v, tau_y, eta, thermal, p, guess):
+    """(steady force, pressure drop to start the next root from): :func:`any_steady_force` started from ``guess``
+    on the mixed head (consecutive substeps differ little)."""
+    if p[I_MIXED] == 0.0:
+        return steady_force(v, tau_y, eta, thermal, p), math.nan
+    if v == 0.0:
+        return 0.0, guess
+    dp, tau_h = mixed_pressure(0.0, 1.0, p[I_AC] * v, v, tau_y, eta, thermal, p, guess)
+    return dp * p[I_AC] + tau_h * p[I_AWALL], dp
 
 
 @numba.njit(cache=True)
@@ -321,6 +343,7 @@ def run(v, dx, h, tau_y, eta, p):
     heat_capacity, cooling_time, alpha = p[I_HEAT_CAPACITY], p[I_COOLING_TIME], p[I_ALPHA]
     cap = p[I_CAP]
     mixed = p[I_MIXED] > 0.0
+    last = math.nan     # the mixed head's previous pressure drop, where its next root is sought first
     P, w, T = 0.0, 0.0, 0.0  # stateful elements start unloaded and at rest, at the ambient temperature
     if kc == 0.0 and kpre == 0.0:
         force[0] = any_steady_force(v[0], tau_y[0], eta[0], 1.0, p)
@@ -343,10 +366,11 @@ def run(v, dx, h, tau_y, eta, p):
             # the head's pressure force P = A_p dp compresses the column; the gap's flow (with the head's wall
             # dragging it) relieves it: backward Euler, P = P_old + kc (dx + h Q(P / A_p, v) / A_p)
             Ap = p[I_AC]
-            dp = mixed_pressure(Ap, kc * hi / Ap, P + kc * dx[i], v[i], tau_y[i], eta_i, thermal, p)
+            dp, tau_h = mixed_pressure(Ap, kc * hi / Ap, P + kc * dx[i], v[i], tau_y[i], eta_i, thermal, p, last)
+            last = dp
             P_old = P
             P = dp * Ap
-            F = P + mixed_flow(dp, v[i], tau_y[i], eta_i, thermal, p)[1] * p[I_AWALL]
+            F = P + tau_h * p[I_AWALL]
             energy = F * dx[i] - (P * P - P_old * P_old) / (2.0 * kc)
             force[i], valve[i] = F, P
         elif kc > 0.0:
@@ -365,7 +389,8 @@ def run(v, dx, h, tau_y, eta, p):
             v_mid = 0.5 * (v[i - 1] + v[i])
             lam = 0.0
             if v_mid != 0.0:
-                Fr = abs(any_steady_force(v_mid, tau_y[i], eta_i, thermal, p))
+                Fr, last = _steady_from(v_mid, tau_y[i], eta_i, thermal, p, last)
+                Fr = abs(Fr)
                 if Fr > 0.0:
                     lam = kpre * abs(v_mid) / Fr
             z = lam * hi
@@ -377,7 +402,7 @@ def run(v, dx, h, tau_y, eta, p):
             P = F_new
             force[i], valve[i] = P, P
         else:
-            F = any_steady_force(v[i], tau_y[i], eta_i, thermal, p)
+            F, last = _steady_from(v[i], tau_y[i], eta_i, thermal, p, last)
             energy = 0.5 * (force[i - 1] * v[i - 1] + F * v[i]) * hi
             force[i], valve[i] = F, F
         if heat_capacity > 0.0:

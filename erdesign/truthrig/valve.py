@@ -263,6 +263,14 @@ def _wall_speed(tau0, g, h, tau_y, Kn, n):
 def moving_wall_flow(dp, U, tau_y, K, m, L, h):
     """(q, tau_h): flow per unit width along s [m^2/s] and the stress on the moving wall [Pa] of a Herschel-Bulkley
     slit with pressure drop ``dp`` (ahead minus behind) over ``L`` and one wall moving at ``U`` (notes above)."""
+    q, tau_h, _ = moving_wall_flow_from(dp, U, tau_y, K, m, L, h, math.nan)
+    return q, tau_h
+
+
+@numba.njit(cache=True)
+def moving_wall_flow_from(dp, U, tau_y, K, m, L, h, guess):
+    """:func:`moving_wall_flow` with Newton started at the fixed-wall stress ``guess`` (NaN: no guess); returns
+    (q, tau_h, tau_0), tau_0 to start the next call with."""
     n = 1.0 / m
     Kn = K ** (-n)
     g = dp / L
@@ -270,6 +278,8 @@ def moving_wall_flow(dp, U, tau_y, K, m, L, h):
     A = tau_y + K * (abs(U) / h) ** m + abs(g) * h
     lo, hi = -A, A
     tau0 = 0.0 if U == 0.0 else (0.5 * (lo + hi))
+    if lo < guess < hi:
+        tau0 = guess
     for _ in range(200):
         f, slope = _wall_speed(tau0, g, h, tau_y, Kn, n)
         f -= U
@@ -280,11 +290,11 @@ def moving_wall_flow(dp, U, tau_y, K, m, L, h):
         else:
             hi = tau0
         new = tau0 - f / slope if slope > 0.0 else 0.5 * (lo + hi)
+        if abs(new - tau0) <= 1e-14 * (abs(tau0) + tau_y + abs(g) * h) or hi - lo <= 1e-15 * A:
+            tau0 = new     # converged (a last step may touch the bracket's end: round-off)
+            break
         if not (lo < new < hi):
             new = 0.5 * (lo + hi)
-        if abs(new - tau0) <= 1e-15 * (abs(new) + tau_y + abs(g) * h) or hi - lo <= 1e-15 * A:
-            tau0 = new
-            break
         tau0 = new
     d = g * h
     if abs(d) <= _SMALL_GRADIENT * (abs(tau0) + tau_y) or d == 0.0:
@@ -295,7 +305,7 @@ def moving_wall_flow(dp, U, tau_y, K, m, L, h):
         phi = _hb_phi(th, tau_y, Kn, n) - _hb_phi(tau0, tau_y, Kn, n)
         speed = phi / g
         q = h * speed - (_hb_psi(th, tau_y, Kn, n) - _hb_psi(tau0, tau_y, Kn, n) - tau0 * phi) / (g * g)
-    return q, tau0 + d
+    return q, tau0 + d, tau0
 
 
 @numba.guvectorize(["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
