@@ -166,12 +166,14 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
 
     The control is the coil current: ``fluid.reference_field`` is the rated current (in A) and ``fluid.material``
     names an MR fluid with a B-H curve and a yield curve against field strength.  The yield stress at any current
-    follows the magnetic circuit (:mod:`erdesign.magnetics`): the fluid's law is tau_y(I) tabulated from 0 to
-    :data:`COIL_CURRENT_SPAN` times the rated current (beyond it the last value is held, and asking for a current
+    follows the magnetic circuit (:mod:`erdesign.magnetics`): the fluid's law is the
+    :class:`~erdesign.magnetics.law.CoilLaw` tau_y(H_g(I)), the gap field tabulated from 0 to
+    :data:`COIL_CURRENT_SPAN` times the rated current (beyond it the circuit is solved, and asking for a current
     outside that range warns); its power-law summary (``yield_stress``, ``yield_exponent``) is fitted to it over
     (0, rated current], so the file must not give those two keys.
     """
-    from .magnetics import build_circuit, coil_from_table, current_yield_law
+    from .magnetics import build_circuit, coil_from_table
+    from .magnetics.law import coil_law
 
     table = _check_keys(data["fluid"], FLUID_KEYS, "fluid")
     for key in _COIL_COMPUTED_KEYS:
@@ -198,7 +200,11 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
                       "MR damper coil; check the unit", ValidityWarning, stacklevel=3)
     coil = coil_from_table(data["coil"])
     circuit = build_circuit(geometry, coil, table["material"], name=str(data.get("name", "")))
-    law = current_yield_law(circuit, COIL_CURRENT_SPAN * I_ref)
+    if coil.supply_voltage is not None and not coil.supply_voltage > I_ref * circuit.resistance:
+        raise DamperFileError(f"coil.supply_voltage: {coil.supply_voltage:.4g} V cannot drive the rated current "
+                              f"{I_ref:.4g} A (fluid.reference_field) through the coil's {circuit.resistance:.4g} ohm "
+                              f"(needs more than {I_ref * circuit.resistance:.4g} V)")
+    law = coil_law(circuit, COIL_CURRENT_SPAN * I_ref, I_ref, supply_voltage=coil.supply_voltage)
     fit = law.fit(I_ref)
     values = dict(table)
     values["yield_stress"] = f"{float(law.yield_stress(I_ref))!r} Pa"

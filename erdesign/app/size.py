@@ -87,6 +87,8 @@ def _load(spec: dict, source: str, point: dict | None = None) -> None:
     state.set_widget("size.geo.ducts", int(geo.get("ducts", 1)))
     material = fluid.pop("material", None)
     st.session_state["size.file_fluid"] = fluid
+    # a [coil] has no widgets of its own: it is kept as loaded and shown with the magnetic circuit
+    st.session_state["size.coil"] = dict(spec["coil"]) if isinstance(spec.get("coil"), dict) else None
     state.set_widget("size.name", str(spec.get("name") or Path(source).stem))
     state.set_widget("size.material", material or FILE_VALUES)
     base = fluid_values(material) if material else {}
@@ -181,12 +183,15 @@ def spec_from_widgets(values: dict) -> dict:
                 raise ErdesignError(f"fluid.yield_exponent: expected a plain number, got {text!r}") from None
         else:
             fluid[key] = text
-    return {"name": values.get("name", "design"), "geometry": geometry, "fluid": fluid}
+    spec = {"name": values.get("name", "design"), "geometry": geometry, "fluid": fluid}
+    if values.get("coil"):
+        spec["coil"] = dict(values["coil"])
+    return spec
 
 
 def _inputs() -> dict:
     """Draw the inputs; return their values."""
-    values: dict[str, Any] = {}
+    values: dict[str, Any] = {"coil": st.session_state.get("size.coil")}
     values["name"] = state.widget(st.text_input, "design name", "size.name", "design",
                                   help="Names the damper file and the report you download.")
     st.subheader("Geometry")
@@ -332,6 +337,29 @@ def _baseline(design: dict, report) -> None:
     st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare")
 
 
+def _magnetics(report) -> None:
+    """The magnetic circuit of a damper with a [coil]: B(I) and tau_y(I), and the coil figures at the rated current
+    (the report's magnetic section and figure: no physics here)."""
+    m = report.magnetics
+    st.subheader("Magnetic circuit")
+    fig = next(f for f in report.figures if f.key == "magnetics")
+    st.plotly_chart(fig.figure, key="size.fig.magnetics")
+    rows = {r.key: r for r in m["rows"]}
+    keys = ["gap_flux_density", "yield_stress_rated", "coil_resistance", "inductance", "time_constant", "power",
+            "voltage", "current_density", "knee_current"]
+    shown = [rows[k] for k in keys if k in rows]
+    for i in range(0, len(shown), 3):
+        for col, row in zip(st.columns(3), shown[i:i + 3]):
+            col.metric(row.label, row.value.text, help=row.note or None)
+    if m["saturated"]:
+        st.info(f"At the rated current the circuit is past the knee of a B-H curve: the {m['limiting_part']} "
+                "saturates first (more current buys little more yield stress).")
+    st.table([{"current": r[0].text, "B_g": r[1].text, "H_g": r[2].text, "τ_y": r[3].text, "L": r[4].text,
+               "L/R": r[5].text, "power": r[6].text, "saturated": r[7].text} for r in m["table"].rows])
+    coil = st.session_state.get("size.coil") or {}
+    st.caption("coil: " + ", ".join(f"{k} = {v}" for k, v in coil.items()))
+
+
 def _curves(report) -> None:
     tab_f, tab_d, tab_p = st.tabs(["force - velocity", "dynamic range - velocity", "pressure drop - velocity"])
     tab_f.plotly_chart(plots.force_velocity_figure(report.sweep), key="size.fig.force")
@@ -412,6 +440,8 @@ def render() -> None:
         st.caption(f"At v = {report.setting('velocity_design').value.text} and E = "
                    f"{report.setting('field_design').value.text}; {flow}.")
         _checks(report)
+        if report.magnetics is not None:
+            _magnetics(report)
         _curves(report)
         _downloads(design, report)
     text = state.spec_text(design["spec"])

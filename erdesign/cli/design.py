@@ -79,6 +79,8 @@ def _table(result) -> str:
         lines.append("active constraints: (the limits each design sits on, within the active tolerance)")
         lines += [f"  {d['rank']}: {', '.join(d['active_constraints']) or 'none (inside every limit)'}"
                   for d in result.designs]
+        if req.coil is not None:
+            lines.append(_coil_grid(result.designs))
         lines.append(f"Pareto front ({', '.join(req.search.pareto)}): {len(result.pareto)} designs "
                      "(--out writes them)")
     else:
@@ -88,3 +90,24 @@ def _table(result) -> str:
             lines.append("nearest design:")
             lines.append(_grid([_HEAD] + [_row(result.nearest, "-")]))
     return "\n".join(lines)
+
+
+_COIL_HEAD = ["#", "N", "d_w [mm]", "d_c [mm]", "L_p [mm]", "OD [mm]", "I [A]", "B_g [T]", "tau_y [kPa]", "R [ohm]",
+              "P [W]", "L/R [ms]", "J [A/mm2]", "fill", "sat"]
+
+
+def _coil_grid(designs: list[dict]) -> str:
+    """The coils of the designs (figures of the magnetic circuit at the design current, point 1 for B and tau_y)."""
+    rows = [_COIL_HEAD]
+    for d in designs:
+        c, m, p = d["coil"], d["magnetics"], d["points"][0]
+        tc = m["time_constant_s"]
+        rows.append([str(d.get("rank", "-")), str(c["turns"]),
+                     *(c[k].removesuffix(" mm") for k in ("wire_diameter", "core_diameter", "pole_length",
+                                                          "housing_outer_diameter")),
+                     f"{m['design_current_A']:.4g}", f"{p['gap_flux_density_T']:.3g}",
+                     f"{p['yield_stress_Pa'] / 1e3:.4g}", f"{m['coil_resistance_ohm']:.4g}", f"{m['power_W']:.4g}",
+                     "-" if tc is None else f"{tc * 1e3:.4g}", f"{p['current_density_A_per_m2'] / 1e6:.3g}",
+                     f"{m['fill_factor']:.2f}", f"{p['saturation_ratio']:.2f}"])
+    return "coils (magnetic circuit at the design current; sat: largest field over the knee field of a part):\n" \
+        + _grid(rows)

@@ -80,6 +80,9 @@ FIGURES = {
     "total_fluid_volume": Figure("total_fluid_volume", False, "m^3", "min", "fluid in cylinder and ducts"),
     "outer_diameter": Figure("outer_diameter", False, "m", "min", "outer diameter of the body"),
     "length": Figure("length", False, "m", "min", "body length"),
+    "coil_power": Figure("coil_power", False, "W", "min", "coil power I^2 R at the design current ([design.coil])"),
+    "time_constant": Figure("time_constant", False, "s", "min",
+                            "coil time constant L/R at the design current ([design.coil])"),
 }
 
 #: Objectives of ``design.objective``: name -> figure of :data:`FIGURES` (its ``better`` gives the sense).
@@ -90,6 +93,8 @@ OBJECTIVES = {
     "min_total_fluid_volume": "total_fluid_volume",
     "min_outer_diameter": "outer_diameter",
     "min_length": "length",
+    "min_coil_power": "coil_power",
+    "min_time_constant": "time_constant",
 }
 
 
@@ -268,8 +273,26 @@ class CandidateFigures:
     zero_field_reynolds: np.ndarray
     bingham_number: np.ndarray
     voltage: np.ndarray
-    """Electrode voltage E h (ER; the control times the gap for other controls), [V]."""
+    """Electrode voltage E h (ER; the control times the gap for other controls; with a coil, the coil's I R), [V]."""
     margins: np.ndarray
+    # with [design.coil] (erdesign.design.coil), else None
+    turns: np.ndarray | None = None
+    wire_diameter: np.ndarray | None = None
+    core_diameter: np.ndarray | None = None
+    pole_length: np.ndarray | None = None
+    housing_outer_diameter: np.ndarray | None = None
+    yield_stress: np.ndarray | None = None
+    """(P, N) [Pa]."""
+    gap_flux_density: np.ndarray | None = None
+    """(P, N) [T]."""
+    current_density: np.ndarray | None = None
+    """(P, N) [A/m^2]."""
+    saturation: np.ndarray | None = None
+    """(P, N): largest H_part / H_knee."""
+    fill_factor: np.ndarray | None = None
+    coil_resistance: np.ndarray | None = None
+    coil_power: np.ndarray | None = None
+    time_constant: np.ndarray | None = None
 
     @property
     def feasible(self) -> np.ndarray:
@@ -288,6 +311,9 @@ class CandidateFigures:
         """The candidates selected by ``index`` (integer or boolean array)."""
         out = {}
         for key, value in self.__dict__.items():
+            if value is None:
+                out[key] = None
+                continue
             out[key] = value[..., index] if value.ndim == 2 else value[index]
         return CandidateFigures(**out)
 
@@ -352,6 +378,8 @@ def constraints_for(req: "Requirements") -> tuple[Constraint, ...]:
         if req.limits.max_voltage is not None:
             out.append(Constraint("max_voltage" + tag, _per_point("voltage", i), req.limits.max_voltage, True, "kV",
                                   1e3))
+    if req.coil is not None:
+        out += _coil_constraints(req)
     lim = req.limits
     if lim.max_outer_diameter is not None:
         out.append(Constraint("max_outer_diameter", lambda f: f.outer_diameter, lim.max_outer_diameter, True, "mm",
@@ -369,8 +397,31 @@ def constraints_for(req: "Requirements") -> tuple[Constraint, ...]:
     return tuple(out)
 
 
+def _coil_constraints(req: "Requirements") -> list[Constraint]:
+    c = req.coil
+    out: list[Constraint] = []
+    for i, p in enumerate(req.points):
+        if p.field == 0:
+            continue
+        tag = f" (point {i + 1})"
+        if c.supply_voltage is not None:
+            out.append(Constraint("coil.supply_voltage" + tag, _per_point("voltage", i), c.supply_voltage, True, "V",
+                                  1.0))
+        out.append(Constraint("coil.max_current_density" + tag, _per_point("current_density", i),
+                              c.max_current_density, True, "A/mm^2", 1e6))
+        if not c.allow_saturation:
+            out.append(Constraint("coil.saturation" + tag, _per_point("saturation", i), 1.0, True, "x knee", 1.0))
+    out.append(Constraint("coil.max_fill_factor", lambda f: f.fill_factor, c.max_fill_factor, True, "", 1.0))
+    if c.max_power is not None:
+        out.append(Constraint("coil.max_power", lambda f: f.coil_power, c.max_power, True, "W", 1.0))
+    if c.max_time_constant is not None:
+        out.append(Constraint("coil.max_time_constant", lambda f: f.time_constant, c.max_time_constant, True, "ms",
+                              1e-3))
+    return out
+
+
 def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diameter, piston_diameter, rod_diameter,
-                        ducts, constraints: tuple[Constraint, ...] | None = None) -> CandidateFigures:
+                        ducts, constraints: tuple[Constraint, ...] | None = None, coil=None) -> CandidateFigures:
     r"""Figures and constraint margins of N candidate geometries at every design point of ``req`` (vectorised).
 
     Parameters
@@ -385,6 +436,10 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
         Number of ducts, whole numbers (1 for mixed).
     constraints : tuple of Constraint, optional
         :func:`constraints_for(req) <constraints_for>` (pass it when calling repeatedly).
+    coil : dict of str -> array, optional
+        With ``[design.coil]``: ``turns``, ``wire_diameter``, ``core_diameter``, ``pole_length``,
+        ``housing_outer_diameter`` of each candidate (:mod:`erdesign.design.coil`); the yield stress at each point
+        then follows each candidate's magnetic circuit.
 
     Returns
     -------
@@ -415,10 +470,21 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
                               zip((h, L, d, Dp, dr, n), (1e-3, 0.05, 0.02, 0.04, 0.01, 1.0)))
     Ap = np.pi / 4.0 * (Dp**2 - dr**2)
     fl, env = req.fluid, req.envelope
+    cf = None
+    if req.coil is not None:
+        from .coil import coil_figures
+
+        if coil is None:
+            raise ValueError("evaluate_candidates: requirements with [design.coil] need the coil variables")
+        cv = {k: np.broadcast_to(np.asarray(coil[k], dtype=float), h.shape) for k in coil}
+        cf = coil_figures(req, h, L, d, cv["turns"], cv["wire_diameter"], cv["core_diameter"], cv["pole_length"],
+                          cv["housing_outer_diameter"])
+        valid = valid & cf.valid
+        all_valid = bool(np.all(valid))
     rows = []
-    for p in req.points:
-        tau_y = float(fl.yield_stress_at(p.field))
-        eta = float(fl.viscosity_at(p.field))
+    for i, p in enumerate(req.points):
+        tau_y = float(fl.yield_stress_at(p.field)) if cf is None else cf.yield_stress[i]
+        eta = float(fl.viscosity_at(p.field)) if cf is None else fl.viscosity
         if mixed:
             rows.append(mixed_point_figures(p.velocity, tau_y, eta, fl.viscosity, fl.density, req.seal_friction,
                                             h, L, Dp, dr))
@@ -445,10 +511,19 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
                                                     req.configuration), h.shape),
         controllable_force=stacked["force"] - stacked["zero_field_force"],
         dynamic_range=dynamic_range,
-        voltage=fields * h,
+        voltage=fields * h if cf is None else cf.voltage,
         margins=np.empty((0, h.shape[0])),
         **stacked,
     )
+    if cf is not None:
+        for key in coil:
+            object.__setattr__(figures, key, cv[key])
+        for key, value in (("yield_stress", cf.yield_stress), ("gap_flux_density", cf.gap_flux_density),
+                           ("current_density", cf.current_density), ("saturation", cf.saturation),
+                           ("fill_factor", cf.fill_factor), ("coil_resistance", cf.resistance),
+                           ("coil_power", cf.power), ("time_constant", cf.time_constant),
+                           ("outer_diameter", cv["housing_outer_diameter"])):
+            object.__setattr__(figures, key, value)
     margins = np.empty((len(constraints), h.shape[0]))
     for j, c in enumerate(constraints):
         margins[j] = c.margin(figures)

@@ -24,6 +24,17 @@ The keys beyond the contract are listed below and in docs/design.md.
     ``stroke`` (default 50 mm), ``wall`` (wall allowance of the cylinder, default 5 mm), ``head_length`` (valve
     piston head, default 20 mm), ``end_allowance`` (each end cap with seal and bearing, default 25 mm),
     ``duct_placement`` (valve: ``"beside"`` the cylinder as in Makris Fig 1, default, or ``"around"`` it).
+``[design.coil]`` (an MR damper whose piston head carries the coil; docs/magnetics.md, "Design with the coil")
+    Present: the design also sizes the poles and the coil, the yield stress at each point follows each candidate's
+    magnetic circuit (:mod:`erdesign.design.coil`), and every point's ``field`` is the coil current (A).  The
+    ``[fluid]`` table then names an MR ``material`` with a B-H curve and gives no ``yield_stress``,
+    ``reference_field`` or ``yield_exponent``.  Keys: the bounds ``turns`` (whole numbers), ``wire_diameter``,
+    ``core_diameter``, ``pole_length``, ``housing_outer_diameter`` (each ``[low, high]`` or one value), ``steel``
+    (default ``"steel-1018"``), and the limits ``supply_voltage`` (I R at every point), ``max_current_density``
+    (default ``"5 A/mm^2"``), ``max_fill_factor`` (copper, default 0.6), ``allow_saturation`` (default false: no
+    part of the circuit past the knee of its B-H curve at any point's current), ``max_power`` and
+    ``max_time_constant`` (at the first point's current).  Objectives ``min_coil_power`` and
+    ``min_time_constant`` (Gavin, Hoagg and Dobossy 2001) need it.
 ``[design.search]`` (all optional)
     ``samples`` (default 131072), ``sampling`` (``"sobol"`` or ``"lhs"``), ``seed`` (default 0),
     ``chunk`` (candidates evaluated at once, default 65536), ``refine`` (default true), ``designs`` (how many to
@@ -80,12 +91,29 @@ __all__ = [
     "load_example_requirements",
     "example_requirements_names",
     "VARIABLES",
+    "COIL_VARIABLES",
+    "CoilDesign",
     "FIELD_LIMITS",
     "DUCT_PLACEMENTS",
 ]
 
 #: The free geometric variables, in the order of the sampler's columns (the keys of ``[design.bounds]``).
 VARIABLES = ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter", "ducts")
+
+#: The free variables of the coil (``[design.coil]``), after :data:`VARIABLES` in a candidate's columns.
+COIL_VARIABLES = ("turns", "wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter")
+
+#: Objectives that need ``[design.coil]``.
+COIL_OBJECTIVES = ("min_coil_power", "min_time_constant")
+
+#: Default figures of ``[design.coil]``: current density [A/m^2] (an engineering rule for a coil without forced
+#: cooling, erdesign's choice, not from a source: state your own) and copper fill factor [-] (round enamelled wire
+#: wound by machine reaches 0.5-0.7).
+DEFAULT_CURRENT_DENSITY = 5e6
+DEFAULT_FILL_FACTOR = 0.6
+
+_COIL_KEYS = COIL_VARIABLES + ("steel", "supply_voltage", "max_current_density", "max_fill_factor",
+                               "allow_saturation", "max_power", "max_time_constant")
 
 #: Default field limits by kind of control, SI: seed 001 (Butz and von Stryk), Table 1, "maximum field":
 #: ca. 4 kV/mm for ER fluids (dielectric breakdown) and ca. 250 kA/m for MR fluids (magnetic saturation).
@@ -98,12 +126,31 @@ DUCT_PLACEMENTS = ("beside", "around")
 SAMPLINGS = ("sobol", "lhs")
 
 _TOP_KEYS = ("name", "fluid", "design")
-_DESIGN_KEYS = ("configuration", "objective", "point", "limits", "bounds", "envelope", "search")
+_DESIGN_KEYS = ("configuration", "objective", "point", "limits", "bounds", "envelope", "search", "coil")
 _POINT_KEYS = ("velocity", "field", "min_force", "min_dynamic_range", "max_zero_field_force")
 _LIMIT_KEYS = ("max_outer_diameter", "max_length", "max_pressure", "laminar", "min_gap", "max_field", "max_voltage")
 _ENVELOPE_KEYS = ("stroke", "wall", "head_length", "end_allowance", "duct_placement")
 _SEARCH_KEYS = ("samples", "sampling", "seed", "chunk", "refine", "designs", "pareto", "active_tolerance",
                 "gap_tolerance", "length_tolerance", "secondary")
+
+
+@dataclass(frozen=True)
+class CoilDesign:
+    """The ``[design.coil]`` table, SI: the fluid's magnetic material, the steel, and the coil's limits."""
+
+    material: str
+    """MR fluid of the materials database (B-H curve and yield curve against field strength)."""
+    steel: str = "steel-1018"
+    supply_voltage: float | None = None
+    """Largest I R, [V]."""
+    max_current_density: float = DEFAULT_CURRENT_DENSITY
+    """[A/m^2]."""
+    max_fill_factor: float = DEFAULT_FILL_FACTOR
+    allow_saturation: bool = False
+    max_power: float | None = None
+    """[W], at the first point's current."""
+    max_time_constant: float | None = None
+    """[s], L/R at the first point's current."""
 
 
 class RequirementsError(ErdesignError):
@@ -210,6 +257,13 @@ class Requirements:
     envelope: Envelope = field(default_factory=Envelope)
     search: SearchSettings = field(default_factory=SearchSettings)
     name: str = ""
+    coil: CoilDesign | None = None
+    """``[design.coil]``: the head's coil is designed too (None: a damper without a coil)."""
+
+    @property
+    def variables(self) -> tuple[str, ...]:
+        """The candidate's variables in column order: :data:`VARIABLES`, then :data:`COIL_VARIABLES` with a coil."""
+        return VARIABLES + COIL_VARIABLES if self.coil is not None else VARIABLES
 
     def with_search(self, **changes: Any) -> "Requirements":
         """Copy with some search settings changed (``req.with_search(samples=4096, refine=False)``)."""
@@ -220,7 +274,8 @@ class Requirements:
     @property
     def free_variables(self) -> tuple[str, ...]:
         """Names of the variables whose bounds are a range (low < high)."""
-        return tuple(k for k in VARIABLES if self.bounds.get(k) is not None and self.bounds[k][0] < self.bounds[k][1])
+        return tuple(k for k in self.variables
+                     if self.bounds.get(k) is not None and self.bounds[k][0] < self.bounds[k][1])
 
 
 # ---------------------------------------------------------------------------------------------------- parsing
@@ -314,11 +369,16 @@ def _parse(data: Mapping[str, Any]) -> Requirements:
     if not isinstance(data["fluid"], Mapping):
         raise RequirementsError(f"fluid: expected a table, got {data['fluid']!r}")
     fluid_table = dict(data["fluid"])
-    fluid, seal_friction = parse_fluid_table(fluid_table, "fluid")
-
     design = _table(data["design"], "design", _DESIGN_KEYS)
+    coil = None
+    if "coil" in design:
+        fluid, seal_friction, coil, coil_bounds = _parse_coil(design["coil"], fluid_table)
+    else:
+        fluid, seal_friction = parse_fluid_table(fluid_table, "fluid")
     configuration = _choice(design, "configuration", "design", CONFIGURATIONS)
     objective = _choice(design, "objective", "design", tuple(OBJECTIVES), default="min_fluid_volume")
+    if objective in COIL_OBJECTIVES and coil is None:
+        raise RequirementsError(f"design.objective: {objective!r} needs a [design.coil] table (the coil to design)")
 
     points = _parse_points(design.get("point"), fluid)
     limits = _parse_limits(design.get("limits", {}), fluid)
@@ -326,10 +386,84 @@ def _parse(data: Mapping[str, Any]) -> Requirements:
     if "bounds" not in design:
         raise RequirementsError("design.bounds: missing table (the free variables and their ranges)")
     bounds = _parse_bounds(design["bounds"], configuration, envelope)
+    if coil is not None:
+        if bounds["ducts"] != (1, 1):
+            raise RequirementsError("design.bounds.ducts: a coil sits in a head with one annular gap (ducts = 1)")
+        bounds.update(coil_bounds)
     search = _parse_search(design.get("search", {}))
     return Requirements(fluid=fluid, seal_friction=seal_friction, fluid_table=fluid_table,
                         configuration=configuration, objective=objective, points=points, bounds=bounds,
-                        limits=limits, envelope=envelope, search=search, name=name)
+                        limits=limits, envelope=envelope, search=search, name=name, coil=coil)
+
+
+def _parse_coil(table: Any, fluid_table: Mapping[str, Any]):
+    """The fluid (controlled by the coil current), seal friction, :class:`CoilDesign` and the coil's bounds."""
+    from .. import materials
+    from ..damper_file import POWER_LAW_KEYS
+
+    where = "design.coil"
+    table = _table(table, where, _COIL_KEYS)
+    for key in POWER_LAW_KEYS:
+        if key in fluid_table:
+            raise RequirementsError(f"fluid.{key}: not allowed with [design.coil]: each candidate's magnetic circuit "
+                                    "gives the yield stress at the point's coil current")
+    name = fluid_table.get("material")
+    if not isinstance(name, str):
+        raise RequirementsError("fluid.material: missing; with [design.coil] the fluid's B-H and yield curves come "
+                                "from the materials database")
+    try:
+        materials.magnetization_curve(name)
+        law = materials.material_fluid(name).yield_curve
+    except ErdesignError as exc:
+        raise RequirementsError(f"fluid.material: {exc}") from None
+    if law is None or law.control_unit != "A/m":
+        raise RequirementsError(f"fluid.material: {name!r} has no yield curve against field strength (A/m)")
+    if "viscosity_at_reference_field" in fluid_table:
+        raise RequirementsError("fluid.viscosity_at_reference_field: not supported with [design.coil]")
+    # the fluid of the requirements is controlled by the current; its own yield law is not used (each candidate's
+    # circuit gives the yield stress), so it carries the material's power-law summary at 1 A as a placeholder
+    values = dict(fluid_table)
+    spec = materials.material_fluid(name)
+    values.update(yield_stress=spec.values["yield_stress"], reference_field="1 A", yield_exponent=1.0)
+    fluid, seal_friction = parse_fluid_table(values, "fluid")
+    steel = table.get("steel", "steel-1018")
+    if not isinstance(steel, str) or steel not in materials.steel_names():
+        raise RequirementsError(f"{where}.steel: unknown steel {steel!r}; known steels: "
+                                f"{', '.join(materials.steel_names())}")
+    allow = table.get("allow_saturation", False)
+    if not isinstance(allow, bool):
+        raise RequirementsError(f"{where}.allow_saturation: expected true or false, got {allow!r}")
+    J = _quantity(table, "max_current_density", "A/m^2", where)
+    fill = _number(table, "max_fill_factor", where)
+    if fill is not None and not 0 < fill <= 0.9:
+        raise RequirementsError(f"{where}.max_fill_factor: must lie in (0, 0.9], got {fill!r}")
+    coil = CoilDesign(material=name, steel=steel, supply_voltage=_quantity(table, "supply_voltage", "V", where),
+                      max_current_density=DEFAULT_CURRENT_DENSITY if J is None else J,
+                      max_fill_factor=DEFAULT_FILL_FACTOR if fill is None else fill, allow_saturation=allow,
+                      max_power=_quantity(table, "max_power", "W", where),
+                      max_time_constant=_quantity(table, "max_time_constant", "s", where))
+    bounds = {}
+    for key in COIL_VARIABLES:
+        name_k = f"{where}.{key}"
+        if key not in table:
+            raise RequirementsError(f"{name_k}: missing ([low, high] or a single value)")
+        value = table[key]
+        items = value if isinstance(value, list) else [value]
+        if key == "turns":
+            if not 1 <= len(items) <= 2 or not all(isinstance(v, int) and not isinstance(v, bool) for v in items):
+                raise RequirementsError(f"{name_k}: expected [low, high] whole numbers or one, got {value!r}")
+            lo, hi = float(items[0]), float(items[-1])
+        else:
+            if not 1 <= len(items) <= 2 or not all(isinstance(v, str) for v in items):
+                raise RequirementsError(f"{name_k}: expected [\"low unit\", \"high unit\"] or one value with a "
+                                        f"unit, got {value!r}")
+            lo, hi = (to_si(v, "m", name_k) for v in (items[0], items[-1]))
+        if not lo > 0:
+            raise RequirementsError(f"{name_k}: must be positive, got {items[0]!r}")
+        if lo > hi:
+            raise RequirementsError(f"{name_k}: low {items[0]!r} is above high {items[-1]!r}")
+        bounds[key] = (lo, hi)
+    return fluid, seal_friction, coil, bounds
 
 
 def _parse_points(value: Any, fluid: Fluid) -> tuple[DesignPoint, ...]:

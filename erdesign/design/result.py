@@ -67,6 +67,8 @@ def design_record(req: Requirements, constraints: tuple[Constraint, ...], fig: C
                   tol: float, origin: str) -> dict:
     """JSON-ready record of one design (``fig`` holds exactly that design; ``geometry`` its [geometry] table)."""
     margins = fig.margins[:, 0]
+    geometry = dict(geometry)
+    coil_table = geometry.pop("coil", None)
     active = [c.name for c, m in zip(constraints, margins) if 0.0 <= m <= tol]
     for name in req.free_variables:
         lo, hi = req.bounds[name]
@@ -118,6 +120,21 @@ def design_record(req: Requirements, constraints: tuple[Constraint, ...], fig: C
     }
     if req.fluid.control == "electric field":
         record["voltage_V"] = float(fig.voltage[0, 0])
+    if coil_table is not None:
+        record["coil"] = coil_table
+        record["magnetics"] = {
+            "design_current_A": float(max(p.field for p in req.points)),
+            "coil_resistance_ohm": float(fig.coil_resistance[0]),
+            "power_W": float(fig.coil_power[0]),
+            "time_constant_s": _finite(fig.time_constant[0]),
+            "fill_factor": float(fig.fill_factor[0]),
+        }
+        for i, p in enumerate(points):
+            p.update(yield_stress_Pa=float(fig.yield_stress[i, 0]),
+                     gap_flux_density_T=float(fig.gap_flux_density[i, 0]),
+                     coil_voltage_V=float(fig.voltage[i, 0]),
+                     current_density_A_per_m2=float(fig.current_density[i, 0]),
+                     saturation_ratio=float(fig.saturation[i, 0]))
     return record
 
 

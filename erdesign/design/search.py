@@ -38,7 +38,7 @@ from scipy.optimize import minimize
 
 from .evaluate import FIGURES, OBJECTIVES, CandidateFigures, Constraint, constraints_for, evaluate_candidates
 from .pareto import pareto_mask
-from .requirements import VARIABLES, Requirements
+from .requirements import COIL_VARIABLES, VARIABLES, Requirements
 from .result import DesignResult, design_record
 from .sampling import candidate_chunks
 
@@ -52,6 +52,8 @@ SECONDARY = {
     "min_total_fluid_volume": "min_outer_diameter",
     "min_outer_diameter": "min_length",
     "min_length": "min_outer_diameter",
+    "min_coil_power": "min_time_constant",
+    "min_time_constant": "min_coil_power",
 }
 #: Designs whose objective differs by less than this (relative) tie: the secondary objective ranks them.  The
 #: figures are printed to four significant figures, so a difference below 0.1 % is not one a reader can see.
@@ -99,18 +101,19 @@ def sweep(req: Requirements, samples: int | None = None, seed: int | None = None
 
 
 def _evaluate(req: Requirements, x: dict, constraints=None) -> CandidateFigures:
+    coil = {k: x[k] for k in COIL_VARIABLES} if req.coil is not None else None
     return evaluate_candidates(req, x["gap"], x["duct_length"], x["duct_mean_diameter"], x["piston_diameter"],
-                               x["rod_diameter"], x["ducts"], constraints=constraints)
+                               x["rod_diameter"], x["ducts"], constraints=constraints, coil=coil)
 
 
 # ------------------------------------------------------------------------------------------- running summaries
-def _stack(fig: CandidateFigures, index=slice(None)) -> np.ndarray:
-    """(N, 6) array of the variables (rows ``index``) in the order of VARIABLES (mixed: the derived d)."""
-    return np.column_stack([getattr(fig, k)[index] for k in VARIABLES])
+def _stack(fig: CandidateFigures, index=slice(None), variables=VARIABLES) -> np.ndarray:
+    """(N, k) array of the variables (rows ``index``) in the order of ``variables`` (mixed: the derived d)."""
+    return np.column_stack([getattr(fig, k)[index] for k in variables])
 
 
 def _unstack(X: np.ndarray, req: Requirements) -> dict:
-    x = {k: X[:, j] for j, k in enumerate(VARIABLES)}
+    x = {k: X[:, j] for j, k in enumerate(req.variables)}
     if req.configuration == "mixed":
         x["duct_mean_diameter"] = None
     return x
@@ -134,6 +137,7 @@ class _Summary:
 
     constraints: tuple[Constraint, ...]
     keep: int
+    variables: tuple = VARIABLES
     evaluated: int = 0
     valid: int = 0
     feasible: int = 0
@@ -151,6 +155,8 @@ class _Summary:
     """[i, j], i < j: valid candidates that violate exactly constraints i and j."""
 
     def __post_init__(self) -> None:
+        k = len(self.variables)
+        self.best_X, self.front_X, self.near_X = np.empty((0, k)), np.empty((0, k)), np.empty((0, k))
         c = len(self.constraints)
         self.violated = np.zeros(c, dtype=np.int64)
         self.single = np.zeros(c, dtype=np.int64)
@@ -166,7 +172,7 @@ class _Summary:
         self.feasible += int(np.count_nonzero(feasible))
         if feasible.any():
             idx = np.flatnonzero(feasible)
-            X = _stack(fig, idx)
+            X = _stack(fig, idx, self.variables)
             key = _objective_key(fig, objective)[idx]
             self.best_X, self.best_key = _smallest(np.vstack([self.best_X, X]),
                                                    np.concatenate([self.best_key, key]), self.keep)
@@ -180,7 +186,7 @@ class _Summary:
         if self.feasible == 0:
             v = _violation(margins)
             few = np.argpartition(v, _NEAREST - 1)[:_NEAREST] if v.size > _NEAREST else np.arange(v.size)
-            self.near_X, self.near_v = _smallest(np.vstack([self.near_X, _stack(fig, few)]),
+            self.near_X, self.near_v = _smallest(np.vstack([self.near_X, _stack(fig, few, self.variables)]),
                                                  np.concatenate([self.near_v, v[few]]), _NEAREST)
         nv = np.count_nonzero(broken, axis=0)
         self.violated += np.count_nonzero(broken & valid, axis=1)
@@ -279,12 +285,12 @@ class _LocalProblem:
 
 def _refine(req, constraints, x0: np.ndarray, mode: str) -> np.ndarray:
     """SLSQP from x0; returns the improved point, or x0 when the optimiser ends somewhere worse or infeasible."""
-    free = [VARIABLES.index(k) for k in req.free_variables if k != "ducts"]
+    free = [req.variables.index(k) for k in req.free_variables if k != "ducts"]
     if not free:
         return x0
     prob = _LocalProblem(req, constraints, x0, free, mode, req.objective)
-    lo = np.log([req.bounds[VARIABLES[j]][0] for j in free])
-    hi = np.log([req.bounds[VARIABLES[j]][1] for j in free])
+    lo = np.log([req.bounds[req.variables[j]][0] for j in free])
+    hi = np.log([req.bounds[req.variables[j]][1] for j in free])
     z0 = np.clip(np.log(x0[free]), lo, hi)
     res = minimize(prob.fun, z0, jac=True, method="SLSQP", bounds=list(zip(lo, hi)),
                    constraints=[{"type": "ineq", "fun": prob.cons, "jac": prob.cons_jac}],
@@ -318,6 +324,13 @@ def _geometry_table(req: Requirements, x: np.ndarray, digits: int | None = None)
     table.update(gap=mm(x[0], g), piston_diameter=mm(x[3], L), rod_diameter=mm(x[4], L))
     if req.configuration == "valve":
         table["ducts"] = round(x[5])
+    if req.coil is not None:
+        coil = {"turns": int(round(x[6])), "wire_diameter": mm(x[7], g)}
+        coil.update(core_diameter=mm(x[8], L), pole_length=mm(x[9], L), housing_outer_diameter=mm(x[10], L),
+                    steel=req.coil.steel)
+        if req.coil.supply_voltage is not None:
+            coil["supply_voltage"] = f"{req.coil.supply_voltage:.6g} V"
+        table["coil"] = coil
     return table
 
 
@@ -330,13 +343,16 @@ def _parse_geometry(req: Requirements, table: dict) -> np.ndarray:
     h = _metres(table["gap"])
     Dp = _metres(table["piston_diameter"])
     d = _metres(table["duct_mean_diameter"]) if "duct_mean_diameter" in table else Dp + h
-    return np.array([h, _metres(table["duct_length"]), d, Dp, _metres(table["rod_diameter"]),
-                     float(table.get("ducts", 1))])
+    row = [h, _metres(table["duct_length"]), d, Dp, _metres(table["rod_diameter"]), float(table.get("ducts", 1))]
+    if "coil" in table:
+        c = table["coil"]
+        row += [float(c["turns"])] + [_metres(c[k]) for k in COIL_VARIABLES[1:]]
+    return np.array(row)
 
 
 def _within_bounds(req: Requirements, R: np.ndarray) -> np.ndarray:
     ok = np.ones(len(R), dtype=bool)
-    for j, name in enumerate(VARIABLES):
+    for j, name in enumerate(req.variables):
         b = req.bounds.get(name)
         if b is None or name not in req.free_variables:
             continue
@@ -355,6 +371,15 @@ def _rounded(req, constraints, X: np.ndarray, need_feasible: bool):
                      s.length_tolerance])
     mixed = req.configuration == "mixed"
     free = [0, 1, 3, 4] if mixed else [0, 1, 2, 3, 4]          # mixed: d = Dp + h follows
+    rounded = list(range(5))                                   # columns on a grid (ducts are whole already)
+    if req.coil is not None:   # turns whole, the wire on the gap's grid, the other coil lengths on the length grid
+        grid = np.concatenate([grid, [0.0, 1.0, s.gap_tolerance] + [s.length_tolerance] * 3])
+        free = free + [6, 7, 8, 9, 10]
+        rounded = rounded + [6, 7, 8, 9, 10]
+        # only the coil's own columns and the flow columns that are free vary (fewer corners to try)
+        free = [j for j in free if req.variables[j] in req.free_variables]
+    grid_full = np.ones(len(req.variables))
+    grid_full[rounded] = grid[rounded]
     corners = np.array(np.meshgrid(*[[0, 1]] * len(free), indexing="ij")).reshape(len(free), -1).T
 
     def on_grid(rows: np.ndarray):
@@ -370,7 +395,7 @@ def _rounded(req, constraints, X: np.ndarray, need_feasible: bool):
 
     X = np.asarray(X, dtype=float)
     near = X.copy()
-    near[:, :5] = np.round(X[:, :5] / grid) * grid
+    near[:, rounded] = np.round(X[:, rounded] / grid_full[rounded]) * grid_full[rounded]
     tables, R, ok, _ = on_grid(near)
     keep_tables, keep_rows = [], []
     for i, x in enumerate(X):
@@ -380,8 +405,10 @@ def _rounded(req, constraints, X: np.ndarray, need_feasible: bool):
             continue
         # the nearest grid point fails: the best neighbour that meets every constraint (one design at a time, so
         # that memory stays that of a few dozen candidates)
-        lo = np.floor(x[:5] / grid + 1e-9) * grid
-        hi = np.ceil(x[:5] / grid - 1e-9) * grid
+        lo = x.copy()
+        hi = x.copy()
+        lo[rounded] = np.floor(x[rounded] / grid_full[rounded] + 1e-9) * grid_full[rounded]
+        hi[rounded] = np.ceil(x[rounded] / grid_full[rounded] - 1e-9) * grid_full[rounded]
         rows = np.repeat(x[None, :], len(corners), axis=0)
         for k, c in enumerate(corners):
             rows[k, free] = np.where(c == 1, hi[free], lo[free])
@@ -459,7 +486,7 @@ def design(req: Requirements) -> DesignResult:
     """
     constraints = constraints_for(req)
     s = req.search
-    summary = _Summary(constraints, keep=max(_KEEP_FACTOR * s.designs, _MAX_STARTS))
+    summary = _Summary(constraints, keep=max(_KEEP_FACTOR * s.designs, _MAX_STARTS), variables=req.variables)
     for x in candidate_chunks(req):
         summary.add(_evaluate(req, x, constraints), req.objective, s.pareto)
 
@@ -479,7 +506,7 @@ def design(req: Requirements) -> DesignResult:
         seen, records = set(), []
         if fig is not None:
             for i in _ranked(req, fig):
-                ident = tuple(sorted(tables[i].items()))
+                ident = repr(sorted(tables[i].items()))
                 if ident in seen:
                     continue
                 seen.add(ident)

@@ -8,6 +8,14 @@ fluid's dynamics of reaching rheological equilibrium".  erdesign filters the con
 and evaluates the yield stress and plastic viscosity at :math:`E_f`.  The filter is solved exactly between samples
 (the control linear between samples, :func:`~erdesign.effects.base.relaxation_filter`) and starts settled
 (:math:`E_f = E` at the first sample).
+
+Prior.  For an MR damper with a ``[coil]`` the current itself lags the command: the coil is an RL circuit, so
+the prior of :math:`T_f` is the time the coil current takes to reach 63 % of the rated current after a step,
+:math:`L/R` with the secant inductance of the magnetic circuit at the rated current, or, when the coil's
+``supply_voltage`` is given (a current driver forcing the coil with its supply),
+:math:`-(L/R)\ln(1 - 0.632\,I R/V_s)` (:func:`erdesign.magnetics.coil.current_rise_time`).  Eddy currents in a
+solid-steel head and the fluid's own response (about a millisecond) add to it, so fitted values up to 10 times
+the prior count as plausible.  Without a coil there is no prior (the default start is 5 ms).
 """
 
 from __future__ import annotations
@@ -65,8 +73,17 @@ class FieldLag(Effect):
     neutral = {"field_time_constant": "lower"}
     source = "Butz and von Stryk (seed 001) eq 16"
 
+    plausible_ratio = {"field_time_constant": (0.2, 10.0)}
+
+    def prior(self, damper):
+        law = damper.fluid.field_law
+        if law is None or not hasattr(law, "response_time"):   # a CoilLaw: the control is the coil current
+            return {}
+        return {"field_time_constant": float(law.response_time())}
+
     def parameters(self, damper):
-        return (Parameter("field_time_constant", "s", 0.005, 1e-5, 10.0, "time constant of the field response",
+        start = self.prior(damper).get("field_time_constant", 0.005)
+        return (Parameter("field_time_constant", "s", start, 1e-5, 10.0, "time constant of the field response",
                           log_scale=True),)
 
     def check(self, record, damper):

@@ -21,13 +21,12 @@ import pint
 
 from .. import materials
 from ..errors import DamperFileError, ErdesignError
-from ..field_laws import TabulatedLaw
 from ..units import Q_, to_si
 from .circuit import MagneticCircuit, piston_head
 from .coil import Coil, coil_from_table
 
 __all__ = ["CircuitReport", "build_circuit", "circuit_from_damper_dict", "load_magnetic_circuit",
-           "current_yield_law", "MagneticCircuit"]
+           "MagneticCircuit"]
 
 
 @dataclass(frozen=True)
@@ -130,14 +129,6 @@ def build_circuit(geometry: Any, coil: Coil, fluid_material: str, *, temperature
         raise DamperFileError(f"fluid.material: {fluid_material!r} has no yield curve against field strength "
                               "(A/m); the magnetic circuit needs one")
     return _Circuit(head, steel, fluid, law, temperature=temperature, name=name)
-
-
-def current_yield_law(circuit: MagneticCircuit, max_current: float, points: int = 46) -> TabulatedLaw:
-    """tau_y(I): the fluid's yield stress against coil current through the circuit, tabulated at ``points`` evenly
-    spaced currents on [0, I_max] (46 points on three times the rated current put the rated current on a point)."""
-    I = np.linspace(0.0, float(max_current), points)
-    tau = np.maximum.accumulate(np.asarray(circuit.state(I).yield_stress, dtype=float))
-    return TabulatedLaw("A", fields=tuple(I.tolist()), stresses=tuple(tau.tolist()))
 
 
 def circuit_from_damper_dict(data: Mapping[str, Any]) -> _Circuit:

@@ -62,7 +62,7 @@ from ..field_laws import FieldLaw
 from .bh import MU0, BHCurve
 from .coil import MAX_FILL_FACTOR, Coil, coil_resistance
 
-__all__ = ["PistonHead", "piston_head", "MagneticCircuit", "CircuitState", "PARTS", "fringe_length"]
+__all__ = ["PistonHead", "HeadBatch", "piston_head", "MagneticCircuit", "CircuitState", "PARTS", "fringe_length"]
 
 #: Parts of the circuit whose saturation is checked, in the order of :attr:`CircuitState.part_flux_density`.
 PARTS = ("core", "pole", "gap", "housing_at_pole", "housing_wall")
@@ -127,6 +127,20 @@ class PistonHead:
     def head_length(self) -> float:
         """L_c + 2 L_p, [m]."""
         return self.coil_length + 2.0 * self.pole_length
+
+
+@dataclass(frozen=True)
+class HeadBatch(PistonHead):
+    """Many heads at once: every attribute an array of the same shape (N,), unchecked (design candidates; the
+    caller masks impossible ones).  A :class:`MagneticCircuit` of a batch solves each head at its own current."""
+
+    def __post_init__(self) -> None:
+        pass
+
+
+def _col(x):
+    """x as a column against the quadrature nodes (a batch of heads: (N, 1); a scalar stays a scalar)."""
+    return x if np.ndim(x) == 0 else np.asarray(x)[..., None]
 
 
 def piston_head(geometry: Any, coil: Coil, *, where: str = "coil") -> PistonHead:
@@ -233,7 +247,7 @@ class MagneticCircuit:
     @staticmethod
     def _quad(a: float, b: float, g, Phi):
         """int_a^b g(r, Phi) dr for an array Phi (Gauss-Legendre)."""
-        r = 0.5 * (a + b) + 0.5 * (b - a) * _GL_X
+        r = _col(0.5 * (a + b)) + _col(0.5 * (b - a)) * _GL_X
         vals = g(r, np.asarray(Phi, dtype=float)[..., None])
         return 0.5 * (b - a) * np.sum(vals * _GL_W, axis=-1)
 
@@ -245,19 +259,21 @@ class MagneticCircuit:
         Ri, Ro, Rp, rc, rm = r.housing_inner_radius, r.housing_outer_radius, r.pole_radius, r.core_radius, \
             r.mean_gap_radius
         Hs, Hf = self.steel.H_of_B, self.fluid.H_of_B
+        # columns of the geometry for the integrands (a batch of heads: one row per head)
+        Lp_, h_, Ro_, Ri_, rc_ = _col(Lp), _col(h), _col(Ro), _col(Ri), _col(rc)
         Bg = self.fluid.B_of_H(Hg)
         Phi_g = 2 * math.pi * rm * Lp * Bg
-        F_gap = self._quad(Rp, Ri, lambda rr, P: Hf(P / (2 * math.pi * rr * Lp)), Phi_g)
+        F_gap = self._quad(Rp, Ri, lambda rr, P: Hf(P / (2 * math.pi * rr * Lp_)), Phi_g)
         # fringing at the outer end: fluid paths h + pi s / 2 from the end face (depth s <= R_p) to the housing
-        Phi_fo = 2 * math.pi * rm * self._quad(0.0, Rp, lambda ss, F: self.fluid.B_of_H(F / (h + 0.5 * math.pi * ss)),
+        Phi_fo = 2 * math.pi * rm * self._quad(0.0, Rp, lambda ss, F: self.fluid.B_of_H(F / (h_ + 0.5 * math.pi * ss)),
                                                F_gap)
         # fringing on the coil side: a quarter circle through the winding (mu0) and the gap (fluid, chord mu)
         mu_g = np.where(Hg > 0, Bg / np.where(Hg > 0, Hg, 1.0), MU0 * self.fluid.initial_relative_permeability())
-        x_c = min(0.5 * Lc, Rp - rc)
+        x_c = np.minimum(0.5 * Lc, Rp - rc)
         Phi_fc = 2 * math.pi * rm * F_gap * (2 * MU0 / math.pi) * np.log1p(math.pi * x_c / (2 * MU0 * h / mu_g))
         Phi_e = Phi_g + Phi_fo + Phi_fc
-        F_hp = self._quad(Ri, Ro, lambda rr, P: Hs(P * (Ro ** 2 - rr ** 2) / (Ro ** 2 - Ri ** 2)
-                                                    / (2 * math.pi * rr * Lp)), Phi_e)
+        F_hp = self._quad(Ri, Ro, lambda rr, P: Hs(P * (Ro_ ** 2 - rr ** 2) / (Ro_ ** 2 - Ri_ ** 2)
+                                                    / (2 * math.pi * rr * Lp_)), Phi_e)
         B_wall = Phi_e / self._A_wall
         F_wall = Hs(B_wall) * (Lc + Lp)
         F_e = 2 * (F_gap + F_hp) + F_wall
@@ -266,8 +282,8 @@ class MagneticCircuit:
         Phi_c = Phi_e + Phi_ax + Phi_w
         B_core = Phi_c / self._A_core
         F_core = Hs(B_core) * (Lc + Lp)
-        F_pole = (self._quad(0.0, rc, lambda rr, P: Hs(P * rr / (2 * math.pi * rc ** 2 * Lp)), Phi_c)
-                  + self._quad(rc, Rp, lambda rr, P: Hs(P / (2 * math.pi * rr * Lp)), Phi_c))
+        F_pole = (self._quad(0.0, rc, lambda rr, P: Hs(P * rr / (2 * math.pi * rc_ ** 2 * Lp_)), Phi_c)
+                  + self._quad(rc, Rp, lambda rr, P: Hs(P / (2 * math.pi * rr * Lp_)), Phi_c))
         NI = F_core + 2 * F_pole + F_e
         linkage = r.turns * (Phi_e + Phi_ax + MU0 * F_e / Lc * self._W2)
         parts_B = {
@@ -292,6 +308,8 @@ class MagneticCircuit:
     def solve_gap_field(self, current) -> np.ndarray:
         """Gap field H_g [A/m] at coil currents I [A] (array; |I| is used, the circuit being odd)."""
         NI = self.head.turns * np.abs(np.asarray(current, dtype=float))
+        if isinstance(self.head, HeadBatch):
+            return self._solve_batch(NI)
         out = np.zeros_like(NI)
         on = NI > 0
         if np.any(on):
@@ -307,6 +325,33 @@ class MagneticCircuit:
                 raise ErdesignError("magnetic circuit: the operating point did not converge")
             out[on] = res.x
         return out
+
+    def _solve_batch(self, NI) -> np.ndarray:
+        """Gap fields of a batch of heads, each at its own ampere-turns NI (full arrays, no compression of the
+        converged elements, so that every head keeps its row): Illinois regula falsi on [0, NI/2h]."""
+        NI = np.broadcast_to(np.asarray(NI, dtype=float), np.shape(self.head.gap)).copy()
+        on = NI > 0
+        target = np.where(on, NI, 1.0)
+        lo = np.zeros_like(target)
+        hi = target / (2 * self.head.gap)
+        f_lo = -np.ones_like(target)
+        f_hi = self._network(hi)["NI"] / target - 1.0
+        x = hi.copy()
+        side = np.zeros(target.shape, dtype=int)
+        for _ in range(200):
+            x = np.where(f_hi != f_lo, hi - f_hi * (hi - lo) / (f_hi - f_lo), 0.5 * (lo + hi))
+            x = np.clip(x, lo, hi)
+            fx = self._network(x)["NI"] / target - 1.0
+            if np.max(np.abs(fx)) < 1e-11:
+                break
+            left = fx < 0          # the root lies above x
+            lo, f_lo, hi, f_hi = (np.where(left, x, lo), np.where(left, fx, f_lo),
+                                  np.where(left, hi, x), np.where(left, f_hi, fx))
+            # Illinois: halve the value kept at the end that stays twice running
+            f_hi = np.where(left & (side == 1), 0.5 * f_hi, f_hi)
+            f_lo = np.where(~left & (side == -1), 0.5 * f_lo, f_lo)
+            side = np.where(left, 1, -1)
+        return np.where(on, x, 0.0)
 
     def state(self, current) -> CircuitState:
         """The solved circuit at coil currents I [A] (float or array)."""

@@ -31,11 +31,15 @@ from typing import Any, Mapping
 from ..errors import DamperFileError, ErdesignError, ValidityWarning
 from ..units import to_si
 
-__all__ = ["Coil", "coil_from_table", "coil_resistance", "COIL_KEYS", "COPPER_RESISTIVITY_20C",
+__all__ = ["Coil", "coil_from_table", "coil_resistance", "current_rise_time", "COIL_KEYS", "OPTIONAL_COIL_KEYS",
+           "COPPER_RESISTIVITY_20C",
            "COPPER_TEMPERATURE_COEFFICIENT", "MAX_FILL_FACTOR"]
 
 #: Keys of a damper file's ``[coil]`` table (shared/CONTRACTS.md section 5).
 COIL_KEYS = ("turns", "wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter", "steel")
+#: Optional keys of ``[coil]`` beyond the contract: ``supply_voltage``, the voltage the coil's driver can apply
+#: (a current-controlled driver forces the current up with it; docs/magnetics.md).
+OPTIONAL_COIL_KEYS = ("supply_voltage",)
 
 #: Resistivity of annealed copper at 20 degC [ohm m]: 100 % IACS = 58 MS/m (Circular 31, 1914; IEC 60028).
 COPPER_RESISTIVITY_20C = 1.0 / 58.0e6
@@ -84,6 +88,57 @@ def coil_resistance(turns, wire_diameter, inner_radius, outer_radius, temperatur
     return rho * turns * math.pi * (inner_radius + outer_radius) / (math.pi * wire_diameter ** 2 / 4.0)
 
 
+def current_rise_time(inductance, resistance, current, supply_voltage=None, fraction=1.0 - math.exp(-1.0)):
+    r"""Time for the coil current to rise from 0 to ``fraction`` of ``current`` after a step command, [s].
+
+    A driver that applies its whole supply voltage :math:`V_s` until the commanded current is reached (a
+    current-controlled amplifier at its voltage limit) drives the coil along
+    :math:`i(t) = (V_s/R)(1 - e^{-tR/L})`, so the current reaches :math:`f I` at
+
+    .. math:: t_f = -\frac{L}{R}\ln\left(1 - \frac{f I R}{V_s}\right).
+
+    Without a driver (``supply_voltage`` None) the coil is driven by the voltage :math:`IR` of its steady state,
+    a first-order response of time constant :math:`L/R`: with :math:`V_s = IR` and :math:`f = 1 - e^{-1}` the
+    formula gives exactly :math:`t_f = L/R`.
+
+    Parameters
+    ----------
+    inductance : float
+        L, [H] (secant inductance at ``current``).
+    resistance : float
+        R, [ohm].
+    current : float
+        Commanded current I > 0, [A].
+    supply_voltage : float or None
+        V_s, [V]; must exceed f I R.
+    fraction : float
+        f, [-]; default 1 - 1/e = 0.632, the first-order time constant's point.
+
+    Returns
+    -------
+    float
+        t_f, [s].
+
+    Examples
+    --------
+    >>> round(current_rise_time(0.12, 2.65, 2.0) * 1e3, 2)           # L/R in ms
+    45.28
+    >>> round(current_rise_time(0.12, 2.65, 2.0, 24.0) * 1e3, 2)     # a 24 V driver forcing it
+    6.81
+
+    References
+    ----------
+    Series RL circuit step response; Gavin, Hoagg and Dobossy (2001) minimise L/R for a fast damper.
+    """
+    tau = inductance / resistance
+    V = current * resistance if supply_voltage is None else float(supply_voltage)
+    x = fraction * current * resistance / V
+    if not x < 1.0:
+        raise ErdesignError(f"coil.supply_voltage: {V:.4g} V cannot drive {current:.4g} A through "
+                            f"{resistance:.4g} ohm (needs more than {fraction * current * resistance:.4g} V)")
+    return -tau * math.log1p(-x)
+
+
 @dataclass(frozen=True)
 class Coil:
     """The ``[coil]`` table of a damper file in SI units (lengths in m); ``steel`` names a steel of materials/."""
@@ -94,12 +149,18 @@ class Coil:
     pole_length: float
     housing_outer_diameter: float
     steel: str = "steel-1018"
+    supply_voltage: float | None = None
+    """Voltage the driver can apply, [V] (optional)."""
 
     def as_table(self) -> dict[str, Any]:
         """The ``[coil]`` table of a damper file (strings with units)."""
-        return {"turns": self.turns, "wire_diameter": f"{self.wire_diameter * 1e3:.6g} mm",
-                "core_diameter": f"{self.core_diameter * 1e3:.6g} mm", "pole_length": f"{self.pole_length * 1e3:.6g} mm",
-                "housing_outer_diameter": f"{self.housing_outer_diameter * 1e3:.6g} mm", "steel": self.steel}
+        table = {"turns": self.turns, "wire_diameter": f"{self.wire_diameter * 1e3:.6g} mm",
+                 "core_diameter": f"{self.core_diameter * 1e3:.6g} mm",
+                 "pole_length": f"{self.pole_length * 1e3:.6g} mm",
+                 "housing_outer_diameter": f"{self.housing_outer_diameter * 1e3:.6g} mm", "steel": self.steel}
+        if self.supply_voltage is not None:
+            table["supply_voltage"] = f"{self.supply_voltage:.6g} V"
+        return table
 
 
 def coil_from_table(table: Any, where: str = "coil") -> Coil:
@@ -116,9 +177,10 @@ def coil_from_table(table: Any, where: str = "coil") -> Coil:
 
     if not isinstance(table, Mapping):
         raise DamperFileError(f"{where}: expected a table, got {table!r}")
-    unknown = [k for k in table if k not in COIL_KEYS]
+    unknown = [k for k in table if k not in COIL_KEYS + OPTIONAL_COIL_KEYS]
     if unknown:
-        raise DamperFileError(f"{where}.{unknown[0]}: unknown key in [{where}]; allowed keys: {', '.join(COIL_KEYS)}")
+        raise DamperFileError(f"{where}.{unknown[0]}: unknown key in [{where}]; allowed keys: "
+                              f"{', '.join(COIL_KEYS + OPTIONAL_COIL_KEYS)}")
     missing = [k for k in COIL_KEYS if k not in table]
     if missing:
         raise DamperFileError(f"{where}.{missing[0]}: missing (required: {', '.join(COIL_KEYS)})")
@@ -145,4 +207,12 @@ def coil_from_table(table: Any, where: str = "coil") -> Coil:
     if turns > 20000:
         warnings.warn(f"{where}.turns: {turns} turns is implausibly many for a damper piston coil",
                       ValidityWarning, stacklevel=2)
-    return Coil(turns=turns, steel=steel, **lengths)
+    supply = None
+    if "supply_voltage" in table:
+        try:
+            supply = to_si(table["supply_voltage"], "V", f"{where}.supply_voltage")
+        except ErdesignError as exc:
+            raise DamperFileError(str(exc)) from None
+        if not (isinstance(supply, float) and supply > 0 and math.isfinite(supply)):
+            raise DamperFileError(f"{where}.supply_voltage: must be a positive voltage, got {table['supply_voltage']!r}")
+    return Coil(turns=turns, steel=steel, supply_voltage=supply, **lengths)

@@ -198,6 +198,9 @@ class Report:
     """The design point (:func:`design_point_rows`): velocity, control and the figures the Size page shows."""
     validity_messages: tuple[str, ...] = ()
     """Validity warnings the library gave building the damper and sizing it (as the app shows them)."""
+    magnetics: Mapping[str, Any] | None = None
+    """A damper with a ``[coil]``: the magnetic circuit (:func:`magnetic_section`): ``rows`` (coil, saturation,
+    power and time constant at the rated current) and ``table`` (the circuit at each control)."""
 
     @property
     def warnings(self) -> int:
@@ -489,6 +492,68 @@ def design_point_rows(damper: Damper, velocity: float, field: float) -> tuple[Ro
     )
 
 
+def magnetic_section(damper: Damper, currents: np.ndarray) -> dict | None:
+    """The magnetic section of a damper with a ``[coil]`` (None without one): rows at the rated current and a table
+    at each control [A].  Every number comes from :meth:`erdesign.magnetics.api.MagneticCircuit.at`."""
+    law = damper.fluid.field_law
+    circuit = getattr(law, "circuit", None)
+    if circuit is None or not hasattr(circuit, "at"):
+        return None
+    I_r = law.rated_current
+    r = circuit.at(I_r)
+    head = circuit.head
+    knees = {k: v for k, v in r.part_knee_currents.items() if math.isfinite(v.m_as("A"))}
+    first = min(knees, key=lambda k: knees[k].m_as("A")) if knees else None
+    rows = [
+        Row("coil_turns", "turns N", show(float(head.turns), "", name="turns")),
+        Row("wire_diameter", "wire diameter (bare copper)", show(Q_(head.wire_diameter, "m"), "mm", name="wire")),
+        Row("fill_factor", "copper fill factor", show(head.fill_factor, "", name="fill factor"),
+            "round wire: 0.5-0.7 in practice, 0.907 at most"),
+        Row("coil_resistance", "coil resistance R (20 °C)", show(r.coil_resistance, "ohm", name="resistance"),
+            "IACS copper, mean turn length"),
+        Row("rated_current", "rated current I (reference field)", show(r.current, "A", name="rated current")),
+        Row("gap_flux_density", "gap flux density B_g at I", show(r.gap_flux_density, "T", name="B_g")),
+        Row("gap_field", "gap field H_g at I", show(r.gap_field, "kA/m", name="H_g")),
+        Row("yield_stress_rated", "yield stress τ_y at I", show(r.yield_stress, "kPa", name="yield stress"),
+            "the fluid's yield curve at H_g"),
+        Row("inductance", "inductance L = λ/I at I", show(r.inductance, "mH", name="inductance")),
+        Row("time_constant", "time constant L/R at I", show(r.time_constant, "ms", name="time constant"),
+            "prior of the field_lag effect"),
+        Row("response_time", "current rise time to 63 % (driver)", show(Q_(law.response_time(), "s"), "ms",
+                                                                       name="rise time"),
+            "L/R without a driver; with coil.supply_voltage, the forced rise"),
+        Row("power", "coil power I²R at I", show(r.power, "W", name="power")),
+        Row("voltage", "coil voltage IR at I", show(r.voltage, "V", name="voltage")),
+        Row("current_density", "current density at I", show(r.current_density, "A/mm^2", name="current density"),
+            "a coil without forced cooling: about 5 A/mm² or less"),
+        Row("knee_current", "knee of B_g(I) (slope halved)", show(r.knee_current, "A", name="knee")),
+    ]
+    if first is not None:
+        rows.append(Row("limiting_part", f"current at which the {first.replace('_', ' ')} saturates first",
+                        show(knees[first], "A", name="knee of the part"),
+                        f"{first}: the part that reaches the knee of its B-H curve at the lowest current"))
+    rows += [
+        Row("leakage_fraction", "leakage: core flux not crossing the gap at I",
+            show(float(r.leakage_fraction), "percent", name="leakage")),
+    ]
+    at = circuit.at(np.asarray(currents, dtype=float))
+    columns = ("current I [A]", "B_g [T]", "H_g [kA/m]", "τ_y [kPa]", "L [mH]", "L/R [ms]", "power [W]",
+               "saturated")
+    table_rows = []
+    for i in range(np.size(at.current.magnitude)):
+        table_rows.append((
+            show(at.current[i], "A", name="current"), show(at.gap_flux_density[i], "T", name="B_g"),
+            show(at.gap_field[i], "kA/m", name="H_g"), show(at.yield_stress[i], "kPa", name="yield stress"),
+            show(at.inductance[i], "mH", name="inductance"), show(at.time_constant[i], "ms", name="L/R"),
+            show(at.power[i], "W", name="power"),
+            Shown("yes" if at.saturated[i] else "no", "yes" if at.saturated[i] else "no", "", float(at.saturated[i]),
+                  "dimensionless"),
+        ))
+    return {"rows": tuple(rows), "table": Table("magnetics", columns, tuple(table_rows)),
+            "saturated": bool(r.saturated), "limiting_part": first,
+            "steel": getattr(circuit.steel, "name", ""), "fluid": getattr(circuit.fluid, "name", "")}
+
+
 def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_range: Sequence[Any] | None = None,
                  fields: Sequence[Any] | None = None, amplitude: Any = None, frequency: Any = None,
                  comparison: MeasurementComparison | None = None, history: Iterable[Any] | None = None,
@@ -655,6 +720,20 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
                 None))
     if steps:
         figures.append(FigureSpec("history", "Error history", plots.error_history_figure(steps), None))
+    magnetics = magnetic_section(damper, E) if control == "A" else None
+    if magnetics is not None:
+        from ..magnetics.figures import circuit_curves, coil_curves_figure
+
+        rated = fluid.field_law.rated_current
+        curves = circuit_curves(damper, points=31)
+        figures.insert(0, FigureSpec(
+            "magnetics", "Gap flux density and yield stress against coil current",
+            coil_curves_figure(curves, rated),
+            Table("magnetics_curve", ("current I [A]", "B_g [T]", "τ_y [kPa]"), tuple(
+                (show(curves.current[i], "A", name="current"), show(curves.gap_flux_density[i], "T", name="B_g"),
+                 show(curves.yield_stress[i], "kPa", name="yield stress"))
+                for i in range(0, np.size(curves.current.magnitude), 3))),
+            "the reluctance network of the piston head (docs/magnetics.md)"))
 
     notes = [(f"flow model: {'exact annulus' if damper.uses_exact_annulus else 'thin gap'} "
              f"({g.configuration} configuration{'' if g.ducts == 1 else f', {g.ducts} ducts'})"),
@@ -667,7 +746,8 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
         material=_material_section(record, damper), derived=tuple(derived), design_table=design_table,
         sine_table=sine_table, equations=tuple(equations_for(damper)),
         checks=validity_checks(damper, sweep, E, v_design, E_design), figures=tuple(figures), comparison=comparison_data,
-        history=steps, sweep=sweep, loops=loops, design_point=design_point, validity_messages=messages)
+        history=steps, sweep=sweep, loops=loops, design_point=design_point, validity_messages=messages,
+        magnetics=magnetics)
 
 
 def _comparison(c: MeasurementComparison) -> dict:

@@ -48,7 +48,10 @@ _FIELD_LAWS = {
 def equations_for(damper: Damper) -> list[Equation]:
     """The equations used for this damper, in the order of the computation."""
     g, fluid = damper.geometry, damper.fluid
-    out = [_FIELD_LAWS[type(fluid.yield_law)]]
+    law = fluid.yield_law
+    out = [_FIELD_LAWS[type(law)] if type(law) in _FIELD_LAWS else Equation(
+        "field_law", f"Yield stress versus control ({law.law} law)",
+        getattr(law, "equation_text", law.equation), law.equation, law.reference)]
     if fluid.viscosity_at_reference_field is not None:
         out.append(Equation(
             "viscosity", "Plastic viscosity versus control", "η = η₀ + (η_ref − η₀) τ_y(E) / τ_y(E_ref)",

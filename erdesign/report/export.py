@@ -40,7 +40,7 @@ from ..errors import ErdesignError
 
 __all__ = ["damper_toml", "csv_text", "rows_csv"]
 
-_TABLES = ("geometry", "fluid")
+_TABLES = ("geometry", "fluid", "coil")
 
 
 def _toml_value(value: Any, where: str) -> str:
@@ -78,7 +78,7 @@ def damper_toml(spec: Mapping[str, Any], *, comment: str = "") -> str:
     lines.append("")
     unknown = [k for k in spec if k not in ("name", *_TABLES)]
     if unknown:
-        raise ErdesignError(f"{unknown[0]}: not a key of a damper file (name, [geometry], [fluid])")
+        raise ErdesignError(f"{unknown[0]}: not a key of a damper file (name, [geometry], [fluid], [coil])")
     if "name" in spec:
         lines.append(f"name = {_toml_value(str(spec['name']), 'name')}")
     for table in _TABLES:
