@@ -556,6 +556,56 @@ def test_unit_systems_and_fields_in_their_own_unit(app):
     assert [m.value for m in app.metric if m.label == "force F"][0].endswith(" kN")
 
 
+def test_simulate_caption_and_numbers_in_the_unit_system(app):
+    """Issue 14: the Simulate caption said "control 3e+06"; the control reads in the fluid's unit, the numbers in
+    the unit system chosen."""
+    app.switch_page("simulate.py").run()
+    no_error(app)
+    captions = [c.value for c in app.caption]
+    assert any("10 mm at 1 Hz, control 3 kV/mm" in c for c in captions), captions
+    assert not any("e+0" in c for c in captions)
+    F = metric(app, "peak force").to("N").magnitude
+    app.radio(key=state.UNITS).set_value("in-lbf-s").run()
+    no_error(app)
+    (m,) = [m for m in app.metric if m.label == "peak force"]
+    assert m.value.endswith(" lbf") and Q_(m.value).to("N").magnitude == pytest.approx(F, rel=FOUR_FIGURES)
+    fig = figure(app, "sim.fig.loops")
+    assert fig["layout"]["xaxis2"]["title"]["text"] == "velocity v [in/s]"
+    # peak velocity X0 * 2 pi f = 10 mm * 2 pi * 1 Hz, in in/s on the axis
+    assert values(fig["data"][1]["x"]).max() == pytest.approx(20 * math.pi / 25.4, rel=1e-4)
+    assert any("control 3 kV/mm" in c.value for c in app.caption)      # the control keeps its own unit
+    app.text_input(key="sim.field").set_value("1500 V/mm").run()
+    assert any("control 1.5 kV/mm" in c.value for c in app.caption)
+
+
+def test_compare_fitted_parameters_in_the_unit_system(app, few_candidates):
+    """The ranking's fitted values and the calibrated parameters read in the unit system (lbf), and are the
+    library's numbers converted."""
+    from erdesign.diagnose import diagnose
+
+    app.radio(key=state.UNITS).set_value("in-lbf-s").run()
+    app.switch_page("compare.py").run()
+    app.selectbox(key="cmp.example").select("makris_hidden_seal_friction.csv").run()
+    app.button(key="cmp.run").click().run()
+    no_error(app)
+    ranking = app.table[0].value
+    (fitted,) = ranking.loc[ranking["effect"] == "seal_friction", "fitted"]
+    value, error = re.fullmatch(r"friction_force = (\S+ lbf) ± (\S+ lbf)", fitted).groups()
+    data = state.example_record_bytes("makris_hidden_seal_friction.csv")
+    record = state.read_record(data, "a.csv")
+    (c,) = [c for c in diagnose(load_example("makris"), record).ranking if c.effect == "seal_friction"]
+    # the library's fitted friction (N), shown to 4 figures in lbf
+    assert Q_(value).to("N").magnitude == pytest.approx(c.result.values["friction_force"], rel=FOUR_FIGURES)
+    assert Q_(error).to("N").magnitude == pytest.approx(c.result.stderr["friction_force"], rel=0.05)
+    app.button(key="cmp.add_named").click().run()
+    no_error(app)
+    (params,) = [d.value for d in app.dataframe if "parameter" in d.value]
+    rows = {r["parameter"]: r for r in params.to_dict("records")}
+    assert rows["friction_force"]["value"].endswith(" lbf")
+    assert rows["friction_force"]["uncertainty (1 σ)"].endswith(" lbf")
+    assert " " not in rows["viscosity_factor"]["value"]                  # a plain factor stays a plain number
+
+
 # ------------------------------------------------------------------------------------------------ CLI
 def test_cli_app_runs_streamlit_on_the_package_app(monkeypatch):
     import subprocess

@@ -405,6 +405,8 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
         measured = record.force
         description = f"displacement of {upload_name} ({len(record)} samples)"
     else:
+        if kind in ("sine", "sweep"):       # the description prints the control in the fluid's unit (3 kV/mm)
+            ex["control_unit"] = damper.fluid.field_unit
         motion = {"sine": rig.sine, "sweep": rig.sweep, "earthquake": rig.earthquake_motion}[kind](**ex)
         record = Measurement(time=motion.time, displacement=motion.displacement, force=None,
                              velocity=motion.velocity, acceleration=motion.acceleration, control=motion.control,
