@@ -606,6 +606,55 @@ def test_compare_fitted_parameters_in_the_unit_system(app, few_candidates):
     assert " " not in rows["viscosity_factor"]["value"]                  # a plain factor stays a plain number
 
 
+def test_baseline_beside_the_design_on_simulate_and_in_the_report(app, downloads):
+    """Issue 14, compare designs beyond the Size page: the pinned baseline is simulated beside the current design
+    and has its own section in the report; its numbers are the library's for the baseline's geometry."""
+    velocity = app.text_input(key="size.velocity").value
+    app.button(key="size.pin").click().run()
+    app.text_input(key="size.geo.gap").set_value("0.6 mm").run()
+    no_error(app)
+    makris = load_example("makris")
+    narrow = state.damper_from_dict(app.session_state[state.DESIGN]["spec"], source="test")
+
+    app.switch_page("simulate.py").run()
+    no_error(app)
+    fig = figure(app, "sim.fig.loops")
+    traces = {t["name"]: t for t in fig["data"] if t.get("showlegend", True) is not False}
+    assert set(traces) == {"physics damper (baseline)", "baseline design"}
+    unit = fig["layout"]["yaxis"]["title"]["text"].split("[")[1].rstrip("]")
+    # at t = 0 the sine 10 mm at 1 Hz moves at its peak velocity X0 * 2 pi f: the quasi-steady force there is
+    # Damper.size's force at that velocity, for each design (Makris 0.8 mm gap dashed, 0.6 mm solid)
+    v0 = Q_(20 * math.pi, "mm/s")
+    for trace, damper in (("baseline design", makris), ("physics damper (baseline)", narrow)):
+        F0 = Q_(values(traces[trace]["y"])[0], unit)
+        expected = damper.size(velocity=v0, field="3 kV/mm").force
+        assert F0.to("N").magnitude == pytest.approx(expected.to("N").magnitude, rel=1e-3), trace
+    assert metric(app, "peak force, baseline design") < metric(app, "peak force")    # the wider gap is softer
+    assert any("geometry.gap = 0.8 mm" in c.value for c in app.caption)
+    assert [t["name"] for t in figure(app, "sim.fig.time")["data"]] == ["physics damper (baseline)",
+                                                                         "baseline design"]
+
+    app.switch_page("report.py").run()
+    no_error(app)
+    assert app.checkbox(key="rep.baseline").value
+    html = downloads["makris-1996-report.html"].decode()
+    q = Quantities(html).spans
+    for prefix, damper in (("q-baseline-", makris), ("q-this-", narrow)):
+        r = damper.size(velocity=velocity, field="3 kV/mm")
+        assert Q_(q[prefix + "force"]).to("N").magnitude == pytest.approx(r.force.to("N").magnitude,
+                                                                         rel=FOUR_FIGURES), prefix
+    assert q["q-this-force"] == q["q-point-force"]                      # this design: its own design point
+    assert re.search(r"<td><code>geometry.gap</code></td><td><code>0.8 mm</code></td><td><code>0.6 mm</code>", html)
+    assert 'id="figure-baseline"' in html
+    app.checkbox(key="rep.baseline").uncheck().run()
+    assert 'id="figure-baseline"' not in downloads["makris-1996-report.html"].decode()
+    app.radio(key="rep.format").set_value("md").run()
+    assert "## Compared with the baseline" not in downloads["makris-1996-report.md"].decode()
+    app.checkbox(key="rep.baseline").check().run()
+    md = downloads["makris-1996-report.md"].decode()
+    assert "## Compared with the baseline design makris-1996" in md and "| `geometry.gap` | `0.8 mm` | `0.6 mm` |" in md
+
+
 # ------------------------------------------------------------------------------------------------ CLI
 def test_cli_app_runs_streamlit_on_the_package_app(monkeypatch):
     import subprocess

@@ -19,7 +19,7 @@ import pytest
 import erdesign.cli.report  # noqa: F401  (registers the command until erdesign/cli/__init__.py imports it)
 from erdesign import load_example
 from erdesign.cli import main
-from erdesign.damper_file import load_damper
+from erdesign.damper_file import damper_from_dict, load_damper
 from erdesign.errors import ErdesignError, UnitError, ValidityWarning
 from erdesign.report import (
     ErrorHistoryStep,
@@ -414,3 +414,26 @@ def test_report_from_the_content_of_a_damper_file_at_a_design_point():
     # the design table's row at the design control is the design point
     (design_row,) = [row for row in r.design_table.rows if row[0].text == "3 kV/mm"]
     assert design_row[4].si == pytest.approx(rows["force"].value.si, rel=1e-12)
+
+
+def test_baseline_section_is_the_librarys_design_point_of_each_design():
+    """A report built with a baseline (issue 14, compare designs) shows both designs' design points: each number
+    is Damper.size of that design, and the change is their ratio."""
+    from erdesign.damper_file import read_toml
+    from erdesign.examples import __file__ as examples
+
+    spec = read_toml(Path(examples).with_name("makris.toml"))
+    narrow = {**spec, "geometry": {**spec["geometry"], "gap": "0.6 mm"}}
+    point = dict(design_velocity="25 mm/s", design_field="3 kV/mm")
+    baseline = build_report(spec, **point)
+    report = build_report(narrow, **point, baseline=baseline)
+    rows = {r["key"]: r for r in report.baseline["rows"]}
+    F_base = load_example("makris").size(velocity="25 mm/s", field="3 kV/mm").force.to("N").magnitude
+    F_now = damper_from_dict(narrow, source="test").size(velocity="25 mm/s", field="3 kV/mm").force.to("N").magnitude
+    assert rows["force"]["baseline"].si == pytest.approx(F_base, rel=1e-12)
+    assert rows["force"]["this"].si == pytest.approx(F_now, rel=1e-12)
+    assert rows["force"]["change"] == f"{100 * (F_now / F_base - 1):+.1f} %"
+    assert report.baseline["inputs"] == ({"key": "geometry.gap", "baseline": "0.8 mm", "this": "0.6 mm"},)
+    assert [f.key for f in report.figures][-1] == "baseline" and build_report(narrow, **point).baseline is None
+    md = render_markdown(report)
+    assert f"| force F | {rows['force']['baseline'].text} | {rows['force']['this'].text} |" in md

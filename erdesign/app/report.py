@@ -37,17 +37,27 @@ def render() -> None:
     if comparison is not None:
         include = st.checkbox(f"include the comparison with {comparison[0]} and the error history", value=True,
                               key="rep.include")
+    base = state.pinned_baseline(design)
+    baseline = None
+    if base is not None and st.checkbox(f"compare with the pinned baseline design {base['spec'].get('name') or ''} "
+                                        f"(v = {base['velocity']}, E = {base['field']})", value=True,
+                                        key="rep.baseline"):
+        baseline = state.design_text(base)
     fmt = state.widget(st.radio, "format", "rep.format", "html", options=["html", "md"], horizontal=True,
                        format_func={"html": "HTML (interactive plots)", "md": "Markdown"}.get)
     system = state.unit_system()
     try:
         with st.spinner("Writing the report ..."):
-            report = state.design_report(text, system, comparison if include else None, history if include else ())
+            report = state.design_report(text, system, comparison if include else None, history if include else (),
+                                         baseline)
             body = state.render_report(text, system, comparison if include else None, history if include else (),
-                                       fmt)
+                                       fmt, baseline)
     except ErdesignError as exc:
         st.error(f"The report could not be built: {state.clean_message(str(exc))}")
         return
+    if report.baseline is not None:
+        st.caption(f"With the baseline design {report.baseline['name']}: a section beside this design's design "
+                   "point and the figure of both designs' force against velocity.")
     name = design["spec"].get("name") or "design"
     point = f"{report.setting('velocity_design').value.text} and {report.setting('field_design').value.text}"
     st.markdown(f"Design **{name}** ({report.configuration}) at the design point **{point}** (from the Size page); "

@@ -26,6 +26,7 @@ from erdesign.app import figures, state
 from erdesign.damper_file import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
 from erdesign.materials import fluid_values
+from erdesign.report.builder import compare_designs
 from erdesign.report.export import csv_text, damper_toml, rows_csv
 from erdesign.report.formatting import field_text, pick_unit, show
 from erdesign.units import Q_, to_si
@@ -321,18 +322,10 @@ def _baseline(design: dict, report) -> None:
         st.session_state.pop(state.BASELINE, None)
         st.info(f"The pinned design can no longer be evaluated ({state.clean_message(str(exc))}); unpinned.")
         return
-    rows = []
-    inputs = {(r.section, r.key): r.given for r in old.inputs}
-    now = {(r.section, r.key): r.given for r in report.inputs}
-    for key in dict.fromkeys([*inputs, *now]):
-        if inputs.get(key) != now.get(key):
-            rows.append({"": f"{key[0]}.{key[1]}", "baseline": inputs.get(key, ""), "this design": now.get(key, ""),
-                         "change": ""})
-    for a, b in zip(old.design_point, report.design_point):
-        change = ""
-        if b.value.si and a.value.si and a.value.si != 0 and np.isfinite(a.value.si) and np.isfinite(b.value.si):
-            change = f"{100 * (b.value.si / a.value.si - 1):+.1f} %"
-        rows.append({"": a.label, "baseline": a.value.text, "this design": b.value.text, "change": change})
+    diff = compare_designs(report, old)             # the same table as the report's baseline section
+    rows = [{"": r["key"], "baseline": r["baseline"], "this design": r["this"], "change": ""} for r in diff["inputs"]]
+    rows += [{"": r["label"], "baseline": r["baseline"].text, "this design": r["this"].text, "change": r["change"]}
+             for r in diff["rows"]]
     st.dataframe(rows, hide_index=True, key="size.compare", width="stretch")
     st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare")
 

@@ -36,7 +36,7 @@ from ..units import Q_, to_si
 __all__ = [
     "DEFAULT_EXAMPLE", "SPEC", "DESIGN", "DIAGNOSIS", "BASELINE", "UNITS", "widget", "forget", "example_spec",
     "current_spec", "set_spec", "default_design", "current_design", "set_design", "design_text", "design_report",
-    "unit_system", "report_inputs", "clean_message", "file_stem",
+    "unit_system", "pinned_baseline", "report_inputs", "clean_message", "file_stem",
     "spec_text", "build_damper", "damper_or_error", "caught", "velocity_sweep", "geometry_sweep", "GEOMETRY_SWEEPS",
     "read_record",
     "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
@@ -155,6 +155,13 @@ def design_text(design: dict) -> str:
     return json.dumps(design, sort_keys=True)
 
 
+def pinned_baseline(design: dict) -> dict | None:
+    """The design pinned as the baseline on the Size page (:data:`BASELINE`), or None when none is pinned or it
+    is the design itself."""
+    base = st.session_state.get(BASELINE)
+    return None if base is None or design_text(base) == design_text(design) else base
+
+
 def unit_system() -> str:
     """The unit system chosen in the sidebar (``SI`` until changed)."""
     return st.session_state.get(UNITS) or st.session_state.get(_KEEP + UNITS) or "SI"
@@ -172,12 +179,13 @@ def report_inputs(design: dict, control_unit: str) -> dict:
 
 @st.cache_data(show_spinner=False, max_entries=32)
 def design_report(text: str, system: str, comparison: tuple | None = None,
-                  history: tuple[tuple[int, str, float], ...] = ()):
+                  history: tuple[tuple[int, str, float], ...] = (), baseline: str | None = None):
     """:func:`erdesign.report.build_report` of a design (:func:`design_text`) in the unit system ``system``.
 
     The Size page shows its design point, checks and curves; the Report page renders it: one computation, so the
     numbers on screen and in the download are the same.  ``comparison`` is ``(label, esr, samples, x, v,
-    F_measured, F_model)`` with SI arrays as tuples, or None.
+    F_measured, F_model)`` with SI arrays as tuples, or None.  ``baseline`` is the pinned baseline design
+    (:data:`BASELINE`, as :func:`design_text`): the report then compares the design with it.
 
     Raises :class:`~erdesign.errors.ErdesignError` for an invalid design.
     """
@@ -187,6 +195,7 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
 
     design = json.loads(text)
     damper, _ = build_damper(spec_text(design["spec"]))
+    base = design_report(baseline, system) if baseline is not None else None
     comp = None
     if comparison is not None:
         label, esr_value, samples, x, v, Fm, Fmod = comparison
@@ -200,7 +209,7 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
     with use_unit_system(system):
         return caught(lambda: build_report(
             design["spec"], **report_inputs(design, damper.fluid.control_unit), comparison=comp,
-            history=[ErrorHistoryStep(*h) for h in history] or None))[0]
+            history=[ErrorHistoryStep(*h) for h in history] or None, baseline=base))[0]
 
 
 _PATH = re.compile(r"(?:[A-Za-z]:)?(?:[\\/][^\\/\s:'\"]+)+[\\/]([^\\/\s:'\"]+)")
@@ -447,11 +456,11 @@ def run_diagnosis(text: str, data: bytes, name: str, effects: tuple[str, ...]):
 # ------------------------------------------------------------------------------------------------ report
 @st.cache_data(show_spinner=False, max_entries=8)
 def render_report(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
-                  fmt: str) -> str:
+                  fmt: str, baseline: str | None = None) -> str:
     """The report of a design (:func:`design_report`) as HTML or Markdown text."""
     from ..report import render_html, render_markdown
 
-    report = design_report(text, system, comparison, history)
+    report = design_report(text, system, comparison, history, baseline)
     return render_html(report) if fmt == "html" else render_markdown(report)
 
 
