@@ -68,8 +68,8 @@ def _control_text(value: float, unit: str | None) -> str:
 
     The control of a motion is SI (V/m, A/m, T, A or V): the coherent SI unit of ``unit``'s dimension.
 
-    >>> _control_text(3e6, "kV/mm"), _control_text(2.5e5, "kA/m"), _control_text(1.5, "A"), _control_text(3e6, "kV / mm")
-    ('3 kV/mm', '250 kA/m', '1.5 A', '3 kV/mm')
+    >>> _control_text(3e6, "kV / mm"), _control_text(2.5e5, "kA/m"), _control_text(1.5, "A"), _control_text(3, None)
+    ('3 kV/mm', '250 kA/m', '1.5 A', '3')
     """
     if not unit:
         return f"{value:g}"

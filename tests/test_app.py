@@ -655,6 +655,48 @@ def test_baseline_beside_the_design_on_simulate_and_in_the_report(app, downloads
     assert "## Compared with the baseline design makris-1996" in md and "| `geometry.gap` | `0.8 mm` | `0.6 mm` |" in md
 
 
+def test_figures_save_as_named_png_or_svg(app, downloads, monkeypatch):
+    """Every figure's camera button saves '<design>-<figure>.<format>' in the format of the sidebar; the report's
+    static images come as a zip, or, without kaleido or a browser, as a message (never an exception)."""
+    def configs(at):
+        return {c.proto.id: json.loads(c.proto.config) for c in at.get("plotly_chart")}
+
+    shown = configs(app)
+    (force,) = [c for k, c in shown.items() if "size.fig.force" in k]
+    assert force["toImageButtonOptions"] == {"format": "png", "filename": "makris-1996-force", "scale": 2}
+    assert all(c["toImageButtonOptions"]["format"] == "png" for c in shown.values())
+    app.radio(key=state.IMAGE_FORMAT).set_value("svg").run()
+    app.switch_page("simulate.py").run()
+    no_error(app)
+    assert {c["toImageButtonOptions"]["filename"]: c["toImageButtonOptions"]["format"]
+            for c in configs(app).values()} == {"makris-1996-loops": "svg", "makris-1996-time": "svg"}
+
+    app.switch_page("report.py").run()
+    html = downloads["makris-1996-report.html"].decode()
+    assert '"toImageButtonOptions": {"format": "svg", "filename": "makris-1996-force"' in html
+    from erdesign.errors import ErdesignError
+    from erdesign.report import export
+
+    def no_browser(figures, image_format="png"):
+        raise ErdesignError(f"figure images: ChromeNotFoundError: no chrome; {export.IMAGES_NEED}")
+
+    monkeypatch.setattr(export, "figure_images", no_browser)
+    app.button(key="rep.make_images").click().run()
+    no_error(app)
+    assert any("erdesign never downloads a browser" in i.value for i in app.info)
+    assert "makris-1996-figures.zip" not in downloads
+    monkeypatch.setattr(export, "figure_images",
+                        lambda figures, image_format="png": {f"{f.key}.{image_format}": b"<svg/>" for f in figures})
+    app.button(key="rep.make_images").click().run()
+    no_error(app)
+    import io
+    import zipfile
+
+    names = zipfile.ZipFile(io.BytesIO(downloads["makris-1996-figures.zip"])).namelist()
+    assert names == ["makris-1996-pressure_drop.svg", "makris-1996-force.svg", "makris-1996-dynamic_range.svg",
+                     "makris-1996-sine_loops.svg"]
+
+
 # ------------------------------------------------------------------------------------------------ CLI
 def test_cli_app_runs_streamlit_on_the_package_app(monkeypatch):
     import subprocess

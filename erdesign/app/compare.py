@@ -212,15 +212,17 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
             st.warning(f"Check: {warning}")
     with right:       # the error history stays in view while effects are added
         st.plotly_chart(plots.error_history_figure(steps, noise_floor=float(diagnosis.noise_floor_esr)),
-                        key="cmp.fig.history")
+                        key="cmp.fig.history", config=state.chart_config("cmp.fig.history"))
 
     tabs = st.tabs(["overlay", "residual", "missing effects", "parameters", "downloads"])
     with tabs[0]:
         st.plotly_chart(plots.measured_loops_figure(record.displacement, record.velocity, F, model_force),
-                        key="cmp.fig.loops")
-        st.plotly_chart(figures.time_figure(record.time, model_force, label="model", measured=F), key="cmp.fig.time")
+                        key="cmp.fig.loops", config=state.chart_config("cmp.fig.loops"))
+        st.plotly_chart(figures.time_figure(record.time, model_force, label="model", measured=F), key="cmp.fig.time",
+                        config=state.chart_config("cmp.fig.time"))
     with tabs[1]:
-        st.plotly_chart(figures.residual_figure(record.time, record.velocity, F - model_force), key="cmp.fig.res")
+        st.plotly_chart(figures.residual_figure(record.time, record.velocity, F - model_force), key="cmp.fig.res",
+                        config=state.chart_config("cmp.fig.res"))
         st.markdown("**Where the model fails** (share of samples, RMS there over overall RMS):")
         st.dataframe([{"region": k, "share of samples %": round(100 * a, 1), "RMS ratio": round(b, 2)}
                       for k, (a, b) in diagnosis.analysis.regions.items()], hide_index=True)

@@ -146,9 +146,10 @@ def render() -> None:
             c[3].metric("peak force, baseline design", show(peak_b, unit, name="baseline peak force").text,
                         help="The design pinned on the Size page, with the same model, effects and excitation.")
         st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=sim["title"],
-                                             measured=sim["measured"], baseline=Fb), key="sim.fig.loops")
+                                             measured=sim["measured"], baseline=Fb), key="sim.fig.loops",
+                        config=state.chart_config("sim.fig.loops"))
         st.plotly_chart(figures.time_figure(sim["time"], F, label=sim["title"], measured=sim["measured"],
-                                            baseline=Fb), key="sim.fig.time")
+                                            baseline=Fb), key="sim.fig.time", config=state.chart_config("sim.fig.time"))
         _download(sim, damper, name, effects, values)
 
 

@@ -327,7 +327,8 @@ def _baseline(design: dict, report) -> None:
     rows += [{"": r["label"], "baseline": r["baseline"].text, "this design": r["this"].text, "change": r["change"]}
              for r in diff["rows"]]
     st.dataframe(rows, hide_index=True, key="size.compare", width="stretch")
-    st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare")
+    st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare",
+                    config=state.chart_config("size.fig.compare"))
 
 
 def _magnetics(report) -> None:
@@ -336,7 +337,7 @@ def _magnetics(report) -> None:
     m = report.magnetics
     st.subheader("Magnetic circuit")
     fig = next(f for f in report.figures if f.key == "magnetics")
-    st.plotly_chart(fig.figure, key="size.fig.magnetics")
+    st.plotly_chart(fig.figure, key="size.fig.magnetics", config=state.chart_config("size.fig.magnetics"))
     rows = {r.key: r for r in m["rows"]}
     keys = ["gap_flux_density", "yield_stress_rated", "coil_resistance", "inductance", "time_constant", "power",
             "voltage", "current_density", "knee_current"]
@@ -355,9 +356,12 @@ def _magnetics(report) -> None:
 
 def _curves(report) -> None:
     tab_f, tab_d, tab_p = st.tabs(["force - velocity", "dynamic range - velocity", "pressure drop - velocity"])
-    tab_f.plotly_chart(plots.force_velocity_figure(report.sweep), key="size.fig.force")
-    tab_d.plotly_chart(plots.dynamic_range_figure(report.sweep), key="size.fig.range")
-    tab_p.plotly_chart(plots.pressure_drop_figure(report.sweep), key="size.fig.pressure")
+    tab_f.plotly_chart(plots.force_velocity_figure(report.sweep), key="size.fig.force",
+                       config=state.chart_config("size.fig.force"))
+    tab_d.plotly_chart(plots.dynamic_range_figure(report.sweep), key="size.fig.range",
+                       config=state.chart_config("size.fig.range"))
+    tab_p.plotly_chart(plots.pressure_drop_figure(report.sweep), key="size.fig.pressure",
+                       config=state.chart_config("size.fig.pressure"))
 
 
 def _explorer(text: str, damper, v: float, E: float) -> None:
@@ -387,7 +391,8 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
     field_label = field_text(E, damper.fluid.control_unit, damper.fluid.field_unit)
     velocity_label = show(Q_(v, "m/s"), pick_unit(Q_(v, "m/s"), "velocity"), name="velocity").text
     st.plotly_chart(figures.tradeoff_figure(result, state.GEOMETRY_SWEEPS[parameter], field_label,
-                                            velocity_label), key="size.fig.tradeoff")
+                                            velocity_label), key="size.fig.tradeoff",
+                    config=state.chart_config("size.fig.tradeoff"))
     data = csv_text([(parameter, "m", result["value"]), (f"force at {field_label}", "N", result["force"]),
                      ("zero-field force", "N", result["zero_field_force"]),
                      ("dynamic range", "", result["dynamic_range"]), ("Reynolds number", "", result["reynolds"]),

@@ -34,7 +34,8 @@ from ..measurement import Measurement, read_measurement
 from ..units import Q_, to_si
 
 __all__ = [
-    "DEFAULT_EXAMPLE", "SPEC", "DESIGN", "DIAGNOSIS", "BASELINE", "UNITS", "widget", "forget", "example_spec",
+    "DEFAULT_EXAMPLE", "SPEC", "DESIGN", "DIAGNOSIS", "BASELINE", "UNITS", "IMAGE_FORMAT",
+    "chart_config", "image_format", "report_images", "widget", "forget", "example_spec",
     "current_spec", "set_spec", "default_design", "current_design", "set_design", "design_text", "design_report",
     "unit_system", "pinned_baseline", "report_inputs", "clean_message", "file_stem",
     "spec_text", "build_damper", "damper_or_error", "caught", "velocity_sweep", "geometry_sweep", "GEOMETRY_SWEEPS",
@@ -57,6 +58,8 @@ DIAGNOSIS = "diagnosis"
 BASELINE = "baseline"
 #: Widget key of the unit system of displayed numbers (sidebar).
 UNITS = "app.units"
+#: Widget key of the format the figures' camera button saves (sidebar): ``png`` or ``svg``.
+IMAGE_FORMAT = "app.image_format"
 _KEEP = "_keep."
 
 
@@ -153,6 +156,15 @@ def set_design(design: dict) -> None:
 def design_text(design: dict) -> str:
     """The design as canonical JSON text (hashable, for the cached functions)."""
     return json.dumps(design, sort_keys=True)
+
+
+def chart_config(key: str) -> dict:
+    """The plotly config of the chart ``key`` (``"size.fig.force"``): its camera button saves
+    ``<design>-<figure>.png`` (or ``.svg``, as chosen in the sidebar) - the browser draws the image."""
+    from ..plots import export_config
+
+    name = current_design()["spec"].get("name") or "design"
+    return export_config(file_stem(f"{name}-{key.rsplit('.', 1)[-1]}"), image_format())
 
 
 def pinned_baseline(design: dict) -> dict | None:
@@ -456,16 +468,37 @@ def run_diagnosis(text: str, data: bytes, name: str, effects: tuple[str, ...]):
 # ------------------------------------------------------------------------------------------------ report
 @st.cache_data(show_spinner=False, max_entries=8)
 def render_report(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
-                  fmt: str, baseline: str | None = None) -> str:
-    """The report of a design (:func:`design_report`) as HTML or Markdown text."""
+                  fmt: str, baseline: str | None = None, image_format: str = "png") -> str:
+    """The report of a design (:func:`design_report`) as HTML (figures saved by their camera button as
+    ``image_format``) or Markdown text."""
     from ..report import render_html, render_markdown
 
     report = design_report(text, system, comparison, history, baseline)
-    return render_html(report) if fmt == "html" else render_markdown(report)
+    return render_html(report, image_format) if fmt == "html" else render_markdown(report)
+
+
+def image_format() -> str:
+    """The format the figures' camera button saves (sidebar: ``png`` until changed)."""
+    return st.session_state.get(IMAGE_FORMAT) or st.session_state.get(_KEEP + IMAGE_FORMAT) or "png"
+
+
+@st.cache_data(show_spinner=False, max_entries=4)
+def report_images(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
+                  baseline: str | None, image_format: str) -> bytes:
+    """The report's figures as static images in one ZIP archive (:func:`erdesign.report.export.figure_images`:
+    kaleido and a Chrome or Chromium already on the machine).
+
+    Raises :class:`~erdesign.errors.ErdesignError` saying what to install when they are missing.
+    """
+    from ..report.export import figure_images, images_zip
+
+    report = design_report(text, system, comparison, history, baseline)
+    stem = file_stem(json.loads(text)["spec"].get("name") or "design")
+    return images_zip({f"{stem}-{k}": v for k, v in figure_images(report.figures, image_format).items()})
 
 
 def clear_caches() -> None:
     """Empty every cache of the app (tests call it between tests)."""
     for fn in (velocity_sweep, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
-               design_report, render_report):
+               design_report, render_report, report_images):
         fn.clear()
