@@ -35,6 +35,8 @@ __all__ = [
     "sine_loops_figure",
     "error_history_figure",
     "measured_loops_figure",
+    "IMAGE_FORMATS",
+    "export_config",
 ]
 
 # The legend sits to the right of the plot area, outside it and below the title, so that it never covers the
@@ -48,6 +50,24 @@ MEASURED_STYLE = dict(mode="lines+markers", line=dict(color="rgba(90, 90, 90, 0.
 #: A model against measured data: a bold line in a colour that contrasts with the light grey of the data.  Drawn
 #: first, so that the measured markers stay visible over it.
 MODEL_STYLE = dict(mode="lines", line=dict(color="rgba(192, 57, 43, 0.85)", width=3.5))
+
+
+#: Formats of plotly's camera button (the browser draws the image: no kaleido, no server-side browser).
+IMAGE_FORMATS = ("png", "svg")
+
+
+def export_config(filename: str, image_format: str = "png") -> dict:
+    """The plotly config of a figure shown in the app or the HTML report: the camera button of its toolbar saves
+    it as ``<filename>.<image_format>`` (PNG at twice the screen resolution, or SVG), without the plotly logo.
+
+    >>> export_config("makris-1996-force", "svg")["toImageButtonOptions"]
+    {'format': 'svg', 'filename': 'makris-1996-force', 'scale': 1}
+    """
+    if image_format not in IMAGE_FORMATS:
+        raise ValueError(f"image format: expected one of {', '.join(IMAGE_FORMATS)}, got {image_format!r}")
+    return {"displaylogo": False, "displayModeBar": True,
+            "toImageButtonOptions": {"format": image_format, "filename": filename,
+                                     "scale": 2 if image_format == "png" else 1}}
 
 
 def spans_decades(values: Any, decades: float = 1.0) -> bool:

@@ -27,6 +27,7 @@ from .effects import EFFECTS, parse_effect_names
 from .errors import ErdesignError
 from .measurement import Measurement
 from .physics import PhysicsDamper
+from .units import Q_
 
 __all__ = ["Motion", "RigRecord", "sine", "sweep", "field_steps", "random_motion", "earthquake_motion",
            "run_rig", "OVERSAMPLING"]
@@ -62,23 +63,44 @@ def _finish(t_fine, x_fine, control_fine, description) -> Motion:
     return Motion(t_fine[s], x_fine[s], v[s], a[s], control_fine[s], description)
 
 
-def sine(amplitude: float, frequency: float, field: float = 0.0, *, cycles: float = 3, rate: float = 500.0) -> Motion:
+def _control_text(value: float, unit: str | None) -> str:
+    """A control (SI) for a description: in ``unit`` (``"kV/mm"``, ``"kA/m"``, ``"A"``) when given, else bare.
+
+    The control of a motion is SI (V/m, A/m, T, A or V): the coherent SI unit of ``unit``'s dimension.
+
+    >>> _control_text(3e6, "kV / mm"), _control_text(2.5e5, "kA/m"), _control_text(1.5, "A"), _control_text(3, None)
+    ('3 kV/mm', '250 kA/m', '1.5 A', '3')
+    """
+    if not unit:
+        return f"{value:g}"
+    q = Q_(value, Q_(1.0, unit).to_base_units().units).to(unit)
+    return f"{q.magnitude:.4g} {q.units:~P}"
+
+
+def sine(amplitude: float, frequency: float, field: float = 0.0, *, cycles: float = 3, rate: float = 500.0,
+         control_unit: str | None = None) -> Motion:
     """x = X0 sin(2 pi f t) at a constant control, ``cycles`` cycles sampled at ``rate`` [Hz].
 
-    >>> m = sine(0.005, 2.0, 3e6, cycles=2, rate=200)
+    ``control_unit`` is the unit the description prints the control in (the fluid's ``field_unit``, ``"kV/mm"``);
+    the control itself stays SI.
+
+    >>> m = sine(0.005, 2.0, 3e6, cycles=2, rate=200, control_unit="kV/mm")
     >>> len(m.time), round(float(m.velocity[0]), 5)     # 2 cycles of 0.5 s at 200 Hz; v(0) = X0 omega
     (201, 0.06283)
+    >>> m.description
+    'sine sweep (2 cycles each): 5 mm at 2 Hz, control 3 kV/mm'
     """
-    return sweep([amplitude], [frequency], [field], cycles=cycles, rate=rate)
+    return sweep([amplitude], [frequency], [field], cycles=cycles, rate=rate, control_unit=control_unit)
 
 
 def sweep(amplitudes: Sequence[float], frequencies: Sequence[float], fields: Sequence[float], *,
-          cycles: float = 2, rate: float = 500.0) -> Motion:
+          cycles: float = 2, rate: float = 500.0, control_unit: str | None = None) -> Motion:
     """Segments of ``cycles`` sine cycles, one per (amplitude, frequency, field) triple, joined smoothly.
 
     The amplitude and frequency blend over the first quarter cycle of each segment (half-cosine), the phase is
     continuous, so velocity and acceleration are continuous; the control steps at each segment start.
-    Sequences of length 1 are repeated to the longest length.
+    Sequences of length 1 are repeated to the longest length.  ``control_unit``: the unit the description prints
+    the controls in (SI numbers without a unit when None).
     """
     n_seg = max(len(amplitudes), len(frequencies), len(fields))
     A, f, E = (np.resize(np.asarray(s, dtype=float), n_seg) for s in (amplitudes, frequencies, fields))
@@ -95,19 +117,21 @@ def sweep(amplitudes: Sequence[float], frequencies: Sequence[float], fields: Seq
     amp = A[prev] + (A[seg] - A[prev]) * w
     freq = f[prev] + (f[seg] - f[prev]) * w
     phase = 2 * np.pi * np.concatenate([[0.0], np.cumsum(0.5 * (freq[1:] + freq[:-1]) * np.diff(t))])
-    desc = "; ".join(f"{a * 1e3:g} mm at {fr:g} Hz, control {e:g}" for a, fr, e in zip(A, f, E))
+    desc = "; ".join(f"{a * 1e3:g} mm at {fr:g} Hz, control {_control_text(e, control_unit)}"
+                     for a, fr, e in zip(A, f, E))
     return _finish(t, amp * np.sin(phase), E[seg], f"sine sweep ({cycles:g} cycles each): {desc}")
 
 
 def field_steps(amplitude: float, frequency: float, field: float, *, cycles: float = 4, step_period: float = 0.5,
-                rate: float = 1000.0, phase: float = 0.3) -> Motion:
+                rate: float = 1000.0, phase: float = 0.3, control_unit: str | None = None) -> Motion:
     """A sine with the control switched between 0 and ``field`` every ``step_period`` [s]; the steps fall at
-    ``phase`` (fraction of a period) into the stroke so that they happen at speed."""
+    ``phase`` (fraction of a period) into the stroke so that they happen at speed.  ``control_unit``: the unit the
+    description prints the control in (as :func:`sine`)."""
     t, _ = _fine(cycles / frequency, rate)
     x = amplitude * np.sin(2 * np.pi * frequency * t)
     on = np.floor((t - phase / frequency) / step_period) % 2 == 1
     return _finish(t, x, np.where(on, field, 0.0), f"sine {amplitude * 1e3:g} mm at {frequency:g} Hz with the "
-                                                   f"control switched 0 / {field:g} every {step_period:g} s")
+                                                   f"control switched 0 / {_control_text(field, control_unit)} every {step_period:g} s")
 
 
 def _shaped_noise(n: int, dt: float, gain, seed: int) -> np.ndarray:

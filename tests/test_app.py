@@ -556,6 +556,147 @@ def test_unit_systems_and_fields_in_their_own_unit(app):
     assert [m.value for m in app.metric if m.label == "force F"][0].endswith(" kN")
 
 
+def test_simulate_caption_and_numbers_in_the_unit_system(app):
+    """Issue 14: the Simulate caption said "control 3e+06"; the control reads in the fluid's unit, the numbers in
+    the unit system chosen."""
+    app.switch_page("simulate.py").run()
+    no_error(app)
+    captions = [c.value for c in app.caption]
+    assert any("10 mm at 1 Hz, control 3 kV/mm" in c for c in captions), captions
+    assert not any("e+0" in c for c in captions)
+    F = metric(app, "peak force").to("N").magnitude
+    app.radio(key=state.UNITS).set_value("in-lbf-s").run()
+    no_error(app)
+    (m,) = [m for m in app.metric if m.label == "peak force"]
+    assert m.value.endswith(" lbf") and Q_(m.value).to("N").magnitude == pytest.approx(F, rel=FOUR_FIGURES)
+    fig = figure(app, "sim.fig.loops")
+    assert fig["layout"]["xaxis2"]["title"]["text"] == "velocity v [in/s]"
+    # peak velocity X0 * 2 pi f = 10 mm * 2 pi * 1 Hz, in in/s on the axis
+    assert values(fig["data"][1]["x"]).max() == pytest.approx(20 * math.pi / 25.4, rel=1e-4)
+    assert any("control 3 kV/mm" in c.value for c in app.caption)      # the control keeps its own unit
+    app.text_input(key="sim.field").set_value("1500 V/mm").run()
+    assert any("control 1.5 kV/mm" in c.value for c in app.caption)
+
+
+def test_compare_fitted_parameters_in_the_unit_system(app, few_candidates):
+    """The ranking's fitted values and the calibrated parameters read in the unit system (lbf), and are the
+    library's numbers converted."""
+    from erdesign.diagnose import diagnose
+
+    app.radio(key=state.UNITS).set_value("in-lbf-s").run()
+    app.switch_page("compare.py").run()
+    app.selectbox(key="cmp.example").select("makris_hidden_seal_friction.csv").run()
+    app.button(key="cmp.run").click().run()
+    no_error(app)
+    ranking = app.table[0].value
+    (fitted,) = ranking.loc[ranking["effect"] == "seal_friction", "fitted"]
+    value, error = re.fullmatch(r"friction_force = (\S+ lbf) ± (\S+ lbf)", fitted).groups()
+    data = state.example_record_bytes("makris_hidden_seal_friction.csv")
+    record = state.read_record(data, "a.csv")
+    (c,) = [c for c in diagnose(load_example("makris"), record).ranking if c.effect == "seal_friction"]
+    # the library's fitted friction (N), shown to 4 figures in lbf
+    assert Q_(value).to("N").magnitude == pytest.approx(c.result.values["friction_force"], rel=FOUR_FIGURES)
+    assert Q_(error).to("N").magnitude == pytest.approx(c.result.stderr["friction_force"], rel=0.05)
+    app.button(key="cmp.add_named").click().run()
+    no_error(app)
+    (params,) = [d.value for d in app.dataframe if "parameter" in d.value]
+    rows = {r["parameter"]: r for r in params.to_dict("records")}
+    assert rows["friction_force"]["value"].endswith(" lbf")
+    assert rows["friction_force"]["uncertainty (1 σ)"].endswith(" lbf")
+    assert " " not in rows["viscosity_factor"]["value"]                  # a plain factor stays a plain number
+
+
+def test_baseline_beside_the_design_on_simulate_and_in_the_report(app, downloads):
+    """Issue 14, compare designs beyond the Size page: the pinned baseline is simulated beside the current design
+    and has its own section in the report; its numbers are the library's for the baseline's geometry."""
+    velocity = app.text_input(key="size.velocity").value
+    app.button(key="size.pin").click().run()
+    app.text_input(key="size.geo.gap").set_value("0.6 mm").run()
+    no_error(app)
+    makris = load_example("makris")
+    narrow = state.damper_from_dict(app.session_state[state.DESIGN]["spec"], source="test")
+
+    app.switch_page("simulate.py").run()
+    no_error(app)
+    fig = figure(app, "sim.fig.loops")
+    traces = {t["name"]: t for t in fig["data"] if t.get("showlegend", True) is not False}
+    assert set(traces) == {"physics damper (baseline)", "baseline design"}
+    unit = fig["layout"]["yaxis"]["title"]["text"].split("[")[1].rstrip("]")
+    # at t = 0 the sine 10 mm at 1 Hz moves at its peak velocity X0 * 2 pi f: the quasi-steady force there is
+    # Damper.size's force at that velocity, for each design (Makris 0.8 mm gap dashed, 0.6 mm solid)
+    v0 = Q_(20 * math.pi, "mm/s")
+    for trace, damper in (("baseline design", makris), ("physics damper (baseline)", narrow)):
+        F0 = Q_(values(traces[trace]["y"])[0], unit)
+        expected = damper.size(velocity=v0, field="3 kV/mm").force
+        assert F0.to("N").magnitude == pytest.approx(expected.to("N").magnitude, rel=1e-3), trace
+    assert metric(app, "peak force, baseline design") < metric(app, "peak force")    # the wider gap is softer
+    assert any("geometry.gap = 0.8 mm" in c.value for c in app.caption)
+    assert [t["name"] for t in figure(app, "sim.fig.time")["data"]] == ["physics damper (baseline)",
+                                                                         "baseline design"]
+
+    app.switch_page("report.py").run()
+    no_error(app)
+    assert app.checkbox(key="rep.baseline").value
+    html = downloads["makris-1996-report.html"].decode()
+    q = Quantities(html).spans
+    for prefix, damper in (("q-baseline-", makris), ("q-this-", narrow)):
+        r = damper.size(velocity=velocity, field="3 kV/mm")
+        assert Q_(q[prefix + "force"]).to("N").magnitude == pytest.approx(r.force.to("N").magnitude,
+                                                                         rel=FOUR_FIGURES), prefix
+    assert q["q-this-force"] == q["q-point-force"]                      # this design: its own design point
+    assert re.search(r"<td><code>geometry.gap</code></td><td><code>0.8 mm</code></td><td><code>0.6 mm</code>", html)
+    assert 'id="figure-baseline"' in html
+    app.checkbox(key="rep.baseline").uncheck().run()
+    assert 'id="figure-baseline"' not in downloads["makris-1996-report.html"].decode()
+    app.radio(key="rep.format").set_value("md").run()
+    assert "## Compared with the baseline" not in downloads["makris-1996-report.md"].decode()
+    app.checkbox(key="rep.baseline").check().run()
+    md = downloads["makris-1996-report.md"].decode()
+    assert "## Compared with the baseline design makris-1996" in md and "| `geometry.gap` | `0.8 mm` | `0.6 mm` |" in md
+
+
+def test_figures_save_as_named_png_or_svg(app, downloads, monkeypatch):
+    """Every figure's camera button saves '<design>-<figure>.<format>' in the format of the sidebar; the report's
+    static images come as a zip, or, without kaleido or a browser, as a message (never an exception)."""
+    def configs(at):
+        return {c.proto.id: json.loads(c.proto.config) for c in at.get("plotly_chart")}
+
+    shown = configs(app)
+    (force,) = [c for k, c in shown.items() if "size.fig.force" in k]
+    assert force["toImageButtonOptions"] == {"format": "png", "filename": "makris-1996-force", "scale": 2}
+    assert all(c["toImageButtonOptions"]["format"] == "png" for c in shown.values())
+    app.radio(key=state.IMAGE_FORMAT).set_value("svg").run()
+    app.switch_page("simulate.py").run()
+    no_error(app)
+    assert {c["toImageButtonOptions"]["filename"]: c["toImageButtonOptions"]["format"]
+            for c in configs(app).values()} == {"makris-1996-loops": "svg", "makris-1996-time": "svg"}
+
+    app.switch_page("report.py").run()
+    html = downloads["makris-1996-report.html"].decode()
+    assert '"toImageButtonOptions": {"format": "svg", "filename": "makris-1996-force"' in html
+    from erdesign.errors import ErdesignError
+    from erdesign.report import export
+
+    def no_browser(figures, image_format="png"):
+        raise ErdesignError(f"figure images: ChromeNotFoundError: no chrome; {export.IMAGES_NEED}")
+
+    monkeypatch.setattr(export, "figure_images", no_browser)
+    app.button(key="rep.make_images").click().run()
+    no_error(app)
+    assert any("erdesign never downloads a browser" in i.value for i in app.info)
+    assert "makris-1996-figures.zip" not in downloads
+    monkeypatch.setattr(export, "figure_images",
+                        lambda figures, image_format="png": {f"{f.key}.{image_format}": b"<svg/>" for f in figures})
+    app.button(key="rep.make_images").click().run()
+    no_error(app)
+    import io
+    import zipfile
+
+    names = zipfile.ZipFile(io.BytesIO(downloads["makris-1996-figures.zip"])).namelist()
+    assert names == ["makris-1996-pressure_drop.svg", "makris-1996-force.svg", "makris-1996-dynamic_range.svg",
+                     "makris-1996-sine_loops.svg"]
+
+
 # ------------------------------------------------------------------------------------------------ CLI
 def test_cli_app_runs_streamlit_on_the_package_app(monkeypatch):
     import subprocess

@@ -212,6 +212,8 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     peak = _metric(page, "peak force")
     expect(peak).to_have_text(re.compile(r"kN$"))
     first = peak.inner_text()
+    # the control in the motion's caption is in the fluid's unit, not "control 3e+06"
+    expect(page.get_by_text(re.compile(r"10 mm at 1 Hz, control 3 kV/mm"))).to_be_visible()
     _commit(page, "amplitude X0", "20 mm")
     expect(peak).not_to_have_text(first)
     _idle(page)
@@ -264,6 +266,13 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     # look at the report as a reader would
     page.goto(report.as_uri())
     _shoot(page, tmp_path / "report_html.png")
+    # a figure of the report saves itself from its toolbar's camera button, named after the design and figure
+    page.locator("#plot-force").hover()
+    with page.expect_download() as info:
+        page.locator("#plot-force .modebar-btn[data-title^='Download plot']").click()
+    image = tmp_path / info.value.suggested_filename
+    info.value.save_as(image)
+    assert image.name == "makris-1996-force.png" and image.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
     # Back in the app, on Size: the design survived the page switches (session state).
     page.goto(app_url)

@@ -19,7 +19,7 @@ import pytest
 import erdesign.cli.report  # noqa: F401  (registers the command until erdesign/cli/__init__.py imports it)
 from erdesign import load_example
 from erdesign.cli import main
-from erdesign.damper_file import load_damper
+from erdesign.damper_file import damper_from_dict, load_damper
 from erdesign.errors import ErdesignError, UnitError, ValidityWarning
 from erdesign.report import (
     ErrorHistoryStep,
@@ -414,3 +414,89 @@ def test_report_from_the_content_of_a_damper_file_at_a_design_point():
     # the design table's row at the design control is the design point
     (design_row,) = [row for row in r.design_table.rows if row[0].text == "3 kV/mm"]
     assert design_row[4].si == pytest.approx(rows["force"].value.si, rel=1e-12)
+
+
+def test_baseline_section_is_the_librarys_design_point_of_each_design():
+    """A report built with a baseline (issue 14, compare designs) shows both designs' design points: each number
+    is Damper.size of that design, and the change is their ratio."""
+    from erdesign.damper_file import read_toml
+    from erdesign.examples import __file__ as examples
+
+    spec = read_toml(Path(examples).with_name("makris.toml"))
+    narrow = {**spec, "geometry": {**spec["geometry"], "gap": "0.6 mm"}}
+    point = dict(design_velocity="25 mm/s", design_field="3 kV/mm")
+    baseline = build_report(spec, **point)
+    report = build_report(narrow, **point, baseline=baseline)
+    rows = {r["key"]: r for r in report.baseline["rows"]}
+    F_base = load_example("makris").size(velocity="25 mm/s", field="3 kV/mm").force.to("N").magnitude
+    F_now = damper_from_dict(narrow, source="test").size(velocity="25 mm/s", field="3 kV/mm").force.to("N").magnitude
+    assert rows["force"]["baseline"].si == pytest.approx(F_base, rel=1e-12)
+    assert rows["force"]["this"].si == pytest.approx(F_now, rel=1e-12)
+    assert rows["force"]["change"] == f"{100 * (F_now / F_base - 1):+.1f} %"
+    assert report.baseline["inputs"] == ({"key": "geometry.gap", "baseline": "0.8 mm", "this": "0.6 mm"},)
+    assert [f.key for f in report.figures][-1] == "baseline" and build_report(narrow, **point).baseline is None
+    md = render_markdown(report)
+    assert f"| force F | {rows['force']['baseline'].text} | {rows['force']['this'].text} |" in md
+
+
+def test_figure_images_without_kaleido_or_a_browser_say_what_is_needed(monkeypatch, makris_report):
+    """Static images are optional (kaleido and an installed Chrome/Chromium): their absence is a clear message."""
+    import sys
+
+    from erdesign.report.export import IMAGES_NEED, figure_images
+
+    monkeypatch.setitem(sys.modules, "kaleido", None)           # `import kaleido` fails as when not installed
+    with pytest.raises(ErdesignError, match="kaleido is not installed") as info:
+        figure_images(makris_report.figures, "png")
+    assert IMAGES_NEED in str(info.value) and "camera button" in str(info.value)
+    monkeypatch.delitem(sys.modules, "kaleido")
+    try:
+        import kaleido
+        from kaleido.errors import ChromeNotFoundError
+    except ImportError:
+        return
+
+    class NoBrowser:                                              # what kaleido does on a machine without one
+        def __init__(self, **kwargs):
+            assert kwargs["mathjax"] is False                     # never MathJax from a CDN
+
+        async def __aenter__(self):
+            raise ChromeNotFoundError("no chrome found")
+
+        async def __aexit__(self, *exc):
+            return False
+
+    monkeypatch.setattr(kaleido, "Kaleido", NoBrowser)
+    with pytest.raises(ErdesignError, match="ChromeNotFoundError: no chrome found; static figure images need"):
+        figure_images(makris_report.figures, "svg")
+    with pytest.raises(ErdesignError, match="image format"):
+        figure_images(makris_report.figures, "jpeg")
+
+
+@pytest.mark.slow
+def test_figure_images_with_kaleido_and_an_installed_browser(makris_report):
+    """Where kaleido and a Chromium are installed (not in CI), every figure becomes an SVG with its axis titles."""
+    pytest.importorskip("kaleido")
+    from choreographer.browsers.chromium import Chromium
+
+    if Chromium.find_browser(skip_local=False) is None:
+        pytest.skip("no Chrome or Chromium on this machine")
+    from erdesign.report.export import figure_images, images_zip
+
+    images = figure_images(makris_report.figures[:2], "svg")
+    assert list(images) == ["pressure_drop.svg", "force.svg"]
+    svg = images["force.svg"].decode()
+    assert svg.startswith("<svg") and "force F [kN]" in svg and "E = 3 kV/mm" in svg
+    import io
+    import zipfile
+
+    assert zipfile.ZipFile(io.BytesIO(images_zip(images))).namelist() == ["pressure_drop.svg", "force.svg"]
+
+
+def test_html_figures_save_as_named_images(makris_report):
+    """The camera button of each figure of the HTML report saves '<design>-<figure>.<format>'."""
+    html = render_html(makris_report, "svg")
+    configs = re.findall(r'"toImageButtonOptions": \{"format": "(\w+)", "filename": "([^"]+)"', html)
+    assert configs and {f for f, _ in configs} == {"svg"}
+    assert [n for _, n in configs] == [f"makris-1996-{f.key}" for f in makris_report.figures]
+    assert "saves the figure as\nan image (SVG)" in html

@@ -19,7 +19,7 @@ from erdesign.effects import EFFECTS
 from erdesign.errors import ErdesignError
 from erdesign.report.builder import ErrorHistoryStep
 from erdesign.report.export import csv_text, rows_csv
-from erdesign.report.formatting import pick_unit, show
+from erdesign.report.formatting import pick_unit, show, show_in_system
 from erdesign.units import Q_
 
 __all__ = ["render", "history_steps"]
@@ -57,20 +57,39 @@ def history_steps(diagnoses) -> list[ErrorHistoryStep]:
     return steps
 
 
+def _value_and_error(model, name: str, value: float, se: float | None, digits: int = 4) -> tuple[str, str]:
+    """A fitted value and its standard error as text, both in the unit the unit system gives the parameter's kind
+    (``"0.3838 kN"``, ``"± 0.012 kN"``); the error reads "fixed" (not fitted) or "not identifiable"."""
+    p = model.parameter(name)
+    q = p.quantity(value)
+    text = show_in_system(q, name=name, digits=digits).text
+    if se is None:
+        return text, "fixed"
+    if not math.isfinite(se):
+        return text, "not identifiable"
+    return text, "± " + show_in_system(p.quantity(se), name=name, digits=2, like=q).text
+
+
 def _parameters_table(result) -> list[dict]:
     rows = []
     for name in result.model.parameter_names:
-        p = result.model.parameter(name)
-        se = result.stderr.get(name)
-        if se is None:
-            unc = "fixed"
-        elif math.isfinite(se):
-            unc = "± " + p.format(se, 2).strip()
-        else:
-            unc = "not identifiable"
-        rows.append({"parameter": name, "value": p.format(result.values[name]).strip(), "uncertainty (1 σ)": unc,
-                     "description": p.description})
+        value, unc = _value_and_error(result.model, name, result.values[name], result.stderr.get(name))
+        rows.append({"parameter": name, "value": value, "uncertainty (1 σ)": unc,
+                     "description": result.model.parameter(name).description})
     return rows
+
+
+def _fitted(candidate) -> str:
+    """The effect parameters a candidate fitted, with standard errors, in the unit system (its ``parameters()``
+    chooses them; the values and errors come from its fit)."""
+    result = candidate.result
+    model = getattr(result.model, "inner", result.model)       # fitted on part of the record: the wrapped model
+    parts = []
+    for name in candidate.parameters():
+        se = result.stderr.get(name, math.nan)
+        value, unc = _value_and_error(model, name, result.values[name], se)
+        parts.append(f"{name} = {value} {unc if unc.startswith('±') else '± ' + unc}")
+    return "; ".join(parts)
 
 
 def _ranking_table(diagnosis) -> list[dict]:
@@ -83,7 +102,6 @@ def _ranking_table(diagnosis) -> list[dict]:
                         "against the prior": "", "note": c.reason or c.note})
             rows.append(row)
             continue
-        unc = c.uncertainties()
         notes = [c.note] if c.note else []
         if c.at_bounds:
             notes.append("at bounds: " + "; ".join(c.at_bounds))
@@ -93,7 +111,7 @@ def _ranking_table(diagnosis) -> list[dict]:
             "explains": f"{100 * max(c.explained, 0.0):.0f} % of the excess",
             "ΔBIC": f"{c.delta_bic:+.1f}" if math.isfinite(c.delta_bic) else "",
             "gain": f"{100 * c.gain:.1f} %",
-            "fitted": "; ".join(f"{n} = {v} ± {unc.get(n, '?')}" for n, v in c.parameters().items()),
+            "fitted": _fitted(c),
             "against the prior": c.plausibility, "note": "; ".join(notes)})
         rows.append(row)
     return rows
@@ -194,15 +212,17 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
             st.warning(f"Check: {warning}")
     with right:       # the error history stays in view while effects are added
         st.plotly_chart(plots.error_history_figure(steps, noise_floor=float(diagnosis.noise_floor_esr)),
-                        key="cmp.fig.history")
+                        key="cmp.fig.history", config=state.chart_config("cmp.fig.history"))
 
     tabs = st.tabs(["overlay", "residual", "missing effects", "parameters", "downloads"])
     with tabs[0]:
         st.plotly_chart(plots.measured_loops_figure(record.displacement, record.velocity, F, model_force),
-                        key="cmp.fig.loops")
-        st.plotly_chart(figures.time_figure(record.time, model_force, label="model", measured=F), key="cmp.fig.time")
+                        key="cmp.fig.loops", config=state.chart_config("cmp.fig.loops"))
+        st.plotly_chart(figures.time_figure(record.time, model_force, label="model", measured=F), key="cmp.fig.time",
+                        config=state.chart_config("cmp.fig.time"))
     with tabs[1]:
-        st.plotly_chart(figures.residual_figure(record.time, record.velocity, F - model_force), key="cmp.fig.res")
+        st.plotly_chart(figures.residual_figure(record.time, record.velocity, F - model_force), key="cmp.fig.res",
+                        config=state.chart_config("cmp.fig.res"))
         st.markdown("**Where the model fails** (share of samples, RMS there over overall RMS):")
         st.dataframe([{"region": k, "share of samples %": round(100 * a, 1), "RMS ratio": round(b, 2)}
                       for k, (a, b) in diagnosis.analysis.regions.items()], hide_index=True)

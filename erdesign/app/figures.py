@@ -22,7 +22,7 @@ from ..plots import MEASURED_STYLE, MODEL_STYLE, spans_decades
 from ..report.formatting import pick_unit
 from ..units import Q_
 
-__all__ = ["tradeoff_figure", "loops_figure", "time_figure", "residual_figure"]
+__all__ = ["tradeoff_figure", "loops_figure", "time_figure", "residual_figure", "BASELINE_STYLE"]
 
 _LAYOUT = dict(template="plotly_white", margin=dict(l=70, r=20, t=60, b=60),
                legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"))
@@ -65,14 +65,25 @@ def tradeoff_figure(sweep: dict, label: str, field_label: str, velocity_label: s
     return fig
 
 
-def loops_figure(displacement, velocity, force, *, label: str = "model", measured=None) -> go.Figure:
-    """Force-displacement and force-velocity loops of one force record (and the measured force, when given)."""
+#: The pinned baseline design beside the current one: a dashed line in another colour.
+BASELINE_STYLE = dict(mode="lines", line=dict(color=_OTHER, width=2, dash="dash"))
+
+
+def _forces(*forces) -> np.ndarray:
+    return np.concatenate([np.ravel(np.asarray(F, dtype=float)) for F in forces if F is not None])
+
+
+def loops_figure(displacement, velocity, force, *, label: str = "model", measured=None, baseline=None,
+                 baseline_label: str = "baseline design") -> go.Figure:
+    """Force-displacement and force-velocity loops of one force record (and the measured force, and the force of
+    the baseline design on the same motion, when given)."""
     x, x_unit = _in(displacement, "m", "length")
     v, v_unit = _in(velocity, "m/s", "velocity")
-    both = force if measured is None else np.concatenate([np.ravel(force), np.ravel(measured)])
-    _, f_unit = _in(both, "N", "force")
+    _, f_unit = _in(_forces(force, measured, baseline), "N", "force")
     fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
     traces = [(label, force, MODEL_STYLE)]          # the model first, the measured markers over it
+    if baseline is not None:
+        traces.append((baseline_label, baseline, BASELINE_STYLE))
     if measured is not None:
         traces.append(("measured", measured, MEASURED_STYLE))
     for name, F, style in traces:
@@ -92,14 +103,17 @@ def _unit_of(printed: str) -> str:
     return printed.replace("·", "*")
 
 
-def time_figure(time, force, *, label: str = "model", measured=None) -> go.Figure:
-    """Force against time: the model (and the measurement, when given)."""
+def time_figure(time, force, *, label: str = "model", measured=None, baseline=None,
+                baseline_label: str = "baseline design") -> go.Figure:
+    """Force against time: the model (and the measurement, and the baseline design's force, when given)."""
     t = np.asarray(time, dtype=float)
-    both = force if measured is None else np.concatenate([np.ravel(force), np.ravel(measured)])
-    _, f_unit = _in(both, "N", "force")
+    _, f_unit = _in(_forces(force, measured, baseline), "N", "force")
     fig = go.Figure()
     fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(force, float), "N").to(_unit_of(f_unit)).magnitude,
                              name=label, **MODEL_STYLE))
+    if baseline is not None:
+        fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(baseline, float), "N").to(_unit_of(f_unit)).magnitude,
+                                 name=baseline_label, **BASELINE_STYLE))
     if measured is not None:      # over the model, so that both stay visible where they agree
         fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
                                  name="measured", **MEASURED_STYLE))

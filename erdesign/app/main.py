@@ -38,6 +38,9 @@ def main() -> None:
         system = state.widget(st.radio, "units of displayed numbers", state.UNITS, "SI", options=list(UNIT_SYSTEMS),
                               help="Numbers shown and reported in this unit system; controls stay in the fluid's "
                                    "own unit (kV/mm, kA/m, A, V). Inputs take any unit you type.")
+        state.widget(st.radio, "figures save as", state.IMAGE_FORMAT, "png", options=["png", "svg"], horizontal=True,
+                     format_func=str.upper, help="The camera button at the top right of every figure saves it in "
+                                                  "this format (drawn by your browser).")
         st.caption("erdesign: design and diagnose ER and MR dampers with annular ducts. The design you enter on "
                    "the Size page is used by every page.")
     with use_unit_system(system):

@@ -37,17 +37,27 @@ def render() -> None:
     if comparison is not None:
         include = st.checkbox(f"include the comparison with {comparison[0]} and the error history", value=True,
                               key="rep.include")
+    base = state.pinned_baseline(design)
+    baseline = None
+    if base is not None and st.checkbox(f"compare with the pinned baseline design {base['spec'].get('name') or ''} "
+                                        f"(v = {base['velocity']}, E = {base['field']})", value=True,
+                                        key="rep.baseline"):
+        baseline = state.design_text(base)
     fmt = state.widget(st.radio, "format", "rep.format", "html", options=["html", "md"], horizontal=True,
                        format_func={"html": "HTML (interactive plots)", "md": "Markdown"}.get)
     system = state.unit_system()
     try:
         with st.spinner("Writing the report ..."):
-            report = state.design_report(text, system, comparison if include else None, history if include else ())
+            report = state.design_report(text, system, comparison if include else None, history if include else (),
+                                         baseline)
             body = state.render_report(text, system, comparison if include else None, history if include else (),
-                                       fmt)
+                                       fmt, baseline, state.image_format())
     except ErdesignError as exc:
         st.error(f"The report could not be built: {state.clean_message(str(exc))}")
         return
+    if report.baseline is not None:
+        st.caption(f"With the baseline design {report.baseline['name']}: a section beside this design's design "
+                   "point and the figure of both designs' force against velocity.")
     name = design["spec"].get("name") or "design"
     point = f"{report.setting('velocity_design').value.text} and {report.setting('field_design').value.text}"
     st.markdown(f"Design **{name}** ({report.configuration}) at the design point **{point}** (from the Size page); "
@@ -65,11 +75,32 @@ def render() -> None:
     cols[1].download_button("Damper file (TOML)", damper_toml(design["spec"], comment=_comment(design)),
                             file_name=f"{state.file_stem(name)}.toml", mime="application/toml", key="rep.toml",
                             icon=":material/download:")
-    cols[2].caption(f"{len(body) / 1e3:.0f} kB; figures: use each plot's camera button in the HTML report to save "
-                    "it as PNG.")
+    cols[2].caption(f"{len(body) / 1e3:.0f} kB; figures: each plot's camera button in the app and in the HTML "
+                    f"report saves it as {state.image_format().upper()} (sidebar).")
+    _images(text, system, comparison if include else None, history if include else (), baseline, name)
     if fmt == "md":
         with st.expander("preview"):
             st.markdown(body)
+
+
+def _images(text: str, system: str, comparison, history, baseline, name: str) -> None:
+    """Static images of every figure of the report (kaleido, with a browser already installed), on request."""
+    fmt = state.image_format()
+    key = ("rep.images", text, system, comparison is not None, history, baseline, fmt)
+    if st.button(f"Make the report's figures as {fmt.upper()} files", key="rep.make_images",
+                 icon=":material/image:", help="Static images drawn on this server by kaleido in a headless "
+                                               "Chrome or Chromium (optional: pip install \"erdesign[docs]\")."):
+        try:
+            with st.spinner("Drawing the figures ..."):
+                st.session_state["rep.images"] = (key, state.report_images(text, system, comparison, history,
+                                                                           baseline, fmt))
+        except ErdesignError as exc:
+            st.session_state.pop("rep.images", None)
+            st.info(state.clean_message(str(exc)))
+    made = st.session_state.get("rep.images")
+    if made is not None and made[0] == key:
+        st.download_button(f"Figures ({fmt.upper()}, zip)", made[1], file_name=f"{state.file_stem(name)}-figures.zip",
+                           mime="application/zip", key="rep.dl.images", icon=":material/download:")
 
 
 def _comment(design: dict) -> str:

@@ -133,16 +133,54 @@ def render() -> None:
         st.session_state["sim.last"] = {"title": sim["title"], "description": sim["description"]}
         st.caption(f"{sim['title']}: {sim['description']}")
         F = sim["force"]
+        base = _baseline(design, damper, name, effects, values, excitation, upload, upload_name)
+        Fb = None if base is None else base["force"]
         peak = Q_(float(np.max(np.abs(F))), "N")
-        c = st.columns(3)
-        c[0].metric("peak force", show(peak, pick_unit(peak, "force"), name="peak force").text)
+        unit = pick_unit(peak if Fb is None else Q_(max(peak.magnitude, float(np.max(np.abs(Fb)))), "N"), "force")
+        c = st.columns(4 if Fb is not None else 3)
+        c[0].metric("peak force", show(peak, unit, name="peak force").text)
         c[1].metric("samples", f"{F.size}")
         c[2].metric("duration", f"{sim['time'][-1] - sim['time'][0]:.3g} s")
+        if Fb is not None:
+            peak_b = Q_(float(np.max(np.abs(Fb))), "N")
+            c[3].metric("peak force, baseline design", show(peak_b, unit, name="baseline peak force").text,
+                        help="The design pinned on the Size page, with the same model, effects and excitation.")
         st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=sim["title"],
-                                             measured=sim["measured"]), key="sim.fig.loops")
-        st.plotly_chart(figures.time_figure(sim["time"], F, label=sim["title"], measured=sim["measured"]),
-                        key="sim.fig.time")
+                                             measured=sim["measured"], baseline=Fb), key="sim.fig.loops",
+                        config=state.chart_config("sim.fig.loops"))
+        st.plotly_chart(figures.time_figure(sim["time"], F, label=sim["title"], measured=sim["measured"],
+                                            baseline=Fb), key="sim.fig.time", config=state.chart_config("sim.fig.time"))
         _download(sim, damper, name, effects, values)
+
+
+def _baseline(design: dict, damper, name: str, effects, values, excitation, upload, upload_name) -> dict | None:
+    """The simulation of the baseline design pinned on the Size page (same model, effects and excitation), or None.
+
+    A parameter whose value was edited in the table is applied to both designs; the others take each design's own
+    default (an effect's prior from its geometry and fluid).
+    """
+    base = state.pinned_baseline(design)
+    if base is None:
+        return None
+    text = state.spec_text(base["spec"])
+    try:
+        base_damper = state.build_damper(text)[0]
+        if name == "physics":
+            defaults = {p.name: p.default for p in get_model("physics", damper=damper, effects=effects).parameters}
+            edited = {k: v for k, v in values if v != defaults.get(k)}
+            model = get_model("physics", damper=base_damper, effects=effects)
+            values = tuple((p.name, edited.get(p.name, p.default)) for p in model.parameters)
+        sim = state.simulate(text, name, effects, values, excitation, upload, upload_name)
+    except ErdesignError as exc:
+        st.info(f"The pinned baseline design cannot be simulated: {state.clean_message(str(exc))}")
+        return None
+    changed = [f"{section}.{k} = {v}" for section in ("geometry", "fluid")
+               for k, v in base["spec"].get(section, {}).items()
+               if design["spec"].get(section, {}).get(k) != v]
+    st.caption(f"Dashed: the baseline design pinned on the Size page ({base['spec'].get('name') or 'design'}"
+               + (f"; where it differs: {', '.join(changed)}" if changed else "") + "), with the same model, effects "
+               "and excitation.")
+    return sim
 
 
 def _download(sim: dict, damper, name: str, effects, values) -> None:

@@ -26,6 +26,7 @@ from erdesign.app import figures, state
 from erdesign.damper_file import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
 from erdesign.materials import fluid_values
+from erdesign.report.builder import compare_designs
 from erdesign.report.export import csv_text, damper_toml, rows_csv
 from erdesign.report.formatting import field_text, pick_unit, show
 from erdesign.units import Q_, to_si
@@ -321,20 +322,13 @@ def _baseline(design: dict, report) -> None:
         st.session_state.pop(state.BASELINE, None)
         st.info(f"The pinned design can no longer be evaluated ({state.clean_message(str(exc))}); unpinned.")
         return
-    rows = []
-    inputs = {(r.section, r.key): r.given for r in old.inputs}
-    now = {(r.section, r.key): r.given for r in report.inputs}
-    for key in dict.fromkeys([*inputs, *now]):
-        if inputs.get(key) != now.get(key):
-            rows.append({"": f"{key[0]}.{key[1]}", "baseline": inputs.get(key, ""), "this design": now.get(key, ""),
-                         "change": ""})
-    for a, b in zip(old.design_point, report.design_point):
-        change = ""
-        if b.value.si and a.value.si and a.value.si != 0 and np.isfinite(a.value.si) and np.isfinite(b.value.si):
-            change = f"{100 * (b.value.si / a.value.si - 1):+.1f} %"
-        rows.append({"": a.label, "baseline": a.value.text, "this design": b.value.text, "change": change})
+    diff = compare_designs(report, old)             # the same table as the report's baseline section
+    rows = [{"": r["key"], "baseline": r["baseline"], "this design": r["this"], "change": ""} for r in diff["inputs"]]
+    rows += [{"": r["label"], "baseline": r["baseline"].text, "this design": r["this"].text, "change": r["change"]}
+             for r in diff["rows"]]
     st.dataframe(rows, hide_index=True, key="size.compare", width="stretch")
-    st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare")
+    st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare",
+                    config=state.chart_config("size.fig.compare"))
 
 
 def _magnetics(report) -> None:
@@ -343,7 +337,7 @@ def _magnetics(report) -> None:
     m = report.magnetics
     st.subheader("Magnetic circuit")
     fig = next(f for f in report.figures if f.key == "magnetics")
-    st.plotly_chart(fig.figure, key="size.fig.magnetics")
+    st.plotly_chart(fig.figure, key="size.fig.magnetics", config=state.chart_config("size.fig.magnetics"))
     rows = {r.key: r for r in m["rows"]}
     keys = ["gap_flux_density", "yield_stress_rated", "coil_resistance", "inductance", "time_constant", "power",
             "voltage", "current_density", "knee_current"]
@@ -362,9 +356,12 @@ def _magnetics(report) -> None:
 
 def _curves(report) -> None:
     tab_f, tab_d, tab_p = st.tabs(["force - velocity", "dynamic range - velocity", "pressure drop - velocity"])
-    tab_f.plotly_chart(plots.force_velocity_figure(report.sweep), key="size.fig.force")
-    tab_d.plotly_chart(plots.dynamic_range_figure(report.sweep), key="size.fig.range")
-    tab_p.plotly_chart(plots.pressure_drop_figure(report.sweep), key="size.fig.pressure")
+    tab_f.plotly_chart(plots.force_velocity_figure(report.sweep), key="size.fig.force",
+                       config=state.chart_config("size.fig.force"))
+    tab_d.plotly_chart(plots.dynamic_range_figure(report.sweep), key="size.fig.range",
+                       config=state.chart_config("size.fig.range"))
+    tab_p.plotly_chart(plots.pressure_drop_figure(report.sweep), key="size.fig.pressure",
+                       config=state.chart_config("size.fig.pressure"))
 
 
 def _explorer(text: str, damper, v: float, E: float) -> None:
@@ -394,7 +391,8 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
     field_label = field_text(E, damper.fluid.control_unit, damper.fluid.field_unit)
     velocity_label = show(Q_(v, "m/s"), pick_unit(Q_(v, "m/s"), "velocity"), name="velocity").text
     st.plotly_chart(figures.tradeoff_figure(result, state.GEOMETRY_SWEEPS[parameter], field_label,
-                                            velocity_label), key="size.fig.tradeoff")
+                                            velocity_label), key="size.fig.tradeoff",
+                    config=state.chart_config("size.fig.tradeoff"))
     data = csv_text([(parameter, "m", result["value"]), (f"force at {field_label}", "N", result["force"]),
                      ("zero-field force", "N", result["zero_field_force"]),
                      ("dynamic range", "", result["dynamic_range"]), ("Reynolds number", "", result["reynolds"]),

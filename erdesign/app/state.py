@@ -34,9 +34,10 @@ from ..measurement import Measurement, read_measurement
 from ..units import Q_, to_si
 
 __all__ = [
-    "DEFAULT_EXAMPLE", "SPEC", "DESIGN", "DIAGNOSIS", "BASELINE", "UNITS", "widget", "forget", "example_spec",
+    "DEFAULT_EXAMPLE", "SPEC", "DESIGN", "DIAGNOSIS", "BASELINE", "UNITS", "IMAGE_FORMAT",
+    "chart_config", "image_format", "report_images", "widget", "forget", "example_spec",
     "current_spec", "set_spec", "default_design", "current_design", "set_design", "design_text", "design_report",
-    "unit_system", "report_inputs", "clean_message", "file_stem",
+    "unit_system", "pinned_baseline", "report_inputs", "clean_message", "file_stem",
     "spec_text", "build_damper", "damper_or_error", "caught", "velocity_sweep", "geometry_sweep", "GEOMETRY_SWEEPS",
     "read_record",
     "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
@@ -57,6 +58,8 @@ DIAGNOSIS = "diagnosis"
 BASELINE = "baseline"
 #: Widget key of the unit system of displayed numbers (sidebar).
 UNITS = "app.units"
+#: Widget key of the format the figures' camera button saves (sidebar): ``png`` or ``svg``.
+IMAGE_FORMAT = "app.image_format"
 _KEEP = "_keep."
 
 
@@ -155,6 +158,22 @@ def design_text(design: dict) -> str:
     return json.dumps(design, sort_keys=True)
 
 
+def chart_config(key: str) -> dict:
+    """The plotly config of the chart ``key`` (``"size.fig.force"``): its camera button saves
+    ``<design>-<figure>.png`` (or ``.svg``, as chosen in the sidebar) - the browser draws the image."""
+    from ..plots import export_config
+
+    name = current_design()["spec"].get("name") or "design"
+    return export_config(file_stem(f"{name}-{key.rsplit('.', 1)[-1]}"), image_format())
+
+
+def pinned_baseline(design: dict) -> dict | None:
+    """The design pinned as the baseline on the Size page (:data:`BASELINE`), or None when none is pinned or it
+    is the design itself."""
+    base = st.session_state.get(BASELINE)
+    return None if base is None or design_text(base) == design_text(design) else base
+
+
 def unit_system() -> str:
     """The unit system chosen in the sidebar (``SI`` until changed)."""
     return st.session_state.get(UNITS) or st.session_state.get(_KEEP + UNITS) or "SI"
@@ -172,12 +191,13 @@ def report_inputs(design: dict, control_unit: str) -> dict:
 
 @st.cache_data(show_spinner=False, max_entries=32)
 def design_report(text: str, system: str, comparison: tuple | None = None,
-                  history: tuple[tuple[int, str, float], ...] = ()):
+                  history: tuple[tuple[int, str, float], ...] = (), baseline: str | None = None):
     """:func:`erdesign.report.build_report` of a design (:func:`design_text`) in the unit system ``system``.
 
     The Size page shows its design point, checks and curves; the Report page renders it: one computation, so the
     numbers on screen and in the download are the same.  ``comparison`` is ``(label, esr, samples, x, v,
-    F_measured, F_model)`` with SI arrays as tuples, or None.
+    F_measured, F_model)`` with SI arrays as tuples, or None.  ``baseline`` is the pinned baseline design
+    (:data:`BASELINE`, as :func:`design_text`): the report then compares the design with it.
 
     Raises :class:`~erdesign.errors.ErdesignError` for an invalid design.
     """
@@ -187,6 +207,7 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
 
     design = json.loads(text)
     damper, _ = build_damper(spec_text(design["spec"]))
+    base = design_report(baseline, system) if baseline is not None else None
     comp = None
     if comparison is not None:
         label, esr_value, samples, x, v, Fm, Fmod = comparison
@@ -200,7 +221,7 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
     with use_unit_system(system):
         return caught(lambda: build_report(
             design["spec"], **report_inputs(design, damper.fluid.control_unit), comparison=comp,
-            history=[ErrorHistoryStep(*h) for h in history] or None))[0]
+            history=[ErrorHistoryStep(*h) for h in history] or None, baseline=base))[0]
 
 
 _PATH = re.compile(r"(?:[A-Za-z]:)?(?:[\\/][^\\/\s:'\"]+)+[\\/]([^\\/\s:'\"]+)")
@@ -405,6 +426,8 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
         measured = record.force
         description = f"displacement of {upload_name} ({len(record)} samples)"
     else:
+        if kind in ("sine", "sweep"):       # the description prints the control in the fluid's unit (3 kV/mm)
+            ex["control_unit"] = damper.fluid.field_unit
         motion = {"sine": rig.sine, "sweep": rig.sweep, "earthquake": rig.earthquake_motion}[kind](**ex)
         record = Measurement(time=motion.time, displacement=motion.displacement, force=None,
                              velocity=motion.velocity, acceleration=motion.acceleration, control=motion.control,
@@ -445,16 +468,37 @@ def run_diagnosis(text: str, data: bytes, name: str, effects: tuple[str, ...]):
 # ------------------------------------------------------------------------------------------------ report
 @st.cache_data(show_spinner=False, max_entries=8)
 def render_report(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
-                  fmt: str) -> str:
-    """The report of a design (:func:`design_report`) as HTML or Markdown text."""
+                  fmt: str, baseline: str | None = None, image_format: str = "png") -> str:
+    """The report of a design (:func:`design_report`) as HTML (figures saved by their camera button as
+    ``image_format``) or Markdown text."""
     from ..report import render_html, render_markdown
 
-    report = design_report(text, system, comparison, history)
-    return render_html(report) if fmt == "html" else render_markdown(report)
+    report = design_report(text, system, comparison, history, baseline)
+    return render_html(report, image_format) if fmt == "html" else render_markdown(report)
+
+
+def image_format() -> str:
+    """The format the figures' camera button saves (sidebar: ``png`` until changed)."""
+    return st.session_state.get(IMAGE_FORMAT) or st.session_state.get(_KEEP + IMAGE_FORMAT) or "png"
+
+
+@st.cache_data(show_spinner=False, max_entries=4)
+def report_images(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
+                  baseline: str | None, image_format: str) -> bytes:
+    """The report's figures as static images in one ZIP archive (:func:`erdesign.report.export.figure_images`:
+    kaleido and a Chrome or Chromium already on the machine).
+
+    Raises :class:`~erdesign.errors.ErdesignError` saying what to install when they are missing.
+    """
+    from ..report.export import figure_images, images_zip
+
+    report = design_report(text, system, comparison, history, baseline)
+    stem = file_stem(json.loads(text)["spec"].get("name") or "design")
+    return images_zip({f"{stem}-{k}": v for k, v in figure_images(report.figures, image_format).items()})
 
 
 def clear_caches() -> None:
     """Empty every cache of the app (tests call it between tests)."""
     for fn in (velocity_sweep, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
-               design_report, render_report):
+               design_report, render_report, report_images):
         fn.clear()

@@ -29,6 +29,7 @@ The optional measurement section is rendered only when :class:`MeasurementCompar
 
 from __future__ import annotations
 
+import dataclasses
 import datetime
 import math
 import warnings
@@ -52,7 +53,7 @@ from .sweep import SineLoops, VelocitySweep, sine_loops, velocity_sweep
 
 __all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison",
            "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
-           "default_velocity_max", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
+           "default_velocity_max", "compare_designs", "with_baseline", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
 
 #: Plug fraction above which the report warns: each sheared layer is then thinner than 5 % of the gap, the force
 #: is set almost wholly by the yield stress, and pre-yield elasticity (Makris eq 8), which the quasi-steady
@@ -201,6 +202,9 @@ class Report:
     magnetics: Mapping[str, Any] | None = None
     """A damper with a ``[coil]``: the magnetic circuit (:func:`magnetic_section`): ``rows`` (coil, saturation,
     power and time constant at the rated current) and ``table`` (the circuit at each control)."""
+    baseline: Mapping[str, Any] | None = None
+    """A design compared with a pinned baseline (:func:`compare_designs`): ``name``, ``inputs`` (the inputs that
+    differ, as typed) and ``rows`` (the design point of both, with the relative change)."""
 
     @property
     def warnings(self) -> int:
@@ -558,7 +562,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
                  fields: Sequence[Any] | None = None, amplitude: Any = None, frequency: Any = None,
                  comparison: MeasurementComparison | None = None, history: Iterable[Any] | None = None,
                  title: str | None = None, design_velocity: Any = None, design_field: Any = None,
-                 origin: str | None = None) -> Report:
+                 origin: str | None = None, baseline: Report | None = None) -> Report:
     """The content of an engineering report on a damper.
 
     Parameters
@@ -582,6 +586,9 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
         The design point (default: the top of the velocity range and the largest control).
     origin : str, optional
         Where the inputs came from, for the inputs table (default ``"damper file"``, ``"Python"`` for a Damper).
+    baseline : Report, optional
+        The report of a baseline design (built alike, by this function): the report then compares this design
+        with it (:func:`with_baseline`: a section and a figure).
 
     Returns
     -------
@@ -739,7 +746,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
              f"({g.configuration} configuration{'' if g.ducts == 1 else f', {g.ducts} ducts'})"),
              f"field law: {fluid.yield_law.describe(fluid.field_unit)}",
              "quasi-steady: no fluid inertia, compressibility or pre-yield elasticity"]
-    return Report(
+    report = Report(
         title=title or f"Damper report: {damper.name or Path(where).stem}",
         source=where, generated=datetime.date.today().isoformat(), version=__version__,
         configuration=g.configuration, notes=tuple(notes), settings=tuple(settings), inputs=inputs,
@@ -748,6 +755,50 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
         checks=validity_checks(damper, sweep, E, v_design, E_design), figures=tuple(figures), comparison=comparison_data,
         history=steps, sweep=sweep, loops=loops, design_point=design_point, validity_messages=messages,
         magnetics=magnetics)
+    return report if baseline is None else with_baseline(report, baseline)
+
+
+def compare_designs(report: Report, baseline: Report) -> dict:
+    """This design beside a baseline design (both reports built alike): the inputs that differ, as typed, and the
+    design point of both with the relative change of each figure, ``"+12.3 %"`` (empty where undefined).
+
+    Both reports' numbers are shown as they are (each :func:`show` of the library's values); nothing is recomputed.
+    """
+    def key(row: InputRow) -> str:
+        return f"{row.section}.{row.key}"
+
+    before = {key(r): r.given for r in baseline.inputs}
+    now = {key(r): r.given for r in report.inputs}
+    inputs = tuple({"key": k, "baseline": before.get(k, ""), "this": now.get(k, "")}
+                   for k in dict.fromkeys([*before, *now]) if before.get(k) != now.get(k))
+    rows = []
+    old = {r.key: r for r in baseline.design_point}
+    for b in report.design_point:
+        a = old.get(b.key)
+        if a is None:
+            continue
+        change = ""
+        if (a.value.si_unit == b.value.si_unit and math.isfinite(a.value.si) and math.isfinite(b.value.si)
+                and a.value.si != 0):
+            change = f"{100 * (b.value.si / a.value.si - 1):+.1f} %"
+        rows.append({"key": b.key, "label": b.label, "baseline": a.value, "this": b.value, "change": change})
+    name = baseline.title.removeprefix("Damper report: ")
+    return {"name": name, "inputs": inputs, "rows": tuple(rows)}
+
+
+def with_baseline(report: Report, baseline: Report) -> Report:
+    """``report`` with the comparison against ``baseline`` (:func:`compare_designs`) and the figure of both designs'
+    force against velocity (this design solid, the baseline dashed) among its figures."""
+    from .. import plots
+
+    b = baseline.sweep
+    figure = FigureSpec("baseline", "Force versus velocity: this design and the baseline",
+                        plots.force_velocity_figure(report.sweep, baseline=b),
+                        _field_table("baseline", "velocity v", b.velocity, "m/s", "velocity", b, b.force, "N",
+                                     "force"),
+                        "the baseline's curves in the table; this design's in the figure 'Force versus velocity'")
+    return dataclasses.replace(report, baseline=compare_designs(report, baseline),
+                               figures=report.figures + (figure,))
 
 
 def _comparison(c: MeasurementComparison) -> dict:

@@ -38,7 +38,7 @@ import numpy as np
 
 from ..errors import ErdesignError
 
-__all__ = ["damper_toml", "csv_text", "rows_csv"]
+__all__ = ["damper_toml", "csv_text", "rows_csv", "figure_images", "images_zip", "IMAGES_NEED"]
 
 _TABLES = ("geometry", "fluid", "coil")
 
@@ -126,3 +126,63 @@ def rows_csv(rows: Sequence[Mapping[str, Any]], *, comment: str = "") -> str:
     writer.writeheader()
     writer.writerows(rows)
     return out.getvalue()
+
+
+#: What static figure images need, said when they cannot be made.
+IMAGES_NEED = ("static figure images need the optional package kaleido (>= 1, `pip install \"erdesign[docs]\"`) "
+               "and a Chrome or Chromium already on the machine (e.g. `apt-get install chromium`); erdesign never "
+               "downloads a browser. Without them, save each figure with the camera button of its toolbar in the "
+               "app or in the HTML report")
+
+
+def figure_images(figures: Sequence[Any], image_format: str = "png", *, timeout: float = 120.0) -> dict[str, bytes]:
+    """Static images of a report's figures (:class:`~erdesign.report.builder.FigureSpec`), ``{"<key>.png": bytes}``.
+
+    Drawn by plotly.js in a headless Chrome or Chromium that kaleido (>= 1) drives: the browser must already be
+    installed (found on the PATH, or named by the environment variable ``BROWSER_PATH``); nothing is downloaded,
+    neither a browser nor a script (plotly.js comes with plotly; MathJax is not used).
+
+    Raises
+    ------
+    ErdesignError
+        kaleido is not installed, no browser is found, or the browser fails; the message says what to install
+        (:data:`IMAGES_NEED`).
+    """
+    import asyncio
+    import concurrent.futures
+
+    if image_format not in ("png", "svg"):
+        raise ErdesignError(f"image format: expected png or svg, got {image_format!r}")
+    try:
+        import kaleido
+    except ImportError:
+        raise ErdesignError(f"figure images: kaleido is not installed; {IMAGES_NEED}") from None
+
+    opts = {"format": image_format, "scale": 2 if image_format == "png" else 1}
+
+    async def draw() -> list[bytes]:
+        # one browser for all the figures; mathjax=False: kaleido would otherwise load MathJax from a CDN
+        async with kaleido.Kaleido(n=1, mathjax=False, timeout=timeout) as k:
+            return [await k.calc_fig(f.figure, opts=dict(opts, width=f.figure.layout.width or 900,
+                                                         height=f.figure.layout.height or 450))
+                    for f in figures]
+
+    try:
+        # a thread of its own: asyncio.run needs a thread without a running event loop (Streamlit, Jupyter)
+        with concurrent.futures.ThreadPoolExecutor(max_workers=1) as pool:
+            images = pool.submit(asyncio.run, draw()).result()
+    except Exception as exc:    # ChromeNotFoundError, a browser that dies, a timeout: say what is needed
+        first = " ".join(str(exc).split())[:200] or type(exc).__name__
+        raise ErdesignError(f"figure images: {type(exc).__name__}: {first}; {IMAGES_NEED}") from None
+    return {f"{f.key}.{image_format}": bytes(b) for f, b in zip(figures, images)}
+
+
+def images_zip(images: Mapping[str, bytes]) -> bytes:
+    """The images of :func:`figure_images` as one ZIP archive (a download)."""
+    import zipfile
+
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
+        for name, data in images.items():
+            archive.writestr(name, data)
+    return buffer.getvalue()

@@ -25,7 +25,7 @@ from ..errors import UnitError
 from ..units import Q_, dimension_name, ureg
 
 __all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
-           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text"]
+           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system"]
 
 #: Significant figures of every quantity a report prints.
 SIGNIFICANT_DIGITS = 4
@@ -41,6 +41,7 @@ UNIT_CHOICES: dict[str, tuple[str, ...]] = {
     "flow": ("mm^3/s", "mL/s", "L/s", "m^3/s"),
     "viscosity": ("mPa*s", "Pa*s", "kPa*s"),
     "damping": ("N*s/m", "kN*s/m", "MN*s/m"),
+    "stiffness": ("N/m", "kN/m", "MN/m"),
     "energy": ("mJ", "J", "kJ", "MJ"),
     "frequency": ("Hz", "kHz"),
     "electric field": ("V/mm", "kV/mm"),
@@ -57,12 +58,12 @@ UNIT_SYSTEMS: dict[str, dict[str, tuple[str, ...]]] = {
     "mm-kN-s": {
         "force": ("kN",), "pressure": ("MPa",), "length": ("mm",), "velocity": ("mm/s",), "area": ("mm^2",),
         "volume": ("mm^3",), "flow": ("mm^3/s",), "viscosity": ("Pa*s",), "damping": ("kN*s/mm",),
-        "energy": ("kN*mm",), "density": ("kg/m^3",),
+        "stiffness": ("kN/mm",), "energy": ("kN*mm",), "density": ("kg/m^3",),
     },
     "in-lbf-s": {
         "force": ("lbf",), "pressure": ("psi",), "length": ("in",), "velocity": ("in/s",), "area": ("in^2",),
         "volume": ("in^3",), "flow": ("in^3/s",), "viscosity": ("psi*s",), "damping": ("lbf*s/in",),
-        "energy": ("in*lbf",), "density": ("lb/in^3",),
+        "stiffness": ("lbf/in",), "energy": ("in*lbf",), "density": ("lb/in^3",),
     },
 }
 
@@ -216,6 +217,48 @@ def pick_unit(values: Any, kind: str) -> str:
         if float(Q_(biggest, choices[0]).to(unit).magnitude) >= 1.0:
             best = unit
     return best
+
+
+#: Kinds that are controls: shown in the fluid's own unit (kV/mm, kA/m), never converted to a unit system.
+_CONTROL_KINDS = ("electric field", "magnetic field")
+
+
+def kind_of(unit: str) -> str | None:
+    """The kind of :data:`UNIT_CHOICES` whose dimension is ``unit``'s (controls and plain numbers excepted), or None.
+
+    >>> kind_of("N*s/m"), kind_of("lbf"), kind_of("N/m"), kind_of("1/m"), kind_of("")
+    ('damping', 'force', 'stiffness', None, None)
+    """
+    if not unit:
+        return None
+    dimensionality = ureg.Unit(unit).dimensionality
+    for kind, choices in UNIT_CHOICES.items():
+        if kind not in _CONTROL_KINDS and ureg.Unit(choices[0]).dimensionality == dimensionality:
+            return kind
+    return None
+
+
+def show_in_system(value: Any, *, name: str, digits: int = SIGNIFICANT_DIGITS, like: Any = None) -> Shown:
+    """A scalar quantity in the unit the current unit system (:func:`use_unit_system`) gives its kind.
+
+    The unit is :func:`pick_unit` of ``like`` (a quantity of the same dimension: the value an uncertainty belongs
+    to, so that both read in one unit) or of the value itself.  A quantity of no known kind (``1/m``) and a plain
+    number are shown as they are; controls should be shown with :func:`field_text` instead.
+
+    >>> with use_unit_system("in-lbf-s"):
+    ...     show_in_system(Q_(5000.0, "N*s/m"), name="c").text, show_in_system(Q_(400.0, "N"), name="F").text
+    ('28.55 lbf·s/in', '89.92 lbf')
+    >>> show_in_system(Q_(30, "N"), name="se", like=Q_(4000, "N")).text, show_in_system(1.2, name="factor").text
+    ('0.03 kN', '1.2')
+    """
+    if not isinstance(value, pint.Quantity):
+        return show(value, "", name=name, digits=digits)
+    kind = kind_of(f"{value.units}")
+    if kind is None:
+        unit = "" if value.dimensionless else f"{value.units}"
+        return show(value.to(unit) if not unit else value, unit, name=name, digits=digits)
+    reference = like if isinstance(like, pint.Quantity) else value
+    return show(value, pick_unit(abs(reference), kind), name=name, digits=digits)
 
 
 def shown_list(values: Sequence[Any], unit: str, *, name: str) -> list[Shown]:

@@ -8,6 +8,7 @@ have is an error (:class:`jinja2.StrictUndefined`), never an empty cell.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Any
 
@@ -37,15 +38,28 @@ def _history(report: Report) -> list[dict[str, Any]]:
             for i, h in enumerate(report.history)]
 
 
-def render_html(report: Report) -> str:
-    """The report as one self-contained HTML page (plotly's JavaScript embedded once)."""
+def _stem(report: Report) -> str:
+    """The start of the file names of the report's figure images: the design's name (``makris-1996``)."""
+    name = report.title.removeprefix("Damper report: ")
+    return re.sub(r"[^A-Za-z0-9_-]+", "-", name).strip("-.") or "erdesign"
+
+
+def render_html(report: Report, image_format: str = "png") -> str:
+    """The report as one self-contained HTML page (plotly's JavaScript embedded once).
+
+    The camera button of each figure's toolbar saves it as ``<design>-<figure>.png`` (or ``.svg`` with
+    ``image_format="svg"``), drawn by the reader's browser.
+    """
+    from ..plots import export_config
+
     figures = []
     for i, f in enumerate(report.figures):
+        config = {**export_config(f"{_stem(report)}-{f.key}", image_format), "responsive": True}
         html = f.figure.to_html(full_html=False, include_plotlyjs=(i == 0), include_mathjax=False,
-                                config={"displaylogo": False, "responsive": True}, div_id=f"plot-{f.key}")
+                                config=config, div_id=f"plot-{f.key}")
         figures.append({"key": f.key, "title": f.title, "caption": f.caption, "html": Markup(html)})
     template = _environment(autoescape=True).get_template("report.html.j2")
-    return template.render(r=report, figures=figures, history=_history(report))
+    return template.render(r=report, figures=figures, history=_history(report), image_format=image_format)
 
 
 def render_markdown(report: Report) -> str:
