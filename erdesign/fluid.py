@@ -38,7 +38,7 @@ import numpy as np
 from ._util import scalar_or_array
 from .errors import PlausibilityWarning, UnitError, ValidityWarning
 from .field_laws import FieldLaw, PowerLaw
-from .units import Q_, dimension_name, to_si, ureg
+from .units import Q_, _parse, dimension_name, to_si, ureg
 
 __all__ = ["Fluid", "CONTROL_UNITS", "control_kind", "PLAUSIBLE_CONTROL", "FLUID_RANGES"]
 
@@ -72,7 +72,7 @@ FLUID_RANGES = {
 
 def control_kind(value: Any, name: str = "reference_field") -> str:
     """Kind of control (a key of :data:`CONTROL_UNITS`) of a quantity or string such as ``"3 kV/mm"``."""
-    q = Q_(value) if isinstance(value, str) else value
+    q = _parse(value, name) if isinstance(value, str) else value
     dim = getattr(q, "dimensionality", None)
     for kind, unit in CONTROL_UNITS.items():
         if dim == ureg.Unit(unit).dimensionality:

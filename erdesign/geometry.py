@@ -227,5 +227,5 @@ class Geometry:
 
 
 def _mm(value: float) -> str:
-    """A length [m] as text in mm (``0.0008`` -> ``'0.8 mm'``)."""
-    return f"{value * 1e3:.4g} mm"
+    """A length [m] as text in mm (``0.0008`` -> ``'0.8 mm'``), in m beyond 1 km."""
+    return f"{value * 1e3:.4g} mm" if abs(value) < 1e3 else f"{value:.4g} m"
