@@ -687,13 +687,13 @@ def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> li
                                "is nothing to fit or judge")
     n = len(record)
     f0 = _dominant_frequency(t, x)
-    cycles = f0 * record.duration
+    cycles = _reversals(v) / 2.0      # the FFT's lowest bin is one cycle per record: count reversals instead
     if n < FEW_SAMPLES:
         out.append(f"{name}: time: only {n} samples; a fit or a diagnosis needs a few hundred over at least one "
                    "cycle")
-    if cycles < 0.9:
-        out.append(f"{name}: displacement: the record covers {cycles:.2g} cycles of its motion; at least one full "
-                   "cycle is needed to tell viscous from yield forces")
+    if cycles < 1.0:
+        out.append(f"{name}: displacement: the piston reverses {int(2 * cycles)} times; at least one full cycle "
+                   "(two reversals) is needed to tell viscous from yield forces")
     elif f0 > 0 and record.sample_rate / f0 < SAMPLES_PER_CYCLE:
         out.append(f"{name}: time: {record.sample_rate / f0:.3g} samples per cycle of the motion "
                    f"({f0:.3g} Hz sampled at {record.sample_rate:.3g} Hz) cannot resolve it; need at least "
@@ -724,6 +724,15 @@ def check_against_damper(record: "Measurement", damper, *, warn: bool = True) ->
         for message in out:
             warnings.warn(message, PlausibilityWarning, stacklevel=2)
     return out
+
+
+def _reversals(v: np.ndarray) -> int:
+    """Sign changes of the velocity outside the noise band below 5 % of the peak speed (two per cycle)."""
+    peak = float(np.max(np.abs(v))) if v.size else 0.0
+    if peak == 0.0:
+        return 0
+    s = np.sign(v[np.abs(v) > 0.05 * peak])
+    return int(np.count_nonzero(np.diff(s) != 0))
 
 
 def _factor_hint(ratio: float) -> str:
