@@ -21,9 +21,10 @@ def _first(arr: np.ndarray, bad: np.ndarray) -> float:
     return float(arr[bad][0] if arr.ndim else arr)
 
 
-def check_flow_args(**values) -> None:
+def check_flow_args(*, annulus: bool = False, **values) -> None:
     """Raise :class:`~erdesign.errors.ErdesignError` naming the first argument outside its domain: ``eta``, ``L``,
-    ``d``, ``h``, ``Dp`` positive; ``tau_y``, ``dr`` not negative; ``h < d`` when both are given."""
+    ``d``, ``h``, ``Dp`` positive; ``tau_y``, ``dr`` not negative; for an ``annulus``, ``h < d`` (the slit
+    formulas are also used in dimensionless form, with h = d = 1)."""
     for name, value in values.items():
         if value is None:
             continue
@@ -39,7 +40,7 @@ def check_flow_args(**values) -> None:
             bad = arr < 0.0
             if np.any(bad):
                 raise ErdesignError(f"{name}: must not be negative, got {_first(arr, bad):g} (SI)")
-    if values.get("h") is not None and values.get("d") is not None:
+    if annulus and values.get("h") is not None and values.get("d") is not None:
         h, d = np.asarray(values["h"], dtype=float), np.asarray(values["d"], dtype=float)
         if np.any(h >= d):
             raise ErdesignError("h: the gap must be smaller than the mean diameter d of the annulus")

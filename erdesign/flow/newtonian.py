@@ -107,7 +107,7 @@ def annulus_conductance_ratio(d, h):
     is a difference of nearly equal terms.  Below ``h/d = 1e-2`` the series is used (its first omitted term,
 ``107 e^6/4725``, is below 3e-14 there).
     """
-    check_flow_args(d=d, h=h)
+    check_flow_args(annulus=True, d=d, h=h)
     e = np.asarray(h, dtype=float) / np.asarray(d, dtype=float)
     # R2/R1 = (1 + e)/(1 - e); R2^4 - R1^4 = d^4 e (1 + e^2)/2; (R2^2 - R1^2)^2 = d^4 e^2.
     with np.errstate(divide="ignore", invalid="ignore"):
