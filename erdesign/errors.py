@@ -9,6 +9,8 @@ __all__ = [
     "ErdesignError",
     "UnitError",
     "DamperFileError",
+    "OutputPathError",
+    "PlausibilityWarning",
     "ErdesignWarning",
     "ValidityWarning",
 ]
@@ -26,9 +28,19 @@ class DamperFileError(ErdesignError):
     """A damper (TOML) file is malformed: unknown or missing key, wrong type or dimension."""
 
 
+class OutputPathError(ErdesignError):
+    """An output file that must not be written: an input of the same call, an existing file without --force, or a
+    suffix whose format the command does not write."""
+
+
 class ErdesignWarning(UserWarning):
     """Base class of the warnings erdesign issues."""
 
 
 class ValidityWarning(ErdesignWarning):
     """A model is used outside the range where its assumptions hold (thin gap, laminar flow, field range...)."""
+
+
+class PlausibilityWarning(ErdesignWarning):
+    """A value is possible but implausible (outside the range real dampers, fluids or records take): often a unit
+    mistake.  The message names the field and, where one is likely, the unit mistake."""

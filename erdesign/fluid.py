@@ -36,11 +36,11 @@ from typing import Any
 import numpy as np
 
 from ._util import scalar_or_array
-from .errors import UnitError, ValidityWarning
+from .errors import PlausibilityWarning, UnitError, ValidityWarning
 from .field_laws import FieldLaw, PowerLaw
-from .units import Q_, dimension_name, to_si, ureg
+from .units import Q_, _parse, dimension_name, to_si, ureg
 
-__all__ = ["Fluid", "CONTROL_UNITS", "control_kind"]
+__all__ = ["Fluid", "CONTROL_UNITS", "control_kind", "PLAUSIBLE_CONTROL", "FLUID_RANGES"]
 
 # SI unit of each kind of control, and what it is called in messages.
 CONTROL_UNITS = {
@@ -52,9 +52,27 @@ CONTROL_UNITS = {
 }
 
 
+#: Largest control of each kind a controllable fluid plausibly takes (SI): ER fluids break down near 4 to 8 kV/mm
+#: (seed 001 Table 1 gives ca. 4 kV/mm), MR fluids saturate near 250 kA/m to 1 MA/m (ca. 1 to 2 T); coil currents
+#: and driver voltages of damper drives stay within tens of A and hundreds of V.  Beyond it erdesign warns; beyond
+#: :data:`IMPOSSIBLE_CONTROL_FACTOR` times it, it refuses the value (a unit mistake, not a control).
+PLAUSIBLE_CONTROL = {"electric field": 2e7, "magnetic field": 2e6, "magnetic flux density": 3.0, "current": 50.0,
+                     "voltage": 1e3}
+IMPOSSIBLE_CONTROL_FACTOR = 1e3
+
+#: Possible (error outside) and plausible (warning outside) ranges of the fluid's values, SI.
+FLUID_RANGES = {
+    "viscosity": ((1e-6, 1e6), (1e-3, 1e3), "Pa*s"),
+    "viscosity_at_reference_field": ((1e-6, 1e6), (1e-3, 1e3), "Pa*s"),
+    "yield_stress": ((0.0, 1e8), (0.0, 3e5), "Pa"),
+    "density": ((1.0, 1e5), (500.0, 8000.0), "kg/m^3"),
+    "shear_modulus": ((1e-3, 1e12), (1.0, 1e9), "Pa"),
+}
+
+
 def control_kind(value: Any, name: str = "reference_field") -> str:
     """Kind of control (a key of :data:`CONTROL_UNITS`) of a quantity or string such as ``"3 kV/mm"``."""
-    q = Q_(value) if isinstance(value, str) else value
+    q = _parse(value, name) if isinstance(value, str) else value
     dim = getattr(q, "dimensionality", None)
     for kind, unit in CONTROL_UNITS.items():
         if dim == ureg.Unit(unit).dimensionality:
@@ -138,6 +156,15 @@ class Fluid:
         for key, ok, why in checks:
             if not ok:
                 raise UnitError(f"fluid.{key}: {why}, got {getattr(self, key)!r} (SI)")
+        for key, ((lo, hi), _, unit) in FLUID_RANGES.items():
+            value = getattr(self, key)
+            if value is not None and not lo <= value <= hi:
+                raise UnitError(f"fluid.{key}: {value:.4g} {unit} is outside the possible range {lo:g} to {hi:g} "
+                                f"{unit} (a unit mistake?)")
+        if self.control in PLAUSIBLE_CONTROL and \
+                self.reference_field > IMPOSSIBLE_CONTROL_FACTOR * PLAUSIBLE_CONTROL[self.control]:
+            raise UnitError(f"fluid.reference_field: {self.reference_field:.4g} {CONTROL_UNITS[self.control]} is "
+                            f"beyond any {self.control} a fluid takes (a unit mistake?)")
         if self.control not in CONTROL_UNITS:
             raise UnitError(f"fluid.control: unknown kind of control {self.control!r}")
         if self.field_law is not None:
@@ -186,7 +213,9 @@ class Fluid:
         """
         kind = control_kind(reference_field, "fluid.reference_field")
         exponent = to_si(yield_exponent, "", "fluid.yield_exponent")
-        return cls(
+        if not isinstance(exponent, float):
+            raise UnitError(f"fluid.yield_exponent: expected one number, got {yield_exponent!r}")
+        fluid = cls(
             viscosity=to_si(viscosity, "Pa*s", "fluid.viscosity"),
             yield_stress=to_si(yield_stress, "Pa", "fluid.yield_stress"),
             reference_field=to_si(reference_field, CONTROL_UNITS[kind], "fluid.reference_field"),
@@ -205,6 +234,32 @@ class Fluid:
             field_range=None if field_range is None else _field_range(field_range, CONTROL_UNITS[kind]),
             material=material,
         )
+        fluid.warn_implausible()
+        return fluid
+
+    def warn_implausible(self) -> list[str]:
+        """Warn (:class:`~erdesign.errors.PlausibilityWarning`) for each value outside the range real fluids take;
+        returns the messages."""
+        messages = []
+        for key, (_, (lo, hi), unit) in FLUID_RANGES.items():
+            value = getattr(self, key)
+            if value is not None and not lo <= value <= hi:
+                messages.append(f"fluid.{key}: {value:.4g} {unit} is outside the plausible range {lo:g} to {hi:g} "
+                                f"{unit}; check the value and its unit")
+        limit = PLAUSIBLE_CONTROL.get(self.control)
+        if limit is not None and self.reference_field > limit:
+            messages.append(f"fluid.reference_field: {self._shown(self.reference_field)} is beyond the largest "
+                            f"{self.control} a fluid plausibly takes ({self._shown(limit)}); check the unit")
+        for m in messages:
+            warnings.warn(m, PlausibilityWarning, stacklevel=3)
+        return messages
+
+    def _shown(self, value: float) -> str:
+        unit = self.field_unit
+        try:
+            return f"{Q_(value, self.control_unit).to(unit).magnitude:.4g} {Q_(1.0, unit).units:~P}"
+        except Exception:  # noqa: BLE001 - display only
+            return f"{value:.4g} {self.control_unit}"
 
     @property
     def control_unit(self) -> str:
@@ -232,8 +287,24 @@ class Fluid:
         if field is None:
             return 0.0
         value = to_si(field, self.control_unit, name)
+        self.check_plausible_field(value, name)
         self.check_field(value, name)
         return value
+
+    def check_plausible_field(self, field, name: str = "field") -> None:
+        """Refuse a control beyond :data:`IMPOSSIBLE_CONTROL_FACTOR` times the plausible largest of its kind, warn
+        beyond the plausible largest (:data:`PLAUSIBLE_CONTROL`)."""
+        limit = PLAUSIBLE_CONTROL.get(self.control)
+        if limit is None:
+            return
+        worst = float(np.max(np.abs(np.asarray(field, dtype=float)), initial=0.0))
+        if worst > IMPOSSIBLE_CONTROL_FACTOR * limit:
+            raise UnitError(f"{name}: {self._shown(worst)} is beyond any {self.control} a fluid takes (the "
+                            f"plausible largest is {self._shown(limit)}); check the value and its unit")
+        if worst > limit:
+            warnings.warn(f"{name}: {self._shown(worst)} is beyond the largest {self.control} a fluid plausibly "
+                          f"takes ({self._shown(limit)}); check the value and its unit", PlausibilityWarning,
+                          stacklevel=3)
 
     def check_field(self, field, name: str = "field") -> bool:
         """True when every |control| (SI) lies in :attr:`field_range` (or no range is known); warns otherwise.

@@ -25,17 +25,30 @@ import warnings
 from dataclasses import dataclass
 from typing import Any
 
-from .errors import DamperFileError, ValidityWarning
+import numpy as np
+
+from .errors import DamperFileError, PlausibilityWarning, ValidityWarning
 from .flow.newtonian import thin_gap_error
 from .units import to_si
 
-__all__ = ["Geometry", "CONFIGURATIONS", "THIN_GAP_LIMIT"]
+__all__ = ["Geometry", "CONFIGURATIONS", "THIN_GAP_LIMIT", "POSSIBLE_LENGTHS", "PLAUSIBLE_LENGTHS"]
 
 CONFIGURATIONS = ("valve", "mixed")
 
 #: Largest h/d for which erdesign uses the thin-gap formulas without comment.  At h/d = 0.1 the thin-gap
 #: Newtonian pressure drop is 0.07 % high; above it the valve damper uses the exact annulus and warns.
 THIN_GAP_LIMIT = 0.1
+
+#: Possible range of each length [m]: outside it the value is an error (no damper, or a unit mistake so large that
+#: the arithmetic of the kernels breaks down: a gap of 1e-300 m cubed is zero).
+POSSIBLE_LENGTHS = {"gap": (1e-7, 1.0), "duct_length": (1e-6, 100.0), "duct_mean_diameter": (1e-6, 100.0),
+                    "piston_diameter": (1e-6, 100.0), "rod_diameter": (0.0, 100.0)}
+#: Plausible range of each length [m]: outside it erdesign warns (a unit mistake is likely).  ER/MR particles are
+#: 1 to 50 um across, so a gap below 50 um jams; gaps above 10 mm take fields no supply gives (seed 001 Table 1).
+PLAUSIBLE_LENGTHS = {"gap": (5e-5, 1e-2), "duct_length": (1e-3, 2.0), "duct_mean_diameter": (1e-3, 1.0),
+                     "piston_diameter": (3e-3, 1.0), "rod_diameter": (0.0, 0.5)}
+#: Most parallel ducts possible, and the most erdesign takes without a warning.
+MAX_DUCTS, PLAUSIBLE_DUCTS = 10_000, 64
 
 
 @dataclass(frozen=True)
@@ -75,20 +88,45 @@ class Geometry:
         if self.configuration not in CONFIGURATIONS:
             raise bad("configuration", f"must be one of {', '.join(map(repr, CONFIGURATIONS))}, "
                                        f"got {self.configuration!r}")
+        # The constructor takes SI floats, and also quantities or strings ("0.8 mm"), as Geometry.create does.
+        for key in ("duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter"):
+            value = getattr(self, key)
+            if not isinstance(value, float):
+                if isinstance(value, (int, np.integer, np.floating)) and not isinstance(value, bool):
+                    si = float(value)
+                elif value is None or isinstance(value, bool):
+                    raise bad(key, f"expected a length such as '0.8 mm', got {value!r}")
+                else:
+                    si = to_si(value, "m", f"geometry.{key}")
+                    if not isinstance(si, float):
+                        raise bad(key, f"expected one length, got {value!r}")
+                object.__setattr__(self, key, si)
+            if not math.isfinite(getattr(self, key)):
+                raise bad(key, f"must be finite, got {getattr(self, key)!r}")
+        ducts = self.ducts
+        if isinstance(ducts, (int, np.integer)) and not isinstance(ducts, bool):
+            object.__setattr__(self, "ducts", int(ducts))
         for key in ("duct_length", "duct_mean_diameter", "gap", "piston_diameter"):
             value = getattr(self, key)
             if not value > 0:
                 raise bad(key, f"must be positive, got {value:g} m")
         if self.rod_diameter < 0:
             raise bad("rod_diameter", f"must not be negative, got {self.rod_diameter:g} m")
+        for key, (lo, hi) in POSSIBLE_LENGTHS.items():
+            value = getattr(self, key)
+            if not lo <= value <= hi:
+                raise bad(key, f"{_mm(value)} is outside the possible range {_mm(lo)} to {_mm(hi)} of a damper "
+                               f"(a unit mistake?)")
         if self.rod_diameter >= self.piston_diameter:
             raise bad("rod_diameter", f"must be smaller than the piston diameter ({self.rod_diameter * 1e3:g} mm "
                                       f">= {self.piston_diameter * 1e3:g} mm)")
         if self.gap >= self.duct_mean_diameter:
             raise bad("gap", f"must be smaller than the mean diameter of the annulus ({self.gap * 1e3:g} mm >= "
                              f"{self.duct_mean_diameter * 1e3:g} mm): the inner wall would have no diameter left")
-        if not (isinstance(self.ducts, int) and self.ducts >= 1):
+        if not (isinstance(self.ducts, int) and not isinstance(self.ducts, bool) and self.ducts >= 1):
             raise bad("ducts", f"must be a whole number >= 1, got {self.ducts!r}")
+        if self.ducts > MAX_DUCTS:
+            raise bad("ducts", f"{self.ducts} parallel ducts is beyond the possible range (at most {MAX_DUCTS})")
         if self.configuration == "mixed":
             if self.ducts != 1:
                 raise bad("ducts", "applies to the valve configuration only (a mixed damper has one gap)")
@@ -96,6 +134,7 @@ class Geometry:
             if not math.isclose(self.duct_mean_diameter, expected, rel_tol=1e-3):
                 raise bad("duct_mean_diameter", f"for a mixed damper it is piston_diameter + gap = "
                                                 f"{expected * 1e3:.4g} mm, got {self.duct_mean_diameter * 1e3:.4g} mm")
+        self._warn_implausible()
         if self.gap_ratio > THIN_GAP_LIMIT:
             warnings.warn(
                 f"geometry.gap: h/d = {self.gap_ratio:.3g} is not small; the thin-gap formulas are off by "
@@ -106,6 +145,17 @@ class Geometry:
                 ValidityWarning,
                 stacklevel=3,
             )
+
+    def _warn_implausible(self) -> None:
+        """A :class:`~erdesign.errors.PlausibilityWarning` per value outside the range real dampers take."""
+        for key, (lo, hi) in PLAUSIBLE_LENGTHS.items():
+            value = getattr(self, key)
+            if not lo <= value <= hi:
+                warnings.warn(f"geometry.{key}: {_mm(value)} is outside the plausible range {_mm(lo)} to {_mm(hi)}; "
+                              "check the value and its unit", PlausibilityWarning, stacklevel=4)
+        if self.ducts > PLAUSIBLE_DUCTS:
+            warnings.warn(f"geometry.ducts: {self.ducts} parallel ducts is implausibly many (more than "
+                          f"{PLAUSIBLE_DUCTS}); check the value", PlausibilityWarning, stacklevel=4)
 
     @classmethod
     def create(
@@ -143,7 +193,7 @@ class Geometry:
             d = Dp + h
         else:
             d = to_si(duct_mean_diameter, "m", "geometry.duct_mean_diameter")
-        if isinstance(ducts, bool) or not isinstance(ducts, int):
+        if isinstance(ducts, bool) or not isinstance(ducts, (int, np.integer)):
             raise DamperFileError(f"geometry.ducts: must be a whole number >= 1, got {ducts!r}")
         return cls(configuration, L, d, h, Dp, dr, ducts)
 
@@ -174,3 +224,8 @@ class Geometry:
         The volume seed 000 (Kamath and Wereley, section III.C) divides the dissipated energy by.
         """
         return math.pi * self.duct_mean_diameter * self.gap * self.duct_length * self.ducts
+
+
+def _mm(value: float) -> str:
+    """A length [m] as text in mm (``0.0008`` -> ``'0.8 mm'``), in m beyond 1 km."""
+    return f"{value * 1e3:.4g} mm" if abs(value) < 1e3 else f"{value:.4g} m"

@@ -46,7 +46,7 @@ from .fluid import CONTROL_UNITS
 from .units import Q_, dimension_name, ureg
 
 __all__ = ["Measurement", "MeasurementError", "read_measurement", "write_measurement", "derivatives",
-           "clipped_samples", "COLUMNS", "CONTROL_COLUMNS"]
+           "clipped_samples", "check_record", "check_against_damper", "COLUMNS", "CONTROL_COLUMNS"]
 
 
 class MeasurementError(ErdesignError):
@@ -459,6 +459,11 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
                   ) -> list[tuple[str, str, Any]]:
     columns = []
     seen: dict[str, int] = {}
+    if len(cells) == 1 and ("\t" in cells[0] or ";" in cells[0]):
+        sep = "tabs" if "\t" in cells[0] else "semicolons"
+        raise MeasurementError(f"{path}: line {lineno}: the columns are separated by {sep}; erdesign reads "
+                               "comma-separated files (save as CSV with ',' between columns and '.' as the decimal "
+                               "point)")
     for col, cell in enumerate(cells, start=1):
         m = _HEADER.match(cell)
         if not m:
@@ -466,6 +471,9 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
                                    f"its unit in square brackets, e.g. 'time [s]'")
         name, unit = m[1].lower(), m[2].strip()
         where = f"{path}: line {lineno}, column {col} ({name})"
+        if "\t" in unit or ";" in unit:
+            raise MeasurementError(f"{where}: a tab or ';' inside the header: erdesign reads comma-separated files "
+                                   "(',' between columns)")
         if name not in COLUMNS and name not in CONTROL_COLUMNS:
             raise MeasurementError(f"{where}: unknown column; known: {', '.join([*COLUMNS, *CONTROL_COLUMNS])}")
         if name in seen:
@@ -517,8 +525,12 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
             text = fh.read()
     except FileNotFoundError:
         raise MeasurementError(f"{label}: no such file") from None
+    except IsADirectoryError:
+        raise MeasurementError(f"{label}: is a folder, expected a measurement CSV file") from None
     except UnicodeDecodeError:
         raise MeasurementError(f"{label}: not a text (UTF-8) file") from None
+    except OSError as exc:
+        raise MeasurementError(f"{label}: cannot be read ({exc.strerror or exc})") from None
     fast = _read_fast(text, label, require_force)
     if fast is not None:
         columns, data = fast
@@ -608,10 +620,12 @@ def _measurement_from_table(path: Path, label: str, columns, data: np.ndarray, l
     units = {}
     for c, (name, unit, col_kind) in enumerate(columns):
         target = COLUMNS.get(name) or CONTROL_UNITS[col_kind]
-        si[name] = Q_(data[:, c], unit).to(target).magnitude
+        with np.errstate(all="ignore"):
+            si[name] = np.asarray(Q_(data[:, c], unit).to(target).magnitude, dtype=float)
         units[name] = unit
         if col_kind:
             kind = col_kind
+        _check_possible(si[name], name, unit, label, c + 1)
     t = si["time"]
     if line_of is not None:
         _check_time(t, lambda i: f"{label}: line {line_of[i]}, column {[c[0] for c in columns].index('time') + 1} "
@@ -621,7 +635,161 @@ def _measurement_from_table(path: Path, label: str, columns, data: np.ndarray, l
         t, si["displacement"], si.get("force"),
         control=si.get(control_name) if control_name else None, control_kind=kind,
         velocity=si.get("velocity"), temperature=si.get("temperature"), name=path.name, window=window)
-    return replace(m, units=units)
+    m = replace(m, units=units)
+    check_record(m)
+    return m
+
+
+#: Largest magnitude each column can possibly take, SI (beyond it the file is refused: a unit mistake so large
+#: that sums of squares overflow, or no damper ever built).  The largest seismic dampers make about 10 MN.
+POSSIBLE_MAGNITUDE = {"displacement": 100.0, "force": 1e9, "velocity": 1e3, "time": 1e9}
+
+
+def _check_possible(values: np.ndarray, name: str, unit: str, label: str, col: int) -> None:
+    where = f"{label}: column {col} ({name} [{unit}])"
+    if not np.all(np.isfinite(values)):
+        raise MeasurementError(f"{where}: a value is not finite in SI units")
+    limit = POSSIBLE_MAGNITUDE.get(name)
+    if limit is not None:
+        peak = float(np.max(np.abs(values)))
+        if peak > limit:
+            si = COLUMNS[name]
+            raise MeasurementError(f"{where}: {peak:.3g} {si} is beyond any damper record (at most {limit:g} {si}); "
+                                   "check the column's unit")
+
+
+#: Fewest samples, and fewest samples per cycle of the motion, below which a record is flagged.
+FEW_SAMPLES, SAMPLES_PER_CYCLE = 100, 10
+
+
+def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> list[str]:  # noqa: C901
+    """What looks wrong in a record, alone and (with ``damper``) against the damper it is said to come from.
+
+    Errors (:class:`MeasurementError`): no motion at all (a constant displacement); with a damper, a control beyond
+    any the fluid takes.  Warnings (:class:`~erdesign.errors.PlausibilityWarning`, each naming the column and the
+    likely unit mistake): fewer than :data:`FEW_SAMPLES` samples or less than one cycle of the motion, fewer than
+    :data:`SAMPLES_PER_CYCLE` samples per cycle (the time step cannot resolve the motion), a sampling rate beyond
+    any data logger, a piston speed beyond any damper test; with a damper, a stroke beyond its size and a force
+    far from what the damper file predicts at the record's motion and control (a factor near 1000 is named as the
+    likely unit mistake: force in mN or kN, displacement in mm or m).
+
+    Returns the warning messages (issued as warnings too unless ``warn`` is False).
+    """
+    from .errors import PlausibilityWarning
+
+    name = record.name or "record"
+    unit = lambda col, si: record.units.get(col, si)  # noqa: E731
+    x, t, v = record.displacement, record.time, record.velocity
+    out: list[str] = []
+    stroke = float(np.ptp(x))
+    if stroke == 0.0:
+        raise MeasurementError(f"{name}: displacement: constant ({x[0]:g} m): the record has no motion, so there "
+                               "is nothing to fit or judge")
+    n = len(record)
+    f0 = _dominant_frequency(t, x)
+    cycles = _reversals(v) / 2.0      # the FFT's lowest bin is one cycle per record: count reversals instead
+    if n < FEW_SAMPLES:
+        out.append(f"{name}: time: only {n} samples; a fit or a diagnosis needs a few hundred over at least one "
+                   "cycle")
+    if cycles < 1.0:
+        out.append(f"{name}: displacement: the piston reverses {int(2 * cycles)} times; at least one full cycle "
+                   "(two reversals) is needed to tell viscous from yield forces")
+    elif f0 > 0 and record.sample_rate / f0 < SAMPLES_PER_CYCLE:
+        out.append(f"{name}: time: {record.sample_rate / f0:.3g} samples per cycle of the motion "
+                   f"({f0:.3g} Hz sampled at {record.sample_rate:.3g} Hz) cannot resolve it; need at least "
+                   f"{SAMPLES_PER_CYCLE} (is the time column's unit [{unit('time', 's')}] right?)")
+    if record.sample_rate > 1e7:
+        out.append(f"{name}: time: a sampling rate of {record.sample_rate:.3g} Hz is beyond any damper test rig; "
+                   f"is the time column's unit [{unit('time', 's')}] right?")
+    if float(np.max(np.abs(v))) > 20.0:
+        speed = float(np.max(np.abs(v)))
+        out.append(f"{name}: velocity: the piston speed reaches {speed:.3g} m/s, beyond any damper test; is the unit "
+                   f"of the displacement [{unit('displacement', 'm')}] or time [{unit('time', 's')}] column right?")
+    if damper is not None:
+        out += _check_against_damper(record, damper)
+    if warn:
+        for message in out:
+            warnings.warn(message, PlausibilityWarning, stacklevel=2)
+    return out
+
+
+def check_against_damper(record: "Measurement", damper, *, warn: bool = True) -> list[str]:
+    """The checks of :func:`check_record` that need the damper only (:func:`read_measurement` has done the others):
+    a control beyond any the fluid takes (error), a stroke beyond the damper's size, a force far from what the
+    damper file predicts at the record's motion and control.  Returns the warning messages."""
+    from .errors import PlausibilityWarning
+
+    out = _check_against_damper(record, damper)
+    if warn:
+        for message in out:
+            warnings.warn(message, PlausibilityWarning, stacklevel=2)
+    return out
+
+
+def _reversals(v: np.ndarray) -> int:
+    """Sign changes of the velocity outside the noise band below 5 % of the peak speed (two per cycle)."""
+    peak = float(np.max(np.abs(v))) if v.size else 0.0
+    if peak == 0.0:
+        return 0
+    s = np.sign(v[np.abs(v) > 0.05 * peak])
+    return int(np.count_nonzero(np.diff(s) != 0))
+
+
+def _factor_hint(ratio: float) -> str:
+    """' (a factor near 1000: ...)' when ``ratio`` (measured / expected) is within a factor 5 of 1e3 or 1e-3."""
+    for k, text in ((1e3, "1000 too large"), (1e-3, "1000 too small"), (1e6, "a million too large"),
+                    (1e-6, "a million too small")):
+        if k / 5 < ratio < k * 5:
+            return f"; it is about {text}: a likely unit mistake"
+    return ""
+
+
+def _check_against_damper(record: "Measurement", damper) -> list[str]:
+    name = record.name or "record"
+    stroke = float(np.ptp(record.displacement))
+    unit = lambda col, si: record.units.get(col, si)  # noqa: E731
+    out = []
+    if record.control_kind is not None and record.control_kind == damper.fluid.control:
+        damper.fluid.check_plausible_field(record.control, f"{name}: {_control_column(record)} column")
+    Dp = damper.geometry.piston_diameter
+    if stroke > max(1.0, 30 * Dp):
+        hint = (f"; in a unit 1000 x smaller it would be {stroke:.3g} mm, a plausible stroke: a likely unit mistake "
+                "(values in mm given as m?)" if stroke / 1e3 <= 30 * Dp else "")
+        out.append(f"{name}: displacement: the stroke is {stroke:.3g} m, {stroke / Dp:.3g} x the piston diameter of "
+                   f"the damper{hint}; is the column's unit [{unit('displacement', 'm')}] right?")
+    elif stroke < 1e-3 * Dp:
+        hint = (f"; in a unit 1000 x larger it would be {stroke * 1e6:.3g} mm, a plausible stroke: a likely unit "
+                "mistake (values in mm given as um?)" if stroke * 1e3 <= 30 * Dp else "")
+        out.append(f"{name}: displacement: the stroke is {stroke * 1e6:.3g} um, {stroke / Dp:.2g} x the piston "
+                   f"diameter, too small for a damper test{hint}; is the column's unit "
+                   f"[{unit('displacement', 'm')}] right?")
+    F = record.force
+    if F is None or record.control_kind not in (None, damper.fluid.control):
+        return out
+    try:
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            v = np.clip(record.velocity, -20.0, 20.0)
+            predicted = np.asarray(damper.force_si(v, record.control), dtype=float)
+    except ErdesignError:
+        return out
+    if not np.all(np.isfinite(predicted)):
+        return out
+    spread = lambda a: float(np.percentile(a, 99) - np.percentile(a, 1))  # noqa: E731
+    measured, expected = spread(F), spread(predicted)
+    if expected <= 0 or measured <= 0:
+        return out
+    ratio = measured / expected
+    if ratio > 30 or ratio < 1 / 30:
+        out.append(f"{name}: force: the measured force spans {measured:.3g} N, {ratio:.3g} x the {expected:.3g} N the "
+                   f"damper file predicts at the record's motion and control{_factor_hint(ratio)}; is the unit of "
+                   f"the force [{unit('force', 'N')}] or displacement [{unit('displacement', 'm')}] column right, and "
+                   "is it the right damper file?")
+    return out
+
+
+def _control_column(record: "Measurement") -> str:
+    return next((c for c, kinds in CONTROL_COLUMNS.items() if record.control_kind in kinds), "control")
 
 
 def write_measurement(path: str | Path, m: Measurement, *, units: dict[str, str] | None = None,

@@ -116,7 +116,9 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
             )
         magnitude = value.to(target).magnitude
     else:
-        if target.dimensionality and not isinstance(value, bool):
+        if isinstance(value, (bool, np.bool_)):
+            raise UnitError(f"{name}: expected {dimension_name(target.dimensionality)}, got {value!r}")
+        if target.dimensionality:
             raise UnitError(
                 f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
                 f"e.g. '{value} {unit}'"

@@ -17,6 +17,7 @@ from erdesign import plots
 from erdesign.app import figures, state
 from erdesign.effects import EFFECTS
 from erdesign.errors import ErdesignError
+from erdesign.measurement import check_record
 from erdesign.report.builder import ErrorHistoryStep
 from erdesign.report.export import csv_text, rows_csv
 from erdesign.report.formatting import pick_unit, show, show_in_system
@@ -163,6 +164,13 @@ def render() -> None:
     except ErdesignError as exc:
         st.error(f"Cannot read the measurement: {state.clean_message(str(exc))}")
         return
+    try:    # what looks wrong in the record and against the damper (a unit mistake): said before any fit
+        doubts = check_record(record, damper, warn=False)
+    except ErdesignError as exc:
+        st.error(f"Cannot use the measurement: {state.clean_message(str(exc))}")
+        return
+    for doubt in doubts:
+        st.warning(f"Check the record: {doubt}", icon="⚠️")
     control = record.control_kind or "no control column (zero field)"
     st.caption(f"{name}: {len(record)} samples over {record.duration:.3g} s; {control}.")
     work = _reset(f"{name}:{hash(data)}:{text}")

@@ -127,6 +127,9 @@ def _on_upload() -> None:
     except ErdesignError as exc:
         st.session_state[_ERROR] = state.clean_message(str(exc))
         return
+    except Exception as exc:  # noqa: BLE001 - an upload must never crash the page (issue 15)
+        st.session_state[_ERROR] = f"{name}: cannot be read as a damper file ({type(exc).__name__})"
+        return
     point = None
     match = _POINT_LINE.search(text)
     if match:      # a file the app wrote: take its design point back too
@@ -240,7 +243,8 @@ def _candidate(values: dict, point: dict) -> tuple[dict | None, Any, str]:
     try:
         spec = spec_from_widgets(values)
         design = {"spec": spec, **point}
-        to_si(point["v_top"], "m/s", "top velocity of the curves")
+        if not to_si(point["v_top"], "m/s", "top velocity of the curves") > 0:
+            raise ErdesignError(f"top velocity of the curves: must be positive, got {point['v_top']!r}")
         return design, state.design_report(state.design_text(design), state.unit_system()), ""
     except ErdesignError as exc:
         return None, None, state.clean_message(str(exc))

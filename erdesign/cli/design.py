@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from .._util import check_output_path
 from ..design import design as run_design
 from ..design import read_requirements
 from .main import cli, emit_json
@@ -28,8 +29,11 @@ Rounding and ties ([design.search] of the requirements file):
 @click.option("--out", "out", default=None, metavar="designs.csv",
               help="Also write the ranked designs, the Pareto front (and the nearest design when nothing is "
                    "feasible) to a CSV file with units in the header.")
-def design(requirements_file: str, as_json: bool, out: str | None) -> None:
+@click.option("--force", is_flag=True, help="Let --out replace an existing file (never the requirements file).")
+def design(requirements_file: str, as_json: bool, out: str | None, force: bool) -> None:
     """Feasible damper geometries ranked by the objective, or the conflicts when there are none."""
+    if out is not None:  # checked before the search: a refused name must not cost a long run
+        out, _ = check_output_path(out, force=force, inputs={"the requirements file": requirements_file}, formats={".csv": "csv"})
     result = run_design(read_requirements(requirements_file))
     if out is not None:
         result.write_csv(out)

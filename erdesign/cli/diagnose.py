@@ -8,7 +8,7 @@ import click
 
 from ..damper_file import load_damper
 from ..diagnose import diagnose as run_diagnosis
-from ..measurement import read_measurement
+from ..measurement import check_against_damper, read_measurement
 from .main import cli, emit_json
 
 __all__ = ["diagnose", "next_command"]
@@ -51,6 +51,7 @@ def diagnose(measurement: str, damper_file: str, effects: str, as_json: bool) ->
     """
     damper = load_damper(damper_file)
     record = read_measurement(measurement)
+    check_against_damper(record, damper)  # issue 15: a unit mistake is named before a fit absorbs it
     result = run_diagnosis(damper, record, effects)
     if as_json:
         emit_json(result.as_json())

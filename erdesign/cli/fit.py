@@ -6,7 +6,7 @@ import click
 
 from ..damper_file import load_damper
 from ..diagnose import calibrate
-from ..measurement import read_measurement
+from ..measurement import check_against_damper, read_measurement
 from .main import cli, emit_json, json_number
 
 __all__ = ["fit"]
@@ -21,6 +21,7 @@ def fit(measurement: str, damper_file: str, effects: str, as_json: bool) -> None
     """Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects."""
     damper = load_damper(damper_file)
     record = read_measurement(measurement)
+    check_against_damper(record, damper)  # issue 15: a unit mistake is named before a fit absorbs it
     result = calibrate(damper, record, effects)
     if as_json:
         emit_json({"esr": json_number(result.esr),

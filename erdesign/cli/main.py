@@ -25,7 +25,7 @@ from .. import __version__
 from ..errors import ErdesignError
 from ..units import Q_
 
-__all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number"]
+__all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number", "check_effects_option"]
 
 
 def value_arg(text: str, si_unit: str) -> Any:
@@ -34,6 +34,29 @@ def value_arg(text: str, si_unit: str) -> Any:
         return Q_(float(text), si_unit)
     except ValueError:
         return text
+
+
+def check_effects_option(ctx, param, value):
+    """Callback of every ``--effects`` option: names separated by commas, none empty and none twice (``",,"`` was
+    read as no effect at all)."""
+    if value is None or value == "":
+        return value
+    items = [e.strip() for e in value.split(",")]
+    if any(not e for e in items):
+        raise click.BadParameter(f"{value!r} has an empty name; give effect names separated by commas, e.g. "
+                                 "'seal_friction,fluid_inertia'", ctx=ctx, param=param)
+    twice = sorted({e for e in items if items.count(e) > 1})
+    if twice:
+        raise click.BadParameter(f"{', '.join(twice)} given twice", ctx=ctx, param=param)
+    return ",".join(items)
+
+
+def install_option_checks(group: click.Group) -> None:
+    """Attach the shared checks to the options of every command of ``group`` that has them (``--effects``)."""
+    for command in group.commands.values():
+        for param in command.params:
+            if param.name == "effects" and param.callback is None:
+                param.callback = check_effects_option
 
 
 def emit_json(obj: dict) -> None:

@@ -8,13 +8,16 @@ from pathlib import Path
 
 import click
 
+from .._util import check_output_path
 from ..damper_file import load_damper
-from ..errors import ErdesignError
 from ..report import build_report, write_report
 from .main import cli, emit_json
 from .size import quantity_option
 
-__all__ = ["report", "default_report_path"]
+__all__ = ["report", "default_report_path", "REPORT_SUFFIXES"]
+
+#: Suffix of the report file -> its format (any other suffix is refused: --out x.pdf must not write HTML).
+REPORT_SUFFIXES = {".html": "html", ".htm": "html", ".md": "md", ".markdown": "md"}
 
 _EXAMPLES = """
 \b
@@ -69,11 +72,7 @@ def report(damper_file: str, velocity_range: tuple[str, str] | None, fields: tup
         path = default_report_path(damper.name, damper_file, fmt or "html")
     else:
         path = Path(out)
-    fmt = fmt or ("md" if path.suffix.lower() in (".md", ".markdown") else "html")
-    if path.resolve() == Path(damper_file).resolve():
-        raise ErdesignError(f"--out {path}: that is the damper file itself; choose another name")
-    if path.exists() and not force:
-        raise ErdesignError(f"{path}: exists; give --force to overwrite it, or --out another file")
+    path, fmt = check_output_path(path, force=force, inputs={"the damper file": damper_file}, formats=REPORT_SUFFIXES, fmt=fmt)
     rep = build_report(
         damper_file,
         velocity_range=None if velocity_range is None else tuple(

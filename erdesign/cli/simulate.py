@@ -31,14 +31,17 @@ def simulate(measurement_file: str, model_name: str, params: str, control_refere
     """Run a model with given parameters on a measurement and score it (ESR and more)."""
     from pathlib import Path
 
-    from ..errors import ErdesignError
     from ..identify import resolve_parameters
     from ..identify import simulate as run_model
     from ..measurement import read_measurement, write_measurement
     from ..models.registry import get_model
 
-    if out is not None and Path(out).exists() and not overwrite:
-        raise ErdesignError(f"--out: {out} exists; give --force to replace it")
+    from .._util import check_output_path
+
+    if out is not None:
+        out, _ = check_output_path(out, force=overwrite, formats={".csv": "csv"},
+                                   inputs={"the measurement file": measurement_file,
+                                                   "the parameter file": params if Path(params).exists() else None})
     if model_name == "physics":
         raise click.UsageError("--model physics takes a damper file: use 'erdesign fit' or 'erdesign diagnose'")
     model = get_model(model_name)

@@ -125,6 +125,10 @@ DUCT_PLACEMENTS = ("beside", "around")
 
 SAMPLINGS = ("sobol", "lhs")
 
+#: Most candidates a search may sample (about a minute per 2**20 on one core; the Sobol sampler stops at 2**30),
+#: the most it takes without a warning, and the largest chunk evaluated at once (memory: ~1 kB per candidate).
+MAX_SAMPLES, PLAUSIBLE_SAMPLES, MAX_CHUNK = 2**24, 2**21, 2**20
+
 _TOP_KEYS = ("name", "fluid", "design")
 _DESIGN_KEYS = ("configuration", "objective", "point", "limits", "bounds", "envelope", "search", "coil")
 _POINT_KEYS = ("velocity", "field", "min_force", "min_dynamic_range", "max_zero_field_force")
@@ -644,5 +648,16 @@ def _check_search(search: SearchSettings, where: str) -> None:
     for key in ("samples", "designs"):
         if not (isinstance(getattr(search, key), int) and getattr(search, key) >= 1):
             raise RequirementsError(f"{where}.{key}: must be a whole number >= 1")
-    if not (isinstance(search.chunk, int) and search.chunk >= 1024):
-        raise RequirementsError(f"{where}.chunk: must be a whole number >= 1024")
+    if search.samples > MAX_SAMPLES:
+        raise RequirementsError(f"{where}.samples: {search.samples} is more than the search takes (at most "
+                                f"{MAX_SAMPLES} = 2**24, hours of computing); narrow the bounds instead")
+    if search.samples > PLAUSIBLE_SAMPLES:
+        import warnings
+
+        from ..errors import PlausibilityWarning
+        warnings.warn(f"{where}.samples: {search.samples} candidates take minutes to evaluate (the default is "
+                      f"{SearchSettings().samples})", PlausibilityWarning, stacklevel=3)
+    if search.designs > 1000:
+        raise RequirementsError(f"{where}.designs: at most 1000 designs are returned, got {search.designs}")
+    if not (isinstance(search.chunk, int) and 1024 <= search.chunk <= MAX_CHUNK):
+        raise RequirementsError(f"{where}.chunk: must be a whole number from 1024 to {MAX_CHUNK}")

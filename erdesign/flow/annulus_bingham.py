@@ -55,6 +55,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+
+from ._checks import check_flow_args
 from scipy.optimize import elementwise
 
 from .bingham import bingham_slit_flow
@@ -247,6 +249,7 @@ def annulus_bingham_flow_rate(dp, tau_y, eta, L, d, h):
     ----------
     Fredrickson and Bird (1958); Makris et al. (seed 004), eq 6 (its thin-gap limit, printed with h^2 for h^3).
     """
+    check_flow_args(annulus=True, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     dp = np.asarray(dp, dtype=float)
     dp_abs = np.abs(dp)
     dp_y = 2.0 * tau_y * L / h
@@ -329,6 +332,7 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     ----------
     Fredrickson and Bird (1958); Makris et al. (seed 004), eq 7 (thin-gap limit, printed with h^2 for h^3).
     """
+    check_flow_args(annulus=True, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     Q, tau_y, eta, L, d, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (Q, tau_y, eta, L, d, h)))
     eps = h / d
     Q_abs = np.abs(Q)
@@ -428,6 +432,7 @@ def annulus_bingham_velocity(r, dp, tau_y, eta, L, d, h):
     ----------
     Fredrickson and Bird (1958); Bird, Stewart and Lightfoot (2002), problem 2B.7.
     """
+    check_flow_args(annulus=True, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     r, dp, tau_y, eta, L, d, h = np.broadcast_arrays(
         *(np.asarray(a, dtype=float) for a in (r, dp, tau_y, eta, L, d, h))
     )

@@ -42,6 +42,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ._checks import check_flow_args
+
 __all__ = [
     "yield_pressure_drop",
     "bingham_number",
@@ -81,6 +83,7 @@ def yield_pressure_drop(tau_y, L, h):
     ----------
     Makris et al., eq 2 with the stress reaching tau_y at both walls (r = h/2 from the centre plane).
     """
+    check_flow_args(tau_y=tau_y, L=L, h=h)
     return 2.0 * tau_y * L / h
 
 
@@ -106,6 +109,7 @@ def bingham_number(Q, tau_y, eta, d, h):
         Bi [-]; 0 for a Newtonian fluid, infinite for a blocked gap (Q = 0).  It relates to the ratio used in
         :func:`bingham_pressure_drop` by :math:`\Delta p_N / \Delta p_y = 6/\mathrm{Bi}`.
     """
+    check_flow_args(tau_y=tau_y, eta=eta, d=d, h=h)
     with np.errstate(divide="ignore"):
         return tau_y * h * np.pi * d * h / (eta * np.abs(Q))
 
@@ -148,6 +152,7 @@ def bingham_flow_rate(dp, tau_y, eta, L, d, h):
     ----------
     Makris et al., eq 6 (printed with h^2; h^3 is dimensionally right).  Phillips (1969) for the derivation.
     """
+    check_flow_args(tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     dp_abs = np.abs(dp)
     dp_y = yield_pressure_drop(tau_y, L, h)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -222,6 +227,7 @@ def bingham_slit_flow(Q, tau_y, eta, L, d, h):
     ----------
     Makris et al., eqs 5-7 (printed with h^2 where h^3 is dimensionally right).
     """
+    check_flow_args(tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     Q_abs = np.abs(Q)
     dp_y = yield_pressure_drop(tau_y, L, h)
     dp_n = 12.0 * eta * L * Q_abs / (np.pi * d * h**3)

@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._checks import check_flow_args
+
 __all__ = [
     "slit_pressure_drop",
     "slit_flow_rate",
@@ -64,6 +66,7 @@ def slit_pressure_drop(Q, eta, L, d, h):
     ----------
     Makris, Burton, Hill and Jordan, ER damper with annular ducts for seismic protection applications, eq 4.
     """
+    check_flow_args(eta=eta, L=L, d=d, h=h)
     return 12.0 * eta * L * Q / (np.pi * d * h**3)
 
 
@@ -73,6 +76,7 @@ def slit_flow_rate(dp, eta, L, d, h):
     The inverse of :func:`slit_pressure_drop`: :math:`Q = \pi d h^3 \Delta p / (12 \eta L)`.
     Parameters as in :func:`slit_pressure_drop`, with ``dp`` the pressure drop [Pa].
     """
+    check_flow_args(eta=eta, L=L, d=d, h=h)
     return np.pi * d * h**3 * dp / (12.0 * eta * L)
 
 
@@ -103,6 +107,7 @@ def annulus_conductance_ratio(d, h):
     is a difference of nearly equal terms.  Below ``h/d = 1e-2`` the series is used (its first omitted term,
 ``107 e^6/4725``, is below 3e-14 there).
     """
+    check_flow_args(annulus=True, d=d, h=h)
     e = np.asarray(h, dtype=float) / np.asarray(d, dtype=float)
     # R2/R1 = (1 + e)/(1 - e); R2^4 - R1^4 = d^4 e (1 + e^2)/2; (R2^2 - R1^2)^2 = d^4 e^2.
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -1,0 +1,46 @@
+"""Argument checks of the flow kernels: a value outside the domain of the formula is an error naming the argument.
+
+The kernels are vectorised and called in tight loops (design search, fitting), so the check is one comparison per
+argument; NaN passes (the caller's business), a negative or zero gap does not (it used to end in a bare
+ZeroDivisionError, or a silently dropped yield stress).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ErdesignError
+
+__all__ = ["check_flow_args"]
+
+_POSITIVE = ("eta", "L", "d", "h", "Dp")
+_NONNEGATIVE = ("tau_y", "dr")
+
+
+def _first(arr: np.ndarray, bad: np.ndarray) -> float:
+    return float(arr[bad][0] if arr.ndim else arr)
+
+
+def check_flow_args(*, annulus: bool = False, **values) -> None:
+    """Raise :class:`~erdesign.errors.ErdesignError` naming the first argument outside its domain: ``eta``, ``L``,
+    ``d``, ``h``, ``Dp`` positive; ``tau_y``, ``dr`` not negative; for an ``annulus``, ``h < d`` (the slit
+    formulas are also used in dimensionless form, with h = d = 1)."""
+    for name, value in values.items():
+        if value is None:
+            continue
+        try:
+            arr = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {value!r}") from None
+        if name in _POSITIVE:
+            bad = arr <= 0.0
+            if np.any(bad):
+                raise ErdesignError(f"{name}: must be positive, got {_first(arr, bad):g} (SI)")
+        elif name in _NONNEGATIVE:
+            bad = arr < 0.0
+            if np.any(bad):
+                raise ErdesignError(f"{name}: must not be negative, got {_first(arr, bad):g} (SI)")
+    if annulus and values.get("h") is not None and values.get("d") is not None:
+        h, d = np.asarray(values["h"], dtype=float), np.asarray(values["d"], dtype=float)
+        if np.any(h >= d):
+            raise ErdesignError("h: the gap must be smaller than the mean diameter d of the annulus")
