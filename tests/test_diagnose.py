@@ -177,3 +177,17 @@ def test_records_too_short_say_which_effect_and_why():
     rig0 = run_rig(damper, sine(0.005, 2.0, 0.0, cycles=4, rate=300), seed=1)
     d0 = diagnose(damper, rig0.record)
     assert "no field" in d0.not_judged["preyield_elasticity"] and "no field" in d0.not_judged["leakage"]
+
+
+@pytest.mark.parametrize("factor", [1e-3, 1e3])
+def test_force_column_off_by_a_unit_prefix_names_no_effect(factor):
+    # a clean friction record whose force column is in kN or mN but read as N: no effect may be named from it, and
+    # the reason names the force column (exactly a factor 1000: the threshold must lie below it)
+    import dataclasses
+    damper = load_example("makris")
+    rec = run_rig(damper, sweep([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500),
+                  hidden={"seal_friction": {"friction_force": 800.0}}, force_noise=0.02, seed=2).record
+    assert diagnose(damper, rec).missing_effect == "seal_friction"
+    result = diagnose(damper, dataclasses.replace(rec, force=rec.force * factor))
+    assert result.verdict == "unexplained" and result.missing_effect is None
+    assert "force column" in result.reason and "implausible" in result.reason
