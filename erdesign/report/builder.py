@@ -449,7 +449,7 @@ def report_grid(damper: Damper, velocity_range: Sequence[Any] | None, fields: Se
             raise ErdesignError("velocity_range: expected two velocities (lowest, highest)")
         v_lo, v_hi = (float(to_si(v, "m/s", f"velocity_range[{i}]")) for i, v in enumerate(velocity_range))
         if not (0 <= v_lo < v_hi):
-            raise ErdesignError(f"velocity_range: need 0 <= lowest < highest, got {velocity_range!r}")
+            raise ErdesignError(f"velocity_range: need 0 <= lowest < highest, got {v_lo:g} m/s to {v_hi:g} m/s")
     if design_velocity is None:
         v_design = v_hi
     else:
