@@ -14,7 +14,7 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from erdesign import load_damper
-from erdesign.diagnose import diagnose, improve
+from erdesign.diagnose import diagnose, fitted_model, improve
 from erdesign.measurement import read_measurement
 from erdesign.plots import error_history_figure
 from erdesign.report import ErrorHistoryStep
@@ -33,7 +33,7 @@ def _write(fig: go.Figure, path: Path) -> Path:
 
 def _loops(record, d, title: str) -> go.Figure:
     """Measured and model force against velocity, and the residual against time, of diagnosis ``d``."""
-    F = d.baseline.model.simulate(record, d.baseline.values)
+    F = fitted_model(d.baseline).simulate(record, d.baseline.values)
     fig = make_subplots(rows=1, cols=2, subplot_titles=("force - velocity", "residual - time"))
     fig.add_scatter(x=record.velocity * 1e3, y=record.force / 1e3, mode="lines", name="measured", row=1, col=1,
                     line=dict(color="#444"))

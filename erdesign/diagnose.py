@@ -43,7 +43,7 @@ from .noise import force_noise_esr, noise_floor_esr, sign_known, velocity_noise
 from .physics import PhysicsDamper, check_control
 
 __all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
-           "improve", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD", "MAX_SAMPLES", "VERDICTS"]
+           "improve", "fitted_model", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD", "MAX_SAMPLES", "VERDICTS"]
 
 #: A candidate must lower the residual sum of squares by at least this fraction ...
 MIN_GAIN = 0.05
@@ -108,8 +108,18 @@ class _Masked(Model):
         return self.inner.force(self.full, values)[self.mask]
 
 
-def _model(result: FitResult) -> PhysicsDamper:
-    """The physics model of a fit (unwrapped when it was fitted on a mask of the record)."""
+def fitted_model(result: FitResult) -> PhysicsDamper:
+    """The physics model of a fit, for the whole record: diagnosis fits on the samples where the sign of the
+    velocity is known, through a wrapper whose ``simulate`` returns those samples only; this unwraps it.
+
+    >>> from erdesign import load_example
+    >>> from erdesign.rig import run_rig, sine
+    >>> record = run_rig(load_example("makris"), sine(0.005, 2.0, 3e6, cycles=2, rate=200), seed=1).record
+    >>> d = diagnose(load_example("makris"), record, candidates=["seal_friction"])
+    >>> model = fitted_model(d.baseline)
+    >>> model.simulate(record, d.baseline.values).shape == record.force.shape
+    True
+    """
     return getattr(result.model, "inner", result.model)
 
 
@@ -291,7 +301,7 @@ class Candidate:
         if self.result is None:
             return {}
         out = {}
-        model = _model(self.result)
+        model = fitted_model(self.result)
         for e in self.effects:
             for p in EFFECTS[e].parameters(model.damper):
                 out[p.name] = model.parameter(p.name).format(self.result.values[p.name], digits).strip()
@@ -302,7 +312,7 @@ class Candidate:
             return {}
         out = {}
         for e in self.effects:
-            for p in EFFECTS[e].parameters(_model(self.result).damper):
+            for p in EFFECTS[e].parameters(fitted_model(self.result).damper):
                 se = self.result.stderr.get(p.name, math.nan)
                 out[p.name] = p.format(se, 2) if math.isfinite(se) else "not identifiable"
         return out
@@ -697,7 +707,7 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         base_esr = esr(record.force, base_model.simulate(record, base.values))
         for c in ranking:
             if c.evaluated:
-                e = esr(record.force, _model(c.result).simulate(record, c.result.values))
+                e = esr(record.force, fitted_model(c.result).simulate(record, c.result.values))
                 c.esr = e if math.isfinite(e) else None
                 if c.esr is None:
                     c.reason = "non-finite forces on the full record"
@@ -801,7 +811,7 @@ def _one_sided(cand: Candidate, work: Measurement, mask, floor: float) -> str | 
     an even term proportional to the size of the fluid force: the residual is regressed on :math:`|F_\text{fluid}|`
     (centred) over the judged samples.
     """
-    model = _model(cand.result)
+    model = fitted_model(cand.result)
     with np.errstate(all="ignore"):
         comps = model.components(work, cand.result.values)
     keep = np.ones(len(work), dtype=bool) if mask is None else mask
@@ -854,7 +864,7 @@ def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measureme
     if mask is not None:
         held, train = held & mask, train & mask
     F = record.force
-    model = _model(cand.result)
+    model = fitted_model(cand.result)
     try:
         b = _fit(base_model, record, start=cand.result.values, mask=train)
         c = _fit(model, record, start=cand.result.values, mask=train)

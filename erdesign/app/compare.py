@@ -15,6 +15,7 @@ import streamlit as st
 
 from erdesign import plots
 from erdesign.app import figures, state
+from erdesign.diagnose import fitted_model
 from erdesign.effects import EFFECTS
 from erdesign.errors import ErdesignError
 from erdesign.measurement import check_record
@@ -84,7 +85,7 @@ def _fitted(candidate) -> str:
     """The effect parameters a candidate fitted, with standard errors, in the unit system (its ``parameters()``
     chooses them; the values and errors come from its fit)."""
     result = candidate.result
-    model = getattr(result.model, "inner", result.model)       # fitted on part of the record: the wrapped model
+    model = fitted_model(result)       # fitted on part of the record: the model for the whole record
     parts = []
     for name in candidate.parameters():
         se = result.stderr.get(name, math.nan)

@@ -367,13 +367,17 @@ def example_records() -> list[str]:
 def example_damper_for(data: bytes) -> str | None:
     """The shipped example damper a built-in record was measured on, or None.
 
-    The rig writes ``# virtual rig: <damper name>; ...`` as the first line of its records; the name is matched
+    The rigs write ``# virtual rig: <damper name>; ...`` (:mod:`erdesign.rig`) or ``# truth rig: <damper name>
+    (<configuration>); ...`` (:mod:`erdesign.truthrig`) as the first line of their records; the name is matched
     against the ``name`` of the example damper files.
     """
     first = data[:400].decode("utf-8", "replace").splitlines()[0] if data else ""
-    if not first.startswith("# virtual rig:"):
+    prefix = next((p for p in ("# virtual rig:", "# truth rig:") if first.startswith(p)), None)
+    if prefix is None:
         return None
-    damper_name = first[len("# virtual rig:"):].split(";")[0].strip()
+    damper_name = first[len(prefix):].split(";")[0].strip()
+    if damper_name.endswith(")") and " (" in damper_name:          # the truth rig adds the configuration
+        damper_name = damper_name[: damper_name.rindex(" (")]
     for example in example_names():
         if example_spec(example).get("name") == damper_name:
             return example
