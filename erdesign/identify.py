@@ -11,7 +11,6 @@ from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from .errors import ErdesignError
 from .models._kernels import coarse_steps
@@ -564,6 +563,8 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
         out = np.concatenate(parts)
         return np.where(np.isfinite(out), out, 1e6)
 
+    from scipy.optimize import least_squares  # imported on use: not at start-up
+
     res = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac", max_nfev=max_nfev)
     v = values(res.x)
     return JointResult(model, v, [esr(F, model.force(r, v)) for r, F in zip(records, forces)],
@@ -905,6 +906,8 @@ def quiroz_hidden_constants(folder, records: Sequence[Measurement]) -> tuple[flo
                  for r, v, w in zip(records, base, scale)]
         out = np.concatenate(parts)
         return np.where(np.isfinite(out), out, 1e6)
+
+    from scipy.optimize import least_squares  # imported on use: not at start-up
 
     # a few starts: the loss has several basins in (A, beta/gamma)
     best = min((least_squares(residual, [math.log(a0), r0], bounds=([-10.0, -0.99], [15.0, 50.0]), max_nfev=60)
