@@ -13,7 +13,7 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from .errors import ErdesignError
-from .models._kernels import coarse_steps
+from .models._kernels import coarse_steps, frozen_substeps
 from .fit import FitError, FitResult, fit
 from .measurement import Measurement
 from .metrics import esr
@@ -49,25 +49,29 @@ STALL_JACOBIANS = 3
 
 class _Tracker:
     """Residual of one record (optionally on a subset of samples) that counts simulations, keeps the best point,
-    reports progress and enforces the time budget."""
+    reports progress and enforces the time budget; :meth:`jacobian` is its finite-difference Jacobian."""
 
-    def __init__(self, model, record, F, mask, full_values, deadline, progress, label, stall_rtol=None):
+    def __init__(self, model, record, F, mask, full_values, deadline, progress, label, stall_rtol=None, steps=None):
         self.stall_rtol = STALL_RTOL if stall_rtol is None else stall_rtol
         self.model, self.record, self.F, self.mask = model, record, F, mask
         self.full_values, self.deadline, self.progress, self.label = full_values, deadline, progress, label
+        self.steps = steps
         self.best_cost, self.best_z, self.calls = math.inf, None, 0
         self.history: list[float] = []
         self.spread = float(np.sum((F[mask] - F[mask].mean()) ** 2)) if mask is not None else \
             float(np.sum((F - F.mean()) ** 2))
         self.last_report = _time.monotonic()
+        self.last = None
 
-    def __call__(self, z):
+    def _residual(self, z):
         if self.deadline is not None and _time.monotonic() > self.deadline:
             raise _OutOfTime
         r = self.model.force(self.record, self.full_values(z)) - self.F
         if self.mask is not None:
             r = r[self.mask]
-        r = np.where(np.isfinite(r), r, 1e12)
+        return np.where(np.isfinite(r), r, 1e12)
+
+    def _book(self, z, r):
         cost = float(np.dot(r, r))
         self.calls += 1
         if cost < self.best_cost:
@@ -81,7 +85,48 @@ class _Tracker:
         if self.progress is not None and now - self.last_report > 2.0:
             self.last_report = now
             self.progress(f"{self.label}: {self.calls} simulations, best ESR {self.best_cost / self.spread:.4g}")
+
+    def __call__(self, z):
+        with frozen_substeps() as plans:  # records the kernels' sub-step counts for the Jacobian at z
+            r = self._residual(z)
+        self.last = (np.array(z, dtype=float), r, plans)
+        self._book(z, r)
         return r
+
+    def jacobian(self, z):
+        """Forward differences at z with the sub-step counts of the simulation at z held (smooth in the
+        parameters) and steps of 1e-6 of each parameter's scale (:func:`_fd_steps`), inside the bounds."""
+        if self.last is None or not np.array_equal(self.last[0], z):
+            self(z)
+        z0, r0, plans = self.last
+        J = np.empty((r0.size, z0.size))
+        with frozen_substeps(plans):
+            for j, h in enumerate(self.steps):
+                zp = z0.copy()
+                zp[j] += h
+                rj = self._residual(zp)
+                self._book(zp, rj)
+                J[:, j] = (rj - r0) / h
+        return J
+
+
+def _fd_steps(tr, names, model, z, lo, hi, rel=1e-6):
+    """Finite-difference steps in the search space: ``rel`` in log space for log-scale parameters; otherwise
+    ``rel`` times the parameter's scale, the largest |value| among the free parameters of its unit (a control
+    slope that starts at zero gets the scale of its base value), 1 when they are all zero.  A step points into the
+    bounds."""
+    z = np.asarray(z, dtype=float)
+    units = [model.parameter(n).unit for n in names]
+    steps = np.empty(z.size)
+    for j, (unit, lg) in enumerate(zip(units, tr.log)):
+        if lg:
+            scale = 1.0
+        else:
+            same = [abs(z[k]) for k in range(z.size) if units[k] == unit and not tr.log[k]]
+            scale = max(same) or 1.0
+        h = rel * scale
+        steps[j] = -h if z[j] + h > hi[j] and z[j] - h >= lo[j] else h
+    return steps
 
 
 #: Singular value (of the Jacobian with unit-norm columns) below which a direction of parameter space is taken as
@@ -127,17 +172,18 @@ class _StalledResult:
                         f"{STALL_JACOBIANS} Jacobians")
 
 
-def _fd_jacobian(fun, z, lo, hi, r0):
-    """Forward-difference Jacobian of ``fun`` at z (steps inside the bounds)."""
-    J = np.empty((r0.size, z.size))
-    for j in range(z.size):
-        h = 1.49e-8 * max(1.0, abs(z[j]))
-        if z[j] + h > hi[j]:
-            h = -h
-        zp = z.copy()
-        zp[j] += h
-        J[:, j] = (fun(zp) - r0) / h
-    return J
+def _fd_jacobian(fun, z, steps):
+    """Forward-difference Jacobian of ``fun`` at z with the given steps and the kernels' sub-step counts held;
+    returns (r0, J)."""
+    J = np.empty((0, z.size))
+    with frozen_substeps():
+        r0 = fun(z)
+        J = np.empty((r0.size, z.size))
+        for j, h in enumerate(steps):
+            zp = z.copy()
+            zp[j] += h
+            J[:, j] = (fun(zp) - r0) / h
+    return r0, J
 
 
 #: Relative decrease of the sum of squares below which the optimiser stops: 1e-6 changes the ESR in its sixth
@@ -241,11 +287,11 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         tracker = None
         for k, (rec, F, m, stage) in enumerate(stage_records):
             tracker = _Tracker(model, rec, F, m, full_values, deadline, progress, f"{label}, {stage}",
-                               stall.get(k, STALL_RTOL))
+                               stall.get(k, STALL_RTOL), _fd_steps(tr, free_names, model, z, lo, hi))
             try:
                 with coarse_steps():
-                    res = least_squares(tracker, z, bounds=(lo, hi), method="trf", x_scale="jac",
-                                        max_nfev=max_nfev, ftol=FTOL, xtol=1e-8)
+                    res = least_squares(tracker, z, jac=tracker.jacobian, bounds=(lo, hi), method="trf",
+                                        x_scale="jac", max_nfev=max_nfev, ftol=FTOL, xtol=1e-8)
                 z = res.x
             except _Stalled:
                 z = tracker.best_z
@@ -332,7 +378,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     if res is not None and res.jac is not None and stages[-1][0] is record and np.array_equal(res.x, z):
         J = res.jac
     else:
-        J = _fd_jacobian(full_residual, z, *tr.bounds(), r_full)
+        J = _fd_jacobian(full_residual, z, _fd_steps(tr, free_names, model, z, *tr.bounds()))[1]
     rss = float(np.dot(r_full, r_full))
     k = len(free_names)
     stderr, corr = _uncertainty(J, z, tr, rss, n_scored, k)

@@ -227,7 +227,8 @@ def _rate2(uf, xd, w, dw, z, P, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma,
 
 
 @_jit
-def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n, theta, max_sub):
+def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n, theta, max_sub,
+                      plan):
     r"""States (u_f, w, z) of Spencer's modified Bouc-Wen model at the samples.
 
     Input: displacement and dimensionless control linear between samples.  On each step:
@@ -243,6 +244,10 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, ga
     rare, so the global error stays fourth order in the sub-step in practice (tests/test_models.py: relative
     error <= 1e-4 at 3 kHz against LSODA at rtol 1e-10).  For n = 2 the travel constants (atanh phases, distance
     to z = 0) are computed once per sub-step, so each stage costs one tanh.
+
+    ``plan`` (int array of N - 1 entries, or empty): the number of sub-steps of each step.  An entry > 0 is used as
+    given; an entry <= 0 is replaced by the number chosen as above.  Held fixed, it makes the states smooth functions
+    of the parameters (the chosen number jumps with them), which finite-difference Jacobians need.
     """
     N = t.size
     UF = np.empty(N)
@@ -261,6 +266,7 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, ga
     k1c = a1 * r1
     r2 = math.sqrt(delta / a2) if two and a2 > 0.0 else 0.0
     k2c = a2 * r2 if a2 > 0.0 else 0.0
+    planned = plan.size == N - 1
     for i in range(N - 1):
         h = t[i + 1] - t[i]
         xd = (x[i + 1] - x[i]) / h
@@ -276,9 +282,14 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, ga
             al = aa + (ab + ac * uf) * uf
             cc = c0a + c0b * uf + c1a + c1b * uf
             lam = max(lam, (abs(al) * dz + abs(k0)) / abs(cc))
-        m = 1 + int(h * lam / theta)
-        if m > max_sub:
-            m = max_sub
+        if planned and plan[i] > 0:
+            m = plan[i]
+        else:
+            m = 1 + int(h * lam / theta)
+            if m > max_sub:
+                m = max_sub
+            if planned:
+                plan[i] = m
         H = h / m
         for j in range(m):
             s0 = j * H
