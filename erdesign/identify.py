@@ -21,7 +21,8 @@ from .models.base import Model
 
 __all__ = ["identify", "identify_joint", "cross_validation", "CrossValidation", "JointResult",
            "choose_control_reference", "score", "simulate", "Simulation", "resolve_parameters", "ParameterSource",
-           "fit_report", "result_json", "parameter_table", "strong_correlations", "fit_statistics"]
+           "fit_report", "result_json", "parameter_table", "strong_correlations", "fit_statistics", "joint_report",
+           "joint_json", "read_records", "read_quiroz_file", "read_quiroz_mat", "RECORD_FORMATS"]
 
 
 def choose_control_reference(model: Model, records: Sequence[Measurement]) -> float:
@@ -562,16 +563,32 @@ class JointResult:
     esr: list[float]
     names: list[str]
     success: bool
+    free: tuple[str, ...] = ()
+    message: str = ""
+    extra: dict | None = None
+    """``seconds``, ``simulations`` (of all records), ``excluded_samples`` per record, ``warnings``, ``initial``."""
+
+    @property
+    def mean_esr(self) -> float:
+        """Mean of the per-record ESRs (each record weighs alike, as in the fit)."""
+        return float(np.mean(self.esr))
 
 
 def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequence[str] | None = None,
                    fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None,
-                   max_nfev: int | None = None) -> JointResult:
+                   max_nfev: int | None = None, max_time: float | None = None, exclude_clipped: bool = False,
+                   progress=None) -> JointResult:
     """One parameter set for several records (each simulated from rest), by least squares on all residuals.
 
     Each record's residual is weighted by 1 / its force standard deviation, so that a record with small forces
-    (zero current) counts as much as one with large forces.
+    (zero current) counts as much as one with large forces.  ``max_time`` [s] stops with the best point found so
+    far (``success`` False); ``exclude_clipped`` leaves each record's flat-top force samples out of the residual
+    and the scores; ``progress`` (a callable taking a string) receives a line every few seconds.
     """
+    from .measurement import clipped_samples
+
+    t_start = _time.monotonic()
+    deadline = None if max_time is None else t_start + float(max_time)
     if not records:
         raise FitError("identify_joint: no records")
     for r in records:
@@ -586,7 +603,15 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     names = [n for n in (free or model.parameter_names) if n not in fixed]
     if not names:
         raise FitError(f"{model.name}: no free parameter to fit")
-    total = sum(len(r) for r in records)
+    masks = []
+    notes = []
+    for r in records:
+        clipped = clipped_samples(r.force)
+        masks.append(~clipped if exclude_clipped and clipped.any() else None)
+        if clipped.any() and not exclude_clipped:
+            notes.append(f"{r.name or 'a record'}: {int(clipped.sum())} force samples sit at a flat top or bottom; "
+                         "--exclude-clipped leaves them out")
+    total = sum(len(r) if m is None else int(m.sum()) for r, m in zip(records, masks))
     if total <= len(names):
         raise FitError(f"identify_joint: {total} samples cannot determine {len(names)} parameters")
     base = model.check_values({**model.initial_guess(records[0]), **(start or {}), **fixed})
@@ -596,25 +621,106 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     hi = np.array([math.log(p.upper) if p.log_scale else p.upper for p in params])
     z0 = np.clip([math.log(base[n]) if p.log_scale else base[n] for n, p in zip(names, params)], lo, hi)
     forces = [r.require_force() for r in records]
-    weights = [1.0 / max(float(np.std(F)), 1e-12) for F in forces]
+    weights = [1.0 / max(float(np.std(F if m is None else F[m])), 1e-12) for F, m in zip(forces, masks)]
 
     def values(z):
         v = dict(base)
         v.update({n: float(math.exp(q) if lg else q) for n, q, lg in zip(names, z, log)})
         return v
 
+    state = {"calls": 0, "best": math.inf, "best_z": None, "report": t_start}
+
     def residual(z):
+        if deadline is not None and _time.monotonic() > deadline:
+            raise _OutOfTime
         v = values(z)
         parts = [w * (model.force(r, v) - F) for r, F, w in zip(records, forces, weights)]
+        parts = [p if m is None else p[m] for p, m in zip(parts, masks)]
         out = np.concatenate(parts)
-        return np.where(np.isfinite(out), out, 1e6)
+        out = np.where(np.isfinite(out), out, 1e6)
+        cost = float(np.dot(out, out))
+        state["calls"] += 1
+        if cost < state["best"]:
+            state["best"], state["best_z"] = cost, np.array(z, dtype=float)
+        now = _time.monotonic()
+        if progress is not None and now - state["report"] > 2.0:
+            state["report"] = now
+            progress(f"joint fit of {len(records)} records: {state['calls']} simulations of all, "
+                     f"mean weighted sum of squares {state['best'] / total:.4g}")
+        return out
 
     from scipy.optimize import least_squares  # imported on use: not at start-up
 
-    res = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac", max_nfev=max_nfev)
-    v = values(res.x)
-    return JointResult(model, v, [esr(F, model.force(r, v)) for r, F in zip(records, forces)],
-                       [r.name for r in records], bool(res.success))
+    try:
+        res = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac", max_nfev=max_nfev)
+        z, success, message = res.x, bool(res.success), str(res.message)
+    except _OutOfTime:
+        z = z0 if state["best_z"] is None else state["best_z"]
+        success, message = False, "stopped by --max-time: the best point found so far"
+        notes.append(f"stopped at --max-time {max_time:g} s before the optimiser converged: the values are the best "
+                     "found so far")
+    v = values(z)
+    scores = []
+    for r, F, m in zip(records, forces, masks):
+        M = model.force(r, v)
+        scores.append(esr(F if m is None else F[m], M if m is None else M[m]))
+    return JointResult(model, v, scores, [r.name for r in records], success, tuple(names), message,
+                       {"seconds": _time.monotonic() - t_start, "simulations": state["calls"],
+                        "excluded_samples": [0 if m is None else int((~m).sum()) for m in masks],
+                        "warnings": notes, "initial": {n: base[n] for n in names}})
+
+
+def joint_report(result: JointResult, validation: Sequence[tuple[str, dict]] = ()) -> str:
+    """The report of a joint identification: per-record ESR, the shared parameters, validation, warnings."""
+    model = result.model
+    ex = result.extra or {}
+    width = max(len(n or "") for n in result.names)
+    lines = [f"[[Joint fit]] {model.title or model.name} on {len(result.names)} records, one parameter set",
+             f"  free parameters {len(result.free)}, simulations of all records {ex.get('simulations', '?')}, "
+             f"{ex.get('seconds', 0.0):.1f} s" + ("" if result.success else f"  - {result.message}"),
+             f"[[ESR per record]] (mean {result.mean_esr:.4g})"]
+    excluded = ex.get("excluded_samples") or [0] * len(result.names)
+    lines += [f"  {name or 'record':<{width}}  {e:.4g}" + (f"  ({k} clipped left out)" if k else "")
+              for name, e, k in zip(result.names, result.esr, excluded)]
+    lines.append("[[Parameters]]")
+    pw = max(len(n) for n in model.parameter_names)
+    for name in model.parameter_names:
+        text = model.parameter(name).format(result.values[name])
+        lines.append(f"  {name:<{pw}}  {text}" + ("" if name in result.free else " (fixed)"))
+    if validation:
+        lines.append("[[Validation]] (the identified set on other records)")
+        lines += [f"  {name}: ESR {m['esr']:.4g}, RMS residual {m['rms_residual_N']:.4g} N" for name, m in validation]
+    if ex.get("warnings"):
+        lines.append("[[Warnings]]")
+        lines += [f"  {w}" for w in ex["warnings"]]
+    return "\n".join(lines)
+
+
+def joint_json(result: JointResult, model_name: str, control_reference: str | None,
+               validation: Sequence[tuple[str, dict]] = ()) -> dict:
+    """The ``identify --joint --json`` object: ``model``, ``esr`` (the mean of the per-record ESRs), ``records``
+    (name, esr, excluded_samples), ``parameters`` (strings with units), ``parameters_si`` (value, unit, status
+    "free" or "fixed", initial), ``control_reference``, ``success``, ``message``, ``warnings``, ``validation``."""
+    def num(x):
+        return None if x is None or not math.isfinite(x) else float(x)
+
+    model = result.model
+    ex = result.extra or {}
+    excluded = ex.get("excluded_samples") or [0] * len(result.names)
+    initial = ex.get("initial", {})
+    return {"model": model_name, "joint": True, "esr": num(result.mean_esr),
+            "records": [{"record": n, "esr": num(e), "excluded_samples": k}
+                        for n, e, k in zip(result.names, result.esr, excluded)],
+            "parameters": {n: model.parameter(n).format(v) for n, v in result.values.items()},
+            "parameters_si": {n: {"value": float(v), "unit": model.parameter(n).unit,
+                                  "status": "free" if n in result.free else "fixed",
+                                  "initial": None if n not in initial else float(initial[n])}
+                              for n, v in result.values.items()},
+            "control_reference": control_reference, "success": bool(result.success), "message": result.message,
+            "simulations": ex.get("simulations"), "seconds": num(ex.get("seconds")),
+            "warnings": list(ex.get("warnings", ())),
+            "validation": [{"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
+                           for name, m in validation]}
 
 
 @dataclass
@@ -815,12 +921,24 @@ def _current_label(i: float) -> str:
     return f"{i:g}".replace(".", "x") + "A"
 
 
+_QUIROZ_NAME = r"(?P<amp>\d+(?:x\d+)?)mm(?P<freq>\d+(?:x\d+)?)Hz(?P<cur>\d+(?:x\d+)?)A"
+
+
 def read_quiroz_sinusoid(folder, test: str, current: float, *, cycles: float = 2.5,
                          samples_per_cycle: int = 200) -> Measurement:
+    """One preprocessed sinusoid of the Quiroz (2022) MR damper by test name and current
+    (:func:`read_quiroz_file` on ``folder/preprocessed/<test><current>A.txt``)."""
+    from pathlib import Path
+    return read_quiroz_file(Path(folder) / "preprocessed" / f"{test}{_current_label(current)}.txt", cycles=cycles,
+                            samples_per_cycle=samples_per_cycle)
+
+
+def read_quiroz_file(path, *, cycles: float = 2.5, samples_per_cycle: int = 200) -> Measurement:
     r"""One preprocessed sinusoid of the Quiroz (2022) MR damper, cropped and resampled for identification.
 
-    The file holds t [s], x [mm], v [mm/s], F [N] (see shared/data/README.md).  The last ``cycles`` periods are
-    kept (the start of each test is a transient of the press) and resampled by linear interpolation to
+    The file ``<amp>mm<freq>Hz<current>A.txt`` ('x' for the decimal point) holds t [s], x [mm], v [mm/s], F [N]
+    (see shared/data/README.md); frequency and coil current are read from its name.  The last ``cycles`` periods
+    are kept (the start of each test is a transient of the press) and resampled by linear interpolation to
     ``samples_per_cycle`` per period (the 5 Hz test is stored at only 40 per period; the models take the motion as
     linear between samples, so interpolation adds no information but keeps their time steps short).  The velocity
     is derived from x (Savitzky-Golay), not taken from the file's finite difference.
@@ -831,9 +949,22 @@ def read_quiroz_sinusoid(folder, test: str, current: float, *, cycles: float = 2
     lag (about 1/20 of a period), so the phase between them is kept, but sharp force changes at reversals are
     rounded over that window - a floor on the ESR any model can reach.
     """
+    import re
     from pathlib import Path
-    freq = dict(QUIROZ_TESTS)[test]
-    a = np.loadtxt(Path(folder) / "preprocessed" / f"{test}{_current_label(current)}.txt")
+    path = Path(path)
+    match = re.fullmatch(_QUIROZ_NAME, path.stem)
+    if match is None:
+        raise ErdesignError(f"{path}: not a Quiroz (2022) preprocessed file name (<amp>mm<freq>Hz<current>A.txt, "
+                            "'x' for the decimal point, e.g. 10mm1Hz0x5A.txt)")
+    freq, current = (float(match[k].replace("x", ".")) for k in ("freq", "cur"))
+    test = f"{match['amp']}mm{match['freq']}Hz"
+    try:
+        a = np.loadtxt(path, ndmin=2)
+    except ValueError as exc:
+        raise ErdesignError(f"{path}: not four whitespace-separated numeric columns t, x, v, F ({exc})") from None
+    if a.shape[1] != 4 or a.shape[0] < 10 or not np.all(np.isfinite(a)) or np.any(np.diff(a[:, 0]) <= 0):
+        raise ErdesignError(f"{path}: expected four numeric columns t [s], x [mm], v [mm/s], F [N] with increasing "
+                            f"time, got {a.shape[1]} columns and {a.shape[0]} rows")
     period = 1.0 / freq
     keep = a[:, 0] >= a[-1, 0] - cycles * period
     t0 = a[keep, 0][0]
@@ -846,15 +977,80 @@ def read_quiroz_sinusoid(folder, test: str, current: float, *, cycles: float = 2
 
 def read_quiroz_validation(folder, *, step: int = 1) -> list[Measurement]:
     """The earthquake-type validation record (validation/validacion.mat, 1 kHz): one record per current
-    (0.2 to 1.0 A), every ``step``-th sample."""
+    (0.2 to 1.0 A), every ``step``-th sample (:func:`read_quiroz_mat`)."""
     from pathlib import Path
+    return read_quiroz_mat(Path(folder) / "validation" / "validacion.mat", step=step)
+
+
+def read_quiroz_mat(path, *, step: int = 1) -> list[Measurement]:
+    """Quiroz's earthquake-type validation record (variable ``data``, 1 kHz: displacement [mm], then the force [N]
+    at 0.2, 0.4, 0.6, 0.8 and 1.0 A): one record per current, every ``step``-th sample."""
     from scipy.io import loadmat
-    data = loadmat(str(Path(folder) / "validation" / "validacion.mat"))["data"][::step]
+    try:
+        data = loadmat(str(path))["data"][::step]
+    except (KeyError, ValueError, OSError) as exc:
+        raise ErdesignError(f"{path}: not Quiroz's validation file (a MATLAB file with a 'data' matrix of 6 "
+                            f"columns: {exc})") from None
+    if data.ndim != 2 or data.shape[1] != 1 + len(QUIROZ_VALIDATION_CURRENTS):
+        raise ErdesignError(f"{path}: 'data' has shape {data.shape}, expected (samples, 6): displacement [mm] and the "
+                            "force [N] at 0.2, 0.4, 0.6, 0.8, 1.0 A")
     t = np.arange(data.shape[0]) * 1e-3 * step
     x = data[:, 0] * 1e-3
     return [Measurement.from_arrays(t, x, data[:, k + 1], control=i, control_kind="current",
                                     name=f"earthquake {i:g} A")
             for k, i in enumerate(QUIROZ_VALIDATION_CURRENTS)]
+
+
+#: Formats that :func:`read_records` knows.
+RECORD_FORMATS = ("auto", "csv", "quiroz", "quiroz-mat")
+
+
+def read_records(path, fmt: str = "auto", where: str = "MEASUREMENT") -> list[Measurement]:
+    """The records in one file: a measurement CSV (CONTRACTS.md section 2; one record), a Quiroz (2022)
+    preprocessed sinusoid (:func:`read_quiroz_file`; one record) or Quiroz's validation ``.mat``
+    (:func:`read_quiroz_mat`; one record per current).
+
+    ``fmt`` "auto" decides by the file: ``.mat`` is Quiroz's validation file; a file whose first line that is not
+    a ``#`` comment is numbers (no header with units) and whose name is ``<amp>mm<freq>Hz<current>A.txt`` is a
+    Quiroz sinusoid; anything else is read as a measurement CSV.  Errors name ``where`` and the file.
+    """
+    from pathlib import Path
+    from .measurement import read_measurement
+    if fmt not in RECORD_FORMATS:
+        raise ErdesignError(f"--format: {fmt!r} is not one of {', '.join(RECORD_FORMATS)}")
+    path = Path(path)
+    if not path.is_file():
+        raise ErdesignError(f"{where}: no such file {path}")
+    if fmt == "auto":
+        if path.suffix.lower() == ".mat":
+            fmt = "quiroz-mat"
+        else:
+            with open(path, "rb") as fh:
+                first = next((line for line in (raw.decode("utf-8", "replace").strip() for raw in fh)
+                              if line and not line.startswith("#")), "")
+            numeric = bool(first) and all(_is_number(tok) for tok in first.replace(",", " ").split())
+            if numeric:
+                import re
+                if re.fullmatch(_QUIROZ_NAME, path.stem) is None:
+                    raise ErdesignError(f"{where}: {path} has no header line with units (e.g. 'time [s],displacement "
+                                        "[mm],force [N]') and is not a Quiroz (2022) preprocessed file "
+                                        "(<amp>mm<freq>Hz<current>A.txt); see docs/real_data.md")
+                fmt = "quiroz"
+            else:
+                fmt = "csv"
+    if fmt == "quiroz":
+        return [read_quiroz_file(path)]
+    if fmt == "quiroz-mat":
+        return read_quiroz_mat(path)
+    return [read_measurement(path)]
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 def quiroz_source_values(folder, current: float, *, A: float = 1.0, beta_ratio: float = 1.0) -> dict[str, float]:
