@@ -17,6 +17,7 @@ from __future__ import annotations
 import importlib
 import json
 import math
+import os
 import sys
 import warnings
 from typing import Any
@@ -101,6 +102,11 @@ def cli() -> None:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``erdesign`` console script; returns the exit code."""
     args = sys.argv[1:] if argv is None else argv
+    if "numpy" not in sys.modules:
+        # One BLAS thread unless the user says otherwise: the matrices here are small and tall (an SVD of 60,000 x 13
+        # per optimiser step), where a second thread only contends (10 x slower on a loaded two-core machine).
+        for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+            os.environ.setdefault(name, "1")
 
     def show_warning(message, category, filename, lineno, file=None, line=None):
         click.echo(f"warning: {message}", err=True)
