@@ -134,3 +134,52 @@ def test_quiroz_validation_mat_is_five_records():
     recs = read_records(QUIROZ / "validation" / "validacion.mat")
     assert [float(r.control[0]) for r in recs] == [0.2, 0.4, 0.6, 0.8, 1.0]
     assert len(recs[0]) == 64648 and recs[0].sample_rate == pytest.approx(1000.0)
+
+
+DYKE = DATA / "dyke_nees" / "ransim_u.csv"
+needs_dyke = pytest.mark.skipif(not DYKE.is_file(), reason="Dyke's NEES record ../shared/data/dyke_nees/ransim_u.csv "
+                                                          "is not here (third-party data, not in the repository)")
+
+
+@needs_dyke
+@pytest.mark.slow
+def test_dyke_identification_beats_the_published_set(capsys):
+    """Issue 12: identification of the modified Bouc-Wen model on Dyke's ransim_u must beat Spencer et al.'s
+    published set on its own record (ESR 0.134 without the 217 clipped samples, shared/data/README.md: 0.13).
+    The fit converges to 0.0918 (docs/real_data.md); 0.10 leaves room for a different BLAS or numba."""
+    code, out, err = run(capsys, DYKE, "--model", "bouc_wen_modified", "--exclude-clipped", "--json", "--quiet")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["success"] and d["excluded_samples"] == 217
+    assert d["esr"] < 0.10
+    si = {k: v["value"] for k, v in d["parameters_si"].items()}
+    # the same damper as Spencer's: a filter of the same order (190 1/s published) and positive damping
+    assert 60.0 < si["eta"] < 400.0 and si["c0a"] > 0 and si["c1a"] > si["c0a"]
+
+
+def test_frozen_substeps_make_the_force_smooth_in_the_parameters():
+    """With the sub-step counts held, forward and central differences agree to their truncation error; with the
+    adaptive counts, a step of 1e-4 moves the count of a few samples, and each jump moves the force by the
+    discretisation error, which the difference divides by the step (8 % here)."""
+    import erdesign.models._kernels as kernels
+    from erdesign.models._kernels import frozen_substeps
+
+    t = np.arange(0, 10.0, 1 / 3000)
+    rng = np.random.default_rng(1)
+    x = np.convolve(rng.standard_normal(t.size), np.ones(60) / 60, "same") * 0.05
+    rec = Measurement.from_arrays(t, x, control=np.clip(1 + np.sin(7 * t), 0, 2), control_kind="voltage")
+    model = get_model("bouc_wen_modified")
+    v = {**model.defaults(), "alpha_a": 1e6, "alpha_b": 3e6, "c0b": 300.0, "c1b": 3e4}
+
+    def mismatch(frozen):
+        with frozen_substeps():
+            if not frozen:
+                kernels._PLANS = None  # adaptive counts inside the block (restored on exit)
+            F0 = model.force(rec, v)
+            Fp = model.force(rec, {**v, "alpha_a": 1e6 * (1 + 1e-4)})
+            Fm = model.force(rec, {**v, "alpha_a": 1e6 * (1 - 1e-4)})
+        forward, central = (Fp - F0) / 1e-4, (Fp - Fm) / 2e-4
+        return np.max(np.abs(forward - central)) / np.max(np.abs(central))
+
+    assert mismatch(True) < 1e-3
+    assert mismatch(False) > 1e-2
