@@ -183,3 +183,22 @@ def test_frozen_substeps_make_the_force_smooth_in_the_parameters():
 
     assert mismatch(True) < 1e-3
     assert mismatch(False) > 1e-2
+
+
+@needs_quiroz
+@pytest.mark.slow
+def test_quiroz_joint_modified_bouc_wen_from_the_command_line_reproduces_the_study(capsys):
+    """docs/real_data.md, the command-line study: the current-dependent modified Bouc-Wen on the 30 sinusoids from
+    the model's own guess (the library study starts from the source's fit) reaches the study's optimum."""
+    study = json.loads((Path(__file__).resolve().parents[1] / "docs" / "real_data.json").read_text())["models"]
+    files = sorted((QUIROZ / "preprocessed").glob("*.txt"))
+    code, out, err = run(capsys, *files, "--model", "bouc_wen_modified", "--joint", "--fix", "eta=190 1/s, delta=1",
+                         "--validate", QUIROZ / "validation" / "validacion.mat", "--json", "--quiet")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["parameters_si"]["eta"]["status"] == "fixed" and d["parameters_si"]["delta"]["value"] == 1.0
+    expected = np.mean(list(study["bouc_wen_modified"]["training_esr"].values()))  # 0.0165
+    assert d["esr"] == pytest.approx(expected, rel=0.05)
+    validation = {v["record"]: v["esr"] for v in d["validation"]}
+    for name, value in study["bouc_wen_modified"]["validation_esr"].items():
+        assert validation[name] == pytest.approx(value, rel=0.1), name
