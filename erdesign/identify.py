@@ -1049,11 +1049,14 @@ def read_records(path, fmt: str = "auto", where: str = "MEASUREMENT") -> list[Me
                 fmt = "quiroz"
             else:
                 fmt = "csv"
-    if fmt == "quiroz":
-        return [read_quiroz_file(path)]
-    if fmt == "quiroz-mat":
-        return read_quiroz_mat(path)
-    return [read_measurement(path)]
+    try:
+        if fmt == "quiroz":
+            return [read_quiroz_file(path)]
+        if fmt == "quiroz-mat":
+            return read_quiroz_mat(path)
+        return [read_measurement(path)]
+    except ErdesignError as exc:  # the same class, with the argument named first
+        raise type(exc)(f"{where}: {exc}") from None
 
 
 def _is_number(text: str) -> bool:

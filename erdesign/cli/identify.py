@@ -42,6 +42,7 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
              fmt: str, fix: str | None, starts: int, max_time: float | None, decimate: int, exclude_clipped: bool,
              validate: tuple[str, ...], quiet: bool, as_json: bool) -> None:
     """Identify a model's parameters from a measurement (simulation from rest at the first sample)."""
+    from ..errors import ErdesignError
     from ..fluid import CONTROL_UNITS
     from ..identify import (choose_control_reference, fit_report, identify_joint, joint_json, joint_report,
                             read_records, result_json)
@@ -75,8 +76,12 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
     fixed = {}
     if fix:
         choose_control_reference(model, records)
-        fixed = parse_parameter_values(model, parse_parameter_list(fix, "--fix"), control_kind=kind,
-                                       control_reference=model.control_reference, where="--fix")
+        try:
+            fixed = parse_parameter_values(model, parse_parameter_list(fix, "--fix"), control_kind=kind,
+                                           control_reference=model.control_reference, where="--fix")
+        except ErdesignError as exc:
+            message = str(exc)
+            raise ErdesignError(message if message.startswith("--fix") else f"--fix: {message}") from None
 
     def progress(message: str) -> None:
         if not quiet:
