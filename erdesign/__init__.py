@@ -17,43 +17,42 @@ The functions in this namespace take pint quantities or strings and return quant
 724.7 kPa
 """
 
-# Subpackages and workflow modules; functions named like a module (design.design, diagnose.diagnose,
-# identify.identify) are deliberately not lifted here, so that the module stays reachable by its name.
-from . import constitutive, design, diagnose, effects, field_laws, flow, identify, models, plots, report
-from .api import (
-    annulus_bingham_flow_rate,
-    annulus_bingham_pressure_drop,
-    annulus_pressure_drop,
-    bingham_flow_rate,
-    bingham_number,
-    bingham_plug_fraction,
-    bingham_pressure_drop,
-    couette_poiseuille_bingham,
-    makris_stress,
-    maxwell_stress,
-    mixed_mode_damper_force,
-    mixed_mode_yield_force,
-    slit_pressure_drop,
-    thin_gap_error,
-    yield_pressure_drop,
-)
-from .damper import Damper, QuasiSteadyState, SineResponse, SizingResult
-from .damper_file import load_damper, load_example
-from .diagnose import calibrate, improve
-from .fit import FitResult, fit
-from .identify import cross_validation, identify_joint
-from .inverse import inverse_control
-from .measurement import Measurement, read_measurement, write_measurement
-from .models.registry import get_model, model_names
-from .physics import PhysicsDamper
-from .rig import run_rig
-from .errors import DamperFileError, ErdesignError, ErdesignWarning, UnitError, ValidityWarning
-from .fluid import Fluid
-from .geometry import Geometry
-from .metrics import energy_per_cycle, equivalent_damping, esr
-from .units import Q_, ureg
+import importlib as _importlib
+import sys as _sys
+import types as _types
 
 __version__ = "0.1.0"
+
+# Public name -> module that defines it.  Nothing is imported until a name is first used (PEP 562), so that
+# ``import erdesign`` and ``erdesign --help`` do not pay for scipy, pint's registry, numba and plotly.
+_LAZY = {
+    **dict.fromkeys((
+        "annulus_bingham_flow_rate", "annulus_bingham_pressure_drop", "annulus_pressure_drop", "bingham_flow_rate",
+        "bingham_number", "bingham_plug_fraction", "bingham_pressure_drop", "couette_poiseuille_bingham",
+        "makris_stress", "maxwell_stress", "mixed_mode_damper_force", "mixed_mode_yield_force",
+        "slit_pressure_drop", "thin_gap_error", "yield_pressure_drop"), "api"),
+    **dict.fromkeys(("Damper", "QuasiSteadyState", "SineResponse", "SizingResult"), "damper"),
+    **dict.fromkeys(("load_damper", "load_example"), "damper_file"),
+    **dict.fromkeys(("calibrate", "improve"), "diagnose"),
+    **dict.fromkeys(("FitResult", "fit"), "fit"),
+    **dict.fromkeys(("cross_validation", "identify_joint"), "identify"),
+    "inverse_control": "inverse",
+    **dict.fromkeys(("Measurement", "read_measurement", "write_measurement"), "measurement"),
+    **dict.fromkeys(("get_model", "model_names"), "models.registry"),
+    "PhysicsDamper": "physics",
+    "run_rig": "rig",
+    **dict.fromkeys(("DamperFileError", "ErdesignError", "ErdesignWarning", "UnitError", "ValidityWarning"),
+                    "errors"),
+    "Fluid": "fluid",
+    "Geometry": "geometry",
+    **dict.fromkeys(("energy_per_cycle", "equivalent_damping", "esr"), "metrics"),
+    **dict.fromkeys(("Q_", "ureg"), "units"),
+}
+
+# Subpackages and workflow modules; functions named like a module (design.design, diagnose.diagnose,
+# identify.identify) are deliberately not lifted here, so that the module stays reachable by its name.
+_SUBMODULES = ("flow", "constitutive", "design", "diagnose", "effects", "field_laws", "identify", "models", "plots",
+               "report")
 
 __all__ = [
     "Damper", "QuasiSteadyState", "SineResponse", "SizingResult", "Fluid", "Geometry",
@@ -68,6 +67,49 @@ __all__ = [
     "annulus_bingham_pressure_drop", "annulus_bingham_flow_rate",
     "energy_per_cycle", "equivalent_damping", "esr",
     "ErdesignError", "UnitError", "DamperFileError", "ErdesignWarning", "ValidityWarning",
-    "Q_", "ureg", "flow", "constitutive", "design", "diagnose", "effects", "field_laws", "identify", "models", "plots",
-    "report",
+    "Q_", "ureg", *_SUBMODULES,
 ]
+
+
+def __getattr__(name):
+    """Import a public name, or any submodule (``erdesign.materials``), on first use."""
+    if name in _LAZY:
+        value = getattr(_importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    elif not name.startswith("__"):
+        try:
+            value = _importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
+
+
+class _Package(_types.ModuleType):
+    """The package's module type: ``erdesign.fit`` is the function :func:`erdesign.fit.fit`, as it was when the
+    package imported everything eagerly, even after the submodule ``erdesign.fit`` has been imported (the import
+    system then sets the parent's attribute to the submodule, which this property ignores)."""
+
+    @property
+    def fit(self):
+        value = self.__dict__.get("_fit_override")
+        return value if value is not None else _importlib.import_module(".fit", __name__).fit
+
+    @fit.setter
+    def fit(self, value):
+        if not isinstance(value, _types.ModuleType):  # a user's monkeypatch is honoured; the submodule is not
+            self.__dict__["_fit_override"] = value
+
+    @fit.deleter
+    def fit(self):
+        self.__dict__.pop("_fit_override", None)
+
+
+_sys.modules[__name__].__class__ = _Package

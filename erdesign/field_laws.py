@@ -32,8 +32,6 @@ from dataclasses import dataclass
 from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
-from scipy.stats import linregress
 
 from ._util import scalar_or_array
 from .errors import ErdesignError, UnitError
@@ -273,6 +271,8 @@ def fit_power_law(E, tau_y, *, anchor=None) -> PowerLawFit:
             n = float((y[1] - y[0]) / (x[1] - x[0]))
             log_tau_ref, stderr = float(y[0] - n * x[0]), 0.0
         else:
+            from scipy.stats import linregress  # imported here: scipy.stats costs ~0.5 s at start-up
+
             r = linregress(x, y)
             n, log_tau_ref, stderr = float(r.slope), float(r.intercept), float(r.stderr)
         tau_ref = math.exp(log_tau_ref)
@@ -448,7 +448,9 @@ class TabulatedLaw(FieldLaw):
                 raise ErdesignError(f"tabulated law: {why}")
 
     @functools.cached_property
-    def _interpolant(self) -> PchipInterpolator:
+    def _interpolant(self) -> "PchipInterpolator":  # noqa: F821
+        from scipy.interpolate import PchipInterpolator  # imported here: costs ~1 s at start-up
+
         return PchipInterpolator(np.asarray(self.fields), np.asarray(self.stresses), extrapolate=False)
 
     def yield_stress(self, E):

@@ -22,8 +22,6 @@ from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
 import numpy as np
-from scipy.optimize import differential_evolution, least_squares
-from scipy.stats import qmc
 
 from .errors import ErdesignError
 from .measurement import Measurement
@@ -201,6 +199,9 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     def residual(z: np.ndarray) -> np.ndarray:
         r = model.force(record, full_values(z)) - F
         return np.where(np.isfinite(r), r, 1e12)
+
+    from scipy.optimize import differential_evolution, least_squares  # imported on use: not at start-up
+    from scipy.stats import qmc
 
     r0 = residual(z0)
     if not np.all(np.isfinite(model.force(record, full_values(z0)))):

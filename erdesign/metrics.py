@@ -16,7 +16,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from scipy.integrate import trapezoid
+from numpy import trapezoid
 
 from .errors import ErdesignError
 

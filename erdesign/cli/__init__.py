@@ -1,8 +1,6 @@
-"""The ``erdesign`` command line: one module per command, registered on the group by importing it here."""
+"""The ``erdesign`` command line: one module per command, imported by the group only when its command runs
+(:data:`erdesign.cli.main.COMMANDS`)."""
 
-from . import app, design, diagnose, fit, identify, magnetics, materials, models, report, simulate, size  # noqa: F401  (registers commands)
-from .main import cli, install_option_checks, main, run
-
-install_option_checks(cli)
+from .main import cli, main, run
 
 __all__ = ["cli", "main", "run"]

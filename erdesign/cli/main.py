@@ -1,7 +1,8 @@
 """The ``erdesign`` command group, its entry point and the helpers the commands share.
 
-The commands themselves live one per module beside this one (``size.py`` ...) and are registered in
-``erdesign/cli/__init__.py``.  Contract (shared/CONTRACTS.md section 3):
+The commands themselves live one per module beside this one (``size.py`` ...).  The group knows them by name
+(:data:`COMMANDS`) and imports a command's module only when that command runs, so that ``erdesign --help`` does not
+pay for the library behind every command.  Contract (shared/CONTRACTS.md section 3):
 
 Every command takes ``--json``: stdout is then exactly one JSON object.  Errors go to stderr as one line without a
 traceback and the exit code is 1 (bad input) or 2 (bad command-line usage); warnings go to stderr as
@@ -13,8 +14,10 @@ is read in SI units (m/s; the field in the SI unit of the damper's control: V/m,
 
 from __future__ import annotations
 
+import importlib
 import json
 import math
+import os
 import sys
 import warnings
 from typing import Any
@@ -23,13 +26,60 @@ import click
 
 from .. import __version__
 from ..errors import ErdesignError
-from ..units import Q_
 
-__all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number", "check_effects_option"]
+__all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number", "check_effects_option", "COMMANDS"]
+
+# Command name -> (module beside this one, one-line help shown by ``erdesign --help``).  The module registers the
+# command on :data:`cli` when it is imported; tests/test_cli_startup.py checks that the help lines here are the
+# commands' own.
+COMMANDS: dict[str, tuple[str, str]] = {
+    "app": ("app", "Open the design app (Size, Simulate, Compare and diagnose, Report) in the browser."),
+    "design": ("design", "Feasible damper geometries ranked by the objective, or the conflicts when there are none."),
+    "diagnose": ("diagnose",
+                 "Calibrate the physics baseline, show where it fails and rank the effects that could be missing."),
+    "fit": ("fit",
+            "Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects."),
+    "identify": ("identify",
+                 "Identify a model's parameters from a measurement (simulation from rest at the first sample)."),
+    "magnetics": ("magnetics", "Magnetic circuit of an MR damper with a [coil]: gap flux density, yield stress, "
+                               "coil R, L, L/R, power."),
+    "materials": ("materials",
+                  'List the fluids of the materials database (name it in a damper file: material = "...").'),
+    "models": ("models", "List the damper models with their sources and parameters."),
+    "report": ("report", "Write a self-contained engineering report on a damper (inputs, results, equations, "
+                         "checks, plots)."),
+    "simulate": ("simulate", "Run a model with given parameters on a measurement and score it (ESR and more)."),
+    "size": ("size", "Quasi-steady design point of a damper at one piston velocity and control."),
+}
+
+
+class LazyGroup(click.Group):
+    """A click group that imports a command's module only when the command is looked up to run."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(set(COMMANDS) | set(self.commands))
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in self.commands and cmd_name in COMMANDS:
+            importlib.import_module(f".{COMMANDS[cmd_name][0]}", __package__)
+        install_option_checks(self)          # the shared option checks, on commands however they were imported
+        return self.commands.get(cmd_name)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The command list of ``--help`` from :data:`COMMANDS`, without importing the commands."""
+        names = self.list_commands(ctx)
+        limit = formatter.width - 6 - max((len(name) for name in names), default=0)
+        rows = [(name, self.commands[name].get_short_help_str(limit) if name in self.commands
+                 else click.utils.make_default_short_help(COMMANDS[name][1], limit)) for name in names]
+        if rows:
+            with formatter.section("Commands"):
+                formatter.write_dl(rows)
 
 
 def value_arg(text: str, si_unit: str) -> Any:
     """A command-line value: a quantity string, or a plain number in SI units."""
+    from ..units import Q_
+
     try:
         return Q_(float(text), si_unit)
     except ValueError:
@@ -67,7 +117,7 @@ def json_number(x: float | None) -> float | None:
     return None if x is None or not math.isfinite(x) else x
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="erdesign")
 def cli() -> None:
     """erdesign: design and diagnose ER and MR dampers with annular ducts."""
@@ -76,6 +126,11 @@ def cli() -> None:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``erdesign`` console script; returns the exit code."""
     args = sys.argv[1:] if argv is None else argv
+    if "numpy" not in sys.modules:
+        # One BLAS thread unless the user says otherwise: the matrices here are small and tall (an SVD of 60,000 x 13
+        # per optimiser step), where a second thread only contends (10 x slower on a loaded two-core machine).
+        for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+            os.environ.setdefault(name, "1")
 
     def show_warning(message, category, filename, lineno, file=None, line=None):
         click.echo(f"warning: {message}", err=True)

@@ -57,7 +57,6 @@ from typing import NamedTuple
 import numpy as np
 
 from ._checks import check_flow_args
-from scipy.optimize import elementwise
 
 from .bingham import bingham_slit_flow
 
@@ -124,6 +123,7 @@ def _plug_offset(phi, eps):
     """Distance of the plug's inner edge from the inner wall over h, t1, for plug fraction phi < 1."""
     R1 = _inner_radius(eps)
     upper = 1.0 - phi
+    from scipy.optimize import elementwise  # imported here, not at start-up
     res = elementwise.find_root(_continuity, (np.zeros_like(upper), upper), args=(phi, R1), tolerances=_TOLERANCES)
     # A degenerate bracket (phi -> 1) leaves nothing to solve: the plug fills the gap.
     return np.where(upper > 0.0, res.x, 0.0)
@@ -349,6 +349,7 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
             if not np.any(short):
                 break
             lower = np.where(short, 0.5 * lower, lower)
+        from scipy.optimize import elementwise  # imported here, not at start-up
         res = elementwise.find_root(_excess_flow, (lower, np.ones_like(lower)), args=(e, ratio),
                                     tolerances=_TOLERANCES)
         phi[solve] = res.x

@@ -54,7 +54,6 @@ from enum import IntEnum
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import elementwise
 
 from ..errors import ErdesignError
 
@@ -258,6 +257,7 @@ def _solve(U, q, tau_y, eta, h):
             return _flow(G, Ub, ep) - qb
 
         half_width = 3.0 * ep + 1e-3
+        from scipy.optimize import elementwise  # imported here, not at start-up
         bracket = elementwise.bracket_root(residual, GN - half_width, GN + half_width, args=(Ub, qb, ep))
         root = elementwise.find_root(residual, bracket.bracket, args=(Ub, qb, ep))
         if not np.all(root.success):  # pragma: no cover - q(G) is monotone and continuous: a bug if reached

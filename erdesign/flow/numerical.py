@@ -64,8 +64,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg import solve_banded
-from scipy.special import wrightomega
 
 from ..errors import ErdesignError
 
@@ -175,6 +173,7 @@ def _shear_rate(tau, bi, M):
     k = M / bi_p
     s = np.abs(tau)
     excess = s - bi_p
+    from scipy.special import wrightomega  # imported here, not at start-up
     gamma = np.maximum(excess + wrightomega(np.log(M) - k * excess) / k, s / (1.0 + M))
     for _ in range(30):  # quadratic convergence: 2 or 3 steps; rounding then leaves relative steps ~1e-14
         f = gamma - bi_p * np.expm1(-k * gamma) - s
@@ -218,6 +217,7 @@ def _solve_mixed(compliance, disc, rhs):
     ab[0, :, 2::2] = disc.w[:, 1:]  # row 2i - 1, column 2i (stress of element i)
     ab[2, :, 1::2] = -1.0  # row 2e, column 2e - 1 (velocity of node e)
     ab[2, :, 0:-1:2] = -disc.w[:, :-1]  # row 2i - 1, column 2i - 2 (stress of element i - 1)
+    from scipy.linalg import solve_banded  # imported here, not at start-up
     x = solve_banded((1, 1), ab.reshape(3, -1), rhs.reshape(ncase * size, -1), check_finite=False)
     return x.reshape(rhs.shape)
 

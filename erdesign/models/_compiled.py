@@ -214,20 +214,32 @@ def _eval2(q0, L, L0, c1, c2, beta, gamma, delta, r1, k1, r2, k2):
 
 
 @_jit
-def _rate2(uf, xd, w, dw, z, P, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, r1, k1, r2, k2):
-    """As :func:`_rate` for n = 2 with the travel constants P = (L0+, c1+, c2+, L0-, c1-, c2-) of the sub-step."""
+def _rate2(uf, xd, w, dw, zz, aa, ab, ac, c0a, c0b, c1a, c1b, k0):
+    """dw/dt at control uf, w + dw, with the Bouc-Wen variable zz there (n = 2: :func:`_zt`)."""
     al = aa + (ab + ac * uf) * uf
     c0 = c0a + c0b * uf
     c1 = c1a + c1b * uf
-    if dw >= 0.0:
-        zz = _eval2(z, dw, P[0], P[1], P[2], beta, gamma, delta, r1, k1, r2, k2)
-    else:
-        zz = -_eval2(-z, -dw, P[3], P[4], P[5], beta, gamma, delta, r1, k1, r2, k2)
     return (c1 * xd - al * zz - k0 * (w + dw)) / (c0 + c1)
 
 
 @_jit
-def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n, theta, max_sub):
+def _zt(z, dw, C, beta, gamma, delta, r1, k1, r2, k2):
+    """z after a travel dw from z (n = 2), with the travel constants of either direction computed on first use
+    and kept in C = [have+, L0+, c1+, c2+, have-, L0-, c1-, c2-] for the rest of the sub-step."""
+    if dw >= 0.0:
+        if C[0] == 0.0:
+            C[1], C[2], C[3] = _setup2(z, beta, gamma, delta, r1, k1, r2, k2)
+            C[0] = 1.0
+        return _eval2(z, dw, C[1], C[2], C[3], beta, gamma, delta, r1, k1, r2, k2)
+    if C[4] == 0.0:
+        C[5], C[6], C[7] = _setup2(-z, beta, gamma, delta, r1, k1, r2, k2)
+        C[4] = 1.0
+    return -_eval2(-z, -dw, C[5], C[6], C[7], beta, gamma, delta, r1, k1, r2, k2)
+
+
+@_jit
+def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n, theta, max_sub,
+                      plan):
     r"""States (u_f, w, z) of Spencer's modified Bouc-Wen model at the samples.
 
     Input: displacement and dimensionless control linear between samples.  On each step:
@@ -243,6 +255,10 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, ga
     rare, so the global error stays fourth order in the sub-step in practice (tests/test_models.py: relative
     error <= 1e-4 at 3 kHz against LSODA at rtol 1e-10).  For n = 2 the travel constants (atanh phases, distance
     to z = 0) are computed once per sub-step, so each stage costs one tanh.
+
+    ``plan`` (int array of N - 1 entries, or empty): the number of sub-steps of each step.  An entry > 0 is used as
+    given; an entry <= 0 is replaced by the number chosen as above.  Held fixed, it makes the states smooth functions
+    of the parameters (the chosen number jumps with them), which finite-difference Jacobians need.
     """
     N = t.size
     UF = np.empty(N)
@@ -261,52 +277,63 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, ga
     k1c = a1 * r1
     r2 = math.sqrt(delta / a2) if two and a2 > 0.0 else 0.0
     k2c = a2 * r2 if a2 > 0.0 else 0.0
+    planned = plan.size == N - 1
+    C = np.zeros(8)  # travel constants of the current sub-step (_zt)
     for i in range(N - 1):
         h = t[i + 1] - t[i]
         xd = (x[i + 1] - x[i]) / h
         r = (u[i + 1] - u[i]) / h
-        C = y - u[i] + r * tau
-        y1 = _lagged(u[i], r, C, tau, h) if filt else u[i + 1]
+        Cf = y - u[i] + r * tau
+        y1 = _lagged(u[i], r, Cf, tau, h) if filt else u[i + 1]
         # coupling rate at both ends of the step (the larger bounds the step)
         # |dZ/dw| at z for either direction of travel: |delta - (beta +- gamma)|z|^n|
-        zn = abs(z) ** n
+        zn = z * z if n == 2.0 else abs(z) ** n
         dz = max(abs(delta - (beta + gamma) * zn), abs(delta - (beta - gamma) * zn))
         lam = 0.0
         for uf in (y, y1):
             al = aa + (ab + ac * uf) * uf
             cc = c0a + c0b * uf + c1a + c1b * uf
             lam = max(lam, (abs(al) * dz + abs(k0)) / abs(cc))
-        m = 1 + int(h * lam / theta)
-        if m > max_sub:
-            m = max_sub
+        if planned and plan[i] > 0:
+            m = plan[i]
+        else:
+            m = 1 + int(h * lam / theta)
+            if m > max_sub:
+                m = max_sub
+            if planned:
+                plan[i] = m
         H = h / m
+        if filt:  # the lag's exponential at the sub-step's start, middle and end, by products of one factor
+            eh = math.exp(-0.5 * H / tau)
+            E = 1.0
         for j in range(m):
             s0 = j * H
             if filt:
-                ua = _lagged(u[i], r, C, tau, s0)
-                um = _lagged(u[i], r, C, tau, s0 + 0.5 * H)
-                ub = _lagged(u[i], r, C, tau, s0 + H)
+                base = u[i] + r * (s0 - tau)
+                ua = base + Cf * E
+                E *= eh
+                um = base + r * 0.5 * H + Cf * E
+                E *= eh
+                ub = base + r * H + Cf * E
             else:
                 ua = u[i] + r * s0
                 um = ua + r * 0.5 * H
                 ub = ua + r * H
             if two:
-                Lp, c1p, c2p = _setup2(z, beta, gamma, delta, r1, k1c, r2, k2c)
-                Lm, c1m, c2m = _setup2(-z, beta, gamma, delta, r1, k1c, r2, k2c)
-                P = (Lp, c1p, c2p, Lm, c1m, c2m)
-                k1 = _rate2(ua, xd, w, 0.0, z, P, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, r1, k1c,
-                            r2, k2c)
-                k2 = _rate2(um, xd, w, 0.5 * H * k1, z, P, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta,
-                            r1, k1c, r2, k2c)
-                k3 = _rate2(um, xd, w, 0.5 * H * k2, z, P, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta,
-                            r1, k1c, r2, k2c)
-                k4 = _rate2(ub, xd, w, H * k3, z, P, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, r1,
-                            k1c, r2, k2c)
+                C[0] = 0.0
+                C[4] = 0.0
+                k1 = _rate2(ua, xd, w, 0.0, z, aa, ab, ac, c0a, c0b, c1a, c1b, k0)
+                d = 0.5 * H * k1
+                k2 = _rate2(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), aa, ab, ac, c0a, c0b,
+                            c1a, c1b, k0)
+                d = 0.5 * H * k2
+                k3 = _rate2(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), aa, ab, ac, c0a, c0b,
+                            c1a, c1b, k0)
+                d = H * k3
+                k4 = _rate2(ub, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), aa, ab, ac, c0a, c0b,
+                            c1a, c1b, k0)
                 dw = H / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
-                if dw >= 0.0:
-                    z = _eval2(z, dw, Lp, c1p, c2p, beta, gamma, delta, r1, k1c, r2, k2c)
-                else:
-                    z = -_eval2(-z, -dw, Lm, c1m, c2m, beta, gamma, delta, r1, k1c, r2, k2c)
+                z = _zt(z, dw, C, beta, gamma, delta, r1, k1c, r2, k2c)
             else:
                 k1 = _rate(ua, xd, w, 0.0, z, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n)
                 k2 = _rate(um, xd, w, 0.5 * H * k1, z, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n)

@@ -132,6 +132,32 @@ class coarse_steps:
         return False
 
 
+_EMPTY_PLAN = np.zeros(0, dtype=np.int64)
+_PLANS: dict | None = None
+
+
+class frozen_substeps:
+    """Context manager: the first simulation of a record (keyed by its length) inside the block records the number
+    of sub-steps (into ``plans``, a dict returned by ``with``; pass it again to reuse the counts) of each step of :func:`modified_bouc_wen`; later ones reuse it.  The states are then smooth in the
+    parameters, as a finite-difference Jacobian needs (the adaptive count jumps by one somewhere in the record
+    for almost any parameter step, and each jump moves the force by the discretisation error: far more than the
+    step's effect when the step is small).  Models without sub-steps ignore it."""
+
+    def __init__(self, plans: dict | None = None):
+        self.plans = {} if plans is None else plans
+
+    def __enter__(self) -> dict:
+        """The plans: record length -> sub-step counts (filled by the first simulation of each length)."""
+        global _PLANS
+        self.saved, _PLANS = _PLANS, self.plans
+        return self.plans
+
+    def __exit__(self, *exc):
+        global _PLANS
+        _PLANS = self.saved
+        return False
+
+
 def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
     r"""States of Spencer's modified Bouc-Wen model (seed 001 eqs 10-12; Spencer et al. 1997) for a displacement
     and a dimensionless control that are linear between samples.
@@ -167,6 +193,7 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
     u = np.ascontiguousarray(np.broadcast_to(np.asarray(u, dtype=float), t.shape))
     eta = float(eta) if math.isfinite(eta) else 1e300
     aa, ab, ac = (float(a) for a in alpha)
+    plan = _EMPTY_PLAN if _PLANS is None else _PLANS.setdefault(t.size, np.zeros(max(t.size - 1, 0), dtype=np.int64))
     return _compiled().modified_bouc_wen(t, x, u, eta, aa, ab, ac, float(c0[0]), float(c0[1]), float(c1[0]),
                                          float(c1[1]), float(k0), float(beta), float(gamma), float(delta), float(n),
-                                         RK4_THETA, MAX_SUBSTEPS)
+                                         RK4_THETA, MAX_SUBSTEPS, plan)

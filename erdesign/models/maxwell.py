@@ -12,7 +12,6 @@ is computed as an exact discrete-time filter of the sampled velocity (first-orde
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from ..errors import ErdesignError
 from ._kernels import first_order_lag
@@ -266,6 +265,8 @@ class MaxwellNeural(Maxwell):
 
         def jac(w):
             return np.vstack([_mlp_jacobian(w, qs, self.hidden), regularisation * np.eye(size)])
+
+        from scipy.optimize import least_squares  # imported on use: not at start-up
 
         res = least_squares(resid, w0, jac=jac, method="lm", max_nfev=200)  # MINPACK QR: no SVD per step
         self.weights = res.x * np.r_[np.ones(size - self.hidden - 1), np.full(self.hidden + 1, norm)]

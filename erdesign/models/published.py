@@ -83,7 +83,7 @@ def published_set(model_name: str, set_name: str) -> PublishedSet:
                         {k: v.get("source", "") for k, v in entry["parameters"].items()}, printed)
 
 
-def parse_parameter_list(text: str) -> dict[str, str]:
+def parse_parameter_list(text: str, where: str = "--params") -> dict[str, str]:
     """``"c0=4000 N*s/m, f_c=0.5 kN"`` -> ``{"c0": "4000 N*s/m", "f_c": "0.5 kN"}`` (bad items are errors naming
     them)."""
     out: dict[str, str] = {}
@@ -92,9 +92,9 @@ def parse_parameter_list(text: str) -> dict[str, str]:
             continue
         name, sep, value = item.partition("=")
         if not sep or not name.strip() or not value.strip():
-            raise ParameterError(f"--params: {item!r} is not 'name=value unit'")
+            raise ParameterError(f"{where}: {item!r} is not 'name=value unit'")
         if name.strip() in out:
-            raise ParameterError(f"--params: {name.strip()} is given twice")
+            raise ParameterError(f"{where}: {name.strip()} is given twice")
         out[name.strip()] = value.strip()
     if not out:
         raise ParameterError("--params: no 'name=value unit' item")
