@@ -21,7 +21,8 @@ DOC = Path(__file__).resolve().parent / "models.md"
 INTEGRATION = {
     "bingham": "algebraic in the measured velocity (no state)",
     "bingham_extended": "implicit (backward Euler) sub-steps of the dead-zone form of the Coulomb element, 64 per "
-                        "sample by default (a compiled loop): the plastic branch is extremely stiff (seed 001), the "
+                        "sample by default (a compiled loop): the plastic branch is extremely stiff (Butz and von "
+                        "Stryk 2002), the "
                         "implicit step is unconditionally stable and first order; tested against Radau at rtol 1e-10 "
                         "(error 5e-5 of the force spread at 1 ms samples, halving with the step)",
     "powell": "algebraic in the measured velocity and acceleration (no state)",
@@ -57,9 +58,9 @@ INTEGRATION = {
 MISPRINTS = """\
 ## Misprints and departures from the sources
 
-- **BingMax, seed 001 eq 7 vs eq 6 and Makris eq 16.** Seed 001 writes the model as
+- **BingMax, Butz and von Stryk (2002) eq 7 vs eq 6 and Makris eq 16.** Butz and von Stryk (2002) writes the model as
   F + lambda dF/dt = C du/dt + F_y sgn(du/dt), which low-passes the friction too; that disagrees with its own
-  eq 6 and with Makris (seed 004) eq 16, where the friction acts in parallel with the Maxwell element,
+  eq 6 and with Makris et al. (1996) eq 16, where the friction acts in parallel with the Maxwell element,
   unfiltered. `bingmax` implements eq 6 / Makris eq 16.
 - **Biviscous, seed 003 eq 60.** Printed with C_post + F_y (the velocity factor of C_post is missing); the
   continuous law F = C_post v + F_y sgn v above yield is meant and implemented.
@@ -69,14 +70,16 @@ MISPRINTS = """\
   the two branches of a sinusoidal cycle have the same |x| at the same velocity, so the term cannot open the
   force-velocity loop that A is said to set; dx/dt + A x opens it by A X0 in velocity, as described. The bracket
   follows the standard magic formula (eq 99).
-- **Kamath-Wereley, seed 000: the definition of alpha.** The shape functions take a velocity "non-dimensionalised
+- **Kamath and Wereley (1997): the definition of alpha.** The shape functions take a velocity "non-dimensionalised
   with respect to the amplitude", alpha = |v| / max |v| (seed 003 eq 67 uses |v| - v_y in velocity units, the same up
   to scale); the stiction shape function needs the same dimensionless argument, since eps_c is given as a number
   between 0 and 1.
-- **Powell, seed 001 eqs 4-5.** f_cs (1 + (f_cd / f_cs) e^{-a|v|}) is the printed f_cs + f_cd e^{-a|v|}, kept.
+- **Powell, Butz and von Stryk (2002) eqs 4-5.** f_cs (1 + (f_cd / f_cs) e^{-a|v|}) is the printed f_cs + f_cd
+e^{-a|v|}, kept.
 - **Normalised Bouc-Wen, seed 003 eq 46.** The source writes -k_w w; the sign is absorbed in k_w (positive k_w
   dissipates).
-- **Modified Bouc-Wen.** alpha_c u^2 is not in seed 001 (eq 13 is linear in u): it is the quadratic current law of
+- **Modified Bouc-Wen.** alpha_c u^2 is not in Butz and von Stryk (2002) (eq 13 is linear in u): it is the quadratic
+current law of
   Quiroz (2022) used for the real data (docs/real_data.md); alpha_c = 0 is Spencer's law.
 """
 
@@ -156,8 +159,8 @@ def render() -> str:
             lines += [
                 "## `physics`: the physics damper of a damper file",
                 "",
-                "Source: Makris (seed 004) eqs 5-7 and 14, Kamath-Wereley mixed mode (seed 000), and the effect library",
-                "(`erdesign.effects`). Built as `get_model(\"physics\", damper=\"damper.toml\", effects=(...))`, or",
+                "Source: Makris et al. (1996) eqs 5-7 and 14, the mixed mode of Kamath and Wereley (1997), and the",
+                "effect library (`erdesign.effects`). Built as `get_model(\"physics\", damper=\"damper.toml\", effects=(...))`, or",
                 "`erdesign identify X.csv --model physics --damper D.toml [--effects a,b]`. Parameters: the calibration",
                 "factors `viscosity_factor`, `yield_stress_factor` [-] plus those of the chosen effects (see",
                 "erdesign/physics.py); without a field in the record the yield-stress factor is held at 1.",

@@ -11,7 +11,7 @@ Valve damper (Makris et al., eq 14):
 with :math:`\Delta p` from the Bingham gap flow (:mod:`erdesign.flow.bingham`; the exact annulus of
 :mod:`erdesign.flow.annulus_bingham` when the gap is not thin).
 
-Mixed (moving-electrode) damper (Kamath and Wereley, seed 000, section II): pressure drag plus shear drag of the
+Mixed (moving-electrode) damper (Kamath and Wereley 1997, section II): pressure drag plus shear drag of the
 moving head, :math:`F = \Delta p\,A_p + \tau_w \pi D_p L + F_s \operatorname{sgn}(v)`, from the Couette-Poiseuille
 Bingham flow of :mod:`erdesign.flow.mixed_mode`.
 
@@ -19,7 +19,8 @@ At ``v = 0`` the force is the break-away force (the limit ``v -> 0+``): the gap 
 is held with no motion.
 
 Design figures: small-velocity damping constant (Makris eq 15), Reynolds number (Makris eq 1) and laminar check,
-yield (controllable) force, dynamic range F(E)/F(0), energy per cycle and equivalent damping (seed 000 eqs 1-2).
+yield (controllable) force, dynamic range F(E)/F(0), energy per cycle and equivalent damping (Kamath and Wereley
+1997, eqs 1-2).
 """
 
 from __future__ import annotations
@@ -80,7 +81,7 @@ class QuasiSteadyState(NamedTuple):
 class SizingResult:
     """Design point of a damper (``erdesign size``): every figure as a pint quantity.
 
-    :meth:`as_json` gives the plain-SI dictionary of shared/CONTRACTS.md section 3.
+    :meth:`as_json` gives the plain-SI dictionary of docs/cli.md.
     """
 
     velocity: Any
@@ -132,9 +133,9 @@ class SineResponse:
     force: np.ndarray
     """[N]"""
     energy_per_cycle: float
-    """Energy dissipated per cycle, seed 000 eq 1, [J]."""
+    """Energy dissipated per cycle, Kamath and Wereley (1997) eq 1, [J]."""
     equivalent_damping: float
-    """C_eqv = U / (pi Omega X0^2), seed 000 eq 2, [N s/m]."""
+    """C_eqv = U / (pi Omega X0^2), Kamath and Wereley (1997) eq 2, [N s/m]."""
 
 
 @dataclass(frozen=True)
@@ -335,7 +336,8 @@ class Damper:
 
     def sine_response(self, amplitude: Any, frequency: Any, field: Any = None, *, cycles: int = 1,
                       samples_per_cycle: int = 2000) -> SineResponse:
-        """Quasi-steady force for x = X0 sin(2 pi f t), with energy per cycle and C_eqv (seed 000 eqs 1-2).
+        """Quasi-steady force for x = X0 sin(2 pi f t), with energy per cycle and C_eqv (Kamath and Wereley 1997, eqs
+        1-2).
 
         Parameters
         ----------

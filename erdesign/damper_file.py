@@ -1,4 +1,4 @@
-"""Read damper files (TOML, shared/CONTRACTS.md section 1) into :class:`~erdesign.damper.Damper` objects.
+"""Read damper files (TOML, docs/file_formats.md) into :class:`~erdesign.damper.Damper` objects.
 
 Every problem is a :class:`~erdesign.errors.DamperFileError` whose message starts with the file name and names the
 key (``makris.toml: geometry.gap: expected a length ...``).  Unknown keys are errors, so that a misspelt key is never
@@ -162,7 +162,7 @@ def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_mo
 
 
 def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, float]:
-    """The fluid of a damper file with a ``[coil]`` (shared/CONTRACTS.md section 5), and its seal friction [N].
+    """The fluid of a damper file with a ``[coil]`` (docs/file_formats.md, [coil]), and its seal friction [N].
 
     The control is the coil current: ``fluid.reference_field`` is the rated current (in A) and ``fluid.material``
     names an MR fluid with a B-H curve and a yield curve against field strength.  The yield stress at any current
@@ -215,7 +215,7 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
 
 
 def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
-    """Read a damper file (TOML, shared/CONTRACTS.md section 1)."""
+    """Read a damper file (TOML, docs/file_formats.md)."""
     return damper_from_dict(read_toml(path), source=str(path), flow_model=flow_model)
 
 

@@ -390,7 +390,7 @@ class Diagnosis:
     samples: tuple[int, int] = (0, 0)
     """(samples of the record, samples analysed)."""
     verdict: str = "nothing_missing"
-    """``"missing_effect"``, ``"nothing_missing"`` or ``"unexplained"`` (shared/CONTRACTS.md section 3)."""
+    """``"missing_effect"``, ``"nothing_missing"`` or ``"unexplained"`` (docs/cli.md)."""
     noise_floor_esr: float = 0.0
     """ESR that the record's noise alone would leave (:func:`erdesign.noise.noise_floor_esr`)."""
     reason: str = ""
@@ -409,7 +409,7 @@ class Diagnosis:
     compares ``judged_esr`` with."""
 
     def as_json(self) -> dict:
-        """The keys of ``erdesign diagnose --json`` (shared/CONTRACTS.md section 3); no value is NaN or infinite."""
+        """The keys of ``erdesign diagnose --json`` (docs/cli.md); no value is NaN or infinite."""
         out = {"baseline_esr": _finite_or_none(self.baseline_esr),
                "ranking": [c.as_json() for c in self.ranking],
                "missing_effect": self.missing_effect,

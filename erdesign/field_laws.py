@@ -3,7 +3,8 @@ r"""Yield stress as a function of the control (field laws), and power-law fits o
 Three laws, each a plain SI kernel plus a small frozen object that carries its parameters and its control unit:
 
 ``power``
-    :math:`\tau_y = \tau_\text{ref}(|E|/E_\text{ref})^n`, the law of the damper file (seed 001, section 2, gives
+    :math:`\tau_y = \tau_\text{ref}(|E|/E_\text{ref})^n`, the law of the damper file (Butz and von Stryk 2002,
+    section 2, gives
     n from 1.2 to 2.5 for ER fluids).  It does not saturate.
 ``saturating``
     :math:`\tau_y = \tau_\text{sat}\tanh(|E|/E_\text{sat})`: linear at small field, saturating at
@@ -100,7 +101,7 @@ def power_law_yield_stress(E, tau_ref, E_ref, n):
 
     Notes
     -----
-    Seed 001 (Butz and von Stryk, section 2) reports n from 1.2 to 2.5 for ER fluids; Kamath and Wereley (seed 000,
+    Butz and von Stryk (2002, section 2) reports n from 1.2 to 2.5 for ER fluids; Kamath and Wereley (1997,
     section I) call the ER law nominally quadratic.  The law does not saturate: for MR fluids use it only inside the
     range it was fitted on (:func:`fit_power_law`).
 
@@ -111,7 +112,7 @@ def power_law_yield_stress(E, tau_ref, E_ref, n):
 
     References
     ----------
-    Butz and von Stryk (seed 001), section 2: tau_y ~ E^n, n = 1.2 to 2.5.
+    Butz and von Stryk (2002), section 2: tau_y ~ E^n, n = 1.2 to 2.5.
     """
     return scalar_or_array(tau_ref * (np.abs(E) / E_ref) ** n)
 
@@ -254,7 +255,7 @@ def fit_power_law(E, tau_y, *, anchor=None) -> PowerLawFit:
 
     References
     ----------
-    Butz and von Stryk (seed 001), section 2, for the law; the fit is ordinary least squares.
+    Butz and von Stryk (2002), section 2, for the law; the fit is ordinary least squares.
     """
     E = np.asarray(E, dtype=float).ravel()
     tau = np.asarray(tau_y, dtype=float).ravel()
@@ -361,7 +362,7 @@ class PowerLaw(FieldLaw):
 
     law: ClassVar[str] = "power"
     equation: ClassVar[str] = r"\tau_y = \tau_\text{ref}\left(|E|/E_\text{ref}\right)^n"
-    reference: ClassVar[str] = "Butz and von Stryk (seed 001), section 2: tau_y ~ E^n, n = 1.2 to 2.5"
+    reference: ClassVar[str] = "Butz and von Stryk (2002), section 2: tau_y ~ E^n, n = 1.2 to 2.5"
 
     def __post_init__(self) -> None:
         super().__post_init__()

@@ -1,6 +1,6 @@
 r"""Calibrate a model to a record: bounded nonlinear least squares, uncertainties, information criteria.
 
-:func:`fit` minimises :math:`J = \sum_i (F_i - F_\text{model}(t_i; p))^2` (seed 000, eq 13) over the free
+:func:`fit` minimises :math:`J = \sum_i (F_i - F_\text{model}(t_i; p))^2` (Kamath and Wereley 1997, eq 13) over the free
 parameters within their physical bounds (:func:`scipy.optimize.least_squares`, trust-region reflective), with
 optional multi-start (Latin hypercube over the bounds) and an optional global stage
 (:func:`scipy.optimize.differential_evolution`) for models with several minima.  Parameters marked ``log_scale`` are

@@ -4,7 +4,7 @@ The control is whatever sets the yield stress and is known to the user: an elect
 field (MR, A/m or T), or, where only that is measured, the coil current (A) or driver voltage (V).  The dimension
 of :attr:`Fluid.reference_field` fixes which; every control value given later must have the same dimension.
 
-Field law (seed 001, Butz and von Stryk, section 2: :math:`\tau_y \propto E^n`, n from 1.2 to 2.5):
+Field law (Butz and von Stryk 2002, Butz and von Stryk, section 2: :math:`\tau_y \propto E^n`, n from 1.2 to 2.5):
 
 .. math:: \tau_y(E) = \tau_\text{ref} \left(\frac{|E|}{E_\text{ref}}\right)^n
 
@@ -53,7 +53,8 @@ CONTROL_UNITS = {
 
 
 #: Largest control of each kind a controllable fluid plausibly takes (SI): ER fluids break down near 4 to 8 kV/mm
-#: (seed 001 Table 1 gives ca. 4 kV/mm), MR fluids saturate near 250 kA/m to 1 MA/m (ca. 1 to 2 T); coil currents
+#: (Butz and von Stryk 2002, Table 1 gives ca. 4 kV/mm), MR fluids saturate near 250 kA/m to 1 MA/m (ca. 1 to 2 T);
+#: coil currents
 #: and driver voltages of damper drives stay within tens of A and hundreds of V.  Beyond it erdesign warns; beyond
 #: :data:`IMPOSSIBLE_CONTROL_FACTOR` times it, it refuses the value (a unit mistake, not a control).
 PLAUSIBLE_CONTROL = {"electric field": 2e7, "magnetic field": 2e6, "magnetic flux density": 3.0, "current": 50.0,
@@ -146,7 +147,8 @@ class Fluid:
             ("viscosity", self.viscosity > 0, "must be positive"),
             ("yield_stress", self.yield_stress >= 0, "must not be negative"),
             ("reference_field", self.reference_field > 0, "must be positive"),
-            ("yield_exponent", 0 < self.yield_exponent <= 5, "must lie in (0, 5] (seed 001 reports 1.2 to 2.5)"),
+            ("yield_exponent", 0 < self.yield_exponent <= 5,
+             "must lie in (0, 5] (Butz and von Stryk 2002 report 1.2 to 2.5)"),
             ("density", self.density > 0, "must be positive"),
         ]
         if self.viscosity_at_reference_field is not None:

@@ -1,6 +1,6 @@
 r"""Damper geometry: the annular duct(s), the piston and the rod, in SI units, with checks.
 
-Two configurations (shared/CONTRACTS.md, damper file ``[geometry]``):
+Two configurations (docs/file_formats.md, ``[geometry]``):
 
 ``valve``
     Makris's damper: a double-ended piston pushes the fluid through ``ducts`` stationary annular ducts in parallel,
@@ -44,7 +44,8 @@ THIN_GAP_LIMIT = 0.1
 POSSIBLE_LENGTHS = {"gap": (1e-7, 1.0), "duct_length": (1e-6, 100.0), "duct_mean_diameter": (1e-6, 100.0),
                     "piston_diameter": (1e-6, 100.0), "rod_diameter": (0.0, 100.0)}
 #: Plausible range of each length [m]: outside it erdesign warns (a unit mistake is likely).  ER/MR particles are
-#: 1 to 50 um across, so a gap below 50 um jams; gaps above 10 mm take fields no supply gives (seed 001 Table 1).
+#: 1 to 50 um across, so a gap below 50 um jams; gaps above 10 mm take fields no supply gives (Butz and von Stryk
+#: 2002, Table 1).
 PLAUSIBLE_LENGTHS = {"gap": (5e-5, 1e-2), "duct_length": (1e-3, 2.0), "duct_mean_diameter": (1e-3, 1.0),
                      "piston_diameter": (3e-3, 1.0), "rod_diameter": (0.0, 0.5)}
 #: Most parallel ducts possible, and the most erdesign takes without a warning.
@@ -221,7 +222,7 @@ class Geometry:
     def active_fluid_volume(self) -> float:
         """Volume of fluid between the electrodes, pi d h L per duct times the number of ducts, [m^3].
 
-        The volume seed 000 (Kamath and Wereley, section III.C) divides the dissipated energy by.
+        The volume Kamath and Wereley (1997) (Kamath and Wereley, section III.C) divides the dissipated energy by.
         """
         return math.pi * self.duct_mean_diameter * self.gap * self.duct_length * self.ducts
 

@@ -1,6 +1,6 @@
 r"""Identification workflows on top of :func:`erdesign.fit.fit`: one record, several records jointly (e.g. one
 sinusoid per coil current with the current-dependent parameters shared), and cross-validation tables in the style
-of seed 002 Table 4 (identify on one experiment, score the ESR on every other).
+of Vivas-López et al. (seed 002) Table 4 (identify on one experiment, score the ESR on every other).
 """
 
 from __future__ import annotations
@@ -1017,7 +1017,7 @@ RECORD_FORMATS = ("auto", "csv", "quiroz", "quiroz-mat")
 
 
 def read_records(path, fmt: str = "auto", where: str = "MEASUREMENT") -> list[Measurement]:
-    """The records in one file: a measurement CSV (CONTRACTS.md section 2; one record), a Quiroz (2022)
+    """The records in one file: a measurement CSV (docs/file_formats.md; one record), a Quiroz (2022)
     preprocessed sinusoid (:func:`read_quiroz_file`; one record) or Quiroz's validation ``.mat``
     (:func:`read_quiroz_mat`; one record per current).
 

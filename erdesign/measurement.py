@@ -1,6 +1,6 @@
 r"""Measured (or simulated) damper records: CSV files with units in the header -> SI arrays; derivatives.
 
-File format (shared/CONTRACTS.md section 2): the first line that is not a ``#`` comment names the columns, each
+File format (docs/file_formats.md): the first line that is not a ``#`` comment names the columns, each
 with its unit in square brackets; then one numeric row per sample.  Column order is free.
 
 =====================  ===========================================================================
@@ -20,9 +20,10 @@ At most one control column; none means zero field.  Every problem is a :class:`M
 and the column.
 
 Derivatives (:func:`derivatives`): Fourier filtering of the significant harmonics for records periodic in their
-dominant frequency (Kamath and Wereley, seed 000, section II, differentiated analytically), an adaptive zero-phase
+dominant frequency (Kamath and Wereley 1997, section II, differentiated analytically), an adaptive zero-phase
 low-pass plus fourth-order central differences for all other records (sweeps, random, earthquake-like motion).
-tests/test_measurement.py shows the first does at least as well as seed 000's method on noisy sines and the second
+tests/test_measurement.py shows the first does at least as well as the method of Kamath and Wereley (1997) on noisy
+sines and the second
 stays accurate on noisy non-periodic records.
 """
 
@@ -291,7 +292,8 @@ def _harmonic_fit(t: np.ndarray, x: np.ndarray, f: float, harmonics: int):
 
 
 def _periodic_derivatives(t, x, f0, sigma):
-    """Fourier filtering (seed 000): velocity and acceleration of the significant harmonics of the refined
+    """Fourier filtering (Kamath and Wereley 1997): velocity and acceleration of the significant harmonics of the
+    refined
     fundamental, or None when the record is not periodic in f0 (the harmonics leave more than noise)."""
     from scipy.optimize import minimize_scalar
 
@@ -376,7 +378,7 @@ def derivatives(t, x, *, window: int | None = None, polyorder: int = 3):
     The rule, in order:
 
     1. **Periodic records** (the displacement is a trend line plus harmonics of its dominant frequency to within
-       the noise): Fourier filtering as Kamath and Wereley (seed 000, section II).  The fundamental is refined by
+       the noise): Fourier filtering as Kamath and Wereley (1997, section II).  The fundamental is refined by
        least squares, up to 15 harmonics are fitted, those below four standard errors are dropped, and the
        series is differentiated analytically (which beats their fourth-order difference of the filtered signal).
     2. **Other records** (sweeps, random, earthquake-like motion): an adaptive zero-phase low-pass (4th-order
@@ -405,7 +407,8 @@ def derivatives(t, x, *, window: int | None = None, polyorder: int = 3):
     -----
     The noise level is estimated from the fourth differences of the displacement (:func:`_noise_level`), which a
     signal sampled many times per period does not contribute to.  tests/test_measurement.py measures the error on
-    noisy sines (rule 1, against seed 000's method) and on noisy random and earthquake-like records (rule 2).
+    noisy sines (rule 1, against the method of Kamath and Wereley (1997)) and on noisy random and earthquake-like
+    records (rule 2).
 
     Examples
     --------
@@ -417,7 +420,7 @@ def derivatives(t, x, *, window: int | None = None, polyorder: int = 3):
 
     References
     ----------
-    Kamath and Wereley (seed 000), section II (Fourier filtering and fourth-order central differences).
+    Kamath and Wereley (1997), section II (Fourier filtering and fourth-order central differences).
     """
     t = np.asarray(t, dtype=float)
     x = np.asarray(x, dtype=float)
@@ -509,7 +512,7 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
 
 
 def read_measurement(path: str | Path, *, window: int | None = None, require_force: bool = True) -> Measurement:
-    """Read a measurement CSV file (shared/CONTRACTS.md section 2) into SI arrays.
+    """Read a measurement CSV file (docs/file_formats.md) into SI arrays.
 
     With ``require_force=False`` a file without a force column is read as a motion record (``force`` is None), e.g.
     a displacement history to simulate a model on.

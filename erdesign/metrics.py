@@ -1,11 +1,11 @@
 r"""Figures of merit computed from a force record: energy per cycle, equivalent damping, ESR.
 
-Energy dissipated per cycle (seed 000, Kamath and Wereley, eq 1) and equivalent viscous damping (eq 2):
+Energy dissipated per cycle (Kamath and Wereley 1997, Kamath and Wereley, eq 1) and equivalent viscous damping (eq 2):
 
 .. math::
     U = \oint F\,dx = \int_0^{2\pi/\Omega} F v\,dt, \qquad C_\text{eqv} = \frac{U}{\pi \Omega X_0^2}
 
-Equivalent-error measure ESR (seed 002, eq 7; shared/CONTRACTS.md section 4):
+Equivalent-error measure ESR (Vivas-López et al., seed 002, eq 7; docs/file_formats.md, ESR):
 
 .. math:: \mathrm{ESR} = \frac{\sum (F - F_\text{model})^2}{\sum (F - \bar F)^2}
 """
@@ -59,7 +59,7 @@ def energy_per_cycle(t, x, F, frequency):
 
     References
     ----------
-    Kamath and Wereley (seed 000), eq 1.
+    Kamath and Wereley (1997), eq 1.
     """
     t, x, F = (np.asarray(a, dtype=float) for a in (t, x, F))
     if not (t.shape == x.shape == F.shape and t.ndim == 1 and t.size >= 3):
@@ -84,7 +84,7 @@ def equivalent_damping(energy, omega, amplitude):
 
     References
     ----------
-    Kamath and Wereley (seed 000), eq 2.
+    Kamath and Wereley (1997), eq 2.
     """
     return energy / (math.pi * omega * amplitude**2)
 
@@ -92,7 +92,7 @@ def equivalent_damping(energy, omega, amplitude):
 def esr(F_measured, F_model):
     """Equivalent-error ratio: residual sum of squares over the variance sum of the measurement, [-].
 
-    0 is a perfect fit, 1 predicts no better than the mean (seed 002, eq 7).
+    0 is a perfect fit, 1 predicts no better than the mean (Vivas-López et al., seed 002, eq 7).
 
     >>> esr([1.0, 2.0, 3.0], [1.0, 2.0, 3.0]), esr([1.0, 2.0, 3.0], [2.0, 2.0, 2.0])
     (0.0, 1.0)
@@ -115,7 +115,7 @@ def objective_j(F_measured, F_model):
 
     References
     ----------
-    Kamath and Wereley (seed 000), eq 13.
+    Kamath and Wereley (1997), eq 13.
     """
     F = np.asarray(F_measured, dtype=float)
     M = np.asarray(F_model, dtype=float)
@@ -130,7 +130,7 @@ def difference_signal(F_measured, F_model):
 
     References
     ----------
-    Makris et al. (seed 004), section 4.1: Maxwell PV = 257 lb, RMS = 56 lb; BingMax PV = 109 lb, RMS = 31 lb.
+    Makris et al. (1996), section 4.1: Maxwell PV = 257 lb, RMS = 56 lb; BingMax PV = 109 lb, RMS = 31 lb.
     """
     d = np.asarray(F_measured, dtype=float) - np.asarray(F_model, dtype=float)
     return float(np.max(np.abs(d))), float(np.sqrt(np.mean(d**2)))

@@ -1,7 +1,8 @@
 r"""The physics damper as a :class:`~erdesign.models.base.Model`: calibrated quasi-steady baseline plus effects.
 
 Baseline: the quasi-steady force of the damper's configuration (valve: Bingham flow through the annular ducts,
-Makris eqs 5-7 and 14; mixed: Couette-Poiseuille Bingham flow, seed 000) with the fluid of the damper file scaled
+Makris eqs 5-7 and 14; mixed: Couette-Poiseuille Bingham flow, Kamath and Wereley (1997)) with the fluid of the
+damper file scaled
 by two calibration factors, because nominal fluid properties are uncertain by tens of percent:
 
 .. math::
@@ -97,7 +98,7 @@ class PhysicsDamper(Model):
     damper : Damper
         Geometry and nominal fluid (and known seal friction).
     effects : sequence of str or str
-        Effect names (shared/CONTRACTS.md), e.g. ``("seal_friction", "fluid_inertia")`` or ``"a,b"``.
+        Effect names (docs/cli.md), e.g. ``("seal_friction", "fluid_inertia")`` or ``"a,b"``.
 
     Examples
     --------
@@ -115,7 +116,7 @@ class PhysicsDamper(Model):
     """
 
     name = "physics"
-    source = "Makris et al. (seed 004) eqs 5-7, 14; Kamath and Wereley (seed 000); erdesign.effects"
+    source = "Makris et al. (1996) eqs 5-7, 14; Kamath and Wereley (1997); erdesign.effects"
     uses_control = True
 
     def __init__(self, damper: Damper, effects: Sequence[str] | str = ()):

@@ -1,4 +1,4 @@
-r"""Quarter-vehicle with a passive MR damper (Butz and von Stryk, seed 001 section 4).
+r"""Quarter-vehicle with a passive MR damper (Butz and von Stryk, Butz and von Stryk (2002) section 4).
 
 .. math::
     m_1\ddot u_1 = K(u_0 - u_1) + C(\dot u_0 - \dot u_1) + k(u_2 - u_1) + F_{rh}, \qquad
@@ -22,7 +22,8 @@ from .models.bouc_wen import SPENCER_PASSIVE
 
 __all__ = ["QUARTER_CAR", "VehicleResponse", "simulate_quarter_car", "step_road", "bump_road", "settling_time"]
 
-#: Seed 001 section 4.1-4.3: masses [kg], stiffnesses [N/m], damping [N s/m], Bingham and Bouc-Wen parameters (SI).
+#: Butz and von Stryk (2002) section 4.1-4.3: masses [kg], stiffnesses [N/m], damping [N s/m], Bingham and Bouc-Wen
+#: parameters (SI).
 QUARTER_CAR = {"m1": 250.0, "m2": 1300.0, "K": 650e3, "C": 800.0, "k": 110e3, "c": 6000.0,
                "c0_bingham": 5000.0, "f_c": 670.0}
 
@@ -41,12 +42,14 @@ class VehicleResponse:
 
 
 def step_road(height=0.1):
-    """Road step of ``height`` [m] at t = 0 (seed 001 section 4.4): (u0(t), du0/dt(t), impulse of C du0)."""
+    """Road step of ``height`` [m] at t = 0 (Butz and von Stryk 2002, section 4.4): (u0(t), du0/dt(t), impulse of C
+    du0)."""
     return (lambda t: height), (lambda t: 0.0), height
 
 
 def bump_road(height=0.1, duration=0.5, start=0.0):
-    """Sinusoidal bump (1 - cos) of ``height`` [m] lasting ``duration`` [s] (seed 001 section 4.5; the paper shows
+    """Sinusoidal bump (1 - cos) of ``height`` [m] lasting ``duration`` [s] (Butz and von Stryk 2002, section 4.5;
+    the paper shows
     the shape in its Figure 25 without the duration: 0.5 s is this project's assumption)."""
     w = 2 * math.pi / duration
 

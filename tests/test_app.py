@@ -76,7 +76,7 @@ def test_opens_on_the_makris_damper(app):
     no_error(app)
     assert app.text_input(key="size.geo.gap").value == "0.8 mm"
     assert app.text_input(key="size.geo.duct_length").value == "54.6 mm"
-    # Makris et al. (seed 004) eq 15: C = 120 kN s/m for this damper (the library gives 120.3).
+    # Makris et al. (1996) eq 15: C = 120 kN s/m for this damper (the library gives 120.3).
     assert metric(app, "damping constant C").to("kN*s/m").magnitude == pytest.approx(120.0, rel=0.01)
     # The design point is the library's Damper.size, shown to 4 figures.
     r = load_example("makris").size(velocity=app.text_input(key="size.velocity").value, field="3 kV/mm")
@@ -493,7 +493,7 @@ def test_report_page(app, downloads):
 def test_the_report_is_the_design_on_screen(app, downloads):
     """Issue 14: sized at one velocity and field, the report said another; its checks differed from the page's;
     its "as given" column was empty.  Now the report is built from the design on screen."""
-    app.text_input(key="size.geo.gap").set_value("0.0315 in").run()       # Makris's own unit (seed 004)
+    app.text_input(key="size.geo.gap").set_value("0.0315 in").run()       # Makris's own unit (Makris et al. 1996)
     app.text_input(key="size.velocity").set_value("1 in/s").run()
     app.text_input(key="size.field").set_value("2 kV/mm").run()
     no_error(app)

@@ -172,7 +172,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     expect = sync_api.expect
     page.goto(app_url)
 
-    # Size: opens on the built-in Makris damper (seed 004).
+    # Size: opens on the built-in Makris damper (Makris et al. 1996).
     expect(page.get_by_role("heading", name="Size a damper")).to_be_visible()
     expect(page.get_by_label("gap h", exact=True)).to_have_value("0.8 mm")
     expect(_metric(page, "force F").first).to_be_visible()

@@ -1,4 +1,4 @@
-"""The command line (shared/CONTRACTS.md section 3): JSON output, readable table, one-line errors."""
+"""The command line (docs/cli.md): JSON output, readable table, one-line errors."""
 
 import json
 import shutil

@@ -1,4 +1,4 @@
-"""``erdesign diagnose`` and ``erdesign fit``: exactly the JSON keys of shared/CONTRACTS.md, readable reports,
+"""``erdesign diagnose`` and ``erdesign fit``: exactly the JSON keys of docs/cli.md, readable reports,
 one-line errors."""
 
 import json
@@ -36,7 +36,7 @@ def run(capsys, *args):
     return code, out, err
 
 
-#: Keys of ``erdesign diagnose --json`` (shared/CONTRACTS.md section 3).
+#: Keys of ``erdesign diagnose --json`` (docs/cli.md).
 CONTRACT_KEYS = {"baseline_esr", "ranking", "missing_effect", "verdict", "noise_floor_esr"}
 VERDICTS = {"missing_effect", "nothing_missing", "unexplained"}
 

@@ -1,4 +1,4 @@
-"""``erdesign models`` and ``erdesign identify`` (shared/CONTRACTS.md section 3)."""
+"""``erdesign models`` and ``erdesign identify`` (docs/cli.md)."""
 
 import json
 from pathlib import Path

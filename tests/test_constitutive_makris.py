@@ -1,7 +1,7 @@
 """Tests of the Makris elastic-viscoplastic law and its limits (erdesign.constitutive.makris).
 
 Source: Makris, Burton, Hill and Jordan, "ER damper with annular ducts for seismic protection applications"
-(seed 004), eqs 8-13 and Figs 3-4.  Figure 3 fluid at 3 kV/mm: tau_y = 1.8 kPa, G = 17 kPa, eta = 13 Pa s.
+(Makris et al. 1996), eqs 8-13 and Figs 3-4.  Figure 3 fluid at 3 kV/mm: tau_y = 1.8 kPa, G = 17 kPa, eta = 13 Pa s.
 Independent references: scipy.integrate.quad (eq 11), scipy.integrate.solve_ivp (eq 8), scipy.signal.lfilter
 (eq 13) and closed forms derived in docs/theory/makris.md.
 """

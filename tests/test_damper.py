@@ -59,7 +59,8 @@ def test_yield_force_is_the_limit_of_the_force_at_small_velocity(makris):
 
 
 def test_field_law_scales_the_yield_force_as_E_to_the_n(makris):
-    # tau_y = tau_ref (E/E_ref)^n with n = 2 (seed 001: tau_y ~ E^n): half the field, a quarter of the yield force.
+    # tau_y = tau_ref (E/E_ref)^n with n = 2 (Butz and von Stryk 2002: tau_y ~ E^n): half the field, a quarter of the
+    # yield force.
     assert makris.yield_force("1.5 kV/mm") / makris.yield_force("3 kV/mm") == pytest.approx(0.25)
 
 
@@ -80,7 +81,7 @@ def test_dynamic_range_falls_with_velocity():
 
 
 def test_energy_per_cycle_and_ceqv_of_a_dashpot_with_friction():
-    # Zero field: F = C v + F_s sgn(v).  Exactly U = pi C Omega X0^2 + 4 F_s X0 (seed 000 eq 1) and
+    # Zero field: F = C v + F_s sgn(v).  Exactly U = pi C Omega X0^2 + 4 F_s X0 (Kamath and Wereley 1997, eq 1) and
     # C_eqv = C + 4 F_s / (pi Omega X0) (eq 2).  Trapezoidal integration with 4000 samples: error < 1e-5.
     d = _plain_valve(seal="112 N")
     X0, f = 0.01, 1.0
@@ -140,7 +141,8 @@ def test_parallel_ducts_share_the_flow():
     assert three.damping_constant_si() == pytest.approx(one.damping_constant_si() / 3, rel=1e-14)
 
 
-# ---------------------------------------------------------------- mixed mode (moving electrode, seed 000)
+# ---------------------------------------------------------------- mixed mode (moving electrode, Kamath and Wereley
+# (1997))
 
 
 def test_mixed_damping_constant_is_newtonian_couette_poiseuille():

@@ -1,4 +1,4 @@
-"""Damper files (shared/CONTRACTS.md section 1): parsing, any consistent unit, clear errors naming the key."""
+"""Damper files (docs/file_formats.md): parsing, any consistent unit, clear errors naming the key."""
 
 import pytest
 
@@ -121,7 +121,7 @@ def test_thick_gap_warns_and_uses_the_exact_annulus(tmp_path):
     assert d.uses_exact_annulus
 
 
-# ------------------------------------------------------------------------------ [coil] (CONTRACTS section 5)
+# ------------------------------------------------------------------------------ [coil] (docs/file_formats.md)
 MR_COIL = """
 name = "coil"
 [geometry]

@@ -340,7 +340,7 @@ def test_infeasible_requirements_name_the_conflict_and_the_nearest_design():
 
 
 def test_a_field_above_the_fluid_limit_is_a_conflict_no_geometry_removes():
-    # seed 001 Table 1: ER fluids take about 4 kV/mm (the default max_field); 5 kV/mm is beyond it.
+    # Butz and von Stryk (2002) Table 1: ER fluids take about 4 kV/mm (the default max_field); 5 kV/mm is beyond it.
     req = piston_only_requirements("1 kN", "80 mm")
     data = read_toml(MAKRIS_REQ)
     data["design"]["point"][0]["field"] = "5 kV/mm"
@@ -439,7 +439,7 @@ def test_mr_voltage_limit_and_duct_rules_are_errors():
 
 
 def test_the_contract_example_runs_as_written():
-    # shared/CONTRACTS.md section 3, "erdesign design": the requirements file exactly as printed there.
+    # docs/cli.md, "erdesign design": the requirements file exactly as printed there.
     contract = """
 [fluid]
 viscosity = "13 Pa*s"

@@ -35,7 +35,7 @@ def _sine_record(damper, X0=0.005, f=2.0, field=None, cycles=2, rate=2000.0):
 def test_registry_walk_every_effect_is_described_and_gives_finite_forces():
     assert tuple(EFFECTS) == EFFECT_NAMES == ("seal_friction", "fluid_inertia", "compressibility", "leakage",
                                               "viscous_heating", "field_lag", "shear_thinning", "gas_spring",
-                                              "preyield_elasticity")     # shared/CONTRACTS.md section 3
+                                              "preyield_elasticity")     # docs/cli.md
     for example in ("makris", "mr_mixed", "kamath_wereley"):
         damper = load_example(example)
         rec = _sine_record(damper, rate=500.0)

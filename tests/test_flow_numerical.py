@@ -287,7 +287,7 @@ def test_bad_arguments_are_errors():
 
 
 # ------------------------------------------------------------------------------------------------ exact annulus
-MAKRIS = {"L": 0.0546, "d": 0.0143, "h": 0.0008}   # seed 004, section 3
+MAKRIS = {"L": 0.0546, "d": 0.0143, "h": 0.0008}   # Makris et al. (1996), section 3
 
 
 def test_exact_annulus_newtonian_limit_is_hagen_poiseuille():

@@ -1,4 +1,5 @@
-"""Fluid and field law: tau_y = tau_ref (E/E_ref)^n (seed 001), field-dependent viscosity (Makris), controls."""
+"""Fluid and field law: tau_y = tau_ref (E/E_ref)^n (Butz and von Stryk 2002), field-dependent viscosity (Makris),
+controls."""
 
 import numpy as np
 import pytest
@@ -24,7 +25,7 @@ def test_power_law_and_viscosity_end_points():
 
 @pytest.mark.parametrize("n", [1.2, 1.5, 2.5])
 def test_exponent_range_of_seed_001(n):
-    # Seed 001, section 2: n from 1.2 to 2.5. Doubling the field multiplies tau_y by 2^n.
+    # Butz and von Stryk (2002), section 2: n from 1.2 to 2.5. Doubling the field multiplies tau_y by 2^n.
     f = makris_fluid(yield_exponent=n)
     assert f.yield_stress_at(6e6) / f.yield_stress_at(3e6) == pytest.approx(2**n)
 

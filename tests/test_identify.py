@@ -10,7 +10,8 @@ from erdesign.measurement import Measurement, MeasurementError
 from erdesign.models.base import ModelInputError, ParameterError
 from erdesign.models.registry import get_model
 
-# Bingham with a current-dependent yield force and damping (seed 001 eq 1 with Spencer's linear control law)
+# Bingham with a current-dependent yield force and damping (Butz and von Stryk 2002, eq 1 with Spencer's linear
+# control law)
 TRUE = {"c0": 3000.0, "f_c": 150.0, "f0": 5.0, "f_c_u": 600.0, "c0_u": 4000.0}
 
 

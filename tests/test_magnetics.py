@@ -1,5 +1,5 @@
 """The magnetic circuit of an MR piston head (erdesign.magnetics): closed forms, published coil values, the
-finite-element check, and ``erdesign magnetics`` (shared/CONTRACTS.md section 5)."""
+finite-element check, and ``erdesign magnetics`` (docs/file_formats.md, [coil])."""
 
 import json
 import math

@@ -1,6 +1,6 @@
 """Materials database, field laws and the `erdesign materials` command.
 
-Sources: seed 004 (Makris et al.) for the zeolite/silicone fluid, seed 001 (Butz and von Stryk) Table 1 for the
+Sources: Makris et al. (1996) for the zeolite/silicone fluid, Butz and von Stryk (2002) Table 1 for the
 typical ER and MR values, Carlson (2005) for the saturating law of LORD MR fluids.
 """
 
@@ -77,7 +77,8 @@ def test_values_lie_inside_their_published_spread(name):
 
 
 def test_typical_fluids_reproduce_the_figure_of_merit_of_seed_001_table_1():
-    # Seed 001, Table 1: eta / tau_y^2 is 1e-8 to 1e-7 s/Pa for ER fluids and 1e-11 to 1e-10 s/Pa for MR fluids.
+    # Butz and von Stryk (2002), Table 1: eta / tau_y^2 is 1e-8 to 1e-7 s/Pa for ER fluids and 1e-11 to 1e-10 s/Pa
+    # for MR fluids.
     for name, lo, hi in (("typical-er", 1e-8, 1e-7), ("typical-mr", 1e-11, 1e-10)):
         f = materials.fluid_values(name)
         merit = to_si(f["viscosity"], "Pa*s", "eta") / to_si(f["yield_stress"], "Pa", "tau") ** 2
@@ -85,7 +86,7 @@ def test_typical_fluids_reproduce_the_figure_of_merit_of_seed_001_table_1():
 
 
 def test_makris_fluid_reproduces_the_published_values():
-    # Makris et al. (seed 004), sections 2.3 and 3: 1.8 kPa and 13 Pa s at 3 kV/mm, 7 Pa s at 0, G = 17 kPa.
+    # Makris et al. (1996), sections 2.3 and 3: 1.8 kPa and 13 Pa s at 3 kV/mm, 7 Pa s at 0, G = 17 kPa.
     f = damper_with({"material": "makris-zeolite-silicone"}).fluid
     assert f.yield_stress_at(3e6) == pytest.approx(1800.0, rel=1e-12)
     assert f.viscosity_at(3e6) == pytest.approx(13.0, rel=1e-12)
@@ -225,7 +226,7 @@ def test_bad_material_files_name_the_key(tmp_path, edit, message):
 
 # ------------------------------------------------------------------------------------------------- field laws
 def test_power_law_is_the_fluid_law():
-    # Seed 001, section 2: doubling the field multiplies tau_y by 2^n.
+    # Butz and von Stryk (2002), section 2: doubling the field multiplies tau_y by 2^n.
     assert power_law_yield_stress(6e6, 1800.0, 3e6, 2.5) / 1800.0 == pytest.approx(2**2.5, rel=1e-14)
     law = PowerLaw("V/m", yield_stress_ref=1800.0, reference_field=3e6, exponent=2.0)
     f = damper_with({"material": "makris-zeolite-silicone"}).fluid
@@ -246,7 +247,7 @@ def test_saturating_law_limits():
 
 def test_carlson_law_is_in_pascal():
     # Carlson (2005) for phi = 0.32 saturates at 47.9 kPa, the level of LORD MRF-132DG; read in kPa it would be
-    # 48 MPa, a thousand times any MR fluid of seed 001 Table 1 (50 to 100 kPa at most).
+    # 48 MPa, a thousand times any MR fluid of Butz and von Stryk (2002) Table 1 (50 to 100 kPa at most).
     sat = carlson_yield_stress(1e9, 0.32)
     assert 30e3 < sat < 100e3
     assert sat == pytest.approx(47.86e3, rel=1e-3)

@@ -1,4 +1,4 @@
-"""Measurement files (shared/CONTRACTS.md section 2) and noise-robust derivatives (seed 000 section II)."""
+"""Measurement files (docs/file_formats.md) and noise-robust derivatives (Kamath and Wereley 1997, section II)."""
 
 import numpy as np
 import pytest
@@ -87,7 +87,8 @@ def test_round_trip_through_write(tmp_path):
 
 
 def _fourier_and_fourth_order(t, x, harmonics=5):
-    """Seed 000's method: Fourier filtering of the displacement, then a fourth-order central difference."""
+    """the method of Kamath and Wereley (1997): Fourier filtering of the displacement, then a fourth-order central
+    difference."""
     n = t.size - 1                                   # whole number of cycles: drop the duplicated end point
     X = np.fft.rfft(x[:n])
     X[harmonics + 1:] = 0
@@ -117,7 +118,8 @@ def test_derivative_of_a_noisy_sine_beats_plain_differences_and_matches_seed_000
     # be at least 10 x better.
     assert err < err_gradient / 10
     assert err_seed < err_gradient / 10           # the reference method itself works on this record
-    # At least as good as seed 000 (Fourier filter of 5 harmonics + fourth-order difference): measured ratios
+    # At least as good as Kamath and Wereley (1997) (Fourier filter of 5 harmonics + fourth-order difference):
+    # measured ratios
     # err / err_seed = 0.63, 0.67, 0.62 for noise 1e-4, 1e-3, 1e-2 (significant harmonics only, analytic derivative).
     assert err <= err_seed
     # A fit of a few significant harmonics to n = 2001 noisy samples leaves ~ noise * sqrt(2 k / n) per harmonic:
@@ -126,7 +128,7 @@ def test_derivative_of_a_noisy_sine_beats_plain_differences_and_matches_seed_000
 
 
 def test_derivative_of_a_sine_without_a_whole_number_of_cycles():
-    # 2.37 cycles (seed 000's FFT filter needs whole cycles; the least-squares harmonic fit does not).
+    # 2.37 cycles (Kamath and Wereley's FFT filter needs whole cycles; the least-squares harmonic fit does not).
     t = np.linspace(0, 1.185, 1186)
     x = 0.01 * np.sin(2 * np.pi * 2 * t + 0.3)
     v, a = derivatives(t, x)

@@ -82,7 +82,8 @@ def test_bad_input_is_named():
 
 
 def test_extended_bingham_matches_a_tight_radau_solution():
-    """Seed 001 calls the model extremely stiff; backward Euler on the dead-zone form must converge to the exact
+    """Butz and von Stryk (2002) calls the model extremely stiff; backward Euler on the dead-zone form must converge
+    to the exact
     solution.  Reference: the same dead-zone ODE by Radau (rtol 1e-10) on the analytic sine."""
     c0, fc, k1, c1, k2 = 2000.0, 500.0, 1e5, 2e4, 5e5
     X, w = 0.01, 2 * np.pi
@@ -158,7 +159,8 @@ def test_modified_bouc_wen_matches_solve_ivp_at_3_khz_with_a_random_voltage():
 
 
 def test_modified_bouc_wen_matches_solve_ivp_with_spencer_parameters():
-    """Seed 001 section 4.3 parameters (passive); reference: LSODA at rtol 1e-10 on the analytic sine velocity.
+    """Butz and von Stryk (2002) section 4.3 parameters (passive); reference: LSODA at rtol 1e-10 on the analytic
+    sine velocity.
     At 3 kHz the piecewise-linear reading of the sampled sine differs from the sine by (omega h)^2 / 24 ~ 2e-7 of
     the velocity, so the kernel must agree to 1e-4 of the force range (measured 3e-5)."""
     p = SPENCER_PASSIVE
@@ -183,7 +185,8 @@ def test_modified_bouc_wen_matches_solve_ivp_with_spencer_parameters():
                                                 (0.0, 1500.0, 1500.0, 1.0),  # normalised form, sigma = 1, n = 1
                                                 (2e8, 2e8, 207.0, 3.0)])     # n = 3: RK4 in the travel
 def test_bouc_wen_state_matches_radau(beta, gamma, delta, n):
-    """The Bouc-Wen variable (seed 001 eq 9) on a 1 Hz, 1 cm sine sampled at 3 kHz against Radau at rtol 1e-10
+    """The Bouc-Wen variable (Butz and von Stryk 2002, eq 9) on a 1 Hz, 1 cm sine sampled at 3 kHz against Radau at
+    rtol 1e-10
     on the analytic velocity.  The kernel is exact for n = 1, 2 (closed form) given the piecewise-linear input,
     which differs from the sine by ~2e-7: 1e-4 of the range of z is required (issue 12)."""
     from erdesign.models._kernels import bouc_wen_state
@@ -244,7 +247,8 @@ ROUND_TRIPS = {
                          {"amplitude": 1e-3, "f_hz": 10.0, "cycles": 3, "n_per_cycle": 600}, None, 0.03),
     "biviscous_hysteretic": ({"C_pre": 2e5, "C_post": 4000.0, "F_y": 600.0, "v0": 0.004, "f0": 0.0}, {}, None,
                              0.03),
-    # seed 002's general model: its passive part (asymmetric damping, stiffness, friction); the hysteresis terms
+    # the general model of Vivas-López et al. (seed 002): its passive part (asymmetric damping, stiffness, friction);
+    # the hysteresis terms
     # held at zero
     "semiactive_general": ({"c_p_pos": 3000.0, "c_p_neg": 2000.0, "k_p": 500.0, "f_f": 400.0, "v_f": 60.0,
                             "f0": 0.0}, {}, ["c_p_pos", "c_p_neg", "k_p", "f_f", "v_f", "f0"], 0.05),
@@ -276,7 +280,8 @@ def test_round_trip_modified_lugre_with_a_switched_control():
 
 
 def test_round_trip_spencer_modified_bouc_wen():
-    """Seed 001 section 4.3 (Spencer's damper): simulate, add 1 % noise, identify the nine free parameters
+    """Butz and von Stryk (2002) section 4.3 (Spencer's damper): simulate, add 1 % noise, identify the nine free
+    parameters
     (delta and n held, they are redundant / a priori) from a neutral start, recover them within 10 %."""
     true = dict(SPENCER_PASSIVE)
     rec = sine(0.01, 1.5, cycles=2, n_per_cycle=800)

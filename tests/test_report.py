@@ -1,6 +1,6 @@
 """Engineering reports: the numbers printed are the library's, every quantity has a unit, the HTML is offline.
 
-The Makris damper (seed 004) is the reference case: the report must print its damping constant (eq 15,
+The Makris damper (Makris et al. 1996) is the reference case: the report must print its damping constant (eq 15,
 120 kN s/m), its forces and Reynolds numbers as the library computes them.  Numbers are printed to 4 significant
 figures, so a printed value agrees with the library to 5e-4 relative (half a unit in the 4th digit of a number
 whose leading digit is 1); that is the tolerance of every comparison below.

@@ -1,4 +1,4 @@
-"""``erdesign simulate`` (shared/CONTRACTS.md section 3) and the published parameter sets it can apply."""
+"""``erdesign simulate`` (docs/cli.md) and the published parameter sets it can apply."""
 
 import json
 from pathlib import Path
@@ -52,7 +52,7 @@ def test_published_spencer_set_on_dykes_record(capsys):
 
 
 def test_published_sets_are_the_printed_values():
-    """Spot checks against the prints: Spencer (1997) via shared/data/README.md in SI, Kamath and Wereley (seed 000)
+    """Spot checks against the prints: Spencer (1997) via shared/data/README.md in SI, Kamath and Wereley (1997)
     Table 1 case 2 (the values the library's doctests and round trips use)."""
     s = published_set("bouc_wen_modified", "spencer1997")
     assert s.values["c0a"] == pytest.approx(21.0 * 100)        # 21.0 N s/cm

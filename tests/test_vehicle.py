@@ -1,4 +1,5 @@
-"""Quarter vehicle of seed 001 section 4: the MR damper settles the body faster than the conventional damper."""
+"""Quarter vehicle of Butz and von Stryk (2002) section 4: the MR damper settles the body faster than the
+conventional damper."""
 
 import numpy as np
 import pytest
@@ -9,7 +10,8 @@ from erdesign.vehicle import bump_road, settling_time, simulate_quarter_car, ste
 @pytest.mark.parametrize("road,final", [(step_road(0.1), 0.1), (bump_road(0.1), 0.0)])
 def test_mr_damper_settles_the_body_faster_than_the_conventional_damper(road, final):
     runs = {d: simulate_quarter_car(d, road, t_end=3.0) for d in ("conventional", "bingham", "bouc_wen_modified")}
-    # Seed 001 Figs 22, 26, 28: faster decay with the MR damper.  Band 10 mm = 10 % of the 0.1 m disturbance
+    # Butz and von Stryk (2002) Figs 22, 26, 28: faster decay with the MR damper.  Band 10 mm = 10 % of the 0.1 m
+    # disturbance
     # (the Bingham friction can hold the body up to f_c / k = 6 mm off equilibrium).  Measured (step): 1.19 s
     # conventional, 0.85 s Bingham, 0.84 s Bouc-Wen; (bump) 1.91, 1.49, 1.52 s.
     t_conv = settling_time(runs["conventional"].time, runs["conventional"].u2, final, 0.01)

@@ -289,7 +289,7 @@ def _downloads(name, record, model_force, ranking, parameters, steps, diagnosis)
 
 
 def _verdict(diagnosis) -> None:
-    """The verdict of the diagnosis, prominently, with its reason (shared/CONTRACTS.md section 3) and, for a
+    """The verdict of the diagnosis, prominently, with its reason (docs/cli.md) and, for a
     missing effect, the button that adds it and refits."""
     if diagnosis.verdict == "missing_effect":
         if diagnosis.pair:

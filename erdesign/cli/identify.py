@@ -1,4 +1,4 @@
-"""``erdesign identify MEASUREMENT.csv --model NAME [--damper DAMPER.toml] [--json]`` (CONTRACTS.md section 3),
+"""``erdesign identify MEASUREMENT.csv --model NAME [--damper DAMPER.toml] [--json]`` (docs/cli.md),
 with the options of identification at real-data scale: ``--starts``, ``--max-time``, ``--decimate``,
 ``--exclude-clipped``, ``--validate OTHER.csv``, ``--fix``, progress on stderr; ``--joint`` for one parameter set
 from several records; and the Quiroz (2022) files read as they are published (``--format``)."""

@@ -1,7 +1,7 @@
 """``erdesign magnetics DAMPER.toml --current I [--json]``: the magnetic circuit of an MR damper at coil current(s).
 
 ``--current`` takes one current (``"2 A"``, or a number in A) or several separated by commas (``"0.5,1,2 A"`` or
-``"0.5 A,1 A,2 A"``).  With one current the JSON holds exactly the keys of shared/CONTRACTS.md section 5; with
+``"0.5 A,1 A,2 A"``).  With one current the JSON holds exactly the keys of docs/file_formats.md, [coil]; with
 several, each of those keys holds a list (one value per current; ``coil_resistance_ohm`` and ``limiting_part`` stay
 single values) and ``current_A`` lists the currents.
 """

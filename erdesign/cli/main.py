@@ -2,7 +2,7 @@
 
 The commands themselves live one per module beside this one (``size.py`` ...).  The group knows them by name
 (:data:`COMMANDS`) and imports a command's module only when that command runs, so that ``erdesign --help`` does not
-pay for the library behind every command.  Contract (shared/CONTRACTS.md section 3):
+pay for the library behind every command.  Contract (docs/cli.md):
 
 Every command takes ``--json``: stdout is then exactly one JSON object.  Errors go to stderr as one line without a
 traceback and the exit code is 1 (bad input) or 2 (bad command-line usage); warnings go to stderr as

@@ -1,4 +1,4 @@
-"""``erdesign models [--json]``: the registry of damper models (shared/CONTRACTS.md section 3)."""
+"""``erdesign models [--json]``: the registry of damper models (docs/cli.md)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``erdesign simulate MEASUREMENT.csv --model NAME --params P [--json] [--out forces.csv]`` (CONTRACTS.md section 3).
+"""``erdesign simulate MEASUREMENT.csv --model NAME --params P [--json] [--out forces.csv]`` (docs/cli.md).
 
 Runs a model with given parameters on a record's motion and control and scores it.  P is a JSON file written by
 ``erdesign identify --json``, a list ``"name=value unit, ..."`` or a published set of the model (``spencer1997``).

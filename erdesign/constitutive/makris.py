@@ -1,6 +1,6 @@
 r"""The Makris elastic-viscoplastic law of an ER fluid and its two limits (SI kernels).
 
-Makris et al. (seed 004) write the shear stress :math:`\tau` of an electrorheological fluid under a shear-strain
+Makris et al. (1996) write the shear stress :math:`\tau` of an electrorheological fluid under a shear-strain
 history :math:`\gamma(t)` as (their eq 8)
 
 .. math::

@@ -6,7 +6,7 @@ docs/glossary.md: gap ``h``, duct length ``L``, mean diameter ``d``, piston diam
 ducts; envelope parameters: stroke ``s``, wall allowance ``t_w``, head length ``L_h`` (valve), end allowance
 ``L_e`` (each end cap with its seal and bearing).
 
-Valve damper (Makris et al., seed 004, Fig 1): a double-ended piston of diameter Dp (the bore) moves in the main
+Valve damper (Makris et al. 1996, Fig 1): a double-ended piston of diameter Dp (the bore) moves in the main
 cylinder and pushes the fluid through ``n`` stationary annular ducts.  In Makris's damper the duct is an external
 bypass tube that runs beside the cylinder from one end to the other (``duct_placement = "beside"``); the duct is
 then outside the cylinder's diameter and must fit along its length.  The alternative (``"around"``) is one
@@ -63,7 +63,7 @@ def outer_diameter(Dp, h, d, wall, configuration, duct_placement="beside"):
     -----
     The wall allowance stands for the tube wall; it is not sized from the pressure here (check the hoop stress
     :math:`\Delta p\,D/(2t_w)` of the design's pressure drop against the tube material).  Ducts placed beside the
-    cylinder do not count in the diameter, as in shared/CONTRACTS.md ("piston diameter + 2 x wall allowance").
+    cylinder do not count in the diameter, as in docs/file_formats.md ("piston diameter + 2 x wall allowance").
 
     Examples
     --------
@@ -72,7 +72,7 @@ def outer_diameter(Dp, h, d, wall, configuration, duct_placement="beside"):
 
     References
     ----------
-    Makris et al. (seed 004), Fig 1 (main cylinder with an external bypass); Kamath and Wereley (seed 000),
+    Makris et al. (1996), Fig 1 (main cylinder with an external bypass); Kamath and Wereley (1997),
     section II (mixed mode: the head moves in the cylinder bore with the gap h around it).
     """
     if configuration == "mixed":

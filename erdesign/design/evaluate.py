@@ -6,13 +6,13 @@ and no :class:`~erdesign.damper.Damper` object per candidate.  The expressions a
 :meth:`erdesign.damper.Damper.state`, operation for operation, so that a design re-checked with
 :meth:`~erdesign.damper.Damper.size` gives the same numbers (tests/test_design.py checks it).
 
-Valve damper (Makris et al., seed 004, eqs 1, 7 corrected, 14), per duct :math:`Q = v A_p / n`:
+Valve damper (Makris et al. 1996, eqs 1, 7 corrected, 14), per duct :math:`Q = v A_p / n`:
 
 .. math::
     F = \Delta p(Q, \tau_y, \eta)\,A_p + F_s, \qquad F_0 = \frac{12\eta_0 L Q}{\pi d h^3} A_p + F_s, \qquad
     \mathrm{Re} = \frac{\bar u h \rho}{\eta}, \quad \bar u = \frac{Q}{\pi d h}
 
-Mixed damper (Kamath and Wereley, seed 000, section II): pressure plus shear drag from
+Mixed damper (Kamath and Wereley 1997, section II): pressure plus shear drag from
 :func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`, with :math:`\bar u = \max(v A_p/(\pi d h), v)`.
 
 Non-dimensional groups reported for each design (why a design behaves as it does): the Bingham number
@@ -159,7 +159,7 @@ def valve_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, d, Ap, n)
 
     Examples
     --------
-    Makris's damper at 1 in/s and 3 kV/mm (seed 004; 6.07 kN as ``erdesign size`` gives):
+    Makris's damper at 1 in/s and 3 kV/mm (Makris et al. 1996; 6.07 kN as ``erdesign size`` gives):
 
     >>> from math import pi
     >>> Ap = pi / 4 * (0.0334**2 - 0.01125**2)
@@ -168,11 +168,11 @@ def valve_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, d, Ap, n)
     (6.07, 1.92, 0.2)
 
     Bi = 0.2 and a plug of 3 % of the gap: at 1 in/s this duct is viscous-dominated, and most of its dynamic
-    range comes from the viscosity rising from 7 to 13 Pa s with the field (seed 004, section 3).
+    range comes from the viscosity rising from 7 to 13 Pa s with the field (Makris et al. 1996, section 3).
 
     References
     ----------
-    Makris et al. (seed 004), eqs 1, 4, 7 (with h^3) and 14.
+    Makris et al. (1996), eqs 1, 4, 7 (with h^3) and 14.
     """
     Q = v * Ap / n
     dp, phi = bingham_slit_flow(Q, tau_y, eta, L, d, h)
@@ -224,7 +224,7 @@ def mixed_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, Dp, dr):
 
     References
     ----------
-    Kamath and Wereley (seed 000), section II; docs/theory/mixed_mode.md.
+    Kamath and Wereley (1997), section II; docs/theory/mixed_mode.md.
     """
     m = mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h)
     m0 = mixed_mode_damper_force(v, 0.0, eta0, L, Dp, dr, h)

@@ -1,6 +1,6 @@
 r"""The requirements file of ``erdesign design``: what the damper must do, its envelope, and the free geometry.
 
-The file (shared/CONTRACTS.md section 3, "erdesign design") has a ``[fluid]`` table exactly as a damper file and a
+The file (docs/cli.md, "erdesign design") has a ``[fluid]`` table exactly as a damper file and a
 ``[design]`` table.  Every dimensional value is a string with a unit; unknown keys are errors that name the key.
 The keys beyond the contract are listed below and in docs/design.md.
 
@@ -14,8 +14,8 @@ The keys beyond the contract are listed below and in docs/design.md.
 ``[design.limits]``
     ``max_outer_diameter``, ``max_length``, ``max_pressure``, ``laminar`` (contract), and ``min_gap`` (the
     manufacturable minimum gap), ``max_field`` (default: 4 kV/mm for an ER fluid, 250 kA/m for an MR fluid given
-    in A/m, seed 001 Table 1 "maximum field"; none for other controls) and ``max_voltage`` (electrode voltage
-    E h across the gap, ER fluids only; seed 001 Table 1 gives 2 to 5 kV for typical supplies).
+    in A/m, Butz and von Stryk (2002) Table 1 "maximum field"; none for other controls) and ``max_voltage``
+    (electrode voltage E h across the gap, ER fluids only; Butz and von Stryk (2002) Table 1 gives 2 to 5 kV for typical supplies).
 ``[design.bounds]``
     ``gap``, ``duct_length``, ``duct_mean_diameter`` (valve only), ``piston_diameter``, ``rod_diameter``:
     ``[low, high]`` or a single value (fixed); ``ducts``: ``[low, high]`` whole numbers or one (default 1; valve
@@ -115,7 +115,7 @@ DEFAULT_FILL_FACTOR = 0.6
 _COIL_KEYS = COIL_VARIABLES + ("steel", "supply_voltage", "max_current_density", "max_fill_factor",
                                "allow_saturation", "max_power", "max_time_constant")
 
-#: Default field limits by kind of control, SI: seed 001 (Butz and von Stryk), Table 1, "maximum field":
+#: Default field limits by kind of control, SI: Butz and von Stryk (2002), Table 1, "maximum field":
 #: ca. 4 kV/mm for ER fluids (dielectric breakdown) and ca. 250 kA/m for MR fluids (magnetic saturation).
 FIELD_LIMITS = {"electric field": 4.0e6, "magnetic field": 250.0e3}
 

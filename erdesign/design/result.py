@@ -1,6 +1,6 @@
 """Result of a design search: design records, the JSON of ``erdesign design --json`` and the CSV of ``--out``.
 
-A *design record* is a plain dictionary (JSON-ready, SI numbers) with the keys of shared/CONTRACTS.md section 3 -
+A *design record* is a plain dictionary (JSON-ready, SI numbers) with the keys of docs/cli.md -
 ``geometry`` (a damper-file ``[geometry]`` table, values as strings with units), ``force_N``,
 ``zero_field_force_N``, ``dynamic_range``, ``fluid_volume_m3`` (at the first design point) and
 ``active_constraints`` - and these documented extras:

@@ -17,7 +17,8 @@ and :math:`D`, the designs that meet ``min_force`` and ``min_dynamic_range`` at 
 :math:`V(F_\text{min}, D_\text{min})`: a lower bound that a design search must reach and never beat.
 
 This is the exact thin-gap form of the rule of thumb that the fluid volume scales with the material figure
-:math:`\eta/\tau_y^2` (seed 001, Table 1 and section 2: MR devices need a comparatively small amount of fluid
+:math:`\eta/\tau_y^2` (Butz and von Stryk 2002, Table 1 and section 2: MR devices need a comparatively small amount
+of fluid
 because their :math:`\eta/\tau_y^2` is two to three orders of magnitude below that of ER fluids).
 """
 
@@ -106,7 +107,7 @@ def valve_minimum_active_volume(force, velocity, dynamic_range, tau_y, eta):
 
     References
     ----------
-    Makris et al. (seed 004), eqs 4 and 7 (corrected); seed 001, Table 1 (the figure eta / tau_y^2);
+    Makris et al. (1996), eqs 4 and 7 (corrected); Butz and von Stryk (2002), Table 1 (the figure eta / tau_y^2);
     derivation in docs/design.md.
     """
     phi = plug_fraction_at_dynamic_range(dynamic_range)

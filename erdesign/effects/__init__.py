@@ -1,6 +1,6 @@
 """The effect library: physical mechanisms the quasi-steady damper leaves out, one module per effect.
 
-:data:`EFFECTS` maps each contract name (shared/CONTRACTS.md section 3) to its :class:`Effect`;
+:data:`EFFECTS` maps each contract name (docs/cli.md) to its :class:`Effect`;
 :func:`get_effect` and :func:`parse_effect_names` turn user input into effects with one-line errors.
 How the effects enter the damper force is :mod:`erdesign.physics`.
 

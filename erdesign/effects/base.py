@@ -2,7 +2,7 @@ r"""What every physical effect of the effect library is, and the exact discrete 
 
 An :class:`Effect` is a physical mechanism that the quasi-steady damper (:mod:`erdesign.damper`) leaves out.  It
 says, in words, what the mechanism is and what it does to the residual of the quasi-steady model (its *signature*,
-in the spirit of seed 002 Table 2), lists its parameters with units and physical bounds
+in the spirit of Vivas-López et al. (seed 002) Table 2), lists its parameters with units and physical bounds
 (:class:`~erdesign.models.base.Parameter`), computes a prior from the geometry and fluid where one exists, and
 tells whether a record can show it at all (:meth:`Effect.check`).  How the effects compose with the quasi-steady
 gap flow is :mod:`erdesign.physics`; the kernels of each mechanism live in the effect's own module.
@@ -40,7 +40,7 @@ class Effect:
     Attributes
     ----------
     name : str
-        Contract name (shared/CONTRACTS.md section 3, effect names).
+        Contract name (docs/cli.md, effect names).
     title : str
         Human name.
     mechanism : str
@@ -173,7 +173,7 @@ def relaxation_filter(t, target, rate, y0=None):
 
     References
     ----------
-    Seed 001 (Butz and von Stryk), eq 16 (first-order filter); seed 004 (Makris et al.), eqs 9-10 (the same
+    Butz and von Stryk (2002) (Butz and von Stryk), eq 16 (first-order filter); Makris et al. (1996), eqs 9-10 (the same
     linear first-order form with a time-varying rate).
     """
     t = np.asarray(t, dtype=float)

@@ -242,7 +242,7 @@ class Compressibility(Effect):
     neutral = {"hydraulic_stiffness": "upper"}
     # entrained air and hose / seal compliance soften the column by tens of times; nothing stiffens it much
     plausible_ratio = {"hydraulic_stiffness": (0.02, 5.0)}
-    source = "Lumped hydraulic capacitance; seed 004 eq 13 (Maxwell) at zero field"
+    source = "Lumped hydraulic capacitance; Makris et al. (1996) eq 13 (Maxwell) at zero field"
 
     def parameters(self, damper):
         k = self.prior(damper)["hydraulic_stiffness"]

@@ -1,6 +1,7 @@
-r"""Field lag: the yield stress follows a change of field with a first-order time constant (seed 001 eq 16).
+r"""Field lag: the yield stress follows a change of field with a first-order time constant (Butz and von Stryk 2002,
+eq 16).
 
-Butz and von Stryk (seed 001, eq 16) pass the command through :math:`\dot u = -\eta_f (u - v_c)` "to allow for the
+Butz and von Stryk (2002, eq 16) pass the command through :math:`\dot u = -\eta_f (u - v_c)` "to allow for the
 fluid's dynamics of reaching rheological equilibrium".  erdesign filters the control the same way,
 
 .. math:: \dot E_f = \frac{E - E_f}{T_f},
@@ -57,7 +58,7 @@ def lagged_control(t, control, time_constant):
 
     References
     ----------
-    Butz and von Stryk (seed 001), eq 16.
+    Butz and von Stryk (2002), eq 16.
     """
     return relaxation_filter(t, control, 1.0 / time_constant)
 
@@ -71,7 +72,7 @@ class FieldLag(Effect):
                  "switches the force at once, the measurement follows late")
     composition = "state"
     neutral = {"field_time_constant": "lower"}
-    source = "Butz and von Stryk (seed 001) eq 16"
+    source = "Butz and von Stryk (2002) eq 16"
 
     plausible_ratio = {"field_time_constant": (0.2, 10.0)}
 

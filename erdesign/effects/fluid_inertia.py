@@ -5,7 +5,7 @@ a mass
 
 .. math:: m_f = \frac{\rho\,L\,A_p^2}{n\,\pi\,d\,h}
 
-moving with the piston; the force is :math:`F_i = m_f\,a`.  Kamath and Wereley (seed 000 eq 10) add the same term
+moving with the piston; the force is :math:`F_i = m_f\,a`.  Kamath and Wereley (1997, eq 10) add the same term
 (their :math:`R\ddot X`) to the post-yield branch of their damper model.
 """
 
@@ -61,7 +61,7 @@ def slug_mass(rho, L, Ap, d, h, ducts=1):
 
     References
     ----------
-    Kamath and Wereley (seed 000), eq 10 (inertial term R X''); geometry of Makris et al. (seed 004).
+    Kamath and Wereley (1997), eq 10 (inertial term R X''); geometry of Makris et al. (1996).
     """
     return rho * L * Ap**2 / (ducts * math.pi * d * h)
 
@@ -77,7 +77,7 @@ class FluidInertia(Effect):
     neutral = {"slug_mass": "lower"}
     # the chamber fluid, fittings and the moving parts between load cell and piston add to the duct slug
     plausible_ratio = {"slug_mass": (0.2, 10.0)}
-    source = "Kamath and Wereley (seed 000) eq 10"
+    source = "Kamath and Wereley (1997) eq 10"
 
     def parameters(self, damper):
         m = self.prior(damper)["slug_mass"]

@@ -1,6 +1,6 @@
 r"""Pre-yield elasticity: the fluid is an elastic solid below yield (Makris eq 8, shear modulus G).
 
-Makris's elastic-viscoplastic law (seed 004 eq 8, :mod:`erdesign.constitutive.makris`) relaxes the stress
+Makris's elastic-viscoplastic law (Makris et al. 1996, eq 8, :mod:`erdesign.constitutive.makris`) relaxes the stress
 towards the Bingham stress at the rate :math:`R = G|\dot\gamma|/(\eta|\dot\gamma| + \tau_y)`.  At the damper
 level the wall stress maps to the force by :math:`F = (2 L A_p/h)\,\tau` and the strain to the displacement by
 :math:`\gamma = 6 A_p x/(n\pi d h^2)` (the Newtonian wall shear rate), so that the force relaxes towards the
@@ -74,7 +74,7 @@ def elastic_viscoplastic_force(t, v, quasi_steady_force, stiffness, initial=0.0)
 
     References
     ----------
-    Makris et al. (seed 004), eqs 8-10.
+    Makris et al. (1996), eqs 8-10.
     """
     t = np.asarray(t, dtype=float)
     v = np.asarray(v, dtype=float)
@@ -108,7 +108,7 @@ class PreyieldElasticity(Effect):
     neutral = {"shear_modulus": "upper"}
     # pre-yield moduli of ER / MR fluids scatter over a decade with particle loading and field
     plausible_ratio = {"shear_modulus": (0.1, 10.0)}
-    source = "Makris et al. (seed 004) eq 8"
+    source = "Makris et al. (1996) eq 8"
 
     def parameters(self, damper):
         G = self.prior(damper).get("shear_modulus", 1e4)

@@ -1,12 +1,14 @@
-r"""Seal friction: Coulomb-like friction of the rod seals and bearings (Makris eq 14; stiction, seed 000 eq 7).
+r"""Seal friction: Coulomb-like friction of the rod seals and bearings (Makris eq 14; stiction, Kamath and Wereley
+(1997) eq 7).
 
 .. math:: F_f = F_c \tanh\!\left(\frac{v}{v_s}\right)
 
 Makris writes the seal force as :math:`P_y\operatorname{sgn}\dot u` (eq 14, :math:`P_y` = 112 N for his damper);
-Kamath and Wereley smooth the sign with a hyperbolic tangent of the velocity (seed 000 eq 7, smoothing factor
+Kamath and Wereley smooth the sign with a hyperbolic tangent of the velocity (Kamath and Wereley 1997, eq 7,
+smoothing factor
 :math:`\epsilon_c` chosen a priori).  The physics damper (:mod:`erdesign.physics`) takes instead the expected sign
 over the record's own velocity noise (:func:`erdesign.effects.base.sign_expectation`), the same that resolves the
-yield jump; :func:`coulomb_friction` is the tanh form of seed 000 for a chosen smoothing speed.
+yield jump; :func:`coulomb_friction` is the tanh form of Kamath and Wereley (1997) for a chosen smoothing speed.
 """
 
 from __future__ import annotations
@@ -40,7 +42,7 @@ def coulomb_friction(v, friction_force, smoothing_speed):
 
     Notes
     -----
-    Rate independent above a few v_s.  Seed 000 eq 7 prints the shape function as
+    Rate independent above a few v_s.  Kamath and Wereley (1997) eq 7 prints the shape function as
     :math:`\tfrac12\tanh(\dot X/4\epsilon_c)`, whose half makes :math:`F_c` the peak-to-peak rather than the
     amplitude of the friction; here :math:`F_c` is the amplitude, as :math:`P_y` in Makris eq 14.
 
@@ -51,7 +53,7 @@ def coulomb_friction(v, friction_force, smoothing_speed):
 
     References
     ----------
-    Makris et al. (seed 004), eq 14; Kamath and Wereley (seed 000), eq 7.
+    Makris et al. (1996), eq 14; Kamath and Wereley (1997), eq 7.
     """
     if smoothing_speed <= 0:
         return friction_force * np.sign(v)
@@ -69,7 +71,7 @@ class SealFriction(Effect):
     neutral = {"friction_force": "lower"}
     # the file's value is the seals alone, new; bearings, rig fixtures and worn or dry seals add several times it
     plausible_ratio = {"friction_force": (0.1, 20.0)}
-    source = "Makris et al. (seed 004) eq 14; Kamath and Wereley (seed 000) eq 7"
+    source = "Makris et al. (1996) eq 14; Kamath and Wereley (1997) eq 7"
 
     def parameters(self, damper):
         prior = self.prior(damper).get("friction_force", 0.02 * max(damper.yield_force_si(

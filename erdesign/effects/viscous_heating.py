@@ -84,7 +84,7 @@ class ViscousHeating(Effect):
     neutral = {"thermal_mass": "upper", "cooling_time": 600.0}
     # how much of the cylinder warms with the fluid is not known: a wide window; the cooling time has no prior
     plausible_ratio = {"thermal_mass": (0.05, 20.0), "cooling_time": None}
-    source = "Lumped thermal model; Makris et al. (seed 004) report scatter from heating"
+    source = "Lumped thermal model; Makris et al. (1996) report scatter from heating"
 
     def parameters(self, damper):
         prior = self.prior(damper)

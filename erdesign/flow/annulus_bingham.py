@@ -47,7 +47,7 @@ References
 ----------
 Fredrickson, A. G. and Bird, R. B. (1958), Non-Newtonian flow in annuli, Ind. Eng. Chem. 50(3), 347-352.
 Bird, Stewart and Lightfoot, Transport Phenomena, 2nd ed. (2002), problem 2B.7 (Newtonian annulus, eq 2.4-17) and
-the Bingham model, eq 8.3-2.  Makris et al. (seed 004), eq 2 (linear stress in the thin-gap limit) and eqs 5-7.
+the Bingham model, eq 8.3-2.  Makris et al. (1996), eq 2 (linear stress in the thin-gap limit) and eqs 5-7.
 """
 
 from __future__ import annotations
@@ -247,7 +247,7 @@ def annulus_bingham_flow_rate(dp, tau_y, eta, L, d, h):
 
     References
     ----------
-    Fredrickson and Bird (1958); Makris et al. (seed 004), eq 6 (its thin-gap limit, printed with h^2 for h^3).
+    Fredrickson and Bird (1958); Makris et al. (1996), eq 6 (its thin-gap limit, printed with h^2 for h^3).
     """
     check_flow_args(annulus=True, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     dp = np.asarray(dp, dtype=float)
@@ -330,7 +330,7 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
 
     References
     ----------
-    Fredrickson and Bird (1958); Makris et al. (seed 004), eq 7 (thin-gap limit, printed with h^2 for h^3).
+    Fredrickson and Bird (1958); Makris et al. (1996), eq 7 (thin-gap limit, printed with h^2 for h^3).
     """
     check_flow_args(annulus=True, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     Q, tau_y, eta, L, d, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (Q, tau_y, eta, L, d, h)))
@@ -493,7 +493,7 @@ def thin_gap_error_bingham(h_over_d, bingham_number):
 
     References
     ----------
-    Fredrickson and Bird (1958) for the exact annulus; Makris et al. (seed 004), eqs 5-7 for the thin gap.
+    Fredrickson and Bird (1958) for the exact annulus; Makris et al. (1996), eqs 5-7 for the thin gap.
     """
     eps, bi = np.broadcast_arrays(np.asarray(h_over_d, dtype=float), np.asarray(bingham_number, dtype=float))
     # Unit mean velocity, viscosity, length and diameter; tau_y from Bi (infinite Bi is a blocked gap: Q = 0).

@@ -411,7 +411,7 @@ def solve_gap_flow(*, h, tau_y, eta, pressure_gradient=None, flow_rate=None, wal
     References
     ----------
     Papanastasiou, T. C. (1987), Flows of materials with yield, J. Rheol. 31(5), 385-404 (the regularisation).
-    Makris et al. (seed 004), eq 2 (linear stress across the gap) and eq 5 (the Bingham law).
+    Makris et al. (1996), eq 2 (linear stress across the gap) and eq 5 (the Bingham law).
     Fredrickson and Bird (1958) for the annulus momentum balance.
     """
     if (pressure_gradient is None) == (flow_rate is None):

@@ -52,7 +52,7 @@ class CircuitReport:
     part_knee_currents: dict
 
     def as_json(self) -> dict:
-        """The JSON of ``erdesign magnetics --json`` (shared/CONTRACTS.md section 5): SI numbers; lists when the
+        """The JSON of ``erdesign magnetics --json`` (docs/file_formats.md, [coil]): SI numbers; lists when the
         report holds several currents (then with ``current_A``)."""
         def si(q, unit):
             m = np.asarray(q.to(unit).magnitude, dtype=float)
@@ -137,7 +137,7 @@ def circuit_from_damper_dict(data: Mapping[str, Any]) -> _Circuit:
 
     if "coil" not in data:
         raise DamperFileError("[coil]: missing table (the magnetic circuit needs the coil; "
-                              "shared/CONTRACTS.md section 5)")
+                              "docs/file_formats.md, [coil])")
     coil = coil_from_table(data["coil"])
     geo = data.get("geometry")
     if not isinstance(geo, Mapping):

@@ -1,6 +1,6 @@
 r"""Nonlinear reluctance network of the common MR piston head: coil current -> gap flux density -> yield stress.
 
-The head (shared/CONTRACTS.md section 5) is axisymmetric: a coil of N turns on a steel core of radius
+The head (docs/file_formats.md, [coil]) is axisymmetric: a coil of N turns on a steel core of radius
 :math:`r_c`, between two steel poles of axial length :math:`L_p` and radius :math:`R_p`; the annular fluid gap
 :math:`h` separates the poles from the steel housing (inner radius :math:`R_i = R_p + h`, outer :math:`R_o`), which
 is the return path.  The flux goes up the core, out radially through one pole, across the gap, along the housing

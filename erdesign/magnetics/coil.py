@@ -35,7 +35,7 @@ __all__ = ["Coil", "coil_from_table", "coil_resistance", "current_rise_time", "C
            "COPPER_RESISTIVITY_20C",
            "COPPER_TEMPERATURE_COEFFICIENT", "MAX_FILL_FACTOR"]
 
-#: Keys of a damper file's ``[coil]`` table (shared/CONTRACTS.md section 5).
+#: Keys of a damper file's ``[coil]`` table (docs/file_formats.md, [coil]).
 COIL_KEYS = ("turns", "wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter", "steel")
 #: Optional keys of ``[coil]`` beyond the contract: ``supply_voltage``, the voltage the coil's driver can apply
 #: (a current-controlled driver forces the current up with it; docs/magnetics.md).

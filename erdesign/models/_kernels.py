@@ -159,7 +159,8 @@ class frozen_substeps:
 
 
 def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
-    r"""States of Spencer's modified Bouc-Wen model (seed 001 eqs 10-12; Spencer et al. 1997) for a displacement
+    r"""States of Spencer's modified Bouc-Wen model (Butz and von Stryk 2002, eqs 10-12; Spencer et al. 1997) for a
+    displacement
     and a dimensionless control that are linear between samples.
 
     With the relative displacement :math:`w = x - y` of the Bouc-Wen element and the filtered control :math:`u_f`,

@@ -22,7 +22,7 @@ def _fit_sign_viscous(record):
 
 
 class EyringPlastic(Model):
-    r"""Eyring-plastic model (Bitman et al.; seed 002 eq 8).
+    r"""Eyring-plastic model (Bitman et al.; Vivas-López et al. (seed 002) eq 8).
 
     .. math:: F = F_\alpha\operatorname{arcsinh}(\lambda_1\dot z - \lambda_2 z)\,(1 + \beta_1 e^{-\beta_2|\dot z|})
               + c_1\dot z + c_3\dot z^3 + f_0, \qquad F_\alpha = F_{\alpha,0} + F_{\alpha,u}u
@@ -50,7 +50,7 @@ class EyringPlastic(Model):
 
     name = "eyring_plastic"
     title = "Eyring-plastic (Bitman)"
-    source = "seed 002 eq 8"
+    source = "Vivas-López et al. (seed 002) eq 8"
     uses_control = True
     memoryless = True
     control_parameters = ("F_alpha_u",)

@@ -87,7 +87,7 @@ class Model:
     """
 
     name: str = ""
-    """Registry name, snake_case and stable (shared/CONTRACTS.md, model names)."""
+    """Registry name, snake_case and stable (docs/cli.md, model names)."""
     title: str = ""
     """Human name (``"BingMax (Makris)"``)."""
     source: str = ""

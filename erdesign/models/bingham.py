@@ -1,10 +1,11 @@
 r"""Bingham-type damper models: Stanway's Bingham model and Gamota-Filisko's extended Bingham model.
 
-Bingham (seed 001 eq 2; seed 003 eq 2 with the accumulator offset :math:`f_0`):
+Bingham (Butz and von Stryk 2002, eq 2; seed 003 eq 2 with the accumulator offset :math:`f_0`):
 
 .. math:: F = f_c\,\operatorname{sgn}(\dot x) + c_0\dot x + f_0
 
-Extended Bingham (Gamota and Filisko; seed 001 eq 3): a Bingham element (c0, f_c) in series with a Kelvin-Voigt
+Extended Bingham (Gamota and Filisko; Butz and von Stryk (2002) eq 3): a Bingham element (c0, f_c) in series with a
+Kelvin-Voigt
 element (k1, c1) and a spring k2.  See :class:`BinghamExtended` for how it is integrated.
 """
 
@@ -28,26 +29,26 @@ class Bingham(Model):
     Notes
     -----
     sgn(0) = 0.  Rigid below yield: the model has no pre-yield branch, so it cannot show the roll-off of measured
-    force-velocity loops (seed 001, section 3.1.1).
+    force-velocity loops (Butz and von Stryk 2002, section 3.1.1).
 
     Examples
     --------
     >>> import numpy as np
     >>> from erdesign.measurement import Measurement
     >>> t = np.linspace(0, 1, 201); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
-    >>> F = Bingham().simulate(rec, {"c0": 5000.0, "f_c": 670.0})   # seed 001 section 4.2
+    >>> F = Bingham().simulate(rec, {"c0": 5000.0, "f_c": 670.0})   # Butz and von Stryk (2002) section 4.2
     >>> bool(abs(F.max() - (670 + 5000 * 0.02 * np.pi)) < 1.0)   # f_c + c0 v_max
     True
 
     References
     ----------
-    Butz and von Stryk (seed 001) eq 2 and section 4.2; review (seed 003) eqs 2 and 7.
+    Butz and von Stryk (2002) eq 2 and section 4.2; review (seed 003) eqs 2 and 7.
     """
 
     name = "bingham"
     memoryless = True
     title = "Bingham (Stanway)"
-    source = "seed 001 eq 2 (Stanway); seed 003 eqs 2, 7"
+    source = "Butz and von Stryk (2002) eq 2 (Stanway); seed 003 eqs 2, 7"
     uses_control = True
     control_parameters = ("f_c_u", "c0_u")
     parameters = (
@@ -109,8 +110,8 @@ class BinghamExtended(Model):
 
     Notes
     -----
-    The system is stiff and switches between stuck and sliding (seed 001: "extremely stiff").  It is integrated by
-    backward Euler on the equivalent dead-zone form with the force solved in closed form on each step
+    The system is stiff and switches between stuck and sliding (Butz and von Stryk 2002: "extremely stiff").  It is
+    integrated by backward Euler on the equivalent dead-zone form with the force solved in closed form on each step
     (:func:`extended_bingham_force`, 64 sub-steps per sample), not by regularising the sign function;
     tests/test_models.py checks it against a Radau solution with a tight tolerance.  Starts from rest.
 
@@ -125,12 +126,12 @@ class BinghamExtended(Model):
 
     References
     ----------
-    Butz and von Stryk (seed 001) eq 3; review (seed 003) eq 3 (with f0).
+    Butz and von Stryk (2002) eq 3; review (seed 003) eq 3 (with f0).
     """
 
     name = "bingham_extended"
     title = "extended Bingham (Gamota-Filisko)"
-    source = "seed 001 eq 3 (Gamota and Filisko); seed 003 eq 3"
+    source = "Butz and von Stryk (2002) eq 3 (Gamota and Filisko); seed 003 eq 3"
     parameters = (
         Parameter("c0", "N*s/m", 5000.0, 1.0, 1e8, "post-yield damping of the Bingham element", log_scale=True),
         Parameter("f_c", "N", 670.0, 0.0, 1e7, "friction (yield) force"),

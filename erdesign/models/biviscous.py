@@ -76,12 +76,12 @@ class Biviscous(Model):
 
     References
     ----------
-    Review (seed 003) eq 60; Butz and von Stryk (seed 001) eqs 26-27 (bi-viscous stress law).
+    Review (seed 003) eq 60; Butz and von Stryk (2002) eqs 26-27 (bi-viscous stress law).
     """
 
     name = "biviscous"
     title = "nonlinear biviscous (Wereley)"
-    source = "seed 003 eq 60; seed 001 eqs 26-27"
+    source = "seed 003 eq 60; Butz and von Stryk (2002) eqs 26-27"
     uses_control = True
     memoryless = True
     control_parameters = ("F_y_u",)

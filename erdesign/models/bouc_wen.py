@@ -1,6 +1,6 @@
 r"""Bouc-Wen family: Bouc-Wen (Spencer), modified Bouc-Wen (Spencer 1997) and the normalised Bouc-Wen model.
 
-The hysteretic variable obeys (seed 001 eq 9)
+The hysteretic variable obeys (Butz and von Stryk 2002, eq 9)
 
 .. math:: \dot z = -\gamma|\dot q| z|z|^{n-1} - \beta\dot q|z|^n + \delta\dot q
 
@@ -23,7 +23,7 @@ from .base import ControlAffineModel, Model, Parameter
 
 __all__ = ["BoucWen", "BoucWenModified", "BoucWenNormalized", "SPENCER_PASSIVE"]
 
-#: Modified Bouc-Wen parameters of the passive MR damper simulated by Butz and von Stryk (seed 001, section 4.3),
+#: Modified Bouc-Wen parameters of the passive MR damper simulated by Butz and von Stryk (2002, section 4.3),
 #: from Spencer et al.: SI units.
 SPENCER_PASSIVE = {"c0a": 5300.0, "c1a": 93000.0, "k0": 1400.0, "k1": 540.0, "alpha_a": 96300.0, "beta": 2.0e6,
                    "gamma": 2.0e6, "n": 2.0, "delta": 207.0, "x0": 0.0}
@@ -68,12 +68,12 @@ class BoucWen(Model):
 
     References
     ----------
-    Butz and von Stryk (seed 001) eqs 8-9 and 13-15; review (seed 003) eqs 15-16.
+    Butz and von Stryk (2002) eqs 8-9 and 13-15; review (seed 003) eqs 15-16.
     """
 
     name = "bouc_wen"
     title = "Bouc-Wen (Spencer)"
-    source = "seed 001 eqs 8-9, 13-15; seed 003 eqs 15-16"
+    source = "Butz and von Stryk (2002) eqs 8-9, 13-15; seed 003 eqs 15-16"
     uses_control = True
     control_parameters = ("c0b", "alpha_b")
     parameters = (
@@ -124,8 +124,10 @@ class BoucWenModified(Model):
 
     Notes
     -----
-    Defaults: the passive parameters of seed 001 section 4.3 (:data:`SPENCER_PASSIVE`).  The quadratic term
-    :math:`\alpha_c u_f^2` is not in seed 001 (eq 13 is linear in u): it is the saturation of the MR yield force
+    Defaults: the passive parameters of Butz and von Stryk (2002) section 4.3 (:data:`SPENCER_PASSIVE`).  The
+    quadratic term
+    :math:`\alpha_c u_f^2` is not in Butz and von Stryk (2002) (eq 13 is linear in u): it is the saturation of the MR
+    yield force
     with coil current used by Quiroz (2022, the UTFSM data of docs/real_data.md); ``alpha_c = 0`` (the default)
     is Spencer's law.  Motion and control are taken linear between samples; the filter is solved exactly, w by
     RK4 sub-steps with z exact along each sub-step (:func:`~erdesign.models._kernels.modified_bouc_wen`, a compiled
@@ -144,12 +146,12 @@ class BoucWenModified(Model):
 
     References
     ----------
-    Butz and von Stryk (seed 001) eqs 10-16 and section 4.3; review (seed 003) eqs 17-19.
+    Butz and von Stryk (2002) eqs 10-16 and section 4.3; review (seed 003) eqs 17-19.
     """
 
     name = "bouc_wen_modified"
     title = "modified Bouc-Wen (Spencer 1997)"
-    source = "seed 001 eqs 10-16, section 4.3 (Spencer et al. 1997); seed 003 eqs 17-19"
+    source = "Butz and von Stryk (2002) eqs 10-16, section 4.3 (Spencer et al. 1997); seed 003 eqs 17-19"
     uses_control = True
     control_parameters = ("c0b", "c1b", "alpha_b", "alpha_c", "eta")
     parameters = (

@@ -3,7 +3,8 @@ r"""Chebyshev polynomial fit of the restoring force (Ehrgott and Masri; 3-D with
 .. math::
     F(x, \dot x, u) \approx \sum_{i,j=0}^{m}\sum_{k=0}^{m_u} C_{ijk}\,T_i(x')\,T_j(\dot x')\,T_k(u')
 
-with x', v', u' the displacement, velocity and control mapped linearly onto [-1, 1] (seed 001 eqs 29-30).
+with x', v', u' the displacement, velocity and control mapped linearly onto [-1, 1] (Butz and von Stryk 2002,
+eqs 29-30).
 """
 
 from __future__ import annotations
@@ -46,12 +47,12 @@ class Chebyshev(Model):
 
     References
     ----------
-    Butz and von Stryk (seed 001) eqs 29-30 (Ehrgott and Masri; Gavin et al.).
+    Butz and von Stryk (2002) eqs 29-30 (Ehrgott and Masri; Gavin et al.).
     """
 
     name = "chebyshev"
     title = "Chebyshev polynomial fit"
-    source = "seed 001 eqs 29-30 (Ehrgott and Masri; Gavin et al.)"
+    source = "Butz and von Stryk (2002) eqs 29-30 (Ehrgott and Masri; Gavin et al.)"
     uses_control = True
 
     def __init__(self, degree: int = 3, control_degree: int = 1):

@@ -1,6 +1,6 @@
 r"""Kamath-Wereley nonlinear viscoelastic-plastic models: four parameters and the augmented six-parameter model.
 
-Pre-yield: a three-parameter (Jeffreys) fluid (seed 000 eq 3),
+Pre-yield: a three-parameter (Jeffreys) fluid (Kamath and Wereley 1997, eq 3),
 
 .. math:: F_{ve} + p_1\dot F_{ve} = q_1\dot X + q_2\ddot X, \quad p_1 = \frac{C_1 + C_2}{K_1},\ q_1 = C_2,\
           q_2 = \frac{C_1 C_2}{K_1},
@@ -8,7 +8,7 @@ Pre-yield: a three-parameter (Jeffreys) fluid (seed 000 eq 3),
 plus stiction :math:`S_c F_c`, :math:`S_c = \tfrac12\tanh(\dot X/4\epsilon_c)` (eqs 7-8); post-yield: viscous and
 inertial, :math:`F_{ay} = C_v\dot X + R\ddot X` (eq 10); blended by :math:`S_{by} = \tfrac12[1 - \tanh((\alpha -
 \alpha_y)/4\epsilon_y)]`, :math:`S_{ay} = 1 - S_{by}` (eqs 9, 11, 12).  The four-parameter model (Refs 23-24 of
-seed 000; seed 001 eqs 17-21) is the same with R = 0 and F_c = 0.
+Kamath and Wereley (1997); Butz and von Stryk (2002) eqs 17-21) is the same with R = 0 and F_c = 0.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from .base import Model, Parameter
 
 __all__ = ["KamathWereley4", "KamathWereley6", "jeffreys_force", "KAMATH_WERELEY_TABLE1"]
 
-#: Seed 000 Table 1, case 2 (E = 3 kV/mm, X0 = 1.0 mm), augmented model, SI units.
+#: Kamath and Wereley (1997) Table 1, case 2 (E = 3 kV/mm, X0 = 1.0 mm), augmented model, SI units.
 KAMATH_WERELEY_TABLE1 = {"C1": 0.978e4, "C2": 1.253e4, "K1": 1.453e5, "Cv": 1.914e3, "R": 5.292, "F_c": 4.810,
                          "alpha_y": 0.40, "eps_y": 0.10, "eps_c": 0.30}
 
@@ -44,7 +44,7 @@ def jeffreys_force(t, v, C1, C2, K1):
 
     References
     ----------
-    Kamath and Wereley (seed 000) eq 3; Butz and von Stryk (seed 001) eq 17.
+    Kamath and Wereley (1997) eq 3; Butz and von Stryk (2002) eq 17.
     """
     v = np.asarray(v, dtype=float)
     p1 = (C1 + C2) / K1
@@ -58,14 +58,14 @@ def jeffreys_force(t, v, C1, C2, K1):
 
 
 def _alpha(record):
-    """Velocity made dimensionless with its amplitude: |v| / max|v| (seed 000: alpha, eq 9)."""
+    """Velocity made dimensionless with its amplitude: |v| / max|v| (Kamath and Wereley 1997: alpha, eq 9)."""
     v = record.velocity
     vmax = float(np.max(np.abs(v)))
     return np.abs(v) / vmax if vmax > 0 else np.zeros_like(v), vmax
 
 
 class KamathWereley6(Model):
-    r"""Augmented six-parameter viscoelastic-plastic model of Kamath and Wereley (seed 000 eqs 3-12).
+    r"""Augmented six-parameter viscoelastic-plastic model of Kamath and Wereley (1997, eqs 3-12).
 
     .. math::
         F = S_{by}\,(F_{ve} + S_c F_c) + S_{ay}\,(C_v\dot X + R\ddot X) + f_0
@@ -93,12 +93,12 @@ class KamathWereley6(Model):
 
     References
     ----------
-    Kamath and Wereley (seed 000) eqs 3-12 and Table 1; Butz and von Stryk (seed 001) eqs 17-25.
+    Kamath and Wereley (1997) eqs 3-12 and Table 1; Butz and von Stryk (2002) eqs 17-25.
     """
 
     name = "kamath_wereley_6"
     title = "Kamath-Wereley augmented six-parameter model"
-    source = "seed 000 eqs 3-12, Table 1; seed 001 eqs 17-25"
+    source = "Kamath and Wereley (1997) eqs 3-12, Table 1; Butz and von Stryk (2002) eqs 17-25"
     parameters = (
         Parameter("C1", "N*s/m", 0.978e4, 1.0, 1e9, "Jeffreys dashpot C1", log_scale=True),
         Parameter("C2", "N*s/m", 1.253e4, 1.0, 1e9, "Jeffreys dashpot C2", log_scale=True),
@@ -136,7 +136,7 @@ class KamathWereley6(Model):
 
 
 class KamathWereley4(KamathWereley6):
-    r"""Four-parameter nonlinear viscoelastic-plastic model (Kamath and Wereley; seed 001 eqs 17-21).
+    r"""Four-parameter nonlinear viscoelastic-plastic model (Kamath and Wereley; Butz and von Stryk (2002) eqs 17-21).
 
     .. math:: F = S_{ve} F_{ve} + S_{vi} C_v\dot X + f_0
 
@@ -154,12 +154,12 @@ class KamathWereley4(KamathWereley6):
 
     References
     ----------
-    Kamath and Wereley (seed 000) Table 1 (four-parameter columns); Butz and von Stryk (seed 001) eqs 17-21.
+    Kamath and Wereley (1997) Table 1 (four-parameter columns); Butz and von Stryk (2002) eqs 17-21.
     """
 
     name = "kamath_wereley_4"
     title = "Kamath-Wereley four-parameter model"
-    source = "seed 001 eqs 17-21; seed 000 Table 1"
+    source = "Butz and von Stryk (2002) eqs 17-21; Kamath and Wereley (1997) Table 1"
     parameters = (
         Parameter("C1", "N*s/m", 1.093e4, 1.0, 1e9, "Jeffreys dashpot C1", log_scale=True),
         Parameter("C2", "N*s/m", 1.111e4, 1.0, 1e9, "Jeffreys dashpot C2", log_scale=True),

@@ -1,4 +1,4 @@
-r"""Maxwell-type damper models (Makris et al., seed 004): Maxwell, BingMax and the Maxwell + neural-network hybrid.
+r"""Maxwell-type damper models (Makris et al. 1996): Maxwell, BingMax and the Maxwell + neural-network hybrid.
 
 The Maxwell element (spring K in series with dashpot C, relaxation time :math:`\lambda = C/K`),
 
@@ -52,7 +52,7 @@ def maxwell_force(t, v, C, K):
 
     References
     ----------
-    Makris et al. (seed 004) eq 13 and the Maxwell part of eq 16.
+    Makris et al. (1996) eq 13 and the Maxwell part of eq 16.
     """
     v = np.asarray(v, dtype=float)
     lam = C / K
@@ -86,12 +86,12 @@ class Maxwell(Model):
 
     References
     ----------
-    Makris et al. (seed 004) eq 13 and section 4.1.
+    Makris et al. (1996) eq 13 and section 4.1.
     """
 
     name = "maxwell"
     title = "Maxwell"
-    source = "seed 004 eq 13, section 4.1 (Makris)"
+    source = "Makris et al. (1996) eq 13, section 4.1 (Makris)"
     uses_control = True
     control_parameters = ("C_u",)
     parameters = (
@@ -135,7 +135,8 @@ class BingMax(Model):
 
     Notes
     -----
-    Seed 001 writes the model as eq 7, :math:`F + \lambda\dot F = C\dot u + F_y\operatorname{sgn}\dot u`, which
+    Butz and von Stryk (2002) writes the model as eq 7, :math:`F + \lambda\dot F = C\dot u +
+    F_y\operatorname{sgn}\dot u`, which
     would also low-pass the friction; that disagrees with its own eq 6 and with Makris eq 16 (friction in parallel,
     unfiltered), which is implemented here.  Makris report PV = 109 lb and RMS = 31 lb on El Centro at 3 kV/mm.
 
@@ -150,12 +151,12 @@ class BingMax(Model):
 
     References
     ----------
-    Makris et al. (seed 004) eq 16; Butz and von Stryk (seed 001) eqs 6-7.
+    Makris et al. (1996) eq 16; Butz and von Stryk (2002) eqs 6-7.
     """
 
     name = "bingmax"
     title = "BingMax (Makris)"
-    source = "seed 004 eq 16 (Makris); seed 001 eqs 6-7"
+    source = "Makris et al. (1996) eq 16 (Makris); Butz and von Stryk (2002) eqs 6-7"
     uses_control = True
     control_parameters = ("F_y_u",)
     parameters = (
@@ -217,12 +218,12 @@ class MaxwellNeural(Maxwell):
 
     References
     ----------
-    Makris et al. (seed 004) section 4.3; Butz and von Stryk (seed 001) section 3.2.2.
+    Makris et al. (1996) section 4.3; Butz and von Stryk (2002) section 3.2.2.
     """
 
     name = "maxwell_neural"
     title = "Maxwell + neural network (Makris hybrid)"
-    source = "seed 004 section 4.3 (Makris); seed 001 section 3.2.2"
+    source = "Makris et al. (1996) section 4.3 (Makris); Butz and von Stryk (2002) section 3.2.2"
 
     def __init__(self, hidden: int = 8):
         if int(hidden) < 1:

@@ -10,7 +10,7 @@ __all__ = ["Powell"]
 
 
 class Powell(Model):
-    r"""Powell's three-element model (seed 001 eqs 4-5).
+    r"""Powell's three-element model (Butz and von Stryk 2002, eqs 4-5).
 
     .. math::
         F = f_c + k\tanh(d z) + c\dot z, \qquad
@@ -35,12 +35,12 @@ class Powell(Model):
 
     References
     ----------
-    Butz and von Stryk (seed 001) eqs 4-5 (Powell 1994).
+    Butz and von Stryk (2002) eqs 4-5 (Powell 1994).
     """
 
     name = "powell"
     title = "three-element model (Powell)"
-    source = "seed 001 eqs 4-5"
+    source = "Butz and von Stryk (2002) eqs 4-5"
     memoryless = True
     parameters = (
         Parameter("f_cs", "N", 400.0, 0.0, 1e7, "static friction"),

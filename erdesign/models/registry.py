@@ -1,6 +1,6 @@
 """The model registry: contract name -> model factory, with one dispatcher (:func:`get_model`).
 
-Names are those of shared/CONTRACTS.md section 3 ("Model names").  Every factory returns a fresh :class:`Model`;
+Names are those of docs/cli.md ("Model names").  Every factory returns a fresh :class:`Model`;
 ``physics`` (the physics damper of a damper file, with effects) is imported lazily from :mod:`erdesign.physics`
 and needs ``damper=`` (a :class:`~erdesign.damper.Damper` or a damper-file path).
 """

@@ -1,4 +1,5 @@
-r"""The general semi-active damper model of seed 002 (passive + semi-active force, asymmetric coefficients)."""
+r"""The general semi-active damper model of Vivas-López et al. (seed 002) (passive + semi-active force, asymmetric
+coefficients)."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ __all__ = ["SemiactiveGeneral", "sigmoid_ratio"]
 
 
 def sigmoid_ratio(s):
-    r"""The saturating function of seed 002 eqs 5a-5e, :math:`s/(1 + |s|)` (odd, bounded by 1).
+    r"""The saturating function of Vivas-López et al. (seed 002) eqs 5a-5e, :math:`s/(1 + |s|)` (odd, bounded by 1).
 
     >>> sigmoid_ratio([-1.0, 0.0, 3.0]).tolist()
     [-0.5, 0.0, 0.75]
@@ -20,7 +21,8 @@ def sigmoid_ratio(s):
 
 
 class SemiactiveGeneral(Model):
-    r"""General semi-active model of seed 002 (eqs 2-5) with coefficients that differ in extension and compression.
+    r"""General semi-active model of Vivas-López et al. (seed 002) (eqs 2-5) with coefficients that differ in
+    extension and compression.
 
     .. math::
         F_D = F_P + F_{SA}, \qquad
@@ -61,7 +63,7 @@ class SemiactiveGeneral(Model):
 
     name = "semiactive_general"
     title = "general semi-active model (seed 002)"
-    source = "seed 002 eqs 2-5"
+    source = "Vivas-López et al. (seed 002) eqs 2-5"
     uses_control = True
     control_parameters = ("c_sa_pos", "c_sa_neg", "v_py", "x_py")
     parameters = (

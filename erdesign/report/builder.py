@@ -328,7 +328,7 @@ def validity_checks(damper: Damper, sweep: VelocitySweep, fields: np.ndarray, v_
         show(re_max, "", name="largest Reynolds number"), show(CRITICAL_REYNOLDS, "", name="critical Reynolds"),
         "largest Re of the velocity and control sweep" + ("" if re_max < CRITICAL_REYNOLDS else
                                                            ": the laminar gap-flow model does not hold"),
-        "Makris et al. (seed 004), eq 1"))
+        "Makris et al. (1996), eq 1"))
     ratio = g.gap_ratio
     thin_ok = ratio <= THIN_GAP_LIMIT
     detail = f"thin-gap error {g.thin_gap_error * 100:.3g} % of the Newtonian pressure drop"
@@ -365,10 +365,10 @@ def validity_checks(damper: Damper, sweep: VelocitySweep, fields: np.ndarray, v_
         "plug thickness over gap at the design velocity and control"
         + ("" if phi <= PLUG_FRACTION_LIMIT else ": the gap is nearly blocked, the force is set by the yield stress "
                                                   "and pre-yield elasticity (Makris eq 8), not modelled here, matters"),
-        "Makris et al. (seed 004), eqs 2 and 5 (plug of thickness 2 tau_y L / dp)"))
+        "Makris et al. (1996), eqs 2 and 5 (plug of thickness 2 tau_y L / dp)"))
     if damper.seal_friction == 0:
         out.append(Check("seal_friction", "Seal friction share of the force", "info", None, None,
-                         "no seal friction given (fluid.seal_friction)", "Makris et al. (seed 004), eq 14"))
+                         "no seal friction given (fluid.seal_friction)", "Makris et al. (1996), eq 14"))
     else:
         F0 = float(sweep.zero_field_force[i_design])
         share = damper.seal_friction / abs(F0)
@@ -379,7 +379,7 @@ def validity_checks(damper: Damper, sweep: VelocitySweep, fields: np.ndarray, v_
             "seal friction over the zero-field force at the design velocity"
             + ("" if share <= SEAL_SHARE_LIMIT else ": the off-state force and the dynamic range depend mostly on "
                                                       "the seals"),
-            "Makris et al. (seed 004), eq 14"))
+            "Makris et al. (1996), eq 14"))
     return tuple(out)
 
 
@@ -652,7 +652,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
             show(Q_(g.thin_gap_error, ""), "percent", name="thin-gap error"), "Bird, Stewart and Lightfoot eq 2.4-17"),
         Row("active_volume", "fluid volume between the electrodes",
             show(Q_(g.active_fluid_volume, "m^3"), pick_unit(Q_(g.active_fluid_volume, "m^3"), "volume"),
-                 name="active volume"), "Kamath and Wereley (seed 000), section III.C"),
+                 name="active volume"), "Kamath and Wereley (1997), section III.C"),
         Row("damping_constant", "damping constant C (zero field)", show(C, pick_unit(C, "damping"), name="C"),
             "Makris eq 15" if g.configuration == "valve" else "Newtonian mixed mode"),
         Row("seal_friction", "seal friction F_s", show(Q_(damper.seal_friction, "N"),

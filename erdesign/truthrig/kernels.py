@@ -53,7 +53,7 @@ onto the rigid damper at large amplitude.  With :math:`\tau_y = 0` it is the Max
 
 References
 ----------
-Makris, Burton, Hill and Jordan (1996), eqs 6, 8 and 13 (seed 004).
+Makris, Burton, Hill and Jordan (1996), eqs 6, 8 and 13.
 """
 
 from __future__ import annotations

@@ -421,8 +421,8 @@ def simulate_truth(truth: TruthDamper, motion: Motion, *, force_noise: float = 0
 
     References
     ----------
-    Makris, Burton, Hill and Jordan (1996), eqs 6, 8, 13 and 14 (seed 004); Kamath and Wereley, section II
-    (seed 000) for the mixed-mode damper.
+    Makris, Burton, Hill and Jordan (1996), eqs 6, 8, 13 and 14; Kamath and Wereley, section II
+    (Kamath and Wereley 1997) for the mixed-mode damper.
     """
     if not isinstance(truth, TruthDamper):
         raise ErdesignError("truth: must be a TruthDamper")
