@@ -28,7 +28,15 @@ def streamlit_command(port: int | None = None, headless: bool = False, extra: tu
     return cmd + list(extra)
 
 
-@cli.command(context_settings={"ignore_unknown_options": True})
+_EXAMPLES = """
+\b
+Examples:
+  erdesign app
+  erdesign app --port 8600 --headless
+"""
+
+
+@cli.command(context_settings={"ignore_unknown_options": True}, epilog=_EXAMPLES)
 @click.option("--port", type=int, default=None, help="Port to serve on (default: Streamlit's, 8501).")
 @click.option("--headless", is_flag=True, help="Do not open a browser.")
 @click.argument("streamlit_args", nargs=-1, type=click.UNPROCESSED)

@@ -12,7 +12,15 @@ from .main import cli, emit_json, json_number
 __all__ = ["fit"]
 
 
-@cli.command()
+_EXAMPLES = """
+\b
+Examples:
+  erdesign fit examples/measurements/makris_hidden_seal_friction.csv --damper examples/makris.toml
+  erdesign fit REC.csv --damper examples/makris.toml --effects seal_friction --json
+"""
+
+
+@cli.command(epilog=_EXAMPLES)
 @click.argument("measurement", metavar="MEASUREMENT.csv")
 @click.option("--damper", "damper_file", required=True, metavar="DAMPER.toml", help="Damper file (geometry, fluid).")
 @click.option("--effects", default="", help="Effects to add to the baseline, comma separated (e.g. seal_friction).")

@@ -12,7 +12,17 @@ from .main import cli, emit_json
 __all__ = ["identify"]
 
 
-@cli.command()
+_EXAMPLES = """
+\b
+Examples:
+  erdesign identify REC.csv --model bingham
+  erdesign identify ransim_u.csv --model bouc_wen_modified --exclude-clipped --max-time 60
+  erdesign identify A.csv B.csv --model bouc_wen_modified --joint --validate C.csv
+  erdesign identify REC.csv --model physics --damper examples/makris.toml --effects seal_friction
+"""
+
+
+@cli.command(epilog=_EXAMPLES)
 @click.argument("measurement_files", nargs=-1, required=True, metavar="MEASUREMENT.csv...")
 @click.option("--model", "model_name", required=True, help="Registry name (see 'erdesign models').")
 @click.option("--damper", default=None, help="Damper file, for --model physics.")

@@ -43,7 +43,15 @@ def parse_currents(text: str) -> list[float]:
     return out
 
 
-@cli.command()
+_EXAMPLES = """
+\b
+Examples:
+  erdesign magnetics examples/mr_coil.toml --current "2 A"
+  erdesign magnetics examples/mr_coil.toml --current "0.5 A, 1 A, 2 A" --json
+"""
+
+
+@cli.command(epilog=_EXAMPLES)
 @click.argument("damper_file", metavar="DAMPER.toml")
 @click.option("--current", required=True,
               help='Coil current, e.g. "2 A"; several separated by commas: "0.5,1,2 A".')

@@ -10,7 +10,15 @@ from .main import cli, emit_json
 __all__ = ["materials_command"]
 
 
-@cli.command("materials")
+_EXAMPLES = """
+\b
+Examples:
+  erdesign materials
+  erdesign materials --json
+"""
+
+
+@cli.command("materials", epilog=_EXAMPLES)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a table.")
 def materials_command(as_json: bool) -> None:
     """List the fluids of the materials database (name it in a damper file: material = "...")."""

@@ -10,7 +10,15 @@ from .main import cli, emit_json
 __all__ = ["models"]
 
 
-@cli.command()
+_EXAMPLES = """
+\b
+Examples:
+  erdesign models
+  erdesign models --json
+"""
+
+
+@cli.command(epilog=_EXAMPLES)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a table.")
 def models(as_json: bool) -> None:
     """List the damper models with their sources and parameters."""

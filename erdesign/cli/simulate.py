@@ -13,7 +13,15 @@ from .main import cli, emit_json, json_number
 __all__ = ["simulate"]
 
 
-@cli.command()
+_EXAMPLES = """
+\b
+Examples:
+  erdesign simulate ransim_u.csv --model bouc_wen_modified --params spencer1997
+  erdesign simulate REC.csv --model bingham --params fitted.json --out forces.csv
+"""
+
+
+@cli.command(epilog=_EXAMPLES)
 @click.argument("measurement_file", metavar="MEASUREMENT.csv")
 @click.option("--model", "model_name", required=True, help="Registry name (see 'erdesign models').")
 @click.option("--params", "params", required=True, metavar="P",
