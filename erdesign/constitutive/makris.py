@@ -42,10 +42,11 @@ __all__ = [
     "maxwell_stress",
     "elastic_plastic_stress",
     "integration_factor_exponent",
+    "affine_recurrence",
 ]
 
 
-def _affine_recurrence(c, d, y0):
+def affine_recurrence(c, d, y0):
     r"""Solve :math:`y_{n+1} = c_n y_n + d_n` along axis 0 for all n, by a parallel prefix scan.
 
     ``c`` and ``d`` have shape (N - 1, ...), ``y0`` broadcasts to ``c.shape[1:]``; returns shape (N, ...).
@@ -181,7 +182,7 @@ def makris_stress(t, gamma, tau_y, eta, G, tau0=0.0):
     decay = np.exp(-exponent)
     tau_bingham = eta * dgamma / dt + tau_y * np.sign(dgamma)
     drive = -np.expm1(-exponent) * tau_bingham
-    return _affine_recurrence(decay, drive, tau0)
+    return affine_recurrence(decay, drive, tau0)
 
 
 def maxwell_stress(t, gamma, eta, G, tau0=0.0):
@@ -311,7 +312,7 @@ def elastic_plastic_stress(gamma, tau_y, G, tau0=0.0):
     s_branch = s[starts]
     # Stress at each reversal point: branch k maps tau_r,k to tau_r,k+1 (affine in tau_r, closed form above).
     exponent = G * np.abs(gamma[ends] - gamma[starts]) / tau_y
-    tau_r = _affine_recurrence(np.exp(-exponent), -np.expm1(-exponent) * s_branch * tau_y, tau0)[:-1]
+    tau_r = affine_recurrence(np.exp(-exponent), -np.expm1(-exponent) * s_branch * tau_y, tau0)[:-1]
     branch = np.searchsorted(starts, np.arange(gamma.size), side="right") - 1
     on_branch = branch >= 0
     k = branch[on_branch]

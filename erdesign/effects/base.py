@@ -21,11 +21,11 @@ from typing import Mapping
 import numpy as np
 from scipy.special import erf
 
-from ..constitutive.makris import _affine_recurrence
+from ..constitutive.makris import affine_recurrence
 from ..damper import Damper
 from ..errors import ErdesignError
 from ..measurement import Measurement
-from ..models.base import Parameter
+from ..parameters import Parameter
 
 __all__ = ["Effect", "EffectError", "relaxation_filter", "reversal_count", "sign_expectation"]
 
@@ -191,7 +191,7 @@ def relaxation_filter(t, target, rate, y0=None):
     du = np.diff(u)
     d = u[1:] - a * u[:-1] - du * phi
     y0 = u[0] if y0 is None else float(y0)
-    return _affine_recurrence(a, d, y0)
+    return affine_recurrence(a, d, y0)
 
 
 def sign_expectation(v, sigma):

@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect
 
 __all__ = ["Compressibility", "hydraulic_stiffness", "compliant_pressure_force", "DuctLaw", "BULK_MODULUS",

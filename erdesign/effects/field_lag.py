@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect, relaxation_filter
 
 __all__ = ["FieldLag", "lagged_control"]

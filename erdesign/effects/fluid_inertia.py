@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect
 
 __all__ = ["FluidInertia", "slug_mass"]

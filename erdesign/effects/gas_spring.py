@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect
 
 __all__ = ["GasSpring", "gas_spring_force", "ACCUMULATOR_PRESSURE", "POLYTROPIC_INDEX"]

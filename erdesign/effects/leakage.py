@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize.elementwise import find_root
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect
 
 __all__ = ["Leakage", "leaky_pressure_drop"]

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect, geometric_damping, relaxation_filter
 
 __all__ = ["PreyieldElasticity", "elastic_viscoplastic_force", "elastic_stiffness"]

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect, reversal_count
 
 __all__ = ["SealFriction", "coulomb_friction"]

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize.elementwise import bracket_root, find_root
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect, peak_speed
 
 __all__ = ["ShearThinning", "herschel_bulkley_slit_flow_rate", "herschel_bulkley_pressure_drop",

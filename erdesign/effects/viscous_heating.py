@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..models.base import Parameter
+from ..parameters import Parameter
 from .base import Effect, relaxation_filter, reversal_count
 
 __all__ = ["ViscousHeating", "temperature_rise", "heated_viscosity_factor", "TEMPERATURE_COEFFICIENT",

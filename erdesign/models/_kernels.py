@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from ..constitutive.makris import _affine_recurrence
+from ..constitutive.makris import affine_recurrence
 
 __all__ = ["first_order_lag", "dahl_state", "bouc_wen_state", "riccati_step", "modified_bouc_wen", "is_uniform"]
 
@@ -58,7 +58,7 @@ def first_order_lag(t, u, tau, y0=0.0):
     h = np.diff(t)
     e = np.exp(-h / tau)
     r = np.diff(u) / h
-    return _affine_recurrence(e, u[1:] - r * tau - e * (u[:-1] - r * tau), y0)
+    return affine_recurrence(e, u[1:] - r * tau - e * (u[:-1] - r * tau), y0)
 
 
 def dahl_state(x, rho, z0=0.0):
@@ -74,7 +74,7 @@ def dahl_state(x, rho, z0=0.0):
     dx = np.diff(np.asarray(x, dtype=float))
     s = np.sign(dx)
     e = np.exp(-np.asarray(rho, dtype=float) * np.abs(dx))
-    return _affine_recurrence(e, s * (1.0 - e), z0)
+    return affine_recurrence(e, s * (1.0 - e), z0)
 
 
 def _compiled():

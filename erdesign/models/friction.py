@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..constitutive.makris import _affine_recurrence
+from ..constitutive.makris import affine_recurrence
 from ._kernels import dahl_state
 from .base import ControlAffineModel, Model, Parameter
 
@@ -39,7 +39,7 @@ def lugre_state(x, kappa, z0=0.0):
     e = np.exp(-kappa * L)
     with np.errstate(invalid="ignore", divide="ignore"):
         gain = np.where(kappa * L > 1e-12, -np.expm1(-kappa * L) / np.where(kappa == 0, 1.0, kappa), L)
-    return _affine_recurrence(e, np.sign(dx) * gain, z0)
+    return affine_recurrence(e, np.sign(dx) * gain, z0)
 
 
 def _viscous_guess(record):
