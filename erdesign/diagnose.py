@@ -43,7 +43,8 @@ from .noise import force_noise_esr, noise_floor_esr, sign_known, velocity_noise
 from .physics import PhysicsDamper, check_control
 
 __all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
-           "improve", "fitted_model", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD", "MAX_SAMPLES", "VERDICTS"]
+           "improve", "fitted_model", "parameters_at_bounds", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD",
+           "MAX_SAMPLES", "VERDICTS"]
 
 #: A candidate must lower the residual sum of squares by at least this fraction ...
 MIN_GAIN = 0.05
@@ -351,10 +352,12 @@ def _held_out_mask(record: Measurement, blocks: int = 12) -> np.ndarray:
     return idx % 3 == 1
 
 
-def _at_bounds(result: FitResult, names) -> list[str]:
-    """Free parameters among ``names`` that ended at (within 1e-6 of the range of) a bound."""
+def parameters_at_bounds(result: FitResult, names=None) -> list[str]:
+    """Free parameters among ``names`` (default: all free ones) that ended at (within 1e-6 of the range of) a
+    bound, as text: ``"slug_mass at its lower bound 0 kg"``.  A value at a bound is not an estimate: the data
+    pushed it there (a missing effect, a unit mistake, or a parameter the record cannot tell)."""
     out = []
-    for name in names:
+    for name in (result.free if names is None else names):
         if name not in result.free:
             continue
         p = result.model.parameter(name)
@@ -566,7 +569,7 @@ def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, eff
     delta_bic = _bic(res.rss, base.n, res.k, n_eff) - _bic(base.rss, base.n, base.k, n_eff)
     cand = Candidate(name, res, res.esr, delta_bic, 1 - res.rss / base.rss if base.rss > 0 else 0.0, effects=added)
     names = [p.name for e in added for p in EFFECTS[e].parameters(damper)]
-    cand.at_bounds = _at_bounds(res, names)
+    cand.at_bounds = parameters_at_bounds(res, names)
     cand.implausible = [f"{e}: {note}" for e in added for note in EFFECTS[e].implausible(damper, res.values)]
     cand.plausibility = "; ".join(EFFECTS[e].plausibility(damper, res.values) for e in added)
     return cand
@@ -630,7 +633,7 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
     record = replace(record, velocity_noise=width * sigma_v)
     analysis = residual_analysis(base_model, base, work, mask)
     floor = force_noise_esr(work, mask)
-    warnings_ = [f"the calibration ends at a bound: {b}" for b in _at_bounds(base, base.free)]
+    warnings_ = [f"the calibration ends at a bound: {b}" for b in parameters_at_bounds(base, base.free)]
     suspicious = _implausible_record(record, damper)
     warnings_ += suspicious
     names = [c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES)

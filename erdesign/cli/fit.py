@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from ..damper_file import load_damper
-from ..diagnose import calibrate
+from ..diagnose import calibrate, parameters_at_bounds
 from ..measurement import check_against_damper, read_measurement
 from .main import cli, emit_json, json_number
 
@@ -31,8 +31,12 @@ def fit(measurement: str, damper_file: str, effects: str, as_json: bool) -> None
     record = read_measurement(measurement)
     check_against_damper(record, damper)  # issue 15: a unit mistake is named before a fit absorbs it
     result = calibrate(damper, record, effects)
+    at_bounds = parameters_at_bounds(result)
+    for text in at_bounds:
+        click.echo(f"warning: the fit ends at a bound: {text}; the value is not an estimate", err=True)
     if as_json:
         emit_json({"esr": json_number(result.esr),
-                   "parameters": result.parameters_with_units()})
+                   "parameters": result.parameters_with_units(),
+                   "at_bounds": [text.split(" ")[0] for text in at_bounds]})
         return
     click.echo(result.report())
