@@ -590,3 +590,20 @@ def test_chunked_sweep_gives_the_same_answer_and_bounded_memory():
     # Eight times the candidates, the same chunk: the peak must not follow the sample count (measured ratio ~1.0;
     # the running Pareto front and best designs are the only things that grow, and they are capped).
     assert peaks[1] < 1.5 * peaks[0]
+
+
+def test_design_reports_progress_chunk_by_chunk(capsys):
+    # the library calls back after every chunk with the running counts; the command line prints them on stderr
+    # once a search has run a while (here: at once), never on stdout (--json stays one object)
+    from erdesign.design import design, load_example_requirements
+    req = load_example_requirements("makris_requirements").with_search(samples=4096, chunk=1024, refine=False)
+    calls = []
+    result = design(req, progress=lambda done, total, feasible: calls.append((done, total, feasible)))
+    assert [c[0] for c in calls] == [1024, 2048, 3072, 4096] and {c[1] for c in calls} == {4096}
+    assert calls[-1][2] == result.feasible_count and all(a[2] <= b[2] for a, b in zip(calls, calls[1:]))
+    from erdesign.cli.design import _Progress
+    line = _Progress(every=0.0, after=0.0)
+    for done, total, feasible in calls[:-1]:
+        line(done, total, feasible)
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith("design: 1024 of 4096 candidates evaluated (25 %)") and len(err) == 3

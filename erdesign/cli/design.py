@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import time
+
 import click
 
 from .._util import check_output_path
@@ -33,14 +35,31 @@ Rounding and ties ([design.search] of the requirements file):
 def design(requirements_file: str, as_json: bool, out: str | None, force: bool) -> None:
     """Feasible damper geometries ranked by the objective, or the conflicts when there are none."""
     if out is not None:  # checked before the search: a refused name must not cost a long run
-        out, _ = check_output_path(out, force=force, inputs={"the requirements file": requirements_file}, formats={".csv": "csv"})
-    result = run_design(read_requirements(requirements_file))
+        out, _ = check_output_path(out, force=force, inputs={"the requirements file": requirements_file},
+                                   formats={".csv": "csv"})
+    result = run_design(read_requirements(requirements_file), progress=_Progress())
     if out is not None:
         result.write_csv(out)
     if as_json:
         emit_json(result.as_json())
         return
     click.echo(_table(result))
+
+
+class _Progress:
+    """Progress of a long search on stderr: a line every few seconds once it has run for two."""
+
+    def __init__(self, every: float = 5.0, after: float = 2.0):
+        self.start = time.monotonic()
+        self.next = self.start + after
+        self.every = every
+
+    def __call__(self, evaluated: int, total: int, feasible: int) -> None:
+        now = time.monotonic()
+        if now >= self.next and evaluated < total:
+            click.echo(f"design: {evaluated} of {total} candidates evaluated ({100 * evaluated / total:.0f} %), "
+                       f"{feasible} feasible so far, {now - self.start:.0f} s", err=True)
+            self.next = now + self.every
 
 
 def _geometry_cells(rec: dict) -> list[str]:

@@ -462,7 +462,7 @@ def _ranked(req: Requirements, fig: CandidateFigures) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------------------------------- design
-def design(req: Requirements) -> DesignResult:
+def design(req: Requirements, progress=None) -> DesignResult:
     """Feasible designs ranked by the objective, the Pareto front, or the conflicts when nothing is feasible.
 
     Parameters
@@ -470,6 +470,9 @@ def design(req: Requirements) -> DesignResult:
     req : Requirements
         From :func:`~erdesign.design.read_requirements`; ``req.search`` sets the sample size, seed, chunk size,
         refinement, number of designs and Pareto figures (``req.with_search(samples=...)`` changes them).
+    progress : callable, optional
+        Called after each chunk of the sweep as ``progress(evaluated, total, feasible)`` (the command line prints
+        it on long searches).
 
     Returns
     -------
@@ -489,6 +492,8 @@ def design(req: Requirements) -> DesignResult:
     summary = _Summary(constraints, keep=max(_KEEP_FACTOR * s.designs, _MAX_STARTS), variables=req.variables)
     for x in candidate_chunks(req):
         summary.add(_evaluate(req, x, constraints), req.objective, s.pareto)
+        if progress is not None:
+            progress(summary.evaluated, s.samples, summary.feasible)
 
     tol = s.active_tolerance
     result = DesignResult(requirements=req, constraints=constraints, evaluated=summary.evaluated,
