@@ -104,8 +104,7 @@ def sweep(amplitudes: Sequence[float], frequencies: Sequence[float], fields: Seq
     """
     n_seg = max(len(amplitudes), len(frequencies), len(fields))
     A, f, E = (np.resize(np.asarray(s, dtype=float), n_seg) for s in (amplitudes, frequencies, fields))
-    if np.any(A <= 0) or np.any(f <= 0):
-        raise ErdesignError("rig: amplitudes and frequencies must be positive")
+    _check_motion(A, f, rate)
     durations = cycles / f
     starts = np.concatenate([[0.0], np.cumsum(durations)])
     t, _ = _fine(starts[-1], rate)
@@ -122,11 +121,39 @@ def sweep(amplitudes: Sequence[float], frequencies: Sequence[float], fields: Seq
     return _finish(t, amp * np.sin(phase), E[seg], f"sine sweep ({cycles:g} cycles each): {desc}")
 
 
+#: Largest stroke amplitude a damper test can have, [m] (beyond it the value or its unit is wrong).
+MAX_AMPLITUDE = 10.0
+#: Fewest samples per period of the fastest motion.
+MIN_SAMPLES_PER_PERIOD = 8
+#: Highest peak piston speed of a damper test, [m/s] (impact tests reach a few m/s).
+MAX_SPEED = 100.0
+
+
+def _check_motion(amplitudes: np.ndarray, frequencies: np.ndarray, rate: float) -> None:
+    """One-line errors naming the amplitude or frequency that no test rig can run at ``rate``."""
+    for name, values in (("amplitude", amplitudes), ("frequency", frequencies)):
+        bad = values[~(np.isfinite(values) & (values > 0))]
+        if bad.size:
+            raise ErdesignError(f"{name}: must be positive and finite, got {bad[0]:g}")
+    if np.max(amplitudes) > MAX_AMPLITUDE:
+        raise ErdesignError(f"amplitude: {np.max(amplitudes):g} m is beyond any damper's stroke (at most "
+                            f"{MAX_AMPLITUDE:g} m); check the value and its unit")
+    speed = float(np.max(2 * np.pi * amplitudes * frequencies))
+    if speed > MAX_SPEED:
+        raise ErdesignError(f"frequency: {np.max(frequencies):g} Hz at {np.max(amplitudes) * 1e3:g} mm gives a peak "
+                            f"speed of {speed:.3g} m/s, beyond any damper test (at most {MAX_SPEED:g} m/s); check the "
+                            "frequency, the amplitude and their units")
+    if np.max(frequencies) * MIN_SAMPLES_PER_PERIOD > rate:
+        raise ErdesignError(f"frequency: {np.max(frequencies):g} Hz cannot be resolved at {rate:g} samples per second "
+                            f"(at least {MIN_SAMPLES_PER_PERIOD} per period); lower it or raise the sampling rate")
+
+
 def field_steps(amplitude: float, frequency: float, field: float, *, cycles: float = 4, step_period: float = 0.5,
                 rate: float = 1000.0, phase: float = 0.3, control_unit: str | None = None) -> Motion:
     """A sine with the control switched between 0 and ``field`` every ``step_period`` [s]; the steps fall at
     ``phase`` (fraction of a period) into the stroke so that they happen at speed.  ``control_unit``: the unit the
     description prints the control in (as :func:`sine`)."""
+    _check_motion(np.array([amplitude], dtype=float), np.array([frequency], dtype=float), rate)
     t, _ = _fine(cycles / frequency, rate)
     x = amplitude * np.sin(2 * np.pi * frequency * t)
     on = np.floor((t - phase / frequency) / step_period) % 2 == 1

@@ -75,16 +75,16 @@ def test_control_of_the_wrong_kind_is_one_clear_error():
         PhysicsDamper(load_example("mr_mixed")).simulate(rec)
 
 
-def test_vectorised_speed():
-    # 60 000 samples through the baseline and the state effects in well under a second each (no loop over time)
-    import time
-
+def test_long_record_through_the_baseline_and_the_state_effects():
+    # 60 000 samples (their speed is measured by benchmarks/bench_diagnose.py, not here): finite everywhere, and at
+    # the peak speed of this slow sine (5 mm/s) the baseline is the quasi-steady damper force of the damper file
     d = load_example("makris")
     t = np.linspace(0, 60, 60001)
     rec = Measurement(t, 0.005 * np.sin(t), None, 0.005 * np.cos(t), -0.005 * np.sin(t),
                       np.full(t.size, 3e6), "electric field")
+    peak = float(d.force_si(0.005, 3e6))
     for effects in ([], ["compressibility", "preyield_elasticity", "field_lag"]):
-        m = PhysicsDamper(d, effects)
-        t0 = time.perf_counter()
-        m.simulate(rec)
-        assert time.perf_counter() - t0 < 1.0
+        F = PhysicsDamper(d, effects).simulate(rec)
+        assert F.shape == t.shape and np.all(np.isfinite(F))
+        if not effects:
+            assert F.max() == pytest.approx(peak, rel=1e-3)

@@ -437,6 +437,7 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
                              velocity=motion.velocity, acceleration=motion.acceleration, control=motion.control,
                              control_kind=damper.fluid.control, name=kind)
         description = motion.description
+    damper.fluid.check_plausible_field(record.control, "field")     # a unit mistake is an error, not a result
     if model_name == "physics":
         model = get_model("physics", damper=damper, effects=effects)
     else:
