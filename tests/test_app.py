@@ -714,3 +714,70 @@ def test_cli_app_runs_streamlit_on_the_package_app(monkeypatch):
     assert cmd[1:4] == ["-m", "streamlit", "run"] and Path(cmd[4]) == Path(MAIN)
     assert cmd[5:] == ["--server.port", "8765", "--server.headless", "true"]
     assert cli_app.streamlit_command()[4] == cmd[4]
+
+
+def edit_table(monkeypatch, at: AppTest, key_part: str, edits: dict[int, dict]) -> None:
+    """Edit cells of the ``st.data_editor`` whose key contains ``key_part`` (AppTest has no data-editor widget):
+    send, with every following run, the edits as a browser does (``{"edited_rows": {row: {column: value}}}``)."""
+    from streamlit.proto.WidgetStates_pb2 import WidgetState
+    from streamlit.testing.v1.element_tree import ElementTree
+
+    (table,) = [d for d in at.dataframe if key_part in d.proto.id]
+    widget_id = table.proto.id
+    delta = json.dumps({"edited_rows": {str(r): c for r, c in edits.items()}, "added_rows": [], "deleted_rows": []})
+    original = ElementTree.get_widget_states
+
+    def with_edits(self):
+        states = original(self)
+        states.widgets.append(WidgetState(id=widget_id, string_value=delta))
+        return states
+
+    monkeypatch.setattr(ElementTree, "get_widget_states", with_edits)
+
+
+def parameter_rows(at: AppTest) -> dict[str, dict]:
+    (table,) = [d for d in at.dataframe if "sim.values" in d.proto.id]
+    return {r["parameter"]: r for r in table.value.to_dict("records")}
+
+
+def simulated_peak(at: AppTest) -> float:
+    """Peak |force| [N] of the simulated time history, from the figure's data (full precision, in the axis' unit)."""
+    fig = figure(at, "sim.fig.time")
+    unit = re.search(r"\[(.+)\]", fig["layout"]["yaxis"]["title"]["text"]).group(1)
+    F = values(fig["data"][-1]["y"])
+    return float(Q_(np.max(np.abs(F)), unit.replace("·", "*")).to("N").magnitude)
+
+
+@pytest.mark.parametrize("system", ["in-lbf-s", "mm-kN-s"])
+def test_simulate_parameters_typed_in_the_unit_system(app, monkeypatch, system):
+    """Issue 14: the Simulate parameter table reads and is typed in the unit system chosen; a value typed there
+    reaches the model as the same SI value (pint), so the simulation is the one of the SI value typed in SI."""
+    friction_N = 200.0
+    app.switch_page("simulate.py").run()
+    app.multiselect(key="sim.effects").select("seal_friction").run()
+    no_error(app)
+    rows = parameter_rows(app)
+    assert rows["friction_force"]["unit"] == "N" and rows["viscosity_factor"]["unit"] == "-"
+    default_N = rows["friction_force"]["value"]
+    row = list(rows).index("friction_force")
+    peak_default = simulated_peak(app)
+    edit_table(monkeypatch, app, "sim.values", {row: {"value": friction_N}})
+    app.run()
+    no_error(app)
+    peak_si = simulated_peak(app)
+    assert peak_si > peak_default           # the edit reached the model: more friction (200 N > 112 N), more force
+    monkeypatch.undo()
+
+    unit = {"in-lbf-s": "lbf", "mm-kN-s": "kN"}[system]
+    app.radio(key=state.UNITS).set_value(system).run()
+    no_error(app)
+    rows = parameter_rows(app)
+    assert rows["friction_force"]["unit"] == unit
+    # 1 lbf = 4.4482216152605 N exactly (the international pound-force, NIST SP 811 B.8); 1 kN = 1000 N
+    per_unit = {"lbf": 4.4482216152605, "kN": 1000.0}[unit]
+    assert rows["friction_force"]["value"] == pytest.approx(default_N / per_unit, rel=1e-12)
+    assert rows["viscosity_factor"]["value"] == 1.0 and rows["viscosity_factor"]["unit"] == "-"
+    edit_table(monkeypatch, app, "sim.values", {row: {"value": friction_N / per_unit}})
+    app.run()
+    no_error(app)
+    assert simulated_peak(app) == pytest.approx(peak_si, rel=1e-9)

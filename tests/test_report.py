@@ -500,3 +500,73 @@ def test_html_figures_save_as_named_images(makris_report):
     assert configs and {f for f, _ in configs} == {"svg"}
     assert [n for _, n in configs] == [f"makris-1996-{f.key}" for f in makris_report.figures]
     assert "saves the figure as\nan image (SVG)" in html
+
+
+def test_cli_figures_without_kaleido_is_one_line_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    """``--figures`` needs the optional kaleido: without it the command says what to install (exit 1, one line,
+    no traceback) before it writes anything."""
+    import sys
+
+    from erdesign.report.export import IMAGES_NEED
+
+    monkeypatch.setitem(sys.modules, "kaleido", None)           # `import kaleido` fails as when not installed
+    out, figs = tmp_path / "r.html", tmp_path / "figs"
+    code = main(["report", MAKRIS, "--out", str(out), "--figures", str(figs)])
+    stdout, err = capsys.readouterr()
+    assert code == 1 and stdout == ""
+    assert err.startswith("error: --figures: kaleido is not installed;") and err.count("\n") == 1
+    assert " ".join(IMAGES_NEED.split()) in err and "Traceback" not in err
+    assert not out.exists() and not figs.exists()
+    (tmp_path / "file").write_text("x")
+    assert main(["report", MAKRIS, "--out", str(out), "--figures", str(tmp_path / "file")]) == 1
+    assert "is a file; give a folder" in capsys.readouterr().err
+
+
+def test_cli_figures_without_a_browser_is_one_line(tmp_path, capsys, monkeypatch):
+    """kaleido without a Chrome or Chromium: the browser error, then what is needed, in one line (exit 1)."""
+    kaleido = pytest.importorskip("kaleido")
+    from kaleido.errors import ChromeNotFoundError
+
+    class NoBrowser:                                              # what kaleido does on a machine without one
+        def __init__(self, **kwargs):
+            pass
+
+        async def __aenter__(self):
+            raise ChromeNotFoundError("no chrome found")
+
+        async def __aexit__(self, *exc):
+            return False
+
+    monkeypatch.setattr(kaleido, "Kaleido", NoBrowser)
+    out = tmp_path / "r.html"
+    code = main(["report", MAKRIS, "--out", str(out), "--figures", str(tmp_path)])
+    _, err = capsys.readouterr()
+    assert code == 1 and err.count("\n") == 1
+    assert "ChromeNotFoundError: no chrome found; static figure images need" in err
+    assert not out.exists() and list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.slow
+def test_cli_figures_with_kaleido_and_chromium(tmp_path, capsys):
+    """Where kaleido and /usr/bin/chromium are installed, every figure of the report is a PNG (or SVG) file in
+    the folder, named after the damper and the figure; existing files are kept without --force."""
+    pytest.importorskip("kaleido")
+    if not Path("/usr/bin/chromium").exists():
+        pytest.skip("no /usr/bin/chromium on this machine")
+    figs = tmp_path / "figs"
+    code = main(["report", MAKRIS, "--out", str(tmp_path / "r.html"), "--figures", str(figs), "--json"])
+    stdout, _ = capsys.readouterr()
+    assert code == 0
+    names = [f"makris-1996-{key}.png" for key in ("pressure_drop", "force", "dynamic_range", "sine_loops")]
+    assert sorted(p.name for p in figs.iterdir()) == sorted(names)
+    assert json.loads(stdout)["figures"] == [str(figs / n) for n in names]
+    for name in names:
+        assert (figs / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"       # the PNG signature (RFC 2083, 3.1)
+    before = (figs / names[1]).stat().st_mtime_ns
+    code = main(["report", MAKRIS, "--out", str(tmp_path / "s.html"), "--figures", str(figs)])
+    _, err = capsys.readouterr()
+    assert code == 1 and "exists; give --force" in err and not (tmp_path / "s.html").exists()
+    assert (figs / names[1]).stat().st_mtime_ns == before
+    code = main(["report", MAKRIS, "--out", str(tmp_path / "r.html"), "--figures", str(figs), "--force",
+                 "--figure-format", "svg"])
+    assert code == 0 and (figs / "makris-1996-force.svg").read_bytes().lstrip().startswith(b"<svg")

@@ -15,7 +15,7 @@ from erdesign.effects import EFFECT_NAMES, EFFECTS
 from erdesign.errors import ErdesignError
 from erdesign.models.registry import get_model, model_names
 from erdesign.report.export import csv_text
-from erdesign.report.formatting import pick_unit, show
+from erdesign.report.formatting import UNIT_SYSTEMS, kind_of, pick_unit, show, unit_system
 from erdesign.units import Q_, to_si
 
 __all__ = ["render", "EXCITATIONS"]
@@ -89,18 +89,48 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
     else:
         model = get_model(name)
         st.caption(model.source)
-    rows = [{"parameter": p.name, "value": p.default, "unit": p.unit or "-", "description": p.description}
-            for p in model.parameters]
-    key = f"sim.values.{name}.{','.join(effects)}"
+    system = unit_system()
+    shown = {p.name: _display_unit(p.unit, system) for p in model.parameters}
+    defaults = {p.name: _to_unit(p.default, p.unit, shown[p.name]) for p in model.parameters}
+    rows = [{"parameter": p.name, "value": defaults[p.name], "unit": shown[p.name] or "-",
+             "description": p.description} for p in model.parameters]
+    # the unit system is part of the key: the numbers typed in one system are not carried over to another
+    key = f"sim.values.{name}.{','.join(effects)}.{system}"
     edited = st.data_editor(rows, key=key, disabled=["parameter", "unit", "description"], hide_index=True,
                             width="stretch")
     try:
-        values = tuple((r["parameter"], float(r["value"])) for r in edited)
+        values = tuple((r["parameter"], _to_si(r["parameter"], float(r["value"]), model, shown, defaults))
+                       for r in edited)
         model.check_values(dict(values))
     except (ErdesignError, TypeError, ValueError) as exc:
         st.error(f"Parameter values: {exc}")
         return None
     return name, effects, values
+
+
+def _display_unit(unit: str, system: str) -> str:
+    """The unit a parameter of SI unit ``unit`` is shown and typed in: the unit system's unit for its kind
+    (force, damping, stiffness, length, pressure, ...), else ``unit`` itself (SI, plain factors, kinds the system
+    does not fix: mass, time, 1/m, ...)."""
+    kind = kind_of(unit)
+    if system == "SI" or kind is None:
+        return unit
+    choices = UNIT_SYSTEMS[system].get(kind)
+    return choices[0] if choices else unit
+
+
+def _to_unit(value: float, unit: str, shown: str) -> float:
+    """``value`` [``unit``] in the unit ``shown`` (pint)."""
+    return value if shown == unit else float(Q_(value, unit).to(shown).magnitude)
+
+
+def _to_si(name: str, value: float, model, shown: dict, defaults: dict) -> float:
+    """A value typed in the table (unit ``shown[name]``) in the model's SI unit, exactly (pint); a value left at
+    its shown default is the SI default itself, so that a conversion's last bit never reads as an edit."""
+    (p,) = [p for p in model.parameters if p.name == name]
+    if value == defaults[name]:
+        return float(p.default)
+    return value if shown[name] == p.unit else float(Q_(value, shown[name]).to(p.unit).magnitude)
 
 
 def render() -> None:

@@ -1,4 +1,5 @@
-"""``erdesign report DAMPER.toml [--velocity-range V1 V2] [--field E ...] [--out report.html] [--format md]``."""
+"""``erdesign report DAMPER.toml [--velocity-range V1 V2] [--field E ...] [--out report.html] [--format md]
+[--figures DIR [--figure-format svg]]``."""
 
 from __future__ import annotations
 
@@ -10,7 +11,9 @@ import click
 
 from .._util import check_output_path
 from ..damper_file import load_damper
+from ..errors import ErdesignError, OutputPathError
 from ..report import build_report, write_report
+from ..report.export import IMAGES_NEED
 from .main import cli, emit_json
 from .size import quantity_option
 
@@ -26,6 +29,7 @@ Examples:
   erdesign report makris.toml --design-velocity "25 mm/s" --design-field "3 kV/mm"
   erdesign report makris.toml --velocity-range "0 in/s" "2 in/s" --field "1.5 kV/mm" --field "3 kV/mm"
   erdesign report makris.toml --format md --out makris.md --force
+  erdesign report makris.toml --figures figures     (also figures/makris-1996-force.png, ...; needs kaleido)
 """
 
 
@@ -58,11 +62,18 @@ def default_report_path(damper_name: str, damper_file: str, fmt: str) -> Path:
               help="Report file to write (.html or .md); default <damper name>-report.html in this folder.")
 @click.option("--format", "fmt", type=click.Choice(["html", "md"]), default=None,
               help="html (self-contained, interactive plots) or md; default from the --out suffix.")
-@click.option("--force", is_flag=True, help="Overwrite the report file if it exists.")
+@click.option("--figures", "figures_dir", default=None, metavar="DIR",
+              help="Also write each figure of the report as an image file into DIR (made if missing): "
+                   "<damper name>-<figure>.png. Needs the optional package kaleido and a Chrome or Chromium on "
+                   "the machine.")
+@click.option("--figure-format", type=click.Choice(["png", "svg"]), default="png", show_default=True,
+              help="Image format of --figures.")
+@click.option("--force", is_flag=True, help="Overwrite the report file (and figure files) if they exist.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (file written, checks) on stdout.")
 def report(damper_file: str, velocity_range: tuple[str, str] | None, fields: tuple[str, ...],
            design_velocity: str | None, design_field: str | None, amplitude: str | None, frequency: str | None,
-           out: str | None, fmt: str | None, force: bool, as_json: bool) -> None:
+           out: str | None, fmt: str | None, figures_dir: str | None, figure_format: str, force: bool,
+           as_json: bool) -> None:
     """Write a self-contained engineering report on a damper (inputs, results, equations, checks, plots)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")     # read for the control's unit only; build_report reports the warnings
@@ -72,7 +83,9 @@ def report(damper_file: str, velocity_range: tuple[str, str] | None, fields: tup
         path = default_report_path(damper.name, damper_file, fmt or "html")
     else:
         path = Path(out)
-    path, fmt = check_output_path(path, force=force, inputs={"the damper file": damper_file}, formats=REPORT_SUFFIXES, fmt=fmt)
+    path, fmt = check_output_path(path, force=force, inputs={"the damper file": damper_file},
+                                  formats=REPORT_SUFFIXES, fmt=fmt)
+    folder = None if figures_dir is None else _figure_folder(figures_dir)
     rep = build_report(
         damper_file,
         velocity_range=None if velocity_range is None else tuple(
@@ -84,15 +97,51 @@ def report(damper_file: str, velocity_range: tuple[str, str] | None, fields: tup
         amplitude=None if amplitude is None else quantity_option(amplitude, "m", "--amplitude"),
         frequency=None if frequency is None else quantity_option(frequency, "Hz", "--frequency"),
     )
+    images: dict[Path, bytes] = {}
+    if folder is not None:
+        # every image is drawn (and every name checked) before anything is written: a missing kaleido or
+        # browser, or a file that exists, leaves no half-written output
+        stem = re.sub(r"[^A-Za-z0-9_-]+", "-", damper.name or Path(damper_file).stem).strip("-.") or "damper"
+        names = [folder / f"{stem}-{f.key}.{figure_format}" for f in rep.figures]
+        for name in names if folder.is_dir() else ():      # a folder still to make holds no file
+            check_output_path(name, force=force, inputs={"the damper file": damper_file, "the report": path},
+                              option="--figures")
+        from ..report.export import figure_images
+
+        images = dict(zip(names, figure_images(rep.figures, figure_format).values()))
     path = write_report(rep, path, fmt)
+    if folder is not None:
+        folder.mkdir(exist_ok=True)
+        for name, data in images.items():
+            name.write_bytes(data)
     checks = [{"check": c.key, "status": c.status, "value": None if c.value is None else c.value.text,
                "detail": c.detail} for c in rep.checks]
     if as_json:
         emit_json({"out": str(path), "format": fmt, "bytes": Path(path).stat().st_size,
-                   "warnings": rep.warnings, "checks": checks})
+                   "figures": [str(n) for n in images], "warnings": rep.warnings, "checks": checks})
         return
     point = f"{rep.setting('velocity_design').value.text} and {rep.setting('field_design').value.text}"
     click.echo(f"wrote {path} ({fmt}, {Path(path).stat().st_size / 1e6:.2g} MB) at the design point {point}: "
                f"{len(checks) - rep.warnings} checks pass or info, {rep.warnings} warn")
     for c in rep.checks:
         click.echo(f"  {c.status:<4}  {c.name}" + (f": {c.value.text}" if c.value is not None else ""))
+    if images:
+        click.echo(f"wrote {len(images)} figures ({figure_format}) into {folder}: "
+                   + ", ".join(n.name for n in images))
+
+
+def _figure_folder(figures_dir: str) -> Path:
+    """The folder of ``--figures``: an existing folder, or one to make in an existing folder; and kaleido must be
+    importable (checked before the report is built, so that its absence costs nothing)."""
+    folder = Path(figures_dir)
+    if str(figures_dir).strip() == "":
+        raise OutputPathError("--figures: empty folder name")
+    if folder.exists() and not folder.is_dir():
+        raise OutputPathError(f"--figures {folder}: is a file; give a folder")
+    if not folder.exists() and not (folder.parent if str(folder.parent) else Path(".")).is_dir():
+        raise OutputPathError(f"--figures {folder}: the folder {folder.parent} does not exist")
+    try:
+        import kaleido  # noqa: F401
+    except ImportError:
+        raise ErdesignError(f"--figures: kaleido is not installed; {IMAGES_NEED}") from None
+    return folder
