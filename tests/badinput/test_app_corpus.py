@@ -49,7 +49,21 @@ COMPARE_UPLOADS = [
     ("compare constant displacement", "c.csv",
      GOOD_RECORD.splitlines()[0] + "\n" + "".join(f"{i * 0.01},1,{i}\n" for i in range(50)), "displacement"),
 ]
-APP_CASES = SIZE_INPUTS + SIZE_UPLOADS + COMPARE_UPLOADS
+#: Simulate page, sine excitation: (id, widget key, bad value, text the message must contain)
+SIMULATE_INPUTS = [
+    ("sim field abc", "sim.field", "abc", "field"),
+    ("sim field 1e9 kV/mm", "sim.field", "1e9 kV/mm", "field"),
+    ("sim field mass", "sim.field", "2 kg", "field"),
+    ("sim amplitude text", "sim.amplitude", "abc", "amplitude"),
+    ("sim amplitude negative", "sim.amplitude", "-10 mm", "amplitude"),
+    ("sim amplitude zero", "sim.amplitude", "0 mm", "amplitude"),
+    ("sim amplitude 1e300 m", "sim.amplitude", "1e300 m", "amplitude"),
+    ("sim frequency zero", "sim.frequency", "0 Hz", "frequency"),
+    ("sim frequency negative", "sim.frequency", "-1 Hz", "frequency"),
+    ("sim frequency mass", "sim.frequency", "1 kg", "frequency"),
+    ("sim frequency 1e12 Hz", "sim.frequency", "1e12 Hz", "frequency"),
+]
+APP_CASES = SIZE_INPUTS + SIZE_UPLOADS + COMPARE_UPLOADS + SIMULATE_INPUTS
 
 
 @pytest.fixture(scope="module")
@@ -111,4 +125,16 @@ def test_compare_warns_on_a_force_unit_mistake(app):
     app.file_uploader(key="cmp.upload").set_value(("mN.csv", data, "text/csv")).run()
     assert not app.exception
     assert any("force" in w.value and "1000" in w.value for w in app.warning), [w.value for w in app.warning]
+    app.switch_page("size.py").run()
+
+
+@pytest.mark.parametrize("case", SIMULATE_INPUTS, ids=[c[0] for c in SIMULATE_INPUTS])
+def test_simulate_input(app, case):
+    _, key, value, field = case
+    app.switch_page("simulate.py").run()
+    good = app.text_input(key=key).value
+    app.text_input(key=key).set_value(value).run()
+    _clean(app, field)
+    app.text_input(key=key).set_value(good).run()
+    assert not app.exception and not app.error
     app.switch_page("size.py").run()
