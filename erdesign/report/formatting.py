@@ -47,6 +47,8 @@ UNIT_CHOICES: dict[str, tuple[str, ...]] = {
     "electric field": ("V/mm", "kV/mm"),
     "magnetic field": ("A/m", "kA/m", "MA/m"),
     "density": ("kg/m^3",),
+    "mass": ("g", "kg", "t"),
+    "time": ("µs", "ms", "s"),
 }
 
 #: Unit systems for displayed numbers: name -> the units of each kind that differ from :data:`UNIT_CHOICES`.
@@ -58,12 +60,12 @@ UNIT_SYSTEMS: dict[str, dict[str, tuple[str, ...]]] = {
     "mm-kN-s": {
         "force": ("kN",), "pressure": ("MPa",), "length": ("mm",), "velocity": ("mm/s",), "area": ("mm^2",),
         "volume": ("mm^3",), "flow": ("mm^3/s",), "viscosity": ("Pa*s",), "damping": ("kN*s/mm",),
-        "stiffness": ("kN/mm",), "energy": ("kN*mm",), "density": ("kg/m^3",),
+        "stiffness": ("kN/mm",), "energy": ("kN*mm",), "density": ("kg/m^3",), "mass": ("kg",), "time": ("s",),
     },
     "in-lbf-s": {
         "force": ("lbf",), "pressure": ("psi",), "length": ("in",), "velocity": ("in/s",), "area": ("in^2",),
         "volume": ("in^3",), "flow": ("in^3/s",), "viscosity": ("psi*s",), "damping": ("lbf*s/in",),
-        "stiffness": ("lbf/in",), "energy": ("in*lbf",), "density": ("lb/in^3",),
+        "stiffness": ("lbf/in",), "energy": ("in*lbf",), "density": ("lb/in^3",), "mass": ("lb",), "time": ("s",),
     },
 }
 
