@@ -451,23 +451,28 @@ def _parse_coil(table: Any, fluid_table: Mapping[str, Any]):
         name_k = f"{where}.{key}"
         if key not in table:
             raise RequirementsError(f"{name_k}: missing ([low, high] or a single value)")
-        value = table[key]
-        items = value if isinstance(value, list) else [value]
-        if key == "turns":
-            if not 1 <= len(items) <= 2 or not all(isinstance(v, int) and not isinstance(v, bool) for v in items):
-                raise RequirementsError(f"{name_k}: expected [low, high] whole numbers or one, got {value!r}")
-            lo, hi = float(items[0]), float(items[-1])
-        else:
-            if not 1 <= len(items) <= 2 or not all(isinstance(v, str) for v in items):
-                raise RequirementsError(f"{name_k}: expected [\"low unit\", \"high unit\"] or one value with a "
-                                        f"unit, got {value!r}")
-            lo, hi = (to_si(v, "m", name_k) for v in (items[0], items[-1]))
-        if not lo > 0:
-            raise RequirementsError(f"{name_k}: must be positive, got {items[0]!r}")
-        if lo > hi:
-            raise RequirementsError(f"{name_k}: low {items[0]!r} is above high {items[-1]!r}")
-        bounds[key] = (lo, hi)
+        bounds[key] = _range(table[key], name_k, whole=key == "turns")
     return fluid, seal_friction, coil, bounds
+
+
+def _range(value: Any, name: str, whole: bool = False) -> tuple[float, float]:
+    """A design variable's range from ``[low, high]`` or one value: lengths with units, or whole numbers
+    (``whole``); positive, low <= high."""
+    items = value if isinstance(value, list) else [value]
+    if whole:
+        if not 1 <= len(items) <= 2 or not all(isinstance(v, int) and not isinstance(v, bool) for v in items):
+            raise RequirementsError(f"{name}: expected [low, high] whole numbers or one, got {value!r}")
+        lo, hi = float(items[0]), float(items[-1])
+    else:
+        if not 1 <= len(items) <= 2 or not all(isinstance(v, str) for v in items):
+            raise RequirementsError(f"{name}: expected [\"low unit\", \"high unit\"] or one value with a unit, "
+                                    f"got {value!r}")
+        lo, hi = (to_si(v, "m", name) for v in (items[0], items[-1]))
+    if not lo > 0:
+        raise RequirementsError(f"{name}: must be positive, got {items[0]!r}")
+    if lo > hi:
+        raise RequirementsError(f"{name}: low {items[0]!r} is above high {items[-1]!r}")
+    return lo, hi
 
 
 def _parse_points(value: Any, fluid: Fluid) -> tuple[DesignPoint, ...]:
@@ -567,17 +572,7 @@ def _parse_bounds(table: Any, configuration: str, envelope: Envelope) -> dict:
             continue
         if key not in table:
             raise RequirementsError(f"{name}: missing ([low, high] or a single value)")
-        value = table[key]
-        items = value if isinstance(value, list) else [value]
-        if not 1 <= len(items) <= 2 or not all(isinstance(v, str) for v in items):
-            raise RequirementsError(f"{name}: expected [\"low unit\", \"high unit\"] or one value with a unit, "
-                                    f"got {value!r}")
-        lo, hi = (to_si(v, "m", name) for v in (items[0], items[-1]))
-        if not lo > 0:
-            raise RequirementsError(f"{name}: must be positive, got {items[0]!r}")
-        if lo > hi:
-            raise RequirementsError(f"{name}: low {items[0]!r} is above high {items[-1]!r}")
-        bounds[key] = (lo, hi)
+        bounds[key] = _range(table[key], name)
     value = table.get("ducts", 1)
     items = value if isinstance(value, list) else [value]
     if not 1 <= len(items) <= 2 or not all(isinstance(v, int) and not isinstance(v, bool) for v in items):
