@@ -130,3 +130,43 @@ def test_makris_design_point():
     expected = max(np.roots([1.0, -(3 * 1800.0 * L / h + dpN), 0.0, 4 * 1800.0**3 * (L / h) ** 3]).real)
     assert bingham_pressure_drop(Q, 1800.0, 13.0, L, d, h) == pytest.approx(expected, rel=1e-10)
     assert expected == pytest.approx(7.6744e6, rel=1e-4)
+
+
+def _sheared_fraction_mp(N, digits=60):
+    """1 - phi from the cubic eps^2 (3 - eps) = 2N (1 - eps) by bisection at ``digits`` decimal digits (mpmath)."""
+    import mpmath as mp
+
+    with mp.workdps(digits):
+        n, lo, hi = mp.mpf(N), mp.mpf(0), mp.mpf(1)
+        for _ in range(260):
+            mid = (lo + hi) / 2
+            if mid**2 * (3 - mid) - 2 * n * (1 - mid) > 0:
+                hi = mid
+            else:
+                lo = mid
+        return (lo + hi) / 2
+
+
+def test_plug_and_sheared_fractions_keep_full_precision_from_blocked_gap_to_newtonian():
+    # issue 13: the arcsin root lost the sheared layer 1 - phi as the gap blocks (all digits below N ~ 1e-16)
+    from erdesign.flow.bingham import _plug_and_sheared_fractions
+
+    for N in np.logspace(-30, 8, 77):
+        phi, eps = _plug_and_sheared_fractions(N)
+        exact = _sheared_fraction_mp(N)
+        assert float(abs(eps - exact) / exact) < 1e-15, N
+        assert float(abs(phi - (1 - exact)) / (1 - exact)) < 1e-15, N
+
+
+def test_round_trip_near_a_blocked_gap_is_limited_by_conditioning_only():
+    # Q ~ eps^2 and eps = (dp - dp_y)/dp: a pressure drop known to rounding u gives Q to about 2u/eps, no worse
+    tau_y, eta, L, d, h = 1000.0, 1.0, 0.05, 0.02, 1e-3
+    dp_y = 2 * tau_y * L / h
+    for N in np.logspace(-24, 2, 27):
+        Q = N * dp_y * np.pi * d * h**3 / (12 * eta * L)
+        dp = bingham_pressure_drop(Q, tau_y, eta, L, d, h)
+        eps = float(_sheared_fraction_mp(N))
+        assert abs(bingham_flow_rate(dp, tau_y, eta, L, d, h) / Q - 1) < 8 * 2.2e-16 / eps + 1e-14, N
+    # the issue's case: Newtonian/yield ratio 1e-16 (the old root gave phi = 1 exactly there and Q = 0 back)
+    Q = 1e-16 * dp_y * np.pi * d * h**3 / (12 * eta * L)
+    assert abs(bingham_flow_rate(bingham_pressure_drop(Q, tau_y, eta, L, d, h), tau_y, eta, L, d, h) / Q - 1) < 1e-7

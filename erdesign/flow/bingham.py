@@ -28,9 +28,12 @@ Dividing by :math:`\Delta p^3` turns it into a depressed cubic in the plug fract
 .. math::
     \phi = 2m\,\sin\!\left(\tfrac{1}{3}\arcsin m^{-3}\right), \qquad m = \sqrt{1 + 2N/3}.
 
-This trigonometric root is exact, branch-free and well conditioned from the blocked gap (N = 0, phi = 1) to the
-Newtonian limit (N -> infinity, phi -> 1/N), so :func:`bingham_pressure_drop` needs neither ``np.roots`` nor an
-iteration.  tests/test_flow_bingham.py derives the cubic with sympy, checks it against ``np.roots`` element by
+This trigonometric root is exact and branch-free, so :func:`bingham_pressure_drop` needs no ``np.roots``.  It
+gives phi to rounding from the blocked gap to the Newtonian limit (N -> infinity, phi -> 1/N), but not the thin
+sheared layer :math:`1 - \phi \approx \sqrt{2N/3}` as the gap blocks (all its digits are lost below N ~ 1e-16, and
+a round trip Q -> dp -> Q then returns Q = 0); below N = 0.5 the sheared fraction is therefore found by a few Newton
+steps on the cubic written for it (:func:`_plug_and_sheared_fractions`), and :func:`bingham_flow_rate` takes it as
+:math:`(\Delta p - \Delta p_y)/\Delta p`, so a round trip is limited by the conditioning alone.  tests/test_flow_bingham.py derives the cubic with sympy, checks it against ``np.roots`` element by
 element and checks the printed h^2 form fails a pint dimension check.
 
 All functions take SI floats or numpy arrays that broadcast against each other.
@@ -156,16 +159,43 @@ def bingham_flow_rate(dp, tau_y, eta, L, d, h):
     dp_abs = np.abs(dp)
     dp_y = yield_pressure_drop(tau_y, L, h)
     with np.errstate(divide="ignore", invalid="ignore"):
-        phi = np.where(dp_abs > dp_y, dp_y / dp_abs, 1.0)
-    shape = 0.5 * (1.0 - phi) ** 2 * (2.0 + phi)  # = 1 - 3 phi/2 + phi^3/2, factored: accurate as phi -> 1
+        # the sheared fraction 1 - phi from the difference of the pressure drops (exact near yield), not 1 - phi
+        eps = np.where(dp_abs > dp_y, (dp_abs - dp_y) / dp_abs, 0.0)
+    shape = 0.5 * eps**2 * (3.0 - eps)  # = 1 - 3 phi/2 + phi^3/2 with phi = 1 - eps: accurate as phi -> 1
     return np.sign(dp) * np.pi * d * h**3 * dp_abs / (12.0 * eta * L) * shape
+
+
+def _plug_and_sheared_fractions(N):
+    r"""phi and 1 - phi for N = dp_newtonian/dp_yield >= 0, each without cancellation.
+
+    phi is the physical root in (0, 1] of :math:`\phi^3 - (3 + 2N)\phi + 2 = 0`.  The trigonometric root gives phi to
+    rounding, but the sheared fraction :math:`\epsilon = 1 - \phi` only to 1e-16/epsilon (every digit is lost
+    below N ~ 1e-16, where the gap is nearly blocked and epsilon ~ 1e-8).  With :math:`\phi = 1 - \epsilon` the
+    cubic reads :math:`g(\epsilon) = \epsilon^2 (3 - \epsilon) - 2N(1 - \epsilon) = 0`, so below N = 0.5
+    epsilon is found by Newton's method on g from :math:`\sqrt{2N/3}` (relative error O(sqrt N) at the start; six
+    quadratic steps reach rounding) and phi = 1 - epsilon; above, phi comes from the trigonometric root and
+    epsilon = 1 - phi.  Both are then accurate to a few ulp over N = 1e-30 to 1e6 (tests/test_flow_bingham.py)."""
+    N = np.asarray(N, dtype=float)
+    m = np.sqrt(1.0 + (2.0 / 3.0) * N)
+    phi = 2.0 * m * np.sin(np.arcsin(m**-3) / 3.0)
+    eps = 1.0 - phi
+    small = N < 0.5
+    if np.any(small):
+        phi, eps = np.array(phi, dtype=float), np.array(eps, dtype=float)   # writable copies (0-d for a scalar)
+        Ns = N[small]
+        e = np.sqrt(2.0 * Ns / 3.0)
+        for _ in range(6):
+            g = e * e * (3.0 - e) - 2.0 * Ns * (1.0 - e)
+            slope = 6.0 * e - 3.0 * e * e + 2.0 * Ns
+            e = e - np.divide(g, slope, out=np.zeros_like(e), where=slope > 0)
+        # (at N = 0 this is the blocked gap exactly: epsilon = 0, phi = 1)
+        eps[small], phi[small] = e, 1.0 - e
+    return phi, eps
 
 
 def _plug_fraction_of_ratio(N):
     """Physical root phi in (0, 1] of phi^3 - (3 + 2N) phi + 2 = 0, for N = dp_newtonian/dp_yield >= 0."""
-    m = np.sqrt(1.0 + (2.0 / 3.0) * N)
-    # At N = 0 the formula gives 1 - 1e-16 (sin(pi/6) rounds down); the blocked gap is exactly phi = 1.
-    return np.where(N == 0.0, 1.0, 2.0 * m * np.sin(np.arcsin(m**-3) / 3.0))
+    return _plug_and_sheared_fractions(N)[0]
 
 
 class BinghamSlitFlow(NamedTuple):
