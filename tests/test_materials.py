@@ -412,3 +412,62 @@ def test_magnetization_of_an_er_fluid_is_an_error(tmp_path):
     path.write_text(text)
     with pytest.raises(ErdesignError, match="magnetization: only MR fluids"):
         materials.read_material_file(path)
+
+
+# ------------------------------------------------------------------------------------------------ verification
+def _curve_keys(record):
+    """The curves of a record: its B-H curve and its yield curve (the richer law, or the power law of [fluid])."""
+    keys = ["magnetization"] if "magnetization" in record else []
+    if record["kind"] != "steel":
+        keys.append("yield_curve" if "yield_curve" in record else "yield_stress")
+    return keys
+
+
+@pytest.mark.parametrize("name", materials.names() + materials.steel_names())
+def test_every_record_states_verification_and_source_of_each_curve(name):
+    record = materials.load_steel(name) if name.startswith("steel-") else materials.load(name)
+    refs = {r["key"] for r in record["references"]}
+    verification = record.get("verification", {})
+    for key in _curve_keys(record):
+        assert key in verification, f"{name}: no [verification.{key}]"
+    for key, entry in verification.items():
+        assert entry["status"] in materials.VERIFICATION_STATUSES
+        assert entry["source"] in refs
+        if entry["status"] in ("verified", "replaced"):
+            # a verified value names where in the source it stands and where that text was read
+            assert entry["location"].strip() and entry["found_at"].strip(), f"{name}: {key}"
+        else:
+            assert entry["searched"].strip(), f"{name}: {key}"
+
+
+def test_verification_states_what_was_and_was_not_found():
+    # issue 16: the FEMM steel curves were read from the library file; no citable copy of the LORD data sheets or of
+    # Carlson (2005) was found, so those records keep their values and say "not verified"
+    for name in materials.steel_names():
+        assert materials.load_steel(name)["verification"]["magnetization"]["status"] == "verified"
+    for name in ("lord-mrf-122eg", "lord-mrf-132dg", "lord-mrf-140cg"):
+        v = materials.load(name)["verification"]
+        assert {v[k]["status"] for k in ("yield_curve", "magnetization", "viscosity", "density")} == {"not verified"}
+    assert materials.load("typical-mr")["verification"]["yield_stress"]["status"] == "verified"
+    assert "verification" in materials.summary("lord-mrf-132dg")
+
+
+_VERIFIED = '\n[verification.viscosity]\nstatus = "verified"\nsource = "butz2002"\nlocation = "Table 1"\nfound_at = "seed"\n'
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda t: t + _VERIFIED.replace('status = "verified"', 'status = "checked"'), "verification.viscosity.status"),
+    (lambda t: t + _VERIFIED.replace('location = "Table 1"\n', ""), "verification.viscosity.location: missing"),
+    (lambda t: t + _VERIFIED.replace('"butz2002"', '"nobody2020"'), "verification.viscosity.source"),
+    (lambda t: t + _VERIFIED.replace("viscosity]", "colour]"), "verification.colour: not a key of"),
+    (lambda t: t + _VERIFIED.replace('status = "verified"', 'status = "not verified"'),
+     "verification.viscosity.searched: missing"),
+    (lambda t: t + _VERIFIED + 'where = "x"\n', "verification.viscosity.where: unknown key"),
+])
+def test_bad_verification_is_an_error_naming_the_key(tmp_path, edit, message):
+    text = (materials.resources.files("erdesign.materials") / "typical-er.toml").read_text()
+    text = text.split("\n# How far each value")[0]           # the record without its own verification tables
+    path = tmp_path / "typical-er.toml"
+    path.write_text(edit(text))
+    with pytest.raises(ErdesignError, match=message.replace(".", r"\.")):
+        materials.read_material_file(path)

@@ -21,6 +21,12 @@ File layout (``<name>.toml``)::
     viscosity = "makris1996: section 3, 0.001 psi s"   # naming a reference key
     [[references]]               # key, citation, date (of the document or its revision), optional note
     key = "makris1996"
+    [verification.yield_stress]  # optional: how far each curve or value was checked against its source
+    status = "verified"          # "verified" | "replaced" | "not verified" (VERIFICATION_STATUSES)
+    source = "makris1996"        # a reference key
+    location = "section 2.3"     # where in the source (table, equation, figure, block); needed unless not verified
+    found_at = "..."             # where the text was read (repository + path + commit, page address, seed copy)
+    searched = "..."             # "not verified" only: what was searched without finding a citable source
 
 MR fluids may also give their magnetisation curve (``[magnetization]``: ``law = "carlson"`` with
 ``volume_fraction``, or ``law = "table"``; :func:`erdesign.magnetics.bh.bh_curve_from_dict`), which the magnetic
@@ -56,11 +62,18 @@ from ..field_laws import FieldLaw, control_unit_of, field_law_from_dict
 from ..units import Q_, to_si
 
 __all__ = ["names", "load", "fluid_values", "steel_names", "load_steel", "steel_curve", "magnetization_curve", "material_fluid", "MaterialFluid", "summary", "check_record",
-           "read_material_file", "parse_quantity", "MATERIAL_KEYS", "MATERIAL_FLUID_KEYS", "RANGE_KEYS"]
+           "read_material_file", "parse_quantity", "MATERIAL_KEYS", "MATERIAL_FLUID_KEYS", "RANGE_KEYS",
+           "VERIFICATION_STATUSES", "VERIFICATION_KEYS"]
 
 MATERIAL_KEYS = ("name", "kind", "description", "fluid", "yield_curve", "magnetization", "range", "spread", "sources",
-                 "references")
-STEEL_KEYS = ("name", "kind", "description", "magnetization", "sources", "references")
+                 "references", "verification")
+STEEL_KEYS = ("name", "kind", "description", "magnetization", "sources", "references", "verification")
+_STEEL_REQUIRED = ("name", "kind", "description", "magnetization", "sources", "references")
+#: Outcomes of checking a value against its source: "verified" (it matches a citable source that was read),
+#: "replaced" (it was changed to a citable source that was read) or "not verified" (no citable source was found).
+VERIFICATION_STATUSES = ("verified", "replaced", "not verified")
+#: Keys of one ``[verification.<key>]`` table.
+VERIFICATION_KEYS = ("status", "source", "location", "found_at", "agrees_with", "searched", "note")
 _STEEL_PREFIX = "steel-"
 MATERIAL_FLUID_KEYS = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density",
                        "viscosity_at_reference_field", "shear_modulus")
@@ -169,6 +182,7 @@ def check_record(record: Mapping[str, Any], where: str) -> None:
     except ErdesignError as exc:
         raise type(exc)(f"{where}: {exc}") from None
     _check_references(record, where)
+    _check_verification(record, where)
     sources = record["sources"]
     for key in list(fluid) + [k for k in ("yield_curve", "magnetization", "range", "spread") if k in record]:
         if key not in sources:
@@ -234,6 +248,7 @@ def summary(name: str) -> dict[str, Any]:
         "yield_curve": None,
         "range": {k: list(v) for k, v in record.get("range", {}).items()},
         "references": [dict(r) for r in record["references"]],
+        "verification": {k: dict(v) for k, v in record.get("verification", {}).items()},
     }
     if "yield_curve" in record:
         mf = material_fluid(name)
@@ -261,6 +276,43 @@ def _check_references(record: Mapping[str, Any], where: str) -> None:
                                 + (f"; unknown key {bad[0]!r}" if bad else ""))
 
 
+def _check_verification(record: Mapping[str, Any], where: str) -> None:
+    """``[verification.<key>]``: for a key of ``[sources]``, the outcome of checking it against a reference.
+
+    A value marked "verified" or "replaced" names where in the source it stands (``location``) and where that text
+    was read (``found_at``); one marked "not verified" says what was searched (``searched``).
+    """
+    table = record.get("verification")
+    if table is None:
+        return
+    if not isinstance(table, Mapping):
+        raise ErdesignError(f"{where}: verification: expected tables [verification.<key>]")
+    refs = {r["key"] for r in record["references"]}
+    for key, entry in table.items():
+        at = f"{where}: verification.{key}"
+        if key not in record["sources"]:
+            raise ErdesignError(f"{at}: not a key of [sources] (verification says how a sourced value was checked)")
+        if not isinstance(entry, Mapping):
+            raise ErdesignError(f"{at}: expected a table with {', '.join(VERIFICATION_KEYS)}")
+        bad = [k for k in entry if k not in VERIFICATION_KEYS]
+        if bad:
+            raise ErdesignError(f"{at}.{bad[0]}: unknown key; allowed keys: {', '.join(VERIFICATION_KEYS)}")
+        status = entry.get("status")
+        if status not in VERIFICATION_STATUSES:
+            raise ErdesignError(f"{at}.status: expected one of {', '.join(map(repr, VERIFICATION_STATUSES))}, "
+                                f"got {status!r}")
+        if entry.get("source") not in refs:
+            raise ErdesignError(f"{at}.source: expected a reference key ({', '.join(sorted(refs))}), "
+                                f"got {entry.get('source')!r}")
+        needed = ("searched",) if status == "not verified" else ("location", "found_at")
+        for k in needed:
+            if not (isinstance(entry.get(k), str) and entry[k].strip()):
+                raise ErdesignError(f"{at}.{k}: missing (a value marked {status!r} needs it)")
+        extra = entry.get("agrees_with", [])
+        if not (isinstance(extra, list) and all(isinstance(x, str) for x in extra)):
+            raise ErdesignError(f"{at}.agrees_with: expected a list of strings")
+
+
 def load_steel(name: str) -> dict[str, Any]:
     """The whole record of a steel (``steel-1018``), checked: keys, magnetisation curve, sources, references."""
     if name not in steel_names():
@@ -272,7 +324,7 @@ def load_steel(name: str) -> dict[str, Any]:
     unknown = [k for k in record if k not in STEEL_KEYS]
     if unknown:
         raise ErdesignError(f"{where}: {unknown[0]}: unknown key; allowed keys: {', '.join(STEEL_KEYS)}")
-    for key in STEEL_KEYS:
+    for key in _STEEL_REQUIRED:
         if key not in record:
             raise ErdesignError(f"{where}: {key}: missing")
     if record["kind"] != "steel" or record["name"] != name:
@@ -280,6 +332,7 @@ def load_steel(name: str) -> dict[str, Any]:
     if "magnetization" not in record["sources"]:
         raise ErdesignError(f"{where}: sources.magnetization: missing (every value needs its source)")
     _check_references(record, where)
+    _check_verification(record, where)
     from ..magnetics.bh import bh_curve_from_dict
     try:
         bh_curve_from_dict(record["magnetization"], name=name)
