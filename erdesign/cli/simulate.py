@@ -18,6 +18,8 @@ _EXAMPLES = """
 Examples:
   erdesign simulate ransim_u.csv --model bouc_wen_modified --params spencer1997
   erdesign simulate REC.csv --model bingham --params fitted.json --out forces.csv
+  erdesign simulate REC.csv --model physics --damper examples/makris.toml \
+      --params "viscosity_factor=1.1, yield_stress_factor=0.9"
 """
 
 
@@ -26,6 +28,8 @@ Examples:
 @click.option("--model", "model_name", required=True, help="Registry name (see 'erdesign models').")
 @click.option("--params", "params", required=True, metavar="P",
               help="identify --json output file, \"name=value unit, ...\", or a published set (e.g. spencer1997).")
+@click.option("--damper", default=None, metavar="DAMPER.toml", help="Damper file, for --model physics.")
+@click.option("--effects", default="", help="Comma-separated effects, for --model physics.")
 @click.option("--control-reference", default=None, metavar="Q",
               help="Control that maps to u = 1 for per-unit coefficients given without a control unit "
                    "(default: the rule identify uses, a power of ten near the record's largest |control|).")
@@ -34,8 +38,9 @@ Examples:
               help="Write the simulated force as a measurement CSV (motion, control and the model's force).")
 @click.option("--force", "overwrite", is_flag=True, help="Let --out replace an existing file.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
-def simulate(measurement_file: str, model_name: str, params: str, control_reference: str | None,
-             exclude_clipped: bool, out: str | None, overwrite: bool, as_json: bool) -> None:
+def simulate(measurement_file: str, model_name: str, params: str, damper: str | None, effects: str,
+             control_reference: str | None, exclude_clipped: bool, out: str | None, overwrite: bool,
+             as_json: bool) -> None:
     """Run a model with given parameters on a measurement and score it (ESR and more)."""
     from pathlib import Path
 
@@ -50,9 +55,14 @@ def simulate(measurement_file: str, model_name: str, params: str, control_refere
         out, _ = check_output_path(out, force=overwrite, formats={".csv": "csv"},
                                    inputs={"the measurement file": measurement_file,
                                                    "the parameter file": params if Path(params).exists() else None})
+    options = {}
     if model_name == "physics":
-        raise click.UsageError("--model physics takes a damper file: use 'erdesign fit' or 'erdesign diagnose'")
-    model = get_model(model_name)
+        if damper is None:
+            raise click.UsageError("--model physics needs --damper DAMPER.toml (the damper whose physics is run)")
+        options = {"damper": damper, "effects": tuple(e for e in effects.split(",") if e)}
+    elif damper is not None or effects:
+        raise click.UsageError("--damper and --effects apply to --model physics only")
+    model = get_model(model_name, **options)
     record = read_measurement(measurement_file)
     values, source, notes = resolve_parameters(model, params, record, control_reference=control_reference)
     sim = run_model(model, record, values, exclude_clipped=exclude_clipped, source=source)
