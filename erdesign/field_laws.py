@@ -323,6 +323,12 @@ class FieldLaw:
         """One line with the law and its parameters, the control shown in ``field_unit``."""
         raise NotImplementedError
 
+    def ratio(self, E, reference_field: float):
+        """tau_y(E) / tau_y(E_ref), [-]: how the yield stress scales with the control (the plastic viscosity of a
+        :class:`~erdesign.fluid.Fluid` rises with it)."""
+        at_ref = float(self.yield_stress(reference_field))
+        return np.asarray(self.yield_stress(E), dtype=float) / at_ref
+
     def fit(self, field_max: float, field_min: float = 0.0, samples: int = 25, *,
             reference_field: float | None = None) -> PowerLawFit:
         """Power-law summary of this law over a control range (SI), with its error.
@@ -373,6 +379,12 @@ class PowerLaw(FieldLaw):
 
     def yield_stress(self, E):
         return power_law_yield_stress(E, self.yield_stress_ref, self.reference_field, self.exponent)
+
+    def ratio(self, E, reference_field: float):
+        # (|E|/E_ref)^n at the law's own reference: defined for tau_ref = 0 too
+        if reference_field == self.reference_field:
+            return (np.abs(E) / self.reference_field) ** self.exponent
+        return super().ratio(E, reference_field)
 
     def describe(self, field_unit: str | None = None) -> str:
         return (f"power law: tau_y = {self.yield_stress_ref:.4g} Pa (|E| / "

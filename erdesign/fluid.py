@@ -177,6 +177,10 @@ class Fluid:
                                 f"field in {self.control_unit}; both must be of the same kind")
             if not float(self.field_law.yield_stress(self.reference_field)) > 0:
                 raise UnitError("fluid.field_law: the yield stress at the reference field must be positive")
+        law = self.field_law if self.field_law is not None else PowerLaw(
+            self.control_unit, yield_stress_ref=self.yield_stress, reference_field=self.reference_field,
+            exponent=self.yield_exponent)
+        object.__setattr__(self, "_law", law)
         if self.field_range is not None:
             lo, hi = self.field_range
             if not (0 <= lo < hi and np.isfinite(hi)):
@@ -275,11 +279,9 @@ class Fluid:
 
     @property
     def yield_law(self) -> FieldLaw:
-        """The law of the yield stress in the control: :attr:`field_law`, or the power law of the attributes."""
-        if self.field_law is not None:
-            return self.field_law
-        return PowerLaw(self.control_unit, yield_stress_ref=self.yield_stress, reference_field=self.reference_field,
-                        exponent=self.yield_exponent)
+        """The one law of the yield stress in the control: :attr:`field_law`, or the power law of the attributes
+        (built once, in ``__post_init__``).  :meth:`yield_stress_at` and :meth:`viscosity_at` go through it."""
+        return self._law
 
     def field_si(self, field: Any, name: str = "field") -> float | np.ndarray:
         """SI magnitude of a control value, checked against the kind of this fluid's reference field.
@@ -333,19 +335,13 @@ class Fluid:
 
     def _yield_ratio(self, field):
         """tau_y(E) / tau_y(E_ref), [-]: (|E|/E_ref)^n for the power law."""
-        if self.field_law is None:
-            return (np.abs(field) / self.reference_field) ** self.yield_exponent
-        at_ref = float(self.field_law.yield_stress(self.reference_field))
-        return np.asarray(self.field_law.yield_stress(field), dtype=float) / at_ref
+        return self._law.ratio(field, self.reference_field)
 
     def yield_stress_at(self, field):
-        r"""Yield stress at the control ``field`` (SI magnitude), [Pa].
-
-        :math:`\tau_\text{ref}(|E|/E_\text{ref})^n`, or the fluid's :attr:`field_law` when it has one.
+        r"""Yield stress at the control ``field`` (SI magnitude), [Pa]: the fluid's :attr:`yield_law`,
+        :math:`\tau_\text{ref}(|E|/E_\text{ref})^n` unless the fluid was given a richer :attr:`field_law`.
         """
-        if self.field_law is not None:
-            return scalar_or_array(self.field_law.yield_stress(field))
-        return scalar_or_array(self.yield_stress * self._yield_ratio(field))
+        return scalar_or_array(self._law.yield_stress(field))
 
     def viscosity_at(self, field):
         r"""Plastic viscosity at the control ``field`` (SI magnitude), [Pa s].
