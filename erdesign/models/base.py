@@ -56,6 +56,9 @@ class Model:
     with the rest r and the basis b_j functions of the other parameters only (a parameter that enters a state
     equation does not qualify).  Identification solves them by linear least squares inside each residual
     (variable projection, :mod:`erdesign.identify`); tests/test_linear_parameters.py checks each declaration."""
+    projection_default: bool = True
+    """Whether identification projects out the :attr:`linear_parameters` unless told otherwise (False where it was
+    measured to end in a worse optimum)."""
 
     # ------------------------------------------------------------------ to implement
     def force(self, record: Measurement, values: Mapping[str, float]) -> np.ndarray:
