@@ -209,6 +209,15 @@ class _ProjectedTracker(_Tracker):
         return J
 
 
+def _value_map(base, names, tr):
+    """zz -> all parameter values: ``base`` with ``names`` set from the search vector zz (:class:`_Transform`)."""
+    def values(zz):
+        out = dict(base)
+        out.update(zip(names, (float(v) for v in tr.to_values(zz))))
+        return out
+    return values
+
+
 class _LinearResult:
     """Stands in for scipy's OptimizeResult when every free parameter enters linearly: one linear solve."""
 
@@ -410,15 +419,8 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         tr = _Transform(model, free_names)
         lo, hi = tr.bounds()
         z = np.clip(tr.to_search([base[n] for n in free_names]) if z_start is None else z_start, lo, hi)
-
-        def full_values(zz):
-            vals = dict(base)
-            vals.update(zip(free_names, (float(v) for v in tr.to_values(zz))))
-            return vals
-
-        res = None
-        out_of_time = False
-        tracker = None
+        full_values = _value_map(base, free_names, tr)
+        res, out_of_time, tracker = None, False, None
         for k, (rec, F, m, stage) in enumerate(stage_records):
             tracker = _Tracker(model, rec, F, m, full_values, deadline, progress, f"{label}, {stage}",
                                stall.get(k, STALL_RTOL), _fd_steps(tr, free_names, model, z, lo, hi))
@@ -450,15 +452,8 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         lon, hin = lo[nl_index], hi[nl_index]
         zn = z[nl_index]
         theta = np.array([base[n] for n in linear])
-
-        def nl_values(zz):
-            vals = dict(base)
-            vals.update(zip(nl, (float(v) for v in trn.to_values(zz))))
-            return vals
-
-        res = None
-        out_of_time = False
-        tracker = None
+        nl_values = _value_map(base, nl, trn)
+        res, out_of_time, tracker = None, False, None
         for k, (rec, F, m, stage) in enumerate(stage_records):
             tracker = _ProjectedTracker(model, rec, F, m, nl_values, deadline, progress, f"{label}, {stage}",
                                         stall.get(k, STALL_RTOL), _fd_steps(trn, nl, model, zn, lon, hin),
@@ -486,12 +481,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
                 break
         vals = {**nl_values(zn), **dict(zip(linear, (float(t) for t in theta)))}
         z = np.clip(tr.to_search([vals[n] for n in free_names]), lo, hi)
-
-        def full_values(zz):
-            out = dict(base)
-            out.update(zip(free_names, (float(v) for v in tr.to_values(zz))))
-            return out
-        return tr, z, res, out_of_time, full_values, tracker
+        return tr, z, res, out_of_time, _value_map(base, free_names, tr), tracker
 
     # stages: a decimated warm start on long records, then all samples (or only the decimated record)
     decimate = max(1, int(decimate))
