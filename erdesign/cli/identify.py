@@ -46,11 +46,14 @@ Examples:
 @click.option("--exclude-clipped", is_flag=True, help="Leave force samples at a flat top or bottom out of the fit.")
 @click.option("--validate", "validate", multiple=True, metavar="OTHER.csv",
               help="Score the identified set on another record (repeatable; read with --format).")
+@click.option("--projection/--no-projection", default=None,
+              help="Solve the parameters the force is affine in by linear least squares inside the fit (variable "
+                   "projection); default: the model's choice (on for all but bouc_wen).")
 @click.option("--quiet", is_flag=True, help="No progress lines on stderr.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
 def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | None, effects: str, joint: bool,
              fmt: str, fix: str | None, starts: int, max_time: float | None, decimate: int, exclude_clipped: bool,
-             validate: tuple[str, ...], quiet: bool, as_json: bool) -> None:
+             validate: tuple[str, ...], projection: bool | None, quiet: bool, as_json: bool) -> None:
     """Identify a model's parameters from a measurement (simulation from rest at the first sample)."""
     from ..errors import ErdesignError
     from ..fluid import CONTROL_UNITS
@@ -102,7 +105,7 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
                                 progress=progress)
     else:
         result = identify_model(model, records[0], starts=starts, max_time=max_time, decimate=decimate,
-                                exclude_clipped=exclude_clipped, progress=progress, fixed=fixed)
+                                exclude_clipped=exclude_clipped, progress=progress, fixed=fixed, projection=projection)
     validation = [(other.name, run_model(model, other, result.values, exclude_clipped=exclude_clipped).metrics)
                   for other in others]
     # Field-dependent models work with the dimensionless control u = control / reference; the parameters that

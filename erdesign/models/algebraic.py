@@ -54,6 +54,7 @@ class EyringPlastic(Model):
     uses_control = True
     memoryless = True
     control_parameters = ("F_alpha_u",)
+    linear_parameters = ("F_alpha", "F_alpha_u", "c1", "c3", "f0")
     parameters = (
         Parameter("F_alpha", "N", 300.0, 0.0, 1e7, "yield force amplitude"),
         Parameter("lambda1", "s/m", 200.0, 0.0, 1e7, "pre-yield slope"),
@@ -110,6 +111,7 @@ class WengArctan(ControlAffineModel):
     uses_control = True
     memoryless = True
     control_parameters = ("f_y_u", "c_b_u")
+    linear_parameters = ("f0", "c_b", "f_y", "m", "c_b_u", "f_y_u")
     parameters = (
         Parameter("f_y", "N", 500.0, 0.0, 1e7, "yield force"),
         Parameter("c_b", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
@@ -170,6 +172,7 @@ class KwokTanh(ControlAffineModel):
     uses_control = True
     memoryless = True
     control_parameters = ("alpha_u", "c_u")
+    linear_parameters = ("k", "c", "alpha", "f0", "c_u", "alpha_u")
     parameters = (
         Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("c", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
@@ -235,6 +238,7 @@ class MagicFormula(ControlAffineModel):
     uses_control = True
     memoryless = True
     control_parameters = ("D_u",)
+    linear_parameters = ("D", "k_c", "k", "f0", "D_u")
     parameters = (
         Parameter("D", "N", 600.0, 0.0, 1e7, "peak factor (saturation force)"),
         Parameter("C", "", 1.0, 0.1, 2.0, "shape factor"),

@@ -51,6 +51,14 @@ class Model:
     min_samples: int = 5
     control_reference: float = 1.0
     """Control (SI: V/m, A/m, T, A or V) that maps to the dimensionless control u = 1 of the model's equations."""
+    linear_parameters: tuple[str, ...] = ()
+    r"""Parameters in which the force is affine whatever the others' values: :math:`F = r + \sum_j \theta_j b_j`
+    with the rest r and the basis b_j functions of the other parameters only (a parameter that enters a state
+    equation does not qualify).  Identification solves them by linear least squares inside each residual
+    (variable projection, :mod:`erdesign.identify`); tests/test_linear_parameters.py checks each declaration."""
+    projection_default: bool = True
+    """Whether identification projects out the :attr:`linear_parameters` unless told otherwise (False where it was
+    measured to end in a worse optimum)."""
 
     # ------------------------------------------------------------------ to implement
     def force(self, record: Measurement, values: Mapping[str, float]) -> np.ndarray:
@@ -61,6 +69,17 @@ class Model:
         """Starting values for fitting ``record`` (SI).  Default: the parameters' defaults; override with a guess
         from the data where one exists (e.g. a damping constant from the force-velocity slope)."""
         return self.defaults()
+
+    def linear_terms(self, record: Measurement, values: Mapping[str, float]) -> tuple[dict[str, np.ndarray],
+                                                                                  np.ndarray]:
+        """The basis columns b_j [N per unit of the parameter] of the :attr:`linear_parameters` and the rest r [N]
+        at ``values``: the force is r + sum_j values[j] b_j.  This default simulates the model once with the
+        linear parameters at zero and once per parameter at one; models whose simulation is costly override it
+        with one pass."""
+        zero = {**values, **{k: 0.0 for k in self.linear_parameters}}
+        rest = np.asarray(self.force(record, zero), dtype=float)
+        return {k: np.asarray(self.force(record, {**zero, k: 1.0}), dtype=float) - rest
+                for k in self.linear_parameters}, rest
 
     # ------------------------------------------------------------------ provided
     def check_record(self, record: Measurement) -> None:

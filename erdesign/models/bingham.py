@@ -51,6 +51,7 @@ class Bingham(Model):
     source = "Butz and von Stryk (2002) eq 2 (Stanway); seed 003 eqs 2, 7"
     uses_control = True
     control_parameters = ("f_c_u", "c0_u")
+    linear_parameters = ("c0", "f_c", "f0", "f_c_u", "c0_u")
     parameters = (
         Parameter("c0", "N*s/m", 5000.0, 0.0, 1e8, "viscous damping (post-yield)"),
         Parameter("f_c", "N", 670.0, 0.0, 1e7, "friction (yield) force"),
@@ -64,6 +65,11 @@ class Bingham(Model):
         v = record.velocity
         return (values["f_c"] + values["f_c_u"] * u) * np.sign(v) + (values["c0"] + values["c0_u"] * u) * v \
             + values["f0"]
+
+    def linear_terms(self, record, values):
+        u, v = self.control(record), record.velocity
+        s = np.sign(v)
+        return {"c0": v, "f_c": s, "f0": np.ones_like(v), "f_c_u": u * s, "c0_u": u * v}, np.zeros_like(v)
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -140,6 +146,11 @@ class BinghamExtended(Model):
         Parameter("k2", "N/m", 2e5, 1.0, 1e10, "series spring", log_scale=True),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset (accumulator)"),
     )
+    linear_parameters = ("f0",)
+
+    def linear_terms(self, record, values):
+        rest = self.force(record, {**values, "f0": 0.0})
+        return {"f0": np.ones_like(rest)}, rest
 
     def force(self, record, values):
         F = extended_bingham_force(record.time, record.displacement, values["c0"], values["f_c"], values["k1"],

@@ -85,6 +85,7 @@ class Biviscous(Model):
     uses_control = True
     memoryless = True
     control_parameters = ("F_y_u",)
+    linear_parameters = ("f0",)
     parameters = (
         Parameter("C_pre", "N*s/m", 1e6, 1.0, 1e10, "pre-yield damping", log_scale=True),
         Parameter("C_post", "N*s/m", 5000.0, 0.0, 1e9, "post-yield damping"),

@@ -73,6 +73,7 @@ class Chebyshev(Model):
         )
         self.parameters = coeffs + scales
         self.control_parameters = tuple(p.name for p in coeffs if not p.name.endswith("_0"))
+        self.linear_parameters = tuple(p.name for p in coeffs)
 
     def _basis(self, record, values):
         xn = np.clip((record.displacement - values["x_c"]) / values["x_s"], -1.0, 1.0)
@@ -83,6 +84,10 @@ class Chebyshev(Model):
         Tu = C.chebvander(un, self.control_degree)
         # columns ordered as the parameters: k, i, j
         return (Tu[:, :, None, None] * Tx[:, None, :, None] * Tv[:, None, None, :]).reshape(len(record), -1)
+
+    def linear_terms(self, record, values):
+        B = self._basis(record, values)
+        return {name: B[:, j] for j, name in enumerate(self.linear_parameters)}, np.zeros(len(record))
 
     def force(self, record, values):
         coeffs = np.array([values[p.name] for p in self.parameters[:-5]])

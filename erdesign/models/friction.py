@@ -82,6 +82,7 @@ class Dahl(Model):
     source = "seed 003 eqs 103-104"
     uses_control = True
     control_parameters = ("f_d_u",)
+    linear_parameters = ("k0", "c0", "f_d", "f0", "f_d_u")
     parameters = (
         Parameter("k0", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("c0", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
@@ -95,6 +96,12 @@ class Dahl(Model):
         z = dahl_state(record.displacement, values["rho"])
         fd = values["f_d"] + values["f_d_u"] * self.control(record)
         return values["k0"] * record.displacement + values["c0"] * record.velocity + fd * z + values["f0"]
+
+    def linear_terms(self, record, values):
+        z = dahl_state(record.displacement, values["rho"])
+        v = record.velocity
+        return {"k0": record.displacement, "c0": v, "f_d": z, "f0": np.ones_like(v),
+                "f_d_u": self.control(record) * z}, np.zeros_like(v)
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -129,6 +136,7 @@ class DahlViscous(ControlAffineModel):
     source = "seed 003 eqs 103, 105"
     uses_control = True
     control_parameters = ("k_x_u", "k_w_u")
+    linear_parameters = ("k_x", "k_w", "f0", "k_x_u", "k_w_u")
     parameters = (
         Parameter("k_x", "N*s/m", 2000.0, 0.0, 1e8, "viscous coefficient"),
         Parameter("k_w", "N", 500.0, 0.0, 1e7, "friction coefficient"),
@@ -181,6 +189,8 @@ class LuGre(Model):
     name = "lugre"
     title = "LuGre"
     source = "seed 003 eq 57"
+    # sigma0 is not linear: it sets the state's rate kappa = sigma0 a0 as well
+    linear_parameters = ("sigma1", "sigma2", "f0")
     parameters = (
         Parameter("sigma0", "N/m", 1e6, 1.0, 1e11, "bristle stiffness", log_scale=True),
         Parameter("sigma1", "N*s/m", 0.0, 0.0, 1e8, "bristle damping"),
@@ -195,6 +205,12 @@ class LuGre(Model):
         v = record.velocity
         zd = v - kappa * np.abs(v) * z
         return values["sigma0"] * z + values["sigma1"] * zd + values["sigma2"] * v + values["f0"]
+
+    def linear_terms(self, record, values):
+        kappa = values["sigma0"] * values["a0"]
+        z = lugre_state(record.displacement, kappa)
+        v = record.velocity
+        return ({"sigma1": v - kappa * np.abs(v) * z, "sigma2": v, "f0": np.ones_like(v)}, values["sigma0"] * z)
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -238,6 +254,7 @@ class LuGreModified(ControlAffineModel):
     source = "seed 003 eqs 58-59"
     uses_control = True
     requires_control = True
+    linear_parameters = ("sigma1", "sigma2", "sigma_a", "sigma_b", "f0")
     parameters = (
         Parameter("sigma0", "N/m", 1e6, 1.0, 1e11, "bristle stiffness (per unit control in the force)",
                   log_scale=True),

@@ -99,6 +99,7 @@ class KamathWereley6(Model):
     name = "kamath_wereley_6"
     title = "Kamath-Wereley augmented six-parameter model"
     source = "Kamath and Wereley (1997) eqs 3-12, Table 1; Butz and von Stryk (2002) eqs 17-25"
+    linear_parameters = ("Cv", "R", "F_c", "f0")
     parameters = (
         Parameter("C1", "N*s/m", 0.978e4, 1.0, 1e9, "Jeffreys dashpot C1", log_scale=True),
         Parameter("C2", "N*s/m", 1.253e4, 1.0, 1e9, "Jeffreys dashpot C2", log_scale=True),
@@ -160,6 +161,7 @@ class KamathWereley4(KamathWereley6):
     name = "kamath_wereley_4"
     title = "Kamath-Wereley four-parameter model"
     source = "Butz and von Stryk (2002) eqs 17-21; Kamath and Wereley (1997) Table 1"
+    linear_parameters = ("Cv", "f0")
     parameters = (
         Parameter("C1", "N*s/m", 1.093e4, 1.0, 1e9, "Jeffreys dashpot C1", log_scale=True),
         Parameter("C2", "N*s/m", 1.111e4, 1.0, 1e9, "Jeffreys dashpot C2", log_scale=True),

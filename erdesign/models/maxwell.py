@@ -94,6 +94,8 @@ class Maxwell(Model):
     source = "Makris et al. (1996) eq 13, section 4.1 (Makris)"
     uses_control = True
     control_parameters = ("C_u",)
+    # C is not linear: it sets the relaxation time C / K as well; C_u only scales the filter's (linear) input
+    linear_parameters = ("C_u", "f0")
     parameters = (
         Parameter("C", "N*s/m", 1.2e5, 1.0, 1e9, "dashpot constant", log_scale=True),
         Parameter("K", "N/m", 1e7, 1.0, 1e12, "series spring stiffness", log_scale=True),
@@ -159,6 +161,7 @@ class BingMax(Model):
     source = "Makris et al. (1996) eq 16 (Makris); Butz and von Stryk (2002) eqs 6-7"
     uses_control = True
     control_parameters = ("F_y_u",)
+    linear_parameters = ("F_y", "f0", "F_y_u")
     parameters = (
         Parameter("C", "N*s/m", 1.2e5, 1.0, 1e9, "dashpot constant", log_scale=True),
         Parameter("K", "N/m", 1e7, 1.0, 1e12, "series spring stiffness", log_scale=True),

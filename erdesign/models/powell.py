@@ -42,6 +42,7 @@ class Powell(Model):
     title = "three-element model (Powell)"
     source = "Butz and von Stryk (2002) eqs 4-5"
     memoryless = True
+    linear_parameters = ("f_cs", "f_cd", "k", "c", "f0")
     parameters = (
         Parameter("f_cs", "N", 400.0, 0.0, 1e7, "static friction"),
         Parameter("f_cd", "N", 300.0, 0.0, 1e7, "dynamic friction"),

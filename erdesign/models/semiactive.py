@@ -66,6 +66,7 @@ class SemiactiveGeneral(Model):
     source = "Vivas-López et al. (seed 002) eqs 2-5"
     uses_control = True
     control_parameters = ("c_sa_pos", "c_sa_neg", "v_py", "x_py")
+    linear_parameters = ("f0", "c_p_pos", "c_p_neg", "k_p", "m_D", "f_f", "F_hz", "F_hv", "c_sa_pos", "c_sa_neg")
     parameters = (
         Parameter("f0", "N", 0.0, -1e7, 1e7, "accumulator force"),
         Parameter("c_p_pos", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping, extension"),
