@@ -3,7 +3,8 @@ r"""The physics damper: geometry + fluid + seal friction -> quasi-steady force, 
 Quasi-steady means the gap flow is taken as steady at each instant (no fluid inertia, no compressibility, no
 pre-yield elasticity); those and other effects are added on top by the diagnosis work.
 
-Valve damper (Makris et al., eq 14):
+The force is that of :mod:`erdesign.quasi_steady`, the one kernel every part of erdesign calls.  Valve damper
+(Makris et al., eq 14):
 
 .. math::
     F = \Delta p\,A_p + F_s \operatorname{sgn}(v), \qquad Q_\text{duct} = \frac{v A_p}{n}
@@ -28,53 +29,22 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
 from ._util import scalar_or_array
 from .errors import ErdesignError, ValidityWarning
-from .flow.annulus_bingham import annulus_bingham_flow
-from .flow.bingham import bingham_slit_flow, yield_pressure_drop
-from .flow.mixed_mode import mixed_mode_damper_force
+from .flow.bingham import yield_pressure_drop
 from .fluid import Fluid
 from .geometry import THIN_GAP_LIMIT, Geometry
 from .metrics import energy_per_cycle, equivalent_damping
+from .quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, damper_state
 from .units import Q_, to_si
 
 __all__ = ["Damper", "QuasiSteadyState", "SizingResult", "SineResponse", "CRITICAL_REYNOLDS", "FLOW_MODELS"]
 
-#: Reynolds number below which the duct flow is taken as laminar (Makris et al., section 2: R_crit = 2300).
-CRITICAL_REYNOLDS = 2300.0
-
 FLOW_MODELS = ("auto", "thin_gap", "annulus")
-
-
-class QuasiSteadyState(NamedTuple):
-    """Quasi-steady state of the damper at a piston velocity and control, SI (floats or arrays)."""
-
-    force: Any
-    """Total force on the piston, with the sign of the velocity, [N]."""
-    pressure_drop: Any
-    """Pressure drop across the piston, [Pa]."""
-    pressure_force: Any
-    """Pressure drop times piston area, [N]."""
-    shear_force: Any
-    """Shear drag of the moving electrode (mixed mode; 0 for valve), [N]."""
-    friction_force: Any
-    """Seal friction F_s sgn(v), [N]."""
-    flow_rate: Any
-    """Total volumetric flow displaced by the piston, v A_p, [m^3/s]."""
-    flow_per_duct: Any
-    """Flow through one duct (valve) or through the gap (mixed), [m^3/s]."""
-    plug_fraction: Any
-    """Plug thickness over gap, [-]: 0 fully yielded / Newtonian, 1 blocked."""
-    reynolds: Any
-    """Reynolds number of the gap flow (Makris eq 1), [-]."""
-    yield_stress: Any
-    """Yield stress at the control, [Pa]."""
-    viscosity: Any
-    """Plastic viscosity at the control, [Pa s]."""
 
 
 @dataclass(frozen=True)
@@ -192,37 +162,13 @@ class Damper:
     def state(self, v, field=0.0) -> QuasiSteadyState:
         """Quasi-steady state at piston velocity ``v`` [m/s] and control ``field`` (SI magnitude), vectorised.
 
-        ``v`` and ``field`` broadcast against each other.  See the module notes for the equations.
+        ``v`` and ``field`` broadcast against each other.  The kernel is
+        :func:`erdesign.quasi_steady.quasi_steady_state`; see the module notes for the equations.
         """
-        g, fl = self.geometry, self.fluid
-        v = np.asarray(v, dtype=float)
         field = np.asarray(field, dtype=float)
-        tau_y = np.asarray(fl.yield_stress_at(field), dtype=float)
-        eta = np.asarray(fl.viscosity_at(field), dtype=float)
-        Ap = g.piston_area
-        Q_total = v * Ap
-        friction = np.copysign(self.seal_friction, v)
-        if g.configuration == "valve":
-            Q = Q_total / g.ducts
-            if self.uses_exact_annulus:
-                r = annulus_bingham_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
-                dp, phi = r.pressure_drop, r.plug_fraction
-            else:
-                dp, phi = bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
-            pressure_force = dp * Ap
-            shear_force = np.zeros(np.broadcast(dp, v).shape)
-            mean_velocity = np.abs(Q) / (np.pi * g.duct_mean_diameter * g.gap)
-        else:
-            m = mixed_mode_damper_force(v, tau_y, eta, g.duct_length, g.piston_diameter, g.rod_diameter, g.gap)
-            dp, phi = m.pressure_drop, m.plug_fraction
-            pressure_force, shear_force = m.pressure_force, m.shear_force
-            Q = Q_total
-            # The fluid in the gap moves at up to the wall speed |v| as well as at the mean flow speed.
-            mean_velocity = np.maximum(np.abs(Q) / (np.pi * g.duct_mean_diameter * g.gap), np.abs(v))
-        reynolds = mean_velocity * g.gap * fl.density / eta  # Makris eq 1: Re = v_mean h / nu = Q / (pi d nu)
-        force = pressure_force + shear_force + friction
-        return QuasiSteadyState(*(scalar_or_array(a) for a in (
-            force, dp, pressure_force, shear_force, friction, Q_total, Q, phi, reynolds, tau_y, eta)))
+        tau_y = np.asarray(self.fluid.yield_stress_at(field), dtype=float)
+        eta = np.asarray(self.fluid.viscosity_at(field), dtype=float)
+        return damper_state(self, v, tau_y, eta)
 
     def force_si(self, v, field=0.0):
         """Quasi-steady force [N] at velocity ``v`` [m/s] and control ``field`` (SI), vectorised."""
@@ -248,8 +194,8 @@ class Damper:
                 ratio = 1.0
             return 12.0 * eta0 * g.duct_length * g.piston_area**2 / (
                 g.ducts * math.pi * g.duct_mean_diameter * g.gap**3 * ratio)
-        m = mixed_mode_damper_force(1.0, 0.0, eta0, g.duct_length, g.piston_diameter, g.rod_diameter, g.gap)
-        return float(m.pressure_force + m.shear_force)
+        s = damper_state(self, 1.0, 0.0, eta0)
+        return float(s.pressure_force + s.shear_force)
 
     def yield_force_si(self, field) -> Any:
         """Controllable (yield) force of the fluid at control ``field`` (SI): the fluid force as v -> 0+, [N].

@@ -20,6 +20,7 @@ for a Newtonian fluid (:func:`erdesign.flow.newtonian.thin_gap_error`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from dataclasses import dataclass
@@ -31,7 +32,7 @@ from .errors import DamperFileError, PlausibilityWarning, ValidityWarning
 from .flow.newtonian import thin_gap_error
 from .units import to_si
 
-__all__ = ["Geometry", "CONFIGURATIONS", "THIN_GAP_LIMIT", "POSSIBLE_LENGTHS", "PLAUSIBLE_LENGTHS"]
+__all__ = ["Geometry", "mixed_mean_diameter", "CONFIGURATIONS", "THIN_GAP_LIMIT", "POSSIBLE_LENGTHS", "PLAUSIBLE_LENGTHS"]
 
 CONFIGURATIONS = ("valve", "mixed")
 
@@ -93,15 +94,7 @@ class Geometry:
         for key in ("duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter"):
             value = getattr(self, key)
             if not isinstance(value, float):
-                if isinstance(value, (int, np.integer, np.floating)) and not isinstance(value, bool):
-                    si = float(value)
-                elif value is None or isinstance(value, bool):
-                    raise bad(key, f"expected a length such as '0.8 mm', got {value!r}")
-                else:
-                    si = to_si(value, "m", f"geometry.{key}")
-                    if not isinstance(si, float):
-                        raise bad(key, f"expected one length, got {value!r}")
-                object.__setattr__(self, key, si)
+                object.__setattr__(self, key, _length_si(key, value))
             if not math.isfinite(getattr(self, key)):
                 raise bad(key, f"must be finite, got {getattr(self, key)!r}")
         ducts = self.ducts
@@ -131,7 +124,7 @@ class Geometry:
         if self.configuration == "mixed":
             if self.ducts != 1:
                 raise bad("ducts", "applies to the valve configuration only (a mixed damper has one gap)")
-            expected = self.piston_diameter + self.gap
+            expected = mixed_mean_diameter(self.piston_diameter, self.gap)
             if not math.isclose(self.duct_mean_diameter, expected, rel_tol=1e-3):
                 raise bad("duct_mean_diameter", f"for a mixed damper it is piston_diameter + gap = "
                                                 f"{expected * 1e3:.4g} mm, got {self.duct_mean_diameter * 1e3:.4g} mm")
@@ -191,12 +184,35 @@ class Geometry:
         if duct_mean_diameter is None:
             if configuration == "valve":
                 raise DamperFileError("geometry.duct_mean_diameter: missing (required for a valve damper)")
-            d = Dp + h
+            d = mixed_mean_diameter(Dp, h)
         else:
             d = to_si(duct_mean_diameter, "m", "geometry.duct_mean_diameter")
         if isinstance(ducts, bool) or not isinstance(ducts, (int, np.integer)):
             raise DamperFileError(f"geometry.ducts: must be a whole number >= 1, got {ducts!r}")
         return cls(configuration, L, d, h, Dp, dr, ducts)
+
+    def with_(self, **changes: Any) -> "Geometry":
+        """This geometry with some values changed (SI floats [m], quantities or strings), checked as on construction.
+
+        A mixed damper's ``duct_mean_diameter`` follows the head and the gap (:func:`mixed_mean_diameter`) unless
+        it is among the changes.  An unknown name is an error.
+
+        Examples
+        --------
+        >>> g = Geometry.create(configuration="mixed", duct_length="50 mm", gap="1 mm", piston_diameter="38 mm",
+        ...                     rod_diameter="12.7 mm")
+        >>> round(g.with_(gap="2 mm").duct_mean_diameter * 1e3, 6)     # mm: Dp + h
+        40.0
+        """
+        names = [f.name for f in dataclasses.fields(self)]
+        unknown = sorted(set(changes) - set(names))
+        if unknown:
+            raise TypeError(f"Geometry.with_: unknown value(s) {', '.join(unknown)}; known: {', '.join(names)}")
+        values = {key: getattr(self, key) for key in names} | changes
+        if values["configuration"] == "mixed" and "duct_mean_diameter" not in changes:
+            values["duct_mean_diameter"] = mixed_mean_diameter(_length_si("piston_diameter", values["piston_diameter"]),
+                                                               _length_si("gap", values["gap"]))
+        return Geometry(**values)
 
     @property
     def piston_area(self) -> float:
@@ -225,6 +241,38 @@ class Geometry:
         The volume Kamath and Wereley (1997) (Kamath and Wereley, section III.C) divides the dissipated energy by.
         """
         return math.pi * self.duct_mean_diameter * self.gap * self.duct_length * self.ducts
+
+
+def mixed_mean_diameter(piston_diameter, gap):
+    """Mean diameter of a mixed damper's gap, d = Dp + h, [m] (the gap lies between the head and the cylinder).
+
+    Parameters
+    ----------
+    piston_diameter : float or array
+        Dp, head diameter, [m].
+    gap : float or array
+        h, radial gap between head and cylinder, [m].
+
+    Examples
+    --------
+    >>> round(mixed_mean_diameter(0.038, 0.00254), 5)
+    0.04054
+    """
+    return piston_diameter + gap
+
+
+def _length_si(key: str, value: Any) -> float:
+    """One length [m] from an SI number, a quantity or a string; a :class:`DamperFileError` naming ``key`` else."""
+    if isinstance(value, float):
+        return value
+    if isinstance(value, (int, np.integer, np.floating)) and not isinstance(value, bool):
+        return float(value)
+    if value is None or isinstance(value, bool):
+        raise DamperFileError(f"geometry.{key}: expected a length such as '0.8 mm', got {value!r}")
+    si = to_si(value, "m", f"geometry.{key}")
+    if not isinstance(si, float):
+        raise DamperFileError(f"geometry.{key}: expected one length, got {value!r}")
+    return si
 
 
 def _mm(value: float) -> str:

@@ -53,13 +53,13 @@ from .effects.preyield_elasticity import elastic_stiffness, elastic_viscoplastic
 from .effects.shear_thinning import REFERENCE_SHEAR_RATE, herschel_bulkley_pressure_drop
 from .effects.viscous_heating import TEMPERATURE_COEFFICIENT, heated_viscosity_factor, temperature_rise
 from .errors import ErdesignError
-from .flow.annulus_bingham import annulus_bingham_pressure_drop
 from .flow.bingham import bingham_slit_flow
 from .flow.mixed_mode import couette_poiseuille_bingham
 from .fluid import CONTROL_UNITS
 from .measurement import Measurement
 from .models.base import Model, Parameter
 from .noise import velocity_noise
+from .quasi_steady import damper_state
 
 __all__ = ["PhysicsDamper", "BASE_PARAMETERS", "check_control", "HEATING_PASSES"]
 
@@ -248,13 +248,7 @@ class PhysicsDamper(Model):
         return dp * g.piston_area, self._mixed(u, v, tau_y, eta, m)[1]
 
     def _valve_state(self, v, tau_y, eta):
-        g = self.damper.geometry
-        Q = v * g.piston_area / g.ducts
-        if self.damper.uses_exact_annulus:
-            dp = annulus_bingham_pressure_drop(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)
-        else:
-            dp = bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap).pressure_drop
-        return np.asarray(dp, dtype=float) * g.piston_area
+        return np.asarray(damper_state(self.damper, v, tau_y, eta).pressure_force, dtype=float)
 
     # ------------------------------------------------------------------ the force
     def components(self, record: Measurement, values: Mapping[str, float]) -> dict[str, np.ndarray]:

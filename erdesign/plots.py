@@ -3,7 +3,7 @@
 Each builder takes the numbers the library computed (a :class:`~erdesign.report.sweep.VelocitySweep`, a
 :class:`~erdesign.report.sweep.SineLoops`, an error history) and returns a :class:`plotly.graph_objects.Figure`;
 none computes physics.  Axes are labelled with their units, chosen once per axis so that the numbers read between
-1 and 1000 (:func:`erdesign.report.formatting.pick_unit`); conversions go through pint.
+1 and 1000 (:func:`erdesign.formatting.pick_unit`); conversions go through pint.
 
 >>> from erdesign import load_example
 >>> from erdesign.report.sweep import velocity_sweep
@@ -22,7 +22,7 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from .report.formatting import pick_unit
+from .formatting import pick_unit
 from .units import Q_
 
 __all__ = [

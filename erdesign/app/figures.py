@@ -2,7 +2,7 @@
 explorer, the loops of one simulated force, the time overlay and the residual plots of a comparison.
 
 Like :mod:`erdesign.plots`, each builder takes numbers the library computed (SI arrays) and only draws them, with
-units on every axis chosen by :func:`erdesign.report.formatting.pick_unit`.  Candidates to move into
+units on every axis chosen by :func:`erdesign.formatting.pick_unit`.  Candidates to move into
 :mod:`erdesign.plots` so that the report can use them too.
 
 >>> import numpy as np
@@ -19,7 +19,7 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ..plots import MEASURED_STYLE, MODEL_STYLE, spans_decades
-from ..report.formatting import pick_unit
+from ..formatting import pick_unit
 from ..units import Q_
 
 __all__ = ["tradeoff_figure", "loops_figure", "time_figure", "residual_figure", "BASELINE_STYLE"]

@@ -29,7 +29,6 @@ from .. import materials
 from ..damper import Damper
 from ..damper_file import damper_from_dict, example_names, read_toml
 from ..errors import ErdesignError
-from ..geometry import Geometry
 from ..measurement import Measurement, read_measurement
 from ..units import Q_, to_si
 
@@ -300,16 +299,10 @@ def geometry_sweep(text: str, parameter: str, values: tuple[float, ...], velocit
     out = {k: np.full(n, np.nan) for k in ("force", "zero_field_force", "dynamic_range", "reynolds", "gap_ratio")}
     invalid = ""
     for i, value in enumerate(values):
-        geo = {k: getattr(g, k) for k in ("duct_length", "duct_mean_diameter", "gap", "piston_diameter",
-                                          "rod_diameter")}
-        geo[parameter] = float(value)
-        if g.configuration == "mixed":
-            del geo["duct_mean_diameter"]            # the mixed gap's mean diameter follows Dp + h
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")      # the thin-gap warning: the sweep shows h/d instead
-                geometry = Geometry.create(configuration=g.configuration, ducts=g.ducts,
-                                           **{k: Q_(v, "m") for k, v in geo.items()})
+                geometry = g.with_(**{parameter: float(value)})     # a mixed gap's mean diameter follows
                 d = dataclasses.replace(damper, geometry=geometry)
                 s, s0 = d.state(velocity, field), d.state(velocity, 0.0)
         except ErdesignError as exc:

@@ -1,19 +1,19 @@
 r"""Vectorised evaluation of candidate damper geometries: figures, non-dimensional groups and constraint margins.
 
 Every candidate is a set of SI arrays (gap ``h``, duct length ``L``, mean diameter ``d``, piston ``Dp``, rod
-``dr``, ``n`` ducts) evaluated at every design point straight from the flow kernels, with no Python loop per design
-and no :class:`~erdesign.damper.Damper` object per candidate.  The expressions are those of
-:meth:`erdesign.damper.Damper.state`, operation for operation, so that a design re-checked with
+``dr``, ``n`` ducts) evaluated at every design point by the quasi-steady kernel of :mod:`erdesign.quasi_steady`,
+vectorised over the candidates, with no Python loop per design and no :class:`~erdesign.damper.Damper` object per
+candidate.  :meth:`erdesign.damper.Damper.state` calls the same kernel, so that a design re-checked with
 :meth:`~erdesign.damper.Damper.size` gives the same numbers (tests/test_design.py checks it).
 
 Valve damper (Makris et al. 1996, eqs 1, 7 corrected, 14), per duct :math:`Q = v A_p / n`:
 
 .. math::
-    F = \Delta p(Q, \tau_y, \eta)\,A_p + F_s, \qquad F_0 = \frac{12\eta_0 L Q}{\pi d h^3} A_p + F_s, \qquad
+    F = \Delta p(Q, \tau_y, \eta)\,A_p + F_s, \qquad F_0 = \Delta p(Q, 0, \eta_0)\,A_p + F_s, \qquad
     \mathrm{Re} = \frac{\bar u h \rho}{\eta}, \quad \bar u = \frac{Q}{\pi d h}
 
-Mixed damper (Kamath and Wereley 1997, section II): pressure plus shear drag from
-:func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`, with :math:`\bar u = \max(v A_p/(\pi d h), v)`.
+(at zero field :math:`\Delta p = 12\eta_0 L Q/(\pi d h^3)`, Makris eq 4).  Mixed damper (Kamath and Wereley 1997,
+section II): pressure plus shear drag, with :math:`\bar u = \max(v A_p/(\pi d h), v)`.
 
 Non-dimensional groups reported for each design (why a design behaves as it does): the Bingham number
 :math:`\mathrm{Bi} = \tau_y h/(\eta \bar u)` (yield over viscous stress; Bi >> 1: the field dominates, large dynamic
@@ -32,12 +32,10 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from .._util import scalar_or_array
-from ..damper import CRITICAL_REYNOLDS
-from ..flow.bingham import bingham_slit_flow
-from ..flow.mixed_mode import mixed_mode_damper_force
-from ..flow.newtonian import slit_pressure_drop
-from ..geometry import THIN_GAP_LIMIT
+from ..geometry import THIN_GAP_LIMIT, mixed_mean_diameter
+from ..quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, mixed_state, valve_state
 from . import envelope
+from .figures import FIGURES, OBJECTIVES, Figure
 
 if TYPE_CHECKING:  # pragma: no cover
     from .requirements import Requirements
@@ -54,48 +52,6 @@ __all__ = [
     "FIGURES",
     "OBJECTIVES",
 ]
-
-
-class Figure(NamedTuple):
-    """A figure of merit of a design (registry :data:`FIGURES`)."""
-
-    attribute: str
-    """Attribute of :class:`CandidateFigures` holding it."""
-    per_point: bool
-    """True: one value per design point (the first point is used for ranking and Pareto fronts)."""
-    unit: str
-    """SI unit."""
-    better: str
-    """``"max"`` or ``"min"``."""
-    description: str
-
-
-#: Figures a design is ranked or traded off by (``design.search.pareto`` and the objectives).
-FIGURES = {
-    "force": Figure("force", True, "N", "max", "total force at the design point"),
-    "controllable_force": Figure("controllable_force", True, "N", "max", "force at field minus force at zero field"),
-    "zero_field_force": Figure("zero_field_force", True, "N", "min", "force at zero field (passive force)"),
-    "dynamic_range": Figure("dynamic_range", True, "", "max", "force at field / force at zero field"),
-    "fluid_volume": Figure("fluid_volume", False, "m^3", "min", "active fluid volume between the electrodes"),
-    "total_fluid_volume": Figure("total_fluid_volume", False, "m^3", "min", "fluid in cylinder and ducts"),
-    "outer_diameter": Figure("outer_diameter", False, "m", "min", "outer diameter of the body"),
-    "length": Figure("length", False, "m", "min", "body length"),
-    "coil_power": Figure("coil_power", False, "W", "min", "coil power I^2 R at the design current ([design.coil])"),
-    "time_constant": Figure("time_constant", False, "s", "min",
-                            "coil time constant L/R at the design current ([design.coil])"),
-}
-
-#: Objectives of ``design.objective``: name -> figure of :data:`FIGURES` (its ``better`` gives the sense).
-OBJECTIVES = {
-    "min_fluid_volume": "fluid_volume",
-    "max_dynamic_range": "dynamic_range",
-    "min_zero_field_force": "zero_field_force",
-    "min_total_fluid_volume": "total_fluid_volume",
-    "min_outer_diameter": "outer_diameter",
-    "min_length": "length",
-    "min_coil_power": "coil_power",
-    "min_time_constant": "time_constant",
-}
 
 
 class PointFigures(NamedTuple):
@@ -127,7 +83,8 @@ def valve_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, d, Ap, n)
         \quad \mathrm{Re} = \frac{\bar u h\rho}{\eta}, \quad \mathrm{Bi} = \frac{\tau_y h}{\eta\bar u},
         \quad \bar u = \frac{Q}{\pi d h}
 
-    with :math:`\Delta p` the Bingham pressure drop of :func:`erdesign.flow.bingham.bingham_slit_flow`.
+    F, Re and F_0 are :func:`erdesign.quasi_steady.valve_state` (thin gap) at the field and at zero field; this
+    function adds the Bingham number.
 
     Parameters
     ----------
@@ -174,16 +131,17 @@ def valve_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, d, Ap, n)
     ----------
     Makris et al. (1996), eqs 1, 4, 7 (with h^3) and 14.
     """
-    Q = v * Ap / n
-    dp, phi = bingham_slit_flow(Q, tau_y, eta, L, d, h)
-    dp0 = slit_pressure_drop(Q, eta0, L, d, h)
-    friction = np.copysign(seal_friction, v)
-    mean_velocity = np.abs(Q) / (np.pi * d * h)
+    s = valve_state(v, tau_y, eta, rho, seal_friction, h, L, d, Ap, n)
+    s0 = valve_state(v, 0.0, eta0, rho, seal_friction, h, L, d, Ap, n)
+    return _point_figures(s, s0, h)
+
+
+def _point_figures(s: QuasiSteadyState, s0: QuasiSteadyState, h) -> PointFigures:
+    """The figures of the kernel's states at the field (``s``) and at zero field (``s0``), and Bi."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        bingham = tau_y * h / (eta * mean_velocity)
+        bingham = s.yield_stress * h / (s.viscosity * s.mean_velocity)
     return PointFigures._make(scalar_or_array(a) for a in (
-        dp * Ap + friction, dp0 * Ap + friction, dp, dp0, phi, mean_velocity * h * rho / eta,
-        mean_velocity * h * rho / eta0, bingham))
+        s.force, s0.force, s.pressure_drop, s0.pressure_drop, s.plug_fraction, s.reynolds, s0.reynolds, bingham))
 
 
 def mixed_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, Dp, dr):
@@ -193,7 +151,8 @@ def mixed_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, Dp, dr):
         F = \Delta p\,A_p - \tau_0\,\pi D_p L + F_s, \quad
         \bar u = \max\!\left(\frac{v A_p}{\pi d h}, v\right), \quad d = D_p + h
 
-    with :math:`\Delta p, \tau_0` from :func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`; Re and Bi as in
+    F, Re and F_0 are :func:`erdesign.quasi_steady.mixed_state` at the field and at zero field (:math:`\Delta p,
+    \tau_0` from :func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`); Re and Bi as in
     :func:`valve_point_figures` with this :math:`\bar u`.
 
     Parameters
@@ -226,18 +185,10 @@ def mixed_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, Dp, dr):
     ----------
     Kamath and Wereley (1997), section II; docs/theory/mixed_mode.md.
     """
-    m = mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h)
-    m0 = mixed_mode_damper_force(v, 0.0, eta0, L, Dp, dr, h)
-    friction = np.copysign(seal_friction, v)
-    Ap = np.pi / 4.0 * (Dp**2 - dr**2)
-    d = Dp + h
-    mean_velocity = np.maximum(np.abs(v * Ap) / (np.pi * d * h), np.abs(v))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        bingham = tau_y * h / (eta * mean_velocity)
-    return PointFigures._make(scalar_or_array(a) for a in (
-        m.pressure_force + m.shear_force + friction, m0.pressure_force + m0.shear_force + friction,
-        m.pressure_drop, m0.pressure_drop, m.plug_fraction, mean_velocity * h * rho / eta,
-        mean_velocity * h * rho / eta0, bingham))
+    d = mixed_mean_diameter(Dp, h)
+    s = mixed_state(v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr)
+    s0 = mixed_state(v, 0.0, eta0, rho, seal_friction, h, L, d, Dp, dr)
+    return _point_figures(s, s0, h)
 
 
 @dataclass(frozen=True)
@@ -460,7 +411,7 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
     Dp = np.asarray(piston_diameter, dtype=float)
     dr = np.asarray(rod_diameter, dtype=float)
     mixed = req.configuration == "mixed"
-    d = Dp + h if mixed else np.asarray(duct_mean_diameter, dtype=float)
+    d = mixed_mean_diameter(Dp, h) if mixed else np.asarray(duct_mean_diameter, dtype=float)
     n = np.ones_like(h) if mixed else np.asarray(ducts, dtype=float)
     h, L, d, Dp, dr, n = np.broadcast_arrays(*(np.atleast_1d(a) for a in (h, L, d, Dp, dr, n)))
     valid = (h > 0) & (L > 0) & (dr >= 0) & (dr < Dp) & (h < d) & (n >= 1)

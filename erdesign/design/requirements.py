@@ -5,7 +5,7 @@ The file (docs/cli.md, "erdesign design") has a ``[fluid]`` table exactly as a d
 The keys beyond the contract are listed below and in docs/design.md.
 
 ``[design]``
-    ``configuration`` ("valve" or "mixed"), ``objective`` (a key of :data:`~erdesign.design.evaluate.OBJECTIVES`,
+    ``configuration`` ("valve" or "mixed"), ``objective`` (a key of :data:`~erdesign.design.figures.OBJECTIVES`,
     default ``"min_fluid_volume"``), one or more ``[[design.point]]`` tables, and the optional tables
     ``[design.limits]``, ``[design.bounds]`` (required), ``[design.envelope]`` and ``[design.search]``.
 ``[[design.point]]``
@@ -38,7 +38,7 @@ The keys beyond the contract are listed below and in docs/design.md.
 ``[design.search]`` (all optional)
     ``samples`` (default 131072), ``sampling`` (``"sobol"`` or ``"lhs"``), ``seed`` (default 0),
     ``chunk`` (candidates evaluated at once, default 65536), ``refine`` (default true), ``designs`` (how many to
-    return, default 10), ``pareto`` (two or three figures of :data:`~erdesign.design.evaluate.FIGURES`, default
+    return, default 10), ``pareto`` (two or three figures of :data:`~erdesign.design.figures.FIGURES`, default
     ``["dynamic_range", "fluid_volume", "outer_diameter"]``; see docs/design.md for why not controllable force,
     dynamic range and fluid volume, which a valve damper ties together), ``active_tolerance`` (relative margin below
     which a constraint counts as active, default 0.01), ``gap_tolerance`` and ``length_tolerance`` (the grid the
@@ -77,7 +77,7 @@ from ..errors import ErdesignError
 from ..fluid import Fluid
 from ..geometry import CONFIGURATIONS
 from ..units import to_si
-from .evaluate import FIGURES, OBJECTIVES
+from .figures import FIGURES, OBJECTIVES
 
 __all__ = [
     "Requirements",

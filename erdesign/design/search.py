@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import minimize
 
+from ..geometry import mixed_mean_diameter
 from .evaluate import FIGURES, OBJECTIVES, CandidateFigures, Constraint, constraints_for, evaluate_candidates
 from .pareto import pareto_mask
 from .requirements import COIL_VARIABLES, VARIABLES, Requirements
@@ -342,7 +343,7 @@ def _metres(text: str) -> float:
 def _parse_geometry(req: Requirements, table: dict) -> np.ndarray:
     h = _metres(table["gap"])
     Dp = _metres(table["piston_diameter"])
-    d = _metres(table["duct_mean_diameter"]) if "duct_mean_diameter" in table else Dp + h
+    d = _metres(table["duct_mean_diameter"]) if "duct_mean_diameter" in table else mixed_mean_diameter(Dp, h)
     row = [h, _metres(table["duct_length"]), d, Dp, _metres(table["rod_diameter"]), float(table.get("ducts", 1))]
     if "coil" in table:
         c = table["coil"]

@@ -1,0 +1,302 @@
+r"""The quasi-steady force of a damper: the one SI kernel, vectorised over velocity, fluid and geometry.
+
+Quasi-steady means the gap flow is taken as steady at each instant (no fluid inertia, no compressibility, no
+pre-yield elasticity).  :meth:`erdesign.damper.Damper.state`, the physics model
+(:class:`erdesign.physics.PhysicsDamper`), design synthesis (:mod:`erdesign.design.evaluate`), the app's sweeps
+and the report all call :func:`quasi_steady_state` (or its two halves :func:`valve_state` and :func:`mixed_state`);
+nothing else writes the force of a damper down.
+
+Valve damper (Makris et al. 1996, eq 14), ``n`` stationary annular ducts in parallel:
+
+.. math::
+    F = \Delta p\,A_p + F_s \operatorname{sgn}(v), \qquad Q = \frac{v A_p}{n}, \qquad
+    A_p = \frac{\pi}{4}(D_p^2 - d_r^2)
+
+with :math:`\Delta p(Q, \tau_y, \eta)` the Bingham gap flow: the thin gap of :mod:`erdesign.flow.bingham`
+(Makris eqs 5-7 with h^3), or the exact concentric annulus of :mod:`erdesign.flow.annulus_bingham`.
+
+Mixed (moving-electrode) damper (Kamath and Wereley 1997, section II): pressure drag plus shear drag of the moving
+head, :math:`F = \Delta p\,A_p + F_\text{shear} + F_s \operatorname{sgn}(v)`, from the Couette-Poiseuille Bingham
+flow of :func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`.
+
+Reynolds number of the gap flow (Makris eq 1), with the mean speed of the fluid in the gap
+
+.. math::
+    \mathrm{Re} = \frac{\bar u h \rho}{\eta}, \qquad
+    \bar u = \frac{|Q|}{\pi d h} \;\text{(valve)}, \qquad
+    \bar u = \max\!\left(\frac{|v| A_p}{\pi d h}, |v|\right) \;\text{(mixed: the wall moves at } |v|\text{)}.
+
+At ``v = 0`` the force is the break-away force (the limit ``v -> 0+``, signed by the sign bit of ``v``): the gap
+is blocked and any force up to it is held with no motion.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+
+from ._util import scalar_or_array
+from .flow.annulus_bingham import annulus_bingham_flow
+from .flow.bingham import bingham_slit_flow
+from .flow.mixed_mode import mixed_mode_damper_force
+from .flow.newtonian import slit_pressure_drop
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .damper import Damper
+
+__all__ = ["QuasiSteadyState", "quasi_steady_state", "valve_state", "mixed_state", "damper_state",
+           "CRITICAL_REYNOLDS"]
+
+#: Reynolds number below which the duct flow is taken as laminar (Makris et al., section 2: R_crit = 2300).
+CRITICAL_REYNOLDS = 2300.0
+
+
+class QuasiSteadyState(NamedTuple):
+    """Quasi-steady state of a damper at a piston velocity and control, SI (floats or arrays)."""
+
+    force: Any
+    """Total force on the piston, with the sign of the velocity, [N]."""
+    pressure_drop: Any
+    """Pressure drop across the piston, [Pa]."""
+    pressure_force: Any
+    """Pressure drop times piston area, [N]."""
+    shear_force: Any
+    """Shear drag of the moving electrode (mixed mode; 0 for valve), [N]."""
+    friction_force: Any
+    """Seal friction F_s sgn(v), [N]."""
+    flow_rate: Any
+    """Total volumetric flow displaced by the piston, v A_p, [m^3/s]."""
+    flow_per_duct: Any
+    """Flow through one duct (valve) or through the gap (mixed), [m^3/s]."""
+    plug_fraction: Any
+    """Plug thickness over gap, [-]: 0 fully yielded / Newtonian, 1 blocked."""
+    reynolds: Any
+    """Reynolds number of the gap flow (Makris eq 1), [-]."""
+    yield_stress: Any
+    """Yield stress at the control, [Pa]."""
+    viscosity: Any
+    """Plastic viscosity at the control, [Pa s]."""
+    mean_velocity: Any = None
+    """Mean speed of the fluid in the gap, u (mixed: at least the wall speed |v|), [m/s]."""
+
+
+def _piston_area(Dp, dr):
+    return np.pi / 4.0 * (Dp**2 - dr**2)
+
+
+def _state(force, dp, pressure_force, shear_force, friction, Q_total, Q, phi, mean_velocity, h, rho, tau_y, eta):
+    reynolds = mean_velocity * h * rho / eta   # Makris eq 1: Re = u h / nu = Q / (pi d nu)
+    return QuasiSteadyState(*(scalar_or_array(a) for a in (
+        force, dp, pressure_force, shear_force, friction, Q_total, Q, phi, reynolds, tau_y, eta, mean_velocity)))
+
+
+def _valve_gap_flow(Q, tau_y, eta, L, d, h, exact_annulus):
+    """(pressure drop [Pa], plug fraction [-]) of Bingham flow Q through one duct, thin gap or exact annulus."""
+    annulus = np.asarray(exact_annulus, dtype=bool)
+    if annulus.ndim == 0:
+        if annulus:
+            r = annulus_bingham_flow(Q, tau_y, eta, L, d, h)
+            return r.pressure_drop, r.plug_fraction
+        if not np.any(tau_y):
+            # Newtonian (zero field): Makris eq 4, the tau_y = 0 branch of bingham_slit_flow bit for bit, without
+            # the cubic's root (design synthesis evaluates every candidate at zero field)
+            dp = slit_pressure_drop(Q, eta, L, d, h)
+            return dp, np.zeros(np.shape(dp))
+        return bingham_slit_flow(Q, tau_y, eta, L, d, h)
+    Q, tau_y, eta, L, d, h, annulus = np.broadcast_arrays(Q, tau_y, eta, L, d, h, annulus)
+    dp, phi = np.empty(Q.shape), np.empty(Q.shape)
+    for where, exact in ((~annulus, False), (annulus, True)):
+        if np.any(where):
+            dp[where], phi[where] = _valve_gap_flow(Q[where], tau_y[where], eta[where], L[where], d[where], h[where],
+                                                    exact)
+    return dp, phi
+
+
+def valve_state(v, tau_y, eta, rho, seal_friction, h, L, d, Ap, n=1, exact_annulus=False) -> QuasiSteadyState:
+    r"""Quasi-steady state of valve dampers: Bingham flow through ``n`` annular ducts in parallel (vectorised).
+
+    .. math::
+        Q = \frac{v A_p}{n}, \quad F = \Delta p(Q, \tau_y, \eta)\,A_p + F_s\operatorname{sgn}(v), \quad
+        \mathrm{Re} = \frac{\bar u h \rho}{\eta}, \quad \bar u = \frac{|Q|}{\pi d h}
+
+    Parameters
+    ----------
+    v : float or array
+        Piston velocity, [m/s].
+    tau_y : float or array
+        Yield stress at the control, [Pa], >= 0.
+    eta : float or array
+        Plastic viscosity at the control, [Pa s], > 0.
+    rho : float or array
+        Density, [kg/m^3].
+    seal_friction : float or array
+        Seal friction F_s, [N], >= 0.
+    h, L, d : float or array
+        Gap, duct length and duct mean diameter, [m].
+    Ap : float or array
+        Piston area, [m^2].
+    n : int or array
+        Number of ducts in parallel, [-].
+    exact_annulus : bool or array of bool
+        True: the exact concentric annulus (:func:`erdesign.flow.annulus_bingham.annulus_bingham_flow`); False:
+        the thin gap (:func:`erdesign.flow.bingham.bingham_slit_flow`).  An array chooses per element.
+
+    Returns
+    -------
+    QuasiSteadyState
+        Floats for scalar input, arrays of the broadcast shape otherwise; ``shear_force`` is 0.
+
+    Notes
+    -----
+    Laminar, steady, no wall slip; every argument broadcasts against the others.  Where ``tau_y`` is zero
+    everywhere the thin-gap pressure drop is Makris eq 4 (the Newtonian limit of the cubic, identical to it).
+
+    Examples
+    --------
+    Makris's damper at 1 in/s and 3 kV/mm (tau_y = 1.8 kPa, eta = 13 Pa s; ``erdesign size`` gives 6.07 kN):
+
+    >>> from math import pi
+    >>> Ap = pi / 4 * (0.0334**2 - 0.01125**2)
+    >>> s = valve_state(0.0254, 1800.0, 13.0, 1290.0, 112.0, 0.0008, 0.0546, 0.0143, Ap)
+    >>> round(s.force / 1e3, 2), round(s.plug_fraction, 3), round(s.reynolds, 3)
+    (6.07, 0.032, 0.044)
+
+    References
+    ----------
+    Makris et al. (1996), eqs 1, 4-7 (with h^3) and 14; Fredrickson and Bird (1958) for the annulus.
+    """
+    v = np.asarray(v, dtype=float)
+    Q_total = v * Ap
+    Q = Q_total / n
+    dp, phi = _valve_gap_flow(Q, tau_y, eta, L, d, h, exact_annulus)
+    pressure_force = dp * Ap
+    shear_force = np.zeros(np.broadcast(dp, v).shape)
+    friction = np.copysign(seal_friction, v)
+    mean_velocity = np.abs(Q) / (np.pi * d * h)
+    return _state(pressure_force + shear_force + friction, dp, pressure_force, shear_force, friction, Q_total, Q,
+                  phi, mean_velocity, h, rho, tau_y, eta)
+
+
+def mixed_state(v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr) -> QuasiSteadyState:
+    r"""Quasi-steady state of mixed-mode (moving-electrode) dampers: pressure plus shear drag (vectorised).
+
+    .. math::
+        F = \Delta p\,A_p + F_\text{shear} + F_s\operatorname{sgn}(v), \quad
+        \mathrm{Re} = \frac{\bar u h \rho}{\eta}, \quad \bar u = \max\!\left(\frac{|v| A_p}{\pi d h}, |v|\right)
+
+    with :math:`\Delta p, F_\text{shear}` from :func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`.
+
+    Parameters
+    ----------
+    v, tau_y, eta, rho, seal_friction
+        As in :func:`valve_state`.
+    h : float or array
+        Gap between head and cylinder, [m].
+    L : float or array
+        Length of the piston head (electrode), [m].
+    d : float or array
+        Mean diameter of the gap, [m]: ``Dp + h`` (:class:`~erdesign.geometry.Geometry` holds it so); used for the
+        mean speed only, the flow itself is solved with ``Dp + h``.
+    Dp, dr : float or array
+        Head and rod diameters, [m].
+
+    Returns
+    -------
+    QuasiSteadyState
+        ``flow_rate`` and ``flow_per_duct`` are both the displaced flow v A_p.
+
+    Notes
+    -----
+    Thin gap, laminar, quasi-steady (docs/theory/mixed_mode.md).  Each element is a bracketed root of
+    :func:`~erdesign.flow.mixed_mode.couette_poiseuille_bingham` (closed form at zero yield stress).
+
+    Examples
+    --------
+    >>> s = mixed_state(0.05, 2000.0, 0.1, 1200.0, 0.0, 1e-3, 0.02, 0.031, 0.03, 0.01)
+    >>> round(s.force, 1), round(s.shear_force, 2), round(s.plug_fraction, 2)
+    (71.1, 5.0, 0.76)
+
+    References
+    ----------
+    Kamath and Wereley (1997), section II; Makris et al. (1996), eq 1.
+    """
+    v = np.asarray(v, dtype=float)
+    Q_total = v * _piston_area(Dp, dr)
+    m = mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h)
+    friction = np.copysign(seal_friction, v)
+    # the fluid in the gap moves at up to the wall speed |v| as well as at the mean flow speed
+    mean_velocity = np.maximum(np.abs(Q_total) / (np.pi * d * h), np.abs(v))
+    return _state(m.pressure_force + m.shear_force + friction, m.pressure_drop, m.pressure_force, m.shear_force,
+                  friction, Q_total, Q_total, m.plug_fraction, mean_velocity, h, rho, tau_y, eta)
+
+
+def quasi_steady_state(configuration, v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr, n=1,
+                       exact_annulus=False) -> QuasiSteadyState:
+    r"""Quasi-steady state of dampers of one configuration, vectorised over velocity, fluid and geometry.
+
+    Dispatches to :func:`valve_state` (with :math:`A_p = \frac{\pi}{4}(D_p^2 - d_r^2)`) or :func:`mixed_state`;
+    see the module notes for the equations.
+
+    Parameters
+    ----------
+    configuration : str
+        ``"valve"`` or ``"mixed"``.
+    v : float or array
+        Piston velocity, [m/s].
+    tau_y, eta : float or array
+        Yield stress [Pa] and plastic viscosity [Pa s] at the control.
+    rho : float or array
+        Density, [kg/m^3].
+    seal_friction : float or array
+        Seal friction F_s, [N].
+    h, L, d, Dp, dr : float or array
+        Gap, duct (head) length, mean diameter of the gap, piston (head) and rod diameters, [m].
+    n : int or array
+        Ducts in parallel (valve; a mixed damper has one gap).
+    exact_annulus : bool or array of bool
+        Valve only: the exact annulus instead of the thin gap.
+
+    Returns
+    -------
+    QuasiSteadyState
+
+    Examples
+    --------
+    Three gaps at once (broadcasting): the valve force falls steeply as the gap opens.
+
+    >>> import numpy as np
+    >>> s = quasi_steady_state("valve", 0.0254, 1800.0, 13.0, 1290.0, 112.0, np.array([0.6e-3, 0.8e-3, 1.0e-3]),
+    ...                        0.0546, 0.0143, 0.0334, 0.01125)
+    >>> np.round(s.force / 1e3, 2)
+    array([13.95,  6.07,  3.25])
+
+    References
+    ----------
+    Makris et al. (1996), eq 14; Kamath and Wereley (1997), section II.
+    """
+    if configuration == "valve":
+        return valve_state(v, tau_y, eta, rho, seal_friction, h, L, d, _piston_area(Dp, dr), n, exact_annulus)
+    if configuration == "mixed":
+        if np.any(exact_annulus) or np.any(np.asarray(n) != 1):
+            raise ValueError("quasi_steady_state: a mixed damper has one gap and the thin-gap model only")
+        return mixed_state(v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr)
+    raise ValueError(f"quasi_steady_state: configuration must be 'valve' or 'mixed', got {configuration!r}")
+
+
+def damper_state(damper: "Damper", v, tau_y, eta) -> QuasiSteadyState:
+    """Quasi-steady state of a :class:`~erdesign.damper.Damper` at velocity ``v`` [m/s] with the fluid's yield
+    stress ``tau_y`` [Pa] and plastic viscosity ``eta`` [Pa s] given (per sample, e.g. calibrated or lagged).
+
+    :meth:`Damper.state <erdesign.damper.Damper.state>` is this at the fluid's properties of a control.
+
+    Examples
+    --------
+    >>> from erdesign import load_example
+    >>> round(damper_state(load_example("makris"), 0.0254, 1800.0, 13.0).force / 1e3, 2)
+    6.07
+    """
+    g = damper.geometry
+    return quasi_steady_state(g.configuration, v, tau_y, eta, damper.fluid.density, damper.seal_friction, g.gap,
+                              g.duct_length, g.duct_mean_diameter, g.piston_diameter, g.rod_diameter, g.ducts,
+                              damper.uses_exact_annulus)

@@ -1,0 +1,106 @@
+"""The one quasi-steady force kernel (erdesign/quasi_steady.py): vectorised over geometry, it is Damper.state."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+from erdesign import Damper, Fluid, Geometry
+from erdesign.flow.mixed_mode import mixed_mode_yield_force
+from erdesign.flow.newtonian import slit_pressure_drop
+from erdesign.quasi_steady import QuasiSteadyState, quasi_steady_state
+
+FLUID = Fluid.create(viscosity="0.3 Pa*s", yield_stress="3 kPa", reference_field="3 kV/mm", yield_exponent=2.0,
+                     density="1200 kg/m^3", viscosity_at_reference_field="0.5 Pa*s")
+V = np.array([0.0, -0.0, 1e-9, -1e-9, 1e-4, 0.02, -0.02, 0.3, -1.5])
+E = np.array([0.0, 0.4e6, 3e6, -2e6])
+SEAL = 25.0
+
+# (h, L, d, Dp, dr, n) per damper; the valve ones are thin (h/d <= 0.06) for "thin_gap" and wide (h/d >= 0.12)
+# for "annulus", so that flow_model="auto" would pick the same model
+THIN = [(0.8e-3, 0.05, 0.0143, 0.0334, 0.01125, 1), (1.0e-3, 0.04, 0.03, 0.04, 0.012, 2),
+        (0.5e-3, 0.09, 0.02, 0.06, 0.02, 4)]
+WIDE = [(2.0e-3, 0.05, 0.0143, 0.0334, 0.01125, 1), (4.0e-3, 0.04, 0.03, 0.04, 0.012, 3),
+        (3.0e-3, 0.03, 0.012, 0.025, 0.008, 1)]
+MIXED = [(1.0e-3, 0.02, None, 0.03, 0.01, 1), (2.54e-3, 0.05, None, 0.038, 0.0127, 1),
+         (0.6e-3, 0.08, None, 0.05, 0.02, 1)]
+CASES = {"thin_gap": ("valve", THIN), "annulus": ("valve", WIDE), "mixed": ("mixed", MIXED)}
+
+
+def _damper(configuration, row, flow_model):
+    h, L, d, Dp, dr, n = row
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")      # the wide gaps warn that the exact annulus is used
+        g = Geometry.create(configuration=configuration, gap=f"{h} m", duct_length=f"{L} m",
+                            duct_mean_diameter=None if d is None else f"{d} m", piston_diameter=f"{Dp} m",
+                            rod_diameter=f"{dr} m", ducts=n)
+    return Damper(geometry=g, fluid=FLUID, seal_friction=SEAL, flow_model=flow_model)
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_kernel_over_geometries_is_damper_state_one_by_one(case):
+    # The kernel is called once on arrays of shape (dampers, fields, velocities); each damper built on its own
+    # and asked through Damper.state must give the same state.  Both routes run the same operations element by
+    # element, so they agree to rounding: 1e-13 relative (the annulus root is converged to ~1e-15, element-wise).
+    configuration, rows = CASES[case]
+    flow_model = "auto" if case == "mixed" else case
+    dampers = [_damper(configuration, row, flow_model) for row in rows]
+    geo = [np.array([getattr(dm.geometry, k) for dm in dampers], dtype=float)[:, None, None]
+           for k in ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter", "ducts")]
+    exact = np.array([dm.uses_exact_annulus for dm in dampers])[:, None, None]
+    assert exact.all() == (case == "annulus") and exact.any() == (case == "annulus")
+    tau_y = FLUID.yield_stress_at(E)[None, :, None]
+    eta = FLUID.viscosity_at(E)[None, :, None]
+    s = quasi_steady_state(configuration, V[None, None, :], tau_y, eta, FLUID.density, SEAL, *geo,
+                           exact_annulus=exact)
+    for i, dm in enumerate(dampers):
+        one = dm.state(V[None, :], E[:, None])
+        for name in QuasiSteadyState._fields:
+            got = np.broadcast_to(getattr(s, name), (len(dampers), E.size, V.size))[i]
+            want = np.broadcast_to(getattr(one, name), (E.size, V.size))
+            np.testing.assert_allclose(got, want, rtol=1e-13, atol=0.0, err_msg=f"{case}: {name}, damper {i}")
+
+
+def test_exact_annulus_chosen_per_element():
+    # One call with thin and wide ducts mixed, the flag per element, equals the two calls apart.
+    rows = THIN + WIDE
+    h, L, d, Dp, dr, n = (np.array(c, dtype=float)[:, None] for c in zip(*rows))
+    exact = np.array([False] * len(THIN) + [True] * len(WIDE))[:, None]
+    args = (0.05 * V[None, :] / V.max(), 2000.0, 0.4, 1200.0, SEAL)
+    both = quasi_steady_state("valve", *args, h, L, d, Dp, dr, n, exact_annulus=exact)
+    thin = quasi_steady_state("valve", *args, h[:3], L[:3], d[:3], Dp[:3], dr[:3], n[:3], exact_annulus=False)
+    wide = quasi_steady_state("valve", *args, h[3:], L[3:], d[3:], Dp[3:], dr[3:], n[3:], exact_annulus=True)
+    np.testing.assert_array_equal(both.force, np.concatenate([thin.force, wide.force]))
+    np.testing.assert_array_equal(both.plug_fraction, np.concatenate([thin.plug_fraction, wide.plug_fraction]))
+    # and the exact annulus does differ from the thin gap at these h/d (else the test above proves nothing)
+    thin_wide = quasi_steady_state("valve", *args, h[3:], L[3:], d[3:], Dp[3:], dr[3:], n[3:])
+    assert np.max(np.abs(thin_wide.pressure_drop / wide.pressure_drop - 1)[:, 4:]) > 1e-3
+
+
+def test_zero_field_valve_is_makris_eq4():
+    # Makris et al. (1996) eq 4: with tau_y = 0 the duct is Newtonian, dp = 12 eta L Q / (pi d h^3), no plug;
+    # the kernel's thin-gap branch must give it to rounding (1e-15: one division apart at most).
+    h, L, d, Dp, dr, n = (np.array(c, dtype=float) for c in zip(*THIN))
+    Ap = np.pi / 4 * (Dp**2 - dr**2)
+    s = quasi_steady_state("valve", 0.02, 0.0, 0.3, 1200.0, 0.0, h, L, d, Dp, dr, n)
+    np.testing.assert_allclose(s.pressure_drop, slit_pressure_drop(0.02 * Ap / n, 0.3, L, d, h), rtol=1e-15)
+    np.testing.assert_array_equal(s.plug_fraction, 0.0)
+    np.testing.assert_allclose(s.force, s.pressure_drop * Ap, rtol=1e-15)
+
+
+def test_mixed_break_away_force_is_the_yield_force_plus_friction():
+    # Kamath and Wereley (1997), section II; docs/theory/mixed_mode.md: as v -> 0+ the mixed-mode force tends to
+    # tau_y (2 L A_p / h + pi Dp L), and the kernel returns that limit at v = +0 (-0.0: minus it).  The shear
+    # drag's limit comes out of a root, so agreement to 1e-9 relative.
+    h, L, d, Dp, dr, n = (np.array(c, dtype=float) for c in zip(*MIXED))
+    d = Dp + h
+    s = quasi_steady_state("mixed", np.array([[0.0], [-0.0]]), 3000.0, 0.3, 1200.0, SEAL, h, L, d, Dp, dr)
+    Fy = mixed_mode_yield_force(3000.0, L, Dp, dr, h)
+    np.testing.assert_allclose(s.force, [Fy + SEAL, -Fy - SEAL], rtol=1e-9)
+
+
+def test_bad_configuration_is_an_error():
+    with pytest.raises(ValueError, match="configuration"):
+        quasi_steady_state("rotary", 0.1, 0.0, 1.0, 1000.0, 0.0, 1e-3, 0.05, 0.02, 0.04, 0.01)
+    with pytest.raises(ValueError, match="one gap"):
+        quasi_steady_state("mixed", 0.1, 0.0, 1.0, 1000.0, 0.0, 1e-3, 0.05, 0.041, 0.04, 0.01, exact_annulus=True)
