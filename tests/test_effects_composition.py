@@ -124,7 +124,7 @@ def test_registration_is_checked_and_leaves_the_contract_names(toy_effects):
 def test_two_effects_of_a_one_effect_stage_are_refused():
     bypass = register_effect(type("Bypass", (ForceOffset,), {"name": "second_bypass", "stage": "parallel"})())
     try:
-        with pytest.raises(EffectError, match="leakage, second_bypass: the physics damper takes one effect of the parallel stage"):
+        with pytest.raises(EffectError, match="leakage, second_bypass: .* one effect of the parallel stage"):
             PhysicsDamper(load_example("makris"), ["leakage", "second_bypass"])
     finally:
         unregister_effect(bypass.name)

@@ -9,18 +9,16 @@ the *stage* of the force chain at which it acts (:data:`STAGES`) and overrides t
 (:meth:`erdesign.physics.PhysicsDamper.components`) runs the stages in order and names no effect.  The kernels of
 each mechanism live in the effect's own module.
 
-=====================  ===========================================================================================
-stage                  hook (neutral default)
-=====================  ===========================================================================================
-``state``              :meth:`Effect.fluid_control`: the control the fluid sees (unchanged)
-``constitutive``       :meth:`Effect.gap_law`: options of the gap flow law, :class:`GapLaw` (Bingham)
-``parallel``           :meth:`Effect.split_flow`: the pressure drop when part of the flow bypasses the ducts, and
-                       :meth:`Effect.bypass_conductance`: what the bypass passes at a pressure (none)
-``thermal``            :meth:`Effect.viscosity_factor`: the viscosity factor after the dissipated power (1)
-``series``             :meth:`Effect.series_pressure_force`: the pressure force behind a series element (unchanged)
-``constitutive-in-time``  :meth:`Effect.filter_fluid_force`: the fluid force through a law in time (unchanged)
-``additive``           :meth:`Effect.additive_forces`: named force components added to the fluid force (none)
-=====================  ===========================================================================================
+The stages and their hooks (the base class's hooks are neutral):
+
+* ``state`` - :meth:`Effect.fluid_control`: the control the fluid sees;
+* ``constitutive`` - :meth:`Effect.gap_law`: options of the gap flow law, a :class:`GapLaw` (Bingham);
+* ``parallel`` - :meth:`Effect.split_flow`: the pressure drop when part of the flow bypasses the ducts, with
+  :meth:`Effect.bypass_conductance`: what the bypass passes at a pressure;
+* ``thermal`` - :meth:`Effect.viscosity_factor`: the viscosity factor after the dissipated power;
+* ``series`` - :meth:`Effect.series_pressure_force`: the pressure force behind an element in series;
+* ``constitutive-in-time`` - :meth:`Effect.filter_fluid_force`: the fluid force through a law in time;
+* ``additive`` - :meth:`Effect.additive_forces`: named force components added to the fluid force.
 
 :attr:`Effect.continuous_at_reversal` says that the effect makes the force continuous through a reversal of the
 motion (so the chain resolves no break-away jump with the expected sign of the velocity).
