@@ -11,47 +11,55 @@ by two calibration factors, because nominal fluid properties are uncertain by te
 
 (the seal friction :math:`F_s` of the damper file is held fixed unless ``seal_friction`` is among the effects).
 
-Effects (:mod:`erdesign.effects`) compose physically, in this order:
+Effects (:mod:`erdesign.effects`) carry their own composition: each declares the *stage* of this chain at which it
+acts and overrides that stage's hook (:class:`erdesign.effects.base.Effect`).  :meth:`PhysicsDamper.components`
+runs the stages in this order, calling the hook of each stage on the effects that declare it, and names no effect:
 
-1. *state of the control* - ``field_lag``: the fluid sees the control through a first-order lag;
-2. *constitutive* - ``shear_thinning``: Herschel-Bulkley instead of Bingham gap flow;
-3. *parallel* - ``leakage``: the flow splits between ducts and a laminar bypass (vectorised root per sample);
-4. *thermal state* - ``viscous_heating``: the viscosity falls with the temperature rise driven by the dissipated
-   power (fixed-point passes over the record);
-5. *series* - ``compressibility``: the fluid column is a spring in series with the nonlinear duct law (implicit
-   integration of the stiff ODE, :mod:`erdesign.effects.compressibility`);
-6. *constitutive, in time* - ``preyield_elasticity``: Makris eq 8 at the damper level (exact-step scan);
-7. *additive* - ``seal_friction``, ``fluid_inertia``, ``gas_spring``.
+1. *state of the control* (:meth:`~erdesign.effects.base.Effect.fluid_control`) - the control the fluid sees,
+   e.g. ``field_lag`` (a first-order lag);
+2. *constitutive* (:meth:`~erdesign.effects.base.Effect.gap_law`) - the law of the gap flow,
+   :class:`~erdesign.effects.base.GapLaw`, e.g. ``shear_thinning`` (Herschel-Bulkley instead of Bingham);
+3. *parallel* (:meth:`~erdesign.effects.base.Effect.split_flow`) - the flow splits between the ducts and another
+   path, e.g. ``leakage`` (a laminar bypass, vectorised root per sample);
+4. *thermal* (:meth:`~erdesign.effects.base.Effect.viscosity_factor`) - the viscosity follows the dissipated
+   power, e.g. ``viscous_heating`` (fixed-point passes over the record, at most :data:`HEATING_PASSES`);
+5. *series* (:meth:`~erdesign.effects.base.Effect.series_pressure_force`) - an element between the piston and
+   the ducts replaces the pressure force, e.g. ``compressibility`` (the fluid column as a spring in series with
+   the nonlinear duct law, implicit integration of the stiff ODE);
+6. *constitutive in time* (:meth:`~erdesign.effects.base.Effect.filter_fluid_force`) - the fluid force through a
+   law in time, e.g. ``preyield_elasticity`` (Makris eq 8 at the damper level, exact-step scan);
+7. *additive* (:meth:`~erdesign.effects.base.Effect.additive_forces`) - named force components, e.g.
+   ``seal_friction`` (which replaces the damper file's seal friction), ``fluid_inertia``, ``gas_spring``.
+
+The parallel and series stages take one effect at a time (:data:`SINGLE_STAGES`).  A new effect is one module of
+:mod:`erdesign.effects` plus its :func:`~erdesign.effects.register_effect` line; this module does not change.
 
 The break-away jump of the rigid-plastic gap flow at a reversal (from minus to plus the yield force) and the sign of
 the seal friction are evaluated at the derived velocity, whose sign is uncertain within its noise band: the model
 uses the expected sign :math:`\operatorname{erf}(v/\sqrt2\sigma_v)` (:func:`erdesign.effects.base.sign_expectation`),
 with the velocity noise :math:`\sigma_v` estimated from the record (:func:`erdesign.noise.velocity_noise`).  On a
 record without noise that is the sharp sign of Makris eq 14; no fixed smoothing floor is left in the baseline
-(with ``leakage`` or ``compressibility`` the force is continuous through the reversal and needs none).
+(an effect whose :attr:`~erdesign.effects.base.Effect.continuous_at_reversal` is set, e.g. ``leakage``,
+``compressibility`` or ``preyield_elasticity``, makes the force continuous through the reversal and needs none).
 
 Everything is vectorised over the samples; the linear time-varying recurrences use the exact-step prefix scan of
 :func:`erdesign.effects.base.relaxation_filter`.  The internal states start settled (quasi-steady) at the first
-sample.  Effects that re-solve the gap flow (leakage, shear thinning) use the thin-gap formulas.
+sample.  Effects that re-solve the gap flow (a parallel path, a flow index other than 1) use the thin-gap formulas.
 """
 
 from __future__ import annotations
 
 from typing import Mapping, Sequence
 
+import math
+
 import numpy as np
 
 from .damper import Damper
 from .effects import EFFECTS, EffectError, parse_effect_names
-from .effects.base import sign_expectation
-from .effects.compressibility import DuctLaw, compliant_pressure_force
-from .effects.field_lag import lagged_control
-from .effects.fluid_inertia import FluidInertia
-from .effects.gas_spring import gas_spring_force
-from .effects.leakage import leaky_pressure_drop
-from .effects.preyield_elasticity import elastic_stiffness, elastic_viscoplastic_force
-from .effects.shear_thinning import REFERENCE_SHEAR_RATE, herschel_bulkley_pressure_drop
-from .effects.viscous_heating import TEMPERATURE_COEFFICIENT, heated_viscosity_factor, temperature_rise
+from .effects.base import STAGES, GapLaw, sign_expectation
+from .effects.compressibility import DuctLaw
+from .effects.shear_thinning import herschel_bulkley_pressure_drop
 from .errors import ErdesignError
 from .flow.bingham import bingham_slit_flow
 from .flow.mixed_mode import couette_poiseuille_bingham
@@ -61,7 +69,7 @@ from .models.base import Model, Parameter
 from .noise import velocity_noise
 from .quasi_steady import damper_state
 
-__all__ = ["PhysicsDamper", "BASE_PARAMETERS", "check_control", "HEATING_PASSES"]
+__all__ = ["PhysicsDamper", "BASE_PARAMETERS", "check_control", "HEATING_PASSES", "SINGLE_STAGES"]
 
 #: Calibration factors of the baseline.
 BASE_PARAMETERS = (
@@ -69,6 +77,9 @@ BASE_PARAMETERS = (
     Parameter("yield_stress_factor", "", 1.0, 0.0, 20.0, "yield stress over its nominal value"),
 )
 
+
+#: Stages that take one effect at a time: two bypasses or two series elements would have to be solved together.
+SINGLE_STAGES = ("parallel", "series")
 
 #: Most fixed-point passes of the heating coupling (the error falls by alpha*dT per pass; they stop when the
 #: viscosity factor changes by less than 1e-9).
@@ -123,6 +134,12 @@ class PhysicsDamper(Model):
         self.damper = damper
         self.effect_names = parse_effect_names(effects)
         self.effects = tuple(EFFECTS[n] for n in self.effect_names)
+        #: stage -> the effects that act there, in the order named
+        self.stages = {s: tuple(e for e in self.effects if e.stage == s) for s in STAGES}
+        for s in SINGLE_STAGES:
+            if len(self.stages[s]) > 1:
+                raise EffectError(f"{', '.join(e.name for e in self.stages[s])}: the physics damper takes one "
+                                  f"effect of the {s} stage at a time")
         params = list(BASE_PARAMETERS)
         for e in self.effects:
             params.extend(e.parameters(damper))
@@ -130,6 +147,7 @@ class PhysicsDamper(Model):
         self.title = "physics damper" + (f" + {', '.join(self.effect_names)}" if self.effect_names else " (baseline)")
 
     def has(self, name: str) -> bool:
+        """True when the effect ``name`` is among this model's effects."""
         return name in self.effect_names
 
     def with_effects(self, effects: Sequence[str]) -> "PhysicsDamper":
@@ -143,16 +161,17 @@ class PhysicsDamper(Model):
         return guess
 
     # ------------------------------------------------------------------ the gap flow
-    def _gap_pressure_drop(self, u, v_wall, tau_y, eta, m):
+    def _gap_pressure_drop(self, u, v_wall, tau_y, eta, law: GapLaw):
         """Pressure drop [Pa] of the gap passing the flow of a piston at speed u (wall speed v_wall, mixed)."""
         g = self.damper.geometry
         if g.configuration == "valve":
             Q = u * g.piston_area / g.ducts
+            m = law.flow_index
             if m != 1.0:
-                K = eta * REFERENCE_SHEAR_RATE ** (1.0 - m)
+                K = law.consistency(eta)
                 return herschel_bulkley_pressure_drop(Q, tau_y, K, m, g.duct_length, g.duct_mean_diameter, g.gap)
             return bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap).pressure_drop
-        return self._mixed(u, v_wall, tau_y, eta, m)[0]
+        return self._mixed(u, v_wall, tau_y, eta, law)[0]
 
     def _mixed_table(self):
         """Dimensionless Couette-Poiseuille Bingham solution of this head, tabulated once (see :meth:`_mixed`)."""
@@ -173,7 +192,7 @@ class PhysicsDamper(Model):
             self._table = (w, sol.pressure_gradient * h**2 / scale, sol.wall_stress_moving * h / scale)
         return self._table
 
-    def _mixed(self, u, v_wall, tau_y, eta, m):
+    def _mixed(self, u, v_wall, tau_y, eta, law: GapLaw):
         """Pressure drop [Pa] and shear drag [N] of the moving-electrode gap.
 
         The flow q = -u A_p / (pi d) and the wall speed are taken equal (u = v_wall, as without a bypass): the
@@ -183,11 +202,12 @@ class PhysicsDamper(Model):
         speed too, which is good when the pressure drag dominates (by about D_p / 2h)."""
         g = self.damper.geometry
         h = g.gap
+        m, rate_ref = law
         if m != 1.0:
             q = u * g.piston_area / (np.pi * (g.piston_diameter + h))
             rate = 6 * np.abs(q) / h**2 + np.abs(v_wall) / h
-            rate = np.maximum(rate, 1e-3 * REFERENCE_SHEAR_RATE)
-            eta = eta * (rate / REFERENCE_SHEAR_RATE) ** (m - 1.0)
+            rate = np.maximum(rate, 1e-3 * rate_ref)
+            eta = eta * (rate / rate_ref) ** (m - 1.0)
         w_grid, gn, tn = self._mixed_table()
         scale = eta * np.abs(u) + tau_y * h
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -197,19 +217,19 @@ class PhysicsDamper(Model):
         shear = -sign * np.interp(w, w_grid, tn) * scale / h * np.pi * g.piston_diameter * g.duct_length
         return dp, shear
 
-    def _duct_law(self, tau_y, eta, values) -> DuctLaw:
-        """The ducts' flow at a pressure (per-sample yield stress and viscosity) for the compliant column."""
+    def _duct_law(self, tau_y, eta, law: GapLaw, bypass: float) -> DuctLaw:
+        """The ducts' flow at a pressure (per-sample yield stress and viscosity; ``bypass`` [m/(N s)] the piston
+        speed per unit pressure force of a parallel path) for an element in series."""
         g = self.damper.geometry
         n = np.size(eta)
         tau_y = np.broadcast_to(np.asarray(tau_y, dtype=float), (n,))
-        bypass = 1.0 / values["bypass_damping"] if self.has("leakage") else 0.0
         if g.configuration == "valve":
-            m = values.get("flow_index", 1.0) if self.has("shear_thinning") else 1.0
-            K = eta * REFERENCE_SHEAR_RATE ** (1.0 - m)
-            return DuctLaw(0, tau_y, K, m, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area, g.ducts, bypass)
+            K = law.consistency(eta)
+            return DuctLaw(0, tau_y, K, law.flow_index, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area,
+                           g.ducts, bypass)
         w, G = self._mixed_inverse_table()
-        # mixed gap: the circumference pi (Dp + h) is folded into the table, and shear thinning (if any) is left at
-        # the plastic viscosity here (the compliant column only needs the duct law near its yield point)
+        # mixed gap: the circumference pi (Dp + h) is folded into the table, and a flow index (if any) is left at
+        # Bingham with the plastic viscosity here (a series element only needs the duct law near its yield point)
         return DuctLaw(1, tau_y, eta, 1.0, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area, 1, bypass,
                        w, G)
 
@@ -220,51 +240,60 @@ class PhysicsDamper(Model):
         G = gn[:-1] / (1.0 - w[:-1] ** 2)
         return np.ascontiguousarray(w[:-1]), np.ascontiguousarray(G)
 
-    def _fluid_forces(self, v, tau_y, eta, values):
-        """Pressure force and shear drag [N] of the gap flow at piston speed v (leakage and shear thinning)."""
+    def _fluid_forces(self, v, tau_y, eta, law: GapLaw, values):
+        """Pressure force and shear drag [N] of the gap flow at piston speed v, with the gap law of the
+        constitutive stage and the flow split of the parallel stage."""
         g = self.damper.geometry
-        m = values.get("flow_index", 1.0) if self.has("shear_thinning") else 1.0
+        m = law.flow_index
         valve = g.configuration == "valve"
-        if valve and m == 1.0 and not self.has("leakage"):
+        parallel = self.stages["parallel"]
+        if valve and m == 1.0 and not parallel:
             # the quasi-steady kernels of Damper.state, called with per-sample tau_y and eta
             return self._valve_state(v, tau_y, eta), np.zeros_like(v)
         tau_y = np.broadcast_to(tau_y, v.shape)
         eta = np.broadcast_to(eta, v.shape)
-        if self.has("leakage"):
-            C_l = values["bypass_damping"]
+        if parallel:
 
             def gap(u, v_wall, tau_y, eta):
-                return self._gap_pressure_drop(u, v_wall, tau_y, eta, m)
+                return self._gap_pressure_drop(u, v_wall, tau_y, eta, law)
 
             dp0 = gap(v, v, tau_y, eta)
-            dp = leaky_pressure_drop(v, g.piston_area, C_l, gap, args=(v, tau_y, eta), quasi_steady_drop=dp0)
-            u = v - dp * g.piston_area / C_l
+            dp, u = parallel[0].split_flow(v, gap, (v, tau_y, eta), dp0, self.damper, values)
         else:
             u = v
-            dp = self._gap_pressure_drop(u, v, tau_y, eta, m)
+            dp = self._gap_pressure_drop(u, v, tau_y, eta, law)
         if valve:
             return dp * g.piston_area, np.zeros_like(v)
         # the pressure drop is the root (on the break-away jump when creeping); the shear drag at the duct flow
-        return dp * g.piston_area, self._mixed(u, v, tau_y, eta, m)[1]
+        return dp * g.piston_area, self._mixed(u, v, tau_y, eta, law)[1]
 
     def _valve_state(self, v, tau_y, eta):
         return np.asarray(damper_state(self.damper, v, tau_y, eta).pressure_force, dtype=float)
 
     # ------------------------------------------------------------------ the force
     def components(self, record: Measurement, values: Mapping[str, float]) -> dict[str, np.ndarray]:
-        """The force and its parts, [N]: ``fluid``, ``friction``, ``inertia``, ``gas_spring``, ``force``, and the
-        ``yield_force`` of the calibrated fluid at the control the fluid sees (for residual analysis)."""
+        """The force and its parts, [N]: ``fluid``, ``friction``, ``inertia``, ``gas_spring`` (and any other
+        component an additive effect names), ``force``, and the ``yield_force`` of the calibrated fluid at the
+        control the fluid sees (for residual analysis).
+
+        The stages of the chain (module notes) run in order; each calls the hook of its stage on the effects that
+        declare it (:mod:`erdesign.effects.base`)."""
         vals = dict(values)
-        d, fl = self.damper, self.damper.fluid
+        d, fl, stages = self.damper, self.damper.fluid, self.stages
         t, v = record.time, np.asarray(record.velocity, dtype=float)
+        # 1. state: the control the fluid sees
         E = np.asarray(record.control, dtype=float)
-        if self.has("field_lag"):
-            E = lagged_control(t, E, vals["field_time_constant"])
+        for e in stages["state"]:
+            E = e.fluid_control(t, E, vals)
+        # 2. constitutive: the law of the gap flow
+        law = GapLaw()
+        for e in stages["constitutive"]:
+            law = e.gap_law(law, vals)
         k_eta, k_tau = vals["viscosity_factor"], vals["yield_stress_factor"]
         tau_y = k_tau * np.asarray(fl.yield_stress_at(E), dtype=float) * np.ones_like(v)
         eta_nominal = k_eta * np.asarray(fl.viscosity_at(E), dtype=float) * np.ones_like(v)
         heat = 1.0
-        passes = HEATING_PASSES if self.has("viscous_heating") else 1
+        passes = HEATING_PASSES if stages["thermal"] else 1
         # the velocity's noise band: a force that jumps with the sign of v is predicted by its expectation there
         # (diagnosis scales the record's velocity_noise to the width that fits the record best)
         sigma_v = velocity_noise(record)
@@ -273,36 +302,40 @@ class PhysicsDamper(Model):
         yield_pressure = k_tau * np.asarray(fl.yield_stress_at(E), dtype=float) * 2 * g.duct_length / g.gap
         # (a bypass makes the piston creep below yield, a compliant column or pre-yield elasticity makes the force
         # continuous: no jump to resolve, and the elastic law must relax onto the sharp rigid-plastic force)
-        exact_jump = self.has("leakage") or self.has("compressibility") or self.has("preyield_elasticity")
+        exact_jump = any(e.continuous_at_reversal for e in self.effects)
         smooth = 0.0 if exact_jump else sign - np.sign(v)
         jump_P = yield_pressure * g.piston_area * smooth
         jump_S = tau_y * g.shear_area * smooth
+        # 3. parallel (inside the gap flow) and 4. thermal: fixed-point passes on the viscosity
         for _ in range(passes):
             eta = eta_nominal * heat
-            P, S = self._fluid_forces(v, tau_y, eta, vals)
+            P, S = self._fluid_forces(v, tau_y, eta, law, vals)
             P, S = P + jump_P, S + jump_S
-            if self.has("viscous_heating"):
-                dT = temperature_rise(t, (P + S) * v, vals["thermal_mass"], vals["cooling_time"])
-                new = heated_viscosity_factor(dT, TEMPERATURE_COEFFICIENT)
+            if stages["thermal"]:
+                new = math.prod(e.viscosity_factor(t, (P + S) * v, vals) for e in stages["thermal"])
                 converged = np.max(np.abs(new - heat)) < 1e-9
                 heat = new
                 if converged:
                     break
-        if self.has("compressibility"):
-            P = compliant_pressure_force(t, v, vals["hydraulic_stiffness"], self._duct_law(tau_y, eta, vals), P[0])
+        # 5. series: an element between the piston and the ducts replaces the pressure force
+        if stages["series"]:
+            bypass = stages["parallel"][0].bypass_conductance(vals) if stages["parallel"] else 0.0
+            duct_law = self._duct_law(tau_y, eta, law, bypass)
+            for e in stages["series"]:
+                P = e.series_pressure_force(t, v, P, duct_law, vals)
         fluid = P + S
-        if self.has("preyield_elasticity"):
-            fluid = elastic_viscoplastic_force(t, v, fluid, elastic_stiffness(vals["shear_modulus"], d),
-                                               initial=fluid[0])
-        F_s = vals["friction_force"] if self.has("seal_friction") else d.seal_friction
-        friction = F_s * sign
-        inertia = FluidInertia.force(record.acceleration, vals["slug_mass"]) if self.has("fluid_inertia") \
-            else np.zeros_like(v)
-        gas = gas_spring_force(record.displacement, vals["gas_preload"], vals["gas_stiffness"]) \
-            if self.has("gas_spring") else np.zeros_like(v)
+        # 6. constitutive in time
+        for e in stages["constitutive-in-time"]:
+            fluid = e.filter_fluid_force(t, v, fluid, d, vals)
+        # 7. additive: the damper file's seal friction unless an effect replaces it
+        parts = {"friction": d.seal_friction * sign, "inertia": np.zeros_like(v), "gas_spring": np.zeros_like(v)}
+        for e in stages["additive"]:
+            parts.update(e.additive_forces(record, sign, d, vals))
+        force = fluid
+        for part in parts.values():
+            force = force + part
         yield_force = k_tau * np.asarray(d.yield_force_si(E), dtype=float) * np.ones_like(v)
-        return {"fluid": fluid, "friction": friction, "inertia": inertia, "gas_spring": gas,
-                "force": fluid + friction + inertia + gas, "yield_force": yield_force}
+        return {"fluid": fluid, **parts, "force": force, "yield_force": yield_force}
 
     def force(self, record: Measurement, values: Mapping[str, float]) -> np.ndarray:
         # extreme trial values of an optimiser (a bypass 1e6 x the ducts) overflow harmlessly to inf; the fit

@@ -4,8 +4,24 @@ An :class:`Effect` is a physical mechanism that the quasi-steady damper (:mod:`e
 says, in words, what the mechanism is and what it does to the residual of the quasi-steady model (its *signature*,
 in the spirit of Vivas-López et al. (seed 002) Table 2), lists its parameters with units and physical bounds
 (:class:`~erdesign.models.base.Parameter`), computes a prior from the geometry and fluid where one exists, and
-tells whether a record can show it at all (:meth:`Effect.check`).  How the effects compose with the quasi-steady
-gap flow is :mod:`erdesign.physics`; the kernels of each mechanism live in the effect's own module.
+tells whether a record can show it at all (:meth:`Effect.check`).  It also carries its own composition: it declares
+the *stage* of the force chain at which it acts (:data:`STAGES`) and overrides that stage's hook; the chain
+(:meth:`erdesign.physics.PhysicsDamper.components`) runs the stages in order and names no effect.  The kernels of
+each mechanism live in the effect's own module.
+
+The stages and their hooks (the base class's hooks are neutral):
+
+* ``state`` - :meth:`Effect.fluid_control`: the control the fluid sees;
+* ``constitutive`` - :meth:`Effect.gap_law`: options of the gap flow law, a :class:`GapLaw` (Bingham);
+* ``parallel`` - :meth:`Effect.split_flow`: the pressure drop when part of the flow bypasses the ducts, with
+  :meth:`Effect.bypass_conductance`: what the bypass passes at a pressure;
+* ``thermal`` - :meth:`Effect.viscosity_factor`: the viscosity factor after the dissipated power;
+* ``series`` - :meth:`Effect.series_pressure_force`: the pressure force behind an element in series;
+* ``constitutive-in-time`` - :meth:`Effect.filter_fluid_force`: the fluid force through a law in time;
+* ``additive`` - :meth:`Effect.additive_forces`: named force components added to the fluid force.
+
+:attr:`Effect.continuous_at_reversal` says that the effect makes the force continuous through a reversal of the
+motion (so the chain resolves no break-away jump with the expected sign of the velocity).
 
 The state-dependent effects (compressibility, pre-yield elasticity, field lag, viscous heating) are first-order
 relaxations :math:`\dot y = r(t)\,(u(t) - y)`.  :func:`relaxation_filter` solves them exactly between samples
@@ -16,7 +32,7 @@ time is needed.
 from __future__ import annotations
 
 import math
-from typing import Mapping
+from typing import Callable, Mapping, NamedTuple
 
 import numpy as np
 from scipy.special import erf
@@ -27,15 +43,42 @@ from ..errors import ErdesignError
 from ..measurement import Measurement
 from ..parameters import Parameter
 
-__all__ = ["Effect", "EffectError", "relaxation_filter", "reversal_count", "sign_expectation"]
+__all__ = ["Effect", "EffectError", "GapLaw", "STAGES", "relaxation_filter", "reversal_count", "sign_expectation"]
+
+#: The stages of the force chain, in the order the chain runs them (:mod:`erdesign.physics`).
+STAGES = ("state", "constitutive", "parallel", "thermal", "series", "constitutive-in-time", "additive")
 
 
 class EffectError(ErdesignError):
     """Unknown effect name, or a record that cannot show an effect (the message says which and why)."""
 
 
+class GapLaw(NamedTuple):
+    r"""The constitutive law of the gap flow, as the constitutive stage leaves it: Herschel-Bulkley,
+
+    .. math:: \tau = \tau_y + K\,\dot\gamma^{m}, \qquad K = \eta\,\dot\gamma_\text{ref}^{\,1-m},
+
+    Bingham (``flow_index`` 1, the default) unless an effect of the constitutive stage says otherwise.
+
+    Attributes
+    ----------
+    flow_index : float
+        m, [-] (1: Bingham).
+    reference_shear_rate : float
+        Shear rate at which the consistency K meets the plastic viscosity eta, [1/s] (no effect when m = 1).
+    """
+
+    flow_index: float = 1.0
+    reference_shear_rate: float = 1.0
+
+    def consistency(self, eta):
+        """K = eta * rate_ref ** (1 - m), [Pa s^m] (eta itself for Bingham)."""
+        return eta * self.reference_shear_rate ** (1.0 - self.flow_index)
+
+
 class Effect:
-    """Base class of a physical effect.  Subclasses set the class attributes and :meth:`parameters`.
+    """Base class of a physical effect.  Subclasses set the class attributes, :meth:`parameters` and the hook of
+    their :attr:`stage`.
 
     Attributes
     ----------
@@ -47,9 +90,11 @@ class Effect:
         The physics in one or two sentences.
     signature : str
         What the effect leaves in the residual of a model that lacks it.
-    composition : str
-        How it enters the damper force: ``"additive"``, ``"series"``, ``"parallel"``, ``"state"`` or
-        ``"constitutive"`` (see :mod:`erdesign.physics`).
+    stage : str
+        Where it enters the damper force, one of :data:`STAGES` (module table; :mod:`erdesign.physics`).
+    continuous_at_reversal : bool
+        True when the effect makes the force continuous through a reversal of the motion (a bypass, a compliant
+        column, an elastic solid below yield): the chain then resolves no break-away jump.
     source : str
         Seed paper and equation.
     """
@@ -58,8 +103,14 @@ class Effect:
     title: str = ""
     mechanism: str = ""
     signature: str = ""
-    composition: str = ""
+    stage: str = ""
+    continuous_at_reversal: bool = False
     source: str = ""
+
+    @property
+    def composition(self) -> str:
+        """The former name of :attr:`stage`."""
+        return self.stage
 
     def parameters(self, damper: Damper) -> tuple[Parameter, ...]:
         """Parameters (SI units, physical bounds; defaults from the prior where there is one)."""
@@ -120,9 +171,58 @@ class Effect:
         notes = self.implausible(damper, values)
         return "plausible" if not notes else "implausible (" + "; ".join(notes) + ")"
 
+    # ---------------------------------------------------------------- how it applies: one hook per stage
+    # Each hook is neutral here; an effect overrides the hook of its stage.  ``values`` are the model's parameter
+    # values (SI, by name); arrays have one entry per sample of the record.
+
+    def fluid_control(self, t, control, values: Mapping[str, float]):
+        """State: the control the fluid sees, from the control applied (same SI unit), [V/m, A/m, A or V]."""
+        return control
+
+    def gap_law(self, law: GapLaw, values: Mapping[str, float]) -> GapLaw:
+        """Constitutive: the law of the gap flow, from the law so far (a :class:`GapLaw`)."""
+        return law
+
+    def split_flow(self, v, gap_pressure_drop: Callable, args: tuple, quasi_steady_drop, damper: Damper,
+                   values: Mapping[str, float]):
+        """Parallel: ``(dp, u)`` when part of the displaced flow bypasses the ducts.
+
+        ``gap_pressure_drop(u, *args)`` is the ducts' pressure drop [Pa] for the flow of a piston at ``u`` [m/s]
+        (elementwise; ``quasi_steady_drop`` its value at ``v``); ``dp`` is the pressure drop across the piston
+        [Pa] and ``u`` the piston speed whose flow the ducts pass [m/s].  Neutral: all the flow through the ducts.
+        """
+        return quasi_steady_drop, v
+
+    def bypass_conductance(self, values: Mapping[str, float]) -> float:
+        """Parallel: piston speed per unit pressure force that the bypass passes, [m/(N s)] (0: none).  The inverse
+        side of :meth:`split_flow`, for a series element that needs the ducts' flow at a pressure."""
+        return 0.0
+
+    def viscosity_factor(self, t, power, values: Mapping[str, float]):
+        """Thermal: the plastic viscosity over its unheated value after the dissipated ``power`` [W] history,
+        [-].  The chain resolves the coupling by fixed-point passes over the record."""
+        return 1.0
+
+    def series_pressure_force(self, t, v, pressure_force, duct_law, values: Mapping[str, float]):
+        """Series: the pressure force [N] when an element in series stands between the piston and the ducts
+        (``pressure_force`` is the quasi-steady one, ``duct_law`` the ducts' flow at a pressure,
+        :class:`~erdesign.effects.compressibility.DuctLaw`)."""
+        return pressure_force
+
+    def filter_fluid_force(self, t, v, fluid_force, damper: Damper, values: Mapping[str, float]):
+        """Constitutive in time: the fluid force [N] through a law in time, from the quasi-steady one."""
+        return fluid_force
+
+    def additive_forces(self, record: Measurement, sign, damper: Damper,
+                        values: Mapping[str, float]) -> dict[str, np.ndarray]:
+        """Additive: named force components [N] added to the fluid force; ``sign`` is the expected sign of the
+        velocity over its noise band (:func:`sign_expectation`).  A name the baseline already has (``friction``:
+        the damper file's seal friction) replaces the baseline's component."""
+        return {}
+
     def describe(self) -> dict:
         return {"name": self.name, "title": self.title, "mechanism": self.mechanism, "signature": self.signature,
-                "composition": self.composition, "source": self.source}
+                "stage": self.stage, "composition": self.stage, "source": self.source}
 
     def __repr__(self) -> str:
         return f"<Effect {self.name!r}>"

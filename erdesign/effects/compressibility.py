@@ -238,7 +238,8 @@ class Compressibility(Effect):
                  "yield again, and lags the motion by C/k_h after that.")
     signature = ("residual in phase with the displacement at high speed (the loop leans and rounds off at the ends "
                  "of the stroke, force lags velocity), present at zero field too")
-    composition = "series"
+    stage = "series"
+    continuous_at_reversal = True
     neutral = {"hydraulic_stiffness": "upper"}
     # entrained air and hose / seal compliance soften the column by tens of times; nothing stiffens it much
     plausible_ratio = {"hydraulic_stiffness": (0.02, 5.0)}
@@ -253,3 +254,7 @@ class Compressibility(Effect):
         g = damper.geometry
         V = g.piston_area * g.piston_diameter + np.pi * g.duct_mean_diameter * g.gap * g.duct_length * g.ducts
         return {"hydraulic_stiffness": hydraulic_stiffness(BULK_MODULUS, g.piston_area, V)}
+
+    def series_pressure_force(self, t, v, pressure_force, duct_law, values):
+        # the column starts settled: at the quasi-steady pressure force of the first sample
+        return compliant_pressure_force(t, v, values["hydraulic_stiffness"], duct_law, pressure_force[0])

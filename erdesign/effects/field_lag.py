@@ -70,7 +70,7 @@ class FieldLag(Effect):
                  "current takes time to rise): the yield stress follows a field change with a time constant T_f.")
     signature = ("residual right after each change of the field, decaying over a few milliseconds: the model "
                  "switches the force at once, the measurement follows late")
-    composition = "state"
+    stage = "state"
     neutral = {"field_time_constant": "lower"}
     source = "Butz and von Stryk (2002) eq 16"
 
@@ -95,3 +95,6 @@ class FieldLag(Effect):
         if dt > 0.01:
             return f"the record is sampled every {dt * 1e3:.3g} ms, too coarsely to resolve a field response"
         return None
+
+    def fluid_control(self, t, control, values):
+        return lagged_control(t, control, values["field_time_constant"])

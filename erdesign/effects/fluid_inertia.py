@@ -73,7 +73,7 @@ class FluidInertia(Effect):
                  "force m_f a with m_f = rho L A_p^2 / (n pi d h).")
     signature = ("residual in phase with the acceleration (against the displacement for a sine), growing with the "
                  "square of the frequency, the same at every field")
-    composition = "additive"
+    stage = "additive"
     neutral = {"slug_mass": "lower"}
     # the chamber fluid, fittings and the moving parts between load cell and piston add to the duct slug
     plausible_ratio = {"slug_mass": (0.2, 10.0)}
@@ -97,3 +97,6 @@ class FluidInertia(Effect):
     def force(acceleration, slug_mass):
         """F_i = m_f a, [N]."""
         return slug_mass * np.asarray(acceleration, dtype=float)
+
+    def additive_forces(self, record, sign, damper, values):
+        return {"inertia": self.force(record.acceleration, values["slug_mass"])}

@@ -65,7 +65,7 @@ class GasSpring(Effect):
                  "stiffens as the rod enters (a spring).")
     signature = ("residual with a constant offset and a part proportional to the displacement, the same at every "
                  "speed and field")
-    composition = "additive"
+    stage = "additive"
     neutral = {"gas_preload": 0.0, "gas_stiffness": "lower"}
     # the damper file says nothing about an accumulator: its prior is a guide, not a test
     plausible_ratio = {"gas_preload": None, "gas_stiffness": None}
@@ -90,3 +90,6 @@ class GasSpring(Effect):
         if np.ptp(record.displacement) == 0:
             return "the piston does not move"
         return None
+
+    def additive_forces(self, record, sign, damper, values):
+        return {"gas_spring": gas_spring_force(record.displacement, values["gas_preload"], values["gas_stiffness"])}

@@ -94,7 +94,8 @@ class Leakage(Effect):
     signature = ("residual at low speed with the field on: the measured force near a reversal is smaller than "
                  "the yield force and grows with speed (creep below yield); the loss of force is largest where "
                  "the model is blocked")
-    composition = "parallel"
+    stage = "parallel"
+    continuous_at_reversal = True
     neutral = {"bypass_damping": "upper"}
     source = "Laminar bypass in parallel with the ducts (erdesign); Makris eq 4 for its damping constant"
 
@@ -108,3 +109,11 @@ class Leakage(Effect):
             return ("the record has no field: without a yield stress a bypass only lowers the damping, which the "
                     "viscosity factor already does")
         return None
+
+    def split_flow(self, v, gap_pressure_drop, args, quasi_steady_drop, damper, values):
+        Ap, C_l = damper.geometry.piston_area, values["bypass_damping"]
+        dp = leaky_pressure_drop(v, Ap, C_l, gap_pressure_drop, args=args, quasi_steady_drop=quasi_steady_drop)
+        return dp, v - dp * Ap / C_l
+
+    def bypass_conductance(self, values):
+        return 1.0 / values["bypass_damping"]

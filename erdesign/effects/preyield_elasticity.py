@@ -104,7 +104,8 @@ class PreyieldElasticity(Effect):
                  "rigid: the damper is a spring of stiffness k_G = G C / eta until the fluid yields.")
     signature = ("residual at the reversals (pre-yield): the measured force changes gradually with displacement "
                  "where the model jumps by twice the yield force; grows with the field, absent at zero field")
-    composition = "constitutive"
+    stage = "constitutive-in-time"
+    continuous_at_reversal = True
     neutral = {"shear_modulus": "upper"}
     # pre-yield moduli of ER / MR fluids scatter over a decade with particle loading and field
     plausible_ratio = {"shear_modulus": (0.1, 10.0)}
@@ -132,3 +133,8 @@ class PreyieldElasticity(Effect):
             return ("the record has no field: without a yield stress the fluid has no pre-yield regime "
                     "(measure with the field on)")
         return None
+
+    def filter_fluid_force(self, t, v, fluid_force, damper, values):
+        # relaxes onto the quasi-steady force from its value at the first sample (settled)
+        return elastic_viscoplastic_force(t, v, fluid_force, elastic_stiffness(values["shear_modulus"], damper),
+                                          initial=fluid_force[0])

@@ -67,7 +67,7 @@ class SealFriction(Effect):
                  "independent of the field and of the speed.")
     signature = ("residual odd in velocity and flat in magnitude (a step at each reversal), the same at every "
                  "field: Coulomb-like")
-    composition = "additive"
+    stage = "additive"
     neutral = {"friction_force": "lower"}
     # the file's value is the seals alone, new; bearings, rig fixtures and worn or dry seals add several times it
     plausible_ratio = {"friction_force": (0.1, 20.0)}
@@ -91,3 +91,7 @@ class SealFriction(Effect):
             return ("the field is on and the same throughout, so a friction that flips with the motion cannot be "
                     "told from the yield stress (measure at two fields, e.g. zero and on)")
         return None
+
+    def additive_forces(self, record, sign, damper, values):
+        # fitted, it replaces the damper file's seal friction (the baseline's "friction" component)
+        return {"friction": values["friction_force"] * sign}

@@ -140,7 +140,7 @@ class ShearThinning(Effect):
                  "damper is stiffer than Bingham at low speed and softer at high speed.")
     signature = ("residual even-odd pattern in speed: the model is too low at moderate post-yield speeds and too "
                  "high at the highest speeds (the force-velocity curve bends over)")
-    composition = "constitutive"
+    stage = "constitutive"
     neutral = {"flow_index": 1.0}
     source = "Herschel-Bulkley law; seed 003 (c0 falling with speed: shear thinning)"
 
@@ -155,3 +155,6 @@ class ShearThinning(Effect):
         if peak_speed(record) == 0 or np.percentile(v, 90) < 2 * np.percentile(v, 30):
             return "the speeds of the record span less than a factor of 2, too narrow to see the curve bend"
         return None
+
+    def gap_law(self, law, values):
+        return law._replace(flow_index=values["flow_index"], reference_shear_rate=REFERENCE_SHEAR_RATE)

@@ -80,7 +80,7 @@ class ViscousHeating(Effect):
                  "so the force drifts down over the test.")
     signature = ("residual that grows late in the test: the measured force falls below the model more and more, "
                  "most at high speed where the viscous force dominates")
-    composition = "state"
+    stage = "thermal"
     neutral = {"thermal_mass": "upper", "cooling_time": 600.0}
     # how much of the cylinder warms with the fluid is not known: a wide window; the cooling time has no prior
     plausible_ratio = {"thermal_mass": (0.05, 20.0), "cooling_time": None}
@@ -103,3 +103,7 @@ class ViscousHeating(Effect):
             return ("the record has fewer than three cycles, so early and late cycles cannot be compared to tell "
                     "heating from a lower viscosity")
         return None
+
+    def viscosity_factor(self, t, power, values):
+        dT = temperature_rise(t, power, values["thermal_mass"], values["cooling_time"])
+        return heated_viscosity_factor(dT, TEMPERATURE_COEFFICIENT)

@@ -1,14 +1,12 @@
 """The model registry: contract name -> model factory, with one dispatcher (:func:`get_model`).
 
 Names are those of docs/cli.md ("Model names").  Every factory returns a fresh :class:`Model`;
-``physics`` (the physics damper of a damper file, with effects) is imported lazily from :mod:`erdesign.physics`
-and needs ``damper=`` (a :class:`~erdesign.damper.Damper` or a damper-file path).
+``physics`` (the physics damper of a damper file, with effects, :class:`erdesign.physics.PhysicsDamper`, imported
+when first asked for) needs ``damper=`` (a :class:`~erdesign.damper.Damper` or a damper-file path).
 """
 
 from __future__ import annotations
 
-import importlib
-import inspect
 from typing import Callable
 
 from ..errors import ErdesignError
@@ -32,30 +30,17 @@ class UnknownModelError(ErdesignError):
 
 
 def _physics(damper=None, effects=(), **options) -> Model:
-    """The physics damper (erdesign.physics) of a damper file with effects, as a Model."""
-    try:
-        physics = importlib.import_module("erdesign.physics")
-    except ModuleNotFoundError as exc:
-        if exc.name != "erdesign.physics":
-            raise
-        raise UnknownModelError("physics: the physics damper model (erdesign.physics) is not available in this "
-                                "installation") from None
+    """The physics damper (:class:`erdesign.physics.PhysicsDamper`) of a damper file with effects, as a Model."""
+    # imported here: the physics damper loads scipy's root finders and the compiled effects, which
+    # `erdesign models` and the other models do not need
+    from ..physics import PhysicsDamper
+
     if damper is None:
         raise UnknownModelError("physics: needs the damper (--damper DAMPER.toml on the command line)")
     if isinstance(damper, str) or hasattr(damper, "__fspath__"):
         from ..damper_file import load_damper
         damper = load_damper(damper)
-    for attr in ("physics_model", "PhysicsModel", "PhysicsDamper"):
-        factory = getattr(physics, attr, None)
-        if factory is not None:
-            break
-    else:
-        candidates = [c for _, c in inspect.getmembers(physics, inspect.isclass)
-                      if issubclass(c, Model) and c is not Model and c.__module__ == physics.__name__]
-        if not candidates:
-            raise UnknownModelError("physics: erdesign.physics defines no Model subclass")
-        factory = candidates[0]
-    model = factory(damper, effects=tuple(effects), **options)
+    model = PhysicsDamper(damper, effects=tuple(effects), **options)
     if "yield_stress_factor" in model.parameter_names and not model.control_parameters:
         # without a field the yield stress cannot be seen: held at its nominal value (factor 1) for such records
         model.control_parameters = ("yield_stress_factor",)
