@@ -62,21 +62,21 @@ MISPRINTS = """\
   F + lambda dF/dt = C du/dt + F_y sgn(du/dt), which low-passes the friction too; that disagrees with its own
   eq 6 and with Makris et al. (1996) eq 16, where the friction acts in parallel with the Maxwell element,
   unfiltered. `bingmax` implements eq 6 / Makris eq 16.
-- **Biviscous, seed 003 eq 60.** Printed with C_post + F_y (the velocity factor of C_post is missing); the
+- **Biviscous, the MR-model review eq 60.** Printed with C_post + F_y (the velocity factor of C_post is missing); the
   continuous law F = C_post v + F_y sgn v above yield is meant and implemented.
-- **Hysteretic biviscous, seed 003 eq 61.** The velocity intervals are printed with mixed signs; the continuous
+- **Hysteretic biviscous, the MR-model review eq 61.** The velocity intervals are printed with mixed signs; the continuous
   clip form with the printed yield velocities (F_y -/+ C_pre v_0)/C_pre is implemented.
-- **Magic formula, seed 003 eq 100.** Printed with the argument dx/dt + A|x| (and a misplaced bracket). With |x|
+- **Magic formula, the MR-model review eq 100.** Printed with the argument dx/dt + A|x| (and a misplaced bracket). With |x|
   the two branches of a sinusoidal cycle have the same |x| at the same velocity, so the term cannot open the
   force-velocity loop that A is said to set; dx/dt + A x opens it by A X0 in velocity, as described. The bracket
   follows the standard magic formula (eq 99).
 - **Kamath and Wereley (1997): the definition of alpha.** The shape functions take a velocity "non-dimensionalised
-  with respect to the amplitude", alpha = |v| / max |v| (seed 003 eq 67 uses |v| - v_y in velocity units, the same up
+  with respect to the amplitude", alpha = |v| / max |v| (the MR-model review eq 67 uses |v| - v_y in velocity units, the same up
   to scale); the stiction shape function needs the same dimensionless argument, since eps_c is given as a number
   between 0 and 1.
 - **Powell, Butz and von Stryk (2002) eqs 4-5.** f_cs (1 + (f_cd / f_cs) e^{-a|v|}) is the printed f_cs + f_cd
 e^{-a|v|}, kept.
-- **Normalised Bouc-Wen, seed 003 eq 46.** The source writes -k_w w; the sign is absorbed in k_w (positive k_w
+- **Normalised Bouc-Wen, the MR-model review eq 46.** The source writes -k_w w; the sign is absorbed in k_w (positive k_w
   dissipates).
 - **Modified Bouc-Wen.** alpha_c u^2 is not in Butz and von Stryk (2002) (eq 13 is linear in u): it is the quadratic
 current law of
@@ -128,7 +128,7 @@ def _invertibility(model) -> str:
     else:
         return ("not provided by `erdesign.inverse` (the control acts through a state, a filter or a fitted series "
                 "that no closed form or root bracket is written for)")
-    marked = " (seed 003 Table 1: invertible)" if model.name in INVERTIBLE else ""
+    marked = " (the MR-model review Table 1: invertible)" if model.name in INVERTIBLE else ""
     return f"{how}{marked}; `erdesign.inverse.inverse_control`"
 
 
@@ -151,7 +151,7 @@ def render() -> str:
         "Fitting: bounded least squares (`erdesign.fit.fit`, trust-region reflective; log-scale parameters searched",
         "in log space; multi-start and a differential-evolution stage on request); parameters marked *a priori* are",
         "held unless named in `free`. Identification across records: `erdesign.identify.identify_joint`;",
-        "cross-validation tables (seed 002 Table 4 style): `erdesign.identify.cross_validation`.",
+        "cross-validation tables (in the style of Vivas-López et al., Table 4): `erdesign.identify.cross_validation`.",
         "",
     ]
     for name in model_names():

@@ -48,7 +48,7 @@ def render(out: dict) -> str:
         "training. Each model is identified once on all 30 training records jointly",
         "(`erdesign.identify.identify_joint`: one parameter set, current-dependent coefficients, each record",
         "weighted by 1 / its force standard deviation), and simulated from rest at the first sample of every record.",
-        "ESR = sum (F - F_model)^2 / sum (F - mean F)^2 (seed 002 eq 7).",
+        "ESR = sum (F - F_model)^2 / sum (F - mean F)^2 (Vivas-López et al., eq 7).",
         "",
         "## ESR on the validation record (earthquake-type motion, not used in training)",
         "",

@@ -6,7 +6,7 @@ The workflow (docs/diagnosis.md explains how it judges):
    effects already accepted) to the record by bounded least squares (:func:`erdesign.fit.fit`).
 2. **Residual analysis** (:func:`residual_analysis`): where in the cycle the error lives (reversals / pre-yield,
    post-yield, high speed, late in the test, after field changes) and what it looks like, by regressing the
-   residual on the signatures of the effects (seed 002 Table 2: characteristic -> diagram -> model term), said in
+   residual on the signatures of the effects (Vivas-López et al. Table 2: characteristic -> diagram -> model term), said in
    words ("residual is odd in velocity and flat in magnitude: Coulomb-like, about 110 N: seal friction").
 3. **Candidates**: every effect not yet in the model is added in turn and the model refitted.  The improvement is
    judged honestly: by the Bayesian information criterion with the number of samples reduced to the effective

@@ -7,7 +7,7 @@ optional multi-start (Latin hypercube over the bounds) and an optional global st
 searched in log space.
 
 The result (:class:`FitResult`) carries values, standard errors and correlations from the Gauss-Newton covariance
-:math:`s^2 (J^T J)^{-1}` with :math:`s^2 = \text{RSS}/(n - k)`, the ESR (seed 002 eq 7), and
+:math:`s^2 (J^T J)^{-1}` with :math:`s^2 = \text{RSS}/(n - k)`, the ESR (Vivas-López et al., eq 7), and
 
 .. math:: \text{AIC} = n \ln(\text{RSS}/n) + 2k, \qquad \text{BIC} = n \ln(\text{RSS}/n) + k \ln n .
 
@@ -75,7 +75,7 @@ class FitResult:
         return self.model.simulate(record, self.values)
 
     def validate(self, record: Measurement) -> float:
-        """ESR of the fitted model on a held-out record (seed 002 Table 4 style cross-validation)."""
+        """ESR of the fitted model on a held-out record (cross-validation in the style of Vivas-López et al., Table 4)."""
         return esr(record.require_force(), self.predict(record))
 
     def report(self) -> str:

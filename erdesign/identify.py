@@ -1,6 +1,6 @@
 r"""Identification workflows on top of :func:`erdesign.fit.fit`: one record, several records jointly (e.g. one
 sinusoid per coil current with the current-dependent parameters shared), and cross-validation tables in the style
-of Vivas-López et al. (seed 002) Table 4 (identify on one experiment, score the ESR on every other).
+of Vivas-López et al. (n.d.) Table 4 (identify on one experiment, score the ESR on every other).
 """
 
 from __future__ import annotations
@@ -903,7 +903,7 @@ def joint_json(result: JointResult, model_name: str, control_reference: str | No
 
 @dataclass
 class CrossValidation:
-    """ESR table: ``table[i][j]`` is the ESR on record i of the model identified on record j (seed 002 Table 4)."""
+    """ESR table: ``table[i][j]`` is the ESR on record i of the model identified on record j (Vivas-López et al., Table 4)."""
 
     names: list[str]
     table: np.ndarray
@@ -937,7 +937,7 @@ def cross_validation(model_factory, records: Sequence[Measurement], **fit_option
 def score(force, model_force, mask=None) -> dict:
     """Figures of merit of a model force against a measured one, over the samples of ``mask`` (all by default).
 
-    Keys (SI): ``esr`` (seed 002 eq 7), ``r_squared`` (1 - ESR), ``rms_residual_N`` and ``peak_residual_N``
+    Keys (SI): ``esr`` (Vivas-López et al., eq 7), ``r_squared`` (1 - ESR), ``rms_residual_N`` and ``peak_residual_N``
     (Makris's RMS and PV of the difference signal), ``samples_scored``.
     """
     F = np.asarray(force, dtype=float)

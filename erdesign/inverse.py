@@ -1,6 +1,6 @@
 r"""Inverse models: the control (field, current or voltage) a damper needs to produce a desired force at a motion.
 
-For the models seed 003 marks invertible the force is affine in the dimensionless control at every sample,
+For the models the MR-model review marks invertible the force is affine in the dimensionless control at every sample,
 :math:`F = P + Q u` (Kwok, magic formula, normalised Bouc-Wen, viscous Dahl, Weng: :meth:`control_affine`), so
 
 .. math:: u = \operatorname{clip}\big((F_d - P)/Q,\ u_{min},\ u_{max}\big);

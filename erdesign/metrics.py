@@ -5,7 +5,7 @@ Energy dissipated per cycle (Kamath and Wereley 1997, Kamath and Wereley, eq 1) 
 .. math::
     U = \oint F\,dx = \int_0^{2\pi/\Omega} F v\,dt, \qquad C_\text{eqv} = \frac{U}{\pi \Omega X_0^2}
 
-Equivalent-error measure ESR (Vivas-López et al., seed 002, eq 7; docs/file_formats.md, ESR):
+Equivalent-error measure ESR (Vivas-López et al. (n.d.), eq 7; docs/file_formats.md, ESR):
 
 .. math:: \mathrm{ESR} = \frac{\sum (F - F_\text{model})^2}{\sum (F - \bar F)^2}
 """
@@ -92,7 +92,7 @@ def equivalent_damping(energy, omega, amplitude):
 def esr(F_measured, F_model):
     """Equivalent-error ratio: residual sum of squares over the variance sum of the measurement, [-].
 
-    0 is a perfect fit, 1 predicts no better than the mean (Vivas-López et al., seed 002, eq 7).
+    0 is a perfect fit, 1 predicts no better than the mean (Vivas-López et al. (n.d.), eq 7).
 
     >>> esr([1.0, 2.0, 3.0], [1.0, 2.0, 3.0]), esr([1.0, 2.0, 3.0], [2.0, 2.0, 2.0])
     (0.0, 1.0)

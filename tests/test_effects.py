@@ -231,7 +231,7 @@ def test_gas_spring_adds_preload_and_stiffness():
     base = {"viscosity_factor": 1.0, "yield_stress_factor": 1.0}
     diff = PhysicsDamper(d, ["gas_spring"]).force(rec, {**base, "gas_preload": 150.0, "gas_stiffness": 2e4}) \
         - PhysicsDamper(d).force(rec, base)
-    np.testing.assert_allclose(diff, 150.0 + 2e4 * rec.displacement, atol=1e-9)   # seed 003 eqs 2, 23
+    np.testing.assert_allclose(diff, 150.0 + 2e4 * rec.displacement, atol=1e-9)   # the MR-model review eqs 2, 23
 
 
 def test_preyield_elasticity_is_makris_eq8_at_the_damper_level():

@@ -1,5 +1,5 @@
 """Identification workflows (erdesign.identify): one record, several records jointly, cross-validation tables
-(seed 002 Table 4 style), and bad input - all by round trip on records whose answer is known."""
+(in the style of Vivas-López et al., Table 4), and bad input - all by round trip on records whose answer is known."""
 
 import numpy as np
 import pytest
@@ -57,7 +57,7 @@ def test_identify_joint_without_control_holds_the_slopes():
 
 
 def test_cross_validation_table():
-    """Seed 002 Table 4: identify on each experiment, score on every other; a right model generalises, so every
+    """Vivas-López et al. Table 4: identify on each experiment, score on every other; a right model generalises, so every
     entry is near the noise floor of its validation record, and the diagonal is the identification ESR."""
     recs = [record(amplitude=a, f_hz=f, seed=k) for k, (a, f) in enumerate(((0.005, 1.0), (0.01, 1.0),
                                                                               (0.01, 2.0)))]

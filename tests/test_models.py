@@ -247,7 +247,7 @@ ROUND_TRIPS = {
                          {"amplitude": 1e-3, "f_hz": 10.0, "cycles": 3, "n_per_cycle": 600}, None, 0.03),
     "biviscous_hysteretic": ({"C_pre": 2e5, "C_post": 4000.0, "F_y": 600.0, "v0": 0.004, "f0": 0.0}, {}, None,
                              0.03),
-    # the general model of Vivas-López et al. (seed 002): its passive part (asymmetric damping, stiffness, friction);
+    # the general model of Vivas-López et al. (n.d.): its passive part (asymmetric damping, stiffness, friction);
     # the hysteresis terms
     # held at zero
     "semiactive_general": ({"c_p_pos": 3000.0, "c_p_neg": 2000.0, "k_p": 500.0, "f_f": 400.0, "v_f": 60.0,
@@ -268,7 +268,7 @@ def test_round_trip_recovers_parameters(name):
 
 
 def test_round_trip_modified_lugre_with_a_switched_control():
-    """Sakai's modified LuGre (seed 003 eqs 58-59) needs a control; a control switched between 0 and 1 separates
+    """Sakai's modified LuGre (the MR-model review eqs 58-59) needs a control; a control switched between 0 and 1 separates
     the control-proportional stiffness sigma0 from the constant sigma_a."""
     t = np.linspace(0, 2, 2001)
     u = 0.5 + 0.5 * np.sign(np.sin(np.pi * t + 0.3))

@@ -208,7 +208,7 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
     c = st.columns(3)
     c[0].metric("ESR of the calibrated model", f"{diagnosis.baseline_esr:.4g}",
                 delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}", delta_color="inverse",
-                help="Error-to-signal ratio (seed 002 eq 7): residual variance over force variance.")
+                help="Error-to-signal ratio (Vivas-López et al., eq 7): residual variance over force variance.")
     c[1].metric("noise floor ESR", f"{diagnosis.noise_floor_esr:.3g}",
                 help="The ESR that the record's noise alone would leave (force noise, and the velocity noise at "
                      "the reversals), estimated from the record: docs/diagnosis.md.")

@@ -2,7 +2,7 @@ r"""What every physical effect of the effect library is, and the exact discrete 
 
 An :class:`Effect` is a physical mechanism that the quasi-steady damper (:mod:`erdesign.damper`) leaves out.  It
 says, in words, what the mechanism is and what it does to the residual of the quasi-steady model (its *signature*,
-in the spirit of Vivas-López et al. (seed 002) Table 2), lists its parameters with units and physical bounds
+in the spirit of Vivas-López et al. (n.d.) Table 2), lists its parameters with units and physical bounds
 (:class:`~erdesign.models.base.Parameter`), computes a prior from the geometry and fluid where one exists, and
 tells whether a record can show it at all (:meth:`Effect.check`).  It also carries its own composition: it declares
 the *stage* of the force chain at which it acts (:data:`STAGES`) and overrides that stage's hook; the chain

@@ -1,9 +1,9 @@
-r"""Gas spring: preload and stiffness of a gas-charged accumulator (seed 003: the f0 and k terms).
+r"""Gas spring: preload and stiffness of a gas-charged accumulator (the MR-model review: the f0 and k terms).
 
 .. math:: F_g = f_0 + k\,x
 
-Seed 003 (review of MR damper models) carries the accumulator as a force offset :math:`f_0` (its eq 2) and a
-stiffness :math:`k` (its eq 23; also :math:`k_1` of the modified Bouc-Wen model); Vivas-López et al. (seed 002) eq 3
+The MR-model review (review of MR damper models) carries the accumulator as a force offset :math:`f_0` (its eq 2) and a
+stiffness :math:`k` (its eq 23; also :math:`k_1` of the modified Bouc-Wen model); Vivas-López et al. (n.d.) eq 3
 has the same two
 terms (:math:`f_0`, :math:`k_p z`).  With a double-ended rod the displaced volume does not change with the stroke,
 so the damper files of erdesign need no accumulator; a gas spring in a measurement points to one (or to a
@@ -53,7 +53,7 @@ def gas_spring_force(x, preload, stiffness):
 
     References
     ----------
-    Seed 003, eqs 2 and 23 (f_0, k); Vivas-López et al. (seed 002), eq 3 (f_0, k_p z).
+    The MR-model review, eqs 2 and 23 (f_0, k); Vivas-López et al. (n.d.), eq 3 (f_0, k_p z).
     """
     return preload + stiffness * np.asarray(x, dtype=float) if np.ndim(x) else preload + stiffness * float(x)
 
@@ -69,7 +69,7 @@ class GasSpring(Effect):
     neutral = {"gas_preload": 0.0, "gas_stiffness": "lower"}
     # the damper file says nothing about an accumulator: its prior is a guide, not a test
     plausible_ratio = {"gas_preload": None, "gas_stiffness": None}
-    source = "Seed 003 eqs 2 and 23; Vivas-López et al. (seed 002) eq 3"
+    source = "The MR-model review eqs 2 and 23; Vivas-López et al. (n.d.) eq 3"
 
     def parameters(self, damper):
         prior = self.prior(damper)

@@ -142,7 +142,7 @@ class ShearThinning(Effect):
                  "high at the highest speeds (the force-velocity curve bends over)")
     stage = "constitutive"
     neutral = {"flow_index": 1.0}
-    source = "Herschel-Bulkley law; seed 003 (c0 falling with speed: shear thinning)"
+    source = "Herschel-Bulkley law; the MR-model review (c0 falling with speed: shear thinning)"
 
     def parameters(self, damper):
         return (Parameter("flow_index", "", 1.0, 0.2, 1.5, "Herschel-Bulkley flow index m (1: Bingham)"),)

@@ -2,7 +2,7 @@ r"""Algebraic (memoryless) hysteresis models: Eyring-plastic, Weng arctan, Kwok 
 
 Each maps the present displacement, velocity and acceleration (and control) to a force with no internal state, so
 they are vectorised outright and their inverses (control for a desired force) are explicit where the control enters
-linearly (seed 003 Table 1 marks Kwok and the magic formula invertible; :mod:`erdesign.inverse`).
+linearly (the MR-model review Table 1 marks Kwok and the magic formula invertible; :mod:`erdesign.inverse`).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ def _fit_sign_viscous(record):
 
 
 class EyringPlastic(Model):
-    r"""Eyring-plastic model (Bitman et al.; Vivas-López et al. (seed 002) eq 8).
+    r"""Eyring-plastic model (Bitman et al.; Vivas-López et al. (n.d.) eq 8).
 
     .. math:: F = F_\alpha\operatorname{arcsinh}(\lambda_1\dot z - \lambda_2 z)\,(1 + \beta_1 e^{-\beta_2|\dot z|})
               + c_1\dot z + c_3\dot z^3 + f_0, \qquad F_\alpha = F_{\alpha,0} + F_{\alpha,u}u
@@ -45,12 +45,12 @@ class EyringPlastic(Model):
 
     References
     ----------
-    Seed 002 eq 8 and Table 6 (ESR 0.08-0.20 on its ER damper).
+    Vivas-López et al. eq 8 and Table 6 (ESR 0.08-0.20 on its ER damper).
     """
 
     name = "eyring_plastic"
     title = "Eyring-plastic (Bitman)"
-    source = "Vivas-López et al. (seed 002) eq 8"
+    source = "Vivas-López et al. (n.d.) eq 8"
     uses_control = True
     memoryless = True
     control_parameters = ("F_alpha_u",)
@@ -89,7 +89,7 @@ class WengArctan(ControlAffineModel):
               + m\ddot x, \qquad f_y = f_{y,0} + f_{y,u} u,\ c_b = c_{b,0} + c_{b,u} u
 
     Parameters (SI): ``f0``, ``f_y``, ``f_y_u`` [N], ``c_b``, ``c_b_u`` [N s/m], ``k`` [s/m], ``v0`` [m/s],
-    ``m`` [kg] (m = 0 is Weng's eq 88; seed 003 eq 89 adds it).
+    ``m`` [kg] (m = 0 is Weng's eq 88; the MR-model review eq 89 adds it).
 
     Examples
     --------
@@ -102,12 +102,12 @@ class WengArctan(ControlAffineModel):
 
     References
     ----------
-    Review (seed 003) eqs 88-89 (Weng et al.; Cesmeci and Engin).
+    Review (the MR-model review) eqs 88-89 (Weng et al.; Cesmeci and Engin).
     """
 
     name = "weng_arctan"
     title = "Weng arctangent (with inertia)"
-    source = "seed 003 eqs 88-89"
+    source = "the MR-model review eqs 88-89"
     uses_control = True
     memoryless = True
     control_parameters = ("f_y_u", "c_b_u")
@@ -150,7 +150,7 @@ class KwokTanh(ControlAffineModel):
 
     Notes
     -----
-    The force is affine in the control, so the inverse model is explicit (seed 003: invertible).
+    The force is affine in the control, so the inverse model is explicit (the MR-model review: invertible).
 
     Examples
     --------
@@ -163,12 +163,12 @@ class KwokTanh(ControlAffineModel):
 
     References
     ----------
-    Review (seed 003) eq 95 (Kwok et al.), section 8.2.
+    Review (the MR-model review) eq 95 (Kwok et al.), section 8.2.
     """
 
     name = "kwok_tanh"
     title = "Kwok hyperbolic tangent"
-    source = "seed 003 eq 95 (Table 1: eq 89)"
+    source = "the MR-model review eq 95 (Table 1: eq 89)"
     uses_control = True
     memoryless = True
     control_parameters = ("alpha_u", "c_u")
@@ -212,11 +212,11 @@ class MagicFormula(ControlAffineModel):
 
     Notes
     -----
-    Departure from the source: seed 003 eq 100 prints the argument as :math:`\dot x + A|x|` (and a misplaced
+    Departure from the source: the MR-model review eq 100 prints the argument as :math:`\dot x + A|x|` (and a misplaced
     bracket).  With :math:`|x|` the two branches of a sinusoidal cycle have the same :math:`|x|` at the same
     velocity, so the term cannot open the force-velocity loop that A is said to set ("the half-width of the
     hysteresis curve"); :math:`\dot x + A x` opens it by :math:`A X_0` in velocity, as described.  The bracket follows
-    the standard magic formula (eq 99).  D enters linearly: invertible in the control (seed 003 Table 1).
+    the standard magic formula (eq 99).  D enters linearly: invertible in the control (the MR-model review Table 1).
 
     Examples
     --------
@@ -229,12 +229,12 @@ class MagicFormula(ControlAffineModel):
 
     References
     ----------
-    Review (seed 003) eqs 99-100, section 9.
+    Review (the MR-model review) eqs 99-100, section 9.
     """
 
     name = "magic_formula"
     title = "magic formula (Pacejka form)"
-    source = "seed 003 eqs 99-100"
+    source = "the MR-model review eqs 99-100"
     uses_control = True
     memoryless = True
     control_parameters = ("D_u",)

@@ -165,7 +165,7 @@ class ControlAffineModel(Model):
     """A model whose force is affine in the dimensionless control: F = P(x, v, a) + Q(x, v, a) u.
 
     Subclasses implement :meth:`control_affine`; the force follows, and :mod:`erdesign.inverse` inverts it
-    explicitly (seed 003 calls such models invertible).
+    explicitly (the MR-model review calls such models invertible).
     """
 
     def control_affine(self, record: Measurement, values: Mapping[str, float]) -> tuple[np.ndarray, np.ndarray]:

@@ -1,6 +1,6 @@
 r"""Bingham-type damper models: Stanway's Bingham model and Gamota-Filisko's extended Bingham model.
 
-Bingham (Butz and von Stryk 2002, eq 2; seed 003 eq 2 with the accumulator offset :math:`f_0`):
+Bingham (Butz and von Stryk 2002, eq 2; the MR-model review eq 2 with the accumulator offset :math:`f_0`):
 
 .. math:: F = f_c\,\operatorname{sgn}(\dot x) + c_0\dot x + f_0
 
@@ -24,7 +24,7 @@ class Bingham(Model):
     .. math:: F = (f_c + f_{c,u} u)\,\operatorname{sgn}(\dot x) + (c_0 + c_{0,u} u)\,\dot x + f_0
 
     Parameters (SI): ``c0`` [N s/m], ``f_c`` [N], ``f0`` [N]; control slopes ``f_c_u`` [N], ``c0_u`` [N s/m] per unit
-    of the dimensionless control u (seed 003 eq 7: yield force linear in the coil current).
+    of the dimensionless control u (the MR-model review eq 7: yield force linear in the coil current).
 
     Notes
     -----
@@ -42,13 +42,13 @@ class Bingham(Model):
 
     References
     ----------
-    Butz and von Stryk (2002) eq 2 and section 4.2; review (seed 003) eqs 2 and 7.
+    Butz and von Stryk (2002) eq 2 and section 4.2; review (the MR-model review) eqs 2 and 7.
     """
 
     name = "bingham"
     memoryless = True
     title = "Bingham (Stanway)"
-    source = "Butz and von Stryk (2002) eq 2 (Stanway); seed 003 eqs 2, 7"
+    source = "Butz and von Stryk (2002) eq 2 (Stanway); the MR-model review eqs 2, 7"
     uses_control = True
     control_parameters = ("f_c_u", "c0_u")
     linear_parameters = ("c0", "f_c", "f0", "f_c_u", "c0_u")
@@ -132,12 +132,12 @@ class BinghamExtended(Model):
 
     References
     ----------
-    Butz and von Stryk (2002) eq 3; review (seed 003) eq 3 (with f0).
+    Butz and von Stryk (2002) eq 3; review (the MR-model review) eq 3 (with f0).
     """
 
     name = "bingham_extended"
     title = "extended Bingham (Gamota-Filisko)"
-    source = "Butz and von Stryk (2002) eq 3 (Gamota and Filisko); seed 003 eq 3"
+    source = "Butz and von Stryk (2002) eq 3 (Gamota and Filisko); the MR-model review eq 3"
     parameters = (
         Parameter("c0", "N*s/m", 5000.0, 1.0, 1e8, "post-yield damping of the Bingham element", log_scale=True),
         Parameter("f_c", "N", 670.0, 0.0, 1e7, "friction (yield) force"),

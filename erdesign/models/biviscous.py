@@ -7,7 +7,7 @@ clip between the two post-yield lines :math:`C_{post}\dot x \pm F_y`, they are c
     F = \operatorname{clip}\big(C_{pre}(\dot x - \dot x_0\operatorname{sgn}\ddot x),\;
         C_{post}\dot x - F_y,\; C_{post}\dot x + F_y\big) + f_0 .
 
-With :math:`\dot x_0 = 0` this is the biviscous model (seed 003 eq 60); with :math:`\dot x_0 > 0` the
+With :math:`\dot x_0 = 0` this is the biviscous model (the MR-model review eq 60); with :math:`\dot x_0 > 0` the
 hysteretic biviscous model (eq 61), whose yield velocities are :math:`\dot x_{y1,2} = (F_y \mp C_{pre}\dot x_0)
 /(C_{pre} - C_{post})`.
 """
@@ -41,7 +41,7 @@ def biviscous_force(v, a, C_pre, C_post, F_y, v0=0.0):
 
     Notes
     -----
-    Seed 003 prints eq 60 with :math:`C_{post} + F_y` (the velocity factor is missing) and the velocity intervals
+    The MR-model review prints eq 60 with :math:`C_{post} + F_y` (the velocity factor is missing) and the velocity intervals
     of eq 61 with mixed signs; the clip form is the continuous law they describe, with the printed yield velocities.
 
     Examples
@@ -51,7 +51,7 @@ def biviscous_force(v, a, C_pre, C_post, F_y, v0=0.0):
 
     References
     ----------
-    Review (seed 003) eqs 60-61 (Wereley, Pang and Kamath, 1998).
+    Review (the MR-model review) eqs 60-61 (Wereley, Pang and Kamath, 1998).
     """
     v = np.asarray(v, dtype=float)
     pre = C_pre * (v - v0 * np.sign(a))
@@ -76,12 +76,12 @@ class Biviscous(Model):
 
     References
     ----------
-    Review (seed 003) eq 60; Butz and von Stryk (2002) eqs 26-27 (bi-viscous stress law).
+    Review (the MR-model review) eq 60; Butz and von Stryk (2002) eqs 26-27 (bi-viscous stress law).
     """
 
     name = "biviscous"
     title = "nonlinear biviscous (Wereley)"
-    source = "seed 003 eq 60; Butz and von Stryk (2002) eqs 26-27"
+    source = "the MR-model review eq 60; Butz and von Stryk (2002) eqs 26-27"
     uses_control = True
     memoryless = True
     control_parameters = ("F_y_u",)
@@ -133,12 +133,12 @@ class BiviscousHysteretic(Biviscous):
 
     References
     ----------
-    Review (seed 003) eq 61.
+    Review (the MR-model review) eq 61.
     """
 
     name = "biviscous_hysteretic"
     title = "nonlinear hysteretic biviscous (Wereley)"
-    source = "seed 003 eq 61"
+    source = "the MR-model review eq 61"
     parameters = Biviscous.parameters + (
         Parameter("v0", "m/s", 0.002, 0.0, 10.0, "zero-force velocity of the pre-yield branch"),)
 

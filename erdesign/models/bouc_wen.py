@@ -68,12 +68,12 @@ class BoucWen(Model):
 
     References
     ----------
-    Butz and von Stryk (2002) eqs 8-9 and 13-15; review (seed 003) eqs 15-16.
+    Butz and von Stryk (2002) eqs 8-9 and 13-15; review (the MR-model review) eqs 15-16.
     """
 
     name = "bouc_wen"
     title = "Bouc-Wen (Spencer)"
-    source = "Butz and von Stryk (2002) eqs 8-9, 13-15; seed 003 eqs 15-16"
+    source = "Butz and von Stryk (2002) eqs 8-9, 13-15; the MR-model review eqs 15-16"
     uses_control = True
     control_parameters = ("c0b", "alpha_b")
     # x0 is not linear: it enters as the product k0 x0
@@ -158,12 +158,12 @@ class BoucWenModified(Model):
 
     References
     ----------
-    Butz and von Stryk (2002) eqs 10-16 and section 4.3; review (seed 003) eqs 17-19.
+    Butz and von Stryk (2002) eqs 10-16 and section 4.3; review (the MR-model review) eqs 17-19.
     """
 
     name = "bouc_wen_modified"
     title = "modified Bouc-Wen (Spencer 1997)"
-    source = "Butz and von Stryk (2002) eqs 10-16, section 4.3 (Spencer et al. 1997); seed 003 eqs 17-19"
+    source = "Butz and von Stryk (2002) eqs 10-16, section 4.3 (Spencer et al. 1997); the MR-model review eqs 17-19"
     uses_control = True
     control_parameters = ("c0b", "c1b", "alpha_b", "alpha_c", "eta")
     # only k1: alpha, c0, c1 and k0 enter the state equation of y, and x0 enters as the product k1 x0
@@ -223,7 +223,7 @@ class BoucWenNormalized(ControlAffineModel):
         F = k_x x + (k_v + k_{v,u} u)\,\dot x + (k_w + k_{w,u} u)\,w + f_0, \qquad
         \dot w = \rho\left(\dot x - \sigma|\dot x||w|^{n-1}w + (\sigma - 1)\dot x|w|^n\right)
 
-    where w stays in [-1, 1] and the parameters are not redundant (seed 003 eqs 41-47).
+    where w stays in [-1, 1] and the parameters are not redundant (the MR-model review eqs 41-47).
 
     Parameters (SI): ``k_x`` [N/m], ``k_v``, ``k_v_u`` [N s/m], ``k_w``, ``k_w_u`` [N], ``rho`` [1/m],
     ``sigma`` [-] (>= 1/2 for a bounded, dissipative w), ``n`` [-], ``f0`` [N].
@@ -233,7 +233,7 @@ class BoucWenNormalized(ControlAffineModel):
     The force law combines eq 46 (Bahar: elastic, viscous and hysteretic terms) with the linear voltage law of
     Tsouroukdissian / Bahar (eq 47) for :math:`k_{\dot x}` and :math:`k_w`; the source writes :math:`-k_w w`, here
     the sign is absorbed in :math:`k_w` (positive :math:`k_w` dissipates).  The hysteretic state does not depend
-    on the control, so the force is affine in u: the model is invertible in closed form (seed 003 Table 1,
+    on the control, so the force is affine in u: the model is invertible in closed form (the MR-model review Table 1,
     "modified normalized Bouc-Wen: invertible"; :mod:`erdesign.inverse`).  Solved with the Bouc-Wen kernel with
     :math:`\beta = \rho(1-\sigma)`, :math:`\gamma = \rho\sigma`, :math:`\delta = \rho` (in w).
 
@@ -248,12 +248,12 @@ class BoucWenNormalized(ControlAffineModel):
 
     References
     ----------
-    Review (seed 003) eqs 41-47 (Ikhouane and Rodellar; Tsouroukdissian; Bahar).
+    Review (the MR-model review) eqs 41-47 (Ikhouane and Rodellar; Tsouroukdissian; Bahar).
     """
 
     name = "bouc_wen_normalized"
     title = "normalised Bouc-Wen (Ikhouane-Rodellar)"
-    source = "seed 003 eqs 41-47"
+    source = "the MR-model review eqs 41-47"
     uses_control = True
     control_parameters = ("k_v_u", "k_w_u")
     linear_parameters = ("k_x", "k_v", "k_w", "f0", "k_v_u", "k_w_u")

@@ -74,12 +74,12 @@ class Dahl(Model):
 
     References
     ----------
-    Review (seed 003) eqs 103-104 (Dahl; modified Dahl of Zhou et al.).
+    Review (the MR-model review) eqs 103-104 (Dahl; modified Dahl of Zhou et al.).
     """
 
     name = "dahl"
     title = "modified Dahl (Zhou)"
-    source = "seed 003 eqs 103-104"
+    source = "the MR-model review eqs 103-104"
     uses_control = True
     control_parameters = ("f_d_u",)
     linear_parameters = ("k0", "c0", "f_d", "f0", "f_d_u")
@@ -128,12 +128,12 @@ class DahlViscous(ControlAffineModel):
 
     References
     ----------
-    Review (seed 003) eq 105 with the Dahl state of eq 103 (Ikhouane and Dyke; Table 1: "viscous Dahl, voltage").
+    Review (the MR-model review) eq 105 with the Dahl state of eq 103 (Ikhouane and Dyke; Table 1: "viscous Dahl, voltage").
     """
 
     name = "dahl_viscous"
     title = "viscous Dahl (Ikhouane)"
-    source = "seed 003 eqs 103, 105"
+    source = "the MR-model review eqs 103, 105"
     uses_control = True
     control_parameters = ("k_x_u", "k_w_u")
     linear_parameters = ("k_x", "k_w", "f0", "k_x_u", "k_w_u")
@@ -183,12 +183,12 @@ class LuGre(Model):
 
     References
     ----------
-    Review (seed 003) eq 57 (section 4).
+    Review (the MR-model review) eq 57 (section 4).
     """
 
     name = "lugre"
     title = "LuGre"
-    source = "seed 003 eq 57"
+    source = "the MR-model review eq 57"
     # sigma0 is not linear: it sets the state's rate kappa = sigma0 a0 as well
     linear_parameters = ("sigma1", "sigma2", "f0")
     parameters = (
@@ -246,12 +246,12 @@ class LuGreModified(ControlAffineModel):
 
     References
     ----------
-    Review (seed 003) eqs 58-59 (Alvarez and Jimenez; Sakai et al.), Table 1: invertible.
+    Review (the MR-model review) eqs 58-59 (Alvarez and Jimenez; Sakai et al.), Table 1: invertible.
     """
 
     name = "lugre_modified"
     title = "modified LuGre (Sakai)"
-    source = "seed 003 eqs 58-59"
+    source = "the MR-model review eqs 58-59"
     uses_control = True
     requires_control = True
     linear_parameters = ("sigma1", "sigma2", "sigma_a", "sigma_b", "f0")

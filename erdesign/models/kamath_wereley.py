@@ -76,7 +76,7 @@ class KamathWereley6(Model):
     Notes
     -----
     :math:`\alpha = |\dot X|/\max|\dot X|` (the velocity "non-dimensionalised with respect to the amplitude";
-    seed 003 eq 67 uses :math:`|v| - v_y` in velocity units, the same up to scale).  The stiction shape function
+    the MR-model review eq 67 uses :math:`|v| - v_y` in velocity units, the same up to scale).  The stiction shape function
     is applied to the same dimensionless velocity, :math:`S_c = \tfrac12\tanh(\dot X/(4\epsilon_c\max|\dot X|))`:
     the source gives :math:`\epsilon_c` as a number between 0 and 1, which needs a dimensionless argument.
     F_ve is an exact discrete-time filter (first-order hold, from rest).  The source fitted single periodic

@@ -75,7 +75,7 @@ MODELS: dict[str, Callable[..., Model]] = {
     "physics": _physics,
 }
 
-#: Models whose control for a desired force has a closed form or a bracketed root (seed 003 Table 1 marks Kwok,
+#: Models whose control for a desired force has a closed form or a bracketed root (the MR-model review Table 1 marks Kwok,
 #: the magic formula, the modified LuGre and the modified normalised Bouc-Wen invertible).
 INVERTIBLE = ("kwok_tanh", "magic_formula", "lugre_modified", "bouc_wen_normalized", "physics")
 

@@ -1,4 +1,4 @@
-r"""The general semi-active damper model of Vivas-López et al. (seed 002) (passive + semi-active force, asymmetric
+r"""The general semi-active damper model of Vivas-López et al. (n.d.) (passive + semi-active force, asymmetric
 coefficients)."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ __all__ = ["SemiactiveGeneral", "sigmoid_ratio"]
 
 
 def sigmoid_ratio(s):
-    r"""The saturating function of Vivas-López et al. (seed 002) eqs 5a-5e, :math:`s/(1 + |s|)` (odd, bounded by 1).
+    r"""The saturating function of Vivas-López et al. (n.d.) eqs 5a-5e, :math:`s/(1 + |s|)` (odd, bounded by 1).
 
     >>> sigmoid_ratio([-1.0, 0.0, 3.0]).tolist()
     [-0.5, 0.0, 0.75]
@@ -21,7 +21,7 @@ def sigmoid_ratio(s):
 
 
 class SemiactiveGeneral(Model):
-    r"""General semi-active model of Vivas-López et al. (seed 002) (eqs 2-5) with coefficients that differ in
+    r"""General semi-active model of Vivas-López et al. (n.d.) (eqs 2-5) with coefficients that differ in
     extension and compression.
 
     .. math::
@@ -37,7 +37,7 @@ class SemiactiveGeneral(Model):
         f_{pre\text{-}y,\dot z,V} = S(v_{py}\dot z V),\quad f_{pre\text{-}y,z} = S(x_{py} z),\qquad S(s) = s/(1 + |s|)
 
     where :math:`c_p` and :math:`c_{SA}` take their ``_pos`` value for :math:`\dot z \ge 0` (extension) and ``_neg``
-    otherwise ("the SA damper has an asymmetric behavior", seed 002 section 4); V is the dimensionless control u.
+    otherwise ("the SA damper has an asymmetric behavior", Vivas-López et al. section 4); V is the dimensionless control u.
 
     Parameters (SI): ``f0``, ``f_f``, ``F_hz``, ``F_hv`` [N]; ``c_p_pos``, ``c_p_neg`` [N s/m]; ``k_p`` [N/m];
     ``m_D`` [kg]; ``v_f``, ``v_hz``, ``v_hv``, ``v_py`` [s/m]; ``x_f``, ``x_py`` [1/m]; ``x_hz``, ``x_hv`` [-];
@@ -45,7 +45,7 @@ class SemiactiveGeneral(Model):
 
     Notes
     -----
-    Seed 002 uses :math:`f_{h,z}` both for the term and its amplitude; the amplitudes are named ``F_hz`` and ``F_hv``
+    Vivas-López et al. uses :math:`f_{h,z}` both for the term and its amplitude; the amplitudes are named ``F_hz`` and ``F_hv``
     here.  Without a control column the semi-active part is zero and its parameters are held fixed.
 
     Examples
@@ -58,12 +58,12 @@ class SemiactiveGeneral(Model):
 
     References
     ----------
-    Seed 002 eqs 2-6, Table 2 (which diagram shows which term), Tables 3-4 (ESR 0.06-0.16, cross-validation).
+    Vivas-López et al. eqs 2-6, Table 2 (which diagram shows which term), Tables 3-4 (ESR 0.06-0.16, cross-validation).
     """
 
     name = "semiactive_general"
-    title = "general semi-active model (seed 002)"
-    source = "Vivas-López et al. (seed 002) eqs 2-5"
+    title = "general semi-active model (Vivas-López et al.)"
+    source = "Vivas-López et al. (n.d.) eqs 2-5"
     uses_control = True
     control_parameters = ("c_sa_pos", "c_sa_neg", "v_py", "x_py")
     linear_parameters = ("f0", "c_p_pos", "c_p_neg", "k_p", "m_D", "f_f", "F_hz", "F_hv", "c_sa_pos", "c_sa_neg")

@@ -138,7 +138,7 @@ class MeasurementComparison:
     label : str
         What was measured (file name, test).
     esr : float
-        ESR of the model against the measurement (seed 002 eq 7), [-].
+        ESR of the model against the measurement (Vivas-López et al., eq 7), [-].
     samples : int or None
     rms_error : quantity or None
         RMS of F - F_model (a force).
@@ -805,7 +805,7 @@ def _comparison(c: MeasurementComparison) -> dict:
     """Shown values of a measurement comparison (dimension-checked)."""
     if not (isinstance(c.esr, (int, float)) and math.isfinite(c.esr) and c.esr >= 0):
         raise ErdesignError(f"comparison.esr: expected a finite number >= 0, got {c.esr!r}")
-    rows = [Row("esr", "ESR (seed 002 eq 7)", show(float(c.esr), "", name="ESR"))]
+    rows = [Row("esr", "ESR (Vivas-López et al., eq 7)", show(float(c.esr), "", name="ESR"))]
     if c.samples is not None:
         rows.append(Row("samples", "samples", show(float(c.samples), "", name="samples")))
     for key, label, value in (("rms_error", "RMS force error", c.rms_error),
