@@ -117,3 +117,15 @@ def test_help_has_examples(capsys, command):
 
     code, out, _ = run(capsys, command, "--help")
     assert code == 0 and "Examples:" in out and f"erdesign {command} " in out.split("Examples:")[1]
+
+
+def test_every_subpackage_is_listed_for_installation():
+    # pyproject.toml lists the packages by hand; a new subpackage left out installs without it (the console script
+    # then fails with ModuleNotFoundError while a source checkout works)
+    import tomllib
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    listed = set(tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"])
+    found = {".".join(p.parent.relative_to(root).parts) for p in (root / "erdesign").rglob("__init__.py")}
+    assert found <= listed, sorted(found - listed)
