@@ -14,8 +14,8 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")      # one core
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from erdesign import load_example  # noqa: E402
-from erdesign.diagnose import diagnose  # noqa: E402
-from erdesign.rig import run_rig, sweep  # noqa: E402
+from erdesign.diagnosis.diagnose import diagnose  # noqa: E402
+from erdesign.simulation.rig import run_rig, sweep  # noqa: E402
 
 LIMIT = 60.0
 

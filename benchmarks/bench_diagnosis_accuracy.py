@@ -75,8 +75,8 @@ def _error(exc: BaseException) -> str:
 
 def run_case(case, detectability: bool = True) -> dict:
     """Simulate, write, read back and diagnose one case; never raises."""
-    from erdesign.diagnose import diagnose
-    from erdesign.measurement import read_measurement
+    from erdesign.data.measurement import read_measurement
+    from erdesign.diagnosis.diagnose import diagnose
 
     row = {"name": case.name, "damper": case.damper, "excitation": case.excitation, "noise": case.noise,
            "kind": case.kind, "size": case.size, "mechanisms": {k: dict(v) for k, v in case.mechanisms.items()},
@@ -127,9 +127,9 @@ def run_long(detail: bool = True) -> dict:
     """Diagnose one 60 s record sampled at 1 kHz (timing requirement: under 30 s)."""
     from dataclasses import replace
 
-    from erdesign.diagnose import diagnose
-    from erdesign.measurement import read_measurement
-    from erdesign.truthrig.cases import benchmark_cases
+    from erdesign.data.measurement import read_measurement
+    from erdesign.diagnosis.diagnose import diagnose
+    from erdesign.simulation.truthrig.cases import benchmark_cases
 
     base = next(c for c in benchmark_cases("full") if c.name.startswith("seal_friction-large-mr_valve-"))
     case = replace(base, name="long-60s-1kHz", duration=60.0, rate=1000.0)
@@ -179,7 +179,7 @@ def _visible(row):
 
 def summarise(rows: list[dict]) -> dict:
     from erdesign.effects import EFFECT_NAMES
-    from erdesign.truthrig.cases import UNDETECTABLE
+    from erdesign.simulation.truthrig.cases import UNDETECTABLE
 
     n = len(rows)
     classes = ["clean", "out of library", *EFFECT_NAMES, "pair"]
@@ -252,7 +252,7 @@ def report_lines(summary: dict, long: dict | None, wall: float, meta: dict) -> l
     s = summary
     out = [f"cases: {s['cases']}; correct: {_pct(s['correct'], s['cases'])}; on the detectable cases: "
            f"{100 * s['accuracy_detectable']:.0f} %",
-           f"diagnose: erdesign/diagnose.py at {meta['diagnose_commit'][:10]}"
+           f"diagnose: erdesign/diagnosis/diagnose.py at {meta['diagnose_commit'][:10]}"
            f"{' + uncommitted changes' if meta['diagnose_dirty'] else ''}; wall time {wall:.0f} s on "
            f"{meta['jobs']} processes", "", "per class (clean: no false 'missing'; out of library: 'unexplained'; "
            "library effect: recall; pair: one of the two named):"]
@@ -292,7 +292,7 @@ def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset
              "Correct means: clean record (the true damper is exactly Bingham, calibration factors perturbed) -> "
              "`nothing_missing`; mechanism outside the library (blow-off, single rod, cavitation, free play) -> "
              "`unexplained`; library mechanism(s) -> `missing_effect` naming it (for a pair: either).", "",
-             f"Latest run: {meta['date']}, subset `{subset}`, {s['cases']} cases, erdesign/diagnose.py at "
+             f"Latest run: {meta['date']}, subset `{subset}`, {s['cases']} cases, erdesign/diagnosis/diagnose.py at "
              f"`{meta['diagnose_commit'][:10]}`{' (with uncommitted changes)' if meta['diagnose_dirty'] else ''}, "
              f"{meta['jobs']} processes, {wall:.0f} s.", "",
              "Regenerate:", "", "```bash", command, "```", "",
@@ -386,15 +386,15 @@ def main(argv=None) -> int:
         return 0
 
     sys.path.insert(0, str(ROOT))
-    from erdesign.truthrig.cases import benchmark_cases
+    from erdesign.simulation.truthrig.cases import benchmark_cases
 
     cases = select(benchmark_cases(args.subset), args.cases)
     if not cases:
         print(f"no case matches {args.cases!r}", file=sys.stderr)
         return 2
     meta = {"date": datetime.date.today().isoformat(),
-            "diagnose_commit": _git("log", "-1", "--format=%H", "--", "erdesign/diagnose.py") or "unknown",
-            "diagnose_dirty": bool(_git("status", "--porcelain", "--", "erdesign/diagnose.py", "erdesign/physics.py",
+            "diagnose_commit": _git("log", "-1", "--format=%H", "--", "erdesign/diagnosis/diagnose.py") or "unknown",
+            "diagnose_dirty": bool(_git("status", "--porcelain", "--", "erdesign/diagnosis/diagnose.py",
                                         "erdesign/effects")),
             "head": _git("rev-parse", "HEAD"), "jobs": args.jobs}
     print(f"{len(cases)} cases ({args.subset}) on {args.jobs} processes", flush=True)

@@ -33,8 +33,8 @@ def timed(fn):
 
 
 def main():
-    from erdesign.identify import identify, resolve_parameters, simulate
-    from erdesign.measurement import read_measurement
+    from erdesign.data.measurement import read_measurement
+    from erdesign.identification.identify import identify, resolve_parameters, simulate
     from erdesign.models.registry import get_model
 
     if not DYKE.is_file():

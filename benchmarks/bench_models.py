@@ -25,8 +25,8 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 import numpy as np  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
-from erdesign.fit import fit  # noqa: E402
-from erdesign.measurement import Measurement  # noqa: E402
+from erdesign.data.measurement import Measurement  # noqa: E402
+from erdesign.identification.fit import fit  # noqa: E402
 from erdesign.models.bouc_wen import SPENCER_PASSIVE  # noqa: E402
 from erdesign.models.kamath_wereley import KAMATH_WERELEY_TABLE1  # noqa: E402
 from erdesign.models.registry import get_model  # noqa: E402

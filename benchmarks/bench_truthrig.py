@@ -24,10 +24,10 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core, as the target says
 import numpy as np  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
-from erdesign.damper_file import load_example  # noqa: E402
-from erdesign.rig import random_motion  # noqa: E402
-from erdesign.truthrig import TruthDamper, simulate_truth  # noqa: E402
-from erdesign.truthrig import kernels  # noqa: E402
+from erdesign.damper.files import load_example  # noqa: E402
+from erdesign.simulation.rig import random_motion  # noqa: E402
+from erdesign.simulation.truthrig import TruthDamper, simulate_truth  # noqa: E402
+from erdesign.simulation.truthrig import kernels  # noqa: E402
 
 FIELD = 3e6      # 3 kV/mm, the Makris damper's reference field
 

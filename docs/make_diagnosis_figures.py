@@ -14,12 +14,12 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from erdesign import load_damper
-from erdesign.diagnose import diagnose, fitted_model, improve
-from erdesign.measurement import read_measurement
-from erdesign.plots import error_history_figure
+from erdesign.data.measurement import read_measurement
+from erdesign.diagnosis.diagnose import diagnose, fitted_model, improve
 from erdesign.report import ErrorHistoryStep
-from erdesign.rig import sweep
-from erdesign.truthrig import TruthDamper, simulate_truth
+from erdesign.report.plots import error_history_figure
+from erdesign.simulation.rig import sweep
+from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
 
 def _write(fig: go.Figure, path: Path) -> Path:

@@ -6,7 +6,8 @@ Three layers (docs/architecture.md):
   floats and numpy arrays, vectorised;
 * objects - :class:`Fluid`, :class:`Geometry`, :class:`Damper`: built from pint quantities or strings, checked;
 * workflows - sizing (:meth:`Damper.size`), design synthesis (:mod:`erdesign.design`), identification
-  (:func:`fit`, :mod:`erdesign.models`), diagnosis (:mod:`erdesign.diagnose`), reports (:mod:`erdesign.report`),
+  (:func:`fit`, :mod:`erdesign.models`, :mod:`erdesign.identification`), diagnosis (:mod:`erdesign.diagnosis`),
+  reports (:mod:`erdesign.report`),
   the command line (``erdesign``) and the app (``erdesign app``).
 
 The functions in this namespace take pint quantities or strings and return quantities:
@@ -32,27 +33,33 @@ _LAZY = {
         "makris_stress", "maxwell_stress", "mixed_mode_damper_force", "mixed_mode_yield_force",
         "slit_pressure_drop", "thin_gap_error", "yield_pressure_drop"), "api"),
     **dict.fromkeys(("Damper", "QuasiSteadyState", "SineResponse", "SizingResult"), "damper"),
-    **dict.fromkeys(("load_damper", "load_example"), "damper_file"),
-    **dict.fromkeys(("calibrate", "improve"), "diagnose"),
-    **dict.fromkeys(("FitResult", "fit"), "fit"),
-    **dict.fromkeys(("cross_validation", "identify_joint"), "identify"),
-    "inverse_control": "inverse",
-    **dict.fromkeys(("Measurement", "read_measurement", "write_measurement"), "measurement"),
+    **dict.fromkeys(("load_damper", "load_example"), "damper.files"),
+    **dict.fromkeys(("calibrate", "improve"), "diagnosis.diagnose"),
+    **dict.fromkeys(("FitResult", "fit"), "identification.fit"),
+    **dict.fromkeys(("cross_validation", "identify_joint"), "identification.identify"),
+    "inverse_control": "identification.inverse",
+    **dict.fromkeys(("Measurement", "read_measurement", "write_measurement"), "data.measurement"),
     **dict.fromkeys(("get_model", "model_names"), "models.registry"),
-    "PhysicsDamper": "physics",
-    "run_rig": "rig",
+    "PhysicsDamper": "effects.chain",
+    "run_rig": "simulation.rig",
     **dict.fromkeys(("DamperFileError", "ErdesignError", "ErdesignWarning", "UnitError", "ValidityWarning"),
                     "errors"),
     "Fluid": "fluid",
     "Geometry": "geometry",
-    **dict.fromkeys(("energy_per_cycle", "equivalent_damping", "esr"), "metrics"),
+    **dict.fromkeys(("energy_per_cycle", "equivalent_damping", "esr"), "data.metrics"),
     **dict.fromkeys(("Q_", "ureg"), "units"),
 }
 
-# Subpackages and workflow modules; functions named like a module (design.design, diagnose.diagnose,
-# identify.identify) are deliberately not lifted here, so that the module stays reachable by its name.
-_SUBMODULES = ("flow", "constitutive", "design", "diagnose", "effects", "field_laws", "identify", "models", "plots",
-               "report")
+# Subpackages and workflow modules of the curated namespace: name -> module.  Functions named like a module
+# (design.design, diagnose.diagnose, identify.identify) are deliberately not lifted here, so that the module stays
+# reachable by its name.  Four names keep the flat layout's module names (docs/architecture.md, moved modules):
+# ``erdesign.diagnose`` is :mod:`erdesign.diagnosis.diagnose` and so on, without the deprecation warning that
+# ``import erdesign.diagnose`` gives.
+_SUBMODULES = {
+    "flow": "flow", "constitutive": "constitutive", "design": "design", "diagnose": "diagnosis.diagnose",
+    "effects": "effects", "field_laws": "fluid.field_laws", "identify": "identification.identify",
+    "models": "models", "plots": "report.plots", "report": "report",
+}
 
 __all__ = [
     "Damper", "QuasiSteadyState", "SineResponse", "SizingResult", "Fluid", "Geometry",
@@ -75,6 +82,8 @@ def __getattr__(name):
     """Import a public name, or any submodule (``erdesign.materials``), on first use."""
     if name in _LAZY:
         value = getattr(_importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    elif name in _SUBMODULES:
+        value = _importlib.import_module(f".{_SUBMODULES[name]}", __name__)
     elif not name.startswith("__"):
         try:
             value = _importlib.import_module(f".{name}", __name__)
@@ -93,14 +102,14 @@ def __dir__():
 
 
 class _Package(_types.ModuleType):
-    """The package's module type: ``erdesign.fit`` is the function :func:`erdesign.fit.fit`, as it was when the
-    package imported everything eagerly, even after the submodule ``erdesign.fit`` has been imported (the import
-    system then sets the parent's attribute to the submodule, which this property ignores)."""
+    """The package's module type: ``erdesign.fit`` is the function :func:`erdesign.identification.fit.fit`, as it
+    was when the package imported everything eagerly, even after the deprecated module ``erdesign.fit`` has been
+    imported (the import system then sets the parent's attribute to the module, which this property ignores)."""
 
     @property
     def fit(self):
         value = self.__dict__.get("_fit_override")
-        return value if value is not None else _importlib.import_module(".fit", __name__).fit
+        return value if value is not None else _importlib.import_module(".identification.fit", __name__).fit
 
     @fit.setter
     def fit(self, value):

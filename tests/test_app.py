@@ -246,7 +246,7 @@ def test_simulated_history_downloads_as_a_measurement(app, downloads, tmp_path):
     (name,) = [k for k in downloads if k.endswith("-simulated.csv")]
     path = tmp_path / name
     path.write_bytes(downloads[name])
-    from erdesign.measurement import read_measurement
+    from erdesign.data.measurement import read_measurement
 
     record = read_measurement(path)
     F = values(figure(app, "sim.fig.time")["data"][-1]["y"])           # kN on the page
@@ -354,8 +354,8 @@ def truth_csv(tmp_path_factory):
     """CSV bytes of records of the truth rig (erdesign.truthrig, physics independent of the diagnosed model) on
     the Makris damper: ``clean`` (nothing missing) and ``blowoff`` (a rebound blow-off valve, outside the effect
     library).  Short sweeps at 100 samples/s keep each diagnosis to a fraction of a second."""
-    from erdesign.rig import sweep
-    from erdesign.truthrig import TruthDamper, simulate_truth
+    from erdesign.simulation.rig import sweep
+    from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
     folder = tmp_path_factory.mktemp("truth")
     motion = sweep([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
@@ -370,9 +370,9 @@ def truth_csv(tmp_path_factory):
 def few_candidates(monkeypatch):
     """Judge only two candidate effects (the page's handling of the verdict is under test, not the library's
     ranking, which tests/test_diagnose.py covers); ``spoil`` names a candidate to show as not evaluated."""
-    import erdesign.diagnose
+    import erdesign.diagnosis.diagnose
 
-    real = erdesign.diagnose.diagnose
+    real = erdesign.diagnosis.diagnose.diagnose
     spoil = []
 
     def diagnose(damper, record, effects=(), **kwargs):
@@ -382,7 +382,7 @@ def few_candidates(monkeypatch):
                 c.result, c.esr, c.reason = None, None, "could not be evaluated: a test says so"
         return d
 
-    monkeypatch.setattr(erdesign.diagnose, "diagnose", diagnose)
+    monkeypatch.setattr(erdesign.diagnosis.diagnose, "diagnose", diagnose)
     return spoil
 
 
@@ -403,7 +403,7 @@ def test_compare_nothing_missing(app, truth_csv, few_candidates):
     assert info.startswith("**Nothing missing: the residual is at the noise floor.**")
     # The record's own noise floor is shown next to the ESR; nothing is missing, so the ESR is within the
     # factor erdesign.diagnose.AT_FLOOR of it.
-    from erdesign.diagnose import ABSOLUTE_SLACK, AT_FLOOR
+    from erdesign.diagnosis.diagnose import ABSOLUTE_SLACK, AT_FLOOR
 
     esr, floor = metric(app, "ESR of the calibrated model"), metric(app, "noise floor ESR")
     assert 0 < floor and esr <= AT_FLOOR * floor * (1 + FOUR_FIGURES) + ABSOLUTE_SLACK
@@ -581,7 +581,7 @@ def test_simulate_caption_and_numbers_in_the_unit_system(app):
 def test_compare_fitted_parameters_in_the_unit_system(app, few_candidates):
     """The ranking's fitted values and the calibrated parameters read in the unit system (lbf), and are the
     library's numbers converted."""
-    from erdesign.diagnose import diagnose
+    from erdesign.diagnosis.diagnose import diagnose
 
     app.radio(key=state.UNITS).set_value("in-lbf-s").run()
     app.switch_page("compare.py").run()

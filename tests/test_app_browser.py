@@ -154,8 +154,8 @@ def friction_csv(tmp_path_factory) -> Path:
     """A measurement of the virtual rig on the Makris damper with 800 N of hidden seal friction (the record of
     tests/test_cli_diagnose.py), displacement in inches and force in lbf as a user's file might have them."""
     from erdesign import load_example
-    from erdesign.measurement import write_measurement
-    from erdesign.rig import run_rig, sweep
+    from erdesign.data.measurement import write_measurement
+    from erdesign.simulation.rig import run_rig, sweep
 
     rig = run_rig(load_example("makris"), sweep([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300),
                   hidden={"seal_friction": {"friction_force": 800.0}}, viscosity_factor=1.2,
@@ -192,7 +192,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     assert toml.name == "makris-1996.toml"
     text = toml.read_text()
     assert 'seal_friction = "25 lbf"' in text and "design point: v = 1 in/s; E = 3 kV/mm" in text
-    from erdesign.damper_file import load_damper
+    from erdesign.damper.files import load_damper
 
     assert load_damper(toml).seal_friction == pytest.approx(111.2, rel=1e-3)      # 25 lbf in N
 
@@ -219,7 +219,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     _idle(page)
     _shoot(page, tmp_path / "simulate.png")
     simulated = _download(page, "Simulated time history (CSV)", tmp_path)
-    from erdesign.measurement import read_measurement
+    from erdesign.data.measurement import read_measurement
 
     record = read_measurement(simulated)
     assert np.abs(record.displacement).max() == pytest.approx(0.020, rel=1e-3)       # the 20 mm typed

@@ -8,7 +8,7 @@ pytest.importorskip("streamlit")
 from streamlit.testing.v1 import AppTest  # noqa: E402
 
 from erdesign.app import state  # noqa: E402
-from erdesign.damper_file import load_example  # noqa: E402
+from erdesign.damper.files import load_example  # noqa: E402
 from erdesign.magnetics import load_magnetic_circuit  # noqa: E402
 from tests.test_app import MAIN, TIMEOUT, metric  # noqa: E402
 

@@ -10,8 +10,8 @@ import erdesign.cli.diagnose
 import erdesign.cli.fit  # noqa: F401
 from erdesign import load_example
 from erdesign.cli.main import main
-from erdesign.measurement import write_measurement
-from erdesign.rig import run_rig, sweep
+from erdesign.data.measurement import write_measurement
+from erdesign.simulation.rig import run_rig, sweep
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
 MAKRIS = str(ROOT / "examples" / "makris.toml")
@@ -86,7 +86,7 @@ def test_diagnose_json_has_exactly_the_contract_keys(capsys, friction_csv):
 def truth_csvs(tmp_path_factory):
     """Records of the truth rig on the Makris damper (physics independent of the diagnosed model): nothing hidden,
     and a rebound blow-off valve (outside the effect library)."""
-    from erdesign.truthrig import TruthDamper, simulate_truth
+    from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
     folder = tmp_path_factory.mktemp("truth")
     motion = sweep([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
@@ -161,7 +161,7 @@ def test_errors_are_one_line_on_stderr(capsys, friction_csv, command, args, mess
 
 def test_record_too_short_is_one_line(capsys, tmp_path):
     d = load_example("makris")
-    from erdesign.rig import sine
+    from erdesign.simulation.rig import sine
 
     rig = run_rig(d, sine(0.005, 2.0, 3e6, cycles=2, rate=300), seed=1)
     p = tmp_path / "short.csv"

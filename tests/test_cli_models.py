@@ -9,7 +9,7 @@ import pytest
 import erdesign.cli.identify  # noqa: F401  (registers the command until erdesign/cli/__init__.py imports it)
 import erdesign.cli.models  # noqa: F401
 from erdesign.cli import main
-from erdesign.measurement import Measurement, write_measurement
+from erdesign.data.measurement import Measurement, write_measurement
 from erdesign.models.registry import get_model
 
 
@@ -72,7 +72,8 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "erdesign" / "examples"
 
 
 def test_physics_model_from_the_registry():
-    physics = pytest.importorskip("erdesign.physics", reason="erdesign.physics (the physics damper) is not built yet")
+    physics = pytest.importorskip("erdesign.effects.chain",
+                                  reason="erdesign.effects.chain (the physics damper) is not built yet")
     from erdesign import load_example
     model = get_model("physics", damper=EXAMPLES / "makris.toml", effects=("seal_friction",))
     assert isinstance(model, physics.PhysicsDamper)
@@ -85,7 +86,8 @@ def test_physics_model_from_the_registry():
 
 
 def test_identify_physics_recovers_the_hidden_seal_friction(capsys):
-    pytest.importorskip("erdesign.physics", reason="erdesign.physics (the physics damper) is not built yet")
+    pytest.importorskip("erdesign.effects.chain",
+                                  reason="erdesign.effects.chain (the physics damper) is not built yet")
     csv = EXAMPLES / "measurements" / "makris_hidden_seal_friction.csv"
     code, out, err = run(capsys, "identify", str(csv), "--model", "physics", "--damper",
                          str(EXAMPLES / "makris.toml"), "--effects", "seal_friction", "--json")
@@ -112,7 +114,7 @@ def test_identify_reports_what_the_data_cannot_tell(capsys, tmp_path):
     """A Bingham record at one constant current: the yield force f_c and its slope per unit current f_c_u act
     only through f_c + f_c_u u, so the pair is not identifiable from it; identify holds them and says so instead of
     printing two values with huge standard errors (issue 12, item 4)."""
-    from erdesign.identify import identify
+    from erdesign.identification.identify import identify
     t = np.linspace(0, 2, 1001)
     rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=0.5, control_kind="current")
     F = get_model("bingham").simulate(rec, {"c0": 4000.0, "f_c": 300.0, "f_c_u": 400.0})

@@ -15,7 +15,7 @@ import erdesign
 from erdesign.cli import main
 from erdesign.cli.main import COMMANDS, cli
 
-HEAVY = ("scipy", "pint", "numba", "plotly", "pandas", "erdesign.fit", "erdesign.models")
+HEAVY = ("scipy", "pint", "numba", "plotly", "pandas", "erdesign.identification.fit", "erdesign.models")
 
 
 def _modules_after(code):
@@ -47,7 +47,7 @@ def test_size_command_does_not_load_scipy_subpackages():
 
 def test_every_public_name_resolves_to_its_defining_module():
     from erdesign import fit as fit_function
-    from erdesign.fit import fit as real_fit
+    from erdesign.identification.fit import fit as real_fit
     from erdesign.units import Q_
 
     for name in erdesign.__all__:

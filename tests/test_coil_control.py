@@ -7,14 +7,14 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from erdesign.damper_file import damper_from_dict, load_example, read_toml
+from erdesign.damper.files import damper_from_dict, load_example, read_toml
+from erdesign.data.measurement import Measurement
 from erdesign.effects import EFFECTS
+from erdesign.effects.chain import PhysicsDamper
 from erdesign.errors import DamperFileError
 from erdesign.magnetics import load_magnetic_circuit
 from erdesign.magnetics.coil import current_rise_time
 from erdesign.magnetics.law import CoilLaw
-from erdesign.measurement import Measurement
-from erdesign.physics import PhysicsDamper
 
 MR_COIL = str(resources.files("erdesign.examples") / "mr_coil.toml")
 

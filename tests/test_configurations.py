@@ -78,7 +78,7 @@ def run(capsys, *args) -> str:
 def truth_force(damper, v: float, control: float) -> float:
     """Quasi-steady force from the truth rig's gap laws at piston speed v > 0: the pressure drop that passes the
     displaced flow, found by bisection (valve: n thin-gap ducts; mixed: Couette-Poiseuille with the head moving)."""
-    from erdesign.truthrig.valve import bingham_valve_flow, mixed_gap_flow
+    from erdesign.simulation.truthrig.valve import bingham_valve_flow, mixed_gap_flow
 
     g, fl = damper.geometry, damper.fluid
     tau_y, eta = float(fl.yield_stress_at(control)), float(fl.viscosity_at(control))
@@ -131,8 +131,8 @@ def truth_record(config, tmp_path):
     reversal, where the force of the rigid-plastic gap is anywhere within +-F_y (the truth rig gives 0 or +-F_y as
     its own round-off falls).  The model takes the expected sign there (:data:`erdesign.noise.VELOCITY_RESOLUTION`),
     but with displacement noise such samples still bias the viscosity factor of a yield-dominated MR head by ~5 %."""
-    from erdesign.rig import sine
-    from erdesign.truthrig import TruthDamper, simulate_truth
+    from erdesign.simulation.rig import sine
+    from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
     c, path = config
     truth = TruthDamper(load_damper(path), (), viscosity_factor=1.15, yield_stress_factor=0.9)
@@ -245,10 +245,10 @@ def test_samples_exactly_on_reversals_do_not_bias_a_fit():
     sign gave a full yield force of error per reversal and a viscosity factor 1.38 for 1.15; with the velocity
     resolution floor of :func:`erdesign.noise.velocity_noise` the fit recovers the truth."""
     from erdesign import load_example
-    from erdesign.fit import fit
-    from erdesign.physics import PhysicsDamper
-    from erdesign.rig import sine
-    from erdesign.truthrig import TruthDamper, simulate_truth
+    from erdesign.effects.chain import PhysicsDamper
+    from erdesign.identification.fit import fit
+    from erdesign.simulation.rig import sine
+    from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
     damper = load_example("mr_coil")
     truth = TruthDamper(damper, (), viscosity_factor=1.15, yield_stress_factor=0.9)

@@ -44,7 +44,7 @@ def test_inch_file_gives_makris_c_in_lbf_s_per_in(tmp_path, makris):
 
 
 def test_example_files_load():
-    for name in erdesign.damper_file.example_names():
+    for name in erdesign.damper.files.example_names():
         d = erdesign.load_example(name)
         assert d.geometry.configuration in ("valve", "mixed")
 

@@ -17,7 +17,7 @@ from scipy.optimize import brentq
 import erdesign.cli.design  # noqa: F401  (registers the command until erdesign/cli/__init__.py imports it)
 from erdesign import Damper, Geometry, load_example
 from erdesign.cli import main
-from erdesign.damper_file import damper_from_dict, read_toml
+from erdesign.damper.files import damper_from_dict, read_toml
 from erdesign.design import (
     design,
     evaluate_candidates,

@@ -4,7 +4,7 @@ when re-evaluated independently through a damper file and its magnetic circuit; 
 import numpy as np
 import pytest
 
-from erdesign.damper_file import damper_from_dict
+from erdesign.damper.files import damper_from_dict
 from erdesign.design import design, load_example_requirements, requirements_from_dict
 from erdesign.design.requirements import RequirementsError
 from erdesign.magnetics import circuit_from_damper_dict, load_magnetic_circuit

@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from erdesign import load_example
-from erdesign.diagnose import DiagnosisError, diagnose, improve, residual_analysis, calibrate
+from erdesign.diagnosis.diagnose import DiagnosisError, diagnose, improve, residual_analysis, calibrate
 from erdesign.effects import EFFECT_NAMES, EFFECTS, EffectError
-from erdesign.physics import PhysicsDamper
-from erdesign.rig import field_steps, run_rig, sine, sweep
+from erdesign.effects.chain import PhysicsDamper
+from erdesign.simulation.rig import field_steps, run_rig, sine, sweep
 
 TRUE_FLUID = dict(viscosity_factor=1.2, yield_stress_factor=0.8)
 

@@ -12,10 +12,10 @@ from pathlib import Path
 import pytest
 
 from erdesign.effects import EFFECT_NAMES
-from erdesign.truthrig import MECHANISMS
-from erdesign.truthrig.cases import (DAMPERS, EXCITATIONS, LIBRARY_MECHANISMS, NOISES, NOT_VISIBLE_ON, OUT_OF_LIBRARY,
-                                     EXCITATIONS_OF,
-                                     STEP_PERIOD, benchmark_cases, supported, unsupported_pairs)
+from erdesign.simulation.truthrig import MECHANISMS
+from erdesign.simulation.truthrig.cases import (DAMPERS, EXCITATIONS, LIBRARY_MECHANISMS, NOISES, NOT_VISIBLE_ON,
+                                                OUT_OF_LIBRARY, EXCITATIONS_OF, STEP_PERIOD, benchmark_cases, supported,
+                                                unsupported_pairs)
 
 BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_diagnosis_accuracy.py"
 

@@ -9,16 +9,16 @@ from scipy.optimize import brentq
 
 from erdesign import load_example
 from erdesign.constitutive.makris import makris_stress
+from erdesign.data.measurement import Measurement
 from erdesign.effects import EFFECT_NAMES, EFFECTS, EffectError, get_effect, parse_effect_names, relaxation_filter
 from erdesign.effects.base import STAGES
+from erdesign.effects.chain import PhysicsDamper
 from erdesign.effects.field_lag import lagged_control
 from erdesign.effects.fluid_inertia import slug_mass
 from erdesign.effects.preyield_elasticity import elastic_viscoplastic_force
 from erdesign.effects.shear_thinning import herschel_bulkley_pressure_drop, herschel_bulkley_slit_flow_rate
 from erdesign.effects.viscous_heating import TEMPERATURE_COEFFICIENT
 from erdesign.flow.bingham import bingham_flow_rate, bingham_slit_flow
-from erdesign.measurement import Measurement
-from erdesign.physics import PhysicsDamper
 
 TIGHT = dict(rtol=1e-10, atol=1e-12, method="DOP853")
 

@@ -7,13 +7,13 @@ import numpy as np
 import pytest
 
 from erdesign import load_example
-from erdesign.diagnose import calibrate
+from erdesign.data.measurement import Measurement
+from erdesign.diagnosis.diagnose import calibrate
 from erdesign.effects import (EFFECT_NAMES, EFFECTS, Effect, EffectError, parse_effect_names, register_effect,
                               unregister_effect)
 from erdesign.effects.base import STAGES
-from erdesign.measurement import Measurement
+from erdesign.effects.chain import PhysicsDamper
 from erdesign.parameters import Parameter
-from erdesign.physics import PhysicsDamper
 
 
 class ForceOffset(Effect):

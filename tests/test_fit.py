@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from erdesign.fit import FitError, fit
-from erdesign.measurement import Measurement
+from erdesign.data.measurement import Measurement
+from erdesign.identification.fit import FitError, fit
 from erdesign.models.base import Model, Parameter, ParameterError
 
 

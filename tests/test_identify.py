@@ -4,9 +4,9 @@
 import numpy as np
 import pytest
 
-from erdesign.fit import FitError
-from erdesign.identify import cross_validation, identify, identify_joint
-from erdesign.measurement import Measurement, MeasurementError
+from erdesign.data.measurement import Measurement, MeasurementError
+from erdesign.identification.fit import FitError
+from erdesign.identification.identify import cross_validation, identify, identify_joint
 from erdesign.models.base import ModelInputError, ParameterError
 from erdesign.models.registry import get_model
 

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from erdesign.cli import main
+from erdesign.data.measurement import Measurement, write_measurement
 from erdesign.errors import ErdesignError
-from erdesign.identify import read_records
-from erdesign.measurement import Measurement, write_measurement
+from erdesign.identification.identify import read_records
 from erdesign.models.registry import get_model
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
@@ -113,7 +113,8 @@ def test_quiroz_joint_bingham_from_the_command_line_reproduces_the_study(capsys)
     """docs/real_data.md (written by the library workflow erdesign.identify.real_data_study): Bingham on the 30
     sinusoids jointly, validated on the earthquake record; the command line reads the published files as they are
     and gives the same ESRs."""
-    study = json.loads((Path(__file__).resolve().parents[1] / "docs" / "real_data.json").read_text())["models"]
+    study_file = Path(__file__).resolve().parents[1] / "docs" / "case_studies" / "quiroz.json"
+    study = json.loads(study_file.read_text())["models"]
     files = sorted((QUIROZ / "preprocessed").glob("*.txt"))
     assert len(files) == 30
     code, out, err = run(capsys, *files, "--model", "bingham", "--joint", "--validate",
@@ -190,7 +191,8 @@ def test_frozen_substeps_make_the_force_smooth_in_the_parameters():
 def test_quiroz_joint_modified_bouc_wen_from_the_command_line_reproduces_the_study(capsys):
     """docs/real_data.md, the command-line study: the current-dependent modified Bouc-Wen on the 30 sinusoids from
     the model's own guess (the library study starts from the source's fit) reaches the study's optimum."""
-    study = json.loads((Path(__file__).resolve().parents[1] / "docs" / "real_data.json").read_text())["models"]
+    study_file = Path(__file__).resolve().parents[1] / "docs" / "case_studies" / "quiroz.json"
+    study = json.loads(study_file.read_text())["models"]
     files = sorted((QUIROZ / "preprocessed").glob("*.txt"))
     code, out, err = run(capsys, *files, "--model", "bouc_wen_modified", "--joint", "--fix", "eta=190 1/s, delta=1",
                          "--validate", QUIROZ / "validation" / "validacion.mat", "--json", "--quiet")

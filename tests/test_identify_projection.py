@@ -7,9 +7,9 @@ of the fitted family made: a synthetic record of the modified Bouc-Wen model wit
 import numpy as np
 import pytest
 
-import erdesign.identify as ident
-from erdesign.identify import identify, quiroz_folder, read_quiroz_sinusoid
-from erdesign.measurement import Measurement
+import erdesign.identification.identify as ident
+from erdesign.data.measurement import Measurement
+from erdesign.identification.identify import identify, quiroz_folder, read_quiroz_sinusoid
 from erdesign.models.registry import get_model
 
 

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from erdesign.inverse import InverseError, inverse_control
-from erdesign.measurement import Measurement
+from erdesign.data.measurement import Measurement
+from erdesign.identification.inverse import InverseError, inverse_control
 from erdesign.models.registry import get_model
 
 T = np.linspace(0, 2, 801)

@@ -5,7 +5,7 @@ affine in them whatever the other parameters' values, and ``Model.linear_terms``
 import numpy as np
 import pytest
 
-from erdesign.measurement import Measurement
+from erdesign.data.measurement import Measurement
 from erdesign.models.registry import get_model, model_names
 
 

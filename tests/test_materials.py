@@ -16,9 +16,9 @@ from scipy.interpolate import CubicSpline
 import erdesign.cli.materials  # noqa: F401  (registers the command until erdesign/cli/__init__.py imports it)
 from erdesign import materials
 from erdesign.cli import main
-from erdesign.damper_file import damper_from_dict
+from erdesign.damper.files import damper_from_dict
 from erdesign.errors import ErdesignError, UnitError, ValidityWarning
-from erdesign.field_laws import (
+from erdesign.fluid.field_laws import (
     PowerLaw,
     SaturatingLaw,
     TabulatedLaw,

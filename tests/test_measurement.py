@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from erdesign.measurement import Measurement, MeasurementError, derivatives, read_measurement, write_measurement
+from erdesign.data.measurement import Measurement, MeasurementError, derivatives, read_measurement, write_measurement
 
 GOOD = """# a comment before the header
 time [s],displacement [in],force [lbf],field [kV/mm],temperature [degC]
@@ -142,7 +142,7 @@ def test_derivative_of_a_sine_without_a_whole_number_of_cycles():
 @pytest.mark.parametrize("noise", [1e-3, 1e-2])
 def test_derivative_of_noisy_non_periodic_records(kind, noise):
     # The virtual rig's motions carry their exact velocity (differentiated on an 8 x finer grid).
-    from erdesign.rig import earthquake_motion, random_motion, sweep
+    from erdesign.simulation.rig import earthquake_motion, random_motion, sweep
 
     m = {"random": lambda: random_motion(0.003, (0.5, 5.0), duration=4.0, rate=500.0, seed=1),
          "earthquake": lambda: earthquake_motion(0.01, rate=500.0, seed=2),
@@ -219,7 +219,7 @@ def test_fast_reader_errors_name_the_line(tmp_path):
 
 
 def test_clipped_force_samples_are_found():
-    from erdesign.measurement import clipped_samples
+    from erdesign.data.measurement import clipped_samples
     t = np.linspace(0, 2, 2001)
     F = 1000 * np.sin(2 * np.pi * t) + np.random.default_rng(0).normal(0, 5, t.size)
     assert not clipped_samples(F).any()            # a noisy peak reaches its extreme once

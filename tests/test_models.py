@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from erdesign.fit import fit
-from erdesign.measurement import Measurement
+from erdesign.data.measurement import Measurement
+from erdesign.identification.fit import fit
 from erdesign.models.base import ModelInputError, ParameterError
 from erdesign.models.bingham import extended_bingham_force
 from erdesign.models.bouc_wen import SPENCER_PASSIVE

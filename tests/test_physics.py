@@ -4,11 +4,11 @@ import numpy as np
 import pytest
 
 from erdesign import load_example
-from erdesign.diagnose import calibrate
+from erdesign.data.measurement import Measurement
+from erdesign.diagnosis.diagnose import calibrate
+from erdesign.effects.chain import PhysicsDamper
 from erdesign.errors import ErdesignError
-from erdesign.measurement import Measurement
-from erdesign.physics import PhysicsDamper
-from erdesign.rig import run_rig, sweep
+from erdesign.simulation.rig import run_rig, sweep
 
 
 def _record(damper, field_fraction=1.0, rate=1000.0):

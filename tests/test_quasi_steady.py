@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from erdesign import Damper, Fluid, Geometry
+from erdesign.damper.quasi_steady import QuasiSteadyState, quasi_steady_state
 from erdesign.flow.mixed_mode import mixed_mode_yield_force
 from erdesign.flow.newtonian import slit_pressure_drop
-from erdesign.quasi_steady import QuasiSteadyState, quasi_steady_state
 
 FLUID = Fluid.create(viscosity="0.3 Pa*s", yield_stress="3 kPa", reference_field="3 kV/mm", yield_exponent=2.0,
                      density="1200 kg/m^3", viscosity_at_reference_field="0.5 Pa*s")

@@ -12,16 +12,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from erdesign.identify import (QUIROZ_CURRENTS, QUIROZ_STUDY_MODELS, QUIROZ_TESTS, identify_joint, quiroz_folder,
-                               read_quiroz_sinusoid, read_quiroz_validation)
-from erdesign.metrics import esr
+from erdesign.data.metrics import esr
+from erdesign.identification.identify import (QUIROZ_CURRENTS, QUIROZ_STUDY_MODELS, QUIROZ_TESTS, identify_joint,
+                                              quiroz_folder, read_quiroz_sinusoid, read_quiroz_validation)
 from erdesign.models.registry import get_model
 
 ROOT = Path(__file__).resolve().parents[1]
 FOLDER = quiroz_folder(ROOT)
 pytestmark = pytest.mark.skipif(FOLDER is None, reason="../shared/data/quiroz2022_utfsm_mr is absent (the measured "
                                                          "MR-damper data are not part of the repository)")
-STUDY = json.loads((ROOT / "docs" / "real_data.json").read_text())
+STUDY = json.loads((ROOT / "docs" / "case_studies" / "quiroz.json").read_text())
 
 
 @pytest.fixture(scope="module")
@@ -30,7 +30,8 @@ def training():
 
 
 def _make_script():
-    spec = importlib.util.spec_from_file_location("make_real_data", ROOT / "docs" / "make_real_data.py")
+    spec = importlib.util.spec_from_file_location("make_real_data",
+                                                  ROOT / "docs" / "case_studies" / "make_real_data.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -39,7 +40,7 @@ def _make_script():
 def test_doc_is_the_rendering_of_the_study():
     # the Markdown is generated from the JSON, never edited by hand
     # (the generated part ends where the hand-written command-line study of Dyke's record begins)
-    assert (ROOT / "docs" / "real_data.md").read_text().split("\n<!-- dyke-cli -->")[0] == \
+    assert (ROOT / "docs" / "case_studies" / "quiroz.md").read_text().split("\n<!-- dyke-cli -->")[0] == \
         _make_script().render(STUDY).rstrip("\n") + ("\n" if _make_script().render(STUDY).endswith("\n") else "")
 
 

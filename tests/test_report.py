@@ -19,7 +19,7 @@ import pytest
 import erdesign.cli.report  # noqa: F401  (registers the command until erdesign/cli/__init__.py imports it)
 from erdesign import load_example
 from erdesign.cli import main
-from erdesign.damper_file import damper_from_dict, load_damper
+from erdesign.damper.files import damper_from_dict, load_damper
 from erdesign.errors import ErdesignError, UnitError, ValidityWarning
 from erdesign.report import (
     ErrorHistoryStep,
@@ -398,7 +398,7 @@ def test_cli_design_point_and_bare_numbers(tmp_path, capsys):
 
 def test_report_from_the_content_of_a_damper_file_at_a_design_point():
     """The app's path: the spec as typed (a mapping), a design point inside the curves' range."""
-    from erdesign.damper_file import read_toml
+    from erdesign.damper.files import read_toml
 
     spec = read_toml(MAKRIS)
     spec["geometry"]["gap"] = "0.0315 in"
@@ -419,7 +419,7 @@ def test_report_from_the_content_of_a_damper_file_at_a_design_point():
 def test_baseline_section_is_the_librarys_design_point_of_each_design():
     """A report built with a baseline (issue 14, compare designs) shows both designs' design points: each number
     is Damper.size of that design, and the change is their ratio."""
-    from erdesign.damper_file import read_toml
+    from erdesign.damper.files import read_toml
     from erdesign.examples import __file__ as examples
 
     spec = read_toml(Path(examples).with_name("makris.toml"))

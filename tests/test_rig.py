@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from erdesign import load_example
-from erdesign.rig import OVERSAMPLING, earthquake_motion, field_steps, random_motion, run_rig, sine, sweep
+from erdesign.simulation.rig import OVERSAMPLING, earthquake_motion, field_steps, random_motion, run_rig, sine, sweep
 
 
 def test_sine_kinematics_are_exact():

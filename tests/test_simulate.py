@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from erdesign.cli import main
-from erdesign.measurement import Measurement, read_measurement, write_measurement
+from erdesign.data.measurement import Measurement, read_measurement, write_measurement
 from erdesign.models.kamath_wereley import KAMATH_WERELEY_TABLE1
 from erdesign.models.published import published_set, published_sets
 from erdesign.models.registry import get_model

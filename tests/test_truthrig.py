@@ -9,14 +9,14 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp
 
-from erdesign.damper_file import load_example
+from erdesign.damper.files import load_example
 from erdesign.errors import ErdesignError
 from erdesign.flow.bingham import bingham_pressure_drop
-from erdesign.rig import Motion, sine
 from erdesign.flow.mixed_mode import couette_poiseuille_bingham
-from erdesign.truthrig import (MECHANISMS, TruthDamper, bingham_valve_flow, herschel_bulkley_valve_flow,
-                               mechanism_names, mixed_gap_flow, simulate_truth)
-from erdesign.truthrig.mechanisms import ATMOSPHERIC_PRESSURE
+from erdesign.simulation.rig import Motion, sine
+from erdesign.simulation.truthrig import (MECHANISMS, TruthDamper, bingham_valve_flow, herschel_bulkley_valve_flow,
+                                          mechanism_names, mixed_gap_flow, simulate_truth)
+from erdesign.simulation.truthrig.mechanisms import ATMOSPHERIC_PRESSURE
 
 MAKRIS = load_example("makris")
 MR = load_example("mr_valve")          # tau_y 42 kPa at 200 kA/m: a yield force of 3.8 kN

@@ -4,7 +4,7 @@ conventional damper."""
 import numpy as np
 import pytest
 
-from erdesign.vehicle import bump_road, settling_time, simulate_quarter_car, step_road
+from erdesign.simulation.vehicle import bump_road, settling_time, simulate_quarter_car, step_road
 
 
 @pytest.mark.parametrize("road,final", [(step_road(0.1), 0.1), (bump_road(0.1), 0.0)])

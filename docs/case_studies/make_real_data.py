@@ -13,13 +13,15 @@ from pathlib import Path
 
 import numpy as np
 
-from erdesign.identify import (QUIROZ_CURRENTS, QUIROZ_STUDY_MODELS, QUIROZ_TESTS, QUIROZ_VALIDATION_CURRENTS,
-                               quiroz_folder, quiroz_source_values, real_data_study)
+from erdesign.identification.identify import (QUIROZ_CURRENTS, QUIROZ_STUDY_MODELS, QUIROZ_TESTS,
+                                              QUIROZ_VALIDATION_CURRENTS, quiroz_folder, quiroz_source_values,
+                                              real_data_study)
 from erdesign.models.registry import get_model
 
-DOCS = Path(__file__).resolve().parent
-JSON_PATH = DOCS / "real_data.json"
-MD_PATH = DOCS / "real_data.md"
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+JSON_PATH = HERE / "quiroz.json"
+MD_PATH = HERE / "quiroz.md"
 TITLES = {"bouc_wen_modified": "modified Bouc-Wen", "bingham": "Bingham", "kwok_tanh": "Kwok tanh"}
 
 
@@ -72,7 +74,7 @@ def render(out: dict) -> str:
         cells = [f"{k} = {model.parameter(k).format(v, 5)}" + (" (held)" if k in held else "")
                  for k, v in d["values"].items()]
         lines += [f"- **{TITLES[name]}** (`{name}`, control u = current / 1 A): " + "; ".join(cells) + "."]
-    folder = quiroz_folder(DOCS.parent)
+    folder = quiroz_folder(ROOT)
     values = models.get("bouc_wen_modified", {}).get("values")
     if values and folder is not None:
         lines += ["", "## Modified Bouc-Wen: damping laws against the source's own fit", "",
@@ -113,7 +115,7 @@ def main(argv=None) -> int:
     if "--render-only" in argv:  # after a change of wording: re-render the committed JSON
         MD_PATH.write_text(render(json.loads(JSON_PATH.read_text())))
         return 0
-    folder = quiroz_folder(DOCS.parent)
+    folder = quiroz_folder(ROOT)
     if folder is None:
         print("../shared/data/quiroz2022_utfsm_mr is absent: nothing written", file=sys.stderr)
         return 1

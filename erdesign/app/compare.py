@@ -13,12 +13,12 @@ from pathlib import Path
 
 import streamlit as st
 
-from erdesign import plots
 from erdesign.app import figures, state
-from erdesign.diagnose import fitted_model
+from erdesign.data.measurement import check_record
+from erdesign.diagnosis.diagnose import fitted_model
 from erdesign.effects import EFFECTS
 from erdesign.errors import ErdesignError
-from erdesign.measurement import check_record
+from erdesign.report import plots
 from erdesign.report.builder import ErrorHistoryStep
 from erdesign.report.export import csv_text, rows_csv
 from erdesign.report.formatting import pick_unit, show, show_in_system

@@ -18,8 +18,8 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from ..plots import MEASURED_STYLE, MODEL_STYLE, spans_decades
 from ..formatting import pick_unit
+from ..report.plots import MEASURED_STYLE, MODEL_STYLE, spans_decades
 from ..units import Q_
 
 __all__ = ["tradeoff_figure", "loops_figure", "time_figure", "residual_figure", "BASELINE_STYLE"]

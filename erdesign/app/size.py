@@ -21,11 +21,11 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-from erdesign import plots
 from erdesign.app import figures, state
-from erdesign.damper_file import damper_from_dict, example_names
+from erdesign.damper.files import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
 from erdesign.materials import fluid_values
+from erdesign.report import plots
 from erdesign.report.builder import compare_designs
 from erdesign.report.export import csv_text, damper_toml, rows_csv
 from erdesign.report.formatting import field_text, pick_unit, show

@@ -27,9 +27,9 @@ import streamlit as st
 
 from .. import materials
 from ..damper import Damper
-from ..damper_file import damper_from_dict, example_names, read_toml
+from ..damper.files import damper_from_dict, example_names, read_toml
+from ..data.measurement import Measurement, read_measurement
 from ..errors import ErdesignError
-from ..measurement import Measurement, read_measurement
 from ..units import Q_, to_si
 
 __all__ = [
@@ -160,7 +160,7 @@ def design_text(design: dict) -> str:
 def chart_config(key: str) -> dict:
     """The plotly config of the chart ``key`` (``"size.fig.force"``): its camera button saves
     ``<design>-<figure>.png`` (or ``.svg``, as chosen in the sidebar) - the browser draws the image."""
-    from ..plots import export_config
+    from ..report.plots import export_config
 
     name = current_design()["spec"].get("name") or "design"
     return export_config(file_stem(f"{name}-{key.rsplit('.', 1)[-1]}"), image_format())
@@ -273,7 +273,7 @@ def material_names() -> list[str]:
 @st.cache_data(show_spinner=False, max_entries=64)
 def velocity_sweep(text: str, v_max: float, fields: tuple[float, ...], points: int = 81):
     """:func:`erdesign.report.sweep.velocity_sweep` of the spec from 0 to ``v_max`` [m/s] at ``fields`` (SI)."""
-    from ..report.sweep import velocity_sweep as sweep
+    from ..damper.curves import velocity_sweep as sweep
 
     damper, _ = build_damper(text)
     return caught(lambda: sweep(damper, np.linspace(0.0, v_max, points), np.asarray(fields, dtype=float)))[0]
@@ -325,7 +325,7 @@ def read_record(data: bytes, name: str, require_force: bool = True) -> Measureme
 
     Raises :class:`~erdesign.measurement.MeasurementError` whose message starts with ``name``.
     """
-    from ..measurement import MeasurementError
+    from ..data.measurement import MeasurementError
 
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / (Path(name).name or "upload.csv")
@@ -382,9 +382,9 @@ def example_record_bytes(name: str) -> bytes:
     """The CSV text of a built-in example measurement (:func:`example_records`)."""
     if name not in RIG_EXAMPLES:
         return (resources.files("erdesign.examples") / "measurements" / name).read_bytes()
-    from ..damper_file import load_example
-    from ..measurement import write_measurement
-    from ..rig import run_rig, sweep
+    from ..damper.files import load_example
+    from ..data.measurement import write_measurement
+    from ..simulation.rig import run_rig, sweep
 
     hidden, viscosity_factor = RIG_EXAMPLES[name]
     rig = run_rig(load_example("makris"), sweep([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500),
@@ -408,8 +408,8 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
     ``time``, ``displacement``, ``velocity``, ``control``, ``force``, the measured force of an upload (or None),
     the parameter values used, and the description of the motion.
     """
-    from .. import rig
     from ..models.registry import get_model
+    from ..simulation import rig
 
     damper, _ = build_damper(text)
     ex = dict(excitation)
@@ -452,7 +452,7 @@ def run_diagnosis(text: str, data: bytes, name: str, effects: tuple[str, ...]):
     Returns the :class:`~erdesign.diagnose.Diagnosis`, the record and the calibrated model's force on the whole
     record, [N].
     """
-    from ..diagnose import diagnose
+    from ..diagnosis.diagnose import diagnose
 
     damper, _ = build_damper(text)
     record = read_record(data, name)

@@ -6,9 +6,9 @@ import shlex
 
 import click
 
-from ..damper_file import load_damper
-from ..diagnose import diagnose as run_diagnosis
-from ..measurement import check_against_damper, read_measurement
+from ..damper.files import load_damper
+from ..data.measurement import check_against_damper, read_measurement
+from ..diagnosis.diagnose import diagnose as run_diagnosis
 from .main import cli, emit_json
 
 __all__ = ["diagnose", "next_command"]

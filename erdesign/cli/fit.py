@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import click
 
-from ..damper_file import load_damper
-from ..diagnose import calibrate, parameters_at_bounds
-from ..measurement import check_against_damper, read_measurement
+from ..damper.files import load_damper
+from ..data.measurement import check_against_damper, read_measurement
+from ..diagnosis.diagnose import calibrate, parameters_at_bounds
 from .main import cli, emit_json, json_number
 
 __all__ = ["fit"]

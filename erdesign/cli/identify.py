@@ -57,10 +57,10 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
     """Identify a model's parameters from a measurement (simulation from rest at the first sample)."""
     from ..errors import ErdesignError
     from ..fluid import CONTROL_UNITS
-    from ..identify import (choose_control_reference, fit_report, identify_joint, joint_json, joint_report,
-                            read_records, result_json)
-    from ..identify import identify as identify_model
-    from ..identify import simulate as run_model
+    from ..identification.identify import (choose_control_reference, fit_report, identify_joint, joint_json,
+                                           joint_report, read_records, result_json)
+    from ..identification.identify import identify as identify_model
+    from ..identification.identify import simulate as run_model
     from ..models.published import parse_parameter_list, parse_parameter_values
     from ..models.registry import get_model
     from ..units import Q_, format_quantity

@@ -10,7 +10,7 @@ from pathlib import Path
 import click
 
 from .._util import check_output_path
-from ..damper_file import load_damper
+from ..damper.files import load_damper
 from ..errors import ErdesignError, OutputPathError
 from ..report import build_report, write_report
 from ..report.export import IMAGES_NEED

@@ -44,9 +44,9 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
     """Run a model with given parameters on a measurement and score it (ESR and more)."""
     from pathlib import Path
 
-    from ..identify import resolve_parameters
-    from ..identify import simulate as run_model
-    from ..measurement import read_measurement, write_measurement
+    from ..data.measurement import read_measurement, write_measurement
+    from ..identification.identify import resolve_parameters
+    from ..identification.identify import simulate as run_model
     from ..models.registry import get_model
 
     from .._util import check_output_path

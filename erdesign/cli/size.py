@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from ..damper_file import load_damper
+from ..damper.files import load_damper
 from ..errors import ErdesignWarning
 from ..units import Q_, format_quantity
 from .main import cli, emit_json, json_number

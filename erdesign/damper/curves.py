@@ -11,9 +11,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..damper import Damper, SineResponse
 from ..errors import ValidityWarning
 from ..units import Q_
+from .damper import Damper, SineResponse
 
 __all__ = ["VelocitySweep", "velocity_sweep", "SineLoops", "sine_loops"]
 

@@ -33,14 +33,14 @@ from typing import Any
 
 import numpy as np
 
-from ._util import scalar_or_array
-from .errors import ErdesignError, ValidityWarning
-from .flow.bingham import yield_pressure_drop
-from .fluid import Fluid
-from .geometry import THIN_GAP_LIMIT, Geometry
-from .metrics import energy_per_cycle, equivalent_damping
+from .._util import scalar_or_array
+from ..data.metrics import energy_per_cycle, equivalent_damping
+from ..errors import ErdesignError, ValidityWarning
+from ..flow.bingham import yield_pressure_drop
+from ..fluid import Fluid
+from ..geometry import THIN_GAP_LIMIT, Geometry
+from ..units import Q_, to_si
 from .quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, damper_state
-from .units import Q_, to_si
 
 __all__ = ["Damper", "QuasiSteadyState", "SizingResult", "SineResponse", "CRITICAL_REYNOLDS", "FLOW_MODELS"]
 
@@ -187,7 +187,7 @@ class Damper:
         g, eta0 = self.geometry, self.fluid.viscosity
         if g.configuration == "valve":
             if self.uses_exact_annulus:
-                from .flow.newtonian import annulus_conductance_ratio
+                from ..flow.newtonian import annulus_conductance_ratio
 
                 ratio = annulus_conductance_ratio(g.duct_mean_diameter, g.gap)
             else:

@@ -23,12 +23,12 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-from . import materials
+from .. import materials
+from ..errors import DamperFileError, ErdesignError
+from ..fluid import Fluid
+from ..geometry import Geometry
+from ..units import same_dimension, to_si
 from .damper import Damper
-from .errors import DamperFileError, ErdesignError
-from .fluid import Fluid
-from .geometry import Geometry
-from .units import same_dimension, to_si
 
 __all__ = ["load_damper", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
            "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS", "coil_fluid", "COIL_CURRENT_SPAN"]
@@ -172,8 +172,8 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
     outside that range warns); its power-law summary (``yield_stress``, ``yield_exponent``) is fitted to it over
     (0, rated current], so the file must not give those two keys.
     """
-    from .magnetics import build_circuit, coil_from_table
-    from .magnetics.law import coil_law
+    from ..magnetics import build_circuit, coil_from_table
+    from ..magnetics.law import coil_law
 
     table = _check_keys(data["fluid"], FLUID_KEYS, "fluid")
     for key in _COIL_COMPUTED_KEYS:
@@ -195,7 +195,7 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
                               f"{table['reference_field']!r}")
     if I_ref > 20.0:
         import warnings
-        from .errors import ValidityWarning
+        from ..errors import ValidityWarning
         warnings.warn(f"fluid.reference_field: a rated coil current of {I_ref:.3g} A is implausibly large for an "
                       "MR damper coil; check the unit", ValidityWarning, stacklevel=3)
     coil = coil_from_table(data["coil"])

@@ -36,11 +36,11 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from ._util import scalar_or_array
-from .flow.annulus_bingham import annulus_bingham_flow
-from .flow.bingham import bingham_slit_flow
-from .flow.mixed_mode import mixed_mode_damper_force
-from .flow.newtonian import slit_pressure_drop
+from .._util import scalar_or_array
+from ..flow.annulus_bingham import annulus_bingham_flow
+from ..flow.bingham import bingham_slit_flow
+from ..flow.mixed_mode import mixed_mode_damper_force
+from ..flow.newtonian import slit_pressure_drop
 
 if TYPE_CHECKING:  # pragma: no cover
     from .damper import Damper

@@ -42,9 +42,9 @@ from typing import Any
 import numpy as np
 import pint
 
-from .errors import ErdesignError, ErdesignWarning
-from .fluid import CONTROL_UNITS
-from .units import Q_, dimension_name, ureg
+from ..errors import ErdesignError, ErdesignWarning
+from ..fluid import CONTROL_UNITS
+from ..units import Q_, dimension_name, ureg
 
 __all__ = ["Measurement", "MeasurementError", "read_measurement", "write_measurement", "derivatives",
            "clipped_samples", "check_record", "check_against_damper", "COLUMNS", "CONTROL_COLUMNS"]
@@ -678,7 +678,7 @@ def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> li
 
     Returns the warning messages (issued as warnings too unless ``warn`` is False).
     """
-    from .errors import PlausibilityWarning
+    from ..errors import PlausibilityWarning
 
     name = record.name or "record"
     unit = lambda col, si: record.units.get(col, si)  # noqa: E731
@@ -720,7 +720,7 @@ def check_against_damper(record: "Measurement", damper, *, warn: bool = True) ->
     """The checks of :func:`check_record` that need the damper only (:func:`read_measurement` has done the others):
     a control beyond any the fluid takes (error), a stroke beyond the damper's size, a force far from what the
     damper file predicts at the record's motion and control.  Returns the warning messages."""
-    from .errors import PlausibilityWarning
+    from ..errors import PlausibilityWarning
 
     out = _check_against_damper(record, damper)
     if warn:

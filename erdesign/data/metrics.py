@@ -18,7 +18,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy import trapezoid
 
-from .errors import ErdesignError
+from ..errors import ErdesignError
 
 __all__ = ["energy_per_cycle", "equivalent_damping", "esr", "objective_j", "difference_signal", "loops", "Loops"]
 
@@ -150,7 +150,7 @@ def loops(record, force_model=None, *, last_cycles: float | None = None, frequen
     the excitation at ``frequency`` [Hz].
 
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 201); r = Measurement.from_arrays(t, np.sin(2 * np.pi * t), np.cos(2 * np.pi * t))
     >>> len(loops(r, last_cycles=1, frequency=1.0).displacement)
     101

@@ -32,8 +32,8 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from .._util import scalar_or_array
+from ..damper.quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, mixed_state, valve_state
 from ..geometry import THIN_GAP_LIMIT, mixed_mean_diameter
-from ..quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, mixed_state, valve_state
 from . import envelope
 from .figures import FIGURES, OBJECTIVES, Figure
 

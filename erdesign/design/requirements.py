@@ -72,7 +72,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from ..damper_file import parse_fluid_table, read_toml
+from ..damper.files import parse_fluid_table, read_toml
 from ..errors import ErdesignError
 from ..fluid import Fluid
 from ..geometry import CONFIGURATIONS
@@ -403,7 +403,7 @@ def _parse(data: Mapping[str, Any]) -> Requirements:
 def _parse_coil(table: Any, fluid_table: Mapping[str, Any]):
     """The fluid (controlled by the coil current), seal friction, :class:`CoilDesign` and the coil's bounds."""
     from .. import materials
-    from ..damper_file import POWER_LAW_KEYS
+    from ..damper.files import POWER_LAW_KEYS
 
     where = "design.coil"
     table = _table(table, where, _COIL_KEYS)

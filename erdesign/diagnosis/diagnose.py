@@ -31,16 +31,16 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from .damper import Damper
-from .effects import EFFECT_NAMES, EFFECTS, EffectError, parse_effect_names
-from .effects.base import peak_speed, reversal_count
-from .errors import ErdesignError
-from .fit import FitResult, fit
-from .measurement import Measurement
-from .metrics import esr
-from .models.base import Model
-from .noise import force_noise_esr, noise_floor_esr, sign_known, velocity_noise
-from .physics import PhysicsDamper, check_control
+from ..damper import Damper
+from ..data.measurement import Measurement
+from ..data.metrics import esr
+from ..data.noise import force_noise_esr, noise_floor_esr, sign_known, velocity_noise
+from ..effects import EFFECT_NAMES, EFFECTS, EffectError, parse_effect_names
+from ..effects.base import peak_speed, reversal_count
+from ..effects.chain import PhysicsDamper, check_control
+from ..errors import ErdesignError
+from ..identification.fit import FitResult, fit
+from ..models.base import Model
 
 __all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
            "improve", "fitted_model", "parameters_at_bounds", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD",
@@ -114,7 +114,7 @@ def fitted_model(result: FitResult) -> PhysicsDamper:
     velocity is known, through a wrapper whose ``simulate`` returns those samples only; this unwraps it.
 
     >>> from erdesign import load_example
-    >>> from erdesign.rig import run_rig, sine
+    >>> from erdesign.simulation.rig import run_rig, sine
     >>> record = run_rig(load_example("makris"), sine(0.005, 2.0, 3e6, cycles=2, rate=200), seed=1).record
     >>> d = diagnose(load_example("makris"), record, candidates=["seal_friction"])
     >>> model = fitted_model(d.baseline)
@@ -906,7 +906,7 @@ def improve(damper: Damper, record: Measurement, effects: Sequence[str] | str = 
     Examples
     --------
     >>> from erdesign import load_example
-    >>> from erdesign.rig import run_rig, sweep
+    >>> from erdesign.simulation.rig import run_rig, sweep
     >>> motion = sweep([0.005], [2.0], [0.0, 3e6], cycles=2, rate=200)     # friction and yield stress apart
     >>> rig = run_rig(load_example("makris"), motion, hidden={"seal_friction": {"friction_force": 400.0}},
     ...               viscosity_factor=1.2, seed=2)

@@ -39,8 +39,8 @@ from scipy.special import erf
 
 from ..constitutive.makris import affine_recurrence
 from ..damper import Damper
+from ..data.measurement import Measurement
 from ..errors import ErdesignError
-from ..measurement import Measurement
 from ..parameters import Parameter
 
 __all__ = ["Effect", "EffectError", "GapLaw", "STAGES", "relaxation_filter", "reversal_count", "sign_expectation"]

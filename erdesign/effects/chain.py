@@ -55,19 +55,19 @@ import math
 
 import numpy as np
 
-from .damper import Damper
-from .effects import EFFECTS, EffectError, parse_effect_names
-from .effects.base import STAGES, GapLaw, sign_expectation
-from .effects.compressibility import DuctLaw
-from .effects.shear_thinning import herschel_bulkley_pressure_drop
-from .errors import ErdesignError
-from .flow.bingham import bingham_slit_flow
-from .flow.mixed_mode import couette_poiseuille_bingham
-from .fluid import CONTROL_UNITS
-from .measurement import Measurement
-from .models.base import Model, Parameter
-from .noise import velocity_noise
-from .quasi_steady import damper_state
+from ..damper import Damper
+from . import EFFECTS, EffectError, parse_effect_names
+from .base import STAGES, GapLaw, sign_expectation
+from .compressibility import DuctLaw
+from .shear_thinning import herschel_bulkley_pressure_drop
+from ..errors import ErdesignError
+from ..flow.bingham import bingham_slit_flow
+from ..flow.mixed_mode import couette_poiseuille_bingham
+from ..fluid import CONTROL_UNITS
+from ..data.measurement import Measurement
+from ..models.base import Model, Parameter
+from ..data.noise import velocity_noise
+from ..damper.quasi_steady import damper_state
 
 __all__ = ["PhysicsDamper", "BASE_PARAMETERS", "check_control", "HEATING_PASSES", "SINGLE_STAGES"]
 
@@ -115,7 +115,7 @@ class PhysicsDamper(Model):
     --------
     >>> import numpy as np
     >>> from erdesign import load_example
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 1, 501); x = 0.005 * np.sin(2 * np.pi * 2 * t)
     >>> rec = Measurement.from_arrays(t, x, control=3e6, control_kind="electric field")
     >>> model = PhysicsDamper(load_example("makris"), ["seal_friction"])

@@ -35,10 +35,10 @@ from typing import Any
 
 import numpy as np
 
-from ._util import scalar_or_array
-from .errors import PlausibilityWarning, UnitError, ValidityWarning
+from .._util import scalar_or_array
+from ..errors import PlausibilityWarning, UnitError, ValidityWarning
+from ..units import Q_, _parse, dimension_name, to_si, ureg
 from .field_laws import FieldLaw, PowerLaw
-from .units import Q_, _parse, dimension_name, to_si, ureg
 
 __all__ = ["Fluid", "CONTROL_UNITS", "control_kind", "PLAUSIBLE_CONTROL", "FLUID_RANGES"]
 

@@ -23,10 +23,10 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from .errors import ErdesignError
-from .measurement import Measurement
-from .metrics import esr
-from .models.base import Model, ParameterError
+from ..data.measurement import Measurement
+from ..data.metrics import esr
+from ..errors import ErdesignError
+from ..models.base import Model, ParameterError
 
 __all__ = ["fit", "FitResult", "FitError", "evaluate"]
 

@@ -12,12 +12,12 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from .errors import ErdesignError
-from .models._kernels import coarse_steps, frozen_substeps
+from ..data.measurement import Measurement
+from ..data.metrics import esr
+from ..errors import ErdesignError
+from ..models._kernels import coarse_steps, frozen_substeps
+from ..models.base import Model
 from .fit import FitError, FitResult, fit
-from .measurement import Measurement
-from .metrics import esr
-from .models.base import Model
 
 __all__ = ["identify", "identify_joint", "cross_validation", "CrossValidation", "JointResult",
            "choose_control_reference", "score", "simulate", "Simulation", "resolve_parameters", "ParameterSource",
@@ -367,8 +367,8 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     """
     from scipy.optimize import least_squares
 
+    from ..data.measurement import clipped_samples
     from .fit import _finite_box, _Transform, _uncertainty
-    from .measurement import clipped_samples
 
     t_start = _time.monotonic()
     deadline = None if max_time is None else t_start + float(max_time)
@@ -763,7 +763,7 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     far (``success`` False); ``exclude_clipped`` leaves each record's flat-top force samples out of the residual
     and the scores; ``progress`` (a callable taking a string) receives a line every few seconds.
     """
-    from .measurement import clipped_samples
+    from ..data.measurement import clipped_samples
 
     t_start = _time.monotonic()
     deadline = None if max_time is None else t_start + float(max_time)
@@ -978,8 +978,8 @@ class Simulation:
 
 
 def _control_reference_from_text(text: str, record: Measurement, where: str) -> float:
-    from .fluid import CONTROL_UNITS
-    from .units import Q_
+    from ..fluid import CONTROL_UNITS
+    from ..units import Q_
     try:
         q = Q_(text)
         return float(q.to(CONTROL_UNITS[record.control_kind]).magnitude)
@@ -998,7 +998,7 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
     """
     import json
     from pathlib import Path
-    from .models.published import parse_parameter_list, parse_parameter_values, published_set
+    from ..models.published import parse_parameter_list, parse_parameter_values, published_set
     notes: list[str] = []
     kind = record.control_kind
     path = Path(spec)
@@ -1060,7 +1060,7 @@ def simulate(model: Model, record: Measurement, values: Mapping[str, float], *, 
              source: ParameterSource | None = None) -> Simulation:
     """Run ``model`` with ``values`` on the record's motion and control (from rest at the first sample) and score
     it against the record's force (all samples, or without the clipped ones when ``exclude_clipped``)."""
-    from .measurement import clipped_samples
+    from ..data.measurement import clipped_samples
     F = record.require_force()
     force = model.simulate(record, values)
     clipped = clipped_samples(F)
@@ -1193,7 +1193,7 @@ def read_records(path, fmt: str = "auto", where: str = "MEASUREMENT") -> list[Me
     Quiroz sinusoid; anything else is read as a measurement CSV.  Errors name ``where`` and the file.
     """
     from pathlib import Path
-    from .measurement import read_measurement
+    from ..data.measurement import read_measurement
     if fmt not in RECORD_FORMATS:
         raise ErdesignError(f"--format: {fmt!r} is not one of {', '.join(RECORD_FORMATS)}")
     path = Path(path)
@@ -1288,7 +1288,7 @@ def real_data_study(folder, *, models: Sequence[str] = tuple(QUIROZ_STUDY_MODELS
     docs/real_data.md.
     """
     import time as _time
-    from .models.registry import get_model
+    from ..models.registry import get_model
     records = records if records is not None else [read_quiroz_sinusoid(folder, test, i) for test, _ in QUIROZ_TESTS
                                                    for i in QUIROZ_CURRENTS]
     validation = validation if validation is not None else read_quiroz_validation(folder, step=validation_step)
@@ -1319,7 +1319,7 @@ def real_data_study(folder, *, models: Sequence[str] = tuple(QUIROZ_STUDY_MODELS
 def quiroz_hidden_constants(folder, records: Sequence[Measurement]) -> tuple[float, float]:
     """The two constants the source's Simulink model hides, A and beta / gamma (n = 2), by least squares on
     ``records`` with all of the source's published parameters held: (A, beta_ratio)."""
-    from .models.registry import get_model
+    from ..models.registry import get_model
     model = get_model("bouc_wen_modified")
     base = [{**model.defaults(), **quiroz_source_values(folder, float(r.control[0]))} for r in records]
     scale = [1.0 / max(float(np.std(r.require_force())), 1e-12) for r in records]

@@ -19,10 +19,10 @@ from typing import Mapping
 import numpy as np
 from scipy.optimize.elementwise import find_root
 
-from .errors import ErdesignError
-from .measurement import Measurement
-from .models.base import Model
-from .models.friction import LuGreModified, lugre_state
+from ..data.measurement import Measurement
+from ..errors import ErdesignError
+from ..models.base import Model
+from ..models.friction import LuGreModified, lugre_state
 
 __all__ = ["inverse_control", "InverseResult", "InverseError"]
 

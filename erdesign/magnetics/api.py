@@ -153,7 +153,7 @@ def circuit_from_damper_dict(data: Mapping[str, Any]) -> _Circuit:
 
 def load_magnetic_circuit(path: str | Path) -> _Circuit:
     """The circuit of a damper file with a ``[coil]`` (errors start with the file name)."""
-    from ..damper_file import read_toml
+    from ..damper.files import read_toml
 
     try:
         return circuit_from_damper_dict(read_toml(path))

@@ -58,7 +58,7 @@ import numpy as np
 from scipy.optimize import elementwise
 
 from ..errors import DamperFileError, ErdesignError, ValidityWarning
-from ..field_laws import FieldLaw
+from ..fluid.field_laws import FieldLaw
 from .bh import MU0, BHCurve
 from .coil import MAX_FILL_FACTOR, Coil, coil_resistance
 

@@ -21,7 +21,7 @@ def circuit_curves(damper, points: int = 61, span: float = 1.5):
 def coil_curves_figure(curves, rated_current: float | None = None):
     """Gap flux density B_g(I) and yield stress tau_y(I) against coil current, with the knee and the rated current.
 
-    >>> from erdesign.damper_file import load_example
+    >>> from erdesign.damper.files import load_example
     >>> d = load_example("mr_coil")
     >>> fig = coil_curves_figure(circuit_curves(d, points=7), 2.0)
     >>> [t.name for t in fig.data]

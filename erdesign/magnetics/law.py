@@ -32,7 +32,7 @@ from scipy.interpolate import PchipInterpolator
 
 from .._util import scalar_or_array
 from ..errors import ErdesignError
-from ..field_laws import FieldLaw
+from ..fluid.field_laws import FieldLaw
 from .coil import current_rise_time
 
 __all__ = ["CoilLaw", "coil_law", "TABLE_POINTS"]
@@ -45,7 +45,7 @@ TABLE_POINTS = 601
 class CoilLaw(FieldLaw):
     """tau_y(I) [Pa] through a magnetic circuit; control in A.  Build it with :func:`coil_law`.
 
-    >>> from erdesign.damper_file import load_example
+    >>> from erdesign.damper.files import load_example
     >>> law = load_example("mr_coil").fluid.yield_law
     >>> type(law).__name__, round(float(law.gap_flux_density(2.0)), 3), round(float(law.yield_stress(2.0)))
     ('CoilLaw', 0.524, 27208)

@@ -58,7 +58,7 @@ else:  # pragma: no cover
 import pint
 
 from ..errors import ErdesignError
-from ..field_laws import FieldLaw, control_unit_of, field_law_from_dict
+from ..fluid.field_laws import FieldLaw, control_unit_of, field_law_from_dict
 from ..units import Q_, to_si
 
 __all__ = ["names", "load", "fluid_values", "steel_names", "load_steel", "steel_curve", "magnetization_curve", "material_fluid", "MaterialFluid", "summary", "check_record",

@@ -38,7 +38,7 @@ class EyringPlastic(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> bool(np.all(np.isfinite(EyringPlastic().simulate(rec))))
     True
@@ -94,7 +94,7 @@ class WengArctan(ControlAffineModel):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = WengArctan().simulate(rec, {"f_y": 500.0, "c_b": 0.0, "k": 1e6, "v0": 0.0})
     >>> round(float(F.max()), 0)
@@ -155,7 +155,7 @@ class KwokTanh(ControlAffineModel):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = KwokTanh().simulate(rec, {"k": 0.0, "c": 0.0, "alpha": 700.0, "beta": 1e4, "delta": 0.0})
     >>> round(float(F.max()), 0)
@@ -221,7 +221,7 @@ class MagicFormula(ControlAffineModel):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = MagicFormula().simulate(rec, {"D": 800.0, "C": 1.0, "E": 0.0, "B": 1e5, "A": 0.0, "k_c": 0.0})
     >>> round(float(F.max()), 1)

@@ -12,9 +12,9 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
+from ..data.measurement import Measurement
 from ..errors import ErdesignError
 from ..parameters import Parameter, ParameterError
-from ..measurement import Measurement
 
 __all__ = ["ControlAffineModel", "Parameter", "Model", "ParameterError", "ModelInputError"]
 

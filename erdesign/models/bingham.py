@@ -34,7 +34,7 @@ class Bingham(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 1, 201); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = Bingham().simulate(rec, {"c0": 5000.0, "f_c": 670.0})   # Butz and von Stryk (2002) section 4.2
     >>> bool(abs(F.max() - (670 + 5000 * 0.02 * np.pi)) < 1.0)   # f_c + c0 v_max
@@ -124,7 +124,7 @@ class BinghamExtended(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = BinghamExtended().simulate(rec)
     >>> bool(np.all(np.isfinite(F)))

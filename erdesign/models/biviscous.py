@@ -69,7 +69,7 @@ class Biviscous(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> bool(np.all(np.abs(Biviscous().simulate(rec)) <= 1000 + 5000 * 0.0629))
     True
@@ -125,7 +125,7 @@ class BiviscousHysteretic(Biviscous):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = BiviscousHysteretic().simulate(rec, {"v0": 0.005})
     >>> bool(np.all(np.isfinite(F)))

@@ -59,7 +59,7 @@ class BoucWen(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = BoucWen().simulate(rec)
     >>> z_max = (207 / 4e6) ** 0.5   # saturation of z: (delta / (beta + gamma))^(1/n)
@@ -150,7 +150,7 @@ class BoucWenModified(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 4001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = BoucWenModified().simulate(rec)
     >>> 500 < float(F.max()) < 1500   # about alpha z_max + c0 v: some 1 kN for Spencer's damper at 63 mm/s
@@ -240,7 +240,7 @@ class BoucWenNormalized(ControlAffineModel):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> m = BoucWenNormalized(); w = m.hysteretic_state(rec, m.defaults())
     >>> bool(np.max(np.abs(w)) <= 1.0 + 1e-9)

@@ -38,7 +38,7 @@ class Chebyshev(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 801); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> rec = rec.with_force(3000 * rec.velocity + 2e4 * rec.displacement)
     >>> m = Chebyshev(degree=2); g = m.initial_guess(rec)

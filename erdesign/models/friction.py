@@ -66,7 +66,7 @@ class Dahl(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = Dahl().simulate(rec, {"k0": 0.0, "c0": 0.0, "f_d": 500.0, "rho": 1e4})
     >>> round(float(F.max()), 3)
@@ -121,7 +121,7 @@ class DahlViscous(ControlAffineModel):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> bool(np.all(np.isfinite(DahlViscous().simulate(rec))))
     True
@@ -175,7 +175,7 @@ class LuGre(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = LuGre().simulate(rec, {"sigma0": 1e7, "sigma1": 0.0, "sigma2": 0.0, "a0": 1 / 500})
     >>> round(float(F.max()), 2)
@@ -238,7 +238,7 @@ class LuGreModified(ControlAffineModel):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401)
     >>> rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=1.0, control_kind="voltage")
     >>> bool(np.all(np.isfinite(LuGreModified().simulate(rec))))

@@ -85,7 +85,7 @@ class KamathWereley6(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 0.3, 3001); rec = Measurement.from_arrays(t, 1e-3 * np.sin(2 * np.pi * 10 * t))
     >>> F = KamathWereley6().simulate(rec, KAMATH_WERELEY_TABLE1)   # Table 1, case 2
     >>> 50 < float(F.max()) < 200
@@ -147,7 +147,7 @@ class KamathWereley4(KamathWereley6):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 0.3, 3001); rec = Measurement.from_arrays(t, 0.5e-3 * np.sin(2 * np.pi * 10 * t))
     >>> case1 = {"C1": 3.102e3, "C2": 2.025e4, "K1": 1.240e5, "Cv": 0.900e3, "alpha_y": 0.95}   # Table 1
     >>> bool(np.all(np.isfinite(KamathWereley4().simulate(rec, case1))))

@@ -77,7 +77,7 @@ class Maxwell(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = Maxwell().simulate(rec, {"C": 1.2e5, "K": 1e9})   # stiff spring: a dashpot
     >>> # F(0) = 0 (from rest), then it lags C v by lambda = C/K = 0.12 ms: about 6 N here
@@ -145,7 +145,7 @@ class BingMax(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> F = BingMax().simulate(rec, {"C": 1e4, "K": 1e9, "F_y": 500.0})
     >>> bool(np.max(np.abs(F - 1e4 * rec.velocity - 500 * np.sign(rec.velocity))[1:]) < 0.1)
@@ -210,7 +210,7 @@ class MaxwellNeural(Maxwell):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 801); x = 0.01 * np.sin(2 * np.pi * t)
     >>> rec = Measurement.from_arrays(t, x); v = rec.velocity
     >>> rec = rec.with_force(1e4 * v + 300 * np.tanh(v / 0.01))

@@ -28,7 +28,7 @@ class Powell(Model):
     Examples
     --------
     >>> import numpy as np
-    >>> from erdesign.measurement import Measurement
+    >>> from erdesign.data.measurement import Measurement
     >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     >>> bool(np.all(np.isfinite(Powell().simulate(rec))))
     True

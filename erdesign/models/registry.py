@@ -33,12 +33,12 @@ def _physics(damper=None, effects=(), **options) -> Model:
     """The physics damper (:class:`erdesign.physics.PhysicsDamper`) of a damper file with effects, as a Model."""
     # imported here: the physics damper loads scipy's root finders and the compiled effects, which
     # `erdesign models` and the other models do not need
-    from ..physics import PhysicsDamper
+    from ..effects.chain import PhysicsDamper
 
     if damper is None:
         raise UnknownModelError("physics: needs the damper (--damper DAMPER.toml on the command line)")
     if isinstance(damper, str) or hasattr(damper, "__fspath__"):
-        from ..damper_file import load_damper
+        from ..damper.files import load_damper
         damper = load_damper(damper)
     model = PhysicsDamper(damper, effects=tuple(effects), **options)
     if "yield_stress_factor" in model.parameter_names and not model.control_parameters:

@@ -1,7 +1,7 @@
 """Unit-checked engineering reports on a damper (HTML or Markdown).
 
 >>> from erdesign.report import build_report, render_markdown
->>> from erdesign.damper_file import load_example
+>>> from erdesign.damper.files import load_example
 >>> report = build_report(load_example("makris"), velocity_range=("0 in/s", "1 in/s"), fields=["3 kV/mm"])
 >>> [c.status for c in report.checks]
 ['pass', 'pass', 'info', 'pass', 'pass']
@@ -13,6 +13,7 @@ report contains), :mod:`~erdesign.report.formatting` (the one unit helper every 
 :mod:`~erdesign.report.render` (jinja2 templates in ``templates/``).
 """
 
+from ..damper.curves import SineLoops, VelocitySweep, sine_loops, velocity_sweep
 from .builder import (
     Check,
     ErrorHistoryStep,
@@ -25,7 +26,6 @@ from .builder import (
 )
 from .formatting import Shown, pick_unit, show
 from .render import render_html, render_markdown, write_report
-from .sweep import SineLoops, VelocitySweep, sine_loops, velocity_sweep
 
 __all__ = [
     "build_report", "render_html", "render_markdown", "write_report",

@@ -43,13 +43,13 @@ import numpy as np
 
 from .. import materials
 from ..damper import CRITICAL_REYNOLDS, Damper
-from ..damper_file import damper_from_dict, read_toml
+from ..damper.curves import SineLoops, VelocitySweep, sine_loops, velocity_sweep
+from ..damper.files import damper_from_dict, read_toml
 from ..errors import ErdesignError, ValidityWarning
 from ..geometry import THIN_GAP_LIMIT
 from ..units import Q_, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
-from .sweep import SineLoops, VelocitySweep, sine_loops, velocity_sweep
 
 __all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison",
            "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
@@ -594,7 +594,8 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     -------
     Report
     """
-    from .. import __version__, plots
+    from .. import __version__
+    from . import plots
 
     with warnings.catch_warnings(record=True) as seen:
         warnings.simplefilter("always")
@@ -789,7 +790,7 @@ def compare_designs(report: Report, baseline: Report) -> dict:
 def with_baseline(report: Report, baseline: Report) -> Report:
     """``report`` with the comparison against ``baseline`` (:func:`compare_designs`) and the figure of both designs'
     force against velocity (this design solid, the baseline dashed) among its figures."""
-    from .. import plots
+    from . import plots
 
     b = baseline.sweep
     figure = FigureSpec("baseline", "Force versus velocity: this design and the baseline",

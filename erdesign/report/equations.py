@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..damper import Damper
-from ..field_laws import PowerLaw, SaturatingLaw, TabulatedLaw
+from ..fluid.field_laws import PowerLaw, SaturatingLaw, TabulatedLaw
 
 __all__ = ["Equation", "equations_for"]
 

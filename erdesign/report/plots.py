@@ -6,7 +6,7 @@ none computes physics.  Axes are labelled with their units, chosen once per axis
 1 and 1000 (:func:`erdesign.formatting.pick_unit`); conversions go through pint.
 
 >>> from erdesign import load_example
->>> from erdesign.report.sweep import velocity_sweep
+>>> from erdesign.damper.curves import velocity_sweep
 >>> sweep = velocity_sweep(load_example("makris"), np.linspace(0, 0.05, 11), [0.0, 3e6])
 >>> fig = force_velocity_figure(sweep)
 >>> [t.name for t in fig.data], fig.layout.yaxis.title.text
@@ -22,8 +22,8 @@ import numpy as np
 import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
-from .formatting import pick_unit
-from .units import Q_
+from ..formatting import pick_unit
+from ..units import Q_
 
 __all__ = [
     "MEASURED_STYLE",

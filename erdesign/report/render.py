@@ -50,7 +50,7 @@ def render_html(report: Report, image_format: str = "png") -> str:
     The camera button of each figure's toolbar saves it as ``<design>-<figure>.png`` (or ``.svg`` with
     ``image_format="svg"``), drawn by the reader's browser.
     """
-    from ..plots import export_config
+    from .plots import export_config
 
     figures = []
     for i, f in enumerate(report.figures):

@@ -22,12 +22,12 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from .damper import Damper
-from .effects import EFFECTS, parse_effect_names
-from .errors import ErdesignError
-from .measurement import Measurement
-from .physics import PhysicsDamper
-from .units import Q_
+from ..damper import Damper
+from ..data.measurement import Measurement
+from ..effects import EFFECTS, parse_effect_names
+from ..effects.chain import PhysicsDamper
+from ..errors import ErdesignError
+from ..units import Q_
 
 __all__ = ["Motion", "RigRecord", "sine", "sweep", "field_steps", "random_motion", "earthquake_motion",
            "run_rig", "OVERSAMPLING"]

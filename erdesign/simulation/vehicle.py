@@ -17,8 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .errors import ErdesignError
-from .models.bouc_wen import SPENCER_PASSIVE
+from ..errors import ErdesignError
+from ..models.bouc_wen import SPENCER_PASSIVE
 
 __all__ = ["QUARTER_CAR", "VehicleResponse", "simulate_quarter_car", "step_road", "bump_road", "settling_time"]
 

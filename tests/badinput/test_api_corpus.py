@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 import erdesign
+from erdesign.data.measurement import Measurement, check_against_damper, read_measurement
 from erdesign.errors import ErdesignError, PlausibilityWarning
 from erdesign.fluid import Fluid
 from erdesign.geometry import Geometry
-from erdesign.measurement import Measurement, check_against_damper, read_measurement
 
 GEO = dict(configuration="valve", duct_length="54.6 mm", duct_mean_diameter="14.3 mm", gap="0.8 mm",
            piston_diameter="33.4 mm", rod_diameter="11.25 mm")

@@ -9,8 +9,8 @@ line what the rig hid.  Run from the repository root: ``python examples/measurem
 from pathlib import Path
 
 from erdesign import load_example
-from erdesign.rig import field_steps, sweep
-from erdesign.truthrig import TruthDamper, simulate_truth
+from erdesign.simulation.rig import field_steps, sweep
+from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
 HERE = Path(__file__).resolve().parent
 

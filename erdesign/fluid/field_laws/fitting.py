@@ -7,7 +7,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import ErdesignError
+from ...errors import ErdesignError
 
 __all__ = ["PowerLawFit", "fit_power_law"]
 

@@ -9,9 +9,9 @@ from typing import Any
 
 import numpy as np
 
-from .._util import scalar_or_array
-from ..errors import UnitError
-from ..units import Q_, ureg
+from ..._util import scalar_or_array
+from ...errors import UnitError
+from ...units import Q_, ureg
 
 __all__ = ["power_law_yield_stress", "saturating_yield_stress", "carlson_yield_stress", "CARLSON_STRESS_COEFFICIENT",
            "CARLSON_VOLUME_EXPONENT", "CARLSON_FIELD_COEFFICIENT", "control_unit_of", "CONTROL_SI"]

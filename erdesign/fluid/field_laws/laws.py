@@ -8,9 +8,9 @@ from typing import ClassVar
 
 import numpy as np
 
-from .._util import scalar_or_array
-from ..errors import ErdesignError, UnitError
-from ..units import Q_
+from ..._util import scalar_or_array
+from ...errors import ErdesignError, UnitError
+from ...units import Q_
 from .fitting import PowerLawFit, fit_power_law
 from .kernels import CONTROL_SI, power_law_yield_stress, saturating_yield_stress
 

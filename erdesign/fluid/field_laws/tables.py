@@ -7,8 +7,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ErdesignError, UnitError
-from ..units import Q_, to_si
+from ...errors import ErdesignError, UnitError
+from ...units import Q_, to_si
 from .kernels import CARLSON_FIELD_COEFFICIENT, CARLSON_STRESS_COEFFICIENT, CARLSON_VOLUME_EXPONENT, control_unit_of
 from .laws import FieldLaw, PowerLaw, SaturatingLaw, TabulatedLaw
 

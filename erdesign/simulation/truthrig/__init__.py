@@ -6,8 +6,8 @@ fluid column, Herschel-Bulkley fluid, leakage bypass, gas accumulator, Stribeck 
 coil lag, viscous heating, Makris pre-yield elasticity, and four outside the effect library (rebound blow-off,
 single-ended rod, cavitation, free play).
 
->>> from erdesign.damper_file import load_example
->>> from erdesign.rig import sine
+>>> from erdesign.damper.files import load_example
+>>> from erdesign.simulation.rig import sine
 >>> truth = TruthDamper(load_example("makris"), {"bypass": {}, "coil_lag": {}}, yield_stress_factor=0.9)
 >>> rec = simulate_truth(truth, sine(0.005, 2.0, 3e6, cycles=2, rate=200), seed=0, name="case-001")
 >>> rec.measured.name, len(rec.true_force)

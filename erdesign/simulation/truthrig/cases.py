@@ -45,8 +45,8 @@ from typing import Mapping
 
 import numpy as np
 
-from ..damper import Damper
-from ..damper_file import load_example
+from ...damper import Damper
+from ...damper.files import load_example
 from ..rig import Motion, earthquake_motion, random_motion, sweep
 from .simulate import MIXED_MECHANISMS, UNSUPPORTED, UNSUPPORTED_MIXED
 

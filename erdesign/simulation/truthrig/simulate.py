@@ -43,9 +43,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..damper import Damper
-from ..errors import ErdesignError
-from ..measurement import CONTROL_COLUMNS, Measurement, read_measurement, write_measurement
+from ...damper import Damper
+from ...data.measurement import CONTROL_COLUMNS, Measurement, read_measurement, write_measurement
+from ...errors import ErdesignError
 from ..rig import Motion
 from . import kernels as K
 from .mechanisms import ATMOSPHERIC_PRESSURE, MECHANISMS, rod_area
@@ -126,7 +126,7 @@ class TruthDamper:
 
     Examples
     --------
-    >>> from erdesign.damper_file import load_example
+    >>> from erdesign.damper.files import load_example
     >>> truth = TruthDamper(load_example("makris"), {"coil_lag": {"time_constant": 0.05}, "bypass": {}})
     >>> sorted(truth.values), truth.values["coil_lag"]
     (['bypass', 'coil_lag'], {'time_constant': 0.05})
@@ -412,8 +412,8 @@ def simulate_truth(truth: TruthDamper, motion: Motion, *, force_noise: float = 0
 
     Examples
     --------
-    >>> from erdesign.damper_file import load_example
-    >>> from erdesign.rig import sine
+    >>> from erdesign.damper.files import load_example
+    >>> from erdesign.simulation.rig import sine
     >>> truth = TruthDamper(load_example("makris"), {"compliance": {}, "coil_lag": {}}, viscosity_factor=1.1)
     >>> rec = simulate_truth(truth, sine(0.005, 2.0, 3e6, cycles=2, rate=500), seed=1, name="case-001")
     >>> len(rec.measured), rec.measured.control_kind, round(float(abs(rec.true_force).max()), -2)

@@ -1,0 +1,11 @@
+"""Records of a damper and what they say: measurement files, other readers, noise floors, figures of merit.
+
+* :mod:`~erdesign.data.measurement` - :class:`~erdesign.data.measurement.Measurement`, measurement CSV files,
+  derivatives of the displacement;
+* :mod:`~erdesign.data.noise` - displacement, velocity and force noise, and the ESR noise alone would leave;
+* :mod:`~erdesign.data.metrics` - energy per cycle, equivalent damping, ESR (used by the damper's design figures
+  as well as by identification and diagnosis, hence here and not in :mod:`erdesign.identification`).
+
+Submodules are imported on use (``from erdesign.data.measurement import Measurement``); this package imports
+nothing, so that a module that needs one of them does not pay for the others.
+"""
