@@ -9,8 +9,8 @@ import pytest
 
 from erdesign.cli import main
 from erdesign.data.measurement import Measurement, write_measurement
+from erdesign.data.readers import read_records
 from erdesign.errors import ErdesignError
-from erdesign.identification.identify import read_records
 from erdesign.models.registry import get_model
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"

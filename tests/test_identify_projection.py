@@ -9,7 +9,8 @@ import pytest
 
 import erdesign.identification.identify as ident
 from erdesign.data.measurement import Measurement
-from erdesign.identification.identify import identify, quiroz_folder, read_quiroz_sinusoid
+from erdesign.data.quiroz import quiroz_folder, read_quiroz_sinusoid
+from erdesign.identification.identify import identify
 from erdesign.models.registry import get_model
 
 

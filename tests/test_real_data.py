@@ -12,9 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from erdesign.case_studies.quiroz import QUIROZ_STUDY_MODELS
 from erdesign.data.metrics import esr
-from erdesign.identification.identify import (QUIROZ_CURRENTS, QUIROZ_STUDY_MODELS, QUIROZ_TESTS, identify_joint,
-                                              quiroz_folder, read_quiroz_sinusoid, read_quiroz_validation)
+from erdesign.data.quiroz import QUIROZ_CURRENTS, QUIROZ_TESTS, quiroz_folder, read_quiroz_sinusoid, read_quiroz_validation
+from erdesign.identification.identify import identify_joint
 from erdesign.models.registry import get_model
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -13,9 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
-from erdesign.identification.identify import (QUIROZ_CURRENTS, QUIROZ_STUDY_MODELS, QUIROZ_TESTS,
-                                              QUIROZ_VALIDATION_CURRENTS, quiroz_folder, quiroz_source_values,
-                                              real_data_study)
+from erdesign.case_studies.quiroz import QUIROZ_STUDY_MODELS, quiroz_source_values, real_data_study
+from erdesign.data.quiroz import QUIROZ_CURRENTS, QUIROZ_TESTS, QUIROZ_VALIDATION_CURRENTS, quiroz_folder
 from erdesign.models.registry import get_model
 
 HERE = Path(__file__).resolve().parent

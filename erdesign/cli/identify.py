@@ -55,10 +55,11 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
              fmt: str, fix: str | None, starts: int, max_time: float | None, decimate: int, exclude_clipped: bool,
              validate: tuple[str, ...], projection: bool | None, quiet: bool, as_json: bool) -> None:
     """Identify a model's parameters from a measurement (simulation from rest at the first sample)."""
+    from ..data.readers import read_records
     from ..errors import ErdesignError
     from ..fluid import CONTROL_UNITS
     from ..identification.identify import (choose_control_reference, fit_report, identify_joint, joint_json,
-                                           joint_report, read_records, result_json)
+                                           joint_report, result_json)
     from ..identification.identify import identify as identify_model
     from ..identification.identify import simulate as run_model
     from ..models.published import parse_parameter_list, parse_parameter_values

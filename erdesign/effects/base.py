@@ -37,10 +37,10 @@ from typing import Callable, Mapping, NamedTuple
 import numpy as np
 from scipy.special import erf
 
-from ..constitutive.makris import affine_recurrence
 from ..damper import Damper
 from ..data.measurement import Measurement
 from ..errors import ErdesignError
+from ..numerics import affine_recurrence
 from ..parameters import Parameter
 
 __all__ = ["Effect", "EffectError", "GapLaw", "STAGES", "relaxation_filter", "reversal_count", "sign_expectation"]

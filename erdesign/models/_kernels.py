@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from ..constitutive.makris import affine_recurrence
+from ..numerics import affine_recurrence
 
 __all__ = ["first_order_lag", "dahl_state", "bouc_wen_state", "riccati_step", "modified_bouc_wen", "is_uniform"]
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..constitutive.makris import affine_recurrence
+from ..numerics import affine_recurrence
 from ._kernels import dahl_state
 from .base import ControlAffineModel, Model, Parameter
 

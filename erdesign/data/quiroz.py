@@ -1,0 +1,117 @@
+"""Readers of the Quiroz (2022) UTFSM data set: an MR damper at five coil currents (docs/case_studies/quiroz.md).
+
+The data set is not part of the repository: :func:`quiroz_folder` finds it in ``../shared/data/quiroz2022_utfsm_mr``
+beside the repository.  Six preprocessed sinusoids per current (:data:`QUIROZ_TESTS`, :func:`read_quiroz_file`) and
+an earthquake-type validation record (:func:`read_quiroz_mat`); the study that identifies models on them is
+:mod:`erdesign.case_studies.quiroz`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ErdesignError
+from .measurement import Measurement
+
+__all__ = ["QUIROZ_CURRENTS", "QUIROZ_VALIDATION_CURRENTS", "QUIROZ_TESTS", "QUIROZ_FILE_NAME", "quiroz_folder",
+           "read_quiroz_sinusoid", "read_quiroz_file", "read_quiroz_validation", "read_quiroz_mat"]
+
+#: Coil currents of the Quiroz (2022) UTFSM sinusoids [A] and of the columns 2-6 of its validation record.
+QUIROZ_CURRENTS = (0.0, 0.25, 0.5, 0.75, 1.0)
+QUIROZ_VALIDATION_CURRENTS = (0.2, 0.4, 0.6, 0.8, 1.0)
+#: The six sinusoids: amplitude [mm] and frequency [Hz] as in the file names ('x' is the decimal point).
+QUIROZ_TESTS = (("10mm1Hz", 1.0), ("25mm0x1Hz", 0.1), ("25mm0x25Hz", 0.25), ("25mm0x5Hz", 0.5), ("2mm5Hz", 5.0),
+                ("5mm3Hz", 3.0))
+
+
+def quiroz_folder(repository_root=None):
+    """The folder ``../shared/data/quiroz2022_utfsm_mr`` next to the repository (None when it is absent)."""
+    from pathlib import Path
+    root = Path(repository_root) if repository_root else Path(__file__).resolve().parents[2]
+    folder = root.parent / "shared" / "data" / "quiroz2022_utfsm_mr"
+    return folder if folder.is_dir() else None
+
+
+def _current_label(i: float) -> str:
+    return f"{i:g}".replace(".", "x") + "A"
+
+
+#: The stem of a preprocessed file's name, ``<amp>mm<freq>Hz<current>A`` ('x' for the decimal point).
+QUIROZ_FILE_NAME = r"(?P<amp>\d+(?:x\d+)?)mm(?P<freq>\d+(?:x\d+)?)Hz(?P<cur>\d+(?:x\d+)?)A"
+
+
+def read_quiroz_sinusoid(folder, test: str, current: float, *, cycles: float = 2.5,
+                         samples_per_cycle: int = 200) -> Measurement:
+    """One preprocessed sinusoid of the Quiroz (2022) MR damper by test name and current
+    (:func:`read_quiroz_file` on ``folder/preprocessed/<test><current>A.txt``)."""
+    from pathlib import Path
+    return read_quiroz_file(Path(folder) / "preprocessed" / f"{test}{_current_label(current)}.txt", cycles=cycles,
+                            samples_per_cycle=samples_per_cycle)
+
+
+def read_quiroz_file(path, *, cycles: float = 2.5, samples_per_cycle: int = 200) -> Measurement:
+    r"""One preprocessed sinusoid of the Quiroz (2022) MR damper, cropped and resampled for identification.
+
+    The file ``<amp>mm<freq>Hz<current>A.txt`` ('x' for the decimal point) holds t [s], x [mm], v [mm/s], F [N]
+    (see shared/data/README.md); frequency and coil current are read from its name.  The last ``cycles`` periods
+    are kept (the start of each test is a transient of the press) and resampled by linear interpolation to
+    ``samples_per_cycle`` per period (the 5 Hz test is stored at only 40 per period; the models take the motion as
+    linear between samples, so interpolation adds no information but keeps their time steps short).  The velocity
+    is derived from x (Savitzky-Golay), not taken from the file's finite difference.
+
+    Notes
+    -----
+    The source smoothed x and F alike with a causal moving average over a tenth of a period: both carry the same
+    lag (about 1/20 of a period), so the phase between them is kept, but sharp force changes at reversals are
+    rounded over that window - a floor on the ESR any model can reach.
+    """
+    import re
+    from pathlib import Path
+    path = Path(path)
+    match = re.fullmatch(QUIROZ_FILE_NAME, path.stem)
+    if match is None:
+        raise ErdesignError(f"{path}: not a Quiroz (2022) preprocessed file name (<amp>mm<freq>Hz<current>A.txt, "
+                            "'x' for the decimal point, e.g. 10mm1Hz0x5A.txt)")
+    freq, current = (float(match[k].replace("x", ".")) for k in ("freq", "cur"))
+    test = f"{match['amp']}mm{match['freq']}Hz"
+    try:
+        a = np.loadtxt(path, ndmin=2)
+    except ValueError as exc:
+        raise ErdesignError(f"{path}: not four whitespace-separated numeric columns t, x, v, F ({exc})") from None
+    if a.shape[1] != 4 or a.shape[0] < 10 or not np.all(np.isfinite(a)) or np.any(np.diff(a[:, 0]) <= 0):
+        raise ErdesignError(f"{path}: expected four numeric columns t [s], x [mm], v [mm/s], F [N] with increasing "
+                            f"time, got {a.shape[1]} columns and {a.shape[0]} rows")
+    period = 1.0 / freq
+    keep = a[:, 0] >= a[-1, 0] - cycles * period
+    t0 = a[keep, 0][0]
+    t = np.linspace(0.0, a[-1, 0] - t0, int(round((a[-1, 0] - t0) / period * samples_per_cycle)) + 1)
+    x = np.interp(t + t0, a[:, 0], a[:, 1]) * 1e-3
+    F = np.interp(t + t0, a[:, 0], a[:, 3])
+    return Measurement.from_arrays(t, x - x.mean(), F, control=current, control_kind="current",
+                                   name=f"{test} {current:g} A")
+
+
+def read_quiroz_validation(folder, *, step: int = 1) -> list[Measurement]:
+    """The earthquake-type validation record (validation/validacion.mat, 1 kHz): one record per current
+    (0.2 to 1.0 A), every ``step``-th sample (:func:`read_quiroz_mat`)."""
+    from pathlib import Path
+    return read_quiroz_mat(Path(folder) / "validation" / "validacion.mat", step=step)
+
+
+def read_quiroz_mat(path, *, step: int = 1) -> list[Measurement]:
+    """Quiroz's earthquake-type validation record (variable ``data``, 1 kHz: displacement [mm], then the force [N]
+    at 0.2, 0.4, 0.6, 0.8 and 1.0 A): one record per current, every ``step``-th sample."""
+    from scipy.io import loadmat
+    try:
+        data = loadmat(str(path))["data"][::step]
+    except (KeyError, ValueError, OSError) as exc:
+        raise ErdesignError(f"{path}: not Quiroz's validation file (a MATLAB file with a 'data' matrix of 6 "
+                            f"columns: {exc})") from None
+    if data.ndim != 2 or data.shape[1] != 1 + len(QUIROZ_VALIDATION_CURRENTS):
+        raise ErdesignError(f"{path}: 'data' has shape {data.shape}, expected (samples, 6): displacement [mm] and the "
+                            "force [N] at 0.2, 0.4, 0.6, 0.8, 1.0 A")
+    t = np.arange(data.shape[0]) * 1e-3 * step
+    x = data[:, 0] * 1e-3
+    return [Measurement.from_arrays(t, x, data[:, k + 1], control=i, control_kind="current",
+                                    name=f"earthquake {i:g} A")
+            for k, i in enumerate(QUIROZ_VALIDATION_CURRENTS)]
