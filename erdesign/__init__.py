@@ -122,3 +122,6 @@ class _Package(_types.ModuleType):
 
 
 _sys.modules[__name__].__class__ = _Package
+
+# The flat layout's module paths (``erdesign.fit`` ...) stay importable, with a deprecation warning.
+from . import _deprecated  # noqa: E402,F401
