@@ -15,7 +15,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from erdesign import load_example  # noqa: E402
 from erdesign.diagnosis.diagnose import diagnose  # noqa: E402
-from erdesign.simulation.rig import run_rig, sweep  # noqa: E402
+from erdesign.simulation.rig import run_rig, stepped_sine  # noqa: E402
 
 LIMIT = 60.0
 
@@ -29,7 +29,7 @@ def main() -> int:
     fields = [0.0, E, 0.6 * E, E, 0.0, 0.6 * E]
     cycles_per_segment = 60.0 / sum(1 / f for f in frequencies)
     t0 = time.perf_counter()
-    motion = sweep(amplitudes, frequencies, fields, cycles=cycles_per_segment, rate=1000.0)
+    motion = stepped_sine(amplitudes, frequencies, fields, cycles=cycles_per_segment, rate=1000.0)
     rig = run_rig(damper, motion, hidden={"seal_friction": {"friction_force": 600.0}}, viscosity_factor=1.2,
                   yield_stress_factor=0.8, seed=1)
     t1 = time.perf_counter()

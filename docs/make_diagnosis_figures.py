@@ -18,7 +18,7 @@ from erdesign.data.measurement import read_measurement
 from erdesign.diagnosis.diagnose import diagnose, fitted_model, improve
 from erdesign.report import ErrorHistoryStep
 from erdesign.report.plots import error_history_figure
-from erdesign.simulation.rig import sweep
+from erdesign.simulation.rig import stepped_sine
 from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
 
@@ -53,7 +53,7 @@ def _loops(record, d, title: str) -> go.Figure:
 def blowoff_record(damper):
     """The tutorial's record with a mechanism outside the effect library: the truth rig's rebound blow-off valve
     (default cracking force and damping) on a sweep over amplitude, frequency and field."""
-    motion = sweep([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=200)
+    motion = stepped_sine([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=200)
     return simulate_truth(TruthDamper(damper, {"blowoff": {}}), motion, seed=1, name="blowoff").measured
 
 

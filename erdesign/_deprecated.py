@@ -8,12 +8,13 @@ modules themselves (``import erdesign.truthrig.cases``).  docs/architecture.md h
 later release.  tests/test_layout.py checks every one, and that nothing in the repository imports one.
 """
 
+import functools
 import importlib
 import importlib.machinery
 import sys
 import warnings
 
-__all__ = ["MOVED", "MOVED_SUBMODULES", "RENAMED"]
+__all__ = ["MOVED", "MOVED_SUBMODULES", "RENAMED", "renamed"]
 
 #: Old module path -> the modules its names live in now (the warning names them all; the first is the main one).
 MOVED: dict[str, tuple[str, ...]] = {
@@ -42,8 +43,26 @@ MOVED_SUBMODULES: dict[str, tuple[str, ...]] = {
     "erdesign.truthrig": ("cases", "kernels", "mechanisms", "simulate", "valve"),
 }
 
-#: Names of an old path's ``__all__`` that the new modules keep only as deprecated aliases (old path -> names).
-RENAMED: dict[str, tuple[str, ...]] = {}
+#: Names of an old path's ``__all__`` that the new modules keep only as deprecated aliases (old path -> names):
+#: "sweep" named three things, now each named for what it is (docs/architecture.md).
+RENAMED: dict[str, tuple[str, ...]] = {
+    "erdesign.report.sweep": ("VelocitySweep", "velocity_sweep"),
+    "erdesign.rig": ("sweep",),
+}
+
+
+def renamed(function, old: str):
+    """A deprecated alias of ``function`` under its old name ``old`` (a dotted path): it warns, then calls it."""
+    new = f"{function.__module__}.{function.__name__}"
+
+    @functools.wraps(function)
+    def alias(*args, **kwargs):
+        warnings.warn(f"{old} is deprecated; use {new}", DeprecationWarning, stacklevel=2)
+        return function(*args, **kwargs)
+
+    alias.__name__ = alias.__qualname__ = old.rpartition(".")[2]
+    alias.__doc__ = f"Deprecated alias of :func:`{new}`."
+    return alias
 
 
 class _OldPath:

@@ -354,11 +354,11 @@ def truth_csv(tmp_path_factory):
     """CSV bytes of records of the truth rig (erdesign.truthrig, physics independent of the diagnosed model) on
     the Makris damper: ``clean`` (nothing missing) and ``blowoff`` (a rebound blow-off valve, outside the effect
     library).  Short sweeps at 100 samples/s keep each diagnosis to a fraction of a second."""
-    from erdesign.simulation.rig import sweep
+    from erdesign.simulation.rig import stepped_sine
     from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
     folder = tmp_path_factory.mktemp("truth")
-    motion = sweep([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
+    motion = stepped_sine([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
     out = {}
     for name, mechanisms in (("clean", {}), ("blowoff", {"blowoff": {}})):
         rec = simulate_truth(TruthDamper(load_example("makris"), mechanisms), motion, seed=1, name=name)

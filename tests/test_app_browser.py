@@ -155,11 +155,11 @@ def friction_csv(tmp_path_factory) -> Path:
     tests/test_cli_diagnose.py), displacement in inches and force in lbf as a user's file might have them."""
     from erdesign import load_example
     from erdesign.data.measurement import write_measurement
-    from erdesign.simulation.rig import run_rig, sweep
+    from erdesign.simulation.rig import run_rig, stepped_sine
 
-    rig = run_rig(load_example("makris"), sweep([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300),
-                  hidden={"seal_friction": {"friction_force": 800.0}}, viscosity_factor=1.2,
-                  yield_stress_factor=0.8, seed=1)
+    motion = stepped_sine([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300)
+    rig = run_rig(load_example("makris"), motion, hidden={"seal_friction": {"friction_force": 800.0}},
+                  viscosity_factor=1.2, yield_stress_factor=0.8, seed=1)
     path = tmp_path_factory.mktemp("measurement") / "friction-test.csv"
     write_measurement(path, rig.record, units={"displacement": "in", "force": "lbf", "field": "kV/mm"},
                       comment=rig.comment)

@@ -11,7 +11,7 @@ import erdesign.cli.fit  # noqa: F401
 from erdesign import load_example
 from erdesign.cli.main import main
 from erdesign.data.measurement import write_measurement
-from erdesign.simulation.rig import run_rig, sweep
+from erdesign.simulation.rig import run_rig, stepped_sine
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
 MAKRIS = str(ROOT / "examples" / "makris.toml")
@@ -21,7 +21,7 @@ MR = str(ROOT / "examples" / "mr_mixed.toml")
 @pytest.fixture(scope="module")
 def friction_csv(tmp_path_factory):
     d = load_example("makris")
-    motion = sweep([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300)
+    motion = stepped_sine([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300)
     rig = run_rig(d, motion, hidden={"seal_friction": {"friction_force": 800.0}}, viscosity_factor=1.2,
                   yield_stress_factor=0.8, seed=1)
     path = tmp_path_factory.mktemp("m") / "friction.csv"
@@ -89,7 +89,7 @@ def truth_csvs(tmp_path_factory):
     from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
     folder = tmp_path_factory.mktemp("truth")
-    motion = sweep([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
+    motion = stepped_sine([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
     return {name: str(simulate_truth(TruthDamper(load_example("makris"), mechanisms), motion, seed=1, name=name)
                       .write(folder / f"{name}.csv"))
             for name, mechanisms in (("clean", {}), ("blowoff", {"blowoff": {}}))}

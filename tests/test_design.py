@@ -25,7 +25,7 @@ from erdesign.design import (
     plug_fraction_at_dynamic_range,
     read_requirements,
     requirements_from_dict,
-    sweep,
+    sample_designs,
     valve_minimum_active_volume,
 )
 from erdesign.design.envelope import body_length, outer_diameter, total_fluid_volume
@@ -199,7 +199,7 @@ def test_makris_own_figures_give_a_feasible_family_that_contains_his_geometry():
     req = makris_own_requirements(0.02, samples=2**15)
     his = evaluate_candidates(req, **{k: [v] for k, v in MAKRIS_GEOMETRY.items()})
     assert his.feasible[0]
-    s = sweep(req)
+    s = sample_designs(req)
     feasible = s.feasible
     assert feasible.sum() >= 20
     dist = np.max([np.abs(np.log(getattr(s, k)[feasible] / v)) for k, v in MAKRIS_GEOMETRY.items()
@@ -247,7 +247,7 @@ def test_min_fluid_volume_reaches_the_valve_scaling_law_and_no_sample_beats_it()
         # the refinement's precision is under test: no rounding to a manufacturing grid
         "search": {"samples": 2**14, "gap_tolerance": "0 mm", "length_tolerance": "0 mm"}}})
     V_min = valve_minimum_active_volume(3000.0, 0.05, 3.0, 2000.0, 1.0)
-    s = sweep(req)
+    s = sample_designs(req)
     assert s.feasible.sum() > 10
     assert s.fluid_volume[s.feasible].min() >= V_min * (1 - 1e-12)
     # the law holds for every sample, feasible or not (its own F and D): an identity of the Bingham slit
@@ -334,7 +334,7 @@ def test_infeasible_requirements_name_the_conflict_and_the_nearest_design():
     assert near["violations"]["max_outer_diameter"] == pytest.approx(
         (d.geometry.piston_diameter + 0.01) / 0.04 - 1, rel=1e-9)
     # The relaxation counts agree with the sampled arrays (same seed, same samples).
-    s = sweep(req)
+    s = sample_designs(req)
     only_force = (s.margins[0] < 0) & (s.margins[1:] >= 0).all(axis=0)
     assert f"relaxing min_force (point 1) alone would admit {only_force.sum()} of 1024" in text
 

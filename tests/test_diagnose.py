@@ -14,14 +14,14 @@ from erdesign import load_example
 from erdesign.diagnosis.diagnose import DiagnosisError, diagnose, improve, residual_analysis, calibrate
 from erdesign.effects import EFFECT_NAMES, EFFECTS, EffectError
 from erdesign.effects.chain import PhysicsDamper
-from erdesign.simulation.rig import field_steps, run_rig, sine, sweep
+from erdesign.simulation.rig import field_steps, run_rig, sine, stepped_sine
 
 TRUE_FLUID = dict(viscosity_factor=1.2, yield_stress_factor=0.8)
 
 
 def _motion(damper, rate=300.0):
     E = damper.fluid.reference_field
-    return sweep([0.004, 0.008], [1.0, 2.5], [0.0, E, 0.6 * E], cycles=2, rate=rate)
+    return stepped_sine([0.004, 0.008], [1.0, 2.5], [0.0, E, 0.6 * E], cycles=2, rate=rate)
 
 
 def _hidden(damper, name, motion):
@@ -185,7 +185,7 @@ def test_force_column_off_by_a_unit_prefix_names_no_effect(factor):
     # the reason names the force column (exactly a factor 1000: the threshold must lie below it)
     import dataclasses
     damper = load_example("makris")
-    rec = run_rig(damper, sweep([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500),
+    rec = run_rig(damper, stepped_sine([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500),
                   hidden={"seal_friction": {"friction_force": 800.0}}, force_noise=0.02, seed=2).record
     assert diagnose(damper, rec).missing_effect == "seal_friction"
     result = diagnose(damper, dataclasses.replace(rec, force=rec.force * factor))

@@ -168,3 +168,37 @@ def test_nothing_imports_a_deprecated_path():
             if _is_deprecated(match.group(1)):
                 found.append(f"{path.relative_to(ROOT)}: {match.group(0).strip()}")
     assert not found, "imports of deprecated module paths:\n" + "\n".join(found)
+
+
+def test_the_three_sweeps_have_names_that_say_what_they_are():
+    """design.search.sweep sampled the design space, report.velocity_sweep made force-velocity curves, rig.sweep a
+    motion: each old name is a deprecated alias that warns and gives what the new name gives."""
+    import numpy as np
+
+    from erdesign import design, report
+    from erdesign.damper import curves
+    from erdesign.damper.files import load_example
+    from erdesign.design import search
+    from erdesign.simulation import rig
+
+    req = design.load_example_requirements("makris_requirements")
+    damper = load_example("makris")
+    v, E = np.linspace(0.0, 0.05, 6), np.array([0.0, 3e6])
+    cases = [(search.sweep, search.sample_designs, (req,), {"samples": 256, "seed": 1}, "erdesign.design.search.sweep"),
+             (report.velocity_sweep, curves.force_velocity_curves, (damper, v, E), {},
+              "erdesign.report.velocity_sweep"),
+             (rig.sweep, rig.stepped_sine, ([0.004, 0.008], [1.0, 2.0], [0.0, 3e6]), {"rate": 200},
+              "erdesign.rig.sweep")]
+    for old, new, args, kwargs, name in cases:
+        with pytest.warns(DeprecationWarning, match=f"^{name} is deprecated; use {new.__module__}.{new.__name__}$"):
+            got = old(*args, **kwargs)
+        expected = new(*args, **kwargs)
+        for field in ("force", "displacement"):
+            if hasattr(expected, field):
+                assert np.array_equal(getattr(got, field), getattr(expected, field))
+        assert old.__wrapped__ is new
+    assert report.VelocitySweep is curves.ForceVelocityCurves is report.ForceVelocityCurves
+    assert design.sweep is search.sweep and "sample_designs" in design.__all__
+    assert "sweep" not in rig.__all__ and "stepped_sine" in rig.__all__
+    # the motion still describes itself as the record files say ("sine sweep"), output text users parse
+    assert rig.stepped_sine([0.005], [2.0], [0.0], rate=200).description.startswith("sine sweep (2 cycles each)")

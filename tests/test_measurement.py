@@ -142,11 +142,11 @@ def test_derivative_of_a_sine_without_a_whole_number_of_cycles():
 @pytest.mark.parametrize("noise", [1e-3, 1e-2])
 def test_derivative_of_noisy_non_periodic_records(kind, noise):
     # The virtual rig's motions carry their exact velocity (differentiated on an 8 x finer grid).
-    from erdesign.simulation.rig import earthquake_motion, random_motion, sweep
+    from erdesign.simulation.rig import earthquake_motion, random_motion, stepped_sine
 
     m = {"random": lambda: random_motion(0.003, (0.5, 5.0), duration=4.0, rate=500.0, seed=1),
          "earthquake": lambda: earthquake_motion(0.01, rate=500.0, seed=2),
-         "sweep": lambda: sweep([0.004, 0.008], [1.0, 2.0], [0.0], cycles=2, rate=300.0)}[kind]()
+         "sweep": lambda: stepped_sine([0.004, 0.008], [1.0, 2.0], [0.0], cycles=2, rate=300.0)}[kind]()
     rng = np.random.default_rng(5)
     x = m.displacement + noise * np.max(np.abs(m.displacement)) * rng.standard_normal(m.time.size)
     v, _ = derivatives(m.time, x)

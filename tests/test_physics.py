@@ -8,7 +8,7 @@ from erdesign.data.measurement import Measurement
 from erdesign.diagnosis.diagnose import calibrate
 from erdesign.effects.chain import PhysicsDamper
 from erdesign.errors import ErdesignError
-from erdesign.simulation.rig import run_rig, sweep
+from erdesign.simulation.rig import run_rig, stepped_sine
 
 
 def _record(damper, field_fraction=1.0, rate=1000.0):
@@ -55,7 +55,7 @@ def test_calibration_round_trip_on_the_rig(example, effects):
     # simulate with known factors and effects (noise 0.5 % of the RMS force), fit, compare with the truth
     d = load_example(example)
     E = d.fluid.reference_field
-    motion = sweep([0.004, 0.008], [1.0, 2.5], [0.0, E, 0.6 * E], cycles=2, rate=300)
+    motion = stepped_sine([0.004, 0.008], [1.0, 2.5], [0.0, E, 0.6 * E], cycles=2, rate=300)
     hidden = {"seal_friction": {"friction_force": 400.0}, "compressibility": {"hydraulic_stiffness": 3e6},
               "gas_spring": {"gas_preload": 100.0, "gas_stiffness": 2e4}, "field_lag": {"field_time_constant": 0.02}}
     rig = run_rig(d, motion, hidden={e: hidden[e] for e in effects}, viscosity_factor=1.3, yield_stress_factor=0.7,

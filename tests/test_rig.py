@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from erdesign import load_example
-from erdesign.simulation.rig import OVERSAMPLING, earthquake_motion, field_steps, random_motion, run_rig, sine, sweep
+from erdesign.simulation.rig import (OVERSAMPLING, earthquake_motion, field_steps, random_motion, run_rig, sine,
+                                     stepped_sine)
 
 
 def test_sine_kinematics_are_exact():
@@ -18,7 +19,7 @@ def test_sine_kinematics_are_exact():
 
 
 def test_sweep_is_smooth_and_steps_the_field():
-    m = sweep([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1e6], cycles=2, rate=500)
+    m = stepped_sine([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1e6], cycles=2, rate=500)
     assert m.time[-1] == pytest.approx(2 / 1.0 + 2 / 2.5 + 2 / 1.0, abs=2e-3)
     assert set(np.unique(m.control)) == {0.0, 1e6, 3e6}
     # velocity continuous: no jump larger than a step's worth of the peak acceleration

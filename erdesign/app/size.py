@@ -2,8 +2,8 @@
 
 Inputs are values with units as text (``"0.8 mm"``, ``"2.15 in"``), read by pint through the library; the fluid may
 come from the materials database, any value of it overridden.  Outputs come from :meth:`erdesign.Damper.size`, the
-curves from :func:`erdesign.report.sweep.velocity_sweep` drawn by :mod:`erdesign.plots`, the sweep explorer from
-:func:`erdesign.app.state.geometry_sweep`.
+force-velocity curves from :func:`erdesign.damper.curves.force_velocity_curves` drawn by :mod:`erdesign.report.plots`,
+the sweep explorer (one geometry value varied) from :func:`erdesign.app.state.geometry_sweep`.
 """
 
 from __future__ import annotations
@@ -287,7 +287,7 @@ def _curves_csv(report) -> str:
             columns.append((f"dynamic range at {label}", "", row))
     for label, row in zip(sweep.field_labels(), sweep.reynolds):
         columns.append((f"Reynolds number at {label}", "", row))
-    return csv_text(columns, comment=f"quasi-steady curves of {report.title} (erdesign.report.sweep)")
+    return csv_text(columns, comment=f"quasi-steady curves of {report.title} (erdesign.damper.curves)")
 
 
 def _downloads(design: dict, report) -> None:

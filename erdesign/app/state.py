@@ -37,8 +37,8 @@ __all__ = [
     "chart_config", "image_format", "report_images", "widget", "forget", "example_spec",
     "current_spec", "set_spec", "default_design", "current_design", "set_design", "design_text", "design_report",
     "unit_system", "pinned_baseline", "report_inputs", "clean_message", "file_stem",
-    "spec_text", "build_damper", "damper_or_error", "caught", "velocity_sweep", "geometry_sweep", "GEOMETRY_SWEEPS",
-    "read_record",
+    "spec_text", "build_damper", "damper_or_error", "caught", "force_velocity_curves", "geometry_sweep",
+    "GEOMETRY_SWEEPS", "read_record",
     "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
     "render_report", "clear_caches", "material_names", "set_widget",
 ]
@@ -271,12 +271,14 @@ def material_names() -> list[str]:
 
 # ------------------------------------------------------------------------------------------------ sizing
 @st.cache_data(show_spinner=False, max_entries=64)
-def velocity_sweep(text: str, v_max: float, fields: tuple[float, ...], points: int = 81):
-    """:func:`erdesign.report.sweep.velocity_sweep` of the spec from 0 to ``v_max`` [m/s] at ``fields`` (SI)."""
-    from ..damper.curves import velocity_sweep as sweep
+def force_velocity_curves(text: str, v_max: float, fields: tuple[float, ...], points: int = 81):
+    """:func:`erdesign.damper.curves.force_velocity_curves` of the spec from 0 to ``v_max`` [m/s] at ``fields``
+    (SI)."""
+    from ..damper import curves
 
     damper, _ = build_damper(text)
-    return caught(lambda: sweep(damper, np.linspace(0.0, v_max, points), np.asarray(fields, dtype=float)))[0]
+    return caught(lambda: curves.force_velocity_curves(damper, np.linspace(0.0, v_max, points),
+                                                np.asarray(fields, dtype=float)))[0]
 
 
 #: Geometry values the sweep explorer varies: key -> label.
@@ -384,12 +386,12 @@ def example_record_bytes(name: str) -> bytes:
         return (resources.files("erdesign.examples") / "measurements" / name).read_bytes()
     from ..damper.files import load_example
     from ..data.measurement import write_measurement
-    from ..simulation.rig import run_rig, sweep
+    from ..simulation.rig import run_rig, stepped_sine
 
     hidden, viscosity_factor = RIG_EXAMPLES[name]
-    rig = run_rig(load_example("makris"), sweep([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500),
-                  hidden=hidden, viscosity_factor=viscosity_factor, force_noise=0.02, seed=2,
-                  name=name.replace(" ", "_"))
+    motion = stepped_sine([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500)
+    rig = run_rig(load_example("makris"), motion, hidden=hidden, viscosity_factor=viscosity_factor, force_noise=0.02,
+                  seed=2, name=name.replace(" ", "_"))
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "rig.csv"
         write_measurement(path, rig.record, units={"displacement": "mm", "field": "kV/mm"},
@@ -425,7 +427,7 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
     else:
         if kind in ("sine", "sweep"):       # the description prints the control in the fluid's unit (3 kV/mm)
             ex["control_unit"] = damper.fluid.field_unit
-        motion = {"sine": rig.sine, "sweep": rig.sweep, "earthquake": rig.earthquake_motion}[kind](**ex)
+        motion = {"sine": rig.sine, "sweep": rig.stepped_sine, "earthquake": rig.earthquake_motion}[kind](**ex)
         record = Measurement(time=motion.time, displacement=motion.displacement, force=None,
                              velocity=motion.velocity, acceleration=motion.acceleration, control=motion.control,
                              control_kind=damper.fluid.control, name=kind)
@@ -497,6 +499,6 @@ def report_images(text: str, system: str, comparison: tuple | None, history: tup
 
 def clear_caches() -> None:
     """Empty every cache of the app (tests call it between tests)."""
-    for fn in (velocity_sweep, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
+    for fn in (force_velocity_curves, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
                design_report, render_report, report_images):
         fn.clear()

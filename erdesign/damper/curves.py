@@ -1,7 +1,9 @@
-"""Sweeps of a damper over velocity and control: the numbers behind the report's tables and figures.
+"""The force-velocity curves of a damper over controls, and its sine loops: the numbers behind the report's tables
+and figures and the app's Size page.
 
-The sweeps call the library (:meth:`erdesign.Damper.state`, :meth:`erdesign.Damper.sine_response`) and hold SI
-arrays; they add no physics.  The figures of :mod:`erdesign.plots` and the Streamlit app take them as they are.
+They call the damper (:meth:`erdesign.Damper.state`, :meth:`erdesign.Damper.sine_response`) and hold SI arrays;
+they add no physics.  The figures of :mod:`erdesign.report.plots` and the Streamlit app take them as they are.
+(:func:`force_velocity_curves` was ``erdesign.report.sweep.velocity_sweep``, a deprecated alias now.)
 """
 
 from __future__ import annotations
@@ -11,15 +13,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._deprecated import renamed
 from ..errors import ValidityWarning
 from ..units import Q_
 from .damper import Damper, SineResponse
 
-__all__ = ["VelocitySweep", "velocity_sweep", "SineLoops", "sine_loops"]
+__all__ = ["ForceVelocityCurves", "force_velocity_curves", "SineLoops", "sine_loops"]
 
 
 @dataclass(frozen=True)
-class VelocitySweep:
+class ForceVelocityCurves:
     """Quasi-steady state of a damper on a grid of controls x velocities, SI arrays of shape (fields, velocities)."""
 
     velocity: np.ndarray
@@ -48,7 +51,7 @@ class VelocitySweep:
         return _labels(self.field, self.control_unit, self.field_unit)
 
 
-def velocity_sweep(damper: Damper, velocity, field) -> VelocitySweep:
+def force_velocity_curves(damper: Damper, velocity, field) -> ForceVelocityCurves:
     """The damper's quasi-steady state at every (control, velocity) pair, vectorised over both.
 
     Parameters
@@ -66,12 +69,18 @@ def velocity_sweep(damper: Damper, velocity, field) -> VelocitySweep:
     force = np.broadcast_to(s.force, (E.size, v.size))
     with np.errstate(divide="ignore", invalid="ignore"):
         dyn = np.where(s0.force != 0, force / np.where(s0.force != 0, s0.force, 1.0), np.nan)
-    return VelocitySweep(
+    return ForceVelocityCurves(
         velocity=v, field=E, control_unit=damper.fluid.control_unit, field_unit=damper.fluid.field_unit,
         force=np.array(force), pressure_drop=np.broadcast_to(s.pressure_drop, force.shape).copy(),
         zero_field_force=np.asarray(s0.force, dtype=float), dynamic_range=dyn,
         reynolds=np.broadcast_to(s.reynolds, force.shape).copy(),
         plug_fraction=np.broadcast_to(s.plug_fraction, force.shape).copy())
+
+
+#: Deprecated names of :class:`ForceVelocityCurves` and :func:`force_velocity_curves` ("sweep" also named a sample of
+#: the design space and a motion).
+VelocitySweep = ForceVelocityCurves
+velocity_sweep = renamed(force_velocity_curves, "erdesign.report.velocity_sweep")
 
 
 @dataclass(frozen=True)

@@ -20,7 +20,7 @@ import numpy as np
 from ..formatting import Shown, show
 from ..geometry import THIN_GAP_LIMIT
 from ..units import Q_
-from .curves import VelocitySweep
+from .curves import ForceVelocityCurves
 from .damper import Damper
 from .quasi_steady import CRITICAL_REYNOLDS
 
@@ -50,12 +50,13 @@ class Check:
     source: str
 
 
-def validity_checks(damper: Damper, sweep: VelocitySweep, fields: np.ndarray, v_design: float,
+def validity_checks(damper: Damper, sweep: ForceVelocityCurves, fields: np.ndarray, v_design: float,
                     field_design: float | None = None) -> tuple[Check, ...]:
     """The validity checks of a design (module notes): the report's section 4 and the app's Size page.
 
-    ``sweep`` is the velocity sweep of :func:`erdesign.report.builder.report_grid`'s grid; ``fields`` every control asked for (SI);
-    ``v_design`` the design velocity [m/s] and ``field_design`` the design control (SI; default the largest).
+    ``sweep`` holds the force-velocity curves on the grid of :func:`erdesign.report.builder.report_grid`; ``fields``
+    every control asked for (SI); ``v_design`` the design velocity [m/s] and ``field_design`` the design control (SI;
+    default the largest).
     """
     g, fluid = damper.geometry, damper.fluid
     out = []

@@ -9,7 +9,7 @@ One module per idea:
 * :mod:`~erdesign.design.sampling` - Sobol' / Latin-hypercube candidates over the bounds, chunk by chunk;
 * :mod:`~erdesign.design.pareto` - vectorised non-dominated filter;
 * :mod:`~erdesign.design.scaling` - the active-volume law of the valve damper (a lower bound the search must reach);
-* :mod:`~erdesign.design.search` - the workflow: chunked sweep, SLSQP refinement, ranking, conflicts;
+* :mod:`~erdesign.design.search` - the workflow: chunked sampling, SLSQP refinement, ranking, conflicts;
 * :mod:`~erdesign.design.result` - design records, JSON and CSV.
 
 Example
@@ -37,10 +37,11 @@ from .requirements import (
 )
 from .result import DesignResult
 from .scaling import plug_fraction_at_dynamic_range, valve_minimum_active_volume
-from .search import design, sweep
+from .search import design, sample_designs, sweep
 
 __all__ = [
     "design",
+    "sample_designs",
     "sweep",
     "read_requirements",
     "requirements_from_dict",

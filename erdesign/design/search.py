@@ -25,7 +25,8 @@ r"""Design synthesis: sweep the design space in chunks, refine the best designs,
    and by how much, which constraints every sample violates, and which constraints, relaxed alone or in pairs,
    would admit sampled designs.
 
-:func:`sweep` evaluates a whole sample at once and returns the arrays, for plots and studies.
+:func:`sample_designs` evaluates a whole sample at once and returns the arrays, for plots and studies (it was
+``sweep``, a deprecated alias now: "sweep" also named the force-velocity curves and a motion).
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import minimize
 
+from .._deprecated import renamed
 from ..geometry import mixed_mean_diameter
 from .evaluate import FIGURES, OBJECTIVES, CandidateFigures, Constraint, constraints_for, evaluate_candidates
 from .pareto import pareto_mask
@@ -43,7 +45,8 @@ from .requirements import COIL_VARIABLES, VARIABLES, Requirements
 from .result import DesignResult, design_record
 from .sampling import candidate_chunks
 
-__all__ = ["design", "sweep", "SAFETY", "PARETO_LIMIT", "FRONT_STORE", "SECONDARY", "TIE", "secondary_objective"]
+__all__ = ["design", "sample_designs", "sweep", "SAFETY", "PARETO_LIMIT", "FRONT_STORE", "SECONDARY", "TIE",
+           "secondary_objective"]
 
 #: The objective that breaks ties of each objective: a compact damper first, then a small fluid volume.
 SECONDARY = {
@@ -83,7 +86,7 @@ _NEAREST = 4         # samples kept as starts for the nearest infeasible design
 _MAX_STARTS = 8      # SLSQP runs at most (fewer for mixed, whose evaluation is slower)
 
 
-def sweep(req: Requirements, samples: int | None = None, seed: int | None = None) -> CandidateFigures:
+def sample_designs(req: Requirements, samples: int | None = None, seed: int | None = None) -> CandidateFigures:
     """Evaluate ``samples`` candidate geometries of ``req`` at once and return every figure as arrays.
 
     Memory grows with ``samples`` (about 40 (P + C) + 100 bytes per candidate for P design points and C
@@ -92,13 +95,16 @@ def sweep(req: Requirements, samples: int | None = None, seed: int | None = None
     Examples
     --------
     >>> from erdesign.design import load_example_requirements
-    >>> s = sweep(load_example_requirements("makris_requirements"), samples=4096)
+    >>> s = sample_designs(load_example_requirements("makris_requirements"), samples=4096)
     >>> len(s), s.force.shape, bool(s.feasible.any())
     (4096, (1, 4096), True)
     """
     n = req.search.samples if samples is None else samples
     (x,) = list(candidate_chunks(req, samples=n, chunk=max(n, 1024), seed=seed))
     return _evaluate(req, x)
+
+
+sweep = renamed(sample_designs, "erdesign.design.search.sweep")
 
 
 def _evaluate(req: Requirements, x: dict, constraints=None) -> CandidateFigures:

@@ -906,8 +906,8 @@ def improve(damper: Damper, record: Measurement, effects: Sequence[str] | str = 
     Examples
     --------
     >>> from erdesign import load_example
-    >>> from erdesign.simulation.rig import run_rig, sweep
-    >>> motion = sweep([0.005], [2.0], [0.0, 3e6], cycles=2, rate=200)     # friction and yield stress apart
+    >>> from erdesign.simulation.rig import run_rig, stepped_sine
+    >>> motion = stepped_sine([0.005], [2.0], [0.0, 3e6], cycles=2, rate=200)     # friction and yield stress apart
     >>> rig = run_rig(load_example("makris"), motion, hidden={"seal_friction": {"friction_force": 400.0}},
     ...               viscosity_factor=1.2, seed=2)
     >>> h = improve(load_example("makris"), rig.record, max_rounds=2)

@@ -8,12 +8,13 @@
 >>> "| damping constant C (zero field) | 120.3 kN·s/m | Makris eq 15 |" in render_markdown(report)
 True
 
-Layers: :mod:`~erdesign.report.sweep` (the numbers, from the library), :mod:`~erdesign.report.builder` (what a
+Layers: :mod:`erdesign.damper.curves` (the numbers, from the library), :mod:`~erdesign.report.builder` (what a
 report contains), :mod:`~erdesign.report.formatting` (the one unit helper every number goes through),
 :mod:`~erdesign.report.render` (jinja2 templates in ``templates/``).
 """
 
-from ..damper.curves import SineLoops, VelocitySweep, sine_loops, velocity_sweep
+from ..damper.curves import (ForceVelocityCurves, SineLoops, VelocitySweep, force_velocity_curves, sine_loops,
+                              velocity_sweep)
 from .builder import (
     Check,
     ErrorHistoryStep,
@@ -31,5 +32,5 @@ __all__ = [
     "build_report", "render_html", "render_markdown", "write_report",
     "Report", "Row", "InputRow", "Check", "Table", "MeasurementComparison", "ErrorHistoryStep",
     "Shown", "show", "pick_unit",
-    "VelocitySweep", "velocity_sweep", "SineLoops", "sine_loops",
+    "ForceVelocityCurves", "force_velocity_curves", "SineLoops", "sine_loops", "VelocitySweep", "velocity_sweep",
 ]

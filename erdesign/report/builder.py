@@ -38,7 +38,7 @@ import numpy as np
 
 from .. import materials
 from ..damper import CRITICAL_REYNOLDS, Damper
-from ..damper.curves import SineLoops, VelocitySweep, sine_loops, velocity_sweep
+from ..damper.curves import ForceVelocityCurves, SineLoops, force_velocity_curves, sine_loops
 from ..damper.files import damper_from_dict, read_toml
 from ..damper.validity import PLUG_FRACTION_LIMIT, SEAL_SHARE_LIMIT, Check, validity_checks
 from ..errors import ErdesignError, ValidityWarning
@@ -167,7 +167,8 @@ class Report:
     figures: tuple[FigureSpec, ...]
     comparison: Mapping[str, Any] | None
     history: tuple[ErrorHistoryStep, ...]
-    sweep: VelocitySweep = dc_field(repr=False)
+    sweep: ForceVelocityCurves = dc_field(repr=False)
+    """The force-velocity curves behind the figures (the field keeps its name: it is the report's API)."""
     loops: SineLoops = dc_field(repr=False)
     design_point: tuple[Row, ...] = ()
     """The design point (:func:`design_point_rows`): velocity, control and the figures the Size page shows."""
@@ -287,14 +288,14 @@ def _material_section(record: Mapping[str, Any] | None, damper: Damper) -> dict 
     }
 
 
-def _field_table(key: str, x_label: str, x: np.ndarray, x_si: str, x_kind: str, sweep: VelocitySweep,
+def _field_table(key: str, x_label: str, x: np.ndarray, x_si: str, x_kind: str, curves: ForceVelocityCurves,
                  values: np.ndarray, si_unit: str, kind: str, skip_zero: bool = False) -> Table:
     """A table of a figure's values at up to 11 of its points: x column, one column per control."""
     idx = np.unique(np.linspace(0, x.size - 1, min(_TABLE_POINTS, x.size)).round().astype(int))
     x_unit = pick_unit(Q_(x, x_si), x_kind)
     y_unit = pick_unit(Q_(values, si_unit), kind) if kind else ""
-    keep = [i for i, E in enumerate(sweep.field) if not (skip_zero and E == 0)]
-    labels = [sweep.field_labels()[i] for i in keep]
+    keep = [i for i, E in enumerate(curves.field) if not (skip_zero and E == 0)]
+    labels = [curves.field_labels()[i] for i in keep]
     unit_text = f" [{Q_(1.0, y_unit).units:~P}]" if y_unit else ""
     columns = (f"{x_label} [{Q_(1.0, x_unit).units:~P}]",) + tuple(f"{lab}{unit_text}" for lab in labels)
     rows = []
@@ -529,7 +530,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     if not (X0 > 0 and f > 0):
         raise ErdesignError("amplitude and frequency: must be positive")
 
-    sweep = velocity_sweep(damper, v, E)
+    curves = force_velocity_curves(damper, v, E)
     loops = sine_loops(damper, X0, f, E)
 
     v_unit = pick_unit(Q_(v, "m/s"), "velocity")
@@ -609,13 +610,13 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
 
     # --- figures
     figures = [
-        FigureSpec("pressure_drop", "Pressure drop versus velocity", plots.pressure_drop_figure(sweep),
-                   _field_table("pressure_drop", "velocity v", v, "m/s", "velocity", sweep, sweep.pressure_drop,
+        FigureSpec("pressure_drop", "Pressure drop versus velocity", plots.pressure_drop_figure(curves),
+                   _field_table("pressure_drop", "velocity v", v, "m/s", "velocity", curves, curves.pressure_drop,
                                 "Pa", "pressure")),
-        FigureSpec("force", "Force versus velocity", plots.force_velocity_figure(sweep),
-                   _field_table("force", "velocity v", v, "m/s", "velocity", sweep, sweep.force, "N", "force")),
-        FigureSpec("dynamic_range", "Dynamic range versus velocity", plots.dynamic_range_figure(sweep),
-                   _field_table("dynamic_range", "velocity v", v, "m/s", "velocity", sweep, sweep.dynamic_range,
+        FigureSpec("force", "Force versus velocity", plots.force_velocity_figure(curves),
+                   _field_table("force", "velocity v", v, "m/s", "velocity", curves, curves.force, "N", "force")),
+        FigureSpec("dynamic_range", "Dynamic range versus velocity", plots.dynamic_range_figure(curves),
+                   _field_table("dynamic_range", "velocity v", v, "m/s", "velocity", curves, curves.dynamic_range,
                                 "", "", skip_zero=True)),
         FigureSpec("sine_loops", "Force-displacement and force-velocity loops", plots.sine_loops_figure(loops),
                    _loop_table(loops), "quasi-steady response to the sine of the settings (energy and C_eqv in "
@@ -657,8 +658,9 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
         configuration=g.configuration, notes=tuple(notes), settings=tuple(settings), inputs=inputs,
         material=_material_section(record, damper), derived=tuple(derived), design_table=design_table,
         sine_table=sine_table, equations=tuple(equations_for(damper)),
-        checks=validity_checks(damper, sweep, E, v_design, E_design), figures=tuple(figures), comparison=comparison_data,
-        history=steps, sweep=sweep, loops=loops, design_point=design_point, validity_messages=messages,
+        checks=validity_checks(damper, curves, E, v_design, E_design), figures=tuple(figures),
+        comparison=comparison_data,
+        history=steps, sweep=curves, loops=loops, design_point=design_point, validity_messages=messages,
         magnetics=magnetics)
     return report if baseline is None else with_baseline(report, baseline)
 

@@ -1,14 +1,14 @@
 """Plotly figures of a damper's behaviour, shared by the report and the Streamlit app.
 
-Each builder takes the numbers the library computed (a :class:`~erdesign.report.sweep.VelocitySweep`, a
-:class:`~erdesign.report.sweep.SineLoops`, an error history) and returns a :class:`plotly.graph_objects.Figure`;
+Each builder takes the numbers the library computed (a :class:`~erdesign.damper.curves.ForceVelocityCurves`, a
+:class:`~erdesign.damper.curves.SineLoops`, an error history) and returns a :class:`plotly.graph_objects.Figure`;
 none computes physics.  Axes are labelled with their units, chosen once per axis so that the numbers read between
 1 and 1000 (:func:`erdesign.formatting.pick_unit`); conversions go through pint.
 
 >>> from erdesign import load_example
->>> from erdesign.damper.curves import velocity_sweep
->>> sweep = velocity_sweep(load_example("makris"), np.linspace(0, 0.05, 11), [0.0, 3e6])
->>> fig = force_velocity_figure(sweep)
+>>> from erdesign.damper.curves import force_velocity_curves
+>>> curves = force_velocity_curves(load_example("makris"), np.linspace(0, 0.05, 11), [0.0, 3e6])
+>>> fig = force_velocity_figure(curves)
 >>> [t.name for t in fig.data], fig.layout.yaxis.title.text
 (['E = 0 kV/mm', 'E = 3 kV/mm'], 'force F [kN]')
 """

@@ -1,18 +1,18 @@
 r"""A virtual test rig: measurements of a damper with hidden effects, perturbed fluid, noise and chosen excitations.
 
-The rig drives the physics damper (:class:`~erdesign.physics.PhysicsDamper`) with an exactly known motion and
+The rig drives the physics damper (:class:`~erdesign.effects.chain.PhysicsDamper`) with an exactly known motion and
 control, with the true fluid differing from the nominal one of the damper file (calibration factors), with any
 subset of the effect library switched on ("hidden") at chosen values, and adds white noise to the measured force and
 displacement.  The record it returns is what a test machine would write: time, noisy displacement, noisy force and
 the control; its velocity and acceleration are derived from the noisy displacement
-(:func:`erdesign.measurement.derivatives`), exactly as for a file read from disk, while the true force was computed
+(:func:`erdesign.data.measurement.derivatives`), exactly as for a file read from disk, while the true force was computed
 from the exact motion.
 
-Excitations (:class:`Motion`): :func:`sine`, :func:`sweep` (segments over amplitude, frequency and field with
-smooth transitions), :func:`field_steps` (a sine with the field switched on and off), :func:`random_motion`
-(band-limited Gaussian) and :func:`earthquake_motion` (Kanai-Tajimi filtered noise under a build-up / decay
-envelope).  Kinematics are computed on a grid eight times finer than the sampling and differentiated there, so the
-true velocity and acceleration are exact to about 1e-5.
+Excitations (:class:`Motion`): :func:`sine`, :func:`stepped_sine` (segments over amplitude, frequency and field
+with smooth transitions; it was ``sweep``), :func:`field_steps` (a sine with the field switched on and off),
+:func:`random_motion` (band-limited Gaussian) and :func:`earthquake_motion` (Kanai-Tajimi filtered noise under a
+build-up / decay envelope).  Kinematics are computed on a grid eight times finer than the sampling and differentiated
+there, so the true velocity and acceleration are exact to about 1e-5.
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
+from .._deprecated import renamed
 from ..damper import Damper
 from ..data.measurement import Measurement
 from ..effects import EFFECTS, parse_effect_names
@@ -29,7 +30,7 @@ from ..effects.chain import PhysicsDamper
 from ..errors import ErdesignError
 from ..units import Q_
 
-__all__ = ["Motion", "RigRecord", "sine", "sweep", "field_steps", "random_motion", "earthquake_motion",
+__all__ = ["Motion", "RigRecord", "sine", "stepped_sine", "field_steps", "random_motion", "earthquake_motion",
            "run_rig", "OVERSAMPLING"]
 
 #: Fine-grid factor for the exact kinematics.
@@ -90,11 +91,11 @@ def sine(amplitude: float, frequency: float, field: float = 0.0, *, cycles: floa
     >>> m.description
     'sine sweep (2 cycles each): 5 mm at 2 Hz, control 3 kV/mm'
     """
-    return sweep([amplitude], [frequency], [field], cycles=cycles, rate=rate, control_unit=control_unit)
+    return stepped_sine([amplitude], [frequency], [field], cycles=cycles, rate=rate, control_unit=control_unit)
 
 
-def sweep(amplitudes: Sequence[float], frequencies: Sequence[float], fields: Sequence[float], *,
-          cycles: float = 2, rate: float = 500.0, control_unit: str | None = None) -> Motion:
+def stepped_sine(amplitudes: Sequence[float], frequencies: Sequence[float], fields: Sequence[float], *,
+                 cycles: float = 2, rate: float = 500.0, control_unit: str | None = None) -> Motion:
     """Segments of ``cycles`` sine cycles, one per (amplitude, frequency, field) triple, joined smoothly.
 
     The amplitude and frequency blend over the first quarter cycle of each segment (half-cosine), the phase is
@@ -119,6 +120,11 @@ def sweep(amplitudes: Sequence[float], frequencies: Sequence[float], fields: Seq
     desc = "; ".join(f"{a * 1e3:g} mm at {fr:g} Hz, control {_control_text(e, control_unit)}"
                      for a, fr, e in zip(A, f, E))
     return _finish(t, amp * np.sin(phase), E[seg], f"sine sweep ({cycles:g} cycles each): {desc}")
+
+
+#: Deprecated name of :func:`stepped_sine` ("sweep" also named a sample of the design space and the force-velocity
+#: curves); the motions it makes still describe themselves as a "sine sweep", the text of existing record files.
+sweep = renamed(stepped_sine, "erdesign.rig.sweep")
 
 
 #: Largest stroke amplitude a damper test can have, [m] (beyond it the value or its unit is wrong).

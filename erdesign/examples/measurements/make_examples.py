@@ -9,7 +9,7 @@ line what the rig hid.  Run from the repository root: ``python examples/measurem
 from pathlib import Path
 
 from erdesign import load_example
-from erdesign.simulation.rig import field_steps, sweep
+from erdesign.simulation.rig import field_steps, stepped_sine
 from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
 HERE = Path(__file__).resolve().parent
@@ -21,7 +21,7 @@ FRICTION = {"coulomb_force": 800.0, "static_force": 960.0, "stribeck_speed": 0.0
 
 def main() -> None:
     makris = load_example("makris")
-    motion = sweep([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300, control_unit="kV/mm")
+    motion = stepped_sine([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300, control_unit="kV/mm")
     truth = TruthDamper(makris, {"stribeck_friction": FRICTION}, viscosity_factor=1.2, yield_stress_factor=0.8)
     simulate_truth(truth, motion, force_noise=0.005, seed=1, name="makris_hidden_seal_friction.csv").write(
         HERE / "makris_hidden_seal_friction.csv")

@@ -47,7 +47,7 @@ import numpy as np
 
 from ...damper import Damper
 from ...damper.files import load_example
-from ..rig import Motion, earthquake_motion, random_motion, sweep
+from ..rig import Motion, earthquake_motion, random_motion, stepped_sine
 from .simulate import MIXED_MECHANISMS, UNSUPPORTED, UNSUPPORTED_MIXED
 
 __all__ = ["Case", "benchmark_cases", "mechanism_parameters", "effect_size_over_noise", "build_motion",
@@ -221,7 +221,7 @@ def build_motion(excitation: str, damper: Damper, *, duration: float, rate: floa
         # four segments over frequency and speed (amplitude): the viscous and yield parts apart, and the rate effects
         f = frequency * np.array([1.0, 2.0, 1.5, 3.0])
         v = speed * np.array([0.6, 1.0, 0.4, 0.8])
-        m = sweep(v / (2 * np.pi * f), f, [0.0], cycles=duration / float(np.sum(1 / f)), rate=rate)
+        m = stepped_sine(v / (2 * np.pi * f), f, [0.0], cycles=duration / float(np.sum(1 / f)), rate=rate)
     elif excitation == "random":
         m = random_motion(1.0, (0.4 * frequency, 4 * frequency), duration=duration, rate=rate, seed=seed)
         m = _scaled(m, speed / np.max(np.abs(m.velocity)))
