@@ -530,7 +530,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     if not (X0 > 0 and f > 0):
         raise ErdesignError("amplitude and frequency: must be positive")
 
-    curves = force_velocity_curves(damper, v, E)
+    sweep = force_velocity_curves(damper, v, E)
     loops = sine_loops(damper, X0, f, E)
 
     v_unit = pick_unit(Q_(v, "m/s"), "velocity")
@@ -610,13 +610,13 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
 
     # --- figures
     figures = [
-        FigureSpec("pressure_drop", "Pressure drop versus velocity", plots.pressure_drop_figure(curves),
-                   _field_table("pressure_drop", "velocity v", v, "m/s", "velocity", curves, curves.pressure_drop,
+        FigureSpec("pressure_drop", "Pressure drop versus velocity", plots.pressure_drop_figure(sweep),
+                   _field_table("pressure_drop", "velocity v", v, "m/s", "velocity", sweep, sweep.pressure_drop,
                                 "Pa", "pressure")),
-        FigureSpec("force", "Force versus velocity", plots.force_velocity_figure(curves),
-                   _field_table("force", "velocity v", v, "m/s", "velocity", curves, curves.force, "N", "force")),
-        FigureSpec("dynamic_range", "Dynamic range versus velocity", plots.dynamic_range_figure(curves),
-                   _field_table("dynamic_range", "velocity v", v, "m/s", "velocity", curves, curves.dynamic_range,
+        FigureSpec("force", "Force versus velocity", plots.force_velocity_figure(sweep),
+                   _field_table("force", "velocity v", v, "m/s", "velocity", sweep, sweep.force, "N", "force")),
+        FigureSpec("dynamic_range", "Dynamic range versus velocity", plots.dynamic_range_figure(sweep),
+                   _field_table("dynamic_range", "velocity v", v, "m/s", "velocity", sweep, sweep.dynamic_range,
                                 "", "", skip_zero=True)),
         FigureSpec("sine_loops", "Force-displacement and force-velocity loops", plots.sine_loops_figure(loops),
                    _loop_table(loops), "quasi-steady response to the sine of the settings (energy and C_eqv in "
@@ -658,9 +658,8 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
         configuration=g.configuration, notes=tuple(notes), settings=tuple(settings), inputs=inputs,
         material=_material_section(record, damper), derived=tuple(derived), design_table=design_table,
         sine_table=sine_table, equations=tuple(equations_for(damper)),
-        checks=validity_checks(damper, curves, E, v_design, E_design), figures=tuple(figures),
-        comparison=comparison_data,
-        history=steps, sweep=curves, loops=loops, design_point=design_point, validity_messages=messages,
+        checks=validity_checks(damper, sweep, E, v_design, E_design), figures=tuple(figures), comparison=comparison_data,
+        history=steps, sweep=sweep, loops=loops, design_point=design_point, validity_messages=messages,
         magnetics=magnetics)
     return report if baseline is None else with_baseline(report, baseline)
 
