@@ -2,7 +2,7 @@
 at 1 kHz must finish in under a minute on one core (issue 4).
 
 Run: ``python benchmarks/bench_diagnose.py`` (prints the time of each stage; exits 1 when over the limit).
-Long records are analysed on an evenly thinned copy (erdesign.diagnose.MAX_SAMPLES); the derivatives are taken
+Long records are analysed on an evenly thinned copy (erdesign.diagnosis.diagnose.MAX_SAMPLES); the derivatives are taken
 on the full record and the ESRs are reported for the full record.
 """
 

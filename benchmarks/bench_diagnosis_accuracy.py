@@ -1,10 +1,11 @@
 """Benchmark: how often ``erdesign diagnose`` names the right missing effect on records of the independent truth rig.
 
-Every case of the catalogue (:func:`erdesign.truthrig.cases.benchmark_cases`) is simulated by the truth rig, written
-to a CSV file and read back with :func:`erdesign.measurement.read_measurement` (the reader users use), and diagnosed
-with :func:`erdesign.diagnose.diagnose`.  Correct means: a clean record -> verdict ``nothing_missing``; a mechanism
-outside the effect library -> ``unexplained``; library mechanism(s) -> ``missing_effect`` naming one of them.  An
-exception is a failure of the tool (``diagnose`` must never crash) and is listed with its message.
+Every case of the catalogue (:func:`erdesign.simulation.truthrig.cases.benchmark_cases`) is simulated by the truth rig,
+written to a CSV file and read back with :func:`erdesign.data.measurement.read_measurement` (the reader users use), and
+diagnosed with :func:`erdesign.diagnosis.diagnose.diagnose`.  Correct means: a clean record -> verdict
+``nothing_missing``; a mechanism outside the effect library -> ``unexplained``; library mechanism(s) ->
+``missing_effect`` naming one of them.  An exception is a failure of the tool (``diagnose`` must never crash) and is
+listed with its message.
 
 Run::
 
@@ -172,7 +173,8 @@ def _said(row) -> str:
 
 def _visible(row):
     """What no recalibration of the clean damper removes, over the noise (``visible_over_noise`` of
-    :func:`erdesign.truthrig.cases.effect_size_over_noise`); runs before it had only ``effect_size_over_noise``."""
+    :func:`erdesign.simulation.truthrig.cases.effect_size_over_noise`); runs before it had only
+    ``effect_size_over_noise``."""
     v = row.get("visible_over_noise")
     return v if v is not None else row.get("effect_size_over_noise")
 
@@ -285,8 +287,9 @@ def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset
     s = summary
     lines = ["# Diagnosis benchmark", "",
              "How often `erdesign diagnose` names the right missing effect on records made by the independent "
-             "truth rig (`erdesign/truthrig/`, which shares no code with the fitted model). The catalogue is "
-             "`erdesign/truthrig/cases.py` (`benchmark_cases()`); its docstring gives the design rules and "
+             "truth rig (`erdesign/simulation/truthrig/`, which shares no code with the fitted model). The "
+             "catalogue is `erdesign/simulation/truthrig/cases.py` (`benchmark_cases()`); its docstring gives the "
+             "design rules and "
              "`mechanism_parameters` the physical size of every mechanism. Each record is written to CSV and read "
              "back with `read_measurement` before it is diagnosed.", "",
              "Correct means: clean record (the true damper is exactly Bingham, calibration factors perturbed) -> "

@@ -2,13 +2,13 @@
 
 Run:  python benchmarks/bench_truthrig.py [--duration 60] [--rate 1000] [--window 2] [--repeat 3]
 
-Prints the time per record of :func:`erdesign.truthrig.simulate_truth` (best of ``--repeat``, after a warm-up
+Prints the time per record of :func:`erdesign.simulation.truthrig.simulate_truth` (best of ``--repeat``, after a warm-up
 call that loads or compiles the numba kernels), then, on the first ``--window`` seconds of the same motion, the time
 of the rig with compliance alone and of ``scipy.integrate.solve_ivp`` (Radau, rtol 1e-8) on the same compliance ODE
 
     dP/dt = k_c (v(t) - v_d(P)),   v_d(P) = n Q(P / Ap) / Ap,
 
-with the same valve law (the rig's compiled :func:`~erdesign.truthrig.kernels.passed_speed`, so only the
+with the same valve law (the rig's compiled :func:`~erdesign.simulation.truthrig.kernels.passed_speed`, so only the
 integrator differs), their ratio and the largest difference of the pressure force at the samples relative to its
 peak.  Target: a 60 s record at 1 kHz in under 5 s on one core.  Not a test: timings depend on the machine.
 """

@@ -80,7 +80,7 @@ e^{-a|v|}, kept.
   dissipates).
 - **Modified Bouc-Wen.** alpha_c u^2 is not in Butz and von Stryk (2002) (eq 13 is linear in u): it is the quadratic
 current law of
-  Quiroz (2022) used for the real data (docs/real_data.md); alpha_c = 0 is Spencer's law.
+  Quiroz (2022) used for the real data (docs/case_studies/quiroz.md); alpha_c = 0 is Spencer's law.
 """
 
 
@@ -126,10 +126,10 @@ def _invertibility(model) -> str:
     elif getattr(model, "memoryless", False):
         how = "vectorised bracketed root in the control (scipy.optimize.elementwise.find_root)"
     else:
-        return ("not provided by `erdesign.inverse` (the control acts through a state, a filter or a fitted series "
-                "that no closed form or root bracket is written for)")
+        return ("not provided by `erdesign.identification.inverse` (the control acts through a state, a filter or a "
+                "fitted series that no closed form or root bracket is written for)")
     marked = " (the MR-model review Table 1: invertible)" if model.name in INVERTIBLE else ""
-    return f"{how}{marked}; `erdesign.inverse.inverse_control`"
+    return f"{how}{marked}; `erdesign.identification.inverse.inverse_control`"
 
 
 def render() -> str:
@@ -138,20 +138,21 @@ def render() -> str:
         "",
         "<!-- Written by docs/make_models_doc.py from the model registry; do not edit by hand. -->",
         "",
-        "Every model implements `erdesign.models.base.Model`: `force(record, values)` maps a motion record",
-        "(time, displacement, derived velocity and acceleration, and the control column: field, current or voltage)",
-        "and SI parameter values to a force [N]. Internal states start at rest at the first sample. `u` is the",
-        "dimensionless control, control / `control_reference` (chosen by `erdesign.identify` as the power of ten",
+        "Every model implements `erdesign.models.base.Model`: `force(record, values)` maps a motion record (time,",
+        "displacement, derived velocity and acceleration, and the control column: field, current or voltage) and SI",
+        "parameter values to a force [N]. Internal states start at rest at the first sample. `u` is the dimensionless",
+        "control, control / `control_reference` (chosen by `erdesign.identification.identify` as the power of ten",
         "near the largest control of the records). Where a record has no control column, the parameters listed as",
         "control parameters are held at their defaults (zero slopes): field-dependent coefficients are then",
-        "identified as constants. `erdesign models --json` lists the same registry. Seeds: [000] Kamath and",
-        "Wereley; [001] Butz and von Stryk; [002] modeling method for ER dampers; [003] review of parametric MR",
-        "damper models; [004] Makris et al.",
+        "identified as constants. `erdesign models --json` lists the same registry. Seeds: [000] Kamath and Wereley;",
+        "[001] Butz and von Stryk; [002] modeling method for ER dampers; [003] review of parametric MR damper models;",
+        "[004] Makris et al.",
         "",
-        "Fitting: bounded least squares (`erdesign.fit.fit`, trust-region reflective; log-scale parameters searched",
-        "in log space; multi-start and a differential-evolution stage on request); parameters marked *a priori* are",
-        "held unless named in `free`. Identification across records: `erdesign.identify.identify_joint`;",
-        "cross-validation tables (in the style of Vivas-López et al., Table 4): `erdesign.identify.cross_validation`.",
+        "Fitting: bounded least squares (`erdesign.identification.fit.fit`, trust-region reflective; log-scale",
+        "parameters searched in log space; multi-start and a differential-evolution stage on request); parameters",
+        "marked *a priori* are held unless named in `free`. Identification across records:",
+        "`erdesign.identification.identify.identify_joint`; cross-validation tables (in the style of Vivas-López et",
+        "al., Table 4): `erdesign.identification.identify.cross_validation`.",
         "",
     ]
     for name in model_names():
@@ -163,8 +164,9 @@ def render() -> str:
                 "effect library (`erdesign.effects`). Built as `get_model(\"physics\", damper=\"damper.toml\", effects=(...))`, or",
                 "`erdesign identify X.csv --model physics --damper D.toml [--effects a,b]`. Parameters: the calibration",
                 "factors `viscosity_factor`, `yield_stress_factor` [-] plus those of the chosen effects (see",
-                "erdesign/physics.py); without a field in the record the yield-stress factor is held at 1.",
-                "Invertibility: vectorised bracketed root in the field (`erdesign.inverse.inverse_control`).",
+                "erdesign/effects/chain.py); without a field in the record the yield-stress factor is held at 1.",
+                "Invertibility: vectorised bracketed root in the field",
+                "(`erdesign.identification.inverse.inverse_control`).",
                 "",
             ]
             continue

@@ -1,6 +1,6 @@
 """The one unit-formatting helper: every number a report, a figure or the app prints goes through :func:`show`.
 
-Neutral ground for the report (:mod:`erdesign.report`), the figures (:mod:`erdesign.plots`) and the app, none of
+Neutral ground for the report (:mod:`erdesign.report`), the figures (:mod:`erdesign.report.plots`) and the app, none of
 which depends on another for it; :mod:`erdesign.report.formatting` re-exports it under its former name.
 
 :func:`show` takes a pint quantity (or a plain number for a dimensionless value) and the unit to show it in, and

@@ -1,7 +1,7 @@
 """A parameter of a model or an effect: name, SI unit, default, physical bounds and how it is fitted.
 
 Shared by the phenomenological models (:mod:`erdesign.models`) and the physics damper's effects
-(:mod:`erdesign.effects`), which both hand their parameters to the fitting (:mod:`erdesign.fit`).
+(:mod:`erdesign.effects`), which both hand their parameters to the fitting (:mod:`erdesign.identification.fit`).
 """
 
 from __future__ import annotations
@@ -40,8 +40,8 @@ class Parameter:
         Positive and spanning decades: fitted in log space (needs ``lower > 0``).
     fitted : bool
         Identified by default (False: chosen a priori, like the shape-function widths of Kamath and Wereley, or
-        a redundant scale of the Bouc-Wen family; :func:`erdesign.fit.fit` holds it at its start value unless it is
-        named in ``free``).
+        a redundant scale of the Bouc-Wen family; :func:`erdesign.identification.fit.fit` holds it at its start value
+        unless it is named in ``free``).
     """
 
     name: str

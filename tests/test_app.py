@@ -309,7 +309,7 @@ def test_compare_diagnose_add_effect_refit(app, downloads):
     assert not app.warning
     ranking = app.table[0].value
     assert ranking["effect"].iloc[0] == "seal_friction"
-    # the named effect removes at least erdesign.diagnose.EXPLAINS (60 %) of the excess over the noise floor
+    # the named effect removes at least erdesign.diagnosis.diagnose.EXPLAINS (60 %) of the excess over the noise floor
     assert int(ranking["explains"].iloc[0].split()[0]) >= 60
     assert metric(app, "noise floor ESR") < float(app.metric[0].value)
     assert any("seal friction" in m.value for m in app.markdown)
@@ -351,8 +351,8 @@ def test_compare_diagnose_add_effect_refit(app, downloads):
 
 @pytest.fixture(scope="module")
 def truth_csv(tmp_path_factory):
-    """CSV bytes of records of the truth rig (erdesign.truthrig, physics independent of the diagnosed model) on
-    the Makris damper: ``clean`` (nothing missing) and ``blowoff`` (a rebound blow-off valve, outside the effect
+    """CSV bytes of records of the truth rig (erdesign.simulation.truthrig, physics independent of the diagnosed model)
+    on the Makris damper: ``clean`` (nothing missing) and ``blowoff`` (a rebound blow-off valve, outside the effect
     library).  Short sweeps at 100 samples/s keep each diagnosis to a fraction of a second."""
     from erdesign.simulation.rig import stepped_sine
     from erdesign.simulation.truthrig import TruthDamper, simulate_truth
@@ -402,7 +402,7 @@ def test_compare_nothing_missing(app, truth_csv, few_candidates):
     (info,) = [i.value for i in app.info]
     assert info.startswith("**Nothing missing: the residual is at the noise floor.**")
     # The record's own noise floor is shown next to the ESR; nothing is missing, so the ESR is within the
-    # factor erdesign.diagnose.AT_FLOOR of it.
+    # factor erdesign.diagnosis.diagnose.AT_FLOOR of it.
     from erdesign.diagnosis.diagnose import ABSOLUTE_SLACK, AT_FLOOR
 
     esr, floor = metric(app, "ESR of the calibrated model"), metric(app, "noise floor ESR")
@@ -422,7 +422,7 @@ def test_compare_unexplained_and_refit(app, truth_csv, few_candidates):
     verdicts = [w.value for w in app.warning if w.value.startswith("**Unexplained:**")]
     assert len(verdicts) == 1 and "noise floor" in verdicts[0] and "outside the effect library" in verdicts[0]
     # A one-sided relief valve is far from the baseline: the ESR stays many times the noise floor
-    # (erdesign.diagnose.WELL_ABOVE is the least for "unexplained").
+    # (erdesign.diagnosis.diagnose.WELL_ABOVE is the least for "unexplained").
     assert metric(app, "ESR of the calibrated model") > 10 * metric(app, "noise floor ESR")
     # the calibration's warnings are shown too
     assert all(w.value.startswith("Check: ") for w in app.warning if w.value not in verdicts)

@@ -121,7 +121,7 @@ def test_diagnose_json_verdicts_exit_0(capsys, truth_csvs, two_candidates, recor
     (spoiled,) = [r for r in data["ranking"] if r["effect"] == "seal_friction"]
     assert spoiled["esr"] is None and spoiled["reason"] == "could not be evaluated: a test says so"
     if verdict == "unexplained":
-        # a one-sided relief valve leaves far more than erdesign.diagnose.WELL_ABOVE x the noise floor
+        # a one-sided relief valve leaves far more than erdesign.diagnosis.diagnose.WELL_ABOVE x the noise floor
         assert data["baseline_esr"] > 10 * data["noise_floor_esr"]
     code, out, _ = run(capsys, "diagnose", truth_csvs[record], "--damper", MAKRIS)
     assert code == 0

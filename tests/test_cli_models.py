@@ -65,7 +65,7 @@ def test_identify_errors_are_one_line(capsys, bingham_csv):
 def test_identify_physics_needs_the_module_or_a_damper(capsys, bingham_csv):
     code, out, err = run(capsys, "identify", str(bingham_csv), "--model", "physics", "--json")
     assert code == 1 and out == ""
-    assert "erdesign.physics" in err or "--damper" in err
+    assert "erdesign.effects.chain" in err or "--damper" in err
 
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "erdesign" / "examples"

@@ -52,7 +52,7 @@ def test_every_public_name_resolves_to_its_defining_module():
 
     for name in erdesign.__all__:
         assert getattr(erdesign, name) is not None, name
-    assert fit_function is real_fit and erdesign.fit is real_fit  # the function, not the submodule erdesign.fit
+    assert fit_function is real_fit and erdesign.fit is real_fit  # the function, not the deprecated module erdesign.fit
     assert erdesign.Q_ is Q_
     assert erdesign.flow.slit_pressure_drop(1e-6, 7.0, 0.0546, 0.0143, 0.0008) == pytest.approx(
         erdesign.slit_pressure_drop("1 mL/s", "7 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm").to("Pa").magnitude)

@@ -8,9 +8,10 @@ synthesis through ``design``.
 
 The numbers checked come from code the commands do not run:
 
-* the quasi-steady force of ``size`` against the truth rig's own gap laws (:mod:`erdesign.truthrig.valve`, written
-  from the pressure drop, with no import of :mod:`erdesign.flow`), solved here for the flow by bisection; the wide
-  gap against the finite-element gap-flow solution of :func:`erdesign.flow.numerical.solve_gap_flow` on the annulus;
+* the quasi-steady force of ``size`` against the truth rig's own gap laws (:mod:`erdesign.simulation.truthrig.valve`,
+  written from the pressure drop, with no import of :mod:`erdesign.flow`), solved here for the flow by bisection; the
+  wide gap against the finite-element gap-flow solution of :func:`erdesign.flow.numerical.solve_gap_flow` on the
+  annulus;
 * ``fit`` against the true fluid factors of a record made by the truth rig (a different simulator);
 * ``diagnose`` on a clean truth-rig record: nothing is missing;
 * ``simulate --model physics`` round-trips the fitted parameters to the fit's ESR.
@@ -129,8 +130,9 @@ def truth_record(config, tmp_path):
 
     The frequency, 1.93 Hz, keeps the samples off the reversals: at 2 Hz and 1 kHz a sample falls exactly on each
     reversal, where the force of the rigid-plastic gap is anywhere within +-F_y (the truth rig gives 0 or +-F_y as
-    its own round-off falls).  The model takes the expected sign there (:data:`erdesign.noise.VELOCITY_RESOLUTION`),
-    but with displacement noise such samples still bias the viscosity factor of a yield-dominated MR head by ~5 %."""
+    its own round-off falls).  The model takes the expected sign there
+    (:data:`erdesign.data.noise.VELOCITY_RESOLUTION`), but with displacement noise such samples still bias the viscosity
+    factor of a yield-dominated MR head by ~5 %."""
     from erdesign.simulation.rig import sine
     from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 
@@ -243,7 +245,7 @@ def test_samples_exactly_on_reversals_do_not_bias_a_fit():
     """A noiseless truth-rig record sampled exactly on each reversal (2 Hz at 1 kHz) of the yield-dominated coil
     head: the force there is anywhere within +-F_y, and the derived velocity is round-off (1e-11 m/s).  Taking its
     sign gave a full yield force of error per reversal and a viscosity factor 1.38 for 1.15; with the velocity
-    resolution floor of :func:`erdesign.noise.velocity_noise` the fit recovers the truth."""
+    resolution floor of :func:`erdesign.data.noise.velocity_noise` the fit recovers the truth."""
     from erdesign import load_example
     from erdesign.effects.chain import PhysicsDamper
     from erdesign.identification.fit import fit

@@ -1,8 +1,8 @@
 """The diagnosis benchmark (benchmarks/bench_diagnosis_accuracy.py, docs/diagnosis_benchmark.md).
 
-A fast unit test holds the catalogue of :func:`erdesign.truthrig.cases.benchmark_cases` to its coverage rules; a slow
-end-to-end test diagnoses the fast subset (records of the independent truth rig, written to CSV and read back with
-the reader users use) and requires every verdict to be right and no exception.
+A fast unit test holds the catalogue of :func:`erdesign.simulation.truthrig.cases.benchmark_cases` to its coverage
+rules; a slow end-to-end test diagnoses the fast subset (records of the independent truth rig, written to CSV and read
+back with the reader users use) and requires every verdict to be right and no exception.
 """
 
 import importlib.util

@@ -1,6 +1,6 @@
 """Effects carry their own composition: a new effect is a class plus one registration line (issue 13).
 
-The toy effects below live in this file only; the force chain of erdesign.physics is not touched to use them.
+The toy effects below live in this file only; the force chain of erdesign.effects.chain is not touched to use them.
 """
 
 import numpy as np

@@ -1,4 +1,5 @@
-"""Fitting machinery (erdesign.fit) on a model whose answer is known: round trips, uncertainties, criteria."""
+"""Fitting machinery (erdesign.identification.fit) on a model whose answer is known: round trips, uncertainties,
+criteria."""
 
 import math
 

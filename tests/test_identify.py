@@ -1,5 +1,6 @@
-"""Identification workflows (erdesign.identify): one record, several records jointly, cross-validation tables
-(in the style of Vivas-López et al., Table 4), and bad input - all by round trip on records whose answer is known."""
+"""Identification workflows (erdesign.identification.identify): one record, several records jointly, cross-validation
+tables (in the style of Vivas-López et al., Table 4), and bad input - all by round trip on records whose answer is
+known."""
 
 import numpy as np
 import pytest

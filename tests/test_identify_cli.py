@@ -110,9 +110,9 @@ def test_headerless_file_from_the_command_line_is_one_line_error(capsys, tmp_pat
 @needs_quiroz
 @pytest.mark.slow
 def test_quiroz_joint_bingham_from_the_command_line_reproduces_the_study(capsys):
-    """docs/real_data.md (written by the library workflow erdesign.identify.real_data_study): Bingham on the 30
-    sinusoids jointly, validated on the earthquake record; the command line reads the published files as they are
-    and gives the same ESRs."""
+    """docs/case_studies/quiroz.md (written by the library workflow erdesign.case_studies.quiroz.real_data_study):
+    Bingham on the 30 sinusoids jointly, validated on the earthquake record; the command line reads the published files
+    as they are and gives the same ESRs."""
     study_file = Path(__file__).resolve().parents[1] / "docs" / "case_studies" / "quiroz.json"
     study = json.loads(study_file.read_text())["models"]
     files = sorted((QUIROZ / "preprocessed").glob("*.txt"))
@@ -147,7 +147,7 @@ needs_dyke = pytest.mark.skipif(not DYKE.is_file(), reason="Dyke's NEES record .
 def test_dyke_identification_beats_the_published_set(capsys):
     """Issue 12: identification of the modified Bouc-Wen model on Dyke's ransim_u must beat Spencer et al.'s
     published set on its own record (ESR 0.134 without the 217 clipped samples, shared/data/README.md: 0.13).
-    The fit converges to 0.0918 (docs/real_data.md); 0.10 leaves room for a different BLAS or numba."""
+    The fit converges to 0.0918 (docs/case_studies/quiroz.md); 0.10 leaves room for a different BLAS or numba."""
     code, out, err = run(capsys, DYKE, "--model", "bouc_wen_modified", "--exclude-clipped", "--json", "--quiet")
     assert code == 0, err
     d = json.loads(out)
@@ -189,8 +189,8 @@ def test_frozen_substeps_make_the_force_smooth_in_the_parameters():
 @needs_quiroz
 @pytest.mark.slow
 def test_quiroz_joint_modified_bouc_wen_from_the_command_line_reproduces_the_study(capsys):
-    """docs/real_data.md, the command-line study: the current-dependent modified Bouc-Wen on the 30 sinusoids from
-    the model's own guess (the library study starts from the source's fit) reaches the study's optimum."""
+    """docs/case_studies/quiroz.md, the command-line study: the current-dependent modified Bouc-Wen on the 30 sinusoids
+    from the model's own guess (the library study starts from the source's fit) reaches the study's optimum."""
     study_file = Path(__file__).resolve().parents[1] / "docs" / "case_studies" / "quiroz.json"
     study = json.loads(study_file.read_text())["models"]
     files = sorted((QUIROZ / "preprocessed").glob("*.txt"))

@@ -1,5 +1,5 @@
-"""Variable projection in :func:`erdesign.identify.identify` (Golub and Pereyra 1973; Kaufman 1975): the free
-parameters a model's force is affine in are solved by linear least squares inside each residual.  The projected
+"""Variable projection in :func:`erdesign.identification.identify.identify` (Golub and Pereyra 1973; Kaufman 1975): the
+free parameters a model's force is affine in are solved by linear least squares inside each residual.  The projected
 fit must reach the optimum of the plain fit (all parameters by the nonlinear optimiser) on records that no model
 of the fitted family made: a synthetic record of the modified Bouc-Wen model with noise, and measured data when
 ../shared/data is present."""

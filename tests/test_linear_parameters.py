@@ -1,6 +1,6 @@
 """Every model's declaration of the parameters that enter its force linearly (``Model.linear_parameters``), which
-variable projection in :func:`erdesign.identify.identify` relies on, checked numerically: the force must be exactly
-affine in them whatever the other parameters' values, and ``Model.linear_terms`` must give the same force."""
+variable projection in :func:`erdesign.identification.identify.identify` relies on, checked numerically: the force must
+be exactly affine in them whatever the other parameters' values, and ``Model.linear_terms`` must give the same force."""
 
 import numpy as np
 import pytest

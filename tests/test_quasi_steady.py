@@ -1,4 +1,4 @@
-"""The one quasi-steady force kernel (erdesign/quasi_steady.py): vectorised over geometry, it is Damper.state."""
+"""The one quasi-steady force kernel (erdesign/damper/quasi_steady.py): vectorised over geometry, it is Damper.state."""
 
 import warnings
 

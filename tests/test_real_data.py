@@ -1,8 +1,8 @@
-"""The real-data study (docs/real_data.md): measured MR-damper sinusoids at five coil currents (Quiroz 2022).
+"""The real-data study (docs/case_studies/quiroz.md): measured MR-damper sinusoids at five coil currents (Quiroz 2022).
 
 The data live in ../shared/data relative to the repository root (present in CI, absent in a fresh clone: then
-every test here skips).  The doc is written by docs/make_real_data.py from docs/real_data.json; these tests
-re-compute its ESRs from the documented parameters and re-run the cheap joint identification (Bingham).
+every test here skips).  The doc is written by docs/case_studies/make_real_data.py from docs/case_studies/quiroz.json;
+these tests re-compute its ESRs from the documented parameters and re-run the cheap joint identification (Bingham).
 """
 
 import importlib.util

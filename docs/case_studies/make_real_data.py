@@ -1,8 +1,10 @@
-"""Write docs/real_data.md (and docs/real_data.json) from the real-data study, so that its numbers cannot drift.
+"""Write docs/case_studies/quiroz.md (and quiroz.json beside it) from the real-data study, so that its numbers cannot
+drift.
 
-Run from the repository root:  python docs/make_real_data.py [--render-only]   (needs ../shared/data/quiroz2022_utfsm_mr; about a
-minute).  tests/test_real_data.py re-computes the ESRs from docs/real_data.json and checks that this file's
-:func:`render` of it is docs/real_data.md.
+Run from the repository root:  python docs/case_studies/make_real_data.py [--render-only]   (needs
+../shared/data/quiroz2022_utfsm_mr; about a minute).  tests/test_real_data.py re-computes the ESRs from
+docs/case_studies/quiroz.json and checks that this file's :func:`render` of it is docs/case_studies/quiroz.md (up to
+the hand-written part that follows ``<!-- dyke-cli -->``, which --render-only keeps).
 """
 
 from __future__ import annotations
@@ -34,21 +36,23 @@ def _esr_grid(training_esr: dict) -> list[str]:
 
 
 def render(out: dict) -> str:
-    """The Markdown of docs/real_data.md from the study's JSON."""
+    """The Markdown of docs/case_studies/quiroz.md from the study's JSON."""
     models = out["models"]
     lines = [
         "# Real data: an MR damper at five coil currents (Quiroz 2022, UTFSM)",
         "",
-        "<!-- Written by docs/make_real_data.py from docs/real_data.json; do not edit by hand. -->",
+        "<!-- Written by docs/case_studies/make_real_data.py from docs/case_studies/quiroz.json; do not edit by hand."
+        " -->",
         "",
         "Data: `../shared/data/quiroz2022_utfsm_mr/` (MIT licence; not copied into this repository; see",
         "shared/data/README.md). Training: the 30 preprocessed sinusoids (10 mm 1 Hz; 25 mm 0.1, 0.25, 0.5 Hz;",
         "2 mm 5 Hz; 5 mm 3 Hz, each at 0, 0.25, 0.5, 0.75 and 1 A), the last 2.5 periods of each, resampled to 200",
-        "samples per period (`erdesign.identify.read_quiroz_sinusoid`). Validation: the earthquake-type record",
+        "samples per period (`erdesign.data.quiroz.read_quiroz_sinusoid`). Validation: the earthquake-type record",
         "`validation/validacion.mat` at 0.2, 0.4, 0.6, 0.8 and 1 A (every second sample, 500 Hz), never seen in",
         "training. Each model is identified once on all 30 training records jointly",
-        "(`erdesign.identify.identify_joint`: one parameter set, current-dependent coefficients, each record",
-        "weighted by 1 / its force standard deviation), and simulated from rest at the first sample of every record.",
+        "(`erdesign.identification.identify.identify_joint`: one parameter set, current-dependent coefficients, each",
+        "record weighted by 1 / its force standard deviation), and simulated from rest at the first sample of every",
+        "record.",
         "ESR = sum (F - F_model)^2 / sum (F - mean F)^2 (Vivas-López et al., eq 7).",
         "",
         "## ESR on the validation record (earthquake-type motion, not used in training)",
@@ -91,8 +95,8 @@ def render(out: dict) -> str:
         "- The source's alpha(i) and gamma(i) multiply a Bouc-Wen variable whose beta, A and n sit in a binary",
         "  Simulink file that is not part of the data set. With A = 1, n = 2, beta = gamma its parameters do not",
         "  reproduce the force; with n = 2 and only A and beta / gamma estimated from the training records",
-        "  (`erdesign.identify.quiroz_hidden_constants`, all twelve published parameters held) they do, which",
-        "  supports reading the published numbers that way. Its own figure of merit (RMS error over one cycle /",
+        "  (`erdesign.case_studies.quiroz.quiroz_hidden_constants`, all twelve published parameters held) they do,",
+        "  which supports reading the published numbers that way. Its own figure of merit (RMS error over one cycle /",
         "  peak force) differs from the ESR.",
         "- The modified Bouc-Wen here has alpha = alpha_a + alpha_b u + alpha_c u^2 (the source's quadratic law",
         "  in current) with constant beta, gamma; the source let gamma fall exponentially with current.",
@@ -109,10 +113,21 @@ def render(out: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: Where the generated part of the page ends and the hand-written command-line study of Dyke's record begins.
+HAND_WRITTEN = "\n<!-- dyke-cli -->"
+
+
+def write_page(text: str) -> None:
+    """Write the rendered study to the page, keeping its hand-written part (from :data:`HAND_WRITTEN` on)."""
+    old = MD_PATH.read_text() if MD_PATH.exists() else ""
+    tail = old[old.index(HAND_WRITTEN):] if HAND_WRITTEN in old else ""
+    MD_PATH.write_text(text.rstrip("\n") + "\n" + tail if tail else text)
+
+
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if "--render-only" in argv:  # after a change of wording: re-render the committed JSON
-        MD_PATH.write_text(render(json.loads(JSON_PATH.read_text())))
+        write_page(render(json.loads(JSON_PATH.read_text())))
         return 0
     folder = quiroz_folder(ROOT)
     if folder is None:
@@ -120,7 +135,7 @@ def main(argv=None) -> int:
         return 1
     out = real_data_study(folder)
     JSON_PATH.write_text(json.dumps(out, indent=1, sort_keys=False) + "\n")
-    MD_PATH.write_text(render(out))
+    write_page(render(out))
     print(f"wrote {MD_PATH} and {JSON_PATH}")
     return 0
 

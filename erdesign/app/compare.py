@@ -1,8 +1,8 @@
 """Compare and diagnose page: a measurement against the physics damper of the design, the missing effect, the refit.
 
-The record comes from an upload (:func:`erdesign.measurement.read_measurement`) or the built-in examples; the
-diagnosis is :func:`erdesign.diagnose.diagnose` (calibration, residual analysis in words, ranking of the effects,
-and a verdict: a missing effect, nothing missing - the residual is at the noise floor -, or unexplained);
+The record comes from an upload (:func:`erdesign.data.measurement.read_measurement`) or the built-in examples; the
+diagnosis is :func:`erdesign.diagnosis.diagnose.diagnose` (calibration, residual analysis in words, ranking of the
+effects, and a verdict: a missing effect, nothing missing - the residual is at the noise floor -, or unexplained);
 "add effect and refit" diagnoses again with the effect accepted, and the error history shows the ESR after each step.
 """
 
@@ -36,8 +36,8 @@ def _record_source() -> tuple[bytes, str, bool] | None:
     if source == _BUILT_IN:
         name = state.widget(st.selectbox, "example", "cmp.example", state.example_records()[0],
                             options=state.example_records(),
-                            help="Measured on the virtual rig (erdesign.rig) with effects the quasi-steady model "
-                                 "leaves out; the diagnosis has to find them.")
+                            help="Measured on the virtual rig (erdesign.simulation.rig) with effects the quasi-steady "
+                                 "model leaves out; the diagnosis has to find them.")
         return state.example_record_bytes(name), name, True
     upload = st.file_uploader("measurement CSV", type=["csv", "txt"], key="cmp.upload",
                               help="Columns with units in brackets: time [s], displacement [mm], force [N], "

@@ -1,9 +1,9 @@
-"""Plotly figures of the app that :mod:`erdesign.plots` does not have (yet): the geometry trade-off of the sweep
+"""Plotly figures of the app that :mod:`erdesign.report.plots` does not have (yet): the geometry trade-off of the sweep
 explorer, the loops of one simulated force, the time overlay and the residual plots of a comparison.
 
-Like :mod:`erdesign.plots`, each builder takes numbers the library computed (SI arrays) and only draws them, with
+Like :mod:`erdesign.report.plots`, each builder takes numbers the library computed (SI arrays) and only draws them, with
 units on every axis chosen by :func:`erdesign.formatting.pick_unit`.  Candidates to move into
-:mod:`erdesign.plots` so that the report can use them too.
+:mod:`erdesign.report.plots` so that the report can use them too.
 
 >>> import numpy as np
 >>> t = np.linspace(0, 1, 101); x = 0.005 * np.sin(2 * np.pi * t); v = 0.01 * np.pi * np.cos(2 * np.pi * t)

@@ -1,7 +1,7 @@
 """Simulate page: a model (the physics damper with effects, or any model of the library) driven by an excitation.
 
-Excitations come from the virtual rig (:mod:`erdesign.rig`: sine, sine sweep, earthquake-like record) or from the
-displacement of an uploaded measurement CSV; forces from :meth:`erdesign.models.base.Model.simulate`
+Excitations come from the virtual rig (:mod:`erdesign.simulation.rig`: sine, sine sweep, earthquake-like record) or from
+the displacement of an uploaded measurement CSV; forces from :meth:`erdesign.models.base.Model.simulate`
 (:func:`erdesign.app.state.simulate`).
 """
 

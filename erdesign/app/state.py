@@ -2,7 +2,7 @@
 
 The current design lives in ``st.session_state`` as a *damper spec*: the content of a damper file as plain data
 (``{"name": ..., "geometry": {...}, "fluid": {...}}``, values as strings with units), exactly what
-:func:`erdesign.damper_file.damper_from_dict` reads.  The pages pass it to the cached functions below as its JSON
+:func:`erdesign.damper.files.damper_from_dict` reads.  The pages pass it to the cached functions below as its JSON
 text (:func:`spec_text`), so that ``st.cache_data`` hashes plain data and never a library object.
 
 Widgets keep their values across page switches through :func:`widget` (Streamlit forgets the state of a widget
@@ -321,11 +321,11 @@ def geometry_sweep(text: str, parameter: str, values: tuple[float, ...], velocit
 # ------------------------------------------------------------------------------------------------ records
 @st.cache_data(show_spinner=False, max_entries=32)
 def read_record(data: bytes, name: str, require_force: bool = True) -> Measurement:
-    """A measurement CSV given as bytes (an upload), read by :func:`erdesign.measurement.read_measurement`.
+    """A measurement CSV given as bytes (an upload), read by :func:`erdesign.data.measurement.read_measurement`.
 
     ``require_force=False`` accepts a displacement-only record (Simulate's uploaded displacement).
 
-    Raises :class:`~erdesign.measurement.MeasurementError` whose message starts with ``name``.
+    Raises :class:`~erdesign.data.measurement.MeasurementError` whose message starts with ``name``.
     """
     from ..data.measurement import MeasurementError
 
@@ -339,8 +339,8 @@ def read_record(data: bytes, name: str, require_force: bool = True) -> Measureme
     return record
 
 
-#: Built-in records made on the virtual rig (:mod:`erdesign.rig`) with the Makris damper, offered while the package
-#: ships no example measurements: name -> (hidden effects, true fluid over nominal).  Sine sweeps at two
+#: Built-in records made on the virtual rig (:mod:`erdesign.simulation.rig`) with the Makris damper, offered while the
+#: package ships no example measurements: name -> (hidden effects, true fluid over nominal).  Sine sweeps at two
 #: amplitudes, frequencies and fields, 2 % force noise.
 RIG_EXAMPLES = {
     "rig: makris, hidden effect A": ({"seal_friction": {"friction_force": 400.0}}, 1.2),
@@ -362,9 +362,9 @@ def example_records() -> list[str]:
 def example_damper_for(data: bytes) -> str | None:
     """The shipped example damper a built-in record was measured on, or None.
 
-    The rigs write ``# virtual rig: <damper name>; ...`` (:mod:`erdesign.rig`) or ``# truth rig: <damper name>
-    (<configuration>); ...`` (:mod:`erdesign.truthrig`) as the first line of their records; the name is matched
-    against the ``name`` of the example damper files.
+    The rigs write ``# virtual rig: <damper name>; ...`` (:mod:`erdesign.simulation.rig`) or ``# truth rig: <damper
+    name> (<configuration>); ...`` (:mod:`erdesign.simulation.truthrig`) as the first line of their records; the name is
+    matched against the ``name`` of the example damper files.
     """
     first = data[:400].decode("utf-8", "replace").splitlines()[0] if data else ""
     prefix = next((p for p in ("# virtual rig:", "# truth rig:") if first.startswith(p)), None)
@@ -395,7 +395,8 @@ def example_record_bytes(name: str) -> bytes:
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "rig.csv"
         write_measurement(path, rig.record, units={"displacement": "mm", "field": "kV/mm"},
-                          comment="virtual rig (erdesign.rig); the hidden effect is for the diagnosis to find")
+                          comment="virtual rig (erdesign.simulation.rig); the hidden effect is for the diagnosis to "
+                                  "find")
         return path.read_bytes()
 
 
@@ -406,8 +407,8 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
     """Force of a model (``physics`` with ``effects``, or a registry model) for an excitation.
 
     ``excitation`` is plain data: ``kind`` (``sine``, ``sweep``, ``earthquake`` or ``upload``) and its numbers
-    (SI), handed to :mod:`erdesign.rig` (``upload``: the displacement of a measurement CSV).  Returns SI arrays
-    ``time``, ``displacement``, ``velocity``, ``control``, ``force``, the measured force of an upload (or None),
+    (SI), handed to :mod:`erdesign.simulation.rig` (``upload``: the displacement of a measurement CSV).  Returns SI
+    arrays ``time``, ``displacement``, ``velocity``, ``control``, ``force``, the measured force of an upload (or None),
     the parameter values used, and the description of the motion.
     """
     from ..models.registry import get_model
@@ -449,10 +450,11 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
 # ------------------------------------------------------------------------------------------------ diagnosis
 @st.cache_data(show_spinner=False, max_entries=16)
 def run_diagnosis(text: str, data: bytes, name: str, effects: tuple[str, ...]):
-    """:func:`erdesign.diagnose.diagnose` of the record (CSV bytes) against the spec's damper with ``effects``.
+    """:func:`erdesign.diagnosis.diagnose.diagnose` of the record (CSV bytes) against the spec's damper with
+    ``effects``.
 
-    Returns the :class:`~erdesign.diagnose.Diagnosis`, the record and the calibrated model's force on the whole
-    record, [N].
+    Returns the :class:`~erdesign.diagnosis.diagnose.Diagnosis`, the record and the calibrated model's force on the
+    whole record, [N].
     """
     from ..diagnosis.diagnose import diagnose
 

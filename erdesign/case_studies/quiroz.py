@@ -69,8 +69,8 @@ def real_data_study(folder, *, models: Sequence[str] = tuple(QUIROZ_STUDY_MODELS
 
     Returns a JSON-ready dict: per model the identified values (SI), the ESR on every training record and on the
     validation record at each current, the run time; and the source's own modified Bouc-Wen parameters scored the
-    same way (under the assumptions of :func:`quiroz_source_values`).  ``docs/make_real_data.py`` writes it to
-    docs/real_data.md.
+    same way (under the assumptions of :func:`quiroz_source_values`).  ``docs/case_studies/make_real_data.py`` writes it
+    to docs/case_studies/quiroz.md.
     """
     import time as _time
     from ..models.registry import get_model

@@ -3,7 +3,7 @@ r"""The physics damper: geometry + fluid + seal friction -> quasi-steady force, 
 Quasi-steady means the gap flow is taken as steady at each instant (no fluid inertia, no compressibility, no
 pre-yield elasticity); those and other effects are added on top by the diagnosis work.
 
-The force is that of :mod:`erdesign.quasi_steady`, the one kernel every part of erdesign calls.  Valve damper
+The force is that of :mod:`erdesign.damper.quasi_steady`, the one kernel every part of erdesign calls.  Valve damper
 (Makris et al., eq 14):
 
 .. math::
@@ -163,7 +163,7 @@ class Damper:
         """Quasi-steady state at piston velocity ``v`` [m/s] and control ``field`` (SI magnitude), vectorised.
 
         ``v`` and ``field`` broadcast against each other.  The kernel is
-        :func:`erdesign.quasi_steady.quasi_steady_state`; see the module notes for the equations.
+        :func:`erdesign.damper.quasi_steady.quasi_steady_state`; see the module notes for the equations.
         """
         field = np.asarray(field, dtype=float)
         tau_y = np.asarray(self.fluid.yield_stress_at(field), dtype=float)

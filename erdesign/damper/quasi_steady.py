@@ -2,7 +2,7 @@ r"""The quasi-steady force of a damper: the one SI kernel, vectorised over veloc
 
 Quasi-steady means the gap flow is taken as steady at each instant (no fluid inertia, no compressibility, no
 pre-yield elasticity).  :meth:`erdesign.damper.Damper.state`, the physics model
-(:class:`erdesign.physics.PhysicsDamper`), design synthesis (:mod:`erdesign.design.evaluate`), the app's sweeps
+(:class:`erdesign.effects.chain.PhysicsDamper`), design synthesis (:mod:`erdesign.design.evaluate`), the app's sweeps
 and the report all call :func:`quasi_steady_state` (or its two halves :func:`valve_state` and :func:`mixed_state`);
 nothing else writes the force of a damper down.
 

@@ -113,7 +113,7 @@ class Measurement:
     """Units the columns were given in (for display and for writing back)."""
     velocity_noise: float | None = None
     """Standard deviation of the noise of :attr:`velocity`, [m/s], when known (a thinned copy of a record keeps the
-    value of the full record); None: estimate it from the record (:func:`erdesign.noise.velocity_noise`)."""
+    value of the full record); None: estimate it from the record (:func:`erdesign.data.noise.velocity_noise`)."""
 
     @classmethod
     def from_arrays(cls, time, displacement, force=None, *, control=None, control_kind=None, velocity=None,

@@ -71,7 +71,7 @@ def velocity_noise(record: Measurement) -> float:
     r"""Standard deviation of the noise of the record's velocity, [m/s].
 
     A measured velocity column: from its own fourth differences.  A derived velocity: the displacement noise
-    :math:`\sigma_x` is propagated through :func:`erdesign.measurement.derivatives` by differentiating the record
+    :math:`\sigma_x` is propagated through :func:`erdesign.data.measurement.derivatives` by differentiating the record
     again with fresh noise of the same level added (fixed seed) and taking the RMS of the change; this follows
     whatever rule (Fourier filtering or adaptive low-pass) the record's velocity came from.  The value is cached per
     record and kept by thinned copies (:attr:`Measurement.velocity_noise`).

@@ -1,7 +1,7 @@
 r"""Vectorised evaluation of candidate damper geometries: figures, non-dimensional groups and constraint margins.
 
 Every candidate is a set of SI arrays (gap ``h``, duct length ``L``, mean diameter ``d``, piston ``Dp``, rod
-``dr``, ``n`` ducts) evaluated at every design point by the quasi-steady kernel of :mod:`erdesign.quasi_steady`,
+``dr``, ``n`` ducts) evaluated at every design point by the quasi-steady kernel of :mod:`erdesign.damper.quasi_steady`,
 vectorised over the candidates, with no Python loop per design and no :class:`~erdesign.damper.Damper` object per
 candidate.  :meth:`erdesign.damper.Damper.state` calls the same kernel, so that a design re-checked with
 :meth:`~erdesign.damper.Damper.size` gives the same numbers (tests/test_design.py checks it).
@@ -83,7 +83,7 @@ def valve_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, d, Ap, n)
         \quad \mathrm{Re} = \frac{\bar u h\rho}{\eta}, \quad \mathrm{Bi} = \frac{\tau_y h}{\eta\bar u},
         \quad \bar u = \frac{Q}{\pi d h}
 
-    F, Re and F_0 are :func:`erdesign.quasi_steady.valve_state` (thin gap) at the field and at zero field; this
+    F, Re and F_0 are :func:`erdesign.damper.quasi_steady.valve_state` (thin gap) at the field and at zero field; this
     function adds the Bingham number.
 
     Parameters
@@ -151,7 +151,7 @@ def mixed_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, Dp, dr):
         F = \Delta p\,A_p - \tau_0\,\pi D_p L + F_s, \quad
         \bar u = \max\!\left(\frac{v A_p}{\pi d h}, v\right), \quad d = D_p + h
 
-    F, Re and F_0 are :func:`erdesign.quasi_steady.mixed_state` at the field and at zero field (:math:`\Delta p,
+    F, Re and F_0 are :func:`erdesign.damper.quasi_steady.mixed_state` at the field and at zero field (:math:`\Delta p,
     \tau_0` from :func:`erdesign.flow.mixed_mode.mixed_mode_damper_force`); Re and Bi as in
     :func:`valve_point_figures` with this :math:`\bar u`.
 

@@ -3,7 +3,7 @@ r"""Compare the physics damper with a measurement, see where it fails, find the 
 The workflow (docs/diagnosis.md explains how it judges):
 
 1. **Calibrate** the baseline (quasi-steady damper of the file, with a viscosity and a yield-stress factor, plus the
-   effects already accepted) to the record by bounded least squares (:func:`erdesign.fit.fit`).
+   effects already accepted) to the record by bounded least squares (:func:`erdesign.identification.fit.fit`).
 2. **Residual analysis** (:func:`residual_analysis`): where in the cycle the error lives (reversals / pre-yield,
    post-yield, high speed, late in the test, after field changes) and what it looks like, by regressing the
    residual on the signatures of the effects (Vivas-López et al. Table 2: characteristic -> diagram -> model term), said in
@@ -17,10 +17,10 @@ The workflow (docs/diagnosis.md explains how it judges):
    history shows the ESR falling step by step.
 
 Every model is fitted and judged on the samples where the sign of the velocity is known
-(:func:`erdesign.noise.sign_known`): at a reversal the force of a yield-stress fluid jumps by twice the yield force,
-and where the record cannot tell the sign no model can predict it.  There the noise floor is the load cell's noise
-alone.  Long records are analysed on an evenly thinned copy of at most ``max_samples`` samples (derivatives are taken on
-the full record first); the ESRs reported are those of the full record.
+(:func:`erdesign.data.noise.sign_known`): at a reversal the force of a yield-stress fluid jumps by twice the yield
+force, and where the record cannot tell the sign no model can predict it.  There the noise floor is the load cell's
+noise alone.  Long records are analysed on an evenly thinned copy of at most ``max_samples`` samples (derivatives are
+taken on the full record first); the ESRs reported are those of the full record.
 """
 
 from __future__ import annotations
@@ -395,7 +395,7 @@ class Diagnosis:
     verdict: str = "nothing_missing"
     """``"missing_effect"``, ``"nothing_missing"`` or ``"unexplained"`` (docs/cli.md)."""
     noise_floor_esr: float = 0.0
-    """ESR that the record's noise alone would leave (:func:`erdesign.noise.noise_floor_esr`)."""
+    """ESR that the record's noise alone would leave (:func:`erdesign.data.noise.noise_floor_esr`)."""
     reason: str = ""
     """The verdict in words: why, and for ``"unexplained"`` what the residual looks like and where it lives."""
     pair: tuple[str, ...] = ()
@@ -404,11 +404,11 @@ class Diagnosis:
     """Things the user should check (a calibration at its bounds, a baseline worse than the mean ...)."""
     judged_share: float = 1.0
     """Share of the samples the verdict was judged on: those where the sign of the velocity is known
-    (:func:`erdesign.noise.sign_known`)."""
+    (:func:`erdesign.data.noise.sign_known`)."""
     judged_esr: float | None = None
     """The calibrated baseline's ESR on the judged samples."""
     judged_floor: float | None = None
-    """The force noise's ESR on the judged samples (:func:`erdesign.noise.force_noise_esr`): the floor the verdict
+    """The force noise's ESR on the judged samples (:func:`erdesign.data.noise.force_noise_esr`): the floor the verdict
     compares ``judged_esr`` with."""
 
     def as_json(self) -> dict:

@@ -2,7 +2,7 @@
 
 :data:`EFFECTS` maps each registered name to its :class:`Effect`; :func:`register_effect` adds one.  A new effect is
 one module (a subclass of :class:`Effect` that declares its stage and overrides that stage's hook,
-:mod:`erdesign.effects.base`) plus its registration line below; the force chain (:mod:`erdesign.physics`) needs no
+:mod:`erdesign.effects.base`) plus its registration line below; the force chain (:mod:`erdesign.effects.chain`) needs no
 change.  :func:`get_effect` and :func:`parse_effect_names` turn user input into effects with one-line errors.
 
 >>> EFFECT_NAMES == tuple(EFFECTS)

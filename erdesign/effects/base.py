@@ -6,7 +6,7 @@ in the spirit of Vivas-López et al. (n.d.) Table 2), lists its parameters with 
 (:class:`~erdesign.models.base.Parameter`), computes a prior from the geometry and fluid where one exists, and
 tells whether a record can show it at all (:meth:`Effect.check`).  It also carries its own composition: it declares
 the *stage* of the force chain at which it acts (:data:`STAGES`) and overrides that stage's hook; the chain
-(:meth:`erdesign.physics.PhysicsDamper.components`) runs the stages in order and names no effect.  The kernels of
+(:meth:`erdesign.effects.chain.PhysicsDamper.components`) runs the stages in order and names no effect.  The kernels of
 each mechanism live in the effect's own module.
 
 The stages and their hooks (the base class's hooks are neutral):
@@ -45,7 +45,7 @@ from ..parameters import Parameter
 
 __all__ = ["Effect", "EffectError", "GapLaw", "STAGES", "relaxation_filter", "reversal_count", "sign_expectation"]
 
-#: The stages of the force chain, in the order the chain runs them (:mod:`erdesign.physics`).
+#: The stages of the force chain, in the order the chain runs them (:mod:`erdesign.effects.chain`).
 STAGES = ("state", "constitutive", "parallel", "thermal", "series", "constitutive-in-time", "additive")
 
 
@@ -91,7 +91,7 @@ class Effect:
     signature : str
         What the effect leaves in the residual of a model that lacks it.
     stage : str
-        Where it enters the damper force, one of :data:`STAGES` (module table; :mod:`erdesign.physics`).
+        Where it enters the damper force, one of :data:`STAGES` (module table; :mod:`erdesign.effects.chain`).
     continuous_at_reversal : bool
         True when the effect makes the force continuous through a reversal of the motion (a bypass, a compliant
         column, an elastic solid below yield): the chain then resolves no break-away jump.
@@ -301,7 +301,7 @@ def sign_expectation(v, sigma):
 
     A force that jumps with the sign of the velocity (the yield force of a rigid-plastic fluid, Coulomb friction) is
     predicted best, in the least-squares sense, by its expectation over the velocity noise; with ``sigma = 0`` it is
-    the sharp sign.  The width comes from the record (:func:`erdesign.noise.velocity_noise`), not from a fixed
+    the sharp sign.  The width comes from the record (:func:`erdesign.data.noise.velocity_noise`), not from a fixed
     fraction of the peak speed.
 
     Parameters

@@ -37,7 +37,7 @@ The parallel and series stages take one effect at a time (:data:`SINGLE_STAGES`)
 The break-away jump of the rigid-plastic gap flow at a reversal (from minus to plus the yield force) and the sign of
 the seal friction are evaluated at the derived velocity, whose sign is uncertain within its noise band: the model
 uses the expected sign :math:`\operatorname{erf}(v/\sqrt2\sigma_v)` (:func:`erdesign.effects.base.sign_expectation`),
-with the velocity noise :math:`\sigma_v` estimated from the record (:func:`erdesign.noise.velocity_noise`).  On a
+with the velocity noise :math:`\sigma_v` estimated from the record (:func:`erdesign.data.noise.velocity_noise`).  On a
 record without noise that is the sharp sign of Makris eq 14; no fixed smoothing floor is left in the baseline
 (an effect whose :attr:`~erdesign.effects.base.Effect.continuous_at_reversal` is set, e.g. ``leakage``,
 ``compressibility`` or ``preyield_elasticity``, makes the force continuous through the reversal and needs none).

@@ -15,7 +15,7 @@ zero field) cannot make that ramp; this module integrates the nonlinear law itse
 :math:`u(P)` is exact for the thin-gap duct laws: Buckingham-Reiner (Bingham) and its Herschel-Bulkley
 generalisation are explicit in the pressure drop, plus the laminar bypass :math:`P/C_l`; for the moving-electrode
 (mixed) gap the Couette-Poiseuille Bingham solution is inverted through a monotone table (the wall speed taken
-equal to the flow speed, as in :mod:`erdesign.physics`).  The stiff ODE is integrated by backward Euler on
+equal to the flow speed, as in :mod:`erdesign.effects.chain`).  The stiff ODE is integrated by backward Euler on
 ``substeps`` equal substeps per sample (the velocity linear between samples), each a scalar monotone equation
 solved by safeguarded false position, in a compiled loop (numba).  Backward Euler is L-stable: a column much
 stiffer than the ducts gives the quasi-steady force at any step size.
@@ -74,7 +74,7 @@ class DuctLaw(NamedTuple):
     ``kind`` 0: thin annular slits (``ducts`` of them, length L, mean diameter d, gap h), Herschel-Bulkley with
     yield stress ``tau_y``, consistency ``K`` [Pa s^m] and flow index ``m`` (1: Bingham, K the plastic viscosity);
     ``kind`` 1: the moving-electrode gap of a mixed damper (plastic viscosity ``K``, m = 1), through the table
-    ``(w, G)`` of :meth:`erdesign.physics.PhysicsDamper._mixed_inverse_table`.  ``bypass`` is 1/C_l [m/(N s)]
+    ``(w, G)`` of :meth:`erdesign.effects.chain.PhysicsDamper._mixed_inverse_table`.  ``bypass`` is 1/C_l [m/(N s)]
     (0: none)."""
 
     kind: int

@@ -6,7 +6,7 @@ r"""Seal friction: Coulomb-like friction of the rod seals and bearings (Makris e
 Makris writes the seal force as :math:`P_y\operatorname{sgn}\dot u` (eq 14, :math:`P_y` = 112 N for his damper);
 Kamath and Wereley smooth the sign with a hyperbolic tangent of the velocity (Kamath and Wereley 1997, eq 7,
 smoothing factor
-:math:`\epsilon_c` chosen a priori).  The physics damper (:mod:`erdesign.physics`) takes instead the expected sign
+:math:`\epsilon_c` chosen a priori).  The physics damper (:mod:`erdesign.effects.chain`) takes instead the expected sign
 over the record's own velocity noise (:func:`erdesign.effects.base.sign_expectation`), the same that resolves the
 yield jump; :func:`coulomb_friction` is the tanh form of Kamath and Wereley (1997) for a chosen smoothing speed.
 """

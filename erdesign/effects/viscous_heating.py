@@ -8,7 +8,7 @@ the temperature rise (Andrade / Reynolds law with coefficient :math:`\alpha`):
     \dot{\Delta T} = \frac{P}{C_\theta} - \frac{\Delta T}{\tau_\theta}, \qquad \eta = \eta_0\,e^{-\alpha\,\Delta T}.
 
 The rise is a first-order relaxation solved exactly between samples; the coupling (power depends on viscosity)
-is resolved by fixed-point passes over the whole record (:mod:`erdesign.physics`), whose error falls by the factor
+is resolved by fixed-point passes over the whole record (:mod:`erdesign.effects.chain`), whose error falls by the factor
 :math:`\alpha\Delta T` per pass.  Makris et al. report scatter of their measurements caused by heating of the
 fluid over a test.
 """

@@ -16,7 +16,7 @@ Only the two end points are published; between them erdesign assumes the viscosi
 (the same exponent), which is a modelling choice, stated in docs/theory.md.  Without ``viscosity_at_reference_field``
 the viscosity does not depend on the field.
 
-A fluid may instead follow a richer law of the field (:mod:`erdesign.field_laws`: a saturating law or a tabulated
+A fluid may instead follow a richer law of the field (:mod:`erdesign.fluid.field_laws`: a saturating law or a tabulated
 curve, as the materials database gives for MR fluids), in :attr:`Fluid.field_law`.  Then the yield stress follows
 that law and the viscosity rises in proportion to it, :math:`\eta_0 + (\eta_\text{ref} - \eta_0)\,
 \tau_y(E)/\tau_y(E_\text{ref})`, which is the formula above for the power law.
@@ -118,7 +118,7 @@ class Fluid:
     name : str
         Free text.
     field_law : FieldLaw or None
-        Law of the yield stress in the control (:mod:`erdesign.field_laws`); None: the power law of
+        Law of the yield stress in the control (:mod:`erdesign.fluid.field_laws`); None: the power law of
         ``yield_stress``, ``reference_field`` and ``yield_exponent``.  With a law, ``yield_stress`` and
         ``yield_exponent`` are the power-law summary (exact at the reference field) that the damper file shows.
     field_range : (float, float) or None
@@ -171,7 +171,8 @@ class Fluid:
             raise UnitError(f"fluid.control: unknown kind of control {self.control!r}")
         if self.field_law is not None:
             if not isinstance(self.field_law, FieldLaw):
-                raise UnitError(f"fluid.field_law: expected a FieldLaw (erdesign.field_laws), got {self.field_law!r}")
+                raise UnitError(f"fluid.field_law: expected a FieldLaw (erdesign.fluid.field_laws), got "
+                                f"{self.field_law!r}")
             if self.field_law.control_unit != self.control_unit:
                 raise UnitError(f"fluid.field_law: its control is in {self.field_law.control_unit}, the reference "
                                 f"field in {self.control_unit}; both must be of the same kind")
@@ -205,7 +206,7 @@ class Fluid:
     ) -> "Fluid":
         """Fluid from pint quantities or strings (``viscosity="7 Pa*s"``, ``reference_field="3 kV/mm"``).
 
-        ``field_law`` (a :class:`~erdesign.field_laws.FieldLaw`) replaces the power law; ``field_range`` is a
+        ``field_law`` (a :class:`~erdesign.fluid.field_laws.FieldLaw`) replaces the power law; ``field_range`` is a
         pair ``(low, high)`` of controls (``("0 kV/mm", "3 kV/mm")``) outside which :meth:`field_si` warns.
 
         Examples

@@ -1,6 +1,6 @@
-r"""Identification workflows on top of :func:`erdesign.fit.fit`: one record, several records jointly (e.g. one
-sinusoid per coil current with the current-dependent parameters shared), and cross-validation tables in the style
-of Vivas-López et al. (n.d.) Table 4 (identify on one experiment, score the ESR on every other).
+r"""Identification workflows on top of :func:`erdesign.identification.fit.fit`: one record, several records jointly
+(e.g. one sinusoid per coil current with the current-dependent parameters shared), and cross-validation tables in the
+style of Vivas-López et al. (n.d.) Table 4 (identify on one experiment, score the ESR on every other).
 """
 
 from __future__ import annotations
@@ -334,8 +334,9 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     * The control reference is chosen from the record (:func:`choose_control_reference`); a control column of zeros
       holds the control slopes, as no control column does.
     * One local start (trust-region reflective, :func:`scipy.optimize.least_squares`) from the model's guess;
-      further starts (Latin hypercube around it, as :func:`erdesign.fit.fit`) only when it fails: the optimiser did
-      not converge, or the fit is no better than a linear viscous-plus-friction fit.  ``starts`` bounds the number.
+      further starts (Latin hypercube around it, as :func:`erdesign.identification.fit.fit`) only when it fails: the
+      optimiser did not converge, or the fit is no better than a linear viscous-plus-friction fit.  ``starts`` bounds
+      the number.
     * All samples are fitted; ``decimate`` > 1 fits on every ``decimate``-th sample only (the scores are still on
       all samples).  ``warm_start`` first fits long records (> 20,000 samples) on every k-th sample (at least 1 kHz
       kept), then all samples.  It is off by default: on Dyke's 3 kHz record the 1 kHz optimum lies in a stiff
@@ -357,13 +358,13 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
       below the kernels' round-off would make a Jacobian column noise.
     * ``max_time`` [s] bounds the wall time: the best point found so far is returned (``success`` False, with a
       message saying so).  ``progress`` (a callable taking a string) receives a line every few seconds.
-    * ``exclude_clipped``: force samples at a flat top or bottom (:func:`erdesign.measurement.clipped_samples`) are
+    * ``exclude_clipped``: force samples at a flat top or bottom (:func:`erdesign.data.measurement.clipped_samples`) are
       left out of the residual and the scores.
     * Parameters the data cannot identify (a null direction of the Jacobian) are held at their start values and
       the fit repeated (``fix_unidentifiable``); they are listed in ``result.extra["not_identifiable"]``.
 
-    Returns a :class:`~erdesign.fit.FitResult` whose ``extra`` carries the report's content (initial values,
-    parameters at a bound, strong correlations, warnings, fit statistics; :func:`fit_report`).
+    Returns a :class:`~erdesign.identification.fit.FitResult` whose ``extra`` carries the report's content (initial
+    values, parameters at a bound, strong correlations, warnings, fit statistics; :func:`fit_report`).
     """
     from scipy.optimize import least_squares
 
@@ -970,7 +971,7 @@ class Simulation:
     """Model force [N] at every sample."""
     metrics: dict
     clipped: int
-    """Force samples of the record at a flat top or bottom (:func:`erdesign.measurement.clipped_samples`)."""
+    """Force samples of the record at a flat top or bottom (:func:`erdesign.data.measurement.clipped_samples`)."""
     excluded: int
     """Samples left out of the scores (the clipped ones when asked)."""
     source: ParameterSource | None = None

@@ -1,7 +1,7 @@
 r"""The yield stress against coil current through the magnetic circuit: one field law for every consumer.
 
 A damper file with a ``[coil]`` (docs/file_formats.md, [coil]) is controlled by the coil current.  Its fluid
-follows :class:`CoilLaw`, a :class:`~erdesign.field_laws.FieldLaw` whose control is the current in A:
+follows :class:`CoilLaw`, a :class:`~erdesign.fluid.field_laws.FieldLaw` whose control is the current in A:
 
 .. math:: \tau_y(I) = \tau_y^\text{fluid}\big(H_g(I)\big)
 

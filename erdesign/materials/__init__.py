@@ -12,7 +12,7 @@ File layout (``<name>.toml``)::
     viscosity = "7 Pa*s"         # summary (exact at reference_field) that a damper file may override
     ...
     [yield_curve]                # optional richer law of tau_y(E): law = "power" | "saturating" | "carlson" |
-    law = "carlson"              # "table" (erdesign.field_laws.field_law_from_dict); fit_range is the range the
+    law = "carlson"              # "table" (erdesign.fluid.field_laws.field_law_from_dict); fit_range is the range the
     fit_range = ["0 kA/m", "250 kA/m"]   # power-law summary of [fluid] was fitted on
     [range]                      # where the values hold: field, temperature, shear_rate, each [low, high]
     field = ["0 kA/m", "250 kA/m"]

@@ -5,8 +5,8 @@ physics damper with effects (registry name ``physics``).
 * one module per model family (``bingham.py``, ``bouc_wen.py``, ``kamath_wereley.py``, ...);
 * :mod:`~erdesign.models.registry` - name -> model, with source and equation numbers (``erdesign models``).
 
-Fitting is :func:`erdesign.fit.fit`; identification workflows are in :mod:`erdesign.identify`.  Every model's
-equation and source: docs/models.md.
+Fitting is :func:`erdesign.identification.fit.fit`; identification workflows are in
+:mod:`erdesign.identification.identify`.  Every model's equation and source: docs/models.md.
 """
 
 from .base import ControlAffineModel, Model, ModelInputError, Parameter, ParameterError

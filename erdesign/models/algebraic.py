@@ -2,7 +2,8 @@ r"""Algebraic (memoryless) hysteresis models: Eyring-plastic, Weng arctan, Kwok 
 
 Each maps the present displacement, velocity and acceleration (and control) to a force with no internal state, so
 they are vectorised outright and their inverses (control for a desired force) are explicit where the control enters
-linearly (the MR-model review Table 1 marks Kwok and the magic formula invertible; :mod:`erdesign.inverse`).
+linearly (the MR-model review Table 1 marks Kwok and the magic formula invertible;
+:mod:`erdesign.identification.inverse`).
 """
 
 from __future__ import annotations

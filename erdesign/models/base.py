@@ -1,8 +1,8 @@
 """The one model interface: anything that predicts a damper force from a motion record.
 
 Physics dampers (the quasi-steady damper plus effects) and the phenomenological models of the literature both
-implement :class:`Model`, so that fitting (:mod:`erdesign.fit`), metrics, diagnosis, plots and the app treat them
-alike.  A model is a description (name, source, parameters with units and bounds) plus one function,
+implement :class:`Model`, so that fitting (:mod:`erdesign.identification.fit`), metrics, diagnosis, plots and the app
+treat them alike.  A model is a description (name, source, parameters with units and bounds) plus one function,
 :meth:`Model.force`, that maps a motion record and parameter values (SI floats) to a force array (N).
 """
 
@@ -55,7 +55,8 @@ class Model:
     r"""Parameters in which the force is affine whatever the others' values: :math:`F = r + \sum_j \theta_j b_j`
     with the rest r and the basis b_j functions of the other parameters only (a parameter that enters a state
     equation does not qualify).  Identification solves them by linear least squares inside each residual
-    (variable projection, :mod:`erdesign.identify`); tests/test_linear_parameters.py checks each declaration."""
+    (variable projection, :mod:`erdesign.identification.identify`); tests/test_linear_parameters.py checks each
+    declaration."""
     projection_default: bool = True
     """Whether identification projects out the :attr:`linear_parameters` unless told otherwise (False where it was
     measured to end in a worse optimum)."""
@@ -164,8 +165,8 @@ def values_from_vector(names: Sequence[str], vector: Sequence[float]) -> dict[st
 class ControlAffineModel(Model):
     """A model whose force is affine in the dimensionless control: F = P(x, v, a) + Q(x, v, a) u.
 
-    Subclasses implement :meth:`control_affine`; the force follows, and :mod:`erdesign.inverse` inverts it
-    explicitly (the MR-model review calls such models invertible).
+    Subclasses implement :meth:`control_affine`; the force follows, and :mod:`erdesign.identification.inverse` inverts
+    it explicitly (the MR-model review calls such models invertible).
     """
 
     def control_affine(self, record: Measurement, values: Mapping[str, float]) -> tuple[np.ndarray, np.ndarray]:

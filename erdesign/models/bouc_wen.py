@@ -140,8 +140,8 @@ class BoucWenModified(Model):
     quadratic term
     :math:`\alpha_c u_f^2` is not in Butz and von Stryk (2002) (eq 13 is linear in u): it is the saturation of the MR
     yield force
-    with coil current used by Quiroz (2022, the UTFSM data of docs/real_data.md); ``alpha_c = 0`` (the default)
-    is Spencer's law.  Motion and control are taken linear between samples; the filter is solved exactly, w by
+    with coil current used by Quiroz (2022, the UTFSM data of docs/case_studies/quiroz.md); ``alpha_c = 0`` (the
+    default) is Spencer's law.  Motion and control are taken linear between samples; the filter is solved exactly, w by
     RK4 sub-steps with z exact along each sub-step (:func:`~erdesign.models._kernels.modified_bouc_wen`, a compiled
     loop), which tests/test_models.py checks against :func:`scipy.integrate.solve_ivp` (LSODA, rtol 1e-10) to 1e-4
     of the force range at 3 kHz.  States start at rest (y = z = 0, u_f = u at the first sample).  Published sets
@@ -234,7 +234,8 @@ class BoucWenNormalized(ControlAffineModel):
     Tsouroukdissian / Bahar (eq 47) for :math:`k_{\dot x}` and :math:`k_w`; the source writes :math:`-k_w w`, here
     the sign is absorbed in :math:`k_w` (positive :math:`k_w` dissipates).  The hysteretic state does not depend
     on the control, so the force is affine in u: the model is invertible in closed form (the MR-model review Table 1,
-    "modified normalized Bouc-Wen: invertible"; :mod:`erdesign.inverse`).  Solved with the Bouc-Wen kernel with
+    "modified normalized Bouc-Wen: invertible"; :mod:`erdesign.identification.inverse`).  Solved with the Bouc-Wen
+    kernel with
     :math:`\beta = \rho(1-\sigma)`, :math:`\gamma = \rho\sigma`, :math:`\delta = \rho` (in w).
 
     Examples

@@ -233,7 +233,7 @@ class LuGreModified(ControlAffineModel):
     Notes
     -----
     Needs a control column (the hysteretic force is proportional to it).  At each step the force is affine in u
-    (:meth:`control_affine`), which gives the inverse model used by :mod:`erdesign.inverse`.
+    (:meth:`control_affine`), which gives the inverse model used by :mod:`erdesign.identification.inverse`.
 
     Examples
     --------

@@ -1,7 +1,7 @@
 """The model registry: contract name -> model factory, with one dispatcher (:func:`get_model`).
 
 Names are those of docs/cli.md ("Model names").  Every factory returns a fresh :class:`Model`;
-``physics`` (the physics damper of a damper file, with effects, :class:`erdesign.physics.PhysicsDamper`, imported
+``physics`` (the physics damper of a damper file, with effects, :class:`erdesign.effects.chain.PhysicsDamper`, imported
 when first asked for) needs ``damper=`` (a :class:`~erdesign.damper.Damper` or a damper-file path).
 """
 
@@ -30,7 +30,7 @@ class UnknownModelError(ErdesignError):
 
 
 def _physics(damper=None, effects=(), **options) -> Model:
-    """The physics damper (:class:`erdesign.physics.PhysicsDamper`) of a damper file with effects, as a Model."""
+    """The physics damper (:class:`erdesign.effects.chain.PhysicsDamper`) of a damper file with effects, as a Model."""
     # imported here: the physics damper loads scipy's root finders and the compiled effects, which
     # `erdesign models` and the other models do not need
     from ..effects.chain import PhysicsDamper
@@ -106,7 +106,7 @@ def describe_models(include_physics: bool = True) -> list[dict]:
         if name == "physics":
             if include_physics:
                 out.append({"name": "physics", "source": "the damper of a damper file with effects "
-                            "(erdesign.physics; Makris eqs 1-16, Kamath-Wereley mixed mode)", "parameters": []})
+                            "(erdesign.effects.chain; Makris eqs 1-16, Kamath-Wereley mixed mode)", "parameters": []})
             continue
         out.append(get_model(name).describe())
     return out

@@ -1,7 +1,7 @@
 """Files a user takes away: the damper file (TOML) of a design and CSV tables with units in their headers.
 
 :func:`damper_toml` writes the content of a damper file (docs/file_formats.md: the plain data that
-:func:`erdesign.damper_file.damper_from_dict` reads) as TOML text that ``erdesign size`` and the app's upload read
+:func:`erdesign.damper.files.damper_from_dict` reads) as TOML text that ``erdesign size`` and the app's upload read
 back; :func:`csv_text` writes columns of numbers with ``name [unit]`` headers, the form of a measurement file
 (section 2), so that a time history written here can be read again as a measurement; :func:`rows_csv` writes a
 table of text (a ranking, a list of parameters).

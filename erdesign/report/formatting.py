@@ -1,6 +1,6 @@
 """The unit-formatting helpers of :mod:`erdesign.formatting`, under the name the report has always used.
 
-They moved to :mod:`erdesign.formatting` so that the figures (:mod:`erdesign.plots`) need not import the report;
+They moved to :mod:`erdesign.formatting` so that the figures (:mod:`erdesign.report.plots`) need not import the report;
 every name here is that module's object itself (one unit system in force for both).
 """
 

@@ -1,4 +1,4 @@
-"""Regenerate the example measurements of this folder with the truth rig (erdesign.truthrig).
+"""Regenerate the example measurements of this folder with the truth rig (erdesign.simulation.truthrig).
 
 The truth rig is the independent simulator (its own flow laws and time stepping, docs/truthrig.md), so that the
 diagnosis shown on these records is not the fitted model agreeing with itself.  Each file says in its first comment

@@ -1,6 +1,6 @@
 r"""The field-law kernels: yield stress [Pa] as a plain function of the control (SI floats or arrays).
 
-See :mod:`erdesign.field_laws` for the laws and where each holds.
+See :mod:`erdesign.fluid.field_laws` for the laws and where each holds.
 """
 
 from __future__ import annotations

@@ -1,9 +1,9 @@
 """A truth rig: an independent simulator of a damper on a displacement-controlled test machine.
 
 Test data for the diagnosis, made by physics that shares no code with the model the diagnosis fits (module notes
-of :mod:`erdesign.truthrig.simulate`; the page docs/truthrig.md).  Mechanisms (:data:`MECHANISMS`): compressible
-fluid column, Herschel-Bulkley fluid, leakage bypass, gas accumulator, Stribeck seal friction, fluid slug inertia,
-coil lag, viscous heating, Makris pre-yield elasticity, and four outside the effect library (rebound blow-off,
+of :mod:`erdesign.simulation.truthrig.simulate`; the page docs/truthrig.md).  Mechanisms (:data:`MECHANISMS`):
+compressible fluid column, Herschel-Bulkley fluid, leakage bypass, gas accumulator, Stribeck seal friction, fluid slug
+inertia, coil lag, viscous heating, Makris pre-yield elasticity, and four outside the effect library (rebound blow-off,
 single-ended rod, cavitation, free play).
 
 >>> from erdesign.damper.files import load_example

@@ -2,7 +2,8 @@ r"""The catalogue of the diagnosis benchmark: records made by the truth rig whos
 
 Each :class:`Case` says which damper of ``examples/`` is measured, how it is driven (a sine programme, band-limited
 random motion or an earthquake-like record), how noisy the force is, which mechanisms of the truth rig
-(:data:`erdesign.truthrig.MECHANISMS`) the true damper has and at what size, and what a correct diagnosis says:
+(:data:`erdesign.simulation.truthrig.MECHANISMS`) the true damper has and at what size, and what a correct diagnosis
+says:
 
 * no mechanism ("clean": the true damper is exactly Bingham, with perturbed calibration factors) -> the verdict
   ``"nothing_missing"``;
@@ -288,15 +289,15 @@ class Case:
                             control_scale=self.control_scale)
 
     def truth(self, damper: Damper | None = None, mechanisms: Mapping | None = None):
-        """The true damper (:class:`erdesign.truthrig.TruthDamper`)."""
+        """The true damper (:class:`erdesign.simulation.truthrig.TruthDamper`)."""
         from . import TruthDamper
         mech = self.mechanisms if mechanisms is None else mechanisms
         return TruthDamper(damper or self.load_damper(), mechanisms={k: dict(v) for k, v in mech.items()},
                            viscosity_factor=self.viscosity_factor, yield_stress_factor=self.yield_stress_factor)
 
     def make(self, rng_seed: int | None = None):
-        """Simulate the case on the truth rig: a :class:`erdesign.truthrig.TruthRecord` (noise seed ``rng_seed``,
-        default :attr:`seed`)."""
+        """Simulate the case on the truth rig: a :class:`erdesign.simulation.truthrig.TruthRecord` (noise seed
+        ``rng_seed``, default :attr:`seed`)."""
         from . import simulate_truth
         damper = self.load_damper()
         return simulate_truth(self.truth(damper), self.motion(damper), force_noise=self.noise,
@@ -323,8 +324,8 @@ def effect_size_over_noise(case: Case, recalibrate: bool = True) -> dict[str, fl
     viscosity and yield-stress factors, bounded least squares, nothing of the diagnosed model - and
     ``visible_over_noise`` is what is left over the noise: what no calibration of the clean damper can remove,
     the size a diagnosis can see.  Samples where the velocity is within 1 % of its peak of zero are left out of
-    both sums (there the sign of a measured velocity is not known, :func:`erdesign.noise.sign_known`).  All None for
-    a clean case.
+    both sums (there the sign of a measured velocity is not known, :func:`erdesign.data.noise.sign_known`).  All None
+    for a clean case.
     """
     keys = ("effect_esr", "noise_esr", "effect_size_over_noise", "visible_esr", "visible_over_noise")
     if not case.mechanisms:

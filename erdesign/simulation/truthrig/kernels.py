@@ -1,13 +1,13 @@
 r"""Compiled kernels of the truth rig: flow paths in parallel, the steady force, and the time-stepping loop.
 
-Sign convention (shared with :mod:`erdesign.rig` and the effect library): ``x`` grows as the rod goes in
+Sign convention (shared with :mod:`erdesign.simulation.rig` and the effect library): ``x`` grows as the rod goes in
 (compression), and the force ``F`` is the force the test machine applies in the direction of ``+x``, so that a
 damper resists with ``F`` of the sign of ``v``.  Compression is ``v > 0``, rebound (extension) ``v < 0``.
 
 The fluid element is a set of flow paths in parallel between the two chambers, all driven by the same pressure
 drop :math:`\Delta p = F/A` (``A`` the area of the pressurised chamber: the compression or the rebound area):
 
-* ``ducts`` annular ducts with the Herschel-Bulkley / Bingham slit law of :mod:`erdesign.truthrig.valve`;
+* ``ducts`` annular ducts with the Herschel-Bulkley / Bingham slit law of :mod:`erdesign.simulation.truthrig.valve`;
 * a laminar bypass, :math:`Q_l = g_l \Delta p` (``g_l = A_p^2 / C_l``);
 * a rebound blow-off valve, :math:`Q_b = g_b (\Delta p - p_c)` above its cracking pressure, in rebound only.
 
@@ -16,11 +16,12 @@ non-decreasing in ``F``; every force in the rig is a root of a monotone scalar e
 (:func:`monotone_root`, Newton steps inside a shrinking bracket, bisection as the fall-back).
 
 The moving-electrode (mixed-mode) head has one gap whose inner wall is the head itself: the gap's flow depends on
-the pressure drop and on the head's speed (:func:`erdesign.truthrig.valve.moving_wall_flow`), and the head feels the
-wall stress besides the pressure.  Its steady force (:func:`mixed_steady_force`) is the pressure drop at which the
-gap and the bypass send the displaced volume :math:`A_p v` back past the head, a root of a monotone equation in
+the pressure drop and on the head's speed (:func:`erdesign.simulation.truthrig.valve.moving_wall_flow`), and the head
+feels the wall stress besides the pressure.  Its steady force (:func:`mixed_steady_force`) is the pressure drop at which
+the gap and the bypass send the displaced volume :math:`A_p v` back past the head, a root of a monotone equation in
 :math:`\Delta p` (:func:`mixed_pressure`, the Illinois method on a doubled bracket), plus wall stress times wall
-area.  No blow-off, cavitation or single rod for this head (:data:`erdesign.truthrig.simulate.MIXED_MECHANISMS`).
+area.  No blow-off, cavitation or single rod for this head
+(:data:`erdesign.simulation.truthrig.simulate.MIXED_MECHANISMS`).
 
 :func:`run` integrates, on a fine grid of substeps, the states that need time stepping (each optional):
 
@@ -167,7 +168,7 @@ def steady_force(v, tau_y, eta, thermal, p):
 def mixed_flow(dp, U, tau_y, eta, thermal, p, guess=math.nan):
     """(Q, tau_h, tau_0) of the moving-electrode head: flow along the head's motion through its gap and the bypass
     [m^3/s] at pressure drop ``dp`` (ahead minus behind) and head speed ``U``, the stress on the head's wall [Pa],
-    and the stress on the cylinder's wall (``guess`` for the next call; :func:`erdesign.truthrig.valve.
+    and the stress on the cylinder's wall (``guess`` for the next call; :func:`erdesign.simulation.truthrig.valve.
     moving_wall_flow`)."""
     m = p[I_M]
     K = eta * p[I_GAMMA_REF] ** (1.0 - m)

@@ -4,7 +4,7 @@ Each :class:`Mechanism` says which effect of the erdesign effect library it corr
 or None for the mechanisms outside that library (``blowoff``, ``single_rod``, ``cavitation``, ``free_play``), which
 a diagnosis with the library cannot express.  Parameters are SI; defaults follow from the damper's geometry and
 nominal fluid where a physical value exists (the slug mass, the chamber volume) and are plain typical values
-otherwise.  The simulation itself lives in :mod:`erdesign.truthrig.simulate`.
+otherwise.  The simulation itself lives in :mod:`erdesign.simulation.truthrig.simulate`.
 """
 
 from __future__ import annotations

@@ -1,16 +1,16 @@
 r"""The truth rig: a damper "as the physics happens" on a displacement-controlled test machine.
 
 :class:`TruthDamper` is a damper file's geometry and nominal fluid, the true fluid (calibration factors) and any
-subset of the mechanisms of :data:`~erdesign.truthrig.mechanisms.MECHANISMS`; :func:`simulate_truth` drives it with
-an exactly known :class:`~erdesign.rig.Motion` and returns a :class:`TruthRecord`: the noise-free force, the noisy
-measurement the machine would write, the force split into its parts and the internal states.
+subset of the mechanisms of :data:`~erdesign.simulation.truthrig.mechanisms.MECHANISMS`; :func:`simulate_truth` drives
+it with an exactly known :class:`~erdesign.simulation.rig.Motion` and returns a :class:`TruthRecord`: the noise-free
+force, the noisy measurement the machine would write, the force split into its parts and the internal states.
 
-The rig shares no code with the model that diagnosis fits (``erdesign.physics``, ``erdesign.effects``,
-``erdesign.fit``, ``erdesign.diagnose``): its valve laws are written the other way round (flow rate from pressure
-drop, :mod:`erdesign.truthrig.valve`) and inverted by bracketed roots, and its states are integrated in the time
-domain (:mod:`erdesign.truthrig.kernels`).
+The rig shares no code with the model that diagnosis fits (``erdesign.effects.chain``, ``erdesign.effects``,
+``erdesign.identification.fit``, ``erdesign.diagnosis.diagnose``): its valve laws are written the other way round (flow
+rate from pressure drop, :mod:`erdesign.simulation.truthrig.valve`) and inverted by bracketed roots, and its states are
+integrated in the time domain (:mod:`erdesign.simulation.truthrig.kernels`).
 
-The force on the rod, with ``x`` growing in compression (the convention of :mod:`erdesign.rig`):
+The force on the rod, with ``x`` growing in compression (the convention of :mod:`erdesign.simulation.rig`):
 
 .. math::
     F = F_\text{fluid} + F_\text{inertia} + F_\text{friction} + F_\text{gas}
@@ -18,7 +18,7 @@ The force on the rod, with ``x`` growing in compression (the convention of :mod:
 * :math:`F_\text{fluid}`: the valve damper's parallel flow paths (ducts, bypass, blow-off) at the piston speed,
   or the pressure force of the compliant column, or the damper-level Makris eq 8 force, or the column in series
   with the Makris element; for the mixed-mode damper the pressure drag plus the shear drag of its moving-wall gap
-  (:func:`erdesign.truthrig.valve.mixed_gap_flow`), with the same optional states;
+  (:func:`erdesign.simulation.truthrig.valve.mixed_gap_flow`), with the same optional states;
 * :math:`F_\text{inertia} = m_\text{slug} a` (rigid column; with compliance on a valve damper the slug sits inside
   the fluid state);
 * :math:`F_\text{friction}`: the damper file's Coulomb seal friction :math:`F_s \operatorname{sgn} v`, or the
@@ -240,7 +240,7 @@ class TruthDamper:
         return p
 
     def parameter_vector(self) -> np.ndarray:
-        """The SI parameter vector of :mod:`erdesign.truthrig.kernels`."""
+        """The SI parameter vector of :mod:`erdesign.simulation.truthrig.kernels`."""
         g, v = self.damper.geometry, self.values
         Ap = g.piston_area
         p = self._geometry_vector()
@@ -319,7 +319,7 @@ class TruthRecord:
         return units
 
     def write(self, path, units: Mapping[str, str] | None = None) -> Path:
-        """Write the measurement as a CSV file (:func:`erdesign.measurement.write_measurement`), with the
+        """Write the measurement as a CSV file (:func:`erdesign.data.measurement.write_measurement`), with the
         description as a comment line; ``units`` overrides :meth:`file_units` by column.  Never overwrites."""
         path = Path(path)
         if path.exists():
@@ -394,7 +394,7 @@ def simulate_truth(truth: TruthDamper, motion: Motion, *, force_noise: float = 0
     ----------
     truth : TruthDamper
     motion : Motion
-        The actuator's motion and commanded control (:mod:`erdesign.rig` generators), SI.
+        The actuator's motion and commanded control (:mod:`erdesign.simulation.rig` generators), SI.
     force_noise : float
         Standard deviation of white force noise as a fraction of the RMS of the true force, [-].
     displacement_noise : float

@@ -30,8 +30,8 @@ The consistency of the Herschel-Bulkley fluid is tied to the plastic viscosity b
 that both fluids have the same stress at that rate and :math:`m = 1` is the Bingham fluid.
 
 The scalar kernels are compiled with numba (``cache=True``) so that the time-stepping loops of
-:mod:`erdesign.truthrig.kernels` can call them; :func:`bingham_valve_flow` and :func:`herschel_bulkley_valve_flow`
-are their vectorised public faces.
+:mod:`erdesign.simulation.truthrig.kernels` can call them; :func:`bingham_valve_flow` and
+:func:`herschel_bulkley_valve_flow` are their vectorised public faces.
 """
 
 from __future__ import annotations
