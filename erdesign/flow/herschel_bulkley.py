@@ -18,7 +18,6 @@ Buckingham-Reiner flow of :mod:`erdesign.flow.bingham`.  The effect that uses th
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize.elementwise import bracket_root, find_root
 
 __all__ = ["herschel_bulkley_slit_flow_rate", "herschel_bulkley_pressure_drop"]
 
@@ -94,6 +93,9 @@ def herschel_bulkley_pressure_drop(Q, tau_y, K, m, L, d, h):
     >>> round(herschel_bulkley_pressure_drop(1e-5, 1800.0, 13.0, 1.0, 0.0546, 0.0143, 0.0008) / 1e6, 4)
     4.0712
     """
+    # imported here: scipy.optimize doubles the start-up time of every command that imports erdesign.flow
+    from scipy.optimize.elementwise import bracket_root, find_root
+
     Q = np.asarray(Q, dtype=float)
     tau_y, K = np.broadcast_arrays(np.asarray(tau_y, dtype=float) + 0 * Q, np.asarray(K, dtype=float) + 0 * Q)
     Qa = np.abs(Q)
