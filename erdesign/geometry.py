@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from .errors import DamperFileError, PlausibilityWarning, ValidityWarning
+from .flow.areas import piston_area
 from .flow.newtonian import thin_gap_error
 from .units import to_si
 
@@ -216,8 +217,8 @@ class Geometry:
 
     @property
     def piston_area(self) -> float:
-        """A_p = pi/4 (Dp^2 - dr^2), the area that displaces fluid, [m^2]."""
-        return math.pi / 4.0 * (self.piston_diameter**2 - self.rod_diameter**2)
+        """A_p = pi/4 (Dp^2 - dr^2), the area that displaces fluid, [m^2] (:func:`erdesign.flow.areas.piston_area`)."""
+        return piston_area(self.piston_diameter, self.rod_diameter)
 
     @property
     def gap_ratio(self) -> float:

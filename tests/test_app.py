@@ -775,9 +775,19 @@ def test_simulate_parameters_typed_in_the_unit_system(app, monkeypatch, system):
     assert rows["friction_force"]["unit"] == unit
     # 1 lbf = 4.4482216152605 N exactly (the international pound-force, NIST SP 811 B.8); 1 kN = 1000 N
     per_unit = {"lbf": 4.4482216152605, "kN": 1000.0}[unit]
-    assert rows["friction_force"]["value"] == pytest.approx(default_N / per_unit, rel=1e-12)
+    # the value typed in SI is carried over, converted, and the simulation is unchanged (it was reset to the
+    # default before)
+    assert rows["friction_force"]["value"] == pytest.approx(friction_N / per_unit, rel=1e-12)
     assert rows["viscosity_factor"]["value"] == 1.0 and rows["viscosity_factor"]["unit"] == "-"
-    edit_table(monkeypatch, app, "sim.values", {row: {"value": friction_N / per_unit}})
+    assert simulated_peak(app) == pytest.approx(peak_si, rel=1e-12)
+    # typing the default in this system's unit reaches the model as the SI default
+    edit_table(monkeypatch, app, "sim.values", {row: {"value": default_N / per_unit}})
     app.run()
     no_error(app)
-    assert simulated_peak(app) == pytest.approx(peak_si, rel=1e-9)
+    assert simulated_peak(app) == pytest.approx(peak_default, rel=1e-9)
+    monkeypatch.undo()
+    # and back to SI: the default typed in the other system comes back, in N
+    app.radio(key=state.UNITS).set_value("SI").run()
+    no_error(app)
+    assert parameter_rows(app)["friction_force"]["value"] == pytest.approx(default_N, rel=1e-12)
+    assert simulated_peak(app) == pytest.approx(peak_default, rel=1e-9)

@@ -16,7 +16,7 @@ from erdesign.effects.chain import PhysicsDamper
 from erdesign.effects.field_lag import lagged_control
 from erdesign.effects.fluid_inertia import slug_mass
 from erdesign.effects.preyield_elasticity import elastic_viscoplastic_force
-from erdesign.effects.shear_thinning import herschel_bulkley_pressure_drop, herschel_bulkley_slit_flow_rate
+from erdesign.flow.herschel_bulkley import herschel_bulkley_pressure_drop, herschel_bulkley_slit_flow_rate
 from erdesign.effects.viscous_heating import TEMPERATURE_COEFFICIENT
 from erdesign.flow.bingham import bingham_flow_rate, bingham_slit_flow
 
@@ -223,6 +223,12 @@ def test_herschel_bulkley_slit_flow_against_quadrature_of_the_velocity_profile(m
     assert herschel_bulkley_pressure_drop(Q, tau_y, K, m, L, d, h) == pytest.approx(dp, rel=1e-9)
     if m == 1.0:   # Bingham: Buckingham-Reiner (Makris eq 6 with h^3)
         assert Q == pytest.approx(bingham_flow_rate(dp, tau_y, K, L, d, h), rel=1e-12)
+    # the compiled one-sample twin that the compressibility loop calls (piston speed = n Q / A_p)
+    from erdesign.effects.compressibility import _piston_speed
+
+    Ap, ducts = 7.7676e-4, 2
+    u = _piston_speed(dp * Ap, 0, tau_y, K, m, L, d, h, Ap, ducts, 0.0, np.zeros(2), np.ones(2))
+    assert u == pytest.approx(ducts * Q / Ap, rel=1e-13)
 
 
 def test_gas_spring_adds_preload_and_stiffness():

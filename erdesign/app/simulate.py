@@ -91,20 +91,30 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
         st.caption(model.source)
     system = unit_system()
     shown = {p.name: _display_unit(p.unit, system) for p in model.parameters}
-    defaults = {p.name: _to_unit(p.default, p.unit, shown[p.name]) for p in model.parameters}
-    rows = [{"parameter": p.name, "value": defaults[p.name], "unit": shown[p.name] or "-",
+    # The table of one model and unit system is a widget of its own (its key); it starts from the values last
+    # used with this model in any unit system (SI, exact), so that a switch of the unit system converts what was
+    # typed instead of dropping it.
+    model_key = f"sim.values.{name}.{','.join(effects)}"
+    key = f"{model_key}.{system}"
+    if st.session_state.get("sim.values.table") != key or f"{key}.start" not in st.session_state:
+        last = st.session_state.get(f"{model_key}.si", {})
+        st.session_state[f"{key}.start"] = {p.name: float(last.get(p.name, p.default)) for p in model.parameters}
+        st.session_state.pop(key, None)          # a table left earlier in this system holds stale edits
+        st.session_state["sim.values.table"] = key
+    start = st.session_state[f"{key}.start"]
+    shown_start = {p.name: _to_unit(start[p.name], p.unit, shown[p.name]) for p in model.parameters}
+    rows = [{"parameter": p.name, "value": shown_start[p.name], "unit": shown[p.name] or "-",
              "description": p.description} for p in model.parameters]
-    # the unit system is part of the key: the numbers typed in one system are not carried over to another
-    key = f"sim.values.{name}.{','.join(effects)}.{system}"
     edited = st.data_editor(rows, key=key, disabled=["parameter", "unit", "description"], hide_index=True,
                             width="stretch")
     try:
-        values = tuple((r["parameter"], _to_si(r["parameter"], float(r["value"]), model, shown, defaults))
+        values = tuple((r["parameter"], _to_si(r["parameter"], float(r["value"]), model, shown, shown_start, start))
                        for r in edited)
         model.check_values(dict(values))
     except (ErdesignError, TypeError, ValueError) as exc:
         st.error(f"Parameter values: {exc}")
         return None
+    st.session_state[f"{model_key}.si"] = dict(values)
     return name, effects, values
 
 
@@ -124,12 +134,13 @@ def _to_unit(value: float, unit: str, shown: str) -> float:
     return value if shown == unit else float(Q_(value, unit).to(shown).magnitude)
 
 
-def _to_si(name: str, value: float, model, shown: dict, defaults: dict) -> float:
+def _to_si(name: str, value: float, model, shown: dict, shown_start: dict, start: dict) -> float:
     """A value typed in the table (unit ``shown[name]``) in the model's SI unit, exactly (pint); a value left at
-    its shown default is the SI default itself, so that a conversion's last bit never reads as an edit."""
+    its shown starting value is the SI starting value itself (``start``), so that a conversion's last bit never
+    reads as an edit."""
     (p,) = [p for p in model.parameters if p.name == name]
-    if value == defaults[name]:
-        return float(p.default)
+    if value == shown_start[name]:
+        return start[name]
     return value if shown[name] == p.unit else float(Q_(value, shown[name]).to(p.unit).magnitude)
 
 

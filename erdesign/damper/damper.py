@@ -177,24 +177,16 @@ class Damper:
     def damping_constant_si(self) -> float:
         r"""Small-velocity damping constant of the zero-field fluid, [N s/m].
 
-        Valve (Makris eq 15, n ducts in parallel):
+        Valve (Makris eq 15, n ducts in parallel; the exact annulus divides it by the conductance ratio of
+        :func:`erdesign.flow.newtonian.annulus_conductance_ratio`):
 
         .. math:: C = \frac{12\,\eta_0\,L\,A_p^2}{n\,\pi\,d\,h^3}
 
-        Mixed: the slope F/v of the Newtonian Couette-Poiseuille solution (pressure + shear drag), which is exact
-        for the zero-field fluid at any velocity.  Seal friction is not part of C.
+        Mixed: the slope F/v of the Newtonian Couette-Poiseuille solution (pressure + shear drag).  Both are the
+        quasi-steady fluid force of the zero-field fluid at 1 m/s (:func:`erdesign.damper.quasi_steady.damper_state`),
+        which is linear in the velocity, so exact at any velocity.  Seal friction is not part of C.
         """
-        g, eta0 = self.geometry, self.fluid.viscosity
-        if g.configuration == "valve":
-            if self.uses_exact_annulus:
-                from ..flow.newtonian import annulus_conductance_ratio
-
-                ratio = annulus_conductance_ratio(g.duct_mean_diameter, g.gap)
-            else:
-                ratio = 1.0
-            return 12.0 * eta0 * g.duct_length * g.piston_area**2 / (
-                g.ducts * math.pi * g.duct_mean_diameter * g.gap**3 * ratio)
-        s = damper_state(self, 1.0, 0.0, eta0)
+        s = damper_state(self, 1.0, 0.0, self.fluid.viscosity)
         return float(s.pressure_force + s.shear_force)
 
     def yield_force_si(self, field) -> Any:

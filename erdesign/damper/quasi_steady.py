@@ -4,7 +4,10 @@ Quasi-steady means the gap flow is taken as steady at each instant (no fluid ine
 pre-yield elasticity).  :meth:`erdesign.damper.Damper.state`, the physics model
 (:class:`erdesign.effects.chain.PhysicsDamper`), design synthesis (:mod:`erdesign.design.evaluate`), the app's sweeps
 and the report all call :func:`quasi_steady_state` (or its two halves :func:`valve_state` and :func:`mixed_state`);
-nothing else writes the force of a damper down.
+nothing else writes the force of a damper down.  Two pieces serve the physics model, which evaluates the gap at
+every sample of a record many times over and sometimes sets the duct flow itself (a bypass): the gap law of the
+valve alone, :func:`valve_pressure_drop`, and the mixed gap tabulated once per head, :class:`MixedGapTable`
+(:func:`mixed_gap_table`; 1e-5 of :func:`mixed_state`), whose inverse (pressure to flow) the series stage uses.
 
 Valve damper (Makris et al. 1996, eq 14), ``n`` stationary annular ducts in parallel:
 
@@ -32,21 +35,23 @@ is blocked and any force up to it is held with no motion.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
 from .._util import scalar_or_array
 from ..flow.annulus_bingham import annulus_bingham_flow
+from ..flow.areas import piston_area
 from ..flow.bingham import bingham_slit_flow
-from ..flow.mixed_mode import mixed_mode_damper_force
+from ..flow.mixed_mode import couette_poiseuille_bingham, mixed_mode_damper_force
 from ..flow.newtonian import slit_pressure_drop
 
 if TYPE_CHECKING:  # pragma: no cover
     from .damper import Damper
 
-__all__ = ["QuasiSteadyState", "quasi_steady_state", "valve_state", "mixed_state", "damper_state",
-           "CRITICAL_REYNOLDS"]
+__all__ = ["QuasiSteadyState", "quasi_steady_state", "valve_state", "valve_pressure_drop", "mixed_state",
+           "MixedGapTable", "mixed_gap_table", "damper_state", "CRITICAL_REYNOLDS"]
 
 #: Reynolds number below which the duct flow is taken as laminar (Makris et al., section 2: R_crit = 2300).
 CRITICAL_REYNOLDS = 2300.0
@@ -79,10 +84,6 @@ class QuasiSteadyState(NamedTuple):
     """Plastic viscosity at the control, [Pa s]."""
     mean_velocity: Any = None
     """Mean speed of the fluid in the gap, u (mixed: at least the wall speed |v|), [m/s]."""
-
-
-def _piston_area(Dp, dr):
-    return np.pi / 4.0 * (Dp**2 - dr**2)
 
 
 def _state(force, dp, pressure_force, shear_force, friction, Q_total, Q, phi, mean_velocity, h, rho, tau_y, eta):
@@ -222,13 +223,111 @@ def mixed_state(v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr) -> QuasiStea
     Kamath and Wereley (1997), section II; Makris et al. (1996), eq 1.
     """
     v = np.asarray(v, dtype=float)
-    Q_total = v * _piston_area(Dp, dr)
+    Q_total = v * piston_area(Dp, dr)
     m = mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h)
     friction = np.copysign(seal_friction, v)
     # the fluid in the gap moves at up to the wall speed |v| as well as at the mean flow speed
     mean_velocity = np.maximum(np.abs(Q_total) / (np.pi * d * h), np.abs(v))
     return _state(m.pressure_force + m.shear_force + friction, m.pressure_drop, m.pressure_force, m.shear_force,
                   friction, Q_total, Q_total, m.plug_fraction, mean_velocity, h, rho, tau_y, eta)
+
+
+def valve_pressure_drop(Q, tau_y, eta, L, d, h, exact_annulus=False):
+    """Pressure drop [Pa] of Bingham flow ``Q`` [m^3/s] through one stationary duct: the gap law of
+    :func:`valve_state`, for callers that set the duct flow themselves (a bypass in parallel splits the piston's
+    flow, :class:`erdesign.effects.chain.PhysicsDamper`).  Thin gap or exact annulus (``exact_annulus``), as there.
+
+    Examples
+    --------
+    Makris's damper at 1 in/s and 3 kV/mm, the pressure drop of the :func:`valve_state` example:
+
+    >>> from math import pi
+    >>> Ap = pi / 4 * (0.0334**2 - 0.01125**2)
+    >>> dp = valve_pressure_drop(0.0254 * Ap, 1800.0, 13.0, 0.0546, 0.0143, 0.0008)
+    >>> round(float(dp) / 1e3, 1), bool(dp * Ap + 112.0 == valve_state(0.0254, 1800.0, 13.0, 1290.0, 112.0, 0.0008,
+    ...                                                           0.0546, 0.0143, Ap).force)
+    (7674.4, True)
+    """
+    return _valve_gap_flow(Q, tau_y, eta, L, d, h, exact_annulus)[0]
+
+
+class MixedGapTable:
+    r"""The moving-electrode gap of one head, tabulated once in its Bingham number: the fast path of
+    :func:`mixed_state` for the physics model, which evaluates the gap at every sample of a record many times over.
+
+    With the flow per unit circumference :math:`q = -u A_p / (\pi (D_p + h))` and the wall speed equal to the
+    flow speed :math:`u` (no bypass), the Couette-Poiseuille Bingham solution of
+    :func:`~erdesign.flow.mixed_mode.couette_poiseuille_bingham` depends on the head's geometry and on
+    :math:`s = B/(1+B)`, :math:`B = \tau_y h / (\eta |u|)`, alone:
+
+    .. math::
+        \Delta p = \operatorname{sgn}(u)\,G_p(w)\,\frac{\eta |u| + \tau_y h}{h^2} L, \qquad
+        F_\text{shear} = -\operatorname{sgn}(u)\,G_s(w)\,\frac{\eta |u| + \tau_y h}{h}\,\pi D_p L,
+        \qquad w = \sqrt{1 - s},
+
+    tabulated on ``points`` values of :math:`w` uniform in [0, 1] (the solution varies like :math:`\sqrt{1-s}` as
+    the plug fills the gap) and read by linear interpolation: relative error below 1e-5 against
+    :func:`mixed_state` (tests/test_quasi_steady.py).  :func:`mixed_gap_table` builds one per head and keeps it.
+
+    Parameters
+    ----------
+    h, Dp, dr : float
+        Gap, head diameter and rod diameter, [m].
+    points : int
+        Table points.
+
+    Examples
+    --------
+    >>> t = mixed_gap_table(1e-3, 0.03, 0.01)
+    >>> dp, shear = t.forces(0.05, 2000.0, 0.1, 0.02)
+    >>> s = mixed_state(0.05, 2000.0, 0.1, 1200.0, 0.0, 1e-3, 0.02, 0.031, 0.03, 0.01)
+    >>> bool(abs(dp / s.pressure_drop - 1) < 1e-5 and abs(shear / s.shear_force - 1) < 1e-5)
+    True
+    """
+
+    def __init__(self, h: float, Dp: float, dr: float, points: int = 4001):
+        self.h, self.Dp, self.dr = float(h), float(Dp), float(dr)
+        w = np.linspace(0.0, 1.0, points)
+        s = 1.0 - w**2
+        # U = 1 m/s, eta = 1 Pa s; tau_y from the Bingham number B = s / (1 - s) = tau_y h / (eta U)
+        with np.errstate(divide="ignore"):
+            B = np.where(s < 1.0, s / (1.0 - np.minimum(s, 1 - 1e-16)), np.inf)
+        tau_y = np.where(np.isfinite(B), B / h, 1.0)
+        U = np.where(np.isfinite(B), 1.0, 0.0)
+        eta = np.where(np.isfinite(B), 1.0, 1e-300)
+        sol = couette_poiseuille_bingham(U, -U * piston_area(Dp, dr) / (np.pi * (Dp + h)), tau_y, eta, h)
+        scale = eta * U + tau_y * h
+        self.w = w
+        #: G_p(w) = dp h^2 / (L (eta U + tau_y h)) and G_s(w) = tau_wall h / (eta U + tau_y h)
+        self.pressure = sol.pressure_gradient * h**2 / scale
+        self.shear = sol.wall_stress_moving * h / scale
+        for a in (self.w, self.pressure, self.shear):
+            a.setflags(write=False)
+
+    def forces(self, u, tau_y, eta, L):
+        """(pressure drop [Pa], shear drag [N]) of the gap at flow speed ``u`` [m/s] (= the wall speed), yield
+        stress ``tau_y`` [Pa], plastic viscosity ``eta`` [Pa s] and head length ``L`` [m]; vectorised."""
+        h = self.h
+        scale = eta * np.abs(u) + tau_y * h
+        with np.errstate(divide="ignore", invalid="ignore"):
+            w = np.sqrt(np.where(scale > 0, eta * np.abs(u) / scale, 1.0))
+        sign = np.copysign(1.0, u)
+        dp = sign * np.interp(w, self.w, self.pressure) * scale / h**2 * L
+        shear = -sign * np.interp(w, self.w, self.shear) * scale / h * np.pi * self.Dp * L
+        return dp, shear
+
+    def inverse(self):
+        r"""(w, G(w)) with :math:`\Delta p\,h / (L \tau_y) = G(w)`: the table read the other way (pressure to flow),
+        increasing in w; the last point, w = 1, is the Newtonian limit and is left out."""
+        G = self.pressure[:-1] / (1.0 - self.w[:-1] ** 2)
+        return np.ascontiguousarray(self.w[:-1]), np.ascontiguousarray(G)
+
+
+@lru_cache(maxsize=64)
+def mixed_gap_table(h: float, Dp: float, dr: float) -> MixedGapTable:
+    """The :class:`MixedGapTable` of a head (built once per geometry and kept: fits build many models of one
+    damper)."""
+    return MixedGapTable(h, Dp, dr)
 
 
 def quasi_steady_state(configuration, v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr, n=1,
@@ -276,7 +375,7 @@ def quasi_steady_state(configuration, v, tau_y, eta, rho, seal_friction, h, L, d
     Makris et al. (1996), eq 14; Kamath and Wereley (1997), section II.
     """
     if configuration == "valve":
-        return valve_state(v, tau_y, eta, rho, seal_friction, h, L, d, _piston_area(Dp, dr), n, exact_annulus)
+        return valve_state(v, tau_y, eta, rho, seal_friction, h, L, d, piston_area(Dp, dr), n, exact_annulus)
     if configuration == "mixed":
         if np.any(exact_annulus) or np.any(np.asarray(n) != 1):
             raise ValueError("quasi_steady_state: a mixed damper has one gap and the thin-gap model only")

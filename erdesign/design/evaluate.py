@@ -33,6 +33,7 @@ import numpy as np
 
 from .._util import scalar_or_array
 from ..damper.quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, mixed_state, valve_state
+from ..flow.areas import piston_area
 from ..geometry import THIN_GAP_LIMIT, mixed_mean_diameter
 from . import envelope
 from .figures import FIGURES, OBJECTIVES, Figure
@@ -419,7 +420,7 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
     if not all_valid:  # placeholder geometry, so that no kernel sees an impossible duct
         h, L, d, Dp, dr, n = (np.where(valid, a, s) for a, s in
                               zip((h, L, d, Dp, dr, n), (1e-3, 0.05, 0.02, 0.04, 0.01, 1.0)))
-    Ap = np.pi / 4.0 * (Dp**2 - dr**2)
+    Ap = piston_area(Dp, dr)
     fl, env = req.fluid, req.envelope
     cf = None
     if req.coil is not None:

@@ -43,7 +43,7 @@ from ..errors import ErdesignError
 from ..numerics import affine_recurrence
 from ..parameters import Parameter
 
-__all__ = ["Effect", "EffectError", "GapLaw", "STAGES", "relaxation_filter", "reversal_count", "sign_expectation"]
+__all__ = ["DuctLaw", "Effect", "EffectError", "GapLaw", "STAGES", "relaxation_filter", "reversal_count", "sign_expectation"]
 
 #: The stages of the force chain, in the order the chain runs them (:mod:`erdesign.effects.chain`).
 STAGES = ("state", "constitutive", "parallel", "thermal", "series", "constitutive-in-time", "additive")
@@ -74,6 +74,30 @@ class GapLaw(NamedTuple):
     def consistency(self, eta):
         """K = eta * rate_ref ** (1 - m), [Pa s^m] (eta itself for Bingham)."""
         return eta * self.reference_shear_rate ** (1.0 - self.flow_index)
+
+
+class DuctLaw(NamedTuple):
+    """What the ducts pass at a pressure, per sample (SI): the inverse of the quasi-steady pressure force, which
+    the series stage integrates (:mod:`erdesign.effects.compressibility`).
+
+    ``kind`` 0: thin annular slits (``ducts`` of them, length L, mean diameter d, gap h), Herschel-Bulkley with
+    yield stress ``tau_y``, consistency ``K`` [Pa s^m] and flow index ``m`` (1: Bingham, K the plastic viscosity);
+    ``kind`` 1: the moving-electrode gap of a mixed damper (plastic viscosity ``K``, m = 1), through the table
+    ``(w, G)`` of :meth:`erdesign.damper.quasi_steady.MixedGapTable.inverse`.  ``bypass`` is 1/C_l [m/(N s)]
+    (0: none)."""
+
+    kind: int
+    tau_y: np.ndarray
+    K: np.ndarray
+    m: float
+    L: float
+    d: float
+    h: float
+    Ap: float
+    ducts: int
+    bypass: float = 0.0
+    w: np.ndarray = np.zeros(2)
+    G: np.ndarray = np.ones(2)
 
 
 class Effect:

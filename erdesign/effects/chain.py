@@ -44,7 +44,10 @@ record without noise that is the sharp sign of Makris eq 14; no fixed smoothing 
 
 Everything is vectorised over the samples; the linear time-varying recurrences use the exact-step prefix scan of
 :func:`erdesign.effects.base.relaxation_filter`.  The internal states start settled (quasi-steady) at the first
-sample.  Effects that re-solve the gap flow (a parallel path, a flow index other than 1) use the thin-gap formulas.
+sample.  A parallel path re-solves the gap flow with the damper's own gap law
+(:func:`erdesign.damper.quasi_steady.valve_pressure_drop`: thin gap or exact annulus; the mixed head through
+:class:`erdesign.damper.quasi_steady.MixedGapTable`); a flow index other than 1 uses the thin-gap
+Herschel-Bulkley law of :mod:`erdesign.flow.herschel_bulkley`.
 """
 
 from __future__ import annotations
@@ -57,17 +60,14 @@ import numpy as np
 
 from ..damper import Damper
 from . import EFFECTS, EffectError, parse_effect_names
-from .base import STAGES, GapLaw, sign_expectation
-from .compressibility import DuctLaw
-from .shear_thinning import herschel_bulkley_pressure_drop
+from .base import STAGES, DuctLaw, GapLaw, sign_expectation
 from ..errors import ErdesignError
-from ..flow.bingham import bingham_slit_flow
-from ..flow.mixed_mode import couette_poiseuille_bingham
+from ..flow.herschel_bulkley import herschel_bulkley_pressure_drop
 from ..fluid import CONTROL_UNITS
 from ..data.measurement import Measurement
 from ..models.base import Model, Parameter
 from ..data.noise import velocity_noise
-from ..damper.quasi_steady import damper_state
+from ..damper.quasi_steady import damper_state, mixed_gap_table, valve_pressure_drop
 
 __all__ = ["PhysicsDamper", "BASE_PARAMETERS", "check_control", "HEATING_PASSES", "SINGLE_STAGES"]
 
@@ -91,7 +91,8 @@ def check_control(damper: Damper, record: Measurement) -> None:
     kind = record.control_kind
     if kind is not None and kind != damper.fluid.control:
         raise ErdesignError(
-            f"{record.name or 'measurement'}: its control column is {_article(kind)} {kind} ({CONTROL_UNITS[kind]}) but "
+            f"{record.name or 'measurement'}: its control column is {_article(kind)} {kind} ({CONTROL_UNITS[kind]}) "
+            f"but "
             f"the damper file's reference_field is {_article(damper.fluid.control)} {damper.fluid.control} "
             f"({damper.fluid.field_unit}); the control column must have the dimension of the fluid's reference_field "
             f"(e.g. kV/mm data need an ER fluid with reference_field in kV/mm)")
@@ -170,36 +171,19 @@ class PhysicsDamper(Model):
             if m != 1.0:
                 K = law.consistency(eta)
                 return herschel_bulkley_pressure_drop(Q, tau_y, K, m, g.duct_length, g.duct_mean_diameter, g.gap)
-            return bingham_slit_flow(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap).pressure_drop
+            return valve_pressure_drop(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap,
+                                       self.damper.uses_exact_annulus)
         return self._mixed(u, v_wall, tau_y, eta, law)[0]
-
-    def _mixed_table(self):
-        """Dimensionless Couette-Poiseuille Bingham solution of this head, tabulated once (see :meth:`_mixed`)."""
-        if getattr(self, "_table", None) is None:
-            g = self.damper.geometry
-            # grid uniform in w = sqrt(1 - s): the solution varies like sqrt(1 - s) as the plug fills the gap
-            w = np.linspace(0.0, 1.0, 4001)
-            s = 1.0 - w**2
-            h = g.gap
-            # U = 1 m/s, eta = 1 Pa s; tau_y from the Bingham number B = s / (1 - s) = tau_y h / (eta U)
-            with np.errstate(divide="ignore"):
-                B = np.where(s < 1.0, s / (1.0 - np.minimum(s, 1 - 1e-16)), np.inf)
-            tau_y = np.where(np.isfinite(B), B / h, 1.0)
-            U = np.where(np.isfinite(B), 1.0, 0.0)
-            eta = np.where(np.isfinite(B), 1.0, 1e-300)
-            sol = couette_poiseuille_bingham(U, -U * g.piston_area / (np.pi * (g.piston_diameter + h)), tau_y, eta, h)
-            scale = eta * U + tau_y * h                      # eta U + tau_y h
-            self._table = (w, sol.pressure_gradient * h**2 / scale, sol.wall_stress_moving * h / scale)
-        return self._table
 
     def _mixed(self, u, v_wall, tau_y, eta, law: GapLaw):
         """Pressure drop [Pa] and shear drag [N] of the moving-electrode gap.
 
         The flow q = -u A_p / (pi d) and the wall speed are taken equal (u = v_wall, as without a bypass): the
-        solution then depends on the Bingham number alone and is read from a table of
-        :func:`~erdesign.flow.mixed_mode.couette_poiseuille_bingham` (linear interpolation on 4001 points of
-        sqrt(1 - B/(1+B)), relative error below 1e-5).  With a bypass (u < v_wall) the shear drag is taken at the flow
-        speed too, which is good when the pressure drag dominates (by about D_p / 2h)."""
+        solution then depends on the Bingham number alone and is read from the head's
+        :class:`~erdesign.damper.quasi_steady.MixedGapTable` (relative error below 1e-5).  With a bypass
+        (u < v_wall) the shear drag is taken at the flow speed too, which is good when the pressure drag dominates (by about
+        D_p / 2h).  A flow index m != 1 enters as the apparent viscosity at the apparent shear rate
+        (:mod:`erdesign.effects.shear_thinning`)."""
         g = self.damper.geometry
         h = g.gap
         m, rate_ref = law
@@ -208,14 +192,11 @@ class PhysicsDamper(Model):
             rate = 6 * np.abs(q) / h**2 + np.abs(v_wall) / h
             rate = np.maximum(rate, 1e-3 * rate_ref)
             eta = eta * (rate / rate_ref) ** (m - 1.0)
-        w_grid, gn, tn = self._mixed_table()
-        scale = eta * np.abs(u) + tau_y * h
-        with np.errstate(divide="ignore", invalid="ignore"):
-            w = np.sqrt(np.where(scale > 0, eta * np.abs(u) / scale, 1.0))
-        sign = np.copysign(1.0, u)
-        dp = sign * np.interp(w, w_grid, gn) * scale / h**2 * g.duct_length
-        shear = -sign * np.interp(w, w_grid, tn) * scale / h * np.pi * g.piston_diameter * g.duct_length
-        return dp, shear
+        return self._mixed_table().forces(u, tau_y, eta, g.duct_length)
+
+    def _mixed_table(self):
+        g = self.damper.geometry
+        return mixed_gap_table(g.gap, g.piston_diameter, g.rod_diameter)
 
     def _duct_law(self, tau_y, eta, law: GapLaw, bypass: float) -> DuctLaw:
         """The ducts' flow at a pressure (per-sample yield stress and viscosity; ``bypass`` [m/(N s)] the piston
@@ -227,18 +208,11 @@ class PhysicsDamper(Model):
             K = law.consistency(eta)
             return DuctLaw(0, tau_y, K, law.flow_index, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area,
                            g.ducts, bypass)
-        w, G = self._mixed_inverse_table()
+        w, G = self._mixed_table().inverse()
         # mixed gap: the circumference pi (Dp + h) is folded into the table, and a flow index (if any) is left at
         # Bingham with the plastic viscosity here (a series element only needs the duct law near its yield point)
         return DuctLaw(1, tau_y, eta, 1.0, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area, 1, bypass,
                        w, G)
-
-    def _mixed_inverse_table(self):
-        """(w, G(w)) with dp h / (L tau_y) = G(w), w^2 = eta U / (eta U + tau_y h): the inverse of :meth:`_mixed`'s
-        table, increasing in w (the last point, w = 1, is the Newtonian limit and is left out)."""
-        w, gn, _ = self._mixed_table()
-        G = gn[:-1] / (1.0 - w[:-1] ** 2)
-        return np.ascontiguousarray(w[:-1]), np.ascontiguousarray(G)
 
     def _fluid_forces(self, v, tau_y, eta, law: GapLaw, values):
         """Pressure force and shear drag [N] of the gap flow at piston speed v, with the gap law of the
@@ -252,16 +226,19 @@ class PhysicsDamper(Model):
             return self._valve_state(v, tau_y, eta), np.zeros_like(v)
         tau_y = np.broadcast_to(tau_y, v.shape)
         eta = np.broadcast_to(eta, v.shape)
-        if parallel:
+        if not parallel:
+            # no bypass: the gap passes the piston's flow (one evaluation gives the pressure drop and the drag)
+            if valve:
+                dp = self._gap_pressure_drop(v, v, tau_y, eta, law)
+                return dp * g.piston_area, np.zeros_like(v)
+            dp, shear = self._mixed(v, v, tau_y, eta, law)
+            return dp * g.piston_area, shear
 
-            def gap(u, v_wall, tau_y, eta):
-                return self._gap_pressure_drop(u, v_wall, tau_y, eta, law)
+        def gap(u, v_wall, tau_y, eta):
+            return self._gap_pressure_drop(u, v_wall, tau_y, eta, law)
 
-            dp0 = gap(v, v, tau_y, eta)
-            dp, u = parallel[0].split_flow(v, gap, (v, tau_y, eta), dp0, self.damper, values)
-        else:
-            u = v
-            dp = self._gap_pressure_drop(u, v, tau_y, eta, law)
+        dp0 = gap(v, v, tau_y, eta)
+        dp, u = parallel[0].split_flow(v, gap, (v, tau_y, eta), dp0, self.damper, values)
         if valve:
             return dp * g.piston_area, np.zeros_like(v)
         # the pressure drop is the root (on the break-away jump when creeping); the shear drag at the duct flow

@@ -15,22 +15,20 @@ zero field) cannot make that ramp; this module integrates the nonlinear law itse
 :math:`u(P)` is exact for the thin-gap duct laws: Buckingham-Reiner (Bingham) and its Herschel-Bulkley
 generalisation are explicit in the pressure drop, plus the laminar bypass :math:`P/C_l`; for the moving-electrode
 (mixed) gap the Couette-Poiseuille Bingham solution is inverted through a monotone table (the wall speed taken
-equal to the flow speed, as in :mod:`erdesign.effects.chain`).  The stiff ODE is integrated by backward Euler on
-``substeps`` equal substeps per sample (the velocity linear between samples), each a scalar monotone equation
-solved by safeguarded false position, in a compiled loop (numba).  Backward Euler is L-stable: a column much
+equal to the flow speed, :meth:`erdesign.damper.quasi_steady.MixedGapTable.inverse`).  The stiff ODE is
+integrated by backward Euler on ``substeps`` equal substeps per sample (the velocity linear between samples), each
+a scalar monotone equation solved by safeguarded false position, in a compiled loop (numba).  Backward Euler is L-stable: a column much
 stiffer than the ducts gives the quasi-steady force at any step size.
 """
 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
-
 import numpy as np
 from numba import njit
 
 from ..parameters import Parameter
-from .base import Effect
+from .base import DuctLaw, Effect
 
 __all__ = ["Compressibility", "hydraulic_stiffness", "compliant_pressure_force", "DuctLaw", "BULK_MODULUS",
            "SUBSTEPS"]
@@ -68,32 +66,11 @@ def hydraulic_stiffness(bulk_modulus, Ap, chamber_volume):
     return 2.0 * bulk_modulus * Ap**2 / chamber_volume
 
 
-class DuctLaw(NamedTuple):
-    """What the ducts pass at a pressure, per sample (SI): the inverse of the quasi-steady pressure force.
-
-    ``kind`` 0: thin annular slits (``ducts`` of them, length L, mean diameter d, gap h), Herschel-Bulkley with
-    yield stress ``tau_y``, consistency ``K`` [Pa s^m] and flow index ``m`` (1: Bingham, K the plastic viscosity);
-    ``kind`` 1: the moving-electrode gap of a mixed damper (plastic viscosity ``K``, m = 1), through the table
-    ``(w, G)`` of :meth:`erdesign.effects.chain.PhysicsDamper._mixed_inverse_table`.  ``bypass`` is 1/C_l [m/(N s)]
-    (0: none)."""
-
-    kind: int
-    tau_y: np.ndarray
-    K: np.ndarray
-    m: float
-    L: float
-    d: float
-    h: float
-    Ap: float
-    ducts: int
-    bypass: float = 0.0
-    w: np.ndarray = np.zeros(2)
-    G: np.ndarray = np.ones(2)
-
-
 @njit(cache=True)
 def _piston_speed(P, kind, tau_y, K, m, L, d, h, Ap, ducts, bypass, w_tab, G_tab):
-    """Piston speed [m/s] whose flow the ducts and bypass pass at pressure force P [N] (signed)."""
+    """Piston speed [m/s] whose flow the ducts and bypass pass at pressure force P [N] (signed).  Kind 0 is the
+    explicit thin-gap flow of :func:`erdesign.flow.herschel_bulkley.herschel_bulkley_slit_flow_rate` written for one
+    sample in the compiled loop (tests/test_effects.py checks the two agree)."""
     aP = abs(P)
     dp = aP / Ap
     u = 0.0

@@ -6,6 +6,8 @@ One module per flow situation:
 * :mod:`~erdesign.flow.bingham` - Bingham plastic through a stationary gap (valve mode, Makris eqs 5-7, corrected).
 * :mod:`~erdesign.flow.mixed_mode` - Couette-Poiseuille Bingham flow with a moving wall (moving-electrode damper).
 * :mod:`~erdesign.flow.annulus_bingham` - exact Bingham flow through a concentric annulus (Fredrickson and Bird).
+* :mod:`~erdesign.flow.herschel_bulkley` - Herschel-Bulkley (shear-thinning) fluid through a thin stationary gap.
+* :mod:`~erdesign.flow.areas` - the piston area of an annular head.
 * :mod:`~erdesign.flow.numerical` - independent regularised (Papanastasiou) finite-difference solver, slit and
   annulus, with a moving wall: the check on all the closed forms.
 
@@ -23,6 +25,7 @@ from .annulus_bingham import (
     annulus_bingham_velocity,
     thin_gap_error_bingham,
 )
+from .areas import piston_area
 from .bingham import (
     BinghamSlitFlow,
     bingham_flow_rate,
@@ -32,6 +35,7 @@ from .bingham import (
     bingham_slit_flow,
     yield_pressure_drop,
 )
+from .herschel_bulkley import herschel_bulkley_pressure_drop, herschel_bulkley_slit_flow_rate
 from .mixed_mode import (
     CouettePoiseuilleBingham,
     GapFlowRegime,
@@ -52,6 +56,9 @@ from .newtonian import (
 )
 
 __all__ = [
+    "herschel_bulkley_pressure_drop",
+    "herschel_bulkley_slit_flow_rate",
+    "piston_area",
     "AnnulusBinghamFlow",
     "annulus_bingham_flow",
     "annulus_bingham_flow_rate",

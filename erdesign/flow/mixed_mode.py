@@ -56,6 +56,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..errors import ErdesignError
+from .areas import piston_area
 
 __all__ = [
     "GapFlowRegime",
@@ -408,10 +409,6 @@ def couette_poiseuille_bingham_velocity(y, U, q, tau_y, eta, h):
     return _out(u_bar * sol.scale * np.asarray(h, dtype=float) / np.asarray(eta, dtype=float))
 
 
-def _piston_area(Dp, dr):
-    return np.pi / 4.0 * (Dp**2 - dr**2)
-
-
 def mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h):
     r"""Quasi-steady force of a mixed-mode (moving-electrode) Bingham damper: pressure drag plus shear drag.
 
@@ -468,7 +465,7 @@ def mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h):
     the relative motion between the electrodes and the pressure drag force"; derivation in
     docs/theory/mixed_mode.md.
     """
-    Ap = _piston_area(Dp, dr)
+    Ap = piston_area(Dp, dr)
     _check_positive(Ap=Ap)
     b = np.pi * (Dp + h)
     sol = couette_poiseuille_bingham(v, -v * Ap / b, tau_y, eta, h)
@@ -526,4 +523,4 @@ def mixed_mode_yield_force(tau_y, L, Dp, dr, h):
     Kamath and Wereley, section II (pressure drag plus shear drag); their Fig. 4 reads an idealised yield force
     from the measured force-velocity loops (about 50 N at 3 kV/mm, seal friction included).
     """
-    return tau_y * (2.0 * L * _piston_area(Dp, dr) / h + np.pi * Dp * L)
+    return tau_y * (2.0 * L * piston_area(Dp, dr) / h + np.pi * Dp * L)
