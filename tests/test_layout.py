@@ -200,5 +200,6 @@ def test_the_three_sweeps_have_names_that_say_what_they_are():
     assert report.VelocitySweep is curves.ForceVelocityCurves is report.ForceVelocityCurves
     assert design.sweep is search.sweep and "sample_designs" in design.__all__
     assert "sweep" not in rig.__all__ and "stepped_sine" in rig.__all__
-    # the motion still describes itself as the record files say ("sine sweep"), output text users parse
-    assert rig.stepped_sine([0.005], [2.0], [0.0], rate=200).description.startswith("sine sweep (2 cycles each)")
+    # several segments still describe themselves as the record files say ("sine sweep"); one segment is a "sine"
+    assert rig.stepped_sine([0.005, 0.01], [2.0], [0.0], rate=200).description.startswith("sine sweep (2 cycles each)")
+    assert rig.stepped_sine([0.005], [2.0], [0.0], rate=200).description.startswith("sine (2 cycles)")

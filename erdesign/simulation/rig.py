@@ -89,7 +89,7 @@ def sine(amplitude: float, frequency: float, field: float = 0.0, *, cycles: floa
     >>> len(m.time), round(float(m.velocity[0]), 5)     # 2 cycles of 0.5 s at 200 Hz; v(0) = X0 omega
     (201, 0.06283)
     >>> m.description
-    'sine sweep (2 cycles each): 5 mm at 2 Hz, control 3 kV/mm'
+    'sine (2 cycles): 5 mm at 2 Hz, control 3 kV/mm'
     """
     return stepped_sine([amplitude], [frequency], [field], cycles=cycles, rate=rate, control_unit=control_unit)
 
@@ -119,7 +119,9 @@ def stepped_sine(amplitudes: Sequence[float], frequencies: Sequence[float], fiel
     phase = 2 * np.pi * np.concatenate([[0.0], np.cumsum(0.5 * (freq[1:] + freq[:-1]) * np.diff(t))])
     desc = "; ".join(f"{a * 1e3:g} mm at {fr:g} Hz, control {_control_text(e, control_unit)}"
                      for a, fr, e in zip(A, f, E))
-    return _finish(t, amp * np.sin(phase), E[seg], f"sine sweep ({cycles:g} cycles each): {desc}")
+    # (one segment is a plain sine; several keep the words "sine sweep" of the record files already written)
+    what = f"sine ({cycles:g} cycles)" if n_seg == 1 else f"sine sweep ({cycles:g} cycles each)"
+    return _finish(t, amp * np.sin(phase), E[seg], f"{what}: {desc}")
 
 
 #: Deprecated name of :func:`stepped_sine` ("sweep" also named a sample of the design space and the force-velocity
