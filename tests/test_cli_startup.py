@@ -67,7 +67,9 @@ def test_command_table_matches_the_commands_own_help():
         command = cli.get_command(click.Context(cli), name)
         assert command is not None and command.name == name and module == name
         for limit in (45, 65, 300):
-            assert command.get_short_help_str(limit) == click.utils.make_default_short_help(text, limit), name
+            # click's own shortening of the table's text (a bare command with that help; click 8.5 deprecates the
+            # helper make_default_short_help it uses)
+            assert command.get_short_help_str(limit) == click.Command(name, help=text).get_short_help_str(limit), name
 
 
 def test_help_lists_every_command(capsys):
