@@ -208,14 +208,20 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
     c = st.columns(3)
     c[0].metric("ESR of the calibrated model", f"{diagnosis.baseline_esr:.4g}",
                 delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}", delta_color="inverse",
-                help="Error-to-signal ratio (Vivas-López et al., eq 7): residual variance over force variance.")
+                help="Error-to-signal ratio (Vivas-López et al., eq 7): residual variance over force variance, on "
+                     f"the judged samples ({100 * diagnosis.judged_share:.0f} % of those analysed: where the sign "
+                     "of the velocity is known and no data finding excludes them).")
     c[1].metric("noise floor ESR", f"{diagnosis.noise_floor_esr:.3g}",
-                help="The ESR that the record's noise alone would leave (force noise, and the velocity noise at "
-                     "the reversals), estimated from the record: docs/diagnosis.md.")
+                help="The ESR that the load cell's noise alone would leave on the same samples, one figure per "
+                     f"record for every step (found by: {diagnosis.noise_floor_method or 'estimate'}): "
+                     "docs/diagnosis.md.")
     rms = Q_(float(diagnosis.analysis.rms), "N")
     c[2].metric("RMS residual", show(rms, pick_unit(rms, "force"), name="RMS residual").text)
     left, right = st.columns([3, 2], gap="large")
     with left:
+        for finding in diagnosis.findings:
+            st.info(f"Data finding ({finding.kind}): {finding.message}"
+                    + (f" ({finding.where})" if finding.where else ""))
         _verdict(diagnosis)
         for warning in diagnosis.warnings:
             st.warning(f"Check: {warning}")

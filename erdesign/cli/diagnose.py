@@ -1,8 +1,10 @@
-"""``erdesign diagnose MEASUREMENT.csv --damper DAMPER.toml [--effects a,b] [--json]``: find the missing effect."""
+"""``erdesign diagnose M1.csv [M2.csv ...] --damper DAMPER.toml [--effects a,b] [--exclude-clipped] [--force-noise F]
+[--json]``: find the missing effect (several records of one damper are calibrated together)."""
 
 from __future__ import annotations
 
 import shlex
+from typing import Sequence
 
 import click
 
@@ -11,7 +13,28 @@ from ..data.measurement import check_against_damper, read_measurement
 from ..diagnosis.diagnose import diagnose as run_diagnosis
 from .main import cli, emit_json
 
-__all__ = ["diagnose", "next_command"]
+__all__ = ["diagnose", "next_command", "read_records", "force_noise_option"]
+
+
+def read_records(paths: Sequence[str], damper) -> list:
+    """The measurement files, each checked against the damper (a unit mistake is named before a fit absorbs it)."""
+    records = []
+    for path in paths:
+        record = read_measurement(path)
+        check_against_damper(record, damper)
+        records.append(record)
+    return records
+
+
+def force_noise_option(text: str | None):
+    """``--force-noise``: a force with its unit (``"5 N"``), positive; None when not given."""
+    if text is None:
+        return None
+    from ..units import to_si
+    value = to_si(text, "N", "--force-noise")
+    if not value > 0:
+        raise click.BadParameter(f"must be a positive force, got {text!r}", param_hint="--force-noise")
+    return value
 
 _EXAMPLES = """
 \b
@@ -19,30 +42,40 @@ Examples:
   erdesign diagnose test.csv --damper makris.toml
   erdesign diagnose test.csv --damper makris.toml --effects seal_friction
   erdesign diagnose test.csv --damper makris.toml --json > diagnosis.json
+  erdesign diagnose 10mm1Hz.csv 25mm0.5Hz.csv --damper my_damper.toml --force-noise "5 N"
 """
 
 
-def next_command(measurement: str, damper_file: str, effects: list[str] | tuple[str, ...], verdict: str,
-                 named: tuple[str, ...]) -> str | None:
+def next_command(measurement: str | Sequence[str], damper_file: str, effects: list[str] | tuple[str, ...],
+                 verdict: str, named: tuple[str, ...], options: Sequence[str] = ()) -> str | None:
     """The command that adds the effect(s) the diagnosis named and diagnoses again, or None when nothing is named.
 
     >>> next_command("my test.csv", "d.toml", [], "missing_effect", ("seal_friction",))
     "erdesign diagnose 'my test.csv' --damper d.toml --effects seal_friction"
     >>> next_command("t.csv", "d.toml", ["seal_friction"], "nothing_missing", ())
+    >>> next_command(["a.csv", "b.csv"], "d.toml", [], "missing_effect", ("field_lag", "leakage"), ["--exclude-clipped"])
+    'erdesign diagnose a.csv b.csv --damper d.toml --effects field_lag,leakage --exclude-clipped'
     """
     if verdict != "missing_effect" or not named:
         return None
     chosen = list(dict.fromkeys([*effects, *named]))
-    return (f"erdesign diagnose {shlex.quote(measurement)} --damper {shlex.quote(damper_file)} "
-            f"--effects {shlex.quote(','.join(chosen))}")
+    files = [measurement] if isinstance(measurement, str) else list(measurement)
+    return " ".join(["erdesign diagnose", *map(shlex.quote, files), "--damper", shlex.quote(damper_file),
+                     "--effects", shlex.quote(",".join(chosen)), *map(shlex.quote, options)])
 
 
 @cli.command(epilog=_EXAMPLES)
-@click.argument("measurement", metavar="MEASUREMENT.csv")
+@click.argument("measurements", metavar="MEASUREMENT.csv...", nargs=-1, required=True)
 @click.option("--damper", "damper_file", required=True, metavar="DAMPER.toml", help="Damper file (geometry, fluid).")
 @click.option("--effects", default="", help="Effects already in the model, comma separated.")
+@click.option("--exclude-clipped", is_flag=True,
+              help="Leave force samples at a flat top or bottom out even where the detector is unsure "
+                   "(clipped samples it is sure of are left out anyway).")
+@click.option("--force-noise", default=None, metavar="F",
+              help='The load cell\'s noise when known, e.g. "5 N" (otherwise estimated from the record).')
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
-def diagnose(measurement: str, damper_file: str, effects: str, as_json: bool) -> None:
+def diagnose(measurements: tuple[str, ...], damper_file: str, effects: str, exclude_clipped: bool,
+             force_noise: str | None, as_json: bool) -> None:
     """Calibrate the physics baseline, show where it fails and rank the effects that could be missing.
 
     The verdict is a missing effect, nothing missing (the residual is at the noise floor) or unexplained (no
@@ -50,15 +83,17 @@ def diagnose(measurement: str, damper_file: str, effects: str, as_json: bool) ->
     missing effect the report ends with the command that adds it and diagnoses again.
     """
     damper = load_damper(damper_file)
-    record = read_measurement(measurement)
-    check_against_damper(record, damper)  # issue 15: a unit mistake is named before a fit absorbs it
-    result = run_diagnosis(damper, record, effects)
+    records = read_records(measurements, damper)
+    result = run_diagnosis(damper, records, effects, exclude_clipped=True if exclude_clipped else None,
+                           force_noise=force_noise_option(force_noise))
     if as_json:
         emit_json(result.as_json())
         return
     click.echo(result.report())
-    named = tuple(result.pair) or ((result.missing_effect,) if result.missing_effect else ())
+    named = tuple(result.missing_effects)
     given = [e.strip() for e in effects.split(",") if e.strip()]
-    command = next_command(measurement, damper_file, given, result.verdict, named)
+    options = (["--exclude-clipped"] if exclude_clipped else []) + (
+        ["--force-noise", force_noise] if force_noise else [])
+    command = next_command(list(measurements), damper_file, given, result.verdict, named, options)
     if command:
         click.echo(f"\nnext: add {' and '.join(named)} and diagnose again:\n  {command}")

@@ -1,12 +1,13 @@
-"""``erdesign fit MEASUREMENT.csv --damper DAMPER.toml [--effects a,b] [--json]``: calibrate the physics damper."""
+"""``erdesign fit M1.csv [M2.csv ...] --damper DAMPER.toml [--effects a,b] [--exclude-clipped] [--json]``: calibrate
+the physics damper (several records of one damper together)."""
 
 from __future__ import annotations
 
 import click
 
 from ..damper.files import load_damper
-from ..data.measurement import check_against_damper, read_measurement
 from ..diagnosis.diagnose import calibrate, parameters_at_bounds
+from .diagnose import force_noise_option, read_records
 from .main import cli, emit_json, json_number
 
 __all__ = ["fit"]
@@ -21,22 +22,35 @@ Examples:
 
 
 @cli.command(epilog=_EXAMPLES)
-@click.argument("measurement", metavar="MEASUREMENT.csv")
+@click.argument("measurements", metavar="MEASUREMENT.csv...", nargs=-1, required=True)
 @click.option("--damper", "damper_file", required=True, metavar="DAMPER.toml", help="Damper file (geometry, fluid).")
 @click.option("--effects", default="", help="Effects to add to the baseline, comma separated (e.g. seal_friction).")
+@click.option("--exclude-clipped", is_flag=True,
+              help="Leave force samples at a flat top or bottom out even where the detector is unsure "
+                   "(clipped samples it is sure of are left out anyway).")
+@click.option("--force-noise", default=None, metavar="F",
+              help='The load cell\'s noise when known, e.g. "5 N" (accepted as by diagnose; the fit does not use it).')
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
-def fit(measurement: str, damper_file: str, effects: str, as_json: bool) -> None:
-    """Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects."""
+def fit(measurements: tuple[str, ...], damper_file: str, effects: str, exclude_clipped: bool,
+        force_noise: str | None, as_json: bool) -> None:
+    """Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects.
+
+    The fit and its ESR are judged on the samples ``erdesign diagnose`` judges, so both state the same ESR for the
+    same effects."""
     damper = load_damper(damper_file)
-    record = read_measurement(measurement)
-    check_against_damper(record, damper)  # issue 15: a unit mistake is named before a fit absorbs it
-    result = calibrate(damper, record, effects)
+    records = read_records(measurements, damper)
+    force_noise_option(force_noise)
+    result = calibrate(damper, records, effects, exclude_clipped=True if exclude_clipped else None)
+    for f in result.findings:
+        click.echo(f"note: {f.kind}: {f.record}: {f.message}", err=True)
     at_bounds = parameters_at_bounds(result)
     for text in at_bounds:
         click.echo(f"warning: the fit ends at a bound: {text}; the value is not an estimate", err=True)
     if as_json:
         # exactly the contract's keys (docs/cli.md): the bounds are said on stderr
         emit_json({"esr": json_number(result.esr),
-                   "parameters": result.parameters_with_units()})
+                   "parameters": result.parameters_with_units(),
+                   "records": [dict(r) for r in result.records],
+                   "findings": [f.as_json() for f in result.findings]})
         return
     click.echo(result.report())

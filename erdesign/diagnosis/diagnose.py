@@ -34,13 +34,16 @@ import numpy as np
 from ..damper import Damper
 from ..data.measurement import Measurement
 from ..data.metrics import esr
-from ..data.noise import force_noise_esr, noise_floor_esr, sign_known, velocity_noise
+from ..data.findings import excluded_mask, find_data_problems
+from ..data.noise import velocity_noise
 from ..effects import EFFECT_NAMES, EFFECTS, EffectError, parse_effect_names
 from ..effects.base import peak_speed, reversal_count
 from ..effects.chain import PhysicsDamper, check_control
 from ..errors import ErdesignError
 from ..identification.fit import FitResult, fit
 from ..models.base import Model
+from .floor import noise_floor
+from .records import MAX_SAMPLES, prepare
 
 __all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
            "improve", "fitted_model", "parameters_at_bounds", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD",
@@ -50,8 +53,6 @@ __all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate",
 MIN_GAIN = 0.05
 #: ... and the effective BIC by at least this much (Kass and Raftery: > 10 is "very strong" evidence).
 BIC_THRESHOLD = 10.0
-#: Records longer than this are thinned for the analysis.
-MAX_SAMPLES = 4000
 #: Fraction of the held-out residual sum of squares the candidate must remove.
 HELD_OUT_GAIN = 0.02
 
@@ -68,16 +69,41 @@ def _free_parameters(model: PhysicsDamper, record: Measurement) -> list[str]:
     return free
 
 
-def calibrate(damper: Damper, record: Measurement, effects: Sequence[str] | str = (), *,
-              start: Mapping[str, float] | None = None) -> FitResult:
-    """Fit the baseline (two calibration factors) plus ``effects`` to ``record``.
+def calibrate(damper: Damper, record: Measurement | Sequence[Measurement], effects: Sequence[str] | str = (), *,
+              start: Mapping[str, float] | None = None, exclude_clipped: bool | None = None,
+              max_samples: int = MAX_SAMPLES) -> FitResult:
+    """Fit the baseline (two calibration factors) plus ``effects`` to one record or several records of one damper.
 
-    Raises a one-line error when the record's control does not match the damper or an effect cannot be seen in
-    the record.
+    The fit runs on the samples :func:`diagnose` judges (:mod:`erdesign.diagnosis.records`: transients kept at full
+    rate, the sign of the velocity known, clipped samples left out), so the ESR it states is the one
+    ``erdesign diagnose`` states for the same model.  ``fitted_model(result)`` gives the model for a whole record.
+
+    Raises a one-line error when a record's control does not match the damper or an effect cannot be seen in
+    the records.
     """
+    records = _as_records(record)
     model = PhysicsDamper(damper, effects)
-    model.check_effects(record)
-    return _fit(model, record, start)
+    for r in records:
+        check_control(damper, r)
+        _check_record(r)
+        model.check_effects(r)
+    findings = data_findings(records, exclude_clipped=exclude_clipped)
+    prep = prepare(records, [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r))
+                             for i, r in enumerate(records)], max_samples=max_samples)
+    result = _fit(model, prep.work, start, mask=prep.mask())
+    result.findings = findings
+    result.records = _record_esrs(model, result.values, prep.work, prep)
+    return result
+
+
+def data_findings(records: Sequence[Measurement], *, exclude_clipped: bool | None = None) -> list:
+    """Data-quality findings of every record (:func:`erdesign.data.findings.find_data_problems`), each naming its
+    record."""
+    out = []
+    for i, r in enumerate(records):
+        named = r if r.name else replace(r, name=_name(r, i))
+        out += find_data_problems(named, exclude_clipped=exclude_clipped)
+    return out
 
 
 def _fit(model: PhysicsDamper, record: Measurement, start=None, mask=None) -> FitResult:
@@ -223,8 +249,16 @@ def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measureme
         "coulomb": lambda c: (f"residual is odd in velocity and flat in magnitude: Coulomb-like, about {abs(c):.3g} N"
                               f"{'' if c > 0 else ' (negative: less friction than assumed)'}: seal friction"),
         "acceleration": lambda c: (f"residual follows the acceleration: an extra mass of about {c:.3g} kg: fluid "
-                                   f"inertia (prior {EFFECTS['fluid_inertia'].prior(model.damper)['slug_mass']:.3g} kg)"),
-        "displacement": lambda c: f"residual grows with the displacement: a spring of about {c:.3g} N/m: gas spring",
+                                   f"inertia (prior {EFFECTS['fluid_inertia'].prior(model.damper)['slug_mass']:.3g} kg)"
+                                   if c > 0 else
+                                   "residual follows minus the acceleration: the measured force leads the model's "
+                                   "(no mass is negative: a phase error, such as a skewed or filtered channel, or a "
+                                   "lag in the model that the record does not have)"),
+        "displacement": lambda c: (f"residual grows with the displacement: a spring of about {c:.3g} N/m: gas spring"
+                                   if c > 0 else
+                                   "residual falls as the displacement grows: not a spring (no stiffness is "
+                                   "negative): an offset or drift of the displacement channel, or a one-sided "
+                                   "mechanism"),
         "offset": lambda c: f"residual has a constant offset of about {c:.3g} N: gas-spring preload (or load-cell zero)",
         "drift": lambda c: (f"the model force is {'too high' if c < 0 else 'too low'} late in the test "
                             f"(by about {abs(c) * 100:.2g} % of the fluid force over the record): "
@@ -408,8 +442,19 @@ class Diagnosis:
     judged_esr: float | None = None
     """The calibrated baseline's ESR on the judged samples."""
     judged_floor: float | None = None
-    """The force noise's ESR on the judged samples (:func:`erdesign.data.noise.force_noise_esr`): the floor the verdict
-    compares ``judged_esr`` with."""
+    """The force noise's ESR on the judged samples: the floor the verdict compares ``judged_esr`` with (the same
+    as :attr:`noise_floor_esr`)."""
+    findings: list = field(default_factory=list)
+    """Data-quality findings made before any fit (:class:`erdesign.data.findings.Finding`)."""
+    records: list = field(default_factory=list)
+    """Per record: ``{"name", "samples", "esr"}`` (ESR of the calibrated model on its judged samples)."""
+    noise_floor_method: str = ""
+    """How the load cell's noise was found (:mod:`erdesign.diagnosis.floor`)."""
+
+    @property
+    def missing_effects(self) -> list[str]:
+        """The one or two effects to add next (a pair whole), empty unless the verdict is ``missing_effect``."""
+        return list(named_effects(self.missing_effect, self.pair)) if self.verdict == "missing_effect" else []
 
     def as_json(self) -> dict:
         """The keys of ``erdesign diagnose --json`` (docs/cli.md); no value is NaN or infinite."""
@@ -417,19 +462,29 @@ class Diagnosis:
                "ranking": [c.as_json() for c in self.ranking],
                "missing_effect": self.missing_effect,
                "verdict": self.verdict,
-               "noise_floor_esr": _finite_or_none(self.noise_floor_esr)}
+               "noise_floor_esr": _finite_or_none(self.noise_floor_esr),
+               "noise_floor_method": self.noise_floor_method,
+               "missing_effects": self.missing_effects,
+               "findings": [f.as_json() for f in self.findings],
+               "records": [dict(r) for r in self.records]}
         return out
 
     def report(self) -> str:
         """A readable report: calibration, where it fails, the ranking with parameters and plausibility, verdict."""
         model = "baseline" + (f" + {', '.join(self.effects)}" if self.effects else "")
         lines = [f"Diagnosis of {self.record_name or 'the record'} ({self.samples[0]} samples"
-                 + (f", analysed on {self.samples[1]}" if self.samples[1] != self.samples[0] else "") + ")",
-                 f"model: {model}; calibrated ESR {self.baseline_esr:.4g}; noise floor ESR {self.noise_floor_esr:.3g} "
-                 f"(what the record's noise alone would leave)"]
-        if self.judged_esr is not None and self.judged_floor is not None:
-            lines.append(f"judged where the sign of the velocity is known ({100 * self.judged_share:.0f} % of the "
-                         f"samples): ESR {self.judged_esr:.4g}, force noise alone {self.judged_floor:.3g}")
+                 + (f", analysed on {self.samples[1]}" if self.samples[1] != self.samples[0] else "") + ")"]
+        if self.findings:
+            lines.append("data findings (before any fit):")
+            lines.extend(f"  - {f.kind}: {f.record}: {f.message}" + (f" ({f.where})" if f.where else "")
+                         for f in self.findings)
+        lines.append(f"model: {model}; calibrated ESR {self.baseline_esr:.4g}; noise floor ESR "
+                     f"{self.noise_floor_esr:.3g} ({self.noise_floor_method or 'estimated'}); both judged on the "
+                     f"{100 * self.judged_share:.0f} % of the analysed samples where the sign of the velocity is known "
+                     "and no finding excludes them")
+        if len(self.records) > 1:
+            lines.append("ESR per record: " + ", ".join(
+                f"{r['name']} {r['esr']:.4g}" if r["esr"] is not None else f"{r['name']} -" for r in self.records))
         for name in self.baseline.model.parameter_names:
             p = self.baseline.model.parameter(name)
             se = self.baseline.stderr.get(name)
@@ -471,14 +526,6 @@ class Diagnosis:
         else:
             lines.append("verdict: nothing missing: " + self.reason)
         return "\n".join(lines)
-
-
-def _analysis_record(record: Measurement, max_samples: int) -> Measurement:
-    if len(record) <= max_samples:
-        return record
-    step = int(math.ceil(len(record) / max_samples))
-    # the thinned copy keeps the velocity noise of the full record (its velocity was derived there)
-    return replace(record.select(slice(None, None, step)), velocity_noise=velocity_noise(record))
 
 
 def _implausible_record(record: Measurement, damper: Damper) -> list[str]:
@@ -575,23 +622,30 @@ def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, eff
     return cand
 
 
-def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str = (), *,
-             candidates: Sequence[str] | None = None, max_samples: int = MAX_SAMPLES,
-             pairs: bool = True) -> Diagnosis:
+def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effects: Sequence[str] | str = (), *,
+             candidates: Sequence[str] | None = None, max_samples: int = MAX_SAMPLES, pairs: bool = True,
+             exclude_clipped: bool | None = None, force_noise=None) -> Diagnosis:
     """Calibrate the baseline (+ ``effects``), analyse the residual, rank every other effect, give a verdict.
 
     Parameters
     ----------
     damper : Damper
-    record : Measurement
+    record : Measurement or sequence of Measurement
+        One record, or several records of the same damper: they are calibrated together (one parameter set) and
+        candidates are judged by how they predict the records they were not fitted on.
     effects : sequence of str or "a,b"
         Effects already in the model.
     candidates : sequence of str, optional
         Effects to judge (default: all others in the library).
     max_samples : int
-        Longer records are thinned evenly for the analysis.
+        Longer records are thinned for the analysis, keeping the transients (:mod:`erdesign.diagnosis.records`).
     pairs : bool
         Search pairs of effects jointly when the best single one leaves much of the excess unexplained.
+    exclude_clipped : bool, optional
+        True: leave out the samples at a flat top or bottom of the force even where the detector is unsure; False:
+        keep them; None (default): leave them out when found.
+    force_noise : str, pint quantity or float [N], optional
+        The load cell's noise when it is known; otherwise it is estimated from the record.
 
     Returns
     -------
@@ -599,28 +653,31 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         ``verdict`` is ``"missing_effect"`` (``missing_effect`` names it), ``"nothing_missing"`` (the residual is
         at the noise floor, or nothing beyond it can be told from noise) or ``"unexplained"`` (the residual stays
         well above the noise floor and no effect of the library explains it plausibly; ``reason`` says what the
-        residual looks like).
+        residual looks like).  Every ESR it states is judged on the same samples (:attr:`Diagnosis.judged_share`).
     """
     effects = parse_effect_names(effects)
-    check_control(damper, record)
-    _check_record(record)
+    records = _as_records(record)
+    for r in records:
+        check_control(damper, r)
+        _check_record(r)
     base_model = PhysicsDamper(damper, effects)
-    for e in base_model.effects:
-        why = e.check(record, damper)
-        if why:
-            raise EffectError(f"{e.name}: cannot be judged from {record.name or 'this record'}: {why}")
-    work = _analysis_record(record, max_samples)
-    # Models are fitted and judged on the samples where the sign of the velocity is known (noise.sign_known): at a
-    # reversal a yield-stress force jumps by twice the yield force, and where the record cannot tell the sign no
-    # model can predict the force - that error would swamp the load cell's noise and every mechanism's signature.
-    # There the floor is the force noise alone, estimated to a few per cent.
+    for r in records:
+        for e in base_model.effects:
+            why = e.check(r, damper)
+            if why:
+                raise EffectError(f"{e.name}: cannot be judged from {r.name or 'this record'}: {why}")
+    findings = data_findings(records, exclude_clipped=exclude_clipped)
+    prep = prepare(records, [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r))
+                             for i, r in enumerate(records)], max_samples=max_samples)
+    work, mask = prep.work, prep.mask()
+    known = prep.judged
+    # Models are fitted and judged on the samples where the sign of the velocity is known (noise.sign_known) and
+    # that no data finding excludes: at a reversal a yield-stress force jumps by twice the yield force, and where the
+    # record cannot tell the sign no model can predict the force.
     sigma_v = velocity_noise(work)
-    known = sign_known(work, sigma_v)
-    mask = None if known.all() else known
-    judged = replace(work, velocity_noise=sigma_v)
-    base = _fit(base_model, judged, mask=mask)
-    # the full record's force at the reversals: the expected sign over the width that fits the record best (a
-    # derived velocity is often better than its noise level near a reversal, where the filter's error is small)
+    base = _fit(base_model, work, mask=mask)
+    # the force at the reversals: the expected sign over the width that fits the record best (a derived velocity is
+    # often better than its noise level near a reversal, where the filter's error is small)
     F = work.force
     best = None
     for f in SIGN_WIDTHS if sigma_v > 0 else (0.0,):
@@ -630,29 +687,28 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         if best is None or rss < best[0]:
             best = (rss, f, trial)
     _, width, work = best
-    record = replace(record, velocity_noise=width * sigma_v)
     analysis = residual_analysis(base_model, base, work, mask)
-    floor = force_noise_esr(work, mask)
+    floor_info = noise_floor(records, prep, force_noise)
+    floor = floor_info.esr
     warnings_ = [f"the calibration ends at a bound: {b}" for b in parameters_at_bounds(base, base.free)]
-    suspicious = _implausible_record(record, damper)
+    suspicious = [s for r in records for s in _implausible_record(r, damper)]
     warnings_ += suspicious
+    warnings_ += [f"{f.record}: {f.message}" for f in findings if f.unsafe_for]
     names = [c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES)
              if c not in effects]
     ranking: list[Candidate] = []
     not_judged: dict[str, str] = {}
     for name in names:
-        why = EFFECTS[name].check(work, damper)
+        why = _cannot_judge(name, records, work, damper)
         if why:
             not_judged[name] = why
             continue
         ranking.append(_evaluate(base_model, base, work, effects, (name,), damper, mask=mask))
-    # the force noise estimate takes a force that varies fast (a fluid slug on band-limited random motion) for noise;
-    # the floor cannot lie above what a model of the library reaches (k parameters fitted to n samples)
-    floor = min(floor, _least_noise(ranking))
     excess = base.esr - floor
     for c in ranking:
         if c.evaluated:
             c.explained = (base.esr - c.esr) / excess if excess > 0 else 0.0
+            c.implausible += _beyond_record(c, work, mask)
     ranking.sort(key=lambda c: (not c.evaluated, c.delta_bic))
     at_floor = base.esr <= AT_FLOOR * floor + ABSOLUTE_SLACK
     well_above = base.esr > WELL_ABOVE * floor + ABSOLUTE_SLACK
@@ -660,17 +716,21 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         warnings_.append(f"the calibrated baseline leaves {100 * base.esr:.0f} % of the force variance: the damper "
                          "file does not describe this record (a unit in the header, the wrong damper, or a mechanism "
                          "far outside the model)")
+    held = _held_out(prep)
     missing, pair, verdict, reason, one_sided = None, (), "nothing_missing", "", None
     if suspicious:
         verdict = "unexplained"
         reason = ("the record is implausible for this damper, so no effect is named: " + "; ".join(suspicious))
     else:
-        # at the (estimated) noise floor an effect must be overwhelming to be named: the floor is an estimate
-        named = _judge_singles(base_model, base, work, ranking, strict=at_floor, mask=mask)
+        # at the (estimated) noise floor an effect must be overwhelming - or clearly better on held-out data
+        named = _judge_singles(base_model, base, work, ranking, strict=at_floor, mask=mask, held=held)
         if named is None and pairs and well_above:
             best_share = max((c.explained for c in ranking if c.evaluated), default=0.0)
             if best_share < PAIR_SEARCH_BELOW:
-                named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=mask)
+                named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=mask, held=held)
+        if named is None and not well_above:
+            # never "nothing missing" while a plausible effect clearly improves the held-out data
+            named = _held_out_winner(base_model, work, ranking, mask, held)
         one_sided = None if named is None else _one_sided(named, work, mask, floor)
         if one_sided is not None:
             named.significant = False
@@ -684,8 +744,12 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
         if named is not None:
             missing, pair = named.effects[0], (named.effects if len(named.effects) > 1 else ())
             verdict = "missing_effect"
+            held_txt = ("" if named.held_out_gain is None else
+                        f", {100 * named.held_out_gain:.0f} % less error on held-out "
+                        f"{'records' if len(records) > 1 else 'cycles'}")
             reason = (f"adding {' and '.join(named.effects)} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} "
-                      f"(noise floor {floor:.3g}), {100 * named.explained:.0f} % of the excess, with plausible values")
+                      f"(noise floor {floor:.3g}), {100 * max(named.explained, 0):.0f} % of the excess, with "
+                      f"plausible values{held_txt}")
     if verdict == "missing_effect" or suspicious or one_sided:
         pass
     elif at_floor:
@@ -700,28 +764,128 @@ def diagnose(damper: Damper, record: Measurement, effects: Sequence[str] | str =
             reason = _unexplained_reason(base.esr, floor, ranking, analysis)
             if warnings_:
                 reason += " Check first: " + "; ".join(warnings_) + "."
-    if mask is not None and reason and not suspicious:
-        reason += (f" (judged on the {100 * known.mean():.0f} % of the samples where the sign of the velocity is "
-                   "known)")
+    unsafe = sorted({f.kind for f in findings if f.unsafe_for and (
+        verdict != "missing_effect" or set(f.unsafe_for) & set(named_effects(missing, pair)))})
+    if unsafe:
+        reason += (f" Unsafe: the data finding(s) {', '.join(unsafe)} (see findings) can mimic or hide a "
+                   "mechanism; judge this verdict with them in mind.")
+    if reason and not suspicious:
+        reason += (f" (judged on {100 * known.mean():.0f} % of the analysed samples: where the sign of the velocity "
+                   "is known" + (" and no data finding excludes them" if any(prep.excluded) else "") + ")")
     ranking.sort(key=lambda c: (not c.significant, not c.evaluated, c.delta_bic))
-    # ESRs of the full record (all samples, the reversals too) and the floor on the same footing: the force noise
-    # plus what the unknown sign of the velocity costs at the reversals (noise.noise_floor_esr)
+    per_record = _record_esrs(base_model, base.values, work, prep)
+    return Diagnosis(effects, base, base.esr, analysis, ranking, missing, not_judged, work.name,
+                     (sum(prep.full_samples), len(work)), verdict, floor, reason, pair, warnings_,
+                     float(known.mean()), base.esr, floor, findings=findings, records=per_record,
+                     noise_floor_method=floor_info.method)
+
+
+def named_effects(missing: str | None, pair: tuple[str, ...]) -> tuple[str, ...]:
+    """The effect(s) a verdict names: the pair whole, the single effect, or none."""
+    return tuple(pair) or ((missing,) if missing else ())
+
+
+def _name(record: Measurement, i: int) -> str:
+    return record.name or f"record {i + 1}"
+
+
+def _as_records(record) -> list[Measurement]:
+    if isinstance(record, Measurement):
+        return [record]
+    records = list(record)
+    if not records:
+        raise DiagnosisError("no record given")
+    for i, r in enumerate(records):
+        if not isinstance(r, Measurement):
+            raise DiagnosisError(f"record {i + 1}: expected a Measurement, got {type(r).__name__}")
+    names = [_name(r, i) for i, r in enumerate(records)]
+    if len(set(names)) < len(names):
+        records = [replace(r, name=f"{_name(r, i)} ({i + 1})") for i, r in enumerate(records)]
+    return records
+
+
+def _cannot_judge(name: str, records, work: Measurement, damper: Damper) -> str | None:
+    """Why the records cannot show effect ``name`` (None: they can): each full record is asked (its own sampling
+    step), the candidate is judged when any record can show it."""
+    whys = [EFFECTS[name].check(r, damper) for r in records]
+    if any(w is None for w in whys):
+        return None
+    return whys[0]
+
+
+def _record_esrs(model: PhysicsDamper, values, work: Measurement, prep) -> list[dict]:
+    """ESR of the model on each record's judged samples."""
     with np.errstate(all="ignore"):
-        base_esr = esr(record.force, base_model.simulate(record, base.values))
-        for c in ranking:
-            if c.evaluated:
-                e = esr(record.force, fitted_model(c.result).simulate(record, c.result.values))
-                c.esr = e if math.isfinite(e) else None
-                if c.esr is None:
-                    c.reason = "non-finite forces on the full record"
-    comps = base_model.components(work, base.values)
-    jump = comps["yield_force"] + base.values.get("friction_force", damper.seal_friction)
-    full_floor = noise_floor_esr(work, jump, sigma_v=sigma_v)
-    # an expectation; it cannot lie above what a model of the library reaches on the record
-    full_floor = min(full_floor, _least_noise(ranking))
-    return Diagnosis(effects, base, base_esr, analysis, ranking, missing, not_judged, record.name,
-                     (len(record), len(work)), verdict, full_floor, reason, pair, warnings_,
-                     float(known.mean()), base.esr, floor)
+        Fm = model.force(work, values)
+    out = []
+    for (name, seg), n_full in zip(prep.segments, prep.full_samples):
+        keep = prep.judged[seg]
+        e = esr(work.force[seg][keep], Fm[seg][keep]) if keep.sum() > 2 else math.nan
+        out.append({"name": name, "samples": int(n_full), "esr": _finite_or_none(e)})
+    return out
+
+
+def _held_out(prep) -> np.ndarray:
+    """True on the held-out samples: with several records every second record (record-wise cross-validation),
+    with one every third of twelve time blocks (:func:`_held_out_mask`)."""
+    if len(prep.segments) > 1:
+        held = np.zeros(len(prep.work), dtype=bool)
+        for i, (_, seg) in enumerate(prep.segments):
+            held[seg] = i % 2 == 1
+        return held
+    return _held_out_mask(prep.work)
+
+
+#: A plausible candidate that removes at least this share of the held-out error is never left unnamed.
+HELD_OUT_CLEAR = 0.2
+
+
+def _held_out_winner(base_model, work, ranking, mask, held) -> Candidate | None:
+    """The plausible candidate that most lowers the error on held-out data, when it removes at least
+    :data:`HELD_OUT_CLEAR` of it (else None): a verdict ``nothing_missing`` would hide it."""
+    best = None
+    for c in [c for c in ranking if c.evaluated][:PAIR_POOL]:
+        if c.implausible or c.at_bounds or not (c.delta_bic < -BIC_THRESHOLD and c.gain > MIN_GAIN):
+            continue
+        if c.held_out_gain is None:
+            c.held_out_gain = _held_out_gain(base_model, c, work, mask, held)
+        if c.held_out_gain >= HELD_OUT_CLEAR and (best is None or c.held_out_gain > best.held_out_gain):
+            best = c
+    if best is not None:
+        best.significant = True
+        best.note = (f"named on held-out data: it removes {100 * best.held_out_gain:.0f} % of the error there "
+                     "although the calibrated model looked close to the noise floor")
+    return best
+
+
+def _beyond_record(cand: Candidate, work: Measurement, mask) -> list[str]:
+    """Fitted sizes that the record itself rules out: a part of the model that alone would exceed the largest
+    measured force (:data:`RECORD_BOUNDS`)."""
+    keep = np.ones(len(work), dtype=bool) if mask is None else mask
+    F_max = float(np.max(np.abs(work.force[keep]))) if keep.any() else 0.0
+    if not F_max > 0:
+        return []
+    out = []
+    for name, (size, what) in RECORD_BOUNDS.items():
+        if name not in cand.result.values:
+            continue
+        value = cand.result.values[name]
+        force = abs(value) * size(work)
+        if force > 2.0 * F_max:
+            unit = fitted_model(cand.result).parameter(name).format(value).strip()
+            out.append(f"{name} = {unit} {what} about {force:.3g} N, more than twice the largest measured force "
+                       f"{F_max:.3g} N")
+    return out
+
+
+#: Parameter -> (the record's quantity it multiplies into a force, what that force is): the bound the record sets.
+RECORD_BOUNDS = {
+    "bypass_damping": (lambda r: float(np.max(np.abs(r.velocity))),
+                       "would alone carry the flow at the peak speed with"),
+    "slug_mass": (lambda r: float(np.max(np.abs(r.acceleration))), "would need at the peak acceleration"),
+    "gas_stiffness": (lambda r: 0.5 * float(np.ptp(r.displacement)), "would push over half the stroke with"),
+    "friction_force": (lambda r: 1.0, "is a friction force of"),
+}
 
 
 def _least_noise(ranking) -> float:
@@ -731,7 +895,7 @@ def _least_noise(ranking) -> float:
                 if c.evaluated and c.result.n > c.result.k), default=math.inf)
 
 
-def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=None) -> Candidate | None:
+def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=None, held=None) -> Candidate | None:
     """The best single candidate that is significant (effective BIC, gain, held-out cycles), plausible and explains
     enough of the excess over the noise floor; notes on the others say why they were not named."""
     blocked_by = None
@@ -754,7 +918,7 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=N
             c.note = (f"not named alone: it explains only {100 * c.explained:.0f} % of the excess over the noise "
                       "floor")
             continue
-        c.held_out_gain = _held_out_gain(base_model, c, work, mask)
+        c.held_out_gain = _held_out_gain(base_model, c, work, mask, held)
         if c.held_out_gain > (STRICT_HELD_OUT if strict else HELD_OUT_GAIN):
             c.significant = True
             return c
@@ -762,7 +926,7 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=N
     return None
 
 
-def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=None) -> Candidate | None:
+def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=None, held=None) -> Candidate | None:
     """Pairs of the best single candidates fitted jointly (not greedily); the best significant, plausible pair
     that explains enough of the excess, or None."""
     pool = [c for c in ranking if c.evaluated and c.gain > 0][:PAIR_POOL]
@@ -786,7 +950,7 @@ def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=
     if not found:
         return None
     best = min(found, key=lambda c: c.delta_bic)
-    best.held_out_gain = _held_out_gain(base_model, best, work, mask)
+    best.held_out_gain = _held_out_gain(base_model, best, work, mask, held)
     if best.held_out_gain <= HELD_OUT_GAIN:
         return None
     best.significant = True
@@ -859,10 +1023,12 @@ def _unexplained_reason(base_esr, floor, ranking, analysis) -> str:
         "cavitation, free play, a clipped or filtered signal) or a wrong damper file may be at work."
 
 
-def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measurement, mask=None) -> float:
-    """Fraction of the held-out RSS the candidate removes, both models fitted on the training cycles only (both
-    sets restricted to ``mask``, the samples judged)."""
-    held = _held_out_mask(record)
+def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measurement, mask=None,
+                   held: np.ndarray | None = None) -> float:
+    """Fraction of the held-out RSS the candidate removes, both models fitted on the training samples only (both
+    sets restricted to ``mask``, the samples judged).  ``held``: the held-out samples (default: every third of
+    twelve time blocks, :func:`_held_out_mask`)."""
+    held = _held_out_mask(record) if held is None else held
     train = ~held
     if mask is not None:
         held, train = held & mask, train & mask
