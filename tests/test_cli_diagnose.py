@@ -37,7 +37,8 @@ def run(capsys, *args):
 
 
 #: Keys of ``erdesign diagnose --json`` (docs/cli.md).
-CONTRACT_KEYS = {"baseline_esr", "ranking", "missing_effect", "verdict", "noise_floor_esr"}
+CONTRACT_KEYS = {"baseline_esr", "ranking", "missing_effect", "verdict", "noise_floor_esr",
+                 "noise_floor_method", "findings", "records", "missing_effects"}
 VERDICTS = {"missing_effect", "nothing_missing", "unexplained"}
 
 
@@ -54,6 +55,13 @@ def check_contract(data: dict) -> None:
     assert set(data) == CONTRACT_KEYS
     assert data["verdict"] in VERDICTS
     assert (data["missing_effect"] is not None) == (data["verdict"] == "missing_effect")
+    # CONTRACTS.md section 6: the effects to add next as a list (a pair whole), the first is missing_effect
+    assert data["missing_effects"][:1] == ([data["missing_effect"]] if data["missing_effect"] else [])
+    assert len(data["missing_effects"]) <= 2
+    assert isinstance(data["noise_floor_method"], str) and data["noise_floor_method"]
+    for f in data["findings"]:
+        assert {"kind", "message", "record", "where"} <= set(f)
+    assert data["records"] and all({"name", "samples", "esr"} == set(r) for r in data["records"])
     assert isinstance(data["noise_floor_esr"], float) and math.isfinite(data["noise_floor_esr"])
     assert isinstance(data["baseline_esr"], float) and math.isfinite(data["baseline_esr"])
     for r in data["ranking"]:

@@ -86,7 +86,7 @@ def calibrate(damper: Damper, record: Measurement | Sequence[Measurement], effec
     for r in records:
         check_control(damper, r)
         _check_record(r)
-        model.check_effects(r)
+    _check_effects_seen(model, records, damper)
     findings = data_findings(records, exclude_clipped=exclude_clipped)
     prep = prepare(records, [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r))
                              for i, r in enumerate(records)], max_samples=max_samples)
@@ -94,6 +94,16 @@ def calibrate(damper: Damper, record: Measurement | Sequence[Measurement], effec
     result.findings = findings
     result.records = _record_esrs(model, result.values, prep.work, prep)
     return result
+
+
+def _check_effects_seen(model: PhysicsDamper, records: Sequence[Measurement], damper: Damper) -> None:
+    """A one-line error when no record can show one of the model's effects (each record asked on its own)."""
+    for e in model.effects:
+        whys = [e.check(r, damper) for r in records]
+        if all(whys):
+            raise EffectError(f"{e.name}: cannot be judged from {records[0].name or 'this record'}"
+                              + (f" or the other {len(records) - 1} records" if len(records) > 1 else "")
+                              + f": {whys[0]}")
 
 
 def data_findings(records: Sequence[Measurement], *, exclude_clipped: bool | None = None) -> list:
@@ -661,11 +671,7 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
         check_control(damper, r)
         _check_record(r)
     base_model = PhysicsDamper(damper, effects)
-    for r in records:
-        for e in base_model.effects:
-            why = e.check(r, damper)
-            if why:
-                raise EffectError(f"{e.name}: cannot be judged from {r.name or 'this record'}: {why}")
+    _check_effects_seen(base_model, records, damper)
     findings = data_findings(records, exclude_clipped=exclude_clipped)
     prep = prepare(records, [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r))
                              for i, r in enumerate(records)], max_samples=max_samples)
@@ -1065,9 +1071,12 @@ class History:
         return "\n".join(lines)
 
 
-def improve(damper: Damper, record: Measurement, effects: Sequence[str] | str = (), *, max_rounds: int = 3,
-            max_samples: int = MAX_SAMPLES) -> History:
-    """Diagnose, add the missing effect, refit, re-rank - until no significant effect is missing.
+def improve(damper: Damper, record: Measurement | Sequence[Measurement], effects: Sequence[str] | str = (), *,
+            max_rounds: int = 3, max_samples: int = MAX_SAMPLES, exclude_clipped: bool | None = None,
+            force_noise=None) -> History:
+    """Diagnose, add the missing effect(s), refit, re-rank - until no significant effect is missing.
+
+    The noise floor is the same in every round (:mod:`erdesign.diagnosis.floor`: it depends on no model).
 
     Examples
     --------
@@ -1083,10 +1092,11 @@ def improve(damper: Damper, record: Measurement, effects: Sequence[str] | str = 
     effects = parse_effect_names(effects)
     history = History()
     for _ in range(max_rounds + 1):
-        d = diagnose(damper, record, effects, max_samples=max_samples)
+        d = diagnose(damper, record, effects, max_samples=max_samples, exclude_clipped=exclude_clipped,
+                     force_noise=force_noise)
         history.diagnoses.append(d)
         history.steps.append((effects, d.baseline_esr))
         if d.verdict != "missing_effect":
             break
-        effects = effects + (d.pair or (d.missing_effect,))
+        effects = effects + tuple(d.missing_effects)
     return history
