@@ -109,8 +109,8 @@ def two_candidates(monkeypatch):
     ``seal_friction`` shown as not evaluated: the JSON must carry a null ESR and the reason."""
     real = erdesign.cli.diagnose.run_diagnosis
 
-    def diagnose(damper, record, effects=()):
-        d = real(damper, record, effects, candidates=("gas_spring", "seal_friction"))
+    def diagnose(damper, record, effects=(), **options):
+        d = real(damper, record, effects, candidates=("gas_spring", "seal_friction"), **options)
         for c in d.ranking:
             if c.effect == "seal_friction":
                 c.result, c.esr, c.reason = None, None, "could not be evaluated: a test says so"

@@ -43,14 +43,15 @@ def fit(measurements: tuple[str, ...], damper_file: str, effects: str, exclude_c
     result = calibrate(damper, records, effects, exclude_clipped=True if exclude_clipped else None)
     for f in result.findings:
         click.echo(f"note: {f.kind}: {f.record}: {f.message}", err=True)
+    if len(result.records) > 1:
+        click.echo("ESR per record: " + ", ".join(f"{r['name']} {r['esr']:.4g}" if r["esr"] is not None else
+                                                  f"{r['name']} -" for r in result.records), err=True)
     at_bounds = parameters_at_bounds(result)
     for text in at_bounds:
         click.echo(f"warning: the fit ends at a bound: {text}; the value is not an estimate", err=True)
     if as_json:
         # exactly the contract's keys (docs/cli.md): the bounds are said on stderr
         emit_json({"esr": json_number(result.esr),
-                   "parameters": result.parameters_with_units(),
-                   "records": [dict(r) for r in result.records],
-                   "findings": [f.as_json() for f in result.findings]})
+                   "parameters": result.parameters_with_units()})
         return
     click.echo(result.report())
