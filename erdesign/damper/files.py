@@ -215,7 +215,11 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
 
 
 def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
-    """Read a damper file (TOML, docs/file_formats.md)."""
+    """Read a damper file (TOML, docs/file_formats.md); where no such file exists, the name of a bundled example
+    (``makris``, ``mr_valve``, ...: :func:`example_names`) loads that example."""
+    if isinstance(path, str) and not Path(path).exists() and path in example_names():
+        with resources.as_file(resources.files("erdesign.examples") / f"{path}.toml") as file:
+            return damper_from_dict(read_toml(file), source=f"examples/{path}.toml", flow_model=flow_model)
     return damper_from_dict(read_toml(path), source=str(path), flow_model=flow_model)
 
 

@@ -233,4 +233,5 @@ def estimate_noise_floor(record, mask=None, *, force_noise=None, sensitivity=Non
         from ..units import to_si
         s = float(to_si(force_noise, "N", "force_noise")) if not isinstance(force_noise, (int, float)) else float(force_noise)
         return NoiseFloor(s, "given", 0.0)
-    return NoiseFloor(globals()["force_noise"](record), "fourth differences", 0.0)
+    F = record.force if mask is None else record.force[mask]
+    return NoiseFloor(_noise_level(np.asarray(F, dtype=float)), "fourth differences", 0.0)

@@ -41,8 +41,10 @@ def noise_floor(records: Sequence[Measurement], prep, force_noise=None) -> Floor
     ``force_noise`` (a string, quantity or float in N) is the user's figure for the load cell."""
     sigmas, methods = [], []
     num = 0.0
-    for r, (_, seg) in zip(records, prep.segments):
-        est = estimate_noise_floor(r, force_noise=force_noise)
+    kept = prep.kept or [None] * len(records)
+    for r, (_, seg), keep in zip(records, prep.segments, kept):
+        # the noise is estimated where no finding excludes the samples (a clipped flat top has none)
+        est = estimate_noise_floor(r, keep, force_noise=force_noise)
         sigmas.append(float(est.sigma_force))
         methods.append(est.method)
         num += int(prep.judged[seg].sum()) * float(est.sigma_force) ** 2

@@ -29,7 +29,7 @@ import numpy as np
 from ..data.measurement import Measurement
 from ..data.noise import sign_known, velocity_noise
 
-__all__ = ["Prepared", "join_records", "analysis_samples", "MAX_SAMPLES", "AFTER_FIELD_CHANGE", "JOIN_PAUSE",
+__all__ = ["Prepared", "prepare", "join_records", "analysis_samples", "MAX_SAMPLES", "AFTER_FIELD_CHANGE", "JOIN_PAUSE",
            "REVERSAL_RATE_FACTOR", "FIELD_CHANGE"]
 
 #: Records longer than this are thinned for the analysis (the kept transients come on top, up to twice as many).
@@ -58,6 +58,8 @@ class Prepared:
     """Samples of each full record."""
     excluded: list[int] = field(default_factory=list)
     """Samples of each full record left out by a data finding (clipped, saturated)."""
+    kept: list = field(default_factory=list)
+    """Per full record: True on the samples no data finding leaves out (None: all)."""
 
     @property
     def names(self) -> list[str]:
@@ -103,7 +105,7 @@ def analysis_samples(record: Measurement, max_samples: int = MAX_SAMPLES) -> np.
         starts = t[changes]
         # every sample in [t_change, t_change + AFTER_FIELD_CHANGE]
         j = np.searchsorted(starts, t, side="right") - 1
-        near = (j >= 0) & (t - starts[np.maximum(j, 0)] <= AFTER_FIELD_CHANGE)
+        near = (j >= 0) & (t - starts[np.maximum(j, 0)] <= AFTER_FIELD_CHANGE + 1e-9)
         near[changes] = True
         keep |= near
     fine = max(step // REVERSAL_RATE_FACTOR, 1)
@@ -161,7 +163,7 @@ def prepare(records: Sequence[Measurement], excluded: Sequence[np.ndarray | None
     the sample out (or None)."""
     excluded = list(excluded) if excluded is not None else [None] * len(records)
     per_record = max(max_samples // len(records), 400) if len(records) > 1 else max_samples
-    thinned, judged, counts, n_full = [], [], [], []
+    thinned, judged, counts, n_full, kept = [], [], [], [], []
     for r, ex in zip(records, excluded):
         sigma_v = velocity_noise(r)
         known = sign_known(r, sigma_v)
@@ -174,7 +176,8 @@ def prepare(records: Sequence[Measurement], excluded: Sequence[np.ndarray | None
             thinned.append(replace(r.select(keep), velocity_noise=sigma_v))
         judged.append(known[keep])
         counts.append(0 if ex is None else int(ex.sum()))
+        kept.append(None if ex is None or not ex.any() else ~ex)
         n_full.append(len(r))
     work, segs = join_records(thinned)
     names = [r.name or f"record {i + 1}" for i, r in enumerate(records)]
-    return Prepared(work, np.concatenate(judged), list(zip(names, segs)), n_full, counts)
+    return Prepared(work, np.concatenate(judged), list(zip(names, segs)), n_full, counts, kept)
