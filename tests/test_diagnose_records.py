@@ -142,3 +142,18 @@ def test_cli_fit_and_diagnose_state_one_esr(tmp_path, three_records, capsys):
     assert main(["fit", *paths, "--damper", "mr_valve", "--effects", "seal_friction", "--json"]) == 0
     fit = json.loads(capsys.readouterr().out)
     assert fit["esr"] == pytest.approx(diag["ranking"][0]["esr"], rel=1e-6)
+
+
+def test_a_value_far_inside_a_wide_range_is_not_at_its_bound():
+    """Issue 23 item 7: a report printed "gas_stiffness at its lower bound 0 N/m" beside a fitted 259 N/m (the
+    tolerance was 1e-6 of the 0-1e9 N/m range, 1000 N/m)."""
+    from types import SimpleNamespace
+
+    from erdesign.diagnosis.candidates import parameters_at_bounds
+    from erdesign.effects.chain import PhysicsDamper
+
+    model = PhysicsDamper(load_example("mr_valve"), ["gas_spring"])
+    at = lambda k: parameters_at_bounds(SimpleNamespace(model=model, free=["gas_stiffness"],  # noqa: E731
+                                                        values={"gas_stiffness": k}))
+    assert at(259.0) == [] and at(1.0) == []
+    assert at(0.0) == ["gas_stiffness at its lower bound 0 N/m"]

@@ -133,6 +133,10 @@ def parameters_at_bounds(result: FitResult, names=None) -> list[str]:
         if p.log_scale:
             v, lo, hi = math.log(v), math.log(lo), (math.log(hi) if math.isfinite(hi) else hi)
         span = (hi - lo) if math.isfinite(hi - lo) else max(abs(v), 1.0)
+        if not p.log_scale:
+            # a wide linear range (a stiffness from 0 to 1e9 N/m) must not call 259 N/m "at 0": the tolerance
+            # follows the parameter's own scale (its typical value) where that is smaller than the range
+            span = min(span, max(abs(p.default), abs(v), 1e-300) * 1e3)
         if v - lo <= 1e-6 * span:
             out.append(f"{name} at its lower bound {p.format(p.lower)}")
         elif math.isfinite(hi) and hi - v <= 1e-6 * span:
