@@ -32,15 +32,19 @@ and an even zero-phase filter of the same white noise), hence the sum of squares
    band the motion and the control excite (from :math:`5\,f_e`, :math:`f_e` the frequency below which 99 % of
    the velocity's and 90 % of the control's variance lie: a yield-stress force holds harmonics of the motion far
    above it).
-   The noise is the lowest flat plateau there (a run of log-spaced bands within a factor :data:`FLAT` of each
-   other over at least :data:`PLATEAU_SPAN` in frequency); the variance is the plateau's level times its upper
-   frequency plus the spectrum above it: :math:`\sigma_F^2 = N_0 f_p + \int_{f_p}^{f_s/2} P\,df`, which is
+   Isolated fast events (force jumps at the reversals, a clipped stretch), whose spectrum falls only as
+   :math:`1/f^2` and would hide the noise at every frequency, are taken out first (:func:`_dejumped_spectrum`).
+   The noise is the lowest flat plateau (a run of log-spaced bands within a factor :data:`FLAT` of each other
+   and a log-log slope below :data:`MAX_SLOPE`, over at least :data:`PLATEAU_SPAN` in frequency); the variance
+   is the plateau's level times its upper frequency plus the spectrum above it: :math:`\sigma_F^2 = N_0 f_p + \int_{f_p}^{f_s/2} P\,df`, which is
    :math:`N_0 f_s/2` for white noise and the variance of the noise as recorded on a low-passed (anti-aliased)
    channel whose plateau ends before the Nyquist frequency.
+   Without a plateau the spectrum still bounds the noise: at most white at the lowest level of the pass band
+   above the excited band (below the knee of a roll-off).  On a low-passed channel (a roll-off steeper than any
+   force, :data:`ROLL_OFF`) that bound is taken, and the note says it is one.
 5. ``"fourth differences"`` - the robust spread of the force's fourth differences
-   (:func:`erdesign.data.noise.force_noise`), capped by the spectrum's upper bound: where no plateau exists the
-   noise is at most the spectrum's lowest level above the excited band (taken as white, as above), and the note
-   says so.
+   (:func:`erdesign.data.noise.force_noise`) on a channel that is not low-passed and shows no plateau (force
+   jumps faster than the sampling hide it), capped by the spectrum's bound.
 
 The order goes from the methods that need no assumption about the noise (nothing moves; the signal repeats) to
 those that assume it white (the spectrum extrapolates the plateau's level into the excited band) and those that
@@ -76,7 +80,7 @@ from .noise import EDGE_FRACTION
 
 __all__ = ["NoiseFloor", "estimate_noise_floor", "motion_noise", "quantisation_step", "displacement_noise_level",
            "force_noise_from_spectrum", "force_noise_from_cycles", "force_noise_from_still_segment", "METHODS",
-           "MIN_STILL", "FLAT", "PLATEAU_SPAN", "HARMONIC_MARGIN"]
+           "MIN_STILL", "FLAT", "PLATEAU_SPAN", "MAX_SLOPE", "ROLL_OFF", "HARMONIC_MARGIN"]
 
 #: The methods, in order of preference (module notes).
 METHODS = ("given", "still segment", "repeated cycles", "spectrum above the excited band", "fourth differences")
@@ -86,6 +90,11 @@ MIN_STILL = 300
 FLAT = 2.0
 #: Smallest ratio of upper to lower frequency of a plateau.
 PLATEAU_SPAN = 1.4
+#: Largest log-log slope of a plateau (white noise: 0; the harmonics of force jumps: -2).
+MAX_SLOPE = 0.5
+#: Log-log slope of the spectrum below which it is a filter's roll-off (a Butterworth filter of order 4: -8, run
+#: forwards and backwards: -16), steeper than a force: a jump's harmonics fall as -2, a kink's as -4.
+ROLL_OFF = -8.0
 #: The search for a plateau starts at this multiple of the excited band's upper frequency.
 HARMONIC_MARGIN = 5.0
 
@@ -383,22 +392,57 @@ def _band_top(f: np.ndarray, P: np.ndarray, share: float = 0.99) -> float:
     return float(f[min(int(np.searchsorted(c, share * c[-1])), f.size - 1)])
 
 
-def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float, str]:
-    r"""Force noise from the spectrum above the excited band: (sigma or None, upper bound, note), [N].
+def _plateau_level(P: np.ndarray) -> float:
+    """Mean level of the bins of a plateau, lines (bins above five times the median) left out: the median alone
+    of a spectral estimate's skewed distribution lies about 5 % below its mean."""
+    med = float(np.median(P))
+    return float(np.mean(P[P <= 5 * med])) if med > 0 else 0.0
 
-    ``sigma`` is the white-equivalent noise of the lowest flat plateau (module notes); None when the spectrum has
-    no plateau above the excited band (it falls to the Nyquist frequency: a band-limited channel, or force
-    transients faster than the sampling).  ``upper bound`` is then the noise were it white at the spectrum's
-    lowest level above the excited band (``inf`` when there is no band above it).
+
+def _dejumped_spectrum(F: np.ndarray, fs: float, nper: int) -> tuple[np.ndarray, np.ndarray]:
+    r"""One-sided PSD of the force [N^2/Hz] with its isolated fast events (force jumps at reversals, clipped
+    stretches) taken out.
+
+    A step of the force is a broadband event (its spectrum falls only as :math:`1/f^2`) that would hide the noise
+    at every frequency; in the fourth difference :math:`e = \Delta^4 F` it is a five-sample burst.  The samples of
+    :math:`e` beyond six robust standard deviations, with four neighbours each side, are set to zero, the Welch
+    spectrum of :math:`e` (median averaging) is scaled by the share of samples kept and divided by the fourth
+    difference's gain :math:`(2\sin(\pi f/f_s))^8`.
+    """
+    from scipy.ndimage import maximum_filter1d
+    from scipy.signal import welch
+
+    e = np.diff(F, 4)
+    s = _robust_sigma(e)
+    bad = maximum_filter1d((np.abs(e - np.median(e)) > 6 * s).astype(np.int8), 9).astype(bool) if s > 0 \
+        else np.zeros(e.size, dtype=bool)
+    kept = 1.0 - float(bad.mean())
+    e = np.where(bad, 0.0, e)
+    f, Pe = welch(e, fs=fs, nperseg=nper, detrend="constant", average="median")
+    gain = (2 * np.sin(np.pi * f / fs)) ** 8
+    P = np.where(gain > 1e-12, Pe / max(kept, 0.5) / np.maximum(gain, 1e-300), np.inf)
+    return f, P
+
+
+def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float, str, bool]:
+    r"""Force noise from the spectrum above the excited band: (sigma or None, upper bound, note, low-passed), [N].
+
+    ``sigma`` is the white-equivalent noise of the lowest flat plateau (module notes); None when the spectrum
+    has no plateau (it keeps falling: force transients faster than the
+    sampling, or a signal above the noise up to the roll-off).  ``upper bound`` is then what the noise can be at
+    most: white at the lowest level of the pass band above the excited band, and as recorded above it (``inf``
+    when there is no band above the excited one).  ``low-passed`` says whether the spectrum ends in a roll-off
+    steeper than any force (a log-log slope below :data:`ROLL_OFF`: an anti-aliasing or smoothing filter), where
+    fourth differences see only what the filter left of the noise.
 
     Examples
     --------
     >>> rng = np.random.default_rng(3); t = np.arange(20000) / 2000.0
     >>> x = 0.01 * np.sin(2 * np.pi * 1.1 * t) + 0.004 * np.sin(2 * np.pi * 2.9 * t)
     >>> F = 1e4 * np.gradient(x, t) + 2.0 * rng.standard_normal(t.size)
-    >>> s, bound, note = force_noise_from_spectrum(Measurement.from_arrays(t, x, F))
-    >>> bool(1.8 < s < 2.2)
-    True
+    >>> s, bound, note, lowpassed = force_noise_from_spectrum(Measurement.from_arrays(t, x, F))
+    >>> bool(1.8 < s < 2.2), lowpassed
+    (True, False)
     """
     from scipy.signal import welch
 
@@ -406,57 +450,81 @@ def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float,
     t = np.asarray(record.time, dtype=float)
     n = t.size
     if n < 512 or not _uniform(t):
-        return None, math.inf, "too short or unevenly sampled for a spectrum"
+        return None, math.inf, "too short or unevenly sampled for a spectrum", False
     fs = record.sample_rate
     nyq = fs / 2
     nper = int(min(4096, max(256, 2 ** int(math.floor(math.log2(n / 8))))))
-    f, P = welch(F, fs=fs, nperseg=nper, detrend="linear", average="median")
+    f, P = _dejumped_spectrum(F, fs, nper)
+    df = float(f[1] - f[0])
     _, Pv = welch(np.asarray(record.velocity, dtype=float), fs=fs, nperseg=nper, detrend="linear")
     fe = _band_top(f, Pv)
     u = np.asarray(record.control, dtype=float)
     if np.ptp(u) > 0:
-        _, Pu = welch(u, fs=fs, nperseg=nper, detrend="linear")
         # a command signal is often a held random sequence whose steps spread a little power to the Nyquist
         # frequency: its band is where 90 % of its variance lies
-        fe = max(fe, _band_top(f, Pu, 0.90))
+        fe = max(fe, _band_top(f, welch(u, fs=fs, nperseg=nper, detrend="linear")[1], 0.90))
     f_lo = max(HARMONIC_MARGIN * fe, 4 * fs / nper)
     if f_lo >= 0.8 * nyq:
-        return None, math.inf, f"no band above the excited one (up to {fe:.3g} Hz) below {nyq:.4g} Hz"
+        return None, math.inf, f"no band above the excited one (up to {fe:.3g} Hz) below {nyq:.4g} Hz", False
     # log-spaced bands, 16 a decade, each of at least 3 bins
     edges = np.geomspace(f_lo, nyq, max(2, int(math.ceil(16 * math.log10(nyq / f_lo)))) + 1)
-    bands = []
-    for a, b in zip(edges[:-1], edges[1:]):
-        k = (f >= a) & (f < b) if b < nyq else (f >= a)
+    bands: list[tuple[float, float, float, int]] = []
+    for lo_edge, hi_edge in zip(edges[:-1], edges[1:]):
+        k = (f >= lo_edge) & (f < hi_edge) if hi_edge < nyq else (f >= lo_edge)
         if bands and (k.sum() < 3 or bands[-1][3] < 3):
             a0 = bands[-1][0]
-            k = k | ((f >= a0) & (f < a))
-            bands[-1] = (a0, b, float(np.median(P[k])), int(k.sum()))
+            k = k | ((f >= a0) & (f < lo_edge))
+            bands[-1] = (a0, hi_edge, float(np.median(P[k])), int(k.sum()))
         elif k.any():
-            bands.append((a, b, float(np.median(P[k])), int(k.sum())))
+            bands.append((lo_edge, hi_edge, float(np.median(P[k])), int(k.sum())))
     levels = np.array([bd[2] for bd in bands])
+    centres = np.log10([math.sqrt(bd[0] * bd[1]) for bd in bands])
+    # the pass band ends where the spectrum first falls faster than any force does
+    slopes = np.diff(np.log10(np.maximum(levels, 1e-300))) / np.diff(centres) if len(bands) > 1 else np.zeros(0)
+    steep = np.flatnonzero(slopes < ROLL_OFF)
+    end = int(steep[0]) + 1 if steep.size else len(bands)       # bands[:end] are the pass band
+    lowpassed = bool(steep.size) and levels[-1] < 1e-2 * levels[max(end - 1, 0)]
+    if not lowpassed:
+        end = len(bands)
     best = None
     for i in range(len(bands)):
         lo = hi = levels[i]
-        for j in range(i, len(bands)):
+        for j in range(i + 1, len(bands)):
             lo, hi = min(lo, levels[j]), max(hi, levels[j])
             if hi > FLAT * lo:
                 break
-            if bands[j][1] / bands[i][0] >= PLATEAU_SPAN and j > i:
-                k = (f >= bands[i][0]) & (f <= bands[j][1])
-                level = float(np.median(P[k]))
+            if bands[j][1] / bands[i][0] >= PLATEAU_SPAN:
+                if abs(np.polyfit(centres[i:j + 1], np.log10(levels[i:j + 1]), 1)[0]) > MAX_SLOPE:
+                    continue        # still falling: the harmonics of the motion, or a filter's knee
+                level = _plateau_level(P[(f >= bands[i][0]) & (f <= bands[j][1])])
                 if best is None or level < best[0]:
                     best = (level, bands[i][0], bands[j][1])
-    above = lambda fp: float(np.sum(P[f > fp]) * (f[1] - f[0]))   # noqa: E731
-    jmin = int(np.argmin(levels))
+
+    def above(fp: float) -> float:
+        return float(np.sum(P[f > fp]) * df)
+
+    # the bound from the pass band below the filter's knee (at 0.75 of the roll-off's start a Butterworth filter of
+    # order 4 run both ways keeps 80 % of the power)
+    knee = max(1, int(np.searchsorted([bd[1] for bd in bands], 0.75 * bands[end - 1][1], side="right"))) \
+        if lowpassed else end
+    jmin = int(np.argmin(levels[:knee]))
     bound = math.sqrt(levels[jmin] * bands[jmin][1] + above(bands[jmin][1]))
+    band = f"excited band up to {fe:.3g} Hz"
     if best is None:
-        return None, bound, (f"no flat plateau above the excited band (up to {fe:.3g} Hz): the spectrum falls to "
-                             f"{nyq:.4g} Hz, at least to {levels[jmin]:.3g} N^2/Hz near {bands[jmin][0]:.4g} Hz")
+        where = (f"the pass band, up to {bands[end - 1][1]:.4g} Hz where a roll-off begins" if lowpassed
+                 else f"{nyq:.4g} Hz")
+        return None, bound, (f"no flat plateau above the {band}: the spectrum falls to {where}, at least to "
+                             f"{levels[jmin]:.3g} N^2/Hz near {bands[jmin][0]:.4g} Hz"), lowpassed
     level, a, b = best
     top = min(b, nyq)
     sigma = math.sqrt(level * top + above(top))
-    where = "to the Nyquist frequency" if top >= 0.95 * nyq else f"ending at {top:.4g} Hz (a low-passed channel)"
-    return sigma, bound, (f"plateau {level:.3g} N^2/Hz from {a:.4g} Hz {where}; excited band up to {fe:.3g} Hz")
+    if top >= 0.95 * nyq:
+        where = "to the Nyquist frequency"
+    elif lowpassed:
+        where = f"to {top:.4g} Hz, where the channel's roll-off begins"
+    else:
+        where = f"to {top:.4g} Hz"
+    return sigma, bound, f"plateau {level:.3g} N^2/Hz from {a:.4g} Hz {where}; {band}", lowpassed
 
 
 # ------------------------------------------------------------------------------------------------------- the floor
@@ -549,12 +617,15 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
         if found is None:
             found, method = force_noise_from_cycles(record), "repeated cycles"
         if found is None:
-            s_spec, bound, note = force_noise_from_spectrum(record)
+            s_spec, bound, note, lowpassed = force_noise_from_spectrum(record)
             if s_spec is not None:
                 found, method = (s_spec, note), "spectrum above the excited band"
             else:
                 s4 = _noise_level(F)
-                if bound < s4:
+                if lowpassed:       # fourth differences see what the filter left of the noise: use the bound
+                    found, method = (bound, note + "; a low-passed channel: the noise taken at that level, an "
+                                     f"upper bound (fourth differences {s4:.3g} N)"), "spectrum above the excited band"
+                elif bound < s4:
                     found, method = (bound, note + "; taken as white at that level: an upper bound, below the "
                                      f"fourth differences' {s4:.3g} N"), "spectrum above the excited band"
                 else:
