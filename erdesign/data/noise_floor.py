@@ -37,8 +37,9 @@ and an even zero-phase filter of the same white noise), hence the sum of squares
    The noise is the lowest flat plateau (a run of log-spaced bands within a factor :data:`FLAT` of each other
    and a log-log slope below :data:`MAX_SLOPE`, over at least :data:`PLATEAU_SPAN` in frequency); the variance
    is the plateau's level times its upper frequency plus the spectrum above it,
-   :math:`\sigma_F^2 = N_0 f_p + \int_{f_p}^{f_s/2} P\,df`, which is :math:`N_0 f_s/2` for white noise and the variance of the noise as recorded on a low-passed (anti-aliased)
-   channel whose plateau ends before the Nyquist frequency.
+   :math:`\sigma_F^2 = N_0 f_p + \int_{f_p}^{f_s/2} P\,df`, which is :math:`N_0 f_s/2` for white noise and
+   the variance of the noise as recorded on a low-passed (anti-aliased) channel whose plateau ends before the
+   Nyquist frequency.
    Without a plateau the spectrum still bounds the noise: at most white at the lowest level of the pass band
    above the excited band (below the knee of a roll-off).  On a low-passed channel (a roll-off steeper than any
    force, :data:`ROLL_OFF`) that bound is taken, and the note says it is one.
