@@ -23,8 +23,8 @@ and an even zero-phase filter of the same white noise), hence the sum of squares
 2. ``"still segment"`` - a stretch of at least :data:`MIN_STILL` samples where the displacement and the control
    stay constant within their noise: the force's spread there (a linear trend per stretch removed, 5-sigma
    clipped) is the load cell alone, with no signal to mistake for noise and no assumption on the noise's spectrum.
-3. ``"repeated cycles"`` - a periodic programme (the displacement and control repeat after one period, at least
-   two periods): the difference of adjacent cycles at the same phase cancels the signal and any slow drift
+3. ``"repeated cycles"`` - a periodic programme (the displacement and control repeat after one period, on at
+   least half the samples): the difference of adjacent cycles at the same phase cancels the signal and any slow drift
    (heating); its robust spread (median absolute deviation, so that the timing jitter of the force jumps at the
    reversals does not count) over :math:`\sqrt{2}` is the noise.  A period that is not a whole number of samples
    is met by linear interpolation, whose effect on white noise is divided out exactly.
@@ -325,7 +325,7 @@ def force_noise_from_cycles(record: Measurement) -> tuple[float, str] | None:
 
     The period is the dominant one of the displacement, refined by least squares on the lag of the adjacent-cycle
     difference.  Compared are the samples where the displacement repeats within its noise (or a digitisation step)
-    and the control repeats; at least two cycles and 300 such samples are needed, and half the record.  Needs a
+    and the control repeats; at least 150 such pairs are needed, and half of all pairs one period apart.  Needs a
     uniform sampling.
 
     Examples
@@ -344,21 +344,27 @@ def force_noise_from_cycles(record: Measurement) -> tuple[float, str] | None:
     t = np.asarray(record.time, dtype=float)
     x = np.asarray(record.displacement, dtype=float)
     n = t.size
-    if n < 300 or not _uniform(t):
+    if n < 200 or not _uniform(t):
         return None
     dt = (t[-1] - t[0]) / (n - 1)
     f0 = _dominant_frequency(t, x)
     if not f0 > 0:
         return None
     period = 1.0 / (f0 * dt)                      # samples
-    if n < 2.2 * period or period < 8:
+    if n < period + 150 or period < 8:
         return None
-    # the dominant frequency is known to half a Fourier bin: a grid of whole lags over that bracket, then a
-    # fractional refinement around the best
-    cost = lambda L: float(np.mean(_lagged_difference(x, L)[0] ** 2))    # noqa: E731
+    # the dominant frequency is known to about half a Fourier bin: a grid of whole lags over a bin each side,
+    # then a fractional refinement around the best
+    def cost(L: float) -> float:
+        # the smaller 80 % of the squared differences: a start-up transient or a stretch at another amplitude
+        # does not pull the period
+        d2 = _lagged_difference(x, L)[0] ** 2
+        m = int(0.8 * d2.size)
+        return float(np.mean(np.partition(d2, m)[:m])) if m > 0 else float(np.mean(d2))
+
     T = t[-1] - t[0]
-    lo, hi = 1.0 / ((f0 + 0.5 / T) * dt), 1.0 / (max(f0 - 0.5 / T, 0.5 * f0) * dt)
-    hi = min(hi, (n - 300) / 2.0)
+    lo, hi = 1.0 / ((f0 + 1.0 / T) * dt), 1.0 / (max(f0 - 1.0 / T, 0.5 * f0) * dt)
+    hi = min(hi, n - 150.0)
     if hi <= lo:
         return None
     grid = np.unique(np.round(np.linspace(lo, hi, int(min(400, hi - lo + 2)))))
@@ -375,12 +381,12 @@ def force_noise_from_cycles(record: Measurement) -> tuple[float, str] | None:
     if np.ptp(u) > 0:
         du, _ = _lagged_difference(u, lag)
         same &= np.abs(du) <= 1e-3 * float(np.max(np.abs(u)))
-    if same.sum() < max(300, 0.5 * n) or n - lag < 300:
+    if same.sum() < max(150, 0.5 * dx.size):
         return None
     dF, factor = _lagged_difference(F, lag)
     s = _robust_sigma(dF[same]) / math.sqrt(factor)
-    return s, (f"{int(same.sum())} pairs of samples one period ({lag * dt:.5g} s, {f0:.4g} Hz) apart where the "
-               "motion repeats")
+    return s, (f"{int(same.sum())} pairs of samples one period ({lag * dt:.5g} s, {1 / (lag * dt):.4g} Hz) apart "
+               "where the motion repeats")
 
 
 # ------------------------------------------------------------------------------------------------------ spectrum
