@@ -146,8 +146,12 @@ def test_quantised_displacement_at_100_hz_sets_the_floor_through_the_velocity():
     floor = estimate_noise_floor(record, known, sensitivity=(s_v, s_a))
     assert quantisation_step(xq) == pytest.approx(q, rel=1e-9)
     assert floor.sigma_displacement == pytest.approx(q / math.sqrt(12), rel=1e-9)   # uniform error of one step
-    # first-order propagation of an independent noise: within 25 % (measured 0.98)
-    assert 0.75 < floor.motion_esr / true_esr < 1.25, (floor.motion_esr, true_esr)
+    # first-order propagation of a white noise: measured 1.10 here, 0.76-1.19 for peaks of 4 to 20 mm (a digitisation
+    # error is white only while the motion crosses several steps a sample, and the derivative's adaptive cut-off
+    # moves with the noise): within a factor 1.4
+    print(f"\n100 Hz, 5 um steps: motion_esr {floor.motion_esr:.3g}, the digitisation costs an exact model "
+          f"{true_esr:.3g}; load cell {floor.esr:.3g}")
+    assert 1 / 1.4 < floor.motion_esr / true_esr < 1.4, (floor.motion_esr, true_esr)
     assert floor.total() == pytest.approx(floor.esr + floor.motion_esr)
     assert floor.total() > floor.esr
 
