@@ -27,7 +27,10 @@ unknown sign costs added (:func:`noise_floor_esr`):
 
 The estimates are first order (noise small against the signal) and assume white noise; filtered or smoothed
 records (a moving average before export) hide their noise from the differences, and their floor is then
-underestimated - which errs on the side of saying a residual is *not* noise.
+underestimated - which errs on the side of saying a residual is *not* noise.  Fourth differences also take force
+changes faster than a few samples for noise (a 3 kHz record thinned for analysis).  :mod:`erdesign.data.noise_floor`
+estimates the floor from what the record shows to be noise (a still segment, repeated cycles, the spectrum above
+the excited band) and adds what the motion channel costs; :func:`force_noise` is its last resort.
 """
 
 from __future__ import annotations
