@@ -77,7 +77,7 @@ import numpy as np
 
 from ..errors import ErdesignError
 from .measurement import Measurement, _noise_level, derivatives
-from .noise import EDGE_FRACTION
+from .noise import _ACCELERATION_CACHE, EDGE_FRACTION, velocity_noise
 
 __all__ = ["NoiseFloor", "estimate_noise_floor", "motion_noise", "quantisation_step", "displacement_noise_level",
            "force_noise_from_spectrum", "force_noise_from_cycles", "force_noise_from_still_segment", "METHODS",
@@ -220,7 +220,16 @@ def motion_noise(record: Measurement) -> tuple[float, float, float]:
     t, x = np.asarray(record.time, dtype=float), np.asarray(record.displacement, dtype=float)
     sx = displacement_noise_level(x)
     sv = sa = 0.0
-    if sx > 0 and x.size >= 16:
+    shared = None
+    if "velocity" not in record.units and record.velocity_noise is None and sx == _noise_level(x):
+        # the same differentiations as velocity_noise's (its noise level and seed): share them, and their cost
+        sv = velocity_noise(record)
+        hit = _ACCELERATION_CACHE.get(id(record.displacement))
+        if hit is not None and hit[0]() is record.displacement and hit[1] == sx:
+            shared = hit[2]
+    if shared is not None:
+        sa = shared
+    elif sx > 0 and x.size >= 16:
         rng = np.random.default_rng(12345)
         v1, a1 = derivatives(t, x)
         v2, a2 = derivatives(t, x + sx * rng.standard_normal(x.size))
