@@ -6,6 +6,7 @@ costs an exact model (the rig's own force fed the measured motion).  The real re
 reported and bounded; those tests skip when the folder is absent.
 """
 
+import dataclasses
 import math
 import time
 from dataclasses import replace
@@ -18,8 +19,15 @@ from scipy.signal import butter, sosfiltfilt
 from erdesign.damper.files import load_example
 from erdesign.data.measurement import Measurement, read_measurement
 from erdesign.data.noise import force_noise, sign_known
-from erdesign.data.noise_floor import (METHODS, NoiseFloor, estimate_noise_floor, force_noise_from_cycles,
-                                       force_noise_from_still_segment, motion_noise, quantisation_step)
+from erdesign.data.noise_floor import (
+    METHODS,
+    NoiseFloor,
+    estimate_noise_floor,
+    force_noise_from_cycles,
+    force_noise_from_still_segment,
+    motion_noise,
+    quantisation_step,
+)
 from erdesign.errors import ErdesignError
 from erdesign.simulation.rig import Motion, earthquake_motion, random_motion, sine
 from erdesign.simulation.truthrig import TruthDamper, simulate_truth
@@ -234,8 +242,8 @@ def test_methods_constant_and_result_type():
     assert METHODS == ("given", STILL, CYCLES, SPECTRUM, "fourth differences")
     nf = NoiseFloor(2.0, "given", 0.01, 0.02)
     assert nf.total() == pytest.approx(0.03)
-    with pytest.raises(Exception):
-        nf.esr = 0.0                                                  # frozen
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        nf.esr = 0.0
 
 
 # ------------------------------------------------------------------------------------------------------ real data
@@ -305,3 +313,22 @@ def test_quiroz_preprocessed_record_floor_from_its_cycles():
     assert floor.method == CYCLES
     assert floor.sigma_force > 10 * force_noise(record)
     assert floor.esr < 1e-4
+
+
+def test_one_floor_judged_on_a_thinned_copy():
+    """The floor is estimated on the full record; on the copy a diagnosis thins it keeps its noise levels, and its
+    ESR on the thinned samples equals the full record's (every 15th sample of a long random record)."""
+    rec = simulate_truth(TruthDamper(load_example("makris"), {}),
+                         random_motion(0.003, (0.5, 5.0), 3e6, duration=8.0, rate=1000, seed=1), force_noise=0.01,
+                         seed=3)
+    n = len(rec.measured)
+    s_v = np.full(n, 2e3)
+    full = estimate_noise_floor(rec.measured, sensitivity=(s_v, None))
+    thinned = full.on(rec.measured.select(slice(None, None, 15)), sensitivity=(s_v[::15], None))
+    assert (thinned.sigma_force, thinned.method, thinned.sigma_velocity) == (full.sigma_force, full.method,
+                                                                            full.sigma_velocity)
+    # the same variances over a sample of the same record: equal to within the sampling of the force's variance
+    assert thinned.esr == pytest.approx(full.esr, rel=0.05)
+    assert thinned.motion_esr == pytest.approx(full.motion_esr, rel=0.05)
+    with pytest.raises(ErdesignError, match="mask"):
+        full.on(rec.measured, np.ones(3, dtype=bool))

@@ -135,6 +135,28 @@ class NoiseFloor:
         """The whole floor, :attr:`esr` + :attr:`motion_esr`, [-]."""
         return float(self.esr + self.motion_esr)
 
+    def on(self, record: Measurement, mask=None, *, sensitivity=None) -> NoiseFloor:
+        """The same noise levels judged on other samples: a thinned copy of the record, another mask.
+
+        The noise is estimated once, on the full-rate record (:func:`estimate_noise_floor`); a diagnosis that
+        analyses a thinned copy takes the ESRs there with this, so that one record has one floor.  Without
+        ``sensitivity`` the motion's share is 0.
+
+        Examples
+        --------
+        >>> t = np.arange(4000) / 1000.0; F = 1000 * np.sin(2 * np.pi * t)
+        >>> rec = Measurement.from_arrays(t, 0.01 * np.cos(2 * np.pi * t), F)
+        >>> floor = estimate_noise_floor(rec, force_noise="10 N")
+        >>> thinned = floor.on(rec.select(slice(None, None, 8)))
+        >>> thinned.sigma_force, round(thinned.esr / floor.esr, 2)
+        (10.0, 1.0)
+        """
+        F = record.require_force()
+        k = _mask(mask, F.size)
+        esr, motion = _esrs(F, k, self.sigma_force, self.sigma_velocity, self.sigma_acceleration, sensitivity)
+        return NoiseFloor(self.sigma_force, self.method, esr, motion, self.sigma_velocity, self.sigma_acceleration,
+                          self.sigma_displacement, self.note)
+
 
 # ----------------------------------------------------------------------------------------------------- helpers
 
@@ -621,13 +643,7 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
         raise ErdesignError(f"record: must be a Measurement, got {type(record).__name__}")
     F = record.require_force()
     n = F.size
-    if mask is None:
-        k = np.ones(n, dtype=bool)
-    else:
-        k = np.asarray(mask)
-        if k.dtype != bool or k.shape != (n,):
-            raise ErdesignError(f"mask: must be a boolean array of the record's length {n}, got "
-                                f"{k.dtype} of shape {k.shape}")
+    k = _mask(mask, n)
     note = ""
     if force_noise is not None:
         sigma, method = _given_force_noise(force_noise), "given"
@@ -652,14 +668,33 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
                     found, method = (s4, note + f"; fourth differences {s4:.3g} N, below the spectrum's bound "
                                      f"{bound:.3g} N"), "fourth differences"
         sigma, note = found
+    sx = sv = sa = 0.0
+    if sensitivity is not None:
+        _sensitivity(sensitivity, n)                 # checked before the differentiations
+        sx, sv, sa = motion_noise(record)
+    esr, motion = _esrs(F, k, float(sigma), sv, sa, sensitivity)
+    return NoiseFloor(float(sigma), method, esr, motion, float(sv), float(sa), float(sx), note)
+
+
+def _mask(mask, n: int) -> np.ndarray:
+    if mask is None:
+        return np.ones(n, dtype=bool)
+    k = np.asarray(mask)
+    if k.dtype != bool or k.shape != (n,):
+        raise ErdesignError(f"mask: must be a boolean array of the record's length {n}, got {k.dtype} of shape "
+                            f"{k.shape}")
+    return k
+
+
+def _esrs(F: np.ndarray, k: np.ndarray, sigma: float, sv: float, sa: float, sensitivity) -> tuple[float, float]:
+    """(ESR of the force noise, ESR the motion adds) on the samples ``k``."""
     Fk = F[k]
     ss = float(np.sum((Fk - Fk.mean()) ** 2)) if Fk.size else 0.0
-    esr = min(Fk.size * sigma**2 / ss, 1.0) if ss > 0 else 0.0
-    motion = sv = sa = 0.0
-    sx = 0.0
+    if not ss > 0:
+        return 0.0, 0.0
+    esr = min(Fk.size * sigma**2 / ss, 1.0)
+    motion = 0.0
     if sensitivity is not None:
-        dv, da = _sensitivity(sensitivity, n)
-        sx, sv, sa = motion_noise(record)
-        if ss > 0:
-            motion = min(float(np.sum(dv[k] ** 2 * sv**2 + da[k] ** 2 * sa**2)) / ss, 1.0)
-    return NoiseFloor(float(sigma), method, float(esr), float(motion), float(sv), float(sa), float(sx), note)
+        dv, da = _sensitivity(sensitivity, F.size)
+        motion = min(float(np.sum(dv[k] ** 2 * sv**2 + da[k] ** 2 * sa**2)) / ss, 1.0)
+    return float(esr), float(motion)
