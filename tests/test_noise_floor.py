@@ -19,15 +19,8 @@ from scipy.signal import butter, sosfiltfilt
 from erdesign.damper.files import load_example
 from erdesign.data.measurement import Measurement, read_measurement
 from erdesign.data.noise import force_noise, sign_known
-from erdesign.data.noise_floor import (
-    METHODS,
-    NoiseFloor,
-    estimate_noise_floor,
-    force_noise_from_cycles,
-    force_noise_from_still_segment,
-    motion_noise,
-    quantisation_step,
-)
+from erdesign.data.noise_floor import (METHODS, NoiseFloor, estimate_noise_floor, force_noise_from_cycles,
+                                       force_noise_from_still_segment, motion_noise, quantisation_step)
 from erdesign.errors import ErdesignError
 from erdesign.simulation.rig import Motion, earthquake_motion, random_motion, sine
 from erdesign.simulation.truthrig import TruthDamper, simulate_truth
