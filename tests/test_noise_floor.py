@@ -80,16 +80,25 @@ def test_rigid_yield_jumps_do_not_inflate_the_spectrum():
 
 # ------------------------------------------------------------------------------------------ a band-limited channel
 @pytest.fixture(scope="module")
-def band_limited():
-    """20 s at 3 kHz (60,000 samples): a compliant MR valve on random motion to 15 Hz, 1 % load-cell noise, the
-    noisy force low-passed at 1 kHz (Butterworth, order 4, zero phase) as an anti-aliased channel would be."""
+def fast_record():
+    """20 s at 3 kHz (60,000 samples): a compliant MR valve on random motion to 15 Hz, 1 % load-cell noise."""
     truth = TruthDamper(load_example("mr_valve"), {"compliance": {"bulk_modulus": 5e7}})
-    rec = simulate_truth(truth, random_motion(0.003, (0.5, 15.0), 2e5, duration=20.0, rate=3000.0, seed=4),
-                         force_noise=0.01, seed=5)
-    sos = butter(4, 1000.0, fs=3000.0, output="sos")
+    return simulate_truth(truth, random_motion(0.003, (0.5, 15.0), 2e5, duration=20.0, rate=3000.0, seed=4),
+                          force_noise=0.01, seed=5)
+
+
+def _low_passed(rec, cutoff):
+    """The record with its noisy force low-passed at ``cutoff`` [Hz] (Butterworth, order 4, zero phase) as an
+    anti-aliased channel would be, and the standard deviation of the noise it then holds."""
+    sos = butter(4, cutoff, fs=3000.0, output="sos")
     measured = sosfiltfilt(sos, rec.measured.force)
-    noise = measured - sosfiltfilt(sos, rec.true_force)         # the noise as the record holds it
+    noise = measured - sosfiltfilt(sos, rec.true_force)
     return rec.measured.with_force(measured), float(np.std(noise[100:-100]))
+
+
+@pytest.fixture(scope="module")
+def band_limited(fast_record):
+    return _low_passed(fast_record, 1000.0)
 
 
 def test_band_limited_3khz_floor_is_the_noise_not_the_fast_force(band_limited):
@@ -105,6 +114,17 @@ def test_band_limited_3khz_floor_is_the_noise_not_the_fast_force(band_limited):
     print(f"\nband-limited 3 kHz: truth {truth:.2f} N; floor {floor.sigma_force:.2f} N ({floor.method}); fourth "
           f"differences {full:.2f} N on the full record, {thinned:.2f} N on the thinned copy")
     assert full < 0.5 * truth and thinned > 2.5 * truth
+
+
+def test_low_passed_channel_without_a_plateau_gives_an_upper_bound(fast_record):
+    """Low-passed at 500 Hz the fast force stays above the noise up to the filter's knee: no plateau.  The noise
+    is then at most white at the pass band's lowest level - an upper bound, close to it, while the fourth
+    differences see 4 % of the noise."""
+    record, truth = _low_passed(fast_record, 500.0)
+    floor = estimate_noise_floor(record)
+    assert floor.method == SPECTRUM and "upper bound" in floor.note and "no flat plateau" in floor.note
+    assert 1.0 < floor.sigma_force / truth < 1.6          # measured 1.20
+    assert force_noise(record) < 0.1 * truth
 
 
 def test_floor_is_cheap_on_60k_samples(band_limited):
