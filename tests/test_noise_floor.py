@@ -345,3 +345,15 @@ def test_one_floor_judged_on_a_thinned_copy():
     assert thinned.motion_esr == pytest.approx(full.motion_esr, rel=0.05)
     with pytest.raises(ErdesignError, match="mask"):
         full.on(rec.measured, np.ones(3, dtype=bool))
+
+
+def test_a_saturated_displacement_is_not_a_still_segment():
+    """A displacement transducer that saturates at +2 mm during a 5 mm sine looks still at its rail while the
+    piston moves on and the force keeps changing: that is not the load cell at rest."""
+    rng = np.random.default_rng(4)
+    t = np.arange(4000) / 1000.0
+    x = 0.005 * np.sin(2 * np.pi * 1.0 * t)
+    F = 2000 * np.tanh(50 * np.cos(2 * np.pi * t)) + 500 * np.sin(2 * np.pi * t) + 3.0 * rng.standard_normal(t.size)
+    record = Measurement.from_arrays(t, np.minimum(x, 0.002), F)
+    assert force_noise_from_still_segment(record) is None
+    assert estimate_noise_floor(record).method != STILL

@@ -283,7 +283,8 @@ def force_noise_from_still_segment(record: Measurement, *, min_samples: int = MI
     """The force's spread where the piston is at rest, [N], and a note; None without such a stretch.
 
     A sample is at rest when, over a centred window of ``max(64, 0.2 s)`` samples, the displacement stays within
-    eight times its noise (or two digitisation steps) and the control does not change.  Stretches of at least 64
+    eight times its noise (or two digitisation steps) and the control does not change; a stretch held at the
+    record's largest or smallest displacement is left out (a saturated transducer looks still).  Stretches of at least 64
     samples are pooled when they hold ``min_samples`` together; each has its linear trend removed (a force
     relaxing after the motion stopped), then the RMS is taken with 5-sigma outliers clipped.  The spread of a
     channel that flickers between two digitisation levels is its RMS, not a median deviation (which may be 0).
@@ -315,10 +316,12 @@ def force_noise_from_still_segment(record: Measurement, *, min_samples: int = MI
     u = np.asarray(record.control, dtype=float)
     if np.ptp(u) > 0:
         still &= (maximum_filter1d(u, w) - minimum_filter1d(u, w)) <= 1e-6 * float(np.max(np.abs(u)))
-    if still.all() and span > tol:       # nothing moves anywhere is not a damper test
-        return None
     edges = np.flatnonzero(np.diff(np.concatenate([[0], still.astype(np.int8), [0]])))
-    runs = [(a, b) for a, b in zip(edges[::2], edges[1::2]) if b - a >= 64]
+    # a stretch held at the record's largest or smallest displacement may be a saturated transducer while the
+    # piston moves on: not taken
+    top, bottom = float(np.max(x)), float(np.min(x))
+    runs = [(a, b) for a, b in zip(edges[::2], edges[1::2]) if b - a >= 64
+            and (span <= 4 * tol or min(top - np.max(x[a:b]), np.min(x[a:b]) - bottom) > tol)]
     if sum(b - a for a, b in runs) < min_samples:
         return None
     residuals = []
