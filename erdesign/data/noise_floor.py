@@ -65,6 +65,13 @@ Examples
 >>> floor = estimate_noise_floor(Measurement.from_arrays(t, x, F + 8 * rng.standard_normal(t.size)))
 >>> floor.method, bool(0.8 < floor.sigma_force / 8 < 1.2)
 ('repeated cycles', True)
+
+References
+----------
+Welch (1967), "The use of fast Fourier transform for the estimation of power spectra", IEEE Transactions on Audio
+and Electroacoustics 15(2), 70-73 (the averaged periodogram; :func:`scipy.signal.welch`).  Widrow and Kollar
+(2008), *Quantization Noise*, Cambridge University Press, chapter 4 (the digitisation error of step :math:`q`:
+uniform, variance :math:`q^2/12`, white while the signal crosses several steps between samples).
 """
 
 from __future__ import annotations
