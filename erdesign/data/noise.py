@@ -27,7 +27,10 @@ unknown sign costs added (:func:`noise_floor_esr`):
 
 The estimates are first order (noise small against the signal) and assume white noise; filtered or smoothed
 records (a moving average before export) hide their noise from the differences, and their floor is then
-underestimated - which errs on the side of saying a residual is *not* noise.
+underestimated - which errs on the side of saying a residual is *not* noise.  Fourth differences also take force
+changes faster than a few samples for noise (a 3 kHz record thinned for analysis).  :mod:`erdesign.data.noise_floor`
+estimates the floor from what the record shows to be noise (a still segment, repeated cycles, the spectrum above
+the excited band) and adds what the motion channel costs; :func:`force_noise` is its last resort.
 """
 
 from __future__ import annotations
@@ -50,6 +53,8 @@ SIGN_BAND = 3.0
 EDGE_FRACTION = 0.01
 
 _CACHE: dict[int, tuple[weakref.ref, float]] = {}
+#: id of a displacement array -> (weak reference, displacement noise, acceleration noise) from velocity_noise
+_ACCELERATION_CACHE: dict[int, tuple[weakref.ref, float, float]] = {}
 
 
 def displacement_noise(record: Measurement) -> float:
@@ -98,9 +103,17 @@ def velocity_noise(record: Measurement) -> float:
         else:
             t, x = record.time, np.asarray(record.displacement, dtype=float)
             rng = np.random.default_rng(12345)
-            v1 = derivatives(t, x)[0]
-            v2 = derivatives(t, x + sx * rng.standard_normal(x.size))[0]
+            v1, a1 = derivatives(t, x)
+            v2, a2 = derivatives(t, x + sx * rng.standard_normal(x.size))
             sigma = float(np.sqrt(np.mean((v2 - v1) ** 2)))
+            # the acceleration's noise comes out of the same two differentiations: kept for
+            # erdesign.data.noise_floor.motion_noise (the filters' ends left out, as there)
+            edge = min(max(3, int(EDGE_FRACTION * x.size)), x.size // 4)
+            try:
+                _ACCELERATION_CACHE[id(record.displacement)] = (
+                    weakref.ref(record.displacement), sx, float(np.sqrt(np.mean((a2 - a1)[edge:x.size - edge] ** 2))))
+            except TypeError:
+                pass
     # A velocity is never known better than VELOCITY_RESOLUTION of its peak: on a record without noise the
     # derivative's own error (about 1e-10 of the peak for the Fourier rule) would otherwise decide the sign of a
     # sample that falls exactly on a reversal, where the force of a rigid-plastic gap is anywhere within +-F_y
@@ -113,6 +126,8 @@ def velocity_noise(record: Measurement) -> float:
     if len(_CACHE) > 256:
         for k in [k for k, (ref, _) in _CACHE.items() if ref() is None]:
             del _CACHE[k]
+        for k in [k for k, (ref, *_) in _ACCELERATION_CACHE.items() if ref() is None]:
+            del _ACCELERATION_CACHE[k]
     return sigma
 
 
