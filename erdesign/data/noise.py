@@ -230,23 +230,3 @@ def noise_floor_esr(record: Measurement, jump=0.0, *, sigma_v: float | None = No
     out = (F.size * sF**2 + sign) / ss
     return float(min(out, 1.0)) if math.isfinite(out) else 1.0
 
-
-# INTERIM (replaced by the noise-floor work of issue 23 at merge)
-from dataclasses import dataclass as _dc  # noqa: E402
-
-
-@_dc(frozen=True)
-class NoiseFloor:
-    sigma_force: float
-    method: str
-    esr: float
-    motion_esr: float = 0.0
-
-
-def estimate_noise_floor(record, mask=None, *, force_noise=None, sensitivity=None):
-    if force_noise is not None:
-        from ..units import to_si
-        s = float(to_si(force_noise, "N", "force_noise")) if not isinstance(force_noise, (int, float)) else float(force_noise)
-        return NoiseFloor(s, "given", 0.0)
-    F = record.force if mask is None else record.force[mask]
-    return NoiseFloor(_noise_level(np.asarray(F, dtype=float)), "fourth differences", 0.0)

@@ -271,7 +271,7 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
             best = (rss, f, trial)
     _, width, work = best
     analysis = residual_analysis(base_model, base, work, mask)
-    floor_info = noise_floor(records, prep, force_noise)
+    floor_info = noise_floor(records, prep, force_noise, damper)
     floor = floor_info.esr
     warnings_ = [f"the calibration ends at a bound: {b}" for b in parameters_at_bounds(base, base.free)]
     suspicious = [s for r in records for s in _implausible_record(r, damper)]
