@@ -40,8 +40,11 @@ from concurrent.futures import ProcessPoolExecutor, as_completed  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
+SUBSETS = ("full", "core", "issue23", "fast")   # erdesign.simulation.truthrig.cases.SUBSETS (imported late)
 DOCS = ROOT / "docs" / "diagnosis_benchmark.md"
 LONG_TARGET = 30.0
+#: Benchmark class of the cases of the core catalogue (the issue-23 classes carry their own, ``Case.group``).
+CORE = "core"
 VERDICTS = ("nothing_missing", "unexplained", "missing_effect")
 
 
@@ -79,7 +82,8 @@ def run_case(case, detectability: bool = True) -> dict:
     from erdesign.data.measurement import read_measurement
     from erdesign.diagnosis.diagnose import diagnose
 
-    row = {"name": case.name, "damper": case.damper, "excitation": case.excitation, "noise": case.noise,
+    row = {"name": case.name, "group": case.group or CORE, "damper": case.damper, "excitation": case.excitation,
+           "noise": case.noise,
            "kind": case.kind, "size": case.size, "mechanisms": {k: dict(v) for k, v in case.mechanisms.items()},
            "expected": case.expected, "accepted": sorted(case.accepted), "seed": case.seed,
            "duration_s": case.duration, "rate_Hz": case.rate, "samples": None,
@@ -200,6 +204,12 @@ def summarise(rows: list[dict]) -> dict:
         for r in rows:
             groups[str(r[key]) or "-"].append(r["correct"])
         by[key] = {k: [sum(v), len(v)] for k, v in sorted(groups.items())}
+    per_group = {}
+    for r in rows:
+        g = per_group.setdefault(r.get("group", CORE), {"cases": 0, "correct": 0, "time_max_s": 0.0})
+        g["cases"] += 1
+        g["correct"] += bool(r["correct"])
+        g["time_max_s"] = max(g["time_max_s"], r["time_s"] or 0.0)
     times = [r["time_s"] for r in rows if r["time_s"] is not None]
     detect = [r for r in rows if r["effect_size_over_noise"] is not None]
     undetectable = [r for r in detect if _visible(r) is not None and _visible(r) < UNDETECTABLE]
@@ -209,7 +219,7 @@ def summarise(rows: list[dict]) -> dict:
         "accuracy": sum(r["correct"] for r in rows) / n if n else math.nan,
         "accuracy_detectable": (sum(r["correct"] for r in detectable_rows) / len(detectable_rows)
                                 if detectable_rows else math.nan),
-        "per_class": per_class, "confusion_columns": columns,
+        "per_class": per_class, "per_group": per_group, "confusion_columns": columns,
         "confusion": {k: dict(v) for k, v in confusion.items() if sum(v.values())},
         "by": by,
         "exceptions": [[r["name"], r["error_stage"], r["error"]] for r in rows if r["error"]],
@@ -260,6 +270,10 @@ def report_lines(summary: dict, long: dict | None, wall: float, meta: dict) -> l
            "library effect: recall; pair: one of the two named):"]
     for cls, c in s["per_class"].items():
         out.append(f"  {cls:<22} {_pct(c['correct'], c['cases'])}")
+    if set(s.get("per_group", {})) - {CORE}:
+        out.append("per benchmark class (core: the catalogue above by true class; the others: issue 23):")
+        for grp, c in s["per_group"].items():
+            out.append(f"  {grp:<22} {_pct(c['correct'], c['cases'])}; slowest diagnosis {c['time_max_s']:.1f} s")
     for key, groups in s["by"].items():
         out.append(f"by {key}: " + ", ".join(f"{k} {_pct(a, b)}" for k, (a, b) in groups.items()))
     out += ["", "confusion matrix (rows: true class; columns: verdict or named effect):", *confusion_table(s), ""]
@@ -360,7 +374,8 @@ def select(cases, pattern: str | None):
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--subset", choices=("fast", "full"), default="full")
+    p.add_argument("--subset", choices=SUBSETS, default="full",
+                   help="full (core + issue23), core (the catalogue of 2026-11-23), issue23 (its classes), fast")
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--cases", default=None, help="shell pattern or substring of case names")
     p.add_argument("--out", default=None, help="JSON file of every case")
@@ -453,7 +468,7 @@ def main(argv=None) -> int:
 def _interleaved(cases):
     groups = defaultdict(list)
     for c in cases:
-        groups[c.expected if c.kind == "single" else c.kind].append(c)
+        groups[(c.group, c.expected if c.kind == "single" else c.kind)].append(c)
     out = []
     while any(groups.values()):
         for g in groups.values():
