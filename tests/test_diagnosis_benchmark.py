@@ -17,7 +17,7 @@ from erdesign.data.measurement import read_measurement
 
 from erdesign.effects import EFFECT_NAMES
 from erdesign.simulation.truthrig import MECHANISMS
-from erdesign.simulation.truthrig.cases import (ALL_DAMPERS, ANTI_ALIAS_ORDER, DAMPERS, EXCITATIONS,
+from erdesign.simulation.truthrig.cases import (ALL_DAMPERS, ANTI_ALIAS_ORDER, DAMPERS, EXCITATIONS, HEATING_TARGET,
                                                 ISSUE23_EXCITATIONS, ISSUE23_GROUPS, LIBRARY_MECHANISMS, NOISES,
                                                 NOT_VISIBLE_ON, OUT_OF_LIBRARY, EXCITATIONS_OF, STEP_PERIOD,
                                                 benchmark_cases, supported, unsupported_pairs)
@@ -223,7 +223,7 @@ def test_long_heating_records_warm_the_fluid_by_25_to_35_K(issue23):
     for c in heating:
         assert c.load_damper().geometry.configuration == "valve"
         rise = c.make().states["temperature_rise"]
-        assert 25.0 <= rise[-1] <= 35.0, (c.name, rise[-1])
+        assert abs(rise[-1] - HEATING_TARGET) <= 5.0, (c.name, rise[-1])          # 25-35 K (measured 29-31 K)
         assert rise.max() < 36.0
 
 

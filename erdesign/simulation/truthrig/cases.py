@@ -68,8 +68,10 @@ laboratories make them, where the core catalogue's own shapes had hidden failure
   multi-sine, Gaussian noise through a causal Butterworth band-pass) with leakage, seal friction, shear thinning, a
   gas spring, compressibility, and one clean record.
 
-The records are kept cheap to diagnose (at most 80 000 samples, most far fewer): the target of a 60 s, 1 kHz record,
-under 30 s, holds for each of them; the benchmark measures it (docs/diagnosis_benchmark.md).  Lab artefacts (clipping, smoothing, skew, gaps, drift, quantisation faults) are a class of their own, built on
+The records are kept cheap to diagnose: at most 83 000 samples, most far fewer, so that the target of a 60 s,
+1 kHz record (under 30 s) can hold for each; the benchmark measures it (docs/diagnosis_benchmark_issue23.md).
+
+Lab artefacts (clipping, smoothing, skew, gaps, drift, quantisation faults) are a class of their own, built on
 :mod:`erdesign.simulation.truthrig.artefacts` when it lands: the hook is :meth:`Case.make`, which already applies the
 instrument chain of a case (:attr:`Case.anti_alias`, :attr:`Case.displacement_resolution`) after the truth rig.
 """
@@ -660,9 +662,9 @@ def _fast() -> list[Case]:
 
 # ---------------------------------------------------------------------------------------------------- issue 23
 # Heat capacity of the long heating records over the fluid's own (mechanism_parameters' "volume" x density x
-# 1800 J/(kg K)), by damper and speed over its working speed: sized so that the record warms the fluid by about HEATING_TARGET (measured on the truth rig,
-# tests/test_diagnosis_benchmark.py holds each record to 25-35 K).  The factor is the share of the fluid and its
-# steel that heats with the fluid in the ducts within a minute.
+# 1800 J/(kg K)), by damper and speed over its working speed: sized so that the record warms the fluid by about
+# HEATING_TARGET (measured on the truth rig; tests/test_diagnosis_benchmark.py holds each record to 25-35 K).  The
+# factor is the share of the fluid and its steel that heats with the fluid in the ducts within a minute or so.
 _HEATING_SHARE = {("makris", 2.0): 0.8, ("mr_valve", 2.0): 0.88, ("mr_valve_current", 2.0): 0.7,
                   ("mr_valve", 1.0): 0.47}
 

@@ -1,8 +1,9 @@
 r"""Motions for the truth rig made apart from the team's own generators of :mod:`erdesign.simulation.rig`.
 
-The diagnosis benchmark must not only see motions of one random generator (:func:`erdesign.simulation.rig.random_motion`:
-Gaussian noise shaped in the frequency domain, flat between two corners, zero phase).  The generators here make random
-and swept motion by other means, the way other labs command their actuators:
+The diagnosis benchmark must not only see motions of one random generator
+(:func:`erdesign.simulation.rig.random_motion`: Gaussian noise shaped in the frequency domain, flat between two
+corners, zero phase).  The generators here make random and swept motion by other means, the way other labs command
+their actuators:
 
 * :func:`swept_sine`: a logarithmic sine sweep at a constant peak speed (a swept-sine test programme);
 * :func:`sine_programme`: a DoE-style test plan of separate sine runs, each faded in and out, with rests between;
@@ -28,7 +29,8 @@ from scipy import signal
 from ...errors import ErdesignError
 from ..rig import OVERSAMPLING, Motion
 
-__all__ = ["swept_sine", "sine_programme", "ornstein_uhlenbeck_motion", "random_phase_multisine", "filtered_gaussian_motion"]
+__all__ = ["swept_sine", "sine_programme", "ornstein_uhlenbeck_motion", "random_phase_multisine",
+           "filtered_gaussian_motion"]
 
 
 def _grid(duration: float, rate: float) -> np.ndarray:
