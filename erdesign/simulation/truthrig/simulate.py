@@ -266,11 +266,13 @@ class TruthDamper:
         return p
 
     def describe(self) -> str:
-        """The mechanisms with their values, and the true fluid, as text."""
+        """The mechanisms with their values, and the true fluid, as text (a coil lag's second stage only when it is
+        on, so that a one-stage lag reads as it did before the second stage existed)."""
         parts = []
         for name, vals in self.values.items():
             units = MECHANISMS[name].units
-            text = ", ".join(f"{k} = {x:.4g} {units[k]}" for k, x in vals.items())
+            text = ", ".join(f"{k} = {x:.4g} {units[k]}" for k, x in vals.items()
+                             if not (k == "second_time_constant" and x == 0))
             parts.append(f"{name} ({text})" if text else name)
         return (f"mechanisms: {'; '.join(parts) or 'none'}; true fluid: viscosity x {self.viscosity_factor:g}, "
                 f"yield stress x {self.yield_stress_factor:g}")
