@@ -10,9 +10,12 @@ listed with its message.
 Run::
 
     python benchmarks/bench_diagnosis_accuracy.py --subset fast                 # seven cases, about a minute
+    python benchmarks/bench_diagnosis_accuracy.py --subset issue23 --jobs 1 --no-detectability --out i23.json \
+        --write-docs                                 # the classes of issue 23, docs/diagnosis_benchmark_issue23.md
     python benchmarks/bench_diagnosis_accuracy.py --jobs 2 --out results.json --write-docs   # the catalogue
 
-Options: ``--subset fast|full``, ``--jobs N`` (processes, default 2), ``--cases PATTERN`` (shell pattern or
+Options: ``--subset full|core|issue23|fast`` (``full`` = ``core``, the catalogue by true class, + ``issue23``, its
+classes reported one by one as well), ``--jobs N`` (processes, default 2), ``--cases PATTERN`` (shell pattern or
 substring of case names), ``--out FILE`` (JSON of every case), ``--write-docs`` (docs/diagnosis_benchmark.md),
 ``--no-long`` (skip the timing of one 60 s record at 1 kHz, target < 30 s), ``--no-detectability``,
 ``--from-json FILE`` (summarise a previous ``--out`` file, with ``--write-docs`` rewrite the page from it).
@@ -40,8 +43,11 @@ from concurrent.futures import ProcessPoolExecutor, as_completed  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
+SUBSETS = ("full", "core", "issue23", "fast")   # erdesign.simulation.truthrig.cases.SUBSETS (imported late)
 DOCS = ROOT / "docs" / "diagnosis_benchmark.md"
 LONG_TARGET = 30.0
+#: Benchmark class of the cases of the core catalogue (the issue-23 classes carry their own, ``Case.group``).
+CORE = "core"
 VERDICTS = ("nothing_missing", "unexplained", "missing_effect")
 
 
@@ -79,7 +85,8 @@ def run_case(case, detectability: bool = True) -> dict:
     from erdesign.data.measurement import read_measurement
     from erdesign.diagnosis.diagnose import diagnose
 
-    row = {"name": case.name, "damper": case.damper, "excitation": case.excitation, "noise": case.noise,
+    row = {"name": case.name, "group": case.group or CORE, "damper": case.damper, "excitation": case.excitation,
+           "noise": case.noise,
            "kind": case.kind, "size": case.size, "mechanisms": {k: dict(v) for k, v in case.mechanisms.items()},
            "expected": case.expected, "accepted": sorted(case.accepted), "seed": case.seed,
            "duration_s": case.duration, "rate_Hz": case.rate, "samples": None,
@@ -200,6 +207,12 @@ def summarise(rows: list[dict]) -> dict:
         for r in rows:
             groups[str(r[key]) or "-"].append(r["correct"])
         by[key] = {k: [sum(v), len(v)] for k, v in sorted(groups.items())}
+    per_group = {}
+    for r in rows:
+        g = per_group.setdefault(r.get("group", CORE), {"cases": 0, "correct": 0, "time_max_s": 0.0})
+        g["cases"] += 1
+        g["correct"] += bool(r["correct"])
+        g["time_max_s"] = max(g["time_max_s"], r["time_s"] or 0.0)
     times = [r["time_s"] for r in rows if r["time_s"] is not None]
     detect = [r for r in rows if r["effect_size_over_noise"] is not None]
     undetectable = [r for r in detect if _visible(r) is not None and _visible(r) < UNDETECTABLE]
@@ -209,7 +222,7 @@ def summarise(rows: list[dict]) -> dict:
         "accuracy": sum(r["correct"] for r in rows) / n if n else math.nan,
         "accuracy_detectable": (sum(r["correct"] for r in detectable_rows) / len(detectable_rows)
                                 if detectable_rows else math.nan),
-        "per_class": per_class, "confusion_columns": columns,
+        "per_class": per_class, "per_group": per_group, "confusion_columns": columns,
         "confusion": {k: dict(v) for k, v in confusion.items() if sum(v.values())},
         "by": by,
         "exceptions": [[r["name"], r["error_stage"], r["error"]] for r in rows if r["error"]],
@@ -260,6 +273,10 @@ def report_lines(summary: dict, long: dict | None, wall: float, meta: dict) -> l
            "library effect: recall; pair: one of the two named):"]
     for cls, c in s["per_class"].items():
         out.append(f"  {cls:<22} {_pct(c['correct'], c['cases'])}")
+    if set(s.get("per_group", {})) - {CORE}:
+        out.append("per benchmark class (core: the catalogue above by true class; the others: issue 23):")
+        for grp, c in s["per_group"].items():
+            out.append(f"  {grp:<22} {_pct(c['correct'], c['cases'])}; slowest diagnosis {c['time_max_s']:.1f} s")
     for key, groups in s["by"].items():
         out.append(f"by {key}: " + ", ".join(f"{k} {_pct(a, b)}" for k, (a, b) in groups.items()))
     out += ["", "confusion matrix (rows: true class; columns: verdict or named effect):", *confusion_table(s), ""]
@@ -283,9 +300,40 @@ def report_lines(summary: dict, long: dict | None, wall: float, meta: dict) -> l
     return out
 
 
-def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset: str, command: str) -> None:
+def docs_path(subset: str) -> Path:
+    """The page a run writes: docs/diagnosis_benchmark.md for the catalogue (``full``, ``core``), a page of its own
+    for a subset of classes (docs/diagnosis_benchmark_issue23.md), so that a run of some classes never replaces the
+    catalogue's numbers."""
+    return DOCS if subset in ("full", "core") else DOCS.with_name(f"diagnosis_benchmark_{subset}.md")
+
+
+def group_lines(summary: dict, rows: list[dict]) -> list[str]:
+    """The per-class section of the page: one line per benchmark class, then every case of the issue-23 classes
+    with what it should be called, what diagnose said and how long it took."""
+    groups = {g: c for g, c in summary.get("per_group", {}).items() if g != CORE}
+    if not groups:
+        return []
+    lines = ["## Classes of issue 23", "",
+             "Each class of issue 23 (`Case.group`, design rules in the docstring of `cases.py`), and the core "
+             "catalogue (all the classes above, by true class) as one line:", "",
+             "| class | correct | slowest diagnosis |", "|---|---|---|"]
+    lines += [f"| {g} | {_pct(c['correct'], c['cases'])} | {c['time_max_s']:.1f} s |"
+              for g, c in summary["per_group"].items()]
+    lines += ["", "| case | expected | said | diagnose [s] |", "|---|---|---|---|"]
+    for r in rows:
+        if r.get("group", CORE) == CORE:
+            continue
+        expected = r["expected"] if len(r["accepted"]) < 2 else " or ".join(r["accepted"])
+        mark = "" if r["correct"] else " **(wrong)**"
+        t = "-" if r["time_s"] is None else f"{r['time_s']:.1f}"
+        lines.append(f"| `{r['name']}` | {expected} | {_said(r)}{mark} | {t} |")
+    return lines + [""]
+
+
+def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset: str, command: str,
+               rows: list[dict] | None = None, path: Path = DOCS) -> None:
     s = summary
-    lines = ["# Diagnosis benchmark", "",
+    lines = ["# Diagnosis benchmark" + ("" if path == DOCS else f": subset `{path.stem.split('_', 2)[-1]}`"), "",
              "How often `erdesign diagnose` names the right missing effect on records made by the independent "
              "truth rig (`erdesign/simulation/truthrig/`, which shares no code with the fitted model). The "
              "catalogue is `erdesign/simulation/truthrig/cases.py` (`benchmark_cases()`); its docstring gives the "
@@ -295,6 +343,9 @@ def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset
              "Correct means: clean record (the true damper is exactly Bingham, calibration factors perturbed) -> "
              "`nothing_missing`; mechanism outside the library (blow-off, single rod, cavitation, free play) -> "
              "`unexplained`; library mechanism(s) -> `missing_effect` naming it (for a pair: either).", "",
+             *(["The subset `full` is the core catalogue (reported by true class) and the classes of issue 23 "
+                "(reported one by one as well, below); the issue-23 classes alone: `--subset issue23`, written to "
+                "`docs/diagnosis_benchmark_issue23.md`.", ""] if path == DOCS else []),
              f"Latest run: {meta['date']}, subset `{subset}`, {s['cases']} cases, erdesign/diagnosis/diagnose.py at "
              f"`{meta['diagnose_commit'][:10]}`{' (with uncommitted changes)' if meta['diagnose_dirty'] else ''}, "
              f"{meta['jobs']} processes, {wall:.0f} s.", "",
@@ -309,6 +360,7 @@ def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset
         lines.append(f"- {key}: " + ", ".join(f"{k} {_pct(a, b)}" for k, (a, b) in groups.items()))
     lines += ["", "## Confusion matrix", "", "Rows: the true class; columns: the verdict, or the effect named.", "",
               *confusion_table(s), ""]
+    lines += group_lines(s, rows or [])
     lines += ["## Detectability", "",
               "Energy of the force change the hidden mechanisms make (noise-free truth runs with and without them) "
               "over the energy of the force noise:", ""]
@@ -339,7 +391,7 @@ def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset
     lines += ["", "## Misdiagnosed cases", "", "| case | expected | said | effect / noise |", "|---|---|---|---|"]
     for name, exp, said, det in s["wrong"]:
         lines.append(f"| `{name}` | {exp} | {said} | {'-' if det is None else f'{det:.3g}'} |")
-    DOCS.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
 
 
 # ---------------------------------------------------------------------------------------------------- main
@@ -360,11 +412,13 @@ def select(cases, pattern: str | None):
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--subset", choices=("fast", "full"), default="full")
+    p.add_argument("--subset", choices=SUBSETS, default="full",
+                   help="full (core + issue23), core (the catalogue of 2026-11-23), issue23 (its classes), fast")
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--cases", default=None, help="shell pattern or substring of case names")
     p.add_argument("--out", default=None, help="JSON file of every case")
-    p.add_argument("--write-docs", action="store_true", help=f"write {DOCS.relative_to(ROOT)}")
+    p.add_argument("--write-docs", action="store_true",
+                   help=f"write {DOCS.relative_to(ROOT)} (full, core) or docs/diagnosis_benchmark_SUBSET.md")
     p.add_argument("--no-long", action="store_true", help="skip the 60 s, 1 kHz timing record")
     p.add_argument("--no-detectability", action="store_true", help="skip the noise-free detectability runs")
     p.add_argument("--from-json", default=None, help="summarise (and --write-docs) a previous --out file, no runs")
@@ -372,6 +426,7 @@ def main(argv=None) -> int:
                    help="take the detectability of each case from a previous --out file where the case (name and "
                         "mechanism parameters) is the same; measure it for the others")
     args = p.parse_args(argv)
+    sys.path.insert(0, str(ROOT))
     if args.from_json:
         data = json.loads(Path(args.from_json).read_text(encoding="utf-8"))
         rows = data["cases"]
@@ -384,11 +439,11 @@ def main(argv=None) -> int:
             command = ("python benchmarks/bench_diagnosis_accuracy.py --subset " + data["subset"]
                        + f" --jobs {data['meta']['jobs']} --out results.json --write-docs")
             subset = data["subset"] + (f"` (partial run, {len(rows)} cases done`" if data.get("partial") else "")
-            write_docs(summary, data.get("long_record"), wall, data["meta"], subset, command)
-            print(f"wrote {DOCS.relative_to(ROOT)}")
+            path = docs_path(data["subset"])
+            write_docs(summary, data.get("long_record"), wall, data["meta"], subset, command, rows, path)
+            print(f"wrote {path.relative_to(ROOT)}")
         return 0
 
-    sys.path.insert(0, str(ROOT))
     from erdesign.simulation.truthrig.cases import benchmark_cases
 
     cases = select(benchmark_cases(args.subset), args.cases)
@@ -445,15 +500,16 @@ def main(argv=None) -> int:
     if args.write_docs:
         command = ("python benchmarks/bench_diagnosis_accuracy.py --subset " + args.subset
                    + f" --jobs {args.jobs} --out results.json --write-docs")
-        write_docs(summary, long, wall, meta, args.subset, command)
-        print(f"wrote {DOCS.relative_to(ROOT)}")
+        path = docs_path(args.subset)
+        write_docs(summary, long, wall, meta, args.subset, command, rows, path)
+        print(f"wrote {path.relative_to(ROOT)}")
     return 0
 
 
 def _interleaved(cases):
     groups = defaultdict(list)
     for c in cases:
-        groups[c.expected if c.kind == "single" else c.kind].append(c)
+        groups[(c.group, c.expected if c.kind == "single" else c.kind)].append(c)
     out = []
     while any(groups.values()):
         for g in groups.values():

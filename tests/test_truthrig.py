@@ -287,6 +287,28 @@ def test_coil_lag_step_response():
         assert np.all(seen[~after] == 0.0)
 
 
+def test_two_stage_coil_lag_step_response():
+    # two first-order stages in cascade (T1 = 15 ms, T2 = 8 ms): the step response of the product of the two
+    # transfer functions, 1 - (T1 exp(-t/T1) - T2 exp(-t/T2)) / (T1 - T2); equal stages: 1 - (1 + t/T) exp(-t/T)
+    base = sine(0.005, 2.0, 0.0, cycles=1, rate=1000)
+    t0 = base.time[100]
+    motion = dataclasses.replace(base, control=np.where(base.time >= t0, E_MAKRIS, 0.0))
+    after = motion.time >= t0
+    s = motion.time[after] - t0
+    for T1, T2, expected in ((0.015, 0.008, 1 - (0.015 * np.exp(-s / 0.015) - 0.008 * np.exp(-s / 0.008)) / 0.007),
+                             (0.01, 0.01, 1 - (1 + s / 0.01) * np.exp(-s / 0.01))):
+        for extra in ({}, {"thermal": {}}):                  # rigid and substepped paths
+            seen = run(MAKRIS, {"coil_lag": {"time_constant": T1, "second_time_constant": T2}, **extra},
+                       motion).states["control_seen"]
+            np.testing.assert_allclose(seen[after], E_MAKRIS * expected, rtol=1e-9, atol=1e-9 * E_MAKRIS)
+            assert np.all(seen[~after] == 0.0)
+    # 10 ms after the step the cascade has reached 23 % of the command, a single 15 ms stage 49 %
+    i = np.searchsorted(motion.time, t0 + 0.010)
+    two = run(MAKRIS, {"coil_lag": {"time_constant": 0.015, "second_time_constant": 0.008}}, motion)
+    assert two.states["control_seen"][i] / E_MAKRIS == pytest.approx(
+        1 - (0.015 * np.exp(-0.010 / 0.015) - 0.008 * np.exp(-0.010 / 0.008)) / 0.007, rel=1e-9)
+
+
 # ---------------------------------------------------------------------------------------------- states in time
 def test_thermal_energy_balance_and_thinning():
     C, tau = 50.0, 2.0

@@ -35,6 +35,45 @@ Design rules (docs/diagnosis_benchmark.md shows the resulting counts):
   without the mechanisms, refits the clean damper's two fluid factors to the run with them (the truth rig's own,
   nothing of the diagnosed model) and compares the energy of what is left with that of the force noise.  Cases
   below :data:`UNDETECTABLE` are reported as undetectable by design (kept in the catalogue, counted apart).
+
+The classes of issue 23 (:data:`ISSUE23_GROUPS`, subset ``"issue23"``; each case carries its class in
+:attr:`Case.group` and the benchmark reports each class) are records shaped as independent testers and real
+laboratories make them, where the core catalogue's own shapes had hidden failures:
+
+* ``long_field_steps``: 60-80 s at 1 kHz, a DoE-style programme of separate sine runs
+  (:func:`~erdesign.simulation.truthrig.motions.sine_programme`) or a logarithmic swept sine, the field stepping every
+  2 s at speed; first-order field lags of 10, 20 and 40 ms on an MR valve, a coil-current valve and a mixed head, and
+  a two-stage inductive lag (15 + 8 ms, ``coil_lag.second_time_constant``) on the coil-current MR head ``mr_coil``;
+  two clean long records;
+* ``band_limited_3khz``: 20 s at 3 kHz of band-limited random displacement (Gaussian noise through a causal
+  band-pass, +-1 cm, peak speed 1 m/s, as Dyke's NEES tests), both channels through the same causal order-4
+  Butterworth anti-alias low-pass at 500 Hz (a third of the Nyquist frequency, a common setting of signal
+  conditioners), the load cell's noise 1 % of the RMS force after the filter: clean, field lag, compressibility,
+  gas spring.  The filter delays displacement and force alike (0.75 ms) and smears the rigid Bingham force jump at
+  each reversal over about a millisecond: on the clean records that smear carries about 60 x the energy of the
+  noise, a property of the instrument that a diagnosis must not take for a physical effect;
+* ``heating_long``: 60-80 s sine programmes on the three valve dampers at twice their working speed, and 83 s on the
+  MR valve at its working speed, the heat capacity (:data:`_HEATING_SHARE` of the fluid's) sized so that the fluid
+  warms by 29-31 K (:data:`HEATING_TARGET`);
+* ``series_springs_mixed``: an aerated column (bulk modulus 0.1 / 0.4 GPa, and 0.05 GPa on the mixed ER head: 1.7e6
+  N/m, the stiffness of the testers' record) on the mixed ER and MR heads, pre-yield elasticity alone on both mixed
+  heads (the pair to tell apart), and a gas spring with a compressible column on three valve dampers (either name
+  is right);
+* ``clean_every_kind``: exact Bingham, perturbed calibration factors, on every example damper (:data:`ALL_DAMPERS`),
+  plus two 100 Hz records with a 5 um displacement readout at a constant control (1 % and a quiet 0.2 % load cell,
+  where the velocity derived from the steps sets the error floor) and a 3 kHz band-limited record with a 1 % load
+  cell;
+* ``other_generator``: random motion from other generators than the team's ``random_motion``
+  (:mod:`erdesign.simulation.truthrig.motions`: an Ornstein-Uhlenbeck command through a servo, a random-phase
+  multi-sine, Gaussian noise through a causal Butterworth band-pass) with leakage, seal friction, shear thinning, a
+  gas spring, compressibility, and one clean record.
+
+The records are kept cheap to diagnose: at most 83 000 samples, most far fewer, so that the target of a 60 s,
+1 kHz record (under 30 s) can hold for each; the benchmark measures it (docs/diagnosis_benchmark_issue23.md).
+
+Lab artefacts (clipping, smoothing, skew, gaps, drift, quantisation faults) are a class of their own, built on
+:mod:`erdesign.simulation.truthrig.artefacts` when it lands: the hook is :meth:`Case.make`, which already applies the
+instrument chain of a case (:attr:`Case.anti_alias`, :attr:`Case.displacement_resolution`) after the truth rig.
 """
 
 from __future__ import annotations
@@ -49,12 +88,15 @@ import numpy as np
 from ...damper import Damper
 from ...damper.files import load_example
 from ..rig import Motion, earthquake_motion, random_motion, stepped_sine
+from .motions import (filtered_gaussian_motion, ornstein_uhlenbeck_motion, random_phase_multisine, sine_programme,
+                      swept_sine)
 from .simulate import MIXED_MECHANISMS, UNSUPPORTED, UNSUPPORTED_MIXED
 
 __all__ = ["Case", "benchmark_cases", "mechanism_parameters", "effect_size_over_noise", "build_motion",
            "control_staircase", "LIBRARY_MECHANISMS", "OUT_OF_LIBRARY", "DAMPERS", "EXCITATIONS", "NOISES",
            "SIZES", "STEP_PERIOD", "UNDETECTABLE", "SUBSETS", "supported", "unsupported_pairs", "NOT_VISIBLE_ON",
-           "EXCITATIONS_OF"]
+           "EXCITATIONS_OF", "ISSUE23_GROUPS", "ISSUE23_EXCITATIONS", "ALL_DAMPERS", "ANTI_ALIAS_ORDER",
+           "HEATING_TARGET"]
 
 #: Library effect -> the truth rig's mechanism that produces it.
 LIBRARY_MECHANISMS = {
@@ -73,6 +115,11 @@ OUT_OF_LIBRARY = ("blowoff", "single_rod", "cavitation", "free_play")
 #: Example dampers (names of examples/*.toml) measured by the benchmark.
 DAMPERS = ("makris", "mr_valve", "mr_valve_current", "mr_mixed", "kamath_wereley")
 EXCITATIONS = ("sine", "random", "earthquake")
+#: Excitations of the issue-23 classes: a DoE-style sine programme, a logarithmic swept sine, and random motion from
+#: generators other than the team's ``random_motion`` (:mod:`erdesign.simulation.truthrig.motions`).
+ISSUE23_EXCITATIONS = ("doe_sine", "swept_sine", "ou", "multisine", "filtered_gaussian")
+#: Every example damper of ``examples/``, the coil-current mixed head ``mr_coil`` included.
+ALL_DAMPERS = (*DAMPERS, "mr_coil")
 #: Force noise, standard deviation as a fraction of the RMS force.
 NOISES = (0.01, 0.03)
 #: Displacement noise, standard deviation as a fraction of the peak displacement.
@@ -84,7 +131,16 @@ STEP_PERIOD = 0.75
 STEP_LEVELS = (0.0, 1.0, 0.5, 0.0, 0.5, 1.0)
 #: Effect energy over noise energy below which a case is undetectable by design.
 UNDETECTABLE = 3.0
-SUBSETS = ("full", "fast")
+#: ``core``: the catalogue of 2026-11-23 (153 cases); ``issue23``: the classes of issue 23; ``full``: both;
+#: ``fast``: seven short cases for the test suite.
+SUBSETS = ("full", "core", "issue23", "fast")
+#: The classes of issue 23 (:attr:`Case.group`), in the order the benchmark reports them.
+ISSUE23_GROUPS = ("long_field_steps", "band_limited_3khz", "heating_long", "series_springs_mixed",
+                  "clean_every_kind", "other_generator")
+#: Order of the Butterworth anti-alias low-pass of the band-limited records, [-].
+ANTI_ALIAS_ORDER = 4
+#: Temperature rise the long heating records are sized for, [K] (a long test warms the fluid by tens of kelvin).
+HEATING_TARGET = 30.0
 
 
 @dataclass(frozen=True)
@@ -103,6 +159,7 @@ _SCALES = {
     "mr_valve_current": _Scale(0.25, 2.0),
     "mr_mixed": _Scale(0.25, 2.5),
     "kamath_wereley": _Scale(0.1, 2.0),
+    "mr_coil": _Scale(0.25, 2.5),
 }
 
 
@@ -214,11 +271,45 @@ def _scaled(m: Motion, factor: float) -> Motion:
                    acceleration=m.acceleration * factor)
 
 
+#: The DoE grid of the ``doe_sine`` programme: (frequency, speed) multiples of the case's frequency and peak speed,
+#: in a scrambled run order (a DoE is run in random order so that drifts do not line up with a factor).
+_DOE_RUNS = ((1.0, 0.7), (0.5, 1.0), (2.0, 0.4), (1.0, 1.0), (2.0, 0.7), (0.5, 0.4), (2.0, 1.0), (0.5, 0.7),
+             (1.0, 0.4))
+
+
 def build_motion(excitation: str, damper: Damper, *, duration: float, rate: float, seed: int,
-                 speed: float, frequency: float, control_scale: float = 1.0) -> Motion:
+                 speed: float, frequency: float, control_scale: float = 1.0, step_period: float = STEP_PERIOD,
+                 levels=STEP_LEVELS) -> Motion:
     """The motion of a case: ``excitation`` at peak piston speed ``speed`` [m/s] around ``frequency`` [Hz], with
-    the control staircase of :func:`control_staircase` up to ``control_scale`` x the reference field."""
-    if excitation == "sine":
+    the control staircase of :func:`control_staircase` (``levels`` x ``control_scale`` x the reference field, one
+    step every ``step_period`` [s]; one level: a constant control).
+
+    Excitations: ``sine`` (four segments over frequency and speed), ``random`` (:func:`~erdesign.simulation.rig.
+    random_motion`), ``earthquake``; and those of issue 23: ``doe_sine`` (a 3 x 3 DoE over frequency 0.5-2 x and speed
+    0.4-1 x, scrambled run order, equal cycles per run, each run from rest to rest,
+    :func:`~erdesign.simulation.truthrig.motions.sine_programme`), ``swept_sine`` (logarithmic, 0.4-4 x ``frequency``),
+    ``ou`` (Ornstein-Uhlenbeck command, correlation time 1 / (2 pi f), through a 4 f servo), ``multisine`` (random
+    phases, 0.4-4 x ``frequency``, a period of a third of the record) and ``filtered_gaussian`` (causal order-4
+    Butterworth band-pass 0.4-4 x ``frequency``), the last three scaled to the peak speed.
+    """
+    if excitation == "doe_sine":
+        f = frequency * np.array([r[0] for r in _DOE_RUNS])
+        v = speed * np.array([r[1] for r in _DOE_RUNS])
+        m = sine_programme(v / (2 * np.pi * f), f, duration=duration, rate=rate)
+    elif excitation == "swept_sine":
+        m = swept_sine(speed, 0.4 * frequency, 4 * frequency, duration=duration, rate=rate)
+    elif excitation == "ou":
+        m = ornstein_uhlenbeck_motion(1.0, 1 / (2 * np.pi * frequency), 4 * frequency, duration=duration, rate=rate,
+                                      seed=seed)
+        m = _scaled(m, speed / np.max(np.abs(m.velocity)))
+    elif excitation == "multisine":
+        m = random_phase_multisine(speed, (0.4 * frequency, 4 * frequency), duration / 3, duration=duration,
+                                   rate=rate, seed=seed)
+    elif excitation == "filtered_gaussian":
+        m = filtered_gaussian_motion(1.0, (0.4 * frequency, 4 * frequency), duration=duration, rate=rate, seed=seed,
+                                     order=4)
+        m = _scaled(m, speed / np.max(np.abs(m.velocity)))
+    elif excitation == "sine":
         # four segments over frequency and speed (amplitude): the viscous and yield parts apart, and the rate effects
         f = frequency * np.array([1.0, 2.0, 1.5, 3.0])
         v = speed * np.array([0.6, 1.0, 0.4, 0.8])
@@ -230,11 +321,17 @@ def build_motion(excitation: str, damper: Damper, *, duration: float, rate: floa
         m = earthquake_motion(1.0, duration=duration, rate=rate, ground_frequency=1.5 * frequency, seed=seed)
         m = _scaled(m, speed / np.max(np.abs(m.velocity)))
     else:
-        raise ValueError(f"excitation: must be one of {', '.join(EXCITATIONS)}, got {excitation!r}")
-    control = control_staircase(m.time, m.velocity, control_scale * damper.fluid.reference_field)
-    return replace(m, control=control, description=f"{m.description}; control staircase 0 / 1 / 0.5 x "
-                                                   f"{control_scale:g} x reference every {STEP_PERIOD:g} s, "
-                                                   "steps at speed")
+        raise ValueError(f"excitation: must be one of {', '.join(EXCITATIONS + ISSUE23_EXCITATIONS)}, "
+                         f"got {excitation!r}")
+    levels = tuple(levels)
+    control = control_staircase(m.time, m.velocity, control_scale * damper.fluid.reference_field,
+                                step_period=step_period, levels=levels)
+    if len(levels) == 1:
+        text = f"control constant at {levels[0] * control_scale:g} x reference"
+    else:
+        text = (f"control staircase {' / '.join(f'{x:g}' for x in levels)} x {control_scale:g} x reference every "
+                f"{step_period:g} s, steps at speed")
+    return replace(m, control=control, description=f"{m.description}; {text}")
 
 
 # ---------------------------------------------------------------------------------------------------- cases
@@ -270,6 +367,21 @@ class Case:
     yield_stress_factor: float = 1.0
     control_scale: float = 1.0
     """Top of the control staircase over the reference field."""
+    group: str = ""
+    """Benchmark class the case belongs to (one of :data:`ISSUE23_GROUPS`; empty for the core catalogue, which is
+    reported by true class)."""
+    step_period: float = STEP_PERIOD
+    """Time between steps of the control staircase, [s]."""
+    step_levels: tuple = STEP_LEVELS
+    """Levels of the control staircase, fractions of ``control_scale`` x the reference field (one: constant)."""
+    displacement_noise: float = DISPLACEMENT_NOISE
+    """Displacement noise, fraction of the peak displacement."""
+    anti_alias: float = 0.0
+    """Corner [Hz] of the causal Butterworth low-pass (order :data:`ANTI_ALIAS_ORDER`) that both measured channels,
+    force and displacement, pass before they are sampled; 0: none.  With it the force noise is drawn white, filtered
+    with the force and scaled so that the filtered noise is ``noise`` x the RMS force."""
+    displacement_resolution: float = 0.0
+    """Step of the displacement readout, [m] (the measured displacement is rounded to it); 0: none."""
 
     @property
     def kind(self) -> str:
@@ -286,7 +398,8 @@ class Case:
     def motion(self, damper: Damper | None = None) -> Motion:
         return build_motion(self.excitation, damper or self.load_damper(), duration=self.duration, rate=self.rate,
                             seed=self.seed, speed=self.speed, frequency=self.frequency,
-                            control_scale=self.control_scale)
+                            control_scale=self.control_scale, step_period=self.step_period,
+                            levels=self.step_levels)
 
     def truth(self, damper: Damper | None = None, mechanisms: Mapping | None = None):
         """The true damper (:class:`erdesign.simulation.truthrig.TruthDamper`)."""
@@ -300,9 +413,45 @@ class Case:
         ``rng_seed``, default :attr:`seed`)."""
         from . import simulate_truth
         damper = self.load_damper()
-        return simulate_truth(self.truth(damper), self.motion(damper), force_noise=self.noise,
-                              displacement_noise=DISPLACEMENT_NOISE, seed=self.seed if rng_seed is None else rng_seed,
-                              name=self.name)
+        seed = self.seed if rng_seed is None else rng_seed
+        rec = simulate_truth(self.truth(damper), self.motion(damper),
+                             force_noise=0.0 if self.anti_alias else self.noise,
+                             displacement_noise=self.displacement_noise, seed=seed, name=self.name)
+        if not (self.anti_alias or self.displacement_resolution):
+            return rec
+        return self._instrumented(rec, seed)
+
+    def _instrumented(self, rec, seed: int):
+        """The record as a band-limited load cell and displacement channel, and a stepped readout, measure it.
+
+        The anti-alias filter is causal (it runs forward in time, as the analogue filter of a signal conditioner
+        does) and starts settled at the first sample; force and displacement pass the same filter, so it delays
+        both alike and puts no skew between them (the commanded control is logged as issued).
+        """
+        from scipy import signal
+
+        from ...data.measurement import Measurement
+        m = rec.measured
+        t, x = np.asarray(m.time), np.array(m.displacement, float)
+        F = np.array(rec.true_force if self.anti_alias else m.force, float)
+        notes = []
+        if self.anti_alias:
+            sos = signal.butter(ANTI_ALIAS_ORDER, self.anti_alias, fs=self.rate, output="sos")
+            zi = signal.sosfilt_zi(sos)
+            low = lambda y: signal.sosfilt(sos, y, zi=zi * y[0])[0]  # noqa: E731
+            white = np.random.default_rng(seed + 7919).standard_normal(t.size)
+            noise = low(white)
+            noise *= self.noise * np.sqrt(np.mean(F**2)) / np.std(noise)
+            F = low(F) + noise
+            x = low(x)
+            notes.append(f"force and displacement through a causal order-{ANTI_ALIAS_ORDER} Butterworth low-pass at "
+                         f"{self.anti_alias:g} Hz, force noise {self.noise:g} of RMS after the filter")
+        if self.displacement_resolution:
+            q = self.displacement_resolution
+            x = np.round(x / q) * q
+            notes.append(f"displacement read out in steps of {q * 1e6:g} um")
+        measured = Measurement.from_arrays(t, x, F, control=m.control, control_kind=m.control_kind, name=m.name)
+        return replace(rec, measured=measured, description=f"{rec.description}; {'; '.join(notes)}")
 
     def detectability(self) -> dict[str, float | None]:
         """:func:`effect_size_over_noise` of this case."""
@@ -511,16 +660,176 @@ def _fast() -> list[Case]:
     return cases
 
 
-def benchmark_cases(subset: str = "full") -> list[Case]:
-    """The benchmark's cases: ``"full"`` (the catalogue, 153 cases) or ``"fast"`` (seven short ones for the
-    test suite).
+# ---------------------------------------------------------------------------------------------------- issue 23
+# Heat capacity of the long heating records over the fluid's own (mechanism_parameters' "volume" x density x
+# 1800 J/(kg K)), by damper and speed over its working speed: sized so that the record warms the fluid by about
+# HEATING_TARGET (measured on the truth rig; tests/test_diagnosis_benchmark.py holds each record to 25-35 K).  The
+# factor is the share of the fluid and its steel that heats with the fluid in the ducts within a minute or so.
+_HEATING_SHARE = {("makris", 2.0): 0.8, ("mr_valve", 2.0): 0.88, ("mr_valve_current", 2.0): 0.7,
+                  ("mr_valve", 1.0): 0.47}
 
-    >>> cases = benchmark_cases()
-    >>> len(cases) >= 150, sum(c.kind == "clean" for c in cases), sum(c.kind == "pair" for c in cases)
-    (True, 15, 36)
+
+def _issue_case(group: str, label: str, dname: str, excitation: str, mechanisms: Mapping, expected: str,
+                accepted, seed: int, *, duration: float, rate: float, noise: float = NOISES[0],
+                speed: float | None = None, frequency: float | None = None, control_scale: float = 1.0,
+                size: str = "", **fields) -> Case:
+    """A case of an issue-23 class: mechanisms given as ``{name: size}`` (sized by :func:`mechanism_parameters`)
+    or ``{name: {parameter: value}}`` (sized here, explicitly); ``fields`` set the other :class:`Case` fields."""
+    damper = _example(dname)
+    scale = _SCALES[dname]
+    speed = scale.speed if speed is None else speed
+    frequency = scale.frequency if frequency is None else frequency
+    params = {}
+    for mech, how in mechanisms.items():
+        params[mech] = (dict(how) if isinstance(how, Mapping)
+                        else mechanism_parameters(mech, how, damper, speed, frequency))
+    if "accumulator" in params:
+        # the rod must not fill the gas (as in the core catalogue)
+        from .simulate import rod_area
+        x = build_motion(excitation, damper, duration=duration, rate=rate, seed=seed, speed=speed,
+                         frequency=frequency).displacement
+        need = 2.0 * rod_area(damper) * float(np.max(np.abs(x)))
+        params["accumulator"]["gas_volume"] = max(params["accumulator"]["gas_volume"], need)
+    kv, ky = _FACTORS[seed % len(_FACTORS)]
+    name = f"{group}-{label}-{dname}-{excitation}-{100 * noise:g}pct"
+    return Case(name, dname, excitation, noise, params, expected, frozenset(accepted), seed, size, duration, rate,
+                speed, frequency, kv, ky, control_scale, group=group, **fields)
+
+
+def _heating(dname: str, boost: float) -> dict[str, float]:
+    """The thermal mechanism of a long heating record at ``boost`` x the damper's working speed:
+    :func:`mechanism_parameters` ``large`` with the heat capacity of :data:`_HEATING_SHARE`."""
+    damper = _example(dname)
+    speed = boost * _SCALES[dname].speed
+    out = mechanism_parameters("thermal", "large", damper, speed)
+    out["heat_capacity"] = (_HEATING_SHARE[dname, boost] * 1800.0 * _scales(damper, speed)["volume"]
+                            * damper.fluid.density)
+    return out
+
+
+def _issue23() -> list[Case]:
+    """The classes of issue 23 (:data:`ISSUE23_GROUPS`), 37 cases; seeds from 5000."""
+    cases: list[Case] = []
+    seed = 5000
+
+    def add(*args, **kw):
+        nonlocal seed
+        seed += 1
+        cases.append(_issue_case(*args, seed=seed, **kw))
+
+    # 1. long records at 1 kHz with field steps during motion: the diagnosis thinned them and lost the field lag
+    g = "long_field_steps"
+    lag = lambda T, T2=0.0: {"coil_lag": {"time_constant": T, "second_time_constant": T2}}  # noqa: E731
+    long_ = dict(rate=1000.0, step_period=2.0)
+    add(g, "lag20ms", "mr_valve", "doe_sine", lag(0.02), "field_lag", {"field_lag"}, duration=70.0, **long_)
+    add(g, "lag15+8ms", "mr_coil", "swept_sine", lag(0.015, 0.008), "field_lag", {"field_lag"}, duration=63.0,
+        **long_)
+    add(g, "lag10ms", "mr_valve_current", "doe_sine", lag(0.01), "field_lag", {"field_lag"}, duration=60.0, **long_)
+    add(g, "lag40ms", "mr_mixed", "swept_sine", lag(0.04), "field_lag", {"field_lag"}, duration=80.0, noise=0.03,
+        **long_)
+    add(g, "clean", "mr_valve", "doe_sine", {}, "nothing_missing", (), duration=60.0, **long_)
+    add(g, "clean", "mr_valve_current", "swept_sine", {}, "nothing_missing", (), duration=66.0, noise=0.03, **long_)
+
+    # 2. 3 kHz band-limited random records (a Dyke NEES-like test: +-1 cm, 1 m/s, anti-alias filter, 1 % load cell)
+    g = "band_limited_3khz"
+    dyke = dict(duration=20.0, rate=3000.0, speed=1.0, frequency=6.0, anti_alias=500.0)
+    add(g, "clean", "mr_valve", "filtered_gaussian", {}, "nothing_missing", (), **dyke)
+    add(g, "lag15ms", "mr_valve_current", "filtered_gaussian", {"coil_lag": "moderate"}, "field_lag", {"field_lag"},
+        size="moderate", **dyke)
+    add(g, "compressibility", "mr_valve", "filtered_gaussian", {"compliance": "large"}, "compressibility",
+        {"compressibility"}, size="large", **dyke)
+    add(g, "gas_spring", "mr_valve_current", "filtered_gaussian", {"accumulator": "large"}, "gas_spring",
+        {"gas_spring"}, size="large", **dyke)
+
+    # 3. long tests that warm the fluid by about 30 K (valve dampers: their viscous force is seen)
+    g = "heating_long"
+    for dname, duration, rate in (("makris", 75.0, 500.0), ("mr_valve", 80.0, 1000.0),
+                                  ("mr_valve_current", 60.0, 1000.0)):
+        add(g, "30K", dname, "sine", {"thermal": _heating(dname, 2.0)}, "viscous_heating", {"viscous_heating"},
+            duration=duration, rate=rate, speed=2.0 * _SCALES[dname].speed, size="large")
+
+    # 4. springs in series on mixed heads: an aerated column, pre-yield elasticity alone, and gas + column
+    g = "series_springs_mixed"
+    fast = {d: 1.5 * _SCALES[d].frequency for d in ("kamath_wereley", "mr_mixed", "makris", "mr_valve")}
+    add(g, "aerated", "kamath_wereley", "random", {"compliance": "large"}, "compressibility", {"compressibility"},
+        duration=6.0, rate=1000.0, frequency=fast["kamath_wereley"], size="large")
+    add(g, "aerated", "mr_mixed", "sine", {"compliance": "moderate"}, "compressibility", {"compressibility"},
+        duration=6.0, rate=1000.0, frequency=fast["mr_mixed"], size="moderate")
+    add(g, "preyield", "kamath_wereley", "sine", {"preyield": "large"}, "preyield_elasticity",
+        {"preyield_elasticity"}, duration=6.0, rate=1000.0, size="large")
+    add(g, "preyield", "mr_mixed", "random", {"preyield": "large"}, "preyield_elasticity", {"preyield_elasticity"},
+        duration=6.0, rate=1000.0, size="large")
+    add(g, "gas+column", "makris", "sine", {"accumulator": "large", "compliance": "large"}, "gas_spring",
+        {"gas_spring", "compressibility"}, duration=6.0, rate=1000.0, frequency=fast["makris"], size="large")
+    add(g, "gas+column", "mr_valve", "random", {"accumulator": "large", "compliance": "moderate"}, "gas_spring",
+        {"gas_spring", "compressibility"}, duration=6.0, rate=1000.0, frequency=fast["mr_valve"], noise=0.03,
+        size="large")
+
+    # 5. clean records (exact Bingham, perturbed calibration factors) of every example damper, a 100 Hz record with
+    #    a 5 um displacement readout and a 3 kHz band-limited record
+    g = "clean_every_kind"
+    for i, dname in enumerate(ALL_DAMPERS):
+        add(g, "clean", dname, EXCITATIONS[i % 3], {}, "nothing_missing", (), duration=8.0, rate=500.0,
+            noise=NOISES[i % 2])
+    add(g, "100Hz-5um", "mr_mixed", "sine", {}, "nothing_missing", (), duration=30.0, rate=100.0, speed=0.1,
+        frequency=1.0, step_levels=(0.6,), displacement_resolution=5e-6)
+    add(g, "3kHz-band-limited", "mr_coil", "filtered_gaussian", {}, "nothing_missing", (), **dyke)
+
+    # 6. random motion from other generators than the team's random_motion
+    g = "other_generator"
+    add(g, "leakage", "mr_valve", "ou", {"bypass": "large"}, "leakage", {"leakage"}, duration=8.0, rate=500.0,
+        size="large")
+    add(g, "clean", "kamath_wereley", "ou", {}, "nothing_missing", (), duration=8.0, rate=500.0)
+    add(g, "seal_friction", "makris", "multisine", {"stribeck_friction": "large"}, "seal_friction",
+        {"seal_friction"}, duration=9.0, rate=500.0, noise=0.03, size="large")
+    add(g, "shear_thinning", "mr_valve_current", "multisine", {"herschel_bulkley": "large"}, "shear_thinning",
+        {"shear_thinning"}, duration=9.0, rate=500.0, control_scale=0.25, size="large")
+    add(g, "gas_spring", "mr_mixed", "filtered_gaussian", {"accumulator": "moderate"}, "gas_spring", {"gas_spring"},
+        duration=8.0, rate=500.0, size="moderate")
+    add(g, "compressibility", "mr_valve", "filtered_gaussian", {"compliance": "large"}, "compressibility",
+        {"compressibility"}, duration=6.0, rate=1000.0, frequency=fast["mr_valve"], noise=0.03, size="large")
+
+    # 5 (continued; last, so that the seeds above stay those of the first run): a shaking-table record, strokes of
+    # 2.5-6 mm and a quiet load cell (0.2 %), so that the error the 5 um steps put into the derived velocity, not
+    # the load cell, sets the floor
+    g = "clean_every_kind"
+    add(g, "100Hz-5um-quiet", "mr_coil", "sine", {}, "nothing_missing", (), duration=30.0, rate=100.0, speed=0.06,
+        frequency=1.0, step_levels=(0.5,), displacement_resolution=5e-6, noise=0.002)
+
+    # harder variants, shaped as the independent testers' records that failed (issue 23): a heavily aerated column
+    # on the mixed ER head (0.05 GPa: 1.7e6 N/m, the testers' 1.6e6), a gas spring with a column at moderate sizes
+    # on a sine programme, and heating at the damper's working speed over 83 s
+    g = "series_springs_mixed"
+    column = {"bulk_modulus": 5e7, "chamber_volume": 0.06 * _example("kamath_wereley").geometry.piston_area}
+    add(g, "aerated-soft", "kamath_wereley", "sine", {"compliance": column}, "compressibility", {"compressibility"},
+        duration=6.0, rate=1000.0, frequency=fast["kamath_wereley"], size="large")
+    add(g, "gas+column-moderate", "mr_valve_current", "sine", {"accumulator": "moderate", "compliance": "moderate"},
+        "gas_spring", {"gas_spring", "compressibility"}, duration=6.0, rate=1000.0,
+        frequency=1.5 * _SCALES["mr_valve_current"].frequency, size="moderate")
+    g = "heating_long"
+    add(g, "30K-working-speed", "mr_valve", "sine", {"thermal": _heating("mr_valve", 1.0)}, "viscous_heating",
+        {"viscous_heating"}, duration=83.0, rate=1000.0, size="large")
+    return cases
+
+
+def benchmark_cases(subset: str = "full") -> list[Case]:
+    """The benchmark's cases: ``"full"`` (the core catalogue and the classes of issue 23, 190 cases), ``"core"``
+    (the catalogue of 2026-11-23, 153 cases), ``"issue23"`` (:data:`ISSUE23_GROUPS`, 37 cases) or ``"fast"`` (seven
+    short ones for the test suite).
+
+    >>> core, new = benchmark_cases("core"), benchmark_cases("issue23")
+    >>> len(core), sum(c.kind == "clean" for c in core), sum(c.kind == "pair" for c in core)
+    (153, 15, 36)
+    >>> len(new), sum(c.kind == "clean" for c in new), [c.name for c in benchmark_cases()] == [
+    ...     c.name for c in core + new]
+    (37, 13, True)
     """
     if subset == "full":
+        return _full() + _issue23()
+    if subset == "core":
         return _full()
+    if subset == "issue23":
+        return _issue23()
     if subset == "fast":
         return _fast()
     raise ValueError(f"subset: must be one of {', '.join(SUBSETS)}, got {subset!r}")

@@ -68,7 +68,7 @@ from .valve import moving_wall_flow_from, slit_flow, slit_flow_slope
 
 __all__ = ["N_PARAMETERS", "passed_speed", "steady_force", "monotone_root", "mixed_flow", "mixed_pressure",
            "mixed_steady_force", "any_steady_force", "series_step", "run", "first_order_lag",
-           "play_operator"]
+           "two_stage_lag", "play_operator"]
 
 # Indices into the parameter vector of the kernels (SI).
 I_L, I_B, I_H, I_DUCTS, I_M, I_GAMMA_REF = 0, 1, 2, 3, 4, 5
@@ -424,6 +424,31 @@ def first_order_lag(command, h, time_constant, initial):
         e = math.exp(-h[i] / time_constant)
         u[i] = command[i - 1] + (u[i - 1] - command[i - 1]) * e
     return u
+
+
+@numba.njit(cache=True)
+def two_stage_lag(command, h, first, second, initial):
+    """Exact response of two first-order stages in cascade, u1' = (c - u1)/T1, u2' = (u1 - u2)/T2, at the grid
+    points to a command ``command[i-1]`` held over step i; returns u2 (both stages start at ``initial``).
+
+    Over a step of length h with the command c held, u1 = c + (u1_0 - c) exp(-t/T1) and
+    u2(h) = c + (u2_0 - c) exp(-h/T2) + (u1_0 - c) T1 / (T1 - T2) (exp(-h/T1) - exp(-h/T2)), whose limit for
+    T2 -> T1 is (u1_0 - c) (h/T1) exp(-h/T1).
+    """
+    n = command.size
+    u2 = np.empty(n)
+    u1 = initial
+    u2[0] = initial
+    for i in range(1, n):
+        c = command[i - 1]
+        e1, e2 = math.exp(-h[i] / first), math.exp(-h[i] / second)
+        if abs(first - second) > 1e-9 * first:
+            cross = first / (first - second) * (e1 - e2)
+        else:
+            cross = h[i] / first * e1
+        u2[i] = c + (u2[i - 1] - c) * e2 + (u1 - c) * cross
+        u1 = c + (u1 - c) * e1
+    return u2
 
 
 @numba.njit(cache=True)

@@ -127,8 +127,11 @@ MECHANISMS: dict[str, Mechanism] = {m.name: m for m in (
         "fluid_inertia", {"slug_mass": "kg"}, lambda d: {"slug_mass": _slug_mass(d)}),
     Mechanism(
         "coil_lag", "Coil / driver lag",
-        "The control the fluid sees lags the commanded control as a first-order system, u' = (c - u) / T.",
-        "field_lag", {"time_constant": "s"}, lambda d: {"time_constant": 0.02}),
+        "The control the fluid sees lags the commanded control as a first-order system, u' = (c - u) / T; with "
+        "a second time constant T2 > 0 as two first-order stages in cascade (the coil's L/R, then the eddy "
+        "currents of the steel), u2' = (u - u2) / T2.",
+        "field_lag", {"time_constant": "s", "second_time_constant": "s"},
+        lambda d: {"time_constant": 0.02, "second_time_constant": 0.0}),
     Mechanism(
         "thermal", "Viscous heating",
         "A lumped thermal mass (default: the fluid of both chambers and a steel body of ten chamber volumes) heated by the power the fluid dissipates and cooled to ambient, "

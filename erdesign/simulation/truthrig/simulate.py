@@ -82,7 +82,7 @@ UNSUPPORTED_MIXED = {
 #: Units of the CSV columns :meth:`TruthRecord.write` uses for each kind of control.
 FILE_UNITS = {"electric field": "kV/mm", "magnetic field": "kA/m", "current": "A"}
 
-_NON_NEGATIVE = {"viscous_friction", "coulomb_force", "static_force", "vapour_pressure"}
+_NON_NEGATIVE = {"viscous_friction", "coulomb_force", "static_force", "vapour_pressure", "second_time_constant"}
 
 
 def _settings(mechanisms) -> dict[str, dict]:
@@ -129,11 +129,11 @@ class TruthDamper:
     >>> from erdesign.damper.files import load_example
     >>> truth = TruthDamper(load_example("makris"), {"coil_lag": {"time_constant": 0.05}, "bypass": {}})
     >>> sorted(truth.values), truth.values["coil_lag"]
-    (['bypass', 'coil_lag'], {'time_constant': 0.05})
+    (['bypass', 'coil_lag'], {'time_constant': 0.05, 'second_time_constant': 0.0})
     >>> TruthDamper(load_example("makris"), {"coil_lag": {"tau": 1.0}})
     Traceback (most recent call last):
     ...
-    erdesign.errors.ErdesignError: mechanisms.coil_lag: unknown parameter 'tau'; known: time_constant
+    erdesign.errors.ErdesignError: mechanisms.coil_lag: unknown parameter 'tau'; known: time_constant, second_time_constant
     """
 
     damper: Damper
@@ -266,11 +266,13 @@ class TruthDamper:
         return p
 
     def describe(self) -> str:
-        """The mechanisms with their values, and the true fluid, as text."""
+        """The mechanisms with their values, and the true fluid, as text (a coil lag's second stage only when it is
+        on, so that a one-stage lag reads as it did before the second stage existed)."""
         parts = []
         for name, vals in self.values.items():
             units = MECHANISMS[name].units
-            text = ", ".join(f"{k} = {x:.4g} {units[k]}" for k, x in vals.items())
+            text = ", ".join(f"{k} = {x:.4g} {units[k]}" for k, x in vals.items()
+                             if not (k == "second_time_constant" and x == 0))
             parts.append(f"{name} ({text})" if text else name)
         return (f"mechanisms: {'; '.join(parts) or 'none'}; true fluid: viscosity x {self.viscosity_factor:g}, "
                 f"yield stress x {self.yield_stress_factor:g}")
@@ -363,7 +365,10 @@ def _control_seen(truth: TruthDamper, command: np.ndarray, h: np.ndarray, subste
     held = np.repeat(command, substeps)[: h.size]
     if not truth.has("coil_lag"):
         return held
-    return K.first_order_lag(held, h, truth.values["coil_lag"]["time_constant"], float(command[0]))
+    lag = truth.values["coil_lag"]
+    if lag["second_time_constant"] > 0:     # two stages in cascade (coil L/R, then eddy currents)
+        return K.two_stage_lag(held, h, lag["time_constant"], lag["second_time_constant"], float(command[0]))
+    return K.first_order_lag(held, h, lag["time_constant"], float(command[0]))
 
 
 def _friction(truth: TruthDamper, v):
