@@ -219,8 +219,16 @@ def _clipped(record: Measurement, opt: _Options) -> list[Finding]:
     if not mask.any():
         return []
     q = _grid_step(F)
-    sure = all(_pile_up(F, mask & (np.abs(F - lvl) <= 1e-9 * np.ptp(F)), lvl, q)
-               for lvl in (F.max(), F.min()) if np.any(mask & (np.abs(F - lvl) <= 1e-9 * np.ptp(F))))
+    tol = 1e-9 * float(np.ptp(F))
+    sure = True
+    for lvl in (F.max(), F.min()):
+        at = mask & (np.abs(F - lvl) <= tol)
+        if at.any():
+            # a limit holds the force flat where it would have gone on: many samples piled up at the level, or a
+            # run the force on either side would have overshot
+            sure &= _pile_up(F, at, lvl, q) and (at.sum() >= CLIPPED_SURE or _beyond_level(F, at, lvl, q))
+    if not sure and opt.exclude_clipped is not True and mask.sum() < 5:
+        return []           # a flat peak of a few samples (a smoothed or quantised force): not worth a word
     exclude = sure if opt.exclude_clipped is None else opt.exclude_clipped
     levels = sorted({float(v) for v in F[mask]})
     level_text = " and ".join(f"{v:.6g} N" for v in levels)
@@ -229,7 +237,7 @@ def _clipped(record: Measurement, opt: _Options) -> list[Finding]:
                "or amplifier at its limit; the true force there is unknown")
     else:
         msg = (f"the force repeats its extreme {level_text} on {int(mask.sum())} samples; that may be a limit or "
-               "the quantisation of a peak")
+               "a flat peak (quantised or smoothed)")
     msg += (": those samples are left out of the fit" if exclude else
             ": those samples are kept (--exclude-clipped leaves them out)")
     return [Finding("clipped", msg, record.name, _span(record.time, mask), excluded=mask if exclude else None)]
@@ -260,6 +268,10 @@ def _saturated_displacement(record: Measurement, opt: _Options) -> list[Finding]
            "those samples are left out of the fit")
     return [Finding("saturated_displacement", msg, record.name, _span(record.time, keep), excluded=keep)]
 
+
+#: Samples at a flat extreme of the force from which it is surely clipped (fewer: only if the force on either side
+#: would have gone beyond it).
+CLIPPED_SURE = 10
 
 #: Depth of the nulls of a moving average that makes a channel ``smoothed``: the spectrum at the nulls below this
 #: fraction of the spectrum between them (mean over the nulls, log10).
@@ -319,7 +331,12 @@ def _boxcar_window(y: np.ndarray) -> tuple[int, float] | None:
     depth = np.bincount(rows, weights=np.where(good, ratio, 0.0), minlength=N.size) / np.maximum(used, 1)
     depth[(used < 1) | (bins < 4)] = np.inf
     i = int(np.argmin(depth))
-    return None if not np.isfinite(depth[i]) else (int(N[i]), float(depth[i]))
+    if not np.isfinite(depth[i]):
+        return None
+    # a window N has the nulls of every divisor of N too: take the longest window about as deep as the deepest
+    close = np.flatnonzero(depth <= depth[i] + 0.3)
+    j = int(close[-1]) if N[close[-1]] % N[i] == 0 else i
+    return int(N[j]), float(depth[j])
 
 
 def _smoothed(record: Measurement, opt: _Options) -> list[Finding]:
@@ -453,7 +470,9 @@ def _force_offset_drift(record: Measurement, opt: _Options) -> list[Finding]:
     (its sign, two ``tanh``, ``v``, ``v |v|``, ``sgn(v) sqrt|v|``) times 1, the control and its square, and growing
     or falling over the record (heating),
     the displacement and its square (springs), the acceleration (inertia) - plus a constant and a line in time.
-    The line's change over the record is the drift."""
+    The line's change over the record is the drift; it is reported when it exceeds :data:`DRIFT_FRACTION` of the
+    force's RMS, four standard errors (with the residual's correlation length) and five times the scatter of the
+    residual's means over twelve blocks (a drift is smooth; an effect the regression lacks leaves steps)."""
     F = record.force
     if F is None or len(record) < 50:
         return []
@@ -481,9 +500,20 @@ def _force_offset_drift(record: Measurement, opt: _Options) -> list[Finding]:
     # standard error with the residual's correlation: n / (1 + 2 sum of its autocorrelation up to its first zero)
     n_eff = len(record) / _correlation_length(r)
     se = float(np.std(r)) / (np.std(tau) * math.sqrt(n_eff))
-    found = abs(drift) > DRIFT_FRACTION * rms and abs(drift) > 4 * se
-    parts = []
+    # a drift is smooth: what the fit leaves in twelve consecutive blocks scatters little about it, where a physical
+    # effect the regression lacks (a compressible column after a field step) leaves steps of either sign
+    blocks = np.array([b.mean() for b in np.array_split(r, 12)])
+    se_blocks = float(np.std(blocks)) / (np.std(np.linspace(-0.5, 0.5, 12)) * math.sqrt(12))
+    found = abs(drift) > DRIFT_FRACTION * rms and abs(drift) > 4 * se and abs(drift) > 5 * se_blocks
     if found:
+        # and steady: each half of the record on its own drifts the same way at a like rate
+        h = len(record) // 2
+        halves = [float(np.linalg.lstsq(B.T @ B, B.T @ y, rcond=None)[0][1]) for B, y in ((A[:h], F[:h]),
+                                                                                         (A[h:], F[h:]))]
+        found = all(0.25 < d / drift < 4.0 for d in halves)
+    drifting = found
+    parts = []
+    if drifting:
         parts.append(f"the force drifts by {drift:+.3g} N over the record ({100 * abs(drift) / rms:.2g} % of its RMS), "
                      "a trend no velocity, displacement or acceleration term explains: a load cell warming or "
                      "creeping")
