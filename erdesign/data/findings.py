@@ -155,7 +155,7 @@ def _grid_step(y: np.ndarray) -> float | None:
 
 def _pile_up(y: np.ndarray, at: np.ndarray, level: float, q: float | None) -> bool:
     """Whether the samples at an extreme ``level`` pile up there (a limit) rather than a quantised peak touching it:
-    more than three times as many as at the next level in (one quantisation step, or the force noise, away)."""
+    at least 5 and more than three times as many as at the next level in, one quantisation step away."""
     if q is None:
         return True          # exact repeats of an unquantised extreme happen only at a limit
     inside = np.sign(np.mean(y) - level)
@@ -199,6 +199,7 @@ def _correlation_length(r: np.ndarray) -> float:
 
 
 def _dominant_period(record: Measurement) -> float:
+    """Period of the displacement's largest Fourier component, [s] (the record's length if none)."""
     from .measurement import _dominant_frequency
     f = _dominant_frequency(record.time, record.displacement)
     return 1.0 / f if f > 0 else record.duration
@@ -212,6 +213,7 @@ class _Options:
 
 
 def _clipped(record: Measurement, opt: _Options) -> list[Finding]:
+    """``clipped``: a flat top or bottom of the force (:func:`~erdesign.data.measurement.clipped_samples`)."""
     if record.force is None:
         return []
     F = record.force
@@ -244,6 +246,7 @@ def _clipped(record: Measurement, opt: _Options) -> list[Finding]:
 
 
 def _saturated_displacement(record: Measurement, opt: _Options) -> list[Finding]:
+    """``saturated_displacement``: a flat extreme of the displacement while the force changes."""
     x = record.displacement
     mask = clipped_samples(x)
     if not mask.any() or record.force is None:
@@ -285,12 +288,13 @@ def _boxcar_window(y: np.ndarray) -> tuple[int, float] | None:
     """The length N [samples] of a moving average ``y`` was smoothed by, and the depth of its nulls (log10 of the
     power at the nulls over the power half-way between them), or None.
 
-    A moving average over N samples (N >= 4: at least two nulls) multiplies the spectrum by :math:`|\\sin(\\pi f N/f_s) / (N \\sin(\\pi f/f_s))|^2`,
-    zero at every :math:`k f_s / N`.  For each N from 2 to a twelfth of the record the power in narrow bands at
-    the first nulls is compared with the power a quarter of the spacing away on each side; bins of lines of the
-    signal (more than 30 times the local median) are left out of both, so that a periodic signal whose harmonics
-    fall between candidate nulls cannot mimic a comb.  The window with the deepest mean null (log10, each null
-    clipped to -4..1) wins."""
+    A moving average over N samples (N >= 4: at least two nulls) multiplies the spectrum by
+    :math:`|\\sin(\\pi f N/f_s) / (N \\sin(\\pi f/f_s))|^2`, zero at every :math:`k f_s / N`.  For each N up
+    to a twelfth of the record (and :data:`MAX_WINDOW`) the power in narrow bands at the first 40 nulls is compared
+    with the power a quarter of the spacing away on each side; bins of lines of the signal (more than 30 times the
+    local median) are left out of both, so that a periodic signal whose harmonics fall between candidate nulls
+    cannot mimic a comb.  The window with the deepest mean null (log10, each null clipped to -4..1) wins, or the
+    longest multiple of it about as deep (a window has the nulls of its divisors too)."""
     n = y.size
     if n < 64:
         return None
@@ -345,6 +349,7 @@ def _boxcar_window(y: np.ndarray) -> tuple[int, float] | None:
 
 
 def _smoothed(record: Measurement, opt: _Options) -> list[Finding]:
+    """``smoothed``: the comb of nulls of a moving average in the force or displacement (:func:`_boxcar_window`)."""
     channels = [("force", record.force), ("displacement", record.displacement)]
     found = []
     for name, y in channels:
@@ -438,6 +443,7 @@ def _best_step(tt: np.ndarray, ff: np.ndarray):
 
 
 def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
+    """``channel_skew``: sharp force jumps a constant time from the velocity's zeros (:func:`_reversal_jumps`)."""
     if record.force is None or len(record) < 50:
         return []
     jumps = _reversal_jumps(record)
@@ -464,6 +470,7 @@ def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
 
 
 def _time_gap(record: Measurement, opt: _Options) -> list[Finding]:
+    """``time_gap``: :func:`find_time_problems` on the record's time."""
     return [f for f in find_time_problems(record.time, record=record.name) if f.kind == "time_gap"]
 
 
@@ -540,6 +547,7 @@ QUANTIZATION_FRACTION = 1e-4
 
 
 def _quantized_displacement(record: Measurement, opt: _Options) -> list[Finding]:
+    """``quantized_displacement``: the displacement on a grid (:func:`_grid_step`) that matters."""
     x = record.displacement
     q = _grid_step(x)
     if q is None:
