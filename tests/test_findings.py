@@ -185,6 +185,7 @@ def test_as_json_has_the_contract_keys_and_no_nan():
     assert f.as_json() == {"kind": "channel_skew", "message": "m", "record": "r", "where": "w", "skew_s": 8e-4}
     g = Finding("time_gap", "m", "r", "w")
     assert set(g.as_json()) == {"kind", "message", "record", "where"}
+    assert str(g) == "time_gap (w): m"
     json.dumps([Finding("channel_skew", "m", "r", "w", skew_s=float("nan")).as_json()], allow_nan=False)
     with pytest.raises(ValueError, match="kind"):
         Finding("noise", "m", "r", "w")

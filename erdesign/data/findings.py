@@ -60,7 +60,7 @@ LAG_EFFECTS = ("compressibility", "preyield_elasticity", "field_lag", "fluid_ine
 GAP_FACTOR = 3.0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)       # compared by identity: it may hold a mask
 class Finding:
     """One data-quality finding about one record.
 
@@ -94,6 +94,10 @@ class Finding:
     def __post_init__(self) -> None:
         if self.kind not in FINDING_KINDS:
             raise ValueError(f"kind: must be one of {', '.join(FINDING_KINDS)}, got {self.kind!r}")
+
+    def __str__(self) -> str:
+        """One line for a report: ``"clipped (t = 19.59-19.89 s, 217 samples): the force sits at ..."``."""
+        return f"{self.kind} ({self.where}): {self.message}"
 
     def as_json(self) -> dict:
         """``{"kind", "message", "record", "where"}``, plus ``"skew_s"`` for ``channel_skew`` (never NaN)."""
