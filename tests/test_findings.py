@@ -109,7 +109,7 @@ def test_a_causal_moving_average_is_found_with_its_window(damper, excitation, wi
     assert {"compressibility", "preyield_elasticity", "field_lag"} <= set(f.unsafe_for)
 
 
-@pytest.mark.parametrize("damper,excitation", ON)
+@pytest.mark.parametrize("damper,excitation", ON + [("makris", "random"), ("makris", "sine")])
 @pytest.mark.parametrize("skew", [0.8e-3, -2e-3])
 def test_a_channel_skew_is_estimated_within_a_sample(damper, excitation, skew):
     """0.8 ms at 1 kHz (the issue's example) and the force leading by 2 ms; one sample is 1 ms."""

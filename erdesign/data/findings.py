@@ -416,9 +416,7 @@ def _reversal_jumps(record: Measurement):
             continue
         r = ff - coef[0] - coef[1] * tt - coef[2] * np.where(np.arange(tt.size) >= split, 0.5, -0.5)
         near = r[max(0, split - 3):split + 3]
-        # sharp: nothing left near the step (judged only on jumps far above the noise, where a rounded rise would
-        # leave a quarter of the jump)
-        sharp = abs(J) >= 20 * sigma and float(np.sqrt(np.mean(near**2))) < 3 * sigma
+        sharp = float(np.sqrt(np.mean(near**2))) < 3 * sigma
         d = 0.5 * (tt[split - 1] + tt[split]) * dt
         out.append((d, J, sharp))
     return out
@@ -446,11 +444,17 @@ def _best_step(tt: np.ndarray, ff: np.ndarray):
     return int(splits[best]), coef[best], float(cost[best])
 
 
+#: Force jumps at reversals, in force-noise levels, from which their sharpness is judged for a skew.
+SKEW_JUMP = 20.0
+
+
 def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
     """``channel_skew``: sharp force jumps a constant time from the velocity's zeros (:func:`_reversal_jumps`)."""
     if record.force is None or len(record) < 50:
         return []
-    jumps = _reversal_jumps(record)
+    # only jumps far above the noise tell sharp from rounded (a rounded rise leaves a quarter of the jump)
+    sigma = _noise_level(record.force)
+    jumps = [j for j in _reversal_jumps(record) if abs(j[1]) >= SKEW_JUMP * sigma]
     if len(jumps) < 4:
         return []
     sharp = np.array([j[2] for j in jumps])
