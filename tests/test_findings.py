@@ -248,3 +248,14 @@ def test_quirozs_raw_files_are_not_smoothed():
     assert files
     for path in files:
         assert "smoothed" not in _kinds(find_data_problems(_quiroz_raw(path))), path.name
+
+
+@pytest.mark.parametrize("n", [5, 63, 1000])
+def test_edge_records_raise_nothing(n):
+    """Short records, a dead (constant) force, a noise-free two-level force, pure noise and no force at all: no
+    exception and no finding (a two-level force is not a clipped one; a drift is not judged on fewer than 600)."""
+    rng = np.random.default_rng(1)
+    t = np.arange(n) * 1e-3
+    x = 0.01 * np.sin(2 * np.pi * 5 * t) + 1e-6 * rng.standard_normal(n)
+    for F in (None, np.zeros(n), np.full(n, 5.0), rng.standard_normal(n), 100 * np.sign(np.cos(2 * np.pi * 5 * t))):
+        assert find_data_problems(Measurement.from_arrays(t, x, F)) == []

@@ -222,8 +222,8 @@ def _clipped(record: Measurement, opt: _Options) -> list[Finding]:
         return []
     F = record.force
     mask = clipped_samples(F)
-    if not mask.any():
-        return []
+    if not mask.any() or mask.mean() > 0.5:
+        return []           # none, or a constant or two-level force: a dead channel or a noise-free synthetic one
     q = _grid_step(F)
     tol = 1e-9 * float(np.ptp(F))
     sure = True
@@ -253,7 +253,7 @@ def _saturated_displacement(record: Measurement, opt: _Options) -> list[Finding]
     """``saturated_displacement``: a flat extreme of the displacement while the force changes."""
     x = record.displacement
     mask = clipped_samples(x)
-    if not mask.any() or record.force is None:
+    if not mask.any() or mask.mean() > 0.5 or record.force is None:
         return []
     q = _grid_step(x)
     tol = 1e-9 * np.ptp(x)
@@ -484,6 +484,8 @@ def _time_gap(record: Measurement, opt: _Options) -> list[Finding]:
 
 #: A trend of the force over the record larger than this fraction of its RMS is a drift.
 DRIFT_FRACTION = 0.03
+#: Fewest samples for judging a drift: twenty per coefficient of the regression (30).
+DRIFT_MIN_SAMPLES = 600
 
 
 def _force_offset_drift(record: Measurement, opt: _Options) -> list[Finding]:
@@ -497,7 +499,7 @@ def _force_offset_drift(record: Measurement, opt: _Options) -> list[Finding]:
     force's RMS, four standard errors (with the residual's correlation length) and ten times the scatter of the
     residual's means over twelve blocks (a drift is smooth; an effect the regression lacks leaves steps)."""
     F = record.force
-    if F is None or len(record) < 50:
+    if F is None or len(record) < DRIFT_MIN_SAMPLES:
         return []
     t, x, v, a = record.time, record.displacement, record.velocity, record.acceleration
     tau = (t - t[0]) / max(record.duration, 1e-300) - 0.5
