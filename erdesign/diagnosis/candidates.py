@@ -59,6 +59,8 @@ class Candidate:
     """Why it could not be evaluated (then :attr:`esr` is None) - or why it was not named."""
     effects: tuple = ()
     """The effects it adds: ``(effect,)``, or two for a pair."""
+    blocked: str = ""
+    """Why it may not be named whatever its fit (a data finding that mimics it), or empty."""
 
     def __post_init__(self):
         if not self.effects:

@@ -205,6 +205,9 @@ class Diagnosis:
         return "\n".join(lines)
 
 
+#: Data findings that mimic a mechanism: the effects they make unsafe are never named while they are found
+#: (CONTRACTS.md section 6: channel skew is never named field_lag or compressibility).
+MIMICS = ("channel_skew", "smoothed")
 #: Widths of the expected sign at a reversal tried in the baseline calibration, in units of the velocity noise.
 SIGN_WIDTHS = (0.0, 0.5, 1.0, 2.0)
 
@@ -288,10 +291,15 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
             continue
         ranking.append(_evaluate(base_model, base, work, effects, (name,), damper, mask=mask))
     excess = base.esr - floor
+    mimicked = {e: f for f in findings if f.kind in MIMICS for e in f.unsafe_for}
     for c in ranking:
         if c.evaluated:
             c.explained = (base.esr - c.esr) / excess if excess > 0 else 0.0
             c.implausible += _beyond_record(c, work, mask)
+        hit = [mimicked[e] for e in c.effects if e in mimicked]
+        if hit:
+            c.blocked = (f"the data finding '{hit[0].kind}' ({hit[0].record}) makes the force lag the motion as "
+                         f"{c.effect} would; it is an artefact of the record, not a mechanism")
     ranking.sort(key=lambda c: (not c.evaluated, c.delta_bic))
     at_floor = base.esr <= AT_FLOOR * floor + ABSOLUTE_SLACK
     well_above = base.esr > WELL_ABOVE * floor + ABSOLUTE_SLACK

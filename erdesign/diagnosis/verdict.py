@@ -72,7 +72,7 @@ def _held_out_winner(base_model, work, ranking, mask, held) -> Candidate | None:
     """The plausible candidate that most lowers the error on held-out data, when it removes at least
     :data:`HELD_OUT_CLEAR` of it (else None): a verdict ``nothing_missing`` would hide it."""
     best = None
-    for c in [c for c in ranking if c.evaluated][:PAIR_POOL]:
+    for c in [c for c in ranking if c.evaluated and not c.blocked][:PAIR_POOL]:
         if c.implausible or c.at_bounds or not (c.delta_bic < -BIC_THRESHOLD and c.gain > MIN_GAIN):
             continue
         if c.held_out_gain is None:
@@ -91,6 +91,9 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=N
     enough of the excess over the noise floor; notes on the others say why they were not named."""
     blocked_by = None
     for c in [c for c in ranking if c.evaluated][:4]:
+        if c.blocked:
+            c.note = "not named: " + c.blocked
+            continue
         if not (c.delta_bic < -(STRICT_BIC if strict else BIC_THRESHOLD) and c.gain > MIN_GAIN):
             continue
         if c.implausible:
@@ -120,7 +123,7 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=N
 def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=None, held=None) -> Candidate | None:
     """Pairs of the best single candidates fitted jointly (not greedily); the best significant, plausible pair
     that explains enough of the excess, or None."""
-    pool = [c for c in ranking if c.evaluated and c.gain > 0][:PAIR_POOL]
+    pool = [c for c in ranking if c.evaluated and c.gain > 0 and not c.blocked][:PAIR_POOL]
     found = []
     for i in range(len(pool)):
         for j in range(i + 1, len(pool)):
