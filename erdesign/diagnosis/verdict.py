@@ -205,9 +205,15 @@ def _unexplained_reason(base_esr, floor, ranking, analysis) -> str:
     ev = [c for c in ranking if c.evaluated]
     if ev:
         c = max(ev, key=lambda c: c.explained)
-        why = (f"its fitted size is implausible ({'; '.join(c.implausible)})" if c.implausible else
-               f"it explains only {100 * max(c.explained, 0):.0f} % of the excess")
-        parts.append(f"the best effect of the library, {c.effect}, does not explain it: {why}")
+        if c.blocked:
+            why = c.blocked
+        elif c.implausible:
+            why = f"its fitted size is implausible ({'; '.join(c.implausible)})"
+        elif c.note and c.explained >= EXPLAINS:
+            why = c.note.removeprefix("not named: ")
+        else:
+            why = f"it explains only {100 * max(c.explained, 0):.0f} % of the excess"
+        parts.append(f"the best effect of the library, {c.effect}, is not named: {why}")
     looks = analysis.findings[:3]
     if looks:
         parts.append("the residual: " + "; ".join(looks))
