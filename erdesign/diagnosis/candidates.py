@@ -190,32 +190,38 @@ def _cannot_judge(name: str, records, work: Measurement, damper: Damper) -> str 
 
 
 def _beyond_record(cand: Candidate, work: Measurement, mask) -> list[str]:
-    """Fitted sizes that the record itself rules out: a part of the model that alone would exceed the largest
-    measured force (:data:`RECORD_BOUNDS`)."""
+    """Fitted sizes that the record itself rules out (:data:`RECORD_BOUNDS`): a mass, spring or friction that alone
+    would exceed the largest measured force, or a bypass so open that it could not hold the measured force."""
     keep = np.ones(len(work), dtype=bool) if mask is None else mask
     F_max = float(np.max(np.abs(work.force[keep]))) if keep.any() else 0.0
     if not F_max > 0:
         return []
     out = []
-    for name, (size, what) in RECORD_BOUNDS.items():
+    for name, (size, what, low) in RECORD_BOUNDS.items():
         if name not in cand.result.values:
             continue
         value = cand.result.values[name]
         force = abs(value) * size(work)
-        if force > 2.0 * F_max:
-            unit = fitted_model(cand.result).parameter(name).format(value).strip()
-            out.append(f"{name} = {unit} {what} about {force:.3g} N, more than twice the largest measured force "
+        text = fitted_model(cand.result).parameter(name).format(value).strip()
+        if not low and force > 2.0 * F_max:
+            out.append(f"{name} = {text} {what} about {force:.3g} N, more than twice the largest measured force "
                        f"{F_max:.3g} N")
+        elif low and force < 0.5 * F_max:
+            out.append(f"{name} = {text} {what} about {force:.3g} N, less than half the largest measured force "
+                       f"{F_max:.3g} N: the bypass would relieve the pressure the record shows")
     return out
 
 
-#: Parameter -> (the record's quantity it multiplies into a force, what that force is): the bound the record sets.
+#: Parameter -> (the record's quantity it multiplies into a force, what that force is, whether the bound is a lower
+#: one): the bound the record sets.  A bypass in parallel with the ducts carries at most the whole flow, so the force
+#: can never exceed the bypass damping times the speed: a bypass whose whole-flow force at the peak speed lies well
+#: below the measured force is impossible; one far above it only leaks a little (creep below yield), as a bypass does.
 RECORD_BOUNDS = {
     "bypass_damping": (lambda r: float(np.max(np.abs(r.velocity))),
-                       "would alone carry the flow at the peak speed with"),
-    "slug_mass": (lambda r: float(np.max(np.abs(r.acceleration))), "would need at the peak acceleration"),
-    "gas_stiffness": (lambda r: 0.5 * float(np.ptp(r.displacement)), "would push over half the stroke with"),
-    "friction_force": (lambda r: 1.0, "is a friction force of"),
+                       "would carry the whole flow at the peak speed with", True),
+    "slug_mass": (lambda r: float(np.max(np.abs(r.acceleration))), "would need at the peak acceleration", False),
+    "gas_stiffness": (lambda r: 0.5 * float(np.ptp(r.displacement)), "would push over half the stroke with", False),
+    "friction_force": (lambda r: 1.0, "is a friction force of", False),
 }
 
 
