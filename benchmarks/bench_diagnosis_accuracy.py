@@ -60,7 +60,12 @@ def verdict_of(diagnosis) -> str:
     return "missing_effect" if getattr(diagnosis, "missing_effect", None) else "nothing_missing"
 
 
-def is_correct(case, verdict: str, missing: str | None) -> bool:
+def is_correct(case, verdict: str, missing: str | None, findings=()) -> bool:
+    """Right verdict (or one of the case's also-accepted ones), and the data finding the case's artefact makes."""
+    if getattr(case, "finding", "") and case.finding not in findings:
+        return False
+    if verdict in getattr(case, "also_accepted", ()):
+        return True
     if case.expected in ("nothing_missing", "unexplained"):
         return verdict == case.expected
     return verdict == "missing_effect" and missing in case.accepted
@@ -123,11 +128,13 @@ def run_case(case, detectability: bool = True) -> dict:
     row["time_s"] = time.perf_counter() - t0
     verdict = verdict_of(d)
     missing = getattr(d, "missing_effect", None)
+    findings = [f.kind for f in getattr(d, "findings", ())]
     row.update(verdict=verdict, missing_effect=missing, baseline_esr=_finite(getattr(d, "baseline_esr", None)),
+               findings=findings,
                noise_floor_esr=_finite(getattr(d, "noise_floor_esr", None)),
                ranking=[[getattr(c, "effect", "?"), _finite(getattr(c, "esr", None))]
                         for c in (getattr(d, "ranking", None) or [])[:3]],
-               correct=is_correct(case, verdict, missing))
+               correct=is_correct(case, verdict, missing, findings))
     return row
 
 

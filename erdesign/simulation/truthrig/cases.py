@@ -96,7 +96,7 @@ __all__ = ["Case", "benchmark_cases", "mechanism_parameters", "effect_size_over_
            "control_staircase", "LIBRARY_MECHANISMS", "OUT_OF_LIBRARY", "DAMPERS", "EXCITATIONS", "NOISES",
            "SIZES", "STEP_PERIOD", "UNDETECTABLE", "SUBSETS", "supported", "unsupported_pairs", "NOT_VISIBLE_ON",
            "EXCITATIONS_OF", "ISSUE23_GROUPS", "ISSUE23_EXCITATIONS", "ALL_DAMPERS", "ANTI_ALIAS_ORDER",
-           "ANTI_ALIAS_CORNER", "HEATING_TARGET"]
+           "ANTI_ALIAS_CORNER", "HEATING_TARGET", "ARTEFACTS"]
 
 #: Library effect -> the truth rig's mechanism that produces it.
 LIBRARY_MECHANISMS = {
@@ -136,7 +136,7 @@ UNDETECTABLE = 3.0
 SUBSETS = ("full", "core", "issue23", "fast")
 #: The classes of issue 23 (:attr:`Case.group`), in the order the benchmark reports them.
 ISSUE23_GROUPS = ("long_field_steps", "band_limited_3khz", "heating_long", "series_springs_mixed",
-                  "clean_every_kind", "other_generator")
+                  "clean_every_kind", "other_generator", "artefacts")
 #: Corner of the anti-alias low-pass of the 3 kHz band-limited records, [Hz]: Dyke's ransim_u record (3004.8 Hz) has a
 #: white force spectrum up to 1.5 kHz (erdesign.data.noise_floor finds its plateau at 1.0-1.5 kHz), so its conditioner's
 #: corner lies at or above 1 kHz; a corner at a third of the Nyquist frequency would leave no plateau at all.
@@ -386,6 +386,13 @@ class Case:
     with the force and scaled so that the filtered noise is ``noise`` x the RMS force."""
     displacement_resolution: float = 0.0
     """Step of the displacement readout, [m] (the measured displacement is rounded to it); 0: none."""
+    artefacts: tuple = ()
+    """Lab artefacts applied to the measured record, in order: ``(name, size)`` pairs of :data:`ARTEFACTS`."""
+    finding: str = ""
+    """The data finding (:data:`erdesign.data.findings.FINDING_KINDS`) a correct diagnosis reports; empty: none."""
+    also_accepted: tuple = ()
+    """Verdicts accepted besides :attr:`expected` (a record whose artefact mimics a mechanism: the verdict may be
+    ``"unexplained"``, never the mimicked effect)."""
 
     @property
     def kind(self) -> str:
@@ -421,9 +428,12 @@ class Case:
         rec = simulate_truth(self.truth(damper), self.motion(damper),
                              force_noise=0.0 if self.anti_alias else self.noise,
                              displacement_noise=self.displacement_noise, seed=seed, name=self.name)
-        if not (self.anti_alias or self.displacement_resolution):
-            return rec
-        return self._instrumented(rec, seed)
+        if self.anti_alias or self.displacement_resolution:
+            rec = self._instrumented(rec, seed)
+        for name, size in self.artefacts:
+            rec = replace(rec, measured=ARTEFACTS[name](rec.measured, size),
+                          description=f"{rec.description}; artefact {name} {size:g}")
+        return rec
 
     def _instrumented(self, rec, seed: int):
         """The record as a band-limited load cell and displacement channel, and a stepped readout, measure it.
@@ -673,6 +683,32 @@ _HEATING_SHARE = {("makris", 2.0): 0.8, ("mr_valve", 2.0): 0.88, ("mr_valve_curr
                   ("mr_valve", 1.0): 0.47}
 
 
+def _artefact(name: str):
+    from . import artefacts
+    return getattr(artefacts, name)
+
+
+#: Lab artefacts of the ``artefacts`` class (:mod:`erdesign.simulation.truthrig.artefacts`), each sized relative to
+#: the record: name -> function of (measured record, size).
+ARTEFACTS = {
+    # the load cell at its limit: the force clipped at ``size`` x its peak
+    "clip": lambda m, f: _artefact("clip_force")(m, f * float(np.max(m.force))),
+    # the displacement transducer at its limit: held within ``size`` x its peak
+    "saturate": lambda m, f: _artefact("saturate_displacement")(m, f * float(np.max(np.abs(m.displacement)))),
+    # a causal moving average over ``size`` samples of both channels before export
+    "average": lambda m, n: _artefact("moving_average")(m, int(n)),
+    # the force channel ``size`` seconds behind the displacement channel
+    "skew": lambda m, s: _artefact("skew_force")(m, s),
+    # a hole of ``size`` seconds in the middle of the record
+    "gap": lambda m, s: _artefact("cut_time_gap")(m, float(m.time[len(m) // 2]), s),
+    # a load-cell offset and drift, each ``size`` x the RMS force
+    "drift": lambda m, f: _artefact("offset_and_drift")(m, f * float(np.sqrt(np.mean(m.force ** 2))),
+                                                        f * float(np.sqrt(np.mean(m.force ** 2)))),
+    # a displacement readout in steps of ``size`` metres
+    "quantize": lambda m, q: _artefact("quantize_displacement")(m, q),
+}
+
+
 def _issue_case(group: str, label: str, dname: str, excitation: str, mechanisms: Mapping, expected: str,
                 accepted, seed: int, *, duration: float, rate: float, noise: float = NOISES[0],
                 speed: float | None = None, frequency: float | None = None, control_scale: float = 1.0,
@@ -813,6 +849,32 @@ def _issue23() -> list[Case]:
     g = "heating_long"
     add(g, "30K-working-speed", "mr_valve", "sine", {"thermal": _heating("mr_valve", 1.0)}, "viscous_heating",
         {"viscous_heating"}, duration=83.0, rate=1000.0, size="large")
+
+    # 7. lab artefacts (erdesign/simulation/truthrig/artefacts.py) on records with and without a hidden mechanism: the
+    #    finding must be reported, the artefact never named as a mechanism, and a hidden mechanism still found
+    g = "artefacts"
+    art = dict(duration=8.0, rate=1000.0)
+    either = ("unexplained",)
+    add(g, "clipped", "mr_valve", "sine", {"stribeck_friction": "large"}, "seal_friction", {"seal_friction"},
+        size="large", artefacts=(("clip", 0.85),), finding="clipped", **art)
+    add(g, "clipped", "mr_mixed", "random", {}, "nothing_missing", (), artefacts=(("clip", 0.8),), finding="clipped",
+        **art)
+    add(g, "saturated", "mr_valve_current", "sine", {}, "nothing_missing", (), artefacts=(("saturate", 0.9),),
+        finding="saturated_displacement", **art)
+    add(g, "smoothed", "mr_valve", "sine", {}, "nothing_missing", (), artefacts=(("average", 8),),
+        finding="smoothed", also_accepted=either, **art)
+    add(g, "skew0.8ms", "mr_valve_current", "sine", {}, "nothing_missing", (), artefacts=(("skew", 8e-4),),
+        finding="channel_skew", also_accepted=either, **art)
+    add(g, "skew0.8ms", "makris", "earthquake", {}, "nothing_missing", (), artefacts=(("skew", 8e-4),),
+        finding="channel_skew", also_accepted=either, **art)
+    add(g, "gap", "mr_valve_current", "sine", {"coil_lag": "large"}, "field_lag", {"field_lag"}, size="large",
+        artefacts=(("gap", 1.0),), finding="time_gap", **art)
+    add(g, "drift", "mr_valve", "random", {}, "nothing_missing", (), artefacts=(("drift", 0.08),),
+        finding="force_offset_drift", also_accepted=either, **art)
+    add(g, "quantized5um", "mr_valve", "sine", {}, "nothing_missing", (), artefacts=(("quantize", 5e-6),),
+        finding="quantized_displacement", **art)
+    add(g, "quantized5um", "mr_mixed", "sine", {"compliance": "large"}, "compressibility", {"compressibility"},
+        size="large", artefacts=(("quantize", 5e-6),), finding="quantized_displacement", **art)
     return cases
 
 
