@@ -15,11 +15,15 @@ from .measurement import Measurement
 
 __all__ = ["QUIROZ_CURRENTS", "QUIROZ_VALIDATION_CURRENTS", "QUIROZ_TESTS", "QUIROZ_FILE_NAME", "quiroz_folder",
            "read_quiroz_sinusoid", "read_quiroz_file", "read_quiroz_validation", "read_quiroz_mat", "QUIROZ_RAW_TESTS",
-           "read_quiroz_raw"]
+           "read_quiroz_raw", "QUIROZ_VALIDATION_WINDOW", "causal_moving_average", "undo_causal_moving_average",
+           "read_quiroz_validation_unsmoothed"]
 
 #: Coil currents of the Quiroz (2022) UTFSM sinusoids [A] and of the columns 2-6 of its validation record.
 QUIROZ_CURRENTS = (0.0, 0.25, 0.5, 0.75, 1.0)
 QUIROZ_VALIDATION_CURRENTS = (0.2, 0.4, 0.6, 0.8, 1.0)
+#: The causal moving average the source applied to every column of its validation record, [samples at 1 kHz]
+#: (shared/data/README.md; the spectra of displacement and force both have its zeros at multiples of 3.33 Hz).
+QUIROZ_VALIDATION_WINDOW = 300
 #: The six sinusoids: amplitude [mm] and frequency [Hz] as in the file names ('x' is the decimal point).
 QUIROZ_TESTS = (("10mm1Hz", 1.0), ("25mm0x1Hz", 0.1), ("25mm0x25Hz", 0.25), ("25mm0x5Hz", 0.5), ("2mm5Hz", 5.0),
                 ("5mm3Hz", 3.0))
@@ -180,4 +184,44 @@ def read_quiroz_raw(folder, test: str, *, cycles: float | None = 3.0) -> list[Me
         t = np.arange(len(x)) * dt
         out.append(Measurement.from_arrays(t, x - x.mean(), F, control=current, control_kind="current",
                                            name=f"raw {test} {current:g} A"))
+    return out
+
+
+def causal_moving_average(y, window: int) -> np.ndarray:
+    """The mean of the last ``window`` samples at every sample, the signal taken as 0 before the first: the
+    smoothing the source applied to its validation record (whose forces start at 0 with the offsets removed)."""
+    from scipy.signal import lfilter
+    return lfilter(np.ones(window) / window, 1.0, np.asarray(y, dtype=float))
+
+
+def undo_causal_moving_average(y, window: int) -> np.ndarray:
+    r"""The signal x whose causal moving average over ``window`` samples is ``y``, with x equal to y[0] before the
+    first sample (a record that starts at rest).
+
+    From :math:`y_n - y_{n-1} = (x_n - x_{n-W}) / W`: :math:`x_n = x_{n-W} + W (y_n - y_{n-1})`, exact on the stored
+    numbers (re-smoothing the result gives ``y`` back to round-off).  What the average removed at its zeros
+    (multiples of 1 / (W dt)) cannot come back: there the result carries the rest-state assumption; and a
+    quantisation step q of y becomes steps of W q in x (on Quiroz's record q = 0.01 um, so 3 um).
+    """
+    y = np.asarray(y, dtype=float)
+    x = np.empty_like(y)
+    dy = np.diff(y, prepend=y[0]) * window
+    for start in range(0, len(y), window):
+        prev = x[start - window:start] if start >= window else np.full(min(window, len(y)), y[0])
+        stop = min(start + window, len(y))
+        x[start:stop] = prev[:stop - start] + dy[start:stop]
+    return x
+
+
+def read_quiroz_validation_unsmoothed(folder) -> list[Measurement]:
+    """The validation record (1 kHz, every sample) with the displacement the press applied before the source's
+    smoothing (:func:`undo_causal_moving_average` over :data:`QUIROZ_VALIDATION_WINDOW`); the force is left as
+    stored (smoothed).  A model run on this motion is compared with the force through the same smoothing
+    (:func:`causal_moving_average` of its output): the measurement chain applied to the model, not the inverse
+    applied to the measured force."""
+    out = []
+    for r in read_quiroz_validation(folder, step=1):
+        x = undo_causal_moving_average(r.displacement, QUIROZ_VALIDATION_WINDOW)
+        out.append(Measurement.from_arrays(r.time, x, r.force, control=float(r.control[0]), control_kind="current",
+                                           name=r.name))
     return out
