@@ -172,3 +172,26 @@ def test_documented_physics_validation_esrs_reproduce():
         for how, per_current in d["validation_esr"].items():
             for name, value in per_current.items():
                 assert got[how][name] == pytest.approx(value, rel=1e-6, abs=1e-9), (label, how, name)
+
+
+@pytest.mark.skipif(PHYSICS is None, reason="docs/case_studies/quiroz.json has no physics-model section")
+def test_findings_of_the_physics_model():
+    def mean(val):
+        return float(np.mean(list(val.values())))
+    bw_doc = mean(STUDY["models"]["bouc_wen_modified"]["validation_esr"])            # 0.066
+    bw_raw = mean(PHYSICS["bouc_wen_modified_raw"]["validation_esr"]["through_smoothing"])   # 0.037
+    models = {k: mean(d["validation_esr"]["through_smoothing"]) for k, d in PHYSICS["models"].items()}
+    rounds = PHYSICS["rounds"]
+    # the loop names compressibility first (ESR 0.093 -> 0.015 on the 30 raw records), then stops `unexplained`
+    # although its two first-ranked candidates lower the training ESR by a fifth or more
+    assert rounds[0]["missing_effects"] == ["compressibility"]
+    assert rounds[-1]["verdict"] == "unexplained"
+    assert rounds[-1]["ranking"][0]["esr"] < 0.8 * rounds[-1]["esr"]
+    # the loop's own model misses issue 23's target (1.5 x the Bouc-Wen of the first table): measured 0.187
+    assert models["loop"] > 1.5 * bw_doc
+    # with the candidate it ranked second (leakage) it is within it: measured 0.091 against 0.099
+    assert min(models.values()) < 1.5 * bw_doc
+    # but the modified Bouc-Wen fitted on the same raw records and judged the same way stays better (0.037)
+    assert bw_raw < min(models.values()) / 2
+    # judged directly on the smoothed record, models fitted on raw records are far off (the 0.3 s average)
+    assert min(mean(d["validation_esr"]["direct"]) for d in PHYSICS["models"].values()) > 0.3

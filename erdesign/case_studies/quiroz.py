@@ -160,8 +160,8 @@ def physics_study(folder, *, damper=QUIROZ_DAMPER, max_rounds: int = 4, records=
     :func:`erdesign.diagnosis.diagnose.improve` does.  Each round's verdict, named effects, ESR, floor, its best
     candidates and wall time are kept.  Then the final model (the loop's effects) is calibrated on the same records
     and scored on the validation record (:func:`physics_validation_esr`); when the loop ends ``"unexplained"``, so
-    is the loop's model plus each of the two candidates it ranked first (which it did not accept; the reason it gave
-    is kept).
+    is the loop's model plus each of the two candidates it ranked first, and plus both (it accepted neither; the
+    reason it gave is kept).
     For comparison, the modified Bouc-Wen of :func:`real_data_study` is identified on the same raw records and
     scored the same two ways.  Returns a JSON-ready dict.
     """
@@ -196,6 +196,8 @@ def physics_study(folder, *, damper=QUIROZ_DAMPER, max_rounds: int = 4, records=
     if last["verdict"] == "unexplained":
         ranked = [c["effect"] for c in last["ranking"] if c["esr"] is not None][:2]
         variants += [(f"loop + candidate ranked {k + 1}", effects + (e,)) for k, e in enumerate(ranked)]
+        if len(ranked) == 2:
+            variants.append(("loop + both", effects + tuple(ranked)))
     models = {}
     for label, eff in variants:
         t0 = _time.perf_counter()
