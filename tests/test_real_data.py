@@ -103,3 +103,95 @@ def test_source_parameters_with_the_hidden_constants():
     assert mean["plain"] > 0.5
     assert mean["est"] < 0.1
     assert 50.0 < estimated["A"] < 300.0
+
+
+# ------------------------------------------------------------------ raw records, the source's smoothing
+def test_raw_records_force_levels():
+    # the six raw DAQ files give five records each, in rising current order: the force's peak-to-peak grows
+    # record by record in every file (measured at 10 mm 2 Hz: 494, 1125, 1927, 2634, 3178 N)
+    from erdesign.data.quiroz import QUIROZ_RAW_TESTS, read_quiroz_raw
+    for test, freq, _ in QUIROZ_RAW_TESTS:
+        recs = read_quiroz_raw(FOLDER, test)
+        assert [float(r.control[0]) for r in recs] == list(QUIROZ_CURRENTS)
+        ptp = [float(np.ptp(r.force)) for r in recs]
+        assert all(b > a for a, b in zip(ptp, ptp[1:])), (test, ptp)
+        # the last 3 periods at the file's own rate (1 ms, or 5 ms where the channels are swapped)
+        assert recs[0].time[-1] == pytest.approx(3.0 / freq, abs=0.01)
+    ptp = [float(np.ptp(r.force)) for r in read_quiroz_raw(FOLDER, "10mm2Hz")]
+    assert ptp == pytest.approx([494, 1125, 1927, 2634, 3178], abs=1.0)
+
+
+def test_equivalent_damper_file_matches_the_measured_force_levels():
+    # examples/quiroz2022.toml: the quasi-steady force at each raw test's peak speed against the measured mean |F|
+    # there (|v| > 90 % of the peak): 0.79-0.96 x at 0 A (friction-dominated, the peaks of the measured force
+    # sit above it) and 1.01-1.08 x at 1 A
+    from erdesign.damper.files import load_example
+    from erdesign.data.quiroz import QUIROZ_RAW_TESTS, read_quiroz_raw
+    damper = load_example("quiroz2022")
+    ratios = {0.0: [], 1.0: []}
+    for test, _, _ in QUIROZ_RAW_TESTS:
+        recs = read_quiroz_raw(FOLDER, test)
+        for r in (recs[0], recs[-1]):
+            fast = np.abs(r.velocity) > 0.9 * np.max(np.abs(r.velocity))
+            speed = float(np.mean(np.abs(r.velocity[fast])))
+            current = float(r.control[0])
+            model = damper.size(f"{speed} m/s", f"{current} A").force.m
+            ratios[current].append(model / float(np.mean(np.abs(r.force[fast]))))
+    assert 0.75 < min(ratios[0.0]) and max(ratios[0.0]) < 1.0
+    assert 0.98 < min(ratios[1.0]) and max(ratios[1.0]) < 1.1
+
+
+def test_undoing_the_sources_moving_average():
+    # the validation record's displacement, un-smoothed and smoothed again, is the stored one (round-off), and its
+    # range widens as an average's undoing must (stored -7.95..6.66 mm; before the average -8.80..7.22 mm)
+    from erdesign.data.quiroz import (QUIROZ_VALIDATION_WINDOW, causal_moving_average,
+                                      read_quiroz_validation_unsmoothed, undo_causal_moving_average)
+    stored = read_quiroz_validation(FOLDER, step=1)[0].displacement
+    x = undo_causal_moving_average(stored, QUIROZ_VALIDATION_WINDOW)
+    again = causal_moving_average(np.r_[np.full(QUIROZ_VALIDATION_WINDOW, x[0]), x],
+                                  QUIROZ_VALIDATION_WINDOW)[QUIROZ_VALIDATION_WINDOW:]
+    assert np.max(np.abs(again - stored)) < 1e-12
+    assert (x.min(), x.max()) == pytest.approx((-8.797e-3, 7.225e-3), abs=2e-6)
+    assert np.array_equal(read_quiroz_validation_unsmoothed(FOLDER)[0].displacement, x)
+
+# ------------------------------------------------------------------ the physics model of the equivalent damper file
+PHYSICS = STUDY.get("physics")
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(PHYSICS is None, reason="docs/case_studies/quiroz.json has no physics-model section")
+def test_documented_physics_validation_esrs_reproduce():
+    # the physics model of examples/quiroz2022.toml with the documented effects and values, simulated on the
+    # validation record both ways (direct; through the source's 300-sample smoothing): the documented ESRs
+    from erdesign.case_studies.quiroz import physics_validation_esr
+    from erdesign.damper.files import load_example
+    from erdesign.effects.chain import PhysicsDamper
+    damper = load_example(PHYSICS["damper"])
+    for label, d in PHYSICS["models"].items():
+        got = physics_validation_esr(PhysicsDamper(damper, tuple(d["effects"])), d["values"], FOLDER)
+        for how, per_current in d["validation_esr"].items():
+            for name, value in per_current.items():
+                assert got[how][name] == pytest.approx(value, rel=1e-6, abs=1e-9), (label, how, name)
+
+
+@pytest.mark.skipif(PHYSICS is None, reason="docs/case_studies/quiroz.json has no physics-model section")
+def test_findings_of_the_physics_model():
+    def mean(val):
+        return float(np.mean(list(val.values())))
+    bw_doc = mean(STUDY["models"]["bouc_wen_modified"]["validation_esr"])            # 0.066
+    bw_raw = mean(PHYSICS["bouc_wen_modified_raw"]["validation_esr"]["through_smoothing"])   # 0.037
+    models = {k: mean(d["validation_esr"]["through_smoothing"]) for k, d in PHYSICS["models"].items()}
+    rounds = PHYSICS["rounds"]
+    # the loop names compressibility first (ESR 0.093 -> 0.015 on the 30 raw records), then stops `unexplained`
+    # although its two first-ranked candidates lower the training ESR by a fifth or more
+    assert rounds[0]["missing_effects"] == ["compressibility"]
+    assert rounds[-1]["verdict"] == "unexplained"
+    assert rounds[-1]["ranking"][0]["esr"] < 0.8 * rounds[-1]["esr"]
+    # the loop's own model misses issue 23's target (1.5 x the Bouc-Wen of the first table): measured 0.187
+    assert models["loop"] > 1.5 * bw_doc
+    # with the candidate it ranked second (leakage) it is within it: measured 0.091 against 0.099
+    assert min(models.values()) < 1.5 * bw_doc
+    # but the modified Bouc-Wen fitted on the same raw records and judged the same way stays better (0.037)
+    assert bw_raw < min(models.values()) / 2
+    # judged directly on the smoothed record, models fitted on raw records are far off (the 0.3 s average)
+    assert min(mean(d["validation_esr"]["direct"]) for d in PHYSICS["models"].values()) > 0.3
