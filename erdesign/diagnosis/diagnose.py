@@ -207,7 +207,7 @@ class Diagnosis:
 
 #: Data findings that mimic a mechanism: the effects they make unsafe are never named while they are found
 #: (CONTRACTS.md section 6: channel skew is never named field_lag or compressibility).
-MIMICS = ("channel_skew", "smoothed")
+MIMICS = ("channel_skew", "smoothed", "force_offset_drift")
 #: Widths of the expected sign at a reversal tried in the baseline calibration, in units of the velocity noise.
 SIGN_WIDTHS = (0.0, 0.5, 1.0, 2.0)
 

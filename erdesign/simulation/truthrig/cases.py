@@ -865,7 +865,9 @@ def _issue23() -> list[Case]:
         finding="smoothed", also_accepted=either, **art)
     add(g, "skew0.8ms", "mr_valve_current", "sine", {}, "nothing_missing", (), artefacts=(("skew", 8e-4),),
         finding="channel_skew", also_accepted=either, **art)
-    add(g, "skew0.8ms", "makris", "earthquake", {}, "nothing_missing", (), artefacts=(("skew", 8e-4),),
+    # (a skew shows where the force jumps at reversals: on Makris's viscous ER damper 0.8 ms moves the force by less
+    #  than its noise, so the skew case of the random motion is on the mixed MR head)
+    add(g, "skew0.8ms", "mr_mixed", "random", {}, "nothing_missing", (), artefacts=(("skew", 8e-4),),
         finding="channel_skew", also_accepted=either, **art)
     add(g, "gap", "mr_valve_current", "sine", {"coil_lag": "large"}, "field_lag", {"field_lag"}, size="large",
         artefacts=(("gap", 1.0),), finding="time_gap", **art)
