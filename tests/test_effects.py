@@ -227,7 +227,7 @@ def test_herschel_bulkley_slit_flow_against_quadrature_of_the_velocity_profile(m
     from erdesign.effects.compressibility import _piston_speed
 
     Ap, ducts = 7.7676e-4, 2
-    u = _piston_speed(dp * Ap, 0, tau_y, K, m, L, d, h, Ap, ducts, 0.0, np.zeros(2), np.ones(2))
+    u = _piston_speed(dp * Ap, 0.0, 0, tau_y, K, m, L, d, h, Ap, ducts, 0.0)
     assert u == pytest.approx(ducts * Q / Ap, rel=1e-13)
 
 

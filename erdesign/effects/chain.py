@@ -23,9 +23,10 @@ runs the stages in this order, calling the hook of each stage on the effects tha
    path, e.g. ``leakage`` (a laminar bypass, vectorised root per sample);
 4. *thermal* (:meth:`~erdesign.effects.base.Effect.viscosity_factor`) - the viscosity follows the dissipated
    power, e.g. ``viscous_heating`` (fixed-point passes over the record, at most :data:`HEATING_PASSES`);
-5. *series* (:meth:`~erdesign.effects.base.Effect.series_pressure_force`) - an element between the piston and
-   the ducts replaces the pressure force, e.g. ``compressibility`` (the fluid column as a spring in series with
-   the nonlinear duct law, implicit integration of the stiff ODE);
+5. *series* (:meth:`~erdesign.effects.base.Effect.series_forces`) - an element between the piston and
+   the ducts replaces the pressure force (and on a moving-electrode head the shear drag of the gap's flow), e.g.
+   ``compressibility`` (the fluid column as a spring in series with the nonlinear duct law, implicit integration
+   of the stiff ODE);
 6. *constitutive in time* (:meth:`~erdesign.effects.base.Effect.filter_fluid_force`) - the fluid force through a
    law in time, e.g. ``preyield_elasticity`` (Makris eq 8 at the damper level, exact-step scan);
 7. *additive* (:meth:`~erdesign.effects.base.Effect.additive_forces`) - named force components, e.g.
@@ -208,11 +209,10 @@ class PhysicsDamper(Model):
             K = law.consistency(eta)
             return DuctLaw(0, tau_y, K, law.flow_index, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area,
                            g.ducts, bypass)
-        w, G = self._mixed_table().inverse()
-        # mixed gap: the circumference pi (Dp + h) is folded into the table, and a flow index (if any) is left at
-        # Bingham with the plastic viscosity here (a series element only needs the duct law near its yield point)
-        return DuctLaw(1, tau_y, eta, 1.0, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area, 1, bypass,
-                       w, G)
+        # mixed gap: the flow from the pressure and the head's speed (the piston's), the Couette-Poiseuille law of
+        # the compiled loop; a flow index (if any) is left at Bingham with the plastic viscosity here (a series
+        # element only needs the gap law near its yield point)
+        return DuctLaw(1, tau_y, eta, 1.0, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area, 1, bypass)
 
     def _fluid_forces(self, v, tau_y, eta, law: GapLaw, values):
         """Pressure force and shear drag [N] of the gap flow at piston speed v, with the gap law of the
@@ -280,7 +280,9 @@ class PhysicsDamper(Model):
         # (a bypass makes the piston creep below yield, a compliant column or pre-yield elasticity makes the force
         # continuous: no jump to resolve, and the elastic law must relax onto the sharp rigid-plastic force)
         exact_jump = any(e.continuous_at_reversal for e in self.effects)
-        smooth = 0.0 if exact_jump else sign - np.sign(v)
+        # the gap kernels give the break-away force at v = 0 (signed by the sign bit, +-F_y): the expected force
+        # there is the mean of the two sides, 0, as at any sample whose sign is unknown (copysign, not sign)
+        smooth = 0.0 if exact_jump else sign - np.copysign(1.0, v)
         jump_P = yield_pressure * g.piston_area * smooth
         jump_S = tau_y * g.shear_area * smooth
         # 3. parallel (inside the gap flow) and 4. thermal: fixed-point passes on the viscosity
@@ -299,7 +301,7 @@ class PhysicsDamper(Model):
             bypass = stages["parallel"][0].bypass_conductance(vals) if stages["parallel"] else 0.0
             duct_law = self._duct_law(tau_y, eta, law, bypass)
             for e in stages["series"]:
-                P = e.series_pressure_force(t, v, P, duct_law, vals)
+                P, S = e.series_forces(t, v, P, S, duct_law, vals)
         fluid = P + S
         # 6. constitutive in time
         for e in stages["constitutive-in-time"]:
