@@ -241,8 +241,10 @@ class Effect:
         moving-electrode head (a compliant column) changes its drag too, and overrides this."""
         return self.series_pressure_force(t, v, pressure_force, duct_law, values), shear_force
 
-    def filter_fluid_force(self, t, v, fluid_force, damper: Damper, values: Mapping[str, float]):
-        """Constitutive in time: the fluid force [N] through a law in time, from the quasi-steady one."""
+    def filter_fluid_force(self, t, v, fluid_force, damper: Damper, values: Mapping[str, float], held_force=None):
+        """Constitutive in time: the fluid force [N] through a law in time, from the quasi-steady one
+        (``held_force``: the quasi-steady force at each sample's speed with the previous sample's control, for a
+        control held over each interval; None where it equals ``fluid_force``)."""
         return fluid_force
 
     def additive_forces(self, record: Measurement, sign, damper: Damper,

@@ -244,6 +244,27 @@ class PhysicsDamper(Model):
         # the pressure drop is the root (on the break-away jump when creeping); the shear drag at the duct flow
         return dp * g.piston_area, self._mixed(u, v, tau_y, eta, law)[1]
 
+    def _held_fluid_force(self, record, v, fluid, heat, law: GapLaw, vals):
+        """The quasi-steady fluid force at each sample's speed with the previous sample's control, [N] (None when
+        the control never changes): the record's control is a command held over each sample interval (zero-order
+        hold), so a law in time sees a control step at the sample where it happens, not ramped over the interval
+        before it.  Not with an effect of the state stage (a lagged control is continuous) or of the series stage."""
+        E = np.asarray(record.control, dtype=float)
+        if self.stages["state"] or self.stages["series"] or E.size < 2:
+            return None
+        changed = np.flatnonzero(E[1:] != E[:-1]) + 1
+        if not changed.size:
+            return None
+        fl = self.damper.fluid
+        Ep = E[changed - 1]
+        tau_y = vals["yield_stress_factor"] * np.asarray(fl.yield_stress_at(Ep), dtype=float) * np.ones(changed.size)
+        eta = vals["viscosity_factor"] * np.asarray(fl.viscosity_at(Ep), dtype=float) * np.ones(changed.size)
+        eta = eta * np.broadcast_to(heat, v.shape)[changed]
+        P, S = self._fluid_forces(v[changed], tau_y, eta, law, vals)
+        held = np.array(fluid, dtype=float, copy=True)
+        held[changed] = P + S
+        return held
+
     def _valve_state(self, v, tau_y, eta):
         return np.asarray(damper_state(self.damper, v, tau_y, eta).pressure_force, dtype=float)
 
@@ -304,8 +325,10 @@ class PhysicsDamper(Model):
                 P, S = e.series_forces(t, v, P, S, duct_law, vals)
         fluid = P + S
         # 6. constitutive in time
-        for e in stages["constitutive-in-time"]:
-            fluid = e.filter_fluid_force(t, v, fluid, d, vals)
+        if stages["constitutive-in-time"]:
+            held = self._held_fluid_force(record, v, fluid, heat, law, vals)
+            for e in stages["constitutive-in-time"]:
+                fluid = e.filter_fluid_force(t, v, fluid, d, vals, held_force=held)
         # 7. additive: the damper file's seal friction unless an effect replaces it
         parts = {"friction": d.seal_friction * sign, "inertia": np.zeros_like(v), "gas_spring": np.zeros_like(v)}
         for e in stages["additive"]:
