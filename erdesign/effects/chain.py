@@ -39,12 +39,16 @@ The break-away jump of the rigid-plastic gap flow at a reversal (from minus to p
 the seal friction are evaluated at the derived velocity, whose sign is uncertain within its noise band: the model
 uses the expected sign :math:`\operatorname{erf}(v/\sqrt2\sigma_v)` (:func:`erdesign.effects.base.sign_expectation`),
 with the velocity noise :math:`\sigma_v` estimated from the record (:func:`erdesign.data.noise.velocity_noise`).  On a
-record without noise that is the sharp sign of Makris eq 14; no fixed smoothing floor is left in the baseline
+record without noise that is the sharp sign of Makris eq 14, and at a sample with v = 0 exactly the expected force is
+the mean of the two break-away forces, 0 (the kernels' value there, the break-away force signed by the sign bit, is
+one side of the jump); no fixed smoothing floor is left in the baseline
 (an effect whose :attr:`~erdesign.effects.base.Effect.continuous_at_reversal` is set, e.g. ``leakage``,
 ``compressibility`` or ``preyield_elasticity``, makes the force continuous through the reversal and needs none).
 
 Everything is vectorised over the samples; the linear time-varying recurrences use the exact-step prefix scan of
-:func:`erdesign.effects.base.relaxation_filter`.  The internal states start settled (quasi-steady) at the first
+:func:`erdesign.effects.base.relaxation_filter`.  The record's control is a command held over each sample interval
+(a zero-order hold, as the truth rig drives it): the laws in time (compressibility, pre-yield elasticity) see a step
+of the control at the sample where it happens.  The internal states start settled (quasi-steady) at the first
 sample.  A parallel path re-solves the gap flow with the damper's own gap law
 (:func:`erdesign.damper.quasi_steady.valve_pressure_drop`: thin gap or exact annulus; the mixed head through
 :class:`erdesign.damper.quasi_steady.MixedGapTable`); a flow index other than 1 uses the thin-gap
