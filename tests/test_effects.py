@@ -227,7 +227,7 @@ def test_herschel_bulkley_slit_flow_against_quadrature_of_the_velocity_profile(m
     from erdesign.effects.compressibility import _piston_speed
 
     Ap, ducts = 7.7676e-4, 2
-    u = _piston_speed(dp * Ap, 0, tau_y, K, m, L, d, h, Ap, ducts, 0.0, np.zeros(2), np.ones(2))
+    u = _piston_speed(dp * Ap, 0.0, 0, tau_y, K, m, L, d, h, Ap, ducts, 0.0)
     assert u == pytest.approx(ducts * Q / Ap, rel=1e-13)
 
 
@@ -276,3 +276,29 @@ def test_effects_that_a_record_cannot_show_say_why():
     # one constant field: friction and yield stress both flip with the motion and cannot be told apart
     assert "cannot be told from the yield stress" in EFFECTS["seal_friction"].check(_sine_record(d), d)
     assert EFFECTS["fluid_inertia"].prior(d)["slug_mass"] == pytest.approx(1.182, abs=1e-3)
+
+
+def test_moving_wall_gap_flow_returns_the_flow_the_couette_poiseuille_solver_was_given():
+    # Independent: couette_poiseuille_bingham (erdesign.flow.mixed_mode) finds the pressure gradient for a given wall
+    # speed and flow by a bracketed root of its own closed forms; the compiled law of the compressibility loop
+    # goes the other way (flow from gradient and wall speed, zone by zone).  Random cases over 8 decades of speed
+    # and flow and 5 of yield stress, a tenth Newtonian: the flow comes back to 1e-9 of |q| + |U| h (the worst cases
+    # are nearly blocked gaps, where the flow hardly depends on the gradient), the wall stress to 1e-12 of the
+    # stress scale.
+    from erdesign.effects.compressibility import moving_wall_gap_flow
+    from erdesign.flow.mixed_mode import couette_poiseuille_bingham
+
+    rng = np.random.default_rng(7)
+    n, h = 3000, 1e-3
+    U = rng.standard_normal(n) * 10 ** rng.uniform(-8, 0, n)
+    q = rng.standard_normal(n) * 10 ** rng.uniform(-9, -3, n)
+    tau_y = np.where(rng.random(n) < 0.1, 0.0, 10 ** rng.uniform(0, 5, n))
+    eta = 10 ** rng.uniform(-2, 1, n)
+    sol = couette_poiseuille_bingham(U, q, tau_y, eta, h)
+    back = np.array([moving_wall_gap_flow(g, u, t, e, h) for g, u, t, e in zip(sol.pressure_gradient, U, tau_y, eta)])
+    assert np.max(np.abs(back[:, 0] - q) / (np.abs(q) + np.abs(U) * h)) < 1e-9
+    scale = tau_y + eta * np.abs(U) / h + eta * np.abs(q) / h**2
+    assert np.max(np.abs(back[:, 1] - sol.wall_stress_moving) / scale) < 1e-12
+    # limits: plain Couette flow (no gradient) and the blocked gap (at rest, below yield)
+    assert moving_wall_gap_flow(0.0, 0.1, 100.0, 0.5, h) == pytest.approx((0.05 * h, -(100.0 + 0.5 * 0.1 / h)))
+    assert moving_wall_gap_flow(1.5 * 100.0 / h, 0.0, 100.0, 0.5, h) == (0.0, -0.75 * 100.0)

@@ -7,7 +7,9 @@ and the report all call :func:`quasi_steady_state` (or its two halves :func:`val
 nothing else writes the force of a damper down.  Two pieces serve the physics model, which evaluates the gap at
 every sample of a record many times over and sometimes sets the duct flow itself (a bypass): the gap law of the
 valve alone, :func:`valve_pressure_drop`, and the mixed gap tabulated once per head, :class:`MixedGapTable`
-(:func:`mixed_gap_table`; 1e-5 of :func:`mixed_state`), whose inverse (pressure to flow) the series stage uses.
+(:func:`mixed_gap_table`; 1e-5 of :func:`mixed_state`).  (The series stage, which needs the gap's flow from the
+pressure and the head's speed, uses the closed form of
+:func:`erdesign.effects.compressibility.moving_wall_gap_flow`.)
 
 Valve damper (Makris et al. 1996, eq 14), ``n`` stationary annular ducts in parallel:
 
@@ -315,12 +317,6 @@ class MixedGapTable:
         dp = sign * np.interp(w, self.w, self.pressure) * scale / h**2 * L
         shear = -sign * np.interp(w, self.w, self.shear) * scale / h * np.pi * self.Dp * L
         return dp, shear
-
-    def inverse(self):
-        r"""(w, G(w)) with :math:`\Delta p\,h / (L \tau_y) = G(w)`: the table read the other way (pressure to flow),
-        increasing in w; the last point, w = 1, is the Newtonian limit and is left out."""
-        G = self.pressure[:-1] / (1.0 - self.w[:-1] ** 2)
-        return np.ascontiguousarray(self.w[:-1]), np.ascontiguousarray(G)
 
 
 @lru_cache(maxsize=64)

@@ -16,7 +16,8 @@ The stages and their hooks (the base class's hooks are neutral):
 * ``parallel`` - :meth:`Effect.split_flow`: the pressure drop when part of the flow bypasses the ducts, with
   :meth:`Effect.bypass_conductance`: what the bypass passes at a pressure;
 * ``thermal`` - :meth:`Effect.viscosity_factor`: the viscosity factor after the dissipated power;
-* ``series`` - :meth:`Effect.series_pressure_force`: the pressure force behind an element in series;
+* ``series`` - :meth:`Effect.series_pressure_force`: the pressure force behind an element in series
+  (:meth:`Effect.series_forces`: with the moving head's shear drag);
 * ``constitutive-in-time`` - :meth:`Effect.filter_fluid_force`: the fluid force through a law in time;
 * ``additive`` - :meth:`Effect.additive_forces`: named force components added to the fluid force.
 
@@ -82,9 +83,10 @@ class DuctLaw(NamedTuple):
 
     ``kind`` 0: thin annular slits (``ducts`` of them, length L, mean diameter d, gap h), Herschel-Bulkley with
     yield stress ``tau_y``, consistency ``K`` [Pa s^m] and flow index ``m`` (1: Bingham, K the plastic viscosity);
-    ``kind`` 1: the moving-electrode gap of a mixed damper (plastic viscosity ``K``, m = 1), through the table
-    ``(w, G)`` of :meth:`erdesign.damper.quasi_steady.MixedGapTable.inverse`.  ``bypass`` is 1/C_l [m/(N s)]
-    (0: none)."""
+    ``kind`` 1: the moving-electrode gap of a mixed damper (plastic viscosity ``K``, m = 1; ``d`` = Dp + h, the
+    head's speed is the piston's), whose flow :func:`erdesign.effects.compressibility.moving_wall_gap_flow` gives
+    from the pressure gradient and the head's speed.  ``bypass`` is 1/C_l [m/(N s)] (0: none).  ``w`` and ``G``
+    are no longer read (kept so that existing callers' tuples still build)."""
 
     kind: int
     tau_y: np.ndarray
@@ -233,8 +235,16 @@ class Effect:
         :class:`~erdesign.effects.compressibility.DuctLaw`)."""
         return pressure_force
 
-    def filter_fluid_force(self, t, v, fluid_force, damper: Damper, values: Mapping[str, float]):
-        """Constitutive in time: the fluid force [N] through a law in time, from the quasi-steady one."""
+    def series_forces(self, t, v, pressure_force, shear_force, duct_law, values: Mapping[str, float]):
+        """Series: the pressure force and the moving head's shear drag [N] behind an element in series; by default
+        :meth:`series_pressure_force` with the shear drag unchanged.  An element that changes the gap's flow on a
+        moving-electrode head (a compliant column) changes its drag too, and overrides this."""
+        return self.series_pressure_force(t, v, pressure_force, duct_law, values), shear_force
+
+    def filter_fluid_force(self, t, v, fluid_force, damper: Damper, values: Mapping[str, float], held_force=None):
+        """Constitutive in time: the fluid force [N] through a law in time, from the quasi-steady one
+        (``held_force``: the quasi-steady force at each sample's speed with the previous sample's control, for a
+        control held over each interval; None where it equals ``fluid_force``)."""
         return fluid_force
 
     def additive_forces(self, record: Measurement, sign, damper: Damper,

@@ -23,9 +23,10 @@ runs the stages in this order, calling the hook of each stage on the effects tha
    path, e.g. ``leakage`` (a laminar bypass, vectorised root per sample);
 4. *thermal* (:meth:`~erdesign.effects.base.Effect.viscosity_factor`) - the viscosity follows the dissipated
    power, e.g. ``viscous_heating`` (fixed-point passes over the record, at most :data:`HEATING_PASSES`);
-5. *series* (:meth:`~erdesign.effects.base.Effect.series_pressure_force`) - an element between the piston and
-   the ducts replaces the pressure force, e.g. ``compressibility`` (the fluid column as a spring in series with
-   the nonlinear duct law, implicit integration of the stiff ODE);
+5. *series* (:meth:`~erdesign.effects.base.Effect.series_forces`) - an element between the piston and
+   the ducts replaces the pressure force (and on a moving-electrode head the shear drag of the gap's flow), e.g.
+   ``compressibility`` (the fluid column as a spring in series with the nonlinear duct law, implicit integration
+   of the stiff ODE);
 6. *constitutive in time* (:meth:`~erdesign.effects.base.Effect.filter_fluid_force`) - the fluid force through a
    law in time, e.g. ``preyield_elasticity`` (Makris eq 8 at the damper level, exact-step scan);
 7. *additive* (:meth:`~erdesign.effects.base.Effect.additive_forces`) - named force components, e.g.
@@ -38,12 +39,16 @@ The break-away jump of the rigid-plastic gap flow at a reversal (from minus to p
 the seal friction are evaluated at the derived velocity, whose sign is uncertain within its noise band: the model
 uses the expected sign :math:`\operatorname{erf}(v/\sqrt2\sigma_v)` (:func:`erdesign.effects.base.sign_expectation`),
 with the velocity noise :math:`\sigma_v` estimated from the record (:func:`erdesign.data.noise.velocity_noise`).  On a
-record without noise that is the sharp sign of Makris eq 14; no fixed smoothing floor is left in the baseline
+record without noise that is the sharp sign of Makris eq 14, and at a sample with v = 0 exactly the expected force is
+the mean of the two break-away forces, 0 (the kernels' value there, the break-away force signed by the sign bit, is
+one side of the jump); no fixed smoothing floor is left in the baseline
 (an effect whose :attr:`~erdesign.effects.base.Effect.continuous_at_reversal` is set, e.g. ``leakage``,
 ``compressibility`` or ``preyield_elasticity``, makes the force continuous through the reversal and needs none).
 
 Everything is vectorised over the samples; the linear time-varying recurrences use the exact-step prefix scan of
-:func:`erdesign.effects.base.relaxation_filter`.  The internal states start settled (quasi-steady) at the first
+:func:`erdesign.effects.base.relaxation_filter`.  The record's control is a command held over each sample interval
+(a zero-order hold, as the truth rig drives it): the laws in time (compressibility, pre-yield elasticity) see a step
+of the control at the sample where it happens.  The internal states start settled (quasi-steady) at the first
 sample.  A parallel path re-solves the gap flow with the damper's own gap law
 (:func:`erdesign.damper.quasi_steady.valve_pressure_drop`: thin gap or exact annulus; the mixed head through
 :class:`erdesign.damper.quasi_steady.MixedGapTable`); a flow index other than 1 uses the thin-gap
@@ -208,11 +213,10 @@ class PhysicsDamper(Model):
             K = law.consistency(eta)
             return DuctLaw(0, tau_y, K, law.flow_index, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area,
                            g.ducts, bypass)
-        w, G = self._mixed_table().inverse()
-        # mixed gap: the circumference pi (Dp + h) is folded into the table, and a flow index (if any) is left at
-        # Bingham with the plastic viscosity here (a series element only needs the duct law near its yield point)
-        return DuctLaw(1, tau_y, eta, 1.0, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area, 1, bypass,
-                       w, G)
+        # mixed gap: the flow from the pressure and the head's speed (the piston's), the Couette-Poiseuille law of
+        # the compiled loop; a flow index (if any) is left at Bingham with the plastic viscosity here (a series
+        # element only needs the gap law near its yield point)
+        return DuctLaw(1, tau_y, eta, 1.0, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area, 1, bypass)
 
     def _fluid_forces(self, v, tau_y, eta, law: GapLaw, values):
         """Pressure force and shear drag [N] of the gap flow at piston speed v, with the gap law of the
@@ -243,6 +247,27 @@ class PhysicsDamper(Model):
             return dp * g.piston_area, np.zeros_like(v)
         # the pressure drop is the root (on the break-away jump when creeping); the shear drag at the duct flow
         return dp * g.piston_area, self._mixed(u, v, tau_y, eta, law)[1]
+
+    def _held_fluid_force(self, record, v, fluid, heat, law: GapLaw, vals):
+        """The quasi-steady fluid force at each sample's speed with the previous sample's control, [N] (None when
+        the control never changes): the record's control is a command held over each sample interval (zero-order
+        hold), so a law in time sees a control step at the sample where it happens, not ramped over the interval
+        before it.  Not with an effect of the state stage (a lagged control is continuous) or of the series stage."""
+        E = np.asarray(record.control, dtype=float)
+        if self.stages["state"] or self.stages["series"] or E.size < 2:
+            return None
+        changed = np.flatnonzero(E[1:] != E[:-1]) + 1
+        if not changed.size:
+            return None
+        fl = self.damper.fluid
+        Ep = E[changed - 1]
+        tau_y = vals["yield_stress_factor"] * np.asarray(fl.yield_stress_at(Ep), dtype=float) * np.ones(changed.size)
+        eta = vals["viscosity_factor"] * np.asarray(fl.viscosity_at(Ep), dtype=float) * np.ones(changed.size)
+        eta = eta * np.broadcast_to(heat, v.shape)[changed]
+        P, S = self._fluid_forces(v[changed], tau_y, eta, law, vals)
+        held = np.array(fluid, dtype=float, copy=True)
+        held[changed] = P + S
+        return held
 
     def _valve_state(self, v, tau_y, eta):
         return np.asarray(damper_state(self.damper, v, tau_y, eta).pressure_force, dtype=float)
@@ -280,7 +305,9 @@ class PhysicsDamper(Model):
         # (a bypass makes the piston creep below yield, a compliant column or pre-yield elasticity makes the force
         # continuous: no jump to resolve, and the elastic law must relax onto the sharp rigid-plastic force)
         exact_jump = any(e.continuous_at_reversal for e in self.effects)
-        smooth = 0.0 if exact_jump else sign - np.sign(v)
+        # the gap kernels give the break-away force at v = 0 (signed by the sign bit, +-F_y): the expected force
+        # there is the mean of the two sides, 0, as at any sample whose sign is unknown (copysign, not sign)
+        smooth = 0.0 if exact_jump else sign - np.copysign(1.0, v)
         jump_P = yield_pressure * g.piston_area * smooth
         jump_S = tau_y * g.shear_area * smooth
         # 3. parallel (inside the gap flow) and 4. thermal: fixed-point passes on the viscosity
@@ -299,11 +326,13 @@ class PhysicsDamper(Model):
             bypass = stages["parallel"][0].bypass_conductance(vals) if stages["parallel"] else 0.0
             duct_law = self._duct_law(tau_y, eta, law, bypass)
             for e in stages["series"]:
-                P = e.series_pressure_force(t, v, P, duct_law, vals)
+                P, S = e.series_forces(t, v, P, S, duct_law, vals)
         fluid = P + S
         # 6. constitutive in time
-        for e in stages["constitutive-in-time"]:
-            fluid = e.filter_fluid_force(t, v, fluid, d, vals)
+        if stages["constitutive-in-time"]:
+            held = self._held_fluid_force(record, v, fluid, heat, law, vals)
+            for e in stages["constitutive-in-time"]:
+                fluid = e.filter_fluid_force(t, v, fluid, d, vals, held_force=held)
         # 7. additive: the damper file's seal friction unless an effect replaces it
         parts = {"friction": d.seal_friction * sign, "inertia": np.zeros_like(v), "gas_spring": np.zeros_like(v)}
         for e in stages["additive"]:

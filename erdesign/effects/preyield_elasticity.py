@@ -33,7 +33,7 @@ def elastic_stiffness(G, damper) -> float:
     return G * geometric_damping(damper)
 
 
-def elastic_viscoplastic_force(t, v, quasi_steady_force, stiffness, initial=0.0):
+def elastic_viscoplastic_force(t, v, quasi_steady_force, stiffness, initial=0.0, held_force=None):
     r"""Fluid force of the damper-level Makris law (eq 8 with the exact quasi-steady force as its target).
 
     .. math:: \dot F = \frac{k_G |v|}{|F_{qs}(v)|}\,(F_{qs}(v) - F)
@@ -50,6 +50,10 @@ def elastic_viscoplastic_force(t, v, quasi_steady_force, stiffness, initial=0.0)
         k_G, [N/m].
     initial : float
         Force at t[0], [N]; default 0 (fluid at rest and unstressed, as Makris).
+    held_force : array, optional
+        The quasi-steady force at each sample's speed with the control of the sample before, [N]: the end of each
+        interval's target when the control is held over the interval (a zero-order hold: a command that steps at
+        a sample acts from that sample on).  Default ``quasi_steady_force`` (the target linear between samples).
 
     Returns
     -------
@@ -90,7 +94,8 @@ def elastic_viscoplastic_force(t, v, quasi_steady_force, stiffness, initial=0.0)
     tf = np.append(t[idx] + w * (t[idx + 1] - t[idx]), t[-1])
     vf = np.append(v[idx] + w * (v[idx + 1] - v[idx]), v[-1])
     af = np.abs(Fq)
-    Ff = np.append(af[idx] + w * (af[idx + 1] - af[idx]), af[-1])
+    end = af if held_force is None else np.abs(np.asarray(held_force, dtype=float))
+    Ff = np.append(af[idx] + w * (end[idx + 1] - af[idx]), af[-1])
     target = np.where(vf != 0, np.sign(vf), np.append(np.sign(Fq[idx]), np.sign(Fq[-1]))) * Ff
     with np.errstate(divide="ignore", invalid="ignore"):
         rate = np.where(Ff > 0, stiffness * np.abs(vf) / Ff, 0.0)
@@ -134,7 +139,7 @@ class PreyieldElasticity(Effect):
                     "(measure with the field on)")
         return None
 
-    def filter_fluid_force(self, t, v, fluid_force, damper, values):
+    def filter_fluid_force(self, t, v, fluid_force, damper, values, held_force=None):
         # relaxes onto the quasi-steady force from its value at the first sample (settled)
         return elastic_viscoplastic_force(t, v, fluid_force, elastic_stiffness(values["shear_modulus"], damper),
-                                          initial=fluid_force[0])
+                                          initial=fluid_force[0], held_force=held_force)
