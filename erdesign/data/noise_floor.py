@@ -86,7 +86,7 @@ from ..errors import ErdesignError
 from .measurement import Measurement, _noise_level, derivatives
 from .noise import _ACCELERATION_CACHE, EDGE_FRACTION, velocity_noise
 
-__all__ = ["NoiseFloor", "estimate_noise_floor", "motion_noise", "quantisation_step", "displacement_noise_level",
+__all__ = ["still_samples", "NoiseFloor", "estimate_noise_floor", "motion_noise", "quantisation_step", "displacement_noise_level",
            "force_noise_from_spectrum", "force_noise_from_cycles", "force_noise_from_still_segment", "METHODS",
            "MIN_STILL", "FLAT", "PLATEAU_SPAN", "MAX_SLOPE", "ROLL_OFF", "HARMONIC_MARGIN"]
 
@@ -286,6 +286,65 @@ def _robust_sigma(d: np.ndarray) -> float:
 
 # ----------------------------------------------------------------------------------------------- still segment
 
+def _still(record: Measurement, one_sided: bool = False) -> tuple[np.ndarray, float] | None:
+    """(True where the piston is at rest, the displacement tolerance [m]) or None for a record too short to tell.
+    The window is centred on the sample, or with ``one_sided`` starts or ends at it."""
+    from scipy.ndimage import maximum_filter1d, minimum_filter1d
+
+    x = np.asarray(record.displacement, dtype=float)
+    n = x.size
+    fs = record.sample_rate
+    w = int(min(max(64, round(0.2 * fs)), n // 4))
+    if w < 16:
+        return None
+    span = float(np.ptp(x))
+    sx = displacement_noise_level(x)
+    tol = max(8.0 * sx, 2.0 * quantisation_step(x), 1e-6 * span)
+
+    def steady(y, limit):
+        # the window of w samples that starts at i, and the one that ends at i: a sample right after the motion
+        # stops (or right before it starts) is at rest on one side
+        c = (maximum_filter1d(y, w) - minimum_filter1d(y, w)) <= limit       # centred on i
+        h = w // 2
+        ahead, behind = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
+        ahead[:n - h] = c[h:]
+        behind[w - 1 - h:] = c[:n - (w - 1 - h)]
+        return ahead, behind
+
+    if not one_sided:
+        still = (maximum_filter1d(x, w) - minimum_filter1d(x, w)) <= tol
+        u = np.asarray(record.control, dtype=float)
+        if np.ptp(u) > 0:
+            still &= (maximum_filter1d(u, w) - minimum_filter1d(u, w)) <= 1e-6 * float(np.max(np.abs(u)))
+        return still, tol
+    ahead, behind = steady(x, tol)
+    u = np.asarray(record.control, dtype=float)
+    if np.ptp(u) > 0:
+        ua, ub = steady(u, 1e-6 * float(np.max(np.abs(u))))
+        ahead, behind = ahead & ua, behind & ub
+    return ahead | behind, tol
+
+
+def still_samples(record: Measurement) -> np.ndarray:
+    """True on the samples where the piston is at rest: over a window of ``max(64, 0.2 s)`` samples that starts or
+    ends at the sample, the displacement stays within eight times its noise (or two digitisation steps) and the
+    control does not change.
+
+    There the sign of the velocity is unknown whatever the derived velocity says (a derivative filter rings after the
+    motion stops), so a yield-stress damper's force is anywhere within its break-away range: diagnosis does not judge
+    models there (:mod:`erdesign.diagnosis.records`).
+
+    Examples
+    --------
+    >>> t = np.arange(3000) / 1000.0; x = np.where(t < 1, 0.0, 0.005 * np.sin(2 * np.pi * (t - 1)))
+    >>> still = still_samples(Measurement.from_arrays(t, x))
+    >>> bool(still[:850].all()), bool(still[1200:].any())
+    (True, False)
+    """
+    found = _still(record, one_sided=True)
+    return np.zeros(len(record), dtype=bool) if found is None else found[0]
+
+
 def force_noise_from_still_segment(record: Measurement, *, min_samples: int = MIN_STILL) -> tuple[float, str] | None:
     """The force's spread where the piston is at rest, [N], and a note; None without such a stretch.
 
@@ -305,24 +364,16 @@ def force_noise_from_still_segment(record: Measurement, *, min_samples: int = MI
     >>> bool(2.7 < s < 3.3)
     True
     """
-    from scipy.ndimage import maximum_filter1d, minimum_filter1d
-
     F = record.require_force()
     x = np.asarray(record.displacement, dtype=float)
     n = x.size
     if n < min_samples:
         return None
-    fs = record.sample_rate
-    w = int(min(max(64, round(0.2 * fs)), n // 4))
-    if w < 16:
+    found = _still(record)
+    if found is None:
         return None
+    still, tol = found
     span = float(np.ptp(x))
-    sx = displacement_noise_level(x)
-    tol = max(8.0 * sx, 2.0 * quantisation_step(x), 1e-6 * span)
-    still = (maximum_filter1d(x, w) - minimum_filter1d(x, w)) <= tol
-    u = np.asarray(record.control, dtype=float)
-    if np.ptp(u) > 0:
-        still &= (maximum_filter1d(u, w) - minimum_filter1d(u, w)) <= 1e-6 * float(np.max(np.abs(u)))
     edges = np.flatnonzero(np.diff(np.concatenate([[0], still.astype(np.int8), [0]])))
     # a stretch held at the record's largest or smallest displacement may be a saturated transducer while the
     # piston moves on: not taken

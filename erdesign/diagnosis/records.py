@@ -13,8 +13,8 @@ only, so that ``erdesign fit`` and ``erdesign diagnose`` state one ESR for one m
   transient: every sample within :data:`AFTER_FIELD_CHANGE` of a change of the field, and samples near reversals at
   up to :data:`REVERSAL_RATE_FACTOR` times the thinned rate, are kept - so a field lag of a few milliseconds on a
   long 1 kHz record is still judged.  Velocities and accelerations are derived on the full record first.
-* **Judged samples** are those where the sign of the velocity is known (:func:`erdesign.data.noise.sign_known`)
-  and that no data finding excludes (a clipped force, a saturated displacement:
+* **Judged samples** are those where the sign of the velocity is known (:func:`erdesign.data.noise.sign_known`;
+  not while the piston rests, :func:`erdesign.data.noise_floor.still_samples`) and that no data finding excludes (a clipped force, a saturated displacement:
   :mod:`erdesign.data.findings`).
 """
 
@@ -28,6 +28,7 @@ import numpy as np
 
 from ..data.measurement import Measurement
 from ..data.noise import sign_known, velocity_noise
+from ..data.noise_floor import still_samples
 
 __all__ = ["Prepared", "prepare", "join_records", "analysis_samples", "MAX_SAMPLES", "AFTER_FIELD_CHANGE", "JOIN_PAUSE",
            "REVERSAL_RATE_FACTOR", "FIELD_CHANGE"]
@@ -166,7 +167,9 @@ def prepare(records: Sequence[Measurement], excluded: Sequence[np.ndarray | None
     thinned, judged, counts, n_full, kept = [], [], [], [], []
     for r, ex in zip(records, excluded):
         sigma_v = velocity_noise(r)
-        known = sign_known(r, sigma_v)
+        # the sign of the velocity is unknown near reversals and wherever the piston rests (a derivative filter rings
+        # after the motion stops)
+        known = sign_known(r, sigma_v) & ~still_samples(r)
         if ex is not None:
             known = known & ~ex
         keep = analysis_samples(r, per_record)
