@@ -319,9 +319,12 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
             best_share = max((c.explained for c in ranking if c.evaluated), default=0.0)
             if best_share < PAIR_SEARCH_BELOW:
                 named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=mask, held=held)
-        if named is None and not well_above:
-            # never "nothing missing" while a plausible effect clearly improves the held-out data
-            named = _held_out_winner(base_model, work, ranking, mask, held)
+        if named is None:
+            # never "nothing missing" while a plausible effect clearly improves the held-out data; far above the
+            # floor, an effect that clearly improves the held-out data is a step of the loop even when more is
+            # missing (the residual of the model with it is judged again, one-sidedness included)
+            named = _held_out_winner(base_model, work, ranking, mask, held,
+                                     partial=well_above)
         one_sided = None if named is None else _one_sided(named, work, mask, floor)
         if one_sided is not None:
             named.significant = False
@@ -340,7 +343,8 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
                         f"{'records' if len(records) > 1 else 'cycles'}")
             reason = (f"adding {' and '.join(named.effects)} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} "
                       f"(noise floor {floor:.3g}), {100 * max(named.explained, 0):.0f} % of the excess, with "
-                      f"plausible values{held_txt}")
+                      f"plausible values{held_txt}"
+                      + ("; more is missing: diagnose again with it" if named.explained < EXPLAINS else ""))
     if verdict == "missing_effect" or suspicious or one_sided:
         pass
     elif at_floor:

@@ -21,7 +21,7 @@ from .candidates import (
 )
 
 __all__ = ["VERDICTS", "AT_FLOOR", "WELL_ABOVE", "ABSOLUTE_SLACK", "EXPLAINS", "PAIR_SEARCH_BELOW", "STRICT_BIC",
-           "STRICT_HELD_OUT", "PAIR_POOL", "HELD_OUT_CLEAR", "ONE_SIDED", "ONE_SIDED_SHARE", "named_effects"]
+           "STRICT_HELD_OUT", "PAIR_POOL", "HELD_OUT_CLEAR", "PARTIAL_SHARE", "PARTIAL_TIE", "ONE_SIDED", "ONE_SIDED_SHARE", "named_effects"]
 
 
 VERDICTS = ("missing_effect", "nothing_missing", "unexplained")
@@ -59,6 +59,10 @@ STRICT_HELD_OUT = 0.3
 PAIR_POOL = 4
 
 
+#: Far above the floor, a candidate named as one step of the loop must remove at least this share of the excess.
+PARTIAL_SHARE = 0.2
+#: ... and no other plausible candidate may explain within this share of the excess as much as it does.
+PARTIAL_TIE = 0.05
 #: A plausible candidate that removes at least this share of the held-out error is never left unnamed.
 HELD_OUT_CLEAR = 0.2
 
@@ -68,21 +72,34 @@ def named_effects(missing: str | None, pair: tuple[str, ...]) -> tuple[str, ...]
     return tuple(pair) or ((missing,) if missing else ())
 
 
-def _held_out_winner(base_model, work, ranking, mask, held) -> Candidate | None:
+def _held_out_winner(base_model, work, ranking, mask, held, partial: bool = False) -> Candidate | None:
     """The plausible candidate that most lowers the error on held-out data, when it removes at least
-    :data:`HELD_OUT_CLEAR` of it (else None): a verdict ``nothing_missing`` would hide it."""
+    :data:`HELD_OUT_CLEAR` of it (else None): a verdict ``nothing_missing`` would hide it.  With ``partial`` (the
+    baseline far above its floor, no effect explaining most of the excess) it must also remove
+    :data:`PARTIAL_SHARE` of the excess with strong evidence (:data:`STRICT_BIC`) and no plausible rival within
+    :data:`PARTIAL_TIE`: a step of the loop, with more still missing."""
     best = None
-    for c in [c for c in ranking if c.evaluated and not c.blocked][:PAIR_POOL]:
+    pool = [c for c in ranking if c.evaluated and not c.blocked][:PAIR_POOL]
+    plausible = [c for c in pool if not c.implausible and not c.at_bounds]
+    for c in pool:
         if c.implausible or c.at_bounds or not (c.delta_bic < -BIC_THRESHOLD and c.gain > MIN_GAIN):
             continue
+        if partial:
+            # a step of the loop only when the evidence singles it out: strong, and no other plausible effect
+            # explains about as much (two mechanisms that fit the same error equally point at neither)
+            rival = any(o is not c and abs(o.explained - c.explained) < PARTIAL_TIE for o in plausible)
+            if c.explained < PARTIAL_SHARE or c.delta_bic >= -STRICT_BIC or rival:
+                continue
         if c.held_out_gain is None:
             c.held_out_gain = _held_out_gain(base_model, c, work, mask, held)
         if c.held_out_gain >= HELD_OUT_CLEAR and (best is None or c.held_out_gain > best.held_out_gain):
             best = c
     if best is not None:
         best.significant = True
-        best.note = (f"named on held-out data: it removes {100 * best.held_out_gain:.0f} % of the error there "
-                     "although the calibrated model looked close to the noise floor")
+        best.note = (f"named on held-out data: it removes {100 * best.held_out_gain:.0f} % of the error there"
+                     + (f" and {100 * best.explained:.0f} % of the excess over the floor; more is missing: diagnose "
+                        "again with it" if partial else
+                        " although the calibrated model looked close to the noise floor"))
     return best
 
 
