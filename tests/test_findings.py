@@ -110,6 +110,20 @@ def test_the_issue_record_clipped_is_clipped_and_nothing_else(level):
     assert f.kind == "clipped" and np.array_equal(f.excluded, m.force >= cap)
 
 
+@pytest.mark.parametrize("frequency,rate", [(5.0, 500.0), (10.0, 1000.0)])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_reversals_on_samples_are_not_a_channel_skew(frequency, rate, seed):
+    """A sine whose frequency divides the sampling rate puts every reversal on a sample, and the force of a clean
+    MR valve jumps just after it - half a sample "late" at every reversal with no delay at all; this was called a
+    1 ms skew on every seed (found with issue 23's clean programmes)."""
+    from erdesign.simulation.rig import sine
+    d = load_example("mr_valve")
+    truth = TruthDamper(d, {}, viscosity_factor=1.1, yield_stress_factor=0.9)
+    motion = sine(0.01 / frequency * 2, frequency, d.fluid.reference_field, cycles=8, rate=rate)
+    m = simulate_truth(truth, motion, force_noise=0.01, seed=seed).measured
+    assert _kinds(find_data_problems(m)) == []
+
+
 @pytest.mark.parametrize("name", [n for n in (f"compressibility-{s}-{d}" for s in ("moderate", "large")
                                               for d in DAMPERS)])
 def test_a_compressible_column_is_not_called_channel_skew(name):

@@ -413,7 +413,7 @@ def _smoothed(record: Measurement, opt: _Options) -> list[Finding]:
 
 def _reversal_jumps(record: Measurement):
     """Each clear force jump at a velocity reversal: (delay of the jump after the velocity's zero [s], jump [N],
-    sharp: bool).
+    sharp: bool, whether the two samples the force jumps between both lie on one side of the zero, strictly).
 
     Around each reversal the force is fitted by a line plus a step, ``a + b (t - t0) + J/2 sgn(t - t0 - d)``, the
     step between any two samples within the window; ``d`` is the mid-time of the best pair.  The jump is sharp when
@@ -452,7 +452,9 @@ def _reversal_jumps(record: Measurement):
         near = r[max(0, split - 3):split + 3]
         sharp = float(np.sqrt(np.mean(near**2))) < 3 * sigma
         d = 0.5 * (tt[split - 1] + tt[split]) * dt
-        out.append((d, J, sharp))
+        # a jump between samples that bracket the zero (or touch it) is no evidence of a delay
+        apart = bool(tt[split - 1] > SKEW_TOUCH or tt[split] < -SKEW_TOUCH)
+        out.append((d, J, sharp, apart))
     return out
 
 
@@ -480,6 +482,12 @@ def _best_step(tt: np.ndarray, ff: np.ndarray):
 
 #: Force jumps at reversals, in force-noise levels, from which their sharpness is judged for a skew.
 SKEW_JUMP = 20.0
+#: A velocity zero within this many samples of a sample counts as on it (for :data:`SKEW_APART`).
+SKEW_TOUCH = 0.05
+#: Share of the sharp jumps that must fall between two samples both after (or both before) the velocity's zero:
+#: where a rig's frequency divides the sampling rate every reversal falls on a sample and the force jumps just
+#: after it, half a sample "late" with no delay at all (a clean stepped sine at 5 Hz and 500 Hz).
+SKEW_APART = 0.4
 
 
 def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
@@ -495,12 +503,15 @@ def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
     if sharp.sum() < 4 or sharp.mean() < 0.6:
         return []           # the force turns over gradually at reversals: a physical lag, not judged here
     d = np.array([j[0] for j in jumps])[sharp]
+    apart = np.array([j[3] for j in jumps])[sharp]
     dt = record.duration / (len(record) - 1)
     mean, spread = float(np.mean(d)), float(np.std(d))
     se = spread / math.sqrt(d.size)
     # a constant delay seen through samples spreads by the sampling alone (uniform over a step: 0.29 dt)
     if abs(mean) < 0.4 * dt or abs(mean) < 4 * se or spread > 0.5 * dt:
         return []
+    if np.mean(apart & (np.sign(d) == np.sign(mean))) < SKEW_APART:
+        return []           # the jumps touch the velocity's zero: reversals on samples, not a delay
     lag = "lags" if mean > 0 else "leads"
     msg = (f"the force {lag} the displacement by {abs(mean) * 1e3:.3g} ms ({abs(mean) / dt:.2g} samples): at "
            f"{d.size} reversals it jumps as sharply as a sample but the same time after the velocity's zero "
