@@ -16,9 +16,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from erdesign.damper.files import load_example
 from erdesign.data.findings import (FINDING_KINDS, LAG_EFFECTS, Finding, excluded_mask, find_data_problems,
                                     find_time_problems)
 from erdesign.data.measurement import Measurement, MeasurementError
+from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 from erdesign.simulation.truthrig import artefacts as A
 from erdesign.simulation.truthrig.cases import DAMPERS, EXCITATIONS, benchmark_cases
 
@@ -58,6 +60,68 @@ def test_clean_truth_records_raise_no_finding(damper, excitation):
     m = _clean_case(damper, excitation).make().measured
     assert _kinds(find_data_problems(m)) == []
     assert _kinds(find_data_problems(m, expected_mean_force=0.0)) == []
+
+
+def _lab_programmes(damper):
+    """Programmes a lab runs (issue 23): stepped sines of whole cycles over frequencies and field levels, field
+    steps, sine sweeps and DoE programmes."""
+    from erdesign.simulation.rig import field_steps, stepped_sine
+    from erdesign.simulation.truthrig.motions import sine_programme, swept_sine
+    ref = damper.fluid.reference_field
+    return {
+        "stepped_1_2Hz_3cycles": stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=500),
+        "stepped_1_2Hz_3cycles_1kHz": stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=1000),
+        "stepped_1_2Hz_3cycles_2kHz": stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=2000),
+        "stepped_4_segments": stepped_sine([0.01], [0.5, 1.0, 2.0, 3.0], [ref, 0.5 * ref, 0.0, ref], cycles=4,
+                                           rate=500),
+        "stepped_1_2_4_8Hz_fields": stepped_sine([0.008, 0.004, 0.002, 0.001], [1.0, 2.0, 4.0, 8.0],
+                                                 [ref, 0.3 * ref], cycles=3, rate=2000),
+        "field_steps": field_steps(0.01, 1.0, ref, cycles=4, step_period=0.5, rate=1000),
+        "sine_sweep": swept_sine(0.2, 0.5, 5.0, duration=20.0, rate=500),
+        "doe_programme": sine_programme([0.01, 0.005, 0.003, 0.01], [1.0, 2.0, 0.5, 2.0], duration=12.0, rate=500),
+    }
+
+
+@pytest.mark.parametrize("damper", ["mr_valve", "kamath_wereley", "makris"])
+@pytest.mark.parametrize("programme", list(_lab_programmes(load_example("mr_valve"))))
+def test_clean_lab_programmes_are_not_smoothed(damper, programme):
+    """Issue 23: a clean stepped sine (1 Hz then 2 Hz, 3 cycles each) was called smoothed over 125 samples - whole
+    cycles of a force with odd harmonics only leave no power at the multiples of 4 Hz.  No smoothing on any of these
+    programmes at 1 % force noise, nor when the force is clipped at 95 % or 80 % of its peak (then: clipped only)."""
+    d = load_example(damper)
+    truth = TruthDamper(d, {}, viscosity_factor=1.1, yield_stress_factor=0.9)
+    m = simulate_truth(truth, _lab_programmes(d)[programme], force_noise=0.01, seed=4).measured
+    assert "smoothed" not in _kinds(find_data_problems(m))
+    for level in (0.95, 0.8):
+        clipped = m.with_force(np.minimum(m.force, level * m.force.max()))
+        assert "smoothed" not in _kinds(find_data_problems(clipped))
+
+
+@pytest.mark.parametrize("level", [0.95, 0.8])
+def test_the_issue_record_clipped_is_clipped_and_nothing_else(level):
+    """The issue's record (MR valve, 1 Hz then 2 Hz, 3 cycles each, 500 Hz, 1 % noise) clipped at 95 % and 80 % of
+    its peak force: one finding, clipped, excluding exactly the clipped samples."""
+    d = load_example("mr_valve")
+    truth = TruthDamper(d, {}, viscosity_factor=1.1, yield_stress_factor=0.9)
+    m = simulate_truth(truth, _lab_programmes(d)["stepped_1_2Hz_3cycles"], force_noise=0.01, seed=4).measured
+    assert find_data_problems(m) == []
+    cap = level * m.force.max()
+    (f,) = find_data_problems(m.with_force(np.minimum(m.force, cap)))
+    assert f.kind == "clipped" and np.array_equal(f.excluded, m.force >= cap)
+
+
+@pytest.mark.parametrize("frequency,rate", [(5.0, 500.0), (10.0, 1000.0)])
+@pytest.mark.parametrize("seed", [0, 1])
+def test_reversals_on_samples_are_not_a_channel_skew(frequency, rate, seed):
+    """A sine whose frequency divides the sampling rate puts every reversal on a sample, and the force of a clean
+    MR valve jumps just after it - half a sample "late" at every reversal with no delay at all; this was called a
+    1 ms skew on every seed (found with issue 23's clean programmes)."""
+    from erdesign.simulation.rig import sine
+    d = load_example("mr_valve")
+    truth = TruthDamper(d, {}, viscosity_factor=1.1, yield_stress_factor=0.9)
+    motion = sine(0.01 / frequency * 2, frequency, d.fluid.reference_field, cycles=8, rate=rate)
+    m = simulate_truth(truth, motion, force_noise=0.01, seed=seed).measured
+    assert _kinds(find_data_problems(m)) == []
 
 
 @pytest.mark.parametrize("name", [n for n in (f"compressibility-{s}-{d}" for s in ("moderate", "large")

@@ -288,25 +288,17 @@ SMOOTHING_DEPTH = -1.5
 MAX_WINDOW = 4000
 
 
-def _boxcar_window(y: np.ndarray) -> tuple[int, float] | None:
-    """The length N [samples] of a moving average ``y`` was smoothed by, and the depth of its nulls (log10 of the
-    power at the nulls over the power half-way between them), or None.
-
-    A moving average over N samples (N >= 4: at least two nulls) multiplies the spectrum by
-    :math:`|\\sin(\\pi f N/f_s) / (N \\sin(\\pi f/f_s))|^2`, zero at every :math:`k f_s / N`.  For each N up
-    to a twelfth of the record (and :data:`MAX_WINDOW`) the power in narrow bands at the first 40 nulls is compared
-    with the power a quarter of the spacing away on each side; bins of lines of the signal (more than 30 times the
-    local median) are left out of both, so that a periodic signal whose harmonics fall between candidate nulls
-    cannot mimic a comb.  The window with the deepest mean null (log10, each null clipped to -4..1) wins, or the
-    longest multiple of it about as deep (a window has the nulls of its divisors too)."""
+def _null_depths(y: np.ndarray, N: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each window length in ``N`` [samples]: the mean depth of the nulls a moving average over it would carve in
+    the spectrum of ``y`` (log10 of the power at the nulls over the power between them; each null clipped to -4..1),
+    and whether it can be judged (at least two nulls and four bins, over a floor above round-off); see
+    :func:`_boxcar_window`."""
     n = y.size
-    if n < 64:
-        return None
     z = y - np.polyval(np.polyfit(np.arange(n), y, 1), np.arange(n))
     P = np.abs(np.fft.rfft(z * np.hanning(n))) ** 2
     m = P.size
     if not np.any(P > 0):
-        return None
+        return np.full(N.size, np.inf), np.zeros(N.size, dtype=bool)
     from scipy.ndimage import median_filter
     local = median_filter(P, size=41, mode="nearest")
     ok = P <= 30 * local + 1e-300
@@ -320,12 +312,13 @@ def _boxcar_window(y: np.ndarray) -> tuple[int, float] | None:
         cnt = cc[hi] - cc[lo]
         return np.where(cnt > 0, (cs[hi] - cs[lo]) / np.maximum(cnt, 1), np.nan), cnt
 
-    N = np.arange(2, min(n // 12, MAX_WINDOW) + 1)
-    if N.size == 0:
-        return None
     kmax = np.minimum(N // 2, 40)
     rows = np.repeat(np.arange(N.size), kmax)
-    k = np.arange(rows.size) - np.repeat(np.cumsum(kmax) - kmax, kmax) + 1
+    j = np.arange(rows.size) - np.repeat(np.cumsum(kmax) - kmax, kmax)       # 0 .. kmax - 1
+    # 40 nulls spread from the first to the last below the Nyquist frequency: a filter zeroes them all, the noise
+    # included, where the valleys between a signal's harmonics fill with noise at high frequencies
+    last = N[rows] // 2
+    k = np.where(last <= 40, j + 1, 1 + np.round(j * (last - 1) / 39.0).astype(int))
     spacing = n / N[rows]                              # bins between nulls
     centre = k * spacing
     half = np.maximum(0.5, 0.02 * spacing)
@@ -342,7 +335,48 @@ def _boxcar_window(y: np.ndarray) -> tuple[int, float] | None:
     # channel has no continuum to carve nulls in)
     floor = 1e-20 * float(P.max())
     loud = np.bincount(rows, weights=np.where(good, shoulder, 0.0), minlength=N.size) / np.maximum(used, 1)
-    depth[(used < 2) | (bins < 4) | (loud <= floor)] = np.inf
+    judged = (used >= 2) & (bins >= 4) & (loud > floor)
+    return np.where(judged, depth, np.inf), judged
+
+
+#: The stretches of a record (start and end, fractions of its length) besides the whole in which a moving average's
+#: nulls must appear too: overlapping, of unequal length and ending at no simple fraction of the record, so that no
+#: programme of whole cycles fits all of them.
+SMOOTHING_PIECES = ((0.0, 0.63), (0.29, 1.0))
+
+
+def _boxcar_window(y: np.ndarray) -> tuple[int, float] | None:
+    """The length N [samples] of a moving average ``y`` was smoothed by, and the depth of its nulls (log10 of the
+    power at the nulls over the power half-way between them), or None.
+
+    A moving average over N samples (N >= 4: at least two nulls) multiplies the spectrum by
+    :math:`|\\sin(\\pi f N/f_s) / (N \\sin(\\pi f/f_s))|^2`, zero at every :math:`k f_s / N`.  For each N up
+    to a twelfth of the shortest stretch judged (and :data:`MAX_WINDOW`) the power in narrow bands at 40 of its
+    nulls (all when there are fewer, else spread evenly from the first to the Nyquist frequency) is compared with the power a quarter of the spacing away on each side; bins of lines of the signal (more
+    than 30 times the local median) are left out of both, so that a periodic signal whose harmonics fall between
+    candidate nulls cannot mimic a comb.
+
+    A filter carves its nulls into every stretch of the record, but a signal can have spectral zeros of its own:
+    a programme whose segments are whole numbers of cycles of a force with odd harmonics only (a stepped sine of 3
+    cycles at 1 Hz and 3 at 2 Hz) has none of its power at the multiples of 4 Hz over the whole record, a comb as
+    deep as a moving average's over 1/4 s, and deep valleys there in any stretch where its harmonics stand far
+    above the noise.  The depth is therefore taken as the shallowest over the whole record and the stretches
+    :data:`SMOOTHING_PIECES`, which cut those segments at arbitrary points, and over nulls up to the Nyquist
+    frequency, where a filter's nulls stay empty and the noise fills a signal's valleys (issue 23: a clean stepped
+    sine was called smoothed over 125 samples).  The window with the
+    deepest mean null wins, or the longest multiple of it about as deep (a window has the nulls of its divisors
+    too)."""
+    n = y.size
+    if n < 64:
+        return None
+    pieces = [(0, n)] + [(int(a * n), int(b * n)) for a, b in SMOOTHING_PIECES]
+    shortest = min(b - a for a, b in pieces)
+    N = np.arange(2, min(shortest // 12, MAX_WINDOW) + 1)
+    if N.size == 0:
+        return None
+    depth = np.full(N.size, -np.inf)
+    for a, b in pieces:
+        depth = np.maximum(depth, _null_depths(y[a:b], N)[0])
     i = int(np.argmin(depth))
     if not np.isfinite(depth[i]):
         return None
@@ -379,7 +413,7 @@ def _smoothed(record: Measurement, opt: _Options) -> list[Finding]:
 
 def _reversal_jumps(record: Measurement):
     """Each clear force jump at a velocity reversal: (delay of the jump after the velocity's zero [s], jump [N],
-    sharp: bool).
+    sharp: bool, whether the two samples the force jumps between both lie on one side of the zero, strictly).
 
     Around each reversal the force is fitted by a line plus a step, ``a + b (t - t0) + J/2 sgn(t - t0 - d)``, the
     step between any two samples within the window; ``d`` is the mid-time of the best pair.  The jump is sharp when
@@ -418,7 +452,9 @@ def _reversal_jumps(record: Measurement):
         near = r[max(0, split - 3):split + 3]
         sharp = float(np.sqrt(np.mean(near**2))) < 3 * sigma
         d = 0.5 * (tt[split - 1] + tt[split]) * dt
-        out.append((d, J, sharp))
+        # a jump between samples that bracket the zero (or touch it) is no evidence of a delay
+        apart = bool(tt[split - 1] > SKEW_TOUCH or tt[split] < -SKEW_TOUCH)
+        out.append((d, J, sharp, apart))
     return out
 
 
@@ -446,6 +482,12 @@ def _best_step(tt: np.ndarray, ff: np.ndarray):
 
 #: Force jumps at reversals, in force-noise levels, from which their sharpness is judged for a skew.
 SKEW_JUMP = 20.0
+#: A velocity zero within this many samples of a sample counts as on it (for :data:`SKEW_APART`).
+SKEW_TOUCH = 0.05
+#: Share of the sharp jumps that must fall between two samples both after (or both before) the velocity's zero:
+#: where a rig's frequency divides the sampling rate every reversal falls on a sample and the force jumps just
+#: after it, half a sample "late" with no delay at all (a clean stepped sine at 5 Hz and 500 Hz).
+SKEW_APART = 0.4
 
 
 def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
@@ -461,12 +503,15 @@ def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
     if sharp.sum() < 4 or sharp.mean() < 0.6:
         return []           # the force turns over gradually at reversals: a physical lag, not judged here
     d = np.array([j[0] for j in jumps])[sharp]
+    apart = np.array([j[3] for j in jumps])[sharp]
     dt = record.duration / (len(record) - 1)
     mean, spread = float(np.mean(d)), float(np.std(d))
     se = spread / math.sqrt(d.size)
     # a constant delay seen through samples spreads by the sampling alone (uniform over a step: 0.29 dt)
     if abs(mean) < 0.4 * dt or abs(mean) < 4 * se or spread > 0.5 * dt:
         return []
+    if np.mean(apart & (np.sign(d) == np.sign(mean))) < SKEW_APART:
+        return []           # the jumps touch the velocity's zero: reversals on samples, not a delay
     lag = "lags" if mean > 0 else "leads"
     msg = (f"the force {lag} the displacement by {abs(mean) * 1e3:.3g} ms ({abs(mean) / dt:.2g} samples): at "
            f"{d.size} reversals it jumps as sharply as a sample but the same time after the velocity's zero "

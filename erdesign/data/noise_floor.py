@@ -10,7 +10,10 @@ alone (:func:`estimate_noise_floor`), as a :class:`NoiseFloor`:
                                         + (\partial F/\partial a)_i^2\,\sigma_a^2\bigr]}
                        {\sum_{i\in k}(F_i-\bar F_k)^2}}_{\texttt{motion\_esr}}
 
-over the samples :math:`k` of a mask (those a diagnosis judges).  :math:`\sigma_F` is the load cell's noise as it
+over the samples :math:`k` of a mask (those a diagnosis judges).  The noise is read on those samples only (a
+clipped sample repeats its neighbour's value exactly and would pass for a noise-free one): a cycle pair counts when
+both its samples are in the mask, a still segment is made of masked samples, and the spectrum is taken on the
+longest unbroken stretch of them (the note says which).  :math:`\sigma_F` is the load cell's noise as it
 is in the record (its variance is what an exact model leaves); :math:`\sigma_v`, :math:`\sigma_a` the noise of the
 velocity and acceleration derived from the displacement (:func:`motion_noise`), propagated to the force through the
 caller's model (the sensitivities; this package imports no model).  The two noises are independent (the load cell
@@ -345,7 +348,8 @@ def still_samples(record: Measurement) -> np.ndarray:
     return np.zeros(len(record), dtype=bool) if found is None else found[0]
 
 
-def force_noise_from_still_segment(record: Measurement, *, min_samples: int = MIN_STILL) -> tuple[float, str] | None:
+def force_noise_from_still_segment(record: Measurement, mask=None, *,
+                                   min_samples: int = MIN_STILL) -> tuple[float, str] | None:
     """The force's spread where the piston is at rest, [N], and a note; None without such a stretch.
 
     A sample is at rest when, over a centred window of ``max(64, 0.2 s)`` samples, the displacement stays within
@@ -354,6 +358,7 @@ def force_noise_from_still_segment(record: Measurement, *, min_samples: int = MI
     samples are pooled when they hold ``min_samples`` together; each has its linear trend removed (a force
     relaxing after the motion stopped), then the RMS is taken with 5-sigma outliers clipped.  The spread of a
     channel that flickers between two digitisation levels is its RMS, not a median deviation (which may be 0).
+    Only samples in ``mask`` (default all) count: a clipped sample is not at rest.
 
     Examples
     --------
@@ -374,6 +379,7 @@ def force_noise_from_still_segment(record: Measurement, *, min_samples: int = MI
         return None
     still, tol = found
     span = float(np.ptp(x))
+    still = still & _mask(mask, n)
     edges = np.flatnonzero(np.diff(np.concatenate([[0], still.astype(np.int8), [0]])))
     # a stretch held at the record's largest or smallest displacement may be a saturated transducer while the
     # piston moves on: not taken
@@ -411,14 +417,24 @@ def _lagged_difference(y: np.ndarray, lag: float) -> tuple[np.ndarray, float]:
     return shifted - y[:shifted.size], 1.0 + (1 - alpha) ** 2 + alpha ** 2
 
 
-def force_noise_from_cycles(record: Measurement) -> tuple[float, str] | None:
+def _lagged_inside(k: np.ndarray, lag: float) -> np.ndarray:
+    """Whether every sample a lagged difference (:func:`_lagged_difference`) takes is in ``k``: i and i + lag (both
+    neighbours of i + lag when it falls between samples)."""
+    m = int(math.floor(lag))
+    if lag - m < 1e-6:
+        return k[m:] & k[:k.size - m]
+    return k[m:-1] & k[m + 1:] & k[:k.size - m - 1]
+
+
+def force_noise_from_cycles(record: Measurement, mask=None) -> tuple[float, str] | None:
     r"""Force noise from the differences between adjacent cycles of a periodic programme, [N], and a note; None
     when the record is not periodic.
 
     The period is the dominant one of the displacement, refined by least squares on the lag of the adjacent-cycle
     difference.  Compared are the samples where the displacement repeats within its noise (or a digitisation step)
-    and the control repeats; at least 150 such pairs are needed, and half of all pairs one period apart.  Needs a
-    uniform sampling.
+    and the control repeats; at least 150 such pairs are needed, and half of all pairs one period apart.  A pair
+    counts only when every sample it takes (two, three with a fractional period) is in ``mask`` (default all): two
+    clipped samples at the same level would otherwise pass for a noise-free pair.  Needs a uniform sampling.
 
     Examples
     --------
@@ -477,7 +493,9 @@ def force_noise_from_cycles(record: Measurement) -> tuple[float, str] | None:
     if np.ptp(u) > 0:
         du, _ = _lagged_difference(u, lag)
         same &= np.abs(du) <= 1e-3 * float(np.max(np.abs(u)))
-    if same.sum() < max(150, 0.5 * dx.size):
+    kept = _lagged_inside(_mask(mask, n), lag)
+    same &= kept
+    if same.sum() < max(150, 0.5 * kept.sum()):
         return None
     dF, factor = _lagged_difference(F, lag)
     s = _robust_sigma(dF[same]) / math.sqrt(factor)
@@ -672,7 +690,8 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
     record : Measurement
         The full-rate record, with a force (thinning before this hides the noise under the signal).
     mask : bool array, optional
-        The samples the ESRs are taken on (those a diagnosis judges); default all.
+        The samples the ESRs are taken on (those a diagnosis judges) and the only ones the noise is read on (clipped
+        samples left out); default all.
     force_noise : pint.Quantity, str or float, optional
         The load cell's noise when known (``"5 N"``; a plain number is in newtons): method ``"given"``.
     sensitivity : pair of arrays, optional
@@ -709,16 +728,25 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
     if force_noise is not None:
         sigma, method = _given_force_noise(force_noise), "given"
     else:
-        found = force_noise_from_still_segment(record)
+        found = force_noise_from_still_segment(record, k)
         method = "still segment"
         if found is None:
-            found, method = force_noise_from_cycles(record), "repeated cycles"
+            found, method = force_noise_from_cycles(record, k), "repeated cycles"
         if found is None:
-            s_spec, bound, note, lowpassed = force_noise_from_spectrum(record)
+            # the spectrum needs an unbroken stretch: the longest run of samples in the mask
+            stretch, part = record, ""
+            if not k.all():
+                a, b = _longest_run(k)
+                stretch = record.select(slice(a, b))
+                part = (f"on the longest stretch of samples kept, {record.time[a]:.4g}-{record.time[b - 1]:.4g} s "
+                        f"({b - a} of {n} samples): ")
+            s_spec, bound, note, lowpassed = force_noise_from_spectrum(stretch)
+            note = part + note
+            F4 = np.asarray(stretch.force, dtype=float)
             if s_spec is not None:
                 found, method = (s_spec, note), "spectrum above the excited band"
             else:
-                s4 = _noise_level(F)
+                s4 = _noise_level(F4)
                 if lowpassed:       # fourth differences see what the filter left of the noise: use the bound
                     found, method = (bound, note + "; a low-passed channel: the noise taken at that level, an "
                                      f"upper bound (fourth differences {s4:.3g} N)"), "spectrum above the excited band"
@@ -735,6 +763,16 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
         sx, sv, sa = motion_noise(record)
     esr, motion = _esrs(F, k, float(sigma), sv, sa, sensitivity)
     return NoiseFloor(float(sigma), method, esr, motion, float(sv), float(sa), float(sx), note)
+
+
+def _longest_run(k: np.ndarray) -> tuple[int, int]:
+    """Start and end (exclusive) of the longest run of True in ``k`` ((0, 0) when there is none)."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], k.astype(np.int8), [0]])))
+    if edges.size == 0:
+        return 0, 0
+    starts, ends = edges[::2], edges[1::2]
+    i = int(np.argmax(ends - starts))
+    return int(starts[i]), int(ends[i])
 
 
 def _mask(mask, n: int) -> np.ndarray:
