@@ -14,7 +14,7 @@ import pytest
 
 from erdesign.cli import main
 from erdesign.damper.files import load_example
-from erdesign.data.measurement import write_measurement
+from erdesign.data.measurement import Measurement, write_measurement
 from erdesign.diagnosis.diagnose import calibrate, diagnose, improve
 from erdesign.diagnosis.records import AFTER_FIELD_CHANGE, analysis_samples
 from erdesign.simulation.rig import sine, stepped_sine
@@ -157,3 +157,46 @@ def test_a_value_far_inside_a_wide_range_is_not_at_its_bound():
                                                         values={"gas_stiffness": k}))
     assert at(259.0) == [] and at(1.0) == []
     assert at(0.0) == ["gas_stiffness at its lower bound 0 N/m"]
+
+
+def test_a_skew_between_channels_is_found_and_never_named_a_lag():
+    """A 1 ms skew of the force channel behind the displacement on a clean MR valve with field steps (truth rig):
+    the finding gives the skew, and neither field lag nor compressibility - which a skew mimics - is named
+    (CONTRACTS.md section 6)."""
+    from erdesign.simulation.truthrig.artefacts import skew_force
+
+    damper = load_example("mr_valve_current")
+    ref = damper.fluid.reference_field
+    truth = TruthDamper(damper, {}, viscosity_factor=1.1, yield_stress_factor=0.9)
+    rec = simulate_truth(truth, stepped_sine([0.01], [1.0, 2.0, 1.5], [ref, 0.5 * ref, 0.8 * ref], cycles=3,
+                                             rate=1000), force_noise=0.01, seed=5, name="skew").measured
+    d = diagnose(damper, skew_force(rec, 1e-3))
+    (skew,) = [f for f in d.findings if f.kind == "channel_skew"]
+    assert skew.skew_s == pytest.approx(1e-3, abs=2e-4)
+    assert not {"field_lag", "compressibility"} & set(d.missing_effects)
+    assert d.as_json()["findings"][0]["skew_s"] == pytest.approx(skew.skew_s)
+
+
+def test_what_the_record_bounds():
+    """A fluid mass whose inertia force alone is several times the largest measured force is ruled out by the
+    record; so is a bypass too open to hold the measured force; a stiff bypass (a small leak) is not."""
+    from types import SimpleNamespace
+
+    from erdesign.diagnosis.candidates import Candidate, _beyond_record
+    from erdesign.effects.chain import PhysicsDamper
+
+    damper = load_example("mr_valve")
+    t = np.linspace(0, 2, 2001)
+    x = 0.01 * np.sin(2 * np.pi * t)
+    rec = Measurement.from_arrays(t, x, 1000 * np.sign(np.cos(2 * np.pi * t)))   # |F| <= 1 kN, a = 0.39 m/s^2 peak
+    v_peak, a_peak = 2 * np.pi * 0.01, (2 * np.pi) ** 2 * 0.01
+
+    def cand(effect, **values):
+        model = PhysicsDamper(damper, [effect])
+        res = SimpleNamespace(model=model, values={**model.initial_guess(rec), **values})
+        return Candidate(effect, res, 0.1)
+
+    assert _beyond_record(cand("fluid_inertia", slug_mass=3000.0 / a_peak), rec, None)      # 3 kN of inertia
+    assert not _beyond_record(cand("fluid_inertia", slug_mass=100.0 / a_peak), rec, None)
+    assert _beyond_record(cand("leakage", bypass_damping=300.0 / v_peak), rec, None)        # cannot hold 1 kN
+    assert not _beyond_record(cand("leakage", bypass_damping=30e3 / v_peak), rec, None)     # a small leak
