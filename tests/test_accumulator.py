@@ -150,6 +150,10 @@ def test_gas_spring_prior_comes_from_the_accumulator():
     assert prior["gas_stiffness"] == pytest.approx(500.0, rel=2e-3)
     params = {p.name: p for p in GAS.parameters(load_example("spencer1997"))}
     assert params["gas_stiffness"].default == pytest.approx(500.0, rel=2e-3)
+    # with the accumulator known, a fit keeps the stiffness within 0.2-5 x it; without, anything from 0 up
+    assert (params["gas_stiffness"].lower, params["gas_stiffness"].upper) == pytest.approx((100.1, 2502.8), rel=1e-3)
+    plain = {p.name: p for p in GAS.parameters(damper_from_dict(_with(_spencer_dict(), accumulator=None)))}
+    assert (plain["gas_stiffness"].lower, plain["gas_stiffness"].upper) == (0.0, 1e9)
 
 
 def test_gas_spring_plausibility_with_and_without_accumulator():

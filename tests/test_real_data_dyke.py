@@ -74,20 +74,22 @@ def test_the_record_has_a_clipped_force_and_a_held_displacement(record, masks):
 
 
 def test_field_lag_and_accumulator_on_ransim_u(record, masks):
-    """Baseline + field_lag + gas_spring, 5 free parameters: ESR 0.067 on the kept samples (0.148 on all
-    unclipped ones); fitted on the first half it predicts the second within 1.33 x its own ESR."""
+    """Baseline + field_lag + gas_spring, 5 free parameters: ESR 0.068 on the kept samples (0.149 on all
+    unclipped ones); fitted on the first half it predicts the second within 1.31 x its own ESR.  The accumulator of
+    the file bounds the gas stiffness to 0.2-5 x its 500 N/m; the fit ends at the upper bound."""
     unclipped, kept = masks
     model = PhysicsDamper(load_example("spencer1997"), ["field_lag", "gas_spring"])
     fit = _fit(model, record, None, kept)
     force = model.simulate(record, fit.values)
     assert fit.k == 5
-    assert esr(record.force[kept], force[kept]) == pytest.approx(0.0668, abs=0.004)
-    assert esr(record.force[unclipped], force[unclipped]) == pytest.approx(0.148, abs=0.006)
+    assert esr(record.force[kept], force[kept]) == pytest.approx(0.0684, abs=0.004)
+    assert esr(record.force[unclipped], force[unclipped]) == pytest.approx(0.1486, abs=0.006)
     v = fit.values
     # the field follows the command voltage with 8.2 ms (Spencer et al. 1997: eta = 190 1/s, i.e. 5.3 ms)
     assert 0.006 < v["field_time_constant"] < 0.011
-    # the accumulator's force at rest: -138 N in the rig's sign convention (Spencer's k1 x0 = 71.5 N in 1997)
+    # the accumulator's force at rest: -140 N in the rig's sign convention (Spencer's k1 x0 = 71.5 N in 1997)
     assert -160.0 < v["gas_preload"] < -115.0
+    assert v["gas_stiffness"] == pytest.approx(2503.0, rel=1e-3)        # at 5 x the accumulator's k
     assert 1.3 < v["viscosity_factor"] < 1.65 and 0.68 < v["yield_stress_factor"] < 0.85
 
     first = np.arange(len(record)) < len(record) // 2
@@ -95,8 +97,8 @@ def test_field_lag_and_accumulator_on_ransim_u(record, masks):
     predicted = model.simulate(record, half.values)
     own = esr(record.force[kept & first], predicted[kept & first])
     ahead = esr(record.force[kept & ~first], predicted[kept & ~first])
-    assert own == pytest.approx(0.0604, abs=0.004)
-    assert ahead / own < 1.45                                          # measured 1.33
+    assert own == pytest.approx(0.0621, abs=0.004)
+    assert ahead / own < 1.45                                          # measured 1.31
 
 
 def test_without_field_lag_the_yield_factor_reads_low(record, masks):

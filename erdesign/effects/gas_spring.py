@@ -13,7 +13,8 @@ A damper file may say that the rod is single-ended with a gas accumulator (``[ge
 ``[accumulator]`` table, docs/file_formats.md; :mod:`erdesign.damper.accumulator`).  Then the prior is the
 accumulator's own :math:`f_0 = p_0 A_r` and :math:`k = n p_0 A_r^2 / V_0`, and a fitted value outside 0.2 to 5 times
 it is implausible (the preload by its magnitude: its sign follows the rig's sign convention, which the file does
-not know).  Without those keys the prior is a rough guess (a 2 MPa charge, a gas volume of one chamber over a
+not know); the stiffness is then also bounded to that window in a fit, so that a stiffness from elsewhere (a
+mount, a compliant column) cannot pass for the gas.  Without those keys the prior is a rough guess (a 2 MPa charge, a gas volume of one chamber over a
 piston diameter) and no test.
 """
 
@@ -84,8 +85,14 @@ class GasSpring(Effect):
     def parameters(self, damper):
         prior = self.prior(damper)
         scale = max(damper.yield_force_si(damper.fluid.reference_field), 100.0)
+        k_low, k_high = 0.0, 1e9
+        if getattr(damper, "accumulator", None) is not None:
+            # the file gives the accumulator: its stiffness is known to the window, and a parallel stiffness
+            # beyond it is not the gas (on Dyke's ransim_u a free fit wanders to 27 x the accumulator's k for
+            # 3 % of the error: docs/equivalent_damper.md)
+            k_low, k_high = (r * prior["gas_stiffness"] for r in self.ACCUMULATOR_RATIO)
         return (Parameter("gas_preload", "N", 0.0, -10 * scale, 10 * scale, "accumulator preload f_0"),
-                Parameter("gas_stiffness", "N/m", prior["gas_stiffness"], 0.0, 1e9, "accumulator stiffness k"))
+                Parameter("gas_stiffness", "N/m", prior["gas_stiffness"], k_low, k_high, "accumulator stiffness k"))
 
     def prior(self, damper):
         if getattr(damper, "accumulator", None) is not None:
