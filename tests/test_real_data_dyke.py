@@ -116,9 +116,10 @@ def test_without_field_lag_the_yield_factor_reads_low(record, masks):
 def test_seven_parameter_physics_model_on_ransim_u(record):
     """The best combination of the effect library found on ransim_u (docs/equivalent_damper.md): field lag, the
     accumulator, a low-speed bypass and pre-yield elasticity, 7 free parameters.  On every 2nd sample (1502 Hz, to
-    halve the time; the full record gives the same to 0.001): ESR XXX on the kept samples and XXX on all unclipped
+    halve the time; the full record gives the same to 0.001): ESR 0.021 on the kept samples and 0.0996 on all unclipped
     ones (published Spencer set: 0.055 and 0.134; Bouc-Wen identified on the unclipped samples: 0.013 and 0.092);
-    fitted on the first half it predicts the second within XXX x its own ESR."""
+    fitted on the first half it predicts the second within 1.17 x its own ESR.  Measured 9 min wall on a
+    2-core machine shared by eight processes."""
     thin = record.select(slice(None, None, 2))
     unclipped = ~clipped_samples(thin.force)
     kept = unclipped & ~held_at_extreme(thin.time, thin.displacement)
@@ -126,11 +127,11 @@ def test_seven_parameter_physics_model_on_ransim_u(record):
     fit = _fit(model, thin, None, kept)
     force = model.simulate(thin, fit.values)
     assert fit.k == 7
-    assert esr(thin.force[kept], force[kept]) == pytest.approx(KEPT, abs=0.003)
-    assert esr(thin.force[unclipped], force[unclipped]) == pytest.approx(UNCLIPPED, abs=0.004)
+    assert esr(thin.force[kept], force[kept]) == pytest.approx(0.0214, abs=0.003)
+    assert esr(thin.force[unclipped], force[unclipped]) == pytest.approx(0.0996, abs=0.004)
     v = fit.values
-    assert v["viscosity_factor"] == pytest.approx(0.96, abs=0.06)         # the file's zero-field slope holds
-    assert v["yield_stress_factor"] == pytest.approx(1.34, abs=0.08)
+    assert v["viscosity_factor"] == pytest.approx(1.03, abs=0.07)         # the file's zero-field slope holds
+    assert v["yield_stress_factor"] == pytest.approx(1.30, abs=0.08)
     assert 18e3 < v["bypass_damping"] < 30e3                               # N s/m (Spencer's c1a: 28.3 kN s/m)
     assert 0.007 < v["field_time_constant"] < 0.0105
 
