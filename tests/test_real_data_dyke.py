@@ -118,8 +118,8 @@ def test_seven_parameter_physics_model_on_ransim_u(record):
     accumulator, a low-speed bypass and pre-yield elasticity, 7 free parameters.  On every 2nd sample (1502 Hz, to
     halve the time; the full record gives the same to 0.001): ESR 0.021 on the kept samples and 0.0996 on all unclipped
     ones (published Spencer set: 0.055 and 0.134; Bouc-Wen identified on the unclipped samples: 0.013 and 0.092);
-    fitted on the first half it predicts the second within 1.17 x its own ESR.  Measured 9 min wall on a
-    2-core machine shared by eight processes."""
+    fitted on the first half it predicts the second within 1.17 x its own ESR.  The test takes about 35 s on
+    two shared cores."""
     thin = record.select(slice(None, None, 2))
     unclipped = ~clipped_samples(thin.force)
     kept = unclipped & ~held_at_extreme(thin.time, thin.displacement)
