@@ -40,6 +40,7 @@ from ..flow.bingham import yield_pressure_drop
 from ..fluid import Fluid
 from ..geometry import THIN_GAP_LIMIT, Geometry
 from ..units import Q_, to_si
+from .accumulator import ROD_KINDS, Accumulator
 from .quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, damper_state
 
 __all__ = ["Damper", "QuasiSteadyState", "SizingResult", "SineResponse", "CRITICAL_REYNOLDS", "FLOW_MODELS"]
@@ -133,6 +134,13 @@ class Damper:
     flow_model : str
         ``"thin_gap"`` (parallel plates, Makris's equations), ``"annulus"`` (exact concentric annulus, valve only)
         or ``"auto"`` (thin gap up to h/d = :data:`~erdesign.geometry.THIN_GAP_LIMIT`, exact annulus above).
+    rod : str
+        ``"double"`` (a rod on both sides of the piston, the default) or ``"single"`` (one rod; the rod volume goes
+        into a gas accumulator on the head side).  The quasi-steady force is the same (the gap passes
+        :math:`v A_p` either way); a single rod adds the accumulator's force on the rod.
+    accumulator : Accumulator or None
+        The gas accumulator of a single-ended damper (:mod:`erdesign.damper.accumulator`), which sets the prior of
+        the gas spring effect; None when the file does not describe one.
     """
 
     geometry: Geometry
@@ -140,6 +148,8 @@ class Damper:
     seal_friction: float = 0.0
     name: str = ""
     flow_model: str = "auto"
+    rod: str = "double"
+    accumulator: Accumulator | None = None
 
     def __post_init__(self) -> None:
         if self.flow_model not in FLOW_MODELS:
@@ -148,6 +158,26 @@ class Damper:
             raise ErdesignError("flow_model: the exact annulus is available for the valve configuration only")
         if not (np.isfinite(self.seal_friction) and self.seal_friction >= 0):
             raise ErdesignError(f"seal_friction: must be a finite force >= 0, got {self.seal_friction!r} N")
+        if self.rod not in ROD_KINDS:
+            raise ErdesignError(f"geometry.rod: must be one of {', '.join(map(repr, ROD_KINDS))}, got {self.rod!r}")
+        if self.accumulator is not None:
+            if not isinstance(self.accumulator, Accumulator):
+                raise ErdesignError(f"accumulator: expected an Accumulator, got {self.accumulator!r}")
+            if self.rod != "single":
+                raise ErdesignError("accumulator: a gas accumulator pushes on the rod only when the rod is "
+                                    "single-ended; set geometry.rod = \"single\"")
+            if self.geometry.rod_diameter <= 0:
+                raise ErdesignError("geometry.rod_diameter: a single-ended damper with an accumulator needs the "
+                                    "rod's diameter (the gas pushes on its cross-section), got 0")
+
+    # ------------------------------------------------------------------ accumulator (single-ended rod)
+    def gas_preload_si(self) -> float | None:
+        """Preload of the accumulator on the rod, f_0 = p_0 A_r [N]; None without an accumulator."""
+        return None if self.accumulator is None else self.accumulator.preload(self.geometry.rod_diameter)
+
+    def gas_stiffness_si(self) -> float | None:
+        """Stiffness of the accumulator on the rod, k = n p_0 A_r^2 / V_0 [N/m]; None without an accumulator."""
+        return None if self.accumulator is None else self.accumulator.stiffness(self.geometry.rod_diameter)
 
     # ------------------------------------------------------------------ SI layer (floats / arrays)
     @property

@@ -27,17 +27,18 @@ from .. import materials
 from ..errors import DamperFileError, ErdesignError
 from ..fluid import Fluid
 from ..geometry import Geometry
-from ..units import same_dimension, to_si
+from ..units import Q_, same_dimension, to_si
+from .accumulator import ROD_KINDS, accumulator_from_table, accumulator_table
 from .damper import Damper
 
 __all__ = ["load_damper", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
-           "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS", "coil_fluid", "COIL_CURRENT_SPAN"]
+           "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS", "coil_fluid", "COIL_CURRENT_SPAN", "damper_spec"]
 
 GEOMETRY_KEYS = ("configuration", "duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter",
-                 "ducts")
+                 "ducts", "rod")
 FLUID_KEYS = ("material", "viscosity", "yield_stress", "reference_field", "yield_exponent", "density",
               "viscosity_at_reference_field", "shear_modulus", "seal_friction")
-_TOP_KEYS = ("name", "geometry", "fluid", "coil")
+_TOP_KEYS = ("name", "geometry", "fluid", "coil", "accumulator")
 #: [fluid] keys a damper with a [coil] may not give: the magnetic circuit gives the yield stress at each current.
 _COIL_COMPUTED_KEYS = ("yield_stress", "yield_exponent")
 #: The tabulated law tau_y(I) of a damper with a [coil] spans 0 to this many times the rated current.
@@ -147,7 +148,17 @@ def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_mo
         for key in ("duct_length", "gap", "piston_diameter", "rod_diameter"):
             if key not in geo:
                 raise DamperFileError(f"geometry.{key}: missing")
+        rod = geo.pop("rod", "double")
+        if rod not in ROD_KINDS:
+            raise DamperFileError(f"geometry.rod: expected \"double\" (a rod on both sides of the piston) or "
+                                  f"\"single\" (one rod, with a gas accumulator), got {rod!r}")
         geometry = Geometry.create(**geo)
+        accumulator = None
+        if "accumulator" in data:
+            if rod != "single":
+                raise DamperFileError("accumulator: a gas accumulator pushes on the rod only when the rod is "
+                                      "single-ended; add rod = \"single\" to [geometry]")
+            accumulator = accumulator_from_table(data["accumulator"])
         if "coil" in data:
             fluid, seal_friction = coil_fluid(data, geometry)
         else:
@@ -156,7 +167,7 @@ def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_mo
         if not isinstance(name, str):
             raise DamperFileError(f"name: expected text, got {name!r}")
         return Damper(geometry=geometry, fluid=fluid, seal_friction=seal_friction, name=name,
-                      flow_model=flow_model)
+                      flow_model=flow_model, rod=rod, accumulator=accumulator)
     except ErdesignError as exc:
         raise type(exc)(f"{source}: {exc}") from None
 
@@ -212,6 +223,50 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
     fluid, seal_friction = parse_fluid_table(values)
     fluid = fluid.with_changes(field_law=law, field_range=(0.0, COIL_CURRENT_SPAN * I_ref))
     return fluid, seal_friction
+
+
+def damper_spec(damper: Damper) -> dict:
+    """The content of a damper file for ``damper`` (``name``, ``[geometry]``, ``[fluid]``, ``[accumulator]``),
+    values as strings with SI units: :func:`erdesign.report.export.damper_toml` writes it, :func:`damper_from_dict`
+    reads it back to the same damper.
+
+    Only a fluid of the power law can be written this way; a fluid that follows a material's yield curve or a
+    coil's magnetic circuit is an error (write the damper file's ``material`` / ``[coil]`` keys instead).
+
+    >>> spec = damper_spec(load_example("spencer1997"))
+    >>> spec["geometry"]["rod"], spec["accumulator"]["polytropic_index"]
+    ('single', 1.4)
+    >>> damper_from_dict(spec) == load_example("spencer1997")
+    True
+    """
+    g, f = damper.geometry, damper.fluid
+    if f.field_law is not None:
+        raise DamperFileError(f"fluid: {damper.name or 'this damper'} follows "
+                              f"{'the yield curve of ' + f.material if f.material else 'a tabulated field law'}; "
+                              "only a power-law fluid can be written back as plain values")
+    geometry = {"configuration": g.configuration, "duct_length": f"{g.duct_length!r} m",
+                "duct_mean_diameter": f"{g.duct_mean_diameter!r} m", "gap": f"{g.gap!r} m",
+                "piston_diameter": f"{g.piston_diameter!r} m", "rod_diameter": f"{g.rod_diameter!r} m"}
+    if g.configuration == "valve":
+        geometry["ducts"] = g.ducts
+    if damper.rod != "double":
+        geometry["rod"] = damper.rod
+    # the control in the unit it was given in (kV/mm stays kV/mm), so that the file reads back to the same fluid
+    unit = f.field_unit
+    reference = float(Q_(f.reference_field, f.control_unit).to(unit).magnitude)
+    fluid = {"viscosity": f"{f.viscosity!r} Pa*s", "yield_stress": f"{f.yield_stress!r} Pa",
+             "reference_field": f"{reference!r} {unit}", "yield_exponent": f.yield_exponent,
+             "density": f"{f.density!r} kg/m^3"}
+    if f.viscosity_at_reference_field is not None:
+        fluid["viscosity_at_reference_field"] = f"{f.viscosity_at_reference_field!r} Pa*s"
+    if f.shear_modulus is not None:
+        fluid["shear_modulus"] = f"{f.shear_modulus!r} Pa"
+    if damper.seal_friction:
+        fluid["seal_friction"] = f"{damper.seal_friction!r} N"
+    spec = {"name": damper.name, "geometry": geometry, "fluid": fluid}
+    if damper.accumulator is not None:
+        spec["accumulator"] = accumulator_table(damper.accumulator)
+    return spec
 
 
 def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:

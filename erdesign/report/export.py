@@ -40,7 +40,7 @@ from ..errors import ErdesignError
 
 __all__ = ["damper_toml", "csv_text", "rows_csv", "figure_images", "images_zip", "IMAGES_NEED"]
 
-_TABLES = ("geometry", "fluid", "coil")
+_TABLES = ("geometry", "fluid", "coil", "accumulator")
 
 
 def _toml_value(value: Any, where: str) -> str:
@@ -60,7 +60,8 @@ def _toml_value(value: Any, where: str) -> str:
 
 
 def damper_toml(spec: Mapping[str, Any], *, comment: str = "") -> str:
-    """The damper file (TOML text) of a damper spec: ``name``, ``[geometry]`` and ``[fluid]``, values as given.
+    """The damper file (TOML text) of a damper spec: ``name``, ``[geometry]``, ``[fluid]`` and the optional
+    ``[coil]`` and ``[accumulator]``, values as given.
 
     Parameters
     ----------
@@ -78,7 +79,8 @@ def damper_toml(spec: Mapping[str, Any], *, comment: str = "") -> str:
     lines.append("")
     unknown = [k for k in spec if k not in ("name", *_TABLES)]
     if unknown:
-        raise ErdesignError(f"{unknown[0]}: not a key of a damper file (name, [geometry], [fluid], [coil])")
+        raise ErdesignError(f"{unknown[0]}: not a key of a damper file (name, [geometry], [fluid], [coil], "
+                            "[accumulator])")
     if "name" in spec:
         lines.append(f"name = {_toml_value(str(spec['name']), 'name')}")
     for table in _TABLES:
