@@ -263,13 +263,20 @@ def test_as_json_has_the_contract_keys_and_no_nan():
 # ---------------------------------------------------------------------------------------------------- real data
 @needs_data
 def test_dykes_ransim_u_is_clipped_and_not_smoothed():
-    """shared/data/README.md: about 220 samples of ransim_u sit at +4545 N (measured 217 in 3 runs)."""
+    """shared/data/README.md: about 220 samples of ransim_u sit at +4545 N (measured 217 in 3 runs); around them, from
+    19.53 to 19.91 s, the displacement is held at 10.5-11 mm - beyond the 8.4 mm the rest of the record reaches -
+    while the force swings from -2.7 kN to the clip: an excursion of the actuator or transducer, left out."""
     from erdesign.data.measurement import read_measurement
     m = read_measurement(DATA / "dyke_nees" / "ransim_u.csv")
     findings = find_data_problems(m)
-    assert _kinds(findings) == ["clipped"]
+    assert _kinds(findings) == ["clipped", "saturated_displacement"]
     assert findings[0].excluded.sum() == pytest.approx(218, abs=3)
     assert np.all(m.force[findings[0].excluded] == pytest.approx(4545.4545))
+    held = m.time[findings[1].excluded]
+    assert held.min() == pytest.approx(19.53, abs=0.01) and held.max() == pytest.approx(19.91, abs=0.01)
+    assert np.median(m.displacement[findings[1].excluded]) > 0.0105
+    outside = ~(findings[1].excluded | findings[0].excluded)
+    assert m.displacement[outside].max() < 0.0085
 
 
 def _quiroz_preprocessed(path: Path) -> Measurement:

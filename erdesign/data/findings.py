@@ -252,9 +252,11 @@ def _clipped(record: Measurement, opt: _Options) -> list[Finding]:
 def _saturated_displacement(record: Measurement, opt: _Options) -> list[Finding]:
     """``saturated_displacement``: a flat extreme of the displacement while the force changes."""
     x = record.displacement
-    mask = clipped_samples(x)
-    if not mask.any() or mask.mean() > 0.5 or record.force is None:
+    if record.force is None:
         return []
+    mask = clipped_samples(x)
+    if mask.mean() > 0.5:
+        mask[:] = False
     q = _grid_step(x)
     tol = 1e-9 * np.ptp(x)
     F = record.force
@@ -268,13 +270,93 @@ def _saturated_displacement(record: Measurement, opt: _Options) -> list[Finding]
         if (np.ptp(F[at]) > max(10 * sigma, 0.05 * np.ptp(F)) and _pile_up(x, at, lvl, q)
                 and _beyond_level(x, at, lvl, q)):
             keep |= at
-    if not keep.any():
-        return []
-    levels = " and ".join(f"{v * 1e3:.6g} mm" for v in sorted({float(v) for v in x[keep]}))
-    msg = (f"the displacement stands at {levels} on {int(keep.sum())} samples in {_runs(keep)} flat runs while the "
-           "force keeps changing: a displacement channel at the end of its range; the motion there is unknown and "
-           "those samples are left out of the fit")
-    return [Finding("saturated_displacement", msg, record.name, _span(record.time, keep), excluded=keep)]
+    out = []
+    if keep.any():
+        levels = " and ".join(f"{v * 1e3:.6g} mm" for v in sorted({float(v) for v in x[keep]}))
+        msg = (f"the displacement stands at {levels} on {int(keep.sum())} samples in {_runs(keep)} flat runs while "
+               "the force keeps changing: a displacement channel at the end of its range; the motion there is "
+               "unknown and those samples are left out of the fit")
+        out.append(Finding("saturated_displacement", msg, record.name, _span(record.time, keep), excluded=keep))
+    held = np.zeros_like(keep) if keep.any() else _held_beyond(record)
+    if held.any():
+        lo, hi = (float(v) for v in np.percentile(x[held], [10, 90]))
+        rest = x[~held]
+        msg = (f"the displacement is held at {lo * 1e3:.3g} to {hi * 1e3:.3g} mm (10-90 %), beyond anything the rest of the "
+               f"record reaches ({rest.min() * 1e3:.3g} to {rest.max() * 1e3:.3g} mm), while the force swings by "
+               f"{np.ptp(F[held]):.3g} N: an actuator or transducer excursion, not the damper's motion; those "
+               "samples are left out of the fit")
+        out.append(Finding("saturated_displacement", msg, record.name, _span(record.time, held), excluded=held))
+    return out
+
+
+#: A held excursion of the displacement (:func:`_held_beyond`): the top (or bottom) share of the stroke ...
+HELD_TOP = 0.15
+#: ... visited once, for at least this long, [s] ...
+HELD_MIN_DURATION = 0.1
+#: ... at a median speed below this share of the record's peak speed ...
+HELD_SLOW = 0.05
+#: ... while the force swings by this share of its range.
+HELD_FORCE_SWING = 0.5
+
+
+def _held_beyond(record: Measurement) -> np.ndarray:
+    """Samples of a held excursion: the displacement's top (or bottom) :data:`HELD_TOP` of the stroke is reached
+    once, in one stretch of at least :data:`HELD_MIN_DURATION` (gaps under 50 ms bridged), where its median speed is below
+    :data:`HELD_SLOW` of the record's peak speed while the force swings by :data:`HELD_FORCE_SWING` of its range
+    (Dyke's ransim_u: 10.5-11.0 mm for 0.38 s where the rest stays below 8.4 mm, the force swinging by 7 kN).  A
+    damper's force follows its motion; a force that swings while the displacement is held at an extreme it never
+    reaches again is the actuator or the transducer, not the damper.  A sine passes through the same share of its
+    stroke at about 40 % of its peak speed, and random motion at a similar share."""
+    x, t, F = np.asarray(record.displacement, float), np.asarray(record.time, float), record.force
+    n = x.size
+    out = np.zeros(n, dtype=bool)
+    span = float(np.ptp(x))
+    if F is None or n < 20 or not span > 0:
+        return out
+    dt = float(np.median(np.diff(t)))
+    bridge = max(int(round(0.05 / dt)), 1)
+    speed = np.abs(np.asarray(record.velocity, float))
+    for y in (x, -x):
+        near = y >= y.max() - HELD_TOP * span
+        idx = np.flatnonzero(near)
+        if np.any(np.diff(idx) > bridge):
+            continue                                    # the extreme is visited more than once
+        a, b = idx[0], idx[-1]
+        if t[b] - t[a] < HELD_MIN_DURATION:
+            continue
+        # the typical speed there (a median: the transducer's own jumps and dips do not count)
+        if np.median(speed[near]) >= HELD_SLOW * float(speed.max()):
+            continue
+        if np.ptp(F[a:b + 1]) < HELD_FORCE_SWING * float(np.ptp(F)):
+            continue
+        out[a:b + 1] = True
+    return out
+    dt = float(np.median(np.diff(t)))
+    guard = max(int(round(0.005 / dt)), 1)
+    for sign in (1.0, -1.0):
+        y = sign * x
+        order = np.sort(y)
+        # the largest jump between consecutive sorted values within the top quarter of the range
+        top = order[order >= order[-1] - 0.25 * span]
+        if top.size < 2:
+            continue
+        jumps = np.diff(top)
+        j = int(np.argmax(jumps))
+        if jumps[j] < HELD_GAP * span:
+            continue
+        above = y > top[j]
+        idx = np.flatnonzero(above)
+        if t[idx[-1]] - t[idx[0]] < HELD_MIN_DURATION or idx.size > 0.2 * n:
+            continue
+        # one stretch in time (short dips bridged): everything between its first and last sample
+        stretch = np.zeros(n, dtype=bool)
+        stretch[max(idx[0] - guard, 0):idx[-1] + guard + 1] = True
+        if (~stretch & above).any() or np.mean(above[idx[0]:idx[-1] + 1]) < 0.5:
+            continue
+        if np.ptp(F[stretch]) < HELD_FORCE_SWING * float(np.ptp(F)):
+            continue
+        out |= stretch
+    return out
 
 
 #: Samples at a flat extreme of the force from which it is surely clipped (fewer: only if the force on either side
