@@ -413,6 +413,11 @@ def _null_depths(y: np.ndarray, N: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     used = np.bincount(rows, weights=good, minlength=N.size)
     bins = np.bincount(rows, weights=np.where(good, ncount, 0), minlength=N.size)
     depth = np.bincount(rows, weights=np.where(good, ratio, 0.0), minlength=N.size) / np.maximum(used, 1)
+    # with few nulls every one must be empty: a digital low-pass (an anti-alias Butterworth through the bilinear
+    # transform) zeroes the Nyquist frequency, the last null of every even window, and would make a mean deep
+    shallowest = np.full(N.size, -np.inf)
+    np.maximum.at(shallowest, rows[good], ratio[good])
+    depth = np.where(used < 4, shallowest, depth)
     # at least two nulls (a window of 4 samples or more), over a floor above round-off (a noise-free synthetic
     # channel has no continuum to carve nulls in)
     floor = 1e-20 * float(P.max())
