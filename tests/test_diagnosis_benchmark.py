@@ -6,6 +6,7 @@ back with the reader users use) and requires every verdict to be right and no ex
 """
 
 import importlib.util
+from dataclasses import replace
 from itertools import combinations
 from pathlib import Path
 
@@ -14,14 +15,27 @@ import pytest
 from scipy import optimize, signal
 
 from erdesign.data.measurement import read_measurement
-
 from erdesign.effects import EFFECT_NAMES
 from erdesign.simulation.truthrig import MECHANISMS
-from erdesign.simulation.truthrig.cases import (ALL_DAMPERS, ANTI_ALIAS_CORNER, ANTI_ALIAS_ORDER, DAMPERS, EXCITATIONS,
-                                                HEATING_TARGET,
-                                                ISSUE23_EXCITATIONS, ISSUE23_GROUPS, LIBRARY_MECHANISMS, NOISES,
-                                                NOT_VISIBLE_ON, OUT_OF_LIBRARY, EXCITATIONS_OF, STEP_PERIOD,
-                                                benchmark_cases, supported, unsupported_pairs)
+from erdesign.simulation.truthrig.cases import (
+    ALL_DAMPERS,
+    ANTI_ALIAS_CORNER,
+    ANTI_ALIAS_ORDER,
+    DAMPERS,
+    EXCITATIONS,
+    EXCITATIONS_OF,
+    HEATING_TARGET,
+    ISSUE23_EXCITATIONS,
+    ISSUE23_GROUPS,
+    LIBRARY_MECHANISMS,
+    NOISES,
+    NOT_VISIBLE_ON,
+    OUT_OF_LIBRARY,
+    STEP_PERIOD,
+    benchmark_cases,
+    supported,
+    unsupported_pairs,
+)
 
 BENCH = Path(__file__).resolve().parent.parent / "benchmarks" / "bench_diagnosis_accuracy.py"
 
@@ -168,8 +182,14 @@ def test_long_field_step_records(issue23):
 
 def test_band_limited_record_has_no_power_above_the_anti_alias_corner(issue23):
     case = _one(issue23, "band_limited_3khz-clean")
-    fc = case.anti_alias
-    assert case.rate == 3000.0 and fc == ANTI_ALIAS_CORNER and case.noise == 0.01
+    assert case.rate == 3000.0 and case.anti_alias == ANTI_ALIAS_CORNER == 0.0 and case.noise == 0.01
+    # as Dyke's record: the load cell's noise white up to the Nyquist frequency, 1 % of the RMS force
+    plain = case.make()
+    assert np.std(plain.measured.force - plain.true_force) == pytest.approx(
+        0.01 * np.sqrt(np.mean(plain.true_force**2)), rel=0.05)
+    # the instrument chain a case may still ask for: both channels through the same anti-alias low-pass
+    fc = 1000.0
+    case = replace(case, anti_alias=fc)
     rec = case.make()
     F, true = rec.measured.force, rec.true_force
     # Dyke-like motion: +-1 cm, peak speed 1 m/s
@@ -241,7 +261,7 @@ def test_series_springs_and_clean_records_cover_their_dampers(issue23):
     clean = [c for c in issue23 if c.group == "clean_every_kind"]
     assert set(ALL_DAMPERS) == examples and {c.damper for c in clean} == examples
     assert all(c.kind == "clean" for c in clean)
-    assert {(c.rate, c.anti_alias) for c in clean} >= {(100.0, 0.0), (3000.0, ANTI_ALIAS_CORNER)}
+    assert {c.rate for c in clean} >= {100.0, 3000.0}
 
 
 def test_other_generators_are_not_the_teams_random_motion(issue23):

@@ -46,12 +46,11 @@ laboratories make them, where the core catalogue's own shapes had hidden failure
   a two-stage inductive lag (15 + 8 ms, ``coil_lag.second_time_constant``) on the coil-current MR head ``mr_coil``;
   two clean long records;
 * ``band_limited_3khz``: 20 s at 3 kHz of band-limited random displacement (Gaussian noise through a causal
-  band-pass, +-1 cm, peak speed 1 m/s, as Dyke's NEES tests), both channels through the same causal order-4
-  Butterworth anti-alias low-pass at :data:`ANTI_ALIAS_CORNER` (1 kHz: Dyke's force spectrum is white to 1.5 kHz),
-  the load cell's noise 1 % of the RMS force after the filter: clean, field lag, compressibility, gas spring.  The
-  filter delays displacement and force alike (0.2 ms) and rounds the rigid Bingham force jump at each reversal over
-  a few samples.  (At 500 Hz, a third of the Nyquist frequency, the smear carried about 60 x the energy of the noise
-  on the clean records and diagnosis named leakage for it: an instrument no real 3 kHz record of the project has.);
+  band-pass, +-1 cm, peak speed 1 m/s, as Dyke's NEES tests), the load cell's noise 1 % of the RMS force, white up
+  to the Nyquist frequency as in Dyke's record (:data:`ANTI_ALIAS_CORNER`: no anti-alias roll-off shows in it):
+  clean, field lag, compressibility, gas spring.  (:attr:`Case.anti_alias` can still put both channels through a
+  causal Butterworth low-pass; diagnosis has no model of such a filter, which smears the rigid Bingham jump at each
+  reversal - at 500 Hz about 60 x the energy of the noise, and leakage was named for it.);
 * ``heating_long``: 60-80 s sine programmes on the three valve dampers at twice their working speed, and 83 s on the
   MR valve at its working speed, the heat capacity (:data:`_HEATING_SHARE` of the fluid's) sized so that the fluid
   warms by 29-31 K (:data:`HEATING_TARGET`);
@@ -119,7 +118,7 @@ EXCITATIONS = ("sine", "random", "earthquake")
 #: generators other than the team's ``random_motion`` (:mod:`erdesign.simulation.truthrig.motions`).
 ISSUE23_EXCITATIONS = ("doe_sine", "swept_sine", "ou", "multisine", "filtered_gaussian")
 #: Every example damper of ``examples/``, the coil-current mixed head ``mr_coil`` included.
-ALL_DAMPERS = (*DAMPERS, "mr_coil")
+ALL_DAMPERS = (*DAMPERS, "mr_coil", "spencer1997", "quiroz2022")
 #: Force noise, standard deviation as a fraction of the RMS force.
 NOISES = (0.01, 0.03)
 #: Displacement noise, standard deviation as a fraction of the peak displacement.
@@ -137,10 +136,13 @@ SUBSETS = ("full", "core", "issue23", "fast")
 #: The classes of issue 23 (:attr:`Case.group`), in the order the benchmark reports them.
 ISSUE23_GROUPS = ("long_field_steps", "band_limited_3khz", "heating_long", "series_springs_mixed",
                   "clean_every_kind", "other_generator", "artefacts")
-#: Corner of the anti-alias low-pass of the 3 kHz band-limited records, [Hz]: Dyke's ransim_u record (3004.8 Hz) has a
-#: white force spectrum up to 1.5 kHz (erdesign.data.noise_floor finds its plateau at 1.0-1.5 kHz), so its conditioner's
-#: corner lies at or above 1 kHz; a corner at a third of the Nyquist frequency would leave no plateau at all.
-ANTI_ALIAS_CORNER = 1000.0
+#: Corner of the anti-alias low-pass of the 3 kHz band-limited records, [Hz]; 0: none.  Dyke's ransim_u record
+#: (3004.8 Hz) has a white force spectrum up to the Nyquist frequency (erdesign.data.noise_floor finds its plateau at
+#: 1.0-1.5 kHz): no conditioner's roll-off shows in it, so the band-limited records, like it, have none.  (Through a
+#: 4th-order Butterworth at 1 kHz the truth rig's rigid Bingham jump at each reversal is smeared over about 1 ms and the
+#: calibrated clean baseline leaves ESR 0.017, 166 x its floor; at 1.35 kHz 0.012: diagnosis has no model of an
+#: instrument's filter - docs/diagnosis.md, where it is known to fail.)
+ANTI_ALIAS_CORNER = 0.0
 #: Order of the Butterworth anti-alias low-pass of the band-limited records, [-].
 ANTI_ALIAS_ORDER = 4
 #: Temperature rise the long heating records are sized for, [K] (a long test warms the fluid by tens of kelvin).
@@ -164,6 +166,8 @@ _SCALES = {
     "mr_mixed": _Scale(0.25, 2.5),
     "kamath_wereley": _Scale(0.1, 2.0),
     "mr_coil": _Scale(0.25, 2.5),
+    "spencer1997": _Scale(0.3, 2.5),         # Dyke's tests: up to 1 m/s; Spencer's sines at 2.5 Hz
+    "quiroz2022": _Scale(0.1, 1.0),          # the Quiroz sines: 39-117 mm/s
 }
 
 
