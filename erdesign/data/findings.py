@@ -47,7 +47,7 @@ import numpy as np
 from .measurement import Measurement, _noise_level, clipped_samples
 
 __all__ = ["FINDING_KINDS", "Finding", "find_data_problems", "find_time_problems", "excluded_mask", "DETECTORS",
-           "LAG_EFFECTS", "GAP_FACTOR"]
+           "LAG_EFFECTS", "SMOOTHING_MIMICS", "GAP_FACTOR"]
 
 FINDING_KINDS = ("clipped", "saturated_displacement", "smoothed", "channel_skew", "time_gap",
                  "non_monotonic_time", "force_offset_drift", "quantized_displacement")
@@ -55,6 +55,9 @@ FINDING_KINDS = ("clipped", "saturated_displacement", "smoothed", "channel_skew"
 #: Effects whose signature is a lag of the force behind the motion: a smoothed record or a skewed channel makes a
 #: verdict on them unsafe.
 LAG_EFFECTS = ("compressibility", "preyield_elasticity", "field_lag", "fluid_inertia")
+#: Effects a moving average mimics: the lag-type effects, and leakage (the average rounds the force's jump at each
+#: reversal, as creep through a bypass below yield does).
+SMOOTHING_MIMICS = (*LAG_EFFECTS, "leakage")
 
 #: A time step more than this many times the median step is a gap.
 GAP_FACTOR = 3.0
@@ -492,10 +495,10 @@ def _smoothed(record: Measurement, opt: _Options) -> list[Finding]:
     msg = (f"the {names} {'was' if len(found) == 1 else 'were'} smoothed by a moving average over about {N} samples "
            f"({N * dt:.3g} s, {N * dt / period:.2g} of the motion's period): its spectrum is zero at every multiple "
            f"of {1 / (N * dt):.4g} Hz. A causal average delays a channel by {(N - 1) * dt / 2:.3g} s and rounds the "
-           "force at reversals: a lag no physics made, so verdicts on lag-type effects "
-           f"({', '.join(LAG_EFFECTS)}) are unsafe")
+           "force at reversals: a lag no physics made, so verdicts on lag-type effects and leakage "
+           f"({', '.join(SMOOTHING_MIMICS)}) are unsafe")
     return [Finding("smoothed", msg, record.name, f"whole record, {N} samples ({N * dt:.3g} s) window",
-                    unsafe_for=LAG_EFFECTS)]
+                    unsafe_for=SMOOTHING_MIMICS)]
 
 
 def _reversal_jumps(record: Measurement):
