@@ -42,7 +42,7 @@ GEOMETRY_FIELDS = {
     "duct_mean_diameter": ("duct mean diameter d", "Mean diameter of the annular gap (valve only)."),
     "gap": ("gap h", "Radial gap of the annulus."),
     "piston_diameter": ("piston diameter Dp", "Diameter of the piston (head)."),
-    "rod_diameter": ("rod diameter dr", "Diameter of the double-ended rod."),
+    "rod_diameter": ("rod diameter dr", "Diameter of the rod (both ends, or the one rod of a single-ended damper)."),
 }
 FLUID_FIELDS = {
     "viscosity": ("plastic viscosity η0", "At zero field."),
@@ -88,8 +88,12 @@ def _load(spec: dict, source: str, point: dict | None = None) -> None:
     state.set_widget("size.geo.ducts", int(geo.get("ducts", 1)))
     material = fluid.pop("material", None)
     st.session_state["size.file_fluid"] = fluid
-    # a [coil] has no widgets of its own: it is kept as loaded and shown with the magnetic circuit
+    # a [coil] has no widgets of its own: it is kept as loaded and shown with the magnetic circuit; so are a
+    # single-ended rod and its [accumulator] (docs/file_formats.md)
     st.session_state["size.coil"] = dict(spec["coil"]) if isinstance(spec.get("coil"), dict) else None
+    st.session_state["size.kept"] = {
+        "rod": {"rod": geo["rod"]} if "rod" in geo else {},
+        "accumulator": dict(spec["accumulator"]) if isinstance(spec.get("accumulator"), dict) else None}
     state.set_widget("size.name", str(spec.get("name") or Path(source).stem))
     state.set_widget("size.material", material or FILE_VALUES)
     base = fluid_values(material) if material else {}
@@ -164,6 +168,13 @@ def spec_from_widgets(values: dict) -> dict:
     ...      **{k: "" for k in FLUID_FIELDS}, "seal_friction": "40 N"}
     >>> spec_from_widgets(v)["fluid"]
     {'material': 'typical-mr', 'seal_friction': '40 N'}
+
+    A single-ended rod and its accumulator have no widgets: they are kept as the file had them.
+
+    >>> kept = {"rod": {"rod": "single"}, "accumulator": {"precharge": "0.9 MPa", "gas_volume": "16 cm^3"}}
+    >>> spec = spec_from_widgets({**v, "kept": kept})
+    >>> spec["geometry"]["rod"], spec["accumulator"]["precharge"]
+    ('single', '0.9 MPa')
     """
     configuration = values["configuration"]
     geometry: dict[str, Any] = {"configuration": configuration}
@@ -187,15 +198,19 @@ def spec_from_widgets(values: dict) -> dict:
                 raise ErdesignError(f"fluid.yield_exponent: expected a plain number, got {text!r}") from None
         else:
             fluid[key] = text
+    kept = values.get("kept") or {}
+    geometry.update(kept.get("rod") or {})
     spec = {"name": values.get("name", "design"), "geometry": geometry, "fluid": fluid}
     if values.get("coil"):
         spec["coil"] = dict(values["coil"])
+    if kept.get("accumulator"):
+        spec["accumulator"] = dict(kept["accumulator"])
     return spec
 
 
 def _inputs() -> dict:
     """Draw the inputs; return their values."""
-    values: dict[str, Any] = {"coil": st.session_state.get("size.coil")}
+    values: dict[str, Any] = {"coil": st.session_state.get("size.coil"), "kept": st.session_state.get("size.kept")}
     values["name"] = state.widget(st.text_input, "design name", "size.name", "design",
                                   help="Names the damper file and the report you download.")
     st.subheader("Geometry")
