@@ -17,7 +17,7 @@ from ..errors import ErdesignError
 from ..identification.fit import FitResult
 from .calibration import _finite_or_none, _fit, fitted_model
 
-__all__ = ["Candidate", "parameters_at_bounds", "MIN_GAIN", "BIC_THRESHOLD", "HELD_OUT_GAIN", "RECORD_BOUNDS"]
+__all__ = ["Candidate", "rank_candidates", "parameters_at_bounds", "MIN_GAIN", "BIC_THRESHOLD", "HELD_OUT_GAIN", "RECORD_BOUNDS"]
 
 
 #: A candidate must lower the residual sum of squares by at least this fraction ...
@@ -59,6 +59,8 @@ class Candidate:
     """Why it could not be evaluated (then :attr:`esr` is None) - or why it was not named."""
     effects: tuple = ()
     """The effects it adds: ``(effect,)``, or two for a pair."""
+    rank_bic: float = math.inf
+    """BIC change with the effective sample count shared by all candidates: the order of the ranking."""
     blocked: str = ""
     """Why it may not be named whatever its fit (a data finding that mimics it), or empty."""
 
@@ -111,6 +113,20 @@ def _effective_n(residual: np.ndarray) -> float:
 
 def _bic(rss: float, n: int, k: int, n_eff: float) -> float:
     return n_eff * math.log(max(rss / n, 1e-300)) + k * math.log(n_eff)
+
+
+def rank_candidates(ranking: list, base: FitResult) -> None:
+    """Sort ``ranking`` in place, best first: evaluated candidates by the BIC change with one effective sample count
+    for all (the smallest any of them leaves), so that candidates with as many parameters are ranked by their
+    residual sum of squares (the significance of each against the baseline keeps its own count,
+    :attr:`Candidate.delta_bic`)."""
+    evaluated = [c for c in ranking if c.evaluated]
+    if evaluated:
+        n_common = min(_effective_n(c.result.residual) for c in evaluated)
+        for c in evaluated:
+            c.rank_bic = (_bic(c.result.rss, base.n, c.result.k, n_common)
+                          - _bic(base.rss, base.n, base.k, n_common))
+    ranking.sort(key=lambda c: (not c.evaluated, c.rank_bic if c.evaluated else math.inf))
 
 
 def _held_out_mask(record: Measurement, blocks: int = 12) -> np.ndarray:

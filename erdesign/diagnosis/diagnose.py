@@ -52,7 +52,7 @@ from .calibration import (
     data_findings,
     fitted_model,
 )
-from .candidates import (
+from .candidates import (rank_candidates, 
     BIC_THRESHOLD,
     HELD_OUT_GAIN,
     MIN_GAIN,
@@ -300,7 +300,10 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
         if hit:
             c.blocked = (f"the data finding '{hit[0].kind}' ({hit[0].record}) makes the force lag the motion as "
                          f"{c.effect} would; it is an artefact of the record, not a mechanism")
-    ranking.sort(key=lambda c: (not c.evaluated, c.delta_bic))
+    # ranked by the BIC with one effective sample count for all (the smallest any candidate leaves): each
+    # candidate's own count (its significance against the baseline) would rank a worse fit first when the better one
+    # leaves a smoother residual
+    rank_candidates(ranking, base)
     at_floor = base.esr <= AT_FLOOR * floor + ABSOLUTE_SLACK
     well_above = base.esr > WELL_ABOVE * floor + ABSOLUTE_SLACK
     if not base.esr < 1.0:
