@@ -350,9 +350,10 @@ The truth rig is the team's own; two measured sets test what it cannot:
   on the first half it predicts the second within 1.12-1.17 x on the judged samples.
 - **Quiroz (2022)** (a small MR damper at five coil currents, `examples/quiroz2022.toml`;
   [case_studies/quiroz.md](case_studies/quiroz.md)): the 30 raw sinusoids are diagnosed together (one parameter
-  set); the preprocessed files are found `smoothed` (a causal moving average over a tenth of a period) and no
-  lag-type effect is named on them.  The loop's rounds and the validation ESR of its model on the earthquake-type
-  record are in the study."""
+  set; the preprocessed files are found `smoothed`, a causal moving average over a tenth of a period): following
+  its verdicts the loop names pre-yield elasticity, then ends `unexplained` at training ESR 0.012; fitted jointly
+  on the sines, that model predicts the earthquake-type validation record at mean ESR 0.099 (through the record's
+  own smoothing), within 1.5 x the modified Bouc-Wen's 0.066."""
 
 
 def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset: str, command: str,

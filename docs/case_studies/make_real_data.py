@@ -207,11 +207,11 @@ def render_physics(ph: dict, out: dict) -> list[str]:
         f"records ({bw_raw:.3f}).",
         f"- Best of the variants: {best} (baseline{''.join(' + ' + e for e in ph['models'][best]['effects'])}), "
         f"{mean[best]:.3f}: {mean[best] / bw_pre:.2f} x the first table's Bouc-Wen, {mean[best] / bw_raw:.1f} x "
-        "the Bouc-Wen fitted and judged the same way.  The loop added no candidate: a named effect must remove",
-        "  60 % of the excess over the noise floor (`EXPLAINS` in erdesign/diagnosis/diagnose.py), and the floor",
-        f"  estimated from these records is {last['esr'] / last['noise_floor_esr']:.0f} times below the last "
-        "round's ESR, so after the first effect no",
-        "  second one can, whatever it does on held-out records.",
+        "the Bouc-Wen fitted and judged the same way.  The loop added no candidate after the last round: far",
+        f"  above the floor ({last['esr'] / last['noise_floor_esr']:.0f} x) an effect is named as one step of "
+        "the loop only when it removes",
+        "  at least 20 % of the excess with strong evidence and no rival (`PARTIAL_SHARE` in",
+        "  erdesign/diagnosis/verdict.py); the candidates ranked first remove less (see the reason above).",
         f"- Direct scores of the models fitted on raw records are poor ({direct_lo:.2f}-{direct_hi:.2f} for the "
         "physics models): the record's 0.3 s average turns",
         "  the yield force's sign changes into ramps, and a model that has not seen the average over-predicts the",
