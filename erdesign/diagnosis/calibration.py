@@ -59,7 +59,7 @@ def calibrate(damper: Damper, record: Measurement | Sequence[Measurement], effec
     model = PhysicsDamper(damper, effects)
     for r in records:
         check_control(damper, r)
-        _check_record(r)
+        _check_record(r, to_judge=False)
     _check_effects_seen(model, records, damper)
     findings = data_findings(records, exclude_clipped=exclude_clipped)
     prep = prepare(records, [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r))
@@ -161,18 +161,22 @@ def _implausible_record(record: Measurement, damper: Damper) -> list[str]:
     return out
 
 
-def _check_record(record: Measurement) -> None:
+def _check_record(record: Measurement, *, to_judge: bool = True) -> None:
+    """A one-line error for a record that cannot be fitted; with ``to_judge`` (diagnosis) also for one too short to
+    judge any effect (a fit of a short record is only warned about: erdesign.data.measurement.check_record)."""
     if record.force is None:
         raise DiagnosisError(f"{record.name or 'record'}: has no force column")
+    for name, a in (("force", record.force), ("displacement", record.displacement), ("velocity", record.velocity)):
+        if not np.all(np.isfinite(a)):
+            raise DiagnosisError(f"{record.name or 'record'}: the {name} has non-finite values")
+    if not to_judge:
+        return
     if len(record) < 50:
         raise DiagnosisError(f"{record.name or 'record'}: {len(record)} samples are too few to judge any effect "
                              "(need at least 50, over at least one cycle)")
     if reversal_count(record.velocity) < 2:
         raise DiagnosisError(f"{record.name or 'record'}: the piston reverses fewer than twice; at least one full "
                              "cycle is needed to judge any effect")
-    for name, a in (("force", record.force), ("displacement", record.displacement), ("velocity", record.velocity)):
-        if not np.all(np.isfinite(a)):
-            raise DiagnosisError(f"{record.name or 'record'}: the {name} has non-finite values")
 
 
 def _name(record: Measurement, i: int) -> str:
