@@ -900,7 +900,7 @@ def benchmark_cases(subset: str = "full") -> list[Case]:
     (153, 15, 36)
     >>> len(new), sum(c.kind == "clean" for c in new), [c.name for c in benchmark_cases()] == [
     ...     c.name for c in core + new]
-    (37, 13, True)
+    (49, 22, True)
     """
     if subset == "full":
         return _full() + _issue23()
