@@ -70,14 +70,21 @@ def calibrate(damper: Damper, record: Measurement | Sequence[Measurement], effec
     return result
 
 
+def unseen_reason(effect, records: Sequence[Measurement], damper: Damper) -> str | None:
+    """Why none of ``records`` can show ``effect`` (an :class:`erdesign.effects.base.Effect`), or None when any of
+    them can: each full record is asked on its own (its own sampling step, its own fields)."""
+    whys = [effect.check(r, damper) for r in records]
+    return None if any(w is None for w in whys) else whys[0]
+
+
 def _check_effects_seen(model: PhysicsDamper, records: Sequence[Measurement], damper: Damper) -> None:
-    """A one-line error when no record can show one of the model's effects (each record asked on its own)."""
+    """A one-line error when no record can show one of the model's effects (:func:`unseen_reason`)."""
     for e in model.effects:
-        whys = [e.check(r, damper) for r in records]
-        if all(whys):
+        why = unseen_reason(e, records, damper)
+        if why:
             raise EffectError(f"{e.name}: cannot be judged from {records[0].name or 'this record'}"
                               + (f" or the other {len(records) - 1} records" if len(records) > 1 else "")
-                              + f": {whys[0]}")
+                              + f": {why}")
 
 
 def data_findings(records: Sequence[Measurement], *, exclude_clipped: bool | None = None) -> list:

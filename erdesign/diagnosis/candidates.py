@@ -15,7 +15,7 @@ from ..effects import EFFECTS
 from ..effects.chain import PhysicsDamper
 from ..errors import ErdesignError
 from ..identification.fit import FitResult
-from .calibration import _finite_or_none, _fit, fitted_model
+from .calibration import _finite_or_none, _fit, fitted_model, unseen_reason
 
 __all__ = ["Candidate", "rank_candidates", "parameters_at_bounds", "MIN_GAIN", "BIC_THRESHOLD", "HELD_OUT_GAIN", "RECORD_BOUNDS"]
 
@@ -197,12 +197,9 @@ def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, eff
 
 
 def _cannot_judge(name: str, records, work: Measurement, damper: Damper) -> str | None:
-    """Why the records cannot show effect ``name`` (None: they can): each full record is asked (its own sampling
-    step), the candidate is judged when any record can show it."""
-    whys = [EFFECTS[name].check(r, damper) for r in records]
-    if any(w is None for w in whys):
-        return None
-    return whys[0]
+    """Why the records cannot show effect ``name`` (None: they can; :func:`erdesign.diagnosis.calibration.
+    unseen_reason`)."""
+    return unseen_reason(EFFECTS[name], records, damper)
 
 
 def _beyond_record(cand: Candidate, work: Measurement, mask) -> list[str]:
