@@ -15,3 +15,18 @@ MAKRIS_AP = math.pi / 4 * (MAKRIS["Dp"] ** 2 - MAKRIS["dr"] ** 2)
 def makris():
     """The damper of examples/makris.toml."""
     return erdesign.load_example("makris")
+
+
+@pytest.fixture(scope="session")
+def dask_client():
+    """A real Dask cluster on loopback: a ``distributed.LocalCluster`` with 2 worker processes of one thread each,
+    shared by every test of the session that needs one (starting it costs a few seconds)."""
+    distributed = pytest.importorskip("distributed", reason="the Dask tests need the test extra (distributed)")
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                       host="127.0.0.1", silence_logs=40)
+    client = distributed.Client(cluster, set_as_default=False)
+    try:
+        yield client
+    finally:
+        client.close()
+        cluster.close()
