@@ -15,7 +15,10 @@ r"""Time-stepping kernels shared by the damper models (SI floats / numpy arrays;
 
 from __future__ import annotations
 
+import hashlib
 import math
+from contextvars import ContextVar
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -112,7 +115,43 @@ RK4_THETA = 0.3
 MAX_SUBSTEPS = 256
 
 
-class coarse_steps:
+@dataclass(frozen=True)
+class StepSettings:
+    """How :func:`modified_bouc_wen` sub-steps a sample: ``theta`` (the largest product of the sub-step and the
+    coupling rate), ``max_substeps`` per sample, and ``plans`` (``None``, or a dict of frozen sub-step counts per
+    record, see :class:`frozen_substeps`)."""
+
+    theta: float = RK4_THETA
+    max_substeps: int = MAX_SUBSTEPS
+    plans: dict | None = None
+
+
+# The settings in force.  A context variable, not a module global: each thread (and each asyncio task) sees the
+# settings of its own ``with`` blocks, so two fits running at once in threads cannot change each other's steps.
+_STEPS: ContextVar[StepSettings] = ContextVar("erdesign_kernel_steps", default=StepSettings())
+
+
+def step_settings() -> StepSettings:
+    """The sub-step settings in force in this thread / context."""
+    return _STEPS.get()
+
+
+class _StepBlock:
+    """A ``with`` block that replaces some fields of the step settings of the current context and restores them."""
+
+    def _changes(self) -> dict:
+        raise NotImplementedError
+
+    def __enter__(self):
+        self._token = _STEPS.set(replace(_STEPS.get(), **self._changes()))
+        return self
+
+    def __exit__(self, *exc):
+        _STEPS.reset(self._token)
+        return False
+
+
+class coarse_steps(_StepBlock):
     """Context manager: a looser sub-step (theta 1.0, at most 64 sub-steps per sample) while an optimiser
     explores - about 1e-4 of the force range instead of 4e-6, far below any real model error, at a third of the
     cost; identification scores its result with the default steps."""
@@ -120,42 +159,40 @@ class coarse_steps:
     def __init__(self, theta: float = 1.0, max_substeps: int = 64):
         self.theta, self.max_substeps = theta, max_substeps
 
-    def __enter__(self):
-        global RK4_THETA, MAX_SUBSTEPS
-        self.saved = (RK4_THETA, MAX_SUBSTEPS)
-        RK4_THETA, MAX_SUBSTEPS = self.theta, self.max_substeps
-        return self
-
-    def __exit__(self, *exc):
-        global RK4_THETA, MAX_SUBSTEPS
-        RK4_THETA, MAX_SUBSTEPS = self.saved
-        return False
+    def _changes(self):
+        return {"theta": self.theta, "max_substeps": self.max_substeps}
 
 
 _EMPTY_PLAN = np.zeros(0, dtype=np.int64)
-_PLANS: dict | None = None
 
 
-class frozen_substeps:
-    """Context manager: the first simulation of a record (keyed by its length) inside the block records the number
-    of sub-steps (into ``plans``, a dict returned by ``with``; pass it again to reuse the counts) of each step of :func:`modified_bouc_wen`; later ones reuse it.  The states are then smooth in the
-    parameters, as a finite-difference Jacobian needs (the adaptive count jumps by one somewhere in the record
-    for almost any parameter step, and each jump moves the force by the discretisation error: far more than the
-    step's effect when the step is small).  Models without sub-steps ignore it."""
+class frozen_substeps(_StepBlock):
+    """Context manager: the first simulation of a record inside the block records the number of sub-steps of each
+    step of :func:`modified_bouc_wen` (into ``plans``, a dict returned by ``with``; pass it again to reuse the
+    counts); later simulations of the same record reuse them.  The states are then smooth in the parameters, as a
+    finite-difference Jacobian needs (the adaptive count jumps by one somewhere in the record for almost any
+    parameter step, and each jump moves the force by the discretisation error: far more than the step's effect when
+    the step is small).  A record is known by a digest of its time and displacement samples, so two records of one
+    length keep their own counts.  Models without sub-steps ignore it."""
 
     def __init__(self, plans: dict | None = None):
         self.plans = {} if plans is None else plans
 
+    def _changes(self):
+        return {"plans": self.plans}
+
     def __enter__(self) -> dict:
-        """The plans: record length -> sub-step counts (filled by the first simulation of each length)."""
-        global _PLANS
-        self.saved, _PLANS = _PLANS, self.plans
+        """The plans: record digest -> sub-step counts (filled by the first simulation of each record)."""
+        super().__enter__()
         return self.plans
 
-    def __exit__(self, *exc):
-        global _PLANS
-        _PLANS = self.saved
-        return False
+
+def _plan(settings: StepSettings, t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """The sub-step counts to reuse (or fill) for this record, or an empty array when counts are adaptive."""
+    if settings.plans is None:
+        return _EMPTY_PLAN
+    key = (t.size, hashlib.blake2b(t.tobytes() + x.tobytes(), digest_size=16).digest())
+    return settings.plans.setdefault(key, np.zeros(max(t.size - 1, 0), dtype=np.int64))
 
 
 def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
@@ -194,7 +231,7 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
     u = np.ascontiguousarray(np.broadcast_to(np.asarray(u, dtype=float), t.shape))
     eta = float(eta) if math.isfinite(eta) else 1e300
     aa, ab, ac = (float(a) for a in alpha)
-    plan = _EMPTY_PLAN if _PLANS is None else _PLANS.setdefault(t.size, np.zeros(max(t.size - 1, 0), dtype=np.int64))
+    steps = _STEPS.get()
     return _compiled().modified_bouc_wen(t, x, u, eta, aa, ab, ac, float(c0[0]), float(c0[1]), float(c1[0]),
                                          float(c1[1]), float(k0), float(beta), float(gamma), float(delta), float(n),
-                                         RK4_THETA, MAX_SUBSTEPS, plan)
+                                         steps.theta, steps.max_substeps, _plan(steps, t, x))
