@@ -196,3 +196,28 @@ def test_cli_table(capsys):
                           "--velocity", "1 in/s", "--field", "3 kV/mm", "--samples", "3000", "--jobs", "1")
     assert code == 0, err
     assert "damping constant [kN s/m]" in text and "Sobol indices" in text and "geometry.gap" in text
+
+
+def test_app_size_page_shows_the_tolerance_figures():
+    """The Size page's "Tolerances" expander runs a small study (2000 samples) and draws the histogram and the
+    tornado chart of the chosen output, without exception; a bad tolerance line is a message, not a traceback."""
+    from pathlib import Path
+
+    from streamlit.testing.v1 import AppTest
+
+    from erdesign.app import state
+
+    at = AppTest.from_file(str(Path(state.__file__).with_name("main.py")), default_timeout=60).run()
+    assert not at.exception, at.exception
+    at.checkbox(key="size.tol.run").check().run()
+    assert not at.exception, at.exception
+    assert not at.error, [e.value for e in at.error]
+    ids = [c.proto.id for c in at.get("plotly_chart")]
+    assert any("size.fig.tolerance" in i for i in ids) and any("size.fig.tornado" in i for i in ids)
+    tornado = json.loads(next(c for c in at.get("plotly_chart") if "size.fig.tornado" in c.proto.id).proto.spec)
+    assert set(tornado["data"][0]["y"]) == {"geometry.gap", "fluid.viscosity", "fluid.yield_stress"}
+    at.selectbox(key="size.tol.output").set_value("damping_constant_N_s_per_m").run()
+    assert not at.exception, at.exception
+    at.text_area(key="size.tol.vary").set_value("geometry.gapp=+-1 %").run()
+    assert not at.exception, at.exception
+    assert any("is not a value a study can vary" in e.value for e in at.error)

@@ -42,7 +42,7 @@ from ..fluid.fluid import plastic_viscosity
 from ..units import Q_, dimension_name
 
 __all__ = ["Variable", "VARIABLES", "Variation", "parse_variation", "ToleranceStudy", "ToleranceResult",
-           "OUTPUTS", "QUANTILES", "CHUNK", "SOBOL_BASE_MAX", "tolerance_study", "evaluate_samples", "physical", "sobol_base_samples",
+           "OUTPUTS", "QUANTILES", "CHUNK", "HISTOGRAM_BINS", "SOBOL_BASE_MAX", "tolerance_study", "evaluate_samples", "physical", "sobol_base_samples",
            "write_samples", "ToleranceError"]
 
 #: Samples per chunk: the unit of work and of random streams (changing it changes the numbers, not their law).
@@ -51,6 +51,8 @@ CHUNK = 65536
 QUANTILES = (1, 5, 50, 95, 99)
 #: Outputs of every sample, SI: the keys of ``erdesign size --json`` they match.
 OUTPUTS = ("force_N", "zero_field_force_N", "dynamic_range", "damping_constant_N_s_per_m")
+#: Bins of the histograms a study keeps of each output.
+HISTOGRAM_BINS = 60
 #: A chunk may reject at most this fraction of its draws before the study is refused (tolerances far too wide).
 MAX_REJECTED_FRACTION = 0.5
 
@@ -365,6 +367,9 @@ class ToleranceResult:
     sobol_evaluations: int
     executor: str
     seconds: float
+    histograms: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict, repr=False)
+    """output -> (bin edges, counts): :data:`HISTOGRAM_BINS` bins between the 0.1 and 99.9 % quantiles (the
+    samples outside fall in the end bins), for the figures of a study too large to keep its samples."""
     samples: dict[str, np.ndarray] | None = field(default=None, repr=False)
 
     def as_json(self) -> dict:
@@ -493,6 +498,7 @@ def tolerance_study(damper: Damper, variations, *, velocity: float, field: float
                                                                                 [q / 100 for q in QUANTILES]))}
                  for key in OUTPUTS}
     nominal_y = evaluate_samples(study, np.array([[v.nominal for v in variations]]))
+    histograms = {key: _histogram(outputs[key]) for key in OUTPUTS}
     sens = _sobol_indices(study, base, sobol_y) if sobol_y is not None else {}
     kept = None
     if keep_samples:
@@ -502,7 +508,18 @@ def tolerance_study(damper: Damper, variations, *, velocity: float, field: float
         mean={k: float(np.mean(outputs[k])) for k in OUTPUTS}, std={k: float(np.std(outputs[k])) for k in OUTPUTS},
         nominal={k: float(nominal_y[k][0]) for k in OUTPUTS}, sensitivity=sens, sobol_base=base,
         sobol_evaluations=0 if sobol_x is None else len(sobol_x), executor=description,
-        seconds=time.perf_counter() - t0, samples=kept)
+        seconds=time.perf_counter() - t0, histograms=histograms, samples=kept)
+
+
+def _histogram(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    finite = values[np.isfinite(values)]
+    if finite.size == 0:
+        return np.array([0.0, 1.0]), np.array([0])
+    lo, hi = np.quantile(finite, [0.001, 0.999])
+    if not hi > lo:
+        lo, hi = lo - 0.5 * max(abs(lo), 1e-12), hi + 0.5 * max(abs(hi), 1e-12)
+    counts, edges = np.histogram(np.clip(finite, lo, hi), bins=HISTOGRAM_BINS, range=(lo, hi))
+    return edges, counts
 
 
 def _problem(study: ToleranceStudy) -> dict:
