@@ -221,3 +221,21 @@ def test_app_size_page_shows_the_tolerance_figures():
     at.text_area(key="size.tol.vary").set_value("geometry.gapp=+-1 %").run()
     assert not at.exception, at.exception
     assert any("is not a value a study can vary" in e.value for e in at.error)
+
+
+def test_report_shows_the_tolerance_figures():
+    """``build_report(..., tolerances=...)``: the histogram and the tornado at the design point, the quantiles of
+    the force in the table equal to the study's own."""
+    from erdesign.campaign.tolerance import tolerance_study
+    from erdesign.report import build_report, render_markdown
+
+    vary = ["geometry.gap=+-2.5 %", "fluid.viscosity_at_reference_field=+-10 %"]
+    rep = build_report(load_example("makris"), tolerances=vary, tolerance_samples=4000,
+                       design_velocity="50 mm/s", design_field="3 kV/mm")
+    keys = [f.key for f in rep.figures]
+    assert "tolerance" in keys and "tornado" in keys
+    table = next(f for f in rep.figures if f.key == "tolerance").table
+    r = tolerance_study(load_example("makris"), vary, velocity=0.05, field=3e6, samples=4000)
+    median = table.rows[2][1]                                   # the 50 % row, force column
+    assert median.si == pytest.approx(r.quantiles["force_N"]["50"], rel=1e-3)   # shown to 4 figures
+    assert "What drives the spread of the force" in render_markdown(rep)

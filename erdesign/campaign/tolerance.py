@@ -128,9 +128,19 @@ class Variation:
         return rng.normal(self.nominal, self.delta, n)
 
     def describe(self) -> str:
-        unit = VARIABLES[self.key].si_unit
+        """``"geometry.gap = 0.8 mm +- 0.02 mm (sd)"``, in the unit that reads best."""
+        from ..formatting import pick_unit
+
+        si_unit = VARIABLES[self.key].si_unit
+        unit = pick_unit(Q_(self.nominal or self.delta, si_unit), _KINDS[si_unit])
+        nominal, delta = (Q_(x, si_unit).to(unit).magnitude for x in (self.nominal, self.delta))
         kind = "sd" if self.distribution == "normal" else "uniform half-width"
-        return f"{self.key} = {self.nominal:.6g} {unit} +- {self.delta:.4g} {unit} ({kind})"
+        shown = f"{Q_(1.0, unit).units:~P}"
+        return f"{self.key} = {nominal:.6g} {shown} +- {delta:.4g} {shown} ({kind})"
+
+
+#: The kind of unit (erdesign.formatting.UNIT_CHOICES) of each variable's SI unit, for display.
+_KINDS = {"m": "length", "Pa*s": "viscosity", "Pa": "pressure", "kg/m^3": "density", "N": "force"}
 
 
 _SPEC = re.compile(r"^\s*(?P<uniform>uniform:)?\s*(?P<key>[A-Za-z_.]+)\s*=\s*(?P<value>.*?)\s*(\+-|±|\+/-)"
@@ -196,7 +206,7 @@ def _si(text: str, si_unit: str, where: str, part: str) -> float:
         raise ToleranceError(f"{where}: cannot read {part} {text!r} as a quantity with a unit") from None
     if not hasattr(q, "units") or q.dimensionless:
         raise ToleranceError(f"{where}: {part} {text!r} has no unit; give one, e.g. \"{text} "
-                             f"{Q_(1.0, si_unit).units:~P}\"")
+                             f"{Q_(1.0, si_unit).units:~P}\"" + (", or a percentage" if part == "DELTA" else ""))
     try:
         value = float(q.to(si_unit).magnitude)
     except Exception:  # noqa: BLE001 - pint's DimensionalityError
