@@ -9,11 +9,18 @@ import pytest
 from scipy.special import ndtri
 
 from erdesign import load_example
-from erdesign.campaign.tolerance import (OUTPUTS, ToleranceError, evaluate_samples, parse_variation,
-                                         tolerance_study, ToleranceStudy)
+from erdesign.campaign.tolerance import (
+    OUTPUTS,
+    ToleranceError,
+    ToleranceStudy,
+    evaluate_samples,
+    parse_variation,
+    tolerance_study,
+)
 from erdesign.cli import main
 
 VARY = ["geometry.gap=0.8 mm +- 0.02 mm", "fluid.viscosity=+-10 %", "fluid.yield_stress=+-15 %"]
+VARY_ARGS = [arg for v in VARY for arg in ("--vary", v)]
 
 
 @pytest.fixture(scope="module")
@@ -108,7 +115,7 @@ def test_same_seed_same_numbers_serial_and_pool(makris):
 def test_one_million_samples_same_quantiles_serial_pool_and_dask(makris, dask_client):
     """Done-when of issue 24: 1e6 samples on the local pool and on a Dask LocalCluster, the same quantiles (and
     Sobol indices) as serially, with the same seed."""
-    kwargs = dict(velocity=0.0254, field=3e6, samples=1_000_000, seed=2024)
+    kwargs = {"velocity": 0.0254, "field": 3e6, "samples": 1_000_000, "seed": 2024}
     serial = tolerance_study(makris, VARY, jobs=1, **kwargs)
     pool = tolerance_study(makris, VARY, jobs=2, **kwargs)
     dask = tolerance_study(makris, VARY, executor=dask_client, **kwargs)
@@ -164,7 +171,7 @@ def test_bad_options_are_named(capsys, args, message):
 
 def test_cli_json_keys_and_out_file(capsys, tmp_path):
     out = tmp_path / "samples.parquet"
-    code, text, err = run(capsys, "tolerance", "makris", *sum((["--vary", v] for v in VARY), []),
+    code, text, err = run(capsys, "tolerance", "makris", *VARY_ARGS,
                           "--velocity", "1 in/s", "--field", "3 kV/mm", "--samples", "5000", "--seed", "3",
                           "--jobs", "1", "--json", "--out", str(out))
     assert code == 0, err
@@ -192,7 +199,7 @@ def test_cli_json_keys_and_out_file(capsys, tmp_path):
 
 
 def test_cli_table(capsys):
-    code, text, err = run(capsys, "tolerance", "makris", *sum((["--vary", v] for v in VARY), []),
+    code, text, err = run(capsys, "tolerance", "makris", *VARY_ARGS,
                           "--velocity", "1 in/s", "--field", "3 kV/mm", "--samples", "3000", "--jobs", "1")
     assert code == 0, err
     assert "damping constant [kN s/m]" in text and "Sobol indices" in text and "geometry.gap" in text

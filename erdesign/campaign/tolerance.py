@@ -19,6 +19,9 @@ built in the calling process and evaluated on the executor in chunks too.
 
 Non-physical draws (a gap <= 0, a rod as thick as the piston, ...: :func:`physical`) are rejected and drawn again
 from the chunk's stream (so the distributions are truncated to the physical region); the study reports how many.
+
+The field law is the file's: with a ``[coil]``, the yield stress at the current is that of the file's magnetic
+circuit, so a varied gap changes the flow but not the gap's flux density (the circuit is not re-solved per sample).
 See docs/tolerance.md for the method and how many samples give which confidence.
 """
 
@@ -28,9 +31,10 @@ import math
 import os
 import re
 import tempfile
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -41,9 +45,26 @@ from ..executor import Executor, chunks, executor_for
 from ..fluid.fluid import plastic_viscosity
 from ..units import Q_, dimension_name
 
-__all__ = ["Variable", "VARIABLES", "Variation", "parse_variation", "ToleranceStudy", "ToleranceResult",
-           "OUTPUTS", "QUANTILES", "CHUNK", "HISTOGRAM_BINS", "SOBOL_BASE_MAX", "tolerance_study", "evaluate_samples", "physical", "sobol_base_samples",
-           "write_samples", "ToleranceError"]
+__all__ = [
+    "CHUNK",
+    "HISTOGRAM_BINS",
+    "OUTPUTS",
+    "QUANTILES",
+    "SAMPLE_FORMATS",
+    "SOBOL_BASE_MAX",
+    "VARIABLES",
+    "ToleranceError",
+    "ToleranceResult",
+    "ToleranceStudy",
+    "Variable",
+    "Variation",
+    "evaluate_samples",
+    "parse_variation",
+    "physical",
+    "sobol_base_samples",
+    "tolerance_study",
+    "write_samples",
+]
 
 #: Samples per chunk: the unit of work and of random streams (changing it changes the numbers, not their law).
 CHUNK = 65536
@@ -321,17 +342,15 @@ def _monte_carlo_chunk(task: tuple[ToleranceStudy, int, int, bool]) -> _Chunk:
 
 
 def _too_wide(study: ToleranceStudy, bad: np.ndarray) -> str:
-    """Which --vary makes most draws non-physical."""
-    worst = study.variations[0]
-    for j, v in enumerate(study.variations):
-        var = VARIABLES[v.key]
-        below = np.mean(bad[:, j] <= var.lower) if len(bad) else 0.0
-        if below > 0.5:
-            worst = v
-            break
-    return (f"--vary {worst.spec or worst.key!r}: more than {MAX_REJECTED_FRACTION:.0%} of the draws give no physical "
-            "damper (a value at or below 0, a rod as thick as the piston, a gap as wide as its duct); the "
-            "tolerances are far too wide for this damper")
+    """The message for draws that give no damper: the --vary whose own bound most draws cross, else all of them
+    (the draws cross a bound between two values: a rod as thick as the piston)."""
+    culprits = [v for j, v in enumerate(study.variations) if len(bad) and np.mean(
+        bad[:, j] <= VARIABLES[v.key].lower) > 0.5]
+    named = culprits[:1] or study.variations
+    where = ", ".join(f"--vary {v.spec or v.key!r}" for v in named)
+    return (f"{where}: more than {MAX_REJECTED_FRACTION:.0%} of the draws give no physical damper (a value at or "
+            "below 0, a rod as thick as the piston, a gap as wide as its duct); the tolerances are far too wide for "
+            "this damper")
 
 
 def _sobol_chunk(task: tuple[ToleranceStudy, np.ndarray]) -> dict[str, np.ndarray]:
@@ -352,7 +371,7 @@ def sobol_base_samples(samples: int, inputs: int) -> int:
     >>> sobol_base_samples(20000, 3), sobol_base_samples(10**7, 3), sobol_base_samples(10, 2)
     (2048, 16384, 16)
     """
-    return int(min(SOBOL_BASE_MAX, max(16, 2 ** int(math.floor(math.log2(max(1, samples // (inputs + 2))))))))
+    return min(SOBOL_BASE_MAX, max(16, 2 ** math.floor(math.log2(max(1, samples // (inputs + 2))))))
 
 
 @dataclass(frozen=True)

@@ -46,7 +46,12 @@ def tolerance(damper_file: str, vary: tuple[str, ...], velocity: str, field: str
               as_json: bool) -> None:
     """Spread of force, zero-field force, dynamic range and damping constant under tolerances, with Sobol indices."""
     from .._util import check_output_path
-    from ..campaign.tolerance import SAMPLE_FORMATS, parse_variation, tolerance_study, write_samples
+    from ..campaign.tolerance import (
+        SAMPLE_FORMATS,
+        parse_variation,
+        tolerance_study,
+        write_samples,
+    )
     from ..damper.files import load_damper
     from ..executor import default_jobs
     from ..units import to_si
@@ -88,9 +93,9 @@ def tolerance(damper_file: str, vary: tuple[str, ...], velocity: str, field: str
 def tolerance_table(result, out: str | None = None) -> str:
     """The readable report of a study: inputs, quantiles of each output, Sobol indices."""
     study = result.study
-    lines = [f"{study.damper.name or 'damper'} at {study.velocity:.4g} m/s, control {study.field:.4g} "
-             f"{study.damper.fluid.control_unit}: {result.count} samples (seed {study.seed}, {result.executor}, "
-             f"{result.seconds:.1f} s)"]
+    lines = [(f"{study.damper.name or 'damper'} at {study.velocity:.4g} m/s, control {study.field:.4g} "
+              f"{study.damper.fluid.control_unit}: {result.count} samples (seed {study.seed}, {result.executor}, "
+              f"{result.seconds:.1f} s)")]
     lines += [f"  vary {v.describe()}" for v in study.variations]
     if result.rejected:
         lines.append(f"  {result.rejected} non-physical draws rejected and drawn again")
@@ -103,8 +108,8 @@ def tolerance_table(result, out: str | None = None) -> str:
         lines.append(f"{name:<26}{result.nominal[key] / scale:>10.4g}"
                      + "".join(f"{qs[q] / scale:>10.4g}" for q in ("1", "5", "50", "95", "99")))
     if result.sensitivity:
-        lines += ["", f"Sobol indices, first-order / total (+- 95 % half-width; {result.sobol_base} base samples, "
-                  f"{result.sobol_evaluations} evaluations)"]
+        lines += ["", (f"Sobol indices, first-order / total (+- 95 % half-width; {result.sobol_base} base "
+                       f"samples, {result.sobol_evaluations} evaluations)")]
         width = max(len(k) for k in study.keys) + 2
         for key, (label, _, _) in _LABELS.items():
             lines.append(f"  {label}")

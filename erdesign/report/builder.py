@@ -46,8 +46,8 @@ from ..units import Q_, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
 
-__all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison",
-           "tolerance_figures", "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
+__all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison", "tolerance_figures",
+           "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
            "default_velocity_max", "compare_designs", "with_baseline", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
 
 #: Sine amplitude of the loops when none is given.
