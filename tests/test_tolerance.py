@@ -246,3 +246,26 @@ def test_report_shows_the_tolerance_figures():
     median = table.rows[2][1]                                   # the 50 % row, force column
     assert median.si == pytest.approx(r.quantiles["force_N"]["50"], rel=1e-3)   # shown to 4 figures
     assert "What drives the spread of the force" in render_markdown(rep)
+
+
+def test_cli_csv_out_leaves_no_temporary_file(capsys, tmp_path):
+    out = tmp_path / "samples.csv"
+    code, _, err = run(capsys, "tolerance", "makris", "--vary", "uniform:geometry.gap=+-20 um", "--velocity",
+                       "1 in/s", "--samples", "300", "--jobs", "1", "--json", "--out", str(out))
+    assert code == 0, err
+    assert [p.name for p in tmp_path.iterdir()] == ["samples.csv"]
+    import pandas as pd
+    gap = pd.read_csv(out)["geometry.gap [m]"]
+    assert len(gap) == 300 and 0.78e-3 <= gap.min() and gap.max() <= 0.82e-3     # uniform, half-width 20 um
+
+
+@pytest.mark.slow
+def test_cli_on_a_dask_scheduler_gives_the_serial_json(capsys, dask_client):
+    args = ["tolerance", "makris", *VARY_ARGS, "--velocity", "1 in/s", "--field", "3 kV/mm", "--samples", "100000",
+            "--seed", "9", "--json"]
+    _, serial, err = run(capsys, *args, "--jobs", "1")
+    code, dask, err = run(capsys, *args, "--scheduler", dask_client.scheduler.address)
+    assert code == 0, err
+    a, b = json.loads(serial), json.loads(dask)
+    assert "Dask" in b["executor"]
+    assert a["quantiles"] == b["quantiles"] and a["sensitivity"] == b["sensitivity"]
