@@ -3,7 +3,8 @@
 Inputs are values with units as text (``"0.8 mm"``, ``"2.15 in"``), read by pint through the library; the fluid may
 come from the materials database, any value of it overridden.  Outputs come from :meth:`erdesign.Damper.size`, the
 force-velocity curves from :func:`erdesign.damper.curves.force_velocity_curves` drawn by :mod:`erdesign.report.plots`,
-the sweep explorer (one geometry value varied) from :func:`erdesign.app.state.geometry_sweep`.
+the sweep explorer (one geometry value varied) from :func:`erdesign.app.state.geometry_sweep`, the tolerance study
+(quantiles and Sobol indices under tolerances) from :func:`erdesign.campaign.tolerance.tolerance_study`.
 """
 
 from __future__ import annotations
@@ -421,6 +422,53 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
                        key="size.dl.sweep", icon=":material/download:")
 
 
+#: The tolerances the page starts with (issue 24: gap +- 20 um on 0.8 mm, viscosity +- 10 %, yield stress +- 15 %).
+DEFAULT_TOLERANCES = "geometry.gap=+-2.5 %\nfluid.viscosity=+-10 %\nfluid.yield_stress=+-15 %"
+
+
+@st.cache_data(show_spinner=False, max_entries=8)
+def _tolerance_study(text: str, specs: tuple[str, ...], v: float, E: float, samples: int, seed: int):
+    from erdesign.campaign.tolerance import tolerance_study
+
+    damper, _ = state.build_damper(text)
+    return tolerance_study(damper, specs, velocity=v, field=E, samples=samples, seed=seed)
+
+
+def _tolerances(text: str, v: float, E: float) -> None:
+    with st.expander("Tolerances: spread of the design point and what drives it"):
+        st.caption("One tolerance per line, as `erdesign tolerance --vary` takes them: `KEY=+-P %` or "
+                   "`KEY=VALUE +- DELTA` (one standard deviation of a normal; prefix `uniform:` for a uniform "
+                   "spread of half-width DELTA). Keys as in the damper file (docs/tolerance.md).")
+        specs_text = state.widget(st.text_area, "tolerances", "size.tol.vary", DEFAULT_TOLERANCES, height=110)
+        cols = st.columns(3)
+        samples = state.widget(cols[0].number_input, "samples", "size.tol.samples", 2000, min_value=100,
+                               max_value=200000, step=1000)
+        seed = state.widget(cols[1].number_input, "seed", "size.tol.seed", 0, min_value=0, step=1)
+        run = state.widget(cols[2].checkbox, "run the study", "size.tol.run", False)
+        if not run:
+            return
+        specs = tuple(line.strip() for line in specs_text.splitlines() if line.strip())
+        try:
+            with st.spinner(f"Sampling {int(samples)} designs ..."):
+                result = _tolerance_study(text, specs, v, E, int(samples), int(seed))
+        except ErdesignError as exc:
+            st.error(str(exc))
+            return
+        from erdesign.cli.tolerance import tolerance_table
+
+        if result.rejected:
+            st.info(f"{result.rejected} non-physical draws were rejected and drawn again.")
+        output = state.widget(st.selectbox, "output", "size.tol.output", "force_N",
+                              options=list(plots.TOLERANCE_OUTPUTS),
+                              format_func=lambda k: plots.TOLERANCE_OUTPUTS[k][0])
+        left, right = st.columns(2)
+        left.plotly_chart(plots.tolerance_histogram_figure(result, output), key="size.fig.tolerance",
+                          config=state.chart_config("size.fig.tolerance"))
+        right.plotly_chart(plots.sensitivity_tornado_figure(result, output), key="size.fig.tornado",
+                           config=state.chart_config("size.fig.tornado"))
+        st.code(tolerance_table(result), language=None)
+
+
 def render() -> None:
     """Draw the Size page."""
     st.title("Size a damper")
@@ -467,6 +515,7 @@ def render() -> None:
     v = report.setting("velocity_design").value.si
     E = float(to_si(design["field"], damper.fluid.control_unit, "design field"))
     _explorer(text, damper, v, E)
+    _tolerances(text, v, E)
     with st.expander("damper file of this design (TOML)"):
         st.code(damper_toml(design["spec"], comment=design_comment(design)), language="toml")
 

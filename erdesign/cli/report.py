@@ -30,6 +30,7 @@ Examples:
   erdesign report makris.toml --velocity-range "0 in/s" "2 in/s" --field "1.5 kV/mm" --field "3 kV/mm"
   erdesign report makris.toml --format md --out makris.md --force
   erdesign report makris.toml --figures figures     (also figures/makris-1996-force.png, ...; needs kaleido)
+  erdesign report makris.toml --vary "geometry.gap=+-2.5 %" --vary "fluid.viscosity=+-10 %"
 """
 
 
@@ -68,12 +69,17 @@ def default_report_path(damper_name: str, damper_file: str, fmt: str) -> Path:
                    "the machine.")
 @click.option("--figure-format", type=click.Choice(["png", "svg"]), default="png", show_default=True,
               help="Image format of --figures.")
+@click.option("--vary", "vary", multiple=True, metavar="SPEC",
+              help='A tolerance as erdesign tolerance takes it (repeat), e.g. "geometry.gap=+-2.5 %": the report then '
+                   "shows the spread of the force at the design point and its Sobol indices.")
+@click.option("--tolerance-samples", default=10000, show_default=True, type=click.IntRange(min=1),
+              help="Monte-Carlo samples of the --vary study.")
 @click.option("--force", is_flag=True, help="Overwrite the report file (and figure files) if they exist.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (file written, checks) on stdout.")
 def report(damper_file: str, velocity_range: tuple[str, str] | None, fields: tuple[str, ...],
            design_velocity: str | None, design_field: str | None, amplitude: str | None, frequency: str | None,
-           out: str | None, fmt: str | None, figures_dir: str | None, figure_format: str, force: bool,
-           as_json: bool) -> None:
+           out: str | None, fmt: str | None, figures_dir: str | None, figure_format: str, vary: tuple[str, ...],
+           tolerance_samples: int, force: bool, as_json: bool) -> None:
     """Write a self-contained engineering report on a damper (inputs, results, equations, checks, plots)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")     # read for the control's unit only; build_report reports the warnings
@@ -96,6 +102,7 @@ def report(damper_file: str, velocity_range: tuple[str, str] | None, fields: tup
         design_field=None if design_field is None else quantity_option(design_field, unit, "--design-field"),
         amplitude=None if amplitude is None else quantity_option(amplitude, "m", "--amplitude"),
         frequency=None if frequency is None else quantity_option(frequency, "Hz", "--frequency"),
+        tolerances=vary, tolerance_samples=tolerance_samples,
     )
     images: dict[Path, bytes] = {}
     if folder is not None:

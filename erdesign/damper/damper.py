@@ -41,11 +41,23 @@ from ..fluid import Fluid
 from ..geometry import THIN_GAP_LIMIT, Geometry
 from ..units import Q_, to_si
 from .accumulator import ROD_KINDS, Accumulator
-from .quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, damper_state
+from .quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, damper_state, damping_constant
 
-__all__ = ["Damper", "QuasiSteadyState", "SizingResult", "SineResponse", "CRITICAL_REYNOLDS", "FLOW_MODELS"]
+__all__ = ["Damper", "exact_annulus_for", "QuasiSteadyState", "SizingResult", "SineResponse", "CRITICAL_REYNOLDS",
+           "FLOW_MODELS"]
 
 FLOW_MODELS = ("auto", "thin_gap", "annulus")
+
+
+def exact_annulus_for(configuration: str, flow_model: str, gap_ratio):
+    """Whether the valve gap flow is computed for the exact annulus (vectorised over ``gap_ratio`` = h/d): always
+    with ``flow_model="annulus"``, above :data:`~erdesign.geometry.THIN_GAP_LIMIT` with ``"auto"``, never for a
+    mixed damper or ``"thin_gap"``."""
+    if configuration != "valve":
+        return np.zeros(np.shape(gap_ratio), dtype=bool)
+    if flow_model == "annulus":
+        return np.ones(np.shape(gap_ratio), dtype=bool)
+    return (np.asarray(gap_ratio) > THIN_GAP_LIMIT) & (flow_model == "auto")
 
 
 @dataclass(frozen=True)
@@ -183,11 +195,7 @@ class Damper:
     @property
     def uses_exact_annulus(self) -> bool:
         """True when the valve gap flow is computed for the exact annulus rather than parallel plates."""
-        if self.geometry.configuration != "valve":
-            return False
-        return self.flow_model == "annulus" or (
-            self.flow_model == "auto" and self.geometry.gap_ratio > THIN_GAP_LIMIT
-        )
+        return bool(exact_annulus_for(self.geometry.configuration, self.flow_model, self.geometry.gap_ratio))
 
     def state(self, v, field=0.0) -> QuasiSteadyState:
         """Quasi-steady state at piston velocity ``v`` [m/s] and control ``field`` (SI magnitude), vectorised.
@@ -216,8 +224,10 @@ class Damper:
         quasi-steady fluid force of the zero-field fluid at 1 m/s (:func:`erdesign.damper.quasi_steady.damper_state`),
         which is linear in the velocity, so exact at any velocity.  Seal friction is not part of C.
         """
-        s = damper_state(self, 1.0, 0.0, self.fluid.viscosity)
-        return float(s.pressure_force + s.shear_force)
+        g = self.geometry
+        return float(damping_constant(g.configuration, self.fluid.viscosity, self.fluid.density, g.gap,
+                                      g.duct_length, g.duct_mean_diameter, g.piston_diameter, g.rod_diameter,
+                                      g.ducts, self.uses_exact_annulus))
 
     def yield_force_si(self, field) -> Any:
         """Controllable (yield) force of the fluid at control ``field`` (SI): the fluid force as v -> 0+, [N].

@@ -52,8 +52,8 @@ from ..flow.newtonian import slit_pressure_drop
 if TYPE_CHECKING:  # pragma: no cover
     from .damper import Damper
 
-__all__ = ["QuasiSteadyState", "quasi_steady_state", "valve_state", "valve_pressure_drop", "mixed_state",
-           "MixedGapTable", "mixed_gap_table", "damper_state", "CRITICAL_REYNOLDS"]
+__all__ = ["QuasiSteadyState", "quasi_steady_state", "damping_constant", "valve_state", "valve_pressure_drop",
+           "mixed_state", "MixedGapTable", "mixed_gap_table", "damper_state", "CRITICAL_REYNOLDS"]
 
 #: Reynolds number below which the duct flow is taken as laminar (Makris et al., section 2: R_crit = 2300).
 CRITICAL_REYNOLDS = 2300.0
@@ -377,6 +377,21 @@ def quasi_steady_state(configuration, v, tau_y, eta, rho, seal_friction, h, L, d
             raise ValueError("quasi_steady_state: a mixed damper has one gap and the thin-gap model only")
         return mixed_state(v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr)
     raise ValueError(f"quasi_steady_state: configuration must be 'valve' or 'mixed', got {configuration!r}")
+
+
+def damping_constant(configuration, eta0, rho, h, L, d, Dp, dr, n=1, exact_annulus=False):
+    r"""Small-velocity damping constant of the zero-field fluid, [N s/m], vectorised over fluid and geometry.
+
+    The quasi-steady fluid force (pressure plus shear drag, seal friction left out) of the Newtonian fluid
+    :math:`\eta_0` at 1 m/s, which is linear in the velocity, so exact at any velocity; for a thin-gap valve it is
+    Makris eq 15, :math:`C = 12\eta_0 L A_p^2 / (n\pi d h^3)`.  Arguments as in :func:`quasi_steady_state`.
+    :meth:`Damper.damping_constant_si <erdesign.damper.Damper.damping_constant_si>` is this for one damper.
+
+    >>> round(damping_constant("valve", 7.0, 1290.0, 0.0008, 0.0546, 0.0143, 0.0334, 0.01125) / 1e3, 1)
+    120.3
+    """
+    s = quasi_steady_state(configuration, 1.0, 0.0, eta0, rho, 0.0, h, L, d, Dp, dr, n, exact_annulus)
+    return scalar_or_array(s.pressure_force + s.shear_force)
 
 
 def damper_state(damper: "Damper", v, tau_y, eta) -> QuasiSteadyState:

@@ -40,7 +40,7 @@ from ..errors import PlausibilityWarning, UnitError, ValidityWarning
 from ..units import Q_, _parse, dimension_name, to_si, ureg
 from .field_laws import FieldLaw, PowerLaw
 
-__all__ = ["Fluid", "CONTROL_UNITS", "control_kind", "PLAUSIBLE_CONTROL", "FLUID_RANGES"]
+__all__ = ["Fluid", "plastic_viscosity", "CONTROL_UNITS", "control_kind", "PLAUSIBLE_CONTROL", "FLUID_RANGES"]
 
 # SI unit of each kind of control, and what it is called in messages.
 CONTROL_UNITS = {
@@ -352,12 +352,18 @@ class Fluid:
         """
         if self.viscosity_at_reference_field is None:
             return scalar_or_array(self.viscosity + 0.0 * np.asarray(field, dtype=float))
-        rise = self.viscosity_at_reference_field - self.viscosity
-        return scalar_or_array(self.viscosity + rise * self._yield_ratio(field))
+        return scalar_or_array(plastic_viscosity(self.viscosity, self.viscosity_at_reference_field,
+                                                 self._yield_ratio(field)))
 
     def with_changes(self, **changes: Any) -> "Fluid":
         """Copy with some SI fields replaced (``fluid.with_changes(viscosity=9.0)``)."""
         return dataclasses.replace(self, **changes)
+
+
+def plastic_viscosity(eta0, eta_ref, yield_ratio):
+    r"""Plastic viscosity at a control, [Pa s]: :math:`\eta_0 + (\eta_\text{ref} - \eta_0)\,r` with
+    :math:`r = \tau_y(E)/\tau_y(E_\text{ref})` (vectorised; :meth:`Fluid.viscosity_at` is this for one fluid)."""
+    return eta0 + (np.asarray(eta_ref, dtype=float) - eta0) * yield_ratio
 
 
 def _field_range(value: Any, si_unit: str) -> tuple[float, float]:

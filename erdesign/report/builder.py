@@ -46,7 +46,7 @@ from ..units import Q_, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
 
-__all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison",
+__all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison", "tolerance_figures",
            "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
            "default_velocity_max", "compare_designs", "with_baseline", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
 
@@ -463,11 +463,45 @@ def magnetic_section(damper: Damper, currents: np.ndarray) -> dict | None:
             "steel": getattr(circuit.steel, "name", ""), "fluid": getattr(circuit.fluid, "name", "")}
 
 
+def tolerance_figures(damper: Damper, tolerances: Sequence[Any], velocity: float, field: float,
+                      samples: int = 10000) -> list[FigureSpec]:
+    """The histogram of the force and the tornado chart of its Sobol indices under ``tolerances`` at a design point
+    (:func:`erdesign.campaign.tolerance.tolerance_study`, seed 0), with the quantiles of every output as the
+    table."""
+    from ..campaign.tolerance import OUTPUTS, tolerance_study
+    from . import plots
+
+    r = tolerance_study(damper, tolerances, velocity=float(velocity), field=float(field), samples=int(samples))
+    caption = (f"{r.count} samples, " + "; ".join(v.describe() for v in r.study.variations)
+               + (f"; {r.rejected} non-physical draws drawn again" if r.rejected else ""))
+    columns, units = ["quantile [%]"], {}
+    for key in OUTPUTS:
+        name, _, si_unit, kind = plots.TOLERANCE_OUTPUTS[key]
+        values = Q_(np.array([r.quantiles[key][q] for q in ("1", "99")]), si_unit)
+        units[key] = pick_unit(values, kind) if kind else ""
+        columns.append(f"{name} [{Q_(1.0, units[key]).units:~P}]" if units[key] else name)
+    table = Table("tolerance", tuple(columns), tuple(
+        (show(float(q), "", name="quantile"),
+         *(show(Q_(r.quantiles[key][q], plots.TOLERANCE_OUTPUTS[key][2]), units[key], name=key) for key in OUTPUTS))
+        for q in ("1", "5", "50", "95", "99")))
+    force = {k: s for k, s in r.sensitivity["force_N"].items() if s["first"] is not None}
+    sobol = Table("tornado", tuple(f"{index} {name}" for name in force for index in ("S1", "ST")), (tuple(
+        show(float(s[index]), "", name=f"{index} {name}") for name, s in force.items()
+        for index in ("first", "total")),)) if force else None
+    return [FigureSpec("tolerance", "Spread of the force under tolerances", plots.tolerance_histogram_figure(r),
+                       table, caption),
+            FigureSpec("tornado", "What drives the spread of the force (Sobol indices)",
+                       plots.sensitivity_tornado_figure(r), sobol,
+                       f"first-order and total Sobol indices of the force, {r.sobol_base} base samples "
+                       "(docs/tolerance.md)")]
+
+
 def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_range: Sequence[Any] | None = None,
                  fields: Sequence[Any] | None = None, amplitude: Any = None, frequency: Any = None,
                  comparison: MeasurementComparison | None = None, history: Iterable[Any] | None = None,
                  title: str | None = None, design_velocity: Any = None, design_field: Any = None,
-                 origin: str | None = None, baseline: Report | None = None) -> Report:
+                 origin: str | None = None, baseline: Report | None = None, tolerances: Sequence[Any] = (),
+                 tolerance_samples: int = 10000) -> Report:
     """The content of an engineering report on a damper.
 
     Parameters
@@ -494,6 +528,11 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     baseline : Report, optional
         The report of a baseline design (built alike, by this function): the report then compares this design
         with it (:func:`with_baseline`: a section and a figure).
+    tolerances : sequence of str or Variation, optional
+        Tolerances (``"geometry.gap=+-2.5 %"``, :func:`erdesign.campaign.tolerance.parse_variation`): the report then
+        shows the spread of the force at the design point and its Sobol indices (:func:`tolerance_figures`).
+    tolerance_samples : int
+        Monte-Carlo samples of that study (seed 0).
 
     Returns
     -------
@@ -622,6 +661,9 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
                    _loop_table(loops), "quasi-steady response to the sine of the settings (energy and C_eqv in "
                                        "the table of section 3)"),
     ]
+
+    if tolerances:
+        figures += tolerance_figures(damper, tolerances, v_design, E_design, tolerance_samples)
 
     comparison_data = None
     steps = _as_history(history)

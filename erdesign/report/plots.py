@@ -37,6 +37,9 @@ __all__ = [
     "measured_loops_figure",
     "IMAGE_FORMATS",
     "export_config",
+    "TOLERANCE_OUTPUTS",
+    "tolerance_histogram_figure",
+    "sensitivity_tornado_figure",
 ]
 
 # The legend sits to the right of the plot area, outside it and below the title, so that it never covers the
@@ -194,6 +197,66 @@ def measured_loops_figure(displacement, velocity, force_measured, force_model) -
     fig.update_xaxes(title_text=f"displacement x [{_unit_label(x_unit)}]", row=1, col=1)
     fig.update_xaxes(title_text=f"velocity v [{_unit_label(v_unit)}]", row=1, col=2)
     fig.update_yaxes(title_text=f"force F [{_unit_label(f_unit)}]", row=1, col=1)
+    return fig
+
+
+#: Outputs of a tolerance study (:mod:`erdesign.campaign.tolerance`): label, SI unit and unit kind for the axes.
+TOLERANCE_OUTPUTS = {"force_N": ("force", "force F", "N", "force"),
+                     "zero_field_force_N": ("zero-field force", "zero-field force F(0)", "N", "force"),
+                     "dynamic_range": ("dynamic range", "dynamic range F(E)/F(0)", "", ""),
+                     "damping_constant_N_s_per_m": ("damping constant", "damping constant C", "N*s/m", "damping")}
+
+
+def tolerance_histogram_figure(result, output: str = "force_N") -> go.Figure:
+    """Histogram of one output of a tolerance study (its kept histogram), with the 5, 50 and 95 % quantiles and the
+    nominal value marked.
+
+    >>> from erdesign import load_example
+    >>> from erdesign.campaign.tolerance import tolerance_study
+    >>> r = tolerance_study(load_example("makris"), ["geometry.gap=+-2.5 %"], velocity=0.0254, samples=2000,
+    ...                     sensitivity=False)
+    >>> tolerance_histogram_figure(r).layout.xaxis.title.text
+    'force F [kN]'
+    """
+    name, label, si_unit, kind = TOLERANCE_OUTPUTS[output]
+    edges, counts = result.histograms[output]
+    unit = pick_unit(Q_(edges, si_unit), kind) if kind else ""
+    x = _convert(edges, si_unit, unit) if kind else np.asarray(edges)
+    centres, widths = (x[1:] + x[:-1]) / 2, np.diff(x)
+    fig = go.Figure(go.Bar(x=centres, y=counts / max(1, result.count), width=widths, name="samples",
+                           marker=dict(color="rgba(31, 119, 180, 0.6)")))
+    marks = [(f"{q} %", result.quantiles[output][q], "dash") for q in ("5", "50", "95")]
+    marks.append(("nominal", result.nominal[output], "solid"))
+    for i, (name, value, dash) in enumerate(marks):
+        if value is None or not np.isfinite(value):
+            continue
+        xv = float(_convert(value, si_unit, unit)) if kind else float(value)
+        fig.add_trace(go.Scatter(x=[xv, xv], y=[0, float(counts.max()) / max(1, result.count)], mode="lines",
+                                 name=name, line=dict(color=_colour(i + 1), dash=dash, width=2)))
+    fig.update_layout(title=f"Spread of the {name} ({result.count} samples)",
+                      xaxis_title=f"{label} [{_unit_label(unit)}]", yaxis_title="fraction of samples per bin",
+                      bargap=0.02, **_LAYOUT)
+    return fig
+
+
+def sensitivity_tornado_figure(result, output: str = "force_N") -> go.Figure:
+    """Tornado chart of one output of a tolerance study: the first-order and total Sobol index of each input,
+    largest at the top, with the bootstrap 95 % intervals."""
+    name = TOLERANCE_OUTPUTS[output][0]
+    rows = [(key, s) for key, s in result.sensitivity.get(output, {}).items() if s["total"] is not None]
+    rows.sort(key=lambda r: r[1]["total"])
+    inputs = [key for key, _ in rows]
+    fig = go.Figure()
+    for key, legend, colour in (("total", "total", _colour(0)), ("first", "first-order", _colour(1))):
+        fig.add_trace(go.Bar(y=inputs, x=[s[key] for _, s in rows], orientation="h", name=legend,
+                             marker=dict(color=colour),
+                             error_x=dict(type="data", array=[s[key + "_conf"] or 0.0 for _, s in rows])))
+    fig.update_layout(title=f"What drives the spread of the {name}",
+                      xaxis_title="Sobol index (share of the variance)", barmode="group",
+                      xaxis=dict(range=[0, 1.05]), **_LAYOUT)
+    if not rows:
+        fig.add_annotation(text="this output does not vary", showarrow=False, x=0.5, y=0.5, xref="paper",
+                           yref="paper")
     return fig
 
 
