@@ -193,6 +193,8 @@ def run_task(task: BatchTask) -> dict:
             row.update(status="error", error=_one_line(f"{task.record}: {exc.strerror or exc}"))
         except Exception as exc:  # a bug, not bad input: still a row, and it says so
             row.update(status="error", error=_one_line(f"internal error: {type(exc).__name__}: {exc}"))
+    if task.path != task.record:            # messages name the record as the user gave it
+        row["error"] = row["error"].replace(task.path, task.record)
     row["warnings"] = "; ".join(dict.fromkeys(_one_line(w.message) for w in caught))
     row["seconds"] = time.perf_counter() - start
     return row

@@ -78,11 +78,13 @@ class Progress:
 @click.option("--out", "out", required=True, metavar="T.csv|T.parquet", help="The table to write.")
 @click.option("--resume", is_flag=True, help="Keep the rows already in the table (same file content, damper and "
                                               "effects) and run only the rest.")
+@click.option("--save-every", default=2.0, show_default=True, type=click.FloatRange(min=0), metavar="SECONDS",
+              help="How often the table is rewritten while the batch runs (0: after every record).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON summary object instead of a summary line.")
 def batch(command: str, records: tuple[str, ...], manifest: str | None, damper_file: str | None, effects: str,
           exclude_clipped: bool | None, force_noise: str | None, model_name: str | None, starts: int | None,
           max_time: float | None, decimate: int | None, jobs: int | None, scheduler: str | None, out: str,
-          resume: bool, as_json: bool) -> None:
+          resume: bool, save_every: float, as_json: bool) -> None:
     """Run identify, fit or diagnose on every record; one row per record in one table.
 
     A bad record is a row with its error, never a stopped batch.  The table is rewritten atomically while the
@@ -100,7 +102,7 @@ def batch(command: str, records: tuple[str, ...], manifest: str | None, damper_f
                "starts": starts, "max_time": max_time, "decimate": decimate}
     result = run_batch(command, records, manifest=manifest, damper=damper_file, effects=effects, options=options,
                        out=out, resume=resume, jobs=None if scheduler else (jobs or default_jobs()),
-                       scheduler=scheduler, progress=Progress())
+                       scheduler=scheduler, progress=Progress(), save_every=save_every)
     summary = result.summary()
     if as_json:
         emit_json({k: json_number(v) if isinstance(v, float) else v for k, v in summary.items()})
