@@ -11,6 +11,7 @@ diagnosis runs use three records.
 from __future__ import annotations
 
 import csv
+import json
 import math
 import os
 import signal
@@ -227,3 +228,28 @@ def test_the_table_is_written_atomically_and_reads_back_exactly(tmp_path):
         header = next(csv.reader(fh))
     assert header[:4] == ["record", "status", "error", "esr"]
     assert {"viscosity_factor [-]", "yield_stress_factor [-]", "seconds", "sha256", "outlier"} <= set(header)
+
+
+def test_identify_rows_carry_the_models_parameters_with_units(tmp_path, capsys):
+    names = _write_records(tmp_path, 2)
+    assert _run(tmp_path, "identify", *names, "--model", "bingham", "--jobs", "1", "--out", "t.csv", "--json") == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["records"] == 2 and summary["ok"] == 2 and summary["errors"] == 0 and summary["ran"] == 2
+    rows = read_table(tmp_path / "t.csv")
+    assert [r["status"] for r in rows] == ["ok", "ok"] and all(r["success"] for r in rows)
+    units = {k for k in rows[0] if k.endswith("]")}
+    assert units and all("[" in k for k in units)
+    assert all(0 < r["esr"] < 0.2 for r in rows)     # Bingham on an ER damper's loop: a good first fit
+
+
+def test_resume_of_a_parquet_table_runs_only_the_new_records(tmp_path):
+    names = [str(tmp_path / n) for n in _write_records(tmp_path, 3)]
+    out = tmp_path / "t.parquet"
+    first = run_batch("fit", names[:2], damper="makris", out=out)
+    again = run_batch("fit", names, damper="makris", out=out, resume=True)
+    assert (again.reused, again.summary()["ran"]) == (2, 1)
+    assert [r["seconds"] for r in again.rows[:2]] == [r["seconds"] for r in first.rows]
+    assert [r["record"] for r in read_table(out)] == names
+    # another damper is another task: nothing is kept
+    other = run_batch("fit", names, damper="makris", effects="seal_friction", out=out, resume=True)
+    assert other.reused == 0 and [r["effects"] for r in read_table(out)] == ["seal_friction"] * 3
