@@ -182,7 +182,9 @@ def run_task(task: BatchTask) -> dict:
     command = COMMANDS[task.command]
     row = {"record": task.record, "sha256": task.sha256, "damper": task.damper, "effects": task.effects}
     start = time.perf_counter()
-    with warnings.catch_warnings(record=True) as caught:     # a task runs alone in its process or Dask thread
+    # catch_warnings is process-wide: exact in a pool worker or a one-thread Dask worker; on a Dask worker running
+    # several threads a warning may land in another record's row (the other columns are unaffected)
+    with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
             columns = command.row(task.path, task.damper or None, task.effects, dict(task.options))
