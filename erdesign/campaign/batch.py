@@ -29,7 +29,7 @@ import os
 import time
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -193,7 +193,7 @@ def run_task(task: BatchTask) -> dict:
             row.update(status="error", error=_one_line(exc))
         except OSError as exc:
             row.update(status="error", error=_one_line(f"{task.record}: {exc.strerror or exc}"))
-        except Exception as exc:  # a bug, not bad input: still a row, and it says so
+        except Exception as exc:  # noqa: BLE001  (a bug, not bad input: still a row, and it says so)
             row.update(status="error", error=_one_line(f"internal error: {type(exc).__name__}: {exc}"))
     if task.path != task.record:            # messages name the record as the user gave it
         row["error"] = row["error"].replace(task.path, task.record)
@@ -363,7 +363,7 @@ def _columns(rows: Sequence[dict], command: str) -> list[str]:
 
 
 def _is_float_column(name: str) -> bool:
-    return name in _FLOATS or name.endswith("]") or name.endswith("_esr")
+    return name in _FLOATS or name.endswith(("]", "_esr"))
 
 
 def write_table(path: str | Path, rows: Sequence[dict], columns: Sequence[str]) -> None:
