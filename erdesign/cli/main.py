@@ -34,6 +34,7 @@ __all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number", "check
 # commands' own.
 COMMANDS: dict[str, tuple[str, str]] = {
     "app": ("app", "Open the design app (Size, Simulate, Compare and diagnose, Report) in the browser."),
+    "batch": ("batch", "Run identify, fit or diagnose on every record; one row per record in one table."),
     "design": ("design", "Feasible damper geometries ranked by the objective, or the conflicts when there are none."),
     "diagnose": ("diagnose",
                  "Calibrate the physics baseline, show where it fails and rank the effects that could be missing."),
