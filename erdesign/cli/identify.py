@@ -107,6 +107,7 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
     else:
         result = identify_model(model, records[0], starts=starts, max_time=max_time, decimate=decimate,
                                 exclude_clipped=exclude_clipped, progress=progress, fixed=fixed, projection=projection)
+    model = result.model  # the fitted copy, with the records' control reference (the caller's model is not changed)
     validation = [(other.name, run_model(model, other, result.values, exclude_clipped=exclude_clipped).metrics)
                   for other in others]
     # Field-dependent models work with the dimensionless control u = control / reference; the parameters that

@@ -25,14 +25,11 @@ import numpy as np
 
 from ..data.measurement import Measurement
 from ..data.metrics import esr
-from ..errors import ErdesignError
 from ..models.base import Model, ParameterError
+from .engine import (FTOL, FitError, Transform, finite_residual, resolve_free, start_box, strong_correlations,
+                     uncertainty)
 
 __all__ = ["fit", "FitResult", "FitError", "evaluate"]
-
-
-class FitError(ErdesignError):
-    """The fit cannot be set up (no free parameter, too few samples, model fails on the record)."""
 
 
 @dataclass
@@ -93,47 +90,11 @@ class FitResult:
                 lines.append(f"  {name:<22} {p.format(v)}{unc}")
             else:
                 lines.append(f"  {name:<22} {p.format(v)} (fixed)")
-        for i in range(self.k):
-            for j in range(i + 1, self.k):
-                if abs(self.correlation[i, j]) > 0.95:
-                    lines.append(f"  note: {self.free[i]} and {self.free[j]} are correlated "
-                                 f"({self.correlation[i, j]:+.3f})")
+        for a, b, c in strong_correlations(self.free, self.correlation):
+            lines.append(f"  note: {a} and {b} are correlated ({c:+.3f})")
         if not self.success:
             lines.append(f"  warning: optimiser did not converge: {self.message}")
         return "\n".join(lines)
-
-
-class _Transform:
-    """Free parameters <-> unconstrained-ish search vector (log space for log-scale parameters)."""
-
-    def __init__(self, model: Model, free: Sequence[str]):
-        self.params = [model.parameter(n) for n in free]
-        self.log = np.array([p.log_scale for p in self.params])
-
-    def to_search(self, values: Sequence[float]) -> np.ndarray:
-        v = np.asarray(values, dtype=float)
-        return np.where(self.log, np.log(np.where(self.log, v, 1.0)), v)
-
-    def to_values(self, z: np.ndarray) -> np.ndarray:
-        return np.where(self.log, np.exp(np.where(self.log, z, 0.0)), z)
-
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo = np.array([p.lower for p in self.params], dtype=float)
-        hi = np.array([p.upper for p in self.params], dtype=float)
-        with np.errstate(divide="ignore"):
-            return self.to_search(lo), np.where(self.log, np.log(np.where(self.log, hi, 1.0)), hi)
-
-    def dvalue_dz(self, z: np.ndarray) -> np.ndarray:
-        return np.where(self.log, np.exp(np.where(self.log, z, 0.0)), 1.0)
-
-
-def _finite_box(lo: np.ndarray, hi: np.ndarray, z0: np.ndarray, log: np.ndarray | None = None):
-    """Box for sampling starts around the start z0, within the bounds: two decades either way for log-scale
-    parameters, +-3 (1 + |z0|) otherwise (physical bounds such as 1e7 N are far too wide to sample uniformly)."""
-    span = 3.0 * (1.0 + np.abs(z0))
-    if log is not None:
-        span = np.where(log, np.log(100.0), span)
-    return np.maximum(lo, z0 - span), np.minimum(hi, z0 + span)
 
 
 def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
@@ -170,23 +131,12 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     if check is not None:
         check(record)
     names = model.parameter_names
-    for k in list(fixed or {}) + list(free or ()):
-        model.parameter(k)  # unknown names are errors
-    # Parameters chosen a priori, and control slopes when the record has no control column, stay at their defaults
-    # unless the caller names them in ``free``.
-    auto = {k: v for k, v in (model.fixed_for(record) if hasattr(model, "fixed_for") else {}).items()
-            if free is None or k not in free}
-    fixed = {**auto, **dict(fixed or {})}
-    free = tuple(n for n in (free if free is not None else names) if n not in fixed)
-    for k in free:
-        model.parameter(k)
-    if not free:
-        raise FitError(f"{model.name}: no free parameter to fit")
+    free, fixed = resolve_free(model, [record], free, fixed)
     if len(F) <= len(free):
         raise FitError(f"{record.name or 'record'}: {len(F)} samples cannot determine {len(free)} parameters")
     guess = {**model.initial_guess(record), **(start or {})}
     base = model.check_values({**{k: v for k, v in guess.items() if k in names}, **fixed})
-    tr = _Transform(model, free)
+    tr = Transform(model, free)
     z0 = tr.to_search([base[n] for n in free])
     lo, hi = tr.bounds()
     z0 = np.clip(z0, lo, hi)
@@ -198,7 +148,7 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
 
     def residual(z: np.ndarray) -> np.ndarray:
         r = model.force(record, full_values(z)) - F
-        return np.where(np.isfinite(r), r, 1e12)
+        return finite_residual(r)
 
     from scipy.optimize import differential_evolution, least_squares  # imported on use: not at start-up
     from scipy.stats import qmc
@@ -207,7 +157,7 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     if not np.all(np.isfinite(model.force(record, full_values(z0)))):
         raise FitError(f"{model.name}: the model gives non-finite forces at the starting values")
     candidates = [z0]
-    box_lo, box_hi = _finite_box(lo, hi, z0, None if global_search else tr.log)
+    box_lo, box_hi = start_box(lo, hi, z0, None if global_search else tr.log)
     if global_search:
         de = differential_evolution(lambda z: float(np.sum(residual(z) ** 2)), list(zip(box_lo, box_hi)),
                                     seed=seed, tol=1e-8, polish=False, maxiter=200, popsize=15, init="sobol")
@@ -218,7 +168,7 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     best = None
     for z in candidates:
         res = least_squares(residual, np.clip(z, lo, hi), bounds=(lo, hi), method="trf", x_scale="jac",
-                            max_nfev=max_nfev)
+                            max_nfev=max_nfev, ftol=FTOL)
         if best is None or res.cost < best.cost:
             best = res
     values = full_values(best.x)
@@ -226,7 +176,7 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     resid = F - model_force
     rss = float(np.sum(resid**2))
     n, k = len(F), len(free)
-    stderr, corr = _uncertainty(best.jac, best.x, tr, rss, n, k)
+    stderr, corr = uncertainty(best.jac, best.x, tr, rss, n, k)
     rss_n = max(rss / n, np.finfo(float).tiny)
     return FitResult(
         model=model, values=values, free=free, stderr=dict(zip(free, stderr)), correlation=corr,
@@ -234,31 +184,6 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
         aic=n * math.log(rss_n) + 2 * k, bic=n * math.log(rss_n) + k * math.log(n),
         success=bool(best.success), message=str(best.message), record_name=record.name,
         extra={"initial_cost": float(np.sum(r0**2) / 2), "nfev": int(best.nfev)})
-
-
-def _uncertainty(jac: np.ndarray, z: np.ndarray, tr: _Transform, rss: float, n: int, k: int):
-    """Standard errors and correlations of the free parameters from the Jacobian at the optimum.
-
-    The Jacobian columns are scaled to unit norm before the SVD pseudo-inverse (parameters in N, N s/m and 1/m^2
-    differ by many decades; unscaled, the well-determined but small columns would look singular); directions the
-    data do not constrain get NaN errors instead of garbage."""
-    J = np.asarray(jac, dtype=float) / tr.dvalue_dz(z)[np.newaxis, :]  # d residual / d value (chain rule)
-    s2 = rss / max(n - k, 1)
-    norms = np.linalg.norm(J, axis=0)
-    scale = np.where(norms > 0, norms, 1.0)
-    U, sv, Vt = np.linalg.svd(J / scale, full_matrices=False)
-    good = sv > (sv.max() if sv.size else 0.0) * 1e-10
-    inv = np.where(good, 1.0 / np.where(good, sv, 1.0) ** 2, 0.0)
-    cov = ((Vt.T * inv) @ Vt) * s2 / np.outer(scale, scale)
-    var = np.diag(cov).copy()
-    unidentifiable = (np.abs(Vt[~good]).max(axis=0) > 1e-3 if (~good).any() else np.zeros(k, bool)) | (norms == 0)
-    se = np.where(unidentifiable | (var < 0), np.nan, np.sqrt(np.maximum(var, 0.0)))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        d = np.sqrt(np.maximum(var, 0.0))
-        corr = cov / np.outer(d, d)
-    corr[~np.isfinite(corr)] = np.nan
-    np.fill_diagonal(corr, 1.0)
-    return se, corr
 
 
 def evaluate(model: Model, record: Measurement, values: Mapping[str, float]) -> float:

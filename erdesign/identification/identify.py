@@ -17,7 +17,10 @@ from ..data.metrics import esr
 from ..errors import ErdesignError
 from ..models._kernels import coarse_steps, frozen_substeps
 from ..models.base import Model
-from .fit import FitError, FitResult, fit
+from . import engine
+from .engine import (FTOL, FitError, Transform, control_reference_for, finite_residual, resolve_free, start_box,
+                     uncertainty, with_control_reference)
+from .fit import FitResult
 
 __all__ = ["identify", "identify_joint", "cross_validation", "CrossValidation", "JointResult",
            "choose_control_reference", "score", "simulate", "Simulation", "resolve_parameters", "ParameterSource",
@@ -26,10 +29,9 @@ __all__ = ["identify", "identify_joint", "cross_validation", "CrossValidation", 
 
 
 def choose_control_reference(model: Model, records: Sequence[Measurement]) -> float:
-    """Power of ten near the largest |control| of the records (1 when they have none), so that the model's
-    dimensionless control u = control / reference is of order one and its per-unit parameters stay readable."""
-    peak = max((float(np.max(np.abs(r.control))) for r in records if r.control_kind is not None), default=0.0)
-    ref = 10.0 ** math.floor(math.log10(peak)) if peak > 0 else 1.0
+    """Set ``model.control_reference`` to :func:`~erdesign.identification.engine.control_reference_for` the records
+    and return it (for a model the caller then simulates; the fits themselves work on a copy)."""
+    ref = control_reference_for(records)
     model.control_reference = ref
     return ref
 
@@ -70,7 +72,7 @@ class _Tracker:
         r = self.model.force(self.record, self.full_values(z)) - self.F
         if self.mask is not None:
             r = r[self.mask]
-        return np.where(np.isfinite(r), r, 1e12)
+        return finite_residual(r)
 
     def _book(self, z, r):
         cost = float(np.dot(r, r))
@@ -176,8 +178,8 @@ class _ProjectedTracker(_Tracker):
         if sol is None:
             theta = np.clip(np.zeros(len(self.projection.linear)), self.projection.lo, self.projection.hi)
             n = self.F.size if self.mask is None else int(self.mask.sum())
-            sol = (theta, np.full(n, 1e12), None, None)
-        theta, r = sol[0], np.where(np.isfinite(sol[1]), sol[1], 1e12)
+            sol = (theta, np.full(n, engine.PENALTY), None, None)
+        theta, r = sol[0], finite_residual(sol[1])
         self.last = (np.array(z, dtype=float), r, plans, sol)
         self._book(z, r, theta)
         return r
@@ -194,8 +196,7 @@ class _ProjectedTracker(_Tracker):
                 if self.deadline is not None and _time.monotonic() > self.deadline:
                     raise _OutOfTime
                 rj = self.model.force(self.record, self._values(zp, theta)) - self.F
-                rj = np.where(np.isfinite(rj), rj, 1e12) if self.mask is None else \
-                    np.where(np.isfinite(rj[self.mask]), rj[self.mask], 1e12)
+                rj = finite_residual(rj if self.mask is None else rj[self.mask])
                 self._book(zp, rj, theta)
                 J[:, j] = (rj - r0) / h
         if B is not None and free.any():
@@ -307,9 +308,6 @@ def _fd_jacobian(fun, z, steps):
 #: Records longer than this get a warm start on a decimated copy (at least 1 kHz kept) before all samples.
 WARM_START_SAMPLES = 20_000
 
-#: Relative decrease of the sum of squares below which the optimiser stops: 1e-6 changes the ESR in its sixth
-#: digit, far below what a record can tell (scipy's default 1e-8 spends hundreds of simulations on such digits).
-FTOL = 1e-6
 #: A start "fails" when the optimiser stops without converging or leaves more than this fraction of the variance
 #: that a linear viscous-plus-friction fit leaves (F ~ c v + f sgn v + f0): extra starts are then tried.
 FAIL_RATIO = 1.0
@@ -369,8 +367,6 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     from scipy.optimize import least_squares
 
     from ..data.measurement import clipped_samples
-    from .fit import _finite_box, _Transform, _uncertainty
-
     t_start = _time.monotonic()
     deadline = None if max_time is None else t_start + float(max_time)
     say = progress or (lambda msg: None)
@@ -379,28 +375,17 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     if check is not None:
         check(record)
     notes: list[str] = []
-    choose_control_reference(model, [record])
-    fixed = dict(fixed or {})
-    if record.control_kind is not None and not np.any(record.control):
-        held = {k: model.parameter(k).default for k in model.control_parameters if free is None or k not in free}
-        fixed = {**held, **fixed}
+    model = with_control_reference(model, [record])  # a copy: the caller's model is not changed
     if record.control_kind is not None and np.ptp(record.control) > 0 and not model.uses_control:
         notes.append(f"{model.name} has no control dependence, but the record's {record.control_kind} varies "
                      f"({np.min(record.control):.4g} to {np.max(record.control):.4g} SI): the fit averages over it")
     names = model.parameter_names
-    for k in list(fixed) + list(free or ()):
-        model.parameter(k)
-    auto = {k: v for k, v in (model.fixed_for(record) if hasattr(model, "fixed_for") else {}).items()
-            if free is None or k not in free}
-    fixed = {**auto, **fixed}
-    free_names = tuple(n for n in (free if free is not None else names) if n not in fixed)
-    if not free_names:
-        raise FitError(f"{model.name}: no free parameter to fit")
+    free_names, fixed = resolve_free(model, [record], free, fixed)
     clipped = clipped_samples(F_all)
     mask = ~clipped if exclude_clipped and clipped.any() else None
     if clipped.any() and not exclude_clipped:
         notes.append(f"{int(clipped.sum())} force samples sit at a flat top or bottom ({F_all[clipped][0]:.6g} N): "
-                     "a load cell at its limit? --exclude-clipped leaves them out")
+                     "a load cell at its limit? exclude_clipped=True leaves them out")
     n_scored = int(F_all.size if mask is None else mask.sum())
     if n_scored <= len(free_names):
         raise FitError(f"{record.name or 'record'}: {n_scored} samples cannot determine {len(free_names)} "
@@ -417,7 +402,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         """Least squares over ``free_names`` on each (record, force, mask) of ``stage_records`` in turn."""
         if linear:
             return run_projected(free_names, base, z_start, stage_records, label)
-        tr = _Transform(model, free_names)
+        tr = Transform(model, free_names)
         lo, hi = tr.bounds()
         z = np.clip(tr.to_search([base[n] for n in free_names]) if z_start is None else z_start, lo, hi)
         full_values = _value_map(base, free_names, tr)
@@ -444,12 +429,12 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     def run_projected(free_names, base, z_start, stage_records, label):
         """:func:`run` by variable projection: least squares over the nonlinear free parameters, the ``linear``
         ones solved inside each residual; returns the same as ``run``, in the space of all free parameters."""
-        tr = _Transform(model, free_names)
+        tr = Transform(model, free_names)
         lo, hi = tr.bounds()
         z = np.clip(tr.to_search([base[n] for n in free_names]) if z_start is None else z_start, lo, hi)
         nl = tuple(n for n in free_names if n not in linear)
         nl_index = [free_names.index(n) for n in nl]
-        trn = _Transform(model, nl)
+        trn = Transform(model, nl)
         lon, hin = lo[nl_index], hi[nl_index]
         zn = z[nl_index]
         theta = np.array([base[n] for n in linear])
@@ -502,18 +487,18 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
                    f"every {decimate}th sample"))
     baseline = _baseline_esr(record, F_all, mask)
 
-    tr0 = _Transform(model, free_names)
+    tr0 = Transform(model, free_names)
     lo0, hi0 = tr0.bounds()
     z0 = np.clip(tr0.to_search([base[n] for n in free_names]), lo0, hi0)
     candidates = [z0]
     if starts > 1:
         from scipy.stats import qmc
-        box_lo, box_hi = _finite_box(lo0, hi0, z0, tr0.log)
+        box_lo, box_hi = start_box(lo0, hi0, z0, tr0.log)
         candidates.extend(qmc.scale(qmc.LatinHypercube(d=len(free_names), seed=seed).random(starts - 1),
                                     box_lo, box_hi))
     if global_search:
         from scipy.optimize import differential_evolution
-        box_lo, box_hi = _finite_box(lo0, hi0, z0, None)
+        box_lo, box_hi = start_box(lo0, hi0, z0, None)
         probe = _Tracker(model, fit_rec, fit_rec.force, fit_mask,
                          lambda zz: {**base, **dict(zip(free_names, map(float, tr0.to_values(zz))))}, deadline,
                          progress, "global search")
@@ -552,7 +537,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         vals.update(zip(names, (float(v) for v in trn.to_values(zz))))
         r = model.force(record, vals) - F_all
         r = r if mask is None else r[mask]
-        return np.where(np.isfinite(r), r, 1e12)
+        return finite_residual(r)
 
     r_full = full_residual(z)
     if res is not None and res.jac is not None and stages[-1][0] is record and np.array_equal(res.x, z):
@@ -561,7 +546,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         J = _fd_jacobian(full_residual, z, _fd_steps(tr, free_names, model, z, *tr.bounds()))[1]
     rss = float(np.dot(r_full, r_full))
     k = len(free_names)
-    stderr, corr = _uncertainty(J, z, tr, rss, n_scored, k)
+    stderr, corr = uncertainty(J, z, tr, rss, n_scored, k)
     not_identifiable = _null_parameters(J, z, tr, free_names, model.control_parameters)
     if not_identifiable and fix_unidentifiable and len(not_identifiable) < k and not out_of_time:
         say(f"not identifiable from this record: {', '.join(not_identifiable)}; held at their start values")
@@ -580,9 +565,9 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     resid = F_all - force
     scored = resid if mask is None else resid[mask]
     rss_n = max(rss / n_scored, np.finfo(float).tiny)
-    message = str(res.message) if res is not None else "stopped by --max-time: the best point found so far"
+    message = str(res.message) if res is not None else "stopped at max_time: the best point found so far"
     if out_of_time:
-        notes.append(f"stopped at --max-time {max_time:g} s before the optimiser converged: the values are the best "
+        notes.append(f"stopped at max_time = {max_time:g} s before the optimiser converged: the values are the best "
                      "found so far")
     result = FitResult(
         model=model, values=values, free=free_names, stderr=dict(zip(free_names, stderr)), correlation=corr,
@@ -641,15 +626,9 @@ def parameter_table(result: FitResult) -> dict[str, dict]:
     return out
 
 
-def strong_correlations(result: FitResult, threshold: float = 0.9) -> list[tuple[str, str, float]]:
+def strong_correlations(result: FitResult, threshold: float = engine.CORRELATION_THRESHOLD) -> list[tuple[str, str, float]]:
     """Pairs of free parameters whose correlation exceeds ``threshold`` in magnitude, strongest first."""
-    pairs = []
-    for i in range(result.k):
-        for j in range(i + 1, result.k):
-            c = result.correlation[i, j]
-            if np.isfinite(c) and abs(c) > threshold:
-                pairs.append((result.free[i], result.free[j], float(c)))
-    return sorted(pairs, key=lambda p: -abs(p[2]))
+    return engine.strong_correlations(result.free, result.correlation, threshold)
 
 
 def fit_statistics(result: FitResult) -> dict:
@@ -697,7 +676,7 @@ def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -
         lines.append(f"  {name:<{width}}  {text}")
     corr = strong_correlations(result)
     if corr:
-        lines.append("[[Correlations]] (|r| > 0.9: these combinations, not the single values, are what the data fix)")
+        lines.append(f"[[Correlations]] (|r| > {engine.CORRELATION_THRESHOLD:g}: these combinations, not the single values, are what the data fix)")
         lines += [f"  {a}, {b}: {c:+.3f}" for a, b, c in corr]
     if validation:
         lines.append("[[Validation]] (the identified set on other records)")
@@ -773,15 +752,8 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     for r in records:
         model.check_record(r)
         r.require_force()
-    choose_control_reference(model, records)
-    fixed = dict(fixed or {})
-    if all(r.control_kind is None for r in records):
-        fixed = {**model.fixed_for(records[0]), **fixed}
-    else:
-        fixed = {**{p.name: p.default for p in model.parameters if not p.fitted}, **fixed}
-    names = [n for n in (free or model.parameter_names) if n not in fixed]
-    if not names:
-        raise FitError(f"{model.name}: no free parameter to fit")
+    model = with_control_reference(model, records)  # a copy: the caller's model is not changed
+    names, fixed = resolve_free(model, records, free, fixed)
     masks = []
     notes = []
     for r in records:
@@ -789,23 +761,17 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
         masks.append(~clipped if exclude_clipped and clipped.any() else None)
         if clipped.any() and not exclude_clipped:
             notes.append(f"{r.name or 'a record'}: {int(clipped.sum())} force samples sit at a flat top or bottom; "
-                         "--exclude-clipped leaves them out")
+                         "exclude_clipped=True leaves them out")
     total = sum(len(r) if m is None else int(m.sum()) for r, m in zip(records, masks))
     if total <= len(names):
         raise FitError(f"identify_joint: {total} samples cannot determine {len(names)} parameters")
     base = model.check_values({**model.initial_guess(records[0]), **(start or {}), **fixed})
-    params = [model.parameter(n) for n in names]
-    log = np.array([p.log_scale for p in params])
-    lo = np.array([math.log(p.lower) if p.log_scale else p.lower for p in params])
-    hi = np.array([math.log(p.upper) if p.log_scale else p.upper for p in params])
-    z0 = np.clip([math.log(base[n]) if p.log_scale else base[n] for n, p in zip(names, params)], lo, hi)
+    tr = Transform(model, names)
+    lo, hi = tr.bounds()
+    z0 = np.clip(tr.to_search([base[n] for n in names]), lo, hi)
+    values = _value_map(base, names, tr)
     forces = [r.require_force() for r in records]
     weights = [1.0 / max(float(np.std(F if m is None else F[m])), 1e-12) for F, m in zip(forces, masks)]
-
-    def values(z):
-        v = dict(base)
-        v.update({n: float(math.exp(q) if lg else q) for n, q, lg in zip(names, z, log)})
-        return v
 
     state = {"calls": 0, "best": math.inf, "best_z": None, "report": t_start}
 
@@ -816,7 +782,7 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
         parts = [w * (model.force(r, v) - F) for r, F, w in zip(records, forces, weights)]
         parts = [p if m is None else p[m] for p, m in zip(parts, masks)]
         out = np.concatenate(parts)
-        out = np.where(np.isfinite(out), out, 1e6)
+        out = finite_residual(out)
         cost = float(np.dot(out, out))
         state["calls"] += 1
         if cost < state["best"]:
@@ -831,12 +797,12 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     from scipy.optimize import least_squares  # imported on use: not at start-up
 
     try:
-        res = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac", max_nfev=max_nfev)
+        res = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac", max_nfev=max_nfev, ftol=FTOL)
         z, success, message = res.x, bool(res.success), str(res.message)
     except _OutOfTime:
         z = z0 if state["best_z"] is None else state["best_z"]
-        success, message = False, "stopped by --max-time: the best point found so far"
-        notes.append(f"stopped at --max-time {max_time:g} s before the optimiser converged: the values are the best "
+        success, message = False, "stopped at max_time: the best point found so far"
+        notes.append(f"stopped at max_time = {max_time:g} s before the optimiser converged: the values are the best "
                      "found so far")
     v = values(z)
     scores = []
@@ -930,7 +896,7 @@ def cross_validation(model_factory, records: Sequence[Measurement], **fit_option
         model = model_factory()
         r = identify(model, rec, **fit_options)
         for i, other in enumerate(records):
-            table[i, j] = r.esr if i == j else esr(other.require_force(), model.simulate(other, r.values))
+            table[i, j] = r.esr if i == j else esr(other.require_force(), r.model.simulate(other, r.values))
     return CrossValidation([r.name or f"record {k}" for k, r in enumerate(records)], table)
 
 
