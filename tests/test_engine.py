@@ -96,3 +96,12 @@ def test_a_fit_worse_than_the_reference_is_not_a_success(quiroz_record):
     assert r.esr > 2 * r.extra["baseline_esr"]
     assert not r.success and r.extra["poor_fit"]
     assert any(w.startswith("poor fit") for w in r.extra["warnings"])
+
+
+def test_multi_starts_on_a_process_pool_give_the_serial_result():
+    from erdesign.executor import PoolExecutor
+    rec = _record()
+    serial = fit(get_model("kwok_tanh"), rec, starts=4, max_nfev=40)
+    with PoolExecutor(2) as pool:
+        pooled = fit(get_model("kwok_tanh"), rec, starts=4, max_nfev=40, executor=pool)
+    assert pooled.values == serial.values and pooled.esr == serial.esr

@@ -21,7 +21,8 @@ from ..errors import ErdesignError
 from ..models.base import Model
 
 __all__ = ["PENALTY", "FTOL", "CORRELATION_THRESHOLD", "FitError", "Transform", "finite_residual", "resolve_free",
-           "control_reference_for", "with_control_reference", "start_box", "uncertainty", "strong_correlations"]
+           "control_reference_for", "with_control_reference", "start_box", "uncertainty", "strong_correlations", "ValueMap", "Residual", "SumOfSquares",
+           "local_fit"]
 
 
 class FitError(ErdesignError):
@@ -68,6 +69,51 @@ class Transform:
 
     def dvalue_dz(self, z: np.ndarray) -> np.ndarray:
         return np.where(self.log, np.exp(np.where(self.log, z, 0.0)), 1.0)
+
+
+class ValueMap:
+    """Search vector -> all parameter values: ``base`` with ``names`` set from z (:class:`Transform`).  A class, not
+    a closure, so that the residuals built on it can be sent to worker processes."""
+
+    def __init__(self, base: Mapping[str, float], names: Sequence[str], tr: Transform):
+        self.base, self.names, self.tr = dict(base), tuple(names), tr
+
+    def __call__(self, z: np.ndarray) -> dict[str, float]:
+        out = dict(self.base)
+        out.update(zip(self.names, (float(v) for v in self.tr.to_values(z))))
+        return out
+
+
+class Residual:
+    """Model minus measured force [N] on the fitted samples (all, or those of ``mask``) as a function of the search
+    vector, non-finite entries replaced by :data:`PENALTY`.  Picklable (multi-starts on an executor)."""
+
+    def __init__(self, model: Model, record: Measurement, values: ValueMap, mask: np.ndarray | None = None):
+        self.model, self.record, self.values, self.mask = model, record, values, mask
+        self.F = record.require_force()
+
+    def __call__(self, z: np.ndarray) -> np.ndarray:
+        r = self.model.force(self.record, self.values(z)) - self.F
+        return finite_residual(r if self.mask is None else r[self.mask])
+
+
+class SumOfSquares:
+    """The sum of squares of a residual (the objective of a global search); picklable."""
+
+    def __init__(self, residual):
+        self.residual = residual
+
+    def __call__(self, z: np.ndarray) -> float:
+        r = self.residual(z)
+        return float(np.dot(r, r))
+
+
+def local_fit(residual, lo: np.ndarray, hi: np.ndarray, max_nfev: int | None, z: np.ndarray):
+    """One local start: bounded trust-region-reflective least squares (:func:`scipy.optimize.least_squares`) of
+    ``residual`` from z, with the one :data:`FTOL`.  A module-level function: a task for an executor."""
+    from scipy.optimize import least_squares  # imported on use: not at start-up
+    return least_squares(residual, np.clip(z, lo, hi), bounds=(lo, hi), method="trf", x_scale="jac",
+                         max_nfev=max_nfev, ftol=FTOL)
 
 
 def resolve_free(model: Model, records: Sequence[Measurement], free: Sequence[str] | None = None,

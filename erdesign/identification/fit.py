@@ -18,6 +18,7 @@ small, which the report says.
 from __future__ import annotations
 
 import math
+from functools import partial
 from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
@@ -26,8 +27,8 @@ import numpy as np
 from ..data.measurement import Measurement
 from ..data.metrics import esr
 from ..models.base import Model, ParameterError
-from .engine import (FTOL, FitError, Transform, finite_residual, resolve_free, start_box, strong_correlations,
-                     uncertainty)
+from .engine import (FitError, Residual, SumOfSquares, Transform, ValueMap, local_fit, resolve_free, start_box,
+                     strong_correlations, uncertainty)
 
 __all__ = ["fit", "FitResult", "FitError", "evaluate"]
 
@@ -99,7 +100,7 @@ class FitResult:
 
 def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
         fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None, starts: int = 1,
-        global_search: bool = False, seed: int = 0, max_nfev: int | None = None) -> FitResult:
+        global_search: bool = False, seed: int = 0, max_nfev: int | None = None, executor=None) -> FitResult:
     """Fit ``model`` to the force of ``record`` by bounded least squares.
 
     Parameters
@@ -121,6 +122,9 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
         Random seed of the multi-start / global stage (results are reproducible).
     max_nfev : int, optional
         Limit on function evaluations per local start.
+    executor : optional
+        Where the local starts run (:func:`erdesign.executor.executor_for`: an executor, or a Dask client); default
+        in this process, one after the other.  The result does not depend on it.
 
     Returns
     -------
@@ -141,16 +145,10 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     lo, hi = tr.bounds()
     z0 = np.clip(z0, lo, hi)
 
-    def full_values(z: np.ndarray) -> dict[str, float]:
-        vals = dict(base)
-        vals.update(zip(free, (float(v) for v in tr.to_values(z))))
-        return vals
+    full_values = ValueMap(base, free, tr)
+    residual = Residual(model, record, full_values)
 
-    def residual(z: np.ndarray) -> np.ndarray:
-        r = model.force(record, full_values(z)) - F
-        return finite_residual(r)
-
-    from scipy.optimize import differential_evolution, least_squares  # imported on use: not at start-up
+    from scipy.optimize import differential_evolution  # imported on use: not at start-up
     from scipy.stats import qmc
 
     r0 = residual(z0)
@@ -159,16 +157,21 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     candidates = [z0]
     box_lo, box_hi = start_box(lo, hi, z0, None if global_search else tr.log)
     if global_search:
-        de = differential_evolution(lambda z: float(np.sum(residual(z) ** 2)), list(zip(box_lo, box_hi)),
+        de = differential_evolution(SumOfSquares(residual), list(zip(box_lo, box_hi)),
                                     seed=seed, tol=1e-8, polish=False, maxiter=200, popsize=15, init="sobol")
         candidates.append(de.x)
     if starts > 1:
         sampler = qmc.LatinHypercube(d=len(free), seed=seed)
         candidates.extend(qmc.scale(sampler.random(starts - 1), box_lo, box_hi))
+    from ..executor import executor_for  # imported on use: not at start-up
+    runner = executor_for(executor)
+    try:
+        results = runner.map(partial(local_fit, residual, lo, hi, max_nfev), candidates)
+    finally:
+        if runner is not executor:
+            runner.close()
     best = None
-    for z in candidates:
-        res = least_squares(residual, np.clip(z, lo, hi), bounds=(lo, hi), method="trf", x_scale="jac",
-                            max_nfev=max_nfev, ftol=FTOL)
+    for res in results:  # the first of equal costs, whatever the executor
         if best is None or res.cost < best.cost:
             best = res
     values = full_values(best.x)

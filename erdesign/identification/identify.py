@@ -18,7 +18,7 @@ from ..errors import ErdesignError
 from ..models._kernels import coarse_steps, frozen_substeps
 from ..models.base import Model
 from . import engine
-from .engine import (FTOL, FitError, Transform, control_reference_for, finite_residual, resolve_free, start_box,
+from .engine import (FTOL, FitError, SumOfSquares, Transform, ValueMap, control_reference_for, finite_residual, resolve_free, start_box,
                      uncertainty, with_control_reference)
 from .fit import FitResult
 
@@ -208,15 +208,6 @@ class _ProjectedTracker(_Tracker):
             U = U[:, sv > 1e-10 * sv.max()] if sv.size and sv.max() > 0 else U[:, :0]
             J -= U @ (U.T @ J)
         return J
-
-
-def _value_map(base, names, tr):
-    """zz -> all parameter values: ``base`` with ``names`` set from the search vector zz (:class:`_Transform`)."""
-    def values(zz):
-        out = dict(base)
-        out.update(zip(names, (float(v) for v in tr.to_values(zz))))
-        return out
-    return values
 
 
 class _LinearResult:
@@ -416,7 +407,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         tr = Transform(model, free_names)
         lo, hi = tr.bounds()
         z = np.clip(tr.to_search([base[n] for n in free_names]) if z_start is None else z_start, lo, hi)
-        full_values = _value_map(base, free_names, tr)
+        full_values = ValueMap(base, free_names, tr)
         res, out_of_time, tracker = None, False, None
         for k, (rec, F, m, stage) in enumerate(stage_records):
             tracker = _Tracker(model, rec, F, m, full_values, deadline, progress, f"{label}, {stage}",
@@ -449,7 +440,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         lon, hin = lo[nl_index], hi[nl_index]
         zn = z[nl_index]
         theta = np.array([base[n] for n in linear])
-        nl_values = _value_map(base, nl, trn)
+        nl_values = ValueMap(base, nl, trn)
         res, out_of_time, tracker = None, False, None
         for k, (rec, F, m, stage) in enumerate(stage_records):
             tracker = _ProjectedTracker(model, rec, F, m, nl_values, deadline, progress, f"{label}, {stage}",
@@ -478,7 +469,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
                 break
         vals = {**nl_values(zn), **dict(zip(linear, (float(t) for t in theta)))}
         z = np.clip(tr.to_search([vals[n] for n in free_names]), lo, hi)
-        return tr, z, res, out_of_time, _value_map(base, free_names, tr), tracker
+        return tr, z, res, out_of_time, ValueMap(base, free_names, tr), tracker
 
     # stages: a decimated warm start on long records, then all samples (or only the decimated record)
     decimate = max(1, int(decimate))
@@ -511,10 +502,10 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         from scipy.optimize import differential_evolution
         box_lo, box_hi = start_box(lo0, hi0, z0, None)
         probe = _Tracker(model, fit_rec, fit_rec.force, fit_mask,
-                         lambda zz: {**base, **dict(zip(free_names, map(float, tr0.to_values(zz))))}, deadline,
+                         ValueMap(base, free_names, tr0), deadline,
                          progress, "global search")
         try:
-            de = differential_evolution(lambda zz: float(np.sum(probe(zz) ** 2)), list(zip(box_lo, box_hi)),
+            de = differential_evolution(SumOfSquares(probe), list(zip(box_lo, box_hi)),
                                         seed=seed, tol=1e-8, polish=False, maxiter=200, popsize=15, init="sobol")
             candidates.insert(1, de.x)
         except _OutOfTime:
@@ -799,7 +790,7 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     tr = Transform(model, names)
     lo, hi = tr.bounds()
     z0 = np.clip(tr.to_search([base[n] for n in names]), lo, hi)
-    values = _value_map(base, names, tr)
+    values = ValueMap(base, names, tr)
     forces = [r.require_force() for r in records]
     weights = [1.0 / max(float(np.std(F if m is None else F[m])), 1e-12) for F, m in zip(forces, masks)]
 
