@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 import time
 
@@ -58,7 +57,11 @@ def cases():
     from erdesign import load_example
     from erdesign.diagnosis.calibration import calibrate
     from erdesign.identification.fit import fit
-    from erdesign.identification.identify import cross_validation, identify, identify_joint
+    from erdesign.identification.identify import (
+        cross_validation,
+        identify,
+        identify_joint,
+    )
     from erdesign.models.registry import get_model
     from erdesign.simulation.rig import run_rig, sine
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import copy
 import math
-from typing import Mapping, Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -20,9 +20,24 @@ from ..data.measurement import Measurement
 from ..errors import ErdesignError
 from ..models.base import Model
 
-__all__ = ["PENALTY", "FTOL", "CORRELATION_THRESHOLD", "FitError", "Transform", "finite_residual", "resolve_free",
-           "control_reference_for", "with_control_reference", "start_box", "uncertainty", "strong_correlations", "ValueMap", "Residual", "SumOfSquares",
-           "local_fit"]
+__all__ = [
+    "CORRELATION_THRESHOLD",
+    "FTOL",
+    "PENALTY",
+    "FitError",
+    "Residual",
+    "SumOfSquares",
+    "Transform",
+    "ValueMap",
+    "control_reference_for",
+    "finite_residual",
+    "local_fit",
+    "resolve_free",
+    "start_box",
+    "strong_correlations",
+    "uncertainty",
+    "with_control_reference",
+]
 
 
 class FitError(ErdesignError):

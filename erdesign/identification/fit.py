@@ -18,89 +18,34 @@ small, which the report says.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from functools import partial
-from dataclasses import dataclass, field
-from typing import Mapping, Sequence
 
 import numpy as np
 
 from ..data.measurement import Measurement
 from ..data.metrics import esr
 from ..models.base import Model, ParameterError
-from .engine import (FitError, Residual, SumOfSquares, Transform, ValueMap, local_fit, resolve_free, start_box,
-                     strong_correlations, uncertainty)
+from .engine import (
+    FitError,
+    Residual,
+    SumOfSquares,
+    Transform,
+    ValueMap,
+    local_fit,
+    resolve_free,
+    start_box,
+    uncertainty,
+)
+from .result import FitResult
 
-__all__ = ["fit", "FitResult", "FitError", "evaluate"]
-
-
-@dataclass
-class FitResult:
-    """Outcome of :func:`fit`: parameter values (SI), uncertainties and figures of merit."""
-
-    model: Model
-    values: dict[str, float]
-    """All parameter values, fixed ones included, SI."""
-    free: tuple[str, ...]
-    stderr: dict[str, float]
-    """Standard error of each free parameter (NaN where not identifiable), SI."""
-    correlation: np.ndarray
-    """Correlation matrix of the free parameters, in the order of :attr:`free`."""
-    force: np.ndarray
-    """Model force on the fitted record, [N]."""
-    residual: np.ndarray
-    """Measured minus model force, [N]."""
-    esr: float
-    rss: float
-    n: int
-    aic: float
-    bic: float
-    success: bool
-    message: str
-    record_name: str = ""
-    extra: dict = field(default_factory=dict)
-
-    @property
-    def k(self) -> int:
-        """Number of free parameters."""
-        return len(self.free)
-
-    def parameters_with_units(self, digits: int = 4) -> dict[str, str]:
-        """``name -> "value unit"`` strings of all parameters (the ``parameters`` of the CLI's JSON)."""
-        return {name: self.model.parameter(name).format(v, digits) for name, v in self.values.items()}
-
-    def predict(self, record: Measurement) -> np.ndarray:
-        """Force [N] of the fitted model on another record."""
-        return self.model.simulate(record, self.values)
-
-    def validate(self, record: Measurement) -> float:
-        """ESR of the fitted model on a held-out record (cross-validation in the style of Vivas-López et al., Table 4)."""
-        return esr(record.require_force(), self.predict(record))
-
-    def report(self) -> str:
-        """A readable summary: values with units and standard errors, ESR, AIC/BIC, strong correlations."""
-        lines = [f"{self.model.title or self.model.name} fitted to {self.record_name or 'record'} "
-                 f"({self.n} samples, {self.k} free parameters)",
-                 f"  ESR {self.esr:.4g}   RMS residual {math.sqrt(self.rss / self.n):.4g} N   "
-                 f"AIC {self.aic:.1f}   BIC {self.bic:.1f}"]
-        for name in self.model.parameter_names:
-            p = self.model.parameter(name)
-            v = self.values[name]
-            if name in self.stderr:
-                se = self.stderr[name]
-                unc = f" ± {p.format(se, 2)}" if np.isfinite(se) else " (not identifiable)"
-                lines.append(f"  {name:<22} {p.format(v)}{unc}")
-            else:
-                lines.append(f"  {name:<22} {p.format(v)} (fixed)")
-        for a, b, c in strong_correlations(self.free, self.correlation):
-            lines.append(f"  note: {a} and {b} are correlated ({c:+.3f})")
-        if not self.success:
-            lines.append(f"  warning: optimiser did not converge: {self.message}")
-        return "\n".join(lines)
+__all__ = ["FitError", "FitResult", "evaluate", "fit"]
 
 
 def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
         fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None, starts: int = 1,
-        global_search: bool = False, seed: int = 0, max_nfev: int | None = None, executor=None) -> FitResult:
+        global_search: bool = False, seed: int = 0, max_nfev: int | None = None, executor=None,
+        mask: np.ndarray | None = None) -> FitResult:
     """Fit ``model`` to the force of ``record`` by bounded least squares.
 
     Parameters
@@ -125,12 +70,16 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     executor : optional
         Where the local starts run (:func:`erdesign.executor.executor_for`: an executor, or a Dask client); default
         in this process, one after the other.  The result does not depend on it.
+    mask : bool array, optional
+        Samples the fit compares (all by default): the model is simulated on the whole record and scored on these
+        (the diagnosis fits on the samples where the sign of the velocity is known).  The result's force, residual,
+        ESR and sample count are those of the masked samples.
 
     Returns
     -------
     FitResult
     """
-    F = record.require_force()
+    F = record.require_force() if mask is None else record.require_force()[mask]
     check = getattr(model, "check_record", None)
     if check is not None:
         check(record)
@@ -146,9 +95,11 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     z0 = np.clip(z0, lo, hi)
 
     full_values = ValueMap(base, free, tr)
-    residual = Residual(model, record, full_values)
+    residual = Residual(model, record, full_values, mask)
 
-    from scipy.optimize import differential_evolution  # imported on use: not at start-up
+    from scipy.optimize import (
+        differential_evolution,  # imported on use: not at start-up
+    )
     from scipy.stats import qmc
 
     r0 = residual(z0)
@@ -176,6 +127,7 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
             best = res
     values = full_values(best.x)
     model_force = model.force(record, values)
+    model_force = model_force if mask is None else model_force[mask]
     resid = F - model_force
     rss = float(np.sum(resid**2))
     n, k = len(F), len(free)

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import math
 import time as _time
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -18,14 +18,48 @@ from ..errors import ErdesignError
 from ..models._kernels import coarse_steps, frozen_substeps
 from ..models.base import Model
 from . import engine
-from .engine import (FTOL, FitError, SumOfSquares, Transform, ValueMap, control_reference_for, finite_residual, resolve_free, start_box,
-                     uncertainty, with_control_reference)
-from .fit import FitResult
+from .engine import (
+    FTOL,
+    FitError,
+    SumOfSquares,
+    Transform,
+    ValueMap,
+    control_reference_for,
+    finite_residual,
+    resolve_free,
+    start_box,
+    uncertainty,
+    with_control_reference,
+)
+from .result import (
+    FitResult,
+    fit_report,
+    fit_statistics,
+    parameter_table,
+    result_json,
+    strong_correlations,
+)
 
-__all__ = ["identify", "identify_joint", "cross_validation", "CrossValidation", "JointResult",
-           "choose_control_reference", "score", "simulate", "Simulation", "resolve_parameters", "ParameterSource",
-           "fit_report", "result_json", "parameter_table", "strong_correlations", "fit_statistics", "joint_report",
-           "joint_json"]
+__all__ = [
+    "CrossValidation",
+    "JointResult",
+    "ParameterSource",
+    "Simulation",
+    "choose_control_reference",
+    "cross_validation",
+    "fit_report",
+    "fit_statistics",
+    "identify",
+    "identify_joint",
+    "joint_json",
+    "joint_report",
+    "parameter_table",
+    "resolve_parameters",
+    "result_json",
+    "score",
+    "simulate",
+    "strong_correlations",
+]
 
 
 def choose_control_reference(model: Model, records: Sequence[Measurement]) -> float:
@@ -610,129 +644,6 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     return result
 
 
-def _at_bound(model, name, value, stderr=None) -> str | None:
-    """"lower" / "upper" when the value sits on a bound: within 1e-6 of it, or within one standard error."""
-    p = model.parameter(name)
-    for bound, label in ((p.lower, "lower"), (p.upper, "upper")):
-        if not math.isfinite(bound):
-            continue
-        gap = abs(value - bound)
-        if gap <= 1e-6 * max(abs(bound), abs(value)) or (stderr is not None and math.isfinite(stderr)
-                                                          and gap < stderr):
-            return label
-    return None
-
-
-def parameter_table(result: FitResult) -> dict[str, dict]:
-    """Per parameter: SI value, unit, standard error (None where not available), initial value and status
-    ("free", "fixed", "not identifiable", "at lower bound", "at upper bound")."""
-    model = result.model
-    initial = result.extra.get("initial", {})
-    unident = set(result.extra.get("not_identifiable", ()))
-    out = {}
-    for name in model.parameter_names:
-        v = float(result.values[name])
-        se = result.stderr.get(name)
-        if name in unident:
-            status = "not identifiable"
-        elif name not in result.free:
-            status = "fixed"
-        else:
-            bound = _at_bound(model, name, v, se)
-            status = f"at {bound} bound" if bound else "free"
-        out[name] = {"value": v, "unit": model.parameter(name).unit,
-                     "stderr": None if se is None or not math.isfinite(se) or status.startswith("at ") else float(se),
-                     "initial": None if name not in initial else float(initial[name]), "status": status}
-    return out
-
-
-def strong_correlations(result: FitResult, threshold: float = engine.CORRELATION_THRESHOLD) -> list[tuple[str, str, float]]:
-    """Pairs of free parameters whose correlation exceeds ``threshold`` in magnitude, strongest first."""
-    return engine.strong_correlations(result.free, result.correlation, threshold)
-
-
-def fit_statistics(result: FitResult) -> dict:
-    """ESR, R^2, RMS residual, reduced chi-square (RSS / (n - k), N^2: no measurement error is known), AIC, BIC."""
-    n, k = result.n, result.k
-    return {"esr": result.esr, "r_squared": 1.0 - result.esr, "rms_residual_N": math.sqrt(result.rss / n),
-            "reduced_chi_square_N2": result.rss / max(n - k, 1), "aic": result.aic, "bic": result.bic,
-            "samples": n, "free_parameters": k}
-
-
-def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -> str:
-    """The identification report (the content of lmfit's): statistics, parameters with standard errors and
-    initial values, parameters at a bound or not identifiable said so, strong correlations, warnings."""
-    model = result.model
-    st = fit_statistics(result)
-    ex = result.extra
-    lines = [f"[[Fit]] {model.title or model.name} on {result.record_name or 'record'}",
-             f"  samples {st['samples']}" + (f" ({ex['excluded_samples']} clipped left out)"
-                                            if ex.get("excluded_samples") else "")
-             + f", free parameters {st['free_parameters']}, simulations {ex.get('simulations', '?')}, "
-             f"{ex.get('seconds', 0.0):.1f} s" + ("" if result.success else f"  - {result.message}"),
-             "[[Statistics]]",
-             f"  ESR {st['esr']:.4g}   R^2 {st['r_squared']:.4g}   RMS residual {st['rms_residual_N']:.4g} N   "
-             f"reduced chi-square {st['reduced_chi_square_N2']:.4g} N^2",
-             f"  AIC {st['aic']:.1f}   BIC {st['bic']:.1f}"
-             + (f"   (linear viscous-plus-friction fit: ESR {ex['baseline_esr']:.4g})" if "baseline_esr" in ex
-                else ""),
-             "[[Parameters]]"]
-    table = parameter_table(result)
-    width = max(len(n) for n in table)
-    for name, row in table.items():
-        p = model.parameter(name)
-        text = p.format(row["value"])
-        if row["status"] == "free" and row["stderr"] is not None:
-            rel = abs(row["stderr"] / row["value"]) if row["value"] else math.inf
-            text += f" +/- {p.format(row['stderr'], 2)}" + (f" ({100 * rel:.2g} %)" if math.isfinite(rel) else "")
-        elif row["status"] == "not identifiable":
-            text = (f"not identifiable from this record ({'fitted' if name in result.free else 'held at'} "
-                    f"{p.format(row['value'])})")
-        elif row["status"] == "fixed":
-            text += " (fixed)"
-        else:
-            text += f" ({row['status']}: no standard error)" if row["status"].startswith("at ") else ""
-        if row["initial"] is not None and row["status"] not in ("fixed", "not identifiable"):
-            text += f"   init {p.format(row['initial'])}"
-        lines.append(f"  {name:<{width}}  {text}")
-    corr = strong_correlations(result)
-    if corr:
-        lines.append(f"[[Correlations]] (|r| > {engine.CORRELATION_THRESHOLD:g}: these combinations, not the single values, are what the data fix)")
-        lines += [f"  {a}, {b}: {c:+.3f}" for a, b, c in corr]
-    if validation:
-        lines.append("[[Validation]] (the identified set on other records)")
-        lines += [f"  {name}: ESR {m['esr']:.4g}, RMS residual {m['rms_residual_N']:.4g} N" for name, m in validation]
-    warnings = list(ex.get("warnings", ()))
-    if warnings:
-        lines.append("[[Warnings]]")
-        lines += [f"  {w}" for w in warnings]
-    return "\n".join(lines)
-
-
-def result_json(result: FitResult, model_name: str, control_reference: str | None,
-                validation: Sequence[tuple[str, dict]] = ()) -> dict:
-    """The ``identify --json`` object: the contract's ``model``, ``esr``, ``parameters`` (strings) and, in SI,
-    ``parameters_si`` (value, unit, stderr, initial, status), ``statistics``, ``correlations``,
-    ``not_identifiable``, ``at_bounds``, ``warnings``, ``control_reference`` and ``validation``.  No NaN or inf."""
-    def num(x):
-        return None if x is None or not math.isfinite(x) else float(x)
-
-    table = parameter_table(result)
-    st = {k: (num(v) if isinstance(v, float) else v) for k, v in fit_statistics(result).items()}
-    ex = result.extra
-    return {"model": model_name, "esr": num(result.esr), "parameters": result.parameters_with_units(),
-            "parameters_si": table, "statistics": st, "control_reference": control_reference,
-            "correlations": [{"a": a, "b": b, "r": c} for a, b, c in strong_correlations(result)],
-            "not_identifiable": [n for n, r in table.items() if r["status"] == "not identifiable"],
-            "at_bounds": [n for n, r in table.items() if r["status"].startswith("at ")],
-            "success": bool(result.success), "message": result.message,
-            "simulations": ex.get("simulations"), "seconds": num(ex.get("seconds")),
-            "clipped_samples": ex.get("clipped_samples", 0), "excluded_samples": ex.get("excluded_samples", 0),
-            "warnings": list(ex.get("warnings", ())),
-            "validation": [{"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
-                           for name, m in validation]}
-
-
 @dataclass
 class JointResult:
     """Parameters shared by several records and the ESR on each."""
@@ -986,7 +897,12 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
     """
     import json
     from pathlib import Path
-    from ..models.published import parse_parameter_list, parse_parameter_values, published_set
+
+    from ..models.published import (
+        parse_parameter_list,
+        parse_parameter_values,
+        published_set,
+    )
     notes: list[str] = []
     kind = record.control_kind
     path = Path(spec)
