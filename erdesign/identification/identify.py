@@ -609,9 +609,9 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     resid = F_all - force
     scored = resid if mask is None else resid[mask]
     rss_n = max(rss / n_scored, np.finfo(float).tiny)
-    message = str(res.message) if res is not None else "stopped at max_time: the best point found so far"
+    message = str(res.message) if res is not None else "stopped by max_time: the best point found so far"
     if out_of_time:
-        notes.append(f"stopped at max_time = {max_time:g} s before the optimiser converged: the values are the best "
+        notes.append(f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best "
                      "found so far")
     result = FitResult(
         model=model, values=values, free=free_names, stderr=dict(zip(free_names, stderr)), correlation=corr,
@@ -664,6 +664,33 @@ class JointResult:
         return float(np.mean(self.esr))
 
 
+class _JointResidual:
+    """The residuals of several records, each weighted by 1 / its force standard deviation and on its mask,
+    concatenated; counts simulations, keeps the best point, reports progress and enforces the time budget."""
+
+    def __init__(self, model, records, forces, weights, masks, values, deadline, progress, total):
+        self.model, self.records, self.forces, self.weights, self.masks = model, records, forces, weights, masks
+        self.values, self.deadline, self.progress, self.total = values, deadline, progress, total
+        self.calls, self.best, self.best_z, self.last_report = 0, math.inf, None, _time.monotonic()
+
+    def __call__(self, z):
+        if self.deadline is not None and _time.monotonic() > self.deadline:
+            raise _OutOfTime
+        v = self.values(z)
+        parts = [w * (self.model.force(r, v) - F) for r, F, w in zip(self.records, self.forces, self.weights)]
+        out = finite_residual(np.concatenate([p if m is None else p[m] for p, m in zip(parts, self.masks)]))
+        cost = float(np.dot(out, out))
+        self.calls += 1
+        if cost < self.best:
+            self.best, self.best_z = cost, np.array(z, dtype=float)
+        now = _time.monotonic()
+        if self.progress is not None and now - self.last_report > 2.0:
+            self.last_report = now
+            self.progress(f"joint fit of {len(self.records)} records: {self.calls} simulations of all, "
+                          f"mean weighted sum of squares {self.best / self.total:.4g}")
+        return out
+
+
 def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequence[str] | None = None,
                    fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None,
                    max_nfev: int | None = None, max_time: float | None = None, exclude_clipped: bool = False,
@@ -705,26 +732,7 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     forces = [r.require_force() for r in records]
     weights = [1.0 / max(float(np.std(F if m is None else F[m])), 1e-12) for F, m in zip(forces, masks)]
 
-    state = {"calls": 0, "best": math.inf, "best_z": None, "report": t_start}
-
-    def residual(z):
-        if deadline is not None and _time.monotonic() > deadline:
-            raise _OutOfTime
-        v = values(z)
-        parts = [w * (model.force(r, v) - F) for r, F, w in zip(records, forces, weights)]
-        parts = [p if m is None else p[m] for p, m in zip(parts, masks)]
-        out = np.concatenate(parts)
-        out = finite_residual(out)
-        cost = float(np.dot(out, out))
-        state["calls"] += 1
-        if cost < state["best"]:
-            state["best"], state["best_z"] = cost, np.array(z, dtype=float)
-        now = _time.monotonic()
-        if progress is not None and now - state["report"] > 2.0:
-            state["report"] = now
-            progress(f"joint fit of {len(records)} records: {state['calls']} simulations of all, "
-                     f"mean weighted sum of squares {state['best'] / total:.4g}")
-        return out
+    residual = _JointResidual(model, records, forces, weights, masks, values, deadline, progress, total)
 
     from scipy.optimize import least_squares  # imported on use: not at start-up
 
@@ -732,9 +740,9 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
         res = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac", max_nfev=max_nfev, ftol=FTOL)
         z, success, message = res.x, bool(res.success), str(res.message)
     except _OutOfTime:
-        z = z0 if state["best_z"] is None else state["best_z"]
-        success, message = False, "stopped at max_time: the best point found so far"
-        notes.append(f"stopped at max_time = {max_time:g} s before the optimiser converged: the values are the best "
+        z = z0 if residual.best_z is None else residual.best_z
+        success, message = False, "stopped by max_time: the best point found so far"
+        notes.append(f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best "
                      "found so far")
     v = values(z)
     scores = []
@@ -742,7 +750,7 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
         M = model.force(r, v)
         scores.append(esr(F if m is None else F[m], M if m is None else M[m]))
     return JointResult(model, v, scores, [r.name for r in records], success, tuple(names), message,
-                       {"seconds": _time.monotonic() - t_start, "simulations": state["calls"],
+                       {"seconds": _time.monotonic() - t_start, "simulations": residual.calls,
                         "excluded_samples": [0 if m is None else int((~m).sum()) for m in masks],
                         "warnings": notes, "initial": {n: base[n] for n in names}})
 
@@ -888,12 +896,14 @@ def _control_reference_from_text(text: str, record: Measurement, where: str) -> 
 
 
 def resolve_parameters(model: Model, spec: str, record: Measurement, *,
-                       control_reference: str | None = None) -> tuple[dict[str, float], ParameterSource, list[str]]:
+                       control_reference: str | None = None,
+                       where: str = "params") -> tuple[dict[str, float], ParameterSource, list[str]]:
     """SI values of ``model`` from a parameter specification, and the control reference set on the model.
 
     ``spec`` is one of: a JSON file written by ``erdesign identify --json`` (its ``parameters_si`` when present,
     else its ``parameters`` strings, and its ``control_reference``); a list ``"name=value unit, ..."``; or the name
     of a published set of the model (:mod:`erdesign.models.published`).  Returns (values, source, warnings).
+    Errors name the specification as ``where`` (the command line passes its flag).
     """
     import json
     from pathlib import Path
@@ -910,18 +920,18 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
         try:
             data = json.loads(path.read_text())
         except FileNotFoundError:
-            raise ErdesignError(f"--params: no such file {spec}") from None
+            raise ErdesignError(f"{where}: no such file {spec}") from None
         except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-            raise ErdesignError(f"--params: {spec} is not a JSON file ({exc})") from None
+            raise ErdesignError(f"{where}: {spec} is not a JSON file ({exc})") from None
         if not isinstance(data, dict) or not isinstance(data.get("parameters"), dict):
-            raise ErdesignError(f"--params: {spec} has no 'parameters' object (expected the output of "
+            raise ErdesignError(f"{where}: {spec} has no 'parameters' object (expected the output of "
                                 "'erdesign identify --json')")
         if data.get("model") not in (None, model.name):
-            raise ErdesignError(f"--params: {spec} holds parameters of model {data['model']}, not {model.name}")
+            raise ErdesignError(f"{where}: {spec} holds parameters of model {data['model']}, not {model.name}")
         ref_text = control_reference or data.get("control_reference")
         if model.uses_control and kind is not None:
             if ref_text:
-                model.control_reference = _control_reference_from_text(ref_text, record, "--params")
+                model.control_reference = _control_reference_from_text(ref_text, record, where)
             else:
                 ref = choose_control_reference(model, [record])
                 notes.append(f"{spec} gives no control_reference: u = {kind} / {ref:g} (SI), the rule identify "
@@ -940,18 +950,18 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
         if model.uses_control and kind is not None:
             if control_reference:
                 model.control_reference = _control_reference_from_text(control_reference, record,
-                                                                       "--control-reference")
+                                                                       "control_reference")
             else:
                 choose_control_reference(model, [record])
         values = parse_parameter_values(model, texts, control_kind=kind, control_reference=model.control_reference)
-        return values, ParameterSource("list", "--params list"), notes
+        return values, ParameterSource("list", f"{where} list"), notes
     pub = published_set(model.name, spec)
     if pub.control_kind is not None:
         if kind is None:
             notes.append(f"{spec} is for a record with a {pub.control_kind} column; {record.name or 'the record'} "
                          "has none: the control is taken as zero")
         elif kind != pub.control_kind:
-            raise ErdesignError(f"--params: {spec} is for a {pub.control_kind} control (its coefficients are per "
+            raise ErdesignError(f"{where}: {spec} is for a {pub.control_kind} control (its coefficients are per "
                                 f"unit {pub.control_kind}); the record's control is a {kind}")
         model.control_reference = pub.control_reference
     elif model.uses_control and kind is not None and np.ptp(record.control) > 0:
@@ -976,7 +986,7 @@ def simulate(model: Model, record: Measurement, values: Mapping[str, float], *, 
     if clipped.any() and not exclude_clipped:
         level = F[clipped]
         notes.append(f"{int(clipped.sum())} force samples sit at a flat {'top' if level[0] > 0 else 'bottom'} "
-                     f"({level[0]:.6g} N): a load cell or amplifier at its limit; --exclude-clipped scores without "
+                     f"({level[0]:.6g} N): a load cell or amplifier at its limit; exclude_clipped=True scores without "
                      f"them")
     return Simulation(model, model.check_values(values), force, metrics, int(clipped.sum()),
                       int(clipped.sum()) if mask is not None else 0, source, notes)
