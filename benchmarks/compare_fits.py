@@ -113,20 +113,24 @@ def quiroz_cases():
     return out
 
 
-def compare(after: dict, before: dict) -> float:
-    worst = 0.0
+def compare(after: dict, before: dict) -> tuple[float, float]:
+    """Print each fit's ESR before -> after and its largest relative changes; return the largest relative change
+    of an ESR and of a parameter value (relative to the larger magnitude of the two, so that a parameter leaving 0
+    counts as 1, not as infinity)."""
+    worst_esr = worst_value = 0.0
     for name, b in before.items():
         a = after.get(name)
         if a is None:
             print(f"{name}: missing after")
             continue
         be, ae = np.atleast_1d(b["esr"]), np.atleast_1d(a["esr"])
-        rel = [abs(x - y) / max(abs(y), 1e-300) for x, y in zip(ae, be)]
-        rel += [abs(a["values"][k] - v) / max(abs(v), 1e-12) for k, v in b["values"].items() if k in a["values"]]
-        change = max(rel, default=0.0)
-        worst = max(worst, change)
-        print(f"{name:<52} ESR {np.round(be, 5).tolist()} -> {np.round(ae, 5).tolist()}  largest rel change {change:.2e}")
-    return worst
+        d_esr = max((abs(x - y) / max(abs(x), abs(y), 1e-300) for x, y in zip(ae, be)), default=0.0)
+        d_val = max((abs(a["values"][k] - v) / max(abs(v), abs(a["values"][k]), 1e-300)
+                     for k, v in b["values"].items() if k in a["values"] and a["values"][k] != v), default=0.0)
+        worst_esr, worst_value = max(worst_esr, d_esr), max(worst_value, d_val)
+        print(f"{name:<52} ESR {np.round(be, 5).tolist()} -> {np.round(ae, 5).tolist()}  "
+              f"largest rel change: ESR {d_esr:.2e}, values {d_val:.2e}")
+    return worst_esr, worst_value
 
 
 def main(argv=None):
@@ -153,7 +157,8 @@ def main(argv=None):
     if args.compare:
         with open(args.compare) as f:
             before = json.load(f)
-        print(f"largest relative change: {compare(results, before):.3g}")
+        d_esr, d_val = compare(results, before)
+        print(f"largest relative change: ESR {d_esr:.3g}, parameter values {d_val:.3g}")
 
 
 if __name__ == "__main__":

@@ -105,3 +105,21 @@ def test_multi_starts_on_a_process_pool_give_the_serial_result():
     with PoolExecutor(2) as pool:
         pooled = fit(get_model("kwok_tanh"), rec, starts=4, max_nfev=40, executor=pool)
     assert pooled.values == serial.values and pooled.esr == serial.esr
+
+
+def test_problem_is_one_frozen_set_up():
+    import dataclasses
+
+    from erdesign.identification.engine import problem
+    model = get_model("bingham")
+    rec = _record(current=0.5)
+    pb = problem(model, [rec], fixed={"f0": 0.0}, start={"c0": 2500.0})
+    assert pb.model is not model and pb.model.control_reference == pytest.approx(0.1)
+    assert "f0" not in pb.free and pb.base["f0"] == 0.0 and pb.base["c0"] == 2500.0
+    assert pb.values(pb.z0)["c0"] == pytest.approx(2500.0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        pb.free = ()
+    with pytest.raises(Exception, match="no parameter 'nope'"):
+        problem(model, [rec], start={"nope": 1.0})
+    with pytest.raises(FitError, match="short: 3 samples cannot determine"):
+        problem(model, [rec], samples=3, label="short")

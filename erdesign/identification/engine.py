@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import copy
 import math
+from dataclasses import dataclass
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -152,6 +153,56 @@ def resolve_free(model: Model, records: Sequence[Measurement], free: Sequence[st
     if not names:
         raise FitError(f"{model.name}: no free parameter to fit")
     return names, fixed
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A fit set up: the model (a copy with the records' control reference), the records and the samples of each
+    that are compared (``masks``, None for all), the free parameters, the held values, the start values of all
+    parameters (``base``, SI) and the search space (``transform``, bounds ``lo``/``hi``, start ``z0``)."""
+
+    model: Model
+    records: tuple[Measurement, ...]
+    masks: tuple[np.ndarray | None, ...]
+    free: tuple[str, ...]
+    fixed: dict[str, float]
+    base: dict[str, float]
+    transform: Transform
+    lo: np.ndarray
+    hi: np.ndarray
+    z0: np.ndarray
+
+    @property
+    def values(self) -> ValueMap:
+        """Search vector -> all parameter values."""
+        return ValueMap(self.base, self.free, self.transform)
+
+
+def problem(model: Model, records: Sequence[Measurement], *, free: Sequence[str] | None = None,
+            fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None,
+            masks: Sequence[np.ndarray | None] | None = None, control_reference: bool = True,
+            samples: int | None = None, label: str = "record") -> Problem:
+    """Set up a fit of ``model`` to ``records``: the free parameters (:func:`resolve_free`), the start values (the
+    model's guess from the first record, then ``start``, then ``fixed``; checked within bounds), the search space.
+    With ``control_reference`` the fit works on a copy of the model with the records' reference
+    (:func:`with_control_reference`); otherwise on the model as given (it is not changed).  Unknown names in
+    ``start`` are errors; so are ``samples`` (the number compared) too few for the free parameters (the error
+    names ``label``)."""
+    records = tuple(records)
+    if control_reference:
+        model = with_control_reference(model, records)
+    free, fixed = resolve_free(model, records, free, fixed)
+    if samples is not None and samples <= len(free):
+        raise FitError(f"{label}: {samples} samples cannot determine {len(free)} parameters")
+    for k in start or {}:
+        model.parameter(k)
+    guess = {k: v for k, v in model.initial_guess(records[0]).items() if k in model.parameter_names}
+    base = model.check_values({**guess, **(start or {}), **fixed})
+    tr = Transform(model, free)
+    lo, hi = tr.bounds()
+    z0 = np.clip(tr.to_search([base[n] for n in free]), lo, hi)
+    return Problem(model, records, tuple(masks) if masks is not None else (None,) * len(records), free, fixed,
+                   base, tr, lo, hi, z0)
 
 
 def control_reference_for(records: Sequence[Measurement]) -> float:

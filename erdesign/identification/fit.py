@@ -26,17 +26,7 @@ import numpy as np
 from ..data.measurement import Measurement
 from ..data.metrics import esr
 from ..models.base import Model, ParameterError
-from .engine import (
-    FitError,
-    Residual,
-    SumOfSquares,
-    Transform,
-    ValueMap,
-    local_fit,
-    resolve_free,
-    start_box,
-    uncertainty,
-)
+from .engine import FitError, Residual, SumOfSquares, local_fit, problem, start_box, uncertainty
 from .result import FitResult
 
 __all__ = ["FitError", "FitResult", "evaluate", "fit"]
@@ -83,18 +73,10 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     check = getattr(model, "check_record", None)
     if check is not None:
         check(record)
-    names = model.parameter_names
-    free, fixed = resolve_free(model, [record], free, fixed)
-    if len(F) <= len(free):
-        raise FitError(f"{record.name or 'record'}: {len(F)} samples cannot determine {len(free)} parameters")
-    guess = {**model.initial_guess(record), **(start or {})}
-    base = model.check_values({**{k: v for k, v in guess.items() if k in names}, **fixed})
-    tr = Transform(model, free)
-    z0 = tr.to_search([base[n] for n in free])
-    lo, hi = tr.bounds()
-    z0 = np.clip(z0, lo, hi)
-
-    full_values = ValueMap(base, free, tr)
+    pb = problem(model, [record], free=free, fixed=fixed, start=start, masks=[mask], control_reference=False,
+                 samples=len(F), label=record.name or "record")
+    free, tr, lo, hi, z0 = pb.free, pb.transform, pb.lo, pb.hi, pb.z0
+    full_values = pb.values
     residual = Residual(model, record, full_values, mask)
 
     from scipy.optimize import (

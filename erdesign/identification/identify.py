@@ -26,10 +26,9 @@ from .engine import (
     ValueMap,
     control_reference_for,
     finite_residual,
-    resolve_free,
+    problem,
     start_box,
     uncertainty,
-    with_control_reference,
 )
 from .result import (
     FitResult,
@@ -334,7 +333,8 @@ def _fd_jacobian(fun, z, steps):
 WARM_START_SAMPLES = 20_000
 
 #: A start "fails" when the optimiser stops without converging or leaves more than this fraction of the variance
-#: that a linear viscous-plus-friction fit leaves (F ~ c v + f sgn v + f0): extra starts are then tried.
+#: that the reference Bingham fit leaves (F ~ c v + f sgn v + f0, :func:`_baseline_esr`): extra starts are then
+#: tried, and a best fit above it is a poor fit (``success`` False).
 FAIL_RATIO = 1.0
 #: Relative rise of the sum of squares allowed when the parameters found not identifiable are held at their start
 #: values; above it the free fit is kept.
@@ -365,12 +365,15 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
              fix_unidentifiable: bool = True, warm_start: bool = False, projection: bool | None = None) -> FitResult:
     """Identify ``model`` on ``record`` by bounded least squares, at the scale of real records.
 
-    * The control reference is chosen from the record (:func:`choose_control_reference`); a control column of zeros
-      holds the control slopes, as no control column does.
+    * The fit works on a copy of the model with the control reference chosen from the record
+      (:func:`~erdesign.identification.engine.control_reference_for`; ``result.model``): ``model`` is not changed.
+      A control column of zeros holds the control slopes, as no control column does.
     * One local start (trust-region reflective, :func:`scipy.optimize.least_squares`) from the model's guess;
       further starts (Latin hypercube around it, as :func:`erdesign.identification.fit.fit`) only when it fails: the
-      optimiser did not converge, or the fit is no better than a linear viscous-plus-friction fit.  ``starts`` bounds
-      the number.
+      optimiser did not converge, the fit is no better than the reference Bingham fit (c0 v + f_c sgn v + f0 by
+      linear least squares on the same samples), or more than half the free parameters sit on a bound.  ``starts``
+      bounds the number.  A best fit no better than the reference is not a success (``success`` False,
+      ``extra["poor_fit"]``, a warning).
     * All samples are fitted; ``decimate`` > 1 fits on every ``decimate``-th sample only (the scores are still on
       all samples).  ``warm_start`` first fits long records (> 20,000 samples) on every k-th sample (at least 1 kHz
       kept), then all samples.  It is off by default: on Dyke's 3 kHz record the 1 kHz optimum lies in a stiff
@@ -411,23 +414,18 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     if check is not None:
         check(record)
     notes: list[str] = []
-    model = with_control_reference(model, [record])  # a copy: the caller's model is not changed
     if record.control_kind is not None and np.ptp(record.control) > 0 and not model.uses_control:
         notes.append(f"{model.name} has no control dependence, but the record's {record.control_kind} varies "
                      f"({np.min(record.control):.4g} to {np.max(record.control):.4g} SI): the fit averages over it")
-    names = model.parameter_names
-    free_names, fixed = resolve_free(model, [record], free, fixed)
     clipped = clipped_samples(F_all)
     mask = ~clipped if exclude_clipped and clipped.any() else None
     if clipped.any() and not exclude_clipped:
         notes.append(f"{int(clipped.sum())} force samples sit at a flat top or bottom ({F_all[clipped][0]:.6g} N): "
                      "a load cell at its limit? exclude_clipped=True leaves them out")
     n_scored = int(F_all.size if mask is None else mask.sum())
-    if n_scored <= len(free_names):
-        raise FitError(f"{record.name or 'record'}: {n_scored} samples cannot determine {len(free_names)} "
-                       "parameters")
-    guess = {**model.initial_guess(record), **(start or {})}
-    base = model.check_values({**{k: v for k, v in guess.items() if k in names}, **fixed})
+    pb = problem(model, [record], free=free, fixed=fixed, start=start, masks=[mask], samples=n_scored,
+                 label=record.name or "record")
+    model, free_names, fixed, base = pb.model, pb.free, pb.fixed, pb.base  # model: a copy, the caller's unchanged
     initial = dict(base)
 
     if projection is None:
@@ -564,7 +562,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         if not failed or out_of_time:
             break
         if i + 1 < len(candidates):
-            say(f"start {i + 1} failed (ESR {cost / spread:.4g}; linear viscous-plus-friction fit "
+            say(f"start {i + 1} failed (ESR {cost / spread:.4g}; reference Bingham fit "
                 f"{baseline:.4g}): trying another start")
     _, (tr, z, res, out_of_time, full_values, tracker) = best
     values = full_values(z)
@@ -711,8 +709,6 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     for r in records:
         model.check_record(r)
         r.require_force()
-    model = with_control_reference(model, records)  # a copy: the caller's model is not changed
-    names, fixed = resolve_free(model, records, free, fixed)
     masks = []
     notes = []
     for r in records:
@@ -722,13 +718,10 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
             notes.append(f"{r.name or 'a record'}: {int(clipped.sum())} force samples sit at a flat top or bottom; "
                          "exclude_clipped=True leaves them out")
     total = sum(len(r) if m is None else int(m.sum()) for r, m in zip(records, masks))
-    if total <= len(names):
-        raise FitError(f"identify_joint: {total} samples cannot determine {len(names)} parameters")
-    base = model.check_values({**model.initial_guess(records[0]), **(start or {}), **fixed})
-    tr = Transform(model, names)
-    lo, hi = tr.bounds()
-    z0 = np.clip(tr.to_search([base[n] for n in names]), lo, hi)
-    values = ValueMap(base, names, tr)
+    pb = problem(model, records, free=free, fixed=fixed, start=start, masks=masks, samples=total,
+                 label="identify_joint")
+    model, names, base, lo, hi, z0 = pb.model, pb.free, pb.base, pb.lo, pb.hi, pb.z0  # model: a copy
+    values = pb.values
     forces = [r.require_force() for r in records]
     weights = [1.0 / max(float(np.std(F if m is None else F[m])), 1e-12) for F, m in zip(forces, masks)]
 

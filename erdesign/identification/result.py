@@ -143,7 +143,7 @@ def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -
              f"  ESR {st['esr']:.4g}   R^2 {st['r_squared']:.4g}   RMS residual {st['rms_residual_N']:.4g} N   "
              f"reduced chi-square {st['reduced_chi_square_N2']:.4g} N^2",
              f"  AIC {st['aic']:.1f}   BIC {st['bic']:.1f}"
-             + (f"   (linear viscous-plus-friction fit: ESR {ex['baseline_esr']:.4g})" if "baseline_esr" in ex
+             + (f"   (reference Bingham fit: ESR {ex['baseline_esr']:.4g})" if "baseline_esr" in ex
                 else ""),
              "[[Parameters]]"]
     table = parameter_table(result)
@@ -194,7 +194,7 @@ def result_json(result: FitResult, model_name: str, control_reference: str | Non
             "correlations": [{"a": a, "b": b, "r": c} for a, b, c in strong_correlations(result)],
             "not_identifiable": [n for n, r in table.items() if r["status"] == "not identifiable"],
             "at_bounds": [n for n, r in table.items() if r["status"].startswith("at ")],
-            "success": bool(result.success), "message": result.message,
+            "success": bool(result.success), "poor_fit": bool(ex.get("poor_fit", False)), "message": result.message,
             "simulations": ex.get("simulations"), "seconds": num(ex.get("seconds")),
             "clipped_samples": ex.get("clipped_samples", 0), "excluded_samples": ex.get("excluded_samples", 0),
             "warnings": list(ex.get("warnings", ())),
