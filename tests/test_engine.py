@@ -68,7 +68,18 @@ def test_fit_values_and_standard_errors_equal_the_linear_closed_form():
     # and the values lie within a few standard errors of the truth (5 N noise)
     for name in ("c0", "f_c", "f0"):
         assert abs(r.values[name] - TRUE[name]) < 4 * r.stderr[name]
-    assert "ESR" in r.report() and r.success
+    assert r.success
+    # the one report and the one JSON object carry the same numbers
+    d = r.to_dict()
+    assert set(d) >= {"model", "esr", "parameters", "parameters_si", "statistics", "correlations", "success",
+                      "poor_fit"}
+    assert d["parameters_si"]["c0"]["stderr"] == pytest.approx(np.sqrt(cov[0, 0]), rel=1e-4)
+    assert d["statistics"]["samples"] == len(v) and d["statistics"]["free_parameters"] == 3
+    assert d["esr"] == pytest.approx(rss[0] / np.sum((rec.force - rec.force.mean()) ** 2), rel=1e-9)
+    text = r.report()
+    assert "[[Statistics]]" in text and "AIC" in text and "+/-" in text
+    c0 = next(line for line in text.splitlines() if line.strip().startswith("c0 "))
+    assert f"{100 * np.sqrt(cov[0, 0]) / coef[0]:.2g} %" in c0       # the relative standard error, in %
 
 
 @pytest.fixture(scope="module")
@@ -123,3 +134,16 @@ def test_problem_is_one_frozen_set_up():
         problem(model, [rec], start={"nope": 1.0})
     with pytest.raises(FitError, match="short: 3 samples cannot determine"):
         problem(model, [rec], samples=3, label="short")
+
+
+def test_cross_validation_on_a_process_pool_gives_the_serial_table():
+    from functools import partial
+
+    from erdesign.executor import PoolExecutor
+    from erdesign.identification.identify import cross_validation
+    recs = [_record(current=c, seed=k) for k, c in enumerate((0.25, 0.5, 1.0))]
+    serial = cross_validation(partial(get_model, "kwok_tanh"), recs, starts=1, max_nfev=30)
+    with PoolExecutor(2) as pool:
+        pooled = cross_validation(partial(get_model, "kwok_tanh"), recs, starts=1, max_nfev=30, executor=pool)
+    assert np.array_equal(serial.table, pooled.table) and serial.names == pooled.names
+    assert serial.table[1, 1] < serial.table[0, 1]     # a model scores best on the record it was identified on

@@ -821,15 +821,32 @@ class CrossValidation:
         return "\n".join([head, rule, *rows])
 
 
-def cross_validation(model_factory, records: Sequence[Measurement], **fit_options) -> CrossValidation:
-    """Identify a fresh model (``model_factory()``) on each record and score it on every record."""
-    n = len(records)
-    table = np.empty((n, n))
-    for j, rec in enumerate(records):
-        model = model_factory()
-        r = identify(model, rec, **fit_options)
-        for i, other in enumerate(records):
-            table[i, j] = r.esr if i == j else esr(other.require_force(), r.model.simulate(other, r.values))
+def _cross_validation_column(model_factory, records: Sequence[Measurement], fit_options: dict, j: int) -> list:
+    """ESR on every record of the model identified on record j (one column of the table; a task)."""
+    r = identify(model_factory(), records[j], **fit_options)
+    return [r.esr if i == j else esr(other.require_force(), r.model.simulate(other, r.values))
+            for i, other in enumerate(records)]
+
+
+def cross_validation(model_factory, records: Sequence[Measurement], *, executor=None,
+                     **fit_options) -> CrossValidation:
+    """Identify a fresh model (``model_factory()``) on each record and score it on every record.
+
+    The identifications run on ``executor`` (:func:`erdesign.executor.executor_for`; default one after the other in
+    this process); on worker processes ``model_factory`` must be picklable (``functools.partial(get_model,
+    "bingham")``, not a lambda).  The table does not depend on the executor."""
+    from functools import partial
+
+    from ..executor import executor_for
+    records = list(records)
+    runner = executor_for(executor)
+    try:
+        columns = runner.map(partial(_cross_validation_column, model_factory, records, fit_options),
+                             range(len(records)))
+    finally:
+        if runner is not executor:
+            runner.close()
+    table = np.array(columns, dtype=float).T.reshape(len(records), len(records))
     return CrossValidation([r.name or f"record {k}" for k, r in enumerate(records)], table)
 
 
