@@ -13,8 +13,8 @@ range are clipped to it and reported.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass, replace
+from typing import Mapping
 
 import numpy as np
 from scipy.optimize.elementwise import find_root
@@ -24,7 +24,7 @@ from ..errors import ErdesignError
 from ..models.base import Model
 from ..models.friction import LuGreModified, lugre_state
 
-__all__ = ["InverseError", "InverseResult", "inverse_control"]
+__all__ = ["inverse_control", "InverseResult", "InverseError"]
 
 
 class InverseError(ErdesignError):
