@@ -71,7 +71,6 @@ def test_two_records_of_one_length_keep_their_own_substep_plans():
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="identify writes model.control_reference (the fitting engine's work)")
 def test_two_fits_in_threads_give_the_serial_results():
     """The Done-when of issue 24: two records of one length identified concurrently in threads give exactly the
     serial results, and the caller's model object is not changed by fitting."""

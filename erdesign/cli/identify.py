@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import click
 
-from .main import cli, emit_json
+from .main import as_flags, cli, emit_json
 
 __all__ = ["identify"]
 
@@ -107,6 +107,9 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
     else:
         result = identify_model(model, records[0], starts=starts, max_time=max_time, decimate=decimate,
                                 exclude_clipped=exclude_clipped, progress=progress, fixed=fixed, projection=projection)
+    model = result.model  # the fitted copy, with the records' control reference (the caller's model is not changed)
+    result.message = as_flags(result.message)
+    result.extra["warnings"] = [as_flags(w) for w in result.extra.get("warnings", ())]
     validation = [(other.name, run_model(model, other, result.values, exclude_clipped=exclude_clipped).metrics)
                   for other in others]
     # Field-dependent models work with the dimensionless control u = control / reference; the parameters that

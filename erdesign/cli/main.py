@@ -121,6 +121,18 @@ def json_number(x: float | None) -> float | None:
     return None if x is None or not math.isfinite(x) else x
 
 
+#: Library argument names in messages -> the flags that set them (the library names its own arguments).
+LIBRARY_TO_FLAG = (("exclude_clipped=True", "--exclude-clipped"), ("max_time", "--max-time"),
+                   ("control_reference: ", "--control-reference: "))
+
+
+def as_flags(text: str) -> str:
+    """A library message with its argument names replaced by the command line's flags (:data:`LIBRARY_TO_FLAG`)."""
+    for name, flag in LIBRARY_TO_FLAG:
+        text = text.replace(name, flag)
+    return text
+
+
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="erdesign")
 def cli() -> None:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import click
 
-from .main import cli, emit_json, json_number
+from .main import as_flags, cli, emit_json, json_number
 
 __all__ = ["simulate"]
 
@@ -45,6 +45,7 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
     from pathlib import Path
 
     from ..data.measurement import read_measurement, write_measurement
+    from ..errors import ErdesignError
     from ..identification.identify import resolve_parameters
     from ..identification.identify import simulate as run_model
     from ..models.registry import get_model
@@ -64,7 +65,11 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
         raise click.UsageError("--damper and --effects apply to --model physics only")
     model = get_model(model_name, **options)
     record = read_measurement(measurement_file)
-    values, source, notes = resolve_parameters(model, params, record, control_reference=control_reference)
+    try:
+        values, source, notes = resolve_parameters(model, params, record, control_reference=control_reference,
+                                                   where="--params")
+    except ErdesignError as exc:
+        raise ErdesignError(as_flags(str(exc))) from None
     sim = run_model(model, record, values, exclude_clipped=exclude_clipped, source=source)
     if out is not None:
         write_measurement(out, record.with_force(sim.force), units={"force": "N"},
@@ -72,7 +77,7 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
                                   f"{Path(measurement_file).name}")
     reference = _reference_text(model, record)
     params_text = {name: model.parameter(name).format(v) for name, v in sim.values.items()}
-    warnings = [*notes, *(sim.warnings or [])]
+    warnings = [as_flags(w) for w in (*notes, *(sim.warnings or []))]
     if as_json:
         emit_json({"model": model_name, "esr": json_number(sim.metrics["esr"]), "parameters": params_text,
                    "r_squared": json_number(sim.metrics["r_squared"]),

@@ -22,7 +22,6 @@ from ..effects.base import reversal_count
 from ..effects.chain import PhysicsDamper, check_control
 from ..errors import ErdesignError
 from ..identification.fit import FitResult, fit
-from ..models.base import Model
 from .records import MAX_SAMPLES, prepare
 
 __all__ = ["DiagnosisError", "calibrate", "data_findings", "fitted_model"]
@@ -102,33 +101,12 @@ def _fit(model: PhysicsDamper, record: Measurement, start=None, mask=None) -> Fi
     guess = {**model.initial_guess(record), **{k: v for k, v in (start or {}).items()
                                                 if k in model.parameter_names}}
     fixed = {} if "yield_stress_factor" in free else {"yield_stress_factor": guess.get("yield_stress_factor", 1.0)}
-    if mask is None:
-        return fit(model, record, free=free, fixed=fixed, start=guess, max_nfev=200)
-    masked = _Masked(model, record, mask)
-    return fit(masked, record.select(mask), free=free, fixed=fixed, start=guess, max_nfev=200)
-
-
-class _Masked(Model):
-    """A model simulated on the whole record but compared on the samples of a mask (held-out validation)."""
-
-    def __init__(self, model: PhysicsDamper, record: Measurement, mask: np.ndarray):
-        self.inner, self.full, self.mask = model, record, mask
-        self.name, self.title, self.parameters = model.name, model.title, model.parameters
-
-    def initial_guess(self, record):
-        return self.inner.initial_guess(self.full)
-
-    @property
-    def damper(self):
-        return self.inner.damper
-
-    def force(self, record, values):
-        return self.inner.force(self.full, values)[self.mask]
+    return fit(model, record, free=free, fixed=fixed, start=guess, max_nfev=200, mask=mask)
 
 
 def fitted_model(result: FitResult) -> PhysicsDamper:
-    """The physics model of a fit, for the whole record: diagnosis fits on the samples where the sign of the
-    velocity is known, through a wrapper whose ``simulate`` returns those samples only; this unwraps it.
+    """The physics model of a fit, for the whole record (diagnosis fits on the samples where the sign of the
+    velocity is known, :func:`erdesign.identification.fit.fit`'s ``mask``; the model is the damper's own).
 
     >>> from erdesign import load_example
     >>> from erdesign.simulation.rig import run_rig, sine

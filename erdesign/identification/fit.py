@@ -18,127 +18,24 @@ small, which the report says.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from functools import partial
 
 import numpy as np
 
 from ..data.measurement import Measurement
 from ..data.metrics import esr
-from ..errors import ErdesignError
 from ..models.base import Model, ParameterError
+from .engine import FitError, Residual, SumOfSquares, local_fit, problem, start_box, uncertainty
+from .result import FitResult
 
-__all__ = ["fit", "FitResult", "FitError", "evaluate"]
-
-
-class FitError(ErdesignError):
-    """The fit cannot be set up (no free parameter, too few samples, model fails on the record)."""
-
-
-@dataclass
-class FitResult:
-    """Outcome of :func:`fit`: parameter values (SI), uncertainties and figures of merit."""
-
-    model: Model
-    values: dict[str, float]
-    """All parameter values, fixed ones included, SI."""
-    free: tuple[str, ...]
-    stderr: dict[str, float]
-    """Standard error of each free parameter (NaN where not identifiable), SI."""
-    correlation: np.ndarray
-    """Correlation matrix of the free parameters, in the order of :attr:`free`."""
-    force: np.ndarray
-    """Model force on the fitted record, [N]."""
-    residual: np.ndarray
-    """Measured minus model force, [N]."""
-    esr: float
-    rss: float
-    n: int
-    aic: float
-    bic: float
-    success: bool
-    message: str
-    record_name: str = ""
-    extra: dict = field(default_factory=dict)
-
-    @property
-    def k(self) -> int:
-        """Number of free parameters."""
-        return len(self.free)
-
-    def parameters_with_units(self, digits: int = 4) -> dict[str, str]:
-        """``name -> "value unit"`` strings of all parameters (the ``parameters`` of the CLI's JSON)."""
-        return {name: self.model.parameter(name).format(v, digits) for name, v in self.values.items()}
-
-    def predict(self, record: Measurement) -> np.ndarray:
-        """Force [N] of the fitted model on another record."""
-        return self.model.simulate(record, self.values)
-
-    def validate(self, record: Measurement) -> float:
-        """ESR of the fitted model on a held-out record (cross-validation in the style of Vivas-López et al., Table 4)."""
-        return esr(record.require_force(), self.predict(record))
-
-    def report(self) -> str:
-        """A readable summary: values with units and standard errors, ESR, AIC/BIC, strong correlations."""
-        lines = [f"{self.model.title or self.model.name} fitted to {self.record_name or 'record'} "
-                 f"({self.n} samples, {self.k} free parameters)",
-                 f"  ESR {self.esr:.4g}   RMS residual {math.sqrt(self.rss / self.n):.4g} N   "
-                 f"AIC {self.aic:.1f}   BIC {self.bic:.1f}"]
-        for name in self.model.parameter_names:
-            p = self.model.parameter(name)
-            v = self.values[name]
-            if name in self.stderr:
-                se = self.stderr[name]
-                unc = f" ± {p.format(se, 2)}" if np.isfinite(se) else " (not identifiable)"
-                lines.append(f"  {name:<22} {p.format(v)}{unc}")
-            else:
-                lines.append(f"  {name:<22} {p.format(v)} (fixed)")
-        for i in range(self.k):
-            for j in range(i + 1, self.k):
-                if abs(self.correlation[i, j]) > 0.95:
-                    lines.append(f"  note: {self.free[i]} and {self.free[j]} are correlated "
-                                 f"({self.correlation[i, j]:+.3f})")
-        if not self.success:
-            lines.append(f"  warning: optimiser did not converge: {self.message}")
-        return "\n".join(lines)
-
-
-class _Transform:
-    """Free parameters <-> unconstrained-ish search vector (log space for log-scale parameters)."""
-
-    def __init__(self, model: Model, free: Sequence[str]):
-        self.params = [model.parameter(n) for n in free]
-        self.log = np.array([p.log_scale for p in self.params])
-
-    def to_search(self, values: Sequence[float]) -> np.ndarray:
-        v = np.asarray(values, dtype=float)
-        return np.where(self.log, np.log(np.where(self.log, v, 1.0)), v)
-
-    def to_values(self, z: np.ndarray) -> np.ndarray:
-        return np.where(self.log, np.exp(np.where(self.log, z, 0.0)), z)
-
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo = np.array([p.lower for p in self.params], dtype=float)
-        hi = np.array([p.upper for p in self.params], dtype=float)
-        with np.errstate(divide="ignore"):
-            return self.to_search(lo), np.where(self.log, np.log(np.where(self.log, hi, 1.0)), hi)
-
-    def dvalue_dz(self, z: np.ndarray) -> np.ndarray:
-        return np.where(self.log, np.exp(np.where(self.log, z, 0.0)), 1.0)
-
-
-def _finite_box(lo: np.ndarray, hi: np.ndarray, z0: np.ndarray, log: np.ndarray | None = None):
-    """Box for sampling starts around the start z0, within the bounds: two decades either way for log-scale
-    parameters, +-3 (1 + |z0|) otherwise (physical bounds such as 1e7 N are far too wide to sample uniformly)."""
-    span = 3.0 * (1.0 + np.abs(z0))
-    if log is not None:
-        span = np.where(log, np.log(100.0), span)
-    return np.maximum(lo, z0 - span), np.minimum(hi, z0 + span)
+__all__ = ["FitError", "FitResult", "evaluate", "fit"]
 
 
 def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
         fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None, starts: int = 1,
-        global_search: bool = False, seed: int = 0, max_nfev: int | None = None) -> FitResult:
+        global_search: bool = False, seed: int = 0, max_nfev: int | None = None, executor=None,
+        mask: np.ndarray | None = None) -> FitResult:
     """Fit ``model`` to the force of ``record`` by bounded least squares.
 
     Parameters
@@ -160,73 +57,63 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
         Random seed of the multi-start / global stage (results are reproducible).
     max_nfev : int, optional
         Limit on function evaluations per local start.
+    executor : optional
+        Where the local starts run (:func:`erdesign.executor.executor_for`: an executor, or a Dask client); default
+        in this process, one after the other.  The result does not depend on it.
+    mask : bool array, optional
+        Samples the fit compares (all by default): the model is simulated on the whole record and scored on these
+        (the diagnosis fits on the samples where the sign of the velocity is known).  The result's force, residual,
+        ESR and sample count are those of the masked samples.
 
     Returns
     -------
     FitResult
     """
-    F = record.require_force()
+    F = record.require_force() if mask is None else record.require_force()[mask]
     check = getattr(model, "check_record", None)
     if check is not None:
         check(record)
-    names = model.parameter_names
-    for k in list(fixed or {}) + list(free or ()):
-        model.parameter(k)  # unknown names are errors
-    # Parameters chosen a priori, and control slopes when the record has no control column, stay at their defaults
-    # unless the caller names them in ``free``.
-    auto = {k: v for k, v in (model.fixed_for(record) if hasattr(model, "fixed_for") else {}).items()
-            if free is None or k not in free}
-    fixed = {**auto, **dict(fixed or {})}
-    free = tuple(n for n in (free if free is not None else names) if n not in fixed)
-    for k in free:
-        model.parameter(k)
-    if not free:
-        raise FitError(f"{model.name}: no free parameter to fit")
-    if len(F) <= len(free):
-        raise FitError(f"{record.name or 'record'}: {len(F)} samples cannot determine {len(free)} parameters")
-    guess = {**model.initial_guess(record), **(start or {})}
-    base = model.check_values({**{k: v for k, v in guess.items() if k in names}, **fixed})
-    tr = _Transform(model, free)
-    z0 = tr.to_search([base[n] for n in free])
-    lo, hi = tr.bounds()
-    z0 = np.clip(z0, lo, hi)
+    pb = problem(model, [record], free=free, fixed=fixed, start=start, masks=[mask], control_reference=False,
+                 samples=len(F), label=record.name or "record")
+    free, tr, lo, hi, z0 = pb.free, pb.transform, pb.lo, pb.hi, pb.z0
+    full_values = pb.values
+    residual = Residual(model, record, full_values, mask)
 
-    def full_values(z: np.ndarray) -> dict[str, float]:
-        vals = dict(base)
-        vals.update(zip(free, (float(v) for v in tr.to_values(z))))
-        return vals
-
-    def residual(z: np.ndarray) -> np.ndarray:
-        r = model.force(record, full_values(z)) - F
-        return np.where(np.isfinite(r), r, 1e12)
-
-    from scipy.optimize import differential_evolution, least_squares  # imported on use: not at start-up
+    from scipy.optimize import (
+        differential_evolution,  # imported on use: not at start-up
+    )
     from scipy.stats import qmc
 
     r0 = residual(z0)
     if not np.all(np.isfinite(model.force(record, full_values(z0)))):
         raise FitError(f"{model.name}: the model gives non-finite forces at the starting values")
     candidates = [z0]
-    box_lo, box_hi = _finite_box(lo, hi, z0, None if global_search else tr.log)
+    box_lo, box_hi = start_box(lo, hi, z0, None if global_search else tr.log)
     if global_search:
-        de = differential_evolution(lambda z: float(np.sum(residual(z) ** 2)), list(zip(box_lo, box_hi)),
+        de = differential_evolution(SumOfSquares(residual), list(zip(box_lo, box_hi)),
                                     seed=seed, tol=1e-8, polish=False, maxiter=200, popsize=15, init="sobol")
         candidates.append(de.x)
     if starts > 1:
         sampler = qmc.LatinHypercube(d=len(free), seed=seed)
         candidates.extend(qmc.scale(sampler.random(starts - 1), box_lo, box_hi))
+    from ..executor import executor_for  # imported on use: not at start-up
+    runner = executor_for(executor)
+    try:
+        results = runner.map(partial(local_fit, residual, lo, hi, max_nfev), candidates)
+    finally:
+        if runner is not executor:
+            runner.close()
     best = None
-    for z in candidates:
-        res = least_squares(residual, np.clip(z, lo, hi), bounds=(lo, hi), method="trf", x_scale="jac",
-                            max_nfev=max_nfev)
+    for res in results:  # the first of equal costs, whatever the executor
         if best is None or res.cost < best.cost:
             best = res
     values = full_values(best.x)
     model_force = model.force(record, values)
+    model_force = model_force if mask is None else model_force[mask]
     resid = F - model_force
     rss = float(np.sum(resid**2))
     n, k = len(F), len(free)
-    stderr, corr = _uncertainty(best.jac, best.x, tr, rss, n, k)
+    stderr, corr = uncertainty(best.jac, best.x, tr, rss, n, k)
     rss_n = max(rss / n, np.finfo(float).tiny)
     return FitResult(
         model=model, values=values, free=free, stderr=dict(zip(free, stderr)), correlation=corr,
@@ -234,31 +121,6 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
         aic=n * math.log(rss_n) + 2 * k, bic=n * math.log(rss_n) + k * math.log(n),
         success=bool(best.success), message=str(best.message), record_name=record.name,
         extra={"initial_cost": float(np.sum(r0**2) / 2), "nfev": int(best.nfev)})
-
-
-def _uncertainty(jac: np.ndarray, z: np.ndarray, tr: _Transform, rss: float, n: int, k: int):
-    """Standard errors and correlations of the free parameters from the Jacobian at the optimum.
-
-    The Jacobian columns are scaled to unit norm before the SVD pseudo-inverse (parameters in N, N s/m and 1/m^2
-    differ by many decades; unscaled, the well-determined but small columns would look singular); directions the
-    data do not constrain get NaN errors instead of garbage."""
-    J = np.asarray(jac, dtype=float) / tr.dvalue_dz(z)[np.newaxis, :]  # d residual / d value (chain rule)
-    s2 = rss / max(n - k, 1)
-    norms = np.linalg.norm(J, axis=0)
-    scale = np.where(norms > 0, norms, 1.0)
-    U, sv, Vt = np.linalg.svd(J / scale, full_matrices=False)
-    good = sv > (sv.max() if sv.size else 0.0) * 1e-10
-    inv = np.where(good, 1.0 / np.where(good, sv, 1.0) ** 2, 0.0)
-    cov = ((Vt.T * inv) @ Vt) * s2 / np.outer(scale, scale)
-    var = np.diag(cov).copy()
-    unidentifiable = (np.abs(Vt[~good]).max(axis=0) > 1e-3 if (~good).any() else np.zeros(k, bool)) | (norms == 0)
-    se = np.where(unidentifiable | (var < 0), np.nan, np.sqrt(np.maximum(var, 0.0)))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        d = np.sqrt(np.maximum(var, 0.0))
-        corr = cov / np.outer(d, d)
-    corr[~np.isfinite(corr)] = np.nan
-    np.fill_diagonal(corr, 1.0)
-    return se, corr
 
 
 def evaluate(model: Model, record: Measurement, values: Mapping[str, float]) -> float:

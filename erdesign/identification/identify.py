@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import math
 import time as _time
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -17,19 +17,54 @@ from ..data.metrics import esr
 from ..errors import ErdesignError
 from ..models._kernels import coarse_steps, frozen_substeps
 from ..models.base import Model
-from .fit import FitError, FitResult, fit
+from . import engine
+from .engine import (
+    FTOL,
+    FitError,
+    SumOfSquares,
+    Transform,
+    ValueMap,
+    control_reference_for,
+    finite_residual,
+    problem,
+    start_box,
+    uncertainty,
+)
+from .result import (
+    FitResult,
+    fit_report,
+    fit_statistics,
+    parameter_table,
+    result_json,
+    strong_correlations,
+)
 
-__all__ = ["identify", "identify_joint", "cross_validation", "CrossValidation", "JointResult",
-           "choose_control_reference", "score", "simulate", "Simulation", "resolve_parameters", "ParameterSource",
-           "fit_report", "result_json", "parameter_table", "strong_correlations", "fit_statistics", "joint_report",
-           "joint_json"]
+__all__ = [
+    "CrossValidation",
+    "JointResult",
+    "ParameterSource",
+    "Simulation",
+    "choose_control_reference",
+    "cross_validation",
+    "fit_report",
+    "fit_statistics",
+    "identify",
+    "identify_joint",
+    "joint_json",
+    "joint_report",
+    "parameter_table",
+    "resolve_parameters",
+    "result_json",
+    "score",
+    "simulate",
+    "strong_correlations",
+]
 
 
 def choose_control_reference(model: Model, records: Sequence[Measurement]) -> float:
-    """Power of ten near the largest |control| of the records (1 when they have none), so that the model's
-    dimensionless control u = control / reference is of order one and its per-unit parameters stay readable."""
-    peak = max((float(np.max(np.abs(r.control))) for r in records if r.control_kind is not None), default=0.0)
-    ref = 10.0 ** math.floor(math.log10(peak)) if peak > 0 else 1.0
+    """Set ``model.control_reference`` to :func:`~erdesign.identification.engine.control_reference_for` the records
+    and return it (for a model the caller then simulates; the fits themselves work on a copy)."""
+    ref = control_reference_for(records)
     model.control_reference = ref
     return ref
 
@@ -70,7 +105,7 @@ class _Tracker:
         r = self.model.force(self.record, self.full_values(z)) - self.F
         if self.mask is not None:
             r = r[self.mask]
-        return np.where(np.isfinite(r), r, 1e12)
+        return finite_residual(r)
 
     def _book(self, z, r):
         cost = float(np.dot(r, r))
@@ -176,8 +211,8 @@ class _ProjectedTracker(_Tracker):
         if sol is None:
             theta = np.clip(np.zeros(len(self.projection.linear)), self.projection.lo, self.projection.hi)
             n = self.F.size if self.mask is None else int(self.mask.sum())
-            sol = (theta, np.full(n, 1e12), None, None)
-        theta, r = sol[0], np.where(np.isfinite(sol[1]), sol[1], 1e12)
+            sol = (theta, np.full(n, engine.PENALTY), None, None)
+        theta, r = sol[0], finite_residual(sol[1])
         self.last = (np.array(z, dtype=float), r, plans, sol)
         self._book(z, r, theta)
         return r
@@ -194,8 +229,7 @@ class _ProjectedTracker(_Tracker):
                 if self.deadline is not None and _time.monotonic() > self.deadline:
                     raise _OutOfTime
                 rj = self.model.force(self.record, self._values(zp, theta)) - self.F
-                rj = np.where(np.isfinite(rj), rj, 1e12) if self.mask is None else \
-                    np.where(np.isfinite(rj[self.mask]), rj[self.mask], 1e12)
+                rj = finite_residual(rj if self.mask is None else rj[self.mask])
                 self._book(zp, rj, theta)
                 J[:, j] = (rj - r0) / h
         if B is not None and free.any():
@@ -207,15 +241,6 @@ class _ProjectedTracker(_Tracker):
             U = U[:, sv > 1e-10 * sv.max()] if sv.size and sv.max() > 0 else U[:, :0]
             J -= U @ (U.T @ J)
         return J
-
-
-def _value_map(base, names, tr):
-    """zz -> all parameter values: ``base`` with ``names`` set from the search vector zz (:class:`_Transform`)."""
-    def values(zz):
-        out = dict(base)
-        out.update(zip(names, (float(v) for v in tr.to_values(zz))))
-        return out
-    return values
 
 
 class _LinearResult:
@@ -307,15 +332,24 @@ def _fd_jacobian(fun, z, steps):
 #: Records longer than this get a warm start on a decimated copy (at least 1 kHz kept) before all samples.
 WARM_START_SAMPLES = 20_000
 
-#: Relative decrease of the sum of squares below which the optimiser stops: 1e-6 changes the ESR in its sixth
-#: digit, far below what a record can tell (scipy's default 1e-8 spends hundreds of simulations on such digits).
-FTOL = 1e-6
 #: A start "fails" when the optimiser stops without converging or leaves more than this fraction of the variance
-#: that a linear viscous-plus-friction fit leaves (F ~ c v + f sgn v + f0): extra starts are then tried.
+#: that the reference Bingham fit leaves (F ~ c v + f sgn v + f0, :func:`_baseline_esr`): extra starts are then
+#: tried, and a best fit above it is a poor fit (``success`` False).
 FAIL_RATIO = 1.0
+#: Relative rise of the sum of squares allowed when the parameters found not identifiable are held at their start
+#: values; above it the free fit is kept.
+HELD_RTOL = 1e-3
+
+
+def _mostly_at_bounds(z, lo, hi) -> bool:
+    """More than half of the free parameters on a bound of the search space (a fit the bounds, not the data, set)."""
+    on = np.isclose(z, lo, rtol=1e-9, atol=1e-12) | np.isclose(z, hi, rtol=1e-9, atol=1e-12)
+    return bool(z.size and on.sum() > z.size / 2)
 
 
 def _baseline_esr(record, F, mask):
+    """ESR of the reference fit: the Bingham model (``bingham``: c0 v + f_c sgn v + f0, its control terms being
+    collinear with these on a record of one control) by linear least squares on the fitted samples."""
     v = record.velocity
     A = np.column_stack([v, np.sign(v), np.ones_like(v)])
     if mask is not None:
@@ -331,12 +365,15 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
              fix_unidentifiable: bool = True, warm_start: bool = False, projection: bool | None = None) -> FitResult:
     """Identify ``model`` on ``record`` by bounded least squares, at the scale of real records.
 
-    * The control reference is chosen from the record (:func:`choose_control_reference`); a control column of zeros
-      holds the control slopes, as no control column does.
+    * The fit works on a copy of the model with the control reference chosen from the record
+      (:func:`~erdesign.identification.engine.control_reference_for`; ``result.model``): ``model`` is not changed.
+      A control column of zeros holds the control slopes, as no control column does.
     * One local start (trust-region reflective, :func:`scipy.optimize.least_squares`) from the model's guess;
       further starts (Latin hypercube around it, as :func:`erdesign.identification.fit.fit`) only when it fails: the
-      optimiser did not converge, or the fit is no better than a linear viscous-plus-friction fit.  ``starts`` bounds
-      the number.
+      optimiser did not converge, the fit is no better than the reference Bingham fit (c0 v + f_c sgn v + f0 by
+      linear least squares on the same samples), or more than half the free parameters sit on a bound.  ``starts``
+      bounds the number.  A best fit no better than the reference is not a success (``success`` False,
+      ``extra["poor_fit"]``, a warning).
     * All samples are fitted; ``decimate`` > 1 fits on every ``decimate``-th sample only (the scores are still on
       all samples).  ``warm_start`` first fits long records (> 20,000 samples) on every k-th sample (at least 1 kHz
       kept), then all samples.  It is off by default: on Dyke's 3 kHz record the 1 kHz optimum lies in a stiff
@@ -369,8 +406,6 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     from scipy.optimize import least_squares
 
     from ..data.measurement import clipped_samples
-    from .fit import _finite_box, _Transform, _uncertainty
-
     t_start = _time.monotonic()
     deadline = None if max_time is None else t_start + float(max_time)
     say = progress or (lambda msg: None)
@@ -379,34 +414,18 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     if check is not None:
         check(record)
     notes: list[str] = []
-    choose_control_reference(model, [record])
-    fixed = dict(fixed or {})
-    if record.control_kind is not None and not np.any(record.control):
-        held = {k: model.parameter(k).default for k in model.control_parameters if free is None or k not in free}
-        fixed = {**held, **fixed}
     if record.control_kind is not None and np.ptp(record.control) > 0 and not model.uses_control:
         notes.append(f"{model.name} has no control dependence, but the record's {record.control_kind} varies "
                      f"({np.min(record.control):.4g} to {np.max(record.control):.4g} SI): the fit averages over it")
-    names = model.parameter_names
-    for k in list(fixed) + list(free or ()):
-        model.parameter(k)
-    auto = {k: v for k, v in (model.fixed_for(record) if hasattr(model, "fixed_for") else {}).items()
-            if free is None or k not in free}
-    fixed = {**auto, **fixed}
-    free_names = tuple(n for n in (free if free is not None else names) if n not in fixed)
-    if not free_names:
-        raise FitError(f"{model.name}: no free parameter to fit")
     clipped = clipped_samples(F_all)
     mask = ~clipped if exclude_clipped and clipped.any() else None
     if clipped.any() and not exclude_clipped:
         notes.append(f"{int(clipped.sum())} force samples sit at a flat top or bottom ({F_all[clipped][0]:.6g} N): "
-                     "a load cell at its limit? --exclude-clipped leaves them out")
+                     "a load cell at its limit? exclude_clipped=True leaves them out")
     n_scored = int(F_all.size if mask is None else mask.sum())
-    if n_scored <= len(free_names):
-        raise FitError(f"{record.name or 'record'}: {n_scored} samples cannot determine {len(free_names)} "
-                       "parameters")
-    guess = {**model.initial_guess(record), **(start or {})}
-    base = model.check_values({**{k: v for k, v in guess.items() if k in names}, **fixed})
+    pb = problem(model, [record], free=free, fixed=fixed, start=start, masks=[mask], samples=n_scored,
+                 label=record.name or "record")
+    model, free_names, fixed, base = pb.model, pb.free, pb.fixed, pb.base  # model: a copy, the caller's unchanged
     initial = dict(base)
 
     if projection is None:
@@ -417,10 +436,10 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         """Least squares over ``free_names`` on each (record, force, mask) of ``stage_records`` in turn."""
         if linear:
             return run_projected(free_names, base, z_start, stage_records, label)
-        tr = _Transform(model, free_names)
+        tr = Transform(model, free_names)
         lo, hi = tr.bounds()
         z = np.clip(tr.to_search([base[n] for n in free_names]) if z_start is None else z_start, lo, hi)
-        full_values = _value_map(base, free_names, tr)
+        full_values = ValueMap(base, free_names, tr)
         res, out_of_time, tracker = None, False, None
         for k, (rec, F, m, stage) in enumerate(stage_records):
             tracker = _Tracker(model, rec, F, m, full_values, deadline, progress, f"{label}, {stage}",
@@ -444,16 +463,16 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     def run_projected(free_names, base, z_start, stage_records, label):
         """:func:`run` by variable projection: least squares over the nonlinear free parameters, the ``linear``
         ones solved inside each residual; returns the same as ``run``, in the space of all free parameters."""
-        tr = _Transform(model, free_names)
+        tr = Transform(model, free_names)
         lo, hi = tr.bounds()
         z = np.clip(tr.to_search([base[n] for n in free_names]) if z_start is None else z_start, lo, hi)
         nl = tuple(n for n in free_names if n not in linear)
         nl_index = [free_names.index(n) for n in nl]
-        trn = _Transform(model, nl)
+        trn = Transform(model, nl)
         lon, hin = lo[nl_index], hi[nl_index]
         zn = z[nl_index]
         theta = np.array([base[n] for n in linear])
-        nl_values = _value_map(base, nl, trn)
+        nl_values = ValueMap(base, nl, trn)
         res, out_of_time, tracker = None, False, None
         for k, (rec, F, m, stage) in enumerate(stage_records):
             tracker = _ProjectedTracker(model, rec, F, m, nl_values, deadline, progress, f"{label}, {stage}",
@@ -482,7 +501,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
                 break
         vals = {**nl_values(zn), **dict(zip(linear, (float(t) for t in theta)))}
         z = np.clip(tr.to_search([vals[n] for n in free_names]), lo, hi)
-        return tr, z, res, out_of_time, _value_map(base, free_names, tr), tracker
+        return tr, z, res, out_of_time, ValueMap(base, free_names, tr), tracker
 
     # stages: a decimated warm start on long records, then all samples (or only the decimated record)
     decimate = max(1, int(decimate))
@@ -502,23 +521,23 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
                    f"every {decimate}th sample"))
     baseline = _baseline_esr(record, F_all, mask)
 
-    tr0 = _Transform(model, free_names)
+    tr0 = Transform(model, free_names)
     lo0, hi0 = tr0.bounds()
     z0 = np.clip(tr0.to_search([base[n] for n in free_names]), lo0, hi0)
     candidates = [z0]
     if starts > 1:
         from scipy.stats import qmc
-        box_lo, box_hi = _finite_box(lo0, hi0, z0, tr0.log)
+        box_lo, box_hi = start_box(lo0, hi0, z0, tr0.log)
         candidates.extend(qmc.scale(qmc.LatinHypercube(d=len(free_names), seed=seed).random(starts - 1),
                                     box_lo, box_hi))
     if global_search:
         from scipy.optimize import differential_evolution
-        box_lo, box_hi = _finite_box(lo0, hi0, z0, None)
+        box_lo, box_hi = start_box(lo0, hi0, z0, None)
         probe = _Tracker(model, fit_rec, fit_rec.force, fit_mask,
-                         lambda zz: {**base, **dict(zip(free_names, map(float, tr0.to_values(zz))))}, deadline,
+                         ValueMap(base, free_names, tr0), deadline,
                          progress, "global search")
         try:
-            de = differential_evolution(lambda zz: float(np.sum(probe(zz) ** 2)), list(zip(box_lo, box_hi)),
+            de = differential_evolution(SumOfSquares(probe), list(zip(box_lo, box_hi)),
                                         seed=seed, tol=1e-8, polish=False, maxiter=200, popsize=15, init="sobol")
             candidates.insert(1, de.x)
         except _OutOfTime:
@@ -538,11 +557,12 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         if best is None or cost < best[0]:
             best = (cost, out)
         spread = tracker.spread
-        failed = out_of_time or res is None or res.status <= 0 or cost / spread > FAIL_RATIO * baseline
+        failed = out_of_time or res is None or res.status <= 0 or cost / spread > FAIL_RATIO * baseline or \
+            _mostly_at_bounds(z, *tr.bounds())
         if not failed or out_of_time:
             break
         if i + 1 < len(candidates):
-            say(f"start {i + 1} failed (ESR {cost / spread:.4g}; linear viscous-plus-friction fit "
+            say(f"start {i + 1} failed (ESR {cost / spread:.4g}; reference Bingham fit "
                 f"{baseline:.4g}): trying another start")
     _, (tr, z, res, out_of_time, full_values, tracker) = best
     values = full_values(z)
@@ -552,7 +572,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         vals.update(zip(names, (float(v) for v in trn.to_values(zz))))
         r = model.force(record, vals) - F_all
         r = r if mask is None else r[mask]
-        return np.where(np.isfinite(r), r, 1e12)
+        return finite_residual(r)
 
     r_full = full_residual(z)
     if res is not None and res.jac is not None and stages[-1][0] is record and np.array_equal(res.x, z):
@@ -561,7 +581,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         J = _fd_jacobian(full_residual, z, _fd_steps(tr, free_names, model, z, *tr.bounds()))[1]
     rss = float(np.dot(r_full, r_full))
     k = len(free_names)
-    stderr, corr = _uncertainty(J, z, tr, rss, n_scored, k)
+    stderr, corr = uncertainty(J, z, tr, rss, n_scored, k)
     not_identifiable = _null_parameters(J, z, tr, free_names, model.control_parameters)
     if not_identifiable and fix_unidentifiable and len(not_identifiable) < k and not out_of_time:
         say(f"not identifiable from this record: {', '.join(not_identifiable)}; held at their start values")
@@ -571,18 +591,25 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
                           progress=progress, free=[n for n in free_names if n not in held],
                           fixed={**fixed, **held}, start={**values, **held}, seed=seed, max_nfev=max_nfev,
                           fix_unidentifiable=False, warm_start=warm_start, projection=projection)
-        result.extra["not_identifiable"] = sorted(set(not_identifiable) | set(result.extra["not_identifiable"]))
-        result.extra["initial"] = initial
-        result.extra["warnings"] = [*notes, *[w for w in result.extra["warnings"] if w not in notes]]
-        result.extra["seconds"] = _time.monotonic() - t_start
-        return result
+        # Held at their start values, directions the data do not see should leave the fit as good; when the fit
+        # gets worse (on a Quiroz record ESR 0.019 -> 7.0: the start values were zeros the found optimum needs),
+        # the free fit is kept and the parameters are only reported.
+        if result.rss <= rss * (1.0 + HELD_RTOL):
+            result.extra["not_identifiable"] = sorted(set(not_identifiable) | set(result.extra["not_identifiable"]))
+            result.extra["initial"] = initial
+            result.extra["warnings"] = [*notes, *[w for w in result.extra["warnings"] if w not in notes]]
+            result.extra["seconds"] = _time.monotonic() - t_start
+            return result
+        notes.append(f"not identifiable from this record: {', '.join(not_identifiable)}; held at their start "
+                     f"values the fit got worse (ESR {result.rss / tracker.spread:.4g} against "
+                     f"{rss / tracker.spread:.4g}), so they are left at the fitted values")
     force = model.force(record, values)
     resid = F_all - force
     scored = resid if mask is None else resid[mask]
     rss_n = max(rss / n_scored, np.finfo(float).tiny)
-    message = str(res.message) if res is not None else "stopped by --max-time: the best point found so far"
+    message = str(res.message) if res is not None else "stopped by max_time: the best point found so far"
     if out_of_time:
-        notes.append(f"stopped at --max-time {max_time:g} s before the optimiser converged: the values are the best "
+        notes.append(f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best "
                      "found so far")
     result = FitResult(
         model=model, values=values, free=free_names, stderr=dict(zip(free_names, stderr)), correlation=corr,
@@ -602,135 +629,17 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         result.force = model.simulate(record, result.values)
         result.residual = F_all - result.force
         result.esr = esr(F_all, result.force)
+    # A fit no better than the reference (a Bingham model: viscous plus friction plus offset, by linear least
+    # squares on the same samples) or set by the bounds is not a success, whatever the optimiser's message says.
+    poor = bool(result.esr > FAIL_RATIO * baseline or _mostly_at_bounds(z, *tr.bounds()))
+    result.extra["poor_fit"] = poor
+    if poor:
+        result.success = False
+        notes.append(f"poor fit: ESR {result.esr:.4g} after {tried} start(s), against {baseline:.4g} for the reference "
+                     "Bingham fit (c0 v + f_c sgn v + f0)" + (" with most parameters at a bound"
+                                                             if _mostly_at_bounds(z, *tr.bounds()) else "")
+                     + ": try more starts, other fixed parameters or another model")
     return result
-
-
-def _at_bound(model, name, value, stderr=None) -> str | None:
-    """"lower" / "upper" when the value sits on a bound: within 1e-6 of it, or within one standard error."""
-    p = model.parameter(name)
-    for bound, label in ((p.lower, "lower"), (p.upper, "upper")):
-        if not math.isfinite(bound):
-            continue
-        gap = abs(value - bound)
-        if gap <= 1e-6 * max(abs(bound), abs(value)) or (stderr is not None and math.isfinite(stderr)
-                                                          and gap < stderr):
-            return label
-    return None
-
-
-def parameter_table(result: FitResult) -> dict[str, dict]:
-    """Per parameter: SI value, unit, standard error (None where not available), initial value and status
-    ("free", "fixed", "not identifiable", "at lower bound", "at upper bound")."""
-    model = result.model
-    initial = result.extra.get("initial", {})
-    unident = set(result.extra.get("not_identifiable", ()))
-    out = {}
-    for name in model.parameter_names:
-        v = float(result.values[name])
-        se = result.stderr.get(name)
-        if name in unident:
-            status = "not identifiable"
-        elif name not in result.free:
-            status = "fixed"
-        else:
-            bound = _at_bound(model, name, v, se)
-            status = f"at {bound} bound" if bound else "free"
-        out[name] = {"value": v, "unit": model.parameter(name).unit,
-                     "stderr": None if se is None or not math.isfinite(se) or status.startswith("at ") else float(se),
-                     "initial": None if name not in initial else float(initial[name]), "status": status}
-    return out
-
-
-def strong_correlations(result: FitResult, threshold: float = 0.9) -> list[tuple[str, str, float]]:
-    """Pairs of free parameters whose correlation exceeds ``threshold`` in magnitude, strongest first."""
-    pairs = []
-    for i in range(result.k):
-        for j in range(i + 1, result.k):
-            c = result.correlation[i, j]
-            if np.isfinite(c) and abs(c) > threshold:
-                pairs.append((result.free[i], result.free[j], float(c)))
-    return sorted(pairs, key=lambda p: -abs(p[2]))
-
-
-def fit_statistics(result: FitResult) -> dict:
-    """ESR, R^2, RMS residual, reduced chi-square (RSS / (n - k), N^2: no measurement error is known), AIC, BIC."""
-    n, k = result.n, result.k
-    return {"esr": result.esr, "r_squared": 1.0 - result.esr, "rms_residual_N": math.sqrt(result.rss / n),
-            "reduced_chi_square_N2": result.rss / max(n - k, 1), "aic": result.aic, "bic": result.bic,
-            "samples": n, "free_parameters": k}
-
-
-def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -> str:
-    """The identification report (the content of lmfit's): statistics, parameters with standard errors and
-    initial values, parameters at a bound or not identifiable said so, strong correlations, warnings."""
-    model = result.model
-    st = fit_statistics(result)
-    ex = result.extra
-    lines = [f"[[Fit]] {model.title or model.name} on {result.record_name or 'record'}",
-             f"  samples {st['samples']}" + (f" ({ex['excluded_samples']} clipped left out)"
-                                            if ex.get("excluded_samples") else "")
-             + f", free parameters {st['free_parameters']}, simulations {ex.get('simulations', '?')}, "
-             f"{ex.get('seconds', 0.0):.1f} s" + ("" if result.success else f"  - {result.message}"),
-             "[[Statistics]]",
-             f"  ESR {st['esr']:.4g}   R^2 {st['r_squared']:.4g}   RMS residual {st['rms_residual_N']:.4g} N   "
-             f"reduced chi-square {st['reduced_chi_square_N2']:.4g} N^2",
-             f"  AIC {st['aic']:.1f}   BIC {st['bic']:.1f}"
-             + (f"   (linear viscous-plus-friction fit: ESR {ex['baseline_esr']:.4g})" if "baseline_esr" in ex
-                else ""),
-             "[[Parameters]]"]
-    table = parameter_table(result)
-    width = max(len(n) for n in table)
-    for name, row in table.items():
-        p = model.parameter(name)
-        text = p.format(row["value"])
-        if row["status"] == "free" and row["stderr"] is not None:
-            rel = abs(row["stderr"] / row["value"]) if row["value"] else math.inf
-            text += f" +/- {p.format(row['stderr'], 2)}" + (f" ({100 * rel:.2g} %)" if math.isfinite(rel) else "")
-        elif row["status"] == "not identifiable":
-            text = f"not identifiable from this record (held at {p.format(row['value'])})"
-        elif row["status"] == "fixed":
-            text += " (fixed)"
-        else:
-            text += f" ({row['status']}: no standard error)" if row["status"].startswith("at ") else ""
-        if row["initial"] is not None and row["status"] not in ("fixed", "not identifiable"):
-            text += f"   init {p.format(row['initial'])}"
-        lines.append(f"  {name:<{width}}  {text}")
-    corr = strong_correlations(result)
-    if corr:
-        lines.append("[[Correlations]] (|r| > 0.9: these combinations, not the single values, are what the data fix)")
-        lines += [f"  {a}, {b}: {c:+.3f}" for a, b, c in corr]
-    if validation:
-        lines.append("[[Validation]] (the identified set on other records)")
-        lines += [f"  {name}: ESR {m['esr']:.4g}, RMS residual {m['rms_residual_N']:.4g} N" for name, m in validation]
-    warnings = list(ex.get("warnings", ()))
-    if warnings:
-        lines.append("[[Warnings]]")
-        lines += [f"  {w}" for w in warnings]
-    return "\n".join(lines)
-
-
-def result_json(result: FitResult, model_name: str, control_reference: str | None,
-                validation: Sequence[tuple[str, dict]] = ()) -> dict:
-    """The ``identify --json`` object: the contract's ``model``, ``esr``, ``parameters`` (strings) and, in SI,
-    ``parameters_si`` (value, unit, stderr, initial, status), ``statistics``, ``correlations``,
-    ``not_identifiable``, ``at_bounds``, ``warnings``, ``control_reference`` and ``validation``.  No NaN or inf."""
-    def num(x):
-        return None if x is None or not math.isfinite(x) else float(x)
-
-    table = parameter_table(result)
-    st = {k: (num(v) if isinstance(v, float) else v) for k, v in fit_statistics(result).items()}
-    ex = result.extra
-    return {"model": model_name, "esr": num(result.esr), "parameters": result.parameters_with_units(),
-            "parameters_si": table, "statistics": st, "control_reference": control_reference,
-            "correlations": [{"a": a, "b": b, "r": c} for a, b, c in strong_correlations(result)],
-            "not_identifiable": [n for n, r in table.items() if r["status"] == "not identifiable"],
-            "at_bounds": [n for n, r in table.items() if r["status"].startswith("at ")],
-            "success": bool(result.success), "message": result.message,
-            "simulations": ex.get("simulations"), "seconds": num(ex.get("seconds")),
-            "clipped_samples": ex.get("clipped_samples", 0), "excluded_samples": ex.get("excluded_samples", 0),
-            "warnings": list(ex.get("warnings", ())),
-            "validation": [{"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
-                           for name, m in validation]}
 
 
 @dataclass
@@ -753,6 +662,33 @@ class JointResult:
         return float(np.mean(self.esr))
 
 
+class _JointResidual:
+    """The residuals of several records, each weighted by 1 / its force standard deviation and on its mask,
+    concatenated; counts simulations, keeps the best point, reports progress and enforces the time budget."""
+
+    def __init__(self, model, records, forces, weights, masks, values, deadline, progress, total):
+        self.model, self.records, self.forces, self.weights, self.masks = model, records, forces, weights, masks
+        self.values, self.deadline, self.progress, self.total = values, deadline, progress, total
+        self.calls, self.best, self.best_z, self.last_report = 0, math.inf, None, _time.monotonic()
+
+    def __call__(self, z):
+        if self.deadline is not None and _time.monotonic() > self.deadline:
+            raise _OutOfTime
+        v = self.values(z)
+        parts = [w * (self.model.force(r, v) - F) for r, F, w in zip(self.records, self.forces, self.weights)]
+        out = finite_residual(np.concatenate([p if m is None else p[m] for p, m in zip(parts, self.masks)]))
+        cost = float(np.dot(out, out))
+        self.calls += 1
+        if cost < self.best:
+            self.best, self.best_z = cost, np.array(z, dtype=float)
+        now = _time.monotonic()
+        if self.progress is not None and now - self.last_report > 2.0:
+            self.last_report = now
+            self.progress(f"joint fit of {len(self.records)} records: {self.calls} simulations of all, "
+                          f"mean weighted sum of squares {self.best / self.total:.4g}")
+        return out
+
+
 def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequence[str] | None = None,
                    fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None,
                    max_nfev: int | None = None, max_time: float | None = None, exclude_clipped: bool = False,
@@ -773,15 +709,6 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     for r in records:
         model.check_record(r)
         r.require_force()
-    choose_control_reference(model, records)
-    fixed = dict(fixed or {})
-    if all(r.control_kind is None for r in records):
-        fixed = {**model.fixed_for(records[0]), **fixed}
-    else:
-        fixed = {**{p.name: p.default for p in model.parameters if not p.fitted}, **fixed}
-    names = [n for n in (free or model.parameter_names) if n not in fixed]
-    if not names:
-        raise FitError(f"{model.name}: no free parameter to fit")
     masks = []
     notes = []
     for r in records:
@@ -789,54 +716,26 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
         masks.append(~clipped if exclude_clipped and clipped.any() else None)
         if clipped.any() and not exclude_clipped:
             notes.append(f"{r.name or 'a record'}: {int(clipped.sum())} force samples sit at a flat top or bottom; "
-                         "--exclude-clipped leaves them out")
+                         "exclude_clipped=True leaves them out")
     total = sum(len(r) if m is None else int(m.sum()) for r, m in zip(records, masks))
-    if total <= len(names):
-        raise FitError(f"identify_joint: {total} samples cannot determine {len(names)} parameters")
-    base = model.check_values({**model.initial_guess(records[0]), **(start or {}), **fixed})
-    params = [model.parameter(n) for n in names]
-    log = np.array([p.log_scale for p in params])
-    lo = np.array([math.log(p.lower) if p.log_scale else p.lower for p in params])
-    hi = np.array([math.log(p.upper) if p.log_scale else p.upper for p in params])
-    z0 = np.clip([math.log(base[n]) if p.log_scale else base[n] for n, p in zip(names, params)], lo, hi)
+    pb = problem(model, records, free=free, fixed=fixed, start=start, masks=masks, samples=total,
+                 label="identify_joint")
+    model, names, base, lo, hi, z0 = pb.model, pb.free, pb.base, pb.lo, pb.hi, pb.z0  # model: a copy
+    values = pb.values
     forces = [r.require_force() for r in records]
     weights = [1.0 / max(float(np.std(F if m is None else F[m])), 1e-12) for F, m in zip(forces, masks)]
 
-    def values(z):
-        v = dict(base)
-        v.update({n: float(math.exp(q) if lg else q) for n, q, lg in zip(names, z, log)})
-        return v
-
-    state = {"calls": 0, "best": math.inf, "best_z": None, "report": t_start}
-
-    def residual(z):
-        if deadline is not None and _time.monotonic() > deadline:
-            raise _OutOfTime
-        v = values(z)
-        parts = [w * (model.force(r, v) - F) for r, F, w in zip(records, forces, weights)]
-        parts = [p if m is None else p[m] for p, m in zip(parts, masks)]
-        out = np.concatenate(parts)
-        out = np.where(np.isfinite(out), out, 1e6)
-        cost = float(np.dot(out, out))
-        state["calls"] += 1
-        if cost < state["best"]:
-            state["best"], state["best_z"] = cost, np.array(z, dtype=float)
-        now = _time.monotonic()
-        if progress is not None and now - state["report"] > 2.0:
-            state["report"] = now
-            progress(f"joint fit of {len(records)} records: {state['calls']} simulations of all, "
-                     f"mean weighted sum of squares {state['best'] / total:.4g}")
-        return out
+    residual = _JointResidual(model, records, forces, weights, masks, values, deadline, progress, total)
 
     from scipy.optimize import least_squares  # imported on use: not at start-up
 
     try:
-        res = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac", max_nfev=max_nfev)
+        res = least_squares(residual, z0, bounds=(lo, hi), x_scale="jac", max_nfev=max_nfev, ftol=FTOL)
         z, success, message = res.x, bool(res.success), str(res.message)
     except _OutOfTime:
-        z = z0 if state["best_z"] is None else state["best_z"]
-        success, message = False, "stopped by --max-time: the best point found so far"
-        notes.append(f"stopped at --max-time {max_time:g} s before the optimiser converged: the values are the best "
+        z = z0 if residual.best_z is None else residual.best_z
+        success, message = False, "stopped by max_time: the best point found so far"
+        notes.append(f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best "
                      "found so far")
     v = values(z)
     scores = []
@@ -844,7 +743,7 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
         M = model.force(r, v)
         scores.append(esr(F if m is None else F[m], M if m is None else M[m]))
     return JointResult(model, v, scores, [r.name for r in records], success, tuple(names), message,
-                       {"seconds": _time.monotonic() - t_start, "simulations": state["calls"],
+                       {"seconds": _time.monotonic() - t_start, "simulations": residual.calls,
                         "excluded_samples": [0 if m is None else int((~m).sum()) for m in masks],
                         "warnings": notes, "initial": {n: base[n] for n in names}})
 
@@ -922,15 +821,32 @@ class CrossValidation:
         return "\n".join([head, rule, *rows])
 
 
-def cross_validation(model_factory, records: Sequence[Measurement], **fit_options) -> CrossValidation:
-    """Identify a fresh model (``model_factory()``) on each record and score it on every record."""
-    n = len(records)
-    table = np.empty((n, n))
-    for j, rec in enumerate(records):
-        model = model_factory()
-        r = identify(model, rec, **fit_options)
-        for i, other in enumerate(records):
-            table[i, j] = r.esr if i == j else esr(other.require_force(), model.simulate(other, r.values))
+def _cross_validation_column(model_factory, records: Sequence[Measurement], fit_options: dict, j: int) -> list:
+    """ESR on every record of the model identified on record j (one column of the table; a task)."""
+    r = identify(model_factory(), records[j], **fit_options)
+    return [r.esr if i == j else esr(other.require_force(), r.model.simulate(other, r.values))
+            for i, other in enumerate(records)]
+
+
+def cross_validation(model_factory, records: Sequence[Measurement], *, executor=None,
+                     **fit_options) -> CrossValidation:
+    """Identify a fresh model (``model_factory()``) on each record and score it on every record.
+
+    The identifications run on ``executor`` (:func:`erdesign.executor.executor_for`; default one after the other in
+    this process); on worker processes ``model_factory`` must be picklable (``functools.partial(get_model,
+    "bingham")``, not a lambda).  The table does not depend on the executor."""
+    from functools import partial
+
+    from ..executor import executor_for
+    records = list(records)
+    runner = executor_for(executor)
+    try:
+        columns = runner.map(partial(_cross_validation_column, model_factory, records, fit_options),
+                             range(len(records)))
+    finally:
+        if runner is not executor:
+            runner.close()
+    table = np.array(columns, dtype=float).T.reshape(len(records), len(records))
     return CrossValidation([r.name or f"record {k}" for k, r in enumerate(records)], table)
 
 
@@ -990,16 +906,23 @@ def _control_reference_from_text(text: str, record: Measurement, where: str) -> 
 
 
 def resolve_parameters(model: Model, spec: str, record: Measurement, *,
-                       control_reference: str | None = None) -> tuple[dict[str, float], ParameterSource, list[str]]:
+                       control_reference: str | None = None,
+                       where: str = "params") -> tuple[dict[str, float], ParameterSource, list[str]]:
     """SI values of ``model`` from a parameter specification, and the control reference set on the model.
 
     ``spec`` is one of: a JSON file written by ``erdesign identify --json`` (its ``parameters_si`` when present,
     else its ``parameters`` strings, and its ``control_reference``); a list ``"name=value unit, ..."``; or the name
     of a published set of the model (:mod:`erdesign.models.published`).  Returns (values, source, warnings).
+    Errors name the specification as ``where`` (the command line passes its flag).
     """
     import json
     from pathlib import Path
-    from ..models.published import parse_parameter_list, parse_parameter_values, published_set
+
+    from ..models.published import (
+        parse_parameter_list,
+        parse_parameter_values,
+        published_set,
+    )
     notes: list[str] = []
     kind = record.control_kind
     path = Path(spec)
@@ -1007,18 +930,18 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
         try:
             data = json.loads(path.read_text())
         except FileNotFoundError:
-            raise ErdesignError(f"--params: no such file {spec}") from None
+            raise ErdesignError(f"{where}: no such file {spec}") from None
         except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-            raise ErdesignError(f"--params: {spec} is not a JSON file ({exc})") from None
+            raise ErdesignError(f"{where}: {spec} is not a JSON file ({exc})") from None
         if not isinstance(data, dict) or not isinstance(data.get("parameters"), dict):
-            raise ErdesignError(f"--params: {spec} has no 'parameters' object (expected the output of "
+            raise ErdesignError(f"{where}: {spec} has no 'parameters' object (expected the output of "
                                 "'erdesign identify --json')")
         if data.get("model") not in (None, model.name):
-            raise ErdesignError(f"--params: {spec} holds parameters of model {data['model']}, not {model.name}")
+            raise ErdesignError(f"{where}: {spec} holds parameters of model {data['model']}, not {model.name}")
         ref_text = control_reference or data.get("control_reference")
         if model.uses_control and kind is not None:
             if ref_text:
-                model.control_reference = _control_reference_from_text(ref_text, record, "--params")
+                model.control_reference = _control_reference_from_text(ref_text, record, where)
             else:
                 ref = choose_control_reference(model, [record])
                 notes.append(f"{spec} gives no control_reference: u = {kind} / {ref:g} (SI), the rule identify "
@@ -1037,18 +960,18 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
         if model.uses_control and kind is not None:
             if control_reference:
                 model.control_reference = _control_reference_from_text(control_reference, record,
-                                                                       "--control-reference")
+                                                                       "control_reference")
             else:
                 choose_control_reference(model, [record])
         values = parse_parameter_values(model, texts, control_kind=kind, control_reference=model.control_reference)
-        return values, ParameterSource("list", "--params list"), notes
+        return values, ParameterSource("list", f"{where} list"), notes
     pub = published_set(model.name, spec)
     if pub.control_kind is not None:
         if kind is None:
             notes.append(f"{spec} is for a record with a {pub.control_kind} column; {record.name or 'the record'} "
                          "has none: the control is taken as zero")
         elif kind != pub.control_kind:
-            raise ErdesignError(f"--params: {spec} is for a {pub.control_kind} control (its coefficients are per "
+            raise ErdesignError(f"{where}: {spec} is for a {pub.control_kind} control (its coefficients are per "
                                 f"unit {pub.control_kind}); the record's control is a {kind}")
         model.control_reference = pub.control_reference
     elif model.uses_control and kind is not None and np.ptp(record.control) > 0:
@@ -1073,7 +996,7 @@ def simulate(model: Model, record: Measurement, values: Mapping[str, float], *, 
     if clipped.any() and not exclude_clipped:
         level = F[clipped]
         notes.append(f"{int(clipped.sum())} force samples sit at a flat {'top' if level[0] > 0 else 'bottom'} "
-                     f"({level[0]:.6g} N): a load cell or amplifier at its limit; --exclude-clipped scores without "
+                     f"({level[0]:.6g} N): a load cell or amplifier at its limit; exclude_clipped=True scores without "
                      f"them")
     return Simulation(model, model.check_values(values), force, metrics, int(clipped.sum()),
                       int(clipped.sum()) if mask is not None else 0, source, notes)
