@@ -123,7 +123,7 @@ def _identify_row(path: str, damper_file: str | None, effects: str, options: Map
                       decimate=options.get("decimate", 1), exclude_clipped=bool(options.get("exclude_clipped")))
     reference = None
     if model.uses_control and record.control_kind is not None and name != "physics":
-        reference = format_quantity(Q_(model.control_reference, CONTROL_UNITS[record.control_kind]).to_compact())
+        reference = format_quantity(Q_(result.model.control_reference, CONTROL_UNITS[record.control_kind]).to_compact())
     out = result_json(result, name, reference)
     return {"esr": out["esr"], "success": out["success"], "control_reference": reference or "",
             "at_bounds": ",".join(out["at_bounds"]), "not_identifiable": ",".join(out["not_identifiable"]),
