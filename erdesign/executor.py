@@ -25,6 +25,7 @@ matrices are small and tall, where a second thread per process only contends.
 from __future__ import annotations
 
 import concurrent.futures
+import contextlib
 import multiprocessing
 import os
 import sys
@@ -34,7 +35,7 @@ from typing import Any
 from erdesign.errors import ErdesignError
 
 __all__ = ["Executor", "SerialExecutor", "PoolExecutor", "DaskExecutor", "ExecutorError", "executor_for",
-           "default_jobs"]
+           "executor_scope", "default_jobs"]
 
 #: ``progress(done, total)``: called in the calling process after each finished task.
 Progress = Callable[[int, int], None]
@@ -243,6 +244,19 @@ def executor_for(executor: Executor | Any | None = None, *, jobs: int | None = N
     if jobs is None or jobs == 1:
         return SerialExecutor()
     return PoolExecutor(jobs)
+
+
+@contextlib.contextmanager
+def executor_scope(executor: Executor | Any | None = None, *, jobs: int | None = None,
+                   scheduler: str | Any | None = None):
+    """``with executor_scope(executor, jobs=..., scheduler=...) as ex:`` - :func:`executor_for`, closed at the end
+    of the block only if it was made here (an :class:`Executor` the caller passed stays open for its next use)."""
+    ex = executor_for(executor, jobs=jobs, scheduler=scheduler)
+    try:
+        yield ex
+    finally:
+        if ex is not executor:
+            ex.close()
 
 
 def chunks(n: int, size: int) -> list[tuple[int, int]]:

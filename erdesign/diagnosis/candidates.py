@@ -5,6 +5,7 @@ effective Bayesian information criterion, on held-out data and against what the 
 from __future__ import annotations
 
 import math
+from functools import partial
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -194,6 +195,23 @@ def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, eff
     cand.implausible = [f"{e}: {note}" for e in added for note in EFFECTS[e].implausible(damper, res.values)]
     cand.plausibility = "; ".join(EFFECTS[e].plausibility(damper, res.values) for e in added)
     return cand
+
+
+def _evaluate_task(fixed: tuple, task: tuple) -> Candidate:
+    """One candidate fit as an executor task: ``fixed`` = (base model, base fit, record, effects, damper, mask),
+    ``task`` = (added effects, start)."""
+    base_model, base, work, effects, damper, mask = fixed
+    added, start = task
+    return _evaluate(base_model, base, work, effects, added, damper, start=start, mask=mask)
+
+
+def evaluate_candidates(base_model: PhysicsDamper, base: FitResult, work: Measurement, effects: tuple,
+                        tasks: list[tuple[tuple, dict | None]], damper: Damper, mask=None, executor=None) -> list:
+    """:func:`_evaluate` for each ``(added effects, start)`` of ``tasks``, each an independent fit on the executor
+    (:mod:`erdesign.executor`; default in this process), in the order of ``tasks``."""
+    from ..executor import SerialExecutor
+    ex = executor if executor is not None else SerialExecutor()
+    return ex.map(partial(_evaluate_task, (base_model, base, work, effects, damper, mask)), tasks)
 
 
 def _cannot_judge(name: str, records, work: Measurement, damper: Damper) -> str | None:

@@ -37,6 +37,7 @@ from ..data.measurement import Measurement
 from ..data.noise import velocity_noise
 from ..effects import EFFECT_NAMES, EFFECTS, parse_effect_names
 from ..effects.chain import PhysicsDamper, check_control
+from ..executor import executor_scope
 from ..identification.fit import FitResult
 from .calibration import (
     DiagnosisError,
@@ -52,16 +53,17 @@ from .calibration import (
     data_findings,
     fitted_model,
 )
-from .candidates import (rank_candidates, 
+from .candidates import (
     BIC_THRESHOLD,
     HELD_OUT_GAIN,
     MIN_GAIN,
     Candidate,
     _beyond_record,
     _cannot_judge,
-    _evaluate,
     _held_out,
+    evaluate_candidates,
     parameters_at_bounds,
+    rank_candidates,
 )
 from .floor import noise_floor
 from .records import MAX_SAMPLES, prepare
@@ -214,7 +216,8 @@ SIGN_WIDTHS = (0.0, 0.5, 1.0, 2.0)
 
 def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effects: Sequence[str] | str = (), *,
              candidates: Sequence[str] | None = None, max_samples: int = MAX_SAMPLES, pairs: bool = True,
-             exclude_clipped: bool | None = None, force_noise=None) -> Diagnosis:
+             exclude_clipped: bool | None = None, force_noise=None, executor=None, jobs: int | None = None,
+             scheduler=None) -> Diagnosis:
     """Calibrate the baseline (+ ``effects``), analyse the residual, rank every other effect, give a verdict.
 
     Parameters
@@ -236,6 +239,9 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
         keep them; None (default): leave them out when found.
     force_noise : str, pint quantity or float [N], optional
         The load cell's noise when it is known; otherwise it is estimated from the record.
+    executor, jobs, scheduler
+        Where the candidates' (and pairs') fits run, each an independent task (:func:`erdesign.executor.
+        executor_for`: default in this process).  The diagnosis is the same whatever the executor.
 
     Returns
     -------
@@ -245,6 +251,14 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
         well above the noise floor and no effect of the library explains it plausibly; ``reason`` says what the
         residual looks like).  Every ESR it states is judged on the same samples (:attr:`Diagnosis.judged_share`).
     """
+    with executor_scope(executor, jobs=jobs, scheduler=scheduler) as ex:
+        return _diagnose(damper, record, effects, candidates=candidates, max_samples=max_samples, pairs=pairs,
+                         exclude_clipped=exclude_clipped, force_noise=force_noise, executor=ex)
+
+
+def _diagnose(damper, record, effects, *, candidates, max_samples, pairs, exclude_clipped, force_noise,
+              executor) -> Diagnosis:
+    """:func:`diagnose` on a given executor."""
     effects = parse_effect_names(effects)
     records = _as_records(record)
     for r in records:
@@ -282,14 +296,14 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
     warnings_ += [f"{f.record}: {f.message}" for f in findings if f.unsafe_for]
     names = [c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES)
              if c not in effects]
-    ranking: list[Candidate] = []
     not_judged: dict[str, str] = {}
     for name in names:
         why = _cannot_judge(name, records, work, damper)
         if why:
             not_judged[name] = why
-            continue
-        ranking.append(_evaluate(base_model, base, work, effects, (name,), damper, mask=mask))
+    ranking: list[Candidate] = evaluate_candidates(
+        base_model, base, work, effects, [((n,), None) for n in names if n not in not_judged], damper, mask=mask,
+        executor=executor)
     excess = base.esr - floor
     mimicked = {e: f for f in findings if f.kind in MIMICS for e in f.unsafe_for}
     for c in ranking:
@@ -321,7 +335,8 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
         if named is None and pairs and well_above:
             best_share = max((c.explained for c in ranking if c.evaluated), default=0.0)
             if best_share < PAIR_SEARCH_BELOW:
-                named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=mask, held=held)
+                named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=mask, held=held,
+                                     executor=executor)
         if named is None:
             # never "nothing missing" while a plausible effect clearly improves the held-out data; far above the
             # floor, an effect that clearly improves the held-out data is a step of the loop even when more is

@@ -16,8 +16,8 @@ from .candidates import (
     Candidate,
     _bic,
     _effective_n,
-    _evaluate,
     _held_out_gain,
+    evaluate_candidates,
 )
 
 __all__ = ["VERDICTS", "AT_FLOOR", "WELL_ABOVE", "ABSOLUTE_SLACK", "EXPLAINS", "PAIR_SEARCH_BELOW", "STRICT_BIC",
@@ -137,27 +137,28 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=N
     return None
 
 
-def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=None, held=None) -> Candidate | None:
+def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=None, held=None,
+                 executor=None) -> Candidate | None:
     """Pairs of the best single candidates fitted jointly (not greedily); the best significant, plausible pair
-    that explains enough of the excess, or None."""
+    that explains enough of the excess, or None.  The pairs' fits are independent tasks on ``executor``."""
     pool = [c for c in ranking if c.evaluated and c.gain > 0 and not c.blocked][:PAIR_POOL]
+    couples = [(pool[i], pool[j]) for i in range(len(pool)) for j in range(i + 1, len(pool))]
+    # each effect starts from its own single fit, the calibration from the first
+    tasks = [((a.effect, b.effect), {**b.result.values, **a.result.values,
+                                     **{p.name: b.result.values[p.name] for p in EFFECTS[b.effect].parameters(damper)}})
+             for a, b in couples]
     found = []
-    for i in range(len(pool)):
-        for j in range(i + 1, len(pool)):
-            a, b = pool[i], pool[j]
-            # each effect starts from its own single fit, the calibration from the first
-            start = {**b.result.values, **a.result.values,
-                     **{p.name: b.result.values[p.name] for p in EFFECTS[b.effect].parameters(damper)}}
-            c = _evaluate(base_model, base, work, effects, (a.effect, b.effect), damper, start=start, mask=mask)
-            if not c.evaluated:
-                continue
-            c.explained = (base.esr - c.esr) / excess if excess > 0 else 0.0
-            best_single = min(a.result.rss, b.result.rss)
-            n_eff = _effective_n(c.result.residual)
-            better = _bic(c.result.rss, base.n, c.result.k, n_eff) < _bic(best_single, base.n, c.result.k - 1,
-                                                                           n_eff) - BIC_THRESHOLD
-            if better and not c.implausible and c.explained >= EXPLAINS and c.delta_bic < -BIC_THRESHOLD:
-                found.append(c)
+    for (a, b), c in zip(couples, evaluate_candidates(base_model, base, work, effects, tasks, damper, mask=mask,
+                                                      executor=executor)):
+        if not c.evaluated:
+            continue
+        c.explained = (base.esr - c.esr) / excess if excess > 0 else 0.0
+        best_single = min(a.result.rss, b.result.rss)
+        n_eff = _effective_n(c.result.residual)
+        better = _bic(c.result.rss, base.n, c.result.k, n_eff) < _bic(best_single, base.n, c.result.k - 1,
+                                                                       n_eff) - BIC_THRESHOLD
+        if better and not c.implausible and c.explained >= EXPLAINS and c.delta_bic < -BIC_THRESHOLD:
+            found.append(c)
     if not found:
         return None
     best = min(found, key=lambda c: c.delta_bic)
