@@ -175,3 +175,20 @@ def test_serial_executor_is_the_default():
     """No executor argument: the search stays in this process (a library call is serial unless asked)."""
     req = _req("makris_requirements")
     assert _as_text(design(req)) == _as_text(design(req, executor=SerialExecutor()))
+
+
+# ------------------------------------------------------------------------------------------------- command line
+def test_cli_jobs_gives_the_same_designs(capsys):
+    from erdesign.cli.main import main
+    from pathlib import Path
+
+    import erdesign
+
+    path = str(Path(erdesign.__file__).parent / "examples" / "requirements" / "makris_requirements.toml")
+    assert main(["design", path, "--json"]) == 0
+    serial = capsys.readouterr().out
+    assert main(["design", path, "--json", "--jobs", "2"]) == 0
+    assert capsys.readouterr().out == serial
+    assert main(["design", path, "--jobs", "0"]) == 2
+    err = capsys.readouterr().err
+    assert "--jobs" in err and len(err.strip().splitlines()) == 1
