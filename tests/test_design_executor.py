@@ -2,6 +2,7 @@
 a Dask LocalCluster give the same DesignResult bit for bit; chunks made from their index are those of the
 sequential sampler; merging chunk summaries does not depend on how the chunks are grouped."""
 
+import itertools
 import json
 
 import numpy as np
@@ -12,16 +13,21 @@ from scipy.stats import qmc
 
 from erdesign.design import design, load_example_requirements
 from erdesign.design.evaluate import constraints_for
-from erdesign.design.sampling import candidate_chunk, candidate_chunks, chunk_count, sobol_from
+from erdesign.design.sampling import (
+    candidate_chunk,
+    candidate_chunks,
+    chunk_count,
+    sobol_from,
+)
 from erdesign.design.search import _chunk_summary, _evaluate, _Summary
 from erdesign.executor import PoolExecutor, SerialExecutor
 
 # Small sweeps (a few chunks each) so that every executor runs in a few seconds: a valve damper with refinement,
 # an infeasible one (nearest design and conflicts) and a mixed-mode MR damper with a coil.
 CASES = {
-    "makris_requirements": dict(samples=5 * 1024 + 300, chunk=1024),
-    "infeasible_requirements": dict(samples=4 * 1024, chunk=1024),
-    "mr_coil_requirements": dict(samples=2048, chunk=1024),
+    "makris_requirements": {"samples": 5 * 1024 + 300, "chunk": 1024},
+    "infeasible_requirements": {"samples": 4 * 1024, "chunk": 1024},
+    "mr_coil_requirements": {"samples": 2048, "chunk": 1024},
 }
 
 
@@ -60,9 +66,9 @@ def test_pool_of_two_gives_the_serial_result(serial):
     seen = []
     with PoolExecutor(2) as pool:
         for name in CASES:
-            _check_same(design(_req(name), executor=pool,
-                               progress=lambda *a: seen.append(a) if name == "makris_requirements" else None),
-                        serial[name])
+            _check_same(design(_req(name), executor=pool), serial[name])
+        _check_same(design(_req("makris_requirements"), executor=pool, progress=lambda *a: seen.append(a)),
+                    serial["makris_requirements"])
     # progress: one call per chunk, the last one with every candidate
     assert len(seen) == 6 and seen[-1][0] == seen[-1][1] == 5 * 1024 + 300
     assert seen[-1][2] == serial["makris_requirements"].feasible_count
@@ -155,7 +161,7 @@ def test_merge_is_associative_over_random_groupings(chunk_parts, cuts, name):
     the summary of the serial fold, array for array."""
     req, keep, parts = chunk_parts[name]
     bounds = [0, *sorted(cuts), len(parts)]
-    groups = [_fold(req, keep, parts[a:b]) for a, b in zip(bounds[:-1], bounds[1:])]
+    groups = [_fold(req, keep, parts[a:b]) for a, b in itertools.pairwise(bounds)]
     _same_summary(_fold(req, keep, groups), _fold(req, keep, parts))
 
 
@@ -179,10 +185,10 @@ def test_serial_executor_is_the_default():
 
 # ------------------------------------------------------------------------------------------------- command line
 def test_cli_jobs_gives_the_same_designs(capsys):
-    from erdesign.cli.main import main
     from pathlib import Path
 
     import erdesign
+    from erdesign.cli.main import main
 
     path = str(Path(erdesign.__file__).parent / "examples" / "requirements" / "makris_requirements.toml")
     assert main(["design", path, "--json"]) == 0

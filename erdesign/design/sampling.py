@@ -131,11 +131,17 @@ def candidate_chunk(req: "Requirements", index: int, samples: int | None = None,
 def sobol_from(d: int, seed: int, start: int) -> qmc.Sobol:
     r"""The scrambled Sobol' engine of ``seed`` in ``d`` dimensions, positioned at point ``start``.
 
-    Point :math:`k` of the sequence (the Gray-code order scipy draws in) is the scrambling shift XOR the scrambled
-    direction numbers of the bits set in :math:`g(k) = k \oplus \lfloor k/2 \rfloor`, so the engine is positioned
-    by XOR-ing at most 30 direction numbers: :meth:`scipy.stats.qmc.Sobol.fast_forward` steps through the
-    ``start`` points one by one (5 s for 10^9 points), which would cost a far chunk more than evaluating it.  The
-    engine's state is scipy's (``_shift``, ``_sv``, ``_quasi``); without it, ``fast_forward`` is used.
+    Point :math:`k` of the sequence, in the Gray-code order scipy draws in (Antonov and Saleev 1979), is the
+    scrambling shift XOR the scrambled direction numbers of the bits set in :math:`g(k) = k \oplus \lfloor k/2
+    \rfloor`, so the engine is positioned by XOR-ing at most 30 direction numbers, where
+    :meth:`scipy.stats.qmc.Sobol.fast_forward` steps through the ``start`` points one by one (5 s for 10^9 points:
+    more than evaluating a far chunk).  The state set is scipy's (``_shift``, ``_sv``, ``_quasi``); a scipy
+    without it gets ``fast_forward``.  tests/test_design_executor.py checks the points against a sequential draw.
+
+    References
+    ----------
+    Antonov, I. A. and Saleev, V. M. (1979), An economic method of computing LP_tau-sequences, USSR Computational
+    Mathematics and Mathematical Physics 19(1), 252-256.
 
     Examples
     --------
