@@ -25,6 +25,7 @@ from __future__ import annotations
 import argparse
 import functools
 import json
+import logging
 import os
 import sys
 import time
@@ -48,11 +49,21 @@ def _timed(fn):
     return out, time.perf_counter() - t0
 
 
-def _local_cluster(workers: int):
+def _local_cluster(workers: int, malloc_default: bool = False):
+    """A LocalCluster of single-threaded worker processes.  ``malloc_default``: without the
+    ``MALLOC_TRIM_THRESHOLD_=65536`` Dask's nannies set in their workers' environment by default
+    (``distributed.nanny.pre-spawn-environ``): it also freezes glibc's mmap threshold at 128 KiB, so that every
+    numpy array above it is a fresh mmap and its pages faulted in again (measured: 4.5 x the CPU time of a chunk of
+    16384 valve candidates)."""
+    import dask
     import distributed
 
-    cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                       dashboard_address=None, host="127.0.0.1", silence_logs=40)
+    environ = {} if malloc_default else dask.config.get("distributed.nanny.pre-spawn-environ")
+    if malloc_default:       # a nanny of an earlier LocalCluster set it in this process's environment too
+        os.environ.pop("MALLOC_TRIM_THRESHOLD_", None)
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
+        cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                           dashboard_address=None, host="127.0.0.1", silence_logs=40)
     return cluster, distributed.Client(cluster, set_as_default=False)
 
 
@@ -71,19 +82,22 @@ def part_design(args) -> None:
     (pool, t_pool) = _timed(lambda: PoolExecutor(args.workers))
     _, t_pool_start = _timed(lambda: design(next(iter(warm.values())), executor=pool))
     (cluster, client), t_dask_start = _timed(lambda: _local_cluster(args.workers))
-    dask = DaskExecutor(client)
+    cluster2, client2 = _local_cluster(args.workers, malloc_default=True)
+    dask, dask2 = DaskExecutor(client), DaskExecutor(client2)
+    executors = (("local pool", pool), ("Dask LocalCluster", dask), ("  malloc default", dask2))
     for r in warm.values():                       # imports and caches of every worker
-        design(r, executor=pool)
-        design(r, executor=dask)
+        for _, ex in executors:
+            design(r, executor=ex)
         design(r)
     print(f"design sweep, chunk {args.chunk:,}, no refinement, {args.workers} workers; start-up: local pool "
-          f"{t_pool + t_pool_start:.2f} s (first sweep included), Dask LocalCluster {t_dask_start:.2f} s")
+          f"{t_pool + t_pool_start:.2f} s (first sweep included), Dask LocalCluster {t_dask_start:.2f} s; "
+          "'malloc default': a LocalCluster without Dask's MALLOC_TRIM_THRESHOLD_")
     try:
         for label, r in reqs.items():
             n = r.search.samples
             reference, t_serial = _timed(functools.partial(design, r, executor=SerialExecutor()))
             rows = [("serial", t_serial, True)]
-            for name, ex in (("local pool", pool), ("Dask LocalCluster", dask)):
+            for name, ex in executors:
                 result, t = _timed(functools.partial(design, r, executor=ex))
                 rows.append((name, t, json.dumps(result.as_json()) == json.dumps(reference.as_json())))
             print(f"  {label}: {n:,} candidates, {-(-n // args.chunk)} chunks, "
@@ -93,8 +107,8 @@ def part_design(args) -> None:
                       f"of serial  {'same result' if same else 'DIFFERENT RESULT'}")
     finally:
         pool.close()
-        client.close()
-        cluster.close()
+        for c in (client, cluster, client2, cluster2):
+            c.close()
 
 
 # ------------------------------------------------------------------------------------------------------ scheduler
@@ -151,6 +165,7 @@ PARTS = {
 
 
 def main() -> None:
+    logging.getLogger("distributed").setLevel(logging.ERROR)     # a closing cluster's INFO lines
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--part", choices=[*PARTS, "all"], default="all")
     parser.add_argument("--workers", type=int, default=2, help="workers of the pool and of the LocalCluster")
