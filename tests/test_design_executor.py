@@ -74,6 +74,19 @@ def test_pool_of_two_gives_the_serial_result(serial):
     assert seen[-1][2] == serial["makris_requirements"].feasible_count
 
 
+def test_thinned_front_is_the_same_on_a_pool(monkeypatch):
+    """Beyond FRONT_STORE the stored front is thinned after each merge: the merges run in the caller, in chunk
+    order, so the thinned front is still the serial one (about 170 front designs per chunk here, 64 kept)."""
+    import erdesign.design.search as search
+
+    monkeypatch.setattr(search, "FRONT_STORE", 64)
+    req = load_example_requirements("mr_requirements").with_search(samples=4096, chunk=1024, refine=False)
+    reference = design(req)
+    assert 0 < len(reference.pareto) <= 64
+    with PoolExecutor(2) as pool:
+        _check_same(design(req, executor=pool), reference)
+
+
 def test_jobs_argument_opens_and_closes_its_own_pool(serial):
     _check_same(design(_req("makris_requirements"), jobs=2), serial["makris_requirements"])
 
