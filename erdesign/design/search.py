@@ -5,7 +5,10 @@ r"""Design synthesis: sweep the design space in chunks, refine the best designs,
 1. **Sweep.**  Candidate geometries fill the bounds (:mod:`~erdesign.design.sampling`) and are evaluated chunk by
    chunk with :func:`~erdesign.design.evaluate.evaluate_candidates`; only running summaries are kept between
    chunks (the best feasible designs, the Pareto front, the designs nearest to feasibility, and counts of which
-   constraints the candidates violate), so memory is proportional to a chunk, not to the sweep.
+   constraints the candidates violate), so memory is proportional to a chunk, not to the sweep.  The chunks are
+   the tasks of an executor (``jobs=``, ``scheduler=``): each worker makes its chunk from the seed and the chunk
+   index and returns its summary, and the summaries are merged in chunk order, so that the result is the same on
+   any executor.
 2. **Refine.**  From the best feasible samples, :func:`scipy.optimize.minimize` (SLSQP) improves the objective in
    the logarithms of the free continuous variables (the number of ducts stays fixed), subject to every constraint
    margin being at least :data:`SAFETY` and to the bounds.  Gradients are forward differences computed in one
@@ -163,9 +166,10 @@ class _Summary:
     best_key: np.ndarray = field(default_factory=lambda: np.empty(0))
     front_X: np.ndarray = field(default_factory=lambda: np.empty((0, 6)))
     front_Y: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
-    """Nearest designs: kept only while no candidate is feasible (they explain an infeasible search)."""
     near_X: np.ndarray = field(default_factory=lambda: np.empty((0, 6)))
     near_v: np.ndarray = field(default_factory=lambda: np.empty(0))
+    """Nearest designs and their violations: kept only while no candidate is feasible (they explain an infeasible
+    search)."""
     violated: np.ndarray = field(init=False)
     """Per constraint: valid candidates that violate it."""
     single: np.ndarray = field(init=False)
