@@ -179,15 +179,24 @@ def test_merge_is_associative_over_random_groupings(chunk_parts, cuts, name):
 
 
 def test_ties_go_to_the_earlier_candidate():
-    """Best designs with equal objective keys: the earlier candidates are kept, however the chunks are grouped
-    (argpartition alone would pick among the tied ones by its own order)."""
-    req = load_example_requirements("makris_requirements").with_search(samples=4 * 1024, chunk=1024)
-    parts = [_chunk_summary(req, 4, i) for i in range(4)]
-    for p in parts:                  # every feasible design ties on the key; rows keep their candidate order
-        p.best_key = np.zeros_like(p.best_key)
-    merged = _fold(req, 4, parts)
-    first = next(p for p in parts if p.best_key.size)
-    assert np.array_equal(merged.best_X[:min(4, len(first.best_X))], first.best_X[:4])
+    """The k smallest keys with ties at the k-th: the earliest of the tied candidates, in a group or after merges
+    of groups (argpartition alone picks among tied keys by its own order)."""
+    from erdesign.design.search import _smallest
+
+    key = np.array([3.0, 1.0, 2.0, 1.0, 2.0, np.nan, 2.0, 0.5, 2.0])
+    assert _smallest(key, 4).tolist() == [7, 1, 3, 2]
+    assert _smallest(key, 20).tolist() == [7, 1, 3, 2, 4, 6, 8, 0, 5]
+    rng = np.random.default_rng(1)
+    for _ in range(50):
+        key = rng.integers(0, 5, 40).astype(float)            # many ties
+        k = int(rng.integers(1, 12))
+        whole = _smallest(key, k)
+        assert whole.tolist() == np.lexsort((np.arange(40), key))[:k].tolist()
+        cut = int(rng.integers(1, 40))
+        first = _smallest(key[:cut], k)
+        second = cut + _smallest(key[cut:], k)
+        both = np.concatenate([first, second])
+        assert both[_smallest(key[both], k)].tolist() == whole.tolist()
 
 
 def test_serial_executor_is_the_default():
