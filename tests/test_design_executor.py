@@ -77,7 +77,7 @@ def test_pool_of_two_gives_the_serial_result(serial):
 def test_thinned_front_is_the_same_on_a_pool(monkeypatch):
     """Beyond FRONT_STORE the stored front is thinned after each merge: the merges run in the caller, in chunk
     order, so the thinned front is still the serial one (about 170 front designs per chunk here, 64 kept)."""
-    import erdesign.design.search as search
+    from erdesign.design import search
 
     monkeypatch.setattr(search, "FRONT_STORE", 64)
     req = load_example_requirements("mr_requirements").with_search(samples=4096, chunk=1024, refine=False)
