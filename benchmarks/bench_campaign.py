@@ -165,7 +165,7 @@ PARTS = {
 
 
 def main() -> None:
-    logging.getLogger("distributed").setLevel(logging.ERROR)     # a closing cluster's INFO lines
+    logging.disable(logging.WARNING)          # the INFO lines of clusters closing
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--part", choices=[*PARTS, "all"], default="all")
     parser.add_argument("--workers", type=int, default=2, help="workers of the pool and of the LocalCluster")
