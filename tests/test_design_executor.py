@@ -220,3 +220,6 @@ def test_cli_jobs_gives_the_same_designs(capsys):
     assert main(["design", path, "--jobs", "0"]) == 2
     err = capsys.readouterr().err
     assert "--jobs" in err and len(err.strip().splitlines()) == 1
+    assert main(["design", path, "--jobs", "2", "--scheduler", "tcp://127.0.0.1:8786"]) == 2
+    err = capsys.readouterr().err
+    assert "give one of them" in err and len(err.strip().splitlines()) == 1

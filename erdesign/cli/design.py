@@ -41,6 +41,9 @@ Rounding and ties ([design.search] of the requirements file):
 def design(requirements_file: str, as_json: bool, out: str | None, force: bool, jobs: int,
            scheduler: str | None) -> None:
     """Feasible damper geometries ranked by the objective, or the conflicts when there are none."""
+    if scheduler is not None and jobs != 1:
+        raise click.UsageError("--jobs and --scheduler: give one of them (the cluster's workers replace the local "
+                               "processes)")
     if out is not None:  # checked before the search: a refused name must not cost a long run
         out, _ = check_output_path(out, force=force, inputs={"the requirements file": requirements_file},
                                    formats={".csv": "csv"})
