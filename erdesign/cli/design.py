@@ -19,6 +19,8 @@ Examples:
   erdesign design requirements.toml
   erdesign design requirements.toml --out designs.csv
   erdesign design requirements.toml --json > designs.json
+  erdesign design requirements.toml --jobs 4
+  erdesign design requirements.toml --scheduler tcp://10.0.0.5:8786
 \b
 Rounding and ties ([design.search] of the requirements file):
   gap_tolerance = "0.01 mm"      length_tolerance = "0.1 mm"      secondary = "min_outer_diameter"
@@ -32,12 +34,20 @@ Rounding and ties ([design.search] of the requirements file):
               help="Also write the ranked designs, the Pareto front (and the nearest design when nothing is "
                    "feasible) to a CSV file with units in the header.")
 @click.option("--force", is_flag=True, help="Let --out replace an existing file (never the requirements file).")
-def design(requirements_file: str, as_json: bool, out: str | None, force: bool) -> None:
+@click.option("--jobs", type=click.IntRange(min=1), default=1, show_default=True, metavar="N",
+              help="Sweep the chunks of the design space on N local processes (the same designs as with 1).")
+@click.option("--scheduler", default=None, metavar="ADDRESS",
+              help="Sweep on the workers of a Dask cluster, e.g. tcp://host:8786 (instead of --jobs).")
+def design(requirements_file: str, as_json: bool, out: str | None, force: bool, jobs: int,
+           scheduler: str | None) -> None:
     """Feasible damper geometries ranked by the objective, or the conflicts when there are none."""
+    if scheduler is not None and jobs != 1:
+        raise click.UsageError("--jobs and --scheduler: give one of them (the cluster's workers replace the local "
+                               "processes)")
     if out is not None:  # checked before the search: a refused name must not cost a long run
         out, _ = check_output_path(out, force=force, inputs={"the requirements file": requirements_file},
                                    formats={".csv": "csv"})
-    result = run_design(read_requirements(requirements_file), progress=_Progress())
+    result = run_design(read_requirements(requirements_file), progress=_Progress(), jobs=jobs, scheduler=scheduler)
     if out is not None:
         result.write_csv(out)
     if as_json:

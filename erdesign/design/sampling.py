@@ -5,9 +5,10 @@ continuous lengths log-uniformly, :math:`x = x_\text{lo}(x_\text{hi}/x_\text{lo}
 pressure drop as :math:`h^{-1}` to :math:`h^{-3}` and a ratio of 4 in a bound matters as much at its low end as at
 its high end; the number of ducts uniformly over the whole numbers of its range.  Fixed variables keep their value.
 
-Two samplers of :mod:`scipy.stats.qmc`: a scrambled Sobol' sequence (default), drawn chunk after chunk so that the
-first :math:`2^m` points of any run are a balanced design whatever the chunk size; or Latin hypercubes, one per
-chunk.  Both are reproducible from ``design.search.seed``.
+Two samplers of :mod:`scipy.stats.qmc`: a scrambled Sobol' sequence (default), one sequence cut into chunks so
+that the first :math:`2^m` points of any run are a balanced design whatever the chunk size; or Latin hypercubes,
+one per chunk.  Both are reproducible from ``design.search.seed``, and any chunk is made from the seed and its
+index alone (:func:`candidate_chunk`), so the chunks of a sweep can be made on the workers that evaluate them.
 """
 
 from __future__ import annotations
@@ -22,7 +23,8 @@ from scipy.stats import qmc
 if TYPE_CHECKING:  # pragma: no cover
     from .requirements import Requirements
 
-__all__ = ["map_unit_to_bounds", "candidate_chunks", "variables_of"]
+__all__ = ["map_unit_to_bounds", "candidate_chunks", "candidate_chunk", "chunk_count", "sobol_from",
+           "variables_of"]
 
 
 def map_unit_to_bounds(u, bounds, free):
@@ -77,6 +79,93 @@ def variables_of(req: "Requirements", n: int = 1) -> dict:
     return map_unit_to_bounds(np.zeros((n, len(req.free_variables))), req.bounds, req.free_variables)
 
 
+def chunk_count(req: "Requirements", samples: int | None = None, chunk: int | None = None) -> int:
+    """How many chunks :func:`candidate_chunks` yields: ``ceil(samples / chunk)`` (one when no variable is free)."""
+    s = req.search
+    samples = s.samples if samples is None else samples
+    chunk = s.chunk if chunk is None else chunk
+    return 1 if not req.free_variables else -(-samples // chunk)
+
+
+def candidate_chunk(req: "Requirements", index: int, samples: int | None = None, chunk: int | None = None,
+                    seed: int | None = None, sampling: str | None = None) -> dict:
+    """Chunk ``index`` of :func:`candidate_chunks`, made from the seed and the index alone (no earlier chunk).
+
+    So a worker of a parallel sweep makes its own chunk and only the index travels.  Sobol': the scrambled
+    sequence of the seed, from point ``index * chunk`` on (:func:`sobol_from`, the same points as drawing the
+    chunks one after the other).  Latin hypercube: one per chunk, from the random stream of the seed and the
+    chunk index (``SeedSequence(seed, spawn_key=(index,))``, independent streams).
+
+    Examples
+    --------
+    >>> from erdesign.design import load_example_requirements
+    >>> req = load_example_requirements("makris_requirements")
+    >>> whole = candidate_chunk(req, 0, samples=4096, chunk=4096)
+    >>> second = candidate_chunk(req, 1, samples=4096, chunk=2048)
+    >>> bool((second["gap"] == whole["gap"][2048:]).all())
+    True
+    """
+    s = req.search
+    samples = s.samples if samples is None else samples
+    chunk = s.chunk if chunk is None else chunk
+    seed = s.seed if seed is None else seed
+    sampling = s.sampling if sampling is None else sampling
+    free = req.free_variables
+    if not free:
+        return variables_of(req, 1)
+    start = index * chunk
+    if not 0 <= start < samples:
+        raise ValueError(f"chunk {index} is outside the {chunk_count(req, samples, chunk)} chunks of the sweep")
+    m = min(chunk, samples - start)
+    with warnings.catch_warnings():
+        # Sobol' balance holds for the power-of-2 prefixes of the whole run, not for each chunk.
+        warnings.filterwarnings("ignore", message=".*balance properties of Sobol.*")
+        if sampling == "sobol":
+            u = sobol_from(len(free), seed, start).random(m)
+        else:
+            rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(index,)))
+            u = qmc.LatinHypercube(len(free), seed=rng).random(m)
+    return map_unit_to_bounds(u, req.bounds, free)
+
+
+def sobol_from(d: int, seed: int, start: int) -> qmc.Sobol:
+    r"""The scrambled Sobol' engine of ``seed`` in ``d`` dimensions, positioned at point ``start``.
+
+    Point :math:`k` of the sequence, in the Gray-code order scipy draws in (Antonov and Saleev 1979), is the
+    scrambling shift XOR the scrambled direction numbers of the bits set in :math:`g(k) = k \oplus \lfloor k/2
+    \rfloor`, so the engine is positioned by XOR-ing at most 30 direction numbers, where
+    :meth:`scipy.stats.qmc.Sobol.fast_forward` steps through the ``start`` points one by one (5 s for 10^9 points:
+    more than evaluating a far chunk).  The state set is scipy's (``_shift``, ``_sv``, ``_quasi``); a scipy
+    without it gets ``fast_forward``.  tests/test_design_executor.py checks the points against a sequential draw.
+
+    References
+    ----------
+    Antonov, I. A. and Saleev, V. M. (1979), An economic method of computing LP_tau-sequences, USSR Computational
+    Mathematics and Mathematical Physics 19(1), 252-256.
+
+    Examples
+    --------
+    >>> a = qmc.Sobol(3, scramble=True, seed=np.random.default_rng(7))
+    >>> _ = a.random(1024)
+    >>> bool((sobol_from(3, 7, 1024).random(24) == a.random(24)).all())
+    True
+    """
+    sobol = qmc.Sobol(d, scramble=True, seed=np.random.default_rng(seed))
+    if start == 0:
+        return sobol
+    if not all(hasattr(sobol, a) for a in ("_shift", "_sv", "_quasi")):   # pragma: no cover - another scipy
+        return sobol.fast_forward(start)
+    k = start - 1                                      # the engine holds the last point drawn
+    gray = k ^ (k >> 1)
+    quasi = sobol._shift.copy()
+    for bit in range(int(gray).bit_length()):
+        if gray >> bit & 1:
+            quasi ^= sobol._sv[:, bit]
+    sobol._quasi = quasi
+    sobol.num_generated = start
+    return sobol
+
+
 def candidate_chunks(req: "Requirements", samples: int | None = None, chunk: int | None = None,
                      seed: int | None = None, sampling: str | None = None) -> Iterator[dict]:
     """Yield candidate geometries (dicts of arrays, see :func:`map_unit_to_bounds`) in chunks.
@@ -91,25 +180,8 @@ def candidate_chunks(req: "Requirements", samples: int | None = None, chunk: int
     Yields
     ------
     dict of str -> array
-        At most ``chunk`` candidates; ``samples`` in total (one when no variable is free).
+        At most ``chunk`` candidates; ``samples`` in total (one when no variable is free): the chunks of
+        :func:`candidate_chunk`, in order.
     """
-    s = req.search
-    samples = s.samples if samples is None else samples
-    chunk = s.chunk if chunk is None else chunk
-    seed = s.seed if seed is None else seed
-    sampling = s.sampling if sampling is None else sampling
-    free = req.free_variables
-    if not free:
-        yield variables_of(req, 1)
-        return
-    rng = np.random.default_rng(seed)
-    sobol = qmc.Sobol(len(free), scramble=True, seed=rng) if sampling == "sobol" else None
-    done = 0
-    while done < samples:
-        m = min(chunk, samples - done)
-        with warnings.catch_warnings():
-            # Sobol' balance holds for the power-of-2 prefixes of the whole run, not for each chunk.
-            warnings.filterwarnings("ignore", message=".*balance properties of Sobol.*")
-            u = sobol.random(m) if sobol is not None else qmc.LatinHypercube(len(free), seed=rng).random(m)
-        done += m
-        yield map_unit_to_bounds(u, req.bounds, free)
+    for index in range(chunk_count(req, samples, chunk)):
+        yield candidate_chunk(req, index, samples, chunk, seed, sampling)

@@ -5,7 +5,10 @@ r"""Design synthesis: sweep the design space in chunks, refine the best designs,
 1. **Sweep.**  Candidate geometries fill the bounds (:mod:`~erdesign.design.sampling`) and are evaluated chunk by
    chunk with :func:`~erdesign.design.evaluate.evaluate_candidates`; only running summaries are kept between
    chunks (the best feasible designs, the Pareto front, the designs nearest to feasibility, and counts of which
-   constraints the candidates violate), so memory is proportional to a chunk, not to the sweep.
+   constraints the candidates violate), so memory is proportional to a chunk, not to the sweep.  The chunks are
+   the tasks of an executor (``jobs=``, ``scheduler=``): each worker makes its chunk from the seed and the chunk
+   index and returns its summary, and the summaries are merged in chunk order, so that the result is the same on
+   any executor.
 2. **Refine.**  From the best feasible samples, :func:`scipy.optimize.minimize` (SLSQP) improves the objective in
    the logarithms of the free continuous variables (the number of ducts stays fixed), subject to every constraint
    margin being at least :data:`SAFETY` and to the bounds.  Gradients are forward differences computed in one
@@ -31,6 +34,7 @@ r"""Design synthesis: sweep the design space in chunks, refine the best designs,
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -38,12 +42,13 @@ import numpy as np
 from scipy.optimize import minimize
 
 from .._deprecated import renamed
+from ..executor import Executor, executor_for
 from ..geometry import mixed_mean_diameter
 from .evaluate import FIGURES, OBJECTIVES, CandidateFigures, Constraint, constraints_for, evaluate_candidates
 from .pareto import pareto_mask
 from .requirements import COIL_VARIABLES, VARIABLES, Requirements
 from .result import DesignResult, design_record
-from .sampling import candidate_chunks
+from .sampling import candidate_chunk, candidate_chunks, chunk_count
 
 __all__ = ["design", "sample_designs", "sweep", "SAFETY", "PARETO_LIMIT", "FRONT_STORE", "SECONDARY", "TIE",
            "secondary_objective"]
@@ -140,9 +145,18 @@ def _violation(margins: np.ndarray) -> np.ndarray:
 
 @dataclass
 class _Summary:
-    """What the sweep keeps between chunks."""
+    """What the sweep keeps of the candidates seen: of one chunk (:meth:`of_chunk`, on a worker), or of many
+    (:meth:`merge`, in the caller).
 
-    constraints: tuple[Constraint, ...]
+    Merging the summaries of the chunks in chunk order gives the same summary whatever ran the chunks: the counts
+    add, the best designs are the ``keep`` smallest objective keys of the union, the front is the Pareto set of the
+    union and the nearest designs the smallest violations of the union, ties always going to the earlier candidate
+    (the rows of each summary stay in the order of the candidates).  The merge is associative as long as the
+    stored front fits :data:`FRONT_STORE`; beyond it the front is thinned after each merge, so the order of the
+    merges matters and the sweep always merges chunk after chunk.
+    """
+
+    n_constraints: int
     keep: int
     variables: tuple = VARIABLES
     evaluated: int = 0
@@ -154,6 +168,8 @@ class _Summary:
     front_Y: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
     near_X: np.ndarray = field(default_factory=lambda: np.empty((0, 6)))
     near_v: np.ndarray = field(default_factory=lambda: np.empty(0))
+    """Nearest designs and their violations: kept only while no candidate is feasible (they explain an infeasible
+    search)."""
     violated: np.ndarray = field(init=False)
     """Per constraint: valid candidates that violate it."""
     single: np.ndarray = field(init=False)
@@ -164,47 +180,76 @@ class _Summary:
     def __post_init__(self) -> None:
         k = len(self.variables)
         self.best_X, self.front_X, self.near_X = np.empty((0, k)), np.empty((0, k)), np.empty((0, k))
-        c = len(self.constraints)
+        c = self.n_constraints
         self.violated = np.zeros(c, dtype=np.int64)
         self.single = np.zeros(c, dtype=np.int64)
         self.pair = np.zeros((c, c), dtype=np.int64)
 
-    def add(self, fig: CandidateFigures, objective: str, pareto: tuple[str, ...]) -> None:
-        self.evaluated += len(fig)
+    @classmethod
+    def of_chunk(cls, fig: CandidateFigures, objective: str, pareto: tuple[str, ...], keep: int,
+                 variables: tuple) -> _Summary:
+        """The summary of the candidates of one chunk (its whole Pareto front: the merge thins it)."""
+        self = cls(fig.margins.shape[0], keep, variables)
+        self.evaluated = len(fig)
         valid = fig.valid
-        self.valid += int(np.count_nonzero(valid))
+        self.valid = int(np.count_nonzero(valid))
         margins = fig.margins
         broken = margins < 0.0                               # NaN (invalid) compares False
         feasible = valid & ~np.any(broken, axis=0)
-        self.feasible += int(np.count_nonzero(feasible))
-        if feasible.any():
+        self.feasible = int(np.count_nonzero(feasible))
+        if self.feasible:
             idx = np.flatnonzero(feasible)
-            X = _stack(fig, idx, self.variables)
             key = _objective_key(fig, objective)[idx]
-            self.best_X, self.best_key = _smallest(np.vstack([self.best_X, X]),
-                                                   np.concatenate([self.best_key, key]), self.keep)
+            best = _smallest(key, keep)
+            self.best_X, self.best_key = _stack(fig, idx[best], variables), key[best]
             Y = np.column_stack([fig.figure(name)[idx] for name in pareto])
-            maximize = [FIGURES[name].better == "max" for name in pareto]
-            on = pareto_mask(Y, maximize)
-            allX = np.vstack([self.front_X, X[on]])
-            allY = np.vstack([self.front_Y.reshape(-1, len(pareto)), Y[on]])
-            keep = pareto_mask(allY, maximize)
-            self.front_X, self.front_Y = _thin(allX[keep], allY[keep], FRONT_STORE)
-        if self.feasible == 0:
+            on = pareto_mask(Y, [FIGURES[name].better == "max" for name in pareto])
+            self.front_X, self.front_Y = _stack(fig, idx[on], variables), Y[on]
+        else:
             v = _violation(margins)
-            few = np.argpartition(v, _NEAREST - 1)[:_NEAREST] if v.size > _NEAREST else np.arange(v.size)
-            self.near_X, self.near_v = _smallest(np.vstack([self.near_X, _stack(fig, few, self.variables)]),
-                                                 np.concatenate([self.near_v, v[few]]), _NEAREST)
+            few = _smallest(v, _NEAREST)
+            self.near_X, self.near_v = _stack(fig, few, variables), v[few]
         nv = np.count_nonzero(broken, axis=0)
         self.violated += np.count_nonzero(broken & valid, axis=1)
         one = valid & (nv == 1)
         if one.any():
-            self.single += np.bincount(np.argmax(broken[:, one], axis=0), minlength=len(self.constraints))
+            self.single += np.bincount(np.argmax(broken[:, one], axis=0), minlength=self.n_constraints)
         two = valid & (nv == 2)
         if two.any():
             b = broken[:, two]
             first, last = np.argmax(b, axis=0), b.shape[0] - 1 - np.argmax(b[::-1], axis=0)
             np.add.at(self.pair, (first, last), 1)
+        return self
+
+    def merge(self, later: _Summary, pareto: tuple[str, ...]) -> None:
+        """Adds the summary of ``later`` candidates (all after those of this one) to this one."""
+        self.evaluated += later.evaluated
+        self.valid += later.valid
+        self.feasible += later.feasible
+        for name in ("violated", "single", "pair"):
+            setattr(self, name, getattr(self, name) + getattr(later, name))
+        if later.best_key.size:
+            X, key = np.vstack([self.best_X, later.best_X]), np.concatenate([self.best_key, later.best_key])
+            best = _smallest(key, self.keep)
+            self.best_X, self.best_key = X[best], key[best]
+        if len(later.front_X):
+            X = np.vstack([self.front_X, later.front_X])
+            Y = np.vstack([self.front_Y.reshape(-1, len(pareto)), later.front_Y])
+            on = pareto_mask(Y, [FIGURES[name].better == "max" for name in pareto])
+            self.front_X, self.front_Y = _thin(X[on], Y[on], FRONT_STORE)
+        if self.feasible:
+            self.near_X, self.near_v = self.near_X[:0], self.near_v[:0]
+        else:
+            X, v = np.vstack([self.near_X, later.near_X]), np.concatenate([self.near_v, later.near_v])
+            near = _smallest(v, _NEAREST)
+            self.near_X, self.near_v = X[near], v[near]
+
+
+def _chunk_summary(req: Requirements, keep: int, index: int) -> _Summary:
+    """Makes chunk ``index`` of the sweep, evaluates it and summarises it: one task of the executor."""
+    x = candidate_chunk(req, index)
+    fig = _evaluate(req, x, constraints_for(req))
+    return _Summary.of_chunk(fig, req.objective, req.search.pareto, keep, req.variables)
 
 
 def _thin(X: np.ndarray, Y: np.ndarray, limit: int) -> tuple[np.ndarray, np.ndarray]:
@@ -219,12 +264,14 @@ def _thin(X: np.ndarray, Y: np.ndarray, limit: int) -> tuple[np.ndarray, np.ndar
     return X, Y
 
 
-def _smallest(X: np.ndarray, key: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+def _smallest(key: np.ndarray, k: int) -> np.ndarray:
+    """Indices of the ``k`` smallest keys, by key and ties by position (NaN last): the same candidates whatever
+    groups the keys were split into and merged from, when each group keeps its rows in order."""
     if key.size > k:
-        part = np.argpartition(key, k - 1)[:k]
-        X, key = X[part], key[part]
-    order = np.argsort(key, kind="stable")
-    return X[order], key[order]
+        kth = np.partition(key, k - 1)[k - 1]
+        candidates = np.flatnonzero(~(key > kth))            # those tied with the k-th too, and NaN
+        return candidates[np.argsort(key[candidates], kind="stable")[:k]]
+    return np.argsort(key, kind="stable")
 
 
 # ------------------------------------------------------------------------------------------------- refinement
@@ -311,6 +358,11 @@ def _refine(req, constraints, x0: np.ndarray, mode: str) -> np.ndarray:
             return x1
         return x0
     return x1 if f1[0] <= f0[0] and c1[-1, 0] >= 0 else x0
+
+
+def _refine_task(req: Requirements, mode: str, x0: np.ndarray) -> np.ndarray:
+    """:func:`_refine` as a task of the executor (the constraints are made where it runs: they hold functions)."""
+    return _refine(req, constraints_for(req), x0, mode)
 
 
 # ------------------------------------------------------------------------------------------- rounding/re-check
@@ -469,7 +521,8 @@ def _ranked(req: Requirements, fig: CandidateFigures) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------------------------------- design
-def design(req: Requirements, progress=None) -> DesignResult:
+def design(req: Requirements, progress=None, *, executor=None, jobs: int | None = None,
+           scheduler=None) -> DesignResult:
     """Feasible designs ranked by the objective, the Pareto front, or the conflicts when nothing is feasible.
 
     Parameters
@@ -478,8 +531,13 @@ def design(req: Requirements, progress=None) -> DesignResult:
         From :func:`~erdesign.design.read_requirements`; ``req.search`` sets the sample size, seed, chunk size,
         refinement, number of designs and Pareto figures (``req.with_search(samples=...)`` changes them).
     progress : callable, optional
-        Called after each chunk of the sweep as ``progress(evaluated, total, feasible)`` (the command line prints
+        Called as chunks of the sweep finish as ``progress(evaluated, total, feasible)`` (the command line prints
         it on long searches).
+    executor, jobs, scheduler : optional
+        Where the chunks of the sweep and the refinements run (:func:`erdesign.executor.executor_for`): serial by
+        default, ``jobs=N`` a local pool of N processes, ``scheduler`` a Dask cluster.  Each worker makes its
+        chunks from the seed and the chunk index and returns their summaries, which are merged here in chunk
+        order: the result is the same, number for number, on any executor.
 
     Returns
     -------
@@ -494,14 +552,35 @@ def design(req: Requirements, progress=None) -> DesignResult:
     >>> r.feasible, r.designs[0]["force_N"] >= 5700.0, r.conflicts
     (True, True, [])
     """
+    ex = executor_for(executor, jobs=jobs, scheduler=scheduler)
+    try:
+        return _design(req, ex, progress)
+    finally:
+        if ex is not executor:          # ours, not the caller's
+            ex.close()
+
+
+def _sweep(req: Requirements, ex: Executor, keep: int, progress=None) -> _Summary:
+    """The summary of every chunk of the sweep, merged in chunk order (chunks that finish early wait)."""
+    s = req.search
+    summary = _Summary(len(constraints_for(req)), keep, req.variables)
+    waiting: dict[int, _Summary] = {}
+    evaluated = feasible = merged = 0
+    for index, part in ex.imap(functools.partial(_chunk_summary, req, keep), range(chunk_count(req))):
+        waiting[index] = part
+        evaluated, feasible = evaluated + part.evaluated, feasible + part.feasible
+        while merged in waiting:
+            summary.merge(waiting.pop(merged), s.pareto)
+            merged += 1
+        if progress is not None:
+            progress(evaluated, s.samples, feasible)
+    return summary
+
+
+def _design(req: Requirements, ex: Executor, progress) -> DesignResult:
     constraints = constraints_for(req)
     s = req.search
-    summary = _Summary(constraints, keep=max(_KEEP_FACTOR * s.designs, _MAX_STARTS), variables=req.variables)
-    for x in candidate_chunks(req):
-        summary.add(_evaluate(req, x, constraints), req.objective, s.pareto)
-        if progress is not None:
-            progress(summary.evaluated, s.samples, summary.feasible)
-
+    summary = _sweep(req, ex, max(_KEEP_FACTOR * s.designs, _MAX_STARTS), progress)
     tol = s.active_tolerance
     result = DesignResult(requirements=req, constraints=constraints, evaluated=summary.evaluated,
                           feasible_count=summary.feasible)
@@ -509,7 +588,7 @@ def design(req: Requirements, progress=None) -> DesignResult:
         X = summary.best_X
         if s.refine:
             starts = min(len(X), _MAX_STARTS if req.configuration == "valve" else 3, max(s.designs, 3))
-            refined = np.array([_refine(req, constraints, x, "objective") for x in X[:starts]])
+            refined = np.array(ex.map(functools.partial(_refine_task, req, "objective"), list(X[:starts])))
             X = np.vstack([refined, X])
             origin = ["refined"] * starts + ["sampled"] * len(summary.best_X)
         else:
@@ -530,7 +609,7 @@ def design(req: Requirements, progress=None) -> DesignResult:
         result.designs = records
         result.pareto = _pareto_records(req, constraints, summary, tol)
     else:
-        result.nearest, result.conflicts = _explain(req, constraints, summary, tol)
+        result.nearest, result.conflicts = _explain(req, constraints, summary, tol, ex)
     result.feasible = bool(result.designs)
     if not result.feasible and not result.conflicts:  # pragma: no cover - feasible samples that fail rounding
         result.conflicts = ["feasible samples were found but none survived rounding to a geometry table"]
@@ -550,7 +629,7 @@ def _pareto_records(req, constraints, summary: _Summary, tol: float) -> list[dic
     return [design_record(req, constraints, fig.take([i]), tables[i], tol, "sampled") for i in range(len(tables))]
 
 
-def _explain(req, constraints, summary: _Summary, tol: float):
+def _explain(req, constraints, summary: _Summary, tol: float, ex: Executor):
     """Nearest design and the list of conflicts, for a sweep with no feasible sample."""
     conflicts: list[str] = []
     if summary.valid == 0:
@@ -558,7 +637,7 @@ def _explain(req, constraints, summary: _Summary, tol: float):
                        "duct_mean_diameter can hold within design.bounds")]
     X = summary.near_X[np.isfinite(summary.near_v)]
     if req.search.refine:
-        X = np.vstack([np.array([_refine(req, constraints, x, "violation") for x in X[:3]]), X])
+        X = np.vstack([np.array(ex.map(functools.partial(_refine_task, req, "violation"), list(X[:3]))), X])
     fig = _evaluate(req, _unstack(X, req), constraints)
     best = int(np.argmin(_violation(fig.margins)))
     tables, near = _rounded(req, constraints, X[[best]], need_feasible=False)
