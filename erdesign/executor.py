@@ -35,7 +35,7 @@ from typing import Any
 from erdesign.errors import ErdesignError
 
 __all__ = ["Executor", "SerialExecutor", "PoolExecutor", "DaskExecutor", "ExecutorError", "executor_for",
-           "executor_scope", "default_jobs"]
+           "executor_scope", "default_jobs", "dask_worker_environ"]
 
 #: ``progress(done, total)``: called in the calling process after each finished task.
 Progress = Callable[[int, int], None]
@@ -54,16 +54,48 @@ def default_jobs() -> int:
 
 
 def _one_blas_thread() -> None:
-    """Pool initializer: one BLAS / OpenMP thread in this worker process."""
+    """Once per worker process: one BLAS / OpenMP thread.  numpy and scipy's linear algebra (each wheel brings its
+    own OpenBLAS) are loaded first, because :mod:`threadpoolctl` limits only the libraries already loaded."""
+    global _LIMITED
+    if _LIMITED:
+        return
+    import scipy.linalg  # noqa: F401  (loads scipy's BLAS)
     from threadpoolctl import threadpool_limits
     threadpool_limits(limits=1)
+    _LIMITED = True
+
+
+# Set once in a worker process by _one_blas_thread (a process-wide setting, like the BLAS's own thread count).
+_LIMITED = False
 
 
 def _call_with_one_blas_thread(fn: Callable, item: Any) -> Any:
-    """A task on a Dask worker: the worker process is not ours to configure, so the limit is set per call."""
-    from threadpoolctl import threadpool_limits
-    with threadpool_limits(limits=1):
-        return fn(item)
+    """A task on a Dask worker: the worker process is not ours to configure, so the first task of each process
+    limits its BLAS threads (Dask's nanny usually starts workers with one thread already)."""
+    _one_blas_thread()
+    return fn(item)
+
+
+def _check_address(address: str) -> None:
+    """A scheduler address that is not ``[tcp://]host:port``, or where nothing listens, is a clear error here -
+    before a ``distributed.Client`` is made, whose failed connection would print a traceback when collected."""
+    import socket
+    from urllib.parse import urlsplit
+    text = address if "://" in address else f"tcp://{address}"
+    parts = urlsplit(text)
+    try:
+        port = parts.port
+    except ValueError:
+        port = None
+    if parts.scheme not in ("tcp", "tls") or not parts.hostname or port is None:
+        raise ExecutorError(f"scheduler: {address!r} is not a Dask scheduler address (expected tcp://host:port, "
+                            "e.g. tcp://10.0.0.5:8786)")
+    if parts.scheme == "tcp":
+        try:
+            socket.create_connection((parts.hostname, port), timeout=10).close()
+        except OSError as exc:
+            raise ExecutorError(f"scheduler: cannot reach the Dask scheduler at {address} "
+                                f"({exc.strerror or exc}); is it running, and is the address right?") from None
 
 
 class Executor:
@@ -189,6 +221,8 @@ class DaskExecutor(Executor):
         if isinstance(cluster, distributed.Client):
             self.client = cluster
         else:
+            if isinstance(cluster, str):
+                _check_address(cluster)
             try:
                 self.client = distributed.Client(cluster, timeout="20s", set_as_default=False)
             except (OSError, TimeoutError, ValueError) as exc:
@@ -223,6 +257,14 @@ class DaskExecutor(Executor):
     def close(self):
         if self._own_client:
             self.client.close()
+
+
+def dask_worker_environ() -> dict[str, str]:
+    """Environment for Dask worker processes (``distributed.nanny.pre-spawn-environ``) that keeps glibc's malloc
+    from mapping and unmapping every large numpy array: Dask's default ``MALLOC_TRIM_THRESHOLD_`` of 64 KiB costs
+    erdesign's tasks 30 % more CPU (measured in docs/scale.md).  Large trim and mmap thresholds restore the
+    behaviour of a plain Python process."""
+    return {"MALLOC_TRIM_THRESHOLD_": str(128 * 2**20), "MALLOC_MMAP_THRESHOLD_": str(64 * 2**20)}
 
 
 def executor_for(executor: Executor | Any | None = None, *, jobs: int | None = None,

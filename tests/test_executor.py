@@ -75,3 +75,11 @@ def test_defaults_and_chunks():
     assert isinstance(executor_for(jobs=3), PoolExecutor)
     assert chunks(10, 4) == [(0, 4), (4, 8), (8, 10)]
     assert sum(b - a for a, b in chunks(10**6 + 3, 65536)) == 10**6 + 3
+
+
+@pytest.mark.parametrize("address, message", [("nonsense", "not a Dask scheduler address"),
+                                              ("tcp://127.0.0.1:9", "cannot reach the Dask scheduler")])
+def test_bad_scheduler_address_is_a_clear_error(address, message):
+    pytest.importorskip("distributed")
+    with pytest.raises(ExecutorError, match=message):
+        executor_for(scheduler=address)

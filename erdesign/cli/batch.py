@@ -9,7 +9,7 @@ import time
 
 import click
 
-from .main import cli, emit_json, json_number
+from .main import cli, emit_json, executor_options, json_number
 
 __all__ = ["batch"]
 
@@ -70,11 +70,7 @@ class Progress:
               help="Wall-time budget of each record's identification (identify).")
 @click.option("--decimate", default=None, type=click.IntRange(1, 1000), metavar="K",
               help="Fit on every K-th sample only (identify).")
-@click.option("--jobs", default=None, type=click.IntRange(min=1), metavar="N",
-              help="Worker processes (default: all cores; 1 runs in this process).")
-@click.option("--scheduler", default=None, metavar="ADDRESS",
-              help="A Dask distributed scheduler, e.g. tcp://10.0.0.5:8786 (its workers need erdesign and the "
-                   "files).")
+@executor_options(default_jobs="all")
 @click.option("--out", "out", required=True, metavar="T.csv|T.parquet", help="The table to write.")
 @click.option("--resume", is_flag=True, help="Keep the rows already in the table (same file content, damper and "
                                               "effects) and run only the rest.")
@@ -83,7 +79,7 @@ class Progress:
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON summary object instead of a summary line.")
 def batch(command: str, records: tuple[str, ...], manifest: str | None, damper_file: str | None, effects: str,
           exclude_clipped: bool | None, force_noise: str | None, model_name: str | None, starts: int | None,
-          max_time: float | None, decimate: int | None, jobs: int | None, scheduler: str | None, out: str,
+          max_time: float | None, decimate: int | None, executor: dict, out: str,
           resume: bool, save_every: float, as_json: bool) -> None:
     """Run identify, fit or diagnose on every record; one row per record in one table.
 
@@ -92,17 +88,13 @@ def batch(command: str, records: tuple[str, ...], manifest: str | None, damper_f
     from the batch's median, robust z-score above 5) are flagged in the 'outlier' column.
     """
     from ..campaign.batch import run_batch
-    from ..executor import default_jobs
     from .diagnose import force_noise_option
 
-    if jobs is not None and scheduler:
-        raise click.UsageError("give --jobs or --scheduler, not both")
     force_noise_option(force_noise)             # a bad value is named before any record runs
     options = {"exclude_clipped": exclude_clipped, "force_noise": force_noise, "model": model_name,
                "starts": starts, "max_time": max_time, "decimate": decimate}
     result = run_batch(command, records, manifest=manifest, damper=damper_file, effects=effects, options=options,
-                       out=out, resume=resume, jobs=None if scheduler else (jobs or default_jobs()),
-                       scheduler=scheduler, progress=Progress(), save_every=save_every)
+                       out=out, resume=resume, **executor, progress=Progress(), save_every=save_every)
     summary = result.summary()
     if as_json:
         emit_json({k: json_number(v) if isinstance(v, float) else v for k, v in summary.items()})

@@ -9,7 +9,7 @@ import click
 from .._util import check_output_path
 from ..design import design as run_design
 from ..design import read_requirements
-from .main import cli, emit_json
+from .main import cli, emit_json, executor_options
 
 __all__ = ["design"]
 
@@ -34,20 +34,13 @@ Rounding and ties ([design.search] of the requirements file):
               help="Also write the ranked designs, the Pareto front (and the nearest design when nothing is "
                    "feasible) to a CSV file with units in the header.")
 @click.option("--force", is_flag=True, help="Let --out replace an existing file (never the requirements file).")
-@click.option("--jobs", type=click.IntRange(min=1), default=1, show_default=True, metavar="N",
-              help="Sweep the chunks of the design space on N local processes (the same designs as with 1).")
-@click.option("--scheduler", default=None, metavar="ADDRESS",
-              help="Sweep on the workers of a Dask cluster, e.g. tcp://host:8786 (instead of --jobs).")
-def design(requirements_file: str, as_json: bool, out: str | None, force: bool, jobs: int,
-           scheduler: str | None) -> None:
+@executor_options(default_jobs="1")
+def design(requirements_file: str, as_json: bool, out: str | None, force: bool, executor: dict) -> None:
     """Feasible damper geometries ranked by the objective, or the conflicts when there are none."""
-    if scheduler is not None and jobs != 1:
-        raise click.UsageError("--jobs and --scheduler: give one of them (the cluster's workers replace the local "
-                               "processes)")
     if out is not None:  # checked before the search: a refused name must not cost a long run
         out, _ = check_output_path(out, force=force, inputs={"the requirements file": requirements_file},
                                    formats={".csv": "csv"})
-    result = run_design(read_requirements(requirements_file), progress=_Progress(), jobs=jobs, scheduler=scheduler)
+    result = run_design(read_requirements(requirements_file), progress=_Progress(), **executor)
     if out is not None:
         result.write_csv(out)
     if as_json:

@@ -11,7 +11,7 @@ import click
 from ..damper.files import load_damper
 from ..data.measurement import check_against_damper, read_measurement
 from ..diagnosis.diagnose import diagnose as run_diagnosis
-from .main import cli, emit_json
+from .main import cli, emit_json, executor_options
 
 __all__ = ["diagnose", "next_command", "read_records", "force_noise_option"]
 
@@ -73,13 +73,10 @@ def next_command(measurement: str | Sequence[str], damper_file: str, effects: li
                    "(clipped samples it is sure of are left out anyway).")
 @click.option("--force-noise", default=None, metavar="F",
               help='The load cell\'s noise when known, e.g. "5 N" (otherwise estimated from the record).')
-@click.option("--jobs", default=1, show_default=True, type=click.IntRange(min=1), metavar="N",
-              help="Fit the candidate effects on N worker processes (the diagnosis is the same for any N).")
-@click.option("--scheduler", default=None, metavar="ADDRESS",
-              help="Fit the candidates on a Dask distributed cluster, e.g. tcp://10.0.0.5:8786.")
+@executor_options(default_jobs="1")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
 def diagnose(measurements: tuple[str, ...], damper_file: str, effects: str, exclude_clipped: bool,
-             force_noise: str | None, jobs: int, scheduler: str | None, as_json: bool) -> None:
+             force_noise: str | None, executor: dict, as_json: bool) -> None:
     """Calibrate the physics baseline, show where it fails and rank the effects that could be missing.
 
     The verdict is a missing effect, nothing missing (the residual is at the noise floor) or unexplained (no
@@ -89,7 +86,7 @@ def diagnose(measurements: tuple[str, ...], damper_file: str, effects: str, excl
     damper = load_damper(damper_file)
     records = read_records(measurements, damper)
     result = run_diagnosis(damper, records, effects, exclude_clipped=True if exclude_clipped else None,
-                           force_noise=force_noise_option(force_noise), jobs=jobs, scheduler=scheduler)
+                           force_noise=force_noise_option(force_noise), **executor)
     if as_json:
         emit_json(result.as_json())
         return

@@ -113,6 +113,35 @@ def install_option_checks(group: click.Group) -> None:
                 param.callback = check_effects_option
 
 
+def executor_options(default_jobs: str):
+    """The ``--jobs N`` and ``--scheduler ADDRESS`` options of a command whose independent tasks run on an executor
+    (:mod:`erdesign.executor`).  ``default_jobs`` is ``"all"`` (all cores) or ``"1"`` (in this process: for
+    commands whose usual run is shorter than starting a pool).  The command receives ``executor``: a dict of
+    ``jobs`` and ``scheduler`` for :func:`erdesign.executor.executor_for`.  Giving both is a usage error."""
+    default_text = "all cores" if default_jobs == "all" else "1: in this process"
+
+    def decorate(command):
+        def settle(ctx, param, value):
+            jobs, scheduler = ctx.params.pop("jobs", None), value
+            if jobs is not None and scheduler:
+                raise click.UsageError("--jobs and --scheduler: give one of them (the cluster's workers replace "
+                                       "the local processes)")
+            if scheduler:
+                return {"jobs": None, "scheduler": scheduler}
+            if jobs is None:
+                from ..executor import default_jobs as all_cores
+                jobs = all_cores() if default_jobs == "all" else 1
+            return {"jobs": jobs, "scheduler": None}
+
+        command = click.option("--scheduler", "executor", default=None, metavar="ADDRESS", callback=settle,
+                               help="Run the tasks on a Dask distributed cluster, e.g. tcp://10.0.0.5:8786 (its "
+                                    "workers need erdesign and the files).")(command)
+        return click.option("--jobs", default=None, type=click.IntRange(min=1), metavar="N", is_eager=True,
+                            help=f"Run the independent tasks on N local processes (default: {default_text}); the "
+                                 "results are the same for any N.")(command)
+    return decorate
+
+
 def emit_json(obj: dict) -> None:
     click.echo(json.dumps(obj, allow_nan=False))
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import click
 
-from .main import cli, emit_json, json_number
+from .main import cli, emit_json, executor_options, json_number
 from .size import quantity_option
 
 __all__ = ["tolerance"]
@@ -35,14 +35,13 @@ _LABELS = {"force_N": ("force", "kN", 1e3), "zero_field_force_N": ("zero-field f
 @click.option("--seed", default=0, show_default=True, type=int, help="Seed: same seed, same numbers anywhere.")
 @click.option("--sobol-samples", "sobol_base", default=None, type=int, metavar="N",
               help="Base samples of the Sobol design (default: a power of two near SAMPLES / (inputs + 2)).")
-@click.option("--jobs", default=None, type=int, help="Local worker processes (default: all cores).")
-@click.option("--scheduler", default=None, metavar="ADDRESS", help="A Dask scheduler, e.g. tcp://host:8786.")
+@executor_options(default_jobs="all")
 @click.option("--out", default=None, metavar="SAMPLES.parquet",
               help="Write every sample (inputs and outputs, SI) to a .parquet or .csv file.")
 @click.option("--force", "overwrite", is_flag=True, help="Let --out replace an existing file.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units) instead of a table.")
 def tolerance(damper_file: str, vary: tuple[str, ...], velocity: str, field: str | None, samples: int, seed: int,
-              sobol_base: int | None, jobs: int | None, scheduler: str | None, out: str | None, overwrite: bool,
+              sobol_base: int | None, executor: dict, out: str | None, overwrite: bool,
               as_json: bool) -> None:
     """Spread of force, zero-field force, dynamic range and damping constant under tolerances, with Sobol indices."""
     from .._util import check_output_path
@@ -53,7 +52,6 @@ def tolerance(damper_file: str, vary: tuple[str, ...], velocity: str, field: str
         write_samples,
     )
     from ..damper.files import load_damper
-    from ..executor import default_jobs
     from ..units import to_si
 
     if samples < 1:
@@ -62,8 +60,6 @@ def tolerance(damper_file: str, vary: tuple[str, ...], velocity: str, field: str
         raise click.BadParameter(f"must be >= 0, got {seed}", param_hint="--seed")
     if sobol_base is not None and (sobol_base < 2 or sobol_base & (sobol_base - 1)):
         raise click.BadParameter(f"must be a power of two >= 2, got {sobol_base}", param_hint="--sobol-samples")
-    if jobs is not None and jobs < 1:
-        raise click.BadParameter(f"must be >= 1, got {jobs}", param_hint="--jobs")
     fmt = None
     if out is not None:
         out, fmt = check_output_path(out, force=overwrite, formats=SAMPLE_FORMATS, inputs={"the damper file":
@@ -75,8 +71,7 @@ def tolerance(damper_file: str, vary: tuple[str, ...], velocity: str, field: str
                               "--field")
     result = tolerance_study(damper, variations, velocity=float(v), field=float(E), samples=samples, seed=seed,
                              sobol_base=sobol_base, keep_samples=out is not None,
-                             jobs=default_jobs() if jobs is None and scheduler is None else jobs,
-                             scheduler=scheduler)
+                             **executor)
     if out is not None:
         write_samples(result, out, fmt)
     if as_json:
