@@ -1,7 +1,7 @@
 """Benchmark: campaigns on the executor (issue 24) - throughput on 2 workers against serial, and what the executor
 costs per task.  Not a test: timings depend on the machine and its load.
 
-Run:  python benchmarks/bench_campaign.py [--part design|scheduler|all] [--workers 2]
+Run:  python benchmarks/bench_campaign.py [--part batch|tolerance|design|scheduler|all] [--workers 2]
 
 Parts (each prints its own baseline, measured in the same run, and ratios to it):
 
@@ -17,7 +17,13 @@ Parts (each prints its own baseline, measured in the same run, and ratios to it)
   one task (submit, wait for the result, ``--round-trips`` times), and the same two figures for the local process
   pool.  These are the per-task costs of docs/scale.md's projection to many workers.
 
-Other parts (batch, tolerance) plug in by name in :data:`PARTS`.
+* ``batch`` - records per second of :func:`erdesign.campaign.batch.run_batch` (``erdesign batch``) identifying
+  (Bingham), fitting and diagnosing ``--records`` / ``--diagnose-records`` one-cycle truth-rig records of Makris's
+  damper, serially and on a warmed-up local pool; the tables are checked identical (``seconds`` apart).
+* ``tolerance`` - Monte-Carlo samples per second of :func:`erdesign.campaign.tolerance.tolerance_study` on a valve
+  and a mixed-mode damper, serially and on the pool; quantiles checked identical.
+
+Parts plug in by name in :data:`PARTS`.
 """
 
 from __future__ import annotations
@@ -157,8 +163,88 @@ def part_scheduler(args) -> None:
           f"95th percentile {1e3 * np.percentile(lat, 95):6.2f} ms")
 
 
+# ---------------------------------------------------------------------------------------------------------- batch
+def _truth_records(folder: Path, n: int) -> list[str]:
+    """``n`` one-cycle records (100 Hz, 101 samples) of Makris's damper from the independent truth rig, each with
+    its own noise seed (the records of tests/test_batch.py)."""
+    from erdesign import load_example
+    from erdesign.data.measurement import write_measurement
+    from erdesign.simulation.rig import sine
+    from erdesign.simulation.truthrig import TruthDamper, simulate_truth
+
+    damper = load_example("makris")
+    motion = sine(0.01, 1.0, damper.fluid.reference_field, cycles=1, rate=100)
+    truth = TruthDamper(damper, {}, viscosity_factor=1.05, yield_stress_factor=0.95)
+    paths = []
+    for i in range(n):
+        path = folder / f"r{i:04d}.csv"
+        write_measurement(path, simulate_truth(truth, motion, seed=i, name=path.name).measured)
+        paths.append(str(path))
+    return paths
+
+
+def part_batch(args) -> None:
+    import tempfile
+
+    from erdesign.campaign.batch import run_batch
+    from erdesign.executor import PoolExecutor, SerialExecutor
+
+    def without_seconds(result):
+        return [{k: v for k, v in row.items() if k != "seconds"} for row in result.rows]
+
+    with tempfile.TemporaryDirectory() as tmp:
+        counts = {"identify": args.records, "fit": args.records, "diagnose": args.diagnose_records}
+        paths = _truth_records(Path(tmp), max(counts.values()))
+        options = {"identify": {"model": "bingham"}, "fit": {}, "diagnose": {}}
+        pool = PoolExecutor(args.workers)
+        _, t_start = _timed(lambda: run_batch("fit", paths[:2 * args.workers], damper="makris", executor=pool))
+        print(f"batch of truth-rig records (Makris damper, 101 samples each), {args.workers} workers; local pool "
+              f"started and warmed up in {t_start:.2f} s (not in the rates)")
+        try:
+            for command, n in counts.items():
+                if n <= 0:
+                    continue
+                kw = dict(damper="makris", options=options[command])
+                serial, t_serial = _timed(lambda: run_batch(command, paths[:n], executor=SerialExecutor(), **kw))
+                pooled, t_pool = _timed(lambda: run_batch(command, paths[:n], executor=pool, **kw))
+                same = without_seconds(serial) == without_seconds(pooled)
+                print(f"  {command:<9} {n:5d} records: serial {n / t_serial:8.2f} records/s ({t_serial:7.1f} s), "
+                      f"pool {n / t_pool:8.2f} records/s ({t_pool:7.1f} s)  x{t_serial / t_pool:4.2f} of serial  "
+                      f"{'same table' if same else 'DIFFERENT TABLE'}; {t_serial / n * 1e3:8.1f} ms per record")
+        finally:
+            pool.close()
+
+
+# ------------------------------------------------------------------------------------------------------ tolerance
+def part_tolerance(args) -> None:
+    from erdesign import load_example
+    from erdesign.campaign.tolerance import tolerance_study
+    from erdesign.executor import PoolExecutor, SerialExecutor
+
+    cases = [("valve (makris)", "makris", "0.1 m/s", 2e6), ("mixed (mr_mixed)", "mr_mixed", "0.1 m/s", None)]
+    vary = ["geometry.gap=+-2.5 %", "fluid.viscosity=+-10 %", "fluid.yield_stress=+-15 %"]
+    pool = PoolExecutor(args.workers)
+    print(f"tolerance study, {args.samples:,} Monte-Carlo samples, no Sobol indices, {args.workers} workers")
+    try:
+        for label, name, v, E in cases:
+            damper = load_example(name)
+            field = E if E is not None else float(damper.fluid.reference_field)
+            kw = dict(velocity=0.1, field=field, samples=args.samples, sensitivity=False, seed=1)
+            tolerance_study(damper, vary, **{**kw, "samples": 2 * 65536}, executor=pool)        # warm the workers
+            serial, t_serial = _timed(lambda: tolerance_study(damper, vary, **kw, executor=SerialExecutor()))
+            pooled, t_pool = _timed(lambda: tolerance_study(damper, vary, **kw, executor=pool))
+            same = serial.quantiles == pooled.quantiles
+            print(f"  {label:<18} serial {args.samples / t_serial / 1e6:6.2f} M samples/s ({t_serial:6.2f} s), "
+                  f"pool {args.samples / t_pool / 1e6:6.2f} M samples/s  x{t_serial / t_pool:4.2f} of serial  "
+                  f"{'same quantiles' if same else 'DIFFERENT QUANTILES'}")
+    finally:
+        pool.close()
+
+
 #: Part name -> function(args): ``--part NAME`` runs one, ``--part all`` every one in this order.
 PARTS = {
+    "batch": part_batch,
+    "tolerance": part_tolerance,
     "design": part_design,
     "scheduler": part_scheduler,
 }
@@ -172,6 +258,9 @@ def main() -> None:
     parser.add_argument("--n", type=int, default=2**21, help="valve-damper candidates of the design part")
     parser.add_argument("--mixed", type=int, default=2**17, help="mixed-mode candidates of the design part (0: skip)")
     parser.add_argument("--chunk", type=int, default=2**14, help="candidates per chunk (task) of the design part")
+    parser.add_argument("--records", type=int, default=1000, help="records of the batch part (identify, fit)")
+    parser.add_argument("--diagnose-records", type=int, default=1000, help="records of the batch part's diagnose")
+    parser.add_argument("--samples", type=int, default=10**6, help="Monte-Carlo samples of the tolerance part")
     parser.add_argument("--tasks", type=int, default=5000, help="empty tasks of the scheduler part")
     parser.add_argument("--round-trips", type=int, default=200, help="one-task round trips of the scheduler part")
     args = parser.parse_args()
