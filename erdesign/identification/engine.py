@@ -14,7 +14,7 @@ import copy
 import math
 import time as _time
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -808,7 +808,8 @@ def solve(pb: Problem, st: Strategy, progress=None):
                                                     progress if here else None)
         candidates = _candidates(pb, st, deadline, progress)
         items = [(i, len(candidates), z) for i, z in enumerate(candidates)]
-        task = partial(_start_task, pb, st, deadline, progress if here else None, residual)
+        # the tasks carry the strategy without its executor (a pool or a client is not sent to its own workers)
+        task = partial(_start_task, pb, replace(st, executor=None), deadline, progress if here else None, residual)
         if st.rescue:
             outcomes = [_start_task(pb, st, deadline, progress, residual, items[0])]
             first = outcomes[0]
