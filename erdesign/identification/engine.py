@@ -1,11 +1,13 @@
 r"""The pieces every fit of erdesign shares, written once: which parameters are free, the search space (log space
 for log-scale parameters), the penalty for non-finite residuals, the stopping tolerance, the start box of
-multi-starts, the uncertainty of the free parameters and the threshold of a "strong" correlation.
+multi-starts, the uncertainty of the free parameters, the threshold of a "strong" correlation, the one rule of a
+parameter "at a bound" (:func:`at_bound`), and the one solver: :func:`solve` of a :class:`Problem` (what is fitted)
+by a :class:`Strategy` (how: starts, global search, projection, time budget, stall rule, executor).
 
 :func:`erdesign.identification.fit.fit`, :func:`erdesign.identification.identify.identify`,
 :func:`~erdesign.identification.identify.identify_joint` and the diagnosis's calibration
-(:mod:`erdesign.diagnosis.calibration`) build their fits from these, so that a model fitted by any of them to the
-same samples is set up the same way.
+(:mod:`erdesign.diagnosis.calibration`, through ``fit``) build a problem and a strategy and call :func:`solve`, so
+that a model fitted by any of them to the same samples is set up and searched the same way.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import copy
 import math
 import time as _time
 from collections.abc import Mapping, Sequence
+from contextlib import nullcontext
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -24,18 +27,29 @@ from ..models._kernels import frozen_substeps
 from ..models.base import Model
 
 __all__ = [
+    "AT_BOUND_RTOL",
     "CORRELATION_THRESHOLD",
+    "FAIL_RATIO",
     "FTOL",
     "PENALTY",
+    "STALL_RTOL",
     "FitError",
+    "Outcome",
+    "Problem",
     "Residual",
+    "Strategy",
     "SumOfSquares",
     "Transform",
     "ValueMap",
+    "at_bound",
+    "baseline_esr",
     "control_reference_for",
     "finite_residual",
     "local_fit",
+    "mostly_at_bounds",
+    "problem",
     "resolve_free",
+    "solve",
     "start_box",
     "strong_correlations",
     "uncertainty",
@@ -116,6 +130,10 @@ class Residual:
         self.weights, self.deadline, self.progress = weights, deadline, progress
         self.forces = [r.require_force() for r in self.records]
         self.total = sum(len(r) if m is None else int(m.sum()) for r, m in zip(self.records, self.masks))
+        compared = [(1.0 if weights is None else w) * (F if m is None else F[m])
+                    for F, m, w in zip(self.forces, self.masks, weights or [None] * len(self.forces))]
+        self.spread = float(sum(np.sum((c - c.mean()) ** 2) for c in compared))
+        """Sum of squares of the compared (weighted) forces about their mean: the ESR's denominator."""
         self.calls, self.best_cost, self.best_z, self.last_report = 0, math.inf, None, _time.monotonic()
 
     def __call__(self, z: np.ndarray) -> np.ndarray:
@@ -670,7 +688,7 @@ def _tracked_start(pb: Problem, st: Strategy, deadline, progress, label, z_start
                 res = Outcome(np.empty(0), tracker.best_cost, True, 1, "linear least squares: every free parameter "
                               "enters the force linearly", tracker.calls)
             else:
-                with coarse_steps() if st.coarse_steps else _nothing():
+                with coarse_steps() if st.coarse_steps else nullcontext():
                     sol = least_squares(tracker, zn, jac=tracker.jacobian, bounds=(lon, hin), method="trf",
                                         x_scale="jac", max_nfev=st.max_nfev, ftol=FTOL, xtol=1e-8)
                 res = Outcome(sol.x, 2.0 * sol.cost, bool(sol.success), int(sol.status), str(sol.message),
@@ -707,14 +725,6 @@ def _tracked_start(pb: Problem, st: Strategy, deadline, progress, label, z_start
                    tracker.spread, out_of_time)
 
 
-class _nothing:
-    def __enter__(self):
-        return None
-
-    def __exit__(self, *exc):
-        return False
-
-
 def _plain_start(residual, lo, hi, max_nfev, z) -> Outcome:
     """One start of :func:`local_fit` on a :class:`Residual` (fit, calibration, joint fits).  A task."""
     try:
@@ -722,9 +732,9 @@ def _plain_start(residual, lo, hi, max_nfev, z) -> Outcome:
     except _OutOfTime:
         x = np.clip(z, lo, hi) if residual.best_z is None else residual.best_z
         return Outcome(x, residual.best_cost, False, 0, "stopped by max_time: the best point found so far",
-                       0, None, residual.calls, out_of_time=True)
+                       0, None, residual.calls, residual.spread, out_of_time=True)
     return Outcome(res.x, 2.0 * res.cost, bool(res.success), int(res.status), str(res.message), int(res.nfev),
-                   res.jac, residual.calls)
+                   res.jac, residual.calls, residual.spread)
 
 
 def _start_task(pb: Problem, st: Strategy, deadline, progress, residual, item) -> Outcome:
