@@ -204,7 +204,7 @@ def test_one_at_bound_rule():
     assert not mostly_at_bounds(bingham, ["c0", "f0"], values)
     # one implementation: the report, the poor-fit check and the diagnosis call it
     root = pathlib.Path(erdesign.__file__).parent
-    defs = [p for p in root.rglob("*.py") if re.search(r"^def \w*at_bounds?\(", p.read_text(), re.M)]
+    defs = [p for p in root.rglob("*.py") if re.search(r"^def \w*at_bounds?\(", p.read_text(), re.MULTILINE)]
     assert sorted(p.name for p in defs) == ["candidates.py", "engine.py"]  # engine: at_bound, mostly_at_bounds
     assert "at_bound(" in (root / "diagnosis" / "candidates.py").read_text()
     assert "at_bound(" in (root / "identification" / "result.py").read_text()
