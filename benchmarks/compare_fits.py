@@ -47,7 +47,8 @@ def _spencer_record(n=2001):
 
 def _entry(result):
     values = getattr(result, "values", {})
-    e = result.esr
+    e = [r["esr"] for r in result.records] if getattr(result, "records", None) and hasattr(result, "names") \
+        else result.esr
     return {"esr": [float(x) for x in e] if isinstance(e, (list, tuple)) else float(e),
             "values": {k: float(v) for k, v in values.items()}, "success": bool(getattr(result, "success", True))}
 

@@ -147,3 +147,65 @@ def test_cross_validation_on_a_process_pool_gives_the_serial_table():
         pooled = cross_validation(partial(get_model, "kwok_tanh"), recs, starts=1, max_nfev=30, executor=pool)
     assert np.array_equal(serial.table, pooled.table) and serial.names == pooled.names
     assert serial.table[1, 1] < serial.table[0, 1]     # a model scores best on the record it was identified on
+
+
+def test_solve_with_three_starts_on_a_process_pool_equals_serial():
+    from erdesign.executor import PoolExecutor
+    from erdesign.identification.engine import Strategy, problem, solve
+    pb = problem(get_model("kwok_tanh"), [_record()], control_reference=False)
+    serial = solve(pb, Strategy(starts=3, max_nfev=40))
+    with PoolExecutor(2) as pool:
+        pooled = solve(pb, Strategy(starts=3, max_nfev=40, executor=pool))
+    assert serial.extra["starts_tried"] == pooled.extra["starts_tried"] == 3
+    assert pooled.values == serial.values and pooled.esr == serial.esr and pooled.stderr == serial.stderr
+    # the tracked strategy (identify's) too
+    tracked = Strategy(starts=3, max_nfev=40, tracked=True, projection=True)
+    a = solve(pb, tracked)
+    with PoolExecutor(2) as pool:
+        b = solve(pb, Strategy(**{**tracked.__dict__, "executor": pool}))
+    assert a.values == b.values and a.esr == b.esr
+
+
+#: A start of the modified Bouc-Wen model far from the record's (n at its upper bound 10, delta at its lower
+#: bound, beta and gamma at -1e12): alone, the fit ends at ESR 42.6 against 0.0397 for the reference.
+BAD_START = {"n": 10.0, "delta": 1e-6, "beta": -1e12, "gamma": -1e12}
+
+
+def test_a_poor_first_start_is_rescued_by_the_extra_starts(quiroz_record):
+    from erdesign.executor import PoolExecutor
+    alone = identify(get_model("bouc_wen_modified"), quiroz_record, starts=1, start=BAD_START)
+    assert alone.esr > 100 * alone.extra["baseline_esr"] and alone.extra["poor_fit"] and not alone.success
+    rescued = identify(get_model("bouc_wen_modified"), quiroz_record, starts=4, start=BAD_START)
+    # the first start, the model's own guess (the reference's yield force and viscous coefficient) and three
+    # Latin-hypercube starts, all run; the best is as good as a fit from the guess
+    assert rescued.extra["starts_tried"] == 5
+    assert rescued.esr == pytest.approx(0.00879, abs=5e-5) and rescued.success and not rescued.extra["poor_fit"]
+    with PoolExecutor(2) as pool:
+        pooled = identify(get_model("bouc_wen_modified"), quiroz_record, starts=4, start=BAD_START, executor=pool)
+    assert pooled.values == rescued.values and pooled.esr == rescued.esr
+
+
+def test_one_at_bound_rule():
+    import pathlib
+    import re
+
+    import erdesign
+    from erdesign.identification.engine import at_bound, mostly_at_bounds
+    from erdesign.parameters import Parameter
+    k = Parameter("k", "N/m", 1000.0, 0.0, 1e9)
+    # tolerance 1e-6 of the range, or of 1e3 x the parameter's scale when that is smaller (here 1e6 -> 1 N/m)
+    assert at_bound(k, 0.5) == "lower" and at_bound(k, 259.0) is None and at_bound(k, 1e9 - 1e2) == "upper"
+    assert at_bound(k, 5.0) is None and at_bound(k, 5.0, stderr=10.0) == "lower"  # within one standard error
+    c = Parameter("c", "N*s/m", 1e3, 1.0, 1e8, log_scale=True)  # log space: 1e-6 of ln(1e8) = 1.8e-5
+    assert at_bound(c, 1.00001) == "lower" and at_bound(c, 1.001) is None and at_bound(c, 1e8 * 0.99999) == "upper"
+    bingham = get_model("bingham")
+    values = {"c0": 0.0, "f_c": 0.0, "f0": 3.0}
+    assert mostly_at_bounds(bingham, ["c0", "f_c", "f0"], values)
+    assert not mostly_at_bounds(bingham, ["c0", "f0"], values)
+    # one implementation: the report, the poor-fit check and the diagnosis call it
+    root = pathlib.Path(erdesign.__file__).parent
+    defs = [p for p in root.rglob("*.py") if re.search(r"^def \w*at_bounds?\(", p.read_text(), re.MULTILINE)]
+    assert sorted(p.name for p in defs) == ["candidates.py", "engine.py"]  # engine: at_bound, mostly_at_bounds
+    assert "at_bound(" in (root / "diagnosis" / "candidates.py").read_text()
+    assert "at_bound(" in (root / "identification" / "result.py").read_text()
+    assert "mostly_at_bounds(" in (root / "identification" / "identify.py").read_text()

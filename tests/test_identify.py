@@ -43,9 +43,10 @@ def test_identify_joint_recovers_current_dependence():
     for k in ("c0", "f_c", "f_c_u", "c0_u"):
         # 1200 samples with 5 N noise on forces of 150-1000 N: the slopes are known to well under 2 %
         assert res.values[k] == pytest.approx(TRUE[k], rel=0.02), k
-    for r, e in zip(recs, res.esr):
+    for r, e in zip(recs, res.record_esr):
         # every record at its own noise floor (within 25 %: 400 samples each)
         assert e == pytest.approx(25.0 / np.var(r.force), rel=0.25)
+    assert res.esr == pytest.approx(np.mean(res.record_esr))  # a FitResult: its ESR is the records' mean
 
 
 def test_identify_joint_without_control_holds_the_slopes():

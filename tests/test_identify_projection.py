@@ -7,9 +7,9 @@ of the fitted family made: a synthetic record of the modified Bouc-Wen model wit
 import numpy as np
 import pytest
 
-import erdesign.identification.identify as ident
 from erdesign.data.measurement import Measurement
 from erdesign.data.quiroz import quiroz_folder, read_quiroz_sinusoid
+from erdesign.identification import engine
 from erdesign.identification.identify import identify
 from erdesign.models.registry import get_model
 
@@ -18,8 +18,8 @@ from erdesign.models.registry import get_model
 def tight(monkeypatch):
     """Stopping rules tight enough that a converged cost is known to ~1e-9 (the defaults, 1e-6 and the 1e-4
     stall rule, are set for speed and would make a 1e-6 comparison of two fits noise)."""
-    monkeypatch.setattr(ident, "FTOL", 1e-12)
-    monkeypatch.setattr(ident, "STALL_RTOL", 1e-10)
+    monkeypatch.setattr(engine, "FTOL", 1e-12)
+    monkeypatch.setattr(engine, "STALL_RTOL", 1e-10)
 
 
 def _spencer_record(n=2001):

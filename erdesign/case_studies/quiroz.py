@@ -88,7 +88,7 @@ def real_data_study(folder, *, models: Sequence[str] = tuple(QUIROZ_STUDY_MODELS
         seconds = _time.perf_counter() - t0
         out["models"][name] = {
             "values": res.values, "success": res.success, "seconds": seconds,
-            "training_esr": dict(zip(res.names, res.esr)),
+            "training_esr": dict(zip(res.names, res.record_esr)),
             "validation_esr": {r.name: esr(r.require_force(), res.model.simulate(r, res.values)) for r in validation}}
     model = get_model("bouc_wen_modified")
     A, ratio = quiroz_hidden_constants(folder, records)
@@ -214,7 +214,7 @@ def physics_study(folder, *, damper=QUIROZ_DAMPER, max_rounds: int = 4, records=
     res = identify_joint(bw, records, fixed=QUIROZ_STUDY_MODELS["bouc_wen_modified"],
                          start=_quiroz_start("bouc_wen_modified", folder))
     reference = {"values": res.values, "seconds": _time.perf_counter() - t0,
-                 "training_esr": dict(zip(res.names, res.esr)),
+                 "training_esr": dict(zip(res.names, res.record_esr)),
                  "validation_esr": physics_validation_esr(res.model, res.values, folder, direct=direct,
                                                           unsmoothed=unsmoothed)}
     return {"damper": damper if isinstance(damper, str) else dmp.name, "training": [r.name for r in records],

@@ -15,6 +15,7 @@ from ..data.measurement import Measurement
 from ..effects import EFFECTS
 from ..effects.chain import PhysicsDamper
 from ..errors import ErdesignError
+from ..identification.engine import at_bound
 from ..identification.fit import FitResult
 from .calibration import _finite_or_none, _fit, fitted_model, unseen_reason
 
@@ -147,19 +148,9 @@ def parameters_at_bounds(result: FitResult, names=None) -> list[str]:
         if name not in result.free:
             continue
         p = result.model.parameter(name)
-        v = result.values[name]
-        lo, hi = p.lower, p.upper
-        if p.log_scale:
-            v, lo, hi = math.log(v), math.log(lo), (math.log(hi) if math.isfinite(hi) else hi)
-        span = (hi - lo) if math.isfinite(hi - lo) else max(abs(v), 1.0)
-        if not p.log_scale:
-            # a wide linear range (a stiffness from 0 to 1e9 N/m) must not call 259 N/m "at 0": the tolerance
-            # follows the parameter's own scale (its typical value) where that is smaller than the range
-            span = min(span, max(abs(p.default), abs(v), 1e-300) * 1e3)
-        if v - lo <= 1e-6 * span:
-            out.append(f"{name} at its lower bound {p.format(p.lower)}")
-        elif math.isfinite(hi) and hi - v <= 1e-6 * span:
-            out.append(f"{name} at its upper bound {p.format(p.upper)}")
+        side = at_bound(p, result.values[name])
+        if side:
+            out.append(f"{name} at its {side} bound {p.format(p.lower if side == 'lower' else p.upper)}")
     return out
 
 

@@ -17,16 +17,14 @@ small, which the report says.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
-from functools import partial
 
 import numpy as np
 
 from ..data.measurement import Measurement
 from ..data.metrics import esr
 from ..models.base import Model, ParameterError
-from .engine import FitError, Residual, SumOfSquares, local_fit, problem, start_box, uncertainty
+from .engine import FitError, Strategy, problem, solve
 from .result import FitResult
 
 __all__ = ["FitError", "FitResult", "evaluate", "fit"]
@@ -75,52 +73,13 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
         check(record)
     pb = problem(model, [record], free=free, fixed=fixed, start=start, masks=[mask], control_reference=False,
                  samples=len(F), label=record.name or "record")
-    free, tr, lo, hi, z0 = pb.free, pb.transform, pb.lo, pb.hi, pb.z0
-    full_values = pb.values
-    residual = Residual(model, record, full_values, mask)
-
-    from scipy.optimize import (
-        differential_evolution,  # imported on use: not at start-up
-    )
-    from scipy.stats import qmc
-
-    r0 = residual(z0)
-    if not np.all(np.isfinite(model.force(record, full_values(z0)))):
+    if not np.all(np.isfinite(model.force(record, pb.values(pb.z0)))):
         raise FitError(f"{model.name}: the model gives non-finite forces at the starting values")
-    candidates = [z0]
-    box_lo, box_hi = start_box(lo, hi, z0, None if global_search else tr.log)
-    if global_search:
-        de = differential_evolution(SumOfSquares(residual), list(zip(box_lo, box_hi)),
-                                    seed=seed, tol=1e-8, polish=False, maxiter=200, popsize=15, init="sobol")
-        candidates.append(de.x)
-    if starts > 1:
-        sampler = qmc.LatinHypercube(d=len(free), seed=seed)
-        candidates.extend(qmc.scale(sampler.random(starts - 1), box_lo, box_hi))
-    from ..executor import executor_for  # imported on use: not at start-up
-    runner = executor_for(executor)
-    try:
-        results = runner.map(partial(local_fit, residual, lo, hi, max_nfev), candidates)
-    finally:
-        if runner is not executor:
-            runner.close()
-    best = None
-    for res in results:  # the first of equal costs, whatever the executor
-        if best is None or res.cost < best.cost:
-            best = res
-    values = full_values(best.x)
-    model_force = model.force(record, values)
-    model_force = model_force if mask is None else model_force[mask]
-    resid = F - model_force
-    rss = float(np.sum(resid**2))
-    n, k = len(F), len(free)
-    stderr, corr = uncertainty(best.jac, best.x, tr, rss, n, k)
-    rss_n = max(rss / n, np.finfo(float).tiny)
-    return FitResult(
-        model=model, values=values, free=free, stderr=dict(zip(free, stderr)), correlation=corr,
-        force=model_force, residual=resid, esr=esr(F, model_force), rss=rss, n=n,
-        aic=n * math.log(rss_n) + 2 * k, bic=n * math.log(rss_n) + k * math.log(n),
-        success=bool(best.success), message=str(best.message), record_name=record.name,
-        extra={"initial_cost": float(np.sum(r0**2) / 2), "nfev": int(best.nfev)})
+    result = solve(pb, Strategy(starts=starts, global_search=global_search, seed=seed, max_nfev=max_nfev,
+                                executor=executor))
+    if mask is not None:  # force and residual of the compared samples
+        result.force, result.residual = result.force[mask], result.residual[mask]
+    return result
 
 
 def evaluate(model: Model, record: Measurement, values: Mapping[str, float]) -> float:

@@ -13,7 +13,7 @@ import numpy as np
 from ..data.measurement import Measurement
 from ..data.metrics import esr
 from ..models.base import Model
-from .engine import CORRELATION_THRESHOLD
+from .engine import CORRELATION_THRESHOLD, at_bound
 from .engine import strong_correlations as _pairs
 
 __all__ = ["FitResult", "fit_report", "fit_statistics", "parameter_table", "result_json", "strong_correlations"]
@@ -49,7 +49,13 @@ class FitResult:
     findings: list = field(default_factory=list)
     """Data findings of the records (calibration)."""
     records: list = field(default_factory=list)
-    """ESR on each record (calibration of several records): dicts ``name``, ``samples``, ``esr``."""
+    """ESR on each record (calibration and joint fits of several records): dicts ``name``, ``samples``, ``esr``."""
+    search: np.ndarray | None = field(default=None, repr=False)
+    """The optimum in the search space (:class:`~erdesign.identification.engine.Transform`)."""
+    jacobian: np.ndarray | None = field(default=None, repr=False)
+    """Jacobian of the fitted residual with respect to :attr:`search` at the optimum."""
+    out_of_time: bool = False
+    """The time budget stopped the fit (the values are the best found so far)."""
 
     @property
     def k(self) -> int:
@@ -79,19 +85,6 @@ class FitResult:
         return result_json(self, model_name or self.model.name, control_reference, validation)
 
 
-def _at_bound(model, name, value, stderr=None) -> str | None:
-    """"lower" / "upper" when the value sits on a bound: within 1e-6 of it, or within one standard error."""
-    p = model.parameter(name)
-    for bound, label in ((p.lower, "lower"), (p.upper, "upper")):
-        if not math.isfinite(bound):
-            continue
-        gap = abs(value - bound)
-        if gap <= 1e-6 * max(abs(bound), abs(value)) or (stderr is not None and math.isfinite(stderr)
-                                                          and gap < stderr):
-            return label
-    return None
-
-
 def parameter_table(result: FitResult) -> dict[str, dict]:
     """Per parameter: SI value, unit, standard error (None where not available), initial value and status
     ("free", "fixed", "not identifiable", "at lower bound", "at upper bound")."""
@@ -107,7 +100,7 @@ def parameter_table(result: FitResult) -> dict[str, dict]:
         elif name not in result.free:
             status = "fixed"
         else:
-            bound = _at_bound(model, name, v, se)
+            bound = at_bound(model.parameter(name), v, se)
             status = f"at {bound} bound" if bound else "free"
         out[name] = {"value": v, "unit": model.parameter(name).unit,
                      "stderr": None if se is None or not math.isfinite(se) or status.startswith("at ") else float(se),
