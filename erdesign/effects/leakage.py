@@ -72,31 +72,18 @@ def leaky_pressure_drop(v, Ap, bypass_damping, gap_pressure_drop, args=(), quasi
     v = np.asarray(v, dtype=float)
     args = tuple(np.broadcast_to(np.asarray(a, dtype=float), v.shape) for a in args)
     dp0 = gap_pressure_drop(v, *args) if quasi_steady_drop is None else np.asarray(quasi_steady_drop, dtype=float)
+    lo = np.minimum(0.0, dp0)
+    hi = np.maximum(0.0, dp0)
     k = Ap / bypass_damping
-    # Creep: the ducts are blocked (the root sits on the break-away jump of the gap law, where the duct flow u is
-    # zero) when the bypass alone passes the whole flow below the break-away pressure g0 = dp_gap(0 on v's side).
-    # Those samples are solved exactly; the others have u of v's sign, where the residual is continuous between
-    # g0 and the smaller of the no-leak drop and the creep pressure: a tight bracket without the jump, so that
-    # Chandrupatla's method converges superlinearly instead of bisecting down to the jump.
-    s = np.where(v < 0, -1.0, 1.0)
-    creep = v / k
-    g0 = np.asarray(gap_pressure_drop(np.copysign(0.0, v), *args), dtype=float)
-    blocked = (s * creep <= s * g0) | (v == 0)
-    end = s * np.minimum(s * dp0, s * creep)
-    lo, hi = np.minimum(g0, end), np.maximum(g0, end)
-    same = blocked | (hi <= lo)
 
     def residual(dp, v, *args):
         return dp - gap_pressure_drop(v - dp * k, *args)
 
-    dp = np.where(blocked, creep, lo)
-    flowing = ~same
-    if np.any(flowing):
-        scale = float(np.max(np.abs(dp0))) + 1.0
-        res = find_root(residual, (lo[flowing], hi[flowing]), args=(v[flowing], *(a[flowing] for a in args)),
-                        tolerances={"xatol": 1e-10 * scale, "xrtol": 1e-12}, maxiter=200)
-        dp[flowing] = res.x
-    return dp
+    same = hi == lo
+    scale = float(np.max(np.abs(dp0))) + 1.0 if dp0.size else 1.0
+    res = find_root(residual, (np.where(same, lo - 1.0, lo), np.where(same, hi + 1.0, hi)), args=(v, *args),
+                    tolerances={"xatol": 1e-10 * scale, "xrtol": 1e-12}, maxiter=200)
+    return np.where(same, dp0, res.x)
 
 
 class Leakage(Effect):
