@@ -241,7 +241,7 @@ def kamath_wereley_identification(n=20_000):
     data = rec.with_force(clean + 0.01 * np.std(clean) * np.random.default_rng(0).standard_normal(n))
     t0 = time.perf_counter()
     r = fit(model, data)
-    return {"seconds": time.perf_counter() - t0, "esr": r.esr, "nfev": r.extra["nfev"],
+    return {"seconds": time.perf_counter() - t0, "esr": r.esr, "nfev": r.nfev,
             "max_rel_param_error": max(abs(r.values[k] / KAMATH_WERELEY_TABLE1[k] - 1) for k in ("C1", "C2", "K1",
                                                                                                   "Cv", "R"))}
 

@@ -122,7 +122,7 @@ def test_identify_reports_what_the_data_cannot_tell(capsys, tmp_path):
     model = get_model("bingham")
     r = identify(model, rec)
     # one of each redundant pair held, the control slope (the record cannot show the control dependence)
-    assert sorted(r.extra["not_identifiable"]) == ["c0_u", "f_c_u"]
+    assert sorted(r.not_identifiable) == ["c0_u", "f_c_u"]
     u = float(model.control(rec)[0])
     # what the record does fix: the yield force and damping at 0.5 A, to the 1 N noise on 600 N forces
     assert r.values["f_c"] + u * r.values["f_c_u"] == pytest.approx(500.0, rel=0.005)

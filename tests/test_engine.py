@@ -95,18 +95,18 @@ def test_identify_beats_the_reference_on_a_real_record(quiroz_record):
     # were held at zero start values and the refit collapsed) and called it converged; the Bingham reference
     # scores 0.0397
     r = identify(get_model("bouc_wen_modified"), quiroz_record, starts=1)
-    assert r.extra["baseline_esr"] == pytest.approx(0.0397, abs=5e-4)
-    assert r.esr < 0.25 * r.extra["baseline_esr"]
-    assert r.success and not r.extra["poor_fit"]
+    assert r.baseline_esr == pytest.approx(0.0397, abs=5e-4)
+    assert r.esr < 0.25 * r.baseline_esr
+    assert r.success and not r.poor_fit
 
 
 def test_a_fit_worse_than_the_reference_is_not_a_success(quiroz_record):
     # friction alone (the viscous terms held at zero) cannot do as well as the reference: the optimiser converges,
     # but the fit is poor and said so
     r = identify(get_model("bingham"), quiroz_record, starts=3, fixed={"c0": 0.0, "c0_u": 0.0})
-    assert r.esr > 2 * r.extra["baseline_esr"]
-    assert not r.success and r.extra["poor_fit"]
-    assert any(w.startswith("poor fit") for w in r.extra["warnings"])
+    assert r.esr > 2 * r.baseline_esr
+    assert not r.success and r.poor_fit
+    assert any(w.startswith("poor fit") for w in r.warnings)
 
 
 def test_multi_starts_on_a_process_pool_give_the_serial_result():
@@ -156,7 +156,7 @@ def test_solve_with_three_starts_on_a_process_pool_equals_serial():
     serial = solve(pb, Strategy(starts=3, max_nfev=40))
     with PoolExecutor(2) as pool:
         pooled = solve(pb, Strategy(starts=3, max_nfev=40, executor=pool))
-    assert serial.extra["starts_tried"] == pooled.extra["starts_tried"] == 3
+    assert serial.starts_tried == pooled.starts_tried == 3
     assert pooled.values == serial.values and pooled.esr == serial.esr and pooled.stderr == serial.stderr
     # the tracked strategy (identify's) too
     tracked = Strategy(starts=3, max_nfev=40, tracked=True, projection=True)
@@ -174,12 +174,12 @@ BAD_START = {"n": 10.0, "delta": 1e-6, "beta": -1e12, "gamma": -1e12}
 def test_a_poor_first_start_is_rescued_by_the_extra_starts(quiroz_record):
     from erdesign.executor import PoolExecutor
     alone = identify(get_model("bouc_wen_modified"), quiroz_record, starts=1, start=BAD_START)
-    assert alone.esr > 100 * alone.extra["baseline_esr"] and alone.extra["poor_fit"] and not alone.success
+    assert alone.esr > 100 * alone.baseline_esr and alone.poor_fit and not alone.success
     rescued = identify(get_model("bouc_wen_modified"), quiroz_record, starts=4, start=BAD_START)
     # the first start, the model's own guess (the reference's yield force and viscous coefficient) and three
     # Latin-hypercube starts, all run; the best is as good as a fit from the guess
-    assert rescued.extra["starts_tried"] == 5
-    assert rescued.esr == pytest.approx(0.00879, abs=5e-5) and rescued.success and not rescued.extra["poor_fit"]
+    assert rescued.starts_tried == 5
+    assert rescued.esr == pytest.approx(0.00879, abs=5e-5) and rescued.success and not rescued.poor_fit
     with PoolExecutor(2) as pool:
         pooled = identify(get_model("bouc_wen_modified"), quiroz_record, starts=4, start=BAD_START, executor=pool)
     assert pooled.values == rescued.values and pooled.esr == rescued.esr

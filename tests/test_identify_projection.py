@@ -38,7 +38,7 @@ def _same_optimum(a, b):
     The free sets may differ only by parameters one of the fits held as not identifiable (the plain Dahl fit
     holds k0 at its bound 0 so): the data cannot tell their values."""
     assert abs(a.rss - b.rss) <= 1e-6 * b.rss, (a.rss, b.rss)
-    assert set(a.free) ^ set(b.free) <= set(a.extra["not_identifiable"]) | set(b.extra["not_identifiable"])
+    assert set(a.free) ^ set(b.free) <= set(a.not_identifiable) | set(b.not_identifiable)
     for k in set(a.free) & set(b.free):
         se = b.stderr[k]
         if np.isfinite(se):
@@ -50,17 +50,17 @@ def test_projected_fit_reaches_the_plain_optimum(name, tight):
     rec = _spencer_record()
     plain = identify(get_model(name), rec, starts=1, projection=False)
     projected = identify(get_model(name), rec, starts=1)
-    assert projected.extra["projected"] and not plain.extra["projected"]
+    assert projected.projected and not plain.projected
     _same_optimum(projected, plain)
     # and the report covers every free parameter, the projected ones included
-    assert set(projected.stderr) == set(projected.free) >= set(projected.extra["projected"])
+    assert set(projected.stderr) == set(projected.free) >= set(projected.projected)
 
 
 def test_bingham_is_one_linear_solve():
     """Every Bingham parameter enters linearly: no optimiser iterations, the exact least-squares solution."""
     rec = _spencer_record()
     res = identify(get_model("bingham"), rec, starts=1)
-    assert res.extra["simulations"] == 1 and res.success
+    assert res.simulations == 1 and res.success
     v = rec.velocity
     u = rec.control
     A = np.column_stack([v, np.sign(v), np.ones_like(v), u * np.sign(v), u * v])
@@ -74,8 +74,8 @@ def test_bouc_wen_does_not_project_by_default():
     """Spencer's simple Bouc-Wen model: projected, the fit from the guess runs into beta + gamma < 0 (z unbounded,
     alpha -> 0) on measured records, so the plain path is its default (``projection_default``)."""
     rec = _spencer_record(n=401)
-    assert identify(get_model("bouc_wen"), rec, starts=1, max_nfev=5).extra["projected"] == []
-    assert identify(get_model("bouc_wen"), rec, starts=1, max_nfev=5, projection=True).extra["projected"]
+    assert identify(get_model("bouc_wen"), rec, starts=1, max_nfev=5).projected == []
+    assert identify(get_model("bouc_wen"), rec, starts=1, max_nfev=5, projection=True).projected
 
 
 def test_bounds_of_linear_parameters_are_kept(tight):
@@ -93,8 +93,8 @@ def test_bounds_of_linear_parameters_are_kept(tight):
 def test_fixed_linear_parameter_is_not_projected():
     rec = _spencer_record()
     res = identify(get_model("bouc_wen_normalized"), rec, starts=1, fixed={"k_x": 1234.0})
-    assert res.values["k_x"] == 1234.0 and "k_x" not in res.free and "k_x" not in res.extra["projected"]
-    assert set(res.extra["projected"]) == {"k_v", "k_w", "f0", "k_v_u", "k_w_u"}
+    assert res.values["k_x"] == 1234.0 and "k_x" not in res.free and "k_x" not in res.projected
+    assert set(res.projected) == {"k_v", "k_w", "f0", "k_v_u", "k_w_u"}
 
 
 FOLDER = quiroz_folder()

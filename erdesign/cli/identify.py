@@ -109,7 +109,7 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
                                 exclude_clipped=exclude_clipped, progress=progress, fixed=fixed, projection=projection)
     model = result.model  # the fitted copy, with the records' control reference (the caller's model is not changed)
     result.message = as_flags(result.message)
-    result.extra["warnings"] = [as_flags(w) for w in result.extra.get("warnings", ())]
+    result.warnings = [as_flags(w) for w in result.warnings]
     validation = [(other.name, run_model(model, other, result.values, exclude_clipped=exclude_clipped).metrics)
                   for other in others]
     # Field-dependent models work with the dimensionless control u = control / reference; the parameters that

@@ -797,7 +797,7 @@ def solve(pb: Problem, st: Strategy, progress=None):
     :class:`~erdesign.identification.result.FitResult` on the problem's records: ``force`` and ``residual`` at every
     sample (records concatenated), ESR on the compared samples (the mean of the records' ESRs, listed in
     ``records``, when there are several), ``search`` and ``jacobian`` at the optimum.  ``progress`` (a callable
-    taking a string) receives lines from the starts run in this process.  ``baseline_esr`` in ``extra`` is the
+    taking a string) receives lines from the starts run in this process.  ``baseline_esr`` of the result is the
     reference Bingham fit's on the first record (with ``rescue``)."""
     from functools import partial
 
@@ -857,16 +857,14 @@ def solve(pb: Problem, st: Strategy, progress=None):
     rss_n = max(rss / n, np.finfo(float).tiny)
     force = np.concatenate(forces) if len(forces) > 1 else forces[0]
     measured = np.concatenate([r.require_force() for r in pb.records]) if len(forces) > 1 else record.force
-    extra = {"initial": dict(pb.base), "starts_tried": sum(o.calls > 0 for o in outcomes),
-             "simulations": best.calls, "nfev": best.nfev, "seconds": _time.monotonic() - t_start,
-             "projected": list(_linear_free(pb, st)) if st.tracked else []}
-    if baseline is not None:
-        extra["baseline_esr"] = baseline
     return FitResult(
         model=model, values=values, free=free, stderr=dict(zip(free, stderr)), correlation=corr, force=force,
         residual=measured - force, esr=scores[0] if len(scores) == 1 else float(np.mean(scores)), rss=rss, n=n,
         aic=n * math.log(rss_n) + 2 * k, bic=n * math.log(rss_n) + k * math.log(n),
         success=bool(best.success and not best.out_of_time), message=best.message, record_name=record.name,
-        extra=extra, records=[] if len(scores) == 1 else
+        initial=dict(pb.base), starts_tried=sum(o.calls > 0 for o in outcomes), simulations=best.calls,
+        nfev=best.nfev, seconds=_time.monotonic() - t_start,
+        projected=list(_linear_free(pb, st)) if st.tracked else [], baseline_esr=baseline,
+        records=[] if len(scores) == 1 else
         [{"name": r.name, "samples": int(p.size), "esr": e} for r, p, e in zip(pb.records, parts, scores)],
         search=np.array(z, dtype=float), jacobian=J, out_of_time=best.out_of_time)

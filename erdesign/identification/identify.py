@@ -116,7 +116,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
       on the same samples), or more than half the free parameters sit on a bound.  Then all ``starts - 1`` others
       run, on ``executor`` (:func:`erdesign.executor.executor_for`; default one after the other in this process),
       and the best is kept: the result does not depend on the executor.  A best fit no better than the reference is not a success (``success`` False,
-      ``extra["poor_fit"]``, a warning).
+      ``poor_fit``, a warning).
     * All samples are fitted; ``decimate`` > 1 fits on every ``decimate``-th sample only (the scores are still on
       all samples).  ``warm_start`` first fits long records (> 20,000 samples) on every k-th sample (at least 1 kHz
       kept), then all samples.  It is off by default: on Dyke's 3 kHz record the 1 kHz optimum lies in a stiff
@@ -141,10 +141,10 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     * ``exclude_clipped``: force samples at a flat top or bottom (:func:`erdesign.data.measurement.clipped_samples`) are
       left out of the residual and the scores.
     * Parameters the data cannot identify (a null direction of the Jacobian) are held at their start values and
-      the fit repeated (``fix_unidentifiable``); they are listed in ``result.extra["not_identifiable"]``.
+      the fit repeated (``fix_unidentifiable``); they are listed in ``result.not_identifiable``.
 
-    Returns a :class:`~erdesign.identification.fit.FitResult` whose ``extra`` carries the report's content (initial
-    values, parameters at a bound, strong correlations, warnings, fit statistics; :func:`fit_report`).
+    Returns a :class:`~erdesign.identification.fit.FitResult` whose typed fields carry the report's content (initial
+    values, parameters not identifiable, warnings, the reference fit's ESR, poor fit; :func:`fit_report`).
     """
     from ..data.measurement import clipped_samples
     t_start = _time.monotonic()
@@ -173,7 +173,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
                         tracked=True, projection=bool(projection), warm_start=warm_start, decimate=decimate,
                         max_time=max_time, executor=executor)
     result = solve(pb, strategy, progress)
-    baseline, out_of_time = result.extra["baseline_esr"], result.out_of_time
+    baseline, out_of_time = result.baseline_esr, result.out_of_time
     k = len(free_names)
     not_identifiable = _null_parameters(result.jacobian, result.search, pb.transform, free_names,
                                         model.control_parameters)
@@ -190,10 +190,10 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         # gets worse (on a Quiroz record ESR 0.019 -> 7.0: the start values were zeros the found optimum needs),
         # the free fit is kept and the parameters are only reported.
         if refit.rss <= result.rss * (1.0 + HELD_RTOL):
-            refit.extra["not_identifiable"] = sorted(set(not_identifiable) | set(refit.extra["not_identifiable"]))
-            refit.extra["initial"] = initial
-            refit.extra["warnings"] = [*notes, *[w for w in refit.extra["warnings"] if w not in notes]]
-            refit.extra["seconds"] = _time.monotonic() - t_start
+            refit.not_identifiable = sorted(set(not_identifiable) | set(refit.not_identifiable))
+            refit.initial = initial
+            refit.warnings = [*notes, *[w for w in refit.warnings if w not in notes]]
+            refit.seconds = _time.monotonic() - t_start
             return refit
         notes.append(f"not identifiable from this record: {', '.join(not_identifiable)}; held at their start "
                      f"values the fit got worse (ESR {refit.esr:.4g} against {result.esr:.4g}), so they are left "
@@ -201,10 +201,9 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     if out_of_time:
         notes.append(f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best "
                      "found so far")
-    result.extra.update({"not_identifiable": not_identifiable, "warnings": notes,
-                         "seconds": _time.monotonic() - t_start, "clipped_samples": int(clipped.sum()),
-                         "excluded_samples": 0 if mask is None else int(clipped.sum()), "decimate": decimate,
-                         "mask": mask})
+    result.not_identifiable, result.warnings = not_identifiable, notes
+    result.seconds, result.clipped_samples = _time.monotonic() - t_start, int(clipped.sum())
+    result.excluded_samples, result.decimate, result.mask = 0 if mask is None else int(clipped.sum()), decimate, mask
     if hasattr(model, "train"):
         model.train(record, result.values)
         result.force = model.simulate(record, result.values)
@@ -214,10 +213,10 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     # squares on the same samples) or set by the bounds is not a success, whatever the optimiser's message says.
     bounded = mostly_at_bounds(model, free_names, result.values)
     poor = bool(result.esr > FAIL_RATIO * baseline or bounded)
-    result.extra["poor_fit"] = poor
+    result.poor_fit = poor
     if poor:
         result.success = False
-        notes.append(f"poor fit: ESR {result.esr:.4g} after {result.extra['starts_tried']} start(s), against "
+        notes.append(f"poor fit: ESR {result.esr:.4g} after {result.starts_tried} start(s), against "
                      f"{baseline:.4g} for the reference Bingham fit (c0 v + f_c sgn v + f0)"
                      + (" with most parameters at a bound" if bounded else "")
                      + ": try more starts, other fixed parameters or another model")
@@ -282,8 +281,8 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
     if result.out_of_time:
         notes.append(f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best "
                      "found so far")
-    result.extra.update({"excluded_samples": [0 if m is None else int((~m).sum()) for m in masks],
-                         "warnings": notes, "initial": {n: pb.base[n] for n in pb.free}})
+    result.excluded_samples = [0 if m is None else int((~m).sum()) for m in masks]
+    result.warnings, result.initial = notes, {n: pb.base[n] for n in pb.free}
     if len(records) == 1:  # the per-record list of one record
         result.records = [{"name": records[0].name, "samples": result.n, "esr": result.esr}]
     return JointResult(**{f.name: getattr(result, f.name) for f in dataclasses.fields(FitResult)})
@@ -292,13 +291,12 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
 def joint_report(result: JointResult, validation: Sequence[tuple[str, dict]] = ()) -> str:
     """The report of a joint identification: per-record ESR, the shared parameters, validation, warnings."""
     model = result.model
-    ex = result.extra or {}
     width = max(len(n or "") for n in result.names)
     lines = [f"[[Joint fit]] {model.title or model.name} on {len(result.names)} records, one parameter set",
-             f"  free parameters {len(result.free)}, simulations of all records {ex.get('simulations', '?')}, "
-             f"{ex.get('seconds', 0.0):.1f} s" + ("" if result.success else f"  - {result.message}"),
+             f"  free parameters {len(result.free)}, simulations of all records {'?' if result.simulations is None else result.simulations}, "
+             f"{result.seconds:.1f} s" + ("" if result.success else f"  - {result.message}"),
              f"[[ESR per record]] (mean {result.mean_esr:.4g})"]
-    excluded = ex.get("excluded_samples") or [0] * len(result.names)
+    excluded = result.excluded_samples or [0] * len(result.names)
     lines += [f"  {name or 'record':<{width}}  {e:.4g}" + (f"  ({k} clipped left out)" if k else "")
               for name, e, k in zip(result.names, result.record_esr, excluded)]
     lines.append("[[Parameters]]")
@@ -309,9 +307,9 @@ def joint_report(result: JointResult, validation: Sequence[tuple[str, dict]] = (
     if validation:
         lines.append("[[Validation]] (the identified set on other records)")
         lines += [f"  {name}: ESR {m['esr']:.4g}, RMS residual {m['rms_residual_N']:.4g} N" for name, m in validation]
-    if ex.get("warnings"):
+    if result.warnings:
         lines.append("[[Warnings]]")
-        lines += [f"  {w}" for w in ex["warnings"]]
+        lines += [f"  {w}" for w in result.warnings]
     return "\n".join(lines)
 
 
@@ -324,9 +322,8 @@ def joint_json(result: JointResult, model_name: str, control_reference: str | No
         return None if x is None or not math.isfinite(x) else float(x)
 
     model = result.model
-    ex = result.extra or {}
-    excluded = ex.get("excluded_samples") or [0] * len(result.names)
-    initial = ex.get("initial", {})
+    excluded = result.excluded_samples or [0] * len(result.names)
+    initial = result.initial
     return {"model": model_name, "joint": True, "esr": num(result.mean_esr),
             "records": [{"record": n, "esr": num(e), "excluded_samples": k}
                         for n, e, k in zip(result.names, result.record_esr, excluded)],
@@ -336,8 +333,8 @@ def joint_json(result: JointResult, model_name: str, control_reference: str | No
                                   "initial": None if n not in initial else float(initial[n])}
                               for n, v in result.values.items()},
             "control_reference": control_reference, "success": bool(result.success), "message": result.message,
-            "simulations": ex.get("simulations"), "seconds": num(ex.get("seconds")),
-            "warnings": list(ex.get("warnings", ())),
+            "simulations": result.simulations, "seconds": num(result.seconds),
+            "warnings": list(result.warnings),
             "validation": [{"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
                            for name, m in validation]}
 

@@ -43,9 +43,29 @@ class FitResult:
     success: bool
     message: str
     record_name: str = ""
-    extra: dict = field(default_factory=dict)
-    """What the workflows add: ``initial`` values, ``not_identifiable``, ``warnings``, ``simulations``, ``seconds``,
-    ``baseline_esr`` (the reference Bingham fit), ``poor_fit`` ..."""
+    initial: dict = field(default_factory=dict)
+    """Start values of the parameters (the report's "init"), SI."""
+    not_identifiable: list = field(default_factory=list)
+    """Free parameters the data do not determine (held at their start values when that fits as well)."""
+    warnings: list = field(default_factory=list)
+    """Notes on the fit, one line each (time budget, poor fit, clipped samples ...)."""
+    baseline_esr: float | None = None
+    """ESR of the reference Bingham fit on the same samples (identification)."""
+    poor_fit: bool = False
+    """No better than the reference fit, or most parameters at a bound: not a success."""
+    starts_tried: int = 0
+    simulations: int | None = None
+    """Simulations of the best start."""
+    nfev: int | None = None
+    seconds: float = 0.0
+    projected: list = field(default_factory=list)
+    """Parameters solved by variable projection (entering the force linearly)."""
+    clipped_samples: int = 0
+    excluded_samples: int | list = 0
+    """Samples left out of the fit (clipped force): a count, or one per record of a joint fit."""
+    decimate: int = 1
+    mask: np.ndarray | None = field(default=None, repr=False)
+    """The samples fitted (None: all)."""
     findings: list = field(default_factory=list)
     """Data findings of the records (calibration)."""
     records: list = field(default_factory=list)
@@ -89,8 +109,8 @@ def parameter_table(result: FitResult) -> dict[str, dict]:
     """Per parameter: SI value, unit, standard error (None where not available), initial value and status
     ("free", "fixed", "not identifiable", "at lower bound", "at upper bound")."""
     model = result.model
-    initial = result.extra.get("initial", {})
-    unident = set(result.extra.get("not_identifiable", ()))
+    initial = result.initial
+    unident = set(result.not_identifiable)
     out = {}
     for name in model.parameter_names:
         v = float(result.values[name])
@@ -126,17 +146,16 @@ def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -
     initial values, parameters at a bound or not identifiable said so, strong correlations, warnings."""
     model = result.model
     st = fit_statistics(result)
-    ex = result.extra
     lines = [f"[[Fit]] {model.title or model.name} on {result.record_name or 'record'}",
-             f"  samples {st['samples']}" + (f" ({ex['excluded_samples']} clipped left out)"
-                                            if ex.get("excluded_samples") else "")
-             + f", free parameters {st['free_parameters']}, simulations {ex.get('simulations', '?')}, "
-             f"{ex.get('seconds', 0.0):.1f} s" + ("" if result.success else f"  - {result.message}"),
+             f"  samples {st['samples']}" + (f" ({result.excluded_samples} clipped left out)"
+                                            if result.excluded_samples else "")
+             + f", free parameters {st['free_parameters']}, simulations {'?' if result.simulations is None else result.simulations}, "
+             f"{result.seconds:.1f} s" + ("" if result.success else f"  - {result.message}"),
              "[[Statistics]]",
              f"  ESR {st['esr']:.4g}   R^2 {st['r_squared']:.4g}   RMS residual {st['rms_residual_N']:.4g} N   "
              f"reduced chi-square {st['reduced_chi_square_N2']:.4g} N^2",
              f"  AIC {st['aic']:.1f}   BIC {st['bic']:.1f}"
-             + (f"   (reference Bingham fit: ESR {ex['baseline_esr']:.4g})" if "baseline_esr" in ex
+             + (f"   (reference Bingham fit: ESR {result.baseline_esr:.4g})" if result.baseline_esr is not None
                 else ""),
              "[[Parameters]]"]
     table = parameter_table(result)
@@ -164,7 +183,7 @@ def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -
     if validation:
         lines.append("[[Validation]] (the identified set on other records)")
         lines += [f"  {name}: ESR {m['esr']:.4g}, RMS residual {m['rms_residual_N']:.4g} N" for name, m in validation]
-    warnings = list(ex.get("warnings", ()))
+    warnings = list(result.warnings)
     if warnings:
         lines.append("[[Warnings]]")
         lines += [f"  {w}" for w in warnings]
@@ -181,15 +200,14 @@ def result_json(result: FitResult, model_name: str, control_reference: str | Non
 
     table = parameter_table(result)
     st = {k: (num(v) if isinstance(v, float) else v) for k, v in fit_statistics(result).items()}
-    ex = result.extra
     return {"model": model_name, "esr": num(result.esr), "parameters": result.parameters_with_units(),
             "parameters_si": table, "statistics": st, "control_reference": control_reference,
             "correlations": [{"a": a, "b": b, "r": c} for a, b, c in strong_correlations(result)],
             "not_identifiable": [n for n, r in table.items() if r["status"] == "not identifiable"],
             "at_bounds": [n for n, r in table.items() if r["status"].startswith("at ")],
-            "success": bool(result.success), "poor_fit": bool(ex.get("poor_fit", False)), "message": result.message,
-            "simulations": ex.get("simulations"), "seconds": num(ex.get("seconds")),
-            "clipped_samples": ex.get("clipped_samples", 0), "excluded_samples": ex.get("excluded_samples", 0),
-            "warnings": list(ex.get("warnings", ())),
+            "success": bool(result.success), "poor_fit": bool(result.poor_fit), "message": result.message,
+            "simulations": result.simulations, "seconds": num(result.seconds),
+            "clipped_samples": result.clipped_samples, "excluded_samples": result.excluded_samples,
+            "warnings": list(result.warnings),
             "validation": [{"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
                            for name, m in validation]}
