@@ -173,7 +173,11 @@ def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else argv
     if "numpy" not in sys.modules:
         # One BLAS thread unless the user says otherwise: the matrices here are small and tall (an SVD of 60,000 x 13
-        # per optimiser step), where a second thread only contends (10 x slower on a loaded two-core machine).
+        # per optimiser step), where a second thread only contends (10 x slower on a loaded two-core machine).  The
+        # library limits its fits with threadpoolctl (identification/engine.py: solve) and its worker processes too
+        # (executor.py), but threadpoolctl reaches only the libraries already loaded, and scipy loads its own
+        # OpenBLAS on first use; so the command line, which owns its process, also sets the variables before any
+        # BLAS is loaded.
         for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
             os.environ.setdefault(name, "1")
 

@@ -791,6 +791,16 @@ def _failed(pb: Problem, out: Outcome, baseline: float) -> bool:
 
 
 def solve(pb: Problem, st: Strategy, progress=None):
+    """Fit the problem ``pb`` with the strategy ``st`` (:func:`_solve` does the work) with one BLAS thread
+    (:mod:`threadpoolctl`): the matrices of a fit are small and tall (an SVD of 60,000 x 13 per step of a projected
+    fit), where a second thread only contends - 10 x slower on a loaded two-core machine.  Worker processes of an
+    executor run one thread anyway; this keeps a library call from the caller's own process equally lean."""
+    from threadpoolctl import threadpool_limits
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _solve(pb, st, progress)
+
+
+def _solve(pb: Problem, st: Strategy, progress=None):
     """Fit a :class:`Problem` by the :class:`Strategy`: the starts (:func:`_candidates`) on the strategy's executor,
     the best (the first of equal costs, whatever the executor), its uncertainty (:func:`uncertainty`, from the
     optimiser's Jacobian when it has one on the problem's samples, else forward differences) and statistics, as a
