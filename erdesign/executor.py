@@ -110,14 +110,18 @@ class Executor:
         """``[fn(item) for item in items]``, run on this executor's workers.  An exception raised by a task is
         raised here (after the tasks already running have finished); callers that must not stop on one bad item
         (a batch of records) catch it inside the task."""
-        raise NotImplementedError
+        items = list(items)
+        results: list = [None] * len(items)
+        for done, (i, result) in enumerate(self.imap(fn, items), start=1):
+            results[i] = result
+            if progress is not None:
+                progress(done, len(items))
+        return results
 
     def imap(self, fn: Callable[[Any], Any], items: Iterable[Any]):
         """Yields ``(index, result)`` as tasks finish (any order): for callers that save results as they come
         (``erdesign batch`` writes its table while it runs, so that a killed campaign can resume)."""
-        items = list(items)
-        for i, result in enumerate(self.map(fn, items)):
-            yield i, result
+        raise NotImplementedError
 
     def close(self) -> None:
         """Releases the workers (a pool's processes; never a cluster the caller gave)."""
@@ -137,15 +141,6 @@ class SerialExecutor(Executor):
 
     workers = 1
     description = "serial (this process)"
-
-    def map(self, fn, items, *, progress=None):
-        items = list(items)
-        out = []
-        for item in items:
-            out.append(fn(item))
-            if progress is not None:
-                progress(len(out), len(items))
-        return out
 
     def imap(self, fn, items):
         for i, item in enumerate(items):
@@ -177,15 +172,6 @@ class PoolExecutor(Executor):
             self._pool = concurrent.futures.ProcessPoolExecutor(
                 max_workers=self.workers, mp_context=ctx, initializer=_one_blas_thread)
         return self._pool
-
-    def map(self, fn, items, *, progress=None):
-        items = list(items)
-        results: list = [None] * len(items)
-        for done, (i, result) in enumerate(self.imap(fn, items), start=1):
-            results[i] = result
-            if progress is not None:
-                progress(done, len(items))
-        return results
 
     def imap(self, fn, items):
         pool = self._get_pool()
@@ -231,15 +217,6 @@ class DaskExecutor(Executor):
         self.workers = max(1, sum(w.get("nthreads", 1) for w in workers.values()))
         self.description = f"Dask cluster at {self.client.scheduler.address} ({len(workers)} workers, " \
                            f"{self.workers} threads)"
-
-    def map(self, fn, items, *, progress=None):
-        items = list(items)
-        results: list = [None] * len(items)
-        for done, (i, result) in enumerate(self.imap(fn, items), start=1):
-            results[i] = result
-            if progress is not None:
-                progress(done, len(items))
-        return results
 
     def imap(self, fn, items):
         from distributed import as_completed
