@@ -215,8 +215,9 @@ def tolerance_histogram_figure(result, output: str = "force_N") -> go.Figure:
     >>> from erdesign.campaign.tolerance import tolerance_study
     >>> r = tolerance_study(load_example("makris"), ["geometry.gap=+-2.5 %"], velocity=0.0254, samples=2000,
     ...                     sensitivity=False)
-    >>> tolerance_histogram_figure(r).layout.xaxis.title.text
-    'force F [kN]'
+    >>> fig = tolerance_histogram_figure(r)
+    >>> fig.layout.xaxis.title.text, fig.layout.title.text
+    ('force F [kN]', 'Spread of the force (2000 samples)')
     """
     name, label, si_unit, kind = TOLERANCE_OUTPUTS[output]
     edges, counts = result.histograms[output]
@@ -227,12 +228,12 @@ def tolerance_histogram_figure(result, output: str = "force_N") -> go.Figure:
                            marker=dict(color="rgba(31, 119, 180, 0.6)")))
     marks = [(f"{q} %", result.quantiles[output][q], "dash") for q in ("5", "50", "95")]
     marks.append(("nominal", result.nominal[output], "solid"))
-    for i, (name, value, dash) in enumerate(marks):
+    for i, (mark, value, dash) in enumerate(marks):
         if value is None or not np.isfinite(value):
             continue
         xv = float(_convert(value, si_unit, unit)) if kind else float(value)
         fig.add_trace(go.Scatter(x=[xv, xv], y=[0, float(counts.max()) / max(1, result.count)], mode="lines",
-                                 name=name, line=dict(color=_colour(i + 1), dash=dash, width=2)))
+                                 name=mark, line=dict(color=_colour(i + 1), dash=dash, width=2)))
     fig.update_layout(title=f"Spread of the {name} ({result.count} samples)",
                       xaxis_title=f"{label} [{_unit_label(unit)}]", yaxis_title="fraction of samples per bin",
                       bargap=0.02, **_LAYOUT)
