@@ -2,8 +2,8 @@
 
 Used to check that a refactor of the fitting engine changes no fit: run before and after, then compare::
 
-    PYTHONPATH=. python benchmarks/compare_fits.py /tmp/engine_before.json
-    PYTHONPATH=. python benchmarks/compare_fits.py /tmp/engine_after.json --compare /tmp/engine_before.json
+    PYTHONPATH=. python benchmarks/compare_fits.py fits_before.json
+    PYTHONPATH=. python benchmarks/compare_fits.py fits_after.json --compare fits_before.json
 
 Covers :func:`erdesign.identification.fit.fit`, :func:`~erdesign.identification.identify.identify` (projected and
 plain, with a fixed parameter, on a record with a control), :func:`~erdesign.identification.identify.identify_joint`,

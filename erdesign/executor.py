@@ -24,6 +24,7 @@ matrices are small and tall, where a second thread per process only contends.
 
 from __future__ import annotations
 
+import abc
 import concurrent.futures
 import contextlib
 import multiprocessing
@@ -98,7 +99,7 @@ def _check_address(address: str) -> None:
                                 f"({exc.strerror or exc}); is it running, and is the address right?") from None
 
 
-class Executor:
+class Executor(abc.ABC):
     """Runs ``fn(item)`` for every item; results in the order of the items (see the module docstring)."""
 
     #: How many tasks run at once.
@@ -118,10 +119,10 @@ class Executor:
                 progress(done, len(items))
         return results
 
+    @abc.abstractmethod
     def imap(self, fn: Callable[[Any], Any], items: Iterable[Any]):
         """Yields ``(index, result)`` as tasks finish (any order): for callers that save results as they come
         (``erdesign batch`` writes its table while it runs, so that a killed campaign can resume)."""
-        raise NotImplementedError
 
     def close(self) -> None:
         """Releases the workers (a pool's processes; never a cluster the caller gave)."""

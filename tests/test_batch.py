@@ -94,14 +94,6 @@ def test_fit_of_200_records_gives_one_table_serially_on_a_pool_and_on_dask(folde
     assert all(0 < r["esr"] < 1e-3 for r in ok)                         # 1 % force noise: ESR ~ 1e-4
 
 
-def _rows(path: Path) -> int:
-    try:
-        with open(path, newline="") as fh:
-            return max(0, sum(1 for _ in fh) - 1)
-    except FileNotFoundError:
-        return 0
-
-
 @pytest.fixture(scope="module")
 def line(tmp_path_factory):
     """A production line's passive check: 200 one-cycle records at zero field of Makris's damper from the truth rig,

@@ -73,10 +73,8 @@ def _parameter_columns(model, values: Mapping[str, float]) -> dict[str, float]:
 
 def _read_for_damper(path: str, damper):
     """A measurement file checked against the damper, as ``erdesign fit`` and ``diagnose`` read it."""
-    from ..data.measurement import check_against_damper, read_measurement
-    record = read_measurement(path)
-    check_against_damper(record, damper)
-    return record
+    from ..data.measurement import read_for_damper
+    return read_for_damper([path], damper)[0]
 
 
 def _fit_row(path: str, damper_file: str, effects: str, options: Mapping[str, Any]) -> dict:
@@ -108,10 +106,8 @@ def _diagnose_row(path: str, damper_file: str, effects: str, options: Mapping[st
 
 def _identify_row(path: str, damper_file: str | None, effects: str, options: Mapping[str, Any]) -> dict:
     from ..data.readers import read_records
-    from ..fluid import CONTROL_UNITS
-    from ..identification.identify import identify, result_json
+    from ..identification.identify import control_reference_text, identify, result_json
     from ..models.registry import get_model
-    from ..units import Q_, format_quantity
     name = options["model"]
     records = read_records(path, "auto", "record")
     if len(records) != 1:
@@ -121,9 +117,7 @@ def _identify_row(path: str, damper_file: str | None, effects: str, options: Map
     model = get_model(name, **extra)
     result = identify(model, record, starts=options.get("starts", 4), max_time=options.get("max_time"),
                       decimate=options.get("decimate", 1), exclude_clipped=bool(options.get("exclude_clipped")))
-    reference = None
-    if model.uses_control and record.control_kind is not None and name != "physics":
-        reference = format_quantity(Q_(result.model.control_reference, CONTROL_UNITS[record.control_kind]).to_compact())
+    reference = control_reference_text(result.model, record.control_kind)
     out = result_json(result, name, reference)
     return {"esr": out["esr"], "success": out["success"], "control_reference": reference or "",
             "at_bounds": ",".join(out["at_bounds"]), "not_identifiable": ",".join(out["not_identifiable"]),

@@ -9,21 +9,11 @@ from typing import Sequence
 import click
 
 from ..damper.files import load_damper
-from ..data.measurement import check_against_damper, read_measurement
+from ..data.measurement import read_for_damper
 from ..diagnosis.diagnose import diagnose as run_diagnosis
 from .main import cli, emit_json, executor_options
 
-__all__ = ["diagnose", "next_command", "read_records", "force_noise_option"]
-
-
-def read_records(paths: Sequence[str], damper) -> list:
-    """The measurement files, each checked against the damper (a unit mistake is named before a fit absorbs it)."""
-    records = []
-    for path in paths:
-        record = read_measurement(path)
-        check_against_damper(record, damper)
-        records.append(record)
-    return records
+__all__ = ["diagnose", "next_command", "force_noise_option"]
 
 
 def force_noise_option(text: str | None):
@@ -84,7 +74,7 @@ def diagnose(measurements: tuple[str, ...], damper_file: str, effects: str, excl
     missing effect the report ends with the command that adds it and diagnoses again.
     """
     damper = load_damper(damper_file)
-    records = read_records(measurements, damper)
+    records = read_for_damper(measurements, damper)
     result = run_diagnosis(damper, records, effects, exclude_clipped=True if exclude_clipped else None,
                            force_noise=force_noise_option(force_noise), **executor)
     if as_json:

@@ -7,7 +7,8 @@ import click
 
 from ..damper.files import load_damper
 from ..diagnosis.diagnose import calibrate, parameters_at_bounds
-from .diagnose import force_noise_option, read_records
+from ..data.measurement import read_for_damper
+from .diagnose import force_noise_option
 from .main import cli, emit_json, json_number
 
 __all__ = ["fit"]
@@ -38,7 +39,7 @@ def fit(measurements: tuple[str, ...], damper_file: str, effects: str, exclude_c
     The fit and its ESR are judged on the samples ``erdesign diagnose`` judges, so both state the same ESR for the
     same effects."""
     damper = load_damper(damper_file)
-    records = read_records(measurements, damper)
+    records = read_for_damper(measurements, damper)
     force_noise_option(force_noise)
     result = calibrate(damper, records, effects, exclude_clipped=True if exclude_clipped else None)
     for f in result.findings:

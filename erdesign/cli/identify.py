@@ -57,14 +57,12 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
     """Identify a model's parameters from a measurement (simulation from rest at the first sample)."""
     from ..data.readers import read_records
     from ..errors import ErdesignError
-    from ..fluid import CONTROL_UNITS
-    from ..identification.identify import (choose_control_reference, fit_report, identify_joint, joint_json,
-                                           joint_report, result_json)
+    from ..identification.identify import (choose_control_reference, control_reference_text, fit_report,
+                                           identify_joint, joint_json, joint_report, result_json)
     from ..identification.identify import identify as identify_model
     from ..identification.identify import simulate as run_model
     from ..models.published import parse_parameter_list, parse_parameter_values
     from ..models.registry import get_model
-    from ..units import Q_, format_quantity
 
     records = [r for path in measurement_files for r in read_records(path, fmt, "MEASUREMENT")]
     others = [r for path in validate for r in read_records(path, fmt, "--validate")]  # bad files fail before a fit
@@ -113,11 +111,8 @@ def identify(measurement_files: tuple[str, ...], model_name: str, damper: str | 
     validation = [(other.name, run_model(model, other, result.values, exclude_clipped=exclude_clipped).metrics)
                   for other in others]
     # Field-dependent models work with the dimensionless control u = control / reference; the parameters that
-    # multiply u (slopes) are per unit u, so the reference is part of their meaning and is reported with them
-    # (docs/models.md: the power of ten at or below the records' largest |control|).
-    reference = None
-    if model.uses_control and kind is not None and model_name != "physics":
-        reference = format_quantity(Q_(model.control_reference, CONTROL_UNITS[kind]).to_compact())
+    # multiply u (slopes) are per unit u, so the reference is part of their meaning and is reported with them.
+    reference = control_reference_text(model, kind)
     if as_json:
         emit_json((joint_json if joint else result_json)(result, model_name, reference, validation))
         return

@@ -716,6 +716,17 @@ def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> li
     return out
 
 
+def read_for_damper(paths, damper) -> list["Measurement"]:
+    """The measurement files, each checked against the damper (:func:`check_against_damper`: a unit mistake is
+    named before a fit absorbs it) - as ``erdesign fit``, ``diagnose`` and ``batch`` read them."""
+    records = []
+    for path in paths:
+        record = read_measurement(path)
+        check_against_damper(record, damper)
+        records.append(record)
+    return records
+
+
 def check_against_damper(record: "Measurement", damper, *, warn: bool = True) -> list[str]:
     """The checks of :func:`check_record` that need the damper only (:func:`read_measurement` has done the others):
     a control beyond any the fluid takes (error), a stroke beyond the damper's size, a force far from what the

@@ -64,6 +64,19 @@ def choose_control_reference(model: Model, records: Sequence[Measurement]) -> fl
     return ref
 
 
+def control_reference_text(model: Model, control_kind: str | None) -> str | None:
+    """The fitted model's control reference as text with its unit (``"1 A"``), or None when the model does not use
+    the control, the records have none, or the model is the physics damper (whose control is the field itself).
+    Field-dependent models work with u = control / reference, so the parameters that multiply u are per unit u and
+    the reference is part of their meaning (docs/models.md: the power of ten at or below the records' largest
+    |control|)."""
+    from ..fluid import CONTROL_UNITS
+    from ..units import Q_, format_quantity
+    if not model.uses_control or control_kind is None or model.name == "physics":
+        return None
+    return format_quantity(Q_(model.control_reference, CONTROL_UNITS[control_kind]).to_compact())
+
+
 #: Singular value (of the Jacobian with unit-norm columns) below which a direction of parameter space is taken as
 #: not seen by the data: exact redundancies leave ~1e-8 (finite-difference noise), real information 1e-3 and up.
 NULL_SV = 1e-6
