@@ -284,7 +284,10 @@ class Requirements:
 
 # ---------------------------------------------------------------------------------------------------- parsing
 def read_requirements(path: str | Path) -> Requirements:
-    """Read a requirements file (TOML); errors name the file and the key."""
+    """Read a requirements file (TOML); errors name the file and the key.  Where no such file exists, the name of
+    a bundled example (``makris_requirements``, ...: :func:`example_requirements_names`) loads that example."""
+    if isinstance(path, str) and not Path(path).exists() and path in example_requirements_names():
+        return load_example_requirements(path)
     return requirements_from_dict(read_toml(path), source=str(path))
 
 
