@@ -39,7 +39,7 @@ from ..units import Q_
 from .evaluate import CandidateFigures, Constraint
 from .requirements import VARIABLES, Requirements
 
-__all__ = ["DesignResult", "design_record", "CSV_COLUMNS"]
+__all__ = ["DesignResult", "design_record", "CSV_COLUMNS", "RECORD_KEYS", "figure_value"]
 
 #: Columns of the CSV file written by :meth:`DesignResult.write_csv`: (header with unit, record key, scale).
 CSV_COLUMNS = (
@@ -57,6 +57,28 @@ CSV_COLUMNS = (
     ("plug_fraction [1]", "plug_fraction", 1.0),
     ("gap_ratio [1]", "gap_ratio", 1.0),
 )
+
+
+#: Where each figure of :data:`~erdesign.design.figures.FIGURES` sits in a design record (first design point).
+RECORD_KEYS = {
+    "force": ("force_N",), "controllable_force": ("controllable_force_N",),
+    "zero_field_force": ("zero_field_force_N",), "dynamic_range": ("dynamic_range",),
+    "fluid_volume": ("fluid_volume_m3",), "total_fluid_volume": ("total_fluid_volume_m3",),
+    "outer_diameter": ("outer_diameter_m",), "length": ("length_m",),
+    "coil_power": ("magnetics", "power_W"), "time_constant": ("magnetics", "time_constant_s"),
+}
+
+
+def figure_value(record: dict, figure: str) -> float | None:
+    """The SI value of the figure ``figure`` (a name of ``FIGURES``) of a design record; None where undefined.
+
+    >>> figure_value({"force_N": 6020.0, "magnetics": {"power_W": 7.5}}, "coil_power")
+    7.5
+    """
+    value: Any = record
+    for key in RECORD_KEYS[figure]:
+        value = value.get(key) if isinstance(value, dict) else None
+    return None if value is None else float(value)
 
 
 def _finite(x: float) -> float | None:
