@@ -282,8 +282,8 @@ def _results(result, data: dict) -> None:
         cols[2].success(f"Design {opened} ({name}) is the current damper: the Size, Simulate and Report pages "
                         "show it.")
     st.subheader("Trade-offs")
-    st.caption(f"Pareto front of {', '.join(FIGURES[n].description for n in req.search.pareto)}: "
-               f"{len(result.pareto)} feasible sampled designs no other beats on all of them.")
+    st.caption(f"Pareto front of {', '.join(_SHORT[n] for n in req.search.pareto)}: {len(result.pareto)} "
+               "feasible sampled designs that no other beats on all of them; the ranked designs are marked.")
     st.plotly_chart(_pareto_figure(result), key=_PREFIX + "fig.pareto", config=state.chart_config("design.pareto"))
 
 
