@@ -4,6 +4,8 @@ design found, with the numbers the library gives for it."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 from streamlit.testing.v1 import AppTest
 
@@ -102,3 +104,42 @@ def test_inputs_follow_the_unit_system_and_a_bad_value_names_its_key(page):
     assert "min_force" in error and "force" in error and "\n" not in error
     page.text_input(key="designer.req.design.point.0.min_dynamic_range").set_value("high").run()
     assert any("min_dynamic_range" in e.value for e in page.error)
+
+
+# ------------------------------------------------------------------------------------------------ pinned designs
+def _table(at: AppTest) -> dict:
+    (table,) = [t.value for t in at.table if "pinned 1" in t.value]
+    return {r["quantity"]: r for r in table.to_dict("records")}
+
+
+def test_several_pinned_designs_side_by_side_with_changes_against_this_design():
+    from erdesign import load_example
+    from erdesign.app import state
+    from erdesign.units import Q_
+
+    at = AppTest.from_file(MAIN, default_timeout=TIMEOUT).run()
+    assert at.button(key="size.pin").label == "Pin this design"          # short: never cut at 1280 px
+    at.button(key="size.pin").click().run()                              # pinned 1: Makris, gap 0.8 mm
+    at.text_input(key="size.geo.gap").set_value("0.6 mm").run()
+    at.button(key="size.pin").click().run()                              # pinned 2: gap 0.6 mm
+    at.text_input(key="size.geo.gap").set_value("0.7 mm").run()          # this design
+    no_error(at)
+    rows = _table(at)
+    assert [rows["gap h"][k] for k in ("this design", "pinned 1", "pinned 2")] == ["0.7 mm", "0.8 mm", "0.6 mm"]
+    # inputs: (0.8 / 0.7 - 1) = +14.3 %, (0.6 / 0.7 - 1) = -14.3 %
+    assert rows["gap h"]["pinned 1 vs this"] == "+14.3 %" and rows["gap h"]["pinned 2 vs this"] == "-14.3 %"
+    # outputs: the library's own forces of the three gaps at the design point (25 mm/s, 3 kV/mm)
+    makris = load_example("makris")
+    force = {h: dataclasses.replace(makris, geometry=makris.geometry.with_(gap=f"{h} mm"))
+             .size("25 mm/s", "3 kV/mm").force.m_as("N") for h in (0.6, 0.7, 0.8)}
+    for name, h in (("pinned 1", 0.8), ("pinned 2", 0.6)):
+        assert Q_(rows["force F"][name]).m_as("N") == pytest.approx(force[h], rel=5e-4)
+        shown = float(rows["force F"][f"{name} vs this"].split()[0])
+        assert shown == pytest.approx(100 * (force[h] / force[0.7] - 1), abs=0.06)
+    # the first pinned is the baseline of Simulate and Report; unpinning it makes the next one the baseline
+    assert at.session_state[state.BASELINE]["spec"]["geometry"]["gap"] == "0.8 mm"
+    at.selectbox(key="size.unpin.which").set_value(0).run()
+    at.button(key="size.unpin").click().run()
+    no_error(at)
+    assert at.session_state[state.BASELINE]["spec"]["geometry"]["gap"] == "0.6 mm"
+    assert _table(at)["gap h"]["pinned 1"] == "0.6 mm"
