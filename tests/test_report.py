@@ -34,7 +34,7 @@ from erdesign.units import Q_
 
 ROUNDING = 5e-4     # 4 significant figures (module docstring)
 ROOT = Path(__file__).resolve().parents[1]
-MAKRIS = str(ROOT / "examples" / "makris.toml")
+MAKRIS = str(ROOT / "erdesign" / "examples" / "makris.toml")
 
 
 @pytest.fixture(scope="module")
@@ -349,7 +349,7 @@ def test_write_report_chooses_the_format_from_the_suffix(tmp_path, makris_report
 
 
 def test_report_of_a_mixed_damper_from_python():
-    d = load_damper(ROOT / "examples" / "kamath_wereley.toml")
+    d = load_damper(ROOT / "erdesign" / "examples" / "kamath_wereley.toml")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         r = build_report(d, velocity_range=("0 m/s", "0.1 m/s"), fields=["3 kV/mm"])

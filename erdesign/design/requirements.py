@@ -74,6 +74,7 @@ from typing import Any
 
 from ..damper.files import parse_fluid_table, read_toml
 from ..errors import ErdesignError
+from ..examples import bundled_file
 from ..fluid import Fluid
 from ..geometry import CONFIGURATIONS
 from ..units import to_si
@@ -285,10 +286,11 @@ class Requirements:
 # ---------------------------------------------------------------------------------------------------- parsing
 def read_requirements(path: str | Path) -> Requirements:
     """Read a requirements file (TOML); errors name the file and the key.  Where no such file exists, the name of
-    a bundled example (``makris_requirements``, ...: :func:`example_requirements_names`) loads that example."""
+    a bundled example (``makris_requirements``, ...: :func:`example_requirements_names`) loads that example, and so
+    does its documented path ``examples/requirements/makris_requirements.toml``."""
     if isinstance(path, str) and not Path(path).exists() and path in example_requirements_names():
         return load_example_requirements(path)
-    return requirements_from_dict(read_toml(path), source=str(path))
+    return requirements_from_dict(read_toml(bundled_file(path) or path), source=str(path))
 
 
 def example_requirements_names() -> list[str]:
