@@ -68,3 +68,14 @@ def test_no_code_reads_through_the_top_level_links():
                  for p in (ROOT / folder).rglob("*.py")
                  for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), start=1) if link.search(line)]
     assert offenders == []
+
+
+def test_erdesign_examples_lists_the_requirements_too(capsys):
+    from erdesign.design import example_requirements_names
+
+    assert main(["examples", "--json"]) == 0
+    listed = json.loads(capsys.readouterr().out)["requirements"]
+    assert [r["name"] for r in listed] == example_requirements_names()
+    assert {r["name"]: r["configuration"] for r in listed}["mr_coil_requirements"] == "mixed"
+    for r in listed:       # each listed name is accepted by erdesign design as it is
+        assert read_requirements(r["name"]).name == r["title"]
