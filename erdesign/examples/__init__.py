@@ -17,10 +17,14 @@ __all__ = ["bundled_file"]
 def bundled_file(path: str | Path) -> Path | None:
     """The shipped file that a relative path ``examples/<file>`` names, when no file exists at ``path``; else None.
 
+    >>> import os, tempfile
+    >>> here, empty = os.getcwd(), tempfile.TemporaryDirectory()
+    >>> os.chdir(empty.name)                     # a folder without an examples/ of its own
     >>> bundled_file("examples/requirements/makris_requirements.toml").name
     'makris_requirements.toml'
     >>> bundled_file("examples/no_such_file.toml") is None, bundled_file("elsewhere/makris.toml") is None
     (True, True)
+    >>> os.chdir(here); empty.cleanup()
     """
     given = PurePath(path)
     parts = given.parts
