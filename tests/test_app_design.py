@@ -143,3 +143,20 @@ def test_several_pinned_designs_side_by_side_with_changes_against_this_design():
     no_error(at)
     assert at.session_state[state.BASELINE]["spec"]["geometry"]["gap"] == "0.6 mm"
     assert _table(at)["gap h"]["pinned 1"] == "0.6 mm"
+
+
+def test_an_opened_design_sets_the_control_of_simulate_too(page):
+    """A coil design (controlled by a current) and then an MR design controlled by a field: each time Size shows the
+    library's force of the opened design and Simulate starts at its control, in its unit."""
+    # the first design point of each requirements file: 2 A of coil current; 200 kA/m of field strength
+    for example, control in (("mr_coil_requirements", "2 A"), ("mr_requirements", "200 kA/m")):
+        found = library(example)
+        search(page, example)
+        page.button(key="designer.open").click().run()
+        page.switch_page("size.py").run()
+        no_error(page)
+        assert metric(page, "force F").to("N").magnitude == pytest.approx(found.designs[0]["force_N"], rel=5e-4)
+        page.switch_page("simulate.py").run()
+        no_error(page)                         # no "expected a magnetic field strength, got '2 A'"
+        assert page.text_input(key="sim.field").value == control
+        page.switch_page("design.py").run()

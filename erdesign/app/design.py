@@ -253,6 +253,7 @@ def _open(result, rank: int, point: dict) -> None:
         design["v_top"] = point["velocity"]
     state.set_design(design)
     state.forget("size.")             # the Size page reloads its inputs from the current design
+    state.forget("sim.field")         # Simulate's control starts at the new design's (its unit may differ)
     st.session_state[_OPENED] = (rank, spec["name"])
 
 
