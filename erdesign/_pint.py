@@ -10,9 +10,11 @@ Two costs dominate a command's start-up, and both are pint's, not erdesign's:
 * building the registry parses pint's unit definitions (about 0.7 s); pint can cache the parsed definitions in a
   folder (``UnitRegistry(cache_folder=...)``, pint's *Caching* docs), after which building it costs some 50 ms.
   :func:`application_registry` does so in the user's cache folder (``~/.cache/erdesign/pint-<version>`` on Linux;
-  the environment variable ``ERDESIGN_UNIT_CACHE`` names another folder, or ``off`` for none).  The cache is only a
+  the environment variable ``ERDESIGN_UNIT_CACHE`` names another folder to hold ``pint-<version>``, or ``off`` for
+  none).  The cache is only a
   speed-up: a folder that cannot be created or written, or a damaged cache file, falls back to parsing the
-  definitions as pint does by default (a damaged cache is removed so that the next run writes it again).
+  definitions as pint does by default (the files of a damaged cache are removed so that the next run writes them
+  again; nothing else in the folder is touched).
 
 Only :mod:`erdesign.units` (and the few modules that name ``pint`` types) import from here; every other module
 gets its quantities from :mod:`erdesign.units`.
@@ -21,7 +23,6 @@ gets its quantities from :mod:`erdesign.units`.
 from __future__ import annotations
 
 import os
-import shutil
 import sys
 from pathlib import Path
 
@@ -55,14 +56,18 @@ pint = _import_pint()
 
 
 def cache_folder() -> Path | None:
-    """The folder of the unit-definition cache (None: no cache), from ``ERDESIGN_UNIT_CACHE`` or the user's cache
-    folder, one subfolder per pint version."""
+    """The folder of the unit-definition cache (None: no cache): a subfolder ``pint-<version>`` of
+    ``ERDESIGN_UNIT_CACHE`` or of the user's cache folder for erdesign."""
     given = os.environ.get(CACHE_ENV)
+    if given is not None and given.strip().lower() in ("", "off", "0", "no", "false"):
+        return None
     if given is not None:
-        return None if given.strip().lower() in ("", "off", "0", "no", "false") else Path(given)
-    import platformdirs  # a dependency of pint
+        base = Path(given)
+    else:
+        import platformdirs  # a dependency of pint
 
-    return platformdirs.user_cache_path("erdesign", appauthor=False) / f"pint-{pint.__version__}"
+        base = platformdirs.user_cache_path("erdesign", appauthor=False)
+    return base / f"pint-{pint.__version__}"
 
 
 def _registry():
@@ -73,7 +78,8 @@ def _registry():
         except OSError:
             pass                    # not writable, a file in the way, disk full: no cache this time
         except Exception:           # noqa: BLE001  (a damaged cache file: pickle raises assorted errors)
-            shutil.rmtree(folder, ignore_errors=True)
+            for stale in (*folder.glob("*.pickle"), *folder.glob("*.json")):    # only what pint wrote there
+                stale.unlink(missing_ok=True)
     return pint.UnitRegistry(on_redefinition="raise")
 
 

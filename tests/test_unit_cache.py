@@ -41,11 +41,11 @@ def test_the_values_are_pints_own(uncached):
 
 
 def test_a_cached_registry_converts_as_the_parsed_one(tmp_path, uncached):
-    cache = tmp_path / "cache"
-    first = _run(cache)                       # writes the cache
+    first = _run(tmp_path)                    # writes the cache
+    cache = tmp_path / f"pint-{__import__('pint').__version__}"
     written = sorted(p.name for p in cache.iterdir())
     assert any(name.endswith(".pickle") for name in written)
-    second = _run(cache)                      # reads it
+    second = _run(tmp_path)                   # reads it
     assert sorted(p.name for p in cache.iterdir()) == written
     assert first["values"] == second["values"] == uncached["values"]
 
@@ -57,13 +57,18 @@ def test_an_unwritable_cache_folder_falls_back_to_parsing(tmp_path, uncached):
 
 
 def test_a_damaged_cache_is_removed_and_written_again(tmp_path, uncached):
-    cache = tmp_path / "cache"
-    _run(cache)
+    mine = tmp_path / "notes.txt"
+    mine.write_text("the user's own file beside the cache")
+    _run(tmp_path)
+    cache = tmp_path / f"pint-{__import__('pint').__version__}"
+    (cache / "unrelated.txt").write_text("not pint's")
     for p in cache.glob("*.pickle"):
         p.write_bytes(b"\x80\x04 cut short")   # a write cut short
-    assert _run(cache)["values"] == uncached["values"]
-    assert _run(cache)["values"] == uncached["values"]
-    assert any(p.stat().st_size > 100 for p in cache.glob("*.pickle"))   # rebuilt whole
+    assert _run(tmp_path)["values"] == uncached["values"]
+    assert _run(tmp_path)["values"] == uncached["values"]
+    rebuilt = list(cache.glob("*.pickle"))
+    assert rebuilt and all(p.stat().st_size > 100 for p in rebuilt)       # rebuilt whole
+    assert mine.exists() and (cache / "unrelated.txt").exists()           # only pint's files were removed
 
 
 def test_a_registry_the_user_set_first_is_kept(tmp_path):
