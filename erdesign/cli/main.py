@@ -38,7 +38,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "design": ("design", "Feasible damper geometries ranked by the objective, or the conflicts when there are none."),
     "diagnose": ("diagnose",
                  "Calibrate the physics baseline, show where it fails and rank the effects that could be missing."),
-    "examples": ("examples", "List the bundled example dampers; their names work wherever a damper file is asked for."),
+    "examples": ("examples", "List the bundled example dampers and requirements; their names work wherever "
+                             "such a file is asked for."),
     "fit": ("fit",
             "Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects."),
     "identify": ("identify",
