@@ -197,19 +197,27 @@ def _table(records: list[dict], req) -> list[dict]:
         columns[_SHORT[name]] = _column([figure_value(r, name) for r in records], FIGURES[name].unit)
     rows = []
     for i, rec in enumerate(records):
-        row = {"#": str(rec.get("rank", "nearest"))}
+        row = {"rank": str(rec.get("rank", "nearest"))}
         for title, (texts, unit) in columns.items():
             row[f"{title} [{unit}]" if unit else title] = texts[i]
         if "ducts" in rec["geometry"]:
             row["ducts"] = str(rec["geometry"]["ducts"])
         if "coil" in rec:
             row["turns"] = str(rec["coil"]["turns"])
-        if "violations" in rec:
-            row["short of"] = "; ".join(f"{k} by {100 * v:.3g} %" for k, v in rec["violations"].items() if v)
-        else:
-            row["limits it sits on"] = ", ".join(rec["active_constraints"]) or "none"
         rows.append(row)
     return rows
+
+
+def _limits(records: list[dict]) -> str:
+    """Below the table (a column would not fit): the limits each design sits on, or the nearest one's shortfalls."""
+    lines = []
+    for rec in records:
+        if "violations" in rec:
+            short = "; ".join(f"{k} by {100 * v:.3g} %" for k, v in rec["violations"].items() if v)
+            lines.append(f"- nearest design: short of {short}")
+        else:
+            lines.append(f"- {rec['rank']}: {', '.join(rec['active_constraints']) or 'inside every limit'}")
+    return "\n".join(lines)
 
 
 def _pareto_figure(result):
@@ -266,12 +274,15 @@ def _results(result, data: dict) -> None:
         st.markdown("\n".join(f"- {c}" for c in result.conflicts))
         if result.nearest is not None:
             st.caption("The design nearest to meeting them (figures at design point 1):")
-            st.dataframe(_table([result.nearest], req), hide_index=True, key=_PREFIX + "nearest")
+            st.table(_table([result.nearest], req))
+            st.markdown(_limits([result.nearest]))
         return
     st.subheader("Ranked designs")
     p = data["design"]["point"][0]
     st.caption(f"Figures at design point 1 (v = {p['velocity']}, control {p['field']}), best first.")
-    st.dataframe(_table(result.designs, req), hide_index=True, key=_PREFIX + "designs")
+    st.table(_table(result.designs, req))           # a table: every column in view, no inner scrolling
+    st.caption("The limits each design sits on (within the active tolerance):")
+    st.markdown(_limits(result.designs))
     cols = st.columns([2, 2, 3])
     rank = cols[0].selectbox("design to open", [r["rank"] for r in result.designs], key=_PREFIX + "rank",
                              format_func=lambda r: f"design {r}")
