@@ -16,6 +16,7 @@ import jinja2
 from markupsafe import Markup
 
 from ..errors import ErdesignError
+from ..output import write_output
 from .builder import Report
 from .formatting import show
 
@@ -68,12 +69,15 @@ def render_markdown(report: Report) -> str:
     return template.render(r=report, history=_history(report))
 
 
-def write_report(report: Report, path: str | Path, format: str | None = None) -> Path:
-    """Write the report to ``path``: ``format`` ``"html"`` or ``"md"``, default from the suffix (``.md`` -> md)."""
+def write_report(report: Report, path: str | Path, format: str | None = None, *, overwrite: bool = False,
+                 option: str = "path") -> Path:
+    """Write the report to ``path``: ``format`` ``"html"`` or ``"md"``, default from the suffix (``.md`` -> md).
+
+    Written whole or not at all, and an existing ``path`` only with ``overwrite`` (:mod:`erdesign.output`; ``option``
+    names the output in messages, e.g. ``--out``)."""
     path = Path(path)
     fmt = format or ("md" if path.suffix.lower() in (".md", ".markdown") else "html")
     if fmt not in FORMATS:
         raise ErdesignError(f"format: expected one of {', '.join(FORMATS)}, got {fmt!r}")
     text = render_html(report) if fmt == "html" else render_markdown(report)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return write_output(path, text, overwrite=overwrite, option=option)
