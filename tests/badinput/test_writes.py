@@ -51,10 +51,9 @@ def test_a_file_made_after_the_check_is_not_overwritten(tmp_path):
     """The check before a long run passes; another program makes the file meanwhile; the write refuses it."""
     target = tmp_path / "report.html"
     check_output_path(target)                           # the early check: nothing there yet
-    with pytest.raises(OutputPathError, match="exists"):
-        with atomic_output(target, option="--out") as tmp:
-            tmp.write_text("mine, complete")
-            target.write_text("someone else's")         # made while this write ran
+    with pytest.raises(OutputPathError, match="exists"), atomic_output(target, option="--out") as tmp:
+        tmp.write_text("mine, complete")
+        target.write_text("someone else's")             # made while this write ran
     assert target.read_text() == "someone else's"
     assert leftovers(tmp_path) == []
 
@@ -80,20 +79,18 @@ def test_a_new_file_gets_the_usual_permissions_not_those_of_a_private_temporary_
 
 def test_an_error_while_writing_leaves_nothing(tmp_path):
     target = tmp_path / "out.csv"
-    with pytest.raises(ZeroDivisionError):
-        with open_output(target) as fh:
-            fh.write("half")
-            1 / 0
+    with pytest.raises(RuntimeError, match="the writer failed"), open_output(target) as fh:
+        fh.write("half")
+        raise RuntimeError("the writer failed")
     assert not target.exists() and leftovers(tmp_path) == []
 
 
 def test_keyboard_interrupt_while_writing_keeps_the_old_file(tmp_path):
     target = tmp_path / "out.csv"
     target.write_text("old, complete")
-    with pytest.raises(KeyboardInterrupt):
-        with open_output(target, overwrite=True) as fh:
-            fh.write("new, half")
-            raise KeyboardInterrupt
+    with pytest.raises(KeyboardInterrupt), open_output(target, overwrite=True) as fh:
+        fh.write("new, half")
+        raise KeyboardInterrupt
     assert target.read_text() == "old, complete" and leftovers(tmp_path) == []
 
 
