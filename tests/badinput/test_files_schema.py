@@ -1,0 +1,102 @@
+"""The damper file's schema, declared once (erdesign.damper.files.DamperFile, pydantic 2): every bad table or value
+is one line naming the dotted key (never pydantic's multi-line report), and docs/file_formats.md's key tables are
+the schema's."""
+
+from __future__ import annotations
+
+import copy
+import importlib.util
+import re
+from pathlib import Path
+
+import pytest
+
+from erdesign.damper.files import DamperFile, damper_from_dict, damper_spec, load_example
+from erdesign.errors import DamperFileError, ErdesignError
+from erdesign.schema import key_table
+
+ROOT = Path(__file__).resolve().parents[2]
+SPENCER = damper_spec(load_example("spencer1997"))          # has [accumulator] and rod = "single"
+
+
+def _changed(path: str, value, spec=SPENCER) -> dict:
+    """``spec`` with the value at the dotted ``path`` replaced (``...`` deletes it)."""
+    data = copy.deepcopy(spec)
+    *tables, key = path.split(".")
+    where = data
+    for t in tables:
+        where = where[t]
+    if value is ...:
+        del where[key]
+    else:
+        where[key] = value
+    return data
+
+
+@pytest.mark.parametrize("path, value, message", [
+    ("geometry", "valve", r"^geometry: expected a table, got 'valve'$"),
+    ("fluid", [1, 2], r"^fluid: expected a table, got \[1, 2\]$"),
+    ("accumulator", 3, r"^accumulator: expected a table, got 3$"),
+    ("coil", "big", r"^coil: expected a table, got 'big'$"),
+    ("name", 3, r"^name: expected text, got 3$"),
+    ("geometry", ..., r"^\[geometry\]: missing table$"),
+    ("geometry.configuration", ..., r"^geometry.configuration: missing \('valve' or 'mixed'\)$"),
+    ("geometry.configuration", 1, r"^geometry.configuration: must be one of 'valve', 'mixed', got 1$"),
+    ("geometry.rod", "triple", r"^geometry.rod: must be one of 'double', 'single', got 'triple'$"),
+    ("geometry.ducts", True, r"^geometry.ducts: must be a whole number >= 1, got True$"),
+    ("geometry.ducts", 2.0, r"^geometry.ducts: must be a whole number >= 1, got 2.0$"),
+    ("geometry.gap", ["1 mm"], r"^geometry.gap: expected a value with a unit as a string, got \['1 mm'\]$"),
+    ("geometry.gap", "1 s", r"^geometry.gap: expected a length .*got '1 s' \(a time\)$"),
+    ("geometry.gap", "-1 mm", r"^geometry.gap: must be positive, got '-1 mm'$"),
+    ("geometry.gap_width", "1 mm", r"^geometry.gap_width: unknown key in \[geometry\]; allowed keys: configuration, "),
+    ("fluid.yield_exponent", "2", r"^fluid.yield_exponent: expected a number, got '2'$"),
+    ("fluid.yield_exponent", False, r"^fluid.yield_exponent: expected a number, got False$"),
+    ("fluid.seal_friction", "5 m", r"^fluid.seal_friction: expected a force"),
+    ("fluid.seal_friction", "-5 N", r"^fluid.seal_friction: must not be negative, got '-5 N'$"),
+    ("fluid.reference_field", "3 mm", r"^fluid.reference_field: expected an electric field"),
+    ("fluid.density", {"value": 1}, r"^fluid.density: expected a value with a unit as a string"),
+    ("fluid.material", 7, r"^fluid.material: expected text, got 7$"),
+    ("accumulator.polytropic_index", "1.4", r"^accumulator.polytropic_index: expected a number, got '1.4'$"),
+    ("accumulator.gas_volume", ..., r"^accumulator.gas_volume: missing$"),
+    ("accumulator.precharge", "0 Pa", r"^accumulator.precharge: must be positive, got '0 Pa'$"),
+    ("accumulator.volume", "1 l", r"^accumulator.volume: unknown key in \[accumulator\]; allowed keys: precharge, "),
+    ("colour", "red", r"^colour: unknown key; allowed keys: name, geometry, fluid, coil, accumulator$"),
+])
+def test_every_bad_key_is_one_line_naming_the_dotted_key(path, value, message):
+    with pytest.raises(DamperFileError) as info:
+        damper_from_dict(_changed(path, value), source="")
+    text = str(info.value).removeprefix(": ")
+    assert "\n" not in text and "pydantic" not in text and "validation error" not in text.lower()
+    assert re.search(message, text), text
+
+
+def test_a_misspelt_key_is_named_not_the_key_it_leaves_missing():
+    data = _changed("geometry.gap", ...)
+    data["geometry"]["gapp"] = "1 mm"
+    with pytest.raises(DamperFileError, match=r"^d.toml: geometry.gapp: unknown key"):
+        damper_from_dict(data, source="d.toml")
+
+
+def test_the_whole_file_must_be_a_table():
+    with pytest.raises(ErdesignError, match="^d: file: expected a table, got None$"):
+        damper_from_dict(None, source="d")
+
+
+def test_a_valid_file_passes_the_schema_unchanged():
+    spec = DamperFile.model_validate(SPENCER)
+    assert spec.geometry.gap == SPENCER["geometry"]["gap"]            # kept as given; the objects convert to SI
+    assert damper_from_dict(SPENCER) == load_example("spencer1997")
+
+
+def test_the_key_tables_of_the_docs_are_the_schemas():
+    spec = importlib.util.spec_from_file_location("make_key_tables", ROOT / "docs" / "make_key_tables.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    for doc in module.DOCS:
+        text = doc.read_text(encoding="utf-8")
+        assert module.render(text) == text, f"{doc.name} is out of date: run python docs/make_key_tables.py"
+    text = (ROOT / "docs" / "file_formats.md").read_text(encoding="utf-8")
+    for model in ("DamperFile", "GeometryTable", "FluidTable"):
+        assert f"<!-- keys: erdesign.damper.files.{model} -->" in text
+    table = key_table(DamperFile)
+    assert all(f"| `{key}` |" in table for key in DamperFile.model_fields)
