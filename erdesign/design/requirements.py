@@ -394,6 +394,10 @@ def _parse(data: Mapping[str, Any]) -> Requirements:
         if bounds["ducts"] != (1, 1):
             raise RequirementsError("design.bounds.ducts: a coil sits in a head with one annular gap (ducts = 1)")
         bounds.update(coil_bounds)
+    if limits.min_gap is not None and limits.min_gap > bounds["gap"][1]:
+        raise RequirementsError(f"design.limits.min_gap: {limits.min_gap * 1e3:g} mm is above the largest gap of "
+                                f"design.bounds.gap ({bounds['gap'][1] * 1e3:g} mm): no design can meet both; lower "
+                                "min_gap or widen the gap's bounds")
     search = _parse_search(design.get("search", {}))
     return Requirements(fluid=fluid, seal_friction=seal_friction, fluid_table=fluid_table,
                         configuration=configuration, objective=objective, points=points, bounds=bounds,

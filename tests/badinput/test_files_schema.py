@@ -100,3 +100,41 @@ def test_the_key_tables_of_the_docs_are_the_schemas():
         assert f"<!-- keys: erdesign.damper.files.{model} -->" in text
     table = key_table(DamperFile)
     assert all(f"| `{key}` |" in table for key in DamperFile.model_fields)
+
+
+# ------------------------------------------------------------------------------ values a file cannot mean
+REQUIREMENTS = {
+    "fluid": {"material": "makris-zeolite-silicone"},
+    "design": {"configuration": "valve",
+               "point": [{"velocity": "1 in/s", "field": "3 kV/mm", "min_force": "5 kN"}],
+               "limits": {"min_gap": "3 mm"},
+               "bounds": {"gap": ["0.5 mm", "2 mm"], "duct_length": ["20 mm", "150 mm"],
+                          "duct_mean_diameter": ["5 mm", "40 mm"], "piston_diameter": "33.4 mm",
+                          "rod_diameter": "11.25 mm"}},
+}
+
+
+def test_min_gap_above_the_gap_bounds_is_refused_naming_both_keys():
+    from erdesign.design.requirements import RequirementsError, requirements_from_dict
+
+    with pytest.raises(RequirementsError, match=r"^r.toml: design.limits.min_gap: 3 mm is above the largest gap "
+                                                r"of design.bounds.gap \(2 mm\)"):
+        requirements_from_dict(REQUIREMENTS, source="r.toml")
+    inside = copy.deepcopy(REQUIREMENTS)
+    inside["design"]["limits"]["min_gap"] = "1 mm"                  # within the bounds: a constraint, accepted
+    assert requirements_from_dict(inside).limits.min_gap == pytest.approx(1e-3)
+
+
+@pytest.mark.parametrize("low, message", [
+    ("-300 degC", r"range.temperature: '-300 degC' is below absolute zero \(-26.85 K\)"),
+    ("-10 K", r"range.temperature: '-10 K' is below absolute zero"),
+])
+def test_a_material_temperature_below_absolute_zero_is_refused(tmp_path, low, message):
+    from erdesign.materials import read_material_file
+
+    source = (ROOT / "erdesign" / "materials" / "lord-mrf-132dg.toml").read_text(encoding="utf-8")
+    assert 'temperature = ["-40 degC", "130 degC"]' in source
+    path = tmp_path / "m.toml"
+    path.write_text(source.replace('temperature = ["-40 degC"', f'temperature = ["{low}"'), encoding="utf-8")
+    with pytest.raises(ErdesignError, match=message):
+        read_material_file(path)
