@@ -45,7 +45,7 @@ from .errors import ErdesignError
 from .units import to_si
 
 __all__ = ["Table", "field", "quantity", "Length", "Number", "WholeNumber", "PositiveWholeNumber", "Text", "Flag",
-           "choice", "validate", "key_table", "QuantitySpec"]
+           "choice", "whole_number", "checked", "validate", "key_table", "QuantitySpec"]
 
 
 class Table(BaseModel):
@@ -75,10 +75,12 @@ class QuantitySpec:
     unit: str
     sign: str = ""          # "", "positive" or "non-negative"
     dimension: str = ""     # what the docs call it ("length"); the unit's dimension by default
+    text: bool = False      # only a string (a bare number is refused as such, not as a number without unit)
 
     def check(self, value: Any) -> Any:
-        if isinstance(value, bool) or not isinstance(value, (str, int, float)):
-            raise _Refused(f"expected a value with a unit as a string, got {value!r}")
+        if isinstance(value, bool) or not isinstance(value, (str, int, float)) or (self.text and
+                                                                                   not isinstance(value, str)):
+            raise _Refused(f"expected a value with a unit as a string (e.g. \"1 {self.unit}\"), got {value!r}")
         try:
             x = to_si(value, self.unit, "\x00")
         except ErdesignError as exc:
@@ -90,9 +92,10 @@ class QuantitySpec:
         return value
 
 
-def quantity(unit: str, sign: str = "", dimension: str = "") -> Any:
-    """The type of a key whose value is a quantity in a unit of ``unit``'s dimension (any unit pint knows)."""
-    spec = QuantitySpec(unit, sign, dimension)
+def quantity(unit: str, sign: str = "", dimension: str = "", *, text: bool = False) -> Any:
+    """The type of a key whose value is a quantity in a unit of ``unit``'s dimension (any unit pint knows);
+    ``sign`` "positive" or "non-negative"; ``text``: only strings (a bare number is refused as not text)."""
+    spec = QuantitySpec(unit, sign, dimension, text)
     return Annotated[Any, BeforeValidator(spec.check), spec]
 
 
@@ -102,12 +105,27 @@ def _number(value: Any) -> float:
     return value
 
 
-def _whole(low: int) -> Any:
+def whole_number(low: int) -> Any:
+    """The type of a key that takes a whole number >= ``low``."""
     def check(value: Any) -> int:
-        if isinstance(value, bool) or not isinstance(value, int) or value < low:
-            raise _Refused(f"must be a whole number >= {low}, got {value!r}")
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise _Refused(f"expected a whole number, got {value!r}")
+        if value < low:
+            raise _Refused(f"must be >= {low}, got {value!r}")
         return value
-    return check
+    return Annotated[Any, BeforeValidator(check), f"whole number >= {low}"]
+
+
+def checked(check: Any, kind: str) -> Any:
+    """The type of a key checked by ``check(value, name)``, a function that raises an
+    :class:`~erdesign.errors.ErdesignError` whose message starts with ``name`` and returns the value to keep;
+    ``kind`` says what the key takes (the docs' key table)."""
+    def run(value: Any) -> Any:
+        try:
+            return check(value, "\x00")
+        except ErdesignError as exc:
+            raise _Refused(str(exc).removeprefix("\x00: ")) from None
+    return Annotated[Any, BeforeValidator(run), kind]
 
 
 def _text(value: Any) -> str:
@@ -140,8 +158,8 @@ def choice(*options: str) -> Any:
 
 Length = quantity("m", "positive")
 Number = Annotated[Any, BeforeValidator(_number), "number"]
-WholeNumber = Annotated[Any, BeforeValidator(_whole(0)), "whole number"]
-PositiveWholeNumber = Annotated[Any, BeforeValidator(_whole(1)), "whole number >= 1"]
+WholeNumber = whole_number(0)
+PositiveWholeNumber = whole_number(1)
 Text = Annotated[Any, BeforeValidator(_text), "text"]
 Flag = Annotated[Any, BeforeValidator(_flag), "true or false"]
 
@@ -194,6 +212,8 @@ def _message(model: type[Table], where: str, error: Mapping[str, Any]) -> str:
         parent = _model_at(model, loc[:-1])
         info = parent.model_fields.get(loc[-1]) if parent is not None else None
         if info is not None and _table_of(info.annotation) is not None:
+            if "list of tables" in info.metadata:
+                return f"{name}: missing (at least one [[{name}]] table)"
             return f"[{name}]: missing table"
         options = next((m.options for m in (info.metadata if info else ()) if isinstance(m, _Choice)), None)
         return f"{name}: missing" + (f" ({' or '.join(map(repr, options))})" if options else "")
@@ -232,9 +252,8 @@ def _kind(info: Any) -> str:
             return " or ".join(f'"{o}"' for o in meta.options)
         if isinstance(meta, str):
             return meta
-    nested = _table_of(info.annotation)
-    if nested is not None:
-        return "table" if typing.get_origin(info.annotation) is not list else "list of tables"
+    if _table_of(info.annotation) is not None:
+        return "list of tables" if "list of tables" in info.metadata else "table"
     return "table" if info.annotation in (dict, Mapping) else str(info.annotation)
 
 
