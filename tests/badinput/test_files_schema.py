@@ -102,7 +102,7 @@ def test_the_key_tables_of_the_docs_are_the_schemas():
                   "design.requirements.DesignTable", "design.requirements.PointTable",
                   "design.requirements.LimitsTable", "design.requirements.BoundsTable",
                   "design.requirements.EnvelopeTable", "design.requirements.SearchTable",
-                  "design.requirements.CoilTable"):
+                  "design.requirements.CoilTable", "magnetics.coil.CoilTable"):
         assert f"<!-- keys: erdesign.{model} -->" in text
     table = key_table(DamperFile)
     assert all(f"| `{key}` |" in table for key in DamperFile.model_fields)
