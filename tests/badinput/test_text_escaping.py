@@ -118,3 +118,25 @@ def test_markdown_code_spans_hold_any_backticks():
     assert markdown_code("0.8 mm") == "`0.8 mm`"
     assert markdown_code("a``b") == "``` a``b ```"
     assert markdown_code("x | y", table=True) == "`x \\| y`"
+
+
+@settings(max_examples=500, deadline=None)
+@given(text=TEXT)
+def test_any_user_text_is_one_markdown_line_with_every_active_character_escaped(text):
+    from erdesign.report.render import markdown_text
+
+    out = markdown_text(text)
+    assert "\n" not in out and "\r" not in out and "\u2028" not in out
+    # every backslash escapes the character after it, and every active character is escaped
+    i, shown = 0, []
+    while i < len(out):
+        if out[i] == "\\":
+            assert out[i + 1] in "\\`*<|#_]", (text, out)
+            shown.append(out[i + 1])
+            i += 2
+            continue
+        assert out[i] not in "\\`*<|#", (text, out)
+        shown.append(out[i])
+        i += 1
+    one_line = re.sub(r"[\x00-\x1f\x7f-\x9f\u2028\u2029]+", " ", text)
+    assert "".join(shown) == one_line                       # what the reader sees is what the user wrote
