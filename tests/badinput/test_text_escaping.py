@@ -19,7 +19,7 @@ MAKRIS = load_example("makris")
 TEXT = st.text(alphabet=st.one_of(st.characters(), st.sampled_from('\x00\x7f\x85"\\\n\r\t\u2028#[]=')))
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(name=TEXT)
 def test_any_damper_name_is_written_so_that_it_loads_again(name):
     spec = {**damper_spec(MAKRIS), "name": name}
@@ -120,7 +120,7 @@ def test_markdown_code_spans_hold_any_backticks():
     assert markdown_code("x | y", table=True) == "`x \\| y`"
 
 
-@settings(max_examples=500, deadline=None)
+@settings(max_examples=200, deadline=None)
 @given(text=TEXT)
 def test_any_user_text_is_one_markdown_line_with_every_active_character_escaped(text):
     from erdesign.report.render import markdown_text
