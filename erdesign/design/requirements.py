@@ -333,17 +333,16 @@ def _tables(value: Any) -> Any:
 
 
 # ------------------------------------------------------------------------------------- the schema, declared once
-#: A free variable's range: ``["low unit", "high unit"]`` or one value (fixed); read as ``(low, high)`` in SI.
 def _q(unit: str, sign: str = "", dimension: str = "") -> Any:
     """A quantity of a requirements file: always text (a bare number is refused as such)."""
     return quantity(unit, sign, dimension, text=True)
 
 
 Length = _q("m", "positive")
+#: A free variable's range: ``["low unit", "high unit"]`` or one value (fixed); read as ``(low, high)`` in SI.
 LengthRange = checked(_range, "[\"low\", \"high\"] lengths with units, or one (fixed)")
 #: A whole-number variable's range: ``[low, high]`` or one number.
 WholeRange = checked(_whole_range, "[low, high] whole numbers, or one (fixed)")
-PositiveNumber = Annotated[Any, BeforeValidator(lambda v: _positive(v)), "number > 0"]
 
 
 def _positive(value: Any) -> float:
@@ -352,6 +351,16 @@ def _positive(value: Any) -> float:
     if not value > 0:
         raise ValueError(f"must be positive, got {value!r}")
     return value
+
+
+def _figure_list(value: Any) -> Any:
+    if not isinstance(value, list):
+        raise ValueError(f"expected a list of two or three figure names, got {value!r}")
+    return value
+
+
+PositiveNumber = Annotated[Any, BeforeValidator(_positive), "number > 0"]
+FigureList = Annotated[Any, BeforeValidator(_figure_list), "list of two or three figure names"]
 
 
 class PointTable(Table):
@@ -416,8 +425,7 @@ class SearchTable(Table):
     chunk: whole_number(1024) = key("candidates evaluated at once", default=SearchSettings.chunk)
     refine: Flag = key("refine the best designs locally", default=SearchSettings.refine)
     designs: whole_number(1) = key("how many designs to return", default=SearchSettings.designs)
-    pareto: Annotated[Any, BeforeValidator(lambda v: _figure_list(v)), "list of two or three figure names"] = key(
-        "figures of the Pareto front (erdesign.design.figures.FIGURES)", default=None)
+    pareto: FigureList = key("figures of the Pareto front (erdesign.design.figures.FIGURES)", default=None)
     active_tolerance: Number = key("relative margin below which a constraint counts as active",
                                    default=SearchSettings.active_tolerance)
     gap_tolerance: _q("m") = key("grid the returned gap is rounded to, 0 to 10 mm (default 0.01 mm)",
@@ -425,12 +433,6 @@ class SearchTable(Table):
     length_tolerance: _q("m") = key("grid the other returned lengths are rounded to, 0 to 10 mm (default "
                                           "0.1 mm)", default=None)
     secondary: choice(*OBJECTIVES) = key("objective that breaks ties (default: per objective)", default=None)
-
-
-def _figure_list(value: Any) -> Any:
-    if not isinstance(value, list):
-        raise ValueError(f"expected a list of two or three figure names, got {value!r}")
-    return value
 
 
 class CoilTable(Table):
