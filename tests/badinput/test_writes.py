@@ -296,3 +296,26 @@ def test_the_batch_table_is_written_by_the_same_helper(tmp_path):
     with pytest.raises(OutputPathError, match="symbolic link"):
         write_table(link, rows, ["record", "status", "esr", "sha256"])
     assert leftovers(tmp_path) == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_an_interrupt_during_simulate_out_leaves_no_half_written_csv(tmp_path, sig):
+    """The issue's case: Ctrl-C (or kill) while ``erdesign simulate --out`` writes a long CSV left 3898 of 1,000,000
+    rows.  The command is interrupted as soon as its temporary file appears: no forces.csv, no temporary file."""
+    t = np.arange(150_000) / 10_000.0
+    record = Measurement.from_arrays(t, 0.01 * np.sin(4 * np.pi * t), 500.0 * np.cos(4 * np.pi * t))
+    write_measurement(tmp_path / "m.csv", record)
+    script = "import sys; from erdesign.cli import main; sys.exit(main(sys.argv[1:]))"
+    child = _child("simulate", str(tmp_path / "m.csv"), "--model", "bingham", "--params",
+                   "f_c=100 N, c0=1000 N*s/m, f0=0 N", "--out", str(tmp_path / "forces.csv"), script=script)
+    deadline = time.monotonic() + 300
+    while not leftovers(tmp_path):                      # the write has begun
+        assert child.poll() is None, child.communicate()
+        assert time.monotonic() < deadline
+        time.sleep(0.005)
+    child.send_signal(sig)
+    _, err = child.communicate(timeout=120)
+    assert child.returncode != 0, err
+    assert "Traceback" not in err
+    assert not (tmp_path / "forces.csv").exists() and leftovers(tmp_path) == []
