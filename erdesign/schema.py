@@ -34,6 +34,7 @@ erdesign.errors.ErdesignError: pipe.colour: unknown key in [pipe]; allowed keys:
 
 from __future__ import annotations
 
+import numbers
 import typing
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -78,7 +79,7 @@ class QuantitySpec:
     text: bool = False      # only a string (a bare number is refused as such, not as a number without unit)
 
     def check(self, value: Any) -> Any:
-        if isinstance(value, bool) or not isinstance(value, (str, int, float)) or (self.text and
+        if isinstance(value, bool) or not isinstance(value, (str, numbers.Real)) or (self.text and
                                                                                    not isinstance(value, str)):
             raise _Refused(f"expected a value with a unit as a string (e.g. \"1 {self.unit}\"), got {value!r}")
         try:
@@ -100,7 +101,8 @@ def quantity(unit: str, sign: str = "", dimension: str = "", *, text: bool = Fal
 
 
 def _number(value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    # numbers.Real: a dict built in Python may hold numpy numbers (a TOML file never does)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise _Refused(f"expected a number, got {value!r}")
     return value
 
@@ -108,11 +110,11 @@ def _number(value: Any) -> float:
 def whole_number(low: int) -> Any:
     """The type of a key that takes a whole number >= ``low``."""
     def check(value: Any) -> int:
-        if isinstance(value, bool) or not isinstance(value, int):
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
             raise _Refused(f"expected a whole number, got {value!r}")
         if value < low:
             raise _Refused(f"must be >= {low}, got {value!r}")
-        return value
+        return int(value)
     return Annotated[Any, BeforeValidator(check), f"whole number >= {low}"]
 
 

@@ -66,6 +66,7 @@ erdesign.design.requirements.RequirementsError: requirements: desing: unknown ke
 from __future__ import annotations
 
 import dataclasses
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from importlib import resources
@@ -346,7 +347,7 @@ WholeRange = checked(_whole_range, "[low, high] whole numbers, or one (fixed)")
 
 
 def _positive(value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError(f"expected a number, got {value!r}")
     if not value > 0:
         raise ValueError(f"must be positive, got {value!r}")

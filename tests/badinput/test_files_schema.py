@@ -191,3 +191,12 @@ def test_a_bound_is_a_range_or_one_value_read_in_si():
     assert single.bounds["piston_diameter"] == pytest.approx((0.0334, 0.0334))    # one value: fixed
     assert single.bounds["gap"] == pytest.approx((0.5e-3, 2e-3)) and single.bounds["ducts"] == (1, 1)
     assert len(single.points) == 1 and single.points[0].velocity == pytest.approx(0.0254)
+
+
+def test_a_spec_built_in_python_may_hold_numpy_numbers():
+    """A TOML file holds Python numbers only; a dict built by a script or the app may hold numpy ones."""
+    import numpy as np
+
+    data = _changed("geometry.ducts", np.int64(1))
+    data["fluid"]["yield_exponent"] = np.float64(data["fluid"]["yield_exponent"])
+    assert damper_from_dict(data) == load_example("spencer1997")
