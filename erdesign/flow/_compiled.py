@@ -7,8 +7,8 @@ at a time, so that a root is found per element from a good start instead of by w
 
 * :func:`find_root` - Chandrupatla's bracketed root finder with the tolerances of
   :func:`scipy.optimize.elementwise.find_root` (which the numpy kernels used before), for one element;
-* :func:`mixed_gap_solve` - the pressure gradient and wall-stress offsets of Bingham Couette-Poiseuille flow
-  (:func:`erdesign.flow.mixed_mode.couette_poiseuille_bingham`);
+* :func:`couette_poiseuille`, :func:`mixed_gap_state` - Bingham Couette-Poiseuille flow in a slit with one moving
+  wall (:func:`erdesign.flow.mixed_mode.couette_poiseuille_bingham`);
 * :func:`annulus_shape_offset`, :func:`annulus_plug_fraction` - the exact Bingham annulus
   (:mod:`erdesign.flow.annulus_bingham`): plug position by safeguarded Newton, flow rate by Gauss-Legendre;
 * :func:`slit_pressure_drop` - the thin-gap Bingham pressure drop dp(Q) in one pass
@@ -26,14 +26,16 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["find_root", "mixed_gap_solve", "annulus_shape_offset", "annulus_plug_fraction", "slit_pressure_drop"]
+__all__ = ["find_root", "couette_poiseuille", "mixed_gap_state", "annulus_shape_offset", "annulus_plug_fraction", "slit_pressure_drop"]
 
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
 
 _EPS = float(np.finfo(float).eps)
 _TINY = float(np.finfo(float).tiny)
 #: codes of the equations of find_root
-MIXED_FLOW, ANNULUS_FLOW = 0, 1
+MIXED_FLOW = 0
+#: the codes of erdesign.flow.mixed_mode.GapFlowRegime (tests/test_flow_compiled.py checks they agree)
+FULLY_YIELDED, FLOATING_PLUG, PLUG_AT_MOVING_WALL, PLUG_AT_FIXED_WALL, BLOCKED = 0, 1, 2, 3, 4
 
 
 # ------------------------------------------------------------------------------------------------------------------
@@ -171,16 +173,10 @@ def _mixed_residual(G, U_bar, q_bar, eps):
 
 
 @_jit
-def _mixed_gradient(U_bar, q_bar, eps):
-    """Dimensionless gradient G of one element (NaN for non-finite input); see mixed_mode._solve."""
-    if not (math.isfinite(U_bar) and math.isfinite(q_bar) and math.isfinite(eps)):
-        return math.nan
-    G_newton = 12.0 * (U_bar / 2.0 - q_bar)      # exact for tau_y = 0
-    if eps == 0.0:
-        return G_newton
-    if U_bar == 0.0 and q_bar == 0.0:            # blocked: the break-away value with the sign bit of q
-        return -math.copysign(2.0 * eps, q_bar)
-    # |G - G_N| <= 3 eps held on 4e5 random cases; widen (as scipy's bracket_root would) should it ever miss
+def _mixed_gradient_bracketed(U_bar, q_bar, eps):
+    """G by Chandrupatla's method from the bracket G_N -+ (3 eps + 1e-3), widened should it miss; robust, and
+    the fallback of :func:`_mixed_gradient`."""
+    G_newton = 12.0 * (U_bar / 2.0 - q_bar)
     half = 3.0 * eps + 1e-3
     lo, hi = G_newton - half, G_newton + half
     for _ in range(60):
@@ -199,12 +195,133 @@ def _mixed_gradient(U_bar, q_bar, eps):
 
 
 @_jit
-def mixed_gap_solve(U_bar, q_bar, eps, out):
-    """Gradient and oriented state of every element: out[:, k] = (G, s, lo0, hi0, lo1, hi1) for 1-D inputs."""
-    for i in range(U_bar.size):
-        G = _mixed_gradient(U_bar[i], q_bar[i], eps[i])
-        s, _, lo0, hi0, lo1, hi1 = mixed_state(G, U_bar[i], eps[i])
-        out[0, i], out[1, i], out[2, i], out[3, i], out[4, i], out[5, i] = G, s, lo0, hi0, lo1, hi1
+def _mixed_gradient(U_bar, q_bar, eps):
+    """Dimensionless gradient G of one element (NaN for non-finite input), the root of the non-increasing
+    q_bar(G) - q_bar.
+
+    The start is the valve-mode slit (the trigonometric root of :func:`erdesign.flow.bingham.bingham_slit_flow`)
+    for the flow q_bar - U_bar/2 that the pressure drives in the Newtonian fluid: exact for U = 0 and for
+    tau_y = 0.  One step with the slope of that slit, -(1 - phi)^2 (1 + 2 phi)/12, follows, then secant steps,
+    kept inside G_N -+ (3 eps + 1e-3) (|G - G_N| <= 3 eps held on 4e5 random cases) by bisection, to a step below
+    4 ulp: 3-6 evaluations of the closed forms instead of 9-21 for Chandrupatla's method from that bracket,
+    which remains the fallback should the iteration stall or end on an end of the bracket it has not checked."""
+    if not (math.isfinite(U_bar) and math.isfinite(q_bar) and math.isfinite(eps)):
+        return math.nan
+    G_newton = 12.0 * (U_bar / 2.0 - q_bar)      # exact for tau_y = 0
+    if eps == 0.0:
+        return G_newton
+    if U_bar == 0.0 and q_bar == 0.0:            # blocked: the break-away value with the sign bit of q
+        return -math.copysign(2.0 * eps, q_bar)
+    half = 3.0 * eps + 1e-3
+    lo, hi = G_newton - half, G_newton + half    # residual >= 0 at lo, <= 0 at hi, until checked
+    lo_checked = hi_checked = False
+    q_valve = q_bar - 0.5 * U_bar
+    N = 6.0 * abs(q_valve) / eps
+    if N > 1e12:
+        x0, slope = G_newton, -1.0 / 12.0
+    else:
+        m = math.sqrt(1.0 + (2.0 / 3.0) * N)
+        phi = 2.0 * m * math.sin(math.asin(m**-3) / 3.0)
+        x0 = -math.copysign(2.0 * eps / phi, q_valve)
+        slope = -(1.0 - phi) ** 2 * (1.0 + 2.0 * phi) / 12.0
+    x0 = min(max(x0, lo), hi)
+    f0 = _mixed_residual(x0, U_bar, q_bar, eps)
+    if f0 == 0.0:
+        return x0
+    if f0 > 0.0:
+        lo, lo_checked = x0, True
+    else:
+        hi, hi_checked = x0, True
+    x1 = x0 - f0 / slope if slope != 0.0 else 0.5 * (lo + hi)
+    for _ in range(60):
+        if abs(x1 - x0) <= 4.0 * _EPS * abs(x1) + 4.0 * _TINY:
+            x = min(max(x1, lo), hi)
+            tol = 8.0 * _EPS * abs(x) + 8.0 * _TINY
+            if (abs(x - lo) <= tol and not lo_checked) or (abs(x - hi) <= tol and not hi_checked):
+                break                            # ended on an end never evaluated: the root may lie beyond
+            return x
+        if not (lo < x1 < hi):
+            x1 = 0.5 * (lo + hi)
+        f1 = _mixed_residual(x1, U_bar, q_bar, eps)
+        if f1 == 0.0:
+            return x1
+        if f1 > 0.0:
+            lo, lo_checked = x1, True
+        else:
+            hi, hi_checked = x1, True
+        x2 = x1 - f1 * (x1 - x0) / (f1 - f0) if f1 != f0 else 0.5 * (lo + hi)
+        x0, f0, x1 = x1, f1, x2
+    return _mixed_gradient_bracketed(U_bar, q_bar, eps)
+
+
+@_jit
+def _mixed_solution(U, q, tau_y, eta, h):
+    """(tau_s, eps, U_bar, G, s, lo0, hi0, lo1, hi1) of one element, in SI input (mixed_mode, module notes)."""
+    scale = tau_y + eta * (abs(U) / h + abs(q) / h**2)
+    if scale == 0.0:                             # tau_y = U = q = 0: nothing moves, no stress
+        scale = 1.0
+    eps = tau_y / scale                          # inf/inf for infinite inputs: NaN out
+    U_bar = eta * U / (scale * h)
+    q_bar = eta * q / (scale * h**2)
+    G = _mixed_gradient(U_bar, q_bar, eps)
+    s, _, lo0, hi0, lo1, hi1 = mixed_state(G, U_bar, eps)
+    return scale, eps, U_bar, G, s, lo0, hi0, lo1, hi1
+
+
+@_jit
+def mixed_gap_state(U, q, tau_y, eta, h, out):
+    """out[:, i] = (tau_s, G, s, lo0, hi0, lo1, hi1) of every element (1-D arrays of one size): the state from
+    which the velocity profile is integrated."""
+    for i in range(U.size):
+        scale, _, _, G, s, lo0, hi0, lo1, hi1 = _mixed_solution(U[i], q[i], tau_y[i], eta[i], h[i])
+        out[0, i], out[1, i], out[2, i] = scale, G, s
+        out[3, i], out[4, i], out[5, i], out[6, i] = lo0, hi0, lo1, hi1
+    return out
+
+
+@_jit
+def couette_poiseuille(U, q, tau_y, eta, h, out):
+    """out[:, i] = (g, tau(0), tau(h), y1, y2, plug fraction, regime code) of every element (1-D arrays of one
+    size, SI), the fields of :func:`erdesign.flow.mixed_mode.couette_poiseuille_bingham`."""
+    for i in range(U.size):
+        scale, eps, _, G, s, lo0, hi0, lo1, hi1 = _mixed_solution(U[i], q[i], tau_y[i], eta[i], h[i])
+        Gp = s * G
+        # plug edges: where the stress t0 + G Y crosses -eps and +eps (oriented frame), clipped to [0, 1]
+        if Gp > 0.0:
+            y1 = min(max(-lo0 / Gp, 0.0), 1.0)
+            y2 = min(max(-hi0 / Gp, 0.0), 1.0)
+        else:
+            y1 = 1.0 if lo0 < 0.0 else 0.0
+            y2 = 0.0 if hi0 > 0.0 else 1.0
+        plug = y2 > y1 and eps > 0.0
+        if not plug:
+            y2 = y1                              # no plug: a single point (the Newtonian fluid at rest too)
+        at_moving = plug and lo0 >= 0.0
+        at_fixed = plug and hi1 <= 0.0
+        # wall stresses in the oriented frame, each from its nearer band edge, then back to the sign of G
+        t0 = lo0 - eps if abs(lo0) < abs(hi0) else hi0 + eps
+        t1 = lo1 - eps if abs(lo1) < abs(hi1) else hi1 + eps
+        if math.isnan(G):
+            y1 = y2 = math.nan
+            regime = -1
+        elif not plug:
+            regime = FULLY_YIELDED
+        elif at_moving and at_fixed:
+            regime = BLOCKED
+        elif at_moving:
+            regime = PLUG_AT_MOVING_WALL
+        elif at_fixed:
+            regime = PLUG_AT_FIXED_WALL
+        else:
+            regime = FLOATING_PLUG
+        hh = h[i]
+        out[0, i] = G * scale / hh
+        out[1, i] = s * t0 * scale
+        out[2, i] = s * t1 * scale
+        out[3, i] = y1 * hh
+        out[4, i] = y2 * hh
+        out[5, i] = y2 - y1
+        out[6, i] = regime
     return out
 
 

@@ -140,14 +140,6 @@ def _compiled():
 # ----------------------------------------------------------------------------------------------------------------
 
 
-def _plug_edges_pos(G, lo0, hi0):
-    """Positions (clipped to [0, 1]) where the stress t0 + G*Y crosses -eps and +eps, for G >= 0."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        y1 = np.where(G > 0.0, np.clip(-lo0 / G, 0.0, 1.0), np.where(lo0 < 0.0, 1.0, 0.0))
-        y2 = np.where(G > 0.0, np.clip(-hi0 / G, 0.0, 1.0), np.where(hi0 > 0.0, 0.0, 1.0))
-    return y1, y2
-
-
 def _velocity_pos(Y, G, lo0, hi0, lo1, hi1):
     """u_bar(Y) = -int_Y^1 D(t0 + G s) ds for G >= 0 (integrated from the fixed wall, where u = 0)."""
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -162,40 +154,19 @@ def _velocity_pos(Y, G, lo0, hi0, lo1, hi1):
     return -(above + below)
 
 
-class _Solution(NamedTuple):
-    scale: np.ndarray   # tau_s, [Pa]
-    eps: np.ndarray
-    U_bar: np.ndarray
-    G: np.ndarray       # signed
-    s: np.ndarray       # sign of the orientation
-    offsets: tuple      # (lo0, hi0, lo1, hi1) in the oriented frame
-
-
 def _check_positive(**values):
     for name, value in values.items():
         if np.any(np.asarray(value) <= 0.0):
             raise ErdesignError(f"{name}: must be positive, got {value!r}")
 
 
-def _solve(U, q, tau_y, eta, h):
-    """Dimensionless solution, arrays of the broadcast shape."""
+def _flat_inputs(U, q, tau_y, eta, h):
+    """Checked inputs broadcast to one shape: (shape, five contiguous 1-D float arrays) for the compiled loops."""
     U, q, tau_y, eta, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (U, q, tau_y, eta, h)))
     if np.any(tau_y < 0.0):
         raise ErdesignError(f"tau_y: must be >= 0, got {tau_y!r}")
     _check_positive(eta=eta, h=h)
-    scale = tau_y + eta * (np.abs(U) / h + np.abs(q) / h**2)
-    at_rest = scale == 0.0                          # tau_y = U = q = 0: nothing moves, no stress
-    scale = np.where(at_rest, 1.0, scale)
-    with np.errstate(invalid="ignore"):             # inf/inf for infinite inputs: NaN out
-        eps = tau_y / scale
-        U_bar = eta * U / (scale * h)
-        q_bar = eta * q / (scale * h**2)
-
-    shape = U_bar.shape
-    state = _compiled().mixed_gap_solve(U_bar.ravel(), q_bar.ravel(), eps.ravel(), np.empty((6, U_bar.size)))
-    state = state.reshape((6,) + shape)
-    G, sign, offsets = state[0], state[1], tuple(state[2:])
-    return _Solution(scale, eps, U_bar, G, sign, offsets)
+    return U.shape, [np.ascontiguousarray(a).ravel() for a in (U, q, tau_y, eta, h)]
 
 
 def _out(x):
@@ -270,34 +241,16 @@ def couette_poiseuille_bingham(U, q, tau_y, eta, h):
     mixed-mode moving-electrode damper and its quasi-steady Bingham design, their Ref. 11); derivation in
     docs/theory/mixed_mode.md.
     """
-    sol = _solve(U, q, tau_y, eta, h)
-    G, eps, scale, sign = sol.G, sol.eps, sol.scale, sol.s
-    lo0, hi0, lo1, hi1 = sol.offsets
-    h = np.broadcast_to(np.asarray(h, dtype=float), G.shape)
-    y1, y2 = _plug_edges_pos(sign * G, lo0, hi0)
-    plug = (y2 > y1) & (eps > 0.0)
-    y2 = np.where(plug, y2, y1)                     # no plug: a single point (the Newtonian fluid at rest too)
-    undefined = np.isnan(G)
-    y1, y2 = np.where(undefined, np.nan, y1), np.where(undefined, np.nan, y2)
-    at_moving, at_fixed = plug & (lo0 >= 0.0), plug & (hi1 <= 0.0)
-    # Wall stresses in the oriented frame, each from its nearer band edge, then back to the sign of G.
-    t0 = np.where(np.abs(lo0) < np.abs(hi0), lo0 - eps, hi0 + eps)
-    t1 = np.where(np.abs(lo1) < np.abs(hi1), lo1 - eps, hi1 + eps)
-    regime = np.select(
-        [~plug, at_moving & at_fixed, at_moving, at_fixed],
-        [GapFlowRegime.FULLY_YIELDED, GapFlowRegime.BLOCKED, GapFlowRegime.PLUG_AT_MOVING_WALL,
-         GapFlowRegime.PLUG_AT_FIXED_WALL],
-        GapFlowRegime.FLOATING_PLUG,
-    ).astype(int)
-    regime = np.where(undefined, -1, regime)
+    shape, flat = _flat_inputs(U, q, tau_y, eta, h)
+    out = _compiled().couette_poiseuille(*flat, np.empty((7, flat[0].size))).reshape((7,) + shape)
     return CouettePoiseuilleBingham(
-        pressure_gradient=_out(G * scale / h),
-        wall_stress_moving=_out(sign * t0 * scale),
-        wall_stress_fixed=_out(sign * t1 * scale),
-        plug_y1=_out(y1 * h),
-        plug_y2=_out(y2 * h),
-        plug_fraction=_out(y2 - y1),
-        regime=_out(regime),
+        pressure_gradient=_out(out[0]),
+        wall_stress_moving=_out(out[1]),
+        wall_stress_fixed=_out(out[2]),
+        plug_y1=_out(out[3]),
+        plug_y2=_out(out[4]),
+        plug_fraction=_out(out[5]),
+        regime=_out(out[6].astype(int)),
     )
 
 
@@ -331,10 +284,11 @@ def couette_poiseuille_bingham_velocity(y, U, q, tau_y, eta, h):
     ----------
     As :func:`couette_poiseuille_bingham`.
     """
-    sol = _solve(U, q, tau_y, eta, h)
+    shape, flat = _flat_inputs(U, q, tau_y, eta, h)
+    scale, G, sign, *offsets = _compiled().mixed_gap_state(*flat, np.empty((7, flat[0].size))).reshape((7,) + shape)
     Y = np.asarray(y, dtype=float) / np.asarray(h, dtype=float)
-    u_bar = sol.s * _velocity_pos(Y, sol.s * sol.G, *sol.offsets)
-    return _out(u_bar * sol.scale * np.asarray(h, dtype=float) / np.asarray(eta, dtype=float))
+    u_bar = sign * _velocity_pos(Y, sign * G, *offsets)
+    return _out(u_bar * scale * np.asarray(h, dtype=float) / np.asarray(eta, dtype=float))
 
 
 def mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h):
