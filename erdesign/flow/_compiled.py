@@ -11,7 +11,7 @@ at a time, so that a root is found per element from a good start instead of by w
   wall (:func:`erdesign.flow.mixed_mode.couette_poiseuille_bingham`);
 * :func:`annulus_shape_offset`, :func:`annulus_plug_fraction` - the exact Bingham annulus
   (:mod:`erdesign.flow.annulus_bingham`): plug position by safeguarded Newton, flow rate by Gauss-Legendre;
-* :func:`slit_pressure_drop` - the thin-gap Bingham pressure drop dp(Q) in one pass
+* :func:`slit_flow` - the thin-gap Bingham pressure drop dp(Q) in one pass
   (:func:`erdesign.flow.bingham.bingham_slit_flow`).
 
 ``error_model="numpy"``: a division by zero gives inf or NaN as in numpy, never an exception, so the branches read
@@ -26,7 +26,8 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["find_root", "couette_poiseuille", "mixed_gap_state", "annulus_shape_offset", "annulus_plug_fraction", "slit_pressure_drop"]
+__all__ = ["annulus_plug_fraction", "annulus_shape_offset", "annulus_velocity", "couette_poiseuille", "find_root",
+           "mixed_gap_state", "slit_flow"]
 
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
 
@@ -533,3 +534,44 @@ def annulus_velocity(rho, phi, eps, out):
         else:
             out[i] = _plug_speed_inner(t1, p, R1)
     return out
+
+
+# ------------------------------------------------------------------------------------------------------------------
+# Thin-gap Bingham slit (erdesign.flow.bingham, module notes): dp(Q) in one pass.
+# ------------------------------------------------------------------------------------------------------------------
+
+
+@_jit
+def _slit_plug_fraction(N):
+    """phi in (0, 1] of phi^3 - (3 + 2N) phi + 2 = 0: the trigonometric root, and below N = 0.5 six Newton steps
+    on the cubic written for the sheared fraction 1 - phi (bingham._plug_and_sheared_fractions, element-wise)."""
+    if N == 0.0:
+        return 1.0                               # the blocked gap exactly (no 0/0 in the Newton step)
+    if N < 0.5:
+        e = math.sqrt(2.0 * N / 3.0)
+        for _ in range(6):
+            g = e * e * (3.0 - e) - 2.0 * N * (1.0 - e)
+            slope = 6.0 * e - 3.0 * e * e + 2.0 * N
+            if slope > 0.0:
+                e = e - g / slope
+        return 1.0 - e
+    m = math.sqrt(1.0 + (2.0 / 3.0) * N)
+    return 2.0 * m * math.sin(math.asin(m**-3) / 3.0)
+
+
+@numba.guvectorize(["void(float64, float64, float64, float64, float64, float64, float64[:], float64[:])"],
+                   "(),(),(),(),(),()->(),()", nopython=True, cache=True)
+def slit_flow(Q, tau_y, eta, L, d, h, dp, phi):  # pragma: no cover - compiled; run by tests/test_flow_compiled.py
+    """(dp, phi): pressure drop (sign of Q) and plug fraction, the fields of
+    :func:`erdesign.flow.bingham.bingham_slit_flow`; a generalised ufunc, so the arguments broadcast without
+    copies."""
+    dp_y = 2.0 * tau_y * L / h
+    dp_n = 12.0 * eta * L * abs(Q) / (math.pi * d * h**3)
+    if dp_y > 1e-12 * dp_n:
+        p = _slit_plug_fraction(dp_n / dp_y)
+        dp[0] = math.copysign(dp_y / p, Q)
+        phi[0] = p
+    else:
+        # a yield stress below 1e-12 of the viscous pressure drop: the large-ratio limit, exact to 1e-12
+        dp[0] = math.copysign(dp_n + 1.5 * dp_y, Q)
+        phi[0] = 0.0
