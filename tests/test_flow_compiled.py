@@ -65,6 +65,21 @@ def test_slit_compiled_pass_equals_the_numpy_path_to_a_few_ulp():
     np.testing.assert_array_equal(np.signbit(big.pressure_drop), np.signbit(dp_ref))   # -0.0 gives -dp_y
 
 
+def test_slit_one_duct_loop_equals_the_numpy_path():
+    # Many flows through one duct (scalar duct arguments) take the plain loop with the duct's constants hoisted.
+    rng = np.random.default_rng(8)
+    L, d, h, eta, tau_y = 0.0546, 0.0143, 0.0008, 13.0, 1800.0
+    N = 10.0 ** rng.uniform(-30, 14, (2, COMPILED_MIN_SIZE))                 # beyond 1e12: the large-ratio limit
+    Q = N * (2 * tau_y * L / h) * np.pi * d * h**3 / (12 * eta * L) * rng.choice([-1.0, 1.0], N.shape)
+    Q[0, :3] = [0.0, -0.0, np.nan]
+    big = bingham_slit_flow(Q, tau_y, eta, L, d, h)
+    assert big.pressure_drop.shape == Q.shape
+    small = [bingham_slit_flow(Q[:, i:i + 1000], tau_y, eta, L, d, h) for i in range(0, Q.shape[1], 1000)]
+    np.testing.assert_allclose(big.pressure_drop, np.hstack([s.pressure_drop for s in small]), rtol=8 * EPS, atol=0)
+    np.testing.assert_allclose(big.plug_fraction, np.hstack([s.plug_fraction for s in small]), rtol=8 * EPS, atol=0)
+    assert big.pressure_drop[0, 1] == -2 * tau_y * L / h
+
+
 def test_slit_broadcasts_like_the_numpy_path():
     Q = np.linspace(-1e-4, 1e-4, COMPILED_MIN_SIZE)[:, None]
     tau_y = np.array([0.0, 500.0, 1800.0])

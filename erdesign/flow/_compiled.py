@@ -11,7 +11,7 @@ at a time, so that a root is found per element from a good start instead of by w
   wall (:func:`erdesign.flow.mixed_mode.couette_poiseuille_bingham`);
 * :func:`annulus_shape_offset`, :func:`annulus_plug_fraction` - the exact Bingham annulus
   (:mod:`erdesign.flow.annulus_bingham`): plug position by safeguarded Newton, flow rate by Gauss-Legendre;
-* :func:`slit_flow` - the thin-gap Bingham pressure drop dp(Q) in one pass
+* :func:`slit_flow`, :func:`slit_flow_one_duct` - the thin-gap Bingham pressure drop dp(Q) in one pass
   (:func:`erdesign.flow.bingham.bingham_slit_flow`).
 
 ``error_model="numpy"``: a division by zero gives inf or NaN as in numpy, never an exception, so the branches read
@@ -27,7 +27,7 @@ import numba
 import numpy as np
 
 __all__ = ["annulus_plug_fraction", "annulus_shape_offset", "annulus_velocity", "couette_poiseuille", "find_root",
-           "mixed_gap_state", "slit_flow"]
+           "mixed_gap_state", "slit_flow", "slit_flow_one_duct"]
 
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
 
@@ -575,3 +575,22 @@ def slit_flow(Q, tau_y, eta, L, d, h, dp, phi):  # pragma: no cover - compiled; 
         # a yield stress below 1e-12 of the viscous pressure drop: the large-ratio limit, exact to 1e-12
         dp[0] = math.copysign(dp_n + 1.5 * dp_y, Q)
         phi[0] = 0.0
+
+
+@_jit
+def slit_flow_one_duct(Q, tau_y, eta, L, d, h, dp, phi):
+    """:func:`slit_flow` for many flows through one duct (scalar tau_y, eta, L, d, h; 1-D contiguous Q): the
+    duct's constants computed once, a plain loop (a generalised ufunc calls a function per element)."""
+    dp_y = 2.0 * tau_y * L / h
+    per_flow = 12.0 * eta * L / (math.pi * d * h**3)
+    for i in range(Q.size):
+        q = Q[i]
+        dp_n = per_flow * abs(q)
+        if dp_y > 1e-12 * dp_n:
+            p = _slit_plug_fraction(dp_n / dp_y)
+            dp[i] = math.copysign(dp_y / p, q)
+            phi[i] = p
+        else:
+            dp[i] = math.copysign(dp_n + 1.5 * dp_y, q)
+            phi[i] = 0.0
+    return dp, phi

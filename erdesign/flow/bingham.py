@@ -269,8 +269,14 @@ def bingham_slit_flow(Q, tau_y, eta, L, d, h):
     check_flow_args(tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     if np.broadcast(Q, tau_y, eta, L, d, h).size >= COMPILED_MIN_SIZE:
         # numba, imported here: small calls (one velocity) do not pay for it
-        from ._compiled import slit_flow
-        dp, phi = slit_flow(Q, tau_y, eta, L, d, h)
+        from . import _compiled
+        if all(np.ndim(a) == 0 for a in (tau_y, eta, L, d, h)):        # many flows through one duct
+            Q = np.asarray(Q, dtype=float)
+            dp, phi = np.empty(Q.shape), np.empty(Q.shape)
+            _compiled.slit_flow_one_duct(np.ascontiguousarray(Q).ravel(), *(float(a) for a in (tau_y, eta, L, d, h)),
+                                         dp.reshape(-1), phi.reshape(-1))
+        else:
+            dp, phi = _compiled.slit_flow(Q, tau_y, eta, L, d, h)
         return BinghamSlitFlow(dp, phi)
     Q_abs = np.abs(Q)
     dp_y = yield_pressure_drop(tau_y, L, h)
