@@ -34,10 +34,14 @@ from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
-import numba  # noqa: E402
-import numpy as np  # noqa: E402
+import numba
+import numpy as np
 
-from erdesign.flow import annulus_bingham_pressure_drop, bingham_pressure_drop, mixed_mode_damper_force  # noqa: E402
+from erdesign.flow import (
+    annulus_bingham_pressure_drop,
+    bingham_pressure_drop,
+    mixed_mode_damper_force,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 L, d, h = 0.0546, 0.0143, 0.0008      # Makris duct
