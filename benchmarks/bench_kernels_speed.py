@@ -17,7 +17,8 @@ One row per line of the table, each printing "now", the baseline and their ratio
    rejects it) and a periodic one (a sine: the harmonic fits run), with pandas loaded and, in a fresh interpreter,
    without; goal <= 2 x pandas.read_csv.
 
-Each figure is the best of several runs (the machine may be shared).  One BLAS thread (OMP_NUM_THREADS=1).  Not a
+Each figure is the least CPU time (time.process_time) of several runs, interleaved with its baseline's (the machine
+may be shared).  One BLAS thread (OMP_NUM_THREADS=1).  Not a
 test: timings depend on the machine; docs/performance.md records a run.
 """
 
@@ -49,12 +50,24 @@ TAU_Y, ETA = 1800.0, 13.0
 
 
 def best_of(fn, repeat: int) -> float:
+    """Least CPU time of the process over ``repeat`` runs: on a shared machine the wall time of a long call also
+    counts the time other processes held the core (a 50 ms call was measured 4 x slower per element than a 1 ms
+    one of the same work at a load average of 12), the CPU time does not (one thread: OMP_NUM_THREADS=1)."""
     times = []
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         fn()
-        times.append(time.perf_counter() - t0)
+        times.append(time.process_time() - t0)
     return min(times)
+
+
+def paired(*fns, repeat: int) -> list[float]:
+    """Best time of each function, their runs interleaved so that each sees the same (shared) machine load."""
+    times = [[] for _ in fns]
+    for _ in range(repeat):
+        for fn, t in zip(fns, times):
+            t.append(best_of(fn, 1))
+    return [min(t) for t in times]
 
 
 def flows(n: int, seed: int = 1) -> np.ndarray:
@@ -78,9 +91,9 @@ def row(label: str, now: float, base: float, unit: str, base_label: str, goal: s
 def annulus_row(n: int, repeat: int) -> None:
     Q = flows(n)
     annulus_bingham_pressure_drop(Q[:8], TAU_Y, ETA, L, d, h)            # load the compiled code
-    t_ann = best_of(lambda: annulus_bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h), repeat) / n
-    t_np = best_of(lambda: thin_gap_numpy(Q), repeat) / n
-    t_c = best_of(lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h), repeat) / n
+    t_ann, t_np, t_c = (t / n for t in paired(lambda: annulus_bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h),
+                                               lambda: thin_gap_numpy(Q),
+                                               lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h), repeat=repeat))
     row("1 exact annulus dp(Q), per element", t_ann, t_np, "us", "thin gap (numpy)", "goal <= 10")
     row("", t_ann, t_c, "us", "thin gap (compiled)", "same, against the compiled thin gap")
 
@@ -90,10 +103,9 @@ def mixed_rows(n: int, designs: int, repeat: int) -> None:
     v = rng.uniform(-0.3, 0.3, n)
     args = (2000.0, 0.1, 0.02, 0.03, 0.01, 1e-3)
     mixed_mode_damper_force(v[:8], *args)
-    t_mix = best_of(lambda: mixed_mode_damper_force(v, *args), repeat) / n
     Q = flows(n)
-    t_np = best_of(lambda: thin_gap_numpy(Q), repeat) / n
-    t_c = best_of(lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h), repeat) / n
+    t_mix, t_np, t_c = (t / n for t in paired(lambda: mixed_mode_damper_force(v, *args), lambda: thin_gap_numpy(Q),
+                                               lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h), repeat=repeat))
     row("2 mixed-mode force, per element", t_mix, t_np, "us", "thin gap (numpy)", "goal <= 10")
     row("", t_mix, t_c, "us", "thin gap (compiled)", "same, against the compiled thin gap")
 
@@ -104,8 +116,7 @@ def mixed_rows(n: int, designs: int, repeat: int) -> None:
                                                                           refine=False)
     design(mixed.with_search(samples=2**12, chunk=2**16, refine=False))
     design(valve.with_search(samples=2**12, chunk=2**16, refine=False))
-    t_m = best_of(lambda: design(mixed), max(1, repeat - 1))
-    t_v = best_of(lambda: design(valve), max(1, repeat - 1))
+    t_m, t_v = paired(lambda: design(mixed), lambda: design(valve), repeat=max(1, repeat - 2))
     print(f"{'  mixed design sweep':<44s} {designs / t_m / 1e3:9.1f} k/s  valve sweep {designs / t_v / 1e3:9.1f} "
           f"k/s  ratio {t_v / t_m:7.2f}   (goal >= 500 k designs/s; {len(mixed.points)} design points, "
           f"valve {len(valve.points)})")
@@ -139,12 +150,12 @@ def dp_row(n: int, repeat: int) -> None:
     out = np.empty(n)
     _numba_loop(Q[:8], TAU_Y, ETA, L, d, h, out[:8])
     bingham_pressure_drop(Q[:5000], TAU_Y, ETA, L, d, h)
-    t_loop, t_now = [], []
-    for _ in range(repeat):                                               # interleaved: the same machine load
-        t_loop.append(best_of(lambda: _numba_loop(Q, TAU_Y, ETA, L, d, h, out), 1))
-        t_now.append(best_of(lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h), 1))
+    # the loop allocates its output, as a function returning a new array must
+    t_now, t_loop = paired(lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h),
+                           lambda: _numba_loop(Q, TAU_Y, ETA, L, d, h, np.empty(n)), repeat=repeat)
+    _numba_loop(Q, TAU_Y, ETA, L, d, h, out)
     diff = np.max(np.abs(bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h) / out - 1.0))
-    row(f"3 Bingham dp(Q), {n:.0e} elements, per element", min(t_now) / n, min(t_loop) / n, "ns", "numba loop",
+    row(f"3 Bingham dp(Q), {n:.0e} elements, per element", t_now / n, t_loop / n, "ns", "numba loop",
         f"goal: ratio <= 1.25, i.e. >= 0.8 x the loop's speed; max |rel diff| {diff:.1e}", scale=1e9)
 
 
@@ -173,7 +184,7 @@ import sys, time
 sys.path.insert(0, {root!r})
 from erdesign.data.measurement import read_measurement
 read_measurement({path!r})
-best = min((lambda t0: (read_measurement({path!r}), time.perf_counter() - t0)[1])(time.perf_counter())
+best = min((lambda t0: (read_measurement({path!r}), time.process_time() - t0)[1])(time.process_time())
            for _ in range({repeat}))
 assert 'pandas' not in sys.modules
 print(best)
@@ -188,8 +199,7 @@ def reading_rows(n: int, repeat: int) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for name, path in write_records(Path(tmp), n).items():
             read_measurement(path)
-            t_read = best_of(lambda p=path: read_measurement(p), repeat)
-            t_pd = best_of(lambda p=path: pd.read_csv(p), repeat)
+            t_read, t_pd = paired(lambda p=path: read_measurement(p), lambda p=path: pd.read_csv(p), repeat=repeat)
             code = _WITHOUT_PANDAS.format(root=str(ROOT), path=str(path), repeat=repeat)
             out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
             t_bare = float(out.stdout.strip().splitlines()[-1])
@@ -202,7 +212,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes (a smoke run)")
     args = parser.parse_args()
-    repeat = 2 if args.quick else 5
+    repeat = 2 if args.quick else 7
     annulus_row(2_000 if args.quick else 20_000, repeat)
     mixed_rows(2_000 if args.quick else 20_000, 20_000 if args.quick else 200_000, repeat)
     dp_row(10**6 if args.quick else 10**7, repeat)

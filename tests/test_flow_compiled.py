@@ -78,6 +78,9 @@ def test_slit_one_duct_loop_equals_the_numpy_path():
     np.testing.assert_allclose(big.pressure_drop, np.hstack([s.pressure_drop for s in small]), rtol=8 * EPS, atol=0)
     np.testing.assert_allclose(big.plug_fraction, np.hstack([s.plug_fraction for s in small]), rtol=8 * EPS, atol=0)
     assert big.pressure_drop[0, 1] == -2 * tau_y * L / h
+    # the pressure drop alone (the loop skips the plug fraction) is the same array
+    from erdesign.flow.bingham import bingham_pressure_drop
+    np.testing.assert_array_equal(bingham_pressure_drop(Q, tau_y, eta, L, d, h), big.pressure_drop)
 
 
 def test_slit_broadcasts_like_the_numpy_path():

@@ -580,7 +580,9 @@ def slit_flow(Q, tau_y, eta, L, d, h, dp, phi):  # pragma: no cover - compiled; 
 @_jit
 def slit_flow_one_duct(Q, tau_y, eta, L, d, h, dp, phi):
     """:func:`slit_flow` for many flows through one duct (scalar tau_y, eta, L, d, h; 1-D contiguous Q): the
-    duct's constants computed once, a plain loop (a generalised ufunc calls a function per element)."""
+    duct's constants computed once, a plain loop (a generalised ufunc calls a function per element).  An empty
+    ``phi`` is not written (the pressure drop alone)."""
+    plug = phi.size > 0
     dp_y = 2.0 * tau_y * L / h
     per_flow = 12.0 * eta * L / (math.pi * d * h**3)
     for i in range(Q.size):
@@ -589,8 +591,10 @@ def slit_flow_one_duct(Q, tau_y, eta, L, d, h, dp, phi):
         if dp_y > 1e-12 * dp_n:
             p = _slit_plug_fraction(dp_n / dp_y)
             dp[i] = math.copysign(dp_y / p, q)
-            phi[i] = p
+            if plug:
+                phi[i] = p
         else:
             dp[i] = math.copysign(dp_n + 1.5 * dp_y, q)
-            phi[i] = 0.0
+            if plug:
+                phi[i] = 0.0
     return dp, phi

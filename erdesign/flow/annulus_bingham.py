@@ -25,8 +25,8 @@ either side,
 
 with :math:`P(x) = (1 + x)\ln(1 + x) - x` and :math:`Q(y) = y - \ln(1 + y)`.  Equating the two (velocity
 continuity across the plug) fixes the plug position; it is a monotonic equation in :math:`t_1` on
-:math:`[0, h - 2\tau_y/G]`, solved for all elements at once with
-:func:`scipy.optimize.elementwise.find_root`.  The flow rate follows by integrating the closed-form velocity by
+:math:`[0, h - 2\tau_y/G]`, solved element by element by Newton's method kept inside that bracket, in a compiled
+loop (:mod:`erdesign.flow._compiled`).  The flow rate follows by integrating the closed-form velocity by
 parts, which leaves the rational integrands
 
 .. math::
@@ -34,7 +34,8 @@ parts, which leaves the rational integrands
       - \frac{1}{2}\int_{R_1}^{r_a} (r^2 - R_1^2)\,\frac{du}{dr}\,dr
       + \frac{1}{2}\int_{r_b}^{R_2} (R_2^2 - r^2)\,\frac{du}{dr}\,dr ,
 
-integrated by a 32-point Gauss-Legendre rule (exact to rounding for h/d < 0.9, see :func:`annulus_bingham_shape`).
+integrated by a Gauss-Legendre rule of 8, 16 or 32 points chosen by h/d (exact to rounding for h/d < 0.9, see
+:func:`annulus_bingham_shape`).
 Everything is written as a shape factor :math:`S = Q / Q_N`, the flow rate over the thin-gap Newtonian flow rate
 :math:`Q_N = \pi d h^3 \Delta p / (12 \eta L)` at the same pressure drop (slit Bingham:
 :math:`S = 1 - \tfrac32\phi + \tfrac12\phi^3`; Newtonian annulus: the conductance ratio of
@@ -118,10 +119,11 @@ def annulus_bingham_shape(plug_fraction, h_over_d):
 
     Notes
     -----
-    The layer integrands are a cubic polynomial plus a pole at :math:`r = 0`.  The 32-point Gauss-Legendre rule
-    converges like :math:`\rho^{-64}` with :math:`\rho = a + \sqrt{a^2 - 1}`, :math:`a \ge 1 + 2R_1/h`: below
-    1e-19 relative for h/d <= 0.8 and 1e-9 at h/d = 0.95 (tests/test_flow_numerical.py checks it against
-    scipy.integrate.quad).  The closed-form antiderivative was not used because its terms are of order
+    The layer integrands are a cubic polynomial plus a pole at :math:`r = 0`.  An n-point Gauss-Legendre rule
+    converges like :math:`\rho^{-2n}` with :math:`\rho = a + \sqrt{a^2 - 1}`, :math:`a \ge 1 + 2R_1/h = d/h`; the
+    smallest of 8, 16 and 32 points with :math:`\rho^{-2n} < 10^{-20}` is used (8 up to h/d = 0.1, 16 up to 0.3):
+    below 1e-19 relative for h/d <= 0.8 and 1e-9 at h/d = 0.95 (tests/test_flow_numerical.py and
+    tests/test_flow_compiled.py check it against scipy.integrate.quad).  The closed-form antiderivative was not used because its terms are of order
     :math:`(d/h)^2` larger than the result and cancel.
 
     Examples
@@ -243,8 +245,10 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     -----
     :math:`S/\phi` falls monotonically from infinity (:math:`\phi \to 0`) to 0 (:math:`\phi = 1`), so the root is
     bracketed by :math:`[\phi_0, 1]` with :math:`\phi_0 = 1/(2N + 3)` (the slit bound :math:`S \ge 1 - \tfrac32\phi`
-    with a factor of 2 to spare; the bracket is widened where needed).  Each evaluation of :math:`S` solves the
-    plug position, so the roots are nested; both use :func:`scipy.optimize.elementwise.find_root` on whole arrays.
+    with a factor of 2 to spare).  The root is found element by element in a compiled loop: from the thin-gap plug
+    fraction (in error by O((h/d)^2)), one step with the thin-gap slope, then secant steps kept inside
+    :math:`[0, 1]` (2-6 evaluations of :math:`S`); each evaluation solves the plug position by Newton's method
+    started from the last one (one or two steps).
     As in :func:`erdesign.flow.bingham.bingham_slit_flow`, ``Q = 0`` returns the break-away pressure drop
     :math:`\Delta p_y` (signed like ``Q``, ``-0.0`` included) with a plug filling the gap, and ``tau_y = 0`` returns
     the exact Newtonian annulus.

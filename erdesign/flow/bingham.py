@@ -266,18 +266,25 @@ def bingham_slit_flow(Q, tau_y, eta, L, d, h):
     ----------
     Makris et al., eqs 5-7 (printed with h^2 where h^3 is dimensionally right).
     """
+    return _slit_flow(Q, tau_y, eta, L, d, h, plug=True)
+
+
+def _slit_flow(Q, tau_y, eta, L, d, h, plug):
+    """:func:`bingham_slit_flow`; with ``plug=False`` the compiled loop skips writing the plug fraction (None),
+    which :func:`bingham_pressure_drop` does not need."""
     check_flow_args(tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     if np.broadcast(Q, tau_y, eta, L, d, h).size >= COMPILED_MIN_SIZE:
         # numba, imported here: small calls (one velocity) do not pay for it
         from . import _compiled
         if all(np.ndim(a) == 0 for a in (tau_y, eta, L, d, h)):        # many flows through one duct
             Q = np.asarray(Q, dtype=float)
-            dp, phi = np.empty(Q.shape), np.empty(Q.shape)
+            dp = np.empty(Q.shape)
+            phi = np.empty(Q.shape if plug else 0)
             _compiled.slit_flow_one_duct(np.ascontiguousarray(Q).ravel(), *(float(a) for a in (tau_y, eta, L, d, h)),
                                          dp.reshape(-1), phi.reshape(-1))
         else:
             dp, phi = _compiled.slit_flow(Q, tau_y, eta, L, d, h)
-        return BinghamSlitFlow(dp, phi)
+        return BinghamSlitFlow(dp, phi if plug else None)
     Q_abs = np.abs(Q)
     dp_y = yield_pressure_drop(tau_y, L, h)
     dp_n = 12.0 * eta * L * Q_abs / (np.pi * d * h**3)
@@ -299,7 +306,7 @@ def bingham_pressure_drop(Q, tau_y, eta, L, d, h):
 
     The ``pressure_drop`` of :func:`bingham_slit_flow`; see there for the equation, parameters and notes.
     """
-    return bingham_slit_flow(Q, tau_y, eta, L, d, h).pressure_drop
+    return _slit_flow(Q, tau_y, eta, L, d, h, plug=False).pressure_drop
 
 
 def bingham_plug_fraction(Q, tau_y, eta, L, d, h):
