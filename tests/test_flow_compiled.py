@@ -172,11 +172,13 @@ def test_annulus_gauss_legendre_rule_equals_adaptive_quadrature(eps):
 def test_annulus_plug_fraction_is_the_root_brentq_finds():
     for eps in H_OVER_D:
         for N in [1e-12, 1e-3, 0.1, 1.0, 10.0, 1e3, 1e8]:
-            phi = compiled._annulus_phi(N, eps)
+            phi, t1 = compiled._annulus_phi(N, eps)
             ref = brentq(lambda p, e=eps, N=N: compiled._annulus_shape(p, e, 0.5 * (1 - p))[0] - N * p, 0.0, 1.0,
                          xtol=1e-300, rtol=4 * EPS, maxiter=500)
             # measured 1e-15; the shape factor's own rounding (P(x) near its series switch) is ~2e-14
             assert phi == pytest.approx(ref, rel=1e-13), (eps, N)
+            # the plug offset returned with it is the plug position at that phi (warm-started Newton)
+            assert t1 == pytest.approx(compiled._plug_offset(phi, 0.5 * (1 / eps - 1), 0.5 * (1 - phi)), rel=2e-14)
 
 
 def test_annulus_flow_keeps_its_special_cases():

@@ -345,14 +345,21 @@ _GL32_X, _GL32_W = _gauss_legendre(32)
 
 
 @_jit
-def _p_log(x):
-    """(1 + x) ln(1 + x) - x, accurate as x -> 0 (series below 1e-2, first omitted term x^11/110)."""
+def _p_log_of(x, log1p_x):
+    """(1 + x) ln(1 + x) - x given ln(1 + x), accurate as x -> 0 (series below 1e-2, first omitted term
+    x^11/110)."""
     if abs(x) < 1e-2:
         s = 0.0
         for k in range(2, 11):
             s += (-1.0) ** k * x**k / (k * (k - 1))
         return s
-    return (1.0 + x) * math.log1p(x) - x
+    return (1.0 + x) * log1p_x - x
+
+
+@_jit
+def _p_log(x):
+    """(1 + x) ln(1 + x) - x, accurate as x -> 0."""
+    return _p_log_of(x, math.log1p(x))
 
 
 @_jit
@@ -380,10 +387,12 @@ def _continuity(t1, phi, R1):
     r_b = r_a + phi
     t2 = 1.0 - phi - t1
     x = t1 / R1
+    log1p_x = math.log1p(x)
+    p = _p_log_of(x, log1p_x)
     y = t2 / r_b
     q = _q_log(y)
-    value = _plug_speed_inner(t1, phi, R1) - (0.5 * t2 * t2 + r_a * r_b * q)
-    slope = (t1 + R1 * _p_log(x) + r_b * math.log1p(x)) - (-t2 + (r_a + r_b) * q - r_a * y)
+    value = (0.5 * t1 * t1 + r_b * R1 * p) - (0.5 * t2 * t2 + r_a * r_b * q)   # the two plug speeds
+    slope = (t1 + R1 * p + r_b * log1p_x) - (-t2 + (r_a + r_b) * q - r_a * y)
     return value, slope
 
 
@@ -470,14 +479,16 @@ def _annulus_phi(N, eps):
     trigonometric root of :func:`erdesign.flow.bingham.bingham_slit_flow`) starts the iteration, in error by
     O((h/d)^2); one step with the slope of the thin-gap f follows, then secant steps, each kept inside the
     bracket (bisection where a step would leave it), to a step below 4 ulp.  Each evaluation of S starts the plug
-    position from the last one, shifted by half the change of phi, so its Newton iteration takes one or two steps."""
+    position from the last one, shifted by half the change of phi, so its Newton iteration takes one or two steps.
+    Returns (phi, t1), t1 the plug offset at phi."""
     lo, hi = 0.0, 1.0
+    R1 = 0.5 * (1.0 / eps - 1.0)
     m = math.sqrt(1.0 + (2.0 / 3.0) * N)
     x0 = 2.0 * m * math.sin(math.asin(m**-3) / 3.0)
     S, t = _annulus_shape(x0, eps, 0.5 * (1.0 - x0))
     f0 = S - N * x0
     if f0 == 0.0:
-        return x0
+        return x0, t
     if f0 > 0.0:
         lo = x0
     else:
@@ -485,29 +496,31 @@ def _annulus_phi(N, eps):
     x1 = x0 - f0 / (-1.5 * (1.0 - x0 * x0) - N)
     for _ in range(200):
         if abs(x1 - x0) <= 4.0 * _EPS * abs(x1):
-            return min(max(x1, lo), hi)          # converged (the step may round onto an end of the bracket)
+            x1 = min(max(x1, lo), hi)            # converged (the step may round onto an end of the bracket)
+            return x1, _plug_offset(x1, R1, t + 0.5 * (x0 - x1))
         if not (lo < x1 < hi):
             x1 = 0.5 * (lo + hi)
             if hi - lo <= 4.0 * _EPS * abs(x1):
-                return x1
+                return x1, _plug_offset(x1, R1, t + 0.5 * (x0 - x1))
         S, t = _annulus_shape(x1, eps, t + 0.5 * (x0 - x1))
         f1 = S - N * x1
         if f1 == 0.0:
-            return x1
+            return x1, t
         if f1 > 0.0:
             lo = x1
         else:
             hi = x1
         x2 = x1 - f1 * (x1 - x0) / (f1 - f0) if f1 != f0 else 0.5 * (lo + hi)
         x0, f0, x1 = x1, f1, x2
-    return x1
+    return x1, _plug_offset(x1, R1, t + 0.5 * (x0 - x1))
 
 
 @_jit
 def annulus_plug_fraction(ratio, eps, out):
-    """Plug fraction phi of every element for the flow ratio N = dp_N/dp_y > 0 and eps = h/d (1-D arrays)."""
+    """out[0] = plug fraction phi and out[1] = plug offset t1 of every element, for the flow ratio
+    N = dp_N/dp_y > 0 and eps = h/d (1-D arrays)."""
     for i in range(ratio.size):
-        out[i] = _annulus_phi(ratio[i], eps[i])
+        out[0, i], out[1, i] = _annulus_phi(ratio[i], eps[i])
     return out
 
 

@@ -81,7 +81,7 @@ def _compiled():
 def _flat(*arrays):
     """Broadcast float arrays, their common shape and their contiguous 1-D views (for the compiled loops)."""
     arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in arrays))
-    return arrays[0].shape, [np.ascontiguousarray(a).ravel() for a in arrays]
+    return arrays[0].shape, [np.array(a, order="C").ravel() for a in arrays]   # copies: the views are not writeable
 
 
 def _shape_and_offset(phi, eps):
@@ -274,10 +274,13 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     moving = Q_abs > 0.0
     solve = plastic & moving
     phi = np.where(plastic, 1.0, 0.0)  # blocked gap (Q = 0) or Newtonian, overwritten where a root is needed
+    t1 = np.zeros_like(phi)            # plug offset / h: 0 for a blocked gap
+    shape = np.ones_like(phi)          # S, needed for the Newtonian fluid only
     if np.any(solve):
         ratio = 6.0 * eta[solve] * Q_abs[solve] / (np.pi * d[solve] * h[solve] ** 2 * tau_y[solve])
-        phi[solve] = _compiled().annulus_plug_fraction(ratio, eps[solve], np.empty(ratio.size))
-    shape, t1 = _shape_and_offset(phi, eps)
+        phi[solve], t1[solve] = _compiled().annulus_plug_fraction(ratio, eps[solve], np.empty((2, ratio.size)))
+    if not np.all(plastic):
+        shape[~plastic], t1[~plastic] = _shape_and_offset(0.0, eps[~plastic])
     dp_y = 2.0 * tau_y * L / h
     with np.errstate(divide="ignore", invalid="ignore"):
         dp_newtonian = 12.0 * eta * L * Q_abs / (np.pi * d * h**3 * shape)

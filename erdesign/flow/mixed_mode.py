@@ -166,7 +166,7 @@ def _flat_inputs(U, q, tau_y, eta, h):
     if np.any(tau_y < 0.0):
         raise ErdesignError(f"tau_y: must be >= 0, got {tau_y!r}")
     _check_positive(eta=eta, h=h)
-    return U.shape, [np.ascontiguousarray(a).ravel() for a in (U, q, tau_y, eta, h)]
+    return U.shape, [np.array(a, order="C").ravel() for a in (U, q, tau_y, eta, h)]   # copies, not broadcast views
 
 
 def _out(x):
