@@ -39,9 +39,9 @@ def pareto_mask(values, maximize=None):
     Three columns: a lexicographic sort, then blocks of 256 rows, each checked against the staircase of the
     earlier blocks (binary search) and against itself (pairwise): O(N log N) when the staircase is short, at most
     O(N^2 / 256) operations otherwise (256 rather than 1024: 2-2.5 x faster on the fronts of 2,000-4,500 designs of
-    a mixed-mode sweep, benchmarks/bench_kernels_speed.py).  More columns: each surviving row in turn removes every row it dominates
-    with one vectorised comparison (a loop over the front).  tests/test_design.py compares all three with the
-    O(N^2) definition.
+    a mixed-mode sweep, benchmarks/bench_kernels_speed.py).  More columns: each surviving row in turn removes every
+    row it dominates with one vectorised comparison (a loop over the front).  tests/test_design.py compares all
+    three with the O(N^2) definition.
 
     Examples
     --------

@@ -123,8 +123,8 @@ def annulus_bingham_shape(plug_fraction, h_over_d):
     converges like :math:`\rho^{-2n}` with :math:`\rho = a + \sqrt{a^2 - 1}`, :math:`a \ge 1 + 2R_1/h = d/h`; the
     smallest of 8, 16 and 32 points with :math:`\rho^{-2n} < 10^{-20}` is used (8 up to h/d = 0.1, 16 up to 0.3):
     below 1e-19 relative for h/d <= 0.8 and 1e-9 at h/d = 0.95 (tests/test_flow_numerical.py and
-    tests/test_flow_compiled.py check it against scipy.integrate.quad).  The closed-form antiderivative was not used because its terms are of order
-    :math:`(d/h)^2` larger than the result and cancel.
+    tests/test_flow_compiled.py check it against scipy.integrate.quad).  The closed-form antiderivative was not
+    used because its terms are of order :math:`(d/h)^2` larger than the result and cancel.
 
     Examples
     --------

@@ -131,8 +131,8 @@ def _compiled():
 
 
 # ----------------------------------------------------------------------------------------------------------------
-# Dimensionless core (the closed forms of the solve are in erdesign.flow._compiled).  Stresses in units of tau_s, lengths in units of h; eps = tau_y / tau_s is the half-width of
-# the yield band.  Every case is first oriented so that G >= 0 (odd symmetry t -> -t, G -> -G, U -> -U, q -> -q)
+# Dimensionless core (the closed forms of the solve are in erdesign.flow._compiled).  Stresses in units of tau_s,
+# lengths in units of h; eps = tau_y / tau_s is the half-width of the yield band.  Every case is first oriented so that G >= 0 (odd symmetry t -> -t, G -> -G, U -> -U, q -> -q)
 # and its wall stresses t0 (moving wall) and t1 = t0 + G (fixed wall) are carried as their four offsets from the
 # band edges, lo0 = t0 + eps, hi0 = t0 - eps, lo1 = t1 + eps, hi1 = t1 - eps, each computed directly by its own
 # closed form.  A thin sheared layer is measured by one of these offsets; forming it as a difference of O(1)
@@ -223,7 +223,8 @@ def couette_poiseuille_bingham(U, q, tau_y, eta, h):
     break-away value :math:`g = -\operatorname{sgn}(q)\,2\tau_y/h` is returned, the sign taken from the sign bit
     of ``q`` (``-0.0`` gives :math:`+2\tau_y/h`), with a centred plug (:math:`\tau_0 = -g h/2`).  Without a plug
     ``plug_y1 = plug_y2`` is the wall nearer to the yield band.  The pressure gradient is a bracketed root
-    (Chandrupatla's method, compiled, with the tolerances of :func:`scipy.optimize.elementwise.find_root`) converged to round-off of :math:`g h/\tau_s`, with
+    (secant steps from the valve-mode slit root, Chandrupatla's method as the fallback, compiled) converged to
+    round-off of :math:`g h/\tau_s`, with
     :math:`\tau_s = \tau_y + \eta|U|/h + \eta|q|/h^2`; it is ill-conditioned only where the flow hardly depends
     on it, e.g. for :math:`\eta|U|/(\tau_y h) < 10^{-30}` with :math:`q \approx U h`.  Non-finite inputs give NaN.
 
