@@ -134,9 +134,10 @@ def _compiled():
 # Dimensionless core (the closed forms of the solve are in erdesign.flow._compiled).  Stresses in units of tau_s,
 # lengths in units of h; eps = tau_y / tau_s is the half-width of the yield band.  Every case is first oriented so
 # that G >= 0 (odd symmetry t -> -t, G -> -G, U -> -U, q -> -q) and its wall stresses t0 (moving wall) and
-# t1 = t0 + G (fixed wall) are carried as their four offsets from the band edges, lo0 = t0 + eps, hi0 = t0 - eps, lo1 = t1 + eps, hi1 = t1 - eps, each computed directly by its own
-# closed form.  A thin sheared layer is measured by one of these offsets; forming it as a difference of O(1)
-# numbers would lose it near the blocked gap and near the regime boundaries.
+# t1 = t0 + G (fixed wall) are carried as their four offsets from the band edges, lo0 = t0 + eps, hi0 = t0 - eps,
+# lo1 = t1 + eps, hi1 = t1 - eps, each computed directly by its own closed form.  A thin sheared layer is measured
+# by one of these offsets; forming it as a difference of O(1) numbers would lose it near the blocked gap and near
+# the regime boundaries.
 # ----------------------------------------------------------------------------------------------------------------
 
 
