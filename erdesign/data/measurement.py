@@ -30,6 +30,7 @@ stays accurate on noisy non-periodic records.
 from __future__ import annotations
 
 import csv
+import functools
 import io
 import math
 import re
@@ -263,6 +264,15 @@ def _detrend(t: np.ndarray, x: np.ndarray) -> np.ndarray:
     return xc - (np.sum(tc * xc) / np.sum(tc * tc)) * tc
 
 
+@functools.lru_cache(maxsize=8)
+def _hann(n: int) -> np.ndarray:
+    """numpy.hanning(n), read-only and kept: a record's spectra (the dominant frequency, the periodicity test, the
+    low-pass cut-off, the record's checks) all use the window of its length."""
+    w = np.hanning(n)
+    w.flags.writeable = False
+    return w
+
+
 def _spectrum(t: np.ndarray, x: np.ndarray):
     """(frequencies [Hz], magnitudes, detrended signal) of the Hann-windowed spectrum of the signal detrended by a
     least-squares line, resampled onto a uniform grid (which an even record already is, to rounding)."""
@@ -270,7 +280,7 @@ def _spectrum(t: np.ndarray, x: np.ndarray):
     tu = np.linspace(t[0], t[-1], n)
     xu = np.interp(tu, t, x)
     xu = _detrend(tu, xu)
-    spectrum = np.abs(np.fft.rfft(xu * np.hanning(n)))
+    spectrum = np.abs(np.fft.rfft(xu * _hann(n)))
     freqs = np.fft.rfftfreq(n, d=(tu[-1] - tu[0]) / (n - 1))
     spectrum[0] = 0.0
     return freqs, spectrum, xu
@@ -432,9 +442,9 @@ def _lowpass_derivatives(x, dt, f0, sigma):
     n = x.size
     fs = 1.0 / dt
     xd = _detrend(np.arange(n, dtype=float), x)
-    P = np.abs(np.fft.rfft(xd * np.hanning(n))) ** 2
+    P = np.abs(np.fft.rfft(xd * _hann(n))) ** 2
     f = np.fft.rfftfreq(n, dt)
-    floor = sigma**2 * np.sum(np.hanning(n) ** 2)
+    floor = sigma**2 * np.sum(_hann(n) ** 2)
     k = max(1, n // 400)
     Ps = np.convolve(P, np.ones(2 * k + 1) / (2 * k + 1), mode="same")
     above = np.flatnonzero(Ps > 10 * floor)
