@@ -171,7 +171,7 @@ def test_annulus_gauss_legendre_rule_equals_adaptive_quadrature(eps):
 
 def test_annulus_plug_fraction_is_the_root_brentq_finds():
     for eps in H_OVER_D:
-        for N in [1e-12, 1e-3, 0.1, 1.0, 10.0, 1e3, 1e8]:
+        for N in [1e-12, 1e-3, 0.1, 1.0, 10.0, 1e3, 1e8, 1e12]:
             phi, t1 = compiled._annulus_phi(N, eps)
             ref = brentq(lambda p, e=eps, N=N: compiled._annulus_shape(p, e, 0.5 * (1 - p))[0] - N * p, 0.0, 1.0,
                          xtol=1e-300, rtol=4 * EPS, maxiter=500)
@@ -189,3 +189,8 @@ def test_annulus_flow_keeps_its_special_cases():
     assert r.pressure_drop[:2].tolist() == [dp_y, -dp_y]
     assert r.plug_fraction.tolist()[:2] == [1.0, 1.0] and r.plug_fraction[2] == 0.0
     assert math.isfinite(r.pressure_drop[2]) and r.pressure_drop[2] > 0
+    # a denormal yield stress (its flow ratio overflows): the Newtonian annulus, not NaN (found by
+    # tests/badinput/test_flow_properties.py; the previous implementation returned NaN too)
+    newtonian = annulus_bingham_flow(1e-3, 0.0, 41.1, 0.21, 0.037, 0.017).pressure_drop
+    assert annulus_bingham_flow(1e-3, 5e-324, 41.1, 0.21, 0.037, 0.017).pressure_drop == pytest.approx(newtonian,
+                                                                                                       rel=1e-12)

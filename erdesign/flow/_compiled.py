@@ -6,7 +6,8 @@ disk (``cache=True``).  Each loop runs the scalar form of the closed forms docum
 at a time, so that a root is found per element from a good start instead of by whole-array iterations:
 
 * :func:`find_root` - Chandrupatla's bracketed root finder with the tolerances of
-  :func:`scipy.optimize.elementwise.find_root` (which the numpy kernels used before), for one element;
+  :func:`scipy.optimize.elementwise.find_root` (which the numpy kernels used before), for one mixed-mode element
+  (the fallback of the faster iteration);
 * :func:`couette_poiseuille`, :func:`mixed_gap_state` - Bingham Couette-Poiseuille flow in a slit with one moving
   wall (:func:`erdesign.flow.mixed_mode.couette_poiseuille_bingham`);
 * :func:`annulus_shape_offset`, :func:`annulus_plug_fraction` - the exact Bingham annulus
@@ -33,8 +34,6 @@ _jit = numba.njit(cache=True, nogil=True, error_model="numpy")
 
 _EPS = float(np.finfo(float).eps)
 _TINY = float(np.finfo(float).tiny)
-#: codes of the equations of find_root
-MIXED_FLOW = 0
 #: the codes of erdesign.flow.mixed_mode.GapFlowRegime (tests/test_flow_compiled.py checks they agree)
 FULLY_YIELDED, FLOATING_PLUG, PLUG_AT_MOVING_WALL, PLUG_AT_FIXED_WALL, BLOCKED = 0, 1, 2, 3, 4
 
@@ -45,26 +44,19 @@ FULLY_YIELDED, FLOATING_PLUG, PLUG_AT_MOVING_WALL, PLUG_AT_FIXED_WALL, BLOCKED =
 
 
 @_jit
-def _residual(kind, x, a, b, c):
-    """The equations :func:`find_root` solves, by code (numba caches no function passed as an argument)."""
-    if kind == MIXED_FLOW:
-        return _mixed_residual(x, a, b, c)
-    return math.nan
-
-
-@_jit
-def find_root(kind, x1, x2, a, b, c, xatol, xrtol):
-    """Root of _residual(kind, x, a, b, c) in the bracket [x1, x2] (ends of opposite signs), Chandrupatla (1997).
+def find_root(x1, x2, U_bar, q_bar, eps, xatol, xrtol):
+    """Root G of the mixed-mode flow residual :func:`_mixed_residual` in the bracket [x1, x2] (ends of opposite
+    signs), by Chandrupatla's method (1997).
 
     The iteration and the stopping rule of :func:`scipy.optimize.elementwise.find_root`: stop when
     ``|f| <= tiny`` or the bracket is narrower than ``|x_min| xrtol + xatol``; returns (x, converged).
     NaN where the bracket does not hold a sign change."""
-    f1 = _residual(kind, x1, a, b, c)
-    f2 = _residual(kind, x2, a, b, c)
+    f1 = _mixed_residual(x1, U_bar, q_bar, eps)
+    f2 = _mixed_residual(x2, U_bar, q_bar, eps)
     # scipy's first step: t = 1/2 between the ends, x3 the end that is dropped
     t = 0.5
     x3, f3 = x2, f2
-    for _ in range(200):
+    for iteration in range(200):
         xmin, fmin = (x1, f1) if abs(f1) < abs(f2) else (x2, f2)
         if abs(fmin) <= _TINY:
             return xmin, True
@@ -76,7 +68,7 @@ def find_root(kind, x1, x2, a, b, c, xatol, xrtol):
         tol = abs(xmin) * xrtol + xatol
         if dx < tol:
             return xmin, True
-        if _ > 0:
+        if iteration > 0:
             xi1 = (x1 - x2) / (x3 - x2)
             phi1 = (f1 - f2) / (f3 - f2)
             alpha = (x3 - x1) / (x2 - x1)
@@ -86,7 +78,7 @@ def find_root(kind, x1, x2, a, b, c, xatol, xrtol):
             tl = 0.5 * tol / dx
             t = min(max(t, tl), 1.0 - tl)
         x = x1 + t * (x2 - x1)
-        fx = _residual(kind, x, a, b, c)
+        fx = _mixed_residual(x, U_bar, q_bar, eps)
         if (fx > 0.0) == (f1 > 0.0) and fx != 0.0 and f1 != 0.0 or (fx == 0.0 and f1 == 0.0):
             x3, f3 = x1, f1
         else:
@@ -191,7 +183,7 @@ def _mixed_gradient_bracketed(U_bar, q_bar, eps):
             break
         hi += half
         half *= 2.0
-    G, converged = find_root(MIXED_FLOW, lo, hi, U_bar, q_bar, eps, 4.0 * _TINY, 4.0 * _EPS)
+    G, converged = find_root(lo, hi, U_bar, q_bar, eps, 4.0 * _TINY, 4.0 * _EPS)
     return G if converged else math.nan
 
 

@@ -250,8 +250,9 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     :math:`[0, 1]` (2-6 evaluations of :math:`S`); each evaluation solves the plug position by Newton's method
     started from the last one (one or two steps).
     As in :func:`erdesign.flow.bingham.bingham_slit_flow`, ``Q = 0`` returns the break-away pressure drop
-    :math:`\Delta p_y` (signed like ``Q``, ``-0.0`` included) with a plug filling the gap, and ``tau_y = 0`` returns
-    the exact Newtonian annulus.
+    :math:`\Delta p_y` (signed like ``Q``, ``-0.0`` included) with a plug filling the gap, ``tau_y = 0`` returns
+    the exact Newtonian annulus, and a yield stress whose :math:`\Delta p_y` is below 1e-12 of the viscous pressure
+    drop (a denormal one, say) the Newtonian annulus plus :math:`\tfrac32\Delta p_y` with a plug fraction of 0.
 
     Examples
     --------
@@ -270,7 +271,10 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     Q, tau_y, eta, L, d, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (Q, tau_y, eta, L, d, h)))
     eps = h / d
     Q_abs = np.abs(Q)
-    plastic = tau_y > 0.0
+    dp_y = 2.0 * tau_y * L / h
+    # as in bingham_slit_flow: a yield stress below 1e-12 of the viscous pressure drop (a denormal one, say) leaves a
+    # flow ratio that overflows; there the Newtonian annulus plus 3/2 dp_y is exact to 1e-12
+    plastic = dp_y > 1e-12 * (12.0 * eta * L * Q_abs / (np.pi * d * h**3))
     moving = Q_abs > 0.0
     solve = plastic & moving
     phi = np.where(plastic, 1.0, 0.0)  # blocked gap (Q = 0) or Newtonian, overwritten where a root is needed
@@ -281,10 +285,9 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
         phi[solve], t1[solve] = _compiled().annulus_plug_fraction(ratio, eps[solve], np.empty((2, ratio.size)))
     if not np.all(plastic):
         shape[~plastic], t1[~plastic] = _shape_and_offset(0.0, eps[~plastic])
-    dp_y = 2.0 * tau_y * L / h
     with np.errstate(divide="ignore", invalid="ignore"):
         dp_newtonian = 12.0 * eta * L * Q_abs / (np.pi * d * h**3 * shape)
-        dp_abs = np.where(plastic, dp_y / phi, dp_newtonian)
+        dp_abs = np.where(plastic, dp_y / phi, dp_newtonian + 1.5 * dp_y)
     dp = np.copysign(dp_abs, Q)
     R1 = 0.5 * (d - h)
     r_a = R1 + t1 * h
