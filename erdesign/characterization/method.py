@@ -1,0 +1,180 @@
+r"""The characterization-and-customization method of Vivas-López et al. (n.d.) as one workflow, :func:`characterize`.
+
+1. Characterization (section 3): pool the records, split the force into passive and semi-active parts (eq 1,
+   :mod:`~erdesign.characterization.split`) and read each characteristic of Table 2 from its diagram
+   (:mod:`~erdesign.characterization.detectors`).
+2. Customization (section 4): the general model (eqs 2-5) keeps the terms the characteristics found call for
+   (Table 2), with coefficients for extension and compression when the damper is asymmetric
+   (:class:`~erdesign.models.semiactive.SemiactiveCustomized`; eq 6 and its 20 parameters when the characteristics
+   are the paper's).
+3. Identification and validation (sections 5-6): the customized model identified on each record and scored on every
+   other (Table 4, with the paper's average: the mean of each identification column over all validation records,
+   its own included), and the same for the Eyring-plastic model (eq 8, section 7, Table 6).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from functools import partial
+
+import numpy as np
+
+from ..errors import ErdesignError
+from ..identification.identify import CrossValidation, cross_validation, identify
+from ..models.registry import get_model
+from ..models.semiactive import TERMS, SemiactiveCustomized
+from .detectors import THRESHOLD, Finding, detect
+from .split import Samples
+
+__all__ = ["Characterization", "CharacterizationError", "characterize", "customized_terms"]
+
+
+class CharacterizationError(ErdesignError):
+    """Records the method cannot read (none, no force, too few samples); the message names the record."""
+
+
+def customized_terms(findings: Sequence[Finding]) -> tuple[tuple[str, ...], bool]:
+    """The terms of the customized model (keys of :data:`~erdesign.models.semiactive.TERMS`, the offset f_0 always)
+    and whether its coefficients are asymmetric, from the findings (Table 2).  A pre-yield zone needs the control's
+    force gain c_SA that multiplies it (eq 4), so it brings the gain along."""
+    terms = {"offset"}
+    for f in findings:
+        if f.found:
+            terms.update(f.characteristic.terms)
+    if "preyield" in terms:
+        terms.add("gain")
+    asymmetric = any(f.found and f.characteristic.name == "asymmetry" for f in findings)
+    return tuple(t for t in TERMS if t in terms), asymmetric
+
+
+@dataclass
+class Characterization:
+    """What :func:`characterize` found and built.
+
+    Attributes
+    ----------
+    records : list of Measurement
+    findings : list of Finding
+        One per characteristic of :data:`~erdesign.characterization.detectors.CHARACTERISTICS`.
+    passive_force : list of ndarray
+        F_P [N] of each record (eq 1); the semi-active force is the record's force minus it.
+    passive : list of ndarray
+        Mask of each record's samples at the passive control (the lowest).
+    terms, asymmetric
+        The customized model's terms and whether its coefficients differ in extension and compression.
+    customized, eyring
+        Cross-validation tables (Table 4) of the customized and of the Eyring-plastic model (None with one record).
+    fits : dict
+        Model name -> the identification on the record with the best average (the one the figures show).
+    """
+
+    records: list
+    findings: list
+    passive_force: list
+    passive: list
+    passive_control: float | None
+    terms: tuple[str, ...]
+    asymmetric: bool
+    customized: CrossValidation
+    eyring: CrossValidation
+    fits: dict = field(default_factory=dict)
+    identified_on: int = 0
+
+    @property
+    def model(self) -> SemiactiveCustomized:
+        return SemiactiveCustomized(self.terms, self.asymmetric)
+
+    def comparison(self) -> dict:
+        """The customized model against the Eyring-plastic model.
+
+        ``identification`` compares the ESR of each on the record it was identified on (the diagonals; the paper's
+        Table 6) and ``esr_reduction`` is the mean over the records of the relative reduction (the paper's "28.4 %
+        less ESR": the mean of 28.3, 21.3 and 35.7 % of its Table 6); ``cross_validation`` compares the means of
+        the whole tables (Table 4)."""
+        c_diag, e_diag = np.diag(self.customized.table), np.diag(self.eyring.table)
+        reduction = np.where(e_diag > 0, (e_diag - c_diag) / np.where(e_diag > 0, e_diag, 1.0), 0.0)
+        c, e = float(np.mean(self.customized.table)), float(np.mean(self.eyring.table))
+        return {"identification": {"customized": c_diag.tolist(), "eyring_plastic": e_diag.tolist(),
+                                   "esr_reduction": float(np.mean(reduction))},
+                "cross_validation": {"customized_mean_esr": c, "eyring_plastic_mean_esr": e,
+                                     "esr_reduction": (e - c) / e if e > 0 else 0.0},
+                "customized_better": bool(c < e and np.mean(c_diag) < np.mean(e_diag))}
+
+    def model_force(self, name: str, k: int) -> np.ndarray:
+        """The force [N] of model ``name`` (``"customized"`` or ``"eyring_plastic"``), as identified on the record
+        with the best average, on record ``k``."""
+        fit = self.fits[name]
+        return fit.model.simulate(self.records[k], fit.values)
+
+    def to_dict(self) -> dict:
+        """The JSON of ``erdesign characterize --json`` (keys in docs/cli.md)."""
+        model = self.model
+        fit = self.fits["customized"]
+        cv = (lambda t: {"table": t.table.tolist(), "average": t.average.tolist()})
+        return {
+            "records": [{"name": r.name, "samples": len(r), "control_kind": r.control_kind,
+                         "force_variance_N2": float(np.var(r.force)),
+                         "passive_samples": int(np.sum(self.passive[k]))}
+                        for k, r in enumerate(self.records)],
+            "passive_control": self.passive_control,
+            "characteristics": [f.to_dict() for f in self.findings],
+            "found": [f.characteristic.name for f in self.findings if f.found],
+            "model": {"terms": list(self.terms), "asymmetric": self.asymmetric,
+                      "parameter_count": len(model.parameters),
+                      "model_terms": [f.characteristic.model_term for f in self.findings if f.found],
+                      "identified_on": self.records[self.identified_on].name,
+                      "esr": float(fit.esr),
+                      "parameters": {n: model.parameter(n).format(v) for n, v in fit.values.items()},
+                      "parameters_si": {n: float(v) for n, v in fit.values.items()},
+                      "control_reference": float(fit.model.control_reference)},
+            "cross_validation": {"records": self.customized.names, "customized": cv(self.customized),
+                                 "eyring_plastic": cv(self.eyring)},
+            "comparison": self.comparison(),
+        }
+
+
+def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=None,
+                 identify_options: dict | None = None) -> Characterization:
+    """Characterize a damper from its records and build, identify and cross-validate its customized model.
+
+    Parameters
+    ----------
+    records : sequence of Measurement
+        Records of one damper with force (and control, for the semi-active characteristics), e.g. the experiments
+        E1-E5 of :mod:`erdesign.simulation.programmes` played on a rig.
+    threshold : float
+        Rise of the ESR (a fraction of the force variance) a characteristic must account for to be found.
+    executor
+        Where the identifications run (:func:`erdesign.executor.executor_for`); the tables do not depend on it.
+    identify_options : dict, optional
+        Keywords of :func:`erdesign.identification.identify.identify` (``max_time``, ``decimate``...).
+
+    Returns
+    -------
+    Characterization
+
+    References
+    ----------
+    Vivas-López et al. (n.d.), eqs 1-8, Tables 2, 4 and 6.
+    """
+    records = list(records)
+    if not records:
+        raise CharacterizationError("records: none given")
+    for r in records:
+        if r.force is None:
+            raise CharacterizationError(f"{r.name or 'record'}: has no force column (characterize reads measured "
+                                        "forces; a test plan from 'erdesign doe' must be played on a rig first)")
+    samples = Samples.pool(records)
+    findings, F_P = detect(samples, threshold=threshold)
+    terms, asymmetric = customized_terms(findings)
+    options = dict(identify_options or {})
+    factories = {"customized": partial(SemiactiveCustomized, terms, asymmetric),
+                 "eyring_plastic": partial(get_model, "eyring_plastic")}
+    tables = {name: cross_validation(f, records, executor=executor, **options) for name, f in factories.items()}
+    best = int(np.argmin(tables["customized"].average))
+    fits = {name: identify(f(), records[best], **options) for name, f in factories.items()}
+    splits = np.cumsum([0] + [len(r) for r in records])
+    per_record = (lambda a: [a[splits[k]:splits[k + 1]] for k in range(len(records))])
+    return Characterization(records, findings, per_record(F_P), per_record(samples.passive), samples.u_passive, terms, asymmetric, tables["customized"], tables["eyring_plastic"],
+                            fits, best)
