@@ -95,9 +95,9 @@ def render_characterization(result) -> str:
                     [[c["title"], c["diagram"], c["model_term"], "yes" if c["found"] else "no", c["evidence"]]
                      for c in doc["characteristics"]])]
     m = doc["model"]
-    parts += [f"<h2>Customized model</h2><p>Terms: {e(', '.join(m['terms']))}; "
+    parts += [(f"<h2>Customized model</h2><p>Terms: {e(', '.join(m['terms']))}; "
               f"{'asymmetric' if m['asymmetric'] else 'symmetric'} coefficients; {m['parameter_count']} parameters, "
-              f"identified on {e(m['identified_on'])} (ESR {m['esr']:.4f}).</p>",
+              f"identified on {e(m['identified_on'])} (ESR {m['esr']:.4f}).</p>"),
               _table(["parameter", "value"], list(m["parameters"].items()))]
     cv = doc["cross_validation"]
     for key, title in (("customized", "customized model"), ("eyring_plastic", "Eyring-plastic model (eq 8)")):
@@ -111,9 +111,9 @@ def render_characterization(result) -> str:
               _table(["record", "customized ESR", "Eyring-plastic ESR"],
                      [[n, f"{a:.4f}", f"{b:.4f}"] for n, a, b in zip(cv["records"], ident["customized"],
                                                                      ident["eyring_plastic"])]),
-              f"<p>On average {100 * ident['esr_reduction']:.1f} % less ESR on the identification records; "
+              (f"<p>On average {100 * ident['esr_reduction']:.1f} % less ESR on the identification records; "
               f"cross-validation mean ESR {cvc['customized_mean_esr']:.4f} against "
-              f"{cvc['eyring_plastic_mean_esr']:.4f}.</p>"]
+              f"{cvc['eyring_plastic_mean_esr']:.4f}.</p>")]
     k = result.identified_on
     for i, fig in enumerate((diagram_figure(result, k), density_figure(result, k))):
         parts.append(fig.to_html(full_html=False, include_plotlyjs=(i == 0), include_mathjax=False))
