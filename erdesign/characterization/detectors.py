@@ -35,7 +35,8 @@ MIN_SAMPLES = 50
 
 @dataclass(frozen=True)
 class Characteristic:
-    """One row of Table 2 (plus asymmetry, which the paper's section 4 turns into two coefficients per term)."""
+    """One row of Table 2, or an asymmetry (sections 3.1 and 3.2: the passive FV and the FM diagrams are
+    asymmetrical), which section 4 turns into two coefficients per term."""
 
     name: str
     title: str
@@ -56,9 +57,16 @@ class Characteristic:
     """The groups the fit without it leaves out (default: its own group); the gain leaves out every semi-active group,
     since the pre-yield columns saturate into the gain's own and would stand in for it."""
 
+    asymmetric: bool = False
+    """Whether it makes the customized model's coefficients differ in extension and compression."""
     threshold_scale: float = 1.0
     """Its threshold over the common one (:data:`THRESHOLD`, 0.001: a term that carries about 3 % of the RMS force);
-    0.5 for asymmetry, whose even part of relative amplitude e adds an ESR of about e^2 (0.0005: about 2 %)."""
+    0.5 for asymmetry, whose even part of relative amplitude e adds an ESR of about e^2 (0.0005: about 2 %); 3 for
+    the pre-yield zone, because a velocity derived from a sampled displacement rounds an ideal plastic step over a
+    few samples (on truth-rig records of a Bingham valve without pre-yield elasticity, 250 Hz, this alone reads as
+    0.002); 2 for hysteresis, whose columns live at the reversals, where a spring and a mass act at their largest:
+    what their linear columns miss of them leaks into the hysteresis columns (up to 0.001 on closed-form records
+    with stiffness, mass and friction and no hysteresis)."""
 
     @property
     def left_out(self) -> tuple[str, ...]:
@@ -78,7 +86,8 @@ def _f(fit: LinearFit, V: float, Z: float) -> str:
 
 
 def _h(fit: LinearFit, V: float, Z: float) -> str:
-    return f"a force step of {2 * fit.coefficients['hysteresis'][0]:.4g} N between the two halves of the stroke"
+    lag = float(np.sum(fit.coefficients["hysteresis"])) + float(np.sum(fit.coefficients.get("hysteresis_sa", 0.0)))
+    return f"the force near a reversal lags it by up to {lag:.4g} N (at the highest control)"
 
 
 def _m(fit: LinearFit, V: float, Z: float) -> str:
@@ -87,10 +96,12 @@ def _m(fit: LinearFit, V: float, Z: float) -> str:
 
 def _a(fit: LinearFit, V: float, Z: float) -> str:
     cf = fit.coefficients["asymmetry"]
-    text = (f"extension and compression differ by {-2 * cf[0]:.4g} N s/m of damping and "
-            f"{-2 * float(np.sum(cf[1:])):.4g} N of friction")
-    sa = fit.coefficients.get("asymmetry_sa")
-    return text + (f", {-2 * sa[0]:.4g} N of control force gain over the control span" if sa is not None else "")
+    return (f"extension and compression differ by {2 * cf[0]:.4g} N s/m of damping and "
+            f"{2 * float(np.sum(cf[1:])):.4g} N of friction")
+
+
+def _asa(fit: LinearFit, V: float, Z: float) -> str:
+    return f"extension and compression differ by {2 * fit.coefficients['asymmetry_sa'][0]:.4g} N of control force gain"
 
 
 def _g(fit: LinearFit, V: float, Z: float) -> str:
@@ -108,16 +119,18 @@ CHARACTERISTICS: dict[str, Characteristic] = {c.name: c for c in (
                    _c),
     Characteristic("stiffness", "Stiffness", "passive FD", "k_p z", ("stiffness",), "passive", "stiffness", _k),
     Characteristic("friction", "Friction", "passive FV", "f_fr", ("friction",), "passive", "friction", _f),
-    Characteristic("hysteresis", "Hysteresis loop", "passive FV", "f_h,z", ("hysteresis_z",), "passive",
-                   "hysteresis", _h),
+    Characteristic("hysteresis", "Hysteresis loop", "FV", "f_h,z", ("hysteresis_z",), "damper",
+                   "hysteresis", _h, ("hysteresis", "hysteresis_sa"), False, 2.0),
     Characteristic("frequency_dependent_loop", "Frequency dependent hysteresis loop", "passive FV", "f_h,ż, m_D",
                    ("inertia",), "passive", "inertia", _m),
-    Characteristic("asymmetry", "Asymmetry (extension against compression)", "FV, SA FM",
-                   "coefficients for ż ≥ 0 and ż < 0", (), "damper", "asymmetry", _a, ("asymmetry", "asymmetry_sa"),
-                   0.5),
+    Characteristic("asymmetry", "Asymmetry of the passive force", "passive FV", "coefficients for ż ≥ 0 and ż < 0",
+                   (), "passive", "asymmetry", _a, (), True, 0.5),
     Characteristic("gain", "Gain in force due to manipulation", "SA FV", "c_SA", ("gain",), "semiactive", "gain",
                    _g, SEMIACTIVE_GROUPS),
-    Characteristic("preyield", "Pre-yield zone", "SA FV", "f_pre-y,ż,V", ("preyield",), "semiactive", "preyield", _p),
+    Characteristic("preyield", "Pre-yield zone", "SA FV", "f_pre-y,ż,V", ("preyield",), "semiactive", "preyield", _p,
+                   (), False, 3.0),
+    Characteristic("asymmetry_semiactive", "Asymmetry of the force gain", "SA FM", "c_SA for ż ≥ 0 and ż < 0", (),
+                   "semiactive", "asymmetry_sa", _asa, (), True, 0.5),
 )}
 
 

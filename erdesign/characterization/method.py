@@ -44,7 +44,7 @@ def customized_terms(findings: Sequence[Finding]) -> tuple[tuple[str, ...], bool
             terms.update(f.characteristic.terms)
     if "preyield" in terms:
         terms.add("gain")
-    asymmetric = any(f.found and f.characteristic.name == "asymmetry" for f in findings)
+    asymmetric = any(f.found and f.characteristic.asymmetric for f in findings)
     return tuple(t for t in TERMS if t in terms), asymmetric
 
 

@@ -102,8 +102,9 @@ def passive_features(s: Samples, V: float, Z: float) -> dict[str, np.ndarray]:
     ``viscous``       v                                                                            c_p v
     ``stiffness``     z                                                                            k_p z
     ``friction``      S(v / (s V)), s in :data:`SPEED_SCALES`                                      f_fr (eq 5a)
-    ``hysteresis``    sgn z, sgn z / (1 + |v| / (0.1 V)): a force that differs between the two     f_h,z (eq 5b)
-                      halves of the stroke at the same speed (odd in z, even in v: not friction)
+    ``hysteresis``    S(v / (s V) + sgn z) - S(v / (s V)), s in 0.01, 0.03, 0.1: the force at      f_h,z (eq 5b)
+                      small speed depends on the side of the stroke (a transition that lags
+                      the reversal), vanishing at high speed (not friction)
     ``inertia``       a, a |v| / V                                                                 m_D, f_h,v
     ``asymmetry``     |v|, |S(v / (s V))|: the even part of the viscous and friction columns       _pos / _neg
                       (a coefficient that differs for v < 0 adds its even part; the odd part
@@ -119,10 +120,16 @@ def passive_features(s: Samples, V: float, Z: float) -> dict[str, np.ndarray]:
         "viscous": v[:, None],
         "stiffness": z[:, None] / Z * V,       # scaled to the size of the viscous column (conditioning only)
         "friction": sat,
-        "hysteresis": np.column_stack([sz, sz / (1.0 + np.abs(v) / (0.1 * V))]),
+        "hysteresis": _branch(v, z, V),
         "inertia": np.column_stack([a, a * np.abs(v) / V]),
         "asymmetry": np.abs(np.column_stack([v, sat])),
     }
+
+
+def _branch(v, z, V):
+    """The hysteresis columns: S(v / (s V) + sgn z) - S(v / (s V)) (eq 5b less its saturated part)."""
+    sz = np.sign(z)
+    return np.column_stack([S(v / (k * V) + sz) - S(v / (k * V)) for k in (0.01, 0.03, 0.1)])
 
 
 def semiactive_features(s: Samples, V: float, Z: float) -> dict[str, np.ndarray]:
@@ -130,17 +137,19 @@ def semiactive_features(s: Samples, V: float, Z: float) -> dict[str, np.ndarray]
     control adds, post-yield: independent of the speed), ``preyield`` du S(v / (s V)) for the scales of
     :data:`SPEED_SCALES` and du S(z / (0.3 Z)) (a force that grows with the speed or the stroke before it saturates,
     eqs 5d-5e), ``asymmetry_sa`` du and du |S(v / (0.1 V))| (the gain and
-    pre-yield force differ in extension and compression: a part even in v); du is the control above the passive level over the
+    pre-yield force differ in extension and compression: a part even in v), ``hysteresis_sa`` du times the
+    hysteresis columns of :func:`passive_features`; du is the control above the passive level over the
     control span."""
     du, v, z = s.du, s.v, s.z
     return {"gain": (du * np.sign(v))[:, None],
             "preyield": np.column_stack([du * S(v / (k * V)) for k in SPEED_SCALES] + [du * S(z / (0.3 * Z))]),
-            "asymmetry_sa": np.column_stack([du, du * np.abs(S(v / (0.1 * V)))])}
+            "asymmetry_sa": np.column_stack([du, du * np.abs(S(v / (0.1 * V)))]),
+            "hysteresis_sa": du[:, None] * _branch(v, z, V)}
 
 
 #: The groups in the order they are listed.
 PASSIVE_GROUPS = ("offset", "viscous", "stiffness", "friction", "hysteresis", "inertia", "asymmetry")
-SEMIACTIVE_GROUPS = ("gain", "preyield", "asymmetry_sa")
+SEMIACTIVE_GROUPS = ("gain", "preyield", "asymmetry_sa", "hysteresis_sa")
 
 
 @dataclass(frozen=True)

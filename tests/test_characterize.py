@@ -1,0 +1,200 @@
+"""The characterization-and-customization method of Vivas-López et al. (n.d.): erdesign.characterization and
+``erdesign characterize``.
+
+Each detector is tested on records built with and without its characteristic: closed-form forces on a test
+programme's exact motion (fast), and records of the independent truth rig (erdesign.simulation.truthrig, which shares
+no code with the model that is fitted; slow).
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from erdesign.characterization.detectors import CHARACTERISTICS, THRESHOLD, detect
+from erdesign.characterization.diagrams import density
+from erdesign.characterization.method import characterize, customized_terms
+from erdesign.characterization.split import Samples
+from erdesign.data.measurement import Measurement, write_measurement
+from erdesign.models.semiactive import PAPER_TERMS, TERMS, SemiactiveCustomized, SemiactiveGeneral
+from erdesign.simulation.programmes import programme
+
+# ------------------------------------------------------------------------------------ closed-form records
+C, CSA, V0 = 2000.0, 3000.0, 0.004       # N s/m, N at full control, m/s
+
+
+def _closed_form(*, stiffness=0.0, friction=0.0, hysteresis=0.0, inertia=0.0, asymmetry=0.0, gain=True,
+                 preyield=0.0, gain_asymmetry=0.0, noise=5.0, seed=0):
+    """Records E2 and E5 (control 0 to 1 A) with a force written in closed form on the exact motion."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for name in ("e2", "e5"):
+        m = programme(name, control_range=(0.0, 1.0), rate=250.0)
+        t, x, v, a = m.time, m.displacement, m.velocity, m.acceleration
+        u = m.control if gain else np.zeros_like(t)
+        F = C * v * (1.0 + asymmetry * np.sign(v)) + stiffness * x + friction * np.tanh(v / V0) + inertia * a
+        shape = np.tanh(v / preyield) if preyield else np.sign(v)
+        if hysteresis:
+            # the yield force reached through an elastic-perfectly-plastic element (a Jenkins element, as a compliant
+            # fluid column gives): after each reversal it ramps over `hysteresis` of stroke (memory)
+            shape = np.zeros_like(t)
+            for i in range(1, t.size):
+                shape[i] = np.clip(shape[i - 1] + 2.0 * (x[i] - x[i - 1]) / hysteresis, -1.0, 1.0)
+        F = F + CSA * u * shape * (1.0 + gain_asymmetry * np.sign(v)) + rng.normal(0.0, noise, t.size)
+        out.append(Measurement.from_arrays(t, x, F, control=u, control_kind="current", velocity=v, name=name))
+    return out
+
+
+def _found(records):
+    findings, _ = detect(Samples.pool(records))
+    return {f.characteristic.name: f for f in findings}
+
+
+@pytest.fixture(scope="module")
+def plain():
+    return _found(_closed_form())
+
+
+@pytest.mark.parametrize("name, options", [
+    ("stiffness", {"stiffness": 4e4}),
+    ("friction", {"friction": 300.0}),
+    ("hysteresis", {"hysteresis": 0.5e-3}),
+    ("frequency_dependent_loop", {"inertia": 40.0}),
+    ("asymmetry", {"asymmetry": 0.3}),
+    ("asymmetry_semiactive", {"gain_asymmetry": 0.2}),
+    ("preyield", {"preyield": 0.01}),
+])
+def test_detector_finds_its_characteristic_only_when_present(plain, name, options):
+    assert not plain[name].found, plain[name].evidence
+    with_it = _found(_closed_form(**options))[name]
+    assert with_it.found, with_it.evidence
+    # the evidence names the diagram and the numbers that show it
+    assert "diagram" in with_it.evidence and f"threshold +{THRESHOLD * CHARACTERISTICS[name].threshold_scale:g}" \
+        in with_it.evidence
+    assert with_it.delta_esr > with_it.threshold
+
+
+def test_viscous_damping_and_gain(plain):
+    assert plain["viscous_damping"].found and plain["gain"].found
+    # the identified coefficient is the one written in the record (2 kN s/m), to the noise and the other columns
+    c_p = float(plain["viscous_damping"].evidence.split("c_p = ")[1].split()[0])
+    assert c_p == pytest.approx(C, rel=0.02)
+    # no control that varies: no semi-active characteristic can be read, and none is claimed
+    off = _found(_closed_form(gain=False))
+    assert not off["gain"].found and off["gain"].evidence.startswith("not observable")
+    assert not off["preyield"].found
+
+
+def test_split_is_eq_1(plain):
+    # F_SA = F_D - F_P (eq 1): on the closed-form records the passive force is C v, so F_SA is the control's force
+    recs = _closed_form(noise=0.0)
+    s = Samples.pool(recs)
+    _, F_P = detect(s)
+    F_SA = s.F - F_P
+    truth = CSA * s.u * np.sign(s.v)
+    assert np.sqrt(np.mean((F_SA - truth) ** 2)) < 0.02 * np.std(truth)
+
+
+def test_terms_follow_table_2(plain):
+    terms, asym = customized_terms(list(plain.values()))
+    assert terms == ("offset", "viscous", "gain") and not asym
+    found = _found(_closed_form(stiffness=4e4, friction=300.0, asymmetry=0.3, inertia=40.0, preyield=0.01))
+    terms, asym = customized_terms(list(found.values()))
+    # the paper's customized model (eq 6): viscous, stiffness, mass, friction, gain and pre-yield, asymmetric
+    assert set(terms) == set(PAPER_TERMS) and asym
+    assert len(SemiactiveCustomized(terms, asym).parameters) == 20        # Vivas-López et al. Table 5
+
+
+# --------------------------------------------------------------------------------------- the customized model
+def test_customized_model_with_all_terms_is_the_general_model():
+    # the general model (18 parameters, asymmetric c_p and c_SA) is the customized one with every term and those two
+    # coefficients asymmetric: one implementation of eqs 2-5
+    rec = _closed_form()[1]
+    general = SemiactiveGeneral()
+    values = {**general.defaults(), "c_p_pos": 3000.0, "c_p_neg": 2000.0, "k_p": 500.0, "f_f": 400.0, "x_f": 3.0,
+              "F_hz": 50.0, "x_hz": 0.4, "F_hv": 30.0, "x_hv": -0.2, "c_sa_pos": 900.0, "c_sa_neg": 700.0,
+              "x_py": 20.0, "m_D": 2.0}
+    custom = SemiactiveCustomized(tuple(TERMS), asymmetric=("c_p", "c_sa"))
+    assert set(custom.parameter_names) == set(general.parameter_names)
+    np.testing.assert_allclose(custom.simulate(rec, values), general.simulate(rec, values), rtol=1e-12)
+
+
+def test_customized_model_asymmetric_coefficients():
+    rec = _closed_form()[1]
+    model = SemiactiveCustomized(("offset", "viscous"), asymmetric=True)
+    F = model.simulate(rec, {"f0_pos": 10.0, "f0_neg": -10.0, "c_p_pos": 2000.0, "c_p_neg": 500.0})
+    v = rec.velocity
+    np.testing.assert_allclose(F, np.where(v >= 0, 10.0 + 2000.0 * v, -10.0 + 500.0 * v), rtol=1e-12)
+    with pytest.raises(Exception, match="terms: unknown 'spring'"):
+        SemiactiveCustomized(("spring",))
+
+
+def test_density_counts_every_sample():
+    rec = _closed_form()[0]
+    d = density(rec.velocity, rec.force, bins=30)
+    assert d.counts.sum() == len(rec) and d.fraction.sum() == pytest.approx(1.0)
+
+
+# ------------------------------------------------------------------------------------- the whole method
+def test_characterize_closed_form_beats_eyring_plastic():
+    result = characterize(_closed_form(stiffness=4e4, friction=300.0, preyield=0.01))
+    found = {f.characteristic.name for f in result.findings if f.found}
+    assert {"viscous_damping", "stiffness", "friction", "gain", "preyield"} <= found
+    doc = result.to_dict()
+    # Table 4: each record identifies, every record validates; the average is the mean of each column
+    table = np.array(doc["cross_validation"]["customized"]["table"])
+    assert table.shape == (2, 2)
+    np.testing.assert_allclose(doc["cross_validation"]["customized"]["average"], table.mean(axis=0))
+    assert doc["comparison"]["customized_better"]
+    assert doc["model"]["parameter_count"] == len(doc["model"]["parameters"])
+    json.dumps(doc, allow_nan=False)
+
+
+# --------------------------------------------------------------------------------------- the truth rig
+def _truth(mechanisms, names=("e2", "e5"), rate=250.0):
+    from erdesign.damper.files import load_example
+    from erdesign.simulation.truthrig import TruthDamper, simulate_truth
+    damper = load_example("mr_valve_current")
+    return [simulate_truth(TruthDamper(damper, mechanisms), programme(n, control_range=(0.0, 0.8), rate=rate),
+                           seed=2, name=n).measured for n in names]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, mechanisms", [
+    ("stiffness", {"accumulator": {"charge_pressure": 3e6, "gas_volume": 2e-5}}),
+    ("friction", {"stribeck_friction": {"coulomb_force": 150.0, "static_force": 220.0}}),
+    ("hysteresis", {"compliance": {}}),
+    ("frequency_dependent_loop", {"slug_inertia": {}}),
+    ("asymmetry", {"single_rod": {}}),
+    ("preyield", {"preyield": {}}),
+])
+def test_detectors_on_the_truth_rig(name, mechanisms):
+    without = _found(_truth({}))[name]
+    with_it = _found(_truth(mechanisms))[name]
+    assert not without.found, without.evidence
+    assert with_it.found, with_it.evidence
+
+
+@pytest.mark.slow
+def test_characterize_truth_rig_records(tmp_path, capsys):
+    # issue 25, done when: characterize on truth-rig records with known characteristics finds them and builds a
+    # model that beats Eyring-plastic in cross-validation
+    from erdesign.cli import main
+    records = _truth({"stribeck_friction": {"coulomb_force": 150.0, "static_force": 220.0},
+                      "accumulator": {"charge_pressure": 3e6, "gas_volume": 2e-5}, "single_rod": {}},
+                     names=("e2", "e3", "e4", "e5"))
+    paths = []
+    for r in records:
+        paths.append(tmp_path / f"{r.name}.csv")
+        write_measurement(paths[-1], r, units={"current": "A"})
+    out = tmp_path / "report.html"
+    code = main(["characterize", *map(str, paths), "--json", "--out", str(out)])
+    assert code == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert {"viscous_damping", "stiffness", "friction", "asymmetry", "gain"} <= set(doc["found"])
+    assert not {"hysteresis", "frequency_dependent_loop"} & set(doc["found"])
+    assert doc["comparison"]["customized_better"]
+    c = doc["comparison"]["cross_validation"]
+    assert c["customized_mean_esr"] < c["eyring_plastic_mean_esr"]
+    text = out.read_text()
+    assert "Cross-validation" in text and "plotly" in text
