@@ -217,5 +217,6 @@ def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Find
                 continue
             # the semi-active fit explains F_SA (eq 1); its ESR is over the damper force F_D (eq 7)
             findings.append(_judge(c, semiactive_features(sa, V, Z), sa.F - F_P[controlled], sa.F,
-                                   SEMIACTIVE_GROUPS, V, Z, threshold, "semi-active FV diagram"))
+                                   SEMIACTIVE_GROUPS, V, Z, threshold,
+                                   f"semi-active {c.diagram.split()[-1]} diagram"))
     return findings, F_P

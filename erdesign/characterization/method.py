@@ -25,7 +25,7 @@ from ..identification.identify import CrossValidation, cross_validation, identif
 from ..models.registry import get_model
 from ..models.semiactive import TERMS, SemiactiveCustomized
 from .detectors import THRESHOLD, Finding, detect
-from .split import Samples
+from .split import Samples, robust_peak
 
 __all__ = ["Characterization", "CharacterizationError", "characterize", "customized_terms"]
 
@@ -61,8 +61,9 @@ class Characterization:
         F_P [N] of each record (eq 1); the semi-active force is the record's force minus it.
     passive : list of ndarray
         Mask of each record's samples at the passive control (the lowest).
-    terms, asymmetric
-        The customized model's terms and whether its coefficients differ in extension and compression.
+    terms, asymmetric, scales
+        The customized model's terms, whether its coefficients differ in extension and compression, and the peak
+        force, speed and stroke of the records that bound its parameters.
     customized, eyring
         Cross-validation tables (Table 4) of the customized and of the Eyring-plastic model (None with one record).
     fits : dict
@@ -76,6 +77,7 @@ class Characterization:
     passive_control: float | None
     terms: tuple[str, ...]
     asymmetric: bool
+    scales: dict
     customized: CrossValidation
     eyring: CrossValidation
     fits: dict = field(default_factory=dict)
@@ -83,7 +85,7 @@ class Characterization:
 
     @property
     def model(self) -> SemiactiveCustomized:
-        return SemiactiveCustomized(self.terms, self.asymmetric)
+        return SemiactiveCustomized(self.terms, self.asymmetric, self.scales)
 
     def comparison(self) -> dict:
         """The customized model against the Eyring-plastic model.
@@ -91,7 +93,8 @@ class Characterization:
         ``identification`` compares the ESR of each on the record it was identified on (the diagonals; the paper's
         Table 6) and ``esr_reduction`` is the mean over the records of the relative reduction (the paper's "28.4 %
         less ESR": the mean of 28.3, 21.3 and 35.7 % of its Table 6); ``cross_validation`` compares the means of
-        the whole tables (Table 4)."""
+        the whole tables (Table 4); ``customized_better`` is the verdict of the cross-validation (a model that
+        predicts the records it was not identified on)."""
         c_diag, e_diag = np.diag(self.customized.table), np.diag(self.eyring.table)
         reduction = np.where(e_diag > 0, (e_diag - c_diag) / np.where(e_diag > 0, e_diag, 1.0), 0.0)
         c, e = float(np.mean(self.customized.table)), float(np.mean(self.eyring.table))
@@ -99,7 +102,7 @@ class Characterization:
                                    "esr_reduction": float(np.mean(reduction))},
                 "cross_validation": {"customized_mean_esr": c, "eyring_plastic_mean_esr": e,
                                      "esr_reduction": (e - c) / e if e > 0 else 0.0},
-                "customized_better": bool(c < e and np.mean(c_diag) < np.mean(e_diag))}
+                "customized_better": bool(c < e)}
 
     def model_force(self, name: str, k: int) -> np.ndarray:
         """The force [N] of model ``name`` (``"customized"`` or ``"eyring_plastic"``), as identified on the record
@@ -169,12 +172,13 @@ def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=No
     findings, F_P = detect(samples, threshold=threshold)
     terms, asymmetric = customized_terms(findings)
     options = dict(identify_options or {})
-    factories = {"customized": partial(SemiactiveCustomized, terms, asymmetric),
+    scales = {"force": robust_peak(samples.F), "speed": robust_peak(samples.v), "stroke": robust_peak(samples.z)}
+    factories = {"customized": partial(SemiactiveCustomized, terms, asymmetric, scales),
                  "eyring_plastic": partial(get_model, "eyring_plastic")}
     tables = {name: cross_validation(f, records, executor=executor, **options) for name, f in factories.items()}
     best = int(np.argmin(tables["customized"].average))
     fits = {name: identify(f(), records[best], **options) for name, f in factories.items()}
     splits = np.cumsum([0] + [len(r) for r in records])
     per_record = (lambda a: [a[splits[k]:splits[k + 1]] for k in range(len(records))])
-    return Characterization(records, findings, per_record(F_P), per_record(samples.passive), samples.u_passive, terms, asymmetric, tables["customized"], tables["eyring_plastic"],
-                            fits, best)
+    return Characterization(records, findings, per_record(F_P), per_record(samples.passive), samples.u_passive,
+                            terms, asymmetric, scales, tables["customized"], tables["eyring_plastic"], fits, best)

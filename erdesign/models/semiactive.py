@@ -116,6 +116,18 @@ _LINEAR = ("f0", "c_p", "k_p", "m_D", "f_f", "F_hz", "F_hv", "c_sa")
 _CONTROL = ("c_sa", "v_py", "x_py")
 
 
+def _bounded(p: Parameter, scales) -> Parameter:
+    """``p`` with bounds from the records' peak force, speed and stroke (:class:`SemiactiveCustomized`)."""
+    import dataclasses
+    limit = {"N": 10.0 * scales["force"], "s/m": 1000.0 / scales["speed"], "1/m": 100.0 / scales["stroke"],
+             "N*s/m": 100.0 * scales["force"] / scales["speed"], "N/m": 100.0 * scales["force"] / scales["stroke"]
+             }.get(p.unit)
+    if limit is None:
+        return p
+    lower, upper = max(p.lower, -limit), min(p.upper, limit)
+    return dataclasses.replace(p, lower=lower, upper=upper, default=min(max(p.default, lower), upper))
+
+
 def general_force(record, values, terms, u):
     r"""The force of the general semi-active model (Vivas-López et al. eqs 2-5) with the ``terms`` of :data:`TERMS`
     given, [N].
@@ -173,6 +185,13 @@ class SemiactiveCustomized(Model):
         ("the SA damper has an asymmetric behavior ... different coefficients for positive and negative
         velocities"), 20 parameters for eq 6 (its Table 5); False: one value each; or the coefficient names that
         are asymmetric.
+    scales : mapping, optional
+        ``force`` [N], ``speed`` [m/s] and ``stroke`` [m] of the records the model is for (their peaks).  Given,
+        they bound the parameters to what such records can tell: forces within 10 x ``force``, the gains of the
+        saturations :math:`S` below 1000 / ``speed`` (a transition narrower than 0.1 % of the peak speed is a step
+        no sample resolves) and 100 / ``stroke``.  Without bounds a friction term with a gain at its limit becomes
+        a sign function of a line in (z, ż) whose amplitude an opposite offset cancels: a fit that holds on its
+        record and fails on every other (seen on truth-rig road-profile records).
 
     Examples
     --------
@@ -189,7 +208,7 @@ class SemiactiveCustomized(Model):
     source = "Vivas-López et al. (n.d.) eqs 2-6"
     uses_control = True
 
-    def __init__(self, terms=PAPER_TERMS, asymmetric=True):
+    def __init__(self, terms=PAPER_TERMS, asymmetric=True, scales=None):
         unknown = [t for t in terms if t not in TERMS]
         if unknown:
             raise ParameterError(f"terms: unknown {unknown[0]!r}; terms: {', '.join(TERMS)}")
@@ -205,6 +224,9 @@ class SemiactiveCustomized(Model):
                 raise ParameterError(f"asymmetric: {bad[0]!r} is not a coefficient of the terms {', '.join(self.terms)}")
             self.asymmetric = tuple(asymmetric)
         base = {p.name.removesuffix("_pos"): p for p in SemiactiveGeneral.parameters if not p.name.endswith("_neg")}
+        if scales is not None:
+            base = {n: _bounded(p, scales) for n, p in base.items()}
+        self.scales = None if scales is None else dict(scales)
         params = []
         for n in names:
             p = base[n]
