@@ -16,7 +16,12 @@ from erdesign.characterization.diagrams import density
 from erdesign.characterization.method import characterize, customized_terms
 from erdesign.characterization.split import Samples
 from erdesign.data.measurement import Measurement, write_measurement
-from erdesign.models.semiactive import PAPER_TERMS, TERMS, SemiactiveCustomized, SemiactiveGeneral
+from erdesign.models.semiactive import (
+    PAPER_TERMS,
+    TERMS,
+    SemiactiveCustomized,
+    SemiactiveGeneral,
+)
 from erdesign.simulation.programmes import programme
 
 # ------------------------------------------------------------------------------------ closed-form records

@@ -114,7 +114,6 @@ def passive_features(s: Samples, V: float, Z: float) -> dict[str, np.ndarray]:
     z, v, a = s.z, s.v, s.a
     one = np.ones_like(v)
     sat = np.column_stack([S(v / (k * V)) for k in SPEED_SCALES])
-    sz = np.sign(z)
     return {
         "offset": one[:, None],
         "viscous": v[:, None],
