@@ -64,7 +64,7 @@ def _control_range(text: str) -> tuple[tuple[float, float], str, str]:
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a summary.")
 def doe(programme: str, control_range: str, amplitudes: str | None, frequencies: str | None, duration: str | None,
         rate: str, seed: int, out: str, overwrite: bool, as_json: bool) -> None:
-    """Write a test programme (RP, DSFS with SC, ICPS or PRBS actuation; E1-E5) as a measurement file to play."""
+    """Write a test programme (RP, DSFS; SC, ICPS, PRBS actuation; E1-E5) as a record to play."""
     import numpy as np
 
     from .._util import check_output_path
