@@ -13,7 +13,7 @@ import pytest
 
 from erdesign.characterization.detectors import CHARACTERISTICS, THRESHOLD, detect
 from erdesign.characterization.diagrams import density
-from erdesign.characterization.method import characterize, customized_terms
+from erdesign.characterization.method import characterize, customized_terms, demo_records
 from erdesign.characterization.split import Samples
 from erdesign.data.measurement import Measurement, write_measurement
 from erdesign.models.semiactive import (
@@ -156,12 +156,8 @@ def test_characterize_closed_form_beats_eyring_plastic():
 
 
 # --------------------------------------------------------------------------------------- the truth rig
-def _truth(mechanisms, names=("e2", "e5"), rate=250.0):
-    from erdesign.damper.files import load_example
-    from erdesign.simulation.truthrig import TruthDamper, simulate_truth
-    damper = load_example("mr_valve_current")
-    return [simulate_truth(TruthDamper(damper, mechanisms), programme(n, control_range=(0.0, 0.8), rate=rate),
-                           seed=2, name=n).measured for n in names]
+def _truth(mechanisms, names=("e2", "e5")):
+    return demo_records(mechanisms, names)
 
 
 @pytest.mark.slow
@@ -185,9 +181,7 @@ def test_characterize_truth_rig_records(tmp_path, capsys):
     # issue 25, done when: characterize on truth-rig records with known characteristics finds them and builds a
     # model that beats Eyring-plastic in cross-validation
     from erdesign.cli import main
-    records = _truth({"stribeck_friction": {"coulomb_force": 150.0, "static_force": 220.0},
-                      "accumulator": {"charge_pressure": 3e6, "gas_volume": 2e-5}, "single_rod": {}},
-                     names=("e2", "e3", "e4", "e5"))
+    records = demo_records()            # Stribeck friction, gas accumulator, single-ended rod; E2-E5
     paths = []
     for r in records:
         paths.append(tmp_path / f"{r.name}.csv")

@@ -27,7 +27,19 @@ from ..models.semiactive import TERMS, SemiactiveCustomized
 from .detectors import THRESHOLD, Finding, detect
 from .split import Samples, robust_peak
 
-__all__ = ["Characterization", "CharacterizationError", "characterize", "customized_terms"]
+__all__ = [
+    "DEMO_MECHANISMS",
+    "Characterization",
+    "CharacterizationError",
+    "characterize",
+    "customized_terms",
+    "demo_records",
+]
+
+#: The truth-rig damper of :func:`demo_records`: Stribeck seal friction, a gas accumulator and a single-ended rod
+#: (friction, stiffness and asymmetry to find) on the ``mr_valve_current`` example.
+DEMO_MECHANISMS = {"stribeck_friction": {"coulomb_force": 150.0, "static_force": 220.0},
+                   "accumulator": {"charge_pressure": 3e6, "gas_volume": 2e-5}, "single_rod": {}}
 
 
 class CharacterizationError(ErdesignError):
@@ -182,3 +194,17 @@ def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=No
     per_record = (lambda a: [a[splits[k]:splits[k + 1]] for k in range(len(records))])
     return Characterization(records, findings, per_record(F_P), per_record(samples.passive), samples.u_passive,
                             terms, asymmetric, scales, tables["customized"], tables["eyring_plastic"], fits, best)
+
+
+def demo_records(mechanisms=None, names=("e2", "e3", "e4", "e5"), *, damper: str = "mr_valve_current",
+                 control_range=(0.0, 0.8), rate: float = 250.0, seed: int = 2) -> list:
+    """Records of the experiments ``names`` (:mod:`erdesign.simulation.programmes`) measured on the independent
+    truth rig (:mod:`erdesign.simulation.truthrig`) with ``mechanisms`` (default :data:`DEMO_MECHANISMS`): the
+    records of docs/characterize.md, the app's example and the tests' (control in A for the default damper)."""
+    from ..damper.files import load_example
+    from ..simulation.programmes import programme
+    from ..simulation.truthrig import TruthDamper, simulate_truth
+
+    truth = TruthDamper(load_example(damper), DEMO_MECHANISMS if mechanisms is None else mechanisms)
+    return [simulate_truth(truth, programme(n, control_range=control_range, rate=rate), seed=seed, name=n).measured
+            for n in names]
