@@ -183,3 +183,18 @@ def test_doe_bad_options_are_one_line(tmp_path, capsys, args, words):
     err = capsys.readouterr().err.strip()
     assert code != 0 and words in err and "\n" not in err and "Traceback" not in err
     assert not (tmp_path / "p.csv").exists()
+
+
+def test_simulate_runs_a_plan_without_scoring_it(tmp_path, capsys):
+    plan, forces = tmp_path / "e2.csv", tmp_path / "forces.csv"
+    assert main(["doe", "--programme", "E2", "--control-range", "0 A, 1 A", "--out", str(plan)]) == 0
+    capsys.readouterr()
+    code = main(["simulate", str(plan), "--model", "bingham", "--params", "c0=2 kN*s/m, f_c=0.5 kN, f_c_u=1 kN",
+                 "--control-reference", "1 A", "--out", str(forces), "--json"])
+    assert code == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["esr"] is None and doc["samples_scored"] == 0 and doc["samples"] > 0
+    rec = read_measurement(forces)
+    # Bingham: F = c0 v + (f_c + f_c_u u) sgn v; the plan's PRBS steps u between 0 and 1 A
+    expected = 2000.0 * rec.velocity + (500.0 + 1000.0 * rec.control) * np.sign(rec.velocity)
+    np.testing.assert_allclose(rec.force, expected, atol=1e-6 * np.max(np.abs(expected)))
