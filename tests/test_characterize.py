@@ -197,3 +197,34 @@ def test_characterize_truth_rig_records(tmp_path, capsys):
     assert c["customized_mean_esr"] < c["eyring_plastic_mean_esr"]
     text = out.read_text()
     assert "Cross-validation" in text and "plotly" in text
+
+
+# ------------------------------------------------------------------------------------------------- the command
+def test_characterize_command_json_keys_and_errors(tmp_path, capsys):
+    from erdesign.cli import main
+    paths = []
+    for r in _closed_form(friction=300.0):
+        paths.append(tmp_path / f"{r.name}.csv")
+        write_measurement(paths[-1], r, units={"current": "A"})
+    assert main(["characterize", *map(str, paths), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert set(doc) == {"records", "passive_control", "characteristics", "found", "model", "cross_validation",
+                        "comparison", "out"}
+    assert [c["name"] for c in doc["characteristics"]] == list(CHARACTERISTICS)
+    assert {"viscous_damping", "friction", "gain"} <= set(doc["found"])
+    assert doc["records"][0]["force_variance_N2"] > 0 and doc["passive_control"] == 0.0
+    # the readable report names every characteristic and both tables
+    assert main(["characterize", *map(str, paths)]) == 0
+    text = capsys.readouterr().out
+    assert "Friction" in text and "Eyring-plastic" in text and "average" in text
+    # a plan without force, and an existing --out: one line each, nothing overwritten
+    plan = tmp_path / "plan.csv"
+    assert main(["doe", "--programme", "E5", "--control-range", "0 A, 1 A", "--out", str(plan)]) == 0
+    capsys.readouterr()
+    assert main(["characterize", str(plan)]) != 0
+    err = capsys.readouterr().err.strip()
+    assert "force" in err and "\n" not in err
+    existing = tmp_path / "page.html"
+    existing.write_text("keep")
+    assert main(["characterize", *map(str, paths), "--out", str(existing)]) != 0
+    assert existing.read_text() == "keep" and "exists" in capsys.readouterr().err

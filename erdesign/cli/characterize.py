@@ -27,6 +27,8 @@ Examples:
 @click.option("--threshold", default=0.001, show_default=True, type=click.FloatRange(min=0.0, max=1.0),
               help="Rise of the ESR (a fraction of the force variance) a characteristic must account for to be "
                    "found.")
+@click.option("--starts", default=1, show_default=True, type=click.IntRange(min=1),
+              help="Starts of each identification (more only run when the first is no better than a Bingham fit).")
 @click.option("--max-time", default=None, type=click.FloatRange(min=0.0, min_open=True), metavar="SECONDS",
               help="Time limit of each identification.")
 @executor_options(default_jobs="1")
@@ -34,7 +36,7 @@ Examples:
               help="Write the diagrams, densities and tables as one HTML page.")
 @click.option("--force", "overwrite", is_flag=True, help="Let --out replace an existing file.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
-def characterize(records: tuple[str, ...], threshold: float, max_time: float | None, executor: dict,
+def characterize(records: tuple[str, ...], threshold: float, starts: int, max_time: float | None, executor: dict,
                  out: str | None, overwrite: bool, as_json: bool) -> None:
     """Find a damper's characteristics, build its customized model and cross-validate it (Vivas-López et al.)."""
     from .._util import check_output_path
@@ -45,7 +47,7 @@ def characterize(records: tuple[str, ...], threshold: float, max_time: float | N
     if out is not None:
         out, _ = check_output_path(out, force=overwrite, formats={".html": "html"}, inputs=records)
     recs = [read_measurement(r) for r in records]
-    options = {} if max_time is None else {"max_time": max_time}
+    options = {"starts": starts, **({} if max_time is None else {"max_time": max_time})}
     with executor_scope(**executor) as runner:
         result = run(recs, threshold=threshold, executor=runner, identify_options=options)
     if out is not None:
