@@ -208,8 +208,8 @@ def test_characterize_command_json_keys_and_errors(tmp_path, capsys):
         write_measurement(paths[-1], r, units={"current": "A"})
     assert main(["characterize", *map(str, paths), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
-    assert set(doc) == {"records", "passive_control", "characteristics", "found", "model", "cross_validation",
-                        "comparison", "out"}
+    assert set(doc) == {"records", "passive_control", "split", "characteristics", "found", "model",
+                        "cross_validation", "comparison", "out"}
     assert [c["name"] for c in doc["characteristics"]] == list(CHARACTERISTICS)
     assert {"viscous_damping", "friction", "gain"} <= set(doc["found"])
     assert doc["records"][0]["force_variance_N2"] > 0 and doc["passive_control"] == 0.0
@@ -228,3 +228,23 @@ def test_characterize_command_json_keys_and_errors(tmp_path, capsys):
     existing.write_text("keep")
     assert main(["characterize", *map(str, paths), "--out", str(existing)]) != 0
     assert existing.read_text() == "keep" and "exists" in capsys.readouterr().err
+
+
+def test_the_papers_averages():
+    # Vivas-López et al. Table 4: the average row is the mean of each identification column over all the validation
+    # experiments, its own included
+    from erdesign.identification.identify import CrossValidation
+    table = np.array([[0.0741, 0.0811, 0.1988, 0.1065], [0.0676, 0.0620, 0.1762, 0.1154],
+                      [0.3041, 0.0614, 0.1258, 0.1664], [0.2546, 0.3032, 0.1727, 0.1558]])
+    np.testing.assert_allclose(CrossValidation(["E2", "E3", "E4", "E5"], table).average,
+                               [0.1751, 0.1269, 0.1684, 0.1360], atol=6e-5)     # printed to 4 decimals
+    # Table 6 and the conclusions: "on average 28.4 % less ESR than the Eyring-plastic model"
+    from erdesign.characterization.method import mean_esr_reduction
+    assert mean_esr_reduction([0.0714, 0.0642, 0.1284], [0.0996, 0.0816, 0.1996]) == pytest.approx(0.284, abs=5e-4)
+
+
+def test_split_force_gain_is_linear_in_the_control():
+    # closed form: F_SA = CSA u sgn v, so the FM diagram's mean gain is CSA per unit control, on a straight line
+    result = characterize(_closed_form(noise=0.0)[:1])
+    gain = result.split()["force_gain"]
+    assert gain["slope_N_per_control_unit"] == pytest.approx(CSA, rel=0.02) and gain["r_squared"] > 0.999
