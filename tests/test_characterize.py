@@ -13,7 +13,11 @@ import pytest
 
 from erdesign.characterization.detectors import CHARACTERISTICS, THRESHOLD, detect
 from erdesign.characterization.diagrams import density
-from erdesign.characterization.method import characterize, customized_terms, demo_records
+from erdesign.characterization.method import (
+    characterize,
+    customized_terms,
+    demo_records,
+)
 from erdesign.characterization.split import Samples
 from erdesign.data.measurement import Measurement, write_measurement
 from erdesign.models.semiactive import (

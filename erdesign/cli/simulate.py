@@ -44,8 +44,6 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
     """Run a model with given parameters on a measurement and score it (ESR and more)."""
     from pathlib import Path
 
-    import numpy as np
-
     from ..data.measurement import read_measurement, write_measurement
     from ..errors import ErdesignError
     from ..identification.identify import resolve_parameters
@@ -100,7 +98,7 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
              f"peak residual {m['peak_residual_N']:.4g} N"
              + (f"   ({sim.excluded} clipped samples left out)" if sim.excluded else "")
              if m["esr"] is not None else
-             f"  no force column (a test plan): peak model force {float(np.max(np.abs(sim.force))):.4g} N, not scored"]
+             f"  no force column (a test plan): peak model force {float(abs(sim.force).max()):.4g} N, not scored"]
     if reference is not None:
         lines.append(f"  control: u = {record.control_kind} / {reference}")
     width = max(len(k) for k in params_text)
