@@ -252,3 +252,17 @@ def test_split_force_gain_is_linear_in_the_control():
     result = characterize(_closed_form(noise=0.0)[:1])
     gain = result.split()["force_gain"]
     assert gain["slope_N_per_control_unit"] == pytest.approx(CSA, rel=0.02) and gain["r_squared"] > 0.999
+
+
+def test_customized_model_linear_parameters_are_linear():
+    # identification projects out the declared linear parameters: the force must be affine in them
+    rec = _closed_form()[1]
+    model = SemiactiveCustomized(PAPER_TERMS, asymmetric=True, scales={"force": 5e3, "speed": 0.2, "stroke": 8e-3})
+    rng = np.random.default_rng(1)
+    values = {p.name: float(rng.uniform(max(p.lower, -1.0), min(p.upper, 1.0)) * (50.0 if p.unit == "N" else 1.0))
+              for p in model.parameters}
+    basis, rest = model.linear_terms(rec, values)
+    F = rest + sum(values[k] * basis[k] for k in model.linear_parameters)
+    np.testing.assert_allclose(F, model.simulate(rec, values), rtol=1e-9, atol=1e-9)
+    # the records' scales bound the saturation gains: a transition narrower than 0.1 % of the peak speed is refused
+    assert model.parameter("v_f_pos").upper == pytest.approx(1000.0 / 0.2)
