@@ -46,6 +46,22 @@ class CharacterizationError(ErdesignError):
     """Records the method cannot read (none, no force, too few samples); the message names the record."""
 
 
+def _finite(a) -> list:
+    """A nested list of the array's values, None where not finite (a fit that diverged on another record)."""
+    return [_finite(x) for x in a] if np.ndim(a) else (float(a) if np.isfinite(a) else None)
+
+
+def _finite_tree(obj):
+    """``obj`` with every non-finite float replaced by None (the JSON of the command holds no NaN)."""
+    if isinstance(obj, dict):
+        return {k: _finite_tree(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_finite_tree(v) for v in obj]
+    if isinstance(obj, float) and not np.isfinite(obj):
+        return None
+    return obj
+
+
 def mean_esr_reduction(customized, reference) -> float:
     """The mean over records of the relative reduction of the ESR, (reference - customized) / reference: the
     paper's "on average 28.4 % less ESR than the Eyring-plastic model" from its Table 6.
@@ -164,8 +180,8 @@ class Characterization:
         """The JSON of ``erdesign characterize --json`` (keys in docs/cli.md)."""
         model = self.model
         fit = self.fits["customized"]
-        cv = (lambda t: {"table": t.table.tolist(), "average": t.average.tolist()})
-        return {
+        cv = (lambda t: {"table": _finite(t.table), "average": _finite(t.average)})
+        return _finite_tree({
             "records": [{"name": r.name, "samples": len(r), "control_kind": r.control_kind,
                          "force_variance_N2": float(np.var(r.force)),
                          "passive_samples": int(np.sum(self.passive[k]))}
@@ -185,7 +201,7 @@ class Characterization:
             "cross_validation": {"records": self.customized.names, "customized": cv(self.customized),
                                  "eyring_plastic": cv(self.eyring)},
             "comparison": self.comparison(),
-        }
+        })
 
 
 def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=None,
@@ -222,6 +238,10 @@ def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=No
         if r.force is None:
             raise CharacterizationError(f"{r.name or 'record'}: has no force column (characterize reads measured "
                                         "forces; a test plan from 'erdesign doe' must be played on a rig first)")
+    kinds = {r.control_kind for r in records} - {None}
+    if len(kinds) > 1:
+        raise CharacterizationError(f"records: controls of different kinds ({', '.join(sorted(kinds))}); the records "
+                                    "of one damper share one control column")
     samples = Samples.pool(records)
     findings, F_P = detect(samples, threshold=threshold)
     terms, asymmetric = customized_terms(findings)

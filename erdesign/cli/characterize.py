@@ -60,8 +60,14 @@ def characterize(records: tuple[str, ...], threshold: float, starts: int, max_ti
     click.echo(_text(doc) + (f"\n  report written to {out}" if out is not None else ""))
 
 
+def _cell(x) -> str:
+    """An ESR in a 12-wide column; a dash where the model diverged (null in the JSON)."""
+    return f"{x:12.4f}" if x is not None else f"{'-':>12}"
+
+
 def _text(doc: dict) -> str:
     """The readable report of the JSON document."""
+    from ..report.characterization import esr_change_text as _less
     lines = [f"Characterization of {len(doc['records'])} record(s) (Vivas-López et al.):"]
     for c in doc["characteristics"]:
         lines.append(f"  [{'x' if c['found'] else ' '}] {c['title']} ({c['diagram']} -> {c['model_term']}): "
@@ -79,14 +85,14 @@ def _text(doc: dict) -> str:
         w = max(len(n) for n in names + ["average"])
         lines.append("  " + " " * w + "".join(f"{n:>12}" for n in names))
         for n, row in zip(names, cv[key]["table"]):
-            lines.append(f"  {n:<{w}}" + "".join(f"{x:12.4f}" for x in row))
-        lines.append(f"  {'average':<{w}}" + "".join(f"{x:12.4f}" for x in cv[key]["average"]))
+            lines.append(f"  {n:<{w}}" + "".join(_cell(x) for x in row))
+        lines.append(f"  {'average':<{w}}" + "".join(_cell(x) for x in cv[key]["average"]))
     c = doc["comparison"]
     ident, cvc = c["identification"], c["cross_validation"]
-    lines.append(f"Identification ESR (Table 6): customized {', '.join(f'{x:.4f}' for x in ident['customized'])}; "
-                 f"Eyring-plastic {', '.join(f'{x:.4f}' for x in ident['eyring_plastic'])} "
-                 f"({100 * ident['esr_reduction']:.1f} % less ESR on average)")
+    lines.append(f"Identification ESR (Table 6): customized {', '.join(_cell(x).strip() for x in ident['customized'])}; "
+                 f"Eyring-plastic {', '.join(_cell(x).strip() for x in ident['eyring_plastic'])} "
+                 f"({_less(ident['esr_reduction'])} on average)")
     lines.append(f"Cross-validation mean ESR: customized {cvc['customized_mean_esr']:.4f}, Eyring-plastic "
-                 f"{cvc['eyring_plastic_mean_esr']:.4f} ({100 * cvc['esr_reduction']:.1f} % less); the customized "
+                 f"{cvc['eyring_plastic_mean_esr']:.4f} ({_less(cvc['esr_reduction'])}); the customized "
                  f"model is {'better' if c['customized_better'] else 'not better'}")
     return "\n".join(lines)

@@ -14,7 +14,7 @@ import numpy as np
 
 __all__ = ["density_figure", "diagram_figure", "render_characterization", "write_characterization"]
 
-_AXIS = {"FD": ("displacement [mm]", 1e3), "FV": ("velocity [m/s]", 1.0), "FM": ("control", 1.0)}
+_AXIS = {"FD": ("displacement [mm]", 1e3), "FV": ("velocity [m/s]", 1.0), "FM": ("control (SI)", 1.0)}
 
 
 def _forces(result, k: int) -> dict[str, np.ndarray]:
@@ -41,7 +41,7 @@ def diagram_figure(result, k: int = 0):
             fig.add_trace(go.Scattergl(x=x * _AXIS[d][1], y=y, mode="markers", name=name, legendgroup=name,
                                        showlegend=col == 1, marker={"size": 2, "color": colours[name]},
                                        opacity=0.5), row=1, col=col)
-        fig.update_xaxes(title_text=_AXIS[d][0], row=1, col=col)
+        fig.update_xaxes(title_text=_axis(rec, d), row=1, col=col)
     fig.update_yaxes(title_text="force [N]", row=1, col=1)
     fig.update_layout(height=380, title=f"Characteristic diagrams of {rec.name}", margin={"t": 60})
     return fig
@@ -72,11 +72,26 @@ def density_figure(result, k: int = 0, bins: int = 40):
             z = np.where(dens.counts > 0, dens.fraction, np.nan).T
             fig.add_trace(go.Heatmap(x=xc, y=Fc, z=z, colorscale="Jet", showscale=(row == 1 and col == 3),
                                      colorbar={"title": "share"}), row=row, col=col)
-            fig.update_xaxes(title_text=_AXIS[d][0] if col == 2 else None, row=row, col=col)
+            fig.update_xaxes(title_text=_axis(rec, d) if col == 2 else None, row=row, col=col)
         fig.update_yaxes(title_text="force [N]", row=row, col=1)
     fig.update_layout(height=900, title=f"2D densities of {rec.name}: measured against the models "
                                         "(Vivas-López et al. Fig 5)", margin={"t": 80})
     return fig
+
+
+def esr_change_text(reduction: float | None) -> str:
+    """``"28.4 % less ESR"`` or ``"19.7 % more ESR"``."""
+    if reduction is None:
+        return "no comparable ESR"
+    return f"{100 * abs(reduction):.1f} % {'less' if reduction >= 0 else 'more'} ESR"
+
+
+def _axis(record, diagram: str) -> str:
+    """The x-axis title of a diagram, the control in its SI unit."""
+    if diagram != "FM":
+        return _AXIS[diagram][0]
+    from ..fluid import CONTROL_UNITS
+    return f"{record.control_kind or 'control'} [{CONTROL_UNITS.get(record.control_kind, '-')}]"
 
 
 def _table(head, rows) -> str:
@@ -101,17 +116,18 @@ def render_characterization(result) -> str:
               _table(["parameter", "value"], list(m["parameters"].items()))]
     cv = doc["cross_validation"]
     for key, title in (("customized", "customized model"), ("eyring_plastic", "Eyring-plastic model (eq 8)")):
-        rows = [[n, *(f"{x:.4f}" for x in row)] for n, row in zip(cv["records"], cv[key]["table"])]
-        rows.append(["average", *(f"{x:.4f}" for x in cv[key]["average"])])
+        cell = (lambda x: "-" if x is None else f"{x:.4f}")
+        rows = [[n, *map(cell, row)] for n, row in zip(cv["records"], cv[key]["table"])]
+        rows.append(["average", *map(cell, cv[key]["average"])])
         parts += [f"<h2>Cross-validation, {title} (Table 4)</h2><p>Column: identified on; row: validated on.</p>",
                   _table(["validation \\ identification", *cv["records"]], rows)]
     c = doc["comparison"]
     ident, cvc = c["identification"], c["cross_validation"]
     parts += ["<h2>Customized against Eyring-plastic (Table 6)</h2>",
               _table(["record", "customized ESR", "Eyring-plastic ESR"],
-                     [[n, f"{a:.4f}", f"{b:.4f}"] for n, a, b in zip(cv["records"], ident["customized"],
-                                                                     ident["eyring_plastic"])]),
-              (f"<p>On average {100 * ident['esr_reduction']:.1f} % less ESR on the identification records; "
+                     [[n, *map(cell, (a, b))] for n, a, b in zip(cv["records"], ident["customized"],
+                                                                 ident["eyring_plastic"])]),
+              (f"<p>On average {esr_change_text(ident['esr_reduction'])} on the identification records; "
               f"cross-validation mean ESR {cvc['customized_mean_esr']:.4f} against "
               f"{cvc['eyring_plastic_mean_esr']:.4f}.</p>")]
     k = result.identified_on
