@@ -153,6 +153,13 @@ def test_programme_names_and_errors():
         programme("dsfs+sc")
     with pytest.raises(ProgrammeError, match="control_range"):
         programme("dsfs+sc", control_range=(2.0, 1.0))
+    # nothing given is silently ignored
+    with pytest.raises(ProgrammeError, match="control_range: 'rp' has no actuation signal"):
+        programme("rp", control_range=(0.0, 1.0))
+    with pytest.raises(ProgrammeError, match="actuation_options"):
+        programme("dsfs", actuation_options={"clock": 0.2})
+    with pytest.raises(ProgrammeError, match="displacement_options: .*unexpected keyword"):
+        programme("E5", control_range=(0.0, 1.0), displacement_options={"amplitude": 0.01})
 
 
 # -------------------------------------------------------------------------------------------------- the command

@@ -340,6 +340,10 @@ def programme(name: str, *, control_range: tuple[float, float] | None = None, ra
         raise ProgrammeError(f"displacement_options: {exc}") from None
     label = key.upper()
     if not act:
+        for given, what in ((control_range, "control_range"), (actuation_options, "actuation_options")):
+            if given is not None:
+                raise ProgrammeError(f"{what}: {name!r} has no actuation signal (the control is zero); pair it, "
+                                     f"e.g. '{disp}+prbs'")
         return replace(motion, description=f"{label}: {motion.description}")
     if control_range is None:
         raise ProgrammeError(f"control_range: the actuation signal {act.upper()} needs a low and a high control")
