@@ -52,7 +52,7 @@ def characterize(records: tuple[str, ...], threshold: float, starts: int, max_ti
         result = run(recs, threshold=threshold, executor=runner, identify_options=options)
     if out is not None:
         from ..report.characterization import write_characterization
-        write_characterization(result, out)
+        write_characterization(result, out, overwrite=overwrite, option="--out")
     doc = result.to_dict()
     if as_json:
         emit_json({**doc, "out": None if out is None else str(out)})

@@ -104,7 +104,8 @@ def doe(programme: str, control_range: str, amplitudes: str | None, frequencies:
                                       {next(c for c, kinds in CONTROL_COLUMNS.items() if kind in kinds): control_unit})}
     write_measurement(path, record, units=units,
                       comment=f"erdesign doe --programme {programme}: {motion.description}\n"
-                              "a test plan (no force): play the displacement and the control")
+                              "a test plan (no force): play the displacement and the control",
+                      overwrite=overwrite, option="--out")
     summary = {"programme": key.upper(), "description": motion.description, "samples": len(record),
                "duration_s": json_number(record.duration), "rate_Hz": json_number(record.sample_rate),
                "peak_displacement_m": json_number(float(np.max(np.abs(record.displacement)))),

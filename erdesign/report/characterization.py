@@ -140,9 +140,8 @@ def render_characterization(result) -> str:
             + "".join(parts) + "</body></html>")
 
 
-def write_characterization(result, path) -> Path:
-    """Write :func:`render_characterization` to ``path`` (checked by the caller: never over an existing file
-    unless asked)."""
-    path = Path(path)
-    path.write_text(render_characterization(result), encoding="utf-8")
-    return path
+def write_characterization(result, path, *, overwrite: bool = False, option: str = "path") -> Path:
+    """Write :func:`render_characterization` to ``path``, whole or not at all, over an existing file only with
+    ``overwrite`` (:mod:`erdesign.output`)."""
+    from ..output import write_output
+    return write_output(path, render_characterization(result), overwrite=overwrite, option=option)
