@@ -93,7 +93,11 @@ def render() -> None:
     st.metric("cross-validation mean ESR, customized", f"{c['cross_validation']['customized_mean_esr']:.4f}",
               delta=f"{-100 * c['cross_validation']['esr_reduction']:.1f} % against Eyring-plastic",
               delta_color="inverse")
-    from erdesign.report.characterization import density_figure, diagram_figure, render_characterization
+    from erdesign.report.characterization import (
+        density_figure,
+        diagram_figure,
+        render_characterization,
+    )
 
     st.download_button("Download the page (HTML: tables, diagrams, densities)", render_characterization(result),
                        file_name="characterization.html", mime="text/html", key="chr.download")
