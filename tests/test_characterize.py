@@ -266,3 +266,14 @@ def test_customized_model_linear_parameters_are_linear():
     np.testing.assert_allclose(F, model.simulate(rec, values), rtol=1e-9, atol=1e-9)
     # the records' scales bound the saturation gains: a transition narrower than 0.1 % of the peak speed is refused
     assert model.parameter("v_f_pos").upper == pytest.approx(1000.0 / 0.2)
+
+
+def test_records_the_method_cannot_read():
+    from erdesign.characterization.method import CharacterizationError
+    rec = _closed_form()[0]
+    with pytest.raises(CharacterizationError, match="the force is constant"):
+        characterize([rec.with_force(np.full(len(rec), 12.0))])
+    with pytest.raises(CharacterizationError, match="has no force column"):
+        characterize([Measurement.from_arrays(rec.time, rec.displacement, name="plan")])
+    with pytest.raises(CharacterizationError, match="records: none given"):
+        characterize([])

@@ -172,7 +172,7 @@ def _judge(c: Characteristic, columns, F, F_D, groups, V, Z, threshold, diagram_
 
 
 def _unobservable(c: Characteristic, why: str, threshold: float) -> Finding:
-    return Finding(c, False, f"not observable: {why}", None, None, threshold)
+    return Finding(c, False, f"not observable: {why}", None, None, threshold * c.threshold_scale)
 
 
 def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Finding], np.ndarray]:
@@ -193,9 +193,9 @@ def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Find
         passive_ok = True
     controlled = ~passive
     sa = samples.select(controlled)
+    columns_damper = {**columns_all, **semiactive_features(samples, V, Z)}
     for c in CHARACTERISTICS.values():
         if c.stage == "damper":
-            columns_damper = {**columns_all, **semiactive_features(samples, V, Z)}
             findings.append(_judge(c, columns_damper, samples.F, samples.F, PASSIVE_GROUPS + SEMIACTIVE_GROUPS, V, Z,
                                    threshold, "FV and FM diagrams"))
         elif c.stage == "passive":

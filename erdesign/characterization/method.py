@@ -238,6 +238,9 @@ def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=No
         if r.force is None:
             raise CharacterizationError(f"{r.name or 'record'}: has no force column (characterize reads measured "
                                         "forces; a test plan from 'erdesign doe' must be played on a rig first)")
+        if not np.ptp(r.force) > 0:
+            raise CharacterizationError(f"{r.name or 'record'}: the force is constant ({r.force[0]:.6g} N): no "
+                                        "diagram to read (a disconnected load cell?)")
     kinds = {r.control_kind for r in records} - {None}
     if len(kinds) > 1:
         raise CharacterizationError(f"records: controls of different kinds ({', '.join(sorted(kinds))}); the records "
