@@ -212,8 +212,8 @@ def test_characterize_command_json_keys_and_errors(tmp_path, capsys):
         write_measurement(paths[-1], r, units={"current": "A"})
     assert main(["characterize", *map(str, paths), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
-    assert set(doc) == {"records", "passive_control", "split", "characteristics", "found", "model",
-                        "cross_validation", "comparison", "out"}
+    assert set(doc) == {"records", "characterized_on", "passive_control", "split", "characteristics", "found",
+                        "model", "cross_validation", "comparison", "out"}
     assert [c["name"] for c in doc["characteristics"]] == list(CHARACTERISTICS)
     assert {"viscous_damping", "friction", "gain"} <= set(doc["found"])
     assert doc["records"][0]["force_variance_N2"] > 0 and doc["passive_control"] == 0.0
@@ -277,3 +277,20 @@ def test_records_the_method_cannot_read():
         characterize([Measurement.from_arrays(rec.time, rec.displacement, name="plan")])
     with pytest.raises(CharacterizationError, match="records: none given"):
         characterize([])
+
+
+def test_characterize_on_e1_identify_on_the_others():
+    # the paper's split: E1 (DSFS + stepped control) characterizes, the other records identify and validate
+    rng = np.random.default_rng(3)
+    m = programme("E1", control_range=(0.0, 1.0), rate=250.0)
+    F = C * m.velocity + 300.0 * np.tanh(m.velocity / V0) + CSA * m.control * np.sign(m.velocity)
+    e1 = Measurement.from_arrays(m.time, m.displacement, F + rng.normal(0, 5.0, F.size), control=m.control,
+                                 control_kind="current", velocity=m.velocity, name="e1")
+    result = characterize(_closed_form(friction=300.0), characterize_on=[e1])
+    doc = result.to_dict()
+    assert [r["name"] for r in doc["characterized_on"]] == ["e1"]
+    assert [r["name"] for r in doc["records"]] == doc["cross_validation"]["records"] == ["e2", "e5"]
+    assert {"viscous_damping", "friction", "gain"} <= set(doc["found"])
+    # SC: eight control levels on the FM diagram, on a straight line of slope CSA
+    gain = doc["split"]["force_gain"]
+    assert len(gain["control"]) == 8 and gain["slope_N_per_control_unit"] == pytest.approx(CSA, rel=0.03)

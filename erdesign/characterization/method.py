@@ -97,9 +97,10 @@ class Characterization:
     findings : list of Finding
         One per characteristic of :data:`~erdesign.characterization.detectors.CHARACTERISTICS`.
     passive_force : list of ndarray
-        F_P [N] of each record (eq 1); the semi-active force is the record's force minus it.
+        F_P [N] of each record the characteristics were read from (:attr:`read_from`; eq 1): the semi-active force
+        is the record's force minus it.
     passive : list of ndarray
-        Mask of each record's samples at the passive control (the lowest).
+        Mask of the samples at the passive control (the lowest) of each of those records.
     terms, asymmetric, scales
         The customized model's terms, whether its coefficients differ in extension and compression, and the peak
         force, speed and stroke of the records that bound its parameters.
@@ -121,6 +122,12 @@ class Characterization:
     eyring: CrossValidation
     fits: dict = field(default_factory=dict)
     identified_on: int = 0
+    characterized: list = field(default_factory=list)
+    """The records the characteristics were read from (the paper's E1; by default the records themselves)."""
+
+    @property
+    def read_from(self) -> list:
+        return self.characterized or self.records
 
     @property
     def model(self) -> SemiactiveCustomized:
@@ -148,12 +155,12 @@ class Characterization:
         control span) with the slope and R^2 of a straight line through them (the paper: "the average force gain
         ... has a linear pattern")."""
         F_P = np.concatenate(self.passive_force)
-        F = np.concatenate([r.force for r in self.records])
+        F = np.concatenate([r.force for r in self.read_from])
         F_SA = F - F_P
         out = {"passive_force_rms_N": float(np.sqrt(np.mean((F_P - F_P.mean()) ** 2))),
                "semiactive_force_rms_N": float(np.sqrt(np.mean(F_SA ** 2))), "force_gain": None}
-        u = np.concatenate([r.control for r in self.records])
-        sv = np.sign(np.concatenate([r.velocity for r in self.records]))
+        u = np.concatenate([r.control for r in self.read_from])
+        sv = np.sign(np.concatenate([r.velocity for r in self.read_from]))
         if self.passive_control is None or np.ptp(u) == 0:
             return out
         edges = np.linspace(u.min(), u.max(), 9)
@@ -183,9 +190,9 @@ class Characterization:
         cv = (lambda t: {"table": _finite(t.table), "average": _finite(t.average)})
         return _finite_tree({
             "records": [{"name": r.name, "samples": len(r), "control_kind": r.control_kind,
-                         "force_variance_N2": float(np.var(r.force)),
-                         "passive_samples": int(np.sum(self.passive[k]))}
-                        for k, r in enumerate(self.records)],
+                         "force_variance_N2": float(np.var(r.force))} for r in self.records],
+            "characterized_on": [{"name": r.name, "samples": len(r), "passive_samples": int(np.sum(self.passive[k]))}
+                                 for k, r in enumerate(self.read_from)],
             "passive_control": self.passive_control,
             "split": self.split(),
             "characteristics": [f.to_dict() for f in self.findings],
@@ -204,7 +211,7 @@ class Characterization:
         })
 
 
-def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=None,
+def characterize(records: Sequence, *, characterize_on: Sequence = (), threshold: float = THRESHOLD, executor=None,
                  identify_options: dict | None = None) -> Characterization:
     """Characterize a damper from its records and build, identify and cross-validate its customized model.
 
@@ -213,6 +220,9 @@ def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=No
     records : sequence of Measurement
         Records of one damper with force (and control, for the semi-active characteristics), e.g. the experiments
         E1-E5 of :mod:`erdesign.simulation.programmes` played on a rig.
+    characterize_on : sequence of Measurement, optional
+        Records to read the characteristics from instead of ``records`` (the paper characterizes on E1 and
+        identifies and cross-validates on E2-E5); ``records`` are then only identified and validated.
     threshold : float
         Rise of the ESR (a fraction of the force variance) a characteristic must account for to be found.
     executor
@@ -231,34 +241,37 @@ def characterize(records: Sequence, *, threshold: float = THRESHOLD, executor=No
     ----------
     Vivas-López et al. (n.d.), eqs 1-8, Tables 2, 4 and 6.
     """
-    records = list(records)
+    records, read_from = list(records), list(characterize_on) or list(records)
     if not records:
         raise CharacterizationError("records: none given")
-    for r in records:
+    for r in records + read_from:
         if r.force is None:
             raise CharacterizationError(f"{r.name or 'record'}: has no force column (characterize reads measured "
                                         "forces; a test plan from 'erdesign doe' must be played on a rig first)")
         if not np.ptp(r.force) > 0:
             raise CharacterizationError(f"{r.name or 'record'}: the force is constant ({r.force[0]:.6g} N): no "
                                         "diagram to read (a disconnected load cell?)")
-    kinds = {r.control_kind for r in records} - {None}
+    kinds = {r.control_kind for r in records + read_from} - {None}
     if len(kinds) > 1:
         raise CharacterizationError(f"records: controls of different kinds ({', '.join(sorted(kinds))}); the records "
                                     "of one damper share one control column")
-    samples = Samples.pool(records)
+    samples = Samples.pool(read_from)
     findings, F_P = detect(samples, threshold=threshold)
     terms, asymmetric = customized_terms(findings)
     options = {"starts": 1, **dict(identify_options or {})}
-    scales = {"force": robust_peak(samples.F), "speed": robust_peak(samples.v), "stroke": robust_peak(samples.z)}
+    every = (lambda name: np.concatenate([getattr(r, name) for r in records + read_from]))
+    scales = {"force": robust_peak(every("force")), "speed": robust_peak(every("velocity")),
+              "stroke": robust_peak(every("displacement"))}
     factories = {"customized": partial(SemiactiveCustomized, terms, asymmetric, scales),
                  "eyring_plastic": partial(get_model, "eyring_plastic")}
     tables = {name: cross_validation(f, records, executor=executor, **options) for name, f in factories.items()}
     best = int(np.argmin(tables["customized"].average))
     fits = {name: identify(f(), records[best], **options) for name, f in factories.items()}
-    splits = np.cumsum([0] + [len(r) for r in records])
-    per_record = (lambda a: [a[splits[k]:splits[k + 1]] for k in range(len(records))])
+    splits = np.cumsum([0] + [len(r) for r in read_from])
+    per_record = (lambda a: [a[splits[k]:splits[k + 1]] for k in range(len(read_from))])
     return Characterization(records, findings, per_record(F_P), per_record(samples.passive), samples.u_passive,
-                            terms, asymmetric, scales, tables["customized"], tables["eyring_plastic"], fits, best)
+                            terms, asymmetric, scales, tables["customized"], tables["eyring_plastic"], fits, best,
+                            list(characterize_on))
 
 
 def demo_records(mechanisms=None, names=("e2", "e3", "e4", "e5"), *, damper: str = "mr_valve_current",

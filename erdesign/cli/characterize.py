@@ -19,11 +19,15 @@ Examples:
   erdesign characterize e1.csv e2.csv e3.csv e4.csv e5.csv
   erdesign characterize e*.csv --json --jobs 2
   erdesign characterize e*.csv --out damper-characterization.html
+  erdesign characterize e2.csv e3.csv e4.csv e5.csv --characterize-on e1.csv
 """
 
 
 @cli.command(epilog=_EXAMPLES)
 @click.argument("records", nargs=-1, required=True, metavar="RECORDS...")
+@click.option("--characterize-on", "characterize_on", multiple=True, metavar="RECORD.csv",
+              help="Read the characteristics from this record (repeatable; the paper's E1) and only identify and "
+                   "cross-validate RECORDS (E2-E5); default: RECORDS.")
 @click.option("--threshold", default=0.001, show_default=True, type=click.FloatRange(min=0.0, max=1.0),
               help="Rise of the ESR (a fraction of the force variance) a characteristic must account for to be "
                    "found.")
@@ -36,7 +40,7 @@ Examples:
               help="Write the diagrams, densities and tables as one HTML page.")
 @click.option("--force", "overwrite", is_flag=True, help="Let --out replace an existing file.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
-def characterize(records: tuple[str, ...], threshold: float, starts: int, max_time: float | None, executor: dict,
+def characterize(records: tuple[str, ...], characterize_on: tuple[str, ...], threshold: float, starts: int, max_time: float | None, executor: dict,
                  out: str | None, overwrite: bool, as_json: bool) -> None:
     """Find a damper's characteristics, build its customized model and cross-validate it (Vivas-López et al.)."""
     from .._util import check_output_path
@@ -45,11 +49,13 @@ def characterize(records: tuple[str, ...], threshold: float, starts: int, max_ti
     from ..executor import executor_scope
 
     if out is not None:
-        out, _ = check_output_path(out, force=overwrite, formats={".html": "html"}, inputs=records)
+        out, _ = check_output_path(out, force=overwrite, formats={".html": "html"},
+                                   inputs=(*records, *characterize_on))
     recs = [read_measurement(r) for r in records]
     options = {"starts": starts, **({} if max_time is None else {"max_time": max_time})}
     with executor_scope(**executor) as runner:
-        result = run(recs, threshold=threshold, executor=runner, identify_options=options)
+        result = run(recs, characterize_on=[read_measurement(r) for r in characterize_on], threshold=threshold,
+                     executor=runner, identify_options=options)
     if out is not None:
         from ..report.characterization import write_characterization
         write_characterization(result, out, overwrite=overwrite, option="--out")
@@ -68,7 +74,7 @@ def _cell(x) -> str:
 def _text(doc: dict) -> str:
     """The readable report of the JSON document."""
     from ..report.characterization import esr_change_text as _less
-    lines = [f"Characterization of {len(doc['records'])} record(s) (Vivas-López et al.):"]
+    lines = [f"Characteristics of {', '.join(r['name'] for r in doc['characterized_on'])} (Vivas-López et al.):"]
     for c in doc["characteristics"]:
         lines.append(f"  [{'x' if c['found'] else ' '}] {c['title']} ({c['diagram']} -> {c['model_term']}): "
                      f"{c['evidence']}")
