@@ -20,6 +20,26 @@ def sigmoid_ratio(s):
     return s / (1.0 + np.abs(s))
 
 
+def _guess(defaults: dict, record) -> dict:
+    """Starting values of the general model's parameters (``defaults`` updated): offset, friction and damping of a
+    Bingham fit F = f_0 + f_f sgn v + c_p v of the record, saturation gains of 20 over its peak speed; a coefficient
+    with ``_pos`` / ``_neg`` values gets the guess of its base name on both sides."""
+    g = dict(defaults)
+    if record.force is None:
+        return g
+    v, F = record.velocity, record.force
+    vmax = float(np.max(np.abs(v))) or 1.0
+    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
+    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
+    guess = {"f_f": float(fy), "c_p": float(max(c, 0.0)), "f0": float(f0), "v_f": 20.0 / vmax, "v_hz": 20.0 / vmax,
+             "v_hv": 20.0 / vmax, "v_py": 20.0 / vmax}
+    for name in g:
+        key = name.removesuffix("_pos").removesuffix("_neg")
+        if key in guess:
+            g[name] = guess[key]
+    return g
+
+
 class SemiactiveGeneral(Model):
     r"""General semi-active model of Vivas-López et al. (n.d.) (eqs 2-5) with coefficients that differ in
     extension and compression.
@@ -92,15 +112,7 @@ class SemiactiveGeneral(Model):
         return general_force(record, values, TERMS, self.control(record))
 
     def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v, F = record.velocity, record.force
-            vmax = float(np.max(np.abs(v))) or 1.0
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-            g.update(f_f=float(fy), c_p_pos=float(max(c, 0.0)), c_p_neg=float(max(c, 0.0)), f0=float(f0),
-                     v_f=20.0 / vmax, v_hz=20.0 / vmax, v_hv=20.0 / vmax, v_py=20.0 / vmax)
-        return g
+        return _guess(self.defaults(), record)
 
 
 #: The terms of the general model (Vivas-López et al. eqs 3-5) -> their coefficients, in the order of eq 3 and 4;
@@ -246,19 +258,8 @@ class SemiactiveCustomized(Model):
         return general_force(record, values, self.terms, self.control(record))
 
     def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v, F = record.velocity, record.force
-            vmax = float(np.max(np.abs(v))) or 1.0
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-            guess = {"f_f": float(fy), "c_p": float(max(c, 0.0)), "f0": float(f0), "v_f": 20.0 / vmax,
-                     "v_hz": 20.0 / vmax, "v_hv": 20.0 / vmax, "v_py": 20.0 / vmax}
-            for name in g:
-                key = name.removesuffix("_pos").removesuffix("_neg")
-                if key in guess:
-                    g[name] = guess[key]
-        return g
+        g = _guess(self.defaults(), record)
+        return {n: min(max(x, self.parameter(n).lower), self.parameter(n).upper) for n, x in g.items()}
 
     def describe(self) -> dict:
         return {**super().describe(), "terms": list(self.terms)}
