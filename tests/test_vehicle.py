@@ -63,7 +63,7 @@ def test_conventional_damper_matches_an_independent_solve_ivp_solution(road):
 
 def test_bingham_damper_matches_an_independent_solve_ivp_solution():
     r = simulate_vehicle(bingham(), step_road(0.1), duration=1.0)
-    u1, v1, u2, v2 = reference_solution(5000.0, 670.0, step_road(0.1), r.time)
+    u2 = reference_solution(5000.0, 670.0, step_road(0.1), r.time)[2]
     # the co-simulation takes sgn(0) = 0 and chatters about zero relative speed while the reference smooths the sign
     # over 0.1 mm/s; measured 0.49 mm on the body: 1 mm (1 % of the step)
     assert np.max(np.abs(r.u2 - u2)) < 1e-3

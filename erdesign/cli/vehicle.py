@@ -122,8 +122,8 @@ def _table(r, figures, track, out) -> str:
         rows.append(("body settling time (10 % band)", figures["settling_time_s"], "s"))
     width = max(len(name) for name, _, _ in rows)
     head = [f"quarter vehicle (Butz and von Stryk 2002), {r.damper}, {r.controller}"
-            + (f" (gain {r.gain:.4g} N s/m)" if r.gain else ""), f"  road: {track.description}, "
-            f"{r.time[-1]:.4g} s in steps of {1e3 * (r.time[1] - r.time[0]):.4g} ms"]
+            + (f" (gain {r.gain:.4g} N s/m)" if r.gain else ""),
+            f"  road: {track.description}, {r.time[-1]:.4g} s in steps of {1e3 * (r.time[1] - r.time[0]):.4g} ms"]
     lines = head + [f"  {name:<{width}}  {value:10.4g} {unit}" for name, value, unit in rows]
     if out is not None:
         lines.append(f"  history written to {out}")
