@@ -25,6 +25,7 @@ PAGES = (
     ("simulate.py", "Simulate", ":material/show_chart:", "simulate"),
     ("compare.py", "Compare and diagnose", ":material/troubleshoot:", "compare"),
     ("report.py", "Report", ":material/description:", "report"),
+    ("vehicle.py", "Vehicle", ":material/directions_car:", "vehicle"),
 )
 
 

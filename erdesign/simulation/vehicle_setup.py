@@ -15,7 +15,16 @@ import numpy as np
 from ..errors import ErdesignError
 from .vehicle import QUARTER_CAR, QuarterCar, VehicleDamper
 
-__all__ = ["vehicle_damper", "quarter_car", "CAR_UNITS"]
+__all__ = ["vehicle_damper", "quarter_car", "CAR_UNITS", "PRESET_DAMPERS"]
+
+#: Dampers of the literature by name -> the options of :func:`vehicle_damper` (the app's choices).
+PRESET_DAMPERS = {
+    "conventional (Butz and von Stryk eq 33)": {"model": "bingham", "params": "c0=6000 N*s/m, f_c=0 N"},
+    "MR, Bingham (Butz and von Stryk 4.2)": {"model": "bingham", "params": "c0=5000 N*s/m, f_c=670 N"},
+    "MR, modified Bouc-Wen (Butz and von Stryk 4.3)": {"model": "bouc_wen_modified", "params": "butz_vonstryk2002"},
+    "MR, Spencer et al. 1997, 0-2.25 V": {"model": "bouc_wen_modified", "params": "spencer1997",
+                                          "max_field": "2.25 V"},
+}
 
 #: Units of the vehicle keys (Butz and von Stryk 2002 section 4.1 names).
 CAR_UNITS = {"m1": "kg", "m2": "kg", "K": "N/m", "C": "N*s/m", "k": "N/m"}
