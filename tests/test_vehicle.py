@@ -236,3 +236,11 @@ def test_skyhook_beats_both_passive_settings_on_comfort():
     full = simulate_vehicle(d, road, duration=3.0).ride()["body_acceleration_rms_m_per_s2"]
     sky = simulate_vehicle(d, road, "skyhook", duration=3.0).ride()["body_acceleration_rms_m_per_s2"]
     assert sky < 0.8 * min(off, full)
+
+
+def test_implausible_roads_warn():
+    from erdesign.errors import PlausibilityWarning
+    with pytest.warns(PlausibilityWarning, match="speed: 200 m/s"):
+        iso8608_road("C", 200.0, components=10)
+    with pytest.warns(PlausibilityWarning, match="height: 1.5 m"):
+        step_road(1.5)

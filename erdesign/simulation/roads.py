@@ -18,11 +18,18 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
+import warnings
+
 import numpy as np
 
-from ..errors import ErdesignError
+from ..errors import ErdesignError, PlausibilityWarning
 
 __all__ = ["Road", "step_road", "bump_road", "iso8608_road", "iso8608_psd", "ISO8608_CLASSES", "ROADS", "make_road"]
+
+#: Largest plausible road input: a step or bump height [m] and a vehicle speed [m/s] (250 km/h); beyond them a
+#: warning asks whether the value or its unit is meant.
+PLAUSIBLE_HEIGHT = 0.3
+PLAUSIBLE_SPEED = 70.0
 
 #: ISO 8608 road classes -> G_d(n0) [m^3] at n0 = 0.1 cycles/m (geometric mean of the class band).
 ISO8608_CLASSES = {c: 16e-6 * 4.0**i for i, c in enumerate("ABCDEFGH")}
@@ -48,6 +55,7 @@ class Road:
 def step_road(height: float = 0.1) -> Road:
     """Road step of ``height`` [m] at t = 0 (Butz and von Stryk 2002, section 4.4: 0.1 m)."""
     _positive(height, "height", allow_zero=False, signed=True)
+    _plausible(abs(height), PLAUSIBLE_HEIGHT, "height", "m", "road step")
     return Road("step", lambda t: np.full(np.shape(t), float(height)), lambda t: np.zeros(np.shape(t)),
                 step=float(height), description=f"step of {height:g} m at t = 0", settles_to=float(height))
 
@@ -59,6 +67,7 @@ def bump_road(height: float = 0.1, duration: float = 0.5, start: float = 0.0) ->
     this project's assumption (a 10 m long bump at 72 km/h)."""
     _positive(height, "height", allow_zero=False, signed=True)
     _positive(duration, "duration", allow_zero=False)
+    _plausible(abs(height), PLAUSIBLE_HEIGHT, "height", "m", "bump")
     w = 2 * np.pi / duration
 
     def inside(t):
@@ -93,6 +102,7 @@ def iso8608_road(road_class: str = "C", speed: float = 20.0, *, seed: int = 0, c
     """
     gd0 = _class_value(road_class)
     _positive(speed, "speed", allow_zero=False)
+    _plausible(speed, PLAUSIBLE_SPEED, "speed", "m/s", "road vehicle")
     if int(components) < 10:
         raise ErdesignError(f"components: at least 10 cosines, got {components!r}")
     edges = np.geomspace(*ISO8608_BAND, int(components) + 1)
@@ -118,6 +128,12 @@ def _class_value(road_class: str) -> float:
     if key not in ISO8608_CLASSES:
         raise ErdesignError(f"road_class: ISO 8608 classes are A to H, got {road_class!r}")
     return ISO8608_CLASSES[key]
+
+
+def _plausible(value, limit, name, unit, what):
+    if value > limit:
+        warnings.warn(f"{name}: {value:g} {unit} is beyond any plausible {what} ({limit:g} {unit}); check the value "
+                      "and its unit", PlausibilityWarning, stacklevel=3)
 
 
 def _positive(value, name, *, allow_zero=True, signed=False):

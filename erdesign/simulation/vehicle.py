@@ -27,13 +27,14 @@ Simulations return a :class:`VehicleResponse`; :meth:`VehicleResponse.ride` give
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field, fields
 from typing import Mapping
 
 import numpy as np
 
 from ..data.measurement import Measurement
-from ..errors import ErdesignError
+from ..errors import ErdesignError, ErdesignWarning
 from ..models.base import ControlAffineModel, Model
 from .control import VehicleState, get_controller
 from .ride import rms, weighted_rms
@@ -219,6 +220,10 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
             raise ErdesignError(f"gain: must be a finite positive damping [N s/m], got {gain!r}")
         _check_controllable(damper, needs_inverse=not law.on_off)
     n = int(round(duration / dt)) + 1
+    if n > _LONG_HISTORY and not damper.memoryless:
+        warnings.warn(f"{damper.label}: {n} steps of a model with internal states: each window runs the model on "
+                      "the whole history, so this run takes long (minutes); a shorter duration or a larger dt is "
+                      "quicker", ErdesignWarning, stacklevel=2)
     t = np.arange(n) * dt
     u0, du0 = road.profile(t), road.rate(t)
     A, B, R = _discrete_vehicle(car, dt, u0, du0, road.profile(t + dt / 2), road.rate(t + dt / 2))
@@ -299,6 +304,8 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
                            kind, gain if law.desired is not None else None, list(damper.notes))
 
 
+#: Steps beyond which a run of a model with internal states warns of its cost.
+_LONG_HISTORY = 20000
 #: Relaxation window [s], iterations per window, and the selector of the relative velocity v2 - v1 in (u1, v1, u2, v2).
 _WINDOW = 0.05
 _MAX_ITERATIONS = 5
