@@ -42,7 +42,7 @@ _CONTROLS = ("passive", "skyhook", "groundhook", "clipped-optimal")
 @click.option("--control", "control", type=click.Choice(_CONTROLS), default="passive", show_default=True,
               help="Control law (semi-active laws act through the damper's inverse model or switch it on/off).")
 @click.option("--gain", default=None, metavar="C", help="Skyhook / groundhook damping, e.g. \"20 kN*s/m\" "
-              "(default 2 sqrt(k m2), the body's critical damping).")
+              "(default 2 sqrt(k m2), the body's critical damping; clipped-optimal takes none).")
 @click.option("--field", default=None, metavar="E", help="Control a passive damper holds (default 0).")
 @click.option("--max-field", default=None, metavar="E", help="Top of the semi-active control range [0, E] "
               "(default: the damper file's reference_field; with --model its unit gives the kind, e.g. \"2.25 V\").")

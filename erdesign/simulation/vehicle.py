@@ -185,7 +185,7 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
     control : str
         ``"passive"``, ``"skyhook"``, ``"groundhook"`` or ``"clipped-optimal"``.
     gain : float, optional
-        Skyhook / groundhook damping c [N s/m]; default :func:`default_gain`.
+        Skyhook / groundhook damping c [N s/m]; default :func:`default_gain`.  The other laws take none.
     car : QuarterCar, optional
         Vehicle; default Butz and von Stryk (2002) section 4.1.
     duration : float
@@ -214,11 +214,17 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
         raise ErdesignError(f"duration, dt: need 0 < dt <= duration / 10, got duration {duration!r} s, dt {dt!r} s")
     if dt > 2e-3:
         raise ErdesignError(f"dt: at most 2 ms (the tyre mode near 9 Hz and the damper need it), got {dt!r} s")
+    if gain is not None and not law.uses_gain:
+        raise ErdesignError(f"gain: applies to skyhook and groundhook; {law.name} has no gain"
+                            + (" (its desired force is the LQR force of the vehicle, docs/vehicle.md)"
+                               if law.primary is not None else ""))
     gain = default_gain(car) if gain is None else float(gain)
-    if law.desired is not None:
+    desired = None
+    if law.primary is not None:
         if not (np.isfinite(gain) and gain > 0):
             raise ErdesignError(f"gain: must be a finite positive damping [N s/m], got {gain!r}")
         _check_controllable(damper, needs_inverse=not law.on_off)
+        desired = law.primary(car, gain)
     n = int(round(duration / dt)) + 1
     if n > _LONG_HISTORY and not damper.memoryless:
         warnings.warn(f"{damper.label}: {n} steps of a model with internal states: each window runs the model on "
@@ -266,11 +272,11 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
             F_used = g + cj * v[i0:i1]
             a1 = (K * (u0[i0:i1] - u1) + C * (du0[i0:i1] - v1) + k * (u2 - u1) + F_used) / m1
             a[i0:i1] = (-k * (u2 - u1) - F_used) / m2 - a1
-            if law.desired is None:
+            if desired is None:
                 u[i0:i1] = damper.passive_control
             else:
                 F_prev = np.concatenate(([F_last], F_used[:-1]))
-                Fd = law.desired(VehicleState(v1, v2, F_prev), gain)
+                Fd = desired(VehicleState(u0[i0:i1], u1, u2, v1, v2, F_prev))
                 if law.on_off:
                     u[i0:i1] = np.where((Fd - F_prev) * F_prev > 0, hi, lo)
                 else:
@@ -301,7 +307,7 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
     a2 = (-k * (u2 - u1) - F) / m2
     tyre = K * (u0 - u1) + C * (du0 - v1)
     return VehicleResponse(t, u0, u1, u2, v1, v2, a2, F, u, tyre, unreachable, car, road, law.name, damper.label,
-                           kind, gain if law.desired is not None else None, list(damper.notes))
+                           kind, gain if law.uses_gain else None, list(damper.notes))
 
 
 #: Steps beyond which a run of a model with internal states warns of its cost.
