@@ -176,8 +176,8 @@ def _on_motion(model, model_name, params, motion, field, active_volume, control_
         click.echo(f"warning: {w}", err=True)
     lines = [f"{model.title or model_name} on {m.description} with {source.label}"
              + (f" ({source.source})" if source.source else ""),
-             f"  peak force {run.peak_force:.4g} N   energy per cycle {run.energy_per_cycle:.4g} J   "
-             f"C_eqv {run.equivalent_damping:.4g} N s/m (last cycle; Kamath and Wereley 1997 eqs 1-2)"]
+             (f"  peak force {run.peak_force:.4g} N   energy per cycle {run.energy_per_cycle:.4g} J   "
+              f"C_eqv {run.equivalent_damping:.4g} N s/m (last cycle; Kamath and Wereley 1997 eqs 1-2)")]
     if run.energy_per_active_volume is not None:
         lines.append(f"  energy per unit active fluid volume {run.energy_per_active_volume / 1e3:.4g} kJ/m^3 "
                      f"(active volume {run.active_volume * 1e6:.4g} cm^3; Kamath and Wereley 1997 Fig 6)")
