@@ -230,84 +230,110 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
         warnings.warn(f"{damper.label}: {n} steps of a model with internal states: each window runs the model on "
                       "the whole history, so this run takes long (minutes); a shorter duration or a larger dt is "
                       "quicker", ErdesignWarning, stacklevel=2)
-    t = np.arange(n) * dt
-    u0, du0 = road.profile(t), road.rate(t)
-    A, B, R = _discrete_vehicle(car, dt, u0, du0, road.profile(t + dt / 2), road.rate(t + dt / 2))
-    c_limit = 0.5 / (dt * (1 / car.m1 + 1 / car.m2))     # explicit step stays stable below this damping
-    c = _slope(damper, c_limit)
-    m1, m2, K, C, k = car.m1, car.m2, car.K, car.C, car.k
-    model, values = damper.model, damper.values
-    lo, hi = damper.control_range
-    kind = damper.control_kind
-    x, v, a, u, F = (np.zeros(n) for _ in range(5))
-    unreachable = np.zeros(n, bool)
-    S = np.zeros((n, 4))                      # u1, v1, u2, v2
-    S[0, 1] = C * road.step / m1              # the step's tyre-damper impulse
-    memoryless = damper.memoryless
+    run = _CoSimulation(damper, road, car, np.arange(n) * dt, desired, law.on_off)
+    run.solve()
+    u1, v1, u2, v2 = run.S.T
+    a2 = (-car.k * (u2 - u1) - run.F) / car.m2
+    tyre = car.K * (run.u0 - u1) + car.C * (run.du0 - v1)
+    return VehicleResponse(run.t, run.u0, u1, u2, v1, v2, a2, run.F, run.u, tyre, run.unreachable, car, road,
+                           law.name, damper.label, damper.control_kind, gain if law.uses_gain else None,
+                           list(damper.notes))
 
-    def record(i0, i1):
-        # the vehicle's velocity is exact: no noise band for the sign of a yield force (velocity_noise 0)
-        sl = slice(i0, i1) if memoryless else slice(0, i1)
-        return Measurement(t[sl], x[sl], None, v[sl], a[sl], u[sl], kind, velocity_noise=0.0)
 
-    BE = np.outer(B, _REL_VELOCITY)
-    w_max = max(1, int(round(_WINDOW / dt)))
-    w, i0, F_last = w_max, 0, 0.0
-    while i0 < n:
-        i1 = min(n, i0 + w)
-        m = i1 - i0
-        Fg = np.full(m, F_last)
-        vg = np.full(m, S[i0, 3] - S[i0, 1])
-        cj = np.full(m, c)
-        F_model = None
-        for _ in range(_MAX_ITERATIONS):
-            g = Fg - cj * vg
-            s = S[i0].copy()
-            for j in range(i0, i1):
-                S[j] = s
-                if j + 1 < n:
-                    s = (A + cj[j - i0] * BE) @ s + B * g[j - i0] + R[j]
-            u1, v1, u2, v2 = S[i0:i1].T
-            x[i0:i1], v[i0:i1] = u2 - u1, v2 - v1
-            F_used = g + cj * v[i0:i1]
-            a1 = (K * (u0[i0:i1] - u1) + C * (du0[i0:i1] - v1) + k * (u2 - u1) + F_used) / m1
-            a[i0:i1] = (-k * (u2 - u1) - F_used) / m2 - a1
-            if desired is None:
-                u[i0:i1] = damper.passive_control
-            else:
-                F_prev = np.concatenate(([F_last], F_used[:-1]))
-                Fd = desired(VehicleState(u0[i0:i1], u1, u2, v1, v2, F_prev))
-                if law.on_off:
-                    u[i0:i1] = np.where((Fd - F_prev) * F_prev > 0, hi, lo)
-                else:
-                    u[i0:i1], unreachable[i0:i1] = _realise(damper, record(i0, i1), Fd, kind)
-            F_new = np.asarray(model.force(record(i0, i1), values), dtype=float)[-m:]
-            if not np.all(np.isfinite(F_new)):
-                raise ErdesignError(f"{damper.label}: the damper force is not finite near t = {t[i0]:.4g} s (the "
-                                    "parameters or the step dt make the model unstable)")
-            if m == 1:                        # one step: the force follows from the known state (explicit step)
-                if i1 < n:
-                    s = A @ S[i0] + B * F_new[0] + R[i0]
-                break
-            if np.max(np.abs(F_new - F_used)) <= 1e-3 + 1e-7 * np.max(np.abs(F_new)):
-                break
-            if F_model is not None:           # secant slope of the model in the relative velocity, per sample
-                dv = v[i0:i1] - vg
-                moved = np.abs(dv) > 1e-9
-                cj[moved] = np.clip((F_new - F_model)[moved] / dv[moved], 0.0, c_limit)
-            F_model, Fg, vg = F_new, F_new, v[i0:i1].copy()
+class _CoSimulation:
+    """The vehicle and the damper model stepped together (module notes): state S = (u1, v1, u2, v2) per sample, the
+    relative motion x, v, a and control u the model sees, and the force F it gives."""
+
+    def __init__(self, damper: VehicleDamper, road: Road, car: QuarterCar, t: np.ndarray, desired, on_off: bool):
+        self.damper, self.car, self.t, self.desired, self.on_off = damper, car, t, desired, on_off
+        n, dt = t.size, t[1] - t[0]
+        self.u0, self.du0 = road.profile(t), road.rate(t)
+        self.A, self.B, self.R = _discrete_vehicle(car, dt, self.u0, self.du0, road.profile(t + dt / 2),
+                                                   road.rate(t + dt / 2))
+        self.BE = np.outer(self.B, _REL_VELOCITY)
+        self.c_limit = 0.5 / (dt * (1 / car.m1 + 1 / car.m2))     # explicit step stays stable below this damping
+        self.c = _slope(damper, self.c_limit)
+        self.x, self.v, self.a, self.u, self.F = (np.zeros(n) for _ in range(5))
+        self.unreachable = np.zeros(n, bool)
+        self.S = np.zeros((n, 4))
+        self.S[0, 1] = car.C * road.step / car.m1                 # the step's tyre-damper impulse
+        self.w_max = max(1, int(round(_WINDOW / dt)))
+
+    def record(self, i0: int, i1: int) -> Measurement:
+        """What the model sees for samples i0..i1-1: those samples (memoryless) or the history up to them, with an
+        exact velocity (no noise band for the sign of a yield force: velocity_noise 0)."""
+        sl = slice(i0, i1) if self.damper.memoryless else slice(0, i1)
+        return Measurement(self.t[sl], self.x[sl], None, self.v[sl], self.a[sl], self.u[sl],
+                           self.damper.control_kind, velocity_noise=0.0)
+
+    def sweep(self, i0: int, i1: int, g: np.ndarray, cj: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Advance the vehicle over samples i0..i1-1 with the force g + cj (v2 - v1) held over each step; return the
+        state after the last step and the forces used."""
+        S, n = self.S, self.t.size
+        s = S[i0].copy()
+        for j in range(i0, i1):
+            S[j] = s
+            if j + 1 < n:
+                s = (self.A + cj[j - i0] * self.BE) @ s + self.B * g[j - i0] + self.R[j]
+        u1, v1, u2, v2 = S[i0:i1].T
+        self.x[i0:i1], self.v[i0:i1] = u2 - u1, v2 - v1
+        F_used = g + cj * self.v[i0:i1]
+        car = self.car
+        a1 = (car.K * (self.u0[i0:i1] - u1) + car.C * (self.du0[i0:i1] - v1) + car.k * (u2 - u1) + F_used) / car.m1
+        self.a[i0:i1] = (-car.k * (u2 - u1) - F_used) / car.m2 - a1
+        return s, F_used
+
+    def choose_control(self, i0: int, i1: int, F_used: np.ndarray, F_last: float) -> None:
+        """The control of samples i0..i1-1: held (passive), switched by Dyke's rule, or from the inverse model."""
+        d = self.damper
+        if self.desired is None:
+            self.u[i0:i1] = d.passive_control
+            return
+        u1, v1, u2, v2 = self.S[i0:i1].T
+        F_prev = np.concatenate(([F_last], F_used[:-1]))
+        Fd = self.desired(VehicleState(self.u0[i0:i1], u1, u2, v1, v2, F_prev))
+        if self.on_off:
+            lo, hi = d.control_range
+            self.u[i0:i1] = np.where((Fd - F_prev) * F_prev > 0, hi, lo)
         else:
-            w = max(1, w // 8)                # not settled: a smaller window (one step always settles)
-            continue
-        F[i0:i1] = F_new
-        if i1 < n:
-            S[i1] = s
-        F_last, i0, w = float(F_new[-1]), i1, min(w_max, 2 * w)
-    u1, v1, u2, v2 = S.T
-    a2 = (-k * (u2 - u1) - F) / m2
-    tyre = K * (u0 - u1) + C * (du0 - v1)
-    return VehicleResponse(t, u0, u1, u2, v1, v2, a2, F, u, tyre, unreachable, car, road, law.name, damper.label,
-                           kind, gain if law.uses_gain else None, list(damper.notes))
+            self.u[i0:i1], self.unreachable[i0:i1] = _realise(d, self.record(i0, i1), Fd, d.control_kind)
+
+    def solve(self) -> None:
+        """Window by window, by waveform relaxation (module notes)."""
+        n = self.t.size
+        d = self.damper
+        w, i0, F_last = self.w_max, 0, 0.0
+        while i0 < n:
+            i1 = min(n, i0 + w)
+            m = i1 - i0
+            Fg, vg = np.full(m, F_last), np.full(m, self.S[i0, 3] - self.S[i0, 1])
+            cj = np.full(m, self.c)
+            F_model = None
+            for _ in range(_MAX_ITERATIONS):
+                s, F_used = self.sweep(i0, i1, Fg - cj * vg, cj)
+                self.choose_control(i0, i1, F_used, F_last)
+                F_new = np.asarray(d.model.force(self.record(i0, i1), d.values), dtype=float)[-m:]
+                if not np.all(np.isfinite(F_new)):
+                    raise ErdesignError(f"{d.label}: the damper force is not finite near t = {self.t[i0]:.4g} s "
+                                        "(the parameters or the step dt make the model unstable)")
+                if m == 1:                    # one step: the force follows from the known state (explicit step)
+                    if i1 < n:
+                        s = self.A @ self.S[i0] + self.B * F_new[0] + self.R[i0]
+                    break
+                if np.max(np.abs(F_new - F_used)) <= 1e-3 + 1e-7 * np.max(np.abs(F_new)):
+                    break
+                if F_model is not None:       # secant slope of the model in the relative velocity, per sample
+                    dv = self.v[i0:i1] - vg
+                    moved = np.abs(dv) > 1e-9
+                    cj[moved] = np.clip((F_new - F_model)[moved] / dv[moved], 0.0, self.c_limit)
+                F_model, Fg, vg = F_new, F_new, self.v[i0:i1].copy()
+            else:
+                w = max(1, w // 8)            # not settled: a smaller window (one step always settles)
+                continue
+            self.F[i0:i1] = F_new
+            if i1 < n:
+                self.S[i1] = s
+            F_last, i0, w = float(F_new[-1]), i1, min(self.w_max, 2 * w)
 
 
 #: Steps beyond which a run of a model with internal states warns of its cost.
