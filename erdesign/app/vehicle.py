@@ -1,7 +1,8 @@
 """Vehicle page: the quarter vehicle of Butz and von Stryk (2002) with several dampers and control laws side by side.
 
 Dampers: the design of the Size page (its physics damper) and the dampers of the literature
-(:data:`erdesign.simulation.vehicle_setup.PRESET_DAMPERS`); control laws: :data:`erdesign.simulation.control.CONTROLLERS`.
+(:data:`erdesign.simulation.vehicle_setup.PRESET_DAMPERS`); control laws:
+:data:`erdesign.simulation.control.CONTROLLERS`.
 Every run is :func:`erdesign.simulation.vehicle.simulate_vehicle`; the page only chooses the inputs and draws the
 results (docs/vehicle.md).
 """

@@ -29,8 +29,8 @@ __all__ = ["parse_motion", "SineMotion", "MotionRun", "run_on_motion", "SAMPLES_
 
 #: Samples per cycle of a generated sine (the energy integral's error is ~1e-4 at 400).
 SAMPLES_PER_CYCLE = 400
-_SINE = re.compile(r"^\s*sine\s+(?P<amp>.+?\S)\s+(?P<freq>[-+0-9.eE]+\s*\S*Hz)(?:\s+(?P<cycles>[0-9.]+)\s*cycles?)?\s*$",
-                   re.IGNORECASE)
+_SINE = re.compile(r"^\s*sine\s+(?P<amp>.+?\S)\s+(?P<freq>[-+0-9.eE]+\s*\S*Hz)"
+                   r"(?:\s+(?P<cycles>[0-9.]+)\s*cycles?)?\s*$", re.IGNORECASE)
 
 
 @dataclass(frozen=True)

@@ -15,12 +15,14 @@ motion up to t_i (from rest at t = 0), with the control the law chooses at t_i, 
 vehicle is advanced by a classical Runge-Kutta step.  It is solved window by window (50 ms) by waveform relaxation:
 guess the forces of the window, advance the vehicle, run the model once on the window (a memoryless model) or on the
 whole history (a model with internal states), repeat until the forces the vehicle used are the model's, to 1 mN.
-The damper's linear part (its slope c between 0.05 and 0.1 m/s) is carried in the vehicle step, F = F_guess +
-c (v - v_guess), so that a window settles in a few passes; a window that does not settle in 5 passes is redone one step at a
-time (a single step settles in two: the relaxation is causal), and the window then doubles at each step up to 50 ms.  The error is first order in the step (the held force): for the Butz-von Stryk step the
-body motion stays within 0.05 mm (0.25 ms step) and 0.2 mm (1 ms) of an adaptive ``solve_ivp`` solution of the same
-equations with a viscous damper (tests/test_vehicle.py).  A model with internal states costs O(n^2) sample
-evaluations for n steps (about 4 s for 3 s of the modified Bouc-Wen model at the 1 ms default).
+The damper's linear part (its slope c between 0.05 and 0.1 m/s, then a secant slope per sample) is carried in the
+vehicle step, F = F_guess + c (v - v_guess), so that a window settles in a few passes; a window that does not settle
+in 5 passes is redone in windows an eighth as long (a single step settles at once: the relaxation is causal), and the
+window then doubles at each step up to 50 ms.  The error is first order in the step (the held force): for the
+Butz-von Stryk step the body motion stays within 0.05 mm (0.25 ms step) and 0.2 mm (1 ms) of an adaptive
+``solve_ivp`` solution of the same equations with a viscous damper (tests/test_vehicle.py).  A model with internal
+states costs O(n^2) sample evaluations for n steps (about 4 s for 3 s of the modified Bouc-Wen model at the 1 ms
+default).
 
 Simulations return a :class:`VehicleResponse`; :meth:`VehicleResponse.ride` gives the figures an engineer reads.
 """
