@@ -79,7 +79,8 @@ def simulate(measurement_file: str | None, model_name: str, params: str, damper:
         raise click.UsageError("--damper and --effects apply to --model physics only")
     model = get_model(model_name, **options)
     if motion is not None:
-        _on_motion(model, model_name, params, motion, field, active_volume, control_reference, out, as_json)
+        _on_motion(model, model_name, params, motion, field, active_volume, control_reference, out, overwrite,
+                   as_json)
         return
     record = read_measurement(measurement_file)
     try:
@@ -91,7 +92,7 @@ def simulate(measurement_file: str | None, model_name: str, params: str, damper:
     if out is not None:
         write_measurement(out, record.with_force(sim.force), units={"force": "N"},
                           comment=f"erdesign simulate: model {model_name}, parameters {params}, on "
-                                  f"{Path(measurement_file).name}")
+                                  f"{Path(measurement_file).name}", overwrite=overwrite, option="--out")
     reference = _reference_text(model, record)
     params_text = {name: model.parameter(name).format(v) for name, v in sim.values.items()}
     warnings = [as_flags(w) for w in (*notes, *(sim.warnings or []))]
@@ -123,7 +124,8 @@ def simulate(measurement_file: str | None, model_name: str, params: str, damper:
     click.echo("\n".join(lines))
 
 
-def _on_motion(model, model_name, params, motion, field, active_volume, control_reference, out, as_json) -> None:
+def _on_motion(model, model_name, params, motion, field, active_volume, control_reference, out, overwrite,
+               as_json) -> None:
     """The model on a generated sine: force, energy per cycle, C_eqv, energy per unit active fluid volume."""
     from ..data.measurement import write_measurement
     from ..errors import ErdesignError
@@ -158,7 +160,8 @@ def _on_motion(model, model_name, params, motion, field, active_volume, control_
     run = run_on_motion(model, values, spec, control_kind=kind, active_volume=volume)
     if out is not None:
         write_measurement(out, run.record, units={"force": "N"},
-                          comment=f"erdesign simulate: model {model_name}, parameters {params}, on {m.description}")
+                          comment=f"erdesign simulate: model {model_name}, parameters {params}, on {m.description}",
+                          overwrite=overwrite, option="--out")
     warnings = [as_flags(w) for w in notes]
     params_text = {name: model.parameter(name).format(v) for name, v in model.check_values(values).items()}
     if as_json:

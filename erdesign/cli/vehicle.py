@@ -88,7 +88,7 @@ def vehicle(damper, effects, model_name, params, road, height, bump_duration, ro
     c = None if gain is None else to_si(quantity_option(gain, "N*s/m", "--gain"), "N*s/m", "--gain")
     r = simulate_vehicle(d, track, control, gain=c, car=car, duration=seconds, dt=step)
     if out is not None:
-        write_history(out, r)
+        write_history(out, r, overwrite=overwrite, option="--out")
     figures = r.ride()
     notes = [*r.notes]
     if figures["unreachable_fraction"] > 0.5:

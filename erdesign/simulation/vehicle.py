@@ -432,29 +432,21 @@ def settling_time(t, u, final, band):
     return float(t[outside[-1]]) if outside.size else 0.0
 
 
-def write_history(path, response: VehicleResponse) -> None:
-    """Write the time history of a run as CSV (units in the header, docs/file_formats.md style), atomically: to a
-    temporary file beside ``path``, then renamed over it."""
+def write_history(path, response: VehicleResponse, *, overwrite: bool = False, option: str = "path") -> None:
+    """Write the time history of a run as CSV (units in the header, as the measurement files) through the one
+    writer of output files (:func:`erdesign.output.open_output`: atomic, never over an existing file unless
+    ``overwrite``)."""
     import csv
-    import os
-    import tempfile
-    from pathlib import Path
 
     from ..fluid import CONTROL_UNITS
+    from ..output import open_output
 
     columns = response.history()
     control_unit = CONTROL_UNITS.get(response.control_kind, "1")
     header = [f"{name} [{control_unit if unit == 'SI' else unit}]" for name, (_, unit) in columns.items()]
     data = np.column_stack([values for values, _ in columns.values()])
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent if str(path.parent) else ".")
-    try:
-        with os.fdopen(fd, "w", newline="") as fh:
-            fh.write(f"# erdesign vehicle: {response.damper}, {response.controller}, {response.road.description}\n")
-            w = csv.writer(fh)
-            w.writerow(header)
-            w.writerows([[f"{v:.10g}" for v in row] for row in data])
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with open_output(path, overwrite=overwrite, option=option, newline="") as fh:
+        fh.write(f"# erdesign vehicle: {response.damper}, {response.controller}, {response.road.description}\n")
+        w = csv.writer(fh)
+        w.writerow(header)
+        w.writerows([[f"{v:.10g}" for v in row] for row in data])
