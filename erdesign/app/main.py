@@ -26,6 +26,7 @@ PAGES = (
     ("compare.py", "Compare and diagnose", ":material/troubleshoot:", "compare"),
     ("report.py", "Report", ":material/description:", "report"),
     ("characterize.py", "Characterize", ":material/analytics:", "characterize"),
+    ("vehicle.py", "Vehicle", ":material/directions_car:", "vehicle"),
 )
 
 

@@ -55,6 +55,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
                          "checks, plots)."),
     "simulate": ("simulate", "Run a model with given parameters on a measurement and score it (ESR and more)."),
     "size": ("size", "Quasi-steady design point of a damper at one piston velocity and control."),
+    "vehicle": ("vehicle", "Quarter vehicle with the damper, passive or semi-active: ride figures (Butz and von "
+                           "Stryk 2002)."),
     "tolerance": ("tolerance", "Spread of force, zero-field force, dynamic range and damping constant under "
                                "tolerances, with Sobol indices."),
 }
