@@ -26,6 +26,8 @@ PAGES = (
     ("simulate.py", "Simulate", ":material/show_chart:", "simulate"),
     ("compare.py", "Compare and diagnose", ":material/troubleshoot:", "compare"),
     ("report.py", "Report", ":material/description:", "report"),
+    ("characterize.py", "Characterize", ":material/analytics:", "characterize"),
+    ("vehicle.py", "Vehicle", ":material/directions_car:", "vehicle"),
 )
 
 

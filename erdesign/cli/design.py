@@ -7,10 +7,10 @@ import time
 import click
 
 from .._util import check_output_path
+from ..damper.writer import save_damper
 from ..design import design as run_design
 from ..design import read_requirements
 from ..errors import ErdesignError
-from ..report.export import damper_toml
 from .main import cli, emit_json, executor_options
 
 __all__ = ["design"]
@@ -58,16 +58,16 @@ def design(requirements_file: str, as_json: bool, out: str | None, write_damper:
                                           inputs={**inputs, "the --out file": out}, formats={".toml": "toml"})
     result = run_design(req, progress=_Progress(), **executor)
     if out is not None:
-        result.write_csv(out)
+        result.write_csv(out, overwrite=force, option="--out")
     if as_json:
         emit_json(result.as_json())
     else:
         click.echo(_table(result))
     if damper_out is not None:      # after the table: when nothing is feasible its conflicts say why
-        _write_damper(result, rank, damper_out, requirements_file)
+        _write_damper(result, rank, damper_out, requirements_file, force)
 
 
-def _write_damper(result, rank: int, path, requirements_file: str) -> None:
+def _write_damper(result, rank: int, path, requirements_file: str, force: bool) -> None:
     """The damper file of the design ranked ``rank``; a one-line error when the search returned no such design."""
     try:
         spec = result.damper_spec(rank)
@@ -78,8 +78,7 @@ def _write_damper(result, rank: int, path, requirements_file: str) -> None:
     comment = (f"design {rank} of erdesign design {requirements_file} (objective {result.requirements.objective})\n"
                f"at point 1 (v = {p.velocity:.6g} m/s, field {rec['points'][0]['field']}): "
                f"force {rec['force_N']:.6g} N, zero-field force {rec['zero_field_force_N']:.6g} N")
-    with open(path, "w", encoding="utf-8") as fh:
-        fh.write(damper_toml(spec, comment=comment))
+    save_damper(spec, path, comment=comment, overwrite=force, option="--write-damper")
     click.echo(f"design {rank} written to {path}", err=True)
 
 
