@@ -22,8 +22,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pint
 
+from ._pint import pint  # not `import pint`: erdesign/_pint.py
 from .errors import UnitError
 from .units import Q_, dimension_name, ureg
 

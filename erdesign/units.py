@@ -29,13 +29,13 @@ import math
 from typing import Any, Callable, Mapping
 
 import numpy as np
-import pint
 
+from ._pint import application_registry, pint
 from .errors import UnitError
 
 __all__ = ["ureg", "Q_", "to_si", "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
 
-ureg = pint.get_application_registry()
+ureg = application_registry()   # pint's application registry, its definitions cached (erdesign/_pint.py)
 Q_ = ureg.Quantity
 
 # Plain-language names of the dimensions erdesign deals with, for error messages.

@@ -205,12 +205,13 @@ def test_pin_a_baseline_and_compare(app):
     app.text_input(key="size.geo.gap").set_value("0.6 mm").run()
     no_error(app)
     F1 = metric(app, "force F")
-    (table,) = [d.value for d in app.dataframe if "baseline" in d.value]
-    rows = {r[""]: r for r in table.to_dict("records")}
-    assert rows["geometry.gap"]["baseline"] == "0.8 mm" and rows["geometry.gap"]["this design"] == "0.6 mm"
-    assert Q_(rows["force F"]["baseline"]) == F0 and Q_(rows["force F"]["this design"]) == F1
-    change = float(rows["force F"]["change"].split()[0])
-    assert change == pytest.approx(100 * (F1 / F0 - 1).to("").magnitude, abs=0.1)
+    (table,) = [t.value for t in app.table if "pinned 1" in t.value]
+    rows = {r["quantity"]: r for r in table.to_dict("records")}
+    assert rows["gap h"]["pinned 1"] == "0.8 mm" and rows["gap h"]["this design"] == "0.6 mm"
+    assert rows["gap h"]["pinned 1 vs this"] == "+33.3 %"          # 0.8 mm against 0.6 mm
+    assert Q_(rows["force F"]["pinned 1"]) == F0 and Q_(rows["force F"]["this design"]) == F1
+    change = float(rows["force F"]["pinned 1 vs this"].split()[0])
+    assert change == pytest.approx(100 * (F0 / F1 - 1).to("").magnitude, abs=0.1)
     fig = figure(app, "size.fig.compare")
     names = [t["name"] for t in fig["data"]]
     assert "E = 3 kV/mm" in names and "baseline, E = 3 kV/mm" in names

@@ -257,7 +257,7 @@ def test_series_springs_and_clean_records_cover_their_dampers(issue23):
     assert any(set(c.mechanisms) == {"preyield"} and mixed(c) for c in springs)
     assert any(set(c.mechanisms) == {"accumulator", "compliance"} and not mixed(c) for c in springs)
     # every example damper file, clean
-    examples = {p.stem for p in (Path(__file__).resolve().parent.parent / "examples").glob("*.toml")}
+    examples = {p.stem for p in (Path(__file__).resolve().parent.parent / "erdesign" / "examples").glob("*.toml")}
     clean = [c for c in issue23 if c.group == "clean_every_kind"]
     assert set(ALL_DAMPERS) == examples and {c.damper for c in clean} == examples
     assert all(c.kind == "clean" for c in clean)

@@ -22,6 +22,7 @@ _HERE = Path(__file__).resolve().parent
 #: (file, title, icon, URL path) of each page, in the order of the navigation; the first opens by default.
 PAGES = (
     ("size.py", "Size", ":material/straighten:", "size"),
+    ("design.py", "Design", ":material/architecture:", "design"),
     ("simulate.py", "Simulate", ":material/show_chart:", "simulate"),
     ("compare.py", "Compare and diagnose", ":material/troubleshoot:", "compare"),
     ("report.py", "Report", ":material/description:", "report"),

@@ -22,12 +22,11 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-from erdesign.app import figures, state
+from erdesign.app import figures, pinned, state
 from erdesign.damper.files import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
 from erdesign.materials import fluid_values
 from erdesign.report import plots
-from erdesign.report.builder import compare_designs
 from erdesign.report.export import csv_text, damper_toml, rows_csv
 from erdesign.report.formatting import field_text, pick_unit, show
 from erdesign.units import Q_, to_si
@@ -324,31 +323,10 @@ def _downloads(design: dict, report) -> None:
 
 
 def _baseline(design: dict, report) -> None:
-    """Pin the design as a baseline; show the current design beside it (figures and curves)."""
-    st.subheader("Compare designs")
-    base = st.session_state.get(state.BASELINE)
-    cols = st.columns([1, 1, 3])
-    if cols[0].button("Pin this design as the baseline", key="size.pin", icon=":material/push_pin:"):
-        st.session_state[state.BASELINE] = base = design
-    if base is not None and cols[1].button("Unpin", key="size.unpin"):
-        st.session_state.pop(state.BASELINE, None)
-        base = None
-    if base is None:
-        cols[2].caption("Pin a design, then change the inputs: the new design is shown beside the pinned one.")
-        return
-    try:
-        old = state.design_report(state.design_text(base), state.unit_system())
-    except ErdesignError as exc:     # a baseline from before a change of the library: drop it
-        st.session_state.pop(state.BASELINE, None)
-        st.info(f"The pinned design can no longer be evaluated ({state.clean_message(str(exc))}); unpinned.")
-        return
-    diff = compare_designs(report, old)             # the same table as the report's baseline section
-    rows = [{"": r["key"], "baseline": r["baseline"], "this design": r["this"], "change": ""} for r in diff["inputs"]]
-    rows += [{"": r["label"], "baseline": r["baseline"].text, "this design": r["this"].text, "change": r["change"]}
-             for r in diff["rows"]]
-    st.dataframe(rows, hide_index=True, key="size.compare", width="stretch")
-    st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare",
-                    config=state.chart_config("size.fig.compare"))
+    """Pin designs; show the current design beside the pinned ones (table and curves: :mod:`erdesign.app.pinned`)."""
+    labels = {f"geometry.{k}": label for k, (label, _) in GEOMETRY_FIELDS.items()}
+    labels |= {f"fluid.{k}": label for k, (label, _) in FLUID_FIELDS.items()}
+    pinned.render(design, report, labels)
 
 
 def _magnetics(report) -> None:

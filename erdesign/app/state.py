@@ -40,7 +40,7 @@ __all__ = [
     "spec_text", "build_damper", "damper_or_error", "caught", "force_velocity_curves", "geometry_sweep",
     "GEOMETRY_SWEEPS", "read_record",
     "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
-    "render_report", "clear_caches", "material_names", "set_widget",
+    "render_report", "clear_caches", "material_names", "set_widget", "widget_value",
 ]
 
 #: The damper the app opens on.
@@ -77,6 +77,11 @@ def set_widget(key: str, value: Any) -> None:
     """Give a widget drawn by :func:`widget` a new value (from a callback, or before the widget is drawn)."""
     st.session_state[key] = value
     st.session_state[_KEEP + key] = value
+
+
+def widget_value(key: str, default: Any = None) -> Any:
+    """The value of a widget drawn by :func:`widget`, also while its page is not drawn."""
+    return st.session_state.get(key, st.session_state.get(_KEEP + key, default))
 
 
 def forget(prefix: str) -> None:

@@ -41,9 +41,10 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pint
 
+from .._pint import pint  # not `import pint`: erdesign/_pint.py
 from ..errors import ErdesignError, ErdesignWarning
+from ..examples import bundled_file
 from ..fluid import CONTROL_UNITS
 from ..units import Q_, dimension_name, ureg
 
@@ -612,6 +613,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     """
     path = Path(path)
     label = str(path)
+    path = bundled_file(path) or path       # the documented examples/measurements/... from any folder
     try:
         with open(path, newline="", encoding="utf-8-sig") as fh:
             text = fh.read()

@@ -48,7 +48,7 @@ from .formatting import Shown, pick_unit, show
 
 __all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison", "tolerance_figures",
            "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
-           "default_velocity_max", "compare_designs", "with_baseline", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
+           "default_velocity_max", "compare_designs", "relative_change", "with_baseline", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
 
 #: Sine amplitude of the loops when none is given.
 DEFAULT_AMPLITUDE = "10 mm"
@@ -706,30 +706,46 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     return report if baseline is None else with_baseline(report, baseline)
 
 
+def relative_change(new: Shown | None, old: Shown | None) -> str:
+    """The change of ``new`` against ``old`` in percent, ``"+12.3 %"``; empty where it is undefined (a value
+    missing, of another unit, not finite, or ``old`` zero).
+
+    >>> relative_change(show(Q_(6.6, "kN"), "kN", name="F"), show(Q_(6.0, "kN"), "kN", name="F"))
+    '+10.0 %'
+    """
+    if (new is None or old is None or new.si_unit != old.si_unit or not math.isfinite(new.si)
+            or not math.isfinite(old.si) or old.si == 0):
+        return ""
+    return f"{100 * (new.si / old.si - 1):+.1f} %"
+
+
 def compare_designs(report: Report, baseline: Report) -> dict:
     """This design beside a baseline design (both reports built alike): the inputs that differ, as typed, and the
-    design point of both with the relative change of each figure, ``"+12.3 %"`` (empty where undefined).
+    design point of both, each with the relative change of this design against the baseline
+    (:func:`relative_change`, ``"+12.3 %"``; empty where undefined).
 
     Both reports' numbers are shown as they are (each :func:`show` of the library's values); nothing is recomputed.
     """
     def key(row: InputRow) -> str:
         return f"{row.section}.{row.key}"
 
-    before = {key(r): r.given for r in baseline.inputs}
-    now = {key(r): r.given for r in report.inputs}
-    inputs = tuple({"key": k, "baseline": before.get(k, ""), "this": now.get(k, "")}
-                   for k in dict.fromkeys([*before, *now]) if before.get(k) != now.get(k))
+    before = {key(r): r for r in baseline.inputs}
+    now = {key(r): r for r in report.inputs}
+
+    def given(rows: dict, k: str) -> str:
+        return rows[k].given if k in rows else ""
+
+    inputs = tuple({"key": k, "baseline": given(before, k), "this": given(now, k),
+                    "change": relative_change(now[k].si if k in now else None, before[k].si if k in before else None)}
+                   for k in dict.fromkeys([*before, *now]) if given(before, k) != given(now, k))
     rows = []
     old = {r.key: r for r in baseline.design_point}
     for b in report.design_point:
         a = old.get(b.key)
         if a is None:
             continue
-        change = ""
-        if (a.value.si_unit == b.value.si_unit and math.isfinite(a.value.si) and math.isfinite(b.value.si)
-                and a.value.si != 0):
-            change = f"{100 * (b.value.si / a.value.si - 1):+.1f} %"
-        rows.append({"key": b.key, "label": b.label, "baseline": a.value, "this": b.value, "change": change})
+        rows.append({"key": b.key, "label": b.label, "baseline": a.value, "this": b.value,
+                     "change": relative_change(b.value, a.value)})
     name = baseline.title.removeprefix("Damper report: ")
     return {"name": name, "inputs": inputs, "rows": tuple(rows)}
 
