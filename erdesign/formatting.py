@@ -28,7 +28,8 @@ from .errors import UnitError
 from .units import Q_, dimension_name, ureg
 
 __all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
-           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system"]
+           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system",
+           "CONTROL_LABELS", "control_label"]
 
 #: Significant figures of every quantity a report prints.
 SIGNIFICANT_DIGITS = 4
@@ -95,6 +96,27 @@ def use_unit_system(name: str) -> Iterator[str]:
         yield name
     finally:
         _SYSTEM.reset(token)
+
+
+#: What each kind of control (:data:`erdesign.fluid.CONTROL_UNITS`) is called on a label, and its symbol.
+CONTROL_LABELS: dict[str, tuple[str, str]] = {
+    "electric field": ("field", "E"),
+    "magnetic field": ("field", "H"),
+    "magnetic flux density": ("flux density", "B"),
+    "current": ("coil current", "I"),
+    "voltage": ("driver voltage", "U"),
+}
+
+
+def control_label(kind: str | None, prefix: str = "") -> str:
+    """The label of a control of ``kind`` (a key of :data:`CONTROL_LABELS`), ``"design coil current I"``; a kind
+    not known yet (an input being typed) reads ``"control"``.
+
+    >>> control_label("current", "design"), control_label("electric field"), control_label(None, "design")
+    ('design coil current I', 'field E', 'design control')
+    """
+    name, symbol = CONTROL_LABELS.get(kind or "", ("control", ""))
+    return " ".join(part for part in (prefix, name, symbol) if part)
 
 
 def field_text(value: float, control_unit: str, field_unit: str) -> str:

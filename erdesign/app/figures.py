@@ -65,7 +65,7 @@ def tradeoff_figure(sweep: dict, label: str, field_label: str, velocity_label: s
     return fig
 
 
-#: The pinned baseline design beside the current one: a dashed line in another colour.
+#: The design pinned on the Size page beside the current one: a dashed line in another colour.
 BASELINE_STYLE = dict(mode="lines", line=dict(color=_OTHER, width=2, dash="dash"))
 
 
@@ -74,7 +74,7 @@ def _forces(*forces) -> np.ndarray:
 
 
 def loops_figure(displacement, velocity, force, *, label: str = "model", measured=None, baseline=None,
-                 baseline_label: str = "baseline design") -> go.Figure:
+                 baseline_label: str = "pinned design") -> go.Figure:
     """Force-displacement and force-velocity loops of one force record (and the measured force, and the force of
     the baseline design on the same motion, when given)."""
     x, x_unit = _in(displacement, "m", "length")
@@ -104,7 +104,7 @@ def _unit_of(printed: str) -> str:
 
 
 def time_figure(time, force, *, label: str = "model", measured=None, baseline=None,
-                baseline_label: str = "baseline design") -> go.Figure:
+                baseline_label: str = "pinned design") -> go.Figure:
     """Force against time: the model (and the measurement, and the baseline design's force, when given)."""
     t = np.asarray(time, dtype=float)
     _, f_unit = _in(_forces(force, measured, baseline), "N", "force")

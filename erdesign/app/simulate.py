@@ -7,6 +7,8 @@ the displacement of an uploaded measurement CSV; forces from :meth:`erdesign.mod
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 import streamlit as st
 
@@ -15,22 +17,30 @@ from erdesign.effects import EFFECT_NAMES, EFFECTS
 from erdesign.errors import ErdesignError
 from erdesign.models.registry import get_model, model_names
 from erdesign.report.export import csv_text
-from erdesign.report.formatting import UNIT_SYSTEMS, kind_of, pick_unit, show, unit_system
+from erdesign.report.formatting import UNIT_SYSTEMS, control_label, kind_of, pick_unit, show, unit_system
 from erdesign.units import Q_, to_si
 
-__all__ = ["render", "EXCITATIONS"]
+__all__ = ["render", "EXCITATIONS", "model_label"]
 
 EXCITATIONS = {"sine": "sine", "sweep": "sine sweep (two amplitudes and frequencies)",
                "earthquake": "earthquake-like record", "upload": "uploaded displacement (measurement CSV)"}
 
 
-def _excitation(control_unit: str, design_field: str):
+def _excitation(fluid, design_field: str):
     """Draw the excitation inputs; return the excitation as plain data (SI) for :func:`state.simulate` and the
-    uploaded file (or None), or None when the inputs are not complete."""
+    uploaded file (or None), or None when the inputs are not complete.
+
+    The control input follows the damper: its label names the fluid's kind of control (field E, coil current I)
+    and it takes the design control of the Size page whenever that changes (another damper, another control);
+    a value typed here holds until then."""
+    control_unit = fluid.control_unit
     kind = state.widget(st.selectbox, "excitation", "sim.kind", "sine", options=list(EXCITATIONS),
                         format_func=EXCITATIONS.get)
-    field_text = state.widget(st.text_input, "field E", "sim.field", design_field,
-                              help="The control during the test, with its unit (the design field of the Size "
+    if st.session_state.get("sim.field.source") != design_field:
+        state.set_widget("sim.field", design_field)
+        st.session_state["sim.field.source"] = design_field
+    field_text = state.widget(st.text_input, control_label(fluid.control), "sim.field", design_field,
+                              help="The control during the test, with its unit (the design control of the Size "
                                    "page to start with).")
     try:
         E = float(to_si(field_text, control_unit, "field"))
@@ -158,7 +168,7 @@ def render() -> None:
         st.subheader("Model")
         chosen = _model(damper)
         st.subheader("Excitation")
-        excitation = _excitation(damper.fluid.control_unit, design["field"])
+        excitation = _excitation(damper.fluid, design["field"])
     with right:
         if chosen is None or excitation is None:
             return
@@ -172,7 +182,9 @@ def render() -> None:
             st.error(state.clean_message(str(exc)))
             return
         st.session_state["sim.last"] = {"title": sim["title"], "description": sim["description"]}
-        st.caption(f"{sim['title']}: {sim['description']}")
+        label = model_label(name, effects, sim["title"])
+        st.caption(f"{label}: {sim['description']}"
+                   + (f" (effects: {', '.join(effects)})" if name == "physics" and len(effects) > 1 else ""))
         F = sim["force"]
         base = _baseline(design, damper, name, effects, values, excitation, upload, upload_name)
         Fb = None if base is None else base["force"]
@@ -184,14 +196,28 @@ def render() -> None:
         c[2].metric("duration", f"{sim['time'][-1] - sim['time'][0]:.3g} s")
         if Fb is not None:
             peak_b = Q_(float(np.max(np.abs(Fb))), "N")
-            c[3].metric("peak force, baseline design", show(peak_b, unit, name="baseline peak force").text,
+            c[3].metric("peak force, pinned design", show(peak_b, unit, name="pinned design's peak force").text,
                         help="The design pinned on the Size page, with the same model, effects and excitation.")
-        st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=sim["title"],
+        st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=label,
                                              measured=sim["measured"], baseline=Fb), key="sim.fig.loops",
                         config=state.chart_config("sim.fig.loops"))
-        st.plotly_chart(figures.time_figure(sim["time"], F, label=sim["title"], measured=sim["measured"],
+        st.plotly_chart(figures.time_figure(sim["time"], F, label=label, measured=sim["measured"],
                                             baseline=Fb), key="sim.fig.time", config=state.chart_config("sim.fig.time"))
         _download(sim, damper, name, effects, values)
+
+
+def model_label(name: str, effects: Sequence[str], title: str) -> str:
+    """The short name of a simulated model on a legend: ``"design"``, ``"design + seal_friction"``, ``"design + 3
+    effects"`` (the list goes in the caption), or a library model's title.
+
+    >>> model_label("physics", (), "physics damper"), model_label("physics", ("a", "b", "c"), "")
+    ('design', 'design + 3 effects')
+    """
+    if name != "physics":
+        return title
+    if len(effects) > 1:
+        return f"design + {len(effects)} effects"
+    return "design" + "".join(f" + {e}" for e in effects)
 
 
 def _baseline(design: dict, damper, name: str, effects, values, excitation, upload, upload_name) -> dict | None:
@@ -218,7 +244,7 @@ def _baseline(design: dict, damper, name: str, effects, values, excitation, uplo
     changed = [f"{section}.{k} = {v}" for section in ("geometry", "fluid")
                for k, v in base["spec"].get(section, {}).items()
                if design["spec"].get(section, {}).get(k) != v]
-    st.caption(f"Dashed: the baseline design pinned on the Size page ({base['spec'].get('name') or 'design'}"
+    st.caption(f"Dashed: the design pinned on the Size page ({base['spec'].get('name') or 'design'}"
                + (f"; where it differs: {', '.join(changed)}" if changed else "") + "), with the same model, effects "
                "and excitation.")
     return sim

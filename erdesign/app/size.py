@@ -29,7 +29,7 @@ from erdesign.materials import fluid_values
 from erdesign.report import plots
 from erdesign.report.builder import compare_designs
 from erdesign.report.export import csv_text, damper_toml, rows_csv
-from erdesign.report.formatting import field_text, pick_unit, show
+from erdesign.report.formatting import control_label, field_text, pick_unit, show
 from erdesign.units import Q_, to_si
 
 __all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets", "design_comment"]
@@ -233,23 +233,51 @@ def _inputs() -> dict:
     values["material"] = state.widget(
         st.selectbox, "material", "size.material", FILE_VALUES, options=[FILE_VALUES, *state.material_names()],
         on_change=_on_material, help="From the materials database (docs/materials.md); any value below overrides it.")
+    coil = bool(values["coil"])
     for key, (label, helptext) in FLUID_FIELDS.items():
+        if coil and key in _CIRCUIT_KEYS:
+            # the yield stress of a coil damper follows from the magnetic circuit at each current: a material's
+            # value at its own reference field (43.98 kPa at 250 kA/m) would read as the value at the rated current
+            st.text_input(label, value="from the magnetic circuit (below)", disabled=True, key=f"size.coil.{key}",
+                          help="With a [coil], τy(I) is the fluid's yield curve at the gap field H_g(I) of the "
+                               "magnetic circuit: the Magnetic circuit section shows it at each current.")
+            values[key] = _text(st.session_state.get("size.file_fluid", {}).get(key))
+            continue
         values[key] = state.widget(st.text_input, label, f"size.fluid.{key}", "",
                                    help=(helptext + " With its unit.").strip())
     return values
 
 
-def _point_inputs() -> dict:
-    """Draw the design point's inputs (as typed); return them."""
+#: Fluid values a damper with a [coil] takes from its magnetic circuit instead of the power law.
+_CIRCUIT_KEYS = ("yield_stress", "yield_exponent")
+
+
+def _control_kind(values: dict) -> str | None:
+    """The kind of control the typed reference field (or the material's) is, or None while it is not valid."""
+    from erdesign.fluid import control_kind
+
+    text = values.get("reference_field") or ""
+    if not text.strip() and values.get("material") not in (None, "", FILE_VALUES):
+        text = _text(fluid_values(values["material"]).get("reference_field"))
+    try:
+        return control_kind(text.strip(), "reference_field") if text.strip() else None
+    except ErdesignError:
+        return None
+
+
+def _point_inputs(kind: str | None) -> dict:
+    """Draw the design point's inputs (as typed) with the control labelled by its ``kind``; return them."""
     cols = st.columns([1, 1, 1, 1])
     point = {
         "velocity": state.widget(cols[0].text_input, "design velocity v", "size.velocity", "25 mm/s",
                                  help="Piston velocity of the design point, with its unit (mm/s, in/s, m/s)."),
-        "field": state.widget(cols[1].text_input, "design field E", "size.field", "3 kV/mm",
-                              help="The control, with its unit (kV/mm, kA/m, T or A)."),
+        "field": state.widget(cols[1].text_input, control_label(kind, "design"), "size.field", "3 kV/mm",
+                              help="The control, with its unit: the same kind as the fluid's reference field "
+                                   "(kV/mm, kA/m, T or A)."),
         "v_top": state.widget(cols[2].text_input, "top velocity of the curves", "size.v_top", "50 mm/s"),
-        "levels": int(state.widget(cols[3].number_input, "field levels", "size.levels", 4, min_value=1,
-                                   max_value=6, step=1, help="Controls of the curves, from the design field down to 0.")),
+        "levels": int(state.widget(cols[3].number_input, "control levels", "size.levels", 4, min_value=1,
+                                   max_value=6, step=1,
+                                   help="Controls of the curves, from the design control down to 0.")),
     }
     return point
 
@@ -488,7 +516,7 @@ def render() -> None:
         values = _inputs()
     with right:
         st.subheader("Design point")
-        point = _point_inputs()
+        point = _point_inputs(_control_kind(values))
         design, report, why = _candidate(values, point)
         if design is None:
             st.error(f"{why}. The pages keep the last valid design until this is corrected.", icon="🚫")

@@ -194,8 +194,9 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
     """:func:`erdesign.report.build_report` of a design (:func:`design_text`) in the unit system ``system``.
 
     The Size page shows its design point, checks and curves; the Report page renders it: one computation, so the
-    numbers on screen and in the download are the same.  ``comparison`` is ``(label, esr, samples, x, v,
-    F_measured, F_model)`` with SI arrays as tuples, or None.  ``baseline`` is the pinned baseline design
+    numbers on screen and in the download are the same.  ``comparison`` is ``(label, esr, samples, rms, x, v,
+    F_measured, F_model)``: the diagnosis' ESR and RMS residual [N] on the samples it judged (their number), and SI
+    arrays as tuples for the loops; or None.  ``baseline`` is the pinned baseline design
     (:data:`BASELINE`, as :func:`design_text`): the report then compares the design with it.
 
     Raises :class:`~erdesign.errors.ErdesignError` for an invalid design.
@@ -209,11 +210,10 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
     base = design_report(baseline, system) if baseline is not None else None
     comp = None
     if comparison is not None:
-        label, esr_value, samples, x, v, Fm, Fmod = comparison
+        label, esr_value, samples, rms, x, v, Fm, Fmod = comparison
         Fm, Fmod = np.asarray(Fm), np.asarray(Fmod)
         comp = MeasurementComparison(
-            label=label, esr=esr_value, samples=samples,
-            rms_error=Q_(float(np.sqrt(np.mean((Fm - Fmod) ** 2))), "N"),
+            label=label, esr=esr_value, samples=samples, rms_error=Q_(rms, "N"),
             peak_force_measured=Q_(float(np.max(np.abs(Fm))), "N"),
             peak_force_model=Q_(float(np.max(np.abs(Fmod))), "N"),
             displacement=np.asarray(x), velocity=np.asarray(v), force_measured=Fm, force_model=Fmod)
