@@ -29,7 +29,7 @@ from .units import Q_, dimension_name, ureg
 
 __all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
            "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system",
-           "CONTROL_LABELS", "control_label"]
+           "CONTROL_LABELS", "control_label", "esr_shown"]
 
 #: Significant figures of every quantity a report prints.
 SIGNIFICANT_DIGITS = 4
@@ -219,6 +219,19 @@ def show(value: Any, unit: str, *, name: str, digits: int = SIGNIFICANT_DIGITS) 
     text = f"{number} {unit_text}".strip() if math.isfinite(magnitude) else number
     return Shown(text=text, number=number, unit=unit_text, si=float(si.magnitude),
                  si_unit=si_unit)
+
+
+def esr_shown(x: float, *, name: str = "ESR") -> Shown:
+    """An ESR (Vivas-López et al., eq 7) or a noise floor as the diagnosis' verdict states it, to 3 significant
+    figures in ``%.3g`` form: the app's metrics, the report and the verdict's sentence print the same text.
+
+    >>> esr_shown(0.0023797).text, esr_shown(2.7114e-05).text
+    ('0.00238', '2.71e-05')
+    """
+    x = float(x)
+    if not math.isfinite(x):
+        raise UnitError(f"report: {name}: expected a finite number, got {x!r}")
+    return Shown(text=f"{x:.3g}", number=f"{x:.3g}", unit="", si=x, si_unit="dimensionless")
 
 
 def _is_plain_ratio(unit: pint.Unit) -> bool:

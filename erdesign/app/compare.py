@@ -9,6 +9,7 @@ effects, and a verdict: a missing effect, nothing missing - the residual is at t
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 from pathlib import Path
 
@@ -23,6 +24,7 @@ from erdesign.report import plots
 from erdesign.report.builder import ErrorHistoryStep
 from erdesign.report.export import csv_text, rows_csv
 from erdesign.report.fit import EXPORT_UNITS, correlation_rows, parameter_rows, parameters_csv, statistics_rows
+from erdesign.formatting import esr_shown
 from erdesign.report.formatting import pick_unit, show
 from erdesign.units import Q_
 
@@ -59,6 +61,16 @@ def history_steps(diagnoses) -> list[ErrorHistoryStep]:
     for i, d in enumerate(diagnoses):
         steps.append(ErrorHistoryStep(i, "baseline" if i == 0 else d.effects[-1], float(d.baseline_esr)))
     return steps
+
+
+def _report_details(diagnosis) -> str:
+    """What the report adds to the comparison (verdict, its reason, noise floor, the calibration's fit report), as
+    JSON text (hashable, for the cached report); numbers formatted in the unit system by :mod:`erdesign.report.fit`."""
+    result = diagnosis.baseline
+    return json.dumps({"verdict": diagnosis.verdict, "reason": _sentence(diagnosis.reason),
+                       "noise_floor_esr": float(diagnosis.noise_floor_esr),
+                       "parameters": parameter_rows(result), "statistics": statistics_rows(result),
+                       "correlations": correlation_rows(result)})
 
 
 def judged_samples(diagnosis) -> int:
@@ -198,17 +210,17 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
     # the report states the diagnosis' own numbers (ESR, RMS on the judged samples): one number for one thing
     st.session_state["report.comparison"] = (
         name, float(diagnosis.baseline_esr), judged, float(rms.magnitude), record.displacement, record.velocity, F,
-        model_force)
+        model_force, _report_details(diagnosis))
     st.session_state["report.history"] = tuple((s.step, s.effect, s.esr) for s in steps)
     model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
     st.markdown(f"**Model:** {model}")
     c = st.columns(3)
     # ESRs to the 3 figures of the verdict's text, so that the metric and the sentence read the same number
-    c[0].metric("ESR of the calibrated model", f"{diagnosis.baseline_esr:.3g}",
+    c[0].metric("ESR of the calibrated model", esr_shown(diagnosis.baseline_esr).text,
                 delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}", delta_color="inverse",
                 help="Error-to-signal ratio (Vivas-López et al., eq 7): residual variance over force variance, on "
                      "the judged samples.")
-    c[1].metric("noise floor ESR", f"{diagnosis.noise_floor_esr:.3g}",
+    c[1].metric("noise floor ESR", esr_shown(diagnosis.noise_floor_esr).text,
                 help="The ESR that the load cell's noise alone would leave on the same samples: one figure per "
                      f"record, the same at every step (found by: {diagnosis.noise_floor_method or 'estimate'}; "
                      "docs/diagnosis.md).")

@@ -195,8 +195,9 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
 
     The Size page shows its design point, checks and curves; the Report page renders it: one computation, so the
     numbers on screen and in the download are the same.  ``comparison`` is ``(label, esr, samples, rms, x, v,
-    F_measured, F_model)``: the diagnosis' ESR and RMS residual [N] on the samples it judged (their number), and SI
-    arrays as tuples for the loops; or None.  ``baseline`` is the pinned baseline design
+    F_measured, F_model, details)``: the diagnosis' ESR and RMS residual [N] on the samples it judged (their number),
+    SI arrays as tuples for the loops, and JSON text of the verdict, its reason, the noise floor and the
+    calibration's fit report (``erdesign.app.compare``); or None.  ``baseline`` is the pinned baseline design
     (:data:`BASELINE`, as :func:`design_text`): the report then compares the design with it.
 
     Raises :class:`~erdesign.errors.ErdesignError` for an invalid design.
@@ -210,10 +211,14 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
     base = design_report(baseline, system) if baseline is not None else None
     comp = None
     if comparison is not None:
-        label, esr_value, samples, rms, x, v, Fm, Fmod = comparison
+        label, esr_value, samples, rms, x, v, Fm, Fmod, details = comparison
         Fm, Fmod = np.asarray(Fm), np.asarray(Fmod)
+        extra = json.loads(details) if details else {}
         comp = MeasurementComparison(
             label=label, esr=esr_value, samples=samples, rms_error=Q_(rms, "N"),
+            verdict=extra.get("verdict", ""), reason=extra.get("reason", ""),
+            noise_floor_esr=extra.get("noise_floor_esr"), parameters=tuple(extra.get("parameters", ())),
+            statistics=tuple(extra.get("statistics", ())), correlations=tuple(extra.get("correlations", ())),
             peak_force_measured=Q_(float(np.max(np.abs(Fm))), "N"),
             peak_force_model=Q_(float(np.max(np.abs(Fmod))), "N"),
             displacement=np.asarray(x), velocity=np.asarray(v), force_measured=Fm, force_model=Fmod)

@@ -42,7 +42,7 @@ from ..damper.curves import ForceVelocityCurves, SineLoops, force_velocity_curve
 from ..damper.files import damper_from_dict, read_toml
 from ..damper.validity import PLUG_FRACTION_LIMIT, SEAL_SHARE_LIMIT, Check, validity_checks
 from ..errors import ErdesignError, ValidityWarning
-from ..formatting import control_label
+from ..formatting import control_label, esr_shown
 from ..units import Q_, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
@@ -136,6 +136,19 @@ class MeasurementComparison:
     force_measured: Any = None
     force_model: Any = None
     notes: str = ""
+    verdict: str = ""
+    """The diagnosis' verdict (``"missing_effect"``, ``"nothing_missing"``, ``"unexplained"``), or empty."""
+    reason: str = ""
+    """The verdict in words, as the diagnosis gives it."""
+    noise_floor_esr: float | None = None
+    """ESR that the measurement noise alone would leave on the same samples, [-]."""
+    parameters: tuple = ()
+    """The calibrated parameters as :func:`erdesign.report.fit.parameter_rows` shows them (value, ± 1σ, ±,
+    initial, bounds, status)."""
+    statistics: tuple = ()
+    """:func:`erdesign.report.fit.statistics_rows` of the calibration."""
+    correlations: tuple = ()
+    """:func:`erdesign.report.fit.correlation_rows` of the calibration."""
 
 
 @dataclass(frozen=True)
@@ -698,7 +711,9 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
                 comparison.displacement, comparison.velocity, comparison.force_measured, comparison.force_model),
                 None))
     if steps:
-        figures.append(FigureSpec("history", "Error history", plots.error_history_figure(steps), None))
+        floor = None if comparison_data is None else comparison_data["noise_floor"]
+        figures.append(FigureSpec("history", "Error history", plots.error_history_figure(steps, noise_floor=floor),
+                                  None))
     magnetics = magnetic_section(damper, E) if control == "A" else None
     if magnetics is not None:
         from ..magnetics.figures import circuit_curves, coil_curves_figure
@@ -777,7 +792,10 @@ def _comparison(c: MeasurementComparison, force_unit: str | None = None) -> dict
     """Shown values of a measurement comparison (dimension-checked)."""
     if not (isinstance(c.esr, (int, float)) and math.isfinite(c.esr) and c.esr >= 0):
         raise ErdesignError(f"comparison.esr: expected a finite number >= 0, got {c.esr!r}")
-    rows = [Row("esr", "ESR (Vivas-López et al., eq 7)", show(float(c.esr), "", name="ESR"))]
+    rows = [Row("esr", "ESR (Vivas-López et al., eq 7)", esr_shown(c.esr, name="comparison.esr"))]
+    if c.noise_floor_esr is not None:
+        rows.append(Row("noise_floor_esr", "noise floor ESR (the same samples)",
+                        esr_shown(c.noise_floor_esr, name="comparison.noise_floor_esr")))
     if c.samples is not None:
         rows.append(Row("samples", "samples judged (ESR and RMS on these)", show(float(c.samples), "",
                                                                                  name="samples")))
@@ -790,4 +808,15 @@ def _comparison(c: MeasurementComparison, force_unit: str | None = None) -> dict
     arrays = (c.displacement, c.velocity, c.force_measured, c.force_model)
     if any(a is not None for a in arrays) and not all(a is not None for a in arrays):
         raise ErdesignError("comparison: give displacement, velocity, force_measured and force_model together")
-    return {"label": c.label, "rows": tuple(rows), "notes": c.notes, "has_loops": all(a is not None for a in arrays)}
+    if c.verdict and c.verdict not in VERDICTS:
+        raise ErdesignError(f"comparison.verdict: expected one of {', '.join(VERDICTS)}, got {c.verdict!r}")
+    return {"label": c.label, "rows": tuple(rows), "notes": c.notes, "has_loops": all(a is not None for a in arrays),
+            "verdict": VERDICTS.get(c.verdict, ""), "reason": c.reason, "parameters": tuple(c.parameters),
+            "statistics": tuple(c.statistics), "correlations": tuple(c.correlations),
+            "noise_floor": c.noise_floor_esr}
+
+
+#: The diagnosis' verdicts (docs/cli.md) as the report words them.
+VERDICTS = {"missing_effect": "a missing effect", "nothing_missing": "nothing missing (the residual is at the "
+            "noise floor)", "unexplained": "unexplained (the residual stays above the noise floor and no effect of "
+            "the library explains it)"}
