@@ -67,9 +67,9 @@ def render() -> None:
                 f"{report.warnings} warn."
                 + ("" if comparison is not None else " Run a diagnosis on the Compare page to add a measurement."))
     rows = [{"quantity": r.label, "value": r.value.text} for r in report.design_point]
-    st.dataframe(rows, hide_index=True, key="rep.point")
+    st.table(rows)          # a table, not a dataframe: all rows in view, no scrolling inside the page
     file_name = f"{file_stem(name)}.{fmt}"
-    cols = st.columns([2, 2, 3])
+    cols = st.columns([3, 2, 2])
     cols[0].download_button(f"Download {file_name}", body, file_name=file_name, type="primary", key="rep.download",
                             mime="text/html" if fmt == "html" else "text/markdown", icon=":material/download:")
     cols[1].download_button("Damper file (TOML)", damper_toml(design["spec"], comment=_comment(design)),

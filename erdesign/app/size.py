@@ -336,7 +336,7 @@ def _curves_csv(report) -> str:
 
 def _downloads(design: dict, report) -> None:
     stem = state.file_stem(design["spec"].get("name") or "design")
-    cols = st.columns(3)
+    cols = st.columns([4, 3, 4])     # the labels whole at 1280 px
     cols[0].download_button("Damper file (TOML)", damper_toml(design["spec"], comment=design_comment(design)),
                             file_name=f"{stem}.toml", mime="application/toml", key="size.dl.toml",
                             icon=":material/download:", help="Opens again with the upload above, and in "
@@ -355,7 +355,7 @@ def _baseline(design: dict, report) -> None:
     """Pin the design as a baseline; show the current design beside it (figures and curves)."""
     st.subheader("Compare designs")
     base = st.session_state.get(state.BASELINE)
-    cols = st.columns([1, 1, 3])
+    cols = st.columns([2, 1, 3])
     if cols[0].button("Pin this design as the baseline", key="size.pin", icon=":material/push_pin:"):
         st.session_state[state.BASELINE] = base = design
     if base is not None and cols[1].button("Unpin", key="size.unpin"):
