@@ -29,7 +29,7 @@ from .units import Q_, dimension_name, ureg
 
 __all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
            "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system",
-           "CONTROL_LABELS", "control_label", "esr_shown"]
+           "CONTROL_LABELS", "control_label", "esr_shown", "SI_UNITS", "si_unit_text"]
 
 #: Significant figures of every quantity a report prints.
 SIGNIFICANT_DIGITS = 4
@@ -276,6 +276,30 @@ def kind_of(unit: str) -> str | None:
         if kind not in _CONTROL_KINDS and ureg.Unit(choices[0]).dimensionality == dimensionality:
             return kind
     return None
+
+
+#: The coherent SI unit of each kind of :data:`UNIT_CHOICES` (CSV headers: numbers in SI, ``force [N]``).
+SI_UNITS: dict[str, str] = {
+    "force": "N", "pressure": "Pa", "length": "m", "velocity": "m/s", "area": "m^2", "volume": "m^3",
+    "flow": "m^3/s", "viscosity": "Pa*s", "damping": "N*s/m", "stiffness": "N/m", "energy": "J", "frequency": "Hz",
+    "electric field": "V/m", "magnetic field": "A/m", "density": "kg/m^3", "mass": "kg", "time": "s",
+}
+
+
+def si_unit_text(unit: str) -> str:
+    """The SI unit of ``unit``'s dimension as a CSV header writes it: ``N`` for ``kilogram * meter / second ** 2``,
+    ``V/m`` for ``kV/mm``, ``1`` for a ratio; other dimensions in pint's short form of the base units.
+
+    >>> si_unit_text("kilogram * meter / second ** 2"), si_unit_text("kV/mm"), si_unit_text(""), si_unit_text("A")
+    ('N', 'V/m', '1', 'A')
+    """
+    if unit in ("", "dimensionless"):
+        return "1"
+    dimensionality = ureg.Unit(unit).dimensionality
+    for si in SI_UNITS.values():
+        if ureg.Unit(si).dimensionality == dimensionality:
+            return si
+    return f"{Q_(1.0, unit).to_base_units().units:~C}"
 
 
 def show_in_system(value: Any, *, name: str, digits: int = SIGNIFICANT_DIGITS, like: Any = None) -> Shown:

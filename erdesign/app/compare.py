@@ -302,7 +302,7 @@ def _downloads(name, record, model_force, ranking, parameters, steps, diagnosis)
                ("residual", "N", F - model_force)]
     model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
     histories = csv_text(columns, comment=f"{name}: measured force, force of the calibrated model ({model}) and "
-                                          "residual (measured minus model)")
+                                          f"residual (measured minus model); numbers in {EXPORT_UNITS} units")
     st.markdown("Each file is CSV with units in the header; the time histories read back as a measurement.")
     cols = st.columns(4)
     cols[0].download_button("Time histories and residual", histories, file_name=f"{stem}-model.csv",

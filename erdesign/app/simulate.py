@@ -17,8 +17,9 @@ from erdesign.effects import EFFECT_NAMES, EFFECTS
 from erdesign.errors import ErdesignError
 from erdesign.models.registry import get_model, model_names
 from erdesign.report.export import csv_text
-from erdesign.report.formatting import UNIT_SYSTEMS, control_label, kind_of, pick_unit, show, unit_system
-from erdesign.units import Q_, to_si
+from erdesign.report.fit import EXPORT_UNITS
+from erdesign.report.formatting import control_label, kind_of, pick_unit, round_significant, show, unit_system
+from erdesign.units import Q_, to_si, ureg
 
 __all__ = ["render", "EXCITATIONS", "model_label"]
 
@@ -100,7 +101,6 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
         model = get_model(name)
         st.caption(model.source)
     system = unit_system()
-    shown = {p.name: _display_unit(p.unit, system) for p in model.parameters}
     # The table of one model and unit system is a widget of its own (its key); it starts from the values last
     # used with this model in any unit system (SI, exact), so that a switch of the unit system converts what was
     # typed instead of dropping it.
@@ -112,8 +112,12 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
         st.session_state.pop(key, None)          # a table left earlier in this system holds stale edits
         st.session_state["sim.values.table"] = key
     start = st.session_state[f"{key}.start"]
-    shown_start = {p.name: _to_unit(start[p.name], p.unit, shown[p.name]) for p in model.parameters}
-    rows = [{"parameter": p.name, "value": shown_start[p.name], "unit": shown[p.name] or "-",
+    # each value in a prefixed unit of the unit system that keeps it between 1 and 1000, to 4 significant figures
+    # (43.24 MN/m, not 43241692.2085 N/m); a value left as shown is the exact start value (_to_si)
+    shown = {p.name: _display_unit(p.unit, start[p.name]) for p in model.parameters}
+    shown_start = {p.name: float(round_significant(_to_unit(start[p.name], p.unit, shown[p.name])))
+                   for p in model.parameters}
+    rows = [{"parameter": p.name, "value": shown_start[p.name], "unit": _pretty(shown[p.name]),
              "description": p.description} for p in model.parameters]
     edited = st.data_editor(rows, key=key, disabled=["parameter", "unit", "description"], hide_index=True,
                             width="stretch")
@@ -128,15 +132,19 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
     return name, effects, values
 
 
-def _display_unit(unit: str, system: str) -> str:
-    """The unit a parameter of SI unit ``unit`` is shown and typed in: the unit system's unit for its kind
-    (force, damping, stiffness, length, pressure, ...), else ``unit`` itself (SI, plain factors, kinds the system
-    does not fix: mass, time, 1/m, ...)."""
+def _display_unit(unit: str, value: float) -> str:
+    """The unit a parameter of SI unit ``unit`` and start ``value`` is shown and typed in: the unit the unit system
+    gives its kind (force, damping, stiffness, length, pressure, ...; in SI the prefix that keeps the value between
+    1 and 1000), else ``unit`` itself (plain factors, kinds without a unit choice: 1/m, ...)."""
     kind = kind_of(unit)
-    if system == "SI" or kind is None:
+    if kind is None:
         return unit
-    choices = UNIT_SYSTEMS[system].get(kind)
-    return choices[0] if choices else unit
+    return pick_unit(Q_(abs(value), unit), kind)
+
+
+def _pretty(unit: str) -> str:
+    """A unit as a table shows it: ``kN·s/m`` (pint's short pretty form), ``-`` for none."""
+    return f"{ureg.Unit(unit):~P}" if unit else "-"
 
 
 def _to_unit(value: float, unit: str, shown: str) -> float:
@@ -254,16 +262,15 @@ def _download(sim: dict, damper, name: str, effects, values) -> None:
     """The simulated time history as a measurement file (CSV, units in the header): it reads back as a record."""
     fluid = damper.fluid
     column = {"A": "current", "V": "voltage"}.get(fluid.control_unit, "field")
-    unit = fluid.field_unit
-    columns = [("time", "s", sim["time"]), ("displacement", "mm", Q_(sim["displacement"], "m").to("mm").magnitude),
-               ("velocity", "mm/s", Q_(sim["velocity"], "m/s").to("mm/s").magnitude),
-               ("force", "N", sim["force"]),
-               (column, unit, Q_(np.asarray(sim["control"], float), fluid.control_unit).to(unit).magnitude)]
+    # every number in SI (EXPORT_UNITS), the unit in the header: the control in its SI unit too (V/m, A/m, A)
+    columns = [("time", "s", sim["time"]), ("displacement", "m", sim["displacement"]),
+               ("velocity", "m/s", sim["velocity"]), ("force", "N", sim["force"]),
+               (column, fluid.control_unit, np.asarray(sim["control"], float))]
     if sim["measured"] is not None:
         columns.append(("measured force", "N", sim["measured"]))
     model = name + ("".join(f" + {e}" for e in effects) if name == "physics" else "")
     parameters = ", ".join(f"{k} = {v:.6g} {sim['units'].get(k) or ''}".strip() for k, v in dict(values).items())
-    comment = (f"simulated by erdesign: {model} on {sim['description']}\n"
+    comment = (f"simulated by erdesign: {model} on {sim['description']}; numbers in {EXPORT_UNITS} units\n"
                f"damper: {damper.name or 'design'}; parameters: {parameters or 'none'}")
     stem = state.file_stem(damper.name or "design", f"-{name}-simulated")
     st.download_button("Simulated time history (CSV)", csv_text(columns, comment=comment),

@@ -28,11 +28,14 @@ from erdesign.errors import ErdesignError
 from erdesign.materials import fluid_values
 from erdesign.report import plots
 from erdesign.report.builder import compare_designs
-from erdesign.report.export import csv_text, damper_toml, rows_csv
+from erdesign.report.export import csv_text, damper_toml
 from erdesign.report.formatting import control_label, field_text, pick_unit, show
+from erdesign.formatting import si_unit_text
+from erdesign.report.fit import EXPORT_UNITS
 from erdesign.units import Q_, to_si
 
-__all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets", "design_comment"]
+__all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets", "design_comment",
+           "design_point_csv"]
 
 #: Material choice meaning "the values of the damper file".
 FILE_VALUES = "(values of the damper file)"
@@ -331,7 +334,8 @@ def _curves_csv(report) -> str:
             columns.append((f"dynamic range at {label}", "", row))
     for label, row in zip(sweep.field_labels(), sweep.reynolds):
         columns.append((f"Reynolds number at {label}", "", row))
-    return csv_text(columns, comment=f"quasi-steady curves of {report.title} (erdesign.damper.curves)")
+    return csv_text(columns, comment=f"quasi-steady curves of {report.title} (erdesign.damper.curves); numbers in "
+                                     f"{EXPORT_UNITS} units")
 
 
 def _downloads(design: dict, report) -> None:
@@ -343,12 +347,21 @@ def _downloads(design: dict, report) -> None:
                             "`erdesign size`; the design point is kept as a comment.")
     cols[1].download_button("Curves (CSV)", _curves_csv(report), file_name=f"{stem}-curves.csv", mime="text/csv",
                             key="size.dl.curves", icon=":material/download:")
-    point = rows_csv([{"quantity": r.label, "value": r.value.number, "unit": r.value.unit, "note": r.note}
-                      for r in report.design_point]
-                     + [{"quantity": f"check: {c.name}", "value": c.status, "unit": "",
-                         "note": c.detail} for c in report.checks])
+    point = design_point_csv(report)
     cols[2].download_button("Design point (CSV)", point, file_name=f"{stem}-design-point.csv",
                             mime="text/csv", key="size.dl.point", icon=":material/download:")
+
+
+def design_point_csv(report) -> str:
+    """The design point as CSV in SI: one column per figure headed ``label [unit]`` (``[1]`` for a ratio), one row
+    of numbers; the validity checks as comment lines (text, not numbers)."""
+    rows = [r for r in report.design_point if r.key != "field"]
+    field = report.setting("field_design").value
+    columns = [("design control", si_unit_text(field.si_unit), field.si)]
+    columns += [(r.label, si_unit_text(r.value.si_unit), r.value.si) for r in rows]
+    checks = "\n".join(f"check {c.name}: {c.status}" + (f" ({c.detail})" if c.detail else "") for c in report.checks)
+    return csv_text([(name, unit, [value]) for name, unit, value in columns],
+                    comment=f"design point of {report.title} (numbers in {EXPORT_UNITS} units)\n{checks}")
 
 
 def _baseline(design: dict, report) -> None:
@@ -445,7 +458,8 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
                      ("zero-field force", "N", result["zero_field_force"]),
                      ("dynamic range", "", result["dynamic_range"]), ("Reynolds number", "", result["reynolds"]),
                      ("gap ratio h/d", "", result["gap_ratio"])],
-                    comment=f"sweep of the {state.GEOMETRY_SWEEPS[parameter]} at {velocity_label} and {field_label}")
+                    comment=f"sweep of the {state.GEOMETRY_SWEEPS[parameter]} at {velocity_label} and {field_label}; "
+                            f"numbers in {EXPORT_UNITS} units")
     st.download_button("Sweep (CSV)", data, file_name=f"sweep-{parameter}.csv", mime="text/csv",
                        key="size.dl.sweep", icon=":material/download:")
 

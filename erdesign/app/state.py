@@ -40,7 +40,7 @@ __all__ = [
     "spec_text", "build_damper", "damper_or_error", "caught", "force_velocity_curves", "geometry_sweep",
     "GEOMETRY_SWEEPS", "read_record",
     "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
-    "render_report", "clear_caches", "material_names", "set_widget",
+    "render_report", "report_pages", "clear_caches", "material_names", "set_widget",
 ]
 
 #: The damper the app opens on.
@@ -504,8 +504,21 @@ def report_images(text: str, system: str, comparison: tuple | None, history: tup
     return images_zip({f"{stem}-{k}": v for k, v in figure_images(report.figures, image_format).items()})
 
 
+@st.cache_data(show_spinner=False, max_entries=4)
+def report_pages(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
+                 baseline: str | None, image_format: str) -> bytes:
+    """The report's figures as interactive HTML pages in one ZIP archive (:func:`erdesign.report.export.figure_pages`):
+    the fallback of :func:`report_images` that needs no extra install."""
+    from ..report.export import figure_pages, images_zip
+
+    report = design_report(text, system, comparison, history, baseline)
+    stem = file_stem(json.loads(text)["spec"].get("name") or "design")
+    pages = figure_pages(report.figures, image_format)
+    return images_zip({(k if k.endswith(".js") else f"{stem}-{k}"): v for k, v in pages.items()})
+
+
 def clear_caches() -> None:
     """Empty every cache of the app (tests call it between tests)."""
     for fn in (force_velocity_curves, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
-               design_report, render_report, report_images):
+               design_report, render_report, report_images, report_pages):
         fn.clear()
