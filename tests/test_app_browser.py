@@ -249,7 +249,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     _shoot(page, tmp_path / "compare_refit.png")
     page.get_by_role("tab", name="downloads").click()
     params = _download(page, "Fitted parameters", tmp_path).read_text()
-    assert "friction_force" in params and "± " in params
+    assert "friction_force [N]" in params and "numbers in SI units" in params     # numbers in the cells
     history = _download(page, "Error history", tmp_path).read_text().splitlines()
     assert [line.split(",")[1] for line in history[1:]] == ["baseline", effect, "noise floor"]
 

@@ -12,19 +12,26 @@ import json
 import re
 
 import pytest
-from tests.test_app import FOUR_FIGURES, THREE_FIGURES, Quantities, downloads, no_error  # noqa: F401 - fixture
-from tests.test_app import _clear_caches  # noqa: F401 - autouse fixture
 
 from erdesign.app import state
 from erdesign.units import Q_, ureg
+from tests.test_app import (  # noqa: F401 - fixture
+    FOUR_FIGURES,
+    THREE_FIGURES,
+    Quantities,
+    _clear_caches,  # noqa: F401 - autouse fixture
+    downloads,
+    no_error,
+)
 
 pytestmark = pytest.mark.slow
 
 
 @pytest.fixture
 def app():
-    from tests.test_app import MAIN, TIMEOUT
     from streamlit.testing.v1 import AppTest
+
+    from tests.test_app import MAIN, TIMEOUT
 
     at = AppTest.from_file(MAIN, default_timeout=TIMEOUT).run()
     assert not at.exception, at.exception
@@ -40,7 +47,7 @@ def _q(text: str):
     return Q_(text.replace("·", "*").replace("²", "^2").replace("³", "^3"))
 
 
-def test_diagnosis_numbers_agree_on_the_page_in_the_report_and_on_the_command_line(app, downloads, tmp_path,
+def test_diagnosis_numbers_agree_on_the_page_in_the_report_and_on_the_command_line(app, downloads, tmp_path,  # noqa: F811
                                                                                    capsys):
     """ESR, noise floor and RMS residual of one diagnosis: the Compare page's metrics, the report's comparison
     section and `erdesign diagnose` are one number each (issue 26: 0.002491 beside 0.00238; 118.1 N beside 66.69 N)."""
@@ -84,7 +91,7 @@ def test_diagnosis_numbers_agree_on_the_page_in_the_report_and_on_the_command_li
     assert cli_rms == pytest.approx(_q(rms).to("N").magnitude, rel=FOUR_FIGURES)
 
 
-def test_a_report_shows_each_quantity_in_one_unit(app, downloads):
+def test_a_report_shows_each_quantity_in_one_unit(app, downloads):  # noqa: F811 - the fixture
     """Every force and every pressure of the report (design point, tables, checks) in one unit each, the Size
     page's metrics in the same unit: never 190.8 N in one section and 0.1908 kN in another."""
     app.text_input(key="size.velocity").set_value("2 mm/s").run()       # small forces beside the curves' kN
@@ -132,3 +139,28 @@ def test_the_coil_damper_has_one_yield_stress_and_its_control_everywhere(app):
     no_error(app)
     field = app.text_input(key="sim.field")
     assert (field.label, field.value) == ("field E", "3 kV/mm")
+
+
+def test_simulate_parameters_read_in_prefixed_units_to_four_figures(app):
+    """Issue 26: the Simulate table showed "43241692.2085 N/m" and "N*s/m"; each value now reads between 1 and 1000
+    in a prefixed unit (pint's pretty form), to 4 significant figures, and the simulation is unchanged by it."""
+    app.switch_page("simulate.py").run()
+    app.multiselect(key="sim.effects").select("compressibility").select("seal_friction").run()
+    no_error(app)
+    from tests.test_app import parameter_rows
+
+    rows = list(parameter_rows(app).values())
+    assert rows, "the parameter table"
+    for row in rows:
+        assert "*" not in row["unit"], row                        # N·s/m, not N*s/m
+        value = float(row["value"])
+        digits = len(f"{abs(value):.10g}".replace(".", "").lstrip("0").rstrip("0"))
+        assert digits <= 4, row
+        if row["unit"] != "-" and value != 0:
+            assert 1 <= abs(value) < 1000 or row["unit"] in ("1/m", "m⁻¹", "s", "kg"), row
+    # the legend names the model shortly; the list of effects is in the caption
+    from tests.test_app import figure
+
+    names = [t["name"] for t in figure(app, "sim.fig.loops")["data"]]
+    assert set(names) == {"design + 2 effects"}
+    assert any("effects: compressibility, seal_friction" in c.value for c in app.caption)

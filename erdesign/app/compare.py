@@ -20,11 +20,11 @@ from erdesign.data.measurement import check_record
 from erdesign.diagnosis.diagnose import fitted_model
 from erdesign.effects import EFFECTS
 from erdesign.errors import ErdesignError
+from erdesign.formatting import esr_shown
 from erdesign.report import plots
 from erdesign.report.builder import ErrorHistoryStep
 from erdesign.report.export import csv_text, rows_csv
 from erdesign.report.fit import EXPORT_UNITS, correlation_rows, parameter_rows, parameters_csv, statistics_rows
-from erdesign.formatting import esr_shown
 from erdesign.report.formatting import pick_unit, show
 from erdesign.units import Q_
 

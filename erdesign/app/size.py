@@ -25,13 +25,13 @@ else:  # pragma: no cover
 from erdesign.app import figures, state
 from erdesign.damper.files import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
+from erdesign.formatting import si_unit_text
 from erdesign.materials import fluid_values
 from erdesign.report import plots
 from erdesign.report.builder import compare_designs
 from erdesign.report.export import csv_text, damper_toml
-from erdesign.report.formatting import control_label, field_text, pick_unit, show
-from erdesign.formatting import si_unit_text
 from erdesign.report.fit import EXPORT_UNITS
+from erdesign.report.formatting import control_label, field_text, pick_unit, show
 from erdesign.units import Q_, to_si
 
 __all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets", "design_comment",
