@@ -373,6 +373,19 @@ def test_every_page_at_two_sizes_in_three_unit_systems(browser, app_url, tmp_pat
                 where = f"{size} {system} {title}"
                 problems += _check_page(page, where)
                 _shoot_screens(page, folder / f"{title.split()[0].lower()}-{system}")
+        # an MR damper with a coil: the control is the coil current on every page, τ_y from the magnetic circuit
+        _go(page, "Size")
+        page.get_by_test_id("stSelectbox").filter(has_text="start from an example").click()
+        page.get_by_role("option", name="mr_coil", exact=True).click()
+        _idle(page)
+        sync_api.expect(page.get_by_label("design coil current I", exact=True)).to_have_value("2 A")
+        problems += _check_page(page, f"{size} mr_coil Size")
+        _shoot_screens(page, folder / "size-mr_coil")
+        _go(page, "Simulate")
+        sync_api.expect(page.get_by_label("coil current I", exact=True)).to_have_value("2 A")
+        _idle(page)
+        problems += _check_page(page, f"{size} mr_coil Simulate")
+        _shoot_screens(page, folder / "simulate-mr_coil", screens=2)
     finally:
         context.close()
     assert not problems, "\n".join(problems)

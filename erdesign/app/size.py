@@ -246,6 +246,8 @@ def _inputs() -> dict:
                                "magnetic circuit: the Magnetic circuit section shows it at each current.")
             values[key] = _text(st.session_state.get("size.file_fluid", {}).get(key))
             continue
+        if coil and key == "reference_field":
+            label = "reference field: the rated coil current"
         values[key] = state.widget(st.text_input, label, f"size.fluid.{key}", "",
                                    help=(helptext + " With its unit.").strip())
     return values
