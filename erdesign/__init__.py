@@ -34,6 +34,7 @@ _LAZY = {
         "slit_pressure_drop", "thin_gap_error", "yield_pressure_drop"), "api"),
     **dict.fromkeys(("Damper", "QuasiSteadyState", "SineResponse", "SizingResult"), "damper"),
     **dict.fromkeys(("load_damper", "load_example"), "damper.files"),
+    "save_damper": "damper.writer",
     **dict.fromkeys(("calibrate", "improve"), "diagnosis.diagnose"),
     **dict.fromkeys(("FitResult", "fit"), "identification.fit"),
     **dict.fromkeys(("cross_validation", "identify_joint"), "identification.identify"),
@@ -63,7 +64,7 @@ _SUBMODULES = {
 
 __all__ = [
     "Damper", "QuasiSteadyState", "SineResponse", "SizingResult", "Fluid", "Geometry",
-    "load_damper", "load_example",
+    "load_damper", "load_example", "save_damper",
     "Measurement", "read_measurement", "write_measurement",
     "fit", "FitResult", "get_model", "model_names", "identify_joint", "cross_validation",
     "inverse_control", "PhysicsDamper", "calibrate", "improve", "run_rig",

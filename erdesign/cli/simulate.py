@@ -74,7 +74,7 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
     if out is not None:
         write_measurement(out, record.with_force(sim.force), units={"force": "N"},
                           comment=f"erdesign simulate: model {model_name}, parameters {params}, on "
-                                  f"{Path(measurement_file).name}")
+                                  f"{Path(measurement_file).name}", overwrite=overwrite, option="--out")
     reference = _reference_text(model, record)
     params_text = {name: model.parameter(name).format(v) for name, v in sim.values.items()}
     warnings = [as_flags(w) for w in (*notes, *(sim.warnings or []))]

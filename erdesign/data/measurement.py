@@ -807,8 +807,13 @@ def _control_column(record: "Measurement") -> str:
 
 
 def write_measurement(path: str | Path, m: Measurement, *, units: dict[str, str] | None = None,
-                      comment: str = "") -> None:
-    """Write a record as a measurement CSV file (SI units unless ``units`` maps column -> unit)."""
+                      comment: str = "", overwrite: bool = False, option: str = "path") -> None:
+    """Write a record as a measurement CSV file (SI units unless ``units`` maps column -> unit).
+
+    Written whole or not at all (an interrupt leaves no half-written file), and an existing ``path`` only with
+    ``overwrite`` (:mod:`erdesign.output`; ``option`` names the output in messages, e.g. ``--out``)."""
+    from ..output import open_output
+
     units = {**m.units, **(units or {})}
     cols: list[tuple[str, np.ndarray, str]] = [("time", m.time, "s"), ("displacement", m.displacement, "m")]
     if m.force is not None:
@@ -823,7 +828,7 @@ def write_measurement(path: str | Path, m: Measurement, *, units: dict[str, str]
         unit = units.get(name, si_unit)
         header.append(f"{name} [{unit}]")
         table.append(Q_(values, si_unit).to(unit).magnitude)
-    with open(path, "w", newline="") as fh:
+    with open_output(path, newline="", overwrite=overwrite, option=option) as fh:
         for line in comment.splitlines():
             fh.write(f"# {line}\n")
         w = csv.writer(fh)
