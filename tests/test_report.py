@@ -309,7 +309,8 @@ def test_measurement_section_only_when_given(markdown, html):
                      history=[(0, "baseline", 0.31), ErrorHistoryStep(1, "seal_friction", 0.082)])
     md = render_markdown(r)
     assert "## 7. Measurement comparison and error history (optional)" in md
-    assert "| ESR (Vivas-López et al., eq 7) | 0.082 |" in md and "| RMS force error | 85 N |" in md
+    # the RMS error in the report's one force unit (kN: the curves' forces), not N beside the tables' kN
+    assert "| ESR (Vivas-López et al., eq 7) | 0.082 |" in md and "| RMS force error | 0.085 kN |" in md
     assert "| 1 | seal_friction | 0.082 |" in md
     assert [f.key for f in r.figures][-2:] == ["measurement", "history"]
     page = render_html(r)
