@@ -53,6 +53,33 @@ INTEGRATION = {
     "chebyshev": "algebraic: a tensor Chebyshev series in scaled x, v (and u); identified by linear least squares",
     "maxwell_neural": "Maxwell filter (exact) plus a one-hidden-layer tanh network of (x, v, a, u) trained on the "
                       "Maxwell residual (Levenberg-Marquardt)",
+    "bingham_modified": "backward-Euler dead-zone step of the extended Bingham kernel with a rigid Kelvin element "
+                        "(64 sub-steps per sample, compiled)",
+    "bingham_improved": "algebraic (no state)",
+    "bingham_regularized": "algebraic (no state; the branch is chosen by the sign of the acceleration)",
+    "bingham_hysteretic": "exact stop operator (elastic-perfectly-plastic spring) for a displacement linear between "
+                          "samples, compiled; the damping terms algebraic",
+    "bouc_wen_shear": "exact z steps (as Bouc-Wen)",
+    "bouc_wen_mass": "exact z steps (as Bouc-Wen); mass and shear-thinning damping algebraic",
+    "bouc_wen_modified_mass": "as the modified Bouc-Wen model, plus the inertia term (algebraic)",
+    "bouc_wen_amplitude": "exact z steps (as Bouc-Wen); the amplitude laws algebraic",
+    "bouc_wen_dominguez": "explicit (the tanh solution of the Bouc-Wen equation on each branch; no state)",
+    "bouc_wen_dominguez_cfa": "explicit (as bouc_wen_dominguez)",
+    "bouc_wen_asymmetric_sigmoid": "as the modified Bouc-Wen model (zero-current parameters), times the "
+                                   "algebraic current gain",
+    "bouc_wen_nonsymmetric": "exact z steps of the Bouc-Wen kernel driven by x - mu int sgn(x) dt (the time "
+                             "integral exact for x linear between samples)",
+    "bouc_wen_modified_normalized": "the modified Bouc-Wen kernel with beta = rho (1 - sigma), gamma = rho sigma, "
+                                    "delta = rho",
+    "bouc_wen_restructured": "the modified Bouc-Wen kernel with c0 = k0 = 0 in its internal equation",
+    "bouc_wen_normalized_dominguez": "exact z steps of the Bouc-Wen kernel (beta = 0, n = 2, A = gamma)",
+    "li_viscoelastic_plastic": "exact first-order lag of the Zener element (first-order hold); the switch and the "
+                               "post-yield law algebraic",
+    "vep_continuous": "implicit-midpoint sub-steps (4 per sample, second order, A-stable) of the internal "
+                      "displacement, each sub-step's rate by bisection on the monotone element law (compiled); "
+                      "checked against an independent ODE solution (DOP853, rtol 1e-10) to 2e-3 of the force range",
+    "vep_nonlinear_stiffness": "as vep_continuous, bisection on the full nonlinear-stiffness equation",
+    "sves": "exact stop operator for the elasto-slide element (compiled); spring and dashpot algebraic",
 }
 
 MISPRINTS = """\

@@ -9,7 +9,10 @@ process loads it instead of compiling again.
 * :func:`modified_bouc_wen` - Spencer et al. (1997): the filtered control, the internal displacement and the
   Bouc-Wen variable, by classical Runge-Kutta sub-steps in w with z exact along the step (see its docstring);
 * :func:`extended_bingham_force` - the Gamota-Filisko model by backward Euler on its dead-zone form;
-* :func:`affine_recurrence` - :math:`y_{n+1} = c_n y_n + d_n` (Dahl, LuGre, first-order lags) in one pass.
+* :func:`affine_recurrence` - :math:`y_{n+1} = c_n y_n + d_n` (Dahl, LuGre, first-order lags) in one pass;
+* :func:`stop_operator`, :func:`series_viscoplastic`, :func:`mass_on_damper` - the elasto-slide element (SVES,
+  Zhang-Huang), the series visco-plastic element (VEP, nkVEP) and a mass on a nonlinear damper (Bass, Sims) of the
+  MR-model review's catalogue.
 
 The arithmetic is that of the Python kernels it replaces; tests/test_models.py checks it against
 :func:`scipy.integrate.solve_ivp` (LSODA / Radau at rtol 1e-10), never against itself.
@@ -22,7 +25,8 @@ import math
 import numba
 import numpy as np
 
-__all__ = ["riccati_step", "bouc_wen_state", "modified_bouc_wen", "extended_bingham_force", "affine_recurrence"]
+__all__ = ["riccati_step", "bouc_wen_state", "modified_bouc_wen", "extended_bingham_force", "affine_recurrence",
+           "stop_operator", "series_viscoplastic", "mass_on_damper"]
 
 _jit = numba.njit(cache=True, nogil=True)
 
@@ -399,3 +403,140 @@ def affine_recurrence(c, d, y0):
     for k in range(N - 1):
         y[k + 1] = c[k] * y[k] + d[k]
     return y
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Kernels of the catalogue models (the MR-model review): a stop operator, a series visco-plastic element and a
+# mass on a nonlinear damper.  Each advances its state exactly (the stop operator) or by the implicit midpoint rule
+# (second order, A-stable) with the monotone scalar equation of each sub-step solved by bisection.
+
+
+@_jit
+def stop_operator(x, k, N, s0):
+    """Elasto-slide element (a spring k in series with a Coulomb slider N, a per-sample array) driven by a
+    displacement that is linear between samples: s[i] = clip(s[i-1] + k (x[i] - x[i-1]), -N[i], N[i]), exact for a
+    monotone step."""
+    n = x.size
+    s = np.empty(n)
+    cur = min(max(s0, -N[0]), N[0])
+    s[0] = cur
+    for i in range(1, n):
+        cur = min(max(cur + k * (x[i] - x[i - 1]), -N[i]), N[i])
+        s[i] = cur
+    return s
+
+
+@_jit
+def _vep_residual(s, xm, y, h, xd, k0, q, nexp, rho, d, c, A, alpha):
+    """Spring force minus element force at the midpoint for the element rate s (nkVEP, the MR-model review eqs
+    83-84; q = 0 is the continuous VEP of eq 82)."""
+    w = xm - y - 0.5 * h * s
+    k = k0
+    if q != 0.0:
+        k += q * abs(w - math.tanh(rho * (xd - s)) * d) ** nexp
+    return k * w - c * s - A * math.tanh(alpha * s)
+
+
+@_jit
+def series_viscoplastic(t, x, k0, q, nexp, rho, d, c, A, alpha, substeps):
+    r"""Internal displacement y and element rate of :math:`k(x, y)(x - y) = c\dot y + A\tanh(\alpha\dot y)` with
+    :math:`k = q|(x - y) - \tanh(\rho(\dot x - \dot y))d|^n + k_0` (per-sample arrays k0, c, A, alpha: current
+    laws), implicit midpoint sub-steps, each sub-step's rate by bisection.  Returns (y, ydot)."""
+    n = x.size
+    y = np.zeros(n)
+    yd = np.zeros(n)
+    cur = 0.0
+    sd = 0.0
+    for i in range(n - 1):
+        H = t[i + 1] - t[i]
+        h = H / substeps
+        xd = (x[i + 1] - x[i]) / H if H > 0.0 else 0.0
+        for j in range(substeps):
+            xm = x[i] + xd * h * (j + 0.5)
+            # residual decreases with s; bracket by doubling from the elastic guess
+            span = abs(k0[i] * (xm - cur)) / max(c[i] + A[i] * alpha[i], 1e-300) + abs(xd) + 1e-12
+            lo = -span
+            hi = span
+            for _ in range(200):
+                if _vep_residual(lo, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) > 0.0:
+                    break
+                lo *= 2.0
+            for _ in range(200):
+                if _vep_residual(hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) < 0.0:
+                    break
+                hi *= 2.0
+            for _ in range(100):
+                mid = 0.5 * (lo + hi)
+                if _vep_residual(mid, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) > 0.0:
+                    lo = mid
+                else:
+                    hi = mid
+                if hi - lo <= 1e-14 * (abs(mid) + 1e-12):
+                    break
+            sd = 0.5 * (lo + hi)
+            cur += h * sd
+        y[i + 1] = cur
+        yd[i + 1] = sd
+    return y, yd
+
+
+@_jit
+def _mass_residual(v, xm_n, v_n, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y):
+    """m (dv/dt) - (forces on the mass) at the midpoint, for the midpoint velocity v; increasing in v."""
+    xmass = xm_n + 0.5 * h * v
+    D = c_lin * v
+    if f_t != 0.0:
+        D += f_t * math.tanh(v / v_ref)
+    if C_pre != 0.0:
+        av = abs(v)
+        D += math.copysign(min(C_pre * av, C_post * av + F_y), v)
+    return 2.0 * m * (v - v_n) / h - (k1 * (xmid - xmass) + c1 * (xd - v) - k0 * xmass - D)
+
+
+@_jit
+def mass_on_damper(t, x, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y, substeps):
+    r"""Displacement and velocity of an internal mass m driven through a spring k1 and a dashpot c1 by the piston
+    displacement x, held by a spring k0 and a damper :math:`D(v) = c v + f_t\tanh(v/v_{ref}) +
+    \operatorname{sgn}v\min(C_{pre}|v|, C_{post}|v| + F_y)` to the body:
+    :math:`m\ddot x_m = k_1(x - x_m) + c_1(\dot x - \dot x_m) - k_0 x_m - D(\dot x_m)` (Bass: the MR-model review
+    eqs 93-94; Sims: eqs 63-64).  C_pre, C_post, F_y are per-sample arrays (current laws).  Implicit midpoint
+    sub-steps; m = 0 is allowed (the mass-less element).  Returns (x_m, v_m)."""
+    n = x.size
+    xm = np.zeros(n)
+    vm = np.zeros(n)
+    X = 0.0
+    V = 0.0
+    for i in range(n - 1):
+        H = t[i + 1] - t[i]
+        h = H / substeps
+        xd = (x[i + 1] - x[i]) / H if H > 0.0 else 0.0
+        for j in range(substeps):
+            xmid = x[i] + xd * h * (j + 0.5)
+            span = abs(V) + abs(xd) + 1e-9
+            lo = -span
+            hi = span
+            for _ in range(200):
+                if _mass_residual(lo, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre[i], C_post[i],
+                                  F_y[i]) < 0.0:
+                    break
+                lo *= 2.0
+            for _ in range(200):
+                if _mass_residual(hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre[i], C_post[i],
+                                  F_y[i]) > 0.0:
+                    break
+                hi *= 2.0
+            for _ in range(100):
+                mid = 0.5 * (lo + hi)
+                if _mass_residual(mid, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre[i], C_post[i],
+                                  F_y[i]) < 0.0:
+                    lo = mid
+                else:
+                    hi = mid
+                if hi - lo <= 1e-14 * (abs(mid) + 1e-12):
+                    break
+            vmid = 0.5 * (lo + hi)
+            X += h * vmid
+            V = 2.0 * vmid - V if m > 0.0 else vmid
+        xm[i + 1] = X
+        vm[i + 1] = V
+    return xm, vm

@@ -12,15 +12,20 @@ from typing import Callable
 from ..errors import ErdesignError
 from .algebraic import EyringPlastic, KwokTanh, MagicFormula, WengArctan
 from .base import Model
-from .bingham import Bingham, BinghamExtended
+from .bingham import (Bingham, BinghamExtended, BinghamHysteretic, BinghamImproved, BinghamModified,
+                      BinghamRegularized)
 from .biviscous import Biviscous, BiviscousHysteretic
 from .bouc_wen import BoucWen, BoucWenModified, BoucWenNormalized
+from .bouc_wen_variants import (BoucWenAmplitude, BoucWenAsymmetricSigmoid, BoucWenDominguez, BoucWenDominguezCFA,
+                                BoucWenMass, BoucWenModifiedMass, BoucWenModifiedNormalized, BoucWenNonsymmetric,
+                                BoucWenNormalizedII, BoucWenRestructured, BoucWenShear)
 from .chebyshev import Chebyshev
 from .friction import Dahl, DahlViscous, LuGre, LuGreModified
 from .kamath_wereley import KamathWereley4, KamathWereley6
 from .maxwell import BingMax, Maxwell, MaxwellNeural
 from .powell import Powell
 from .semiactive import SemiactiveGeneral
+from .viscoelastic import SVES, ContinuousVEP, LiViscoelasticPlastic, NonlinearStiffnessVEP
 
 __all__ = ["MODELS", "get_model", "model_names", "describe_models", "UnknownModelError", "INVERTIBLE"]
 
@@ -72,6 +77,26 @@ MODELS: dict[str, Callable[..., Model]] = {
     "magic_formula": MagicFormula,
     "chebyshev": Chebyshev,
     "maxwell_neural": MaxwellNeural,
+    # the rest of the MR-model review's catalogue (its Table 1; docs/models.md maps every row)
+    "bingham_modified": BinghamModified,
+    "bingham_improved": BinghamImproved,
+    "bingham_hysteretic": BinghamHysteretic,
+    "bingham_regularized": BinghamRegularized,
+    "bouc_wen_shear": BoucWenShear,
+    "bouc_wen_mass": BoucWenMass,
+    "bouc_wen_modified_mass": BoucWenModifiedMass,
+    "bouc_wen_amplitude": BoucWenAmplitude,
+    "bouc_wen_dominguez": BoucWenDominguez,
+    "bouc_wen_dominguez_cfa": BoucWenDominguezCFA,
+    "bouc_wen_asymmetric_sigmoid": BoucWenAsymmetricSigmoid,
+    "bouc_wen_nonsymmetric": BoucWenNonsymmetric,
+    "bouc_wen_modified_normalized": BoucWenModifiedNormalized,
+    "bouc_wen_restructured": BoucWenRestructured,
+    "bouc_wen_normalized_dominguez": BoucWenNormalizedII,
+    "li_viscoelastic_plastic": LiViscoelasticPlastic,
+    "vep_continuous": ContinuousVEP,
+    "vep_nonlinear_stiffness": NonlinearStiffnessVEP,
+    "sves": SVES,
     "physics": _physics,
 }
 
