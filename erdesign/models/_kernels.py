@@ -25,7 +25,7 @@ import numpy as np
 from ..numerics import affine_recurrence
 
 __all__ = ["first_order_lag", "dahl_state", "bouc_wen_state", "riccati_step", "modified_bouc_wen", "is_uniform",
-           "stop_operator", "series_viscoplastic", "mass_on_damper", "per_sample"]
+           "stop_operator", "series_viscoplastic", "mass_on_damper", "per_sample", "bouc_wen_state_varying"]
 
 
 def is_uniform(t: np.ndarray, rtol: float = 1e-6) -> bool:
@@ -208,8 +208,8 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
         \dot w = \frac{c_1\dot x - \alpha z - k_0 w}{c_0 + c_1},\qquad
         \dot z = -\gamma|\dot w| z|z|^{n-1} - \beta\dot w|z|^n + \delta\dot w ,
 
-    :math:`\alpha = \alpha_a + \alpha_b u_f + \alpha_c u_f^2`, :math:`c_0 = c_{0a} + c_{0b}u_f`,
-    :math:`c_1 = c_{1a} + c_{1b}u_f`.  The filter is exact; w is stepped by RK4 with z carried exactly along each
+    :math:`\alpha`, :math:`c_0`, :math:`c_1` polynomials of degree up to three in :math:`u_f` (Spencer's linear law,
+    Quiroz's and Spaggiari's quadratic laws, Yang's cubic law).  The filter is exact; w is stepped by RK4 with z carried exactly along each
     sub-step's travel (:func:`erdesign.models._compiled.modified_bouc_wen`).
 
     Parameters
@@ -219,7 +219,8 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
     eta : float
         Filter rate, [1/s]; ``inf`` for no filter.
     alpha, c0, c1 : tuples
-        (alpha_a, alpha_b, alpha_c) [N/m], (c0a, c0b), (c1a, c1b) [N s/m].
+        Polynomial coefficients in u_f, constant first, up to four each: (alpha_a, alpha_b, ...) [N/m],
+        (c0a, c0b, ...), (c1a, c1b, ...) [N s/m].
     k0, beta, gamma, delta, n : float
         [N/m], [1/m^n], [1/m^n], [-], [-].
 
@@ -231,10 +232,10 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
     x = np.ascontiguousarray(x, dtype=float)
     u = np.ascontiguousarray(np.broadcast_to(np.asarray(u, dtype=float), t.shape))
     eta = float(eta) if math.isfinite(eta) else 1e300
-    aa, ab, ac = (float(a) for a in alpha)
+    alpha, c0, c1 = (tuple(float(c) for c in coeffs) + (0.0,) * (4 - len(coeffs)) for coeffs in (alpha, c0, c1))
     steps = _STEPS.get()
-    return _compiled().modified_bouc_wen(t, x, u, eta, aa, ab, ac, float(c0[0]), float(c0[1]), float(c1[0]),
-                                         float(c1[1]), float(k0), float(beta), float(gamma), float(delta), float(n),
+    return _compiled().modified_bouc_wen(t, x, u, eta, *alpha, *c0, *c1, float(k0), float(beta), float(gamma),
+                                         float(delta), float(n),
                                          steps.theta, steps.max_substeps, _plan(steps, t, x))
 
 
@@ -272,9 +273,18 @@ def mass_on_damper(t, x, *, m=0.0, k1=0.0, c1=0.0, k0=0.0, c=0.0, f_t=0.0, v_ref
     r"""Displacement [m] and velocity [m/s] of an internal mass driven by the piston displacement x:
     :math:`m\ddot x_m = k_1(x - x_m) + c_1(\dot x - \dot x_m) - k_0x_m - D(\dot x_m)`,
     :math:`D(v) = cv + f_t\tanh(v/v_{ref}) + \operatorname{sgn}v\min(C_{pre}|v|, C_{post}|v| + F_y)` (Bass, Sims;
-    :func:`erdesign.models._compiled.mass_on_damper`).  C_pre, C_post, F_y may be per-sample arrays."""
+    :func:`erdesign.models._compiled.mass_on_damper`).  f_t, C_pre, C_post, F_y may be per-sample arrays."""
     t = np.ascontiguousarray(t, dtype=float)
     N = t.size
     return _compiled().mass_on_damper(t, np.ascontiguousarray(x, dtype=float), float(m), float(k1), float(c1),
-                                      float(k0), float(c), float(f_t), float(v_ref), per_sample(C_pre, N),
+                                      float(k0), float(c), per_sample(f_t, N), float(v_ref), per_sample(C_pre, N),
                                       per_sample(C_post, N), per_sample(F_y, N), int(substeps))
+
+
+def bouc_wen_state_varying(x, beta, gamma, delta, n, z0=0.0):
+    r"""The Bouc-Wen variable (as :func:`bouc_wen_state`) with shape parameters that vary per sample (voltage laws):
+    each step is exact with the values at its start."""
+    x = np.ascontiguousarray(x, dtype=float)
+    N = x.size
+    return _compiled().bouc_wen_state_varying(x, per_sample(beta, N), per_sample(gamma, N), per_sample(delta, N),
+                                              per_sample(n, N), float(z0))

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._kernels import bouc_wen_state, modified_bouc_wen
+from ._kernels import bouc_wen_state, bouc_wen_state_varying, modified_bouc_wen
 from .base import Model, Parameter
 from .bouc_wen import BoucWen, BoucWenModified, _hysteresis_parameters
 from .excitation import record_amplitude, record_frequency
@@ -611,12 +611,13 @@ class BoucWenModifiedNormalized(BoucWenModified):
         return super().states(record, {**values, "beta": beta, "gamma": gamma, "delta": delta})
 
     def initial_guess(self, record):
-        g = super().initial_guess(record)
-        out = {**self.defaults(), **{k: v for k, v in g.items() if k in self.parameter_names}}
+        g = self.defaults()
         if record.force is not None:
-            X = float(np.max(np.abs(record.displacement - np.mean(record.displacement)))) or 1.0
-            out.update(rho=10.0 / X, sigma=1.0, alpha_a=g["alpha_a"] * X / 10.0)
-        return out
+            fy, c0, _, X = _bw_guess(record, g)
+            # z saturates at 1 after a travel of about X / 10
+            g.update(c0a=max(c0, 10.0), c1a=15.0 * max(c0, 10.0), alpha_a=fy, rho=10.0 / X, sigma=1.0, k0=0.0,
+                     k1=0.0)
+        return g
 
 
 class BoucWenRestructured(Model):
@@ -742,4 +743,156 @@ class BoucWenNormalizedII(Model):
         if record.force is not None:
             fy, c0, f0, X = _bw_guess(record, g)
             g.update(c1=c0, rho1=fy, f0=f0, gamma=10.0 / X)
+        return g
+
+
+class BoucWenModifiedPolynomial(BoucWenModified):
+    r"""Modified Bouc-Wen model (Spencer) with cubic current laws (Yang et al.; quadratic: Spaggiari and Dragoni).
+
+    .. math::
+        \alpha = \alpha_a + \alpha_1u_f + \alpha_2u_f^2 + \alpha_3u_f^3,\quad
+        c_0 = c_{0a} + c_{0,1}u_f + c_{0,2}u_f^2 + c_{0,3}u_f^3,\quad
+        c_1 = c_{1a} + c_{1,1}u_f + c_{1,2}u_f^2 + c_{1,3}u_f^3
+
+    in Spencer's model (eq 17) with the first-order filter of the control (eq 19).
+
+    Notes
+    -----
+    Eq 20 (Yang et al.) writes the laws with the highest power first (:math:`\alpha_ai^3 + \alpha_bi^2 + \alpha_ci
+    + \alpha_d`); here the coefficients are named by their power.  The cubic coefficients at zero give the quadratic
+    laws of Spaggiari and Dragoni (eq 21); all but the constants and linear terms at zero give Spencer's eq 18.  The
+    same compiled loop as ``bouc_wen_modified`` (its coefficient polynomials are cubic).
+
+    References
+    ----------
+    Review (the MR-model review) eqs 17-21, section 3.2 (Yang et al.; Spaggiari and Dragoni).
+    """
+
+    name = "bouc_wen_modified_polynomial"
+    title = "modified Bouc-Wen with cubic / quadratic current laws (Yang; Spaggiari)"
+    source = "the MR-model review eqs 17-21 (Yang et al.; Spaggiari and Dragoni)"
+    _laws = (("alpha", "alpha_a", "N/m", 1e10), ("c0", "c0a", "N*s/m", 1e8), ("c1", "c1a", "N*s/m", 1e9))
+    control_parameters = tuple(f"{p}_{j}" for p, *_ in _laws for j in (1, 2, 3)) + ("eta",)
+    linear_parameters = ("k1",)
+    parameters = tuple(p for p in BoucWenModified.parameters
+                       if p.name not in ("c0b", "c1b", "alpha_b", "alpha_c")) + tuple(
+        Parameter(f"{p}_{j}", unit, 0.0, -bound, bound, f"{p} per unit control to the power {j}")
+        for p, _, unit, bound in _laws for j in (1, 2, 3))
+
+    def _coefficients(self, values, p, const):
+        return (values[const],) + tuple(values[f"{p}_{j}"] for j in (1, 2, 3))
+
+    def states(self, record, values):
+        return modified_bouc_wen(record.time, record.displacement, self.control(record), values["eta"],
+                                 self._coefficients(values, "alpha", "alpha_a"),
+                                 self._coefficients(values, "c0", "c0a"), self._coefficients(values, "c1", "c1a"),
+                                 values["k0"], values["beta"], values["gamma"], values["delta"], values["n"])
+
+    def force(self, record, values):
+        uf, w, z = self.states(record, values)
+
+        def poly(p, const):
+            a0, a1, a2, a3 = self._coefficients(values, p, const)
+            return a0 + (a1 + (a2 + a3 * uf) * uf) * uf
+        al, c0, c1 = poly("alpha", "alpha_a"), poly("c0", "c0a"), poly("c1", "c1a")
+        ydot = (al * z + c0 * record.velocity + values["k0"] * w) / (c0 + c1)
+        return c1 * ydot + values["k1"] * (record.displacement - values["x0"])
+
+    def initial_guess(self, record):
+        g = super().initial_guess(record)
+        return {**self.defaults(), **{k: v for k, v in g.items() if k in self.parameter_names}}
+
+
+class BoucWenNormalizedBahar(Model):
+    r"""Normalised Bouc-Wen model with Bahar's nonlinear voltage laws.
+
+    .. math::
+        F = k_x x + k_{\dot x}(v)\dot x + k_w(v)w + f_0,\qquad
+        \dot w = \rho(v)\left(\dot x - \sigma(v)|\dot x||w|^{n(v)-1}w + (\sigma(v) - 1)\dot x|w|^{n(v)}\right),
+
+        k_{\dot x} = k_{\dot xa} + k_{\dot xb}v,\ n = n_a + n_be^{-13v},\ \rho = \rho_a + \rho_be^{-14v},\
+        \sigma = \sigma_a + \sigma_be^{-14v},
+
+        k_w = \begin{cases} k_{w1} + k_{w2}v^{1.13} & v \le 0.3\\
+        k_{w3} + k_{w4}\sin\frac{\pi(v - 0.3)}{0.8} + k_{w5}\sin\frac{3\pi(v - 0.3)}{0.8} & 0.3 \le v \le 0.7\\
+        k_{w6} + k_{w7}v + k_{w8}v^3 + k_{w9}v^5 & 0.7 \le v \end{cases}
+
+    with v the voltage in volts.
+
+    Notes
+    -----
+    The constants of the laws (13 and 14 per volt, the break points 0.3 V and 0.7 V, the period 0.8 V, the
+    exponent 1.13) are the source's, in volts, so the model's control is always taken in volts (its control
+    reference is fixed at 1 V whatever the records).  The source writes :math:`-k_w w`; the sign is absorbed in
+    :math:`k_w` (as ``bouc_wen_normalized``).  n, rho and sigma change with the voltage, so the state depends on
+    the voltage history: the step of w uses the laws at the start of each sample's step (exact in w along it).
+    The review gives no continuity conditions for k_w at the break points; they are not imposed.
+
+    References
+    ----------
+    Review (the MR-model review) eqs 46-48, section 3.10 (Bahar et al.).
+    """
+
+    name = "bouc_wen_normalized_bahar"
+    title = "normalised Bouc-Wen with Bahar's voltage laws"
+    source = "the MR-model review eqs 46-48 (Bahar et al.)"
+    uses_control = True
+    control_parameters = ("k_v_b", "n_b", "rho_b", "sigma_b", *(f"k_w{j}" for j in range(2, 10)))
+    linear_parameters = ("k_x", "k_v_a", "k_v_b", "f0", *(f"k_w{j}" for j in range(1, 10)))
+    parameters = (
+        Parameter("k_x", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
+        Parameter("k_v_a", "N*s/m", 5000.0, -1e8, 1e8, "viscous damping at 0 V"),
+        Parameter("k_v_b", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per volt"),
+        Parameter("n_a", "", 1.0, 0.5, 10.0, "exponent at high voltage"),
+        Parameter("n_b", "", 0.0, -5.0, 10.0, "exponent change at 0 V (decays as exp(-13 v))"),
+        Parameter("rho_a", "1/m", 1000.0, 1e-3, 1e7, "rate at high voltage", log_scale=True),
+        Parameter("rho_b", "1/m", 0.0, -1e7, 1e7, "rate change at 0 V (decays as exp(-14 v))"),
+        Parameter("sigma_a", "", 1.0, 0.5, 50.0, "loop shape at high voltage"),
+        Parameter("sigma_b", "", 0.0, -0.5, 50.0, "loop shape change at 0 V (decays as exp(-14 v))"),
+        *(Parameter(f"k_w{j}", "N", 500.0 if j in (1, 3, 6) else 0.0, -1e7, 1e7, f"hysteretic force law, term {j}")
+          for j in range(1, 10)),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+    )
+
+    @property
+    def control_reference(self) -> float:
+        """Fixed at 1 V: the laws' constants are in volts."""
+        return 1.0
+
+    @control_reference.setter
+    def control_reference(self, value) -> None:  # identification sets a reference; the laws need volts
+        pass
+
+    def state(self, record, values):
+        """The normalised state w (|w| <= 1 for sigma >= 1/2)."""
+        v = np.maximum(self.control(record), 0.0)
+        n = np.clip(values["n_a"] + values["n_b"] * np.exp(-13.0 * v), 0.5, 10.0)
+        rho = np.maximum(values["rho_a"] + values["rho_b"] * np.exp(-14.0 * v), 1e-9)
+        sigma = np.maximum(values["sigma_a"] + values["sigma_b"] * np.exp(-14.0 * v), 0.5)
+        return bouc_wen_state_varying(record.displacement, rho * (1.0 - sigma), rho * sigma, rho, n)
+
+    def _k_w_basis(self, v):
+        low, mid, high = v <= 0.3, (v > 0.3) & (v <= 0.7), v > 0.7
+        s1 = np.sin(np.pi * (v - 0.3) / 0.8)
+        s3 = np.sin(3.0 * np.pi * (v - 0.3) / 0.8)
+        return {"k_w1": 1.0 * low, "k_w2": low * v**1.13, "k_w3": 1.0 * mid, "k_w4": mid * s1, "k_w5": mid * s3,
+                "k_w6": 1.0 * high, "k_w7": high * v, "k_w8": high * v**3, "k_w9": high * v**5}
+
+    def linear_terms(self, record, values):
+        v = np.maximum(self.control(record), 0.0)
+        w = self.state(record, values)
+        cols = {k: b * w for k, b in self._k_w_basis(v).items()}
+        xd = record.velocity
+        cols.update(k_x=record.displacement, k_v_a=xd, k_v_b=v * xd, f0=np.ones_like(xd))
+        return cols, np.zeros_like(xd)
+
+    def force(self, record, values):
+        cols, rest = self.linear_terms(record, values)
+        return rest + sum(values[k] * c for k, c in cols.items())
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c0, f0, X = _bw_guess(record, g)
+            g.update(k_v_a=c0, f0=f0, rho_a=10.0 / X, k_w1=fy, k_w3=fy, k_w6=fy)
         return g

@@ -135,7 +135,7 @@ class ContinuousVEP(Model):
     element of its Figure 23).  The current laws are those the review gives for nkVEP (eq 85), here used with the
     continuous model too (zero slopes: constants).  For large k the element is rigid and the force tends to the
     algebraic :math:`c\dot x + A\tanh(\alpha\dot x)`; at constant velocity V it settles at
-    :math:`cV + A\tanh(\alpha V)`.  Implicit-midpoint sub-steps (second order), the sub-step's rate by bisection.
+    :math:`cV + A\tanh(\alpha V)`.  Implicit-midpoint sub-steps (second order), the sub-step's rate by a bracketed root (Illinois false position).
 
     Examples
     --------
@@ -211,7 +211,7 @@ class NonlinearStiffnessVEP(ContinuousVEP):
     q = 0 is the continuous VEP model.  The stiffness rises away from :math:`\pm d_{opf}` (the "sudden change point"
     of the stiffness): with :math:`\rho` large, :math:`\tanh(\rho(\dot x - \dot y))` is the sign of the element's
     relative motion, so the stiffness is lowest where the spring's deflection equals :math:`\pm d_{opf}`.  The
-    stiffness depends on the rate :math:`\dot y` too, so each sub-step's rate is found by bisection on the full
+    stiffness depends on the rate :math:`\dot y` too, so each sub-step's rate is found by a bracketed root of the full
     nonlinear equation.
 
     Examples
