@@ -271,6 +271,9 @@ def _invertibility(model) -> str:
         how = "closed form: the force is affine in the control at each sample"
         if model.name == "lugre_modified":
             how = "step by step: affine in the control at each step, with the state advanced by the control chosen"
+        elif model.name == "li_viscoelastic_plastic":
+            how = ("closed form in the post-yield regime, where the force is affine in the control (the pre-yield "
+                   "force does not depend on it)")
     elif getattr(model, "memoryless", False):
         how = "vectorised bracketed root in the control (scipy.optimize.elementwise.find_root)"
     else:

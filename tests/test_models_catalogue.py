@@ -552,3 +552,31 @@ def test_bahar_laws_at_constant_voltage_are_the_normalized_bouc_wen_with_those_c
     assert np.allclose(F, G, rtol=1e-9, atol=1e-9 * np.ptp(G))
     m.control_reference = 10.0   # identification's reference is ignored: the laws' constants are in volts
     assert m.control_reference == 1.0
+
+
+def test_derivations_behind_the_corrections_hold_symbolically():
+    """The closed forms used above and in the models' notes, derived with sympy rather than taken from the print."""
+    import sympy as sp
+    x, C = sp.symbols("x C", real=True)
+    g = sp.symbols("gamma", positive=True)
+    # Dominguez (eq 30, corrected): z = tanh(sqrt(g) x + C) / sqrt(g) solves dz/dx = 1 - g z^2 (eq 29 with A = 1,
+    # beta = 0, n = 2 and the minus sign of eq 15, moving up with z > 0)
+    z = sp.tanh(sp.sqrt(g) * x + C) / sp.sqrt(g)
+    assert sp.simplify(sp.diff(z, x) - (1 - g * z**2)) == 0
+    # Kwok (eq 36) is eq 15: [d - (b + c sgn(z v))|z|^n] v = -c|v| z|z|^(n-1) - b v|z|^n + d v, all four sign cases
+    s, w, b, c, d, n = sp.symbols("s w b c d n", positive=True)
+    for zz in (s, -s):
+        for vv in (w, -w):
+            kwok = (d - (b + c * sp.sign(zz * vv)) * sp.Abs(zz) ** n) * vv
+            bw = -c * sp.Abs(vv) * zz * sp.Abs(zz) ** (n - 1) - b * vv * sp.Abs(zz) ** n + d * vv
+            assert sp.simplify(kwok - bw) == 0
+    # Zener (Li's pre-yield element) and the linear Bass model: complex stiffness by solving the harmonic equations
+    om = sp.symbols("omega", positive=True)
+    k0, k1, k2, c0, c1, m0 = sp.symbols("k0 k1 k2 c0 c1 m0", positive=True)
+    X, Y = sp.symbols("X Y")
+    Yz = sp.solve(sp.Eq(c1 * sp.I * om * Y + k1 * Y, k2 * (X - Y)), Y)[0]
+    assert sp.simplify(k2 * (X - Yz) / X - k2 * (k1 + sp.I * om * c1) / (k1 + k2 + sp.I * om * c1)) == 0
+    Yb = sp.solve(sp.Eq(-m0 * om**2 * Y, k1 * (X - Y) + c1 * sp.I * om * (X - Y) - k0 * Y - c0 * sp.I * om * Y), Y)[0]
+    Kb = (k1 * (X - Yb) + c1 * sp.I * om * (X - Yb)) / X
+    assert sp.simplify(Kb - (k1 + sp.I * om * c1) * (k0 - m0 * om**2 + sp.I * om * c0)
+                       / (k0 + k1 - m0 * om**2 + sp.I * om * (c0 + c1))) == 0
