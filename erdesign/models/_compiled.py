@@ -516,18 +516,23 @@ def series_viscoplastic(t, x, k0, q, nexp, rho, d, c, A, alpha, substeps):
         xd = (x[i + 1] - x[i]) / H if H > 0.0 else 0.0
         for j in range(substeps):
             xm = x[i] + xd * h * (j + 0.5)
-            # residual decreases with s; bracket by doubling from the elastic guess
-            span = abs(k0[i] * (xm - cur)) / max(c[i] + A[i] * alpha[i], 1e-300) + abs(xd) + 1e-12
-            lo = -span
-            hi = span
-            for _ in range(200):
+            # the residual decreases with s for large |s| (it may not be monotone near the root when q != 0): the
+            # bracket grows from the previous rate, so the root found is the one the rate continues to (the
+            # element's rate does not jump between roots from one sub-step to the next)
+            span = 1e-6 * (abs(sd) + abs(xd)) + 1e-12
+            lo = sd - span
+            hi = sd + span
+            for _ in range(400):
                 if _vep_residual(lo, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) > 0.0:
                     break
-                lo *= 2.0
-            for _ in range(200):
+                span *= 2.0
+                lo = sd - span
+            span = 1e-6 * (abs(sd) + abs(xd)) + 1e-12
+            for _ in range(400):
                 if _vep_residual(hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) < 0.0:
                     break
-                hi *= 2.0
+                span *= 2.0
+                hi = sd + span
             f_lo = _vep_residual(lo, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
             f_hi = _vep_residual(hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
             sd = _illinois_vep(lo, hi, f_lo, f_hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])

@@ -212,7 +212,10 @@ class NonlinearStiffnessVEP(ContinuousVEP):
     of the stiffness): with :math:`\rho` large, :math:`\tanh(\rho(\dot x - \dot y))` is the sign of the element's
     relative motion, so the stiffness is lowest where the spring's deflection equals :math:`\pm d_{opf}`.  The
     stiffness depends on the rate :math:`\dot y` too, so each sub-step's rate is found by a bracketed root of the full
-    nonlinear equation.
+    nonlinear equation, grown from the previous rate.  The rate is unique only while the stiffness changes slowly
+    with it, roughly :math:`q\rho d_{opf}|x - y|^n < c + A\alpha\,\mathrm{sech}^2(\alpha\dot y)`; beyond that the
+    equation has several rates and the printed model chatters between them (a property of eqs 83-84, not of the
+    integration): keep :math:`q\rho d_{opf}` moderate.
 
     Examples
     --------
@@ -232,9 +235,9 @@ class NonlinearStiffnessVEP(ContinuousVEP):
     title = "nonlinear-stiffness viscoelastic-plastic model (nkVEP, Li)"
     source = "the MR-model review eqs 83-85 (Table 1: eqs 78-79)"
     parameters = ContinuousVEP.parameters + (
-        Parameter("q", "N/m^2", 1e7, 0.0, 1e15, "nonlinear stiffness coefficient (units N/m^(1+n); shown for n = 1)"),
+        Parameter("q", "N/m^2", 1e6, 0.0, 1e15, "nonlinear stiffness coefficient (units N/m^(1+n); shown for n = 1)"),
         Parameter("n", "", 1.0, 0.1, 5.0, "nonlinear stiffness exponent", fitted=False),
-        Parameter("rho", "s/m", 1000.0, 0.0, 1e7, "amplification coefficient"),
+        Parameter("rho", "s/m", 50.0, 0.0, 1e7, "amplification coefficient"),
         Parameter("d_opf", "m", 0.001, 0.0, 1.0, "position of the sudden change of stiffness"),
     )
 
