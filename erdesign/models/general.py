@@ -316,6 +316,6 @@ class HeUnified(Model):
     def initial_guess(self, record):
         g = self.defaults()
         if record.force is not None:
-            fy, c, f0, vmax = _sign_viscous(record)
+            fy, c, _, vmax = _sign_viscous(record)
             g.update(D_b=fy, c=c, B_b=10.0 / vmax, A=0.0)
         return g

@@ -162,6 +162,6 @@ class Bass(Model):
     def initial_guess(self, record):
         g = self.defaults()
         if record.force is not None:
-            fy, c, f0, X, vmax = _scales(record)
+            fy, c, _, X, vmax = _scales(record)
             g.update(f_y=fy, c0=c, k1=20.0 * fy / X, c1=5.0 * c, v_ref=vmax / 50.0)
         return g
