@@ -597,3 +597,13 @@ def test_derivations_behind_the_corrections_hold_symbolically():
     Kb = (k1 * (X - Yb) + c1 * sp.I * om * (X - Yb)) / X
     assert sp.simplify(Kb - (k1 + sp.I * om * c1) * (k0 - m0 * om**2 + sp.I * om * c0)
                        / (k0 + k1 - m0 * om**2 + sp.I * om * (c0 + c1))) == 0
+
+
+@pytest.mark.slow
+def test_sims_model_with_fluid_inertia_matches_a_radau_solution():
+    rec = sine(0.005, 3.0, cycles=1, n_per_cycle=1000)
+    p = {"k": 2e6, "m1": 2.0, "C_pre_a": 3e4, "C_post_a": 3000.0, "F_y_a": 300.0}
+    F = get_model("sims_lumped").simulate(rec, p)
+    x1, _ = _mass_reference(rec, 2.0, 2e6, 0.0, 0.0, 0.0, 0.0, 1.0, C_pre=3e4, C_post=3000.0, F_y=300.0)
+    ref = 2e6 * (rec.displacement - x1)
+    assert np.max(np.abs(F - ref)) < 3e-3 * np.ptp(ref)
