@@ -43,6 +43,7 @@ INTEGRATION = {
     "biviscous_hysteretic": "algebraic (no state; the branch is chosen by the sign of the acceleration)",
     "eyring_plastic": "algebraic (no state)",
     "semiactive_general": "algebraic (no state)",
+    "semiactive_customized": "algebraic (no state; the terms the characterization chose, eq 6 by default)",
     "dahl": "exact affine recurrence of the Dahl state for a displacement linear between samples (prefix scan)",
     "dahl_viscous": "exact affine recurrence (as Dahl)",
     "lugre": "exact affine recurrence of the bristle state (prefix scan)",

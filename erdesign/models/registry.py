@@ -28,7 +28,7 @@ from .kamath_wereley import KamathWereley4, KamathWereley6, ViscoelasticPlasticP
 from .lumped import Bass, SimsLumped
 from .maxwell import BingMax, Maxwell, MaxwellNeural
 from .powell import Powell
-from .semiactive import SemiactiveGeneral
+from .semiactive import SemiactiveCustomized, SemiactiveGeneral
 from .viscoelastic import SVES, ContinuousVEP, LiViscoelasticPlastic, NonlinearStiffnessVEP
 
 __all__ = ["MODELS", "get_model", "model_names", "describe_models", "UnknownModelError", "INVERTIBLE"]
@@ -72,6 +72,7 @@ MODELS: dict[str, Callable[..., Model]] = {
     "biviscous_hysteretic": BiviscousHysteretic,
     "eyring_plastic": EyringPlastic,
     "semiactive_general": SemiactiveGeneral,
+    "semiactive_customized": SemiactiveCustomized,
     "dahl": Dahl,
     "dahl_viscous": DahlViscous,
     "lugre": LuGre,
