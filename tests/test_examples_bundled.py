@@ -79,3 +79,18 @@ def test_erdesign_examples_lists_the_requirements_too(capsys):
     assert {r["name"]: r["configuration"] for r in listed}["mr_coil_requirements"] == "mixed"
     for r in listed:       # each listed name is accepted by erdesign design as it is
         assert read_requirements(r["name"]).name == r["title"]
+
+
+def test_an_example_name_works_in_every_command_that_takes_a_damper_file(tmp_path, monkeypatch, capsys):
+    """CONTRACTS "Bundled examples by name": ``magnetics`` and ``report`` used to answer "makris: no such file"."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["magnetics", "mr_coil", "--current", "1 A", "--json"]) == 0
+    by_name = json.loads(capsys.readouterr().out)
+    assert main(["magnetics", "examples/mr_coil.toml", "--current", "1 A", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out) == by_name
+    assert main(["report", "makris", "--out", "r.md"]) == 0
+    capsys.readouterr()
+    assert "Makris" in (tmp_path / "r.md").read_text()
+    assert main(["report", "no_such_damper", "--out", "s.md"]) == 1
+    assert "no_such_damper: no such file" in capsys.readouterr().err
+    assert not (tmp_path / "s.md").exists()

@@ -38,7 +38,7 @@ from ..units import Q_, same_dimension, to_si
 from .accumulator import ROD_KINDS, AccumulatorTable, accumulator_from_table, accumulator_table
 from .damper import Damper
 
-__all__ = ["load_damper", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
+__all__ = ["load_damper", "damper_file_path", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
            "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS", "coil_fluid", "COIL_CURRENT_SPAN", "damper_spec"]
 
 
@@ -310,14 +310,27 @@ def damper_spec(damper: Damper) -> dict:
     return spec
 
 
+def damper_file_path(path: str | Path) -> Path:
+    """Where the damper file ``path`` is read from: the file itself when it exists; else the bundled example that
+    the name (``makris``, ``mr_valve``, ...: :func:`example_names`) or the documented path (``examples/makris.toml``:
+    :func:`erdesign.examples.bundled_file`) names; else ``path`` (whose reading then says "no such file").  The one
+    rule every command that takes a damper file follows (CONTRACTS: bundled examples by name).
+
+    >>> damper_file_path("makris").name, damper_file_path("no_such_damper.toml").name
+    ('makris.toml', 'no_such_damper.toml')
+    """
+    if isinstance(path, str) and not Path(path).exists() and path in example_names():
+        return Path(str(resources.files("erdesign.examples") / f"{path}.toml"))
+    return bundled_file(path) or Path(path)
+
+
 def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
     """Read a damper file (TOML, docs/file_formats.md); where no such file exists, the name of a bundled example
-    (``makris``, ``mr_valve``, ...: :func:`example_names`) loads that example, and so does its documented path
-    ``examples/makris.toml`` (:func:`erdesign.examples.bundled_file`)."""
-    if isinstance(path, str) and not Path(path).exists() and path in example_names():
-        with resources.as_file(resources.files("erdesign.examples") / f"{path}.toml") as file:
-            return damper_from_dict(read_toml(file), source=f"examples/{path}.toml", flow_model=flow_model)
-    return damper_from_dict(read_toml(bundled_file(path) or path), source=str(path), flow_model=flow_model)
+    (``makris``, ``mr_valve``, ...) or its documented path ``examples/makris.toml`` loads that example
+    (:func:`damper_file_path`)."""
+    by_name = isinstance(path, str) and not Path(path).exists() and path in example_names()
+    source = f"examples/{path}.toml" if by_name else str(path)
+    return damper_from_dict(read_toml(damper_file_path(path)), source=source, flow_model=flow_model)
 
 
 def example_names() -> list[str]:

@@ -153,10 +153,10 @@ def circuit_from_damper_dict(data: Mapping[str, Any]) -> _Circuit:
 
 def load_magnetic_circuit(path: str | Path) -> _Circuit:
     """The circuit of a damper file with a ``[coil]`` (errors start with the file name)."""
-    from ..damper.files import read_toml
+    from ..damper.files import damper_file_path, read_toml
 
     try:
-        return circuit_from_damper_dict(read_toml(path))
+        return circuit_from_damper_dict(read_toml(damper_file_path(path)))
     except ErdesignError as exc:
         if str(exc).startswith(str(path)):
             raise

@@ -39,7 +39,7 @@ import numpy as np
 from .. import materials
 from ..damper import CRITICAL_REYNOLDS, Damper
 from ..damper.curves import ForceVelocityCurves, SineLoops, force_velocity_curves, sine_loops
-from ..damper.files import damper_from_dict, read_toml
+from ..damper.files import damper_file_path, damper_from_dict, read_toml
 from ..damper.validity import PLUG_FRACTION_LIMIT, SEAL_SHARE_LIMIT, Check, validity_checks
 from ..errors import ErdesignError, ValidityWarning
 from ..formatting import control_label, esr_shown
@@ -584,7 +584,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
             where = str(data.get("name") or "design")
             damper = damper_from_dict(data, source=where)
         else:
-            data = read_toml(source)
+            data = read_toml(damper_file_path(source))
             damper = damper_from_dict(data, source=str(source))
             where = str(source)
         fluid, g = damper.fluid, damper.geometry
