@@ -282,7 +282,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
 #: Screen sizes every page is checked at (issue 26): a laptop and a desktop screen.
 VIEWPORTS = {"1280x800": (1280, 800), "1920x1080": (1920, 1080)}
 #: Pages of the walk, by their title in the navigation.
-PAGE_TITLES = ("Size", "Simulate", "Compare and diagnose", "Report")
+PAGE_TITLES = ("Size", "Design", "Simulate", "Compare and diagnose", "Report", "Characterize", "Vehicle")
 
 #: Visible elements whose text the browser cuts with an ellipsis (text-overflow: ellipsis and wider than shown).
 _CUT = """() => [...document.querySelectorAll('body *')].filter(e => {
