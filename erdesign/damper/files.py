@@ -25,6 +25,7 @@ else:  # pragma: no cover
 
 from .. import materials
 from ..errors import DamperFileError, ErdesignError
+from ..limits import MAX_TOML_BYTES, is_path_like, nested_too_deeply, read_input_bytes
 from ..fluid import Fluid
 from ..geometry import Geometry
 from ..units import Q_, same_dimension, to_si
@@ -48,10 +49,17 @@ _REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_expone
 
 def read_toml(path: str | Path) -> dict:
     """Parse a TOML file; a missing file or a syntax error is a :class:`DamperFileError` naming the file."""
+    if not is_path_like(path):
+        raise DamperFileError(f"path: expected the name of a TOML file (a str or Path), got {type(path).__name__} "
+                              f"{path!r:.60}")
     path = Path(path)
     try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
+        text = read_input_bytes(path, MAX_TOML_BYTES, "a TOML file").decode("utf-8")
+        return tomllib.loads(text)
+    except RecursionError:
+        raise DamperFileError(nested_too_deeply(str(path))) from None
+    except ErdesignError as exc:
+        raise DamperFileError(str(exc)) from None
     except FileNotFoundError:
         raise DamperFileError(f"{path}: no such file") from None
     except IsADirectoryError:
