@@ -87,7 +87,7 @@ def control_kind(value: Any, name: str = "reference_field") -> str:
 
 
 def _unit_text(value: Any) -> str:
-    q = Q_(value) if isinstance(value, str) else value
+    q = _parse(value, "value") if isinstance(value, str) else value
     return f"{q.units:~}" if hasattr(q, "units") else ""
 
 

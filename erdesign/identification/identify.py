@@ -447,9 +447,9 @@ class Simulation:
 
 def _control_reference_from_text(text: str, record: Measurement, where: str) -> float:
     from ..fluid import CONTROL_UNITS
-    from ..units import Q_
+    from ..units import parse_quantity
+    q = parse_quantity(text, f"{where}: control_reference")
     try:
-        q = Q_(text)
         return float(q.to(CONTROL_UNITS[record.control_kind]).magnitude)
     except Exception:
         raise ErdesignError(f"{where}: control_reference {text!r} is not a {record.control_kind} "

@@ -42,7 +42,7 @@ from ..damper.curves import ForceVelocityCurves, SineLoops, force_velocity_curve
 from ..damper.files import damper_from_dict, read_toml
 from ..damper.validity import PLUG_FRACTION_LIMIT, SEAL_SHARE_LIMIT, Check, validity_checks
 from ..errors import ErdesignError, ValidityWarning
-from ..units import Q_, to_si
+from ..units import Q_, parse_quantity, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
 
@@ -760,7 +760,7 @@ def _comparison(c: MeasurementComparison) -> dict:
                               ("peak_force_measured", "peak force, measured", c.peak_force_measured),
                               ("peak_force_model", "peak force, model", c.peak_force_model)):
         if value is not None:
-            q = Q_(value) if isinstance(value, str) else value
+            q = parse_quantity(value, f"comparison.{key}") if isinstance(value, str) else value
             rows.append(Row(key, label, show(q, pick_unit(q, "force"), name=f"comparison.{key}")))
     arrays = (c.displacement, c.velocity, c.force_measured, c.force_model)
     if any(a is not None for a in arrays) and not all(a is not None for a in arrays):
