@@ -74,7 +74,7 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
                 raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}; save it "
                                     "as text (CSV UTF-8)")
             if not chunks and b"\x00" in chunk:
-                raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what}")
+                raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
             total += len(chunk)
             if total > limit:
                 raise ErdesignError(f"{label}: larger than {size_text(limit)}, the most erdesign reads as {what}; "
