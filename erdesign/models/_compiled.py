@@ -19,12 +19,13 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from .._compile import njit
 
 __all__ = ["riccati_step", "bouc_wen_state", "modified_bouc_wen", "extended_bingham_force", "affine_recurrence"]
 
-_jit = numba.njit(cache=True, nogil=True)
+_jit = njit(cache=True, nogil=True)
 
 
 @_jit
