@@ -33,6 +33,7 @@ from typing import Any, Callable, Mapping
 import numpy as np
 import pint
 
+from ._util import broadcast_named
 from .errors import UnitError
 
 __all__ = ["ureg", "Q_", "to_si", "parse_quantity", "parse_unit", "clean_value_text", "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
@@ -248,7 +249,7 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     target = ureg.Unit(unit)
     if isinstance(value, pint.Quantity):
         if value.dimensionality != target.dimensionality:
-            shown = given if isinstance(given, str) else f"{value:~P}"
+            shown = given if isinstance(given, str) else _shown_quantity(value)
             raise UnitError(
                 f"{name}: expected {dimension_name(target.dimensionality)} (a value with a unit such as "
                 f"'{unit}'), got '{shown}' ({dimension_name(value.dimensionality)})"
@@ -268,9 +269,16 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     except (TypeError, ValueError):
         raise UnitError(f"{name}: {value!r} is not a number") from None
     if not allow_nonfinite and not np.all(np.isfinite(magnitude)):
-        shown = f"{value:~P}" if isinstance(value, pint.Quantity) else repr(value)
+        shown = _shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value)
         raise UnitError(f"{name}: value must be finite, got {shown}")
     return float(magnitude) if magnitude.ndim == 0 else magnitude
+
+
+def _shown_quantity(q: pint.Quantity) -> str:
+    """A quantity for a message: the value when it is one, else the shape and unit of the array."""
+    if np.ndim(q.magnitude) == 0:
+        return f"{q:~P}"
+    return f"an array of shape {np.shape(q.magnitude)} in {q.units:~P}"
 
 
 def to_quantity(magnitude: Any, unit: str) -> pint.Quantity:
@@ -307,6 +315,9 @@ def unit_aware(returns: str | tuple[str, ...] | Mapping[str, str], **units: str)
                 key: (to_si(val, units[key], key) if key in units and val is not None else val)
                 for key, val in bound.arguments.items()
             }
+            arrays = {key: val for key, val in si.items() if isinstance(val, np.ndarray) and val.ndim}
+            if len(arrays) > 1:
+                broadcast_named(**arrays)
             return _attach(kernel(**si), returns)
 
         wrapper.kernel = kernel

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from .._util import scalar_or_array
+from .._util import broadcast_named, scalar_or_array, si_array
 from ..data.metrics import energy_per_cycle, equivalent_damping
 from ..errors import ErdesignError, ValidityWarning
 from ..flow.bingham import yield_pressure_drop
@@ -203,7 +203,8 @@ class Damper:
         ``v`` and ``field`` broadcast against each other.  The kernel is
         :func:`erdesign.damper.quasi_steady.quasi_steady_state`; see the module notes for the equations.
         """
-        field = np.asarray(field, dtype=float)
+        v, field = si_array(v, "v"), si_array(field, "field")
+        broadcast_named(v=v, field=field)
         tau_y = np.asarray(self.fluid.yield_stress_at(field), dtype=float)
         eta = np.asarray(self.fluid.viscosity_at(field), dtype=float)
         return damper_state(self, v, tau_y, eta)

@@ -137,18 +137,22 @@ class Measurement:
         window : int, optional
             Savitzky-Golay window (samples) for the derivatives; default from the dominant period.
         """
-        t = _as_1d(time, "time")
+        t = _as_1d(time, "time", unit="s")
         n = t.size
-        x = _as_1d(displacement, "displacement", n)
-        F = None if force is None else _as_1d(force, "force", n)
+        x = _as_1d(displacement, "displacement", n, unit="m")
+        F = None if force is None else _as_1d(force, "force", n, unit="N")
         if control is not None and control_kind not in CONTROL_UNITS:
             raise MeasurementError(f"control_kind: must be one of {', '.join(CONTROL_UNITS)} when a control is "
                                    f"given, got {control_kind!r}")
-        u = np.zeros(n) if control is None else _as_1d(np.broadcast_to(np.asarray(control, float), (n,)), "control", n)
-        T = None if temperature is None else _as_1d(temperature, "temperature", n)
+        if control is not None and hasattr(control, "units"):
+            from ..units import to_si
+            control = to_si(control, CONTROL_UNITS[control_kind], "control")
+        u = np.zeros(n) if control is None else _as_1d(np.broadcast_to(_as_1d_any(control, "control"), (n,)),
+                                                         "control", n)
+        T = None if temperature is None else _as_1d(temperature, "temperature", n, unit="K")
         _check_time(t, lambda i: f"time: sample {i}")
         v_derived, a = derivatives(t, x, window=window)
-        v = v_derived if velocity is None else _as_1d(velocity, "velocity", n)
+        v = v_derived if velocity is None else _as_1d(velocity, "velocity", n, unit="m/s")
         if velocity is not None:
             _check_velocity(v, v_derived, name)
         return cls(t, x, F, v, a, u, control_kind if control is not None else None, T, name)
@@ -184,7 +188,12 @@ class Measurement:
         return self.force
 
 
-def _as_1d(values, name: str, n: int | None = None) -> np.ndarray:
+def _as_1d(values, name: str, n: int | None = None, unit: str | None = None) -> np.ndarray:
+    if hasattr(values, "units") and hasattr(values, "magnitude"):      # a pint quantity: converted, never stripped
+        if unit is None:
+            raise MeasurementError(f"{name}: expected SI numbers, got a quantity in {values.units:~P}")
+        from ..units import to_si
+        values = to_si(values, unit, name)
     try:
         arr = np.asarray(values, dtype=float)
     except (TypeError, ValueError):
@@ -197,6 +206,14 @@ def _as_1d(values, name: str, n: int | None = None) -> np.ndarray:
     if bad.size:
         raise MeasurementError(f"{name}: sample {bad[0]} is not finite ({arr[bad[0]]})")
     return arr
+
+
+def _as_1d_any(values, name: str) -> np.ndarray:
+    """A value or array of numbers (a control may be one value for the whole record)."""
+    try:
+        return np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise MeasurementError(f"{name}: not numeric") from None
 
 
 def _check_velocity(v: np.ndarray, v_derived: np.ndarray, name: str) -> None:
