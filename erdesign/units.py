@@ -36,7 +36,7 @@ import pint
 from ._util import broadcast_named
 from .errors import UnitError
 
-__all__ = ["ureg", "Q_", "to_si", "parse_quantity", "parse_unit", "clean_value_text", "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
+__all__ = ["ureg", "Q_", "to_si", "positive_si", "parse_quantity", "parse_unit", "clean_value_text", "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
 
 ureg = pint.get_application_registry()
 Q_ = ureg.Quantity
@@ -279,6 +279,24 @@ def _shown_quantity(q: pint.Quantity) -> str:
     if np.ndim(q.magnitude) == 0:
         return f"{q:~P}"
     return f"an array of shape {np.shape(q.magnitude)} in {q.units:~P}"
+
+
+def positive_si(value: Any, unit: str, name: str) -> float:
+    """:func:`to_si` of one value that must be positive (an amplitude, a frequency), naming ``name`` otherwise.
+
+    >>> positive_si("0 mm", "m", "amplitude")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.UnitError: amplitude: must be positive, got '0 mm'
+    """
+    si = to_si(value, unit, name)
+    if np.ndim(si) != 0:
+        raise UnitError(f"{name}: expected one value, got an array of shape {np.shape(si)}")
+    if not si > 0:
+        shown = value if isinstance(value, str) else (_shown_quantity(value) if isinstance(value, pint.Quantity)
+                                                      else repr(value))
+        raise UnitError(f"{name}: must be positive, got '{shown}'")
+    return float(si)
 
 
 def to_quantity(magnitude: Any, unit: str) -> pint.Quantity:

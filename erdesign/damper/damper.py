@@ -39,7 +39,7 @@ from ..errors import ErdesignError, ValidityWarning
 from ..flow.bingham import yield_pressure_drop
 from ..fluid import Fluid
 from ..geometry import THIN_GAP_LIMIT, Geometry
-from ..units import Q_, to_si
+from ..units import Q_, positive_si, to_si
 from .accumulator import ROD_KINDS, Accumulator
 from .quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, damper_state, damping_constant
 
@@ -331,10 +331,8 @@ class Damper:
         samples_per_cycle : int
             Samples per cycle.
         """
-        X0 = to_si(amplitude, "m", "amplitude")
-        f = to_si(frequency, "Hz", "frequency")
-        if not (X0 > 0 and f > 0):
-            raise ErdesignError("amplitude and frequency: must be positive")
+        X0 = positive_si(amplitude, "m", "amplitude")
+        f = positive_si(frequency, "Hz", "frequency")
         if not (isinstance(cycles, int) and cycles >= 1 and isinstance(samples_per_cycle, int)
                 and samples_per_cycle >= 16):
             raise ErdesignError("cycles must be a whole number >= 1 and samples_per_cycle >= 16")

@@ -42,7 +42,7 @@ from ..damper.curves import ForceVelocityCurves, SineLoops, force_velocity_curve
 from ..damper.files import damper_from_dict, read_toml
 from ..damper.validity import PLUG_FRACTION_LIMIT, SEAL_SHARE_LIMIT, Check, validity_checks
 from ..errors import ErdesignError, ValidityWarning
-from ..units import Q_, parse_quantity, to_si
+from ..units import Q_, parse_quantity, positive_si, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
 
@@ -564,10 +564,11 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     for w in seen:      # hand the warnings on to the caller, as before
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     v_lo, v_hi = float(v[0]), float(v[-1])
-    X0 = float(to_si(amplitude if amplitude is not None else DEFAULT_AMPLITUDE, "m", "amplitude"))
-    f = float(to_si(frequency, "Hz", "frequency")) if frequency is not None else v_hi / (2 * math.pi * X0)
-    if not (X0 > 0 and f > 0):
-        raise ErdesignError("amplitude and frequency: must be positive")
+    X0 = positive_si(amplitude if amplitude is not None else DEFAULT_AMPLITUDE, "m", "amplitude")
+    f = positive_si(frequency, "Hz", "frequency") if frequency is not None else v_hi / (2 * math.pi * X0)
+    if not f > 0:
+        raise ErdesignError("frequency: the default makes the peak velocity of the loops the top of the velocity "
+                            f"range, which is {v_hi:g} m/s; give a positive top velocity or a frequency")
 
     sweep = force_velocity_curves(damper, v, E)
     loops = sine_loops(damper, X0, f, E)
