@@ -147,7 +147,8 @@ def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
         raise UnitError(f"{name}: {shown!r} is not a number (two decimal points)")
     if number and clean.strip() and not re.search(r"[0-9]|inf|nan", clean, re.IGNORECASE):
         example = f", e.g. '1 {clean.strip()}'" if _is_unit(clean.strip()) else ""
-        raise UnitError(f"{name}: {shown!r} has no number; give a value with its unit{example}")
+        raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit: it has no number; give a value "
+                        f"with its unit{example}")
     return clean
 
 
