@@ -33,6 +33,8 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
         raise ErdesignError(f"{name}: expected SI numbers, got a quantity in {value.units:~P}; pass "
                             f"value.to(unit).magnitude or use the unit-aware function")
     try:
+        if value is None:
+            raise TypeError
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         shown = repr(value)

@@ -68,6 +68,9 @@ def read_toml(path: str | Path) -> dict:
         raise DamperFileError(f"{path}: invalid TOML: {exc}") from None
     except UnicodeDecodeError:
         raise DamperFileError(f"{path}: not a text (UTF-8) file") from None
+    except ValueError as exc:   # beyond the parser's limits: an integer of more than 4300 digits
+        detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
+        raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
 
 
 def _check_keys(table: Any, allowed: tuple[str, ...], where: str) -> Mapping[str, Any]:
