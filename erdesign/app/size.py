@@ -25,6 +25,7 @@ else:  # pragma: no cover
 from erdesign.app import figures, state
 from erdesign.damper.files import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
+from erdesign.limits import nested_too_deeply
 from erdesign.materials import fluid_values
 from erdesign.report import plots
 from erdesign.report.builder import compare_designs
@@ -128,6 +129,9 @@ def _on_upload() -> None:
         return
     except tomllib.TOMLDecodeError as exc:
         st.session_state[_ERROR] = f"{name}: invalid TOML: {exc}"
+        return
+    except RecursionError:
+        st.session_state[_ERROR] = nested_too_deeply(name)
         return
     except ErdesignError as exc:
         st.session_state[_ERROR] = state.clean_message(str(exc))
