@@ -28,6 +28,7 @@ import inspect
 import math
 import re
 import unicodedata
+import warnings
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -337,7 +338,10 @@ def unit_aware(returns: str | tuple[str, ...] | Mapping[str, str], **units: str)
             arrays = {key: val for key, val in si.items() if isinstance(val, np.ndarray) and val.ndim}
             if len(arrays) > 1:
                 broadcast_named(**arrays)
-            return _attach(kernel(**si), returns)
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                result = kernel(**si)
+            _warn_nonfinite(kernel.__name__, result)
+            return _attach(result, returns)
 
         wrapper.kernel = kernel
         wrapper.__doc__ = (
@@ -347,6 +351,26 @@ def unit_aware(returns: str | tuple[str, ...] | Mapping[str, str], **units: str)
         return wrapper
 
     return decorate
+
+
+def _warn_nonfinite(name: str, result: Any) -> None:
+    """A :class:`~erdesign.errors.PlausibilityWarning` when a unit-aware function's result holds NaN or infinity
+    for finite arguments (an overflow, a vanishing gap): never a silent NaN."""
+    from .errors import PlausibilityWarning
+
+    parts = result._asdict().items() if hasattr(result, "_asdict") else (
+        enumerate(result) if isinstance(result, tuple) else [("result", result)])
+    for key, part in parts:
+        try:
+            arr = np.asarray(part, dtype=float)
+        except (TypeError, ValueError):
+            continue
+        if not np.all(np.isfinite(arr)):
+            what = "" if key == "result" else f" ({key})"
+            warnings.warn(f"{name}: the result{what} is not finite for these arguments (an overflow, or a gap or "
+                          "viscosity too small to represent); check their magnitudes and units",
+                          PlausibilityWarning, stacklevel=3)
+            return
 
 
 def _attach(result: Any, returns: str | tuple[str, ...] | Mapping[str, str]) -> Any:

@@ -150,6 +150,9 @@ class Measurement:
         u = np.zeros(n) if control is None else _as_1d(np.broadcast_to(_as_1d_any(control, "control"), (n,)),
                                                          "control", n)
         T = None if temperature is None else _as_1d(temperature, "temperature", n, unit="K")
+        for column, values in (("time", t), ("displacement", x), ("force", F), ("velocity", velocity)):
+            if values is not None:
+                _check_magnitude(np.asarray(values, dtype=float), column, column)
         _check_time(t, lambda i: f"time: sample {i}")
         v_derived, a = derivatives(t, x, window=window)
         v = v_derived if velocity is None else _as_1d(velocity, "velocity", n, unit="m/s")
@@ -715,6 +718,9 @@ def _measurement_from_table(path: Path, label: str, columns, data: np.ndarray, l
 #: Largest magnitude each column can possibly take, SI (beyond it the file is refused: a unit mistake so large
 #: that sums of squares overflow, or no damper ever built).  The largest seismic dampers make about 10 MN.
 POSSIBLE_MAGNITUDE = {"displacement": 100.0, "force": 1e9, "velocity": 1e3, "time": 1e9}
+#: Shortest mean time step of a record, [s] (an attosecond: no data logger comes near; below it the steps lose
+#: their digits and the derivatives fail).
+SHORTEST_TIME_STEP = 1e-18
 
 
 def _check_possible(values: np.ndarray, name: str, unit: str, label: str, col: int) -> None:
@@ -724,13 +730,24 @@ def _check_possible(values: np.ndarray, name: str, unit: str, label: str, col: i
     if name == "temperature" and values.size and float(values.min()) < 0.0:
         raise MeasurementError(f"{where}: {float(values.min()):.4g} K is below absolute zero; is the unit right "
                                "(degC, not K)?")
+    _check_magnitude(values, name, where)
+
+
+def _check_magnitude(values: np.ndarray, name: str, where: str) -> None:
+    """Refuse values beyond :data:`POSSIBLE_MAGNITUDE` (a unit mistake so large that sums of squares overflow) and
+    time steps below :data:`SHORTEST_TIME_STEP` (so small that differences lose every digit)."""
     limit = POSSIBLE_MAGNITUDE.get(name)
-    if limit is not None:
+    if limit is not None and values.size:
         peak = float(np.max(np.abs(values)))
         if peak > limit:
             si = COLUMNS[name]
             raise MeasurementError(f"{where}: {peak:.3g} {si} is beyond any damper record (at most {limit:g} {si}); "
                                    "check the column's unit")
+    if name == "time" and values.size > 1:
+        step = float(values[-1] - values[0]) / (values.size - 1)
+        if 0 < step < SHORTEST_TIME_STEP:
+            raise MeasurementError(f"{where}: a mean time step of {step:.3g} s is beyond any clock (at least "
+                                   f"{SHORTEST_TIME_STEP:g} s); check the unit of the time")
 
 
 #: Temperatures [K] of any damper test (-73 to 227 degC): outside them a warning names the likely unit mistake.

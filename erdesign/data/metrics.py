@@ -102,6 +102,9 @@ def esr(F_measured, F_model):
     if F.shape != M.shape:
         raise ErdesignError(f"F_measured and F_model: {F.size} and {M.size} samples (shapes {F.shape} and "
                             f"{M.shape}); give one model force per measured force")
+    scale = float(np.max(np.abs(F))) if F.size else 0.0
+    if scale > 0:                       # the ratio is scale-free: scaled, sums of squares of huge forces stay finite
+        F, M = F / scale, M / scale
     spread = np.sum((F - F.mean()) ** 2)
     if spread == 0:
         raise ErdesignError("esr: the measured force is constant, so the ESR is undefined")

@@ -180,3 +180,37 @@ def test_coil_currents_no_wire_carries_are_refused_and_hot_ones_warned():
     with warnings.catch_warnings():
         warnings.simplefilter("error", PlausibilityWarning)
         circuit.at("2 A")
+
+
+# ------------------------------------------------------------------------------------------ gigantic and subnormal
+def test_esr_of_gigantic_forces_is_the_same_as_of_small_ones():
+    """Sums of squares of 1e200 N overflowed to a silent NaN; the ESR is scale-free (Vivas-Lopez et al., eq 7), so
+    it is computed on scaled forces: the same number at any scale."""
+    F = np.array([1.0, -1.0, 0.5, 0.0])
+    M = np.array([0.9, -1.0, 0.5, 0.1])
+    small = erdesign.esr(F, M)
+    assert small == pytest.approx(0.02 / 2.1875)        # sum (F - M)^2 = 0.02; mean 0.125, sum (F - mean)^2 = 2.1875
+    assert erdesign.esr(F * 1e200, M * 1e200) == pytest.approx(small, rel=1e-12)
+    assert erdesign.esr(F * 1e-300, M * 1e-300) == pytest.approx(small, rel=1e-12)
+
+
+@pytest.mark.parametrize("call, said", [
+    (lambda: Measurement.from_arrays(T * 1e-310, X), "time: a mean time step of"),
+    (lambda: Measurement.from_arrays(T, X * 1e300), "displacement: 1e+298 m is beyond any damper record"),
+    (lambda: Measurement.from_arrays(T, X, np.full_like(T, 1e300)), "force: 1e+300 N is beyond"),
+])
+def test_from_arrays_refuses_values_no_record_holds(call, said):
+    """A subnormal time step ended in a LinAlgError (and LAPACK's messages on the terminal), a gigantic displacement
+    in an OverflowError."""
+    _refused(call, said)
+
+
+def test_a_non_finite_result_of_a_unit_aware_function_is_warned():
+    """A flow of 1e300 m^3/s or a gap of 1e-320 m gave an infinite pressure drop without a word."""
+    for change in ({"Q": "1e300 m^3/s"}, {"h": "1e-320 m"}):
+        with pytest.warns(PlausibilityWarning, match="bingham_pressure_drop: the result is not finite"):
+            dp = erdesign.bingham_pressure_drop(**{**DUCT, **change})
+        assert not np.isfinite(dp.magnitude)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert np.isfinite(erdesign.bingham_pressure_drop(**DUCT).magnitude)
