@@ -37,7 +37,7 @@ import pint
 from ._util import broadcast_named
 from .errors import UnitError
 
-__all__ = ["ureg", "Q_", "to_si", "positive_si", "parse_quantity", "parse_unit", "clean_value_text", "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
+__all__ = ["ureg", "Q_", "to_si", "positive_si", "plain_number", "parse_quantity", "parse_unit", "clean_value_text", "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
 
 ureg = pint.get_application_registry()
 Q_ = ureg.Quantity
@@ -151,6 +151,22 @@ def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
         raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit: it has no number; give a value "
                         f"with its unit{example}")
     return clean
+
+
+_PLAIN_NUMBER = re.compile(r"\s*[-+]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|nan|inf|infinity)\s*",
+                           re.ASCII | re.IGNORECASE)
+
+
+def plain_number(text: str) -> float | None:
+    """The number of a text that is a plain number in ASCII (``"0.0254"``, ``"-1e3"``, ``"nan"``), else None.
+
+    Python's ``float()`` also reads digit separators (``"4_446.6"``) and other scripts' digits, which a user never
+    means as a plain number: such text is left to :func:`parse_quantity`, which refuses it by name.
+
+    >>> plain_number(" -2.5e3 "), plain_number("4_446.6"), plain_number("2 A")
+    (-2500.0, None, None)
+    """
+    return float(text) if isinstance(text, str) and _PLAIN_NUMBER.fullmatch(text) else None
 
 
 def _is_unit(text: str) -> bool:

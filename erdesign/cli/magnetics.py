@@ -12,7 +12,7 @@ import click
 
 from ..errors import ErdesignError
 from ..magnetics import load_magnetic_circuit
-from ..units import Q_, parse_quantity
+from ..units import Q_, parse_quantity, plain_number
 from .main import cli, emit_json
 
 __all__ = ["magnetics", "parse_currents"]
@@ -32,10 +32,8 @@ def parse_currents(text: str) -> list[float]:
         unit = " ".join(last[1:])
     out = []
     for p in parts:
-        try:
-            q = Q_(float(p), unit or "A")
-        except ValueError:
-            q = parse_quantity(p, "--current")
+        number = plain_number(p)
+        q = Q_(number, unit or "A") if number is not None else parse_quantity(p, "--current")
         try:
             out.append(float(q.to("A").magnitude))
         except Exception:  # noqa: BLE001

@@ -82,12 +82,10 @@ class LazyGroup(click.Group):
 
 def value_arg(text: str, si_unit: str) -> Any:
     """A command-line value: a quantity string, or a plain number in SI units."""
-    from ..units import Q_
+    from ..units import Q_, plain_number
 
-    try:
-        return Q_(float(text), si_unit)
-    except ValueError:
-        return text
+    number = plain_number(text)
+    return text if number is None else Q_(number, si_unit)
 
 
 def check_effects_option(ctx, param, value):

@@ -151,8 +151,5 @@ def _finite(value: float, name: str, text, where: str) -> float:
 
 
 def _plain_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
+    from ..units import plain_number
+    return plain_number(text) is not None

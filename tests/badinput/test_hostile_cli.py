@@ -88,6 +88,12 @@ ERROR_CASES = [
     ("size velocity list", ["size", "{damper}", "--velocity", "1, 2 in/s"], ["velocity", "','"]),
     ("size field digit separator", ["size", "{damper}", "--velocity", "1 in/s", "--field", "3_000 V/mm"],
      ["field", "digit separator"]),
+    ("size bare number with a digit separator", ["size", "{damper}", "--velocity", "1_0"],
+     ["velocity", "digit separator"]),                  # float() read it as 10 m/s
+    ("size bare number in arabic-indic digits", ["size", "{damper}", "--velocity", "\u0661"],
+     ["velocity", "ARABIC-INDIC DIGIT ONE"]),
+    ("magnetics bare number with a digit separator", ["magnetics", MR_COIL, "--current", "1_0"],
+     ["--current", "digit separator"]),
     ("size field bare unit", ["size", "{damper}", "--velocity", "1 in/s", "--field", "kV/mm"],
      ["field", "no number"]),
     ("size velocity control character", ["size", "{damper}", "--velocity", "1\x1b[2J in/s"],
