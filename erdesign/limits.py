@@ -71,8 +71,8 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
             if not chunk:
                 break
             if not chunks and chunk.startswith(b"PK\x03\x04"):
-                raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}; save it "
-                                    "as text (CSV UTF-8)")
+                advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
+                raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
             if not chunks and b"\x00" in chunk:
                 raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
             total += len(chunk)

@@ -478,12 +478,19 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
     kind = record.control_kind
     path = Path(spec)
     if spec.lower().endswith(".json") or path.is_file():
+        from ..limits import MAX_TOML_BYTES, nested_too_deeply, read_input_bytes
         try:
-            data = json.loads(path.read_text())
+            data = json.loads(read_input_bytes(path, MAX_TOML_BYTES, "a JSON file of parameters", spec).decode())
         except FileNotFoundError:
             raise ErdesignError(f"{where}: no such file {spec}") from None
+        except IsADirectoryError:
+            raise ErdesignError(f"{where}: {spec} is a folder, not a JSON file") from None
         except (json.JSONDecodeError, UnicodeDecodeError) as exc:
             raise ErdesignError(f"{where}: {spec} is not a JSON file ({exc})") from None
+        except RecursionError:
+            raise ErdesignError(f"{where}: {nested_too_deeply(spec)}") from None
+        except ErdesignError as exc:
+            raise ErdesignError(f"{where}: {exc}") from None
         if not isinstance(data, dict) or not isinstance(data.get("parameters"), dict):
             raise ErdesignError(f"{where}: {spec} has no 'parameters' object (expected the output of "
                                 "'erdesign identify --json')")

@@ -57,7 +57,10 @@ def files(tmp_path):
         "longname": tmp_path / "longname.toml",
         "er_in_kam": tmp_path / "er_kam.toml",
         "comma_csv": tmp_path / "comma.csv",
+        "deep_json": tmp_path / "deep.json",
+        "xlsx_json": _xlsx(tmp_path / "p.json"),
     }
+    made["deep_json"].write_text('{"parameters": ' + "[" * 100_000 + "]" * 100_000 + "}")
     made["record"].write_text(GOOD_RECORD)
     made["uminus"].write_text(MAKRIS.replace('gap = "0.8 mm"', 'gap = "\u22120.8 mm"'))
     made["nested"].write_text(MAKRIS.replace("[fluid]", "[fluid]\nx = " + "[" * 5000 + "]" * 5000, 1))
@@ -108,6 +111,10 @@ ERROR_CASES = [
     ("magnetics trailing comma", ["magnetics", MR_COIL, "--current", "1,2, A"], ["--current", "'A'", "no number"]),
     ("magnetics empty item", ["magnetics", MR_COIL, "--current", "1,,2 A"], ["--current", "empty item"]),
     ("magnetics digit separator", ["magnetics", MR_COIL, "--current", "1_5 A"], ["--current", "digit separator"]),
+    ("simulate params deeply nested JSON", ["simulate", "{record}", "--model", "bingham", "--params", "{deep_json}"],
+     ["--params", "deep.json", "nested too deeply"]),
+    ("simulate params a spreadsheet", ["simulate", "{record}", "--model", "bingham", "--params", "{xlsx_json}"],
+     ["--params", "zip archive"]),
     ("simulate params en dash", ["simulate", "{record}", "--model", "bingham", "--params", "f_c=\u2013100 N"],
      ["f_c", "en dash"]),
 ]
