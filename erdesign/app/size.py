@@ -406,7 +406,7 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
         if not 0 < lo < hi:
             raise ErdesignError(f"sweep: need 0 < from < to, got {lo_text!r} to {hi_text!r}")
     except ErdesignError as exc:
-        st.error(str(exc))
+        st.error(state.clean_message(str(exc)))
         return
     with st.spinner(f"Sweeping the {state.GEOMETRY_SWEEPS[parameter]} over {points} designs ..."):
         result = state.geometry_sweep(text, parameter, tuple(np.linspace(lo, hi, points)), v, E)
@@ -456,7 +456,7 @@ def _tolerances(text: str, v: float, E: float) -> None:
             with st.spinner(f"Sampling {int(samples)} designs ..."):
                 result = _tolerance_study(text, specs, v, E, int(samples), int(seed))
         except ErdesignError as exc:
-            st.error(str(exc))
+            st.error(state.clean_message(str(exc)))
             return
         from erdesign.cli.tolerance import tolerance_table
 

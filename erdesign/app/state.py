@@ -261,7 +261,7 @@ def damper_or_error(text: str) -> Damper | None:
     try:
         return build_damper(text)[0]
     except ErdesignError as exc:
-        st.error(f"The design of the Size page is not valid: {exc}")
+        st.error(f"The design of the Size page is not valid: {clean_message(str(exc))}")
         return None
 
 
