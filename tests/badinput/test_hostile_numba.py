@@ -85,3 +85,15 @@ def test_erdesign_runs_from_a_package_whose_caches_cannot_be_written(tmp_path):
     ok, where = done.stdout.split()
     assert ok == "True" and where.startswith(str(tmp_path))
     assert "no locator" not in done.stderr
+
+
+def test_every_compiled_loop_goes_through_the_fallback():
+    """No module decorates with numba directly (``numba.njit``, ``from numba import njit``...): a new kernel that did
+    would bring back 'no locator available' for users who cannot write the package's folder."""
+    import re
+
+    direct = re.compile(r"^\s*(?:@numba\.(?:njit|jit|vectorize|guvectorize)\b|from numba import .*\b(?:njit|jit|"
+                        r"vectorize|guvectorize)\b|[A-Za-z_]+ = numba\.(?:njit|jit)\()", re.M)
+    offenders = [str(p.relative_to(ROOT)) for p in (ROOT / "erdesign").rglob("*.py")
+                 if p.name != "_compile.py" and direct.search(p.read_text(encoding="utf-8"))]
+    assert offenders == [], f"use erdesign._compile.njit / vectorize / guvectorize in {offenders}"
