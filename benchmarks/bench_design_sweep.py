@@ -12,7 +12,7 @@ Prints, on one core:
    memory (tracemalloc, measured in a second run so that tracing does not slow the timed one);
 3. the same sweep on ``--big`` candidates (run ``--big 100000000`` for the 10^8 figure of docs/design.md), whose
    peak memory must match that of ``--n``: memory follows the chunk, not the sweep;
-4. the mixed-mode (moving-electrode) damper, whose kernel is a bracketed root per element, on ``--mixed``
+4. the mixed-mode (moving-electrode) damper, whose kernel finds a root per element (compiled), on ``--mixed``
    candidates (examples/requirements/mr_requirements.toml, two design points).
 
 Target (issue 7): at least 10^6 designs per second on one core at one design point.  Not a test: timings depend on
@@ -100,7 +100,7 @@ def main() -> None:
         mreq = load_example_requirements("mr_requirements")
         t, feasible, _ = sweep(mreq, args.mixed, args.chunk)
         print(f"mixed mode      : {args.mixed / t / 1e3:6.1f} k designs/s   ({len(mreq.points)} design points, "
-              f"{feasible:,} of {args.mixed:,} feasible; a bracketed root per element and point)")
+              f"{feasible:,} of {args.mixed:,} feasible; a root per element and point, compiled)")
 
 
 if __name__ == "__main__":

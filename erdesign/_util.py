@@ -9,6 +9,7 @@ from typing import Iterable, Mapping
 import numpy as np
 
 from .errors import ErdesignError, OutputPathError
+from .output import exists_message, refuse_symlink
 
 __all__ = ["scalar_or_array", "check_output_path", "si_array", "broadcast_named"]
 
@@ -77,9 +78,9 @@ def _same_file(a: Path, b: Path) -> bool:
     try:
         if a.exists() and b.exists():
             return os.path.samefile(a, b)
-    except OSError:
-        pass
-    return a.resolve() == b.resolve()
+        return a.resolve() == b.resolve()
+    except (OSError, RuntimeError):         # a symbolic link loop (RuntimeError before Python 3.13)
+        return False
 
 
 def check_output_path(out: str | Path, *, force: bool = False,
@@ -91,10 +92,14 @@ def check_output_path(out: str | Path, *, force: bool = False,
     The one rule of every command that writes a file (issue 15: never lose work):
 
     * never an input file of the same call, even with ``force`` (``inputs``: paths, or label -> path);
-    * an existing file only with ``force`` (never a folder);
+    * an existing file only with ``force`` (never a folder); a symbolic link (dangling, a loop, or not) only with
+      ``force``, which replaces the link itself;
     * the format follows the suffix (``formats`` maps suffix -> format); a suffix not in ``formats`` is refused
       rather than written in another format, and so is a ``fmt`` asked for that the suffix contradicts;
     * the folder must exist.
+
+    This is the early check (before a long computation); the writer (:func:`erdesign.output.atomic_output`) decides
+    again when it creates the file, so a file made in between is never overwritten without ``force``.
 
     Returns ``(path, format)`` (``format`` None when ``formats`` is None).
 
@@ -110,6 +115,7 @@ def check_output_path(out: str | Path, *, force: bool = False,
     if out is None or str(out).strip() == "":
         raise OutputPathError(f"{option}: empty file name")
     path = Path(out)
+    refuse_symlink(path, overwrite=force, option=option)
     named = inputs.items() if isinstance(inputs, Mapping) else (("an input file of this command", p) for p in inputs)
     for label, given in named:
         if given is not None and _same_file(path, Path(given)):
@@ -126,10 +132,10 @@ def check_output_path(out: str | Path, *, force: bool = False,
         if fmt is not None and fmt != kind:
             raise OutputPathError(f"{option} {path}: the suffix '{suffix}' says {kind}, --format says {fmt}; make "
                                   "them agree")
-    if path.is_dir():
+    if path.is_dir() and not path.is_symlink():
         raise OutputPathError(f"{option} {path}: is a folder; give a file name")
     if path.exists() and not force:
-        raise OutputPathError(f"{option} {path}: exists; give --force to replace it, or choose another name")
+        raise OutputPathError(exists_message(path, option))
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
         raise OutputPathError(f"{option} {path}: the folder {parent} does not exist")

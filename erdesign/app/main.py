@@ -1,4 +1,4 @@
-"""The app's entry script: page configuration and the navigation over the four pages.
+"""The app's entry script: page configuration and the navigation over the pages.
 
 Run it with ``streamlit run app.py`` from a clone (the root ``app.py`` calls :func:`main`) or ``erdesign app``
 (which runs this file).  Each page is a file beside this one, so that Streamlit's page URLs and its test
@@ -25,6 +25,7 @@ PAGES = (
     ("simulate.py", "Simulate", ":material/show_chart:", "simulate"),
     ("compare.py", "Compare and diagnose", ":material/troubleshoot:", "compare"),
     ("report.py", "Report", ":material/description:", "report"),
+    ("characterize.py", "Characterize", ":material/analytics:", "characterize"),
 )
 
 

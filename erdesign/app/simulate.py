@@ -21,7 +21,8 @@ from erdesign.units import Q_, to_si
 __all__ = ["render", "EXCITATIONS"]
 
 EXCITATIONS = {"sine": "sine", "sweep": "sine sweep (two amplitudes and frequencies)",
-               "earthquake": "earthquake-like record", "upload": "uploaded displacement (measurement CSV)"}
+               "earthquake": "earthquake-like record", "upload": "uploaded displacement (measurement CSV)",
+               "programme": "test programme E1-E5 (Vivas-López et al.)"}
 
 
 def _excitation(control_unit: str, design_field: str):
@@ -56,6 +57,13 @@ def _excitation(control_unit: str, design_field: str):
             seed = state.widget(c[2].number_input, "random seed", "sim.seed", 0, min_value=0, max_value=10_000)
             return (("kind", "earthquake"), ("peak", float(peak)), ("field", E), ("duration", float(duration)),
                     ("rate", 500.0), ("seed", int(seed))), None
+        if kind == "programme":
+            from erdesign.simulation.programmes import EXPERIMENTS
+            name = state.widget(st.selectbox, "experiment", "sim.programme", "E5",
+                                options=[k.upper() for k in EXPERIMENTS],
+                                help="Table 1 of Vivas-López et al.: the control steps between E/8 and E (their PWM "
+                                     "duty cycle 10 % to 80 %); docs/characterize.md.")
+            return (("kind", "programme"), ("name", name), ("control_range", (E / 8, E)), ("rate", 250.0)), None
     except ErdesignError as exc:
         st.error(state.clean_message(str(exc)))
         return None

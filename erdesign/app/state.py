@@ -406,7 +406,7 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
              excitation: tuple[tuple[str, Any], ...], upload: bytes | None = None, upload_name: str = "") -> dict:
     """Force of a model (``physics`` with ``effects``, or a registry model) for an excitation.
 
-    ``excitation`` is plain data: ``kind`` (``sine``, ``sweep``, ``earthquake`` or ``upload``) and its numbers
+    ``excitation`` is plain data: ``kind`` (``sine``, ``sweep``, ``earthquake``, ``programme`` or ``upload``) and its numbers
     (SI), handed to :mod:`erdesign.simulation.rig` (``upload``: the displacement of a measurement CSV).  Returns SI
     arrays ``time``, ``displacement``, ``velocity``, ``control``, ``force``, the measured force of an upload (or None),
     the parameter values used, and the description of the motion.
@@ -428,7 +428,9 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
     else:
         if kind in ("sine", "sweep"):       # the description prints the control in the fluid's unit (3 kV/mm)
             ex["control_unit"] = damper.fluid.field_unit
-        motion = {"sine": rig.sine, "sweep": rig.stepped_sine, "earthquake": rig.earthquake_motion}[kind](**ex)
+        from ..simulation.programmes import programme
+        motion = {"sine": rig.sine, "sweep": rig.stepped_sine, "earthquake": rig.earthquake_motion,
+                  "programme": programme}[kind](**ex)
         record = Measurement(time=motion.time, displacement=motion.displacement, force=None,
                              velocity=motion.velocity, acceleration=motion.acceleration, control=motion.control,
                              control_kind=damper.fluid.control, name=kind)

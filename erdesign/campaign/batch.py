@@ -11,9 +11,10 @@ The table has one row per record, in input order (CONTRACTS.md section 6, ``erde
   bytes), ``damper`` and ``effects``.
 
 A bad record (a corrupt file, a missing column, a control the damper does not take) is a row with its error, never a
-stopped batch: every task catches its own errors (:func:`run_task`).  The table is written atomically (a temporary
-file in the same folder, then :func:`os.replace`) while the batch runs, so a batch killed half-way is resumed
-(``resume=True``) by running only the records whose key (file content, damper, effects) is not in the table yet.
+stopped batch: every task catches its own errors (:func:`run_task`).  The table is written atomically
+(:mod:`erdesign.output`: a temporary file in the same folder, then renamed) while the batch runs, so a batch killed
+half-way is resumed (``resume=True``) by running only the records whose key (file content, damper, effects) is not
+in the table yet.
 
 The batch holds no physics and no fitting: a row is built from the public results of
 :func:`erdesign.identification.identify.identify`, :func:`erdesign.diagnosis.diagnose.calibrate` and
@@ -25,7 +26,6 @@ from __future__ import annotations
 import csv
 import hashlib
 import math
-import os
 import time
 import warnings
 from collections.abc import Callable, Mapping, Sequence
@@ -35,6 +35,7 @@ from typing import Any
 
 from ..errors import ErdesignError
 from ..executor import Executor, executor_for
+from ..output import atomic_output
 
 __all__ = ["BatchTask", "BatchResult", "BatchCommand", "COMMANDS", "run_batch", "run_task", "make_tasks",
            "read_manifest", "flag_outliers", "read_table", "write_table", "file_sha256", "OUTLIER_Z",
@@ -362,12 +363,13 @@ def _is_float_column(name: str) -> bool:
     return name in _FLOATS or name.endswith(("]", "_esr"))
 
 
-def write_table(path: str | Path, rows: Sequence[dict], columns: Sequence[str]) -> None:
-    """Write the table atomically: a temporary file in the same folder, then :func:`os.replace` (a reader, or a
-    batch killed while writing, sees the old table or the new one, never half of one)."""
+def write_table(path: str | Path, rows: Sequence[dict], columns: Sequence[str], *, overwrite: bool = False,
+                option: str = "--out") -> None:
+    """Write the table atomically (:func:`erdesign.output.atomic_output`: a temporary file in the same folder, synced,
+    then given the name; a reader, or a batch killed while writing, sees the old table or the new one, never half of
+    one).  An existing ``path`` only with ``overwrite`` (the batch's own table, saved again as it runs)."""
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
+    with atomic_output(path, overwrite=overwrite, option=option) as tmp:
         if path.suffix.lower() == ".parquet":
             _write_parquet(tmp, rows, columns)
         else:
@@ -376,10 +378,6 @@ def write_table(path: str | Path, rows: Sequence[dict], columns: Sequence[str]) 
                 writer.writerow(columns)
                 for row in rows:
                     writer.writerow([_cell(row.get(c)) for c in columns])
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
 
 
 def _cell(value) -> str:
@@ -533,9 +531,12 @@ def run_batch(command: str, records: Sequence[str] = (), *, manifest: str | Path
     reused = sum(r is not None for r in rows)
     todo = [i for i, r in enumerate(rows) if r is None]
 
+    saved = [bool(resume)]       # the first save creates the table exclusively (unless resuming it)
+
     def save() -> None:
         done = [r for r in rows if r is not None]
-        write_table(out, done, _columns(done, command))
+        write_table(out, done, _columns(done, command), overwrite=saved[0])
+        saved[0] = True
 
     owned = not isinstance(executor, Executor)
     ex = executor_for(executor, jobs=jobs, scheduler=scheduler)

@@ -28,9 +28,7 @@ See docs/tolerance.md for the method and how many samples give which confidence.
 from __future__ import annotations
 
 import math
-import os
 import re
-import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -618,24 +616,21 @@ def _num(x) -> float | None:
 SAMPLE_FORMATS = {".parquet": "parquet", ".csv": "csv"}
 
 
-def write_samples(result: ToleranceResult, path: str | Path, fmt: str) -> None:
+def write_samples(result: ToleranceResult, path: str | Path, fmt: str, *, overwrite: bool = False,
+                  option: str = "path") -> None:
     """Write the samples of a study kept with ``keep_samples`` (one row per sample: the varied inputs, then the
-    outputs, SI; column names carry the unit) atomically: to a temporary file beside ``path``, then renamed."""
+    outputs, SI; column names carry the unit), whole or not at all; an existing ``path`` only with ``overwrite``
+    (:mod:`erdesign.output`)."""
     if result.samples is None:
         raise ToleranceError("write_samples: the study did not keep its samples (keep_samples=True)")
     import pandas as pd
 
     units = {v.key: VARIABLES[v.key].si_unit for v in result.study.variations}
     frame = pd.DataFrame({(f"{k} [{units[k]}]" if k in units else k): v for k, v in result.samples.items()})
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent if str(path.parent) else ".")
-    os.close(fd)
-    try:
+    from ..output import atomic_output
+
+    with atomic_output(path, overwrite=overwrite, option=option) as tmp:
         if fmt == "parquet":
             frame.to_parquet(tmp, index=False)
         else:
             frame.to_csv(tmp, index=False)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise

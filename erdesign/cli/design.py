@@ -42,7 +42,7 @@ def design(requirements_file: str, as_json: bool, out: str | None, force: bool, 
                                    formats={".csv": "csv"})
     result = run_design(read_requirements(requirements_file), progress=_Progress(), **executor)
     if out is not None:
-        result.write_csv(out)
+        result.write_csv(out, overwrite=force, option="--out")
     if as_json:
         emit_json(result.as_json())
         return

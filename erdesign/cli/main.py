@@ -35,7 +35,10 @@ __all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number", "check
 COMMANDS: dict[str, tuple[str, str]] = {
     "app": ("app", "Open the design app (Size, Simulate, Compare and diagnose, Report) in the browser."),
     "batch": ("batch", "Run identify, fit or diagnose on every record; one row per record in one table."),
+    "characterize": ("characterize", "Find a damper's characteristics, build its customized model and cross-validate "
+                                     "it (Vivas-López et al.)."),
     "design": ("design", "Feasible damper geometries ranked by the objective, or the conflicts when there are none."),
+    "doe": ("doe", "Write a test programme (RP, DSFS; SC, ICPS, PRBS actuation; E1-E5) as a record to play."),
     "diagnose": ("diagnose",
                  "Calibrate the physics baseline, show where it fails and rank the effects that could be missing."),
     "examples": ("examples", "List the bundled example dampers; their names work wherever a damper file is asked for."),

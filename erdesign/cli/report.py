@@ -119,11 +119,13 @@ def report(damper_file: str, velocity_range: tuple[str, str] | None, fields: tup
         from ..report.export import figure_images
 
         images = dict(zip(names, figure_images(rep.figures, figure_format).values()))
-    path = write_report(rep, path, fmt)
+    path = write_report(rep, path, fmt, overwrite=force, option="--out")
     if folder is not None:
+        from ..output import write_output
+
         folder.mkdir(exist_ok=True)
         for name, data in images.items():
-            name.write_bytes(data)
+            write_output(name, data, overwrite=force, option="--figures")
     checks = [{"check": c.key, "status": c.status, "value": None if c.value is None else c.value.text,
                "detail": c.detail} for c in rep.checks]
     if as_json:

@@ -64,7 +64,7 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
     elif damper is not None or effects:
         raise click.UsageError("--damper and --effects apply to --model physics only")
     model = get_model(model_name, **options)
-    record = read_measurement(measurement_file)
+    record = read_measurement(measurement_file, require_force=False)     # a test plan (erdesign doe) has no force
     try:
         values, source, notes = resolve_parameters(model, params, record, control_reference=control_reference,
                                                    where="--params")
@@ -74,7 +74,7 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
     if out is not None:
         write_measurement(out, record.with_force(sim.force), units={"force": "N"},
                           comment=f"erdesign simulate: model {model_name}, parameters {params}, on "
-                                  f"{Path(measurement_file).name}")
+                                  f"{Path(measurement_file).name}", overwrite=overwrite, option="--out")
     reference = _reference_text(model, record)
     params_text = {name: model.parameter(name).format(v) for name, v in sim.values.items()}
     warnings = [as_flags(w) for w in (*notes, *(sim.warnings or []))]
@@ -96,7 +96,9 @@ def simulate(measurement_file: str, model_name: str, params: str, damper: str | 
              + (f" ({source.source})" if source.source else ""),
              f"  ESR {m['esr']:.4g}   R^2 {m['r_squared']:.4g}   RMS residual {m['rms_residual_N']:.4g} N   "
              f"peak residual {m['peak_residual_N']:.4g} N"
-             + (f"   ({sim.excluded} clipped samples left out)" if sim.excluded else "")]
+             + (f"   ({sim.excluded} clipped samples left out)" if sim.excluded else "")
+             if m["esr"] is not None else
+             f"  no force column (a test plan): peak model force {float(abs(sim.force).max()):.4g} N, not scored"]
     if reference is not None:
         lines.append(f"  control: u = {record.control_kind} / {reference}")
     width = max(len(k) for k in params_text)

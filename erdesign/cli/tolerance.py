@@ -73,7 +73,7 @@ def tolerance(damper_file: str, vary: tuple[str, ...], velocity: str, field: str
                              sobol_base=sobol_base, keep_samples=out is not None,
                              **executor)
     if out is not None:
-        write_samples(result, out, fmt)
+        write_samples(result, out, fmt, overwrite=overwrite, option="--out")
     if as_json:
         obj = result.as_json()
         for group in ("nominal", "mean", "std"):

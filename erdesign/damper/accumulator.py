@@ -36,21 +36,34 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 from ..errors import DamperFileError, PlausibilityWarning
+from ..schema import Number, Table, field, quantity, validate
 from ..units import to_si
 
 __all__ = ["Accumulator", "accumulator_from_table", "accumulator_table", "accumulator_preload",
-           "accumulator_stiffness", "ACCUMULATOR_KEYS", "DEFAULT_POLYTROPIC_INDEX", "ROD_KINDS",
+           "accumulator_stiffness", "AccumulatorTable", "ACCUMULATOR_KEYS", "DEFAULT_POLYTROPIC_INDEX", "ROD_KINDS",
            "PLAUSIBLE_PRECHARGE", "PLAUSIBLE_GAS_VOLUME"]
 
-#: Keys of the damper file's ``[accumulator]`` table (docs/file_formats.md).
-ACCUMULATOR_KEYS = ("precharge", "gas_volume", "polytropic_index")
 #: Values of ``[geometry] rod``: a rod on both sides of the piston (the default) or on one side only.
 ROD_KINDS = ("double", "single")
 #: Polytropic index taken when the file gives none: adiabatic nitrogen (dynamic tests at Hz rates).
 DEFAULT_POLYTROPIC_INDEX = 1.4
+
+
+class AccumulatorTable(Table):
+    """``[accumulator]`` of a damper file with a single-ended rod."""
+
+    precharge: quantity("Pa", "positive") = field("p_0, gas pressure with the rod at mid-stroke")
+    gas_volume: quantity("m^3", "positive") = field("V_0, gas volume with the rod at mid-stroke")
+    polytropic_index: Number = field("n of p V^n = const (1 isothermal, 1.4 adiabatic air or nitrogen)",
+                                     default=DEFAULT_POLYTROPIC_INDEX)
+
+
+#: Keys of the damper file's ``[accumulator]`` table (docs/file_formats.md).
+ACCUMULATOR_KEYS = tuple(AccumulatorTable.model_fields)
+
 #: Plausible charge pressure [Pa]: small dampers are charged to 0.3-3 MPa, seismic ones to a few MPa; outside
 #: 0.1-10 MPa a unit mistake ("bar" for "MPa") is likely and erdesign warns.
 PLAUSIBLE_PRECHARGE = (1.0e5, 1.0e7)
@@ -175,23 +188,10 @@ def accumulator_from_table(table: Any, where: str = "accumulator") -> Accumulato
     ranges (:data:`PLAUSIBLE_PRECHARGE`, :data:`PLAUSIBLE_GAS_VOLUME`) warns with a
     :class:`~erdesign.errors.PlausibilityWarning`.
     """
-    if not isinstance(table, Mapping):
-        raise DamperFileError(f"{where}: expected a table, got {table!r}")
-    unknown = [k for k in table if k not in ACCUMULATOR_KEYS]
-    if unknown:
-        raise DamperFileError(f"{where}.{unknown[0]}: unknown key in [{where}]; allowed keys: "
-                              f"{', '.join(ACCUMULATOR_KEYS)}")
-    for key in ("precharge", "gas_volume"):
-        if key not in table:
-            raise DamperFileError(f"{where}.{key}: missing (required: precharge, gas_volume)")
-    p0 = to_si(table["precharge"], "Pa", f"{where}.precharge")
-    V0 = to_si(table["gas_volume"], "m^3", f"{where}.gas_volume")
-    n = table.get("polytropic_index", DEFAULT_POLYTROPIC_INDEX)
-    if isinstance(n, bool) or not isinstance(n, (int, float)):
-        raise DamperFileError(f"{where}.polytropic_index: expected a number (1 to 1.67), got {n!r}")
-    for key, value in (("precharge", p0), ("gas_volume", V0)):
-        if not (isinstance(value, float) and math.isfinite(value) and value > 0):
-            raise DamperFileError(f"{where}.{key}: must be positive, got {table[key]!r}")
+    given = validate(AccumulatorTable, table, where, error=DamperFileError)
+    p0 = to_si(given.precharge, "Pa", f"{where}.precharge")
+    V0 = to_si(given.gas_volume, "m^3", f"{where}.gas_volume")
+    n = given.polytropic_index
     acc = Accumulator(precharge=p0, gas_volume=V0, polytropic_index=float(n))
     for key, value, (lo, hi), unit, scale in (("precharge", p0, PLAUSIBLE_PRECHARGE, "MPa", 1e-6),
                                               ("gas_volume", V0, PLAUSIBLE_GAS_VOLUME, "cm^3", 1e6)):

@@ -23,23 +23,92 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
+from typing import Annotated
+
+from pydantic import BeforeValidator
+
 from .. import materials
 from ..errors import DamperFileError, ErdesignError
 from ..limits import MAX_TOML_BYTES, is_path_like, nested_too_deeply, read_input_bytes
 from ..fluid import Fluid
-from ..geometry import Geometry
+from ..fluid.fluid import control_kind
+from ..geometry import CONFIGURATIONS, Geometry
+from ..schema import Length, Number, PositiveWholeNumber, Table, Text, choice, field, quantity, validate
 from ..units import Q_, same_dimension, to_si
-from .accumulator import ROD_KINDS, accumulator_from_table, accumulator_table
+from .accumulator import ROD_KINDS, AccumulatorTable, accumulator_from_table, accumulator_table
 from .damper import Damper
 
 __all__ = ["load_damper", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
            "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS", "coil_fluid", "COIL_CURRENT_SPAN", "damper_spec"]
 
-GEOMETRY_KEYS = ("configuration", "duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter",
-                 "ducts", "rod")
-FLUID_KEYS = ("material", "viscosity", "yield_stress", "reference_field", "yield_exponent", "density",
-              "viscosity_at_reference_field", "shear_modulus", "seal_friction")
-_TOP_KEYS = ("name", "geometry", "fluid", "coil", "accumulator")
+
+
+# ------------------------------------------------------------------------------------- the schema, declared once
+def _control(value: Any) -> Any:
+    """A control with its unit: an electric or magnetic field, a flux density, a coil current or a driver voltage."""
+    if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+        raise ValueError(f"expected a value with a unit as a string, got {value!r}")
+    try:
+        control_kind(value, "\x00")
+    except ErdesignError as exc:
+        raise ValueError(str(exc).removeprefix("\x00: ")) from None
+    return value
+
+
+Control = Annotated[Any, BeforeValidator(_control), "control with its unit: electric field (kV/mm), magnetic field "
+                    "(kA/m, T), coil current (A) or driver voltage (V)"]
+
+
+class GeometryTable(Table):
+    """``[geometry]`` of a damper file."""
+
+    configuration: choice(*CONFIGURATIONS) = field(
+        "\"valve\": the piston pushes the fluid through stationary annular ducts (Makris et al. 1996); \"mixed\": "
+        "the piston head is the moving inner electrode, flow and shear in the gap around it (Kamath and Wereley "
+        "1997)")
+    duct_length: Length = field("L, length of each duct; for \"mixed\": length of the piston head (electrode)")
+    duct_mean_diameter: Length = field("d, mean diameter of the annulus; for \"mixed\" it may be omitted (it is "
+                                       "piston_diameter + gap) and must agree when given; required for \"valve\"",
+                                       default=None)
+    gap: Length = field("h, width of the annular gap")
+    piston_diameter: Length = field("Dp, piston diameter (for \"mixed\": the head, inner electrode)")
+    rod_diameter: Length = field("dr, rod diameter (the same on both sides for a double-ended rod)")
+    ducts: PositiveWholeNumber = field("number of parallel ducts (valve only)", default=1)
+    rod: choice(*ROD_KINDS) = field("\"double\": a rod on both sides of the piston; \"single\": one rod, with a "
+                                    "gas accumulator ([accumulator])", default="double")
+
+
+class FluidTable(Table):
+    """``[fluid]`` of a damper file (and of a requirements file)."""
+
+    material: Text = field("name of a material of the materials database (docs/materials.md): its values are the "
+                           "defaults, the keys given here override them", default=None)
+    viscosity: quantity("Pa*s") = field("eta_0, plastic viscosity at zero field", default=None)
+    yield_stress: quantity("Pa") = field("tau_ref, yield stress at reference_field", default=None)
+    reference_field: Control = field("control at which yield_stress holds", default=None)
+    yield_exponent: Number = field("n in tau_y = yield_stress * (E / reference_field) ** n", default=None)
+    density: quantity("kg/m^3") = field("rho, density of the fluid", default=None)
+    viscosity_at_reference_field: quantity("Pa*s") = field("plastic viscosity at reference_field (default: "
+                                                           "viscosity)", default=None)
+    shear_modulus: quantity("Pa") = field("G, pre-yield shear modulus (Makris et al. 1996, eq 8)", default=None)
+    seal_friction: quantity("N", "non-negative") = field("F_s, Coulomb friction of the seals (Makris et al. 1996, "
+                                                         "eq 14)", default=None)
+
+
+class DamperFile(Table):
+    """A damper file (TOML): docs/file_formats.md."""
+
+    name: Text = field("free text naming the damper", default="")
+    geometry: GeometryTable = field("the ducts, the piston and the rod")
+    fluid: FluidTable = field("the fluid and the seals")
+    coil: dict = field("the coil of an MR damper whose control is the coil current (docs/magnetics.md)",
+                       default=None)
+    accumulator: AccumulatorTable = field("the gas accumulator of a single-ended rod", default=None)
+
+
+GEOMETRY_KEYS = tuple(GeometryTable.model_fields)
+FLUID_KEYS = tuple(FluidTable.model_fields)
+_TOP_KEYS = tuple(DamperFile.model_fields)
 #: [fluid] keys a damper with a [coil] may not give: the magnetic circuit gives the yield stress at each current.
 _COIL_COMPUTED_KEYS = ("yield_stress", "yield_exponent")
 #: The tabulated law tau_y(I) of a damper with a [coil] spans 0 to this many times the rated current.
@@ -73,18 +142,6 @@ def read_toml(path: str | Path) -> dict:
         raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
 
 
-def _check_keys(table: Any, allowed: tuple[str, ...], where: str) -> Mapping[str, Any]:
-    if not isinstance(table, Mapping):
-        raise DamperFileError(f"{where}: expected a table, got {table!r}")
-    unknown = [k for k in table if k not in allowed]
-    if unknown:
-        prefix = f"{where}." if where else ""
-        raise DamperFileError(
-            f"{prefix}{unknown[0]}: unknown key" + (f" in [{where}]" if where else "")
-            + f"; allowed keys: {', '.join(allowed)}")
-    return table
-
-
 #: Keys of a damper file's [fluid] table that define the power law; giving any of them replaces a material's curve.
 POWER_LAW_KEYS = ("yield_stress", "reference_field", "yield_exponent")
 
@@ -102,14 +159,12 @@ def parse_fluid_table(table: Mapping[str, Any], where: str = "fluid") -> tuple[F
     * the material's field range (``[range] field``) stays, unless ``reference_field`` changes the kind of control
       (a coil current instead of a magnetic field): asking for a control outside it warns.
     """
-    table = dict(_check_keys(table, FLUID_KEYS, where))
+    table = validate(FluidTable, table, where, error=DamperFileError).given()
     field_law = None
     field_range = None
     material = ""
     if "material" in table:
         name = table.pop("material")
-        if not isinstance(name, str):
-            raise DamperFileError(f"{where}.material: expected the name of a material as a string, got {name!r}")
         try:
             spec = materials.material_fluid(name)
         except ErdesignError as exc:
@@ -124,12 +179,8 @@ def parse_fluid_table(table: Mapping[str, Any], where: str = "fluid") -> tuple[F
     if missing:
         raise DamperFileError(f"{where}.{missing[0]}: missing (required: {', '.join(_REQUIRED_FLUID)})")
     exponent = table["yield_exponent"]
-    if isinstance(exponent, bool) or not isinstance(exponent, (int, float)):
-        raise DamperFileError(f"{where}.yield_exponent: expected a number, got {exponent!r}")
     seal = table.get("seal_friction")
     seal_friction = 0.0 if seal is None else to_si(seal, "N", f"{where}.seal_friction")
-    if seal_friction < 0:
-        raise DamperFileError(f"{where}.seal_friction: must not be negative, got {seal!r}")
     fluid = Fluid.create(
         viscosity=table["viscosity"],
         yield_stress=table["yield_stress"],
@@ -147,37 +198,26 @@ def parse_fluid_table(table: Mapping[str, Any], where: str = "fluid") -> tuple[F
 
 
 def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_model: str = "auto") -> Damper:
-    """A :class:`Damper` from the parsed content of a damper file.  ``source`` prefixes error messages."""
+    """A :class:`Damper` from the parsed content of a damper file.  ``source`` prefixes error messages.
+
+    The file is checked against its schema (:class:`DamperFile`: keys, types, units, signs) first; the relations
+    between values (a rod thinner than the piston, a mixed damper's mean diameter) are the objects' own checks."""
     try:
-        _check_keys(data, _TOP_KEYS, "")
-        for key in ("geometry", "fluid"):
-            if key not in data:
-                raise DamperFileError(f"[{key}]: missing table")
-        geo = dict(_check_keys(data["geometry"], GEOMETRY_KEYS, "geometry"))
-        if "configuration" not in geo:
-            raise DamperFileError("geometry.configuration: missing (\"valve\" or \"mixed\")")
-        for key in ("duct_length", "gap", "piston_diameter", "rod_diameter"):
-            if key not in geo:
-                raise DamperFileError(f"geometry.{key}: missing")
+        spec = validate(DamperFile, data, error=DamperFileError)
+        geo = spec.geometry.given()
         rod = geo.pop("rod", "double")
-        if rod not in ROD_KINDS:
-            raise DamperFileError(f"geometry.rod: expected \"double\" (a rod on both sides of the piston) or "
-                                  f"\"single\" (one rod, with a gas accumulator), got {rod!r}")
         geometry = Geometry.create(**geo)
         accumulator = None
-        if "accumulator" in data:
+        if spec.accumulator is not None:
             if rod != "single":
                 raise DamperFileError("accumulator: a gas accumulator pushes on the rod only when the rod is "
                                       "single-ended; add rod = \"single\" to [geometry]")
             accumulator = accumulator_from_table(data["accumulator"])
-        if "coil" in data:
+        if spec.coil is not None:
             fluid, seal_friction = coil_fluid(data, geometry)
         else:
             fluid, seal_friction = parse_fluid_table(data["fluid"])
-        name = data.get("name", "")
-        if not isinstance(name, str):
-            raise DamperFileError(f"name: expected text, got {name!r}")
-        return Damper(geometry=geometry, fluid=fluid, seal_friction=seal_friction, name=name,
+        return Damper(geometry=geometry, fluid=fluid, seal_friction=seal_friction, name=spec.name,
                       flow_model=flow_model, rod=rod, accumulator=accumulator)
     except ErdesignError as exc:
         raise type(exc)(f"{source}: {exc}") from None
@@ -197,7 +237,7 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
     from ..magnetics import build_circuit, coil_from_table
     from ..magnetics.law import coil_law
 
-    table = _check_keys(data["fluid"], FLUID_KEYS, "fluid")
+    table = validate(FluidTable, data["fluid"], "fluid", error=DamperFileError).given()
     for key in _COIL_COMPUTED_KEYS:
         if key in table:
             raise DamperFileError(f"fluid.{key}: not allowed with a [coil]: the magnetic circuit gives the yield "

@@ -66,16 +66,23 @@ erdesign.design.requirements.RequirementsError: requirements: desing: unknown ke
 from __future__ import annotations
 
 import dataclasses
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from ..damper.files import parse_fluid_table, read_toml
+from typing import Annotated
+
+from pydantic import BeforeValidator
+
+from ..damper.files import Control, FluidTable, parse_fluid_table, read_toml
 from ..errors import ErdesignError
 from ..fluid import Fluid
 from ..geometry import CONFIGURATIONS
+from ..schema import Flag, Number, Table, Text, checked, choice, quantity, validate, whole_number
+from ..schema import field as key
 from ..units import to_si
 from .figures import FIGURES, OBJECTIVES
 
@@ -112,8 +119,6 @@ COIL_OBJECTIVES = ("min_coil_power", "min_time_constant")
 DEFAULT_CURRENT_DENSITY = 5e6
 DEFAULT_FILL_FACTOR = 0.6
 
-_COIL_KEYS = COIL_VARIABLES + ("steel", "supply_voltage", "max_current_density", "max_fill_factor",
-                               "allow_saturation", "max_power", "max_time_constant")
 
 #: Default field limits by kind of control, SI: Butz and von Stryk (2002), Table 1, "maximum field":
 #: ca. 4 kV/mm for ER fluids (dielectric breakdown) and ca. 250 kA/m for MR fluids (magnetic saturation).
@@ -128,15 +133,6 @@ SAMPLINGS = ("sobol", "lhs")
 #: Most candidates a search may sample (about a minute per 2**20 on one core; the Sobol sampler stops at 2**30),
 #: the most it takes without a warning, and the largest chunk evaluated at once (memory: ~1 kB per candidate).
 MAX_SAMPLES, PLAUSIBLE_SAMPLES, MAX_CHUNK = 2**24, 2**21, 2**20
-
-_TOP_KEYS = ("name", "fluid", "design")
-_DESIGN_KEYS = ("configuration", "objective", "point", "limits", "bounds", "envelope", "search", "coil")
-_POINT_KEYS = ("velocity", "field", "min_force", "min_dynamic_range", "max_zero_field_force")
-_LIMIT_KEYS = ("max_outer_diameter", "max_length", "max_pressure", "laminar", "min_gap", "max_field", "max_voltage")
-_ENVELOPE_KEYS = ("stroke", "wall", "head_length", "end_allowance", "duct_placement")
-_SEARCH_KEYS = ("samples", "sampling", "seed", "chunk", "refine", "designs", "pareto", "active_tolerance",
-                "gap_tolerance", "length_tolerance", "secondary")
-
 
 @dataclass(frozen=True)
 class CoilDesign:
@@ -309,152 +305,6 @@ def load_example_requirements(name: str = "makris_requirements") -> Requirements
         return requirements_from_dict(read_toml(path), source=f"examples/requirements/{name}.toml")
 
 
-def requirements_from_dict(data: Mapping[str, Any], *, source: str = "requirements") -> Requirements:
-    """:class:`Requirements` from the parsed content of a requirements file.  ``source`` prefixes errors."""
-    try:
-        return _parse(data)
-    except ErdesignError as exc:
-        raise RequirementsError(f"{source}: {exc}") from None
-
-
-def _table(value: Any, where: str, allowed: tuple[str, ...]) -> Mapping[str, Any]:
-    if not isinstance(value, Mapping):
-        raise RequirementsError(f"{where}: expected a table, got {value!r}")
-    for key in value:
-        if key not in allowed:
-            prefix = f"{where}." if where else ""
-            raise RequirementsError(f"{prefix}{key}: unknown key; allowed keys: {', '.join(allowed)}")
-    return value
-
-
-def _quantity(table: Mapping[str, Any], key: str, unit: str, where: str, *, positive: bool = True):
-    if key not in table:
-        return None
-    name = f"{where}.{key}"
-    value = table[key]
-    if not isinstance(value, str):
-        raise RequirementsError(f"{name}: expected a value with a unit as a string (e.g. \"1 {unit}\"), got {value!r}")
-    si = to_si(value, unit, name)
-    if positive and not si > 0:
-        raise RequirementsError(f"{name}: must be positive, got {value!r}")
-    return si
-
-
-def _number(table: Mapping[str, Any], key: str, where: str, *, kind: type = float, low: float | None = None):
-    if key not in table:
-        return None
-    value = table[key]
-    ok = not isinstance(value, bool) and (isinstance(value, int) if kind is int else isinstance(value, (int, float)))
-    if not ok:
-        what = "a whole number" if kind is int else "a plain number"
-        raise RequirementsError(f"{where}.{key}: expected {what}, got {value!r}")
-    if low is not None and not value >= low:
-        raise RequirementsError(f"{where}.{key}: must be >= {low:g}, got {value!r}")
-    return kind(value)
-
-
-def _choice(table: Mapping[str, Any], key: str, where: str, choices, default=None):
-    value = table.get(key, default)
-    if value is None:
-        raise RequirementsError(f"{where}.{key}: missing (one of {', '.join(map(repr, choices))})")
-    if value not in choices:
-        raise RequirementsError(f"{where}.{key}: must be one of {', '.join(map(repr, choices))}, got {value!r}")
-    return value
-
-
-def _parse(data: Mapping[str, Any]) -> Requirements:
-    data = _table(data, "", _TOP_KEYS)
-    for key in ("fluid", "design"):
-        if key not in data:
-            raise RequirementsError(f"[{key}]: missing table")
-    name = data.get("name", "")
-    if not isinstance(name, str):
-        raise RequirementsError(f"name: expected text, got {name!r}")
-    if not isinstance(data["fluid"], Mapping):
-        raise RequirementsError(f"fluid: expected a table, got {data['fluid']!r}")
-    fluid_table = dict(data["fluid"])
-    design = _table(data["design"], "design", _DESIGN_KEYS)
-    coil = None
-    if "coil" in design:
-        fluid, seal_friction, coil, coil_bounds = _parse_coil(design["coil"], fluid_table)
-    else:
-        fluid, seal_friction = parse_fluid_table(fluid_table, "fluid")
-    configuration = _choice(design, "configuration", "design", CONFIGURATIONS)
-    objective = _choice(design, "objective", "design", tuple(OBJECTIVES), default="min_fluid_volume")
-    if objective in COIL_OBJECTIVES and coil is None:
-        raise RequirementsError(f"design.objective: {objective!r} needs a [design.coil] table (the coil to design)")
-
-    points = _parse_points(design.get("point"), fluid)
-    limits = _parse_limits(design.get("limits", {}), fluid)
-    envelope = _parse_envelope(design.get("envelope", {}), configuration)
-    if "bounds" not in design:
-        raise RequirementsError("design.bounds: missing table (the free variables and their ranges)")
-    bounds = _parse_bounds(design["bounds"], configuration, envelope)
-    if coil is not None:
-        if bounds["ducts"] != (1, 1):
-            raise RequirementsError("design.bounds.ducts: a coil sits in a head with one annular gap (ducts = 1)")
-        bounds.update(coil_bounds)
-    search = _parse_search(design.get("search", {}))
-    return Requirements(fluid=fluid, seal_friction=seal_friction, fluid_table=fluid_table,
-                        configuration=configuration, objective=objective, points=points, bounds=bounds,
-                        limits=limits, envelope=envelope, search=search, name=name, coil=coil)
-
-
-def _parse_coil(table: Any, fluid_table: Mapping[str, Any]):
-    """The fluid (controlled by the coil current), seal friction, :class:`CoilDesign` and the coil's bounds."""
-    from .. import materials
-    from ..damper.files import POWER_LAW_KEYS
-
-    where = "design.coil"
-    table = _table(table, where, _COIL_KEYS)
-    for key in POWER_LAW_KEYS:
-        if key in fluid_table:
-            raise RequirementsError(f"fluid.{key}: not allowed with [design.coil]: each candidate's magnetic circuit "
-                                    "gives the yield stress at the point's coil current")
-    name = fluid_table.get("material")
-    if not isinstance(name, str):
-        raise RequirementsError("fluid.material: missing; with [design.coil] the fluid's B-H and yield curves come "
-                                "from the materials database")
-    try:
-        materials.magnetization_curve(name)
-        law = materials.material_fluid(name).yield_curve
-    except ErdesignError as exc:
-        raise RequirementsError(f"fluid.material: {exc}") from None
-    if law is None or law.control_unit != "A/m":
-        raise RequirementsError(f"fluid.material: {name!r} has no yield curve against field strength (A/m)")
-    if "viscosity_at_reference_field" in fluid_table:
-        raise RequirementsError("fluid.viscosity_at_reference_field: not supported with [design.coil]")
-    # the fluid of the requirements is controlled by the current; its own yield law is not used (each candidate's
-    # circuit gives the yield stress), so it carries the material's power-law summary at 1 A as a placeholder
-    values = dict(fluid_table)
-    spec = materials.material_fluid(name)
-    values.update(yield_stress=spec.values["yield_stress"], reference_field="1 A", yield_exponent=1.0)
-    fluid, seal_friction = parse_fluid_table(values, "fluid")
-    steel = table.get("steel", "steel-1018")
-    if not isinstance(steel, str) or steel not in materials.steel_names():
-        raise RequirementsError(f"{where}.steel: unknown steel {steel!r}; known steels: "
-                                f"{', '.join(materials.steel_names())}")
-    allow = table.get("allow_saturation", False)
-    if not isinstance(allow, bool):
-        raise RequirementsError(f"{where}.allow_saturation: expected true or false, got {allow!r}")
-    J = _quantity(table, "max_current_density", "A/m^2", where)
-    fill = _number(table, "max_fill_factor", where)
-    if fill is not None and not 0 < fill <= 0.9:
-        raise RequirementsError(f"{where}.max_fill_factor: must lie in (0, 0.9], got {fill!r}")
-    coil = CoilDesign(material=name, steel=steel, supply_voltage=_quantity(table, "supply_voltage", "V", where),
-                      max_current_density=DEFAULT_CURRENT_DENSITY if J is None else J,
-                      max_fill_factor=DEFAULT_FILL_FACTOR if fill is None else fill, allow_saturation=allow,
-                      max_power=_quantity(table, "max_power", "W", where),
-                      max_time_constant=_quantity(table, "max_time_constant", "s", where))
-    bounds = {}
-    for key in COIL_VARIABLES:
-        name_k = f"{where}.{key}"
-        if key not in table:
-            raise RequirementsError(f"{name_k}: missing ([low, high] or a single value)")
-        bounds[key] = _range(table[key], name_k, whole=key == "turns")
-    return fluid, seal_friction, coil, bounds
-
-
 def _range(value: Any, name: str, whole: bool = False) -> tuple[float, float]:
     """A design variable's range from ``[low, high]`` or one value: lengths with units, or whole numbers
     (``whole``); positive, low <= high."""
@@ -475,37 +325,264 @@ def _range(value: Any, name: str, whole: bool = False) -> tuple[float, float]:
     return lo, hi
 
 
-def _parse_points(value: Any, fluid: Fluid) -> tuple[DesignPoint, ...]:
-    if value is None:
-        raise RequirementsError("design.point: missing (at least one [[design.point]] table)")
-    if isinstance(value, Mapping):
-        value = [value]
-    if not isinstance(value, list) or not value:
-        raise RequirementsError(f"design.point: expected one or more [[design.point]] tables, got {value!r}")
+def _whole_range(value: Any, name: str) -> tuple[float, float]:
+    return _range(value, name, whole=True)
+
+
+def _tables(value: Any) -> Any:
+    return [value] if isinstance(value, Mapping) else value
+
+
+# ------------------------------------------------------------------------------------- the schema, declared once
+def _q(unit: str, sign: str = "", dimension: str = "") -> Any:
+    """A quantity of a requirements file: always text (a bare number is refused as such)."""
+    return quantity(unit, sign, dimension, text=True)
+
+
+Length = _q("m", "positive")
+#: A free variable's range: ``["low unit", "high unit"]`` or one value (fixed); read as ``(low, high)`` in SI.
+LengthRange = checked(_range, "[\"low\", \"high\"] lengths with units, or one (fixed)")
+#: A whole-number variable's range: ``[low, high]`` or one number.
+WholeRange = checked(_whole_range, "[low, high] whole numbers, or one (fixed)")
+
+
+def _positive(value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"expected a number, got {value!r}")
+    if not value > 0:
+        raise ValueError(f"must be positive, got {value!r}")
+    return value
+
+
+def _figure_list(value: Any) -> Any:
+    if not isinstance(value, list):
+        raise ValueError(f"expected a list of two or three figure names, got {value!r}")
+    return value
+
+
+PositiveNumber = Annotated[Any, BeforeValidator(_positive), "number > 0"]
+FigureList = Annotated[Any, BeforeValidator(_figure_list), "list of two or three figure names"]
+
+
+class PointTable(Table):
+    """One ``[[design.point]]``: an operating point and what the damper must do there (at least one requirement)."""
+
+    velocity: _q("m/s", "positive") = key("piston velocity")
+    field: Control = key("the control (with [design.coil]: the coil current), default 0", default=None)
+    min_force: _q("N", "positive") = key("least total force (with seal friction) at velocity and field",
+                                               default=None)
+    min_dynamic_range: PositiveNumber = key("least force at field / force at zero field, at velocity",
+                                            default=None)
+    max_zero_field_force: _q("N", "positive") = key("largest force at velocity with no field (beyond the "
+                                                          "contract)", default=None)
+
+
+class LimitsTable(Table):
+    """``[design.limits]``: what every design must respect (all optional)."""
+
+    max_outer_diameter: Length = key("cylinder outer diameter: piston diameter + 2 x wall (valve ducts "
+                                     "\"around\": the outer tube)", default=None)
+    max_length: Length = key("body length of the envelope model (docs/design.md)", default=None)
+    max_pressure: _q("Pa", "positive") = key("pressure drop across the piston, at field and at zero field",
+                                                   default=None)
+    laminar: Flag = key("Reynolds number (Makris et al. 1996, eq 1) below 2300 at every point", default=False)
+    min_gap: Length = key("manufacturable minimum gap (at most the largest gap of [design.bounds])", default=None)
+    max_field: Control = key("largest control the fluid takes (default: 4 kV/mm ER, 250 kA/m MR; Butz and von "
+                             "Stryk 2002, Table 1)", default=None)
+    max_voltage: _q("V", "positive") = key("largest electrode voltage E h across the gap (ER only)",
+                                                 default=None)
+
+
+class EnvelopeTable(Table):
+    """``[design.envelope]``: the envelope model of :mod:`erdesign.design.envelope` (all optional)."""
+
+    stroke: _q("m", "non-negative") = key("full piston stroke (default 50 mm)", default=None)
+    wall: _q("m", "non-negative") = key("wall allowance of the cylinder (default 5 mm)", default=None)
+    head_length: _q("m", "non-negative") = key("valve piston head length (default 20 mm)", default=None)
+    end_allowance: _q("m", "non-negative") = key("each end cap with seal and bearing (default 25 mm)",
+                                                       default=None)
+    duct_placement: choice(*DUCT_PLACEMENTS) = key("valve: ducts \"beside\" the cylinder (Makris Fig 1) or one "
+                                                   "annulus \"around\" it", default="beside")
+
+
+class BoundsTable(Table):
+    """``[design.bounds]``: the free variables, each ``[low, high]`` or one value (fixed)."""
+
+    gap: LengthRange = key("h")
+    duct_length: LengthRange = key("L")
+    duct_mean_diameter: LengthRange = key("d (valve only: a mixed damper's is piston_diameter + gap)",
+                                          default=None)
+    piston_diameter: LengthRange = key("Dp")
+    rod_diameter: LengthRange = key("dr")
+    ducts: WholeRange = key("parallel ducts (valve only)", default=1)
+
+
+class SearchTable(Table):
+    """``[design.search]``: how the design space is searched (all optional; docs/design.md)."""
+
+    samples: whole_number(1) = key("candidates sampled", default=SearchSettings.samples)
+    sampling: choice(*SAMPLINGS) = key("the sampler", default=SearchSettings.sampling)
+    seed: whole_number(0) = key("seed of the sampler", default=SearchSettings.seed)
+    chunk: whole_number(1024) = key("candidates evaluated at once", default=SearchSettings.chunk)
+    refine: Flag = key("refine the best designs locally", default=SearchSettings.refine)
+    designs: whole_number(1) = key("how many designs to return", default=SearchSettings.designs)
+    pareto: FigureList = key("figures of the Pareto front (erdesign.design.figures.FIGURES)", default=None)
+    active_tolerance: Number = key("relative margin below which a constraint counts as active",
+                                   default=SearchSettings.active_tolerance)
+    gap_tolerance: _q("m") = key("grid the returned gap is rounded to, 0 to 10 mm (default 0.01 mm)",
+                                       default=None)
+    length_tolerance: _q("m") = key("grid the other returned lengths are rounded to, 0 to 10 mm (default "
+                                          "0.1 mm)", default=None)
+    secondary: choice(*OBJECTIVES) = key("objective that breaks ties (default: per objective)", default=None)
+
+
+class CoilTable(Table):
+    """``[design.coil]``: the coil of an MR head designed too (docs/magnetics.md, "Design with the coil")."""
+
+    turns: WholeRange = key("turns of the coil")
+    wire_diameter: LengthRange = key("copper wire diameter")
+    core_diameter: LengthRange = key("steel core under the winding")
+    pole_length: LengthRange = key("axial length of each pole")
+    housing_outer_diameter: LengthRange = key("outer diameter of the steel cylinder")
+    steel: Text = key("steel of the materials database", default="steel-1018")
+    supply_voltage: _q("V", "positive") = key("largest I R at every point", default=None)
+    max_current_density: _q("A/m^2", "positive", "current density") = key(
+        "current density limit (default 5 A/mm^2)", default=None)
+    max_fill_factor: Number = key("copper fill factor limit, in (0, 0.9] (default 0.6)", default=None)
+    allow_saturation: Flag = key("allow a part of the circuit past the knee of its B-H curve", default=False)
+    max_power: _q("W", "positive") = key("coil power at the first point's current", default=None)
+    max_time_constant: _q("s", "positive") = key("L/R at the first point's current", default=None)
+
+
+class DesignTable(Table):
+    """``[design]`` of a requirements file."""
+
+    configuration: choice(*CONFIGURATIONS) = key("\"valve\" or \"mixed\", as in the damper file")
+    objective: choice(*OBJECTIVES) = key("what the ranking minimises or maximises", default="min_fluid_volume")
+    point: Annotated[list[PointTable], BeforeValidator(_tables), "list of tables"] = key(
+        "one or more [[design.point]] tables")
+    limits: LimitsTable = key("[design.limits]", default=None)
+    bounds: BoundsTable = key("[design.bounds]: the free variables and their ranges")
+    envelope: EnvelopeTable = key("[design.envelope]", default=None)
+    search: SearchTable = key("[design.search]", default=None)
+    coil: CoilTable = key("[design.coil]: the head's coil is designed too", default=None)
+
+
+class RequirementsFile(Table):
+    """A requirements file (TOML) of ``erdesign design``."""
+
+    name: Text = key("free text", default="")
+    fluid: FluidTable = key("exactly as in a damper file (or material = \"...\")")
+    design: DesignTable = key("what the damper must do, its envelope and its free geometry")
+
+
+def requirements_from_dict(data: Mapping[str, Any], *, source: str = "requirements") -> Requirements:
+    """:class:`Requirements` from the parsed content of a requirements file.  ``source`` prefixes errors."""
+    try:
+        return _parse(data)
+    except ErdesignError as exc:
+        raise RequirementsError(f"{source}: {exc}") from None
+
+
+def _si(value: Any, unit: str, name: str) -> float | None:
+    """A value the schema checked, in SI (None stays None)."""
+    return None if value is None else float(to_si(value, unit, name))
+
+
+def _parse(data: Mapping[str, Any]) -> Requirements:
+    spec = validate(RequirementsFile, data, error=RequirementsError)
+    design = spec.design
+    fluid_table = dict(data["fluid"])
+    coil = None
+    if design.coil is not None:
+        fluid, seal_friction, coil, coil_bounds = _parse_coil(design.coil, fluid_table)
+    else:
+        fluid, seal_friction = parse_fluid_table(fluid_table, "fluid")
+    configuration, objective = design.configuration, design.objective
+    if objective in COIL_OBJECTIVES and coil is None:
+        raise RequirementsError(f"design.objective: {objective!r} needs a [design.coil] table (the coil to design)")
+    if not design.point:
+        raise RequirementsError("design.point: expected one or more [[design.point]] tables, got []")
+    points = _parse_points(design.point, fluid)
+    limits = _parse_limits(design.limits or LimitsTable(), fluid)
+    envelope = _parse_envelope(design.envelope or EnvelopeTable(), configuration)
+    bounds = _parse_bounds(design.bounds, configuration, envelope)
+    if coil is not None:
+        if bounds["ducts"] != (1, 1):
+            raise RequirementsError("design.bounds.ducts: a coil sits in a head with one annular gap (ducts = 1)")
+        bounds.update(coil_bounds)
+    if limits.min_gap is not None and limits.min_gap > bounds["gap"][1]:
+        raise RequirementsError(f"design.limits.min_gap: {limits.min_gap * 1e3:g} mm is above the largest gap of "
+                                f"design.bounds.gap ({bounds['gap'][1] * 1e3:g} mm): no design can meet both; lower "
+                                "min_gap or widen the gap's bounds")
+    search = _parse_search(design.search or SearchTable())
+    return Requirements(fluid=fluid, seal_friction=seal_friction, fluid_table=fluid_table,
+                        configuration=configuration, objective=objective, points=points, bounds=bounds,
+                        limits=limits, envelope=envelope, search=search, name=spec.name, coil=coil)
+
+
+def _parse_coil(table: CoilTable, fluid_table: Mapping[str, Any]):
+    """The fluid (controlled by the coil current), seal friction, :class:`CoilDesign` and the coil's bounds."""
+    from .. import materials
+    from ..damper.files import POWER_LAW_KEYS
+
+    where = "design.coil"
+    for k in POWER_LAW_KEYS:
+        if k in fluid_table:
+            raise RequirementsError(f"fluid.{k}: not allowed with [design.coil]: each candidate's magnetic circuit "
+                                    "gives the yield stress at the point's coil current")
+    name = fluid_table.get("material")
+    if not isinstance(name, str):
+        raise RequirementsError("fluid.material: missing; with [design.coil] the fluid's B-H and yield curves come "
+                                "from the materials database")
+    try:
+        materials.magnetization_curve(name)
+        law = materials.material_fluid(name).yield_curve
+    except ErdesignError as exc:
+        raise RequirementsError(f"fluid.material: {exc}") from None
+    if law is None or law.control_unit != "A/m":
+        raise RequirementsError(f"fluid.material: {name!r} has no yield curve against field strength (A/m)")
+    if "viscosity_at_reference_field" in fluid_table:
+        raise RequirementsError("fluid.viscosity_at_reference_field: not supported with [design.coil]")
+    # the fluid of the requirements is controlled by the current; its own yield law is not used (each candidate's
+    # circuit gives the yield stress), so it carries the material's power-law summary at 1 A as a placeholder
+    values = dict(fluid_table)
+    spec = materials.material_fluid(name)
+    values.update(yield_stress=spec.values["yield_stress"], reference_field="1 A", yield_exponent=1.0)
+    fluid, seal_friction = parse_fluid_table(values, "fluid")
+    if table.steel not in materials.steel_names():
+        raise RequirementsError(f"{where}.steel: unknown steel {table.steel!r}; known steels: "
+                                f"{', '.join(materials.steel_names())}")
+    fill = table.max_fill_factor
+    if fill is not None and not 0 < fill <= 0.9:
+        raise RequirementsError(f"{where}.max_fill_factor: must lie in (0, 0.9], got {fill!r}")
+    J = _si(table.max_current_density, "A/m^2", f"{where}.max_current_density")
+    coil = CoilDesign(material=name, steel=table.steel,
+                      supply_voltage=_si(table.supply_voltage, "V", f"{where}.supply_voltage"),
+                      max_current_density=DEFAULT_CURRENT_DENSITY if J is None else J,
+                      max_fill_factor=DEFAULT_FILL_FACTOR if fill is None else float(fill),
+                      allow_saturation=table.allow_saturation,
+                      max_power=_si(table.max_power, "W", f"{where}.max_power"),
+                      max_time_constant=_si(table.max_time_constant, "s", f"{where}.max_time_constant"))
+    return fluid, seal_friction, coil, {k: getattr(table, k) for k in COIL_VARIABLES}
+
+
+def _parse_points(tables: list[PointTable], fluid: Fluid) -> tuple[DesignPoint, ...]:
     points = []
-    for i, table in enumerate(value, start=1):
+    for i, table in enumerate(tables, start=1):
         where = f"design.point[{i}]"
-        table = _table(table, where, _POINT_KEYS)
-        if "velocity" not in table:
-            raise RequirementsError(f"{where}.velocity: missing")
-        velocity = _quantity(table, "velocity", "m/s", where)
         field_value = 0.0
-        if "field" in table:
-            if not isinstance(table["field"], str):
-                raise RequirementsError(f"{where}.field: expected a value with a unit as a string, "
-                                        f"got {table['field']!r}")
-            field_value = fluid.field_si(table["field"], f"{where}.field")
+        if table.field is not None:
+            field_value = fluid.field_si(table.field, f"{where}.field")
             if field_value < 0:
-                raise RequirementsError(f"{where}.field: must not be negative, got {table['field']!r}")
+                raise RequirementsError(f"{where}.field: must not be negative, got {table.field!r}")
         point = DesignPoint(
-            velocity=velocity,
+            velocity=_si(table.velocity, "m/s", f"{where}.velocity"),
             field=field_value,
-            min_force=_quantity(table, "min_force", "N", where),
-            min_dynamic_range=_number(table, "min_dynamic_range", where),
-            max_zero_field_force=_quantity(table, "max_zero_field_force", "N", where),
+            min_force=_si(table.min_force, "N", f"{where}.min_force"),
+            min_dynamic_range=None if table.min_dynamic_range is None else float(table.min_dynamic_range),
+            max_zero_field_force=_si(table.max_zero_field_force, "N", f"{where}.max_zero_field_force"),
         )
-        if point.min_dynamic_range is not None and not point.min_dynamic_range > 0:
-            raise RequirementsError(f"{where}.min_dynamic_range: must be positive, got {point.min_dynamic_range!r}")
         if point.min_force is None and point.min_dynamic_range is None and point.max_zero_field_force is None:
             raise RequirementsError(f"{where}: states no requirement (give min_force, min_dynamic_range or "
                                     "max_zero_field_force)")
@@ -513,78 +590,54 @@ def _parse_points(value: Any, fluid: Fluid) -> tuple[DesignPoint, ...]:
     return tuple(points)
 
 
-def _parse_limits(table: Any, fluid: Fluid) -> Limits:
+def _parse_limits(table: LimitsTable, fluid: Fluid) -> Limits:
     where = "design.limits"
-    table = _table(table, where, _LIMIT_KEYS)
-    laminar = table.get("laminar", False)
-    if not isinstance(laminar, bool):
-        raise RequirementsError(f"{where}.laminar: expected true or false, got {laminar!r}")
     max_field = FIELD_LIMITS.get(fluid.control)
-    if "max_field" in table:
-        if not isinstance(table["max_field"], str):
-            raise RequirementsError(f"{where}.max_field: expected a value with a unit as a string, "
-                                    f"got {table['max_field']!r}")
-        max_field = fluid.field_si(table["max_field"], f"{where}.max_field")
+    if table.max_field is not None:
+        max_field = fluid.field_si(table.max_field, f"{where}.max_field")
         if not max_field > 0:
-            raise RequirementsError(f"{where}.max_field: must be positive, got {table['max_field']!r}")
-    max_voltage = _quantity(table, "max_voltage", "V", where)
+            raise RequirementsError(f"{where}.max_field: must be positive, got {table.max_field!r}")
+    max_voltage = _si(table.max_voltage, "V", f"{where}.max_voltage")
     if max_voltage is not None and fluid.control != "electric field":
         raise RequirementsError(f"{where}.max_voltage: applies to an ER fluid controlled by an electric field "
                                 f"(this fluid's control is a {fluid.control})")
     return Limits(
-        max_outer_diameter=_quantity(table, "max_outer_diameter", "m", where),
-        max_length=_quantity(table, "max_length", "m", where),
-        max_pressure=_quantity(table, "max_pressure", "Pa", where),
-        laminar=laminar,
-        min_gap=_quantity(table, "min_gap", "m", where),
+        max_outer_diameter=_si(table.max_outer_diameter, "m", f"{where}.max_outer_diameter"),
+        max_length=_si(table.max_length, "m", f"{where}.max_length"),
+        max_pressure=_si(table.max_pressure, "Pa", f"{where}.max_pressure"),
+        laminar=table.laminar,
+        min_gap=_si(table.min_gap, "m", f"{where}.min_gap"),
         max_field=max_field,
         max_voltage=max_voltage,
     )
 
 
-def _parse_envelope(table: Any, configuration: str) -> Envelope:
+def _parse_envelope(table: EnvelopeTable, configuration: str) -> Envelope:
     where = "design.envelope"
-    table = _table(table, where, _ENVELOPE_KEYS)
     defaults = Envelope()
-    values = {}
-    for key in ("stroke", "wall", "head_length", "end_allowance"):
-        si = _quantity(table, key, "m", where, positive=False)
-        if si is not None and si < 0:
-            raise RequirementsError(f"{where}.{key}: must not be negative, got {table[key]!r}")
-        values[key] = getattr(defaults, key) if si is None else si
-    placement = _choice(table, "duct_placement", where, DUCT_PLACEMENTS, default="beside")
-    if "duct_placement" in table and configuration != "valve":
+    values = {k: getattr(defaults, k) if getattr(table, k) is None else _si(getattr(table, k), "m", f"{where}.{k}")
+              for k in ("stroke", "wall", "head_length", "end_allowance")}
+    if "duct_placement" in table.model_fields_set and configuration != "valve":
         raise RequirementsError(f"{where}.duct_placement: applies to the valve configuration only")
-    return Envelope(duct_placement=placement, **values)
+    return Envelope(duct_placement=table.duct_placement, **values)
 
 
-def _parse_bounds(table: Any, configuration: str, envelope: Envelope) -> dict:
+def _parse_bounds(table: BoundsTable, configuration: str, envelope: Envelope) -> dict:
     where = "design.bounds"
-    table = _table(table, where, VARIABLES)
-    bounds: dict[str, tuple[float, float] | None] = {}
-    for key in VARIABLES[:-1]:
-        name = f"{where}.{key}"
-        if key == "duct_mean_diameter" and configuration == "mixed":
-            if key in table:
-                raise RequirementsError(f"{name}: not a free variable of a mixed damper (it is piston_diameter + "
-                                        "gap); remove it")
-            bounds[key] = None
-            continue
-        if key not in table:
-            raise RequirementsError(f"{name}: missing ([low, high] or a single value)")
-        bounds[key] = _range(table[key], name)
-    value = table.get("ducts", 1)
-    items = value if isinstance(value, list) else [value]
-    if not 1 <= len(items) <= 2 or not all(isinstance(v, int) and not isinstance(v, bool) for v in items):
-        raise RequirementsError(f"{where}.ducts: expected [low, high] whole numbers or one, got {value!r}")
-    lo, hi = items[0], items[-1]
-    if lo < 1 or lo > hi:
-        raise RequirementsError(f"{where}.ducts: expected 1 <= low <= high, got {value!r}")
+    bounds: dict[str, tuple[float, float] | None] = {k: getattr(table, k) for k in VARIABLES[:-1]}
+    if configuration == "mixed":
+        if table.duct_mean_diameter is not None:
+            raise RequirementsError(f"{where}.duct_mean_diameter: not a free variable of a mixed damper (it is "
+                                    "piston_diameter + gap); remove it")
+    elif table.duct_mean_diameter is None:
+        raise RequirementsError(f"{where}.duct_mean_diameter: missing ([low, high] or a single value)")
+    ducts = table.ducts if "ducts" in table.model_fields_set else (1.0, 1.0)
+    lo, hi = int(ducts[0]), int(ducts[1])
     if configuration == "mixed" and hi != 1:
-        raise RequirementsError(f"{where}.ducts: a mixed damper has one gap (ducts must be 1), got {value!r}")
+        raise RequirementsError(f"{where}.ducts: a mixed damper has one gap (ducts must be 1), got {[lo, hi]!r}")
     if envelope.duct_placement == "around" and hi != 1:
         raise RequirementsError(f"{where}.ducts: one annulus fits around the cylinder (duct_placement = "
-                                f"\"around\"), got {value!r}")
+                                f"\"around\"), got {[lo, hi]!r}")
     bounds["ducts"] = (lo, hi)
     lo_dr, hi_dp = bounds["rod_diameter"][0], bounds["piston_diameter"][1]
     if lo_dr >= hi_dp:
@@ -595,36 +648,20 @@ def _parse_bounds(table: Any, configuration: str, envelope: Envelope) -> dict:
     return bounds
 
 
-def _parse_search(table: Any) -> SearchSettings:
+def _parse_search(table: SearchTable) -> SearchSettings:
     where = "design.search"
-    table = _table(table, where, _SEARCH_KEYS)
     defaults = SearchSettings()
-    values: dict[str, Any] = {}
-    for key, low in (("samples", 1), ("seed", 0), ("chunk", 1024), ("designs", 1)):
-        v = _number(table, key, where, kind=int, low=low)
-        values[key] = getattr(defaults, key) if v is None else v
-    values["sampling"] = _choice(table, "sampling", where, SAMPLINGS, default=defaults.sampling)
-    refine = table.get("refine", defaults.refine)
-    if not isinstance(refine, bool):
-        raise RequirementsError(f"{where}.refine: expected true or false, got {refine!r}")
-    values["refine"] = refine
-    pareto = table.get("pareto", list(defaults.pareto))
-    if not isinstance(pareto, list):
-        raise RequirementsError(f"{where}.pareto: expected a list of two or three figure names, got {pareto!r}")
-    values["pareto"] = tuple(pareto)
-    tol = _number(table, "active_tolerance", where)
-    values["active_tolerance"] = defaults.active_tolerance if tol is None else tol
-    for key in ("gap_tolerance", "length_tolerance"):
-        if key in table:
-            try:
-                grid = float(to_si(table[key], "m", f"{where}.{key}"))
-            except ErdesignError as exc:
-                raise RequirementsError(str(exc)) from None
+    values: dict[str, Any] = {k: getattr(table, k) for k in ("samples", "seed", "chunk", "designs", "sampling",
+                                                               "refine", "active_tolerance")}
+    values["pareto"] = defaults.pareto if table.pareto is None else tuple(table.pareto)
+    for k in ("gap_tolerance", "length_tolerance"):
+        if getattr(table, k) is not None:
+            grid = _si(getattr(table, k), "m", f"{where}.{k}")
             if not 0 <= grid <= 1e-2:
-                raise RequirementsError(f"{where}.{key}: must lie between 0 and 10 mm, got {table[key]!r}")
-            values[key] = grid
-    if "secondary" in table:
-        values["secondary"] = _choice(table, "secondary", where, tuple(OBJECTIVES))
+                raise RequirementsError(f"{where}.{k}: must lie between 0 and 10 mm, got {getattr(table, k)!r}")
+            values[k] = grid
+    if table.secondary is not None:
+        values["secondary"] = table.secondary
     search = SearchSettings(**values)
     _check_search(search, where)
     return search
@@ -640,9 +677,9 @@ def _check_search(search: SearchSettings, where: str) -> None:
         raise RequirementsError(f"{where}.active_tolerance: must lie in [0, 1), got {search.active_tolerance!r}")
     if search.sampling not in SAMPLINGS:
         raise RequirementsError(f"{where}.sampling: must be one of {', '.join(map(repr, SAMPLINGS))}")
-    for key in ("samples", "designs"):
-        if not (isinstance(getattr(search, key), int) and getattr(search, key) >= 1):
-            raise RequirementsError(f"{where}.{key}: must be a whole number >= 1")
+    for name in ("samples", "designs"):
+        if not (isinstance(getattr(search, name), int) and getattr(search, name) >= 1):
+            raise RequirementsError(f"{where}.{name}: must be a whole number >= 1")
     if search.samples > MAX_SAMPLES:
         raise RequirementsError(f"{where}.samples: {search.samples} is more than the search takes (at most "
                                 f"{MAX_SAMPLES} = 2**24, hours of computing); narrow the bounds instead")

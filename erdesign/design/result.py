@@ -230,15 +230,18 @@ class DesignResult:
             rows.append(row)
         return rows
 
-    def write_csv(self, path: str | Path) -> None:
-        """Write :meth:`csv_rows` to ``path``: first line the column names with units in brackets."""
+    def write_csv(self, path: str | Path, *, overwrite: bool = False, option: str = "path") -> None:
+        """Write :meth:`csv_rows` to ``path``: first line the column names with units in brackets.  Written whole
+        or not at all, an existing ``path`` only with ``overwrite`` (:mod:`erdesign.output`)."""
         rows = self.csv_rows()
         header = ["set", "rank", "configuration"] + [f"{n} [mm]" for n in VARIABLES[:-1]] + ["ducts [1]"]
         header += [h for h, _, _ in CSV_COLUMNS]
         for i in range(2, len(self.requirements.points) + 1):
             header += [f"force_point{i} [N]", f"zero_field_force_point{i} [N]", f"dynamic_range_point{i} [1]"]
         header.append("active_constraints")
-        with open(path, "w", newline="") as fh:
+        from ..output import open_output
+
+        with open_output(path, newline="", overwrite=overwrite, option=option) as fh:
             writer = csv.DictWriter(fh, fieldnames=header)
             writer.writeheader()
             writer.writerows(rows)

@@ -25,8 +25,8 @@ either side,
 
 with :math:`P(x) = (1 + x)\ln(1 + x) - x` and :math:`Q(y) = y - \ln(1 + y)`.  Equating the two (velocity
 continuity across the plug) fixes the plug position; it is a monotonic equation in :math:`t_1` on
-:math:`[0, h - 2\tau_y/G]`, solved for all elements at once with
-:func:`scipy.optimize.elementwise.find_root`.  The flow rate follows by integrating the closed-form velocity by
+:math:`[0, h - 2\tau_y/G]`, solved element by element by Newton's method kept inside that bracket, in a compiled
+loop (:mod:`erdesign.flow._compiled`).  The flow rate follows by integrating the closed-form velocity by
 parts, which leaves the rational integrands
 
 .. math::
@@ -34,7 +34,8 @@ parts, which leaves the rational integrands
       - \frac{1}{2}\int_{R_1}^{r_a} (r^2 - R_1^2)\,\frac{du}{dr}\,dr
       + \frac{1}{2}\int_{r_b}^{R_2} (R_2^2 - r^2)\,\frac{du}{dr}\,dr ,
 
-integrated by a 32-point Gauss-Legendre rule (exact to rounding for h/d < 0.9, see :func:`annulus_bingham_shape`).
+integrated by a Gauss-Legendre rule of 8, 16 or 32 points chosen by h/d (exact to rounding for h/d < 0.9, see
+:func:`annulus_bingham_shape`).
 Everything is written as a shape factor :math:`S = Q / Q_N`, the flow rate over the thin-gap Newtonian flow rate
 :math:`Q_N = \pi d h^3 \Delta p / (12 \eta L)` at the same pressure drop (slit Bingham:
 :math:`S = 1 - \tfrac32\phi + \tfrac12\phi^3`; Newtonian annulus: the conductance ratio of
@@ -71,90 +72,25 @@ __all__ = [
     "thin_gap_error_bingham",
 ]
 
-# Gauss-Legendre rule on [0, 1] for the flow-rate integrals (see annulus_bingham_shape, Notes).
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(32)
-_GL_X = 0.5 * (_GL_X + 1.0)
-_GL_W = 0.5 * _GL_W
-
-# Tolerances of the bracketed roots: a few ulps, so that the results are exact to rounding.
-_TOLERANCES = {"xatol": 1e-300, "xrtol": 4 * np.finfo(float).eps}
+def _compiled():
+    """The numba loops (:mod:`erdesign.flow._compiled`), imported on first use."""
+    from . import _compiled as compiled
+    return compiled
 
 
-def _p_log(x):
-    """(1 + x) ln(1 + x) - x, accurate as x -> 0 (series below 1e-2, first omitted term x^11/110)."""
-    x = np.asarray(x, dtype=float)
-    series = sum((-1.0) ** k * x**k / (k * (k - 1)) for k in range(2, 11))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        direct = (1.0 + x) * np.log1p(x) - x
-    return np.where(np.abs(x) < 1e-2, series, direct)
-
-
-def _q_log(y):
-    """y - ln(1 + y), accurate as y -> 0 (series below 1e-2, first omitted term y^11/11)."""
-    y = np.asarray(y, dtype=float)
-    series = sum((-1.0) ** k * y**k / k for k in range(2, 11))
-    return np.where(np.abs(y) < 1e-2, series, y - np.log1p(y))
-
-
-def _inner_radius(eps):
-    """Inner radius over gap, R1/h, for h/d = eps."""
-    return 0.5 * (1.0 / eps - 1.0)
-
-
-def _plug_speed_inner(t1, phi, R1):
-    """2 eta u_p / (G h^2) integrated from the inner wall; t1 = (r_a - R1)/h, phi = plug thickness/h."""
-    r_b = R1 + t1 + phi
-    return 0.5 * t1 * t1 + r_b * R1 * _p_log(t1 / R1)
-
-
-def _plug_speed_outer(t1, phi, R1):
-    """2 eta u_p / (G h^2) integrated from the outer wall."""
-    r_a = R1 + t1
-    r_b = r_a + phi
-    t2 = 1.0 - phi - t1
-    return 0.5 * t2 * t2 + r_a * r_b * _q_log(t2 / r_b)
-
-
-def _continuity(t1, phi, R1):
-    return _plug_speed_inner(t1, phi, R1) - _plug_speed_outer(t1, phi, R1)
-
-
-def _plug_offset(phi, eps):
-    """Distance of the plug's inner edge from the inner wall over h, t1, for plug fraction phi < 1."""
-    R1 = _inner_radius(eps)
-    upper = 1.0 - phi
-    from scipy.optimize import elementwise  # imported here, not at start-up
-    res = elementwise.find_root(_continuity, (np.zeros_like(upper), upper), args=(phi, R1), tolerances=_TOLERANCES)
-    # A degenerate bracket (phi -> 1) leaves nothing to solve: the plug fills the gap.
-    return np.where(upper > 0.0, res.x, 0.0)
+def _flat(*arrays):
+    """Broadcast float arrays, their common shape and their contiguous 1-D views (for the compiled loops)."""
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in arrays))
+    return arrays[0].shape, [np.array(a, order="C").ravel() for a in arrays]   # copies: the views are not writeable
 
 
 def _shape_and_offset(phi, eps):
-    """Shape factor S = Q/Q_N and plug offset t1 for arrays phi (plug fraction, [0, 1]) and eps = h/d."""
-    phi, eps = np.broadcast_arrays(np.asarray(phi, dtype=float), np.asarray(eps, dtype=float))
-    flowing = phi < 1.0
-    phi_f = np.where(flowing, phi, 0.5)  # keep the root finder away from the empty bracket
-    t1 = np.where(flowing, _plug_offset(phi_f, eps), 0.0)
-    R1 = _inner_radius(eps)
-    R2 = R1 + 1.0
-    r_a = R1 + t1
-    r_b = r_a + phi_f
-    t2 = 1.0 - phi_f - t1
-    # J_in = int_R1^ra (r^2 - R1^2)(ra - r)(r + rb)/r dr, i.e. (2 eta/G) int (r^2 - R1^2) du/dr dr, with r = R1 + s
-    # (lengths in units of h):
-    R1_, ra_, rb_ = R1[..., None], r_a[..., None], r_b[..., None]
-    s = t1[..., None] * _GL_X
-    inner = s * (2 * R1_ + s) * (t1[..., None] - s) * (rb_ + R1_ + s) / (R1_ + s)
-    j_in = t1 * np.sum(_GL_W * inner, axis=-1)
-    # J_out = int_rb^R2 (R2^2 - r^2)(r - rb)(r + ra)/r dr, with r = R2 - s:
-    s = t2[..., None] * _GL_X
-    r = R2[..., None] - s
-    outer = s * (2 * R2[..., None] - s) * (t2[..., None] - s) * (r + ra_) / r
-    j_out = t2 * np.sum(_GL_W * outer, axis=-1)
-    # S = 24 (h/d) Q/(2 pi) in units of G h^4/eta = 6 u_p - 6 (h/d)(J_in + J_out), u_p in units of G h^2/(2 eta).
-    up = _plug_speed_inner(t1, phi_f, R1)
-    shape = 6.0 * up - 6.0 * eps * (j_in + j_out)
-    return np.where(flowing, shape, 0.0), t1
+    """Shape factor S = Q/Q_N and plug offset t1 (in units of h) for arrays phi (plug fraction, [0, 1]) and
+    eps = h/d: the plug position by Newton's method on velocity continuity, the flow rate by Gauss-Legendre
+    quadrature of the layer integrals, element by element in a compiled loop."""
+    shape, (phi, eps) = _flat(phi, eps)
+    out = _compiled().annulus_shape_offset(phi, eps, np.empty((2, phi.size)))
+    return out[0].reshape(shape), out[1].reshape(shape)
 
 
 def annulus_bingham_shape(plug_fraction, h_over_d):
@@ -183,11 +119,12 @@ def annulus_bingham_shape(plug_fraction, h_over_d):
 
     Notes
     -----
-    The layer integrands are a cubic polynomial plus a pole at :math:`r = 0`.  The 32-point Gauss-Legendre rule
-    converges like :math:`\rho^{-64}` with :math:`\rho = a + \sqrt{a^2 - 1}`, :math:`a \ge 1 + 2R_1/h`: below
-    1e-19 relative for h/d <= 0.8 and 1e-9 at h/d = 0.95 (tests/test_flow_numerical.py checks it against
-    scipy.integrate.quad).  The closed-form antiderivative was not used because its terms are of order
-    :math:`(d/h)^2` larger than the result and cancel.
+    The layer integrands are a cubic polynomial plus a pole at :math:`r = 0`.  An n-point Gauss-Legendre rule
+    converges like :math:`\rho^{-2n}` with :math:`\rho = a + \sqrt{a^2 - 1}`, :math:`a \ge 1 + 2R_1/h = d/h`; the
+    smallest of 8, 16 and 32 points with :math:`\rho^{-2n} < 10^{-20}` is used (8 up to h/d = 0.1, 16 up to 0.3):
+    below 1e-19 relative for h/d <= 0.8 and 1e-9 at h/d = 0.95 (tests/test_flow_numerical.py and
+    tests/test_flow_compiled.py check it against scipy.integrate.quad).  The closed-form antiderivative was not
+    used because its terms are of order :math:`(d/h)^2` larger than the result and cancel.
 
     Examples
     --------
@@ -273,11 +210,6 @@ class AnnulusBinghamFlow(NamedTuple):
     """Radius of the plug's outer edge r_b, [m]."""
 
 
-def _excess_flow(phi, eps, ratio):
-    """S(phi)/phi - N, multiplied by phi (finite at phi -> 0): zero at the plug fraction of flow ratio N."""
-    return annulus_bingham_shape(phi, eps) - ratio * phi
-
-
 def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     r"""Pressure drop, plug fraction and plug position of Bingham flow through a concentric annulus, for a flow rate.
 
@@ -313,11 +245,14 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     -----
     :math:`S/\phi` falls monotonically from infinity (:math:`\phi \to 0`) to 0 (:math:`\phi = 1`), so the root is
     bracketed by :math:`[\phi_0, 1]` with :math:`\phi_0 = 1/(2N + 3)` (the slit bound :math:`S \ge 1 - \tfrac32\phi`
-    with a factor of 2 to spare; the bracket is widened where needed).  Each evaluation of :math:`S` solves the
-    plug position, so the roots are nested; both use :func:`scipy.optimize.elementwise.find_root` on whole arrays.
+    with a factor of 2 to spare).  The root is found element by element in a compiled loop: from the thin-gap plug
+    fraction (in error by O((h/d)^2)), one step with the thin-gap slope, then secant steps kept inside
+    :math:`[0, 1]` (2-6 evaluations of :math:`S`); each evaluation solves the plug position by Newton's method
+    started from the last one (one or two steps).
     As in :func:`erdesign.flow.bingham.bingham_slit_flow`, ``Q = 0`` returns the break-away pressure drop
-    :math:`\Delta p_y` (signed like ``Q``, ``-0.0`` included) with a plug filling the gap, and ``tau_y = 0`` returns
-    the exact Newtonian annulus.
+    :math:`\Delta p_y` (signed like ``Q``, ``-0.0`` included) with a plug filling the gap, ``tau_y = 0`` returns
+    the exact Newtonian annulus, and a yield stress whose :math:`\Delta p_y` is below 1e-12 of the viscous pressure
+    drop (a denormal one, say) the Newtonian annulus plus :math:`\tfrac32\Delta p_y` with a plug fraction of 0.
 
     Examples
     --------
@@ -336,28 +271,23 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     Q, tau_y, eta, L, d, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (Q, tau_y, eta, L, d, h)))
     eps = h / d
     Q_abs = np.abs(Q)
-    plastic = tau_y > 0.0
+    dp_y = 2.0 * tau_y * L / h
+    # as in bingham_slit_flow: a yield stress below 1e-12 of the viscous pressure drop (a denormal one, say) leaves a
+    # flow ratio that overflows; there the Newtonian annulus plus 3/2 dp_y is exact to 1e-12
+    plastic = dp_y > 1e-12 * (12.0 * eta * L * Q_abs / (np.pi * d * h**3))
     moving = Q_abs > 0.0
     solve = plastic & moving
     phi = np.where(plastic, 1.0, 0.0)  # blocked gap (Q = 0) or Newtonian, overwritten where a root is needed
+    t1 = np.zeros_like(phi)            # plug offset / h: 0 for a blocked gap
+    shape = np.ones_like(phi)          # S, needed for the Newtonian fluid only
     if np.any(solve):
         ratio = 6.0 * eta[solve] * Q_abs[solve] / (np.pi * d[solve] * h[solve] ** 2 * tau_y[solve])
-        e = eps[solve]
-        lower = 1.0 / (2.0 * ratio + 3.0)
-        for _ in range(60):  # widen the bracket only where the bound fails (not a loop over elements)
-            short = _excess_flow(lower, e, ratio) <= 0.0
-            if not np.any(short):
-                break
-            lower = np.where(short, 0.5 * lower, lower)
-        from scipy.optimize import elementwise  # imported here, not at start-up
-        res = elementwise.find_root(_excess_flow, (lower, np.ones_like(lower)), args=(e, ratio),
-                                    tolerances=_TOLERANCES)
-        phi[solve] = res.x
-    shape, t1 = _shape_and_offset(phi, eps)
-    dp_y = 2.0 * tau_y * L / h
+        phi[solve], t1[solve] = _compiled().annulus_plug_fraction(ratio, eps[solve], np.empty((2, ratio.size)))
+    if not np.all(plastic):
+        shape[~plastic], t1[~plastic] = _shape_and_offset(0.0, eps[~plastic])
     with np.errstate(divide="ignore", invalid="ignore"):
         dp_newtonian = 12.0 * eta * L * Q_abs / (np.pi * d * h**3 * shape)
-        dp_abs = np.where(plastic, dp_y / phi, dp_newtonian)
+        dp_abs = np.where(plastic, dp_y / phi, dp_newtonian + 1.5 * dp_y)
     dp = np.copysign(dp_abs, Q)
     R1 = 0.5 * (d - h)
     r_a = R1 + t1 * h
@@ -442,19 +372,8 @@ def annulus_bingham_velocity(r, dp, tau_y, eta, L, d, h):
     with np.errstate(divide="ignore", invalid="ignore"):
         phi = np.where(np.abs(dp) > dp_y, dp_y / np.abs(dp), 1.0)
     eps = h / d
-    _, t1 = _shape_and_offset(phi, eps)
-    R1 = _inner_radius(eps)
-    R2 = R1 + 1.0
-    rho = r / h
-    r_a = R1 + t1
-    r_b = r_a + phi
-    t2 = 1.0 - phi - t1
-    x = np.clip(rho - R1, 0.0, None) / R1
-    y = np.clip(R2 - rho, 0.0, None) / rho
-    inner = 0.5 * (t1**2 - (r_a - rho) ** 2) + r_b * R1 * _p_log(x) + r_b * (r_a - rho) * np.log1p(x)
-    outer = 0.5 * (t2**2 - (rho - r_b) ** 2) + r_a * rho * _q_log(y) + r_a * (rho - r_b) * np.log1p(y)
-    plug = _plug_speed_inner(t1, phi, R1)
-    u_hat = np.where(rho <= r_a, inner, np.where(rho >= r_b, outer, plug))
+    shape, (rho, phi_, eps) = _flat(r / h, phi, h / d)
+    u_hat = _compiled().annulus_velocity(rho, phi_, eps, np.empty(rho.size)).reshape(shape)
     u = np.sign(dp) * np.where(phi < 1.0, 0.5 * G * h**2 / eta * u_hat, 0.0)
     return u if u.ndim else float(u)
 

@@ -24,7 +24,7 @@ The second form follows from :math:`q = \int_0^h u\,\mathrm{d}y` by parts with :
 :math:`P`/:math:`R` form of the design brief (eqs (1)-(2) in docs/theory/mixed_mode.md) but stays accurate as
 :math:`g \to 0`, where that form divides small differences by :math:`g^2`.
 
-Solution method (vectorised, no loop per element):
+Solution method (one compiled loop over the elements, :mod:`erdesign.flow._compiled`):
 
 1. Scale stresses by :math:`\tau_s = \tau_y + \eta|U|/h + \eta|q|/h^2`, so that
    :math:`\varepsilon = \tau_y/\tau_s`, :math:`\bar U = \eta U/(\tau_s h)` and :math:`\bar q = \eta q/(\tau_s h^2)`
@@ -36,11 +36,11 @@ Solution method (vectorised, no loop per element):
    the same side, one wall inside the band, the band straddled).  The wall stresses are kept as their offsets
    from the band edges :math:`\pm\varepsilon`, each from its own closed form, so that thin sheared layers (near
    the blocked gap, near regime boundaries) keep full relative precision.
-3. The flow :math:`\bar q(G)` is then non-increasing in :math:`G`; its root is found with
-   :func:`scipy.optimize.elementwise.find_root` from the bracket
-   :math:`G_N \pm (3\varepsilon + 10^{-3})` around the Newtonian value :math:`G_N = 12(\bar U/2 - \bar q)`
-   (:math:`|G - G_N| \le 3\varepsilon` held on 4e5 random cases, with equality approached in valve mode;
-   :func:`scipy.optimize.elementwise.bracket_root` widens the bracket should it ever miss).
+3. The flow :math:`\bar q(G)` is then non-increasing in :math:`G`; its root is found element by element by
+   Chandrupatla's method (the algorithm and tolerances of :func:`scipy.optimize.elementwise.find_root`, compiled)
+   from the bracket :math:`G_N \pm (3\varepsilon + 10^{-3})` around the Newtonian value
+   :math:`G_N = 12(\bar U/2 - \bar q)` (:math:`|G - G_N| \le 3\varepsilon` held on 4e5 random cases, with
+   equality approached in valve mode; the bracket is widened should it ever miss).
 
 Symmetry: :math:`(U, q) \to (-U, -q)` maps the solution to :math:`(g, \tau) \to (-g, -\tau)`; the code reduces
 every case to :math:`G \ge 0` with it.
@@ -123,81 +123,22 @@ class MixedModeDamperForce(NamedTuple):
     """Plug thickness over gap, [-]."""
 
 
+def _compiled():
+    """The numba loops (:mod:`erdesign.flow._compiled`), imported on first use: numba costs about a second of
+    start-up, which commands that solve no mixed-mode gap should not pay."""
+    from . import _compiled as compiled
+    return compiled
+
+
 # ----------------------------------------------------------------------------------------------------------------
-# Dimensionless core.  Stresses in units of tau_s, lengths in units of h; eps = tau_y / tau_s is the half-width of
-# the yield band.  Every case is first oriented so that G >= 0 (odd symmetry t -> -t, G -> -G, U -> -U, q -> -q)
-# and its wall stresses t0 (moving wall) and t1 = t0 + G (fixed wall) are carried as their four offsets from the
-# band edges, lo0 = t0 + eps, hi0 = t0 - eps, lo1 = t1 + eps, hi1 = t1 - eps, each computed directly by its own
-# closed form.  A thin sheared layer is measured by one of these offsets; forming it as a difference of O(1)
-# numbers would lose it near the blocked gap and near the regime boundaries.
+# Dimensionless core (the closed forms of the solve are in erdesign.flow._compiled).  Stresses in units of tau_s,
+# lengths in units of h; eps = tau_y / tau_s is the half-width of the yield band.  Every case is first oriented so
+# that G >= 0 (odd symmetry t -> -t, G -> -G, U -> -U, q -> -q) and its wall stresses t0 (moving wall) and
+# t1 = t0 + G (fixed wall) are carried as their four offsets from the band edges, lo0 = t0 + eps, hi0 = t0 - eps,
+# lo1 = t1 + eps, hi1 = t1 - eps, each computed directly by its own closed form.  A thin sheared layer is measured
+# by one of these offsets; forming it as a difference of O(1) numbers would lose it near the blocked gap and near
+# the regime boundaries.
 # ----------------------------------------------------------------------------------------------------------------
-
-
-def _offsets_pos(G, m, eps):
-    """Band-edge offsets (lo0, hi0, lo1, hi1) of the wall stresses for G >= 0 and a mean strain rate m >= 0.
-
-    Solves  mean of D over [t0, t0 + G] = m  for t0 in closed form, zone by zone.  The mean is non-decreasing in
-    t0; it equals c = max(G - 2 eps, 0)^2 / (2 G) at t0 = -eps and G/2 at t0 = +eps.
-    """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        excess = G - 2.0 * eps                   # how far the stress span exceeds the band (straddle if > 0)
-        c = np.maximum(excess, 0.0) ** 2 / (2.0 * G)
-        root = np.sqrt(2.0 * G * m)
-        # t0 inside the band, t1 above it: (t1 - eps)^2 = 2 G m.  lo0 = root - excess and hi0 = root - G are
-        # written without cancellation (difference of squares).
-        inside_lo0 = (2.0 * G * m - excess**2) / (root + np.abs(excess))
-        inside_lo0 = np.where(excess > 0.0, inside_lo0, root - excess)   # no cancellation when excess <= 0
-        inside_hi0 = G * (2.0 * m - G) / (root + G)
-        # t0 below, t1 above the band: the mean of D is linear in t0.
-        straddle_lo0 = G * m / excess - excess / 2.0
-        straddle_hi1 = G * m / excess + excess / 2.0
-    above = m >= G / 2.0                            # the whole span above the band
-    inside = (m > c) & ~above
-    blocked = (m == 0.0) & (excess <= 0.0)          # D = 0 on the span: any t0 in the band; take the centre
-    two = 2.0 * eps
-    lo0 = np.select([blocked, above, inside], [eps - G / 2.0, m - G / 2.0 + two, inside_lo0], straddle_lo0)
-    hi0 = np.select([blocked, above, inside], [-eps - G / 2.0, m - G / 2.0, inside_hi0], straddle_lo0 - two)
-    lo1 = np.select([blocked, above, inside], [eps + G / 2.0, m + G / 2.0 + two, root + two], straddle_hi1 + two)
-    hi1 = np.select([blocked, above, inside], [G / 2.0 - eps, m + G / 2.0, root], straddle_hi1)
-    return lo0, hi0, lo1, hi1
-
-
-def _state(G, U_bar, eps):
-    """Oriented state (s, |G|, lo0, hi0, lo1, hi1) satisfying no slip, for a dimensionless gradient G of any sign."""
-    s = np.where(G < 0.0, -1.0, 1.0)
-    Gp, mp = s * G, -s * U_bar                      # the mean of D over the gap is -U_bar
-    lo0, hi0, lo1, hi1 = _offsets_pos(Gp, np.abs(mp), eps)
-    # The mean of D is odd under t0 -> -t0 - G (then t1 -> -t0), which maps the offsets as below.
-    flip = mp < 0.0
-    return (s, Gp, np.where(flip, -hi1, lo0), np.where(flip, -lo1, hi0),
-            np.where(flip, -hi0, lo1), np.where(flip, -lo0, hi1))
-
-
-def _plug_edges_pos(G, lo0, hi0):
-    """Positions (clipped to [0, 1]) where the stress t0 + G*Y crosses -eps and +eps, for G >= 0."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        y1 = np.where(G > 0.0, np.clip(-lo0 / G, 0.0, 1.0), np.where(lo0 < 0.0, 1.0, 0.0))
-        y2 = np.where(G > 0.0, np.clip(-hi0 / G, 0.0, 1.0), np.where(hi0 > 0.0, 0.0, 1.0))
-    return y1, y2
-
-
-def _flow_pos(G, lo0, hi0, lo1, hi1):
-    """q_bar = -int_0^1 Y D(t0 + G Y) dY for G >= 0, one closed form per sheared layer."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # Below the band, D = lo0 + G Y: the whole gap (lo1 <= 0), a layer at the moving wall (lo0 < 0), or none.
-        below = np.where(lo1 <= 0.0, lo1 / 2.0 - G / 6.0, np.where(lo0 < 0.0, lo0**3 / (6.0 * G**2), 0.0))
-        # Above the band, D = hi0 + G Y: the whole gap (hi0 >= 0), a layer of thickness w = hi1/G at the fixed
-        # wall (hi1 > 0), or none.
-        w = hi1 / G
-        above = np.where(hi0 >= 0.0, hi0 / 2.0 + G / 3.0,
-                         np.where(hi1 > 0.0, hi1 * w / 2.0 * (1.0 - w / 3.0), 0.0))
-    return -(below + above)
-
-
-def _flow(G, U_bar, eps):
-    """Dimensionless flow q_bar(G) with no slip enforced; non-increasing in G."""
-    s, Gp, *offsets = _state(G, U_bar, eps)
-    return s * _flow_pos(Gp, *offsets)
 
 
 def _velocity_pos(Y, G, lo0, hi0, lo1, hi1):
@@ -214,60 +155,19 @@ def _velocity_pos(Y, G, lo0, hi0, lo1, hi1):
     return -(above + below)
 
 
-class _Solution(NamedTuple):
-    scale: np.ndarray   # tau_s, [Pa]
-    eps: np.ndarray
-    U_bar: np.ndarray
-    G: np.ndarray       # signed
-    s: np.ndarray       # sign of the orientation
-    offsets: tuple      # (lo0, hi0, lo1, hi1) in the oriented frame
-
-
 def _check_positive(**values):
     for name, value in values.items():
         if np.any(np.asarray(value) <= 0.0):
             raise ErdesignError(f"{name}: must be positive, got {value!r}")
 
 
-def _solve(U, q, tau_y, eta, h):
-    """Dimensionless solution, arrays of the broadcast shape."""
+def _flat_inputs(U, q, tau_y, eta, h):
+    """Checked inputs broadcast to one shape: (shape, five contiguous 1-D float arrays) for the compiled loops."""
     U, q, tau_y, eta, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (U, q, tau_y, eta, h)))
     if np.any(tau_y < 0.0):
         raise ErdesignError(f"tau_y: must be >= 0, got {tau_y!r}")
     _check_positive(eta=eta, h=h)
-    scale = tau_y + eta * (np.abs(U) / h + np.abs(q) / h**2)
-    at_rest = scale == 0.0                          # tau_y = U = q = 0: nothing moves, no stress
-    scale = np.where(at_rest, 1.0, scale)
-    with np.errstate(invalid="ignore"):             # inf/inf for infinite inputs: NaN out
-        eps = tau_y / scale
-        U_bar = eta * U / (scale * h)
-        q_bar = eta * q / (scale * h**2)
-
-    G_newton = 12.0 * (U_bar / 2.0 - q_bar)         # exact for tau_y = 0
-    blocked = (U_bar == 0.0) & (q_bar == 0.0)        # any |G| <= 2 eps holds the fluid; take the break-away value,
-    G_blocked = -np.copysign(2.0 * eps, q_bar)       # the limit q -> 0 with the sign bit of q, as bingham_slit_flow
-    G = np.where(eps == 0.0, G_newton, np.where(blocked, G_blocked, 0.0))
-
-    finite = np.isfinite(U_bar) & np.isfinite(q_bar) & np.isfinite(eps)
-    G = np.where(finite, G, np.nan)                 # NaN in, NaN out
-    todo = (eps > 0.0) & ~blocked & finite
-    if np.any(todo):
-        Ub, qb, ep, GN = U_bar[todo], q_bar[todo], eps[todo], G_newton[todo]
-
-        def residual(G, Ub, qb, ep):
-            return _flow(G, Ub, ep) - qb
-
-        half_width = 3.0 * ep + 1e-3
-        from scipy.optimize import elementwise  # imported here, not at start-up
-        bracket = elementwise.bracket_root(residual, GN - half_width, GN + half_width, args=(Ub, qb, ep))
-        root = elementwise.find_root(residual, bracket.bracket, args=(Ub, qb, ep))
-        if not np.all(root.success):  # pragma: no cover - q(G) is monotone and continuous: a bug if reached
-            raise RuntimeError(
-                f"couette_poiseuille_bingham: root finding failed at {int(np.sum(~root.success))} input(s)"
-            )
-        G[todo] = root.x
-    sign, _, *offsets = _state(G, U_bar, eps)
-    return _Solution(scale, eps, U_bar, G, sign, tuple(offsets))
+    return U.shape, [np.array(a, order="C").ravel() for a in (U, q, tau_y, eta, h)]   # copies, not broadcast views
 
 
 def _out(x):
@@ -324,7 +224,8 @@ def couette_poiseuille_bingham(U, q, tau_y, eta, h):
     break-away value :math:`g = -\operatorname{sgn}(q)\,2\tau_y/h` is returned, the sign taken from the sign bit
     of ``q`` (``-0.0`` gives :math:`+2\tau_y/h`), with a centred plug (:math:`\tau_0 = -g h/2`).  Without a plug
     ``plug_y1 = plug_y2`` is the wall nearer to the yield band.  The pressure gradient is a bracketed root
-    (:func:`scipy.optimize.elementwise.find_root`) converged to round-off of :math:`g h/\tau_s`, with
+    (secant steps from the valve-mode slit root, Chandrupatla's method as the fallback, compiled) converged to
+    round-off of :math:`g h/\tau_s`, with
     :math:`\tau_s = \tau_y + \eta|U|/h + \eta|q|/h^2`; it is ill-conditioned only where the flow hardly depends
     on it, e.g. for :math:`\eta|U|/(\tau_y h) < 10^{-30}` with :math:`q \approx U h`.  Non-finite inputs give NaN.
 
@@ -342,34 +243,16 @@ def couette_poiseuille_bingham(U, q, tau_y, eta, h):
     mixed-mode moving-electrode damper and its quasi-steady Bingham design, their Ref. 11); derivation in
     docs/theory/mixed_mode.md.
     """
-    sol = _solve(U, q, tau_y, eta, h)
-    G, eps, scale, sign = sol.G, sol.eps, sol.scale, sol.s
-    lo0, hi0, lo1, hi1 = sol.offsets
-    h = np.broadcast_to(np.asarray(h, dtype=float), G.shape)
-    y1, y2 = _plug_edges_pos(sign * G, lo0, hi0)
-    plug = (y2 > y1) & (eps > 0.0)
-    y2 = np.where(plug, y2, y1)                     # no plug: a single point (the Newtonian fluid at rest too)
-    undefined = np.isnan(G)
-    y1, y2 = np.where(undefined, np.nan, y1), np.where(undefined, np.nan, y2)
-    at_moving, at_fixed = plug & (lo0 >= 0.0), plug & (hi1 <= 0.0)
-    # Wall stresses in the oriented frame, each from its nearer band edge, then back to the sign of G.
-    t0 = np.where(np.abs(lo0) < np.abs(hi0), lo0 - eps, hi0 + eps)
-    t1 = np.where(np.abs(lo1) < np.abs(hi1), lo1 - eps, hi1 + eps)
-    regime = np.select(
-        [~plug, at_moving & at_fixed, at_moving, at_fixed],
-        [GapFlowRegime.FULLY_YIELDED, GapFlowRegime.BLOCKED, GapFlowRegime.PLUG_AT_MOVING_WALL,
-         GapFlowRegime.PLUG_AT_FIXED_WALL],
-        GapFlowRegime.FLOATING_PLUG,
-    ).astype(int)
-    regime = np.where(undefined, -1, regime)
+    shape, flat = _flat_inputs(U, q, tau_y, eta, h)
+    out = _compiled().couette_poiseuille(*flat, np.empty((7, flat[0].size))).reshape((7,) + shape)
     return CouettePoiseuilleBingham(
-        pressure_gradient=_out(G * scale / h),
-        wall_stress_moving=_out(sign * t0 * scale),
-        wall_stress_fixed=_out(sign * t1 * scale),
-        plug_y1=_out(y1 * h),
-        plug_y2=_out(y2 * h),
-        plug_fraction=_out(y2 - y1),
-        regime=_out(regime),
+        pressure_gradient=_out(out[0]),
+        wall_stress_moving=_out(out[1]),
+        wall_stress_fixed=_out(out[2]),
+        plug_y1=_out(out[3]),
+        plug_y2=_out(out[4]),
+        plug_fraction=_out(out[5]),
+        regime=_out(out[6].astype(int)),
     )
 
 
@@ -403,10 +286,11 @@ def couette_poiseuille_bingham_velocity(y, U, q, tau_y, eta, h):
     ----------
     As :func:`couette_poiseuille_bingham`.
     """
-    sol = _solve(U, q, tau_y, eta, h)
+    shape, flat = _flat_inputs(U, q, tau_y, eta, h)
+    scale, G, sign, *offsets = _compiled().mixed_gap_state(*flat, np.empty((7, flat[0].size))).reshape((7,) + shape)
     Y = np.asarray(y, dtype=float) / np.asarray(h, dtype=float)
-    u_bar = sol.s * _velocity_pos(Y, sol.s * sol.G, *sol.offsets)
-    return _out(u_bar * sol.scale * np.asarray(h, dtype=float) / np.asarray(eta, dtype=float))
+    u_bar = sign * _velocity_pos(Y, sign * G, *offsets)
+    return _out(u_bar * scale * np.asarray(h, dtype=float) / np.asarray(eta, dtype=float))
 
 
 def mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h):

@@ -541,10 +541,17 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
 def simulate(model: Model, record: Measurement, values: Mapping[str, float], *, exclude_clipped: bool = False,
              source: ParameterSource | None = None) -> Simulation:
     """Run ``model`` with ``values`` on the record's motion and control (from rest at the first sample) and score
-    it against the record's force (all samples, or without the clipped ones when ``exclude_clipped``)."""
+    it against the record's force (all samples, or without the clipped ones when ``exclude_clipped``).  A record
+    without force (a test plan of ``erdesign doe``) is run and not scored: its metrics are None."""
     from ..data.measurement import clipped_samples
-    F = record.require_force()
+    F = record.force
     force = model.simulate(record, values)
+    if F is None:
+        if not np.all(np.isfinite(force)):
+            raise ErdesignError(f"{model.name}: the parameters give non-finite forces on {record.name or 'the record'}")
+        unscored = {"esr": None, "r_squared": None, "rms_residual_N": None, "peak_residual_N": None,
+                    "samples_scored": 0}
+        return Simulation(model, model.check_values(values), force, unscored, 0, 0, source, [])
     clipped = clipped_samples(F)
     mask = ~clipped if exclude_clipped and clipped.any() else None
     metrics = score(F, force, mask)

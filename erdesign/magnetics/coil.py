@@ -26,20 +26,16 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 from ..errors import DamperFileError, ErdesignError, ValidityWarning
+from ..schema import Table, checked, field, validate
 from ..units import to_si
 
-__all__ = ["Coil", "coil_from_table", "coil_resistance", "current_rise_time", "COIL_KEYS", "OPTIONAL_COIL_KEYS",
+__all__ = ["Coil", "CoilTable", "coil_from_table", "coil_resistance", "current_rise_time", "COIL_KEYS", "OPTIONAL_COIL_KEYS",
            "COPPER_RESISTIVITY_20C",
            "COPPER_TEMPERATURE_COEFFICIENT", "MAX_FILL_FACTOR"]
 
-#: Keys of a damper file's ``[coil]`` table (docs/file_formats.md, [coil]).
-COIL_KEYS = ("turns", "wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter", "steel")
-#: Optional keys of ``[coil]`` beyond the contract: ``supply_voltage``, the voltage the coil's driver can apply
-#: (a current-controlled driver forces the current up with it; docs/magnetics.md).
-OPTIONAL_COIL_KEYS = ("supply_voltage",)
 
 #: Resistivity of annealed copper at 20 degC [ohm m]: 100 % IACS = 58 MS/m (Circular 31, 1914; IEC 60028).
 COPPER_RESISTIVITY_20C = 1.0 / 58.0e6
@@ -163,8 +159,59 @@ class Coil:
         return table
 
 
+def _turns(value: Any, name: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise DamperFileError(f"{name}: expected a positive whole number of turns, got {value!r}")
+    if value > 20000:
+        warnings.warn(f"{name}: {value} turns is implausibly many for a damper piston coil", ValidityWarning,
+                      stacklevel=2)
+    return value
+
+
+def _positive(unit: str, what: str):
+    def check(value: Any, name: str) -> Any:
+        si = to_si(value, unit, name)
+        if not (isinstance(si, float) and si > 0 and math.isfinite(si)):
+            raise DamperFileError(f"{name}: must be a positive {what}, got {value!r}")
+        return value
+    return check
+
+
+def _steel(value: Any, name: str) -> str:
+    from .. import materials
+
+    if not isinstance(value, str) or value not in materials.steel_names():
+        raise DamperFileError(f"{name}: unknown steel {value!r}; known steels: {', '.join(materials.steel_names())}")
+    return value
+
+
+class CoilTable(Table):
+    """``[coil]`` of a damper file: the coil of an MR damper's piston head."""
+
+    turns: checked(_turns, "whole number >= 1") = field("turns of the coil")
+    wire_diameter: checked(_positive("m", "length"), "length > 0, with a unit") = field(
+        "copper wire diameter; the resistance follows from the mean turn length")
+    core_diameter: checked(_positive("m", "length"), "length > 0, with a unit") = field(
+        "steel core under the winding")
+    pole_length: checked(_positive("m", "length"), "length > 0, with a unit") = field(
+        "axial length of each of the two poles (the field acts over 2 x pole_length)")
+    housing_outer_diameter: checked(_positive("m", "length"), "length > 0, with a unit") = field(
+        "outer diameter of the steel cylinder (the return path)")
+    steel: checked(_steel, "name of a steel of the materials database") = field("B-H curve of the steel parts")
+    supply_voltage: checked(_positive("V", "voltage"), "voltage > 0, with a unit") = field(
+        "the driver's supply (I R at the rated current must stay below it)", default=None)
+
+
+#: Keys of a damper file's ``[coil]`` table (docs/file_formats.md, [coil]).
+COIL_KEYS = tuple(k for k, info in CoilTable.model_fields.items() if info.is_required())
+#: Optional keys of ``[coil]`` beyond the contract: ``supply_voltage``, the voltage the coil's driver can apply
+#: (a current-controlled driver forces the current up with it; docs/magnetics.md).
+OPTIONAL_COIL_KEYS = tuple(k for k in CoilTable.model_fields if k not in COIL_KEYS)
+
+
 def coil_from_table(table: Any, where: str = "coil") -> Coil:
-    """A :class:`Coil` from a ``[coil]`` table; a bad value is a :class:`DamperFileError` naming the key.
+    """A :class:`Coil` from a ``[coil]`` table (:class:`CoilTable`); a bad value is a :class:`DamperFileError`
+    naming the key.
 
     Only the table itself is checked here (types, units, signs, the steel's name); how the coil fits the head is
     checked with the geometry (:func:`erdesign.magnetics.circuit.piston_head`).
@@ -173,46 +220,14 @@ def coil_from_table(table: Any, where: str = "coil") -> Coil:
     ...                  "pole_length": "8 mm", "housing_outer_diameter": "50 mm", "steel": "steel-1018"}).turns
     400
     """
-    from .. import materials
-
-    if not isinstance(table, Mapping):
-        raise DamperFileError(f"{where}: expected a table, got {table!r}")
-    unknown = [k for k in table if k not in COIL_KEYS + OPTIONAL_COIL_KEYS]
-    if unknown:
-        raise DamperFileError(f"{where}.{unknown[0]}: unknown key in [{where}]; allowed keys: "
-                              f"{', '.join(COIL_KEYS + OPTIONAL_COIL_KEYS)}")
-    missing = [k for k in COIL_KEYS if k not in table]
-    if missing:
-        raise DamperFileError(f"{where}.{missing[0]}: missing (required: {', '.join(COIL_KEYS)})")
-    turns = table["turns"]
-    if isinstance(turns, bool) or not isinstance(turns, int) or turns < 1:
-        raise DamperFileError(f"{where}.turns: expected a positive whole number of turns, got {turns!r}")
-    lengths = {}
-    for key in ("wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter"):
-        try:
-            value = to_si(table[key], "m", f"{where}.{key}")
-        except ErdesignError as exc:
-            raise DamperFileError(str(exc)) from None
-        if not (isinstance(value, float) and value > 0 and math.isfinite(value)):
-            raise DamperFileError(f"{where}.{key}: must be a positive length, got {table[key]!r}")
-        lengths[key] = value
-    steel = table["steel"]
-    if not isinstance(steel, str) or steel not in materials.steel_names():
-        raise DamperFileError(f"{where}.steel: unknown steel {steel!r}; known steels: "
-                              f"{', '.join(materials.steel_names())}")
+    spec = validate(CoilTable, table, where, error=DamperFileError)
+    lengths = {k: float(to_si(getattr(spec, k), "m", f"{where}.{k}"))
+               for k in ("wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter")}
     d_w = lengths["wire_diameter"]
     if not 0.05e-3 <= d_w <= 3e-3:
         warnings.warn(f"{where}.wire_diameter: {d_w * 1e3:.4g} mm is outside the usual magnet-wire range "
                       "0.05-3 mm; check the unit", ValidityWarning, stacklevel=2)
-    if turns > 20000:
-        warnings.warn(f"{where}.turns: {turns} turns is implausibly many for a damper piston coil",
-                      ValidityWarning, stacklevel=2)
-    supply = None
-    if "supply_voltage" in table:
-        try:
-            supply = to_si(table["supply_voltage"], "V", f"{where}.supply_voltage")
-        except ErdesignError as exc:
-            raise DamperFileError(str(exc)) from None
-        if not (isinstance(supply, float) and supply > 0 and math.isfinite(supply)):
-            raise DamperFileError(f"{where}.supply_voltage: must be a positive voltage, got {table['supply_voltage']!r}")
+    turns, steel = spec.turns, spec.steel
+    supply = None if spec.supply_voltage is None else float(to_si(spec.supply_voltage, "V",
+                                                                  f"{where}.supply_voltage"))
     return Coil(turns=turns, steel=steel, supply_voltage=supply, **lengths)

@@ -119,6 +119,9 @@ def _pair(value: Any, name: str, si_unit: str) -> tuple[float, float]:
         raise ErdesignError(f"{name}: expected values convertible to {si_unit}, got {value!r}") from None
     if not lo_si <= hi_si:
         raise ErdesignError(f"{name}: low must not exceed high, got {value!r}")
+    if si_unit == "K" and not lo_si >= 0:
+        raise ErdesignError(f"{name}: {value[0]!r} is below absolute zero ({lo_si:.6g} K); a temperature in degC "
+                            "or degF needs its unit")
     return float(lo_si), float(hi_si)
 
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Parameter
+from .base import Model, Parameter, ParameterError
 
-__all__ = ["SemiactiveGeneral", "sigmoid_ratio"]
+__all__ = ["PAPER_TERMS", "TERMS", "SemiactiveCustomized", "SemiactiveGeneral", "general_force", "sigmoid_ratio"]
 
 
 def sigmoid_ratio(s):
@@ -18,6 +18,26 @@ def sigmoid_ratio(s):
     """
     s = np.asarray(s, dtype=float)
     return s / (1.0 + np.abs(s))
+
+
+def _guess(defaults: dict, record) -> dict:
+    """Starting values of the general model's parameters (``defaults`` updated): offset, friction and damping of a
+    Bingham fit F = f_0 + f_f sgn v + c_p v of the record, saturation gains of 20 over its peak speed; a coefficient
+    with ``_pos`` / ``_neg`` values gets the guess of its base name on both sides."""
+    g = dict(defaults)
+    if record.force is None:
+        return g
+    v, F = record.velocity, record.force
+    vmax = float(np.max(np.abs(v))) or 1.0
+    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
+    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
+    guess = {"f_f": float(fy), "c_p": float(max(c, 0.0)), "f0": float(f0), "v_f": 20.0 / vmax, "v_hz": 20.0 / vmax,
+             "v_hv": 20.0 / vmax, "v_py": 20.0 / vmax}
+    for name in g:
+        key = name.removesuffix("_pos").removesuffix("_neg")
+        if key in guess:
+            g[name] = guess[key]
+    return g
 
 
 class SemiactiveGeneral(Model):
@@ -88,31 +108,158 @@ class SemiactiveGeneral(Model):
         Parameter("x_py", "1/m", 0.0, -1e7, 1e7, "pre-yield displacement gain"),
     )
 
-    def control_affine(self, record, values):
-        z, v, a = record.displacement, record.velocity, record.acceleration
-        ext = v >= 0
-        S = sigmoid_ratio
-        P = (values["f0"] + np.where(ext, values["c_p_pos"], values["c_p_neg"]) * v + values["k_p"] * z
-             + values["m_D"] * a + values["f_f"] * S(values["v_f"] * v + values["x_f"] * z)
-             + values["F_hz"] * S(values["v_hz"] * v + values["x_hz"] * np.sign(z))
-             + values["F_hv"] * S(values["v_hv"] * v + values["x_hv"] * np.sign(v)))
-        return P, ext
-
     def force(self, record, values):
-        P, ext = self.control_affine(record, values)
-        u = self.control(record)
-        c_sa = np.where(ext, values["c_sa_pos"], values["c_sa_neg"])
-        F_sa = u * c_sa * (sigmoid_ratio(values["v_py"] * record.velocity * u)
-                           + sigmoid_ratio(values["x_py"] * record.displacement))
-        return P + F_sa
+        return general_force(record, values, TERMS, self.control(record))
 
     def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v, F = record.velocity, record.force
-            vmax = float(np.max(np.abs(v))) or 1.0
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-            g.update(f_f=float(fy), c_p_pos=float(max(c, 0.0)), c_p_neg=float(max(c, 0.0)), f0=float(f0),
-                     v_f=20.0 / vmax, v_hz=20.0 / vmax, v_hv=20.0 / vmax, v_py=20.0 / vmax)
-        return g
+        return _guess(self.defaults(), record)
+
+
+#: The terms of the general model (Vivas-López et al. eqs 3-5) -> their coefficients, in the order of eq 3 and 4;
+#: each is a model term of the paper's Table 2.
+TERMS: dict[str, tuple[str, ...]] = {
+    "offset": ("f0",), "viscous": ("c_p",), "stiffness": ("k_p",), "inertia": ("m_D",),
+    "friction": ("f_f", "v_f", "x_f"), "hysteresis_z": ("F_hz", "v_hz", "x_hz"),
+    "hysteresis_v": ("F_hv", "v_hv", "x_hv"), "gain": ("c_sa",), "preyield": ("v_py", "x_py"),
+}
+#: The customized model of Vivas-López et al. eq 6: every term but the two hysteresis terms.
+PAPER_TERMS = ("offset", "viscous", "stiffness", "inertia", "friction", "gain", "preyield")
+_LINEAR = ("f0", "c_p", "k_p", "m_D", "f_f", "F_hz", "F_hv", "c_sa")
+_CONTROL = ("c_sa", "v_py", "x_py")
+
+
+def _bounded(p: Parameter, scales) -> Parameter:
+    """``p`` with bounds from the records' peak force, speed and stroke (:class:`SemiactiveCustomized`)."""
+    import dataclasses
+    limit = {"N": 10.0 * scales["force"], "s/m": 1000.0 / scales["speed"], "1/m": 100.0 / scales["stroke"],
+             "N*s/m": 100.0 * scales["force"] / scales["speed"], "N/m": 100.0 * scales["force"] / scales["stroke"]
+             }.get(p.unit)
+    if limit is None:
+        return p
+    lower, upper = max(p.lower, -limit), min(p.upper, limit)
+    return dataclasses.replace(p, lower=lower, upper=upper, default=min(max(p.default, lower), upper))
+
+
+def general_force(record, values, terms, u):
+    r"""The force of the general semi-active model (Vivas-López et al. eqs 2-5) with the ``terms`` of :data:`TERMS`
+    given, [N].
+
+    A coefficient ``name`` is read from ``values[name]``, or, when it is asymmetric, from ``values[name + "_pos"]``
+    for :math:`\dot z \ge 0` (extension) and ``values[name + "_neg"]`` otherwise.  With the ``gain`` term but
+    without ``preyield`` the bracket of eq 4 is :math:`\operatorname{sgn}\dot z` (the post-yield limit
+    :math:`v_{pre-y} \to \infty`).  ``u`` is the dimensionless control V.
+    """
+    z, v, a = record.displacement, record.velocity, record.acceleration
+    ext = v >= 0
+    S = sigmoid_ratio
+
+    def c(name):
+        if name in values:
+            return values[name]
+        return np.where(ext, values[name + "_pos"], values[name + "_neg"])
+
+    F = np.zeros_like(v)
+    if "offset" in terms:
+        F = F + c("f0")
+    if "viscous" in terms:
+        F = F + c("c_p") * v
+    if "stiffness" in terms:
+        F = F + c("k_p") * z
+    if "inertia" in terms:
+        F = F + c("m_D") * a
+    if "friction" in terms:
+        F = F + c("f_f") * S(c("v_f") * v + c("x_f") * z)
+    if "hysteresis_z" in terms:
+        F = F + c("F_hz") * S(c("v_hz") * v + c("x_hz") * np.sign(z))
+    if "hysteresis_v" in terms:
+        F = F + c("F_hv") * S(c("v_hv") * v + c("x_hv") * np.sign(v))
+    if "gain" in terms:
+        bracket = (S(c("v_py") * v * u) + S(c("x_py") * z)) if "preyield" in terms else np.sign(v)
+        F = F + u * c("c_sa") * bracket
+    return F
+
+
+class SemiactiveCustomized(Model):
+    r"""The customized semi-active model of Vivas-López et al. (n.d.): the general model (eqs 2-5) with only the
+    terms the characterization calls for (Table 2), each coefficient asymmetric (one value in extension, one in
+    compression) when the damper is.
+
+    .. math::
+        F_D = f_0 + c_p\dot z + k_p z + m_D\ddot z + f_f S(v_f\dot z + x_f z)
+              + V c_{SA}\,[S(v_{pre-y}\dot z V) + S(x_{pre-y} z)] \quad (\text{eq 6, the default terms})
+
+    Parameters
+    ----------
+    terms : sequence of str
+        Keys of :data:`TERMS`; default :data:`PAPER_TERMS` (eq 6).
+    asymmetric : bool or sequence of str
+        True: every coefficient has a ``_pos`` (extension) and a ``_neg`` (compression) value, the paper's choice
+        ("the SA damper has an asymmetric behavior ... different coefficients for positive and negative
+        velocities"), 20 parameters for eq 6 (its Table 5); False: one value each; or the coefficient names that
+        are asymmetric.
+    scales : mapping, optional
+        ``force`` [N], ``speed`` [m/s] and ``stroke`` [m] of the records the model is for (their peaks).  Given,
+        they bound the parameters to what such records can tell: forces within 10 x ``force``, the gains of the
+        saturations :math:`S` below 1000 / ``speed`` (a transition narrower than 0.1 % of the peak speed is a step
+        no sample resolves) and 100 / ``stroke``.  Without bounds a friction term with a gain at its limit becomes
+        a sign function of a line in (z, ż) whose amplitude an opposite offset cancels: a fit that holds on its
+        record and fails on every other (seen on truth-rig road-profile records).
+
+    Examples
+    --------
+    >>> len(SemiactiveCustomized().parameters), len(SemiactiveCustomized(asymmetric=False).parameters)
+    (20, 10)
+
+    References
+    ----------
+    Vivas-López et al. eqs 2-6, Table 2 (characteristic -> model term), Table 5 (20 parameters).
+    """
+
+    name = "semiactive_customized"
+    title = "customized semi-active model (Vivas-López et al.)"
+    source = "Vivas-López et al. (n.d.) eqs 2-6"
+    uses_control = True
+
+    def __init__(self, terms=PAPER_TERMS, asymmetric=True, scales=None):
+        unknown = [t for t in terms if t not in TERMS]
+        if unknown:
+            raise ParameterError(f"terms: unknown {unknown[0]!r}; terms: {', '.join(TERMS)}")
+        self.terms = tuple(t for t in TERMS if t in terms)
+        names = [n for t in self.terms for n in TERMS[t]]
+        if asymmetric is True:
+            self.asymmetric = tuple(names)
+        elif asymmetric is False:
+            self.asymmetric = ()
+        else:
+            bad = [n for n in asymmetric if n not in names]
+            if bad:
+                raise ParameterError(f"asymmetric: {bad[0]!r} is not a coefficient of the terms {', '.join(self.terms)}")
+            self.asymmetric = tuple(asymmetric)
+        base = {p.name.removesuffix("_pos"): p for p in SemiactiveGeneral.parameters if not p.name.endswith("_neg")}
+        if scales is not None:
+            base = {n: _bounded(p, scales) for n, p in base.items()}
+        self.scales = None if scales is None else dict(scales)
+        params = []
+        for n in names:
+            p = base[n]
+            if n in self.asymmetric:
+                for side, word in (("_pos", "extension"), ("_neg", "compression")):
+                    what = p.description.removesuffix(", extension")
+                    params.append(Parameter(n + side, p.unit, p.default, p.lower, p.upper, f"{what}, {word}"))
+            else:
+                params.append(Parameter(n, p.unit, p.default, p.lower, p.upper,
+                                        p.description.removesuffix(", extension")))
+        self.parameters = tuple(params)
+        base_name = (lambda n: n.removesuffix("_pos").removesuffix("_neg"))
+        self.linear_parameters = tuple(p.name for p in params if base_name(p.name) in _LINEAR)
+        self.control_parameters = tuple(p.name for p in params if base_name(p.name) in _CONTROL)
+
+    def force(self, record, values):
+        return general_force(record, values, self.terms, self.control(record))
+
+    def initial_guess(self, record):
+        g = _guess(self.defaults(), record)
+        return {n: min(max(x, self.parameter(n).lower), self.parameter(n).upper) for n, x in g.items()}
+
+    def describe(self) -> dict:
+        return {**super().describe(), "terms": list(self.terms)}

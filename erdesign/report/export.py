@@ -1,8 +1,8 @@
 """Files a user takes away: the damper file (TOML) of a design and CSV tables with units in their headers.
 
-:func:`damper_toml` writes the content of a damper file (docs/file_formats.md: the plain data that
-:func:`erdesign.damper.files.damper_from_dict` reads) as TOML text that ``erdesign size`` and the app's upload read
-back; :func:`csv_text` writes columns of numbers with ``name [unit]`` headers, the form of a measurement file
+:func:`damper_toml` (:mod:`erdesign.damper.writer`, every string escaped) writes the content of a damper file
+(docs/file_formats.md: the plain data that :func:`erdesign.damper.files.damper_from_dict` reads) as TOML text that
+``erdesign size`` and the app's upload read back; :func:`csv_text` writes columns of numbers with ``name [unit]`` headers, the form of a measurement file
 (section 2), so that a time history written here can be read again as a measurement; :func:`rows_csv` writes a
 table of text (a ranking, a list of parameters).
 
@@ -29,68 +29,16 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
+from ..damper.writer import damper_toml       # the damper file's writer lives with the damper files
 from ..errors import ErdesignError
 
 __all__ = ["damper_toml", "csv_text", "rows_csv", "figure_images", "images_zip", "IMAGES_NEED"]
-
-_TABLES = ("geometry", "fluid", "coil", "accumulator")
-
-
-def _toml_value(value: Any, where: str) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    if isinstance(value, (float, np.floating)):
-        x = float(value)
-        if not math.isfinite(x):
-            raise ErdesignError(f"{where}: cannot write {x!r} to a damper file")
-        text = repr(x)
-        return text if any(c in text for c in ".en") else text + ".0"
-    if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)     # a TOML basic string: JSON's escapes are TOML's
-    raise ErdesignError(f"{where}: cannot write {value!r} ({type(value).__name__}) to a damper file")
-
-
-def damper_toml(spec: Mapping[str, Any], *, comment: str = "") -> str:
-    """The damper file (TOML text) of a damper spec: ``name``, ``[geometry]``, ``[fluid]`` and the optional
-    ``[coil]`` and ``[accumulator]``, values as given.
-
-    Parameters
-    ----------
-    spec : mapping
-        The content of a damper file (values as strings with units, ``ducts`` and ``yield_exponent`` numbers).
-    comment : str
-        Written as ``#`` comment lines at the top (what the file is, the design point it was sized for).
-
-    Raises
-    ------
-    ErdesignError
-        A key outside the damper file's tables, or a value TOML cannot hold, naming it.
-    """
-    lines = [f"# {line}".rstrip() for line in (comment or "damper file written by erdesign").splitlines()]
-    lines.append("")
-    unknown = [k for k in spec if k not in ("name", *_TABLES)]
-    if unknown:
-        raise ErdesignError(f"{unknown[0]}: not a key of a damper file (name, [geometry], [fluid], [coil], "
-                            "[accumulator])")
-    if "name" in spec:
-        lines.append(f"name = {_toml_value(str(spec['name']), 'name')}")
-    for table in _TABLES:
-        values = spec.get(table)
-        if values is None:
-            continue
-        lines += ["", f"[{table}]"]
-        lines += [f"{key} = {_toml_value(value, f'{table}.{key}')}" for key, value in values.items()]
-    return "\n".join(lines) + "\n"
-
 
 def _number(x: float) -> str:
     return "" if not math.isfinite(x) else f"{x:.10g}"

@@ -16,21 +16,65 @@ import jinja2
 from markupsafe import Markup
 
 from ..errors import ErdesignError
+from ..output import write_output
 from .builder import Report
 from .formatting import show
 
-__all__ = ["render_html", "render_markdown", "write_report", "FORMATS"]
+__all__ = ["render_html", "render_markdown", "write_report", "markdown_text", "markdown_code", "FORMATS"]
 
 FORMATS = ("html", "md")
 
 
+#: Characters that mean something in (GitHub-flavoured) Markdown text and are escaped with a backslash in user text:
+#: inline HTML and autolinks (``<``), emphasis (``*``, ``_`` at a word's edge), code (backtick), links (a ``]``
+#: followed by ``(``, ``[`` or ``:``; a lone ``[unit]`` is plain text), table cells (``|``), headings (``#``) and the
+#: backslash itself.
+_MARKDOWN_SPECIAL = re.compile(r"[\\`*<|#]|\](?=[(\[:])|(?<!\w)_|_(?!\w)")
+#: Line breaks (a table row or a heading ends at one) and other control characters.
+_MARKDOWN_BREAKS = re.compile(r"[\x00-\x1f\x7f-\x9f\u2028\u2029]+")
+
+
+def markdown_text(value: Any) -> str:
+    """``value`` as Markdown text that shows as written: one line, every Markdown-active character escaped.
+
+    Every value the Markdown template prints goes through this (the environment's ``finalize``) unless the template
+    marks it as its own Markdown (``| safe``: the library's equations); a damper named ``<script>`` or ``a | b``
+    neither injects HTML nor breaks a table.
+
+    >>> print(markdown_text("<script>alert(1)</script> | *x* `y` _z_ seal_friction [a](b) [kN]"))
+    \\<script>alert(1)\\</script> \\| \\*x\\* \\`y\\` \\_z\\_ seal_friction [a\\](b) [kN]
+    """
+    if isinstance(value, Markup):
+        return value
+    return _MARKDOWN_SPECIAL.sub(lambda m: "\\" + m.group(0), _MARKDOWN_BREAKS.sub(" ", str(value)))
+
+
+def markdown_code(value: Any, table: bool = False) -> Markup:
+    """``value`` as one Markdown code span, whatever backticks it holds (a fence longer than its longest run);
+    ``table=True`` in a table cell, where GitHub-flavoured Markdown needs ``|`` escaped even inside code.
+
+    >>> print(markdown_code("a ` b | c", table=True))
+    `` a ` b \\| c ``
+    """
+    text = _MARKDOWN_BREAKS.sub(" ", str(value))
+    if table:
+        text = text.replace("|", "\\|")
+    fence = "`" * (max((len(run) for run in re.findall("`+", text)), default=0) + 1)
+    pad = " " if text.startswith("`") or text.endswith("`") or len(fence) > 1 else ""
+    return Markup(f"{fence}{pad}{text}{pad}{fence}")
+
+
 def _environment(autoescape: bool) -> jinja2.Environment:
-    return jinja2.Environment(
-        loader=jinja2.PackageLoader("erdesign.report", "templates"),
-        undefined=jinja2.StrictUndefined,
-        autoescape=autoescape,
-        keep_trailing_newline=True,
-    )
+    if autoescape:
+        env = jinja2.Environment(loader=jinja2.PackageLoader("erdesign.report", "templates"),
+                                 undefined=jinja2.StrictUndefined, autoescape=True, keep_trailing_newline=True)
+    else:           # Markdown: user text escaped as Markdown (the counterpart of the HTML's autoescape)
+        env = jinja2.Environment(loader=jinja2.PackageLoader("erdesign.report", "templates"),
+                                 undefined=jinja2.StrictUndefined, autoescape=False, keep_trailing_newline=True,
+                                 finalize=markdown_text)
+        env.filters["code"] = markdown_code
+        env.filters["md"] = markdown_text
+    return env
 
 
 def _history(report: Report) -> list[dict[str, Any]]:
@@ -68,12 +112,15 @@ def render_markdown(report: Report) -> str:
     return template.render(r=report, history=_history(report))
 
 
-def write_report(report: Report, path: str | Path, format: str | None = None) -> Path:
-    """Write the report to ``path``: ``format`` ``"html"`` or ``"md"``, default from the suffix (``.md`` -> md)."""
+def write_report(report: Report, path: str | Path, format: str | None = None, *, overwrite: bool = False,
+                 option: str = "path") -> Path:
+    """Write the report to ``path``: ``format`` ``"html"`` or ``"md"``, default from the suffix (``.md`` -> md).
+
+    Written whole or not at all, and an existing ``path`` only with ``overwrite`` (:mod:`erdesign.output`; ``option``
+    names the output in messages, e.g. ``--out``)."""
     path = Path(path)
     fmt = format or ("md" if path.suffix.lower() in (".md", ".markdown") else "html")
     if fmt not in FORMATS:
         raise ErdesignError(f"format: expected one of {', '.join(FORMATS)}, got {fmt!r}")
     text = render_html(report) if fmt == "html" else render_markdown(report)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return write_output(path, text, overwrite=overwrite, option=option)

@@ -45,7 +45,7 @@ import numpy as np
 
 from ...damper import Damper
 from ...data.measurement import CONTROL_COLUMNS, Measurement, read_measurement, write_measurement
-from ...errors import ErdesignError
+from ...errors import ErdesignError, OutputPathError
 from ..rig import Motion
 from . import kernels as K
 from .mechanisms import ATMOSPHERIC_PRESSURE, MECHANISMS, rod_area
@@ -324,10 +324,13 @@ class TruthRecord:
         """Write the measurement as a CSV file (:func:`erdesign.data.measurement.write_measurement`), with the
         description as a comment line; ``units`` overrides :meth:`file_units` by column.  Never overwrites."""
         path = Path(path)
-        if path.exists():
-            raise ErdesignError(f"{path}: exists; the truth rig does not overwrite files")
-        write_measurement(path, self.measured, units={**self.file_units(), **(units or {})},
-                          comment=self.description)
+        try:        # exclusive: an existing file, even one made while this runs, is never replaced
+            write_measurement(path, self.measured, units={**self.file_units(), **(units or {})},
+                              comment=self.description)
+        except OutputPathError as exc:
+            if not path.exists():
+                raise
+            raise ErdesignError(f"{path}: exists; the truth rig does not overwrite files") from None
         return path
 
     def read_back(self, path) -> Measurement:
