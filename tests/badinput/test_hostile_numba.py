@@ -73,7 +73,10 @@ def test_erdesign_runs_from_a_package_whose_caches_cannot_be_written(tmp_path):
     _block_caches(tmp_path / "erdesign")
     done = _run("""
         import numpy as np
-        import erdesign.effects.compressibility, erdesign.simulation.truthrig.kernels
+        import erdesign.effects.compressibility, erdesign.simulation.truthrig.kernels, erdesign.flow._compiled
+        import erdesign
+        assert erdesign.annulus_bingham_pressure_drop("1 mL/s", "1.8 kPa", "13 Pa*s", "54.6 mm", "14.3 mm",
+                                                      "0.8 mm").magnitude > 0
         from erdesign.data.measurement import Measurement
         from erdesign.models.registry import get_model
         t = np.linspace(0.0, 2.0, 401)
