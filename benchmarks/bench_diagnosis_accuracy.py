@@ -432,9 +432,12 @@ def _git(*args) -> str:
 def select(cases, pattern: str | None):
     if not pattern:
         return cases
-    if any(ch in pattern for ch in "*?["):
-        return [c for c in cases if fnmatch.fnmatch(c.name, pattern)]
-    return [c for c in cases if pattern in c.name]
+    patterns = [q.strip() for q in pattern.split(",") if q.strip()]
+
+    def hit(name: str, q: str) -> bool:
+        return fnmatch.fnmatch(name, q) if any(ch in q for ch in "*?[") else q in name
+
+    return [c for c in cases if any(hit(c.name, q) for q in patterns)]
 
 
 def main(argv=None) -> int:
@@ -442,7 +445,7 @@ def main(argv=None) -> int:
     p.add_argument("--subset", choices=SUBSETS, default="full",
                    help="full (core + issue23), core (the catalogue of 2026-11-23), issue23 (its classes), fast")
     p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--cases", default=None, help="shell pattern or substring of case names")
+    p.add_argument("--cases", default=None, help="shell patterns or substrings of case names, comma-separated")
     p.add_argument("--out", default=None, help="JSON file of every case")
     p.add_argument("--write-docs", action="store_true",
                    help=f"write {DOCS.relative_to(ROOT)} (full, core) or docs/diagnosis_benchmark_SUBSET.md")

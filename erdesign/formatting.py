@@ -22,13 +22,14 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pint
 
+from ._pint import pint  # not `import pint`: erdesign/_pint.py
 from .errors import UnitError
 from .units import Q_, dimension_name, ureg
 
 __all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
-           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system"]
+           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system",
+           "CONTROL_LABELS", "control_label", "esr_shown", "SI_UNITS", "si_unit_text"]
 
 #: Significant figures of every quantity a report prints.
 SIGNIFICANT_DIGITS = 4
@@ -95,6 +96,27 @@ def use_unit_system(name: str) -> Iterator[str]:
         yield name
     finally:
         _SYSTEM.reset(token)
+
+
+#: What each kind of control (:data:`erdesign.fluid.CONTROL_UNITS`) is called on a label, and its symbol.
+CONTROL_LABELS: dict[str, tuple[str, str]] = {
+    "electric field": ("field", "E"),
+    "magnetic field": ("field", "H"),
+    "magnetic flux density": ("flux density", "B"),
+    "current": ("coil current", "I"),
+    "voltage": ("driver voltage", "U"),
+}
+
+
+def control_label(kind: str | None, prefix: str = "") -> str:
+    """The label of a control of ``kind`` (a key of :data:`CONTROL_LABELS`), ``"design coil current I"``; a kind
+    not known yet (an input being typed) reads ``"control"``.
+
+    >>> control_label("current", "design"), control_label("electric field"), control_label(None, "design")
+    ('design coil current I', 'field E', 'design control')
+    """
+    name, symbol = CONTROL_LABELS.get(kind or "", ("control", ""))
+    return " ".join(part for part in (prefix, name, symbol) if part)
 
 
 def field_text(value: float, control_unit: str, field_unit: str) -> str:
@@ -199,6 +221,19 @@ def show(value: Any, unit: str, *, name: str, digits: int = SIGNIFICANT_DIGITS) 
                  si_unit=si_unit)
 
 
+def esr_shown(x: float, *, name: str = "ESR") -> Shown:
+    """An ESR (Vivas-López et al., eq 7) or a noise floor as the diagnosis' verdict states it, to 3 significant
+    figures in ``%.3g`` form: the app's metrics, the report and the verdict's sentence print the same text.
+
+    >>> esr_shown(0.0023797).text, esr_shown(2.7114e-05).text
+    ('0.00238', '2.71e-05')
+    """
+    x = float(x)
+    if not math.isfinite(x):
+        raise UnitError(f"report: {name}: expected a finite number, got {x!r}")
+    return Shown(text=f"{x:.3g}", number=f"{x:.3g}", unit="", si=x, si_unit="dimensionless")
+
+
 def _is_plain_ratio(unit: pint.Unit) -> bool:
     return unit.dimensionless and str(unit) in ("dimensionless", "")
 
@@ -241,6 +276,30 @@ def kind_of(unit: str) -> str | None:
         if kind not in _CONTROL_KINDS and ureg.Unit(choices[0]).dimensionality == dimensionality:
             return kind
     return None
+
+
+#: The coherent SI unit of each kind of :data:`UNIT_CHOICES` (CSV headers: numbers in SI, ``force [N]``).
+SI_UNITS: dict[str, str] = {
+    "force": "N", "pressure": "Pa", "length": "m", "velocity": "m/s", "area": "m^2", "volume": "m^3",
+    "flow": "m^3/s", "viscosity": "Pa*s", "damping": "N*s/m", "stiffness": "N/m", "energy": "J", "frequency": "Hz",
+    "electric field": "V/m", "magnetic field": "A/m", "density": "kg/m^3", "mass": "kg", "time": "s",
+}
+
+
+def si_unit_text(unit: str) -> str:
+    """The SI unit of ``unit``'s dimension as a CSV header writes it: ``N`` for ``kilogram * meter / second ** 2``,
+    ``V/m`` for ``kV/mm``, ``1`` for a ratio; other dimensions in pint's short form of the base units.
+
+    >>> si_unit_text("kilogram * meter / second ** 2"), si_unit_text("kV/mm"), si_unit_text(""), si_unit_text("A")
+    ('N', 'V/m', '1', 'A')
+    """
+    if unit in ("", "dimensionless"):
+        return "1"
+    dimensionality = ureg.Unit(unit).dimensionality
+    for si in SI_UNITS.values():
+        if ureg.Unit(si).dimensionality == dimensionality:
+            return si
+    return f"{Q_(1.0, unit).to_base_units().units:~C}"
 
 
 def show_in_system(value: Any, *, name: str, digits: int = SIGNIFICANT_DIGITS, like: Any = None) -> Shown:

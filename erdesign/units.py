@@ -32,14 +32,15 @@ import warnings
 from typing import Any, Callable, Mapping
 
 import numpy as np
-import pint
 
+from ._pint import application_registry, pint
 from ._util import broadcast_named
 from .errors import UnitError
 
-__all__ = ["ureg", "Q_", "to_si", "positive_si", "plain_number", "parse_quantity", "parse_unit", "clean_value_text", "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
+__all__ = ["ureg", "Q_", "to_si", "positive_si", "plain_number", "parse_quantity", "parse_unit", "clean_value_text",
+           "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
 
-ureg = pint.get_application_registry()
+ureg = application_registry()   # pint's application registry, its definitions cached (erdesign/_pint.py)
 Q_ = ureg.Quantity
 
 # Plain-language names of the dimensions erdesign deals with, for error messages.

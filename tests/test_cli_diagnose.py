@@ -14,8 +14,8 @@ from erdesign.data.measurement import write_measurement
 from erdesign.simulation.rig import run_rig, stepped_sine
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
-MAKRIS = str(ROOT / "examples" / "makris.toml")
-MR = str(ROOT / "examples" / "mr_mixed.toml")
+MAKRIS = str(ROOT / "erdesign" / "examples" / "makris.toml")
+MR = str(ROOT / "erdesign" / "examples" / "mr_mixed.toml")
 
 
 @pytest.fixture(scope="module")
@@ -196,8 +196,8 @@ def test_diagnose_text_ends_with_the_next_command(capsys, friction_csv):
 def test_fit_says_when_a_parameter_ends_at_a_bound(capsys):
     # the record hides friction and a slug, no gas spring: a gas spring fitted to it has nothing to hold its stiffness
     # off zero (its lower bound), and the command says so on stderr; the friction effect alone does not
-    csv = ROOT / "examples" / "measurements" / "makris_two_hidden_effects.csv"
-    damper = ROOT / "examples" / "makris.toml"
+    csv = ROOT / "erdesign" / "examples" / "measurements" / "makris_two_hidden_effects.csv"
+    damper = ROOT / "erdesign" / "examples" / "makris.toml"
     code, out, err = run(capsys, "fit", str(csv), "--damper", str(damper), "--effects", "gas_spring", "--json")
     assert code == 0, err
     assert set(json.loads(out)) == {"esr", "parameters"}                     # the contract's keys, nothing more

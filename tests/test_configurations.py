@@ -32,7 +32,7 @@ from erdesign import load_damper
 from erdesign.cli.main import cli
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "erdesign" / "examples"
-REQUIREMENTS = Path(__file__).resolve().parents[1] / "examples" / "requirements"
+REQUIREMENTS = Path(__file__).resolve().parents[1] / "erdesign" / "examples" / "requirements"
 
 
 @dataclass(frozen=True)

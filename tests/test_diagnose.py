@@ -191,3 +191,42 @@ def test_force_column_off_by_a_unit_prefix_names_no_effect(factor):
     result = diagnose(damper, dataclasses.replace(rec, force=rec.force * factor))
     assert result.verdict == "unexplained" and result.missing_effect is None
     assert "force column" in result.reason and "implausible" in result.reason
+
+
+def test_close_rivals_are_ordered_by_the_whiteness_of_what_they_leave():
+    """Two candidates within 2x in residual sum of squares: the one whose residual is clearly whiter (a larger
+    effective sample count) ranks first although its sum of squares is larger; when their residuals are equally
+    structured the sum of squares decides; a candidate far behind never overtakes."""
+    from types import SimpleNamespace
+
+    from erdesign.diagnosis.candidates import Candidate, _effective_n, rank_candidates
+
+    rng = np.random.default_rng(3)
+    n = 4000
+    white = rng.standard_normal(n)
+    smooth = np.convolve(rng.standard_normal(n + 20), np.ones(21) / np.sqrt(21), mode="valid")  # lag-1 rho ~ 0.95
+    assert _effective_n(white) > 10 * _effective_n(smooth)
+
+    def cand(name, residual, scale):
+        r = residual * scale
+        res = SimpleNamespace(rss=float(r @ r), k=3, residual=r, n=n)
+        return Candidate(effect=name, result=res, esr=float(r @ r) / n, delta_bic=0.0)
+
+    base = SimpleNamespace(rss=100.0 * n, k=2, residual=10 * white, n=n)
+
+    def ranked(*cands):
+        for c in cands:                       # each one's own-count BIC change against the baseline
+            ne = _effective_n(c.result.residual)
+            c.delta_bic = (ne * np.log(c.result.rss / n) + c.result.k * np.log(ne)
+                           - ne * np.log(base.rss / n) - base.k * np.log(ne))
+        ranking = list(cands)
+        rank_candidates(ranking, base)
+        return [c.effect for c in ranking]
+
+    # whiter but 1.5x the sum of squares: first
+    assert ranked(cand("structured", smooth, 1.0), cand("white", white, np.sqrt(1.5) * np.std(smooth)))[0] == "white"
+    # whiter but 3x the sum of squares: not a close rival, the sum of squares decides
+    assert ranked(cand("structured", smooth, 1.0), cand("white", white, np.sqrt(3.0) * np.std(smooth)))[0] \
+        == "structured"
+    # equally structured residuals: the smaller sum of squares first
+    assert ranked(cand("a", smooth, 1.0), cand("b", smooth[::-1].copy(), 1.1))[0] == "a"

@@ -34,7 +34,7 @@ from erdesign.units import Q_
 
 ROUNDING = 5e-4     # 4 significant figures (module docstring)
 ROOT = Path(__file__).resolve().parents[1]
-MAKRIS = str(ROOT / "examples" / "makris.toml")
+MAKRIS = str(ROOT / "erdesign" / "examples" / "makris.toml")
 
 
 @pytest.fixture(scope="module")
@@ -309,7 +309,8 @@ def test_measurement_section_only_when_given(markdown, html):
                      history=[(0, "baseline", 0.31), ErrorHistoryStep(1, "seal_friction", 0.082)])
     md = render_markdown(r)
     assert "## 7. Measurement comparison and error history (optional)" in md
-    assert "| ESR (Vivas-López et al., eq 7) | 0.082 |" in md and "| RMS force error | 85 N |" in md
+    # the RMS error in the report's one force unit (kN: the curves' forces), not N beside the tables' kN
+    assert "| ESR (Vivas-López et al., eq 7) | 0.082 |" in md and "| RMS force error | 0.085 kN |" in md
     assert "| 1 | seal_friction | 0.082 |" in md
     assert [f.key for f in r.figures][-2:] == ["measurement", "history"]
     page = render_html(r)
@@ -349,7 +350,7 @@ def test_write_report_chooses_the_format_from_the_suffix(tmp_path, makris_report
 
 
 def test_report_of_a_mixed_damper_from_python():
-    d = load_damper(ROOT / "examples" / "kamath_wereley.toml")
+    d = load_damper(ROOT / "erdesign" / "examples" / "kamath_wereley.toml")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         r = build_report(d, velocity_range=("0 m/s", "0.1 m/s"), fields=["3 kV/mm"])
@@ -433,7 +434,9 @@ def test_baseline_section_is_the_librarys_design_point_of_each_design():
     assert rows["force"]["baseline"].si == pytest.approx(F_base, rel=1e-12)
     assert rows["force"]["this"].si == pytest.approx(F_now, rel=1e-12)
     assert rows["force"]["change"] == f"{100 * (F_now / F_base - 1):+.1f} %"
-    assert report.baseline["inputs"] == ({"key": "geometry.gap", "baseline": "0.8 mm", "this": "0.6 mm"},)
+    # the inputs that differ, with the change of this design against the baseline: 0.6 / 0.8 - 1 = -25 %
+    assert report.baseline["inputs"] == ({"key": "geometry.gap", "baseline": "0.8 mm", "this": "0.6 mm",
+                                          "change": "-25.0 %"},)
     assert [f.key for f in report.figures][-1] == "baseline" and build_report(narrow, **point).baseline is None
     md = render_markdown(report)
     assert f"| force F | {rows['force']['baseline'].text} | {rows['force']['this'].text} |" in md

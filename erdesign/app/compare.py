@@ -8,6 +8,8 @@ effects, and a verdict: a missing effect, nothing missing - the residual is at t
 
 from __future__ import annotations
 
+import dataclasses
+import json
 import math
 from pathlib import Path
 
@@ -18,13 +20,15 @@ from erdesign.data.measurement import check_record
 from erdesign.diagnosis.diagnose import fitted_model
 from erdesign.effects import EFFECTS
 from erdesign.errors import ErdesignError
+from erdesign.formatting import esr_shown
 from erdesign.report import plots
 from erdesign.report.builder import ErrorHistoryStep
 from erdesign.report.export import csv_text, rows_csv
-from erdesign.report.formatting import pick_unit, show, show_in_system
+from erdesign.report.fit import EXPORT_UNITS, correlation_rows, parameter_rows, parameters_csv, statistics_rows
+from erdesign.report.formatting import pick_unit, show
 from erdesign.units import Q_
 
-__all__ = ["render", "history_steps"]
+__all__ = ["render", "history_steps", "judged_samples"]
 
 _BUILT_IN, _UPLOAD = "built-in example (hidden effect)", "upload a measurement CSV"
 
@@ -59,38 +63,37 @@ def history_steps(diagnoses) -> list[ErrorHistoryStep]:
     return steps
 
 
-def _value_and_error(model, name: str, value: float, se: float | None, digits: int = 4) -> tuple[str, str]:
-    """A fitted value and its standard error as text, both in the unit the unit system gives the parameter's kind
-    (``"0.3838 kN"``, ``"± 0.012 kN"``); the error reads "fixed" (not fitted) or "not identifiable"."""
-    p = model.parameter(name)
-    q = p.quantity(value)
-    text = show_in_system(q, name=name, digits=digits).text
-    if se is None:
-        return text, "fixed"
-    if not math.isfinite(se):
-        return text, "not identifiable"
-    return text, "± " + show_in_system(p.quantity(se), name=name, digits=2, like=q).text
+def _report_details(diagnosis) -> str:
+    """What the report adds to the comparison (verdict, its reason, noise floor, the calibration's fit report), as
+    JSON text (hashable, for the cached report); numbers formatted in the unit system by :mod:`erdesign.report.fit`."""
+    result = diagnosis.baseline
+    return json.dumps({"verdict": diagnosis.verdict, "reason": _sentence(diagnosis.reason),
+                       "noise_floor_esr": float(diagnosis.noise_floor_esr),
+                       "parameters": parameter_rows(result), "statistics": statistics_rows(result),
+                       "correlations": correlation_rows(result)})
+
+
+def judged_samples(diagnosis) -> int:
+    """Number of samples a diagnosis judged its ESRs, RMS and verdict on (its ``judged_share`` of those analysed)."""
+    return round(diagnosis.judged_share * diagnosis.samples[1])
 
 
 def _parameters_table(result) -> list[dict]:
-    rows = []
-    for name in result.model.parameter_names:
-        value, unc = _value_and_error(result.model, name, result.values[name], result.stderr.get(name))
-        rows.append({"parameter": name, "value": value, "uncertainty (1 σ)": unc,
-                     "description": result.model.parameter(name).description})
-    return rows
+    """The fit report of the calibration as a table (:func:`erdesign.report.fit.parameter_rows`)."""
+    return parameter_rows(result)
 
 
 def _fitted(candidate) -> str:
-    """The effect parameters a candidate fitted, with standard errors, in the unit system (its ``parameters()``
-    chooses them; the values and errors come from its fit)."""
+    """The effect parameters a candidate fitted, each ``name = value ± error (share)`` in the unit system (the
+    values and errors of its fit, formatted by :mod:`erdesign.report.fit`)."""
     result = candidate.result
     model = fitted_model(result)       # fitted on part of the record: the model for the whole record
+    rows = {r["parameter"]: r for r in parameter_rows(dataclasses.replace(result, model=model))}
     parts = []
     for name in candidate.parameters():
-        se = result.stderr.get(name, math.nan)
-        value, unc = _value_and_error(model, name, result.values[name], se)
-        parts.append(f"{name} = {value} {unc if unc.startswith('±') else '± ' + unc}")
+        r = rows[name]
+        error = r["± 1σ"] + (f" ({r['±']})" if r["±"] else "")
+        parts.append(f"{name} = {r['value']} {error if error.startswith('±') else '(' + error + ')'}")
     return "; ".join(parts)
 
 
@@ -98,13 +101,15 @@ def _ranking_table(diagnosis) -> list[dict]:
     """One row per candidate; a candidate that could not be evaluated says "not evaluated" and why."""
     rows = []
     for i, c in enumerate(diagnosis.ranking, 1):
-        row = {"rank": i, "effect": c.effect, "significant": "yes" if c.significant else ""}
+        row = {"rank": i, "effect": c.effect, "significant": "yes" if c.significant else "no"}
         if not c.evaluated:
             row.update({"ESR after adding": "not evaluated", "explains": "", "ΔBIC": "", "gain": "", "fitted": "",
                         "against the prior": "", "note": c.reason or c.note})
             rows.append(row)
             continue
         notes = [c.note] if c.note else []
+        if c.implausible:        # the diagnosis marks a fitted size it does not believe: shown as such
+            notes.insert(0, "implausible: " + "; ".join(c.implausible))
         if c.at_bounds:
             notes.append("at bounds: " + "; ".join(c.at_bounds))
         row.update({
@@ -200,23 +205,31 @@ def render() -> None:
 def _show(diagnosis, record, model_force, chain, name) -> None:
     F = record.force
     steps = history_steps(chain)
+    judged = judged_samples(diagnosis)
+    rms = Q_(float(diagnosis.analysis.rms), "N")
+    # the report states the diagnosis' own numbers (ESR, RMS on the judged samples): one number for one thing
     st.session_state["report.comparison"] = (
-        name, float(diagnosis.baseline_esr), len(record), record.displacement, record.velocity, F, model_force)
+        name, float(diagnosis.baseline_esr), judged, float(rms.magnitude), record.displacement, record.velocity, F,
+        model_force, _report_details(diagnosis))
     st.session_state["report.history"] = tuple((s.step, s.effect, s.esr) for s in steps)
     model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
     st.markdown(f"**Model:** {model}")
     c = st.columns(3)
-    c[0].metric("ESR of the calibrated model", f"{diagnosis.baseline_esr:.4g}",
+    # ESRs to the 3 figures of the verdict's text, so that the metric and the sentence read the same number
+    c[0].metric("ESR of the calibrated model", esr_shown(diagnosis.baseline_esr).text,
                 delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}", delta_color="inverse",
                 help="Error-to-signal ratio (Vivas-López et al., eq 7): residual variance over force variance, on "
-                     f"the judged samples ({100 * diagnosis.judged_share:.0f} % of those analysed: where the sign "
-                     "of the velocity is known and no data finding excludes them).")
-    c[1].metric("noise floor ESR", f"{diagnosis.noise_floor_esr:.3g}",
-                help="The ESR that the load cell's noise alone would leave on the same samples, one figure per "
-                     f"record for every step (found by: {diagnosis.noise_floor_method or 'estimate'}): "
-                     "docs/diagnosis.md.")
-    rms = Q_(float(diagnosis.analysis.rms), "N")
-    c[2].metric("RMS residual", show(rms, pick_unit(rms, "force"), name="RMS residual").text)
+                     "the judged samples.")
+    c[1].metric("noise floor ESR", esr_shown(diagnosis.noise_floor_esr).text,
+                help="The ESR that the load cell's noise alone would leave on the same samples: one figure per "
+                     f"record, the same at every step (found by: {diagnosis.noise_floor_method or 'estimate'}; "
+                     "docs/diagnosis.md).")
+    c[2].metric("RMS residual", show(rms, pick_unit(rms, "force"), name="RMS residual").text,
+                help="Root mean square of measured minus model force on the judged samples (the report's RMS "
+                     "force error).")
+    st.caption(f"All three on the {judged} judged samples of {diagnosis.samples[1]} analysed "
+               f"({100 * diagnosis.judged_share:.0f} %: where the sign of the velocity is known and no data finding "
+               "excludes them); the verdict below compares the same ESR with the same floor.")
     left, right = st.columns([3, 2], gap="large")
     with left:
         for finding in diagnosis.findings:
@@ -262,8 +275,20 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
             cols[1].button("Add effect and refit", on_click=_add_effect, key="cmp.refit")
     parameters = _parameters_table(diagnosis.baseline)
     with tabs[3]:
-        st.markdown(f"**Calibrated parameters** of {model} (standard errors from the fit):")
+        st.markdown(f"**Calibrated parameters** of {model}: value, standard error (1 σ) and its share of the value, "
+                    "start value, bounds and status (free, fixed, at a bound, not identifiable):")
         st.dataframe(parameters, hide_index=True, key="cmp.parameters")
+        left, right = st.columns(2)
+        left.markdown("**Statistics** of the calibration (on the samples fitted)")
+        left.table(statistics_rows(diagnosis.baseline))
+        right.markdown("**Strong correlations** (these combinations, not the single values, are what the data fix)")
+        correlations = correlation_rows(diagnosis.baseline)
+        if correlations:
+            right.table(correlations)
+        else:
+            right.caption("none: every pair of free parameters is correlated less strongly than the threshold")
+        with st.expander("fit report (as `erdesign fit` prints it)"):
+            st.code(diagnosis.baseline.report(), language=None)
     with tabs[4]:
         _downloads(name, record, model_force, ranking, parameters, steps, diagnosis)
 
@@ -277,21 +302,51 @@ def _downloads(name, record, model_force, ranking, parameters, steps, diagnosis)
                ("residual", "N", F - model_force)]
     model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
     histories = csv_text(columns, comment=f"{name}: measured force, force of the calibrated model ({model}) and "
-                                          "residual (measured minus model)")
+                                          f"residual (measured minus model); numbers in {EXPORT_UNITS} units")
     st.markdown("Each file is CSV with units in the header; the time histories read back as a measurement.")
     cols = st.columns(4)
     cols[0].download_button("Time histories and residual", histories, file_name=f"{stem}-model.csv",
                             mime="text/csv", key="cmp.dl.history", icon=":material/download:")
-    cols[1].download_button("Ranking of the effects", rows_csv(ranking, comment=f"diagnosis of {name} ({model})"),
-                            file_name=f"{stem}-ranking.csv", mime="text/csv", key="cmp.dl.ranking",
-                            icon=":material/download:")
-    cols[2].download_button("Fitted parameters", rows_csv(parameters, comment=f"calibrated {model} on {name}"),
+    cols[1].download_button("Ranking of the effects", rows_csv(
+        _ranking_numbers(diagnosis), comment=f"diagnosis of {name} ({model})\nnumbers in {EXPORT_UNITS} units; "
+                                             "each fitted parameter a column NAME [unit], its standard error NAME "
+                                             "stderr [unit]"),
+        file_name=f"{stem}-ranking.csv", mime="text/csv", key="cmp.dl.ranking", icon=":material/download:")
+    cols[2].download_button("Fitted parameters", parameters_csv(diagnosis.baseline,
+                                                                comment=f"calibrated {model} on {name}"),
                             file_name=f"{stem}-parameters.csv", mime="text/csv", key="cmp.dl.parameters",
                             icon=":material/download:")
     cols[3].download_button("Error history", rows_csv(
         [{"step": s.step, "effect added": s.effect, "ESR [1]": f"{s.esr:.6g}"} for s in steps]
         + [{"step": "", "effect added": "noise floor", "ESR [1]": f"{diagnosis.noise_floor_esr:.6g}"}]),
         file_name=f"{stem}-error-history.csv", mime="text/csv", key="cmp.dl.steps", icon=":material/download:")
+
+
+def _ranking_numbers(diagnosis) -> list[dict]:
+    """The ranking as numbers in SI (the CSV download): ESR, ΔBIC, gain and share explained, and each fitted effect
+    parameter with its standard error in a column ``NAME [unit]`` (empty where a candidate has no such parameter)."""
+    def number(x) -> str:
+        return "" if x is None or not math.isfinite(x) else f"{x:.6g}"
+
+    rows, names = [], {}
+    for c in diagnosis.ranking:
+        fitted = {}
+        if c.evaluated:
+            model = fitted_model(c.result)
+            for n in c.parameters():
+                unit = model.parameter(n).unit or "1"
+                names[n] = unit
+                fitted[f"{n} [{unit}]"] = number(c.result.values[n])
+                fitted[f"{n} stderr [{unit}]"] = number(c.result.stderr.get(n))
+        rows.append({"rank": len(rows) + 1, "effect": " + ".join(c.effects), "significant": int(c.significant),
+                     "ESR after adding [1]": number(c.esr), "delta BIC [1]": number(c.delta_bic),
+                     "gain [%]": number(100 * c.gain) if c.evaluated else "",
+                     "explains [%]": number(100 * c.explained) if c.evaluated else "", **fitted,
+                     "implausible": "; ".join(c.implausible), "note": c.reason or c.note})
+    columns = ["rank", "effect", "significant", "ESR after adding [1]", "delta BIC [1]", "gain [%]", "explains [%]"]
+    columns += [f"{n} {part}[{u}]" for n, u in names.items() for part in ("", "stderr ")]
+    columns += ["implausible", "note"]
+    return [{k: r.get(k, "") for k in columns} for r in rows]
 
 
 def _verdict(diagnosis) -> None:

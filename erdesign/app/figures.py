@@ -19,14 +19,14 @@ import plotly.graph_objects as go
 from plotly.subplots import make_subplots
 
 from ..formatting import pick_unit
-from ..report.plots import MEASURED_STYLE, MODEL_STYLE, spans_decades
+from ..report.plots import LAYOUT, MEASURED_STYLE, MODEL_STYLE, RESIDUAL_STYLE, spans_decades, value_axis
 from ..units import Q_
 
 __all__ = ["tradeoff_figure", "loops_figure", "time_figure", "residual_figure", "BASELINE_STYLE"]
 
-_LAYOUT = dict(template="plotly_white", margin=dict(l=70, r=20, t=60, b=60),
-               legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"))
-_MEASURED, _MODEL, _OTHER = "#444444", "#c0392b", "#1f77b4"
+# the one style of the figures (erdesign.report.plots), each figure choosing its own height
+_LAYOUT = {k: v for k, v in LAYOUT.items() if k != "height"}
+_MEASURED, _MODEL, _OTHER = "#444444", MODEL_STYLE["line"]["color"], "#1f77b4"
 
 
 def _in(values, si_unit: str, kind: str) -> tuple[np.ndarray, str]:
@@ -56,16 +56,18 @@ def tradeoff_figure(sweep: dict, label: str, field_label: str, velocity_label: s
                              line=dict(color=_MEASURED), showlegend=False), row=2, col=1)
     fig.add_trace(go.Scatter(x=x, y=sweep["reynolds"], mode="lines+markers", name="Reynolds number",
                              line=dict(color="#2ca02c"), showlegend=False), row=3, col=1)
-    fig.update_yaxes(title_text=f"F [{f_unit}]" + (" (log)" if spans_decades(F) else ""),
-                     type="log" if spans_decades(F) else "linear", row=1, col=1)
+    # log axes only where the values span decades, every tick labelled in full (plots.value_axis)
+    fig.update_yaxes(title_text=f"F [{f_unit}]" + (" (log)" if spans_decades(F) else ""), **value_axis(F),
+                     row=1, col=1)
     fig.update_yaxes(title_text="F(E)/F(0) [-]", row=2, col=1)
-    fig.update_yaxes(title_text="Re [-]", type="log", row=3, col=1)
+    Re = sweep["reynolds"]
+    fig.update_yaxes(title_text="Re [-]" + (" (log)" if spans_decades(Re) else ""), **value_axis(Re), row=3, col=1)
     fig.update_xaxes(title_text=f"{label} [{x_unit}]", row=3, col=1)
     fig.update_layout(title=f"Trade-off: varying the {label}", height=720, **_LAYOUT)
     return fig
 
 
-#: The pinned baseline design beside the current one: a dashed line in another colour.
+#: The design pinned on the Size page beside the current one: a dashed line in another colour.
 BASELINE_STYLE = dict(mode="lines", line=dict(color=_OTHER, width=2, dash="dash"))
 
 
@@ -74,18 +76,18 @@ def _forces(*forces) -> np.ndarray:
 
 
 def loops_figure(displacement, velocity, force, *, label: str = "model", measured=None, baseline=None,
-                 baseline_label: str = "baseline design") -> go.Figure:
+                 baseline_label: str = "pinned design") -> go.Figure:
     """Force-displacement and force-velocity loops of one force record (and the measured force, and the force of
     the baseline design on the same motion, when given)."""
     x, x_unit = _in(displacement, "m", "length")
     v, v_unit = _in(velocity, "m/s", "velocity")
     _, f_unit = _in(_forces(force, measured, baseline), "N", "force")
     fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
-    traces = [(label, force, MODEL_STYLE)]          # the model first, the measured markers over it
+    # the measured markers first, the model's thin line over them (plots.MEASURED_STYLE, plots.MODEL_STYLE)
+    traces = [] if measured is None else [("measured", measured, MEASURED_STYLE)]
+    traces.append((label, force, MODEL_STYLE))
     if baseline is not None:
         traces.append((baseline_label, baseline, BASELINE_STYLE))
-    if measured is not None:
-        traces.append(("measured", measured, MEASURED_STYLE))
     for name, F, style in traces:
         y = np.asarray(Q_(np.asarray(F, dtype=float), "N").to(_unit_of(f_unit)).magnitude)
         common = dict(name=name, legendgroup=name, **style)
@@ -94,7 +96,7 @@ def loops_figure(displacement, velocity, force, *, label: str = "model", measure
     fig.update_xaxes(title_text=f"displacement x [{x_unit}]", row=1, col=1)
     fig.update_xaxes(title_text=f"velocity v [{v_unit}]", row=1, col=2)
     fig.update_yaxes(title_text=f"force F [{f_unit}]", row=1, col=1)
-    fig.update_layout(title="Loops", height=420, **_LAYOUT)
+    fig.update_layout(title="Loops", height=420, showlegend=len(traces) > 1, **_LAYOUT)
     return fig
 
 
@@ -104,21 +106,21 @@ def _unit_of(printed: str) -> str:
 
 
 def time_figure(time, force, *, label: str = "model", measured=None, baseline=None,
-                baseline_label: str = "baseline design") -> go.Figure:
+                baseline_label: str = "pinned design") -> go.Figure:
     """Force against time: the model (and the measurement, and the baseline design's force, when given)."""
     t = np.asarray(time, dtype=float)
     _, f_unit = _in(_forces(force, measured, baseline), "N", "force")
     fig = go.Figure()
+    if measured is not None:      # under the model's thin line, so that both stay visible where they agree
+        fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
+                                 name="measured", **MEASURED_STYLE))
     fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(force, float), "N").to(_unit_of(f_unit)).magnitude,
                              name=label, **MODEL_STYLE))
     if baseline is not None:
         fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(baseline, float), "N").to(_unit_of(f_unit)).magnitude,
                                  name=baseline_label, **BASELINE_STYLE))
-    if measured is not None:      # over the model, so that both stay visible where they agree
-        fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
-                                 name="measured", **MEASURED_STYLE))
     fig.update_layout(title="Force against time", xaxis_title="time t [s]", yaxis_title=f"force F [{f_unit}]",
-                      height=380, **_LAYOUT)
+                      height=380, showlegend=len(fig.data) > 1, **_LAYOUT)
     return fig
 
 
@@ -128,9 +130,8 @@ def residual_figure(time, velocity, residual) -> go.Figure:
     v, v_unit = _in(velocity, "m/s", "velocity")
     r, r_unit = _in(residual, "N", "force")
     fig = make_subplots(rows=1, cols=2, subplot_titles=("residual - time", "residual - velocity"))
-    common = dict(mode="markers", marker=dict(size=3, color=_OTHER), showlegend=False)
-    fig.add_trace(go.Scatter(x=t, y=r, name="residual", **common), row=1, col=1)
-    fig.add_trace(go.Scatter(x=v, y=r, name="residual", **common), row=1, col=2)
+    fig.add_trace(go.Scatter(x=t, y=r, name="residual", **RESIDUAL_STYLE), row=1, col=1)
+    fig.add_trace(go.Scatter(x=v, y=r, name="residual", **RESIDUAL_STYLE), row=1, col=2)
     fig.update_xaxes(title_text="time t [s]", row=1, col=1)
     fig.update_xaxes(title_text=f"velocity v [{v_unit}]", row=1, col=2)
     fig.update_yaxes(title_text=f"F - F_model [{r_unit}]", row=1, col=1)

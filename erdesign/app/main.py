@@ -22,11 +22,22 @@ _HERE = Path(__file__).resolve().parent
 #: (file, title, icon, URL path) of each page, in the order of the navigation; the first opens by default.
 PAGES = (
     ("size.py", "Size", ":material/straighten:", "size"),
+    ("design.py", "Design", ":material/architecture:", "design"),
     ("simulate.py", "Simulate", ":material/show_chart:", "simulate"),
     ("compare.py", "Compare and diagnose", ":material/troubleshoot:", "compare"),
     ("report.py", "Report", ":material/description:", "report"),
     ("characterize.py", "Characterize", ":material/analytics:", "characterize"),
+    ("vehicle.py", "Vehicle", ":material/directions_car:", "vehicle"),
 )
+
+
+#: Metrics hold their number whole at 1280 px (three to a row in two thirds of the page): a smaller value font,
+#: and a label that wraps instead of being cut ("120.3 k..." was the damping constant).
+_STYLE = """<style>
+[data-testid="stMetricValue"] { font-size: 1.6rem; }
+[data-testid="stMetricValue"] > div { overflow: visible; text-overflow: clip; white-space: nowrap; }
+[data-testid="stMetricLabel"] p { white-space: normal; }
+</style>"""
 
 
 def main() -> None:
@@ -35,6 +46,7 @@ def main() -> None:
     pages = [st.Page(_HERE / file, title=title, icon=icon, url_path=url, default=(i == 0))
              for i, (file, title, icon, url) in enumerate(PAGES)]
     page = st.navigation(pages)
+    st.html(_STYLE)
     with st.sidebar:
         system = state.widget(st.radio, "units of displayed numbers", state.UNITS, "SI", options=list(UNIT_SYSTEMS),
                               help="Numbers shown and reported in this unit system; controls stay in the fluid's "

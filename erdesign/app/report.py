@@ -67,9 +67,9 @@ def render() -> None:
                 f"{report.warnings} warn."
                 + ("" if comparison is not None else " Run a diagnosis on the Compare page to add a measurement."))
     rows = [{"quantity": r.label, "value": r.value.text} for r in report.design_point]
-    st.dataframe(rows, hide_index=True, key="rep.point")
+    st.table(rows)          # a table, not a dataframe: all rows in view, no scrolling inside the page
     file_name = f"{file_stem(name)}.{fmt}"
-    cols = st.columns([2, 2, 3])
+    cols = st.columns([3, 2, 2])
     cols[0].download_button(f"Download {file_name}", body, file_name=file_name, type="primary", key="rep.download",
                             mime="text/html" if fmt == "html" else "text/markdown", icon=":material/download:")
     cols[1].download_button("Damper file (TOML)", damper_toml(design["spec"], comment=_comment(design)),
@@ -95,12 +95,19 @@ def _images(text: str, system: str, comparison, history, baseline, name: str) ->
                 st.session_state["rep.images"] = (key, state.report_images(text, system, comparison, history,
                                                                            baseline, fmt))
         except ErdesignError as exc:
-            st.session_state.pop("rep.images", None)
-            st.info(state.clean_message(str(exc)))
+            # the fallback needs nothing more: each figure as an interactive page whose camera button saves it
+            st.session_state["rep.images"] = (key, None)
+            st.info(state.clean_message(str(exc)) + ". Offered instead: each figure as an interactive HTML page "
+                    f"(plotly's own script beside them, no download); its camera button saves it as {fmt.upper()}.")
     made = st.session_state.get("rep.images")
-    if made is not None and made[0] == key:
+    if made is not None and made[0] == key and made[1] is not None:
         st.download_button(f"Figures ({fmt.upper()}, zip)", made[1], file_name=f"{state.file_stem(name)}-figures.zip",
                            mime="application/zip", key="rep.dl.images", icon=":material/download:")
+    elif made is not None and made[0] == key:
+        st.download_button("Figures (HTML pages, zip)", state.report_pages(text, system, comparison, history,
+                                                                           baseline, fmt),
+                           file_name=f"{state.file_stem(name)}-figures-html.zip", mime="application/zip",
+                           key="rep.dl.pages", icon=":material/download:")
 
 
 def _comment(design: dict) -> str:

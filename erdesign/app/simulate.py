@@ -7,6 +7,8 @@ the displacement of an uploaded measurement CSV; forces from :meth:`erdesign.mod
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 import streamlit as st
 
@@ -15,23 +17,32 @@ from erdesign.effects import EFFECT_NAMES, EFFECTS
 from erdesign.errors import ErdesignError
 from erdesign.models.registry import get_model, model_names
 from erdesign.report.export import csv_text
-from erdesign.report.formatting import UNIT_SYSTEMS, kind_of, pick_unit, show, unit_system
-from erdesign.units import Q_, to_si
+from erdesign.report.fit import EXPORT_UNITS
+from erdesign.report.formatting import control_label, kind_of, pick_unit, round_significant, show, unit_system
+from erdesign.units import Q_, to_si, ureg
 
-__all__ = ["render", "EXCITATIONS"]
+__all__ = ["render", "EXCITATIONS", "model_label"]
 
 EXCITATIONS = {"sine": "sine", "sweep": "sine sweep (two amplitudes and frequencies)",
                "earthquake": "earthquake-like record", "upload": "uploaded displacement (measurement CSV)",
                "programme": "test programme E1-E5 (Vivas-López et al.)"}
 
 
-def _excitation(control_unit: str, design_field: str):
+def _excitation(fluid, design_field: str):
     """Draw the excitation inputs; return the excitation as plain data (SI) for :func:`state.simulate` and the
-    uploaded file (or None), or None when the inputs are not complete."""
+    uploaded file (or None), or None when the inputs are not complete.
+
+    The control input follows the damper: its label names the fluid's kind of control (field E, coil current I)
+    and it takes the design control of the Size page whenever that changes (another damper, another control);
+    a value typed here holds until then."""
+    control_unit = fluid.control_unit
     kind = state.widget(st.selectbox, "excitation", "sim.kind", "sine", options=list(EXCITATIONS),
                         format_func=EXCITATIONS.get)
-    field_text = state.widget(st.text_input, "field E", "sim.field", design_field,
-                              help="The control during the test, with its unit (the design field of the Size "
+    if st.session_state.get("sim.field.source") != design_field:
+        state.set_widget("sim.field", design_field)
+        st.session_state["sim.field.source"] = design_field
+    field_text = state.widget(st.text_input, control_label(fluid.control), "sim.field", design_field,
+                              help="The control during the test, with its unit (the design control of the Size "
                                    "page to start with).")
     try:
         E = float(to_si(field_text, control_unit, "field"))
@@ -98,7 +109,6 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
         model = get_model(name)
         st.caption(model.source)
     system = unit_system()
-    shown = {p.name: _display_unit(p.unit, system) for p in model.parameters}
     # The table of one model and unit system is a widget of its own (its key); it starts from the values last
     # used with this model in any unit system (SI, exact), so that a switch of the unit system converts what was
     # typed instead of dropping it.
@@ -110,8 +120,12 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
         st.session_state.pop(key, None)          # a table left earlier in this system holds stale edits
         st.session_state["sim.values.table"] = key
     start = st.session_state[f"{key}.start"]
-    shown_start = {p.name: _to_unit(start[p.name], p.unit, shown[p.name]) for p in model.parameters}
-    rows = [{"parameter": p.name, "value": shown_start[p.name], "unit": shown[p.name] or "-",
+    # each value in a prefixed unit of the unit system that keeps it between 1 and 1000, to 4 significant figures
+    # (43.24 MN/m, not 43241692.2085 N/m); a value left as shown is the exact start value (_to_si)
+    shown = {p.name: _display_unit(p.unit, start[p.name]) for p in model.parameters}
+    shown_start = {p.name: float(round_significant(_to_unit(start[p.name], p.unit, shown[p.name])))
+                   for p in model.parameters}
+    rows = [{"parameter": p.name, "value": shown_start[p.name], "unit": _pretty(shown[p.name]),
              "description": p.description} for p in model.parameters]
     edited = st.data_editor(rows, key=key, disabled=["parameter", "unit", "description"], hide_index=True,
                             width="stretch")
@@ -126,15 +140,19 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
     return name, effects, values
 
 
-def _display_unit(unit: str, system: str) -> str:
-    """The unit a parameter of SI unit ``unit`` is shown and typed in: the unit system's unit for its kind
-    (force, damping, stiffness, length, pressure, ...), else ``unit`` itself (SI, plain factors, kinds the system
-    does not fix: mass, time, 1/m, ...)."""
+def _display_unit(unit: str, value: float) -> str:
+    """The unit a parameter of SI unit ``unit`` and start ``value`` is shown and typed in: the unit the unit system
+    gives its kind (force, damping, stiffness, length, pressure, ...; in SI the prefix that keeps the value between
+    1 and 1000), else ``unit`` itself (plain factors, kinds without a unit choice: 1/m, ...)."""
     kind = kind_of(unit)
-    if system == "SI" or kind is None:
+    if kind is None:
         return unit
-    choices = UNIT_SYSTEMS[system].get(kind)
-    return choices[0] if choices else unit
+    return pick_unit(Q_(abs(value), unit), kind)
+
+
+def _pretty(unit: str) -> str:
+    """A unit as a table shows it: ``kN·s/m`` (pint's short pretty form), ``-`` for none."""
+    return f"{ureg.Unit(unit):~P}" if unit else "-"
 
 
 def _to_unit(value: float, unit: str, shown: str) -> float:
@@ -166,7 +184,7 @@ def render() -> None:
         st.subheader("Model")
         chosen = _model(damper)
         st.subheader("Excitation")
-        excitation = _excitation(damper.fluid.control_unit, design["field"])
+        excitation = _excitation(damper.fluid, design["field"])
     with right:
         if chosen is None or excitation is None:
             return
@@ -180,7 +198,9 @@ def render() -> None:
             st.error(state.clean_message(str(exc)))
             return
         st.session_state["sim.last"] = {"title": sim["title"], "description": sim["description"]}
-        st.caption(f"{sim['title']}: {sim['description']}")
+        label = model_label(name, effects, sim["title"])
+        st.caption(f"{label}: {sim['description']}"
+                   + (f" (effects: {', '.join(effects)})" if name == "physics" and len(effects) > 1 else ""))
         F = sim["force"]
         base = _baseline(design, damper, name, effects, values, excitation, upload, upload_name)
         Fb = None if base is None else base["force"]
@@ -192,14 +212,28 @@ def render() -> None:
         c[2].metric("duration", f"{sim['time'][-1] - sim['time'][0]:.3g} s")
         if Fb is not None:
             peak_b = Q_(float(np.max(np.abs(Fb))), "N")
-            c[3].metric("peak force, baseline design", show(peak_b, unit, name="baseline peak force").text,
+            c[3].metric("peak force, pinned design", show(peak_b, unit, name="pinned design's peak force").text,
                         help="The design pinned on the Size page, with the same model, effects and excitation.")
-        st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=sim["title"],
+        st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=label,
                                              measured=sim["measured"], baseline=Fb), key="sim.fig.loops",
                         config=state.chart_config("sim.fig.loops"))
-        st.plotly_chart(figures.time_figure(sim["time"], F, label=sim["title"], measured=sim["measured"],
+        st.plotly_chart(figures.time_figure(sim["time"], F, label=label, measured=sim["measured"],
                                             baseline=Fb), key="sim.fig.time", config=state.chart_config("sim.fig.time"))
         _download(sim, damper, name, effects, values)
+
+
+def model_label(name: str, effects: Sequence[str], title: str) -> str:
+    """The short name of a simulated model on a legend: ``"design"``, ``"design + seal_friction"``, ``"design + 3
+    effects"`` (the list goes in the caption), or a library model's title.
+
+    >>> model_label("physics", (), "physics damper"), model_label("physics", ("a", "b", "c"), "")
+    ('design', 'design + 3 effects')
+    """
+    if name != "physics":
+        return title
+    if len(effects) > 1:
+        return f"design + {len(effects)} effects"
+    return "design" + "".join(f" + {e}" for e in effects)
 
 
 def _baseline(design: dict, damper, name: str, effects, values, excitation, upload, upload_name) -> dict | None:
@@ -226,7 +260,7 @@ def _baseline(design: dict, damper, name: str, effects, values, excitation, uplo
     changed = [f"{section}.{k} = {v}" for section in ("geometry", "fluid")
                for k, v in base["spec"].get(section, {}).items()
                if design["spec"].get(section, {}).get(k) != v]
-    st.caption(f"Dashed: the baseline design pinned on the Size page ({base['spec'].get('name') or 'design'}"
+    st.caption(f"Dashed: the design pinned on the Size page ({base['spec'].get('name') or 'design'}"
                + (f"; where it differs: {', '.join(changed)}" if changed else "") + "), with the same model, effects "
                "and excitation.")
     return sim
@@ -236,16 +270,15 @@ def _download(sim: dict, damper, name: str, effects, values) -> None:
     """The simulated time history as a measurement file (CSV, units in the header): it reads back as a record."""
     fluid = damper.fluid
     column = {"A": "current", "V": "voltage"}.get(fluid.control_unit, "field")
-    unit = fluid.field_unit
-    columns = [("time", "s", sim["time"]), ("displacement", "mm", Q_(sim["displacement"], "m").to("mm").magnitude),
-               ("velocity", "mm/s", Q_(sim["velocity"], "m/s").to("mm/s").magnitude),
-               ("force", "N", sim["force"]),
-               (column, unit, Q_(np.asarray(sim["control"], float), fluid.control_unit).to(unit).magnitude)]
+    # every number in SI (EXPORT_UNITS), the unit in the header: the control in its SI unit too (V/m, A/m, A)
+    columns = [("time", "s", sim["time"]), ("displacement", "m", sim["displacement"]),
+               ("velocity", "m/s", sim["velocity"]), ("force", "N", sim["force"]),
+               (column, fluid.control_unit, np.asarray(sim["control"], float))]
     if sim["measured"] is not None:
         columns.append(("measured force", "N", sim["measured"]))
     model = name + ("".join(f" + {e}" for e in effects) if name == "physics" else "")
     parameters = ", ".join(f"{k} = {v:.6g} {sim['units'].get(k) or ''}".strip() for k, v in dict(values).items())
-    comment = (f"simulated by erdesign: {model} on {sim['description']}\n"
+    comment = (f"simulated by erdesign: {model} on {sim['description']}; numbers in {EXPORT_UNITS} units\n"
                f"damper: {damper.name or 'design'}; parameters: {parameters or 'none'}")
     stem = state.file_stem(damper.name or "design", f"-{name}-simulated")
     st.download_button("Simulated time history (CSV)", csv_text(columns, comment=comment),

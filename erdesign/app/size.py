@@ -22,18 +22,20 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-from erdesign.app import figures, state
+from erdesign.app import figures, pinned, state
 from erdesign.damper.files import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
 from erdesign.limits import nested_too_deeply
+from erdesign.formatting import si_unit_text
 from erdesign.materials import fluid_values
 from erdesign.report import plots
-from erdesign.report.builder import compare_designs
-from erdesign.report.export import csv_text, damper_toml, rows_csv
-from erdesign.report.formatting import field_text, pick_unit, show
+from erdesign.report.export import csv_text, damper_toml
+from erdesign.report.fit import EXPORT_UNITS
+from erdesign.report.formatting import control_label, field_text, pick_unit, show
 from erdesign.units import Q_, to_si
 
-__all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets", "design_comment"]
+__all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets", "design_comment",
+           "design_point_csv"]
 
 #: Material choice meaning "the values of the damper file".
 FILE_VALUES = "(values of the damper file)"
@@ -237,23 +239,53 @@ def _inputs() -> dict:
     values["material"] = state.widget(
         st.selectbox, "material", "size.material", FILE_VALUES, options=[FILE_VALUES, *state.material_names()],
         on_change=_on_material, help="From the materials database (docs/materials.md); any value below overrides it.")
+    coil = bool(values["coil"])
     for key, (label, helptext) in FLUID_FIELDS.items():
+        if coil and key in _CIRCUIT_KEYS:
+            # the yield stress of a coil damper follows from the magnetic circuit at each current: a material's
+            # value at its own reference field (43.98 kPa at 250 kA/m) would read as the value at the rated current
+            st.text_input(label, value="from the magnetic circuit (below)", disabled=True, key=f"size.coil.{key}",
+                          help="With a [coil], τy(I) is the fluid's yield curve at the gap field H_g(I) of the "
+                               "magnetic circuit: the Magnetic circuit section shows it at each current.")
+            values[key] = _text(st.session_state.get("size.file_fluid", {}).get(key))
+            continue
+        if coil and key == "reference_field":
+            label = "reference field: the rated coil current"
         values[key] = state.widget(st.text_input, label, f"size.fluid.{key}", "",
                                    help=(helptext + " With its unit.").strip())
     return values
 
 
-def _point_inputs() -> dict:
-    """Draw the design point's inputs (as typed); return them."""
+#: Fluid values a damper with a [coil] takes from its magnetic circuit instead of the power law.
+_CIRCUIT_KEYS = ("yield_stress", "yield_exponent")
+
+
+def _control_kind(values: dict) -> str | None:
+    """The kind of control the typed reference field (or the material's) is, or None while it is not valid."""
+    from erdesign.fluid import control_kind
+
+    text = values.get("reference_field") or ""
+    if not text.strip() and values.get("material") not in (None, "", FILE_VALUES):
+        text = _text(fluid_values(values["material"]).get("reference_field"))
+    try:
+        return control_kind(text.strip(), "reference_field") if text.strip() else None
+    except ErdesignError:
+        return None
+
+
+def _point_inputs(kind: str | None) -> dict:
+    """Draw the design point's inputs (as typed) with the control labelled by its ``kind``; return them."""
     cols = st.columns([1, 1, 1, 1])
     point = {
         "velocity": state.widget(cols[0].text_input, "design velocity v", "size.velocity", "25 mm/s",
                                  help="Piston velocity of the design point, with its unit (mm/s, in/s, m/s)."),
-        "field": state.widget(cols[1].text_input, "design field E", "size.field", "3 kV/mm",
-                              help="The control, with its unit (kV/mm, kA/m, T or A)."),
+        "field": state.widget(cols[1].text_input, control_label(kind, "design"), "size.field", "3 kV/mm",
+                              help="The control, with its unit: the same kind as the fluid's reference field "
+                                   "(kV/mm, kA/m, T or A)."),
         "v_top": state.widget(cols[2].text_input, "top velocity of the curves", "size.v_top", "50 mm/s"),
-        "levels": int(state.widget(cols[3].number_input, "field levels", "size.levels", 4, min_value=1,
-                                   max_value=6, step=1, help="Controls of the curves, from the design field down to 0.")),
+        "levels": int(state.widget(cols[3].number_input, "control levels", "size.levels", 4, min_value=1,
+                                   max_value=6, step=1,
+                                   help="Controls of the curves, from the design control down to 0.")),
     }
     return point
 
@@ -307,52 +339,41 @@ def _curves_csv(report) -> str:
             columns.append((f"dynamic range at {label}", "", row))
     for label, row in zip(sweep.field_labels(), sweep.reynolds):
         columns.append((f"Reynolds number at {label}", "", row))
-    return csv_text(columns, comment=f"quasi-steady curves of {report.title} (erdesign.damper.curves)")
+    return csv_text(columns, comment=f"quasi-steady curves of {report.title} (erdesign.damper.curves); numbers in "
+                                     f"{EXPORT_UNITS} units")
 
 
 def _downloads(design: dict, report) -> None:
     stem = state.file_stem(design["spec"].get("name") or "design")
-    cols = st.columns(3)
+    cols = st.columns([4, 3, 4])     # the labels whole at 1280 px
     cols[0].download_button("Damper file (TOML)", damper_toml(design["spec"], comment=design_comment(design)),
                             file_name=f"{stem}.toml", mime="application/toml", key="size.dl.toml",
                             icon=":material/download:", help="Opens again with the upload above, and in "
                             "`erdesign size`; the design point is kept as a comment.")
     cols[1].download_button("Curves (CSV)", _curves_csv(report), file_name=f"{stem}-curves.csv", mime="text/csv",
                             key="size.dl.curves", icon=":material/download:")
-    point = rows_csv([{"quantity": r.label, "value": r.value.number, "unit": r.value.unit, "note": r.note}
-                      for r in report.design_point]
-                     + [{"quantity": f"check: {c.name}", "value": c.status, "unit": "",
-                         "note": c.detail} for c in report.checks])
+    point = design_point_csv(report)
     cols[2].download_button("Design point (CSV)", point, file_name=f"{stem}-design-point.csv",
                             mime="text/csv", key="size.dl.point", icon=":material/download:")
 
 
+def design_point_csv(report) -> str:
+    """The design point as CSV in SI: one column per figure headed ``label [unit]`` (``[1]`` for a ratio), one row
+    of numbers; the validity checks as comment lines (text, not numbers)."""
+    rows = [r for r in report.design_point if r.key != "field"]
+    field = report.setting("field_design").value
+    columns = [("design control", si_unit_text(field.si_unit), field.si)]
+    columns += [(r.label, si_unit_text(r.value.si_unit), r.value.si) for r in rows]
+    checks = "\n".join(f"check {c.name}: {c.status}" + (f" ({c.detail})" if c.detail else "") for c in report.checks)
+    return csv_text([(name, unit, [value]) for name, unit, value in columns],
+                    comment=f"design point of {report.title} (numbers in {EXPORT_UNITS} units)\n{checks}")
+
+
 def _baseline(design: dict, report) -> None:
-    """Pin the design as a baseline; show the current design beside it (figures and curves)."""
-    st.subheader("Compare designs")
-    base = st.session_state.get(state.BASELINE)
-    cols = st.columns([1, 1, 3])
-    if cols[0].button("Pin this design as the baseline", key="size.pin", icon=":material/push_pin:"):
-        st.session_state[state.BASELINE] = base = design
-    if base is not None and cols[1].button("Unpin", key="size.unpin"):
-        st.session_state.pop(state.BASELINE, None)
-        base = None
-    if base is None:
-        cols[2].caption("Pin a design, then change the inputs: the new design is shown beside the pinned one.")
-        return
-    try:
-        old = state.design_report(state.design_text(base), state.unit_system())
-    except ErdesignError as exc:     # a baseline from before a change of the library: drop it
-        st.session_state.pop(state.BASELINE, None)
-        st.info(f"The pinned design can no longer be evaluated ({state.clean_message(str(exc))}); unpinned.")
-        return
-    diff = compare_designs(report, old)             # the same table as the report's baseline section
-    rows = [{"": r["key"], "baseline": r["baseline"], "this design": r["this"], "change": ""} for r in diff["inputs"]]
-    rows += [{"": r["label"], "baseline": r["baseline"].text, "this design": r["this"].text, "change": r["change"]}
-             for r in diff["rows"]]
-    st.dataframe(rows, hide_index=True, key="size.compare", width="stretch")
-    st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=old.sweep), key="size.fig.compare",
-                    config=state.chart_config("size.fig.compare"))
+    """Pin designs; show the current design beside the pinned ones (table and curves: :mod:`erdesign.app.pinned`)."""
+    labels = {f"geometry.{k}": label for k, (label, _) in GEOMETRY_FIELDS.items()}
+    labels |= {f"fluid.{k}": label for k, (label, _) in FLUID_FIELDS.items()}
+    pinned.render(design, report, labels)
 
 
 def _magnetics(report) -> None:
@@ -421,7 +442,8 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
                      ("zero-field force", "N", result["zero_field_force"]),
                      ("dynamic range", "", result["dynamic_range"]), ("Reynolds number", "", result["reynolds"]),
                      ("gap ratio h/d", "", result["gap_ratio"])],
-                    comment=f"sweep of the {state.GEOMETRY_SWEEPS[parameter]} at {velocity_label} and {field_label}")
+                    comment=f"sweep of the {state.GEOMETRY_SWEEPS[parameter]} at {velocity_label} and {field_label}; "
+                            f"numbers in {EXPORT_UNITS} units")
     st.download_button("Sweep (CSV)", data, file_name=f"sweep-{parameter}.csv", mime="text/csv",
                        key="size.dl.sweep", icon=":material/download:")
 
@@ -492,7 +514,7 @@ def render() -> None:
         values = _inputs()
     with right:
         st.subheader("Design point")
-        point = _point_inputs()
+        point = _point_inputs(_control_kind(values))
         design, report, why = _candidate(values, point)
         if design is None:
             st.error(f"{why}. The pages keep the last valid design until this is corrected.", icon="🚫")

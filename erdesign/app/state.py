@@ -40,7 +40,7 @@ __all__ = [
     "spec_text", "build_damper", "damper_or_error", "caught", "force_velocity_curves", "geometry_sweep",
     "GEOMETRY_SWEEPS", "read_record",
     "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
-    "render_report", "clear_caches", "material_names", "set_widget",
+    "render_report", "report_pages", "clear_caches", "material_names", "set_widget", "widget_value",
 ]
 
 #: The damper the app opens on.
@@ -77,6 +77,11 @@ def set_widget(key: str, value: Any) -> None:
     """Give a widget drawn by :func:`widget` a new value (from a callback, or before the widget is drawn)."""
     st.session_state[key] = value
     st.session_state[_KEEP + key] = value
+
+
+def widget_value(key: str, default: Any = None) -> Any:
+    """The value of a widget drawn by :func:`widget`, also while its page is not drawn."""
+    return st.session_state.get(key, st.session_state.get(_KEEP + key, default))
 
 
 def forget(prefix: str) -> None:
@@ -194,8 +199,10 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
     """:func:`erdesign.report.build_report` of a design (:func:`design_text`) in the unit system ``system``.
 
     The Size page shows its design point, checks and curves; the Report page renders it: one computation, so the
-    numbers on screen and in the download are the same.  ``comparison`` is ``(label, esr, samples, x, v,
-    F_measured, F_model)`` with SI arrays as tuples, or None.  ``baseline`` is the pinned baseline design
+    numbers on screen and in the download are the same.  ``comparison`` is ``(label, esr, samples, rms, x, v,
+    F_measured, F_model, details)``: the diagnosis' ESR and RMS residual [N] on the samples it judged (their number),
+    SI arrays as tuples for the loops, and JSON text of the verdict, its reason, the noise floor and the
+    calibration's fit report (``erdesign.app.compare``); or None.  ``baseline`` is the pinned baseline design
     (:data:`BASELINE`, as :func:`design_text`): the report then compares the design with it.
 
     Raises :class:`~erdesign.errors.ErdesignError` for an invalid design.
@@ -209,11 +216,14 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
     base = design_report(baseline, system) if baseline is not None else None
     comp = None
     if comparison is not None:
-        label, esr_value, samples, x, v, Fm, Fmod = comparison
+        label, esr_value, samples, rms, x, v, Fm, Fmod, details = comparison
         Fm, Fmod = np.asarray(Fm), np.asarray(Fmod)
+        extra = json.loads(details) if details else {}
         comp = MeasurementComparison(
-            label=label, esr=esr_value, samples=samples,
-            rms_error=Q_(float(np.sqrt(np.mean((Fm - Fmod) ** 2))), "N"),
+            label=label, esr=esr_value, samples=samples, rms_error=Q_(rms, "N"),
+            verdict=extra.get("verdict", ""), reason=extra.get("reason", ""),
+            noise_floor_esr=extra.get("noise_floor_esr"), parameters=tuple(extra.get("parameters", ())),
+            statistics=tuple(extra.get("statistics", ())), correlations=tuple(extra.get("correlations", ())),
             peak_force_measured=Q_(float(np.max(np.abs(Fm))), "N"),
             peak_force_model=Q_(float(np.max(np.abs(Fmod))), "N"),
             displacement=np.asarray(x), velocity=np.asarray(v), force_measured=Fm, force_model=Fmod)
@@ -501,8 +511,21 @@ def report_images(text: str, system: str, comparison: tuple | None, history: tup
     return images_zip({f"{stem}-{k}": v for k, v in figure_images(report.figures, image_format).items()})
 
 
+@st.cache_data(show_spinner=False, max_entries=4)
+def report_pages(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
+                 baseline: str | None, image_format: str) -> bytes:
+    """The report's figures as interactive HTML pages in one ZIP archive (:func:`erdesign.report.export.figure_pages`):
+    the fallback of :func:`report_images` that needs no extra install."""
+    from ..report.export import figure_pages, images_zip
+
+    report = design_report(text, system, comparison, history, baseline)
+    stem = file_stem(json.loads(text)["spec"].get("name") or "design")
+    pages = figure_pages(report.figures, image_format)
+    return images_zip({(k if k.endswith(".js") else f"{stem}-{k}"): v for k, v in pages.items()})
+
+
 def clear_caches() -> None:
     """Empty every cache of the app (tests call it between tests)."""
     for fn in (force_velocity_curves, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
-               design_report, render_report, report_images):
+               design_report, render_report, report_images, report_pages):
         fn.clear()

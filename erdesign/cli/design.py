@@ -7,8 +7,10 @@ import time
 import click
 
 from .._util import check_output_path
+from ..damper.writer import save_damper
 from ..design import design as run_design
 from ..design import read_requirements
+from ..errors import ErdesignError
 from .main import cli, emit_json, executor_options
 
 __all__ = ["design"]
@@ -19,6 +21,7 @@ Examples:
   erdesign design requirements.toml
   erdesign design requirements.toml --out designs.csv
   erdesign design requirements.toml --json > designs.json
+  erdesign design requirements.toml --write-damper 1 best.toml     (then: erdesign size best.toml ...)
   erdesign design requirements.toml --jobs 4
   erdesign design requirements.toml --scheduler tcp://10.0.0.5:8786
 \b
@@ -33,20 +36,50 @@ Rounding and ties ([design.search] of the requirements file):
 @click.option("--out", "out", default=None, metavar="designs.csv",
               help="Also write the ranked designs, the Pareto front (and the nearest design when nothing is "
                    "feasible) to a CSV file with units in the header.")
-@click.option("--force", is_flag=True, help="Let --out replace an existing file (never the requirements file).")
+@click.option("--write-damper", "write_damper", type=(int, str), default=None, metavar="N OUT.toml",
+              help="Also write the design ranked N (1 is the best) as a damper file that every command loads.")
+@click.option("--force", is_flag=True,
+              help="Let --out and --write-damper replace existing files (never the requirements file).")
 @executor_options(default_jobs="1")
-def design(requirements_file: str, as_json: bool, out: str | None, force: bool, executor: dict) -> None:
+def design(requirements_file: str, as_json: bool, out: str | None, write_damper: tuple[int, str] | None,
+           force: bool, executor: dict) -> None:
     """Feasible damper geometries ranked by the objective, or the conflicts when there are none."""
+    inputs = {"the requirements file": requirements_file}
     if out is not None:  # checked before the search: a refused name must not cost a long run
-        out, _ = check_output_path(out, force=force, inputs={"the requirements file": requirements_file},
-                                   formats={".csv": "csv"})
-    result = run_design(read_requirements(requirements_file), progress=_Progress(), **executor)
+        out, _ = check_output_path(out, force=force, inputs=inputs, formats={".csv": "csv"})
+    req = read_requirements(requirements_file)
+    damper_out = None
+    if write_damper is not None:
+        rank, damper_out = write_damper
+        if not 1 <= rank <= req.search.designs:
+            raise ErdesignError(f"--write-damper {rank}: the search returns designs 1 (the best) to "
+                                f"{req.search.designs} (design.search.designs of {requirements_file})")
+        damper_out, _ = check_output_path(damper_out, force=force, option="--write-damper",
+                                          inputs={**inputs, "the --out file": out}, formats={".toml": "toml"})
+    result = run_design(req, progress=_Progress(), **executor)
     if out is not None:
         result.write_csv(out, overwrite=force, option="--out")
     if as_json:
         emit_json(result.as_json())
-        return
-    click.echo(_table(result))
+    else:
+        click.echo(_table(result))
+    if damper_out is not None:      # after the table: when nothing is feasible its conflicts say why
+        _write_damper(result, rank, damper_out, requirements_file, force)
+
+
+def _write_damper(result, rank: int, path, requirements_file: str, force: bool) -> None:
+    """The damper file of the design ranked ``rank``; a one-line error when the search returned no such design."""
+    try:
+        spec = result.damper_spec(rank)
+    except ErdesignError as exc:
+        raise ErdesignError(f"--write-damper {exc}") from None
+    rec = result.design(rank)
+    p = result.requirements.points[0]
+    comment = (f"design {rank} of erdesign design {requirements_file} (objective {result.requirements.objective})\n"
+               f"at point 1 (v = {p.velocity:.6g} m/s, field {rec['points'][0]['field']}): "
+               f"force {rec['force_N']:.6g} N, zero-field force {rec['zero_field_force_N']:.6g} N")
+    save_damper(spec, path, comment=comment, overwrite=force, option="--write-damper")
+    click.echo(f"design {rank} written to {path}", err=True)
 
 
 class _Progress:

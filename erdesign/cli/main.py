@@ -41,7 +41,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "doe": ("doe", "Write a test programme (RP, DSFS; SC, ICPS, PRBS actuation; E1-E5) as a record to play."),
     "diagnose": ("diagnose",
                  "Calibrate the physics baseline, show where it fails and rank the effects that could be missing."),
-    "examples": ("examples", "List the bundled example dampers; their names work wherever a damper file is asked for."),
+    "examples": ("examples", "List the bundled example dampers and requirements; their names work wherever "
+                             "such a file is asked for."),
     "fit": ("fit",
             "Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects."),
     "identify": ("identify",
@@ -55,6 +56,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
                          "checks, plots)."),
     "simulate": ("simulate", "Run a model with given parameters on a measurement and score it (ESR and more)."),
     "size": ("size", "Quasi-steady design point of a damper at one piston velocity and control."),
+    "vehicle": ("vehicle", "Quarter vehicle with the damper, passive or semi-active: ride figures (Butz and von "
+                           "Stryk 2002)."),
     "tolerance": ("tolerance", "Spread of force, zero-field force, dynamic range and damping constant under "
                                "tolerances, with Sobol indices."),
 }

@@ -29,6 +29,7 @@ from pydantic import BeforeValidator
 
 from .. import materials
 from ..errors import DamperFileError, ErdesignError
+from ..examples import bundled_file
 from ..limits import MAX_TOML_BYTES, is_path_like, nested_too_deeply, read_input_bytes
 from ..fluid import Fluid
 from ..fluid.fluid import control_kind
@@ -322,11 +323,12 @@ def damper_spec(damper: Damper) -> dict:
 
 def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
     """Read a damper file (TOML, docs/file_formats.md); where no such file exists, the name of a bundled example
-    (``makris``, ``mr_valve``, ...: :func:`example_names`) loads that example."""
+    (``makris``, ``mr_valve``, ...: :func:`example_names`) loads that example, and so does its documented path
+    ``examples/makris.toml`` (:func:`erdesign.examples.bundled_file`)."""
     if isinstance(path, str) and not Path(path).exists() and path in example_names():
         with resources.as_file(resources.files("erdesign.examples") / f"{path}.toml") as file:
             return damper_from_dict(read_toml(file), source=f"examples/{path}.toml", flow_model=flow_model)
-    return damper_from_dict(read_toml(path), source=str(path), flow_model=flow_model)
+    return damper_from_dict(read_toml(bundled_file(path) or path), source=str(path), flow_model=flow_model)
 
 
 def example_names() -> list[str]:

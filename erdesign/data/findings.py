@@ -334,32 +334,6 @@ def _held_beyond(record: Measurement) -> np.ndarray:
             continue
         out[a:b + 1] = True
     return out
-    dt = float(np.median(np.diff(t)))
-    guard = max(int(round(0.005 / dt)), 1)
-    for sign in (1.0, -1.0):
-        y = sign * x
-        order = np.sort(y)
-        # the largest jump between consecutive sorted values within the top quarter of the range
-        top = order[order >= order[-1] - 0.25 * span]
-        if top.size < 2:
-            continue
-        jumps = np.diff(top)
-        j = int(np.argmax(jumps))
-        if jumps[j] < HELD_GAP * span:
-            continue
-        above = y > top[j]
-        idx = np.flatnonzero(above)
-        if t[idx[-1]] - t[idx[0]] < HELD_MIN_DURATION or idx.size > 0.2 * n:
-            continue
-        # one stretch in time (short dips bridged): everything between its first and last sample
-        stretch = np.zeros(n, dtype=bool)
-        stretch[max(idx[0] - guard, 0):idx[-1] + guard + 1] = True
-        if (~stretch & above).any() or np.mean(above[idx[0]:idx[-1] + 1]) < 0.5:
-            continue
-        if np.ptp(F[stretch]) < HELD_FORCE_SWING * float(np.ptp(F)):
-            continue
-        out |= stretch
-    return out
 
 
 #: Samples at a flat extreme of the force from which it is surely clipped (fewer: only if the force on either side

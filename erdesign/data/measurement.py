@@ -42,7 +42,9 @@ from typing import Any
 
 import numpy as np
 
+from .._pint import pint  # not `import pint`: erdesign/_pint.py
 from ..errors import ErdesignError, ErdesignWarning
+from ..examples import bundled_file
 from ..fluid import CONTROL_UNITS
 from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, is_path_like, read_input_bytes
 from ..units import Q_, dimension_name, parse_unit, ureg
@@ -638,6 +640,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
                                f"{type(path).__name__} {path!r:.60}")
     path = Path(path)
     label = str(path)
+    path = bundled_file(path) or path       # the documented examples/measurements/... from any folder
     try:
         raw = read_input_bytes(path, MAX_RECORD_BYTES, "a measurement CSV file")
         text = raw.decode("utf-8-sig")

@@ -79,6 +79,7 @@ from pydantic import BeforeValidator
 
 from ..damper.files import Control, FluidTable, parse_fluid_table, read_toml
 from ..errors import ErdesignError
+from ..examples import bundled_file
 from ..fluid import Fluid
 from ..geometry import CONFIGURATIONS
 from ..schema import Flag, Number, Table, Text, checked, choice, quantity, validate, whole_number
@@ -280,8 +281,12 @@ class Requirements:
 
 # ---------------------------------------------------------------------------------------------------- parsing
 def read_requirements(path: str | Path) -> Requirements:
-    """Read a requirements file (TOML); errors name the file and the key."""
-    return requirements_from_dict(read_toml(path), source=str(path))
+    """Read a requirements file (TOML); errors name the file and the key.  Where no such file exists, the name of
+    a bundled example (``makris_requirements``, ...: :func:`example_requirements_names`) loads that example, and so
+    does its documented path ``examples/requirements/makris_requirements.toml``."""
+    if isinstance(path, str) and not Path(path).exists() and path in example_requirements_names():
+        return load_example_requirements(path)
+    return requirements_from_dict(read_toml(bundled_file(path) or path), source=str(path))
 
 
 def example_requirements_names() -> list[str]:

@@ -34,11 +34,12 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ErdesignError
 from ..units import Q_
 from .evaluate import CandidateFigures, Constraint
 from .requirements import VARIABLES, Requirements
 
-__all__ = ["DesignResult", "design_record", "CSV_COLUMNS"]
+__all__ = ["DesignResult", "design_record", "CSV_COLUMNS", "RECORD_KEYS", "figure_value"]
 
 #: Columns of the CSV file written by :meth:`DesignResult.write_csv`: (header with unit, record key, scale).
 CSV_COLUMNS = (
@@ -56,6 +57,28 @@ CSV_COLUMNS = (
     ("plug_fraction [1]", "plug_fraction", 1.0),
     ("gap_ratio [1]", "gap_ratio", 1.0),
 )
+
+
+#: Where each figure of :data:`~erdesign.design.figures.FIGURES` sits in a design record (first design point).
+RECORD_KEYS = {
+    "force": ("force_N",), "controllable_force": ("controllable_force_N",),
+    "zero_field_force": ("zero_field_force_N",), "dynamic_range": ("dynamic_range",),
+    "fluid_volume": ("fluid_volume_m3",), "total_fluid_volume": ("total_fluid_volume_m3",),
+    "outer_diameter": ("outer_diameter_m",), "length": ("length_m",),
+    "coil_power": ("magnetics", "power_W"), "time_constant": ("magnetics", "time_constant_s"),
+}
+
+
+def figure_value(record: dict, figure: str) -> float | None:
+    """The SI value of the figure ``figure`` (a name of ``FIGURES``) of a design record; None where undefined.
+
+    >>> figure_value({"force_N": 6020.0, "magnetics": {"power_W": 7.5}}, "coil_power")
+    7.5
+    """
+    value: Any = record
+    for key in RECORD_KEYS[figure]:
+        value = value.get(key) if isinstance(value, dict) else None
+    return None if value is None else float(value)
 
 
 def _finite(x: float) -> float | None:
@@ -191,6 +214,43 @@ class DesignResult:
             "gap_tolerance_m": req.search.gap_tolerance,
             "length_tolerance_m": req.search.length_tolerance,
         }
+
+    def design(self, rank: int) -> dict:
+        """The design record of rank ``rank`` (1 is the best); an :class:`~erdesign.errors.ErdesignError` naming
+        the rank when there is no such design (nothing feasible, or fewer designs returned)."""
+        if not self.designs:
+            raise ErdesignError(f"rank {rank}: nothing is feasible, so there is no design to take (the search "
+                                f"explains {len(self.conflicts)} conflict(s))")
+        if isinstance(rank, bool) or not isinstance(rank, (int, np.integer)) or not 1 <= rank <= len(self.designs):
+            raise ErdesignError(f"rank {rank!r}: the search returned designs 1 to {len(self.designs)}")
+        return self.designs[int(rank) - 1]
+
+    def damper_spec(self, rank: int = 1) -> dict:
+        """The damper file (``name``, ``[geometry]``, ``[fluid]``, ``[coil]``) of the design of rank ``rank``.
+
+        The geometry and the coil are the design's own tables (the rounded values that were checked); the fluid is
+        the requirements' ``[fluid]`` table as written (material, seal friction, ...), so that
+        :func:`erdesign.damper.files.damper_from_dict` builds the damper whose figures the design reports.  With a
+        coil the fluid's ``reference_field`` is the design current (the largest current of the design points), the
+        rated current of a damper file with a ``[coil]``.
+
+        Examples
+        --------
+        >>> from erdesign.design import design, load_example_requirements
+        >>> r = design(load_example_requirements("makris_requirements").with_search(samples=1024, refine=False))
+        >>> spec = r.damper_spec(1)
+        >>> sorted(spec), spec["fluid"]["material"]
+        (['fluid', 'geometry', 'name'], 'makris-zeolite-silicone')
+        """
+        rec = self.design(rank)
+        req = self.requirements
+        fluid = dict(req.fluid_table)
+        spec: dict[str, Any] = {"name": f"{req.name or 'design'} #{int(rank)}", "geometry": dict(rec["geometry"]),
+                                "fluid": fluid}
+        if "coil" in rec:
+            fluid["reference_field"] = f"{rec['magnetics']['design_current_A']!r} A"
+            spec["coil"] = dict(rec["coil"])
+        return spec
 
     def ranking_note(self) -> str:
         """How the designs are rounded and ranked, in words (the table and the JSON state it)."""

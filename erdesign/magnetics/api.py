@@ -18,9 +18,9 @@ from pathlib import Path
 from typing import Any, Mapping
 
 import numpy as np
-import pint
 
 from .. import materials
+from .._pint import pint  # not `import pint`: erdesign/_pint.py
 from ..errors import DamperFileError, ErdesignError, PlausibilityWarning
 from ..units import Q_, to_si
 from .circuit import MagneticCircuit, piston_head

@@ -54,8 +54,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-import pint
-
+from .._pint import pint  # not `import pint`: erdesign/_pint.py
 from ..errors import ErdesignError
 from ..fluid.field_laws import FieldLaw, control_unit_of, field_law_from_dict
 from ..units import Q_, parse_quantity, to_si

@@ -42,13 +42,14 @@ from ..damper.curves import ForceVelocityCurves, SineLoops, force_velocity_curve
 from ..damper.files import damper_from_dict, read_toml
 from ..damper.validity import PLUG_FRACTION_LIMIT, SEAL_SHARE_LIMIT, Check, validity_checks
 from ..errors import ErdesignError, ValidityWarning
+from ..formatting import control_label, esr_shown
 from ..units import Q_, parse_quantity, positive_si, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
 
 __all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison", "tolerance_figures",
            "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
-           "default_velocity_max", "compare_designs", "with_baseline", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
+           "default_velocity_max", "report_units", "compare_designs", "relative_change", "with_baseline", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
 
 #: Sine amplitude of the loops when none is given.
 DEFAULT_AMPLITUDE = "10 mm"
@@ -114,8 +115,9 @@ class MeasurementComparison:
     esr : float
         ESR of the model against the measurement (Vivas-López et al., eq 7), [-].
     samples : int or None
+        Samples the ESR and the RMS error are computed on (a diagnosis: those it judged).
     rms_error : quantity or None
-        RMS of F - F_model (a force).
+        RMS of F - F_model (a force) on those samples.
     peak_force_measured, peak_force_model : quantity or None
         Largest |F| of the measurement and the model (forces).
     displacement, velocity, force_measured, force_model : array or None
@@ -134,6 +136,19 @@ class MeasurementComparison:
     force_measured: Any = None
     force_model: Any = None
     notes: str = ""
+    verdict: str = ""
+    """The diagnosis' verdict (``"missing_effect"``, ``"nothing_missing"``, ``"unexplained"``), or empty."""
+    reason: str = ""
+    """The verdict in words, as the diagnosis gives it."""
+    noise_floor_esr: float | None = None
+    """ESR that the measurement noise alone would leave on the same samples, [-]."""
+    parameters: tuple = ()
+    """The calibrated parameters as :func:`erdesign.report.fit.parameter_rows` shows them (value, ± 1σ, ±,
+    initial, bounds, status)."""
+    statistics: tuple = ()
+    """:func:`erdesign.report.fit.statistics_rows` of the calibration."""
+    correlations: tuple = ()
+    """:func:`erdesign.report.fit.correlation_rows` of the calibration."""
 
 
 @dataclass(frozen=True)
@@ -366,25 +381,30 @@ def report_grid(damper: Damper, velocity_range: Sequence[Any] | None, fields: Se
     return v, E, v_design, E_design
 
 
-def design_point_rows(damper: Damper, velocity: float, field: float) -> tuple[Row, ...]:
+def design_point_rows(damper: Damper, velocity: float, field: float,
+                      units: Mapping[str, str] | None = None) -> tuple[Row, ...]:
     """The design point as the app's Size page shows it and the report prints it: :meth:`Damper.size` at
     ``velocity`` [m/s] and ``field`` (SI unit of the control), each figure in the unit of the current unit system.
+
+    ``units`` fixes the unit of a kind (``{"force": "kN"}``): a report shows every force in one unit
+    (:func:`report_units`); the other kinds get the unit :func:`pick_unit` chooses for the value.
 
     Row keys: ``velocity``, ``field``, ``force``, ``zero_field_force``, ``dynamic_range``, ``pressure_drop``,
     ``yield_force``, ``damping_constant``, ``reynolds``, ``plug_fraction``, ``flow_rate``, ``piston_area``.
     """
     fluid = damper.fluid
     r = damper.size(velocity=Q_(velocity, "m/s"), field=Q_(field, fluid.control_unit))
+    fixed = dict(units or {})
 
     def q(key: str, label: str, value: Any, kind: str, note: str = "") -> Row:
-        unit = pick_unit(value, kind)
+        unit = fixed.get(kind) or pick_unit(value, kind)
         return Row(key, label, show(value, unit, name=label), note)
 
     dyn = float("nan") if r.dynamic_range is None else r.dynamic_range
     c_note = "Makris eq 15, zero field" if damper.geometry.configuration == "valve" else "Newtonian mixed mode"
     return (
         q("velocity", "design velocity v", r.velocity, "velocity"),
-        Row("field", "design control E", show(r.field, fluid.field_unit, name="design control")),
+        Row("field", control_label(fluid.control, "design"), show(r.field, fluid.field_unit, name="design control")),
         q("force", "force F", r.force, "force", "quasi-steady force at the design velocity and control, with the "
                                                 "seal friction (Makris eq 14)"),
         q("zero_field_force", "zero-field force F(0)", r.zero_field_force, "force"),
@@ -399,6 +419,20 @@ def design_point_rows(damper: Damper, velocity: float, field: float) -> tuple[Ro
         q("flow_rate", "flow rate Q", r.flow_rate, "flow", "volume the piston displaces per second"),
         q("piston_area", "piston area A_p", r.piston_area, "area"),
     )
+
+
+def report_units(curves: ForceVelocityCurves) -> dict[str, str]:
+    """The one unit of each force and pressure a report prints (design point, tables, comparison), chosen from the
+    largest of its force-velocity curves (:func:`pick_unit`), so that one quantity never reads 190.8 N in one
+    section and 0.1908 kN in another.
+
+    >>> from erdesign import load_example
+    >>> from erdesign.damper.curves import force_velocity_curves
+    >>> report_units(force_velocity_curves(load_example("makris"), np.linspace(0, 0.05, 11), [0.0, 3e6]))
+    {'force': 'kN', 'pressure': 'MPa'}
+    """
+    return {"force": pick_unit(Q_(np.asarray(curves.force), "N"), "force"),
+            "pressure": pick_unit(Q_(np.asarray(curves.pressure_drop), "Pa"), "pressure")}
 
 
 def magnetic_section(damper: Damper, currents: np.ndarray) -> dict | None:
@@ -572,13 +606,18 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
 
     sweep = force_velocity_curves(damper, v, E)
     loops = sine_loops(damper, X0, f, E)
+    units_of = report_units(sweep)
+    with warnings.catch_warnings():      # the same design point again, its warnings already taken above
+        warnings.simplefilter("ignore")
+        design_point = design_point_rows(damper, v_design, E_design, units_of)
 
     v_unit = pick_unit(Q_(v, "m/s"), "velocity")
     e_unit = fluid.field_unit
     dv_unit = pick_unit(Q_(v_design, "m/s"), "velocity")
     settings = [
         Row("velocity_design", "design velocity v", show(Q_(v_design, "m/s"), dv_unit, name="design velocity")),
-        Row("field_design", "design control E", show(Q_(E_design, control), e_unit, name="design control")),
+        Row("field_design", control_label(fluid.control, "design"), show(Q_(E_design, control), e_unit,
+                                                                     name="design control")),
         Row("velocity_min", "lowest velocity of the curves", show(Q_(v_lo, "m/s"), v_unit, name="lowest velocity")),
         Row("velocity_max", "highest velocity of the curves", show(Q_(v_hi, "m/s"), v_unit,
                                                                     name="highest velocity")),
@@ -601,8 +640,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
                  name="active volume"), "Kamath and Wereley (1997), section III.C"),
         Row("damping_constant", "damping constant C (zero field)", show(C, pick_unit(C, "damping"), name="C"),
             "Makris eq 15" if g.configuration == "valve" else "Newtonian mixed mode"),
-        Row("seal_friction", "seal friction F_s", show(Q_(damper.seal_friction, "N"),
-                                                       pick_unit(Q_(damper.seal_friction, "N"), "force"),
+        Row("seal_friction", "seal friction F_s", show(Q_(damper.seal_friction, "N"), units_of["force"],
                                                        name="seal friction"), "Makris eq 14"),
     ]
 
@@ -612,8 +650,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     Fy = np.asarray(damper.yield_force_si(E), dtype=float) * np.ones_like(E)
     units = dict(tau=pick_unit(Q_(np.asarray(s.yield_stress), "Pa"), "pressure"),
                  eta=pick_unit(Q_(np.asarray(s.viscosity), "Pa*s"), "viscosity"),
-                 dp=pick_unit(Q_(np.asarray(s.pressure_drop), "Pa"), "pressure"),
-                 F=pick_unit(Q_(np.concatenate([np.ravel(s.force), Fy]), "N"), "force"))
+                 dp=units_of["pressure"], F=units_of["force"])
 
     def u(unit: str) -> str:
         return f"{Q_(1.0, unit).units:~P}"
@@ -641,7 +678,7 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     F_peak = Q_(np.array([np.abs(r.force).max() for r in loops.responses]), "N")
     U = Q_(np.array([r.energy_per_cycle for r in loops.responses]), "J")
     Ceq = Q_(np.array([r.equivalent_damping for r in loops.responses]), "N*s/m")
-    fu, uu, cu = pick_unit(F_peak, "force"), pick_unit(U, "energy"), pick_unit(Ceq, "damping")
+    fu, uu, cu = units_of["force"], pick_unit(U, "energy"), pick_unit(Ceq, "damping")
     sine_table = Table("sine", (f"control [{u(e_unit)}]", f"peak force [{u(fu)}]", f"energy per cycle U [{u(uu)}]",
                                 f"equivalent damping C_eqv [{u(cu)}]"),
                        tuple((show(Q_(e, control), e_unit, name="control"), show(F_peak[i], fu, name="peak force"),
@@ -669,13 +706,15 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     comparison_data = None
     steps = _as_history(history)
     if comparison is not None:
-        comparison_data = _comparison(comparison)
+        comparison_data = _comparison(comparison, units_of["force"])
         if comparison_data.pop("has_loops"):
             figures.append(FigureSpec("measurement", "Measurement and model", plots.measured_loops_figure(
                 comparison.displacement, comparison.velocity, comparison.force_measured, comparison.force_model),
                 None))
     if steps:
-        figures.append(FigureSpec("history", "Error history", plots.error_history_figure(steps), None))
+        floor = None if comparison_data is None else comparison_data["noise_floor"]
+        figures.append(FigureSpec("history", "Error history", plots.error_history_figure(steps, noise_floor=floor),
+                                  None))
     magnetics = magnetic_section(damper, E) if control == "A" else None
     if magnetics is not None:
         from ..magnetics.figures import circuit_curves, coil_curves_figure
@@ -707,30 +746,46 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     return report if baseline is None else with_baseline(report, baseline)
 
 
+def relative_change(new: Shown | None, old: Shown | None) -> str:
+    """The change of ``new`` against ``old`` in percent, ``"+12.3 %"``; empty where it is undefined (a value
+    missing, of another unit, not finite, or ``old`` zero).
+
+    >>> relative_change(show(Q_(6.6, "kN"), "kN", name="F"), show(Q_(6.0, "kN"), "kN", name="F"))
+    '+10.0 %'
+    """
+    if (new is None or old is None or new.si_unit != old.si_unit or not math.isfinite(new.si)
+            or not math.isfinite(old.si) or old.si == 0):
+        return ""
+    return f"{100 * (new.si / old.si - 1):+.1f} %"
+
+
 def compare_designs(report: Report, baseline: Report) -> dict:
     """This design beside a baseline design (both reports built alike): the inputs that differ, as typed, and the
-    design point of both with the relative change of each figure, ``"+12.3 %"`` (empty where undefined).
+    design point of both, each with the relative change of this design against the baseline
+    (:func:`relative_change`, ``"+12.3 %"``; empty where undefined).
 
     Both reports' numbers are shown as they are (each :func:`show` of the library's values); nothing is recomputed.
     """
     def key(row: InputRow) -> str:
         return f"{row.section}.{row.key}"
 
-    before = {key(r): r.given for r in baseline.inputs}
-    now = {key(r): r.given for r in report.inputs}
-    inputs = tuple({"key": k, "baseline": before.get(k, ""), "this": now.get(k, "")}
-                   for k in dict.fromkeys([*before, *now]) if before.get(k) != now.get(k))
+    before = {key(r): r for r in baseline.inputs}
+    now = {key(r): r for r in report.inputs}
+
+    def given(rows: dict, k: str) -> str:
+        return rows[k].given if k in rows else ""
+
+    inputs = tuple({"key": k, "baseline": given(before, k), "this": given(now, k),
+                    "change": relative_change(now[k].si if k in now else None, before[k].si if k in before else None)}
+                   for k in dict.fromkeys([*before, *now]) if given(before, k) != given(now, k))
     rows = []
     old = {r.key: r for r in baseline.design_point}
     for b in report.design_point:
         a = old.get(b.key)
         if a is None:
             continue
-        change = ""
-        if (a.value.si_unit == b.value.si_unit and math.isfinite(a.value.si) and math.isfinite(b.value.si)
-                and a.value.si != 0):
-            change = f"{100 * (b.value.si / a.value.si - 1):+.1f} %"
-        rows.append({"key": b.key, "label": b.label, "baseline": a.value, "this": b.value, "change": change})
+        rows.append({"key": b.key, "label": b.label, "baseline": a.value, "this": b.value,
+                     "change": relative_change(b.value, a.value)})
     name = baseline.title.removeprefix("Damper report: ")
     return {"name": name, "inputs": inputs, "rows": tuple(rows)}
 
@@ -750,20 +805,35 @@ def with_baseline(report: Report, baseline: Report) -> Report:
                                figures=report.figures + (figure,))
 
 
-def _comparison(c: MeasurementComparison) -> dict:
+def _comparison(c: MeasurementComparison, force_unit: str | None = None) -> dict:
     """Shown values of a measurement comparison (dimension-checked)."""
     if not (isinstance(c.esr, (int, float)) and math.isfinite(c.esr) and c.esr >= 0):
         raise ErdesignError(f"comparison.esr: expected a finite number >= 0, got {c.esr!r}")
-    rows = [Row("esr", "ESR (Vivas-López et al., eq 7)", show(float(c.esr), "", name="ESR"))]
+    rows = [Row("esr", "ESR (Vivas-López et al., eq 7)", esr_shown(c.esr, name="comparison.esr"))]
+    if c.noise_floor_esr is not None:
+        rows.append(Row("noise_floor_esr", "noise floor ESR (the same samples)",
+                        esr_shown(c.noise_floor_esr, name="comparison.noise_floor_esr")))
     if c.samples is not None:
-        rows.append(Row("samples", "samples", show(float(c.samples), "", name="samples")))
+        rows.append(Row("samples", "samples judged (ESR and RMS on these)", show(float(c.samples), "",
+                                                                                 name="samples")))
     for key, label, value in (("rms_error", "RMS force error", c.rms_error),
                               ("peak_force_measured", "peak force, measured", c.peak_force_measured),
                               ("peak_force_model", "peak force, model", c.peak_force_model)):
         if value is not None:
             q = parse_quantity(value, f"comparison.{key}") if isinstance(value, str) else value
-            rows.append(Row(key, label, show(q, pick_unit(q, "force"), name=f"comparison.{key}")))
+            rows.append(Row(key, label, show(q, force_unit or pick_unit(q, "force"), name=f"comparison.{key}")))
     arrays = (c.displacement, c.velocity, c.force_measured, c.force_model)
     if any(a is not None for a in arrays) and not all(a is not None for a in arrays):
         raise ErdesignError("comparison: give displacement, velocity, force_measured and force_model together")
-    return {"label": c.label, "rows": tuple(rows), "notes": c.notes, "has_loops": all(a is not None for a in arrays)}
+    if c.verdict and c.verdict not in VERDICTS:
+        raise ErdesignError(f"comparison.verdict: expected one of {', '.join(VERDICTS)}, got {c.verdict!r}")
+    return {"label": c.label, "rows": tuple(rows), "notes": c.notes, "has_loops": all(a is not None for a in arrays),
+            "verdict": VERDICTS.get(c.verdict, ""), "reason": c.reason, "parameters": tuple(c.parameters),
+            "statistics": tuple(c.statistics), "correlations": tuple(c.correlations),
+            "noise_floor": c.noise_floor_esr}
+
+
+#: The diagnosis' verdicts (docs/cli.md) as the report words them.
+VERDICTS = {"missing_effect": "a missing effect", "nothing_missing": "nothing missing (the residual is at the "
+            "noise floor)", "unexplained": "unexplained (the residual stays above the noise floor and no effect of "
+            "the library explains it)"}

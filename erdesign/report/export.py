@@ -38,7 +38,7 @@ import numpy as np
 from ..damper.writer import damper_toml       # the damper file's writer lives with the damper files
 from ..errors import ErdesignError
 
-__all__ = ["damper_toml", "csv_text", "rows_csv", "figure_images", "images_zip", "IMAGES_NEED"]
+__all__ = ["damper_toml", "csv_text", "rows_csv", "figure_images", "figure_pages", "images_zip", "IMAGES_NEED"]
 
 def _number(x: float) -> str:
     return "" if not math.isfinite(x) else f"{x:.10g}"
@@ -125,6 +125,24 @@ def figure_images(figures: Sequence[Any], image_format: str = "png", *, timeout:
         first = " ".join(str(exc).split())[:200] or type(exc).__name__
         raise ErdesignError(f"figure images: {type(exc).__name__}: {first}; {IMAGES_NEED}") from None
     return {f"{f.key}.{image_format}": bytes(b) for f, b in zip(figures, images)}
+
+
+def figure_pages(figures: Sequence[Any], image_format: str = "png") -> dict[str, bytes]:
+    """The report's figures as interactive HTML pages, ``{"<key>.html": bytes, "plotly.min.js": bytes}``: the
+    static fallback that needs nothing beyond plotly (no kaleido, no browser on the server).  Each page loads the
+    one ``plotly.min.js`` beside it (plotly's own copy: nothing is fetched from the network); its camera button
+    saves the figure as ``image_format`` (:func:`erdesign.report.plots.export_config`).
+    """
+    from plotly.offline import get_plotlyjs
+
+    from .plots import export_config
+
+    pages = {"plotly.min.js": get_plotlyjs().encode()}
+    for f in figures:
+        html = f.figure.to_html(include_plotlyjs="plotly.min.js", full_html=True,
+                                config=export_config(f.key, image_format))
+        pages[f"{f.key}.html"] = html.encode()
+    return pages
 
 
 def images_zip(images: Mapping[str, bytes]) -> bytes:

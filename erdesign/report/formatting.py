@@ -11,6 +11,7 @@ from ..formatting import (
     UNIT_CHOICES,
     UNIT_SYSTEMS,
     Shown,
+    control_label,
     field_text,
     kind_of,
     pick_unit,
@@ -23,4 +24,5 @@ from ..formatting import (
 )
 
 __all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
-           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system"]
+           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system",
+           "control_label"]

@@ -15,6 +15,7 @@ none computes physics.  Axes are labelled with their units, chosen once per axis
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -28,6 +29,10 @@ from ..units import Q_
 __all__ = [
     "MEASURED_STYLE",
     "MODEL_STYLE",
+    "RESIDUAL_STYLE",
+    "LAYOUT",
+    "log_ticks",
+    "value_axis",
     "spans_decades",
     "pressure_drop_figure",
     "force_velocity_figure",
@@ -44,15 +49,56 @@ __all__ = [
 
 # The legend sits to the right of the plot area, outside it and below the title, so that it never covers the
 # title or the data.
-_LAYOUT = dict(template="plotly_white", height=420, margin=dict(l=70, r=20, t=60, b=60),
-               legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"))
+LAYOUT = dict(template="plotly_white", height=420, margin=dict(l=70, r=20, t=60, b=60),
+              legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"))
+_LAYOUT = LAYOUT
 
-#: Measured data: a thin light line with light markers, so that the model drawn over it stays readable.
-MEASURED_STYLE = dict(mode="lines+markers", line=dict(color="rgba(90, 90, 90, 0.35)", width=1),
-                      marker=dict(color="rgba(60, 60, 60, 0.45)", size=3))
-#: A model against measured data: a bold line in a colour that contrasts with the light grey of the data.  Drawn
-#: first, so that the measured markers stay visible over it.
-MODEL_STYLE = dict(mode="lines", line=dict(color="rgba(192, 57, 43, 0.85)", width=3.5))
+#: Measured data: light markers without a line, drawn first, so that the model line over them stays readable and
+#: the data show through where both agree.
+MEASURED_STYLE = dict(mode="markers", marker=dict(color="rgba(31, 119, 180, 0.35)", size=5, line=dict(width=0)))
+#: A model against measured data: a thin dark-red line over the light blue markers (another colour and weight).
+MODEL_STYLE = dict(mode="lines", line=dict(color="#b2182b", width=1.6))
+#: The residual (measured minus model) beneath a comparison: small grey markers.
+RESIDUAL_STYLE = dict(mode="markers", marker=dict(color="rgba(80, 80, 80, 0.55)", size=3), showlegend=False)
+
+
+def log_ticks(values: Any) -> dict:
+    """Axis settings of a log axis over the positive finite ``values`` with every tick labelled in full: the decades
+    when the values span more than three decades, else 1, 2 and 5 times each power of ten - never plotly's bare
+    mantissas ("5 2 10 5 2 1").
+
+    >>> log_ticks([2e-5, 3e-3])["ticktext"]
+    ['1e-05', '2e-05', '5e-05', '0.0001', '0.0002', '0.0005', '0.001', '0.002', '0.005', '0.01']
+    >>> log_ticks([1.0, 5e4])["ticktext"]
+    ['1', '10', '100', '1000', '1e+04', '1e+05']
+    """
+    v = np.asarray(values, dtype=float).ravel()
+    v = v[np.isfinite(v) & (v > 0)]
+    if v.size == 0:
+        return {"type": "log"}
+    lo, hi = math.floor(math.log10(v.min())), math.ceil(math.log10(v.max()))
+    hi = max(hi, lo + 1)
+    steps = (1.0,) if hi - lo > 3 else (1.0, 2.0, 5.0)
+    ticks = [m * 10.0 ** k for k in range(lo, hi + 1) for m in steps if m * 10.0 ** k <= 10.0 ** hi]
+    return {"type": "log", "tickmode": "array", "tickvals": ticks, "ticktext": [f"{t:.4g}" for t in ticks]}
+
+
+def value_axis(values: Any) -> dict:
+    """A log axis (:func:`log_ticks`) when the positive values span more than a decade, else a linear one: a flat
+    Reynolds number is not drawn on a log axis spanning decades.  Values equal to a thousandth get a range of
+    +-10 % around them, so that rounding noise is not blown up to the whole height of the plot.
+
+    >>> value_axis([0.04289291, 0.04289292])
+    {'type': 'linear', 'range': [0.03860362, 0.04718221]}
+    """
+    if spans_decades(values):
+        return log_ticks(values)
+    v = np.asarray(values, dtype=float).ravel()
+    v = v[np.isfinite(v)]
+    if v.size and np.ptp(v) <= 1e-3 * np.max(np.abs(v)):
+        pad = 0.1 * float(np.max(np.abs(v))) or 1.0
+        return {"type": "linear", "range": [round(float(v.min()) - pad, 8), round(float(v.max()) + pad, 8)]}
+    return {"type": "linear"}
 
 
 #: Formats of plotly's camera button (the browser draws the image: no kaleido, no server-side browser).
@@ -173,30 +219,38 @@ def error_history_figure(history: Sequence[Any], noise_floor: float | None = Non
         fig.add_annotation(x=1, xref="paper", xanchor="right", y=float(np.log10(noise_floor)), yref="y",
                            yanchor="top", text=f"noise floor {noise_floor:.3g}", showarrow=False,
                            font=dict(color="#1e7b1e"), bgcolor="rgba(255, 255, 255, 0.85)")
-    fig.update_layout(title="Error history", xaxis_title="step: effect added", yaxis_title="ESR [-] (log scale)",
+    fig.update_layout(title="Error history", xaxis_title="step: effect added", yaxis_title="ESR [-]",
                       **{**_LAYOUT, "showlegend": False})
-    fig.update_yaxes(type="log")
     if lows:      # the range holds the bars, their labels and the noise floor
-        fig.update_yaxes(range=[float(np.log10(min(lows))) - 0.5, float(np.log10(max(esr or lows))) + 0.6])
+        lo, hi = float(np.log10(min(lows))) - 0.5, float(np.log10(max(esr or lows))) + 0.6
+        fig.update_yaxes(range=[lo, hi], **log_ticks([10 ** lo, 10 ** hi]))
+    else:
+        fig.update_yaxes(type="log")
     return fig
 
 
 def measured_loops_figure(displacement, velocity, force_measured, force_model) -> go.Figure:
-    """Measured and model force against displacement and velocity (SI arrays)."""
+    """Measured (light markers) and model force (thin line over them) against displacement and velocity, and the
+    residual (measured minus model) beneath each, in the same force unit (SI arrays)."""
     x_unit = pick_unit(Q_(displacement, "m"), "length")
     v_unit = pick_unit(Q_(velocity, "m/s"), "velocity")
     f_unit = pick_unit(Q_(np.concatenate([np.ravel(force_measured), np.ravel(force_model)]), "N"), "force")
-    fig = make_subplots(rows=1, cols=2, subplot_titles=("force - displacement", "force - velocity"))
-    # the model first, the measured markers over it: visible also where the model follows them closely
-    for name, F, style in (("model", force_model, MODEL_STYLE), ("measured", force_measured, MEASURED_STYLE)):
+    fig = make_subplots(rows=2, cols=2, shared_xaxes=True, row_heights=[0.72, 0.28], vertical_spacing=0.06,
+                        horizontal_spacing=0.1, subplot_titles=("force - displacement", "force - velocity", "", ""))
+    x, v = _convert(displacement, "m", x_unit), _convert(velocity, "m/s", v_unit)
+    for name, F, style in (("measured", force_measured, MEASURED_STYLE), ("model", force_model, MODEL_STYLE)):
         y = _convert(F, "N", f_unit)
         common = dict(name=name, legendgroup=name, **style)
-        fig.add_trace(go.Scatter(x=_convert(displacement, "m", x_unit), y=y, **common), row=1, col=1)
-        fig.add_trace(go.Scatter(x=_convert(velocity, "m/s", v_unit), y=y, showlegend=False, **common), row=1, col=2)
-    fig.update_layout(title="Measurement and model", **_LAYOUT)
-    fig.update_xaxes(title_text=f"displacement x [{_unit_label(x_unit)}]", row=1, col=1)
-    fig.update_xaxes(title_text=f"velocity v [{_unit_label(v_unit)}]", row=1, col=2)
+        fig.add_trace(go.Scatter(x=x, y=y, **common), row=1, col=1)
+        fig.add_trace(go.Scatter(x=v, y=y, showlegend=False, **common), row=1, col=2)
+    r = _convert(np.asarray(force_measured, dtype=float) - np.asarray(force_model, dtype=float), "N", f_unit)
+    fig.add_trace(go.Scatter(x=x, y=r, name="residual", **RESIDUAL_STYLE), row=2, col=1)
+    fig.add_trace(go.Scatter(x=v, y=r, name="residual", **RESIDUAL_STYLE), row=2, col=2)
+    fig.update_layout(title="Measurement and model", **{**_LAYOUT, "height": 560})
+    fig.update_xaxes(title_text=f"displacement x [{_unit_label(x_unit)}]", row=2, col=1)
+    fig.update_xaxes(title_text=f"velocity v [{_unit_label(v_unit)}]", row=2, col=2)
     fig.update_yaxes(title_text=f"force F [{_unit_label(f_unit)}]", row=1, col=1)
+    fig.update_yaxes(title_text=f"residual [{_unit_label(f_unit)}]", row=2, col=1)
     return fig
 
 

@@ -16,9 +16,9 @@ import jinja2
 from markupsafe import Markup
 
 from ..errors import ErdesignError
+from ..formatting import esr_shown
 from ..output import write_output
 from .builder import Report
-from .formatting import show
 
 __all__ = ["render_html", "render_markdown", "write_report", "markdown_text", "markdown_code", "FORMATS"]
 
@@ -78,7 +78,7 @@ def _environment(autoescape: bool) -> jinja2.Environment:
 
 
 def _history(report: Report) -> list[dict[str, Any]]:
-    return [{"step": h.step, "effect": h.effect, "esr": show(h.esr, "", name=f"history[{i}].esr")}
+    return [{"step": h.step, "effect": h.effect, "esr": esr_shown(h.esr, name=f"history[{i}].esr")}
             for i, h in enumerate(report.history)]
 
 
