@@ -325,6 +325,9 @@ def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
     """Read a damper file (TOML, docs/file_formats.md); where no such file exists, the name of a bundled example
     (``makris``, ``mr_valve``, ...: :func:`example_names`) loads that example, and so does its documented path
     ``examples/makris.toml`` (:func:`erdesign.examples.bundled_file`)."""
+    if not is_path_like(path):
+        raise DamperFileError(f"path: expected the name of a damper file (a str or Path), got "
+                              f"{type(path).__name__} {path!r:.60}")
     if isinstance(path, str) and not Path(path).exists() and path in example_names():
         with resources.as_file(resources.files("erdesign.examples") / f"{path}.toml") as file:
             return damper_from_dict(read_toml(file), source=f"examples/{path}.toml", flow_model=flow_model)

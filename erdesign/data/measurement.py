@@ -42,7 +42,6 @@ from typing import Any
 
 import numpy as np
 
-from .._pint import pint  # not `import pint`: erdesign/_pint.py
 from ..errors import ErdesignError, ErdesignWarning
 from ..examples import bundled_file
 from ..fluid import CONTROL_UNITS

@@ -59,7 +59,7 @@ API_CASES = [
     ("esr nan", lambda: erdesign.esr([1.0, 2.0, math.nan], [1.0, 2.0, 3.0]), ["F_measured: element 2 is nan"]),
     ("esr nan model", lambda: erdesign.esr([1.0, 2.0, 3.0], [1.0, math.nan, 3.0]), ["F_model: element 1 is nan"]),
     ("esr text", lambda: erdesign.esr("abc", [1.0, 2.0, 3.0]), ["F_measured: expected a number"]),
-    ("load_damper None", lambda: erdesign.load_damper(None), ["path: expected the name of a TOML file", "None"]),
+    ("load_damper None", lambda: erdesign.load_damper(None), ["path: expected the name of a damper file", "None"]),
     ("load_damper number", lambda: erdesign.load_damper(3), ["path:", "int"]),
     ("load_damper bytes", lambda: erdesign.load_damper(b"makris.toml"), ["path:", "bytes"]),
     ("read_measurement None", lambda: erdesign.read_measurement(None), ["path: expected the name"]),
