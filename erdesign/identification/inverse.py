@@ -1,7 +1,8 @@
 r"""Inverse models: the control (field, current or voltage) a damper needs to produce a desired force at a motion.
 
 For the models the MR-model review marks invertible the force is affine in the dimensionless control at every sample,
-:math:`F = P + Q u` (Kwok, magic formula, normalised Bouc-Wen, viscous Dahl, Weng: :meth:`control_affine`), so
+:math:`F = P + Q u` (Kwok, Cheng, magic formula, normalised Bouc-Wen, viscous and asymmetric Dahl, Weng:
+:meth:`control_affine`; for Li's viscoelastic-plastic model, the post-yield force), so
 
 .. math:: u = \operatorname{clip}\big((F_d - P)/Q,\ u_{min},\ u_{max}\big);
 
@@ -76,6 +77,10 @@ def inverse_control(model: Model, record: Measurement, force, values: Mapping[st
     """
     if not model.uses_control:
         raise InverseError(f"{model.name}: the force does not depend on the control, so it has no inverse")
+    if not (model.invertible or model.name == "physics"):
+        raise InverseError(f"{model.name}: no inverse (its state depends on the control history in a way that has "
+                           f"no explicit inverse); the models with one are those `erdesign models --json` marks "
+                           f"invertible")
     values = model.check_values(values)
     Fd = np.broadcast_to(np.asarray(force, dtype=float), record.time.shape)
     lo, hi = (c / model.control_reference for c in control_range)
@@ -89,12 +94,8 @@ def inverse_control(model: Model, record: Measurement, force, values: Mapping[st
             u_raw = np.where(Q != 0, (Fd - P) / Q, np.where(Fd >= P, hi, lo))
         u = np.clip(u_raw, lo, hi)
         unreachable = ~np.isclose(u, u_raw, rtol=1e-12, atol=1e-12 * (hi - lo))
-    elif getattr(model, "memoryless", False) or model.name == "physics":
+    else:  # memoryless (model.invertible) or the physics damper
         return _invert_by_root(model, record, Fd, values, lo, hi, control_kind)
-    else:
-        raise InverseError(f"{model.name}: no inverse (its state depends on the control history in a way that has "
-                           f"no explicit inverse); invertible: kwok_tanh, magic_formula, lugre_modified, "
-                           f"bouc_wen_normalized, dahl_viscous, weng_arctan and memoryless models")
     return _result(model, record, u, unreachable, values, control_kind)
 
 

@@ -9,7 +9,10 @@ process loads it instead of compiling again.
 * :func:`modified_bouc_wen` - Spencer et al. (1997): the filtered control, the internal displacement and the
   Bouc-Wen variable, by classical Runge-Kutta sub-steps in w with z exact along the step (see its docstring);
 * :func:`extended_bingham_force` - the Gamota-Filisko model by backward Euler on its dead-zone form;
-* :func:`affine_recurrence` - :math:`y_{n+1} = c_n y_n + d_n` (Dahl, LuGre, first-order lags) in one pass.
+* :func:`affine_recurrence` - :math:`y_{n+1} = c_n y_n + d_n` (Dahl, LuGre, first-order lags) in one pass;
+* :func:`stop_operator`, :func:`series_viscoplastic`, :func:`mass_on_damper` - the elasto-slide element (SVES,
+  Zhang-Huang), the series visco-plastic element (VEP, nkVEP) and a mass on a nonlinear damper (Bass, Sims) of the
+  MR-model review's catalogue.
 
 The arithmetic is that of the Python kernels it replaces; tests/test_models.py checks it against
 :func:`scipy.integrate.solve_ivp` (LSODA / Radau at rtol 1e-10), never against itself.
@@ -23,7 +26,8 @@ import numpy as np
 
 from .._compile import njit
 
-__all__ = ["riccati_step", "bouc_wen_state", "modified_bouc_wen", "extended_bingham_force", "affine_recurrence"]
+__all__ = ["riccati_step", "bouc_wen_state", "modified_bouc_wen", "extended_bingham_force", "affine_recurrence",
+           "stop_operator", "series_viscoplastic", "mass_on_damper", "bouc_wen_state_varying"]
 
 _jit = njit(cache=True, nogil=True)
 
@@ -156,11 +160,11 @@ def _lagged(u0, r, C, tau, s):
 
 
 @_jit
-def _rate(uf, xd, w, dw, z0, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n):
+def _rate(uf, xd, w, dw, z0, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0, beta, gamma, delta, n):
     """dw/dt at control uf, w = w0 + dw, with z carried exactly from z0 along the travel dw."""
-    al = aa + (ab + ac * uf) * uf
-    c0 = c0a + c0b * uf
-    c1 = c1a + c1b * uf
+    al = aa + (ab + (ac + ad * uf) * uf) * uf
+    c0 = c0a + (c0b + (c0c + c0d * uf) * uf) * uf
+    c1 = c1a + (c1b + (c1c + c1d * uf) * uf) * uf
     z = _travel(z0, dw, beta, gamma, delta, n)
     return (c1 * xd - al * z - k0 * (w + dw)) / (c0 + c1)
 
@@ -215,11 +219,11 @@ def _eval2(q0, L, L0, c1, c2, beta, gamma, delta, r1, k1, r2, k2):
 
 
 @_jit
-def _rate2(uf, xd, w, dw, zz, aa, ab, ac, c0a, c0b, c1a, c1b, k0):
+def _rate2(uf, xd, w, dw, zz, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0):
     """dw/dt at control uf, w + dw, with the Bouc-Wen variable zz there (n = 2: :func:`_zt`)."""
-    al = aa + (ab + ac * uf) * uf
-    c0 = c0a + c0b * uf
-    c1 = c1a + c1b * uf
+    al = aa + (ab + (ac + ad * uf) * uf) * uf
+    c0 = c0a + (c0b + (c0c + c0d * uf) * uf) * uf
+    c1 = c1a + (c1b + (c1c + c1d * uf) * uf) * uf
     return (c1 * xd - al * zz - k0 * (w + dw)) / (c0 + c1)
 
 
@@ -239,7 +243,8 @@ def _zt(z, dw, C, beta, gamma, delta, r1, k1, r2, k2):
 
 
 @_jit
-def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n, theta, max_sub,
+def modified_bouc_wen(t, x, u, eta, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0, beta, gamma, delta, n,
+                      theta, max_sub,
                       plan):
     r"""States (u_f, w, z) of Spencer's modified Bouc-Wen model at the samples.
 
@@ -292,8 +297,9 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, ga
         dz = max(abs(delta - (beta + gamma) * zn), abs(delta - (beta - gamma) * zn))
         lam = 0.0
         for uf in (y, y1):
-            al = aa + (ab + ac * uf) * uf
-            cc = c0a + c0b * uf + c1a + c1b * uf
+            al = aa + (ab + (ac + ad * uf) * uf) * uf
+            cc = c0a + (c0b + (c0c + c0d * uf) * uf) * uf \
+                + c1a + (c1b + (c1c + c1d * uf) * uf) * uf
             lam = max(lam, (abs(al) * dz + abs(k0)) / abs(cc))
         if planned and plan[i] > 0:
             m = plan[i]
@@ -323,23 +329,30 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, ga
             if two:
                 C[0] = 0.0
                 C[4] = 0.0
-                k1 = _rate2(ua, xd, w, 0.0, z, aa, ab, ac, c0a, c0b, c1a, c1b, k0)
+                k1 = _rate2(ua, xd, w, 0.0, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0)
                 d = 0.5 * H * k1
-                k2 = _rate2(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), aa, ab, ac, c0a, c0b,
-                            c1a, c1b, k0)
+                k2 = _rate2(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
+                            aa, ab, ac, ad, c0a, c0b, c0c, c0d,
+                            c1a, c1b, c1c, c1d, k0)
                 d = 0.5 * H * k2
-                k3 = _rate2(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), aa, ab, ac, c0a, c0b,
-                            c1a, c1b, k0)
+                k3 = _rate2(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
+                            aa, ab, ac, ad, c0a, c0b, c0c, c0d,
+                            c1a, c1b, c1c, c1d, k0)
                 d = H * k3
-                k4 = _rate2(ub, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), aa, ab, ac, c0a, c0b,
-                            c1a, c1b, k0)
+                k4 = _rate2(ub, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
+                            aa, ab, ac, ad, c0a, c0b, c0c, c0d,
+                            c1a, c1b, c1c, c1d, k0)
                 dw = H / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
                 z = _zt(z, dw, C, beta, gamma, delta, r1, k1c, r2, k2c)
             else:
-                k1 = _rate(ua, xd, w, 0.0, z, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n)
-                k2 = _rate(um, xd, w, 0.5 * H * k1, z, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n)
-                k3 = _rate(um, xd, w, 0.5 * H * k2, z, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n)
-                k4 = _rate(ub, xd, w, H * k3, z, aa, ab, ac, c0a, c0b, c1a, c1b, k0, beta, gamma, delta, n)
+                k1 = _rate(ua, xd, w, 0.0, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0,
+                           beta, gamma, delta, n)
+                k2 = _rate(um, xd, w, 0.5 * H * k1, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0,
+                           beta, gamma, delta, n)
+                k3 = _rate(um, xd, w, 0.5 * H * k2, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0,
+                           beta, gamma, delta, n)
+                k4 = _rate(ub, xd, w, H * k3, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0,
+                           beta, gamma, delta, n)
                 dw = H / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
                 z = _travel(z, dw, beta, gamma, delta, n)
             w += dw
@@ -400,3 +413,200 @@ def affine_recurrence(c, d, y0):
     for k in range(N - 1):
         y[k + 1] = c[k] * y[k] + d[k]
     return y
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Kernels of the catalogue models (the MR-model review): a stop operator, a series visco-plastic element and a
+# mass on a nonlinear damper.  Each advances its state exactly (the stop operator) or by the implicit midpoint rule
+# (second order, A-stable) with the monotone scalar equation of each sub-step solved by a bracketed Illinois
+# (false-position) root.
+
+
+@_jit
+def stop_operator(x, k, N, s0):
+    """Elasto-slide element (a spring k in series with a Coulomb slider N, a per-sample array) driven by a
+    displacement that is linear between samples: s[i] = clip(s[i-1] + k (x[i] - x[i-1]), -N[i], N[i]), exact for a
+    monotone step."""
+    n = x.size
+    s = np.empty(n)
+    cur = min(max(s0, -N[0]), N[0])
+    s[0] = cur
+    for i in range(1, n):
+        cur = min(max(cur + k * (x[i] - x[i - 1]), -N[i]), N[i])
+        s[i] = cur
+    return s
+
+
+@_jit
+def _vep_residual(s, xm, y, h, xd, k0, q, nexp, rho, d, c, A, alpha):
+    """Spring force minus element force at the midpoint for the element rate s (nkVEP, the MR-model review eqs
+    83-84; q = 0 is the continuous VEP of eq 82)."""
+    w = xm - y - 0.5 * h * s
+    k = k0
+    if q != 0.0:
+        k += q * abs(w - math.tanh(rho * (xd - s)) * d) ** nexp
+    return k * w - c * s - A * math.tanh(alpha * s)
+
+
+@_jit
+def _illinois_vep(lo, hi, f_lo, f_hi, xm, y, h, xd, k0, q, nexp, rho, d, c, A, alpha):
+    """Root of the (decreasing) VEP residual in [lo, hi] (f_lo > 0 > f_hi) by the Illinois false-position method,
+    which keeps the bracket and converges superlinearly."""
+    side = 0
+    x = 0.5 * (lo + hi)
+    for _ in range(200):
+        x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+        fx = _vep_residual(x, xm, y, h, xd, k0, q, nexp, rho, d, c, A, alpha)
+        if fx == 0.0 or hi - lo <= 1e-13 * (abs(x) + 1e-12):
+            return x
+        if fx > 0.0:
+            lo, f_lo = x, fx
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi, f_hi = x, fx
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+        if abs(fx) <= 1e-13 * (abs(f_lo) + abs(f_hi)):
+            return x
+    return x
+
+
+@_jit
+def _illinois_mass(lo, hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y):
+    """Root of the (increasing) mass residual in [lo, hi] by the Illinois false-position method."""
+    f_lo = _mass_residual(lo, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
+    f_hi = _mass_residual(hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
+    side = 0
+    x = 0.5 * (lo + hi)
+    for _ in range(200):
+        x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+        fx = _mass_residual(x, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
+        if fx == 0.0 or hi - lo <= 1e-13 * (abs(x) + 1e-12):
+            return x
+        if fx < 0.0:
+            lo, f_lo = x, fx
+            if side == -1:
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi, f_hi = x, fx
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+        if abs(fx) <= 1e-13 * (abs(f_lo) + abs(f_hi)):
+            return x
+    return x
+
+
+@_jit
+def series_viscoplastic(t, x, k0, q, nexp, rho, d, c, A, alpha, substeps):
+    r"""Internal displacement y and element rate of :math:`k(x, y)(x - y) = c\dot y + A\tanh(\alpha\dot y)` with
+    :math:`k = q|(x - y) - \tanh(\rho(\dot x - \dot y))d|^n + k_0` (per-sample arrays k0, c, A, alpha: current
+    laws), implicit midpoint sub-steps, each sub-step's rate by a bracketed Illinois root.  Returns (y, ydot)."""
+    n = x.size
+    y = np.zeros(n)
+    yd = np.zeros(n)
+    cur = 0.0
+    sd = 0.0
+    for i in range(n - 1):
+        H = t[i + 1] - t[i]
+        h = H / substeps
+        xd = (x[i + 1] - x[i]) / H if H > 0.0 else 0.0
+        for j in range(substeps):
+            xm = x[i] + xd * h * (j + 0.5)
+            # the residual decreases with s for large |s| (it may not be monotone near the root when q != 0): the
+            # bracket grows from the previous rate, so the root found is the one the rate continues to (the
+            # element's rate does not jump between roots from one sub-step to the next)
+            span = 1e-6 * (abs(sd) + abs(xd)) + 1e-12
+            lo = sd - span
+            hi = sd + span
+            for _ in range(400):
+                if _vep_residual(lo, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) > 0.0:
+                    break
+                span *= 2.0
+                lo = sd - span
+            span = 1e-6 * (abs(sd) + abs(xd)) + 1e-12
+            for _ in range(400):
+                if _vep_residual(hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) < 0.0:
+                    break
+                span *= 2.0
+                hi = sd + span
+            f_lo = _vep_residual(lo, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
+            f_hi = _vep_residual(hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
+            sd = _illinois_vep(lo, hi, f_lo, f_hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
+            cur += h * sd
+        y[i + 1] = cur
+        yd[i + 1] = sd
+    return y, yd
+
+
+@_jit
+def _mass_residual(v, xm_n, v_n, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y):
+    """m (dv/dt) - (forces on the mass) at the midpoint, for the midpoint velocity v; increasing in v."""
+    xmass = xm_n + 0.5 * h * v
+    D = c_lin * v
+    if f_t != 0.0:
+        D += f_t * math.tanh(v / v_ref)
+    if C_pre != 0.0:
+        av = abs(v)
+        D += math.copysign(min(C_pre * av, C_post * av + F_y), v)
+    return 2.0 * m * (v - v_n) / h - (k1 * (xmid - xmass) + c1 * (xd - v) - k0 * xmass - D)
+
+
+@_jit
+def mass_on_damper(t, x, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y, substeps):
+    r"""Displacement and velocity of an internal mass m driven through a spring k1 and a dashpot c1 by the piston
+    displacement x, held by a spring k0 and a damper :math:`D(v) = c v + f_t\tanh(v/v_{ref}) +
+    \operatorname{sgn}v\min(C_{pre}|v|, C_{post}|v| + F_y)` to the body:
+    :math:`m\ddot x_m = k_1(x - x_m) + c_1(\dot x - \dot x_m) - k_0 x_m - D(\dot x_m)` (Bass: the MR-model review
+    eqs 93-94; Sims: eqs 63-64).  f_t, C_pre, C_post, F_y are per-sample arrays (current laws).  Implicit midpoint
+    sub-steps; m = 0 is allowed (the mass-less element).  Returns (x_m, v_m)."""
+    n = x.size
+    xm = np.zeros(n)
+    vm = np.zeros(n)
+    X = 0.0
+    V = 0.0
+    for i in range(n - 1):
+        H = t[i + 1] - t[i]
+        h = H / substeps
+        xd = (x[i + 1] - x[i]) / H if H > 0.0 else 0.0
+        for j in range(substeps):
+            xmid = x[i] + xd * h * (j + 0.5)
+            span = abs(V) + abs(xd) + 1e-9
+            lo = -span
+            hi = span
+            for _ in range(200):
+                if _mass_residual(lo, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i],
+                                  F_y[i]) < 0.0:
+                    break
+                lo *= 2.0
+            for _ in range(200):
+                if _mass_residual(hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i],
+                                  F_y[i]) > 0.0:
+                    break
+                hi *= 2.0
+            # the root of the increasing residual = the root of its negative, decreasing: the same solver
+            vmid = _illinois_mass(lo, hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i],
+                                  C_post[i], F_y[i])
+            X += h * vmid
+            V = 2.0 * vmid - V if m > 0.0 else vmid
+        xm[i + 1] = X
+        vm[i + 1] = V
+    return xm, vm
+
+
+@_jit
+def bouc_wen_state_varying(x, beta, gamma, delta, n, z0):
+    """Bouc-Wen variable for a displacement linear between samples with shape parameters that change from sample to
+    sample (per-sample arrays; each step uses the values at its start, the step itself exact)."""
+    N = x.size
+    out = np.empty(N)
+    z = z0
+    out[0] = z
+    for i in range(1, N):
+        z = _travel(z, x[i] - x[i - 1], beta[i - 1], gamma[i - 1], delta[i - 1], n[i - 1])
+        out[i] = z
+    return out

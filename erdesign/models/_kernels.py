@@ -24,7 +24,8 @@ import numpy as np
 
 from ..numerics import affine_recurrence
 
-__all__ = ["first_order_lag", "dahl_state", "bouc_wen_state", "riccati_step", "modified_bouc_wen", "is_uniform"]
+__all__ = ["first_order_lag", "dahl_state", "bouc_wen_state", "riccati_step", "modified_bouc_wen", "is_uniform",
+           "stop_operator", "series_viscoplastic", "mass_on_damper", "per_sample", "bouc_wen_state_varying"]
 
 
 def is_uniform(t: np.ndarray, rtol: float = 1e-6) -> bool:
@@ -207,8 +208,8 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
         \dot w = \frac{c_1\dot x - \alpha z - k_0 w}{c_0 + c_1},\qquad
         \dot z = -\gamma|\dot w| z|z|^{n-1} - \beta\dot w|z|^n + \delta\dot w ,
 
-    :math:`\alpha = \alpha_a + \alpha_b u_f + \alpha_c u_f^2`, :math:`c_0 = c_{0a} + c_{0b}u_f`,
-    :math:`c_1 = c_{1a} + c_{1b}u_f`.  The filter is exact; w is stepped by RK4 with z carried exactly along each
+    :math:`\alpha`, :math:`c_0`, :math:`c_1` polynomials of degree up to three in :math:`u_f` (Spencer's linear law,
+    Quiroz's and Spaggiari's quadratic laws, Yang's cubic law).  The filter is exact; w is stepped by RK4 with z carried exactly along each
     sub-step's travel (:func:`erdesign.models._compiled.modified_bouc_wen`).
 
     Parameters
@@ -218,7 +219,8 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
     eta : float
         Filter rate, [1/s]; ``inf`` for no filter.
     alpha, c0, c1 : tuples
-        (alpha_a, alpha_b, alpha_c) [N/m], (c0a, c0b), (c1a, c1b) [N s/m].
+        Polynomial coefficients in u_f, constant first, up to four each: (alpha_a, alpha_b, ...) [N/m],
+        (c0a, c0b, ...), (c1a, c1b, ...) [N s/m].
     k0, beta, gamma, delta, n : float
         [N/m], [1/m^n], [1/m^n], [-], [-].
 
@@ -230,8 +232,59 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
     x = np.ascontiguousarray(x, dtype=float)
     u = np.ascontiguousarray(np.broadcast_to(np.asarray(u, dtype=float), t.shape))
     eta = float(eta) if math.isfinite(eta) else 1e300
-    aa, ab, ac = (float(a) for a in alpha)
+    alpha, c0, c1 = (tuple(float(c) for c in coeffs) + (0.0,) * (4 - len(coeffs)) for coeffs in (alpha, c0, c1))
     steps = _STEPS.get()
-    return _compiled().modified_bouc_wen(t, x, u, eta, aa, ab, ac, float(c0[0]), float(c0[1]), float(c1[0]),
-                                         float(c1[1]), float(k0), float(beta), float(gamma), float(delta), float(n),
+    return _compiled().modified_bouc_wen(t, x, u, eta, *alpha, *c0, *c1, float(k0), float(beta), float(gamma),
+                                         float(delta), float(n),
                                          steps.theta, steps.max_substeps, _plan(steps, t, x))
+
+
+def per_sample(value, n: int) -> np.ndarray:
+    """A scalar or per-sample parameter as a contiguous float array of n values (for the compiled kernels)."""
+    return np.ascontiguousarray(np.broadcast_to(np.asarray(value, dtype=float), (n,)))
+
+
+def stop_operator(x, k, N, s0=0.0):
+    r"""Elasto-slide element: a spring k [N/m] in series with a Coulomb slider N [N] (a scalar or one value per
+    sample), driven by a displacement x [m] linear between samples; force [N]
+    :math:`s_{i} = \operatorname{clip}(s_{i-1} + k\Delta x_i, -N_i, N_i)` (exact)."""
+    x = np.ascontiguousarray(x, dtype=float)
+    return _compiled().stop_operator(x, float(k), per_sample(N, x.size), float(s0))
+
+
+#: Implicit-midpoint sub-steps per sample of :func:`series_viscoplastic` and :func:`mass_on_damper`.
+MIDPOINT_SUBSTEPS = 4
+
+
+def series_viscoplastic(t, x, k0, c, A, alpha, *, q=0.0, n=1.0, rho=0.0, d=0.0, substeps=MIDPOINT_SUBSTEPS):
+    r"""Internal displacement y [m] and rate [m/s] of the series visco-plastic element
+    :math:`k(x - y) = c\dot y + A\tanh(\alpha\dot y)` (the MR-model review eq 82), with the nonlinear stiffness
+    :math:`k = q|(x - y) - \tanh(\rho(\dot x - \dot y))d|^n + k_0` of eq 84 when q != 0.  k0, c, A, alpha may
+    be per-sample arrays (current laws).  Implicit midpoint sub-steps (second order), compiled."""
+    t = np.ascontiguousarray(t, dtype=float)
+    N = t.size
+    return _compiled().series_viscoplastic(t, np.ascontiguousarray(x, dtype=float), per_sample(k0, N), float(q),
+                                           float(n), float(rho), float(d), per_sample(c, N), per_sample(A, N),
+                                           per_sample(alpha, N), int(substeps))
+
+
+def mass_on_damper(t, x, *, m=0.0, k1=0.0, c1=0.0, k0=0.0, c=0.0, f_t=0.0, v_ref=1.0, C_pre=0.0, C_post=0.0,
+                   F_y=0.0, substeps=MIDPOINT_SUBSTEPS):
+    r"""Displacement [m] and velocity [m/s] of an internal mass driven by the piston displacement x:
+    :math:`m\ddot x_m = k_1(x - x_m) + c_1(\dot x - \dot x_m) - k_0x_m - D(\dot x_m)`,
+    :math:`D(v) = cv + f_t\tanh(v/v_{ref}) + \operatorname{sgn}v\min(C_{pre}|v|, C_{post}|v| + F_y)` (Bass, Sims;
+    :func:`erdesign.models._compiled.mass_on_damper`).  f_t, C_pre, C_post, F_y may be per-sample arrays."""
+    t = np.ascontiguousarray(t, dtype=float)
+    N = t.size
+    return _compiled().mass_on_damper(t, np.ascontiguousarray(x, dtype=float), float(m), float(k1), float(c1),
+                                      float(k0), float(c), per_sample(f_t, N), float(v_ref), per_sample(C_pre, N),
+                                      per_sample(C_post, N), per_sample(F_y, N), int(substeps))
+
+
+def bouc_wen_state_varying(x, beta, gamma, delta, n, z0=0.0):
+    r"""The Bouc-Wen variable (as :func:`bouc_wen_state`) with shape parameters that vary per sample (voltage laws):
+    each step is exact with the values at its start."""
+    x = np.ascontiguousarray(x, dtype=float)
+    N = x.size
+    return _compiled().bouc_wen_state_varying(x, per_sample(beta, N), per_sample(gamma, N), per_sample(delta, N),
+                                              per_sample(n, N), float(z0))

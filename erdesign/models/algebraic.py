@@ -12,7 +12,8 @@ import numpy as np
 
 from .base import ControlAffineModel, Model, Parameter
 
-__all__ = ["EyringPlastic", "WengArctan", "KwokTanh", "MagicFormula"]
+__all__ = ["EyringPlastic", "WengArctan", "KwokTanh", "MagicFormula", "ChengTanh", "YangArctan", "YangExponential",
+           "Metered", "Balamurugan"]
 
 
 def _fit_sign_viscous(record):
@@ -268,3 +269,301 @@ class MagicFormula(ControlAffineModel):
             fy, c, f0, vmax = _fit_sign_viscous(record)
             g.update(D=fy, k_c=c, f0=f0, B=10.0 / vmax, A=0.0)
         return g
+
+
+class ChengTanh(ControlAffineModel):
+    r"""Cheng's modified hyperbolic-tangent model: a dashpot and a tanh hysteresis term, no spring.
+
+    .. math:: F = c\,\dot x + \alpha z, \qquad z = \tanh(\beta\dot x + \delta\operatorname{sgn}x),
+              \qquad c = c_0 + c_u u,\ \alpha = \alpha_0 + \alpha_u u
+
+    Parameters (SI): ``c``, ``c_u`` [N s/m], ``alpha``, ``alpha_u`` [N], ``beta`` [s/m], ``delta`` [-].
+
+    Notes
+    -----
+    The source makes c and beta functions of the current and of the excitation amplitude and frequency, and alpha
+    a function of the current, without the review giving the functions; here c and alpha are linear in the control
+    and beta is a constant (identified per test condition).  With beta independent of the control the force is
+    affine in it, so the inverse is explicit (the review: invertible).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.data.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = ChengTanh().simulate(rec, {"c": 0.0, "alpha": 700.0, "beta": 1e5, "delta": 0.0})
+    >>> round(float(F.max()), 3)
+    700.0
+
+    References
+    ----------
+    Review (the MR-model review) eq 98, section 8.4 (Cheng et al.), Table 1: invertible.
+    """
+
+    name = "cheng_tanh"
+    title = "Cheng hyperbolic tangent"
+    source = "the MR-model review eq 98 (Table 1: eq 92, invertible; Cheng et al.)"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("alpha_u", "c_u")
+    linear_parameters = ("c", "alpha", "c_u", "alpha_u")
+    parameters = (
+        Parameter("c", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
+        Parameter("alpha", "N", 600.0, 0.0, 1e7, "hysteresis scale (height of the loop)"),
+        Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
+        Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop (delta_c)"),
+        Parameter("alpha_u", "N", 0.0, -1e7, 1e7, "hysteresis scale per unit control"),
+        Parameter("c_u", "N*s/m", 0.0, -1e8, 1e8, "damping per unit control"),
+    )
+
+    def control_affine(self, record, values):
+        v, x = record.velocity, record.displacement
+        z = np.tanh(values["beta"] * v + values["delta"] * np.sign(x))
+        return values["c"] * v + values["alpha"] * z, values["c_u"] * v + values["alpha_u"] * z
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, vmax = _fit_sign_viscous(record)
+            g.update(alpha=fy, c=c, beta=10.0 / vmax, delta=0.0)
+        return g
+
+
+class YangArctan(Model):
+    r"""Yang's algebraic hysteretic model with an arctangent (friction-lag) term.
+
+    .. math:: F = kx + c\dot x + \alpha z + f_0,\qquad z = \arctan(\beta\dot x) + \delta\operatorname{sgn}(x),
+
+    with :math:`p = p_0 + p_1u + p_2u^2` for p = k, c, alpha, beta, delta (the source's linear or quadratic laws in
+    the current).
+
+    Parameters (SI): ``k`` [N/m], ``c`` [N s/m], ``alpha`` [N], ``beta`` [s/m], ``delta`` [-], ``f0`` [N], and
+    their control slopes ``*_u``, ``*_u2``.
+
+    Notes
+    -----
+    The :math:`\delta\operatorname{sgn}x` term is outside the arctangent (as printed): it shifts the force by
+    :math:`\pm\alpha\delta` with the sign of the displacement, which opens the loop by :math:`2\alpha\delta` at
+    zero velocity.  Memoryless: the inverse is a bracketed root in the control.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.data.measurement import Measurement
+    >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = YangArctan().simulate(rec, {"k": 0.0, "c": 0.0, "alpha": 400.0, "beta": 1e6, "delta": 0.0})
+    >>> round(float(F.max()) / (np.pi / 2), 1)
+    400.0
+
+    References
+    ----------
+    Review (the MR-model review) eq 96, section 8.3 (Yang et al.).
+    """
+
+    name = "yang_arctan"
+    title = "Yang arctangent model"
+    source = "the MR-model review eq 96 (Table 1: eq 90; Yang et al.)"
+    uses_control = True
+    memoryless = True
+    _laws = ("k", "c", "alpha", "beta", "delta")
+    control_parameters = tuple(f"{p}_u{s}" for p in _laws for s in ("", "2"))
+    linear_parameters = ("k", "c", "alpha", "f0", "k_u", "k_u2", "c_u", "c_u2", "alpha_u", "alpha_u2")
+    parameters = (
+        Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
+        Parameter("c", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
+        Parameter("alpha", "N", 400.0, 0.0, 1e7, "hysteretic factor"),
+        Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
+        Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop"),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        *(Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
+          for p, unit in (("k", "N/m"), ("c", "N*s/m"), ("alpha", "N"), ("beta", "s/m"), ("delta", ""))
+          for s in ("", "2")),
+    )
+
+    def _law(self, values, p, u):
+        return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
+
+    def _shape(self, record, values, u):
+        return np.arctan(self._law(values, "beta", u) * record.velocity) \
+            + self._law(values, "delta", u) * np.sign(record.displacement)
+
+    def force(self, record, values):
+        u = self.control(record)
+        return self._law(values, "k", u) * record.displacement + self._law(values, "c", u) * record.velocity \
+            + self._law(values, "alpha", u) * self._shape(record, values, u) + values["f0"]
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, vmax = _fit_sign_viscous(record)
+            g.update(alpha=fy / 1.5, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
+        return g
+
+
+class YangExponential(Model):
+    r"""Yang's algebraic model with an exponential (sigmoid) hysteresis term.
+
+    .. math:: F = kx + c_0\dot x + \frac{f_b}{e^{\alpha\dot x + \beta\operatorname{sgn}x} + \gamma} + f_0
+
+    with :math:`p = p_0 + p_1u + p_2u^2` for p = k, c0, f_b (linear or quadratic laws in the current).
+
+    Parameters (SI): ``k`` [N/m], ``c0`` [N s/m], ``f_b``, ``f0`` [N], ``alpha`` [s/m], ``beta``, ``gamma`` [-],
+    and the control slopes ``*_u``, ``*_u2``.
+
+    Notes
+    -----
+    For a positive :math:`f_b` the term falls from :math:`f_b/\gamma` at large negative velocity to 0 at large
+    positive velocity when :math:`\alpha > 0`; a damper's force needs :math:`f_b < 0` (or :math:`\alpha < 0`),
+    and the offset :math:`f_0` centres the step.  With :math:`\gamma = 1` the term is
+    :math:`f_b[1 - \tanh((\alpha\dot x + \beta\operatorname{sgn}x)/2)]/2`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.data.measurement import Measurement
+    >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = YangExponential().simulate(rec, {"k": 0.0, "c0": 0.0, "f_b": -800.0, "alpha": 1e4, "beta": 0.0,
+    ...                                      "gamma": 1.0, "f0": 400.0})
+    >>> round(float(F.max()), 3), round(float(F.min()), 3)
+    (400.0, -400.0)
+
+    References
+    ----------
+    Review (the MR-model review) eq 97, section 8.3 (Yang et al.).
+    """
+
+    name = "yang_exponential"
+    title = "Yang exponential model"
+    source = "the MR-model review eq 97 (Table 1: eq 91; Yang et al.)"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("k_u", "k_u2", "c0_u", "c0_u2", "f_b_u", "f_b_u2")
+    linear_parameters = ("k", "c0", "f_b", "f0") + control_parameters
+    parameters = (
+        Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
+        Parameter("c0", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
+        Parameter("f_b", "N", -800.0, -1e7, 1e7, "hysteresis force"),
+        Parameter("alpha", "s/m", 200.0, -1e7, 1e7, "velocity scale of the hysteresis term"),
+        Parameter("beta", "", 0.5, -50.0, 50.0, "width of the loop"),
+        Parameter("gamma", "", 1.0, 1e-6, 1e3, "shape of the hysteresis term", log_scale=True),
+        Parameter("f0", "N", 400.0, -1e7, 1e7, "force offset"),
+        *(Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
+          for p, unit in (("k", "N/m"), ("c0", "N*s/m"), ("f_b", "N")) for s in ("", "2")),
+    )
+
+    def force(self, record, values):
+        u = self.control(record)
+
+        def law(p):
+            return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
+        e = np.exp(np.clip(values["alpha"] * record.velocity + values["beta"] * np.sign(record.displacement),
+                           -700.0, 700.0))
+        return law("k") * record.displacement + law("c0") * record.velocity + law("f_b") / (e + values["gamma"]) \
+            + values["f0"]
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            fy, c, f0, vmax = _fit_sign_viscous(record)
+            g.update(f_b=-2.0 * fy, f0=f0 + fy, c0=c, alpha=20.0 / vmax, beta=0.0, gamma=1.0)
+        return g
+
+
+class Metered(WengArctan):
+    r"""Metered's model: Weng's arctangent model with the yield term scaled by the excitation amplitude and
+    frequency.
+
+    .. math:: F = f_0 + c_b\dot x + \frac{2}{\pi}f_y\arctan\{k[\dot x - \dot x_0\operatorname{sgn}(\ddot x)]\}
+              (A_1a + A_2)(F_1f + F_2)
+
+    Parameters (SI): those of ``weng_arctan`` plus ``A1`` [1/m], ``A2`` [-], ``F1`` [1/Hz], ``F2`` [-], and the
+    excitation ``amplitude`` [m] and ``frequency`` [Hz], explicit and held a priori (identification starts from the
+    record's).
+
+    Notes
+    -----
+    As printed, the amplitude and frequency factors multiply the yield term only.  :math:`A_2` and :math:`F_2`
+    only rescale :math:`f_y` and are held at 1.  With :math:`A_1 = F_1 = 0` it is Weng's model.
+
+    References
+    ----------
+    Review (the MR-model review) eq 90, section 7.3 (Metered et al.).
+    """
+
+    name = "metered"
+    title = "Metered amplitude-frequency arctangent model"
+    source = "the MR-model review eq 90 (Table 1: eq 84; Metered et al.)"
+    parameters = WengArctan.parameters + (
+        Parameter("A1", "1/m", 0.0, -1e6, 1e6, "amplitude factor of the yield term"),
+        Parameter("A2", "", 1.0, -1e3, 1e3, "amplitude offset (redundant with f_y: held)", fitted=False),
+        Parameter("F1", "1/Hz", 0.0, -1e3, 1e3, "frequency factor of the yield term"),
+        Parameter("F2", "", 1.0, -1e3, 1e3, "frequency offset (redundant with f_y: held)", fitted=False),
+        Parameter("amplitude", "m", 0.01, 0.0, 10.0, "excitation amplitude (a priori: the record's)", fitted=False),
+        Parameter("frequency", "Hz", 1.0, 0.0, 1e4, "excitation frequency (a priori: the record's)", fitted=False),
+    )
+
+    def _scale(self, values):
+        return (values["A1"] * values["amplitude"] + values["A2"]) * (values["F1"] * values["frequency"]
+                                                                       + values["F2"])
+
+    def control_affine(self, record, values):
+        s = self._scale(values)
+        return super().control_affine(record, {**values, "f_y": values["f_y"] * s, "f_y_u": values["f_y_u"] * s})
+
+    def initial_guess(self, record):
+        from .excitation import record_amplitude, record_frequency
+        return {**self.defaults(), **super().initial_guess(record), "amplitude": record_amplitude(record),
+                "frequency": record_frequency(record)}
+
+
+class Balamurugan(Model):
+    r"""Balamurgan's model: Weng's arctangent hysteretic function times an asymmetric sigmoid function of the
+    voltage.
+
+    .. math:: F = \left[f_0 + c_b\dot x + \frac{2}{\pi}f_y\arctan\{k[\dot x - \dot x_0\operatorname{sgn}(\ddot x)]\}
+              \right]\left(1 + \frac{k_2}{1 + e^{-a_2(u/v_0 + I_0)}} - \frac{k_2}{1 + e^{-a_2I_0}}\right)
+
+    Parameters (SI): ``f0``, ``f_y`` [N], ``c_b`` [N s/m], ``k`` [s/m], ``v0`` [m/s] (the hysteretic velocity), and
+    the voltage function's ``k2``, ``a2``, ``I0``, ``u0`` [-] (the source's :math:`v_0`, in units of the control).
+
+    Notes
+    -----
+    The review prints the voltage as :math:`\sigma`; it is the control u (the voltage).  The gain is 1 at zero
+    voltage and monotone in it, so the inverse is a bracketed root in the control (the gain equation has a closed
+    form too).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.data.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401)
+    >>> rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=np.zeros(401), control_kind="voltage")
+    >>> bool(np.allclose(Balamurugan().simulate(rec), WengArctan().simulate(rec)))
+    True
+
+    References
+    ----------
+    Review (the MR-model review) eqs 91-92, section 7.4 (Balamurgan et al.).
+    """
+
+    name = "balamurugan"
+    title = "Balamurgan voltage-gain arctangent model"
+    source = "the MR-model review eqs 91-92 (Table 1: eq 86; Balamurgan et al.)"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("k2", "a2", "I0", "u0")
+    parameters = tuple(p for p in WengArctan.parameters if p.name in ("f_y", "c_b", "k", "v0", "f0")) + (
+        Parameter("k2", "", 0.0, 0.0, 1e4, "gain of the voltage function"),
+        Parameter("a2", "", 1.0, 1e-6, 1e4, "slope of the voltage function"),
+        Parameter("I0", "", 0.0, -1e3, 1e3, "bias of the voltage function"),
+        Parameter("u0", "", 1.0, 1e-6, 1e6, "voltage scale of the voltage function (the source's v0)"),
+    )
+
+    def force(self, record, values):
+        from .bouc_wen_variants import sigmoid_gain
+        hyst = WengArctan().force(record, {**values, "m": 0.0, "f_y_u": 0.0, "c_b_u": 0.0})
+        return hyst * sigmoid_gain(self.control(record) / values["u0"], values["k2"], values["a2"], values["I0"])
+
+    def initial_guess(self, record):
+        return {**self.defaults(), **{k: v for k, v in WengArctan().initial_guess(record).items()
+                                      if k in self.parameter_names}}

@@ -149,9 +149,16 @@ class Model:
         self.check_record(record)
         return np.asarray(self.force(record, self.check_values(values or {})), dtype=float)
 
+    @property
+    def invertible(self) -> bool:
+        """True when :func:`erdesign.identification.inverse.inverse_control` finds the control for a desired force:
+        the force depends on the control and is affine in it at each sample (``control_affine``: explicit, or step
+        by step for a state that the control drives) or the model is memoryless (a bracketed root)."""
+        return bool(self.uses_control and (hasattr(self, "control_affine") or getattr(self, "memoryless", False)))
+
     def describe(self) -> dict:
         """The registry entry of ``erdesign models --json``."""
-        return {"name": self.name, "source": self.source,
+        return {"name": self.name, "source": self.source, "invertible": self.invertible,
                 "parameters": [{"name": p.name, "unit": p.unit, "default": p.default} for p in self.parameters]}
 
     def __repr__(self) -> str:

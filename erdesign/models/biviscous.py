@@ -18,7 +18,7 @@ import numpy as np
 
 from .base import Model, Parameter
 
-__all__ = ["Biviscous", "BiviscousHysteretic", "biviscous_force"]
+__all__ = ["Biviscous", "BiviscousHysteretic", "biviscous_force", "ArctanHysteretic"]
 
 
 def biviscous_force(v, a, C_pre, C_post, F_y, v0=0.0):
@@ -144,3 +144,64 @@ class BiviscousHysteretic(Biviscous):
 
     def _v0(self, values):
         return values["v0"]
+
+
+class ArctanHysteretic(Model):
+    r"""Nonlinear hysteretic arctangent model (Wang and Liao, after Ang et al.): the hysteretic biviscous model with
+    an arctangent pre-yield branch.
+
+    .. math:: F = \operatorname{clip}\big(\alpha\arctan[\beta(\dot x - \dot x_0\operatorname{sgn}\ddot x)],\
+              C_{post}\dot x - F_y,\ C_{post}\dot x + F_y\big) + f_0,\qquad F_y = F_{y,0} + F_{y,u}u
+
+    Parameters (SI): ``alpha`` [N] (magnification), ``beta`` [s/m] (rotation), ``v0`` [m/s], ``C_post``
+    [N s/m], ``F_y``, ``F_y_u``, ``f0`` [N].
+
+    Notes
+    -----
+    Eq 62 prints the branches of eq 61 with the pre-yield line replaced by the arctangent; as for eq 61, the clip
+    form is the continuous law (the pre-yield branch between the two post-yield lines).  The loop is point
+    symmetric about the origin (the review: "a symmetric hysteresis loop around the zero point").
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.data.measurement import Measurement
+    >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = ArctanHysteretic().simulate(rec, {"C_post": 0.0, "F_y": 1e6, "v0": 0.0, "alpha": 300.0, "beta": 1e6})
+    >>> round(float(F.max()) / (np.pi / 2), 1)   # never yields: the arctangent alone
+    300.0
+
+    References
+    ----------
+    Review (the MR-model review) eq 62, section 5.3 (Wang and Liao; Ang et al.).
+    """
+
+    name = "arctan_hysteretic"
+    title = "nonlinear hysteretic arctangent (Wang-Liao)"
+    source = "the MR-model review eq 62 (Table 1: eq 58; Wang and Liao)"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("F_y_u",)
+    parameters = (
+        Parameter("alpha", "N", 800.0, 0.0, 1e7, "magnification factor of the pre-yield arctangent"),
+        Parameter("beta", "s/m", 500.0, 0.0, 1e7, "rotation factor (slope) of the pre-yield arctangent"),
+        Parameter("v0", "m/s", 0.002, 0.0, 10.0, "zero-force velocity of the pre-yield branch"),
+        Parameter("C_post", "N*s/m", 5000.0, 0.0, 1e9, "post-yield damping"),
+        Parameter("F_y", "N", 1000.0, 0.0, 1e7, "yield force"),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
+    )
+
+    def force(self, record, values):
+        v = record.velocity
+        Fy = np.maximum(values["F_y"] + values["F_y_u"] * self.control(record), 0.0)
+        pre = values["alpha"] * np.arctan(values["beta"] * (v - values["v0"] * np.sign(record.acceleration)))
+        return np.clip(pre, values["C_post"] * v - Fy, values["C_post"] * v + Fy) + values["f0"]
+
+    def initial_guess(self, record):
+        g = Biviscous().initial_guess(record)
+        out = {**self.defaults(), "C_post": g["C_post"], "F_y": g["F_y"], "f0": g["f0"]}
+        if record.force is not None:
+            vmax = float(np.max(np.abs(record.velocity))) or 1.0
+            out.update(alpha=g["F_y"], beta=20.0 / vmax, v0=0.0)
+        return out

@@ -13,7 +13,7 @@ from ..numerics import affine_recurrence
 from ._kernels import dahl_state
 from .base import ControlAffineModel, Model, Parameter
 
-__all__ = ["Dahl", "DahlViscous", "LuGre", "LuGreModified", "lugre_state"]
+__all__ = ["Dahl", "DahlViscous", "LuGre", "LuGreModified", "lugre_state", "DahlAsymmetric"]
 
 
 def lugre_state(x, kappa, z0=0.0):
@@ -293,3 +293,74 @@ class LuGreModified(ControlAffineModel):
             umax = float(np.max(np.abs(self.control(record)))) or 1.0
             g.update(a0=1.0 / fy, sigma2=c, f0=f0, sigma0=fy * 20.0 / X / umax)
         return g
+
+
+class DahlAsymmetric(ControlAffineModel):
+    r"""Asymmetric Dahl model (Garcia et al.): the viscous Dahl model with coefficients that differ with the sign
+    of the velocity and of the Dahl state.
+
+    .. math:: F = k_x\dot x + k_w w + f_0,\qquad
+              k_x = \begin{cases}k_{x1} & \dot x \ge 0\\ k_{x2} & \dot x < 0\end{cases},\
+              k_w = \begin{cases}k_{w1} & w \ge 0\\ k_{w2} & w < 0\end{cases},\qquad \dot w = \rho(\dot x - |\dot x|w)
+
+    with the voltage laws of the viscous Dahl model added to both branches: :math:`k_x + k_{x,u}u`,
+    :math:`k_w + k_{w,u}u`.
+
+    Parameters (SI): ``k_x1``, ``k_x2``, ``k_x_u`` [N s/m], ``k_w1``, ``k_w2``, ``k_w_u``, ``f0`` [N], ``rho``
+    [1/m].
+
+    Notes
+    -----
+    Equal branch coefficients give the viscous Dahl model (``dahl_viscous``).  The Dahl state does not depend on
+    the control, so the force is affine in it and the inverse is explicit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.data.measurement import Measurement
+    >>> t = np.linspace(0, 2, 401); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> bool(np.allclose(DahlAsymmetric().simulate(rec, {"k_x2": 2000.0, "k_w2": 500.0}),
+    ...                  DahlViscous().simulate(rec)))
+    True
+
+    References
+    ----------
+    Review (the MR-model review) eqs 105-106, section 10.3 (Garcia et al.).
+    """
+
+    name = "dahl_asymmetric"
+    title = "asymmetric Dahl (Garcia)"
+    source = "the MR-model review eqs 105-106 (Table 1: eqs 99-100; Garcia et al.)"
+    uses_control = True
+    control_parameters = ("k_x_u", "k_w_u")
+    linear_parameters = ("k_x1", "k_x2", "k_w1", "k_w2", "f0", "k_x_u", "k_w_u")
+    parameters = (
+        Parameter("k_x1", "N*s/m", 2000.0, 0.0, 1e8, "viscous coefficient, positive velocity"),
+        Parameter("k_x2", "N*s/m", 1500.0, 0.0, 1e8, "viscous coefficient, negative velocity"),
+        Parameter("k_w1", "N", 500.0, 0.0, 1e7, "friction coefficient, positive state"),
+        Parameter("k_w2", "N", 400.0, 0.0, 1e7, "friction coefficient, negative state"),
+        Parameter("rho", "1/m", 1000.0, 1e-2, 1e8, "Dahl rate", log_scale=True),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("k_x_u", "N*s/m", 0.0, -1e8, 1e8, "viscous coefficient per unit control"),
+        Parameter("k_w_u", "N", 0.0, -1e7, 1e7, "friction coefficient per unit control"),
+    )
+
+    def linear_terms(self, record, values):
+        v = record.velocity
+        w = dahl_state(record.displacement, values["rho"])
+        pos_v, pos_w = v >= 0, w >= 0
+        u = self.control(record)
+        return {"k_x1": v * pos_v, "k_x2": v * ~pos_v, "k_w1": w * pos_w, "k_w2": w * ~pos_w,
+                "f0": np.ones_like(v), "k_x_u": u * v, "k_w_u": u * w}, np.zeros_like(v)
+
+    def control_affine(self, record, values):
+        cols, _ = self.linear_terms(record, values)
+        P = sum(values[k] * cols[k] for k in ("k_x1", "k_x2", "k_w1", "k_w2", "f0"))
+        v = record.velocity
+        w = cols["k_w1"] + cols["k_w2"]
+        return P, values["k_x_u"] * v + values["k_w_u"] * w
+
+    def initial_guess(self, record):
+        g = DahlViscous().initial_guess(record)
+        return {**self.defaults(), "k_x1": g["k_x"], "k_x2": g["k_x"], "k_w1": g["k_w"], "k_w2": g["k_w"],
+                "rho": g["rho"], "f0": g["f0"]}

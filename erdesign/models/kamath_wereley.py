@@ -17,8 +17,9 @@ import numpy as np
 
 from ._kernels import first_order_lag
 from .base import Model, Parameter
+from .excitation import warn_if_multi_amplitude
 
-__all__ = ["KamathWereley4", "KamathWereley6", "jeffreys_force", "KAMATH_WERELEY_TABLE1"]
+__all__ = ["KamathWereley4", "KamathWereley6", "jeffreys_force", "KAMATH_WERELEY_TABLE1", "ViscoelasticPlasticPang"]
 
 #: Kamath and Wereley (1997) Table 1, case 2 (E = 3 kV/mm, X0 = 1.0 mm), augmented model, SI units.
 KAMATH_WERELEY_TABLE1 = {"C1": 0.978e4, "C2": 1.253e4, "K1": 1.453e5, "Cv": 1.914e3, "R": 5.292, "F_c": 4.810,
@@ -57,9 +58,16 @@ def jeffreys_force(t, v, C1, C2, K1):
     return direct * v + first_order_lag(t, lagged - lagged[0], p1) + lagged[0] * (1.0 - np.exp(-(t - t[0]) / p1))
 
 
-def _alpha(record):
-    """Velocity made dimensionless with its amplitude: |v| / max|v| (Kamath and Wereley 1997: alpha, eq 9)."""
+def _alpha(record, v_ref=0.0, name="kamath_wereley"):
+    """Velocity made dimensionless with its amplitude: |v| / v_ref (Kamath and Wereley 1997: alpha, eq 9).
+
+    ``v_ref`` is the velocity amplitude [m/s]; 0 takes the record's peak speed, and then warns when the record is
+    not one harmonic test (its half-cycle speed peaks differ by more than 10 %): the force at a sample would
+    depend on the rest of the record (:func:`erdesign.models.excitation.warn_if_multi_amplitude`)."""
     v = record.velocity
+    if v_ref > 0:
+        return np.abs(v) / v_ref, float(v_ref)
+    warn_if_multi_amplitude(record, f"{name}: the velocity scale v_ref = 0 takes the record's peak speed")
     vmax = float(np.max(np.abs(v)))
     return np.abs(v) / vmax if vmax > 0 else np.zeros_like(v), vmax
 
@@ -75,7 +83,10 @@ class KamathWereley6(Model):
 
     Notes
     -----
-    :math:`\alpha = |\dot X|/\max|\dot X|` (the velocity "non-dimensionalised with respect to the amplitude";
+    :math:`\alpha = |\dot X|/v_{ref}` with :math:`v_{ref}` the velocity amplitude of the test, a parameter held a
+    priori (0, the default, takes the record's peak speed :math:`\max|\dot X|` and warns when the record's speed
+    peaks differ by more than 10 %, where one scale cannot describe it; identification sets it to the record's peak
+    and reports it) (the velocity "non-dimensionalised with respect to the amplitude";
     the MR-model review eq 67 uses :math:`|v| - v_y` in velocity units, the same up to scale).  The stiction shape function
     is applied to the same dimensionless velocity, :math:`S_c = \tfrac12\tanh(\dot X/(4\epsilon_c\max|\dot X|))`:
     the source gives :math:`\epsilon_c` as a number between 0 and 1, which needs a dimensionless argument.
@@ -111,10 +122,12 @@ class KamathWereley6(Model):
         Parameter("eps_y", "", 0.10, 1e-3, 1.0, "width of the yield transition", fitted=False),
         Parameter("eps_c", "", 0.30, 1e-3, 1.0, "width of the stiction transition", fitted=False),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("v_ref", "m/s", 0.0, 0.0, 1e3, "velocity amplitude that scales alpha and S_c (0: the record's "
+                  "peak speed)", fitted=False),
     )
 
     def force(self, record, values):
-        alpha, vmax = _alpha(record)
+        alpha, vmax = _alpha(record, values.get("v_ref", 0.0), self.name)
         v, a = record.velocity, record.acceleration
         s_ay = 0.5 * (1.0 + np.tanh((alpha - values["alpha_y"]) / (4.0 * values["eps_y"])))
         s_by = 1.0 - s_ay
@@ -126,6 +139,7 @@ class KamathWereley6(Model):
 
     def initial_guess(self, record):
         g = self.defaults()
+        g["v_ref"] = float(np.max(np.abs(record.velocity)))   # explicit: identification reports the scale it used
         if record.force is not None:
             v = record.velocity
             c = float(np.dot(v, record.force - record.force.mean()) / max(np.dot(v, v), 1e-300))
@@ -170,6 +184,8 @@ class KamathWereley4(KamathWereley6):
         Parameter("alpha_y", "", 0.40, 0.0, 1.0, "yield point, dimensionless velocity", fitted=False),
         Parameter("eps_y", "", 0.10, 1e-3, 1.0, "width of the yield transition", fitted=False),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("v_ref", "m/s", 0.0, 0.0, 1e3, "velocity amplitude that scales alpha (0: the record's peak speed)",
+                  fitted=False),
     )
 
     def force(self, record, values):
@@ -178,3 +194,79 @@ class KamathWereley4(KamathWereley6):
     def initial_guess(self, record):
         g = super().initial_guess(record)
         return {k: v for k, v in g.items() if k in self.parameter_names} if g else self.defaults()
+
+
+class ViscoelasticPlasticPang(Model):
+    r"""Nonlinear viscoelastic-plastic model in the form of Pang et al. (the MR-model review section 6.1): Kelvin
+    pre-yield and viscous post-yield mechanisms blended by shape functions of the speed, plus a yield force.
+
+    .. math::
+        F = S_{ve}(c_{ve}\dot x + k_{ve}x) + S_{vi}\,c_{vi}\dot x + S_c F_c + f_0,\qquad
+        S_{ve} = \tfrac12\left[1 - \tanh\frac{|\dot x| - v_y}{4\varepsilon_y}\right],\
+        S_{vi} = 1 - S_{ve},\ S_c = \tanh\frac{\dot x}{4\varepsilon_y}
+
+    with :math:`F_c = F_{c,0} + F_{c,u}u`.
+
+    Parameters (SI): ``c_ve``, ``c_vi`` [N s/m], ``k_ve`` [N/m], ``v_y``, ``eps_y`` [m/s], ``F_c``, ``F_c_u``, ``f0``
+    [N].
+
+    Notes
+    -----
+    Unlike :class:`KamathWereley6` (whose pre-yield element is the three-parameter Jeffreys fluid and whose shape
+    functions take the speed divided by the record's peak), the pre-yield element is a Kelvin-Voigt solid (eq 66)
+    and the yield velocity is in m/s (eqs 67, 70): the model has no memory and no record-wide scale.  Eq 72 prints
+    :math:`S_c = \tfrac12[1 + \tanh(v/4\varepsilon_y)]`, which runs from 0 to 1 and would make the "Coulomb"
+    force one-sided; the text asks for a smooth transition from negative to positive velocity, so the odd function
+    :math:`\tanh(v/4\varepsilon_y)` is used.  F_c = 0 is the viscoelastic-plastic model of Wereley et al.
+    (eq 75: no yield force).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from erdesign.data.measurement import Measurement
+    >>> t = np.linspace(0, 2, 2001); rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
+    >>> F = ViscoelasticPlasticPang().simulate(rec, {"v_y": 10.0, "eps_y": 0.01, "F_c": 0.0})   # never yields
+    >>> bool(np.allclose(F, 2e4 * rec.velocity + 1e5 * rec.displacement, rtol=1e-6))
+    True
+
+    References
+    ----------
+    Review (the MR-model review) eqs 66-75, sections 6.1-6.2 (Kamath and Wereley; Pang et al.; Wereley et al.).
+    """
+
+    name = "viscoelastic_plastic_pang"
+    title = "nonlinear viscoelastic-plastic model (Pang, Wereley)"
+    source = "the MR-model review eqs 66-75 (Table 1: eqs 69-70; Pang et al., Wereley et al.)"
+    uses_control = True
+    memoryless = True
+    control_parameters = ("F_c_u",)
+    linear_parameters = ("c_ve", "k_ve", "c_vi", "F_c", "f0", "F_c_u")
+    parameters = (
+        Parameter("c_ve", "N*s/m", 2e4, 0.0, 1e9, "pre-yield (Kelvin) damping"),
+        Parameter("k_ve", "N/m", 1e5, 0.0, 1e10, "pre-yield (Kelvin) stiffness"),
+        Parameter("c_vi", "N*s/m", 2000.0, 0.0, 1e9, "post-yield damping"),
+        Parameter("v_y", "m/s", 0.02, 0.0, 10.0, "yield velocity"),
+        Parameter("eps_y", "m/s", 0.005, 1e-7, 10.0, "smoothing of the transitions", log_scale=True),
+        Parameter("F_c", "N", 100.0, 0.0, 1e7, "yield (Coulomb) force"),
+        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        Parameter("F_c_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
+    )
+
+    def force(self, record, values):
+        v, x = record.velocity, record.displacement
+        s_ve = 0.5 * (1.0 - np.tanh((np.abs(v) - values["v_y"]) / (4.0 * values["eps_y"])))
+        s_c = np.tanh(v / (4.0 * values["eps_y"]))
+        Fc = values["F_c"] + values["F_c_u"] * self.control(record)
+        return s_ve * (values["c_ve"] * v + values["k_ve"] * x) + (1.0 - s_ve) * values["c_vi"] * v + s_c * Fc \
+            + values["f0"]
+
+    def initial_guess(self, record):
+        g = self.defaults()
+        if record.force is not None:
+            v, F = record.velocity, record.force
+            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
+            (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
+            vmax = float(np.max(np.abs(v))) or 1.0
+            g.update(F_c=float(max(fy, 0.0)), c_vi=float(max(c, 0.0)), f0=float(f0), v_y=0.1 * vmax,
+                     eps_y=0.02 * vmax, c_ve=float(max(fy, 1.0)) / (0.1 * vmax), k_ve=0.0)
+        return g

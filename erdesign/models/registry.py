@@ -10,17 +10,26 @@ from __future__ import annotations
 from typing import Callable
 
 from ..errors import ErdesignError
-from .algebraic import EyringPlastic, KwokTanh, MagicFormula, WengArctan
+from .algebraic import (Balamurugan, ChengTanh, EyringPlastic, KwokTanh, MagicFormula, Metered, WengArctan, YangArctan,
+                        YangExponential)
 from .base import Model
-from .bingham import Bingham, BinghamExtended
-from .biviscous import Biviscous, BiviscousHysteretic
+from .bingham import (Bingham, BinghamExtended, BinghamHysteretic, BinghamImproved, BinghamModified,
+                      BinghamRegularized)
+from .biviscous import ArctanHysteretic, Biviscous, BiviscousHysteretic
 from .bouc_wen import BoucWen, BoucWenModified, BoucWenNormalized
+from .bouc_wen_variants import (BoucWenAmplitude, BoucWenAsymmetricSigmoid, BoucWenDominguez, BoucWenDominguezCFA,
+                                BoucWenMass, BoucWenModifiedMass, BoucWenModifiedNormalized, BoucWenNonsymmetric,
+                                BoucWenModifiedPolynomial, BoucWenNormalizedBahar, BoucWenNormalizedII,
+                                BoucWenRestructured, BoucWenShear)
 from .chebyshev import Chebyshev
-from .friction import Dahl, DahlViscous, LuGre, LuGreModified
-from .kamath_wereley import KamathWereley4, KamathWereley6
+from .friction import Dahl, DahlAsymmetric, DahlViscous, LuGre, LuGreModified
+from .general import HeUnified, YuanTanh, YuDivision, ZhaoDeadZone, ZhaoXuSigmoid
+from .kamath_wereley import KamathWereley4, KamathWereley6, ViscoelasticPlasticPang
+from .lumped import Bass, SimsLumped
 from .maxwell import BingMax, Maxwell, MaxwellNeural
 from .powell import Powell
-from .semiactive import SemiactiveGeneral
+from .semiactive import SemiactiveCustomized, SemiactiveGeneral
+from .viscoelastic import SVES, ContinuousVEP, LiViscoelasticPlastic, NonlinearStiffnessVEP
 
 __all__ = ["MODELS", "get_model", "model_names", "describe_models", "UnknownModelError", "INVERTIBLE"]
 
@@ -63,6 +72,7 @@ MODELS: dict[str, Callable[..., Model]] = {
     "biviscous_hysteretic": BiviscousHysteretic,
     "eyring_plastic": EyringPlastic,
     "semiactive_general": SemiactiveGeneral,
+    "semiactive_customized": SemiactiveCustomized,
     "dahl": Dahl,
     "dahl_viscous": DahlViscous,
     "lugre": LuGre,
@@ -72,12 +82,52 @@ MODELS: dict[str, Callable[..., Model]] = {
     "magic_formula": MagicFormula,
     "chebyshev": Chebyshev,
     "maxwell_neural": MaxwellNeural,
+    # the rest of the MR-model review's catalogue (its Table 1; docs/models.md maps every row)
+    "bingham_modified": BinghamModified,
+    "bingham_improved": BinghamImproved,
+    "bingham_hysteretic": BinghamHysteretic,
+    "bingham_regularized": BinghamRegularized,
+    "bouc_wen_modified_polynomial": BoucWenModifiedPolynomial,
+    "bouc_wen_shear": BoucWenShear,
+    "bouc_wen_mass": BoucWenMass,
+    "bouc_wen_modified_mass": BoucWenModifiedMass,
+    "bouc_wen_amplitude": BoucWenAmplitude,
+    "bouc_wen_dominguez": BoucWenDominguez,
+    "bouc_wen_dominguez_cfa": BoucWenDominguezCFA,
+    "bouc_wen_asymmetric_sigmoid": BoucWenAsymmetricSigmoid,
+    "bouc_wen_nonsymmetric": BoucWenNonsymmetric,
+    "bouc_wen_modified_normalized": BoucWenModifiedNormalized,
+    "bouc_wen_restructured": BoucWenRestructured,
+    "bouc_wen_normalized_dominguez": BoucWenNormalizedII,
+    "bouc_wen_normalized_bahar": BoucWenNormalizedBahar,
+    "viscoelastic_plastic_pang": ViscoelasticPlasticPang,
+    "li_viscoelastic_plastic": LiViscoelasticPlastic,
+    "vep_continuous": ContinuousVEP,
+    "vep_nonlinear_stiffness": NonlinearStiffnessVEP,
+    "sves": SVES,
+    "arctan_hysteretic": ArctanHysteretic,
+    "sims_lumped": SimsLumped,
+    "metered": Metered,
+    "balamurugan": Balamurugan,
+    "bass": Bass,
+    "yang_arctan": YangArctan,
+    "yang_exponential": YangExponential,
+    "cheng_tanh": ChengTanh,
+    "dahl_asymmetric": DahlAsymmetric,
+    "zhao_dead_zone": ZhaoDeadZone,
+    "zhao_xu_sigmoid": ZhaoXuSigmoid,
+    "yuan_tanh": YuanTanh,
+    "yu_division": YuDivision,
+    "he_unified": HeUnified,
     "physics": _physics,
 }
 
-#: Models whose control for a desired force has a closed form or a bracketed root (the MR-model review Table 1 marks Kwok,
-#: the magic formula, the modified LuGre and the modified normalised Bouc-Wen invertible).
-INVERTIBLE = ("kwok_tanh", "magic_formula", "lugre_modified", "bouc_wen_normalized", "physics")
+#: The models the MR-model review's Table 1 marks invertible (Kwok, the magic formula, the modified LuGre, the modified
+#: normalised Bouc-Wen, Li's viscoelastic-plastic and Cheng's models), plus the physics damper.  Which models
+#: :mod:`erdesign.identification.inverse` inverts is :attr:`erdesign.models.base.Model.invertible` (a superset:
+#: every memoryless model with a control is inverted by a bracketed root).
+INVERTIBLE = ("kwok_tanh", "magic_formula", "lugre_modified", "bouc_wen_normalized", "li_viscoelastic_plastic",
+              "cheng_tanh", "physics")
 
 
 def model_names() -> list[str]:
@@ -106,7 +156,8 @@ def describe_models(include_physics: bool = True) -> list[dict]:
         if name == "physics":
             if include_physics:
                 out.append({"name": "physics", "source": "the damper of a damper file with effects "
-                            "(erdesign.effects.chain; Makris eqs 1-16, Kamath-Wereley mixed mode)", "parameters": []})
+                            "(erdesign.effects.chain; Makris eqs 1-16, Kamath-Wereley mixed mode)",
+                            "invertible": True, "parameters": []})
             continue
         out.append(get_model(name).describe())
     return out
