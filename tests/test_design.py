@@ -31,7 +31,6 @@ from erdesign.design import (
 from erdesign.design.envelope import body_length, outer_diameter, total_fluid_volume
 from erdesign.design.requirements import RequirementsError
 from erdesign.design.sampling import map_unit_to_bounds
-from erdesign.design.search import SAFETY
 from erdesign.errors import ErdesignError, ValidityWarning
 from erdesign.flow.bingham import bingham_slit_flow
 from erdesign.units import Q_

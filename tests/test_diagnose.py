@@ -5,14 +5,13 @@ valve damper of Makris (viscous-dominated) and in the MR mixed damper (yield-dom
 differs from the nominal one (viscosity x 1.2, yield stress x 0.8) so that calibration matters.
 """
 
-import math
 
 import numpy as np
 import pytest
 
 from erdesign import load_example
 from erdesign.diagnosis.diagnose import DiagnosisError, diagnose, improve, residual_analysis, calibrate
-from erdesign.effects import EFFECT_NAMES, EFFECTS, EffectError
+from erdesign.effects import EFFECTS, EffectError
 from erdesign.effects.chain import PhysicsDamper
 from erdesign.simulation.rig import field_steps, run_rig, sine, stepped_sine
 
@@ -33,7 +32,6 @@ def _hidden(damper, name, motion):
     x_peak = np.max(np.abs(motion.displacement))
     a_peak = np.max(np.abs(motion.acceleration))
     F_peak = float(np.max(np.abs(damper.state(motion.velocity, motion.control).force)))
-    omega = 2 * math.pi * 2.5
     if name == "viscous_heating":
         P = np.abs(damper.state(motion.velocity, motion.control).force * motion.velocity)
         energy = float(np.sum(P) * (motion.time[1] - motion.time[0]))

@@ -187,7 +187,8 @@ class Characterization:
         """The JSON of ``erdesign characterize --json`` (keys in docs/cli.md)."""
         model = self.model
         fit = self.fits["customized"]
-        cv = (lambda t: {"table": _finite(t.table), "average": _finite(t.average)})
+        def cv(t):
+            return ({"table": _finite(t.table), "average": _finite(t.average)})
         return _finite_tree({
             "records": [{"name": r.name, "samples": len(r), "control_kind": r.control_kind,
                          "force_variance_N2": float(np.var(r.force))} for r in self.records],
@@ -259,7 +260,8 @@ def characterize(records: Sequence, *, characterize_on: Sequence = (), threshold
     findings, F_P = detect(samples, threshold=threshold)
     terms, asymmetric = customized_terms(findings)
     options = {"starts": 1, **dict(identify_options or {})}
-    every = (lambda name: np.concatenate([getattr(r, name) for r in records + read_from]))
+    def every(name):
+        return (np.concatenate([getattr(r, name) for r in records + read_from]))
     scales = {"force": robust_peak(every("force")), "speed": robust_peak(every("velocity")),
               "stroke": robust_peak(every("displacement"))}
     factories = {"customized": partial(SemiactiveCustomized, terms, asymmetric, scales),
@@ -268,7 +270,8 @@ def characterize(records: Sequence, *, characterize_on: Sequence = (), threshold
     best = int(np.argmin(tables["customized"].average))
     fits = {name: identify(f(), records[best], **options) for name, f in factories.items()}
     splits = np.cumsum([0] + [len(r) for r in read_from])
-    per_record = (lambda a: [a[splits[k]:splits[k + 1]] for k in range(len(read_from))])
+    def per_record(a):
+        return ([a[splits[k]:splits[k + 1]] for k in range(len(read_from))])
     return Characterization(records, findings, per_record(F_P), per_record(samples.passive), samples.u_passive,
                             terms, asymmetric, scales, tables["customized"], tables["eyring_plastic"], fits, best,
                             list(characterize_on))

@@ -57,7 +57,8 @@ class Samples:
     def pool(cls, records, *, passive_band: float = 0.02) -> Samples:
         """Pool ``records``; the passive level is the lowest control, and samples within ``passive_band`` of the
         control span above it count as passive."""
-        cat = (lambda name: np.concatenate([np.asarray(getattr(r, name), dtype=float) for r in records]))
+        def cat(name):
+            return (np.concatenate([np.asarray(getattr(r, name), dtype=float) for r in records]))
         u = cat("control")
         controlled = any(r.control_kind is not None for r in records)
         lo, hi = (float(u.min()), float(u.max())) if controlled else (None, 0.0)

@@ -177,7 +177,8 @@ class Measurement:
 
     def select(self, mask_or_slice) -> "Measurement":
         """The samples picked by a boolean mask or slice (derivatives are kept, not recomputed)."""
-        pick = (lambda a: None if a is None else a[mask_or_slice])
+        def pick(a):
+            return (None if a is None else a[mask_or_slice])
         return replace(self, time=self.time[mask_or_slice], displacement=self.displacement[mask_or_slice],
                        force=pick(self.force), velocity=self.velocity[mask_or_slice],
                        acceleration=self.acceleration[mask_or_slice], control=self.control[mask_or_slice],

@@ -166,5 +166,6 @@ def loops(record, force_model=None, *, last_cycles: float | None = None, frequen
         if not frequency or frequency <= 0:
             raise ErdesignError("loops: last_cycles needs the excitation frequency [Hz]")
         keep = record.time >= record.time[-1] - last_cycles / frequency - 1e-12
-    pick = (lambda a: None if a is None else np.asarray(a, dtype=float)[keep])
+    def pick(a):
+        return (None if a is None else np.asarray(a, dtype=float)[keep])
     return Loops(record.displacement[keep], record.velocity[keep], pick(record.force), pick(force_model))

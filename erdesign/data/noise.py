@@ -37,7 +37,6 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import replace
 
 import numpy as np
 from scipy.special import erf

@@ -250,7 +250,8 @@ class SemiactiveCustomized(Model):
                 params.append(Parameter(n, p.unit, p.default, p.lower, p.upper,
                                         p.description.removesuffix(", extension")))
         self.parameters = tuple(params)
-        base_name = (lambda n: n.removesuffix("_pos").removesuffix("_neg"))
+        def base_name(n):
+            return (n.removesuffix("_pos").removesuffix("_neg"))
         self.linear_parameters = tuple(p.name for p in params if base_name(p.name) in _LINEAR)
         self.control_parameters = tuple(p.name for p in params if base_name(p.name) in _CONTROL)
 

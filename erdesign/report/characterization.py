@@ -116,7 +116,8 @@ def render_characterization(result) -> str:
               _table(["parameter", "value"], list(m["parameters"].items()))]
     cv = doc["cross_validation"]
     for key, title in (("customized", "customized model"), ("eyring_plastic", "Eyring-plastic model (eq 8)")):
-        cell = (lambda x: "-" if x is None else f"{x:.4f}")
+        def cell(x):
+            return ("-" if x is None else f"{x:.4f}")
         rows = [[n, *map(cell, row)] for n, row in zip(cv["records"], cv[key]["table"])]
         rows.append(["average", *map(cell, cv[key]["average"])])
         parts += [f"<h2>Cross-validation, {title} (Table 4)</h2><p>Column: identified on; row: validated on.</p>",

@@ -327,7 +327,7 @@ class TruthRecord:
         try:        # exclusive: an existing file, even one made while this runs, is never replaced
             write_measurement(path, self.measured, units={**self.file_units(), **(units or {})},
                               comment=self.description)
-        except OutputPathError as exc:
+        except OutputPathError:
             if not path.exists():
                 raise
             raise ErdesignError(f"{path}: exists; the truth rig does not overwrite files") from None
