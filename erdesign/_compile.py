@@ -32,8 +32,10 @@ def _cached_or_in_memory(kind: str, signatures: tuple, options: dict):
         except RuntimeError as exc:
             if "no locator available" not in str(exc):
                 raise
-            _log.info("numba cannot cache %s (no writable cache folder: set NUMBA_CACHE_DIR); compiling in memory",
-                      func.__qualname__)
+            _log.info(
+                "numba cannot cache %s (no writable cache folder: set NUMBA_CACHE_DIR); compiling in memory",
+                func.__qualname__,
+            )
             return make(*signatures, **{**options, "cache": False})(func)
 
     return decorate

@@ -77,8 +77,10 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
                 raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
             total += len(chunk)
             if total > limit:
-                raise ErdesignError(f"{label}: larger than {size_text(limit)}, the most erdesign reads as {what}; "
-                                    "thin or split the file")
+                raise ErdesignError(
+                    f"{label}: larger than {size_text(limit)}, the most erdesign reads as {what}; "
+                    "thin or split the file"
+                )
             chunks.append(chunk)
     return b"".join(chunks)
 
@@ -91,4 +93,3 @@ def nested_too_deeply(label: str) -> str:
 def is_path_like(value) -> bool:
     """True for a str or os.PathLike (what the loaders take as a file name)."""
     return isinstance(value, (str, os.PathLike)) and not isinstance(value, bytes)
-

@@ -44,17 +44,24 @@ API_CASES = [
     ("force_si None", lambda: MAKRIS_DAMPER.force_si(None), ["v: expected a number"]),
     ("force_si quantity", lambda: MAKRIS_DAMPER.force_si(Q_(25.0, "mm/s")), ["v: expected SI numbers", "mm/s"]),
     ("state shapes", lambda: MAKRIS_DAMPER.state(np.ones((2, 3)), np.ones(2)), ["v and field"]),
-    ("force() shapes", lambda: MAKRIS_DAMPER.force(Q_(np.ones(3), "m/s"), Q_(np.ones(2), "kV/mm")),
-     ["v and field"]),
-    ("bingham_pressure_drop shapes",
-     lambda: erdesign.bingham_pressure_drop(**{**DUCT, "Q": Q_(np.ones(3), "mL/s"), "tau_y": Q_(np.ones(4), "kPa")}),
-     ["Q and tau_y", "(3,)", "(4,)"]),
-    ("bingham_pressure_drop 2-D against 1-D",
-     lambda: erdesign.bingham_pressure_drop(**{**DUCT, "h": Q_(np.ones((2, 3)), "mm"), "L": Q_(np.ones(2), "m")}),
-     ["L and h"]),
-    ("SI kernel shapes", lambda: erdesign.flow.bingham.bingham_pressure_drop(1e-6, np.ones(4) * 1e3, 1.0, 0.05,
-                                                                            np.ones(3) * 0.014, 8e-4),
-     ["tau_y and d"]),
+    ("force() shapes", lambda: MAKRIS_DAMPER.force(Q_(np.ones(3), "m/s"), Q_(np.ones(2), "kV/mm")), ["v and field"]),
+    (
+        "bingham_pressure_drop shapes",
+        lambda: erdesign.bingham_pressure_drop(**{**DUCT, "Q": Q_(np.ones(3), "mL/s"), "tau_y": Q_(np.ones(4), "kPa")}),
+        ["Q and tau_y", "(3,)", "(4,)"],
+    ),
+    (
+        "bingham_pressure_drop 2-D against 1-D",
+        lambda: erdesign.bingham_pressure_drop(**{**DUCT, "h": Q_(np.ones((2, 3)), "mm"), "L": Q_(np.ones(2), "m")}),
+        ["L and h"],
+    ),
+    (
+        "SI kernel shapes",
+        lambda: erdesign.flow.bingham.bingham_pressure_drop(
+            1e-6, np.ones(4) * 1e3, 1.0, 0.05, np.ones(3) * 0.014, 8e-4
+        ),
+        ["tau_y and d"],
+    ),
     ("esr shapes", lambda: erdesign.esr(np.arange(3.0), np.arange(4.0)), ["F_measured and F_model", "3 and 4"]),
     ("esr nan", lambda: erdesign.esr([1.0, 2.0, math.nan], [1.0, 2.0, 3.0]), ["F_measured: element 2 is nan"]),
     ("esr nan model", lambda: erdesign.esr([1.0, 2.0, 3.0], [1.0, math.nan, 3.0]), ["F_model: element 1 is nan"]),
@@ -63,22 +70,40 @@ API_CASES = [
     ("load_damper number", lambda: erdesign.load_damper(3), ["path:", "int"]),
     ("load_damper bytes", lambda: erdesign.load_damper(b"makris.toml"), ["path:", "bytes"]),
     ("read_measurement None", lambda: erdesign.read_measurement(None), ["path: expected the name"]),
-    ("from_arrays force as displacement", lambda: Measurement.from_arrays(T, Q_(X, "N")),
-     ["displacement: expected a length", "a force"]),
+    (
+        "from_arrays force as displacement",
+        lambda: Measurement.from_arrays(T, Q_(X, "N")),
+        ["displacement: expected a length", "a force"],
+    ),
     ("from_arrays time in metres", lambda: Measurement.from_arrays(Q_(T, "m"), X), ["time: expected a time"]),
-    ("from_arrays control of another kind",
-     lambda: Measurement.from_arrays(T, X, control=Q_(3.0, "kA/m"), control_kind="electric field"),
-     ["control: expected an electric field"]),
-    ("sine_response amplitude 0", lambda: MAKRIS_DAMPER.sine_response("0 mm", "1 Hz"),
-     ["amplitude: must be positive, got '0 mm'"]),
-    ("sine_response frequency negative", lambda: MAKRIS_DAMPER.sine_response("10 mm", "\u22121 Hz"),
-     ["frequency: must be positive"]),
+    (
+        "from_arrays control of another kind",
+        lambda: Measurement.from_arrays(T, X, control=Q_(3.0, "kA/m"), control_kind="electric field"),
+        ["control: expected an electric field"],
+    ),
+    (
+        "sine_response amplitude 0",
+        lambda: MAKRIS_DAMPER.sine_response("0 mm", "1 Hz"),
+        ["amplitude: must be positive, got '0 mm'"],
+    ),
+    (
+        "sine_response frequency negative",
+        lambda: MAKRIS_DAMPER.sine_response("10 mm", "\u22121 Hz"),
+        ["frequency: must be positive"],
+    ),
     ("size velocity en dash", lambda: MAKRIS_DAMPER.size(velocity="\u201325 mm/s"), ["velocity:", "en dash"]),
     ("size velocity decimal comma", lambda: MAKRIS_DAMPER.size(velocity="25,4 mm/s"), ["velocity:", "'25.4 mm/s'"]),
-    ("Fluid digit separator", lambda: erdesign.Fluid.create(viscosity="7 Pa*s", yield_stress="1_800 Pa",
-                                                            reference_field="3 kV/mm", yield_exponent=2.0,
-                                                            density="1290 kg/m^3"),
-     ["fluid.yield_stress", "digit separator"]),
+    (
+        "Fluid digit separator",
+        lambda: erdesign.Fluid.create(
+            viscosity="7 Pa*s",
+            yield_stress="1_800 Pa",
+            reference_field="3 kV/mm",
+            yield_exponent=2.0,
+            density="1290 kg/m^3",
+        ),
+        ["fluid.yield_stress", "digit separator"],
+    ),
 ]
 
 
@@ -97,8 +122,13 @@ def test_arguments_are_not_changed_by_a_refused_call():
 
 def test_from_arrays_converts_quantities_instead_of_stripping_their_unit():
     """Quantities were stripped to their magnitude (a time in ms read as s); they are converted to SI."""
-    m = Measurement.from_arrays(Q_(T * 1e3, "ms"), Q_(X * 1e3, "mm"), Q_(np.ones_like(T), "kN"),
-                                control=Q_(3.0, "kV/mm"), control_kind="electric field")
+    m = Measurement.from_arrays(
+        Q_(T * 1e3, "ms"),
+        Q_(X * 1e3, "mm"),
+        Q_(np.ones_like(T), "kN"),
+        control=Q_(3.0, "kV/mm"),
+        control_kind="electric field",
+    )
     np.testing.assert_allclose(m.time, T, rtol=1e-12)
     np.testing.assert_allclose(m.displacement, X, rtol=1e-12)
     assert m.force[0] == pytest.approx(1000.0) and m.control[0] == pytest.approx(3e6)
@@ -146,24 +176,31 @@ def test_a_number_of_200k_digits_is_invalid_toml_not_a_python_limit(tmp_path):
 
 
 # ------------------------------------------------------------------------------------------ controls
-@pytest.mark.parametrize("material, reference_field, said", [
-    ("lord-versaflo-er100", "40 kA/m", "is a magnetic field, but material 'lord-versaflo-er100' is an ER fluid"),
-    ("lord-versaflo-er100", "2 A", "is a current, but material 'lord-versaflo-er100' is an ER fluid"),
-    ("lord-mrf-132dg", "3 kV/mm", "is an electric field, but material 'lord-mrf-132dg' is an MR fluid"),
-])
+@pytest.mark.parametrize(
+    "material, reference_field, said",
+    [
+        ("lord-versaflo-er100", "40 kA/m", "is a magnetic field, but material 'lord-versaflo-er100' is an ER fluid"),
+        ("lord-versaflo-er100", "2 A", "is a current, but material 'lord-versaflo-er100' is an ER fluid"),
+        ("lord-mrf-132dg", "3 kV/mm", "is an electric field, but material 'lord-mrf-132dg' is an MR fluid"),
+    ],
+)
 def test_a_control_of_the_other_kind_of_fluid_is_warned(tmp_path, material, reference_field, said):
     text = MAKRIS.replace("[fluid]", f'[fluid]\nmaterial = "{material}"', 1).replace(
-        'reference_field = "3 kV/mm"', f'reference_field = "{reference_field}"', 1)
+        'reference_field = "3 kV/mm"', f'reference_field = "{reference_field}"', 1
+    )
     assert f'reference_field = "{reference_field}"' in text
     with pytest.warns(PlausibilityWarning, match="fluid.reference_field: .*" + said.replace("(", r"\(")):
         erdesign.load_damper(_damper_file(tmp_path, text))
 
 
-@pytest.mark.parametrize("material, reference_field", [("lord-versaflo-er100", "3 kV/mm"),
-                                                       ("lord-mrf-132dg", "100 kA/m"), ("lord-mrf-132dg", "1 A")])
+@pytest.mark.parametrize(
+    "material, reference_field",
+    [("lord-versaflo-er100", "3 kV/mm"), ("lord-mrf-132dg", "100 kA/m"), ("lord-mrf-132dg", "1 A")],
+)
 def test_a_control_of_the_right_kind_is_silent(tmp_path, material, reference_field):
     text = MAKRIS.replace("[fluid]", f'[fluid]\nmaterial = "{material}"', 1).replace(
-        'reference_field = "3 kV/mm"', f'reference_field = "{reference_field}"', 1)
+        'reference_field = "3 kV/mm"', f'reference_field = "{reference_field}"', 1
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("error", PlausibilityWarning)
         erdesign.load_damper(_damper_file(tmp_path, text))
@@ -172,9 +209,9 @@ def test_a_control_of_the_right_kind_is_silent(tmp_path, material, reference_fie
 def test_coil_currents_no_wire_carries_are_refused_and_hot_ones_warned():
     """`--current "1e6 A"` passed; the current density in the coil's wire (I / (pi d^2 / 4)) decides."""
     circuit = erdesign.magnetics.load_magnetic_circuit(erdesign.__path__[0] + "/examples/mr_coil.toml")
-    area = math.pi * circuit.head.wire_diameter ** 2 / 4
+    area = math.pi * circuit.head.wire_diameter**2 / 4
     _refused(lambda: circuit.at("1e6 A"), "current:", f"{1e6 / area / 1e6:.4g} A/mm^2", "melts")
-    hot = 40e6 * area                                           # 40 A/mm^2: beyond the 30 A/mm^2 of a coil
+    hot = 40e6 * area  # 40 A/mm^2: beyond the 30 A/mm^2 of a coil
     with pytest.warns(PlausibilityWarning, match="overheats"):
         circuit.at(Q_(hot, "A"))
     with warnings.catch_warnings():
@@ -189,16 +226,19 @@ def test_esr_of_gigantic_forces_is_the_same_as_of_small_ones():
     F = np.array([1.0, -1.0, 0.5, 0.0])
     M = np.array([0.9, -1.0, 0.5, 0.1])
     small = erdesign.esr(F, M)
-    assert small == pytest.approx(0.02 / 2.1875)        # sum (F - M)^2 = 0.02; mean 0.125, sum (F - mean)^2 = 2.1875
+    assert small == pytest.approx(0.02 / 2.1875)  # sum (F - M)^2 = 0.02; mean 0.125, sum (F - mean)^2 = 2.1875
     assert erdesign.esr(F * 1e200, M * 1e200) == pytest.approx(small, rel=1e-12)
     assert erdesign.esr(F * 1e-300, M * 1e-300) == pytest.approx(small, rel=1e-12)
 
 
-@pytest.mark.parametrize("call, said", [
-    (lambda: Measurement.from_arrays(T * 1e-310, X), "time: a mean time step of"),
-    (lambda: Measurement.from_arrays(T, X * 1e300), "displacement: 1e+298 m is beyond any damper record"),
-    (lambda: Measurement.from_arrays(T, X, np.full_like(T, 1e300)), "force: 1e+300 N is beyond"),
-])
+@pytest.mark.parametrize(
+    "call, said",
+    [
+        (lambda: Measurement.from_arrays(T * 1e-310, X), "time: a mean time step of"),
+        (lambda: Measurement.from_arrays(T, X * 1e300), "displacement: 1e+298 m is beyond any damper record"),
+        (lambda: Measurement.from_arrays(T, X, np.full_like(T, 1e300)), "force: 1e+300 N is beyond"),
+    ],
+)
 def test_from_arrays_refuses_values_no_record_holds(call, said):
     """A subnormal time step ended in a LinAlgError (and LAPACK's messages on the terminal), a gigantic displacement
     in an OverflowError."""

@@ -22,14 +22,22 @@ def _xlsx() -> bytes:
 
 
 COMPARE_UPLOADS = [
-    ("1 MB header cell", "big.csv", "time [s],displacement [mm],force [N]" + "x" * 1_000_000 + "\n"
-     + "\n".join(GOOD_RECORD.splitlines()[1:]), "line 1"),
+    (
+        "1 MB header cell",
+        "big.csv",
+        "time [s],displacement [mm],force [N]" + "x" * 1_000_000 + "\n" + "\n".join(GOOD_RECORD.splitlines()[1:]),
+        "line 1",
+    ),
     ("renamed xlsx", "data.csv", _xlsx(), "spreadsheet"),
     ("decimal comma", "comma.csv", GOOD_RECORD.replace("\n0.02,", '\n"0,02",', 1), "line 12"),
 ]
 SIZE_UPLOADS = [
-    ("deeply nested", "n.toml", MAKRIS.replace("[fluid]", "[fluid]\nx = " + "[" * 5000 + "]" * 5000, 1),
-     "nested too deeply"),
+    (
+        "deeply nested",
+        "n.toml",
+        MAKRIS.replace("[fluid]", "[fluid]\nx = " + "[" * 5000 + "]" * 5000, 1),
+        "nested too deeply",
+    ),
     ("unicode minus gap", "m.toml", MAKRIS.replace('"0.8 mm"', '"\u22120.8 mm"'), "geometry.gap"),
 ]
 SIZE_INPUTS = [

@@ -66,8 +66,11 @@ def files(tmp_path):
     made["nested"].write_text(MAKRIS.replace("[fluid]", "[fluid]\nx = " + "[" * 5000 + "]" * 5000, 1))
     made["digits"].write_text(MAKRIS.replace('viscosity = "7 Pa*s"', 'viscosity = "7_000 mPa*s"', 1))
     made["longname"].write_text(MAKRIS.replace('name = "makris-1996"', 'name = "' + "x" * 200_000 + '"'))
-    made["er_in_kam"].write_text(MAKRIS.replace("[fluid]", '[fluid]\nmaterial = "lord-versaflo-er100"', 1)
-                                 .replace('reference_field = "3 kV/mm"', 'reference_field = "40 kA/m"', 1))
+    made["er_in_kam"].write_text(
+        MAKRIS.replace("[fluid]", '[fluid]\nmaterial = "lord-versaflo-er100"', 1).replace(
+            'reference_field = "3 kV/mm"', 'reference_field = "40 kA/m"', 1
+        )
+    )
     made["comma_csv"].write_text(GOOD_RECORD.replace("\n0.02,", "\n0,02,", 1))
     assert 'viscosity = "7_000 mPa*s"' in made["digits"].read_text()
     return tmp_path, made
@@ -84,39 +87,74 @@ ERROR_CASES = [
     ("fit decimal comma", ["fit", "{comma_csv}", "--damper", "{damper}"], ["line 12", "decimal comma"]),
     ("size unicode-minus gap", ["size", "{uminus}", "--velocity", "1 in/s"], ["geometry.gap", "must be positive"]),
     ("size nested TOML", ["size", "{nested}", "--velocity", "1 in/s"], ["nested.toml", "nested too deeply"]),
-    ("size digit separator in the file", ["size", "{digits}", "--velocity", "1 in/s"],
-     ["fluid.viscosity", "digit separator", "'7000 mPa*s'"]),
+    (
+        "size digit separator in the file",
+        ["size", "{digits}", "--velocity", "1 in/s"],
+        ["fluid.viscosity", "digit separator", "'7000 mPa*s'"],
+    ),
     ("size velocity en dash", ["size", "{damper}", "--velocity", "\u20131 in/s"], ["velocity", "en dash"]),
     ("size velocity decimal comma", ["size", "{damper}", "--velocity", "1,5 in/s"], ["velocity", "'1.5 in/s'"]),
     ("size velocity list", ["size", "{damper}", "--velocity", "1, 2 in/s"], ["velocity", "','"]),
-    ("size field digit separator", ["size", "{damper}", "--velocity", "1 in/s", "--field", "3_000 V/mm"],
-     ["field", "digit separator"]),
-    ("size bare number with a digit separator", ["size", "{damper}", "--velocity", "1_0"],
-     ["velocity", "digit separator"]),                  # float() read it as 10 m/s
-    ("size bare number in arabic-indic digits", ["size", "{damper}", "--velocity", "\u0661"],
-     ["velocity", "ARABIC-INDIC DIGIT ONE"]),
-    ("magnetics bare number with a digit separator", ["magnetics", MR_COIL, "--current", "1_0"],
-     ["--current", "digit separator"]),
-    ("size field bare unit", ["size", "{damper}", "--velocity", "1 in/s", "--field", "kV/mm"],
-     ["field", "no number"]),
-    ("size velocity control character", ["size", "{damper}", "--velocity", "1\x1b[2J in/s"],
-     ["velocity", "control character"]),
-    ("report amplitude 0", ["report", "{damper}", "--amplitude", "0 mm", "--out", "{tmp}/a.html"],
-     ["amplitude: must be positive, got '0 mm'"]),
-    ("report frequency 0", ["report", "{damper}", "--frequency", "0 Hz", "--out", "{tmp}/f.html"],
-     ["frequency: must be positive"]),
-    ("report amplitude unicode minus", ["report", "{damper}", "--amplitude", "\u221210 mm", "--out", "{tmp}/u.html"],
-     ["amplitude: must be positive"]),
+    (
+        "size field digit separator",
+        ["size", "{damper}", "--velocity", "1 in/s", "--field", "3_000 V/mm"],
+        ["field", "digit separator"],
+    ),
+    (
+        "size bare number with a digit separator",
+        ["size", "{damper}", "--velocity", "1_0"],
+        ["velocity", "digit separator"],
+    ),  # float() read it as 10 m/s
+    (
+        "size bare number in arabic-indic digits",
+        ["size", "{damper}", "--velocity", "\u0661"],
+        ["velocity", "ARABIC-INDIC DIGIT ONE"],
+    ),
+    (
+        "magnetics bare number with a digit separator",
+        ["magnetics", MR_COIL, "--current", "1_0"],
+        ["--current", "digit separator"],
+    ),
+    ("size field bare unit", ["size", "{damper}", "--velocity", "1 in/s", "--field", "kV/mm"], ["field", "no number"]),
+    (
+        "size velocity control character",
+        ["size", "{damper}", "--velocity", "1\x1b[2J in/s"],
+        ["velocity", "control character"],
+    ),
+    (
+        "report amplitude 0",
+        ["report", "{damper}", "--amplitude", "0 mm", "--out", "{tmp}/a.html"],
+        ["amplitude: must be positive, got '0 mm'"],
+    ),
+    (
+        "report frequency 0",
+        ["report", "{damper}", "--frequency", "0 Hz", "--out", "{tmp}/f.html"],
+        ["frequency: must be positive"],
+    ),
+    (
+        "report amplitude unicode minus",
+        ["report", "{damper}", "--amplitude", "\u221210 mm", "--out", "{tmp}/u.html"],
+        ["amplitude: must be positive"],
+    ),
     ("magnetics 1e6 A", ["magnetics", MR_COIL, "--current", "1e6 A"], ["current", "A/mm^2", "melts"]),
     ("magnetics trailing comma", ["magnetics", MR_COIL, "--current", "1,2, A"], ["--current", "'A'", "no number"]),
     ("magnetics empty item", ["magnetics", MR_COIL, "--current", "1,,2 A"], ["--current", "empty item"]),
     ("magnetics digit separator", ["magnetics", MR_COIL, "--current", "1_5 A"], ["--current", "digit separator"]),
-    ("simulate params deeply nested JSON", ["simulate", "{record}", "--model", "bingham", "--params", "{deep_json}"],
-     ["--params", "deep.json", "nested too deeply"]),
-    ("simulate params a spreadsheet", ["simulate", "{record}", "--model", "bingham", "--params", "{xlsx_json}"],
-     ["--params", "zip archive"]),
-    ("simulate params en dash", ["simulate", "{record}", "--model", "bingham", "--params", "f_c=\u2013100 N"],
-     ["f_c", "en dash"]),
+    (
+        "simulate params deeply nested JSON",
+        ["simulate", "{record}", "--model", "bingham", "--params", "{deep_json}"],
+        ["--params", "deep.json", "nested too deeply"],
+    ),
+    (
+        "simulate params a spreadsheet",
+        ["simulate", "{record}", "--model", "bingham", "--params", "{xlsx_json}"],
+        ["--params", "zip archive"],
+    ),
+    (
+        "simulate params en dash",
+        ["simulate", "{record}", "--model", "bingham", "--params", "f_c=\u2013100 N"],
+        ["f_c", "en dash"],
+    ),
 ]
 
 
@@ -159,14 +197,19 @@ def test_an_er_material_driven_in_ka_per_m_is_warned(files, capsys):
     tmp, made = files
     code, out, err = _run(capsys, ["size", made["er_in_kam"], "--velocity", "1 in/s", "--json"])
     assert code == 0
-    assert re.search(r"^warning: fluid.reference_field: '40 kA/m' is a magnetic field, but material "
-                     r"'lord-versaflo-er100' is an ER fluid", err, re.M), err
+    assert re.search(
+        r"^warning: fluid.reference_field: '40 kA/m' is a magnetic field, but material "
+        r"'lord-versaflo-er100' is an ER fluid",
+        err,
+        re.M,
+    ), err
 
 
 def test_a_60_s_hole_in_time_is_said_by_identify(files, capsys):
     import numpy as np
 
     from .corpus import _t, record
+
     tmp, made = files
     path = tmp / "gap.csv"
     path.write_text(record(t=np.where(_t > 1.0, _t + 60.0, _t)))

@@ -55,18 +55,29 @@ def _same_as_good(path):
     return m
 
 
-@pytest.mark.parametrize("name, transform", [
-    ("utf-8 BOM", lambda text: "\ufeff" + text),
-    ("CRLF", lambda text: text.replace("\n", "\r\n")),
-    ("CR only (old Mac)", lambda text: text.replace("\n", "\r")),
-    ("BOM and CRLF (Excel 'CSV UTF-8')", lambda text: "\ufeff" + text.replace("\n", "\r\n")),
-    ("comment lines", lambda text: "# exported 2026-11-26\n# rig 3\n" + text),
-    ("blank lines", lambda text: text.replace("\n", "\n\n", 20)),
-    ("spaces around cells", lambda text: text.replace(",", " , ")),
-    ("unicode minus in cells", lambda text: text.replace("-", "\u2212")),
-    ("quoted cells", lambda text: "\n".join([text.splitlines()[0]] + [",".join(f'"{c}"' for c in line.split(","))
-                                                                       for line in text.splitlines()[1:]]) + "\n"),
-])
+@pytest.mark.parametrize(
+    "name, transform",
+    [
+        ("utf-8 BOM", lambda text: "\ufeff" + text),
+        ("CRLF", lambda text: text.replace("\n", "\r\n")),
+        ("CR only (old Mac)", lambda text: text.replace("\n", "\r")),
+        ("BOM and CRLF (Excel 'CSV UTF-8')", lambda text: "\ufeff" + text.replace("\n", "\r\n")),
+        ("comment lines", lambda text: "# exported 2026-11-26\n# rig 3\n" + text),
+        ("blank lines", lambda text: text.replace("\n", "\n\n", 20)),
+        ("spaces around cells", lambda text: text.replace(",", " , ")),
+        ("unicode minus in cells", lambda text: text.replace("-", "\u2212")),
+        (
+            "quoted cells",
+            lambda text: (
+                "\n".join(
+                    [text.splitlines()[0]]
+                    + [",".join(f'"{c}"' for c in line.split(",")) for line in text.splitlines()[1:]]
+                )
+                + "\n"
+            ),
+        ),
+    ],
+)
 def test_files_that_are_read_as_meant(tmp_path, name, transform):
     _same_as_good(_write(tmp_path, transform(GOOD_RECORD)))
 
@@ -82,29 +93,55 @@ CASES = [
     # (id, content, texts the message must hold)
     ("semicolon export (Excel, decimal comma)", record(sep=";").replace(".", ","), ["line 1", "semicolons"]),
     ("decimal comma in a comma file", GOOD_RECORD.replace("\n0.02,", "\n0,02,", 1), ["line 12", "decimal comma"]),
-    ("quoted decimal comma", GOOD_RECORD.replace("\n0.02,", '\n"0,02",', 1),
-     ["line 12, column 1 (time)", "write 0.02"]),
-    ("digit separator", "\n".join(line if not line.startswith("0.02,") else "0.02,4_446.6,100"
-                                   for line in GOOD_RECORD.splitlines()) + "\n",
-     ["line 12, column 2 (displacement)", "'4_446.6' is not a number; a digit separator"]),
+    (
+        "quoted decimal comma",
+        GOOD_RECORD.replace("\n0.02,", '\n"0,02",', 1),
+        ["line 12, column 1 (time)", "write 0.02"],
+    ),
+    (
+        "digit separator",
+        "\n".join(line if not line.startswith("0.02,") else "0.02,4_446.6,100" for line in GOOD_RECORD.splitlines())
+        + "\n",
+        ["line 12, column 2 (displacement)", "'4_446.6' is not a number; a digit separator"],
+    ),
     ("arabic-indic digits", GOOD_RECORD.replace("\n0.02,", "\n\u0660.02,", 1), ["line 12, column 1", "not a number"]),
-    ("unknown unit in the header", GOOD_RECORD.replace("force [N]", "force [Nm2]"),
-     ["line 1, column 3 (force)", "unknown unit"]),
-    ("en dash in a header unit", GOOD_RECORD.replace("force [N]", "force [N\u2013m]"),
-     ["line 1, column 3 (force)", "not a minus sign"]),
-    ("header unit with a control character", GOOD_RECORD.replace("force [N]", "force [N\x07]"),
-     ["line 1, column 3 (force)", "control character"]),
-    ("1 MB header cell", HEADER + "x" * 1_000_000 + "\n" + "\n".join(GOOD_RECORD.splitlines()[1:]) + "\n",
-     ["line 1", "1,000 characters"]),
+    (
+        "unknown unit in the header",
+        GOOD_RECORD.replace("force [N]", "force [Nm2]"),
+        ["line 1, column 3 (force)", "unknown unit"],
+    ),
+    (
+        "en dash in a header unit",
+        GOOD_RECORD.replace("force [N]", "force [N\u2013m]"),
+        ["line 1, column 3 (force)", "not a minus sign"],
+    ),
+    (
+        "header unit with a control character",
+        GOOD_RECORD.replace("force [N]", "force [N\x07]"),
+        ["line 1, column 3 (force)", "control character"],
+    ),
+    (
+        "1 MB header cell",
+        HEADER + "x" * 1_000_000 + "\n" + "\n".join(GOOD_RECORD.splitlines()[1:]) + "\n",
+        ["line 1", "1,000 characters"],
+    ),
     ("1 MB data cell", GOOD_RECORD.replace("\n0.02,", "\n" + "9" * 1_000_000 + ",", 1), ["line 12", "characters"]),
-    ("100 kB header cell (below csv's own limit)", HEADER + "," + "y" * 100_000 + " [s]\n",
-     ["line 1, column 4", "100,004 characters"]),
+    (
+        "100 kB header cell (below csv's own limit)",
+        HEADER + "," + "y" * 100_000 + " [s]\n",
+        ["line 1, column 4", "100,004 characters"],
+    ),
     ("time backwards", GOOD_RECORD.replace("\n0.02,", "\n0.001,", 1), ["line 12, column 1 (time)", "increase"]),
-    ("temperature below absolute zero", record(HEADER + ",temperature [K]", extra=[np.full_like(_t, -10.0)]),
-     ["column 4 (temperature [K])", "below absolute zero"]),
-    ("temperature below absolute zero in degF", record(HEADER + ",temperature [degF]",
-                                                       extra=[np.full_like(_t, -500.0)]),
-     ["temperature", "below absolute zero"]),
+    (
+        "temperature below absolute zero",
+        record(HEADER + ",temperature [K]", extra=[np.full_like(_t, -10.0)]),
+        ["column 4 (temperature [K])", "below absolute zero"],
+    ),
+    (
+        "temperature below absolute zero in degF",
+        record(HEADER + ",temperature [degF]", extra=[np.full_like(_t, -500.0)]),
+        ["temperature", "below absolute zero"],
+    ),
     ("binary junk", b"\x00\x01\x02\x03" * 100, ["binary", "NUL"]),
     ("UTF-16 export", GOOD_RECORD.encode("utf-16"), ["binary"]),
     ("latin-1 bytes", GOOD_RECORD.replace("force [N]", "force [N]").encode("utf-8") + b"\xe9\xff", ["UTF-8"]),
@@ -150,6 +187,7 @@ def test_files_beyond_the_byte_limit_are_refused_without_reading_them_whole(tmp_
     def counting(p, limit, what, label=None):
         read.append(limit)
         return real(p, limit, what, label)
+
     monkeypatch.setattr(measurement, "read_input_bytes", counting)
     _refused(path, "larger than")
     assert read == [10_000]
@@ -164,6 +202,7 @@ def test_read_records_refuses_a_device_and_a_huge_file(tmp_path, monkeypatch):
     with pytest.raises(Exception, match="not a regular file"):
         read_records("/dev/zero")
     from erdesign.data import readers
+
     monkeypatch.setattr(readers, "MAX_RECORD_BYTES", 1000)
     with pytest.raises(Exception, match="larger than"):
         read_records(_write(tmp_path, GOOD_RECORD))
@@ -192,7 +231,7 @@ def test_temperature_in_degc_labelled_kelvin_is_named(tmp_path):
     text = record(HEADER + ",temperature [K]", extra=[np.full_like(_t, 25.0)])
     with pytest.warns(PlausibilityWarning, match="read as degC they would be 25 to 25 degC"):
         m = read_measurement(_write(tmp_path, text))
-    assert m.temperature[0] == 25.0                         # read as written: the warning says what to check
+    assert m.temperature[0] == 25.0  # read as written: the warning says what to check
 
 
 def test_a_plausible_temperature_is_silent(tmp_path):

@@ -23,8 +23,13 @@ ROOT = Path(__file__).resolve().parents[2]
 
 def _no_cache_env(pythonpath: Path) -> dict:
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "PYTHONPATH")}
-    env.update(HOME="/dev/null", XDG_CACHE_HOME="/dev/null/cache", PYTHONDONTWRITEBYTECODE="1",
-               PYTHONPATH=str(pythonpath), NUMBA_DISABLE_PERFORMANCE_WARNINGS="1")
+    env.update(
+        HOME="/dev/null",
+        XDG_CACHE_HOME="/dev/null/cache",
+        PYTHONDONTWRITEBYTECODE="1",
+        PYTHONPATH=str(pythonpath),
+        NUMBA_DISABLE_PERFORMANCE_WARNINGS="1",
+    )
     return env
 
 
@@ -35,8 +40,9 @@ def _block_caches(folder: Path) -> None:
 
 
 def _run(code: str, cwd: Path, env: dict) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-c", textwrap.dedent(code)], cwd=cwd, env=env, capture_output=True,
-                          text=True, timeout=300)
+    return subprocess.run(
+        [sys.executable, "-c", textwrap.dedent(code)], cwd=cwd, env=env, capture_output=True, text=True, timeout=300
+    )
 
 
 MODULE = """
@@ -71,7 +77,8 @@ def test_erdesign_runs_from_a_package_whose_caches_cannot_be_written(tmp_path):
     compiled model runs (Bouc-Wen from rest on a sine: a finite force that varies)."""
     shutil.copytree(ROOT / "erdesign", tmp_path / "erdesign", ignore=shutil.ignore_patterns("__pycache__"))
     _block_caches(tmp_path / "erdesign")
-    done = _run("""
+    done = _run(
+        """
         import numpy as np
         import erdesign.effects.compressibility, erdesign.simulation.truthrig.kernels, erdesign.flow._compiled
         import erdesign
@@ -83,7 +90,10 @@ def test_erdesign_runs_from_a_package_whose_caches_cannot_be_written(tmp_path):
         record = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
         F = get_model("bouc_wen").simulate(record)
         print(bool(np.all(np.isfinite(F)) and np.ptp(F) > 0), erdesign.__file__)
-    """, tmp_path, _no_cache_env(tmp_path))
+    """,
+        tmp_path,
+        _no_cache_env(tmp_path),
+    )
     assert done.returncode == 0, done.stderr[-2000:]
     ok, where = done.stdout.split()
     assert ok == "True" and where.startswith(str(tmp_path))
@@ -95,8 +105,14 @@ def test_every_compiled_loop_goes_through_the_fallback():
     would bring back 'no locator available' for users who cannot write the package's folder."""
     import re
 
-    direct = re.compile(r"^\s*(?:@numba\.(?:njit|jit|vectorize|guvectorize)\b|from numba import .*\b(?:njit|jit|"
-                        r"vectorize|guvectorize)\b|[A-Za-z_]+ = numba\.(?:njit|jit)\()", re.M)
-    offenders = [str(p.relative_to(ROOT)) for p in (ROOT / "erdesign").rglob("*.py")
-                 if p.name != "_compile.py" and direct.search(p.read_text(encoding="utf-8"))]
+    direct = re.compile(
+        r"^\s*(?:@numba\.(?:njit|jit|vectorize|guvectorize)\b|from numba import .*\b(?:njit|jit|"
+        r"vectorize|guvectorize)\b|[A-Za-z_]+ = numba\.(?:njit|jit)\()",
+        re.M,
+    )
+    offenders = [
+        str(p.relative_to(ROOT))
+        for p in (ROOT / "erdesign").rglob("*.py")
+        if p.name != "_compile.py" and direct.search(p.read_text(encoding="utf-8"))
+    ]
     assert offenders == [], f"use erdesign._compile.njit / vectorize / guvectorize in {offenders}"

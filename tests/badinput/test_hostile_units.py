@@ -10,19 +10,19 @@ from erdesign.units import clean_value_text, parse_quantity, parse_unit, positiv
 
 #: (text, SI unit, SI value): look-alike signs, digits and spaces read as meant
 READ_AS_MEANT = [
-    ("\u22120.8 mm", "m", -0.8e-3),            # U+2212 MINUS SIGN (pint read it as +0.8 mm)
-    ("\ufe630.8 mm", "m", -0.8e-3),            # SMALL HYPHEN-MINUS
-    ("\uff0d0.8 mm", "m", -0.8e-3),            # FULLWIDTH HYPHEN-MINUS
-    ("\uff10.8 mm", "m", 0.8e-3),              # FULLWIDTH DIGIT ZERO
-    ("0.8\u00a0mm", "m", 0.8e-3),              # NO-BREAK SPACE
-    ("0.8\u202fmm", "m", 0.8e-3),              # NARROW NO-BREAK SPACE (French typesetting)
-    ("0.8\u200b mm", "m", 0.8e-3),             # ZERO WIDTH SPACE: invisible, dropped
-    ("\ufeff0.8 mm", "m", 0.8e-3),             # a BOM pasted with the value
-    (" 0.8 mm\n", "m", 0.8e-3),                # a line break from a text field
+    ("\u22120.8 mm", "m", -0.8e-3),  # U+2212 MINUS SIGN (pint read it as +0.8 mm)
+    ("\ufe630.8 mm", "m", -0.8e-3),  # SMALL HYPHEN-MINUS
+    ("\uff0d0.8 mm", "m", -0.8e-3),  # FULLWIDTH HYPHEN-MINUS
+    ("\uff10.8 mm", "m", 0.8e-3),  # FULLWIDTH DIGIT ZERO
+    ("0.8\u00a0mm", "m", 0.8e-3),  # NO-BREAK SPACE
+    ("0.8\u202fmm", "m", 0.8e-3),  # NARROW NO-BREAK SPACE (French typesetting)
+    ("0.8\u200b mm", "m", 0.8e-3),  # ZERO WIDTH SPACE: invisible, dropped
+    ("\ufeff0.8 mm", "m", 0.8e-3),  # a BOM pasted with the value
+    (" 0.8 mm\n", "m", 0.8e-3),  # a line break from a text field
     ("0.8\tmm", "m", 0.8e-3),
-    ("0.8 \u00b5m", "m", 0.8e-6),              # MICRO SIGN
-    ("0.8 \u03bcm", "m", 0.8e-6),              # GREEK SMALL LETTER MU
-    ("120 kN\u00b7s/m", "N*s/m", 1.2e5),       # erdesign's own pretty output reads back
+    ("0.8 \u00b5m", "m", 0.8e-6),  # MICRO SIGN
+    ("0.8 \u03bcm", "m", 0.8e-6),  # GREEK SMALL LETTER MU
+    ("120 kN\u00b7s/m", "N*s/m", 1.2e5),  # erdesign's own pretty output reads back
     ("2 m\u00b2", "m^2", 2.0),
     ("-40 degC", "K", 233.15),
     ("-40 \u00b0C", "K", 233.15),
@@ -42,30 +42,30 @@ def test_look_alikes_are_read_as_meant(text, unit, expected):
 #: (text, unit, what the message must say besides the argument's name).  Each of these pint reads silently wrong
 #: (value after the arrow) or fails with an unhelpful exception.
 REFUSED = [
-    ("\u20130.8 mm", "m", "en dash"),               # -> +0.8 mm
-    ("\u20140.8 mm", "m", "em dash"),               # -> +0.8 mm
+    ("\u20130.8 mm", "m", "en dash"),  # -> +0.8 mm
+    ("\u20140.8 mm", "m", "em dash"),  # -> +0.8 mm
     ("\u20100.8 mm", "m", "hyphen"),
-    ("1\u20132 mm", "m", "not a minus sign"),       # a range
-    ("4_446.6 N", "N", "'4446.6 N'"),               # -> 4446.6 N: the fix is shown
+    ("1\u20132 mm", "m", "not a minus sign"),  # a range
+    ("4_446.6 N", "N", "'4446.6 N'"),  # -> 4446.6 N: the fix is shown
     ("4'446.6 N", "N", "digit separator"),
     ("1_000_000 N", "N", "'1000000 N'"),
-    ("0,8 mm", "m", "'0.8 mm'"),                    # -> 0 mm
-    ("1,2 A", "A", "decimal comma"),                # -> 12 A
-    ("1,2, A", "A", "','"),                          # -> 12 A
-    ("1 A,", "A", "','"),                            # -> 1 A
-    ("--0.8 mm", "m", "two signs"),                 # -> +0.8 mm
+    ("0,8 mm", "m", "'0.8 mm'"),  # -> 0 mm
+    ("1,2 A", "A", "decimal comma"),  # -> 12 A
+    ("1,2, A", "A", "','"),  # -> 12 A
+    ("1 A,", "A", "','"),  # -> 1 A
+    ("--0.8 mm", "m", "two signs"),  # -> +0.8 mm
     ("+-0.8 mm", "m", "two signs"),
-    ("1.5.2 mm", "m", "two decimal points"),        # -> 0.3 mm
+    ("1.5.2 mm", "m", "two decimal points"),  # -> 0.3 mm
     ("1 mm # c", "m", "'#'"),
-    ("mm", "m", "no number"),                       # -> 1 mm
+    ("mm", "m", "no number"),  # -> 1 mm
     ("kV/mm", "V/m", "no number"),
     ("(", "m", "cannot read"),
-    ("3 kV/mm/", "V/m", "cannot read"),             # a bare AssertionError from pint
+    ("3 kV/mm/", "V/m", "cannot read"),  # a bare AssertionError from pint
     ("", "m", "cannot read"),
     ("1\x00 mm", "m", "control character"),
     ("1\x1b[31m mm", "m", "control character"),
     ("\u00bd mm", "m", "VULGAR FRACTION"),
-    ("\u0663 mm", "m", "ARABIC-INDIC DIGIT"),        # float() would read 3
+    ("\u0663 mm", "m", "ARABIC-INDIC DIGIT"),  # float() would read 3
     ("x" * 300, "m", "too long"),
     ("1/0 mm", "m", "cannot read"),
     ("1e309 mm", "m", "finite"),
@@ -92,8 +92,12 @@ def test_the_issue_example_a_unicode_minus_gap_is_negative():
 def test_units_alone():
     assert parse_unit("kN", "unit").to("N").magnitude == 1000.0
     assert parse_unit("degC", "unit", value=25.0).to("K").magnitude == pytest.approx(298.15)
-    for bad, said in [("", "empty"), ("furlong2", "unknown unit"), ("m\u2013s", "not a minus sign"),
-                      ("kV/mm/", "cannot read")]:
+    for bad, said in [
+        ("", "empty"),
+        ("furlong2", "unknown unit"),
+        ("m\u2013s", "not a minus sign"),
+        ("kV/mm/", "cannot read"),
+    ]:
         with pytest.raises(UnitError, match=said):
             parse_unit(bad, "force [unit]")
 
@@ -104,9 +108,15 @@ def test_parse_quantity_names_a_value_that_is_not_text(value):
         parse_quantity(value, "gap")
 
 
-@pytest.mark.parametrize("value, said", [("0 mm", "must be positive, got '0 mm'"),
-                                         ("-1 mm", "must be positive"), ("\u22121 mm", "must be positive"),
-                                         ("1 s", "expected a length")])
+@pytest.mark.parametrize(
+    "value, said",
+    [
+        ("0 mm", "must be positive, got '0 mm'"),
+        ("-1 mm", "must be positive"),
+        ("\u22121 mm", "must be positive"),
+        ("1 s", "expected a length"),
+    ],
+)
 def test_positive_values_name_the_one_at_fault(value, said):
     with pytest.raises(UnitError, match=f"^amplitude: {said}"):
         positive_si(value, "m", "amplitude")
@@ -130,7 +140,7 @@ def test_one_line_cuts_a_long_message_keeping_its_start_and_end():
     assert len(out) == MESSAGE_LIMIT
     assert out.startswith("name: xxx") and out.endswith("is too long; shorten it")
     cut = int(out.split("[... ")[1].split(" characters cut")[0])
-    assert len(out) - len(f" [... {cut} characters cut ...] ") + cut == len(text)      # the count is exact
+    assert len(out) - len(f" [... {cut} characters cut ...] ") + cut == len(text)  # the count is exact
 
 
 def test_one_line_shows_binary_as_a_count_never_raw():
@@ -139,8 +149,8 @@ def test_one_line_shows_binary_as_a_count_never_raw():
     out = one_line(f"line 1, column 1 ({blob!s}): not a name with a unit")
     assert out.isprintable() and len(out) <= MESSAGE_LIMIT
     assert "binary characters]" in out and out.endswith("not a name with a unit")
-    assert one_line("a\x7fb") == "a\\x7fb"                  # a lone control character is escaped, not dropped
-    assert one_line("bad \udcff byte") == "bad \\udcff byte"   # a surrogate from a bad decode
+    assert one_line("a\x7fb") == "a\\x7fb"  # a lone control character is escaped, not dropped
+    assert one_line("bad \udcff byte") == "bad \\udcff byte"  # a surrogate from a bad decode
 
 
 @pytest.mark.parametrize("limit", [60, 100, 400, 1000])
