@@ -8,16 +8,70 @@ from typing import Iterable, Mapping
 
 import numpy as np
 
-from .errors import OutputPathError
+from .errors import ErdesignError, OutputPathError
 from .output import exists_message, refuse_symlink
 
-__all__ = ["scalar_or_array", "check_output_path"]
+__all__ = ["scalar_or_array", "check_output_path", "si_array", "broadcast_named"]
 
 
 def scalar_or_array(x):
     """A Python float for 0-d input, the numpy array otherwise (keeps doctests and JSON output plain)."""
     arr = np.asarray(x)
     return float(arr) if arr.ndim == 0 else arr
+
+
+def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
+    """A public SI argument as a float array, or an :class:`~erdesign.errors.ErdesignError` naming ``name``: not
+    numbers (text, None, objects), a pint quantity where SI magnitudes are expected (its unit would be dropped), or
+    NaN / infinity when ``finite``.
+
+    >>> si_array([0.1, float("nan")], "v")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.ErdesignError: v: element 1 is nan; give finite numbers (SI)
+    """
+    if hasattr(value, "units") and hasattr(value, "magnitude"):
+        raise ErdesignError(f"{name}: expected SI numbers, got a quantity in {value.units:~P}; pass "
+                            f"value.to(unit).magnitude or use the unit-aware function")
+    try:
+        if value is None:
+            raise TypeError
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        shown = repr(value)
+        raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {type(value).__name__} "
+                            f"{shown[:60]}{'...' if len(shown) > 60 else ''}") from None
+    if finite:
+        bad = ~np.isfinite(arr)
+        if np.any(bad):
+            where = f"element {int(np.flatnonzero(bad.ravel())[0])} is" if arr.ndim else "it is"
+            raise ErdesignError(f"{name}: {where} {arr.ravel()[bad.ravel()][0]}; give finite numbers (SI)")
+    return arr
+
+
+def broadcast_named(**arrays) -> tuple[int, ...]:
+    """The common shape of named arrays (numpy broadcasting), or an :class:`~erdesign.errors.ErdesignError` naming
+    the first two arguments whose shapes do not fit.
+
+    >>> broadcast_named(v=np.ones(3), field=np.ones(4))
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.ErdesignError: v and field: shapes (3,) and (4,) do not match (give arrays of one length, or a single value)
+    """
+    shapes = {k: np.shape(a) for k, a in arrays.items()}
+    try:
+        return np.broadcast_shapes(*shapes.values())
+    except ValueError:
+        pass
+    names = list(shapes)
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            try:
+                np.broadcast_shapes(shapes[a], shapes[b])
+            except ValueError:
+                raise ErdesignError(f"{a} and {b}: shapes {shapes[a]} and {shapes[b]} do not match (give arrays of "
+                                    "one length, or a single value)") from None
+    raise ErdesignError(f"{', '.join(names)}: shapes {', '.join(map(str, shapes.values()))} do not match")
 
 
 def _same_file(a: Path, b: Path) -> bool:

@@ -5,6 +5,8 @@ the line and column at fault, so that the command line can print it as one line 
 page.  They derive from :class:`ValueError` so that callers who do not know erdesign still catch them.
 """
 
+from itertools import groupby
+
 __all__ = [
     "ErdesignError",
     "UnitError",
@@ -13,6 +15,8 @@ __all__ = [
     "PlausibilityWarning",
     "ErdesignWarning",
     "ValidityWarning",
+    "one_line",
+    "MESSAGE_LIMIT",
 ]
 
 
@@ -44,3 +48,43 @@ class ValidityWarning(ErdesignWarning):
 class PlausibilityWarning(ErdesignWarning):
     """A value is possible but implausible (outside the range real dampers, fluids or records take): often a unit
     mistake.  The message names the field and, where one is likely, the unit mistake."""
+
+
+#: Most characters of a message shown to the user (the command line's error line, the app's error box).
+MESSAGE_LIMIT = 400
+_TAIL = 120
+
+
+def one_line(message, limit: int = MESSAGE_LIMIT) -> str:
+    """A message made safe to show: one line, printable, at most ``limit`` characters.
+
+    The one place that makes a message safe, used by the command line's error path and the app's: whitespace runs
+    (line breaks too) become one space; characters that are not printable (binary read as text, control
+    characters, stray surrogates) are shown as ``\\xNN`` escapes, a run of more than three of them as its count
+    only; a message longer than ``limit`` keeps its start (which names the argument, key or line) and its end (which
+    says what to do) around a note of what was cut.
+
+    >>> one_line("gap:\\n  must be\\tpositive")
+    'gap: must be positive'
+    >>> one_line("name: " + "x" * 1000 + " is too long", limit=60)
+    'name: xxxxxxxxx [... 988 characters cut ...] xxx is too long'
+    >>> one_line("cell 'PK\\x03\\x04\\x14\\x00\\x06': not a number")
+    "cell 'PK[5 binary characters]': not a number"
+    """
+    parts = []
+    for shown, run in groupby(str(message), key=lambda c: c.isprintable() or c.isspace()):
+        run = "".join(run)
+        if shown:
+            parts.append(run)
+        elif len(run) > 3:
+            parts.append(f"[{len(run)} binary characters]")
+        else:
+            parts.append(run.encode("unicode_escape", "backslashreplace").decode("ascii"))
+    text = " ".join("".join(parts).split())
+    if len(text) > limit:
+        tail = min(_TAIL, limit // 4)
+        note = f" [... {len(text) - limit + 40} characters cut ...] "    # 40: room for the note itself
+        head = limit - tail - len(note)
+        note = f" [... {len(text) - head - tail} characters cut ...] "
+        text = text[:head].rstrip() + note + text[len(text) - tail:].lstrip()
+    return text

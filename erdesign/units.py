@@ -26,14 +26,19 @@ from __future__ import annotations
 import functools
 import inspect
 import math
+import re
+import unicodedata
+import warnings
 from typing import Any, Callable, Mapping
 
 import numpy as np
 
 from ._pint import application_registry, pint
+from ._util import broadcast_named
 from .errors import UnitError
 
-__all__ = ["ureg", "Q_", "to_si", "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
+__all__ = ["ureg", "Q_", "to_si", "positive_si", "plain_number", "parse_quantity", "parse_unit", "clean_value_text",
+           "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
 
 ureg = application_registry()   # pint's application registry, its definitions cached (erdesign/_pint.py)
 Q_ = ureg.Quantity
@@ -60,22 +65,176 @@ def dimension_name(dimensionality: Any) -> str:
     return _DIMENSION_NAMES.get(dimensionality, f"a quantity of dimension {dimensionality}")
 
 
+#: Signs that are minus signs in typeset text: read as '-'.  (U+2212 MINUS SIGN, U+FE63 SMALL HYPHEN-MINUS,
+#: U+FF0D FULLWIDTH HYPHEN-MINUS)
+_MINUS_SIGNS = {"\u2212": "-", "\ufe63": "-", "\uff0d": "-"}
+#: Dashes and hyphens that look like a minus sign but are not one (a range "1–2 mm", a word processor's en dash):
+#: refused rather than guessed.
+_DASHES = "\u2010\u2011\u2012\u2013\u2014\u2015\u2043\u02d7\u2796"
+#: Characters outside ASCII that unit symbols use (micro, ohm, degree, middle dot, superscripts, angstrom).
+_UNIT_CHARACTERS = set("µμΩΩ°·⋅×²³¹⁰⁴⁵⁶⁷⁸⁹⁻Åℓ")
+_DIGIT_SEPARATOR = re.compile(r"\d_\d|\d'\d")
+_DECIMAL_COMMA = re.compile(r"^\s*[-+]?\d+,\d+(\s|$)")
+
+
+def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
+    """The text of a value with a unit (``number``) or of a unit alone, made safe for pint, or a
+    :class:`~erdesign.errors.UnitError` naming ``name``.
+
+    Pint reads some slips silently and wrongly; they are refused or read as meant here:
+
+    * a typeset minus sign (U+2212, also small and fullwidth) is a minus sign; fullwidth digits and letters are
+      their ASCII forms; any Unicode space is a space; invisible format characters (zero-width space, BOM) are
+      dropped;
+    * a dash that is not a minus (en dash, em dash, hyphen: pint reads ``"–0.8 mm"`` as +0.8 mm), a digit
+      separator (``"4_446.6 N"``), a comma (a decimal comma ``"0,8 mm"`` is read by pint as 0 mm, a list
+      ``"1,2, A"`` as 12 A), two signs or two decimal points in a row, a ``#``, a control character, other digits
+      than ASCII, and text longer than :data:`erdesign.limits.MAX_VALUE_CHARS` are refused;
+    * a value with no number at all (``"mm"``, read by pint as 1 mm) is refused when ``number``.
+
+    >>> clean_value_text("\u22120.8 mm", "gap")
+    '-0.8 mm'
+    >>> clean_value_text("0,8 mm", "gap")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.UnitError: gap: '0,8 mm' has a decimal comma; write '0.8 mm' with a point
+    """
+    from .limits import MAX_VALUE_CHARS
+
+    shown = text if len(text) <= 60 else text[:57] + "..."
+    if len(text) > MAX_VALUE_CHARS:
+        raise UnitError(f"{name}: {len(text)} characters is too long for a value with a unit (at most "
+                        f"{MAX_VALUE_CHARS}), got {shown!r}")
+    out = []
+    for ch in text:
+        if ch.isascii():
+            if ch.isprintable():
+                out.append(ch)
+            elif ch.isspace():                       # tab, line break
+                out.append(" ")
+            else:
+                raise UnitError(f"{name}: {shown!r} holds the control character {ch!r}")
+        elif ch in _MINUS_SIGNS:
+            out.append(_MINUS_SIGNS[ch])
+        elif "\uff01" <= ch <= "\uff5e":            # fullwidth ASCII
+            out.append(chr(ord(ch) - 0xFEE0))
+        elif ch.isspace():
+            out.append(" ")
+        elif unicodedata.category(ch) == "Cf":       # zero-width space, BOM, direction marks: invisible
+            continue
+        elif ch in _DASHES:
+            raise UnitError(f"{name}: {shown!r} has the {unicodedata.name(ch, 'dash').lower()} U+{ord(ch):04X}, "
+                            "which is not a minus sign; write '-' for a negative value")
+        elif ch in _UNIT_CHARACTERS or (ch.isalpha() and not unicodedata.category(ch).startswith("N")):
+            out.append(ch)
+        else:
+            kind = "digit" if ch.isdigit() or ch.isnumeric() else "character"
+            raise UnitError(f"{name}: {shown!r} holds the {kind} {ch!r} ({unicodedata.name(ch, 'unnamed')}, "
+                            f"U+{ord(ch):04X}); write the value in ASCII digits, e.g. '0.8 mm'")
+    clean = "".join(out)
+    if "," in clean:
+        if _DECIMAL_COMMA.match(clean):
+            raise UnitError(f"{name}: {shown!r} has a decimal comma; write {clean.replace(',', '.', 1)!r} with a "
+                            "point")
+        raise UnitError(f"{name}: {shown!r} has a ',' (neither a decimal point nor a list is read here); give one "
+                        "value with its unit")
+    if _DIGIT_SEPARATOR.search(clean):
+        plain = _DIGIT_SEPARATOR.sub(lambda m: m[0][0] + m[0][2], clean)
+        raise UnitError(f"{name}: {shown!r} has a digit separator; write the number without it ({plain!r})")
+    if "#" in clean:
+        raise UnitError(f"{name}: {shown!r} has a '#'; give the value and its unit only")
+    if re.search(r"[-+]\s*[-+]", clean):
+        raise UnitError(f"{name}: {shown!r} has two signs in a row")
+    if re.search(r"\d*\.\d*\.", clean):
+        raise UnitError(f"{name}: {shown!r} is not a number (two decimal points)")
+    if number and clean.strip() and not re.search(r"[0-9]|inf|nan", clean, re.IGNORECASE):
+        example = f", e.g. '1 {clean.strip()}'" if _is_unit(clean.strip()) else ""
+        raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit: it has no number; give a value "
+                        f"with its unit{example}")
+    return clean
+
+
+_PLAIN_NUMBER = re.compile(r"\s*[-+]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|nan|inf|infinity)\s*",
+                           re.ASCII | re.IGNORECASE)
+
+
+def plain_number(text: str) -> float | None:
+    """The number of a text that is a plain number in ASCII (``"0.0254"``, ``"-1e3"``, ``"nan"``), else None.
+
+    Python's ``float()`` also reads digit separators (``"4_446.6"``) and other scripts' digits, which a user never
+    means as a plain number: such text is left to :func:`parse_quantity`, which refuses it by name.
+
+    >>> plain_number(" -2.5e3 "), plain_number("4_446.6"), plain_number("2 A")
+    (-2500.0, None, None)
+    """
+    return float(text) if isinstance(text, str) and _PLAIN_NUMBER.fullmatch(text) else None
+
+
+def _is_unit(text: str) -> bool:
+    try:
+        ureg.Unit(text)
+    except Exception:  # noqa: BLE001 - any failure: not a unit
+        return False
+    return True
+
+
+def parse_quantity(text: str, name: str) -> pint.Quantity:
+    """A quantity from a string such as ``"0.8 mm"`` or ``"-40 degC"``, or a :class:`~erdesign.errors.UnitError`
+    naming ``name``: the one parser of values with units (:func:`clean_value_text` says what it refuses).
+
+    Offset units (degC, degF) are read as a number and a unit, which pint's string parser refuses.
+
+    >>> parse_quantity("\u22120.8 mm", "gap")
+    <Quantity(-0.8, 'millimeter')>
+    """
+    if not isinstance(text, str):
+        raise UnitError(f"{name}: expected a value with a unit as a string, got {type(text).__name__} {text!r:.60}")
+    clean = clean_value_text(text, name)
+    shown = text if len(text) <= 60 else text[:57] + "..."
+    try:
+        q = Q_(clean)
+    except pint.errors.OffsetUnitCalculusError:
+        m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*)", clean)
+        if m is None:
+            raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit") from None
+        return parse_unit(m[2], name, value=float(m[1]))
+    except pint.errors.UndefinedUnitError as exc:
+        raise UnitError(f"{name}: unknown unit in {shown!r} ({exc})") from None
+    except Exception as exc:  # noqa: BLE001 - pint raises assorted errors (AssertionError too) for garbled strings
+        detail = f" ({exc})" if str(exc) else ""
+        raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit{detail}") from None
+    if not isinstance(q, pint.Quantity):       # a bare number: pint returns a plain int or float
+        q = Q_(q)
+    return q
+
+
+def parse_unit(text: str, name: str, *, value: float = 1.0) -> pint.Quantity:
+    """``value`` in the unit ``text`` (a header's ``"kN"``, ``"degC"``), or a :class:`~erdesign.errors.UnitError`
+    naming ``name`` for an unknown or garbled unit."""
+    if not isinstance(text, str):
+        raise UnitError(f"{name}: expected a unit as a string, got {text!r:.60}")
+    clean = clean_value_text(text, name, number=False)
+    shown = text if len(text) <= 60 else text[:57] + "..."
+    if not clean.strip():
+        raise UnitError(f"{name}: empty unit")
+    try:
+        return Q_(value, clean.strip())
+    except pint.errors.UndefinedUnitError as exc:
+        raise UnitError(f"{name}: unknown unit {shown!r} ({exc})") from None
+    except Exception as exc:  # noqa: BLE001 - as in parse_quantity
+        detail = f" ({exc})" if str(exc) else ""
+        raise UnitError(f"{name}: cannot read {shown!r} as a unit{detail}") from None
+
+
 def _parse(value: Any, name: str) -> Any:
     """Turn a string into a quantity; leave quantities, numbers and arrays alone."""
-    if isinstance(value, str):
-        try:
-            return Q_(value)
-        except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
-            raise UnitError(f"{name}: unknown unit in {value!r} ({exc})") from None
-        except Exception as exc:  # pint raises assorted errors for garbled strings
-            raise UnitError(f"{name}: cannot read {value!r} as a value with a unit ({exc})") from None
-    return value
+    return parse_quantity(value, name) if isinstance(value, str) else value
 
 
 def same_dimension(a: Any, b: Any) -> bool:
     """True when two quantities (or unit strings) share a dimension."""
-    qa = Q_(a) if isinstance(a, str) else a
-    qb = Q_(b) if isinstance(b, str) else b
+    qa = parse_quantity(a, "value") if isinstance(a, str) else a
+    qb = parse_quantity(b, "value") if isinstance(b, str) else b
     return getattr(qa, "dimensionality", None) == getattr(qb, "dimensionality", None)
 
 
@@ -109,7 +268,7 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     target = ureg.Unit(unit)
     if isinstance(value, pint.Quantity):
         if value.dimensionality != target.dimensionality:
-            shown = given if isinstance(given, str) else f"{value:~P}"
+            shown = given if isinstance(given, str) else _shown_quantity(value)
             raise UnitError(
                 f"{name}: expected {dimension_name(target.dimensionality)} (a value with a unit such as "
                 f"'{unit}'), got '{shown}' ({dimension_name(value.dimensionality)})"
@@ -129,9 +288,34 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     except (TypeError, ValueError):
         raise UnitError(f"{name}: {value!r} is not a number") from None
     if not allow_nonfinite and not np.all(np.isfinite(magnitude)):
-        shown = f"{value:~P}" if isinstance(value, pint.Quantity) else repr(value)
+        shown = _shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value)
         raise UnitError(f"{name}: value must be finite, got {shown}")
     return float(magnitude) if magnitude.ndim == 0 else magnitude
+
+
+def _shown_quantity(q: pint.Quantity) -> str:
+    """A quantity for a message: the value when it is one, else the shape and unit of the array."""
+    if np.ndim(q.magnitude) == 0:
+        return f"{q:~P}"
+    return f"an array of shape {np.shape(q.magnitude)} in {q.units:~P}"
+
+
+def positive_si(value: Any, unit: str, name: str) -> float:
+    """:func:`to_si` of one value that must be positive (an amplitude, a frequency), naming ``name`` otherwise.
+
+    >>> positive_si("0 mm", "m", "amplitude")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.UnitError: amplitude: must be positive, got '0 mm'
+    """
+    si = to_si(value, unit, name)
+    if np.ndim(si) != 0:
+        raise UnitError(f"{name}: expected one value, got an array of shape {np.shape(si)}")
+    if not si > 0:
+        shown = value if isinstance(value, str) else (_shown_quantity(value) if isinstance(value, pint.Quantity)
+                                                      else repr(value))
+        raise UnitError(f"{name}: must be positive, got '{shown}'")
+    return float(si)
 
 
 def to_quantity(magnitude: Any, unit: str) -> pint.Quantity:
@@ -168,7 +352,13 @@ def unit_aware(returns: str | tuple[str, ...] | Mapping[str, str], **units: str)
                 key: (to_si(val, units[key], key) if key in units and val is not None else val)
                 for key, val in bound.arguments.items()
             }
-            return _attach(kernel(**si), returns)
+            arrays = {key: val for key, val in si.items() if isinstance(val, np.ndarray) and val.ndim}
+            if len(arrays) > 1:
+                broadcast_named(**arrays)
+            with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+                result = kernel(**si)
+            _warn_nonfinite(kernel.__name__, result)
+            return _attach(result, returns)
 
         wrapper.kernel = kernel
         wrapper.__doc__ = (
@@ -178,6 +368,26 @@ def unit_aware(returns: str | tuple[str, ...] | Mapping[str, str], **units: str)
         return wrapper
 
     return decorate
+
+
+def _warn_nonfinite(name: str, result: Any) -> None:
+    """A :class:`~erdesign.errors.PlausibilityWarning` when a unit-aware function's result holds NaN or infinity
+    for finite arguments (an overflow, a vanishing gap): never a silent NaN."""
+    from .errors import PlausibilityWarning
+
+    parts = result._asdict().items() if hasattr(result, "_asdict") else (
+        enumerate(result) if isinstance(result, tuple) else [("result", result)])
+    for key, part in parts:
+        try:
+            arr = np.asarray(part, dtype=float)
+        except (TypeError, ValueError):
+            continue
+        if not np.all(np.isfinite(arr)):
+            what = "" if key == "result" else f" ({key})"
+            warnings.warn(f"{name}: the result{what} is not finite for these arguments (an overflow, or a gap or "
+                          "viscosity too small to represent); check their magnitudes and units",
+                          PlausibilityWarning, stacklevel=3)
+            return
 
 
 def _attach(result: Any, returns: str | tuple[str, ...] | Mapping[str, str]) -> Any:

@@ -134,7 +134,7 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
                        for r in edited)
         model.check_values(dict(values))
     except (ErdesignError, TypeError, ValueError) as exc:
-        st.error(f"Parameter values: {exc}")
+        st.error(f"Parameter values: {state.clean_message(str(exc))}")
         return None
     st.session_state[f"{model_key}.si"] = dict(values)
     return name, effects, values

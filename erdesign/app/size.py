@@ -25,6 +25,7 @@ else:  # pragma: no cover
 from erdesign.app import figures, pinned, state
 from erdesign.damper.files import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
+from erdesign.limits import nested_too_deeply
 from erdesign.formatting import si_unit_text
 from erdesign.materials import fluid_values
 from erdesign.report import plots
@@ -130,6 +131,9 @@ def _on_upload() -> None:
         return
     except tomllib.TOMLDecodeError as exc:
         st.session_state[_ERROR] = f"{name}: invalid TOML: {exc}"
+        return
+    except RecursionError:
+        st.session_state[_ERROR] = nested_too_deeply(name)
         return
     except ErdesignError as exc:
         st.session_state[_ERROR] = state.clean_message(str(exc))
@@ -423,7 +427,7 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
         if not 0 < lo < hi:
             raise ErdesignError(f"sweep: need 0 < from < to, got {lo_text!r} to {hi_text!r}")
     except ErdesignError as exc:
-        st.error(str(exc))
+        st.error(state.clean_message(str(exc)))
         return
     with st.spinner(f"Sweeping the {state.GEOMETRY_SWEEPS[parameter]} over {points} designs ..."):
         result = state.geometry_sweep(text, parameter, tuple(np.linspace(lo, hi, points)), v, E)
@@ -474,7 +478,7 @@ def _tolerances(text: str, v: float, E: float) -> None:
             with st.spinner(f"Sampling {int(samples)} designs ..."):
                 result = _tolerance_study(text, specs, v, E, int(samples), int(seed))
         except ErdesignError as exc:
-            st.error(str(exc))
+            st.error(state.clean_message(str(exc)))
             return
         from erdesign.cli.tolerance import tolerance_table
 

@@ -29,7 +29,7 @@ from .. import materials
 from ..damper import Damper
 from ..damper.files import damper_from_dict, example_names, read_toml
 from ..data.measurement import Measurement, read_measurement
-from ..errors import ErdesignError
+from ..errors import ErdesignError, one_line
 from ..units import Q_, to_si
 
 __all__ = [
@@ -242,7 +242,7 @@ def clean_message(text: str) -> str:
     >>> clean_message("/tmp/tmpab12/upload.csv: line 2, column 'force': not a number")
     "upload.csv: line 2, column 'force': not a number"
     """
-    return _PATH.sub(lambda m: m.group(1), " ".join(str(text).split()))
+    return _PATH.sub(lambda m: m.group(1), one_line(text))
 
 
 def caught(call: Callable[[], Any]) -> tuple[Any, list[str]]:
@@ -271,7 +271,7 @@ def damper_or_error(text: str) -> Damper | None:
     try:
         return build_damper(text)[0]
     except ErdesignError as exc:
-        st.error(f"The design of the Size page is not valid: {exc}")
+        st.error(f"The design of the Size page is not valid: {clean_message(str(exc))}")
         return None
 
 

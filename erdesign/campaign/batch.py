@@ -200,6 +200,8 @@ def run_task(task: BatchTask) -> dict:
 def file_sha256(path: str | Path) -> str:
     """sha256 of a file's bytes (hex), or "" when it cannot be read (its task then says why)."""
     digest = hashlib.sha256()
+    if not Path(path).is_file():        # a folder, a device (/dev/zero never ends) or nothing: its task says why
+        return ""
     try:
         with open(path, "rb") as fh:
             for block in iter(lambda: fh.read(1 << 20), b""):

@@ -41,7 +41,7 @@ from ..damper.quasi_steady import damping_constant, quasi_steady_state
 from ..errors import ErdesignError
 from ..executor import Executor, chunks, executor_for
 from ..fluid.fluid import plastic_viscosity
-from ..units import Q_, dimension_name
+from ..units import Q_, dimension_name, parse_quantity
 
 __all__ = [
     "CHUNK",
@@ -220,9 +220,9 @@ def parse_variation(spec: str, damper: Damper) -> Variation:
 def _si(text: str, si_unit: str, where: str, part: str) -> float:
     """A quantity of the text in SI; a bare number is refused (a tolerance without its unit is ambiguous)."""
     try:
-        q = Q_(text)
-    except Exception:  # noqa: BLE001 - any parse failure is the user's text
-        raise ToleranceError(f"{where}: cannot read {part} {text!r} as a quantity with a unit") from None
+        q = parse_quantity(text, part)
+    except ErdesignError as exc:
+        raise ToleranceError(f"{where}: cannot read {part} {text!r}: {str(exc).removeprefix(part + ': ')}") from None
     if not hasattr(q, "units") or q.dimensionless:
         raise ToleranceError(f"{where}: {part} {text!r} has no unit; give one, e.g. \"{text} "
                              f"{Q_(1.0, si_unit).units:~P}\"" + (", or a percentage" if part == "DELTA" else ""))

@@ -12,7 +12,7 @@ import click
 
 from ..errors import ErdesignError
 from ..magnetics import load_magnetic_circuit
-from ..units import Q_
+from ..units import Q_, parse_quantity, plain_number
 from .main import cli, emit_json
 
 __all__ = ["magnetics", "parse_currents"]
@@ -20,22 +20,20 @@ __all__ = ["magnetics", "parse_currents"]
 
 def parse_currents(text: str) -> list[float]:
     """Currents [A] from ``"2 A"``, ``"2"``, ``"0.5,1,2 A"`` or ``"500 mA, 1 A"``; an error naming --current."""
-    parts = [p.strip() for p in text.split(",") if p.strip()]
-    if not parts:
+    parts = [p.strip() for p in text.split(",")]
+    if not any(parts):
         raise ErdesignError(f"--current: expected a current such as '2 A', got {text!r}")
+    if not all(parts):
+        raise ErdesignError(f"--current: {text!r} has an empty item (two commas in a row, or one at an end); give "
+                            "currents separated by commas, e.g. '0.5,1,2 A'")
     unit = None
     last = parts[-1].split()
     if len(last) > 1:
         unit = " ".join(last[1:])
     out = []
     for p in parts:
-        try:
-            q = Q_(float(p), unit or "A")
-        except ValueError:
-            try:
-                q = Q_(p)
-            except Exception:  # noqa: BLE001 - pint raises assorted errors
-                raise ErdesignError(f"--current: cannot read {p!r} as a current") from None
+        number = plain_number(p)
+        q = Q_(number, unit or "A") if number is not None else parse_quantity(p, "--current")
         try:
             out.append(float(q.to("A").magnitude))
         except Exception:  # noqa: BLE001

@@ -25,7 +25,7 @@ from typing import Any
 import click
 
 from .. import __version__
-from ..errors import ErdesignError
+from ..errors import ErdesignError, one_line
 
 __all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number", "check_effects_option", "COMMANDS"]
 
@@ -88,12 +88,10 @@ class LazyGroup(click.Group):
 
 def value_arg(text: str, si_unit: str) -> Any:
     """A command-line value: a quantity string, or a plain number in SI units."""
-    from ..units import Q_
+    from ..units import Q_, plain_number
 
-    try:
-        return Q_(float(text), si_unit)
-    except ValueError:
-        return text
+    number = plain_number(text)
+    return text if number is None else Q_(number, si_unit)
 
 
 def check_effects_option(ctx, param, value):
@@ -188,7 +186,7 @@ def main(argv: list[str] | None = None) -> int:
             os.environ.setdefault(name, "1")
 
     def show_warning(message, category, filename, lineno, file=None, line=None):
-        click.echo(f"warning: {message}", err=True)
+        click.echo(f"warning: {one_line(message)}", err=True)
 
     warnings.showwarning = show_warning
     try:
@@ -196,21 +194,24 @@ def main(argv: list[str] | None = None) -> int:
     except click.exceptions.Abort:
         click.echo("erdesign: aborted", err=True)
         return 1
+    except RecursionError:    # a Python limit reached by the input (deeply nested data), not a bug to report
+        click.echo("error: the input is nested too deeply to read", err=True)
+        return 1
     except click.UsageError as exc:
         command = exc.ctx.command_path if exc.ctx else "erdesign"
-        click.echo(f"{command}: {exc.format_message()} (see '{command} --help')", err=True)
+        click.echo(f"{command}: {one_line(exc.format_message())} (see '{command} --help')", err=True)
         return 2
     except click.ClickException as exc:
-        click.echo(f"erdesign: {exc.format_message()}", err=True)
+        click.echo(f"erdesign: {one_line(exc.format_message())}", err=True)
         return exc.exit_code or 1
     except ErdesignError as exc:
-        click.echo(f"error: {' '.join(str(exc).split())}", err=True)
+        click.echo(f"error: {one_line(exc)}", err=True)
         return 1
     except OSError as exc:
-        click.echo(f"error: {exc}", err=True)
+        click.echo(f"error: {one_line(exc)}", err=True)
         return 1
     except Exception as exc:  # a bug, not bad input: still one line, but say so
-        click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
+        click.echo(f"internal error: {type(exc).__name__}: {one_line(exc)} "
                    "(please report this with the command that caused it)", err=True)
         return 3
     return 0

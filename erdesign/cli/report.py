@@ -41,8 +41,11 @@ def default_report_path(damper_name: str, damper_file: str, fmt: str) -> Path:
     'makris-1996-report.html'
     >>> default_report_path("", "/data/my damper.toml", "md").name
     'my-damper-report.md'
+    >>> len(default_report_path("x" * 200_000, "d.toml", "html").name)
+    112
     """
     stem = re.sub(r"[^A-Za-z0-9_-]+", "-", damper_name or Path(damper_file).stem).strip("-.") or "damper"
+    stem = stem[:100].rstrip("-.")      # a file name has at most 255 bytes: a long damper name is cut
     return Path(f"{stem}-report.{fmt}")
 
 

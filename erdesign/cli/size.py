@@ -10,7 +10,7 @@ import click
 
 from ..damper.files import load_damper
 from ..errors import ErdesignWarning
-from ..units import Q_, format_quantity
+from ..units import Q_, format_quantity, plain_number
 from .main import cli, emit_json, json_number
 
 __all__ = ["size", "quantity_option"]
@@ -35,9 +35,8 @@ def quantity_option(text: str, si_unit: str, option: str) -> Any:
     >>> q, str(w[0].message)
     (<Quantity(0.0254, 'meter / second')>, '--velocity 0.0254: a bare number, read as 0.0254 m/s; give the unit, e.g. "0.0254 m/s"')
     """
-    try:
-        value = float(text)
-    except ValueError:
+    value = plain_number(text)
+    if value is None:
         return text
     if value != 0 and math.isfinite(value):      # 0 is 0 in any unit; NaN is an error of its own
         unit = f"{Q_(1.0, si_unit).units:~P}"

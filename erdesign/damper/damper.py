@@ -33,13 +33,13 @@ from typing import Any
 
 import numpy as np
 
-from .._util import scalar_or_array
+from .._util import broadcast_named, scalar_or_array, si_array
 from ..data.metrics import energy_per_cycle, equivalent_damping
 from ..errors import ErdesignError, ValidityWarning
 from ..flow.bingham import yield_pressure_drop
 from ..fluid import Fluid
 from ..geometry import THIN_GAP_LIMIT, Geometry
-from ..units import Q_, to_si
+from ..units import Q_, positive_si, to_si
 from .accumulator import ROD_KINDS, Accumulator
 from .quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, damper_state, damping_constant
 
@@ -203,7 +203,8 @@ class Damper:
         ``v`` and ``field`` broadcast against each other.  The kernel is
         :func:`erdesign.damper.quasi_steady.quasi_steady_state`; see the module notes for the equations.
         """
-        field = np.asarray(field, dtype=float)
+        v, field = si_array(v, "v"), si_array(field, "field")
+        broadcast_named(v=v, field=field)
         tau_y = np.asarray(self.fluid.yield_stress_at(field), dtype=float)
         eta = np.asarray(self.fluid.viscosity_at(field), dtype=float)
         return damper_state(self, v, tau_y, eta)
@@ -330,10 +331,8 @@ class Damper:
         samples_per_cycle : int
             Samples per cycle.
         """
-        X0 = to_si(amplitude, "m", "amplitude")
-        f = to_si(frequency, "Hz", "frequency")
-        if not (X0 > 0 and f > 0):
-            raise ErdesignError("amplitude and frequency: must be positive")
+        X0 = positive_si(amplitude, "m", "amplitude")
+        f = positive_si(frequency, "Hz", "frequency")
         if not (isinstance(cycles, int) and cycles >= 1 and isinstance(samples_per_cycle, int)
                 and samples_per_cycle >= 16):
             raise ErdesignError("cycles must be a whole number >= 1 and samples_per_cycle >= 16")

@@ -30,6 +30,7 @@ from pydantic import BeforeValidator
 from .. import materials
 from ..errors import DamperFileError, ErdesignError
 from ..examples import bundled_file
+from ..limits import MAX_TOML_BYTES, is_path_like, nested_too_deeply, read_input_bytes
 from ..fluid import Fluid
 from ..fluid.fluid import control_kind
 from ..geometry import CONFIGURATIONS, Geometry
@@ -118,10 +119,17 @@ _REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_expone
 
 def read_toml(path: str | Path) -> dict:
     """Parse a TOML file; a missing file or a syntax error is a :class:`DamperFileError` naming the file."""
+    if not is_path_like(path):
+        raise DamperFileError(f"path: expected the name of a TOML file (a str or Path), got {type(path).__name__} "
+                              f"{path!r:.60}")
     path = Path(path)
     try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
+        text = read_input_bytes(path, MAX_TOML_BYTES, "a TOML file").decode("utf-8")
+        return tomllib.loads(text)
+    except RecursionError:
+        raise DamperFileError(nested_too_deeply(str(path))) from None
+    except ErdesignError as exc:
+        raise DamperFileError(str(exc)) from None
     except FileNotFoundError:
         raise DamperFileError(f"{path}: no such file") from None
     except IsADirectoryError:
@@ -130,6 +138,9 @@ def read_toml(path: str | Path) -> dict:
         raise DamperFileError(f"{path}: invalid TOML: {exc}") from None
     except UnicodeDecodeError:
         raise DamperFileError(f"{path}: not a text (UTF-8) file") from None
+    except ValueError as exc:   # beyond the parser's limits: an integer of more than 4300 digits
+        detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
+        raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
 
 
 #: Keys of a damper file's [fluid] table that define the power law; giving any of them replaces a material's curve.
@@ -328,6 +339,9 @@ def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
     """Read a damper file (TOML, docs/file_formats.md); where no such file exists, the name of a bundled example
     (``makris``, ``mr_valve``, ...) or its documented path ``examples/makris.toml`` loads that example
     (:func:`damper_file_path`)."""
+    if not is_path_like(path):
+        raise DamperFileError(f"path: expected the name of a damper file (a str or Path), got "
+                              f"{type(path).__name__} {path!r:.60}")
     by_name = isinstance(path, str) and not Path(path).exists() and path in example_names()
     source = f"examples/{path}.toml" if by_name else str(path)
     return damper_from_dict(read_toml(damper_file_path(path)), source=source, flow_model=flow_model)

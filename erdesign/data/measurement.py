@@ -42,11 +42,11 @@ from typing import Any
 
 import numpy as np
 
-from .._pint import pint  # not `import pint`: erdesign/_pint.py
 from ..errors import ErdesignError, ErdesignWarning
 from ..examples import bundled_file
 from ..fluid import CONTROL_UNITS
-from ..units import Q_, dimension_name, ureg
+from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, is_path_like, read_input_bytes
+from ..units import Q_, dimension_name, parse_unit, ureg
 
 __all__ = ["Measurement", "MeasurementError", "read_measurement", "write_measurement", "derivatives",
            "clipped_samples", "check_record", "check_against_damper", "COLUMNS", "CONTROL_COLUMNS"]
@@ -139,18 +139,25 @@ class Measurement:
         window : int, optional
             Savitzky-Golay window (samples) for the derivatives; default from the dominant period.
         """
-        t = _as_1d(time, "time")
+        t = _as_1d(time, "time", unit="s")
         n = t.size
-        x = _as_1d(displacement, "displacement", n)
-        F = None if force is None else _as_1d(force, "force", n)
+        x = _as_1d(displacement, "displacement", n, unit="m")
+        F = None if force is None else _as_1d(force, "force", n, unit="N")
         if control is not None and control_kind not in CONTROL_UNITS:
             raise MeasurementError(f"control_kind: must be one of {', '.join(CONTROL_UNITS)} when a control is "
                                    f"given, got {control_kind!r}")
-        u = np.zeros(n) if control is None else _as_1d(np.broadcast_to(np.asarray(control, float), (n,)), "control", n)
-        T = None if temperature is None else _as_1d(temperature, "temperature", n)
+        if control is not None and hasattr(control, "units"):
+            from ..units import to_si
+            control = to_si(control, CONTROL_UNITS[control_kind], "control")
+        u = np.zeros(n) if control is None else _as_1d(np.broadcast_to(_as_1d_any(control, "control"), (n,)),
+                                                         "control", n)
+        T = None if temperature is None else _as_1d(temperature, "temperature", n, unit="K")
+        for column, values in (("time", t), ("displacement", x), ("force", F), ("velocity", velocity)):
+            if values is not None:
+                _check_magnitude(np.asarray(values, dtype=float), column, column)
         _check_time(t, lambda i: f"time: sample {i}")
         v_derived, a = derivatives(t, x, window=window)
-        v = v_derived if velocity is None else _as_1d(velocity, "velocity", n)
+        v = v_derived if velocity is None else _as_1d(velocity, "velocity", n, unit="m/s")
         if velocity is not None:
             _check_velocity(v, v_derived, name)
         return cls(t, x, F, v, a, u, control_kind if control is not None else None, T, name)
@@ -187,7 +194,12 @@ class Measurement:
         return self.force
 
 
-def _as_1d(values, name: str, n: int | None = None) -> np.ndarray:
+def _as_1d(values, name: str, n: int | None = None, unit: str | None = None) -> np.ndarray:
+    if hasattr(values, "units") and hasattr(values, "magnitude"):      # a pint quantity: converted, never stripped
+        if unit is None:
+            raise MeasurementError(f"{name}: expected SI numbers, got a quantity in {values.units:~P}")
+        from ..units import to_si
+        values = to_si(values, unit, name)
     try:
         arr = np.asarray(values, dtype=float)
     except (TypeError, ValueError):
@@ -200,6 +212,14 @@ def _as_1d(values, name: str, n: int | None = None) -> np.ndarray:
     if bad.size:
         raise MeasurementError(f"{name}: sample {bad[0]} is not finite ({arr[bad[0]]})")
     return arr
+
+
+def _as_1d_any(values, name: str) -> np.ndarray:
+    """A value or array of numbers (a control may be one value for the whole record)."""
+    try:
+        return np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise MeasurementError(f"{name}: not numeric") from None
 
 
 def _check_velocity(v: np.ndarray, v_derived: np.ndarray, name: str) -> None:
@@ -559,6 +579,10 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
                                "comma-separated files (save as CSV with ',' between columns and '.' as the decimal "
                                "point)")
     for col, cell in enumerate(cells, start=1):
+        if len(cell) > MAX_CELL_CHARS:
+            raise MeasurementError(f"{path}: line {lineno}, column {col}: a header cell of {len(cell):,} characters "
+                                   f"(at most {MAX_CELL_CHARS:,}); a header cell is a name and its unit, e.g. "
+                                   "'time [s]'")
         m = _HEADER.match(cell)
         if not m:
             raise MeasurementError(f"{path}: line {lineno}, column {col} ({cell.strip()!r}): expected a name with "
@@ -574,10 +598,9 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
             raise MeasurementError(f"{where}: column '{name}' appears twice (also column {seen[name]})")
         seen[name] = col
         try:
-            q = Q_(1.0, unit)
-        except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, AttributeError,
-                AssertionError, TypeError, ValueError) as exc:
-            raise MeasurementError(f"{where}: unknown unit {unit!r} ({exc})") from None
+            q = parse_unit(unit, "unit")
+        except ErdesignError as exc:
+            raise MeasurementError(f"{where}: {str(exc).removeprefix('unit: ')}") from None
         if name in COLUMNS:
             if q.dimensionality != ureg.Unit(COLUMNS[name]).dimensionality:
                 raise MeasurementError(f"{where}: unit {unit!r} is {dimension_name(q.dimensionality)}; expected "
@@ -612,12 +635,17 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     unknown unit or column, wrong dimension, non-numeric or empty cell, NaN or infinity, wrong number of cells,
     non-increasing time, fewer than 5 samples.
     """
+    if not is_path_like(path):
+        raise MeasurementError(f"path: expected the name of a measurement file (a str or Path), got "
+                               f"{type(path).__name__} {path!r:.60}")
     path = Path(path)
     label = str(path)
     path = bundled_file(path) or path       # the documented examples/measurements/... from any folder
     try:
-        with open(path, newline="", encoding="utf-8-sig") as fh:
-            text = fh.read()
+        raw = read_input_bytes(path, MAX_RECORD_BYTES, "a measurement CSV file")
+        text = raw.decode("utf-8-sig")
+    except ErdesignError as exc:
+        raise MeasurementError(str(exc)) from None
     except FileNotFoundError:
         raise MeasurementError(f"{label}: no such file") from None
     except IsADirectoryError:
@@ -626,11 +654,15 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
         raise MeasurementError(f"{label}: not a text (UTF-8) file") from None
     except OSError as exc:
         raise MeasurementError(f"{label}: cannot be read ({exc.strerror or exc})") from None
+    rows_given = text.count("\n")
+    if rows_given > MAX_RECORD_ROWS:
+        raise MeasurementError(f"{label}: {rows_given:,} lines, more than the {MAX_RECORD_ROWS:,} rows erdesign reads "
+                               "in one record; thin or split the file")
     fast = _read_fast(text, label, require_force)
     if fast is not None:
         columns, data = fast
         return _measurement_from_table(path, label, columns, data, None, window)
-    lines = list(csv.reader(io.StringIO(text, newline="")))
+    lines = _csv_lines(text, label)
     rows = [(i, r) for i, r in enumerate(lines, start=1) if r and not r[0].lstrip().startswith("#")
             and any(c.strip() for c in r)]
     if not rows:
@@ -641,19 +673,59 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     data = np.empty((len(rows) - 1, len(columns)))
     for r, (lineno, cells) in enumerate(rows[1:]):
         if len(cells) != len(columns):
+            hint = ("; a decimal comma? erdesign reads '.' as the decimal point and ',' between columns"
+                    if len(cells) > len(columns) and any(re.fullmatch(r"\s*-?\d+", c) for c in cells[1:]) else "")
             raise MeasurementError(f"{label}: line {lineno}: {len(cells)} cells, expected {len(columns)} "
-                                   f"(one per header column)")
+                                   f"(one per header column){hint}")
         for c, cell in enumerate(cells):
-            try:
-                value = float(cell)
-            except ValueError:
-                raise MeasurementError(f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): "
-                                       f"{cell.strip()!r} is not a number") from None
+            value = _cell_number(cell, lambda: f"{label}: line {lineno}, column {c + 1} ({columns[c][0]})")
             if not math.isfinite(value):
                 raise MeasurementError(f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): "
                                        f"{cell.strip()!r} is not a finite number")
             data[r, c] = value
     return _measurement_from_table(path, label, columns, data, [lineno for lineno, _ in rows[1:]], window)
+
+
+def _csv_lines(text: str, label: str) -> list[list[str]]:
+    """The cells of every line (Python's csv reader), with a cell longer than :data:`~erdesign.limits.MAX_CELL_CHARS`
+    refused naming its line (csv's own 'field larger than field limit' names nothing)."""
+    reader = csv.reader(io.StringIO(text, newline=""))
+    lines = []
+    try:
+        for cells in reader:
+            for col, cell in enumerate(cells, start=1):
+                if len(cell) > MAX_CELL_CHARS:
+                    raise MeasurementError(f"{label}: line {reader.line_num}, column {col}: a cell of {len(cell):,} "
+                                           f"characters (at most {MAX_CELL_CHARS:,}); a cell is a number or a "
+                                           "header such as 'time [s]'")
+            lines.append(cells)
+    except csv.Error as exc:
+        detail = ("a cell longer than the CSV reader takes" if "field limit" in str(exc) else str(exc))
+        raise MeasurementError(f"{label}: line {max(reader.line_num, 1)}: {detail} (at most {MAX_CELL_CHARS:,} "
+                               "characters a cell)") from None
+    return lines
+
+
+_NUMBER = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*", re.ASCII)
+
+
+def _cell_number(cell: str, where) -> float:
+    """The number of a data cell: ASCII digits with an optional sign, point and exponent; a typeset minus sign
+    (U+2212) is a minus.  Python's float() also reads digit separators ('4_446.6') and other scripts' digits, which
+    a measurement never holds on purpose: they are refused with the rest, naming the line and column."""
+    text = cell.replace("\u2212", "-")
+    if _NUMBER.fullmatch(text):
+        return float(text)
+    stripped = cell.strip()
+    if stripped.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+        raise MeasurementError(f"{where()}: {stripped!r} is not a finite number")
+    if re.fullmatch(r"[-+]?\d+,\d+", stripped):
+        hint = f"; a decimal comma? write {stripped.replace(',', '.')}"
+    elif re.search(r"\d[_']\d", stripped):
+        hint = "; a digit separator? write the number without it"
+    else:
+        hint = ""
+    raise MeasurementError(f"{where()}: {stripped[:40]!r} is not a number{hint}")
 
 
 def _read_fast(text: str, label: str, require_force: bool):
@@ -738,20 +810,40 @@ def _measurement_from_table(path: Path, label: str, columns, data: np.ndarray, l
 #: Largest magnitude each column can possibly take, SI (beyond it the file is refused: a unit mistake so large
 #: that sums of squares overflow, or no damper ever built).  The largest seismic dampers make about 10 MN.
 POSSIBLE_MAGNITUDE = {"displacement": 100.0, "force": 1e9, "velocity": 1e3, "time": 1e9}
+#: Shortest mean time step of a record, [s] (an attosecond: no data logger comes near; below it the steps lose
+#: their digits and the derivatives fail).
+SHORTEST_TIME_STEP = 1e-18
 
 
 def _check_possible(values: np.ndarray, name: str, unit: str, label: str, col: int) -> None:
     where = f"{label}: column {col} ({name} [{unit}])"
     if not np.all(np.isfinite(values)):
         raise MeasurementError(f"{where}: a value is not finite in SI units")
+    if name == "temperature" and values.size and float(values.min()) < 0.0:
+        raise MeasurementError(f"{where}: {float(values.min()):.4g} K is below absolute zero; is the unit right "
+                               "(degC, not K)?")
+    _check_magnitude(values, name, where)
+
+
+def _check_magnitude(values: np.ndarray, name: str, where: str) -> None:
+    """Refuse values beyond :data:`POSSIBLE_MAGNITUDE` (a unit mistake so large that sums of squares overflow) and
+    time steps below :data:`SHORTEST_TIME_STEP` (so small that differences lose every digit)."""
     limit = POSSIBLE_MAGNITUDE.get(name)
-    if limit is not None:
+    if limit is not None and values.size:
         peak = float(np.max(np.abs(values)))
         if peak > limit:
             si = COLUMNS[name]
             raise MeasurementError(f"{where}: {peak:.3g} {si} is beyond any damper record (at most {limit:g} {si}); "
                                    "check the column's unit")
+    if name == "time" and values.size > 1:
+        step = float(values[-1] - values[0]) / (values.size - 1)
+        if 0 < step < SHORTEST_TIME_STEP:
+            raise MeasurementError(f"{where}: a mean time step of {step:.3g} s is beyond any clock (at least "
+                                   f"{SHORTEST_TIME_STEP:g} s); check the unit of the time")
 
+
+#: Temperatures [K] of any damper test (-73 to 227 degC): outside them a warning names the likely unit mistake.
+PLAUSIBLE_TEMPERATURE = (200.0, 500.0)
 
 #: Fewest samples, and fewest samples per cycle of the motion, below which a record is flagged.
 FEW_SAMPLES, SAMPLES_PER_CYCLE = 100, 10
@@ -800,6 +892,17 @@ def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> li
         speed = float(np.max(np.abs(v)))
         out.append(f"{name}: velocity: the piston speed reaches {speed:.3g} m/s, beyond any damper test; is the unit "
                    f"of the displacement [{unit('displacement', 'm')}] or time [{unit('time', 's')}] column right?")
+    from .findings import find_time_problems       # the one detector of holes in the time column
+
+    out += [f"{name}: time: {f.message} (at {f.where})" for f in find_time_problems(t) if f.kind == "time_gap"]
+    T = record.temperature
+    if T is not None and (float(T.min()) < PLAUSIBLE_TEMPERATURE[0] or float(T.max()) > PLAUSIBLE_TEMPERATURE[1]):
+        lo, hi = PLAUSIBLE_TEMPERATURE
+        as_celsius = (f"; read as degC they would be {float(T.min()):.4g} to {float(T.max()):.4g} degC, plausible: a "
+                      "likely unit mistake" if lo - 273.15 <= T.min() and T.max() <= hi - 273.15 else "")
+        out.append(f"{name}: temperature: {float(T.min()):.4g} to {float(T.max()):.4g} K, outside the {lo:g} to "
+                   f"{hi:g} K any damper test runs at{as_celsius}; is the column's unit [{unit('temperature', 'K')}] "
+                   "right?")
     if damper is not None:
         out += _check_against_damper(record, damper)
     if warn:

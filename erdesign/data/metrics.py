@@ -18,6 +18,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy import trapezoid
 
+from .._util import si_array
 from ..errors import ErdesignError
 
 __all__ = ["energy_per_cycle", "equivalent_damping", "esr", "objective_j", "difference_signal", "loops", "Loops"]
@@ -97,8 +98,13 @@ def esr(F_measured, F_model):
     >>> esr([1.0, 2.0, 3.0], [1.0, 2.0, 3.0]), esr([1.0, 2.0, 3.0], [2.0, 2.0, 2.0])
     (0.0, 1.0)
     """
-    F = np.asarray(F_measured, dtype=float)
-    M = np.asarray(F_model, dtype=float)
+    F, M = si_array(F_measured, "F_measured"), si_array(F_model, "F_model")
+    if F.shape != M.shape:
+        raise ErdesignError(f"F_measured and F_model: {F.size} and {M.size} samples (shapes {F.shape} and "
+                            f"{M.shape}); give one model force per measured force")
+    scale = float(np.max(np.abs(F))) if F.size else 0.0
+    if scale > 0:                       # the ratio is scale-free: scaled, sums of squares of huge forces stay finite
+        F, M = F / scale, M / scale
     spread = np.sum((F - F.mean()) ** 2)
     if spread == 0:
         raise ErdesignError("esr: the measured force is constant, so the ESR is undefined")

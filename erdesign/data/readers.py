@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 from ..errors import ErdesignError
+from ..limits import MAX_RECORD_BYTES, size_text
 from .measurement import Measurement
 from .quiroz import QUIROZ_FILE_NAME, read_quiroz_file, read_quiroz_mat
 
@@ -30,14 +31,22 @@ def read_records(path, fmt: str = "auto", where: str = "MEASUREMENT") -> list[Me
         raise ErdesignError(f"--format: {fmt!r} is not one of {', '.join(RECORD_FORMATS)}")
     path = Path(path)
     if not path.is_file():
-        raise ErdesignError(f"{where}: no such file {path}")
+        what = ("is a folder" if path.is_dir() else "is not a regular file (a device or a pipe)" if path.exists()
+                else "no such file")
+        raise ErdesignError(f"{where}: {what} {path}" if what == "no such file" else f"{where}: {path} {what}")
+    if path.stat().st_size > MAX_RECORD_BYTES:
+        raise ErdesignError(f"{where}: {path} is larger than {size_text(MAX_RECORD_BYTES)}, the most erdesign reads "
+                            "as one record file; thin or split the file")
     if fmt == "auto":
         if path.suffix.lower() == ".mat":
             fmt = "quiroz-mat"
         else:
             with open(path, "rb") as fh:
-                first = next((line for line in (raw.decode("utf-8", "replace").strip() for raw in fh)
-                              if line and not line.startswith("#")), "")
+                head = fh.read(_SNIFF_BYTES)      # never a whole file: a line may be gigabytes long
+            lines = head.decode("utf-8", "replace").splitlines()
+            if len(head) == _SNIFF_BYTES and len(lines) > 1:
+                lines = lines[:-1]                 # cut by the read
+            first = next((line.strip() for line in lines if line.strip() and not line.strip().startswith("#")), "")
             numeric = bool(first) and all(_is_number(tok) for tok in first.replace(",", " ").split())
             if numeric:
                 import re
@@ -56,6 +65,10 @@ def read_records(path, fmt: str = "auto", where: str = "MEASUREMENT") -> list[Me
         return [read_measurement(path)]
     except ErdesignError as exc:  # the same class, with the argument named first
         raise type(exc)(f"{where}: {exc}") from None
+
+
+#: Bytes read to decide the format of a file ("auto").
+_SNIFF_BYTES = 65536
 
 
 def _is_number(text: str) -> bool:

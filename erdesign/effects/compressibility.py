@@ -29,9 +29,10 @@ ducts gives the quasi-steady force at any step size.
 from __future__ import annotations
 
 import math
-import numpy as np
-from numba import njit
 
+import numpy as np
+
+from .._compile import njit
 from ..parameters import Parameter
 from .base import DuctLaw, Effect
 

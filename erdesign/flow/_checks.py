@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._util import broadcast_named
 from ..errors import ErdesignError
 
 __all__ = ["check_flow_args"]
@@ -23,7 +24,8 @@ def _first(arr: np.ndarray, bad: np.ndarray) -> float:
 
 def check_flow_args(*, annulus: bool = False, **values) -> None:
     """Raise :class:`~erdesign.errors.ErdesignError` naming the first argument outside its domain: ``eta``, ``L``,
-    ``d``, ``h``, ``Dp`` positive; ``tau_y``, ``dr`` not negative; for an ``annulus``, ``h < d`` (the slit
+    ``d``, ``h``, ``Dp`` positive; ``tau_y``, ``dr`` not negative; array arguments of shapes that do not broadcast
+    together named in pairs; for an ``annulus``, ``h < d`` (the slit
     formulas are also used in dimensionless form, with h = d = 1)."""
     for name, value in values.items():
         if value is None:
@@ -40,6 +42,9 @@ def check_flow_args(*, annulus: bool = False, **values) -> None:
             bad = arr < 0.0
             if np.any(bad):
                 raise ErdesignError(f"{name}: must not be negative, got {_first(arr, bad):g} (SI)")
+    arrays = {name: value for name, value in values.items() if np.ndim(value) > 0}
+    if len(arrays) > 1:
+        broadcast_named(**arrays)
     if annulus and values.get("h") is not None and values.get("d") is not None:
         h, d = np.asarray(values["h"], dtype=float), np.asarray(values["d"], dtype=float)
         if np.any(h >= d):

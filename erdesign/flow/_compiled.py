@@ -24,13 +24,14 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from .._compile import guvectorize, njit
 
 __all__ = ["annulus_plug_fraction", "annulus_shape_offset", "annulus_velocity", "couette_poiseuille", "find_root",
            "mixed_gap_state", "slit_flow", "slit_flow_one_duct"]
 
-_jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+_jit = njit(cache=True, nogil=True, error_model="numpy")
 
 _EPS = float(np.finfo(float).eps)
 _TINY = float(np.finfo(float).tiny)
@@ -564,7 +565,7 @@ def _slit_plug_fraction(N):
     return 2.0 * m * math.sin(math.asin(m**-3) / 3.0)
 
 
-@numba.guvectorize(["void(float64, float64, float64, float64, float64, float64, float64[:], float64[:])"],
+@guvectorize(["void(float64, float64, float64, float64, float64, float64, float64[:], float64[:])"],
                    "(),(),(),(),(),()->(),()", nopython=True, cache=True)
 def slit_flow(Q, tau_y, eta, L, d, h, dp, phi):  # pragma: no cover - compiled; run by tests/test_flow_compiled.py
     """(dp, phi): pressure drop (sign of Q) and plug fraction, the fields of

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from .._util import scalar_or_array
-from ..errors import PlausibilityWarning, UnitError, ValidityWarning
+from ..errors import ErdesignError, PlausibilityWarning, UnitError, ValidityWarning
 from ..units import Q_, _parse, dimension_name, to_si, ureg
 from .field_laws import FieldLaw, PowerLaw
 
@@ -86,8 +86,33 @@ def control_kind(value: Any, name: str = "reference_field") -> str:
     )
 
 
+#: Kinds of control that drive each kind of fluid ("voltage", a driver's command, may drive either).
+FLUID_CONTROLS = {"ER": ("electric field", "voltage"),
+                  "MR": ("magnetic field", "magnetic flux density", "current", "voltage")}
+
+
+def _check_material_control(material: str, kind: str, reference_field: Any) -> None:
+    """Warn when the control of the reference field cannot drive the material's kind of fluid: an ER fluid given
+    a magnetic field or a coil current, an MR fluid given an electric field (a unit slip: kA/m for kV/mm)."""
+    if not material:
+        return
+    from .. import materials    # imported on use: the materials database imports this package
+
+    try:
+        fluid_kind = materials.load(material).get("kind")
+    except ErdesignError:       # not a material of the database: nothing to compare with
+        return
+    if fluid_kind in FLUID_CONTROLS and kind not in FLUID_CONTROLS[fluid_kind]:
+        shown = reference_field if isinstance(reference_field, str) else f"{reference_field:~P}"
+        expected = "an electric field such as '3 kV/mm'" if fluid_kind == "ER" else "a magnetic field such as " \
+            "'100 kA/m' (or a coil current in A)"
+        warnings.warn(f"fluid.reference_field: '{shown}' is {'an' if kind[0] in 'aeiou' else 'a'} {kind}, but "
+                      f"material '{material}' is an {fluid_kind} fluid, driven by {expected}; is the unit right?",
+                      PlausibilityWarning, stacklevel=3)
+
+
 def _unit_text(value: Any) -> str:
-    q = Q_(value) if isinstance(value, str) else value
+    q = _parse(value, "value") if isinstance(value, str) else value
     return f"{q.units:~}" if hasattr(q, "units") else ""
 
 
@@ -242,6 +267,7 @@ class Fluid:
             material=material,
         )
         fluid.warn_implausible()
+        _check_material_control(material, kind, reference_field)
         return fluid
 
     def warn_implausible(self) -> list[str]:

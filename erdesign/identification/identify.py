@@ -447,9 +447,9 @@ class Simulation:
 
 def _control_reference_from_text(text: str, record: Measurement, where: str) -> float:
     from ..fluid import CONTROL_UNITS
-    from ..units import Q_
+    from ..units import parse_quantity
+    q = parse_quantity(text, f"{where}: control_reference")
     try:
-        q = Q_(text)
         return float(q.to(CONTROL_UNITS[record.control_kind]).magnitude)
     except Exception:
         raise ErdesignError(f"{where}: control_reference {text!r} is not a {record.control_kind} "
@@ -478,12 +478,19 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
     kind = record.control_kind
     path = Path(spec)
     if spec.lower().endswith(".json") or path.is_file():
+        from ..limits import MAX_TOML_BYTES, nested_too_deeply, read_input_bytes
         try:
-            data = json.loads(path.read_text())
+            data = json.loads(read_input_bytes(path, MAX_TOML_BYTES, "a JSON file of parameters", spec).decode())
         except FileNotFoundError:
             raise ErdesignError(f"{where}: no such file {spec}") from None
+        except IsADirectoryError:
+            raise ErdesignError(f"{where}: {spec} is a folder, not a JSON file") from None
         except (json.JSONDecodeError, UnicodeDecodeError) as exc:
             raise ErdesignError(f"{where}: {spec} is not a JSON file ({exc})") from None
+        except RecursionError:
+            raise ErdesignError(f"{where}: {nested_too_deeply(spec)}") from None
+        except ErdesignError as exc:
+            raise ErdesignError(f"{where}: {exc}") from None
         if not isinstance(data, dict) or not isinstance(data.get("parameters"), dict):
             raise ErdesignError(f"{where}: {spec} has no 'parameters' object (expected the output of "
                                 "'erdesign identify --json')")

@@ -12,6 +12,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
@@ -20,7 +21,7 @@ import numpy as np
 
 from .. import materials
 from .._pint import pint  # not `import pint`: erdesign/_pint.py
-from ..errors import DamperFileError, ErdesignError
+from ..errors import DamperFileError, ErdesignError, PlausibilityWarning
 from ..units import Q_, to_si
 from .circuit import MagneticCircuit, piston_head
 from .coil import Coil, coil_from_table
@@ -74,6 +75,27 @@ class CircuitReport:
         return out
 
 
+#: Current density in the coil's copper wire [A/m^2] above which a warning says the coil overheats (air-cooled
+#: windings are designed for a few A/mm^2 and take some ten times that for seconds), and above which the current is
+#: refused (the wire melts within milliseconds: a unit slip, mA given as A or a stray exponent).
+PLAUSIBLE_CURRENT_DENSITY = 30e6
+POSSIBLE_CURRENT_DENSITY = 1000e6
+
+
+def check_current_density(current: float, wire_area: float, name: str = "current") -> None:
+    """Refuse a coil current [A] whose density in the wire of cross-section ``wire_area`` [m^2] no coil survives,
+    warn beyond what it carries for more than seconds (:data:`PLAUSIBLE_CURRENT_DENSITY`)."""
+    J = float(current) / wire_area
+    text = (f"{name}: {float(current):.4g} A is {J / 1e6:.4g} A/mm^2 in the coil's {1e6 * wire_area:.3g} mm^2 "
+            "wire")
+    if J > POSSIBLE_CURRENT_DENSITY:
+        raise ErdesignError(f"{text}, beyond {POSSIBLE_CURRENT_DENSITY / 1e6:g} A/mm^2 where copper melts within "
+                            "milliseconds; check the value and its unit")
+    if J > PLAUSIBLE_CURRENT_DENSITY:
+        warnings.warn(f"{text}, beyond the {PLAUSIBLE_CURRENT_DENSITY / 1e6:g} A/mm^2 a coil carries for more than "
+                      "seconds: it overheats", PlausibilityWarning, stacklevel=3)
+
+
 class _Circuit(MagneticCircuit):
     """:class:`MagneticCircuit` with the unit-aware :meth:`at`."""
 
@@ -87,11 +109,12 @@ class _Circuit(MagneticCircuit):
         Ia = np.atleast_1d(np.asarray(I, dtype=float))
         if not np.all(np.isfinite(Ia)):
             raise ErdesignError(f"current: must be finite, got {current!r}")
+        wire_area = math.pi * self.head.wire_diameter ** 2 / 4.0
+        check_current_density(np.max(np.abs(Ia)), wire_area)
         st = self.state(Ia)
         R = self.resistance
         L = self.inductance(Ia)
         Ld = self.incremental_inductance(Ia)
-        wire_area = math.pi * self.head.wire_diameter ** 2 / 4.0
         pick = (lambda a: float(np.asarray(a)[0])) if scalar else (lambda a: np.asarray(a))
         knees = self.part_knee_currents()
         return CircuitReport(

@@ -43,7 +43,6 @@ Functions: :func:`names`, :func:`load` (the checked record), :func:`fluid_values
 
 from __future__ import annotations
 
-import re
 import sys
 from collections.abc import Mapping
 from importlib import resources
@@ -58,7 +57,7 @@ else:  # pragma: no cover
 from .._pint import pint  # not `import pint`: erdesign/_pint.py
 from ..errors import ErdesignError
 from ..fluid.field_laws import FieldLaw, control_unit_of, field_law_from_dict
-from ..units import Q_, to_si
+from ..units import Q_, parse_quantity, to_si
 
 __all__ = ["names", "load", "fluid_values", "steel_names", "load_steel", "steel_curve", "magnetization_curve", "material_fluid", "MaterialFluid", "summary", "check_record",
            "read_material_file", "parse_quantity", "MATERIAL_KEYS", "MATERIAL_FLUID_KEYS", "RANGE_KEYS",
@@ -106,22 +105,6 @@ def steel_names() -> list[str]:
     """Names of the steels in the database (``steel-1018``, ...)."""
     return sorted(p.name[:-5] for p in resources.files(__name__).iterdir()
                   if p.name.endswith(".toml") and p.name.startswith(_STEEL_PREFIX))
-
-
-def parse_quantity(value: Any, name: str) -> pint.Quantity:
-    """A quantity from a string such as ``"0.8 mm"`` or ``"-40 degC"`` (offset units such as degC are read as
-    a number and a unit, which pint's string parser refuses)."""
-    if not isinstance(value, str):
-        raise ErdesignError(f"{name}: expected a value with a unit as a string, got {value!r}")
-    try:
-        return Q_(value)
-    except pint.errors.OffsetUnitCalculusError:
-        m = re.fullmatch(r"\s*([-+]?[0-9.]+(?:[eE][-+]?[0-9]+)?)\s*(\S.*)", value)
-        if m is None:
-            raise ErdesignError(f"{name}: cannot read {value!r}") from None
-        return Q_(float(m[1]), m[2])
-    except Exception as exc:  # noqa: BLE001  (pint raises assorted errors for garbled strings)
-        raise ErdesignError(f"{name}: cannot read {value!r} as a value with a unit ({exc})") from None
 
 
 def _pair(value: Any, name: str, si_unit: str) -> tuple[float, float]:

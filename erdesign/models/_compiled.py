@@ -22,13 +22,14 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from .._compile import njit
 
 __all__ = ["riccati_step", "bouc_wen_state", "modified_bouc_wen", "extended_bingham_force", "affine_recurrence",
            "stop_operator", "series_viscoplastic", "mass_on_damper", "bouc_wen_state_varying"]
 
-_jit = numba.njit(cache=True, nogil=True)
+_jit = njit(cache=True, nogil=True)
 
 
 @_jit

@@ -110,7 +110,8 @@ def parse_parameter_values(model: Model, texts: Mapping[str, str | float], *, co
     multiplied by ``control_reference`` (SI, in the unit of ``control_kind``) once, or twice for a per-u^2
     coefficient.  A plain number is read in the parameter's SI unit.  Errors name the parameter.
     """
-    from ..units import Q_
+    from ..errors import ErdesignError
+    from ..units import Q_, parse_quantity
     out: dict[str, float] = {}
     for name, text in texts.items():
         p = model.parameter(name)  # unknown names are errors naming the known ones
@@ -118,9 +119,9 @@ def parse_parameter_values(model: Model, texts: Mapping[str, str | float], *, co
             out[name] = _finite(float(text), name, text, where)
             continue
         try:
-            q = Q_(text)
-        except Exception as exc:  # pint raises assorted errors for garbled strings
-            raise ParameterError(f"{where}: {name} = {text!r} is not a value with a unit ({exc})") from None
+            q = parse_quantity(text, f"{where}: {name}")
+        except ErdesignError as exc:
+            raise ParameterError(str(exc)) from None
         target = Q_(1.0, p.unit or "dimensionless")
         value = None
         if not hasattr(q, "dimensionality"):
@@ -150,8 +151,5 @@ def _finite(value: float, name: str, text, where: str) -> float:
 
 
 def _plain_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
+    from ..units import plain_number
+    return plain_number(text) is not None

@@ -43,7 +43,7 @@ from ..damper.files import damper_file_path, damper_from_dict, read_toml
 from ..damper.validity import PLUG_FRACTION_LIMIT, SEAL_SHARE_LIMIT, Check, validity_checks
 from ..errors import ErdesignError, ValidityWarning
 from ..formatting import control_label, esr_shown
-from ..units import Q_, to_si
+from ..units import Q_, parse_quantity, positive_si, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
 
@@ -598,10 +598,11 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     for w in seen:      # hand the warnings on to the caller, as before
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     v_lo, v_hi = float(v[0]), float(v[-1])
-    X0 = float(to_si(amplitude if amplitude is not None else DEFAULT_AMPLITUDE, "m", "amplitude"))
-    f = float(to_si(frequency, "Hz", "frequency")) if frequency is not None else v_hi / (2 * math.pi * X0)
-    if not (X0 > 0 and f > 0):
-        raise ErdesignError("amplitude and frequency: must be positive")
+    X0 = positive_si(amplitude if amplitude is not None else DEFAULT_AMPLITUDE, "m", "amplitude")
+    f = positive_si(frequency, "Hz", "frequency") if frequency is not None else v_hi / (2 * math.pi * X0)
+    if not f > 0:
+        raise ErdesignError("frequency: the default makes the peak velocity of the loops the top of the velocity "
+                            f"range, which is {v_hi:g} m/s; give a positive top velocity or a frequency")
 
     sweep = force_velocity_curves(damper, v, E)
     loops = sine_loops(damper, X0, f, E)
@@ -819,7 +820,7 @@ def _comparison(c: MeasurementComparison, force_unit: str | None = None) -> dict
                               ("peak_force_measured", "peak force, measured", c.peak_force_measured),
                               ("peak_force_model", "peak force, model", c.peak_force_model)):
         if value is not None:
-            q = Q_(value) if isinstance(value, str) else value
+            q = parse_quantity(value, f"comparison.{key}") if isinstance(value, str) else value
             rows.append(Row(key, label, show(q, force_unit or pick_unit(q, "force"), name=f"comparison.{key}")))
     arrays = (c.displacement, c.velocity, c.force_measured, c.force_model)
     if any(a is not None for a in arrays) and not all(a is not None for a in arrays):

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..._util import scalar_or_array
 from ...errors import UnitError
-from ...units import Q_, ureg
+from ...units import parse_quantity, ureg
 
 __all__ = ["power_law_yield_stress", "saturating_yield_stress", "carlson_yield_stress", "CARLSON_STRESS_COEFFICIENT",
            "CARLSON_VOLUME_EXPONENT", "CARLSON_FIELD_COEFFICIENT", "control_unit_of", "CONTROL_SI"]
@@ -28,7 +28,7 @@ CONTROL_SI = ("V/m", "A/m", "T", "A", "V")
 
 def control_unit_of(value: Any, name: str) -> str:
     """SI unit (``"V/m"``, ``"A/m"``, ``"T"``, ``"A"`` or ``"V"``) of a control given as a quantity or string."""
-    q = Q_(value) if isinstance(value, str) else value
+    q = parse_quantity(value, name) if isinstance(value, str) else value
     dim = getattr(q, "dimensionality", None)
     for unit in CONTROL_SI:
         if dim == ureg.Unit(unit).dimensionality:

@@ -61,9 +61,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
+from ..._compile import njit
 from .valve import moving_wall_flow_from, slit_flow, slit_flow_slope
 
 __all__ = ["N_PARAMETERS", "passed_speed", "steady_force", "monotone_root", "mixed_flow", "mixed_pressure",
@@ -80,12 +80,12 @@ I_MIXED, I_AWALL = 18, 19                   # 1: moving-electrode head (0: valve
 N_PARAMETERS = 20
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _area(direction, p):
     return p[I_AC] if direction > 0 else p[I_AR]
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def passed_speed(F, direction, tau_y, eta, thermal, p):
     """Piston speed [m/s] passed by all flow paths at force magnitude ``F`` >= 0 [N] in ``direction`` (+1
     compression, -1 rebound); ``thermal`` = eta(T)/eta(T0) scales the bypass conductance."""
@@ -100,7 +100,7 @@ def passed_speed(F, direction, tau_y, eta, thermal, p):
     return q / A
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _passed_speed_slope(F, direction, tau_y, eta, thermal, p):
     A = _area(direction, p)
     dp = F / A
@@ -112,7 +112,7 @@ def _passed_speed_slope(F, direction, tau_y, eta, thermal, p):
     return s / (A * A)
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def monotone_root(c0, c1, R, direction, tau_y, eta, thermal, p):
     """F >= 0 with c0 F + c1 v_d(F) = R (R >= 0; c0, c1 >= 0, not both 0): the function is non-decreasing in F and
     -R at F = 0.  Converged to a relative 1e-14 of F (or the bracket collapsed)."""
@@ -151,7 +151,7 @@ def monotone_root(c0, c1, R, direction, tau_y, eta, thermal, p):
     return x
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def steady_force(v, tau_y, eta, thermal, p):
     """Signed steady force [N] of the rigid fluid at piston speed ``v`` [m/s] (0 at v = 0), rebound cap applied."""
     if v == 0.0:
@@ -164,7 +164,7 @@ def steady_force(v, tau_y, eta, thermal, p):
 
 
 # ---------------------------------------------------------------------------------------------------- mixed mode
-@numba.njit(cache=True)
+@njit(cache=True)
 def mixed_flow(dp, U, tau_y, eta, thermal, p, guess=math.nan):
     """(Q, tau_h, tau_0) of the moving-electrode head: flow along the head's motion through its gap and the bypass
     [m^3/s] at pressure drop ``dp`` (ahead minus behind) and head speed ``U``, the stress on the head's wall [Pa],
@@ -176,7 +176,7 @@ def mixed_flow(dp, U, tau_y, eta, thermal, p, guess=math.nan):
     return p[I_B] * q - p[I_GL] / thermal * dp, tau_h, tau0
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def mixed_pressure(c0, c1, R, U, tau_y, eta, thermal, p, guess=math.nan):
     """The pressure drop dp with c0 dp - c1 Q(dp, U) = R (c0 >= 0, c1 > 0; Q of :func:`mixed_flow` falls as dp
     rises, so the left side increases), started from ``guess`` (the previous step's root): a bracket widened until
@@ -237,7 +237,7 @@ def mixed_pressure(c0, c1, R, U, tau_y, eta, thermal, p, guess=math.nan):
     return x, mixed_flow(x, U, tau_y, eta, thermal, p, t_x)[1]
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def mixed_steady_force(v, tau_y, eta, thermal, p, guess=math.nan):
     """Signed steady force [N] of the rigid moving-electrode head at speed ``v`` (0 at v = 0): the pressure drop
     that sends the displaced volume A_p v back past the head, times A_p, plus the wall stress times the head's wall
@@ -248,7 +248,7 @@ def mixed_steady_force(v, tau_y, eta, thermal, p, guess=math.nan):
     return dp * p[I_AC] + tau_h * p[I_AWALL]
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def any_steady_force(v, tau_y, eta, thermal, p):
     """:func:`steady_force` of the valve or :func:`mixed_steady_force` of the moving-electrode head."""
     if p[I_MIXED] > 0.0:
@@ -256,7 +256,7 @@ def any_steady_force(v, tau_y, eta, thermal, p):
     return steady_force(v, tau_y, eta, thermal, p)
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _steady_from(v, tau_y, eta, thermal, p, guess):
     """(steady force, pressure drop to start the next root from): :func:`any_steady_force` started from ``guess``
     on the mixed head (consecutive substeps differ little)."""
@@ -268,7 +268,7 @@ def _steady_from(v, tau_y, eta, thermal, p, guess):
     return dp * p[I_AC] + tau_h * p[I_AWALL], dp
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _makris_step(F, du, kpre, tau_y, eta, thermal, hi, p):
     """Force after a step of the damper-level Makris eq 8 element that strokes by ``du`` in time ``hi`` from force
     ``F`` (rate coefficient at the step's mean speed, exact for it frozen)."""
@@ -282,7 +282,7 @@ def _makris_step(F, du, kpre, tau_y, eta, thermal, hi, p):
     return F * math.exp(-z) + kpre * du * phi
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def series_step(P, dxi, hi, kc, kpre, tau_y, eta, thermal, p):
     """Column compliance ``kc`` in series with the Makris element (stiffness ``kpre``): the element's stroke du in a
     step with stroke ``dxi``, where the spring's force P + kc (dxi - du) equals the element's; returns the force.
@@ -326,7 +326,7 @@ def series_step(P, dxi, hi, kc, kpre, tau_y, eta, thermal, p):
     return P + kc * (dxi - x)
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def run(v, dx, h, tau_y, eta, p):
     """Integrate the fluid element over a fine grid (module notes).
 
@@ -414,7 +414,7 @@ def run(v, dx, h, tau_y, eta, p):
     return force, valve, theta, dissipated
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def first_order_lag(command, h, time_constant, initial):
     """Exact response of u' = (c - u)/T at the grid points to a command ``command[i-1]`` held over step i."""
     n = command.size
@@ -426,7 +426,7 @@ def first_order_lag(command, h, time_constant, initial):
     return u
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def two_stage_lag(command, h, first, second, initial):
     """Exact response of two first-order stages in cascade, u1' = (c - u1)/T1, u2' = (u1 - u2)/T2, at the grid
     points to a command ``command[i-1]`` held over step i; returns u2 (both stages start at ``initial``).
@@ -451,7 +451,7 @@ def two_stage_lag(command, h, first, second, initial):
     return u2
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def play_operator(x, half_width, initial):
     """Play (backlash) operator: y follows x only when |x - y| reaches ``half_width``."""
     y = np.empty(x.size)

@@ -38,8 +38,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+
+from ..._compile import guvectorize, njit, vectorize
 
 __all__ = ["REFERENCE_SHEAR_RATE", "bingham_valve_flow", "herschel_bulkley_valve_flow", "consistency"]
 
@@ -47,7 +48,7 @@ __all__ = ["REFERENCE_SHEAR_RATE", "bingham_valve_flow", "herschel_bulkley_valve
 REFERENCE_SHEAR_RATE = 1000.0
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def slit_flow(dp, tau_y, K, m, L, b, h):
     """Flow rate [m^3/s] of a Herschel-Bulkley slit at pressure drop ``dp`` >= 0 [Pa] (module notes)."""
     if dp <= 0.0:
@@ -64,7 +65,7 @@ def slit_flow(dp, tau_y, K, m, L, b, h):
     return b * 2.0 / (G * G * K**n) * (S ** (n + 2.0) / (n + 2.0) + tau_y * S ** (n + 1.0) / (n + 1.0))
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def slit_flow_slope(dp, tau_y, K, m, L, b, h):
     """dQ/d(dp) of :func:`slit_flow`, [m^3/(s Pa)] (0 below the yield pressure drop)."""
     if dp <= 0.0:
@@ -87,7 +88,7 @@ def consistency(eta, flow_index):
     return np.asarray(eta, dtype=float) * REFERENCE_SHEAR_RATE ** (1.0 - np.asarray(flow_index, dtype=float))
 
 
-@numba.vectorize(["float64(float64, float64, float64, float64, float64, float64, float64)"], cache=True)
+@vectorize(["float64(float64, float64, float64, float64, float64, float64, float64)"], cache=True)
 def _slit_flow_ufunc(dp, tau_y, K, m, L, b, h):
     return slit_flow(dp, tau_y, K, m, L, b, h)
 
@@ -214,7 +215,7 @@ def herschel_bulkley_valve_flow(dp, tau_y, eta, flow_index, L, d, h):
 _SMALL_GRADIENT = 1e-4
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _hb_rate(tau, tau_y, Kn, n):
     S = abs(tau) - tau_y
     if S <= 0.0:
@@ -223,7 +224,7 @@ def _hb_rate(tau, tau_y, Kn, n):
     return r if tau > 0.0 else -r
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _hb_rate_slope(tau, tau_y, Kn, n):
     S = abs(tau) - tau_y
     if S <= 0.0:
@@ -231,7 +232,7 @@ def _hb_rate_slope(tau, tau_y, Kn, n):
     return n * Kn * S ** (n - 1.0)
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _hb_phi(tau, tau_y, Kn, n):
     S = abs(tau) - tau_y
     if S <= 0.0:
@@ -239,7 +240,7 @@ def _hb_phi(tau, tau_y, Kn, n):
     return Kn * S ** (n + 1.0) / (n + 1.0)
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _hb_psi(tau, tau_y, Kn, n):
     S = abs(tau) - tau_y
     if S <= 0.0:
@@ -248,7 +249,7 @@ def _hb_psi(tau, tau_y, Kn, n):
     return value if tau > 0.0 else -value
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def _wall_speed(tau0, g, h, tau_y, Kn, n):
     """(U, dU/dtau_0) of the profile with fixed-wall stress tau_0 and gradient g."""
     d = g * h
@@ -259,7 +260,7 @@ def _wall_speed(tau0, g, h, tau_y, Kn, n):
             (_hb_rate(tau0 + d, tau_y, Kn, n) - _hb_rate(tau0, tau_y, Kn, n)) / g)
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def moving_wall_flow(dp, U, tau_y, K, m, L, h):
     """(q, tau_h): flow per unit width along s [m^2/s] and the stress on the moving wall [Pa] of a Herschel-Bulkley
     slit with pressure drop ``dp`` (ahead minus behind) over ``L`` and one wall moving at ``U`` (notes above)."""
@@ -267,7 +268,7 @@ def moving_wall_flow(dp, U, tau_y, K, m, L, h):
     return q, tau_h
 
 
-@numba.njit(cache=True)
+@njit(cache=True)
 def moving_wall_flow_from(dp, U, tau_y, K, m, L, h, guess):
     """:func:`moving_wall_flow` with Newton started at the fixed-wall stress ``guess`` (NaN: no guess); returns
     (q, tau_h, tau_0), tau_0 to start the next call with."""
@@ -308,13 +309,13 @@ def moving_wall_flow_from(dp, U, tau_y, K, m, L, h, guess):
     return q, tau0 + d, tau0
 
 
-@numba.guvectorize(["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
+@guvectorize(["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
                    "(),(),(),(),(),(),()->()", cache=True)
 def _moving_wall_flow_ufunc(dp, U, tau_y, K, m, L, h, out):
     out[0] = moving_wall_flow(dp, U, tau_y, K, m, L, h)[0]
 
 
-@numba.guvectorize(["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
+@guvectorize(["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
                    "(),(),(),(),(),(),()->()", cache=True)
 def _moving_wall_stress_ufunc(dp, U, tau_y, K, m, L, h, out):
     out[0] = moving_wall_flow(dp, U, tau_y, K, m, L, h)[1]

@@ -1,0 +1,95 @@
+"""Limits on what erdesign reads, and the one reader of input files that enforces them.
+
+A file given by mistake (``/dev/zero``, a video, a spreadsheet renamed to ``.csv``, a log of a day at 100 kHz) must
+stop with a one-line message naming the file and the limit, quickly and without filling the memory; it must never
+reach a parser that reads until the memory runs out or fails with an internal error.  The limits are far above
+any damper file or damper test record:
+
+==========================  ============  =====================================================================
+limit                       value         what it bounds
+==========================  ============  =====================================================================
+:data:`MAX_RECORD_BYTES`    256 MB        a measurement file (60,000 rows of 4 columns take about 3 MB)
+:data:`MAX_RECORD_ROWS`     10,000,000    the rows of a measurement (about 3 hours at 1 kHz)
+:data:`MAX_CELL_CHARS`      1,000         one cell of a measurement (a number or a header ``name [unit]``)
+:data:`MAX_TOML_BYTES`      1 MB          a damper or requirements file (the examples take about 2 kB)
+:data:`MAX_VALUE_CHARS`     200           a value with a unit (``"0.8 mm"``)
+==========================  ============  =====================================================================
+
+Nesting is bounded by the parsers' own limit (Python's recursion limit): :func:`nested_too_deeply` is the message
+the loaders give instead of a ``RecursionError``.
+"""
+
+from __future__ import annotations
+
+import os
+
+from .errors import ErdesignError
+
+__all__ = [
+    "MAX_CELL_CHARS",
+    "MAX_RECORD_BYTES",
+    "MAX_RECORD_ROWS",
+    "MAX_TOML_BYTES",
+    "MAX_VALUE_CHARS",
+    "is_path_like",
+    "nested_too_deeply",
+    "read_input_bytes",
+    "size_text",
+]
+
+MAX_RECORD_BYTES = 256 * 2**20
+MAX_RECORD_ROWS = 10_000_000
+MAX_CELL_CHARS = 1_000
+MAX_TOML_BYTES = 2**20
+MAX_VALUE_CHARS = 200
+
+_CHUNK = 2**20
+
+
+def size_text(n: int) -> str:
+    """``n`` bytes as text (``"256 MB"``, ``"3.2 kB"``)."""
+    for unit, scale in (("GB", 2**30), ("MB", 2**20), ("kB", 2**10)):
+        if n >= scale:
+            return f"{n / scale:.3g} {unit}"
+    return f"{n} bytes"
+
+
+def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str | None = None) -> bytes:
+    """The bytes of an input file, refused with a :class:`~erdesign.errors.ErdesignError` naming the file when it
+    is larger than ``limit`` or holds NUL bytes (a binary file: a spreadsheet, an archive, ``/dev/zero``).
+
+    The file is read in chunks and never past ``limit``, so an endless device or a huge file stops at once; the
+    first chunk is checked for NUL bytes before any more is read.  ``what`` says what the file should be (``"a
+    measurement CSV file"``) and ``label`` is how the message names the file (default: the path).
+    OS errors (no such file, a folder, no permission) propagate for the caller to phrase.
+    """
+    label = str(path) if label is None else label
+    chunks, total = [], 0
+    with open(path, "rb") as fh:
+        while True:
+            chunk = fh.read(_CHUNK)
+            if not chunk:
+                break
+            if not chunks and chunk.startswith(b"PK\x03\x04"):
+                advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
+                raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
+            if not chunks and b"\x00" in chunk:
+                raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
+            total += len(chunk)
+            if total > limit:
+                raise ErdesignError(
+                    f"{label}: larger than {size_text(limit)}, the most erdesign reads as {what}; "
+                    "thin or split the file"
+                )
+            chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def nested_too_deeply(label: str) -> str:
+    """The message for a file whose nesting exceeds the parser's recursion limit."""
+    return f"{label}: nested too deeply to read (arrays or tables inside one another hundreds of levels deep)"
+
+
+def is_path_like(value) -> bool:
+    """True for a str or os.PathLike (what the loaders take as a file name)."""
+    return isinstance(value, (str, os.PathLike)) and not isinstance(value, bytes)
