@@ -74,6 +74,25 @@ def _road() -> tuple | None:
         return None
 
 
+#: Short names of the dampers on the page (choices, run labels, legends), so that they fit a chip and a legend; the
+#: sources are in the help of the choice.
+SHORT_NAMES = {
+    "conventional (Butz and von Stryk eq 33)": "conventional (Butz)",
+    "MR, Bingham (Butz and von Stryk 4.2)": "MR Bingham (Butz)",
+    "MR, modified Bouc-Wen (Butz and von Stryk 4.3)": "MR Bouc-Wen (Butz)",
+    "MR, Spencer et al. 1997, 0-2.25 V": "MR Spencer 1997",
+}
+
+
+def short(name: str) -> str:
+    """The damper's name on the page."""
+    return SHORT_NAMES.get(name, name)
+
+
+#: Legend under the plot area, so that it takes no width from the curves.
+_LEGEND_BELOW = dict(orientation="h", x=0.0, xanchor="left", y=-0.22, yanchor="top")
+
+
 def time_figure(runs: dict, key: str, label: str, unit: str, factor: float, road: dict | None = None) -> go.Figure:
     """One curve per run of ``key`` against time (the road under it when given)."""
     fig = go.Figure()
@@ -82,7 +101,7 @@ def time_figure(runs: dict, key: str, label: str, unit: str, factor: float, road
     for name, run in runs.items():
         fig.add_scatter(x=run["time"], y=factor * run[key], name=name)
     fig.update_layout(template="plotly_white", title=label, xaxis_title="time t [s]",
-                      yaxis_title=f"{label} [{unit}]", margin=dict(l=70, r=20, t=60, b=60))
+                      yaxis_title=f"{label} [{unit}]", margin=dict(l=70, r=20, t=60, b=60), legend=_LEGEND_BELOW)
     return fig
 
 
@@ -92,8 +111,8 @@ def bar_figure(runs: dict, key: str) -> go.Figure:
     names = list(runs)
     values = [np.nan if runs[n]["ride"][key] is None else factor * runs[n]["ride"][key] for n in names]
     fig = go.Figure(go.Bar(x=names, y=values, text=[f"{v:.3g}" for v in values], textposition="auto"))
-    fig.update_layout(template="plotly_white", title=label, yaxis_title=f"{label} [{unit}]",
-                      margin=dict(l=70, r=20, t=60, b=120))
+    fig.update_layout(template="plotly_white", yaxis_title=f"{label} [{unit}]",   # the axis names it: no title
+                      margin=dict(l=70, r=20, t=30, b=120))
     return fig
 
 
@@ -108,9 +127,9 @@ def render() -> None:
     left, right = st.columns([1, 2], gap="large")
     with left:
         dampers = state.widget(st.multiselect, "dampers", "veh.dampers", list(PRESET_DAMPERS)[:2],
-                               options=[DESIGN_DAMPER, *PRESET_DAMPERS],
+                               options=[DESIGN_DAMPER, *PRESET_DAMPERS], format_func=short,
                                help="The design of the Size page runs as its physics damper (control range 0 to "
-                                    "its reference field).")
+                                    "its reference field). The others: " + "; ".join(PRESET_DAMPERS) + ".")
         controls = state.widget(st.multiselect, "control laws", "veh.controls", ["passive"], options=list(CONTROLLERS),
                                 help="Semi-active laws need a damper whose force the control changes.")
         road = _road()
@@ -123,7 +142,7 @@ def render() -> None:
         runs, skipped = {}, []
         with st.spinner("Simulating ..."):
             for damper_name, control in itertools.product(dampers, controls):
-                label = f"{damper_name}, {control}"
+                label = f"{short(damper_name)}, {control}"
                 try:
                     runs[label] = _run(text, damper_name, control, road, float(duration))
                 except ErdesignError as exc:
