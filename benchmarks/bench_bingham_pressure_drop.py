@@ -21,7 +21,7 @@ import numpy as np  # noqa: E402
 
 from erdesign.flow import bingham_pressure_drop  # noqa: E402
 
-L, d, h = 0.0546, 0.0143, 0.0008      # Makris duct
+L, d, h = 0.0546, 0.0143, 0.0008  # Makris duct
 TAU_Y, ETA = 1800.0, 13.0
 
 

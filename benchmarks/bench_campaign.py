@@ -65,11 +65,17 @@ def _local_cluster(workers: int, malloc_default: bool = False):
     import distributed
 
     environ = {} if malloc_default else dask.config.get("distributed.nanny.pre-spawn-environ")
-    if malloc_default:       # a nanny of an earlier LocalCluster set it in this process's environment too
+    if malloc_default:  # a nanny of an earlier LocalCluster set it in this process's environment too
         os.environ.pop("MALLOC_TRIM_THRESHOLD_", None)
     with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}):
-        cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                           dashboard_address=None, host="127.0.0.1", silence_logs=40)
+        cluster = distributed.LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            host="127.0.0.1",
+            silence_logs=40,
+        )
     return cluster, distributed.Client(cluster, set_as_default=False)
 
 
@@ -78,11 +84,15 @@ def part_design(args) -> None:
     from erdesign.design import design, load_example_requirements
     from erdesign.executor import DaskExecutor, PoolExecutor, SerialExecutor
 
-    cases = [("valve (makris_requirements)", "makris_requirements", args.n),
-             ("mixed (mr_requirements)", "mr_requirements", args.mixed)]
+    cases = [
+        ("valve (makris_requirements)", "makris_requirements", args.n),
+        ("mixed (mr_requirements)", "mr_requirements", args.mixed),
+    ]
     cases = [c for c in cases if c[2] > 0]
-    reqs = {label: load_example_requirements(name).with_search(samples=n, chunk=args.chunk, refine=False)
-            for label, name, n in cases}
+    reqs = {
+        label: load_example_requirements(name).with_search(samples=n, chunk=args.chunk, refine=False)
+        for label, name, n in cases
+    }
     warm = {label: r.with_search(samples=min(r.search.samples, 4 * args.chunk)) for label, r in reqs.items()}
 
     (pool, t_pool) = _timed(lambda: PoolExecutor(args.workers))
@@ -91,13 +101,15 @@ def part_design(args) -> None:
     cluster2, client2 = _local_cluster(args.workers, malloc_default=True)
     dask, dask2 = DaskExecutor(client), DaskExecutor(client2)
     executors = (("local pool", pool), ("Dask LocalCluster", dask), ("  malloc default", dask2))
-    for r in warm.values():                       # imports and caches of every worker
+    for r in warm.values():  # imports and caches of every worker
         for _, ex in executors:
             design(r, executor=ex)
         design(r)
-    print(f"design sweep, chunk {args.chunk:,}, no refinement, {args.workers} workers; start-up: local pool "
-          f"{t_pool + t_pool_start:.2f} s (first sweep included), Dask LocalCluster {t_dask_start:.2f} s; "
-          "'malloc default': a LocalCluster without Dask's MALLOC_TRIM_THRESHOLD_")
+    print(
+        f"design sweep, chunk {args.chunk:,}, no refinement, {args.workers} workers; start-up: local pool "
+        f"{t_pool + t_pool_start:.2f} s (first sweep included), Dask LocalCluster {t_dask_start:.2f} s; "
+        "'malloc default': a LocalCluster without Dask's MALLOC_TRIM_THRESHOLD_"
+    )
     try:
         for label, r in reqs.items():
             n = r.search.samples
@@ -106,11 +118,12 @@ def part_design(args) -> None:
             for name, ex in executors:
                 result, t = _timed(functools.partial(design, r, executor=ex))
                 rows.append((name, t, json.dumps(result.as_json()) == json.dumps(reference.as_json())))
-            print(f"  {label}: {n:,} candidates, {-(-n // args.chunk)} chunks, "
-                  f"{reference.feasible_count:,} feasible")
+            print(f"  {label}: {n:,} candidates, {-(-n // args.chunk)} chunks, {reference.feasible_count:,} feasible")
             for name, t, same in rows:
-                print(f"    {name:<18} {n / t / 1e3:9.1f} k candidates/s  ({t:6.2f} s)  x{t_serial / t:4.2f} "
-                      f"of serial  {'same result' if same else 'DIFFERENT RESULT'}")
+                print(
+                    f"    {name:<18} {n / t / 1e3:9.1f} k candidates/s  ({t:6.2f} s)  x{t_serial / t:4.2f} "
+                    f"of serial  {'same result' if same else 'DIFFERENT RESULT'}"
+                )
     finally:
         pool.close()
         for c in (client, cluster, client2, cluster2):
@@ -122,11 +135,13 @@ def part_scheduler(args) -> None:
     from erdesign.executor import DaskExecutor, PoolExecutor
 
     n, m = args.tasks, args.round_trips
-    print(f"executor overhead with empty tasks, {args.workers} workers: {n:,} tasks for the rates, "
-          f"{m} round trips for the latency")
+    print(
+        f"executor overhead with empty tasks, {args.workers} workers: {n:,} tasks for the rates, "
+        f"{m} round trips for the latency"
+    )
     (cluster, client), t_start = _timed(lambda: _local_cluster(args.workers))
     try:
-        client.gather(client.map(_noop, range(100), pure=False))                     # warm up
+        client.gather(client.map(_noop, range(100), pure=False))  # warm up
         _, t_map = _timed(lambda: client.gather(client.map(_noop, range(n), pure=False)))
         dask = DaskExecutor(client)
         dask.map(_noop, range(100))
@@ -139,8 +154,10 @@ def part_scheduler(args) -> None:
         print(f"  Dask LocalCluster (started in {t_start:.2f} s):")
         print(f"    client.map + gather     {n / t_map:9.0f} tasks/s  ({1e3 * t_map / n:6.3f} ms per task)")
         print(f"    DaskExecutor.map        {n / t_ex:9.0f} tasks/s  ({1e3 * t_ex / n:6.3f} ms per task)")
-        print(f"    round trip of one task  median {1e3 * np.median(lat):6.2f} ms, "
-              f"95th percentile {1e3 * np.percentile(lat, 95):6.2f} ms")
+        print(
+            f"    round trip of one task  median {1e3 * np.median(lat):6.2f} ms, "
+            f"95th percentile {1e3 * np.percentile(lat, 95):6.2f} ms"
+        )
     finally:
         client.close()
         cluster.close()
@@ -157,10 +174,14 @@ def part_scheduler(args) -> None:
     finally:
         pool.close()
     print(f"  local process pool (started in {t_start:.2f} s, first 100 tasks included):")
-    print(f"    PoolExecutor.map        {n / t_pool:9.0f} tasks/s  ({1e3 * t_pool / n:6.3f} ms per task)  "
-          f"x{t_map / t_pool:5.1f} the Dask rate")
-    print(f"    round trip of one task  median {1e3 * np.median(lat):6.2f} ms, "
-          f"95th percentile {1e3 * np.percentile(lat, 95):6.2f} ms")
+    print(
+        f"    PoolExecutor.map        {n / t_pool:9.0f} tasks/s  ({1e3 * t_pool / n:6.3f} ms per task)  "
+        f"x{t_map / t_pool:5.1f} the Dask rate"
+    )
+    print(
+        f"    round trip of one task  median {1e3 * np.median(lat):6.2f} ms, "
+        f"95th percentile {1e3 * np.percentile(lat, 95):6.2f} ms"
+    )
 
 
 # ---------------------------------------------------------------------------------------------------------- batch
@@ -197,9 +218,11 @@ def part_batch(args) -> None:
         paths = _truth_records(Path(tmp), max(counts.values()))
         options = {"identify": {"model": "bingham"}, "fit": {}, "diagnose": {}}
         pool = PoolExecutor(args.workers)
-        _, t_start = _timed(lambda: run_batch("fit", paths[:2 * args.workers], damper="makris", executor=pool))
-        print(f"batch of truth-rig records (Makris damper, 101 samples each), {args.workers} workers; local pool "
-              f"started and warmed up in {t_start:.2f} s (not in the rates)")
+        _, t_start = _timed(lambda: run_batch("fit", paths[: 2 * args.workers], damper="makris", executor=pool))
+        print(
+            f"batch of truth-rig records (Makris damper, 101 samples each), {args.workers} workers; local pool "
+            f"started and warmed up in {t_start:.2f} s (not in the rates)"
+        )
         try:
             for command, n in counts.items():
                 if n <= 0:
@@ -208,9 +231,11 @@ def part_batch(args) -> None:
                 serial, t_serial = _timed(lambda: run_batch(command, paths[:n], executor=SerialExecutor(), **kw))
                 pooled, t_pool = _timed(lambda: run_batch(command, paths[:n], executor=pool, **kw))
                 same = without_seconds(serial) == without_seconds(pooled)
-                print(f"  {command:<9} {n:5d} records: serial {n / t_serial:8.2f} records/s ({t_serial:7.1f} s), "
-                      f"pool {n / t_pool:8.2f} records/s ({t_pool:7.1f} s)  x{t_serial / t_pool:4.2f} of serial  "
-                      f"{'same table' if same else 'DIFFERENT TABLE'}; {t_serial / n * 1e3:8.1f} ms per record")
+                print(
+                    f"  {command:<9} {n:5d} records: serial {n / t_serial:8.2f} records/s ({t_serial:7.1f} s), "
+                    f"pool {n / t_pool:8.2f} records/s ({t_pool:7.1f} s)  x{t_serial / t_pool:4.2f} of serial  "
+                    f"{'same table' if same else 'DIFFERENT TABLE'}; {t_serial / n * 1e3:8.1f} ms per record"
+                )
         finally:
             pool.close()
 
@@ -230,13 +255,15 @@ def part_tolerance(args) -> None:
             damper = load_example(name)
             field = E if E is not None else float(damper.fluid.reference_field)
             kw = dict(velocity=0.1, field=field, samples=args.samples, sensitivity=False, seed=1)
-            tolerance_study(damper, vary, **{**kw, "samples": 2 * 65536}, executor=pool)        # warm the workers
+            tolerance_study(damper, vary, **{**kw, "samples": 2 * 65536}, executor=pool)  # warm the workers
             serial, t_serial = _timed(lambda: tolerance_study(damper, vary, **kw, executor=SerialExecutor()))
             pooled, t_pool = _timed(lambda: tolerance_study(damper, vary, **kw, executor=pool))
             same = serial.quantiles == pooled.quantiles
-            print(f"  {label:<18} serial {args.samples / t_serial / 1e6:6.2f} M samples/s ({t_serial:6.2f} s), "
-                  f"pool {args.samples / t_pool / 1e6:6.2f} M samples/s  x{t_serial / t_pool:4.2f} of serial  "
-                  f"{'same quantiles' if same else 'DIFFERENT QUANTILES'}")
+            print(
+                f"  {label:<18} serial {args.samples / t_serial / 1e6:6.2f} M samples/s ({t_serial:6.2f} s), "
+                f"pool {args.samples / t_pool / 1e6:6.2f} M samples/s  x{t_serial / t_pool:4.2f} of serial  "
+                f"{'same quantiles' if same else 'DIFFERENT QUANTILES'}"
+            )
     finally:
         pool.close()
 
@@ -251,7 +278,7 @@ PARTS = {
 
 
 def main() -> None:
-    logging.disable(logging.WARNING)          # the INFO lines of clusters closing
+    logging.disable(logging.WARNING)  # the INFO lines of clusters closing
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--part", choices=[*PARTS, "all"], default="all")
     parser.add_argument("--workers", type=int, default=2, help="workers of the pool and of the LocalCluster")

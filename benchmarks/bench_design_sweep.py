@@ -44,9 +44,14 @@ def evaluation_only(req, n: int, chunk: int) -> float:
     done = 0
     while done < n:
         m = min(chunk, n - done)
-        evaluate_candidates(req, *(None if x[k] is None else x[k][:m] for k in
-                                   ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter",
-                                    "ducts")), constraints=constraints).feasible.sum()
+        evaluate_candidates(
+            req,
+            *(
+                None if x[k] is None else x[k][:m]
+                for k in ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter", "ducts")
+            ),
+            constraints=constraints,
+        ).feasible.sum()
         done += m
     return time.perf_counter() - t0
 
@@ -75,23 +80,30 @@ def main() -> None:
     args = parser.parse_args()
 
     req = load_example_requirements("makris_requirements")
-    print(f"valve damper, {len(req.points)} design point, {len(constraints_for(req))} constraints, "
-          f"chunk {args.chunk:,}")
-    sweep(req, min(args.n, 2**16), args.chunk)                             # warm up (imports, caches)
+    print(
+        f"valve damper, {len(req.points)} design point, {len(constraints_for(req))} constraints, chunk {args.chunk:,}"
+    )
+    sweep(req, min(args.n, 2**16), args.chunk)  # warm up (imports, caches)
 
     t = evaluation_only(req, args.n, args.chunk)
-    print(f"evaluation only : {args.n / t / 1e6:6.2f} M designs/s   ({t * 1e9 / args.n:6.0f} ns per design, "
-          f"{args.n:,} designs)")
+    print(
+        f"evaluation only : {args.n / t / 1e6:6.2f} M designs/s   ({t * 1e9 / args.n:6.0f} ns per design, "
+        f"{args.n:,} designs)"
+    )
     t, feasible, _ = sweep(req, args.n, args.chunk)
     _, _, peak = sweep(req, args.n, args.chunk, trace=True)
-    print(f"whole sweep     : {args.n / t / 1e6:6.2f} M designs/s   ({t:6.2f} s, {feasible:,} feasible), "
-          f"peak traced memory {peak / 2**20:6.1f} MiB")
+    print(
+        f"whole sweep     : {args.n / t / 1e6:6.2f} M designs/s   ({t:6.2f} s, {feasible:,} feasible), "
+        f"peak traced memory {peak / 2**20:6.1f} MiB"
+    )
     if args.big:
         t, feasible, _ = sweep(req, args.big, args.chunk)
         _, _, peak_big = sweep(req, args.big, args.chunk, trace=True) if args.big <= 10**7 else (0, 0, 0)
         shown = f"peak traced memory {peak_big / 2**20:6.1f} MiB" if peak_big else "(not traced above 10^7)"
-        print(f"big sweep       : {args.big / t / 1e6:6.2f} M designs/s   ({t:6.1f} s, {feasible:,} feasible, "
-              f"{args.big:,} designs), {shown}")
+        print(
+            f"big sweep       : {args.big / t / 1e6:6.2f} M designs/s   ({t:6.1f} s, {feasible:,} feasible, "
+            f"{args.big:,} designs), {shown}"
+        )
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"process peak resident memory: {rss:6.0f} MiB (Python, numpy, scipy and pint included)")
     print("target: >= 1 M designs/s on one core; memory independent of the number of designs")
@@ -99,8 +111,10 @@ def main() -> None:
     if args.mixed:
         mreq = load_example_requirements("mr_requirements")
         t, feasible, _ = sweep(mreq, args.mixed, args.chunk)
-        print(f"mixed mode      : {args.mixed / t / 1e3:6.1f} k designs/s   ({len(mreq.points)} design points, "
-              f"{feasible:,} of {args.mixed:,} feasible; a root per element and point, compiled)")
+        print(
+            f"mixed mode      : {args.mixed / t / 1e3:6.1f} k designs/s   ({len(mreq.points)} design points, "
+            f"{feasible:,} of {args.mixed:,} feasible; a root per element and point, compiled)"
+        )
 
 
 if __name__ == "__main__":

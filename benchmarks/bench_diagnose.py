@@ -10,7 +10,7 @@ import os
 import sys
 import time
 
-os.environ.setdefault("OMP_NUM_THREADS", "1")      # one core
+os.environ.setdefault("OMP_NUM_THREADS", "1")  # one core
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from erdesign import load_example  # noqa: E402
@@ -30,14 +30,22 @@ def main() -> int:
     cycles_per_segment = 60.0 / sum(1 / f for f in frequencies)
     t0 = time.perf_counter()
     motion = stepped_sine(amplitudes, frequencies, fields, cycles=cycles_per_segment, rate=1000.0)
-    rig = run_rig(damper, motion, hidden={"seal_friction": {"friction_force": 600.0}}, viscosity_factor=1.2,
-                  yield_stress_factor=0.8, seed=1)
+    rig = run_rig(
+        damper,
+        motion,
+        hidden={"seal_friction": {"friction_force": 600.0}},
+        viscosity_factor=1.2,
+        yield_stress_factor=0.8,
+        seed=1,
+    )
     t1 = time.perf_counter()
     d = diagnose(damper, rig.record)
     t2 = time.perf_counter()
     print(f"record: {len(rig.record)} samples over {rig.record.duration:.1f} s (rig {t1 - t0:.1f} s)")
-    print(f"diagnosis: {t2 - t1:.1f} s (analysed on {d.samples[1]} samples); missing effect: {d.missing_effect}; "
-          f"ESR {d.baseline_esr:.3g} -> {d.ranking[0].esr:.3g}")
+    print(
+        f"diagnosis: {t2 - t1:.1f} s (analysed on {d.samples[1]} samples); missing effect: {d.missing_effect}; "
+        f"ESR {d.baseline_esr:.3g} -> {d.ranking[0].esr:.3g}"
+    )
     ok = t2 - t1 < LIMIT and d.missing_effect == "seal_friction"
     print("OK" if ok else f"FAIL (limit {LIMIT:g} s)")
     return 0 if ok else 1

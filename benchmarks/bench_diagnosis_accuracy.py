@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import os
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):   # one core per process
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):  # one core per process
     os.environ.setdefault(_var, "1")
 
 import argparse  # noqa: E402
@@ -43,7 +43,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-SUBSETS = ("full", "core", "issue23", "fast")   # erdesign.simulation.truthrig.cases.SUBSETS (imported late)
+SUBSETS = ("full", "core", "issue23", "fast")  # erdesign.simulation.truthrig.cases.SUBSETS (imported late)
 DOCS = ROOT / "docs" / "diagnosis_benchmark.md"
 LONG_TARGET = 30.0
 #: Benchmark class of the cases of the core catalogue (the issue-23 classes carry their own, ``Case.group``).
@@ -90,14 +90,34 @@ def run_case(case, detectability: bool = True) -> dict:
     from erdesign.data.measurement import read_measurement
     from erdesign.diagnosis.diagnose import diagnose
 
-    row = {"name": case.name, "group": case.group or CORE, "damper": case.damper, "excitation": case.excitation,
-           "noise": case.noise,
-           "kind": case.kind, "size": case.size, "mechanisms": {k: dict(v) for k, v in case.mechanisms.items()},
-           "expected": case.expected, "accepted": sorted(case.accepted), "seed": case.seed,
-           "duration_s": case.duration, "rate_Hz": case.rate, "samples": None,
-           "verdict": None, "missing_effect": None, "baseline_esr": None, "noise_floor_esr": None,
-           "ranking": None, "correct": False, "error": None, "error_stage": None, "time_s": None,
-           "effect_esr": None, "effect_size_over_noise": None, "visible_over_noise": None}
+    row = {
+        "name": case.name,
+        "group": case.group or CORE,
+        "damper": case.damper,
+        "excitation": case.excitation,
+        "noise": case.noise,
+        "kind": case.kind,
+        "size": case.size,
+        "mechanisms": {k: dict(v) for k, v in case.mechanisms.items()},
+        "expected": case.expected,
+        "accepted": sorted(case.accepted),
+        "seed": case.seed,
+        "duration_s": case.duration,
+        "rate_Hz": case.rate,
+        "samples": None,
+        "verdict": None,
+        "missing_effect": None,
+        "baseline_esr": None,
+        "noise_floor_esr": None,
+        "ranking": None,
+        "correct": False,
+        "error": None,
+        "error_stage": None,
+        "time_s": None,
+        "effect_esr": None,
+        "effect_size_over_noise": None,
+        "visible_over_noise": None,
+    }
     try:
         rec = case.make()
         with tempfile.TemporaryDirectory() as tmp:
@@ -109,7 +129,7 @@ def run_case(case, detectability: bool = True) -> dict:
     except Exception as exc:  # a failure of the truth rig or the reader, not of diagnose
         row.update(error=_error(exc), error_stage="record")
         return row
-    if isinstance(detectability, dict):         # measured by an earlier run on the same case
+    if isinstance(detectability, dict):  # measured by an earlier run on the same case
         row.update({k: detectability.get(k) for k in ("effect_esr", "effect_size_over_noise", "visible_over_noise")})
     elif detectability:
         try:
@@ -129,12 +149,18 @@ def run_case(case, detectability: bool = True) -> dict:
     verdict = verdict_of(d)
     missing = getattr(d, "missing_effect", None)
     findings = [f.kind for f in getattr(d, "findings", ())]
-    row.update(verdict=verdict, missing_effect=missing, baseline_esr=_finite(getattr(d, "baseline_esr", None)),
-               findings=findings,
-               noise_floor_esr=_finite(getattr(d, "noise_floor_esr", None)),
-               ranking=[[getattr(c, "effect", "?"), _finite(getattr(c, "esr", None))]
-                        for c in (getattr(d, "ranking", None) or [])[:3]],
-               correct=is_correct(case, verdict, missing, findings))
+    row.update(
+        verdict=verdict,
+        missing_effect=missing,
+        baseline_esr=_finite(getattr(d, "baseline_esr", None)),
+        findings=findings,
+        noise_floor_esr=_finite(getattr(d, "noise_floor_esr", None)),
+        ranking=[
+            [getattr(c, "effect", "?"), _finite(getattr(c, "esr", None))]
+            for c in (getattr(d, "ranking", None) or [])[:3]
+        ],
+        correct=is_correct(case, verdict, missing, findings),
+    )
     return row
 
 
@@ -148,8 +174,15 @@ def run_long(detail: bool = True) -> dict:
 
     base = next(c for c in benchmark_cases("full") if c.name.startswith("seal_friction-large-mr_valve-"))
     case = replace(base, name="long-60s-1kHz", duration=60.0, rate=1000.0)
-    out = {"name": case.name, "samples": None, "time_s": None, "verdict": None, "missing_effect": None,
-           "error": None, "target_s": LONG_TARGET}
+    out = {
+        "name": case.name,
+        "samples": None,
+        "time_s": None,
+        "verdict": None,
+        "missing_effect": None,
+        "error": None,
+        "target_s": LONG_TARGET,
+    }
     try:
         rec = case.make()
         with tempfile.TemporaryDirectory() as tmp:
@@ -159,8 +192,9 @@ def run_long(detail: bool = True) -> dict:
         out["samples"] = len(record)
         t0 = time.perf_counter()
         d = diagnose(case.load_damper(), record)
-        out.update(time_s=time.perf_counter() - t0, verdict=verdict_of(d),
-                   missing_effect=getattr(d, "missing_effect", None))
+        out.update(
+            time_s=time.perf_counter() - t0, verdict=verdict_of(d), missing_effect=getattr(d, "missing_effect", None)
+        )
     except Exception as exc:
         out["error"] = _error(exc)
     return out
@@ -225,22 +259,29 @@ def summarise(rows: list[dict]) -> dict:
     undetectable = [r for r in detect if _visible(r) is not None and _visible(r) < UNDETECTABLE]
     detectable_rows = [r for r in rows if r not in undetectable]
     return {
-        "cases": n, "correct": sum(r["correct"] for r in rows),
+        "cases": n,
+        "correct": sum(r["correct"] for r in rows),
         "accuracy": sum(r["correct"] for r in rows) / n if n else math.nan,
-        "accuracy_detectable": (sum(r["correct"] for r in detectable_rows) / len(detectable_rows)
-                                if detectable_rows else math.nan),
-        "per_class": per_class, "per_group": per_group, "confusion_columns": columns,
+        "accuracy_detectable": (
+            sum(r["correct"] for r in detectable_rows) / len(detectable_rows) if detectable_rows else math.nan
+        ),
+        "per_class": per_class,
+        "per_group": per_group,
+        "confusion_columns": columns,
         "confusion": {k: dict(v) for k, v in confusion.items() if sum(v.values())},
         "by": by,
         "exceptions": [[r["name"], r["error_stage"], r["error"]] for r in rows if r["error"]],
-        "time_mean_s": sum(times) / len(times) if times else None, "time_max_s": max(times) if times else None,
-        "slowest": sorted(([r["name"], r["time_s"]] for r in rows if r["time_s"] is not None),
-                          key=lambda x: -x[1])[:8],
+        "time_mean_s": sum(times) / len(times) if times else None,
+        "time_max_s": max(times) if times else None,
+        "slowest": sorted(([r["name"], r["time_s"]] for r in rows if r["time_s"] is not None), key=lambda x: -x[1])[:8],
         "undetectable": [[r["name"], _visible(r)] for r in undetectable],
-        "effect_size_over_noise": {s: sorted(r["effect_size_over_noise"] for r in detect if r["size"] == s)
-                                   for s in ("moderate", "large")},
-        "visible_over_noise": {s: sorted(_visible(r) for r in detect if r["size"] == s and _visible(r) is not None)
-                               for s in ("moderate", "large")},
+        "effect_size_over_noise": {
+            s: sorted(r["effect_size_over_noise"] for r in detect if r["size"] == s) for s in ("moderate", "large")
+        },
+        "visible_over_noise": {
+            s: sorted(_visible(r) for r in detect if r["size"] == s and _visible(r) is not None)
+            for s in ("moderate", "large")
+        },
         "wrong": [[r["name"], r["expected"], _said(r), _visible(r)] for r in rows if not r["correct"]],
     }
 
@@ -258,10 +299,20 @@ def _quantiles(values) -> str:
 
 
 def confusion_table(summary: dict) -> list[str]:
-    short = {"nothing_missing": "nothing", "unexplained": "unexpl.", "seal_friction": "seal_fr",
-             "fluid_inertia": "inertia", "compressibility": "compress", "leakage": "leakage",
-             "viscous_heating": "heating", "field_lag": "lag", "shear_thinning": "thinning",
-             "gas_spring": "gas_spr", "preyield_elasticity": "preyield", "exception": "EXC"}
+    short = {
+        "nothing_missing": "nothing",
+        "unexplained": "unexpl.",
+        "seal_friction": "seal_fr",
+        "fluid_inertia": "inertia",
+        "compressibility": "compress",
+        "leakage": "leakage",
+        "viscous_heating": "heating",
+        "field_lag": "lag",
+        "shear_thinning": "thinning",
+        "gas_spring": "gas_spr",
+        "preyield_elasticity": "preyield",
+        "exception": "EXC",
+    }
     cols = summary["confusion_columns"]
     head = "| true \\ said | " + " | ".join(short.get(c, c) for c in cols) + " |"
     lines = [head, "|" + "---|" * (len(cols) + 1)]
@@ -272,12 +323,16 @@ def confusion_table(summary: dict) -> list[str]:
 
 def report_lines(summary: dict, long: dict | None, wall: float, meta: dict) -> list[str]:
     s = summary
-    out = [f"cases: {s['cases']}; correct: {_pct(s['correct'], s['cases'])}; on the detectable cases: "
-           f"{100 * s['accuracy_detectable']:.0f} %",
-           f"diagnose: erdesign/diagnosis/diagnose.py at {meta['diagnose_commit'][:10]}"
-           f"{' + uncommitted changes' if meta['diagnose_dirty'] else ''}; wall time {wall:.0f} s on "
-           f"{meta['jobs']} processes", "", "per class (clean: no false 'missing'; out of library: 'unexplained'; "
-           "library effect: recall; pair: one of the two named):"]
+    out = [
+        f"cases: {s['cases']}; correct: {_pct(s['correct'], s['cases'])}; on the detectable cases: "
+        f"{100 * s['accuracy_detectable']:.0f} %",
+        f"diagnose: erdesign/diagnosis/diagnose.py at {meta['diagnose_commit'][:10]}"
+        f"{' + uncommitted changes' if meta['diagnose_dirty'] else ''}; wall time {wall:.0f} s on "
+        f"{meta['jobs']} processes",
+        "",
+        "per class (clean: no false 'missing'; out of library: 'unexplained'; "
+        "library effect: recall; pair: one of the two named):",
+    ]
     for cls, c in s["per_class"].items():
         out.append(f"  {cls:<22} {_pct(c['correct'], c['cases'])}")
     if set(s.get("per_group", {})) - {CORE}:
@@ -295,15 +350,19 @@ def report_lines(summary: dict, long: dict | None, wall: float, meta: dict) -> l
     for size, v in s["effect_size_over_noise"].items():
         out.append(f"effect size over noise, {size}: {_quantiles(v)}")
     if s["undetectable"]:
-        out.append(f"undetectable by design (effect < 3 x noise): {len(s['undetectable'])}: "
-                   + ", ".join(f"{n} ({x:.2g})" for n, x in s["undetectable"]))
+        out.append(
+            f"undetectable by design (effect < 3 x noise): {len(s['undetectable'])}: "
+            + ", ".join(f"{n} ({x:.2g})" for n, x in s["undetectable"])
+        )
     if long:
         if long["error"]:
             out.append(f"60 s record at 1 kHz: exception: {long['error']}")
         else:
-            out.append(f"60 s record at 1 kHz ({long['samples']} samples): diagnose {long['time_s']:.1f} s "
-                       f"(target < {LONG_TARGET:g} s: {'met' if long['time_s'] < LONG_TARGET else 'NOT met'}); "
-                       f"verdict {long['verdict']}, {long['missing_effect']}")
+            out.append(
+                f"60 s record at 1 kHz ({long['samples']} samples): diagnose {long['time_s']:.1f} s "
+                f"(target < {LONG_TARGET:g} s: {'met' if long['time_s'] < LONG_TARGET else 'NOT met'}); "
+                f"verdict {long['verdict']}, {long['missing_effect']}"
+            )
     return out
 
 
@@ -320,12 +379,18 @@ def group_lines(summary: dict, rows: list[dict]) -> list[str]:
     groups = {g: c for g, c in summary.get("per_group", {}).items() if g != CORE}
     if not groups:
         return []
-    lines = ["## Classes of issue 23", "",
-             "Each class of issue 23 (`Case.group`, design rules in the docstring of `cases.py`), and the core "
-             "catalogue (all the classes above, by true class) as one line:", "",
-             "| class | correct | slowest diagnosis |", "|---|---|---|"]
-    lines += [f"| {g} | {_pct(c['correct'], c['cases'])} | {c['time_max_s']:.1f} s |"
-              for g, c in summary["per_group"].items()]
+    lines = [
+        "## Classes of issue 23",
+        "",
+        "Each class of issue 23 (`Case.group`, design rules in the docstring of `cases.py`), and the core "
+        "catalogue (all the classes above, by true class) as one line:",
+        "",
+        "| class | correct | slowest diagnosis |",
+        "|---|---|---|",
+    ]
+    lines += [
+        f"| {g} | {_pct(c['correct'], c['cases'])} | {c['time_max_s']:.1f} s |" for g, c in summary["per_group"].items()
+    ]
     lines += ["", "| case | expected | said | diagnose [s] |", "|---|---|---|---|"]
     for r in rows:
         if r.get("group", CORE) == CORE:
@@ -356,62 +421,113 @@ The truth rig is the team's own; two measured sets test what it cannot:
   own smoothing), within 1.5 x the modified Bouc-Wen's 0.066."""
 
 
-def write_docs(summary: dict, long: dict | None, wall: float, meta: dict, subset: str, command: str,
-               rows: list[dict] | None = None, path: Path = DOCS) -> None:
+def write_docs(
+    summary: dict,
+    long: dict | None,
+    wall: float,
+    meta: dict,
+    subset: str,
+    command: str,
+    rows: list[dict] | None = None,
+    path: Path = DOCS,
+) -> None:
     s = summary
-    lines = ["# Diagnosis benchmark" + ("" if path == DOCS else f": subset `{path.stem.split('_', 2)[-1]}`"), "",
-             "How often `erdesign diagnose` names the right missing effect on records made by the independent "
-             "truth rig (`erdesign/simulation/truthrig/`, which shares no code with the fitted model). The "
-             "catalogue is `erdesign/simulation/truthrig/cases.py` (`benchmark_cases()`); its docstring gives the "
-             "design rules and "
-             "`mechanism_parameters` the physical size of every mechanism. Each record is written to CSV and read "
-             "back with `read_measurement` before it is diagnosed.", "",
-             "Correct means: clean record (the true damper is exactly Bingham, calibration factors perturbed) -> "
-             "`nothing_missing`; mechanism outside the library (blow-off, single rod, cavitation, free play) -> "
-             "`unexplained`; library mechanism(s) -> `missing_effect` naming it (for a pair: either).", "",
-             *(["The subset `full` is the core catalogue (reported by true class) and the classes of issue 23 "
+    lines = [
+        "# Diagnosis benchmark" + ("" if path == DOCS else f": subset `{path.stem.split('_', 2)[-1]}`"),
+        "",
+        "How often `erdesign diagnose` names the right missing effect on records made by the independent "
+        "truth rig (`erdesign/simulation/truthrig/`, which shares no code with the fitted model). The "
+        "catalogue is `erdesign/simulation/truthrig/cases.py` (`benchmark_cases()`); its docstring gives the "
+        "design rules and "
+        "`mechanism_parameters` the physical size of every mechanism. Each record is written to CSV and read "
+        "back with `read_measurement` before it is diagnosed.",
+        "",
+        "Correct means: clean record (the true damper is exactly Bingham, calibration factors perturbed) -> "
+        "`nothing_missing`; mechanism outside the library (blow-off, single rod, cavitation, free play) -> "
+        "`unexplained`; library mechanism(s) -> `missing_effect` naming it (for a pair: either).",
+        "",
+        *(
+            [
+                "The subset `full` is the core catalogue (reported by true class) and the classes of issue 23 "
                 "(reported one by one as well, below); the issue-23 classes alone: `--subset issue23`, written to "
-                "`docs/diagnosis_benchmark_issue23.md`.", ""] if path == DOCS else []),
-             f"Latest run: {meta['date']}, subset `{subset}`, {s['cases']} cases, erdesign/diagnosis/diagnose.py at "
-             f"`{meta['diagnose_commit'][:10]}`{' (with uncommitted changes)' if meta['diagnose_dirty'] else ''}, "
-             f"{meta['jobs']} processes, {wall:.0f} s.", "",
-             "Regenerate:", "", "```bash", command, "```", "",
-             "## Result", "",
-             f"Overall: **{_pct(s['correct'], s['cases'])}** correct; on the cases detectable by design "
-             f"(what no recalibration absorbs at least 3 x the noise): {100 * s['accuracy_detectable']:.0f} %.", "",
-             "| true class | correct |", "|---|---|"]
+                "`docs/diagnosis_benchmark_issue23.md`.",
+                "",
+            ]
+            if path == DOCS
+            else []
+        ),
+        f"Latest run: {meta['date']}, subset `{subset}`, {s['cases']} cases, erdesign/diagnosis/diagnose.py at "
+        f"`{meta['diagnose_commit'][:10]}`{' (with uncommitted changes)' if meta['diagnose_dirty'] else ''}, "
+        f"{meta['jobs']} processes, {wall:.0f} s.",
+        "",
+        "Regenerate:",
+        "",
+        "```bash",
+        command,
+        "```",
+        "",
+        "## Result",
+        "",
+        f"Overall: **{_pct(s['correct'], s['cases'])}** correct; on the cases detectable by design "
+        f"(what no recalibration absorbs at least 3 x the noise): {100 * s['accuracy_detectable']:.0f} %.",
+        "",
+        "| true class | correct |",
+        "|---|---|",
+    ]
     lines += [f"| {cls} | {_pct(c['correct'], c['cases'])} |" for cls, c in s["per_class"].items()]
     lines += ["", "By damper, excitation, force noise and size:", ""]
     for key, groups in s["by"].items():
         lines.append(f"- {key}: " + ", ".join(f"{k} {_pct(a, b)}" for k, (a, b) in groups.items()))
-    lines += ["", "## Confusion matrix", "", "Rows: the true class; columns: the verdict, or the effect named.", "",
-              *confusion_table(s), ""]
+    lines += [
+        "",
+        "## Confusion matrix",
+        "",
+        "Rows: the true class; columns: the verdict, or the effect named.",
+        "",
+        *confusion_table(s),
+        "",
+    ]
     lines += group_lines(s, rows or [])
-    lines += ["## Detectability", "",
-              "Energy of the force change the hidden mechanisms make (noise-free truth runs with and without them) "
-              "over the energy of the force noise:", ""]
+    lines += [
+        "## Detectability",
+        "",
+        "Energy of the force change the hidden mechanisms make (noise-free truth runs with and without them) "
+        "over the energy of the force noise:",
+        "",
+    ]
     for size, v in s["effect_size_over_noise"].items():
         lines.append(f"- {size}: {_quantiles(v)}")
     if any(s.get("visible_over_noise", {}).values()):
-        lines += ["", "What is left of it after the truth rig's own clean damper is recalibrated to the run with the "
-                  "mechanisms (its viscosity and yield-stress factors refitted): what no calibration can absorb, "
-                  "over the energy of the force noise (`visible_over_noise`):", ""]
+        lines += [
+            "",
+            "What is left of it after the truth rig's own clean damper is recalibrated to the run with the "
+            "mechanisms (its viscosity and yield-stress factors refitted): what no calibration can absorb, "
+            "over the energy of the force noise (`visible_over_noise`):",
+            "",
+        ]
         for size, v in s["visible_over_noise"].items():
             lines.append(f"- {size}: {_quantiles(v)}")
     if s["undetectable"]:
-        lines += ["", f"Undetectable by design (what is left after recalibration below 3 x the noise), kept in the "
-                      f"catalogue and counted: "
-                      f"{', '.join(f'`{n}` ({x:.2g})' for n, x in s['undetectable'])}."]
+        lines += [
+            "",
+            f"Undetectable by design (what is left after recalibration below 3 x the noise), kept in the "
+            f"catalogue and counted: "
+            f"{', '.join(f'`{n}` ({x:.2g})' for n, x in s['undetectable'])}.",
+        ]
     lines += ["", "## Timing", ""]
     if s["time_mean_s"] is not None:
-        lines.append(f"Diagnose per case: mean {s['time_mean_s']:.1f} s, max {s['time_max_s']:.1f} s "
-                     f"(slowest: {', '.join(f'`{n}` {t:.1f} s' for n, t in s['slowest'][:5])}).")
+        lines.append(
+            f"Diagnose per case: mean {s['time_mean_s']:.1f} s, max {s['time_max_s']:.1f} s "
+            f"(slowest: {', '.join(f'`{n}` {t:.1f} s' for n, t in s['slowest'][:5])})."
+        )
     if long:
         if long["error"]:
             lines.append(f"\nOne 60 s record at 1 kHz: exception `{long['error']}`.")
         else:
-            lines.append(f"\nOne 60 s record at 1 kHz ({long['samples']} samples): {long['time_s']:.1f} s "
-                         f"(target < {LONG_TARGET:g} s).")
+            lines.append(
+                f"\nOne 60 s record at 1 kHz ({long['samples']} samples): {long['time_s']:.1f} s "
+                f"(target < {LONG_TARGET:g} s)."
+            )
     lines += ["", "## Real data", "", REAL_DATA]
     lines += ["", "## Exceptions", ""]
     lines += [f"- `{n}` [{stage}]: {msg}" for n, stage, msg in s["exceptions"]] or ["None."]
@@ -442,19 +558,29 @@ def select(cases, pattern: str | None):
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--subset", choices=SUBSETS, default="full",
-                   help="full (core + issue23), core (the catalogue of 2026-11-23), issue23 (its classes), fast")
+    p.add_argument(
+        "--subset",
+        choices=SUBSETS,
+        default="full",
+        help="full (core + issue23), core (the catalogue of 2026-11-23), issue23 (its classes), fast",
+    )
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--cases", default=None, help="shell patterns or substrings of case names, comma-separated")
     p.add_argument("--out", default=None, help="JSON file of every case")
-    p.add_argument("--write-docs", action="store_true",
-                   help=f"write {DOCS.relative_to(ROOT)} (full, core) or docs/diagnosis_benchmark_SUBSET.md")
+    p.add_argument(
+        "--write-docs",
+        action="store_true",
+        help=f"write {DOCS.relative_to(ROOT)} (full, core) or docs/diagnosis_benchmark_SUBSET.md",
+    )
     p.add_argument("--no-long", action="store_true", help="skip the 60 s, 1 kHz timing record")
     p.add_argument("--no-detectability", action="store_true", help="skip the noise-free detectability runs")
     p.add_argument("--from-json", default=None, help="summarise (and --write-docs) a previous --out file, no runs")
-    p.add_argument("--detectability-from", default=None,
-                   help="take the detectability of each case from a previous --out file where the case (name and "
-                        "mechanism parameters) is the same; measure it for the others")
+    p.add_argument(
+        "--detectability-from",
+        default=None,
+        help="take the detectability of each case from a previous --out file where the case (name and "
+        "mechanism parameters) is the same; measure it for the others",
+    )
     args = p.parse_args(argv)
     sys.path.insert(0, str(ROOT))
     if args.from_json:
@@ -466,8 +592,11 @@ def main(argv=None) -> int:
         wall = data.get("wall_s", math.nan)
         print("\n".join(report_lines(summary, data.get("long_record"), wall, data["meta"])))
         if args.write_docs:
-            command = ("python benchmarks/bench_diagnosis_accuracy.py --subset " + data["subset"]
-                       + f" --jobs {data['meta']['jobs']} --out results.json --write-docs")
+            command = (
+                "python benchmarks/bench_diagnosis_accuracy.py --subset "
+                + data["subset"]
+                + f" --jobs {data['meta']['jobs']} --out results.json --write-docs"
+            )
             subset = data["subset"] + (f"` (partial run, {len(rows)} cases done`" if data.get("partial") else "")
             path = docs_path(data["subset"])
             write_docs(summary, data.get("long_record"), wall, data["meta"], subset, command, rows, path)
@@ -480,11 +609,15 @@ def main(argv=None) -> int:
     if not cases:
         print(f"no case matches {args.cases!r}", file=sys.stderr)
         return 2
-    meta = {"date": datetime.date.today().isoformat(),
-            "diagnose_commit": _git("log", "-1", "--format=%H", "--", "erdesign/diagnosis/diagnose.py") or "unknown",
-            "diagnose_dirty": bool(_git("status", "--porcelain", "--", "erdesign/diagnosis/diagnose.py",
-                                        "erdesign/effects")),
-            "head": _git("rev-parse", "HEAD"), "jobs": args.jobs}
+    meta = {
+        "date": datetime.date.today().isoformat(),
+        "diagnose_commit": _git("log", "-1", "--format=%H", "--", "erdesign/diagnosis/diagnose.py") or "unknown",
+        "diagnose_dirty": bool(
+            _git("status", "--porcelain", "--", "erdesign/diagnosis/diagnose.py", "erdesign/effects")
+        ),
+        "head": _git("rev-parse", "HEAD"),
+        "jobs": args.jobs,
+    }
     print(f"{len(cases)} cases ({args.subset}) on {args.jobs} processes", flush=True)
     t0 = time.perf_counter()
     rows = []
@@ -494,16 +627,30 @@ def main(argv=None) -> int:
         for r in json.loads(Path(args.detectability_from).read_text(encoding="utf-8"))["cases"]:
             if r.get("visible_over_noise") is not None:
                 known[r["name"]] = r
+
     def detect_of(c):
         r = known.get(c.name)
         same = r is not None and r["mechanisms"] == {k: dict(v) for k, v in c.mechanisms.items()}
         return r if same else detect
+
     def save(partial: bool, long=None, summary=None) -> None:
         if args.out:
             wall = time.perf_counter() - t0
-            Path(args.out).write_text(json.dumps({"meta": meta, "subset": args.subset, "wall_s": wall,
-                                                  "partial": partial, "summary": summary, "long_record": long,
-                                                  "cases": rows}, indent=1), encoding="utf-8")
+            Path(args.out).write_text(
+                json.dumps(
+                    {
+                        "meta": meta,
+                        "subset": args.subset,
+                        "wall_s": wall,
+                        "partial": partial,
+                        "summary": summary,
+                        "long_record": long,
+                        "cases": rows,
+                    },
+                    indent=1,
+                ),
+                encoding="utf-8",
+            )
 
     # interleaved over the classes, so that a run stopped early has seen every class
     queue = _interleaved(cases)
@@ -528,8 +675,11 @@ def main(argv=None) -> int:
     print("\n".join(report_lines(summary, long, wall, meta)))
     save(False, long, summary)
     if args.write_docs:
-        command = ("python benchmarks/bench_diagnosis_accuracy.py --subset " + args.subset
-                   + f" --jobs {args.jobs} --out results.json --write-docs")
+        command = (
+            "python benchmarks/bench_diagnosis_accuracy.py --subset "
+            + args.subset
+            + f" --jobs {args.jobs} --out results.json --write-docs"
+        )
         path = docs_path(args.subset)
         write_docs(summary, long, wall, meta, args.subset, command, rows, path)
         print(f"wrote {path.relative_to(ROOT)}")
@@ -553,8 +703,10 @@ def _progress(row, done, total) -> None:
     said = row["error"] if row["error"] else f"{row['verdict']} {row['missing_effect'] or ''}"
     t = f"{row['time_s']:.1f} s" if row["time_s"] is not None else "-"
     det = row["effect_size_over_noise"]
-    print(f"[{done:3d}/{total}] {mark} {row['name']:<60} {t:>7}  E/N {'-' if det is None else f'{det:8.3g}'}  "
-          f"{said}", flush=True)
+    print(
+        f"[{done:3d}/{total}] {mark} {row['name']:<60} {t:>7}  E/N {'-' if det is None else f'{det:8.3g}'}  {said}",
+        flush=True,
+    )
 
 
 if __name__ == "__main__":

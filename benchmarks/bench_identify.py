@@ -47,17 +47,20 @@ def main():
     model.force(rec, values)  # compile / load the kernel
     _, sim_cpu, _ = timed(lambda: [model.force(rec, values) for _ in range(5)])
     sim_cpu /= 5
-    print(f"record: {len(rec)} samples; one simulation {1e3 * sim_cpu:.1f} ms CPU (the yardstick); "
-          f"published set (spencer1997) ESR {published:.4f} without the clipped samples")
+    print(
+        f"record: {len(rec)} samples; one simulation {1e3 * sim_cpu:.1f} ms CPU (the yardstick); "
+        f"published set (spencer1997) ESR {published:.4f} without the clipped samples"
+    )
     schedules = [("all samples (default)", {})]
     if "--warm-start" in sys.argv:
         schedules.append(("warm start on every 3rd sample", {"warm_start": True}))
     for label, options in schedules:
-        res, cpu, wall = timed(lambda: identify(get_model("bouc_wen_modified"), rec, exclude_clipped=True,
-                                                **options))
-        print(f"  {label:<32} {cpu:6.1f} s CPU ({cpu / sim_cpu:5.0f} x one simulation), {wall:6.1f} s wall, "
-              f"{res.simulations} simulations in the last stage, ESR {res.esr:.4f} "
-              f"({'converged' if res.success else res.message}); target < 60 s: {'met' if wall < 60 else 'NOT met'}")
+        res, cpu, wall = timed(lambda: identify(get_model("bouc_wen_modified"), rec, exclude_clipped=True, **options))
+        print(
+            f"  {label:<32} {cpu:6.1f} s CPU ({cpu / sim_cpu:5.0f} x one simulation), {wall:6.1f} s wall, "
+            f"{res.simulations} simulations in the last stage, ESR {res.esr:.4f} "
+            f"({'converged' if res.success else res.message}); target < 60 s: {'met' if wall < 60 else 'NOT met'}"
+        )
     print("variable projection against the plain path (same process):")
     compare(identify, get_model, "bouc_wen_modified", rec, "all samples")
     short = rec.select(slice(0, 15_000))
@@ -71,9 +74,11 @@ def compare(identify, get_model, name, rec, label):
     for projection in (True, False):
         res, cpu, wall = timed(lambda: identify(get_model(name), rec, exclude_clipped=True, projection=projection))
         rows[projection] = (cpu, wall, res)
-        print(f"  {name:<18} {label:<21} {'projected' if projection else 'plain':<9} {cpu:6.1f} s CPU "
-              f"{wall:6.1f} s wall {res.simulations:5d} simulations  ESR {res.esr:.5f}  "
-              f"projected: {', '.join(res.projected) or '-'}")
+        print(
+            f"  {name:<18} {label:<21} {'projected' if projection else 'plain':<9} {cpu:6.1f} s CPU "
+            f"{wall:6.1f} s wall {res.simulations:5d} simulations  ESR {res.esr:.5f}  "
+            f"projected: {', '.join(res.projected) or '-'}"
+        )
     (cp, wp, rp), (c0, w0, r0) = rows[True], rows[False]
     print(f"  {name:<18} ratio projected / plain: CPU {cp / c0:.2f}, wall {wp / w0:.2f}, ESR {rp.esr / r0.esr:.4f}")
 

@@ -45,7 +45,7 @@ from erdesign.flow import (
 )
 
 ROOT = Path(__file__).resolve().parents[1]
-L, d, h = 0.0546, 0.0143, 0.0008      # Makris duct
+L, d, h = 0.0546, 0.0143, 0.0008  # Makris duct
 TAU_Y, ETA = 1800.0, 13.0
 
 
@@ -80,20 +80,28 @@ def flows(n: int, seed: int = 1) -> np.ndarray:
 
 def thin_gap_numpy(Q):
     """The thin-gap kernel's numpy path: chunks below the compiled path's threshold."""
-    return np.concatenate([bingham_pressure_drop(Q[i:i + 4000], TAU_Y, ETA, L, d, h) for i in range(0, Q.size, 4000)])
+    return np.concatenate([bingham_pressure_drop(Q[i : i + 4000], TAU_Y, ETA, L, d, h) for i in range(0, Q.size, 4000)])
 
 
 def row(label: str, now: float, base: float, unit: str, base_label: str, goal: str, scale: float = 1e6) -> None:
-    print(f"{label:<44s} {now * scale:9.3f} {unit}  {base_label} {base * scale:9.3f} {unit}  "
-          f"ratio {now / base:7.2f}   ({goal})")
+    print(
+        f"{label:<44s} {now * scale:9.3f} {unit}  {base_label} {base * scale:9.3f} {unit}  "
+        f"ratio {now / base:7.2f}   ({goal})"
+    )
 
 
 def annulus_row(n: int, repeat: int) -> None:
     Q = flows(n)
-    annulus_bingham_pressure_drop(Q[:8], TAU_Y, ETA, L, d, h)            # load the compiled code
-    t_ann, t_np, t_c = (t / n for t in paired(lambda: annulus_bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h),
-                                               lambda: thin_gap_numpy(Q),
-                                               lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h), repeat=repeat))
+    annulus_bingham_pressure_drop(Q[:8], TAU_Y, ETA, L, d, h)  # load the compiled code
+    t_ann, t_np, t_c = (
+        t / n
+        for t in paired(
+            lambda: annulus_bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h),
+            lambda: thin_gap_numpy(Q),
+            lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h),
+            repeat=repeat,
+        )
+    )
     row("1 exact annulus dp(Q), per element", t_ann, t_np, "us", "thin gap (numpy)", "goal <= 10")
     row("", t_ann, t_c, "us", "thin gap (compiled)", "same, against the compiled thin gap")
 
@@ -104,22 +112,30 @@ def mixed_rows(n: int, designs: int, repeat: int) -> None:
     args = (2000.0, 0.1, 0.02, 0.03, 0.01, 1e-3)
     mixed_mode_damper_force(v[:8], *args)
     Q = flows(n)
-    t_mix, t_np, t_c = (t / n for t in paired(lambda: mixed_mode_damper_force(v, *args), lambda: thin_gap_numpy(Q),
-                                               lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h), repeat=repeat))
+    t_mix, t_np, t_c = (
+        t / n
+        for t in paired(
+            lambda: mixed_mode_damper_force(v, *args),
+            lambda: thin_gap_numpy(Q),
+            lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h),
+            repeat=repeat,
+        )
+    )
     row("2 mixed-mode force, per element", t_mix, t_np, "us", "thin gap (numpy)", "goal <= 10")
     row("", t_mix, t_c, "us", "thin gap (compiled)", "same, against the compiled thin gap")
 
     from erdesign.design import design, load_example_requirements
 
     mixed = load_example_requirements("mr_requirements").with_search(samples=designs, chunk=2**16, refine=False)
-    valve = load_example_requirements("makris_requirements").with_search(samples=designs, chunk=2**16,
-                                                                          refine=False)
+    valve = load_example_requirements("makris_requirements").with_search(samples=designs, chunk=2**16, refine=False)
     design(mixed.with_search(samples=2**12, chunk=2**16, refine=False))
     design(valve.with_search(samples=2**12, chunk=2**16, refine=False))
     t_m, t_v = paired(lambda: design(mixed), lambda: design(valve), repeat=max(1, repeat - 2))
-    print(f"{'  mixed design sweep':<44s} {designs / t_m / 1e3:9.1f} k/s  valve sweep {designs / t_v / 1e3:9.1f} "
-          f"k/s  ratio {t_v / t_m:7.2f}   (goal >= 500 k designs/s; {len(mixed.points)} design points, "
-          f"valve {len(valve.points)})")
+    print(
+        f"{'  mixed design sweep':<44s} {designs / t_m / 1e3:9.1f} k/s  valve sweep {designs / t_v / 1e3:9.1f} "
+        f"k/s  ratio {t_v / t_m:7.2f}   (goal >= 500 k designs/s; {len(mixed.points)} design points, "
+        f"valve {len(valve.points)})"
+    )
 
 
 @numba.njit(cache=True)
@@ -151,12 +167,22 @@ def dp_row(n: int, repeat: int) -> None:
     _numba_loop(Q[:8], TAU_Y, ETA, L, d, h, out[:8])
     bingham_pressure_drop(Q[:5000], TAU_Y, ETA, L, d, h)
     # the loop allocates its output, as a function returning a new array must
-    t_now, t_loop = paired(lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h),
-                           lambda: _numba_loop(Q, TAU_Y, ETA, L, d, h, np.empty(n)), repeat=repeat)
+    t_now, t_loop = paired(
+        lambda: bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h),
+        lambda: _numba_loop(Q, TAU_Y, ETA, L, d, h, np.empty(n)),
+        repeat=repeat,
+    )
     _numba_loop(Q, TAU_Y, ETA, L, d, h, out)
     diff = np.max(np.abs(bingham_pressure_drop(Q, TAU_Y, ETA, L, d, h) / out - 1.0))
-    row(f"3 Bingham dp(Q), {n:.0e} elements, per element", t_now / n, t_loop / n, "ns", "numba loop",
-        f"goal: ratio <= 1.25, i.e. >= 0.8 x the loop's speed; max |rel diff| {diff:.1e}", scale=1e9)
+    row(
+        f"3 Bingham dp(Q), {n:.0e} elements, per element",
+        t_now / n,
+        t_loop / n,
+        "ns",
+        "numba loop",
+        f"goal: ratio <= 1.25, i.e. >= 0.8 x the loop's speed; max |rel diff| {diff:.1e}",
+        scale=1e9,
+    )
 
 
 def write_records(folder: Path, n: int) -> dict[str, Path]:
@@ -203,8 +229,15 @@ def reading_rows(n: int, repeat: int) -> None:
             code = _WITHOUT_PANDAS.format(root=str(ROOT), path=str(path), repeat=repeat)
             out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
             t_bare = float(out.stdout.strip().splitlines()[-1])
-            row(f"4 read {n:,} rows, {name}", t_read, t_pd, "ms", "pandas.read_csv",
-                "goal <= 2, pandas loaded", scale=1e3)
+            row(
+                f"4 read {n:,} rows, {name}",
+                t_read,
+                t_pd,
+                "ms",
+                "pandas.read_csv",
+                "goal <= 2, pandas loaded",
+                scale=1e3,
+            )
             row("", t_bare, t_pd, "ms", "pandas.read_csv", "goal <= 2, pandas not loaded", scale=1e3)
 
 

@@ -33,8 +33,23 @@ from erdesign.models.registry import get_model  # noqa: E402
 
 FS = 3000.0
 #: Spencer, Dyke, Sain and Carlson (1997) in SI (shared/data/README.md).
-SPENCER_1997 = dict(c0a=2100.0, c0b=350.0, k0=4690.0, c1a=28300.0, c1b=295.0, k1=500.0, x0=0.143, alpha_a=14000.0,
-                    alpha_b=69500.0, alpha_c=0.0, gamma=3.63e6, beta=3.63e6, delta=301.0, n=2.0, eta=190.0)
+SPENCER_1997 = dict(
+    c0a=2100.0,
+    c0b=350.0,
+    k0=4690.0,
+    c1a=28300.0,
+    c1b=295.0,
+    k1=500.0,
+    x0=0.143,
+    alpha_a=14000.0,
+    alpha_b=69500.0,
+    alpha_c=0.0,
+    gamma=3.63e6,
+    beta=3.63e6,
+    delta=301.0,
+    n=2.0,
+    eta=190.0,
+)
 # displacement: 1.1 cm multisine 0.5-15 Hz (band of Dyke's random records); voltage 0-2.25 V, smooth, 2 and 7 Hz
 _rng = np.random.default_rng(0)
 _F, _PH = _rng.uniform(0.5, 15.0, 12), _rng.uniform(0, 2 * np.pi, 12)
@@ -46,8 +61,9 @@ def x_of(t):
 
 
 def v_of(t):
-    return _AMP * np.sum(2 * np.pi * _F[:, None] * np.cos(2 * np.pi * _F[:, None] * np.atleast_1d(t) + _PH[:, None]),
-                         axis=0)
+    return _AMP * np.sum(
+        2 * np.pi * _F[:, None] * np.cos(2 * np.pi * _F[:, None] * np.atleast_1d(t) + _PH[:, None]), axis=0
+    )
 
 
 def u_of(t):
@@ -201,10 +217,14 @@ def case_bingham_extended(rec):
     return (lambda r: model.simulate(r, p)), rhs, [float(rec.displacement[0]), 0.0], force, "Radau"
 
 
-CASES = {"bouc_wen_modified (Spencer 1997, voltage)": (case_modified_bouc_wen, True),
-         "bouc_wen": (case_bouc_wen, False), "bouc_wen_normalized": (case_bouc_wen_normalized, False),
-         "dahl": (case_dahl, False), "lugre": (case_lugre, False),
-         "bingham_extended": (case_bingham_extended, False)}
+CASES = {
+    "bouc_wen_modified (Spencer 1997, voltage)": (case_modified_bouc_wen, True),
+    "bouc_wen": (case_bouc_wen, False),
+    "bouc_wen_normalized": (case_bouc_wen_normalized, False),
+    "dahl": (case_dahl, False),
+    "lugre": (case_lugre, False),
+    "bingham_extended": (case_bingham_extended, False),
+}
 
 
 def kernel_table(duration=20.0, error_duration=1.0):
@@ -223,13 +243,23 @@ def kernel_table(duration=20.0, error_duration=1.0):
         y_ref = piecewise_reference(rhs, y0, short, ref_method)
         F_ref = force(y_ref, short)
         F_short = run(short)
-        row = {"model": label, "samples": len(rec), "first_call_s": first, "kernel_s": fast,
-               "lsoda_1e-8_s": t_lsoda, "ratio_vs_lsoda": t_lsoda / fast, "ns_per_sample": fast / len(rec) * 1e9,
-               "max_error": float(np.max(np.abs(F_short - F_ref)) / np.ptp(F_ref))}
+        row = {
+            "model": label,
+            "samples": len(rec),
+            "first_call_s": first,
+            "kernel_s": fast,
+            "lsoda_1e-8_s": t_lsoda,
+            "ratio_vs_lsoda": t_lsoda / fast,
+            "ns_per_sample": fast / len(rec) * 1e9,
+            "max_error": float(np.max(np.abs(F_short - F_ref)) / np.ptp(F_ref)),
+        }
         rows.append(row)
-        print(f"  {label:<42} kernel {fast * 1e3:8.2f} ms ({row['ns_per_sample']:5.0f} ns/sample; first call "
-              f"{first:.2f} s)   LSODA (rtol 1e-8) {t_lsoda:6.2f} s   ratio {row['ratio_vs_lsoda']:6.0f} x   "
-              f"max error vs {ref_method} (rtol 1e-11) {row['max_error']:.1e}", flush=True)
+        print(
+            f"  {label:<42} kernel {fast * 1e3:8.2f} ms ({row['ns_per_sample']:5.0f} ns/sample; first call "
+            f"{first:.2f} s)   LSODA (rtol 1e-8) {t_lsoda:6.2f} s   ratio {row['ratio_vs_lsoda']:6.0f} x   "
+            f"max error vs {ref_method} (rtol 1e-11) {row['max_error']:.1e}",
+            flush=True,
+        )
     return rows
 
 
@@ -241,9 +271,14 @@ def kamath_wereley_identification(n=20_000):
     data = rec.with_force(clean + 0.01 * np.std(clean) * np.random.default_rng(0).standard_normal(n))
     t0 = time.perf_counter()
     r = fit(model, data)
-    return {"seconds": time.perf_counter() - t0, "esr": r.esr, "nfev": r.nfev,
-            "max_rel_param_error": max(abs(r.values[k] / KAMATH_WERELEY_TABLE1[k] - 1) for k in ("C1", "C2", "K1",
-                                                                                                  "Cv", "R"))}
+    return {
+        "seconds": time.perf_counter() - t0,
+        "esr": r.esr,
+        "nfev": r.nfev,
+        "max_rel_param_error": max(
+            abs(r.values[k] / KAMATH_WERELEY_TABLE1[k] - 1) for k in ("C1", "C2", "K1", "Cv", "R")
+        ),
+    }
 
 
 if __name__ == "__main__":
@@ -252,5 +287,7 @@ if __name__ == "__main__":
     print(f"time-stepping models, {duration:g} s at {FS:g} Hz ({int(duration * FS)} samples), same process:")
     kernel_table(duration)
     _ = SPENCER_PASSIVE
-    print("Kamath-Wereley 6-parameter identification, 20,000 samples:",
-          {k: round(v, 4) for k, v in kamath_wereley_identification().items()})
+    print(
+        "Kamath-Wereley 6-parameter identification, 20,000 samples:",
+        {k: round(v, 4) for k, v in kamath_wereley_identification().items()},
+    )

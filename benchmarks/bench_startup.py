@@ -46,7 +46,11 @@ def main():
     base = cpu_seconds([py, "-c", "import numpy"])
     rows = [
         ("python -m erdesign --help", exe + ["--help"], 3.0),
-        ("python -m erdesign size (makris example)", exe + ["size", str(EXAMPLE), "--velocity", "0.0254", "--json"], 3.0),
+        (
+            "python -m erdesign size (makris example)",
+            exe + ["size", str(EXAMPLE), "--velocity", "0.0254", "--json"],
+            3.0,
+        ),
         ("python -m erdesign size makris (by name)", exe + ["size", "makris", "--velocity", "0.0254 m/s"], 3.0),
         ("python -c 'import erdesign'", [py, "-c", "import erdesign"], None),
         ("python -m erdesign identify --help", exe + ["identify", "--help"], None),

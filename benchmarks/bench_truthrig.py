@@ -29,7 +29,7 @@ from erdesign.simulation.rig import random_motion  # noqa: E402
 from erdesign.simulation.truthrig import TruthDamper, simulate_truth  # noqa: E402
 from erdesign.simulation.truthrig import kernels  # noqa: E402
 
-FIELD = 3e6      # 3 kV/mm, the Makris damper's reference field
+FIELD = 3e6  # 3 kV/mm, the Makris damper's reference field
 
 
 def best_of(repeat, fn):
@@ -54,16 +54,24 @@ def main() -> None:
     truth = TruthDamper(damper, {"compliance": {}, "thermal": {}, "coil_lag": {}})
     simulate_truth(truth, random_motion(0.003, (0.5, 5.0), FIELD, duration=1.0, rate=args.rate))  # warm-up
     t_full, rec = best_of(args.repeat, lambda: simulate_truth(truth, motion, seed=0))
-    print(f"truth rig, {args.duration:g} s at {args.rate:g} Hz ({len(motion.time)} samples), compliance + thermal + "
-          f"coil_lag: {t_full:.3f} s per record (target < 5 s)")
+    print(
+        f"truth rig, {args.duration:g} s at {args.rate:g} Hz ({len(motion.time)} samples), compliance + thermal + "
+        f"coil_lag: {t_full:.3f} s per record (target < 5 s)"
+    )
 
     # --- the same compliance ODE with a general stiff integrator, on a window of the record
     n = int(round(args.window * args.rate)) + 1
-    window = type(motion)(*(np.asarray(a)[:n] for a in (motion.time, motion.displacement, motion.velocity,
-                                                        motion.acceleration, motion.control)), "window")
+    window = type(motion)(
+        *(
+            np.asarray(a)[:n]
+            for a in (motion.time, motion.displacement, motion.velocity, motion.acceleration, motion.control)
+        ),
+        "window",
+    )
     compliant = TruthDamper(damper, {"compliance": {}})
-    t_rig, rec_w = best_of(args.repeat, lambda: simulate_truth(compliant, window, force_noise=0.0,
-                                                               displacement_noise=0.0))
+    t_rig, rec_w = best_of(
+        args.repeat, lambda: simulate_truth(compliant, window, force_noise=0.0, displacement_noise=0.0)
+    )
     p = compliant.parameter_vector()
     kc = compliant.compliance_stiffness
     tau_y = float(damper.fluid.yield_stress_at(FIELD))
@@ -76,14 +84,15 @@ def main() -> None:
         return [kc * (vt - s * kernels.passed_speed(abs(P[0]), s, tau_y, eta, 1.0, p))]
 
     t0 = time.perf_counter()
-    sol = solve_ivp(rhs, (t[0], t[-1]), [0.0], method="Radau", t_eval=t, rtol=1e-8, atol=1e-6,
-                    max_step=1.0 / args.rate)
+    sol = solve_ivp(rhs, (t[0], t[-1]), [0.0], method="Radau", t_eval=t, rtol=1e-8, atol=1e-6, max_step=1.0 / args.rate)
     t_radau = time.perf_counter() - t0
     P_rig = rec_w.components["fluid"]
     diff = np.max(np.abs(sol.y[0] - P_rig)) / np.max(np.abs(P_rig))
-    print(f"compliance alone on {args.window:g} s: truth rig {t_rig * 1e3:.1f} ms, solve_ivp Radau "
-          f"{t_radau:.2f} s ({sol.nfev} evaluations): ratio {t_radau / t_rig:.0f}x; largest difference "
-          f"{diff:.1e} of the peak force")
+    print(
+        f"compliance alone on {args.window:g} s: truth rig {t_rig * 1e3:.1f} ms, solve_ivp Radau "
+        f"{t_radau:.2f} s ({sol.nfev} evaluations): ratio {t_radau / t_rig:.0f}x; largest difference "
+        f"{diff:.1e} of the peak force"
+    )
 
 
 if __name__ == "__main__":

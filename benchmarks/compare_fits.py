@@ -24,19 +24,22 @@ import numpy as np
 def _bingham_record(amplitude=0.01, f_hz=1.0, current=None, noise_n=5.0, seed=0, n=401):
     from erdesign.data.measurement import Measurement
     from erdesign.models.registry import get_model
+
     true = {"c0": 3000.0, "f_c": 150.0, "f0": 5.0, "f_c_u": 600.0, "c0_u": 4000.0}
     t = np.linspace(0.0, 1.0 / f_hz, n)
     x = amplitude * np.sin(2 * np.pi * f_hz * t)
     kw = {} if current is None else {"control": current, "control_kind": "current"}
     rec = Measurement.from_arrays(t, x, **kw, name=f"{amplitude * 1e3:g} mm {f_hz:g} Hz {current} A")
-    clean = get_model("bingham").simulate(rec, true if current is not None else
-                                          {k: true[k] for k in ("c0", "f_c", "f0")})
+    clean = get_model("bingham").simulate(
+        rec, true if current is not None else {k: true[k] for k in ("c0", "f_c", "f0")}
+    )
     return rec.with_force(clean + noise_n * np.random.default_rng(seed).standard_normal(n))
 
 
 def _spencer_record(n=2001):
     from erdesign.data.measurement import Measurement
     from erdesign.models.registry import get_model
+
     t = np.linspace(0.0, 2.0, n)
     x = 0.01 * np.sin(2 * np.pi * t) + 0.004 * np.sin(2 * np.pi * 2.7 * t)
     u = 1.0 + 0.5 * np.sin(2 * np.pi * 0.6 * t)
@@ -47,10 +50,16 @@ def _spencer_record(n=2001):
 
 def _entry(result):
     values = getattr(result, "values", {})
-    e = [r["esr"] for r in result.records] if getattr(result, "records", None) and hasattr(result, "names") \
+    e = (
+        [r["esr"] for r in result.records]
+        if getattr(result, "records", None) and hasattr(result, "names")
         else result.esr
-    return {"esr": [float(x) for x in e] if isinstance(e, (list, tuple)) else float(e),
-            "values": {k: float(v) for k, v in values.items()}, "success": bool(getattr(result, "success", True))}
+    )
+    return {
+        "esr": [float(x) for x in e] if isinstance(e, (list, tuple)) else float(e),
+        "values": {k: float(v) for k, v in values.items()},
+        "success": bool(getattr(result, "success", True)),
+    }
 
 
 def cases():
@@ -76,11 +85,13 @@ def cases():
     out["identify bingham plain"] = lambda: _entry(identify(get_model("bingham"), rec_u, starts=1, projection=False))
     spencer = _spencer_record()
     for name in ("kwok_tanh", "dahl", "bouc_wen_normalized"):
-        out[f"identify {name} spencer"] = (lambda name=name: _entry(identify(get_model(name), spencer, starts=1)))
-        out[f"identify {name} spencer plain"] = (lambda name=name: _entry(
-            identify(get_model(name), spencer, starts=1, projection=False)))
+        out[f"identify {name} spencer"] = lambda name=name: _entry(identify(get_model(name), spencer, starts=1))
+        out[f"identify {name} spencer plain"] = lambda name=name: _entry(
+            identify(get_model(name), spencer, starts=1, projection=False)
+        )
     out["identify bouc_wen_modified spencer max_nfev=20"] = lambda: _entry(
-        identify(get_model("bouc_wen_modified"), spencer, starts=1, max_nfev=20))
+        identify(get_model("bouc_wen_modified"), spencer, starts=1, max_nfev=20)
+    )
     recs = [_bingham_record(current=i, seed=k) for k, i in enumerate((0.0, 0.5, 1.0))]
     out["identify_joint bingham"] = lambda: _entry(identify_joint(get_model("bingham"), recs))
     out["identify_joint kwok_tanh"] = lambda: _entry(identify_joint(get_model("kwok_tanh"), recs, max_nfev=60))
@@ -89,13 +100,13 @@ def cases():
     def cv():
         table = cross_validation(lambda: get_model("bingham"), cv_recs, starts=1).table
         return {"esr": [float(x) for x in table.ravel()], "values": {}, "success": True}
+
     out["cross_validation bingham"] = cv
     damper = load_example("makris")
     rig = run_rig(damper, sine(0.005, 2.0, 3e6, cycles=2, rate=200), seed=1).record
     out["calibrate makris"] = lambda: _entry(calibrate(damper, rig))
     rig0 = run_rig(damper, sine(0.005, 2.0, 0.0, cycles=2, rate=200), seed=2).record
-    out["calibrate makris two fields seal_friction"] = lambda: _entry(calibrate(damper, [rig0, rig],
-                                                                                ["seal_friction"]))
+    out["calibrate makris two fields seal_friction"] = lambda: _entry(calibrate(damper, [rig0, rig], ["seal_friction"]))
     return out
 
 
@@ -103,14 +114,16 @@ def quiroz_cases():
     from erdesign.data.quiroz import quiroz_folder, read_quiroz_sinusoid
     from erdesign.identification.identify import identify
     from erdesign.models.registry import get_model
+
     folder = quiroz_folder()
     if folder is None:
         return {}
     out = {}
     for test, current in [(t, c) for t in ("5mm3Hz", "10mm1Hz") for c in (0.0, 0.25, 0.5, 1.0)]:
         rec = read_quiroz_sinusoid(folder, test, current)
-        out[f"identify bouc_wen_modified quiroz {test} {current} A"] = (lambda rec=rec: _entry(
-            identify(get_model("bouc_wen_modified"), rec, starts=1, max_time=60)))
+        out[f"identify bouc_wen_modified quiroz {test} {current} A"] = lambda rec=rec: _entry(
+            identify(get_model("bouc_wen_modified"), rec, starts=1, max_time=60)
+        )
     return out
 
 
@@ -126,11 +139,19 @@ def compare(after: dict, before: dict) -> tuple[float, float]:
             continue
         be, ae = np.atleast_1d(b["esr"]), np.atleast_1d(a["esr"])
         d_esr = max((abs(x - y) / max(abs(x), abs(y), 1e-300) for x, y in zip(ae, be)), default=0.0)
-        d_val = max((abs(a["values"][k] - v) / max(abs(v), abs(a["values"][k]), 1e-300)
-                     for k, v in b["values"].items() if k in a["values"] and a["values"][k] != v), default=0.0)
+        d_val = max(
+            (
+                abs(a["values"][k] - v) / max(abs(v), abs(a["values"][k]), 1e-300)
+                for k, v in b["values"].items()
+                if k in a["values"] and a["values"][k] != v
+            ),
+            default=0.0,
+        )
         worst_esr, worst_value = max(worst_esr, d_esr), max(worst_value, d_val)
-        print(f"{name:<52} ESR {np.round(be, 5).tolist()} -> {np.round(ae, 5).tolist()}  "
-              f"largest rel change: ESR {d_esr:.2e}, values {d_val:.2e}")
+        print(
+            f"{name:<52} ESR {np.round(be, 5).tolist()} -> {np.round(ae, 5).tolist()}  "
+            f"largest rel change: ESR {d_esr:.2e}, values {d_val:.2e}"
+        )
     return worst_esr, worst_value
 
 
@@ -151,8 +172,11 @@ def main(argv=None):
         t = time.perf_counter()
         results[name] = run()
         results[name]["seconds"] = time.perf_counter() - t
-        print(f"{name:<52} ESR {np.round(np.atleast_1d(results[name]['esr']), 5).tolist()}  "
-              f"{results[name]['seconds']:.1f} s", flush=True)
+        print(
+            f"{name:<52} ESR {np.round(np.atleast_1d(results[name]['esr']), 5).tolist()}  "
+            f"{results[name]['seconds']:.1f} s",
+            flush=True,
+        )
     with open(args.output, "w") as f:
         json.dump(results, f, indent=1)
     if args.compare:

@@ -35,18 +35,34 @@ def _loops(record, d, title: str) -> go.Figure:
     """Measured and model force against velocity, and the residual against time, of diagnosis ``d``."""
     F = fitted_model(d.baseline).simulate(record, d.baseline.values)
     fig = make_subplots(rows=1, cols=2, subplot_titles=("force - velocity", "residual - time"))
-    fig.add_scatter(x=record.velocity * 1e3, y=record.force / 1e3, mode="lines", name="measured", row=1, col=1,
-                    line=dict(color="#444"))
-    fig.add_scatter(x=record.velocity * 1e3, y=F / 1e3, mode="lines", name=f"model, ESR {d.baseline_esr:.3g}",
-                    row=1, col=1, line=dict(color="#d62728"))
-    fig.add_scatter(x=record.time, y=(record.force - F), mode="lines", name="residual", row=1, col=2,
-                    line=dict(color="#1f77b4"))
+    fig.add_scatter(
+        x=record.velocity * 1e3,
+        y=record.force / 1e3,
+        mode="lines",
+        name="measured",
+        row=1,
+        col=1,
+        line=dict(color="#444"),
+    )
+    fig.add_scatter(
+        x=record.velocity * 1e3,
+        y=F / 1e3,
+        mode="lines",
+        name=f"model, ESR {d.baseline_esr:.3g}",
+        row=1,
+        col=1,
+        line=dict(color="#d62728"),
+    )
+    fig.add_scatter(
+        x=record.time, y=(record.force - F), mode="lines", name="residual", row=1, col=2, line=dict(color="#1f77b4")
+    )
     fig.update_xaxes(title_text="velocity v [mm/s]", row=1, col=1)
     fig.update_yaxes(title_text="force F [kN]", row=1, col=1)
     fig.update_xaxes(title_text="time t [s]", row=1, col=2)
     fig.update_yaxes(title_text="F - F_model [N]", row=1, col=2)
-    fig.update_layout(title=f"{title} (noise floor ESR {d.noise_floor_esr:.2g}): {d.verdict}",
-                      margin=dict(l=60, r=20, t=60, b=50))
+    fig.update_layout(
+        title=f"{title} (noise floor ESR {d.noise_floor_esr:.2g}): {d.verdict}", margin=dict(l=60, r=20, t=60, b=50)
+    )
     return fig
 
 
@@ -67,19 +83,27 @@ def main(outdir: str = "docs/figures") -> list[Path]:
     for i, d in enumerate(history.diagnoses):
         label = "baseline" + (" + " + " + ".join(d.effects) if d.effects else "")
         paths.append(_write(_loops(record, d, f"round {i}: {label}"), out / f"diagnosis_round_{i}"))
-    steps = [ErrorHistoryStep(step=i, effect=(d.effects[-1] if d.effects else "baseline"), esr=d.baseline_esr)
-             for i, d in enumerate(history.diagnoses)]
+    steps = [
+        ErrorHistoryStep(step=i, effect=(d.effects[-1] if d.effects else "baseline"), esr=d.baseline_esr)
+        for i, d in enumerate(history.diagnoses)
+    ]
     fig = error_history_figure(steps)
     floor = history.diagnoses[-1].noise_floor_esr
-    fig.add_scatter(x=list(fig.data[0].x), y=[floor] * len(steps), mode="lines", name=f"noise floor ESR {floor:.2g}",
-                    line=dict(color="#2ca02c", dash="dash"))
+    fig.add_scatter(
+        x=list(fig.data[0].x),
+        y=[floor] * len(steps),
+        mode="lines",
+        name=f"noise floor ESR {floor:.2g}",
+        line=dict(color="#2ca02c", dash="dash"),
+    )
     fig.data[0].showlegend = False
     top = max(s.esr for s in steps)
     fig.update_yaxes(range=[math.log10(floor) - 0.5, math.log10(top) + 0.5])
     paths.append(_write(fig, out / "diagnosis_error_history"))
     blowoff = blowoff_record(damper)
-    paths.append(_write(_loops(blowoff, diagnose(damper, blowoff), "blow-off valve: baseline"),
-                        out / "diagnosis_unexplained"))
+    paths.append(
+        _write(_loops(blowoff, diagnose(damper, blowoff), "blow-off valve: baseline"), out / "diagnosis_unexplained")
+    )
     return paths
 
 

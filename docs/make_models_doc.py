@@ -21,23 +21,23 @@ DOC = Path(__file__).resolve().parent / "models.md"
 INTEGRATION = {
     "bingham": "algebraic in the measured velocity (no state)",
     "bingham_extended": "implicit (backward Euler) sub-steps of the dead-zone form of the Coulomb element, 64 per "
-                        "sample by default (a compiled loop): the plastic branch is extremely stiff (Butz and von "
-                        "Stryk 2002), the "
-                        "implicit step is unconditionally stable and first order; tested against Radau at rtol 1e-10 "
-                        "(error 5e-5 of the force spread at 1 ms samples, halving with the step)",
+    "sample by default (a compiled loop): the plastic branch is extremely stiff (Butz and von "
+    "Stryk 2002), the "
+    "implicit step is unconditionally stable and first order; tested against Radau at rtol 1e-10 "
+    "(error 5e-5 of the force spread at 1 ms samples, halving with the step)",
     "powell": "algebraic in the measured velocity and acceleration (no state)",
     "bingmax": "exact discrete-time first-order filter of the Maxwell element (first-order hold: a two-tap IIR filter "
-               "by scipy.signal.lfilter on even steps, an affine prefix scan on uneven ones), plus the friction",
+    "by scipy.signal.lfilter on even steps, an affine prefix scan on uneven ones), plus the friction",
     "maxwell": "exact discrete-time first-order filter (as BingMax)",
     "bouc_wen": "exact step of z for the sample's travel (closed-form Riccati solution for n = 2, exponentials for "
-                "n = 1, RK4 sub-steps in the travelled distance otherwise), a compiled loop: the stiff saturation of "
-                "z does not limit the step",
+    "n = 1, RK4 sub-steps in the travelled distance otherwise), a compiled loop: the stiff saturation of "
+    "z does not limit the step",
     "bouc_wen_modified": "RK4 sub-steps of the internal displacement with z exact along each sub-step and the "
-                         "control filter exact, a compiled loop; checked against LSODA at rtol 1e-10 (within 1e-4 of "
-                         "the force range at 3 kHz with Spencer's 1997 parameters and a random voltage)",
+    "control filter exact, a compiled loop; checked against LSODA at rtol 1e-10 (within 1e-4 of "
+    "the force range at 3 kHz with Spencer's 1997 parameters and a random voltage)",
     "bouc_wen_normalized": "exact z steps of the Bouc-Wen kernel with beta = rho (1 - sigma), gamma = rho sigma",
     "kamath_wereley_4": "exact discrete-time filter of the three-parameter (Jeffreys) branch; shape functions "
-                        "algebraic",
+    "algebraic",
     "kamath_wereley_6": "as the four-parameter model, plus the inertia and stiction terms (algebraic)",
     "biviscous": "algebraic (no state)",
     "biviscous_hysteretic": "algebraic (no state; the branch is chosen by the sign of the acceleration)",
@@ -53,45 +53,44 @@ INTEGRATION = {
     "magic_formula": "algebraic (no state)",
     "chebyshev": "algebraic: a tensor Chebyshev series in scaled x, v (and u); identified by linear least squares",
     "maxwell_neural": "Maxwell filter (exact) plus a one-hidden-layer tanh network of (x, v, a, u) trained on the "
-                      "Maxwell residual (Levenberg-Marquardt)",
+    "Maxwell residual (Levenberg-Marquardt)",
     "bingham_modified": "backward-Euler dead-zone step of the extended Bingham kernel with a rigid Kelvin element "
-                        "(64 sub-steps per sample, compiled)",
+    "(64 sub-steps per sample, compiled)",
     "bingham_improved": "algebraic (no state)",
     "bingham_regularized": "algebraic (no state; the branch is chosen by the sign of the acceleration)",
     "bingham_hysteretic": "exact stop operator (elastic-perfectly-plastic spring) for a displacement linear between "
-                          "samples, compiled; the damping terms algebraic",
+    "samples, compiled; the damping terms algebraic",
     "bouc_wen_shear": "exact z steps (as Bouc-Wen)",
     "bouc_wen_modified_polynomial": "as the modified Bouc-Wen model (the same compiled loop, cubic coefficient laws)",
-    "bouc_wen_normalized_bahar": "exact w steps of the Bouc-Wen kernel with the shape of each step's start "
-                                 "(compiled)",
+    "bouc_wen_normalized_bahar": "exact w steps of the Bouc-Wen kernel with the shape of each step's start (compiled)",
     "bouc_wen_mass": "exact z steps (as Bouc-Wen); mass and shear-thinning damping algebraic",
     "bouc_wen_modified_mass": "as the modified Bouc-Wen model, plus the inertia term (algebraic)",
     "bouc_wen_amplitude": "exact z steps (as Bouc-Wen); the amplitude laws algebraic",
     "bouc_wen_dominguez": "explicit (the tanh solution of the Bouc-Wen equation on each branch; no state)",
     "bouc_wen_dominguez_cfa": "explicit (as bouc_wen_dominguez)",
     "bouc_wen_asymmetric_sigmoid": "as the modified Bouc-Wen model (zero-current parameters), times the "
-                                   "algebraic current gain",
+    "algebraic current gain",
     "bouc_wen_nonsymmetric": "exact z steps of the Bouc-Wen kernel driven by x - mu int sgn(x) dt (the time "
-                             "integral exact for x linear between samples)",
+    "integral exact for x linear between samples)",
     "bouc_wen_modified_normalized": "the modified Bouc-Wen kernel with beta = rho (1 - sigma), gamma = rho sigma, "
-                                    "delta = rho",
+    "delta = rho",
     "bouc_wen_restructured": "the modified Bouc-Wen kernel with c0 = k0 = 0 in its internal equation",
     "bouc_wen_normalized_dominguez": "exact z steps of the Bouc-Wen kernel (beta = 0, n = 2, A = gamma)",
     "li_viscoelastic_plastic": "exact first-order lag of the Zener element (first-order hold); the switch and the "
-                               "post-yield law algebraic",
+    "post-yield law algebraic",
     "vep_continuous": "implicit-midpoint sub-steps (4 per sample, second order, A-stable) of the internal "
-                      "displacement, each sub-step's rate by a bracketed root (Illinois false position) of the monotone element law (compiled); "
-                      "checked against an independent ODE solution (DOP853, rtol 1e-10) to 2e-3 of the force range",
+    "displacement, each sub-step's rate by a bracketed root (Illinois false position) of the monotone element law (compiled); "
+    "checked against an independent ODE solution (DOP853, rtol 1e-10) to 2e-3 of the force range",
     "vep_nonlinear_stiffness": "as vep_continuous, a bracketed root of the full nonlinear-stiffness equation",
     "viscoelastic_plastic_pang": "algebraic (no state)",
     "arctan_hysteretic": "algebraic (no state; the branch is chosen by the sign of the acceleration)",
     "sims_lumped": "implicit-midpoint sub-steps (4 per sample, second order, A-stable) of the fluid mass, each "
-                   "sub-step's velocity by a bracketed root of the monotone equation of motion (compiled); m1 = 0 "
-                   "allowed",
+    "sub-step's velocity by a bracketed root of the monotone equation of motion (compiled); m1 = 0 "
+    "allowed",
     "metered": "algebraic (no state)",
     "balamurugan": "algebraic (no state)",
     "bass": "implicit-midpoint sub-steps of the mass (as sims_lumped); checked against Radau (rtol 1e-9) to 3e-3 of "
-            "the force range and against the linear model's complex stiffness",
+    "the force range and against the linear model's complex stiffness",
     "yang_arctan": "algebraic (no state)",
     "yang_exponential": "algebraic (no state)",
     "cheng_tanh": "algebraic (no state)",
@@ -113,29 +112,70 @@ TABLE1 = [
     ("Bingham", "Modified Bingham / 4", "(6)", "", "`bingham_modified`"),
     ("Bingham", "Improved Bingham / 4", "(9)", "", "`bingham_improved`"),
     ("Bingham", "Nonlinear Bingham hysteretic / 6", "(10)", "", "`bingham_hysteretic`"),
-    ("Bingham", "Hysteresis regularized Bingham / 5", "(13)", "", "`bingham_regularized` (branch by the sign of the "
-     "acceleration; see the notes)"),
+    (
+        "Bingham",
+        "Hysteresis regularized Bingham / 5",
+        "(13)",
+        "",
+        "`bingham_regularized` (branch by the sign of the acceleration; see the notes)",
+    ),
     ("Bingham", "Standard Bouc-Wen / 7", "(15), (16)", "", "`bouc_wen`"),
-    ("Bingham", "Modified Bouc-Wen (phenomenological) / 9", "(17)", "", "`bouc_wen_modified` (Spencer's linear laws, "
-     "eqs 18-19; the quadratic law of alpha, eq 21, with alpha_c); the cubic laws of Yang (eq 20) and the "
-     "quadratic laws of c0, c1 (eq 21): `bouc_wen_modified_polynomial`"),
+    (
+        "Bingham",
+        "Modified Bouc-Wen (phenomenological) / 9",
+        "(17)",
+        "",
+        "`bouc_wen_modified` (Spencer's linear laws, "
+        "eqs 18-19; the quadratic law of alpha, eq 21, with alpha_c); the cubic laws of Yang (eq 20) and the "
+        "quadratic laws of c0, c1 (eq 21): `bouc_wen_modified_polynomial`",
+    ),
     ("Bingham", "Bouc-Wen in shear mode / 6", "(15), (22)", "", "`bouc_wen_shear`"),
-    ("Bingham", "Mass included Bouc-Wen / 11, 8, 3", "(23), (25) or (26)", "",
-     "`bouc_wen_mass` (eqs 23-24; a2 = 0 is eq 25), `bouc_wen_modified_mass` (eq 26)"),
+    (
+        "Bingham",
+        "Mass included Bouc-Wen / 11, 8, 3",
+        "(23), (25) or (26)",
+        "",
+        "`bouc_wen_mass` (eqs 23-24; a2 = 0 is eq 25), `bouc_wen_modified_mass` (eq 26)",
+    ),
     ("Bingham", "Amplitude-dependent Bouc-Wen / 22", "(16), (27)", "", "`bouc_wen_amplitude` (amplitude explicit)"),
     ("Bingham", "Current-dependent Bouc-Wen / 13", "(28), (30)", "", "`bouc_wen_dominguez` (eqs 28-31)"),
-    ("Bingham", "Current-frequency-amplitude-dependent / 34", "(31)", "",
-     "`bouc_wen_dominguez_cfa` (eqs 32-33; frequency and amplitude explicit)"),
-    ("Bouc-Wen", "Asymmetric sigmoid modified Bouc-Wen / 12", "(17), (33)", "",
-     "`bouc_wen_asymmetric_sigmoid` (eqs 34-35)"),
+    (
+        "Bingham",
+        "Current-frequency-amplitude-dependent / 34",
+        "(31)",
+        "",
+        "`bouc_wen_dominguez_cfa` (eqs 32-33; frequency and amplitude explicit)",
+    ),
+    (
+        "Bouc-Wen",
+        "Asymmetric sigmoid modified Bouc-Wen / 12",
+        "(17), (33)",
+        "",
+        "`bouc_wen_asymmetric_sigmoid` (eqs 34-35)",
+    ),
     ("Bouc-Wen", "Nonsymmetrical Bouc-Wen / 8", "(35), (36)", "", "`bouc_wen_nonsymmetric` (eqs 36-38)"),
-    ("Bouc-Wen", "Normalized Bouc-Wen I / 11", "(40), (41)", "",
-     "`bouc_wen_normalized` with k_v = 0 (eqs 41-43: the normalised form of eqs 39-40)"),
-    ("Bouc-Wen", "Modified normalized Bouc-Wen / 27", "(43)-(45)", "yes",
-     "`bouc_wen_normalized` (eqs 45-46 with linear voltage laws: invertible); Bahar's nonlinear voltage laws "
-     "(eqs 47-48): `bouc_wen_normalized_bahar`"),
-    ("Bouc-Wen", "Normalized Bouc-Wen II / 11", "(49), (48) or (50)", "",
-     "`bouc_wen_normalized_dominguez` (eqs 49-53; the approximations of eqs 51 and 54 are not separate models)"),
+    (
+        "Bouc-Wen",
+        "Normalized Bouc-Wen I / 11",
+        "(40), (41)",
+        "",
+        "`bouc_wen_normalized` with k_v = 0 (eqs 41-43: the normalised form of eqs 39-40)",
+    ),
+    (
+        "Bouc-Wen",
+        "Modified normalized Bouc-Wen / 27",
+        "(43)-(45)",
+        "yes",
+        "`bouc_wen_normalized` (eqs 45-46 with linear voltage laws: invertible); Bahar's nonlinear voltage laws "
+        "(eqs 47-48): `bouc_wen_normalized_bahar`",
+    ),
+    (
+        "Bouc-Wen",
+        "Normalized Bouc-Wen II / 11",
+        "(49), (48) or (50)",
+        "",
+        "`bouc_wen_normalized_dominguez` (eqs 49-53; the approximations of eqs 51 and 54 are not separate models)",
+    ),
     ("Bouc-Wen", "Normalized phenomenological / 8", "(17), (51)", "", "`bouc_wen_modified_normalized` (eq 55)"),
     ("Bouc-Wen", "Bai restructured / 8", "(52)", "", "`bouc_wen_restructured` (eq 56)"),
     ("LuGre", "Original LuGre / 4", "(53)", "", "`lugre` (eq 57)"),
@@ -144,15 +184,35 @@ TABLE1 = [
     ("Biviscous", "Nonlinear hysteretic biviscous / 3", "(57)", "", "`biviscous_hysteretic` (eq 61)"),
     ("Biviscous", "Nonlinear hysteretic arctangent / 4", "(58)", "", "`arctan_hysteretic` (eq 62)"),
     ("Biviscous", "Lumped-parameter fluid-flow / 9", "(59)", "", "`sims_lumped` (eqs 63-65)"),
-    ("Viscoelastic-plastic", "Nonlinear viscoelastic-plastic / 6", "(69)", "",
-     "`viscoelastic_plastic_pang` (eqs 66-74); Kamath and Wereley's own form: `kamath_wereley_6`"),
-    ("Viscoelastic-plastic", "Wereley viscoelastic-plastic / 5", "(70)", "",
-     "`viscoelastic_plastic_pang` with F_c = 0 (eq 75); the four-parameter model: `kamath_wereley_4`"),
-    ("Viscoelastic-plastic", "Li viscoelastic-plastic / 6", "(73), (74)", "yes",
-     "`li_viscoelastic_plastic` (eqs 76-79)"),
+    (
+        "Viscoelastic-plastic",
+        "Nonlinear viscoelastic-plastic / 6",
+        "(69)",
+        "",
+        "`viscoelastic_plastic_pang` (eqs 66-74); Kamath and Wereley's own form: `kamath_wereley_6`",
+    ),
+    (
+        "Viscoelastic-plastic",
+        "Wereley viscoelastic-plastic / 5",
+        "(70)",
+        "",
+        "`viscoelastic_plastic_pang` with F_c = 0 (eq 75); the four-parameter model: `kamath_wereley_4`",
+    ),
+    (
+        "Viscoelastic-plastic",
+        "Li viscoelastic-plastic / 6",
+        "(73), (74)",
+        "yes",
+        "`li_viscoelastic_plastic` (eqs 76-79)",
+    ),
     ("Viscoelastic-plastic", "Continuous viscoelastic-plastic (VEP) / 5", "(77)", "", "`vep_continuous` (eqs 80-82)"),
-    ("Viscoelastic-plastic", "Nonlinear stiffness VEP (nkVEP) / 15", "(78), (79)", "",
-     "`vep_nonlinear_stiffness` (eqs 83-85)"),
+    (
+        "Viscoelastic-plastic",
+        "Nonlinear stiffness VEP (nkVEP) / 15",
+        "(78), (79)",
+        "",
+        "`vep_nonlinear_stiffness` (eqs 83-85)",
+    ),
     ("Viscoelastic-plastic", "Stiffness-viscosity-elasto-slide (SVES) / 6", "(80), (81)", "", "`sves` (eqs 86-87)"),
     ("Algebraic", "Weng / 5", "(82)", "", "`weng_arctan` with m = 0 (eq 88)"),
     ("Algebraic", "Cesmeci and Engin / 6", "(83)", "", "`weng_arctan` (eq 89)"),
@@ -167,23 +227,32 @@ TABLE1 = [
     ("Dahl", "Modified Dahl / 5", "(98)", "", "`dahl` (eq 104)"),
     ("Dahl", "Viscous Dahl / 5", "(99), (41)", "", "`dahl_viscous` (eq 105)"),
     ("Dahl", "Asymmetric Dahl / 7", "(99), (100)", "", "`dahl_asymmetric` (eqs 105-106)"),
-    ("Dahl", "General dynamic models / 5-11", "(101)-(106)", "",
-     "`zhao_dead_zone` (eq 107), `zhao_xu_sigmoid` (eq 108), `yuan_tanh` (eq 109), `yu_division` (eq 110), "
-     "`he_unified` (eq 111); not Bui's quasi-static magic-formula model (eq 112): the review does not give its "
-     "quasi-static force F_QS = F_eta + F_tau + F_f"),
+    (
+        "Dahl",
+        "General dynamic models / 5-11",
+        "(101)-(106)",
+        "",
+        "`zhao_dead_zone` (eq 107), `zhao_xu_sigmoid` (eq 108), `yuan_tanh` (eq 109), `yu_division` (eq 110), "
+        "`he_unified` (eq 111); not Bui's quasi-static magic-formula model (eq 112): the review does not give its "
+        "quasi-static force F_QS = F_eta + F_tau + F_f",
+    ),
 ]
 
 
 def _table1() -> list[str]:
     """The Table 1 section; every registry name it cites must exist (checked here, so the doc cannot drift)."""
     names = set(model_names())
-    lines = ["## The MR-model review's Table 1, row by row", "",
-             "Every row of the review's Table 1 (47 rows), with the registry model that implements it. \"Invertible\" "
-             "is the review's mark; `erdesign models --json` gives each model an `invertible` key for what "
-             "`erdesign.identification.inverse.inverse_control` inverts (every memoryless model with a control, by a "
-             "bracketed root, besides the review's six).", "",
-             "| # | group | model / parameters | Table 1 eqs | review: invertible | in erdesign |",
-             "|---|---|---|---|---|---|"]
+    lines = [
+        "## The MR-model review's Table 1, row by row",
+        "",
+        'Every row of the review\'s Table 1 (47 rows), with the registry model that implements it. "Invertible" '
+        "is the review's mark; `erdesign models --json` gives each model an `invertible` key for what "
+        "`erdesign.identification.inverse.inverse_control` inverts (every memoryless model with a control, by a "
+        "bracketed root, besides the review's six).",
+        "",
+        "| # | group | model / parameters | Table 1 eqs | review: invertible | in erdesign |",
+        "|---|---|---|---|---|---|",
+    ]
     for i, (group, model, eqs, inv, where) in enumerate(TABLE1, 1):
         for cited in re.findall(r"`([a-z0-9_]+)`", where):
             if cited not in names:
@@ -254,8 +323,11 @@ def _docstring_parts(cls) -> tuple[str, str, str]:
 def _markdown(text: str) -> str:
     """Sphinx roles to Markdown: :math:`x` -> $x$, :func:`~a.b` -> `b`, ``x`` -> `x`."""
     text = re.sub(r":math:`([^`]*)`", r"$\1$", text)
-    text = re.sub(r":(?:func|class|meth|mod|data|attr):`~?([^`]*)`", lambda m: f"`{m.group(1).split('.')[-1]}`"
-                  if m.group(0).count("~") else f"`{m.group(1)}`", text)
+    text = re.sub(
+        r":(?:func|class|meth|mod|data|attr):`~?([^`]*)`",
+        lambda m: f"`{m.group(1).split('.')[-1]}`" if m.group(0).count("~") else f"`{m.group(1)}`",
+        text,
+    )
     return text.replace("``", "`")
 
 
@@ -273,13 +345,17 @@ def _invertibility(model) -> str:
         if model.name == "lugre_modified":
             how = "step by step: affine in the control at each step, with the state advanced by the control chosen"
         elif model.name == "li_viscoelastic_plastic":
-            how = ("closed form in the post-yield regime, where the force is affine in the control (the pre-yield "
-                   "force does not depend on it)")
+            how = (
+                "closed form in the post-yield regime, where the force is affine in the control (the pre-yield "
+                "force does not depend on it)"
+            )
     elif getattr(model, "memoryless", False):
         how = "vectorised bracketed root in the control (scipy.optimize.elementwise.find_root)"
     else:
-        return ("not provided by `erdesign.identification.inverse` (the control acts through a state, a filter or a "
-                "fitted series that no closed form or root bracket is written for)")
+        return (
+            "not provided by `erdesign.identification.inverse` (the control acts through a state, a filter or a "
+            "fitted series that no closed form or root bracket is written for)"
+        )
     marked = " (the MR-model review Table 1: invertible)" if model.name in INVERTIBLE else ""
     return f"{how}{marked}; `erdesign.identification.inverse.inverse_control`"
 
@@ -313,7 +389,7 @@ def render() -> str:
                 "## `physics`: the physics damper of a damper file",
                 "",
                 "Source: Makris et al. (1996) eqs 5-7 and 14, the mixed mode of Kamath and Wereley (1997), and the",
-                "effect library (`erdesign.effects`). Built as `get_model(\"physics\", damper=\"damper.toml\", effects=(...))`, or",
+                'effect library (`erdesign.effects`). Built as `get_model("physics", damper="damper.toml", effects=(...))`, or',
                 "`erdesign identify X.csv --model physics --damper D.toml [--effects a,b]`. Parameters: the calibration",
                 "factors `viscosity_factor`, `yield_stress_factor` [-] plus those of the chosen effects (see",
                 "erdesign/effects/chain.py); without a field in the record the yield-stress factor is held at 1.",
@@ -329,11 +405,20 @@ def render() -> str:
             lines += ["$$", block, "$$", ""]
         lines += ["| parameter | unit | default | bounds | |", "|---|---|---|---|---|"]
         for p in model.parameters:
-            tags = [t for t, on in (("a priori", not p.fitted), ("control", p.name in model.control_parameters),
-                                    ("log scale", p.log_scale)) if on]
+            tags = [
+                t
+                for t, on in (
+                    ("a priori", not p.fitted),
+                    ("control", p.name in model.control_parameters),
+                    ("log scale", p.log_scale),
+                )
+                if on
+            ]
             desc = p.description + (f" ({', '.join(tags)})" if tags else "")
-            lines.append(f"| `{p.name}` | {p.unit or '-'} | {_number(p.default)} | "
-                         f"[{_number(p.lower)}, {_number(p.upper)}] | {desc} |")
+            lines.append(
+                f"| `{p.name}` | {p.unit or '-'} | {_number(p.default)} | "
+                f"[{_number(p.lower)}, {_number(p.upper)}] | {desc} |"
+            )
         lines += ["", f"Integration: {INTEGRATION[name]}.", "", f"Invertibility: {_invertibility(model)}.", ""]
         if model.requires_control:
             lines += ["Needs a control column (a record without one is an error).", ""]

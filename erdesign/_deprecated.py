@@ -27,8 +27,12 @@ MOVED: dict[str, tuple[str, ...]] = {
     "erdesign.noise": ("erdesign.data.noise",),
     "erdesign.metrics": ("erdesign.data.metrics",),
     "erdesign.fit": ("erdesign.identification.fit",),
-    "erdesign.identify": ("erdesign.identification.identify", "erdesign.data.readers", "erdesign.data.quiroz",
-                          "erdesign.case_studies.quiroz"),
+    "erdesign.identify": (
+        "erdesign.identification.identify",
+        "erdesign.data.readers",
+        "erdesign.data.quiroz",
+        "erdesign.case_studies.quiroz",
+    ),
     "erdesign.inverse": ("erdesign.identification.inverse",),
     "erdesign.diagnose": ("erdesign.diagnosis.diagnose",),
     "erdesign.rig": ("erdesign.simulation.rig",),
@@ -94,8 +98,10 @@ class _OldPath:
 
         module.__getattr__ = __getattr__
         module.__dir__ = lambda: sorted(set().union(*(dir(target) for target in new)))
-        module.__all__ = [*dict.fromkeys(name for target in new for name in getattr(target, "__all__", ())),
-                          *RENAMED.get(old, ())]
+        module.__all__ = [
+            *dict.fromkeys(name for target in new for name in getattr(target, "__all__", ())),
+            *RENAMED.get(old, ()),
+        ]
         module.__doc__ = f"Deprecated: moved to {', '.join(MOVED[old])} (docs/architecture.md, moved modules)."
         for name in MOVED_SUBMODULES.get(old, ()):
             sys.modules[f"{old}.{name}"] = importlib.import_module(f"{MOVED[old][0]}.{name}")

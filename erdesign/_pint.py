@@ -39,10 +39,11 @@ _HIDDEN = ("dask", "scipy")
 def _import_pint():
     if "pint" in sys.modules:
         import pint
+
         return pint
     hidden = [name for name in _HIDDEN if name not in sys.modules]
     for name in hidden:
-        sys.modules[name] = None    # find_spec() is then None and `import` fails: pint.compat skips them
+        sys.modules[name] = None  # find_spec() is then None and `import` fails: pint.compat skips them
     try:
         import pint
     finally:
@@ -76,9 +77,9 @@ def _registry():
         try:
             return pint.UnitRegistry(cache_folder=folder, on_redefinition="raise")
         except OSError:
-            pass                    # not writable, a file in the way, disk full: no cache this time
-        except Exception:           # noqa: BLE001  (a damaged cache file: pickle raises assorted errors)
-            for stale in (*folder.glob("*.pickle"), *folder.glob("*.json")):    # only what pint wrote there
+            pass  # not writable, a file in the way, disk full: no cache this time
+        except Exception:  # noqa: BLE001  (a damaged cache file: pickle raises assorted errors)
+            for stale in (*folder.glob("*.pickle"), *folder.glob("*.json")):  # only what pint wrote there
                 stale.unlink(missing_ok=True)
     return pint.UnitRegistry(on_redefinition="raise")
 
@@ -90,6 +91,6 @@ def application_registry():
     ``pint.get_application_registry()``): a registry the user set or already used is kept as it is.
     """
     app = pint.get_application_registry()
-    if type(app.get()) is pint.registry.LazyRegistry:     # type() does not trigger the lazy build
+    if type(app.get()) is pint.registry.LazyRegistry:  # type() does not trigger the lazy build
         pint.set_application_registry(_registry())
     return app

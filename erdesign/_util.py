@@ -31,16 +31,20 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
     erdesign.errors.ErdesignError: v: element 1 is nan; give finite numbers (SI)
     """
     if hasattr(value, "units") and hasattr(value, "magnitude"):
-        raise ErdesignError(f"{name}: expected SI numbers, got a quantity in {value.units:~P}; pass "
-                            f"value.to(unit).magnitude or use the unit-aware function")
+        raise ErdesignError(
+            f"{name}: expected SI numbers, got a quantity in {value.units:~P}; pass "
+            f"value.to(unit).magnitude or use the unit-aware function"
+        )
     try:
         if value is None:
             raise TypeError
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         shown = repr(value)
-        raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {type(value).__name__} "
-                            f"{shown[:60]}{'...' if len(shown) > 60 else ''}") from None
+        raise ErdesignError(
+            f"{name}: expected a number or an array of numbers (SI), got {type(value).__name__} "
+            f"{shown[:60]}{'...' if len(shown) > 60 else ''}"
+        ) from None
     if finite:
         bad = ~np.isfinite(arr)
         if np.any(bad):
@@ -65,12 +69,14 @@ def broadcast_named(**arrays) -> tuple[int, ...]:
         pass
     names = list(shapes)
     for i, a in enumerate(names):
-        for b in names[i + 1:]:
+        for b in names[i + 1 :]:
             try:
                 np.broadcast_shapes(shapes[a], shapes[b])
             except ValueError:
-                raise ErdesignError(f"{a} and {b}: shapes {shapes[a]} and {shapes[b]} do not match (give arrays of "
-                                    "one length, or a single value)") from None
+                raise ErdesignError(
+                    f"{a} and {b}: shapes {shapes[a]} and {shapes[b]} do not match (give arrays of "
+                    "one length, or a single value)"
+                ) from None
     raise ErdesignError(f"{', '.join(names)}: shapes {', '.join(map(str, shapes.values()))} do not match")
 
 
@@ -79,14 +85,19 @@ def _same_file(a: Path, b: Path) -> bool:
         if a.exists() and b.exists():
             return os.path.samefile(a, b)
         return a.resolve() == b.resolve()
-    except (OSError, RuntimeError):         # a symbolic link loop (RuntimeError before Python 3.13)
+    except (OSError, RuntimeError):  # a symbolic link loop (RuntimeError before Python 3.13)
         return False
 
 
-def check_output_path(out: str | Path, *, force: bool = False,
-                      inputs: Iterable[str | Path | None] | Mapping[str, str | Path | None] = (),
-                      formats: Mapping[str, str] | None = None, fmt: str | None = None,
-                      option: str = "--out") -> tuple[Path, str | None]:
+def check_output_path(
+    out: str | Path,
+    *,
+    force: bool = False,
+    inputs: Iterable[str | Path | None] | Mapping[str, str | Path | None] = (),
+    formats: Mapping[str, str] | None = None,
+    fmt: str | None = None,
+    option: str = "--out",
+) -> tuple[Path, str | None]:
     """The file a command may write, and its format; an :class:`~erdesign.errors.OutputPathError` otherwise.
 
     The one rule of every command that writes a file (issue 15: never lose work):
@@ -119,19 +130,23 @@ def check_output_path(out: str | Path, *, force: bool = False,
     named = inputs.items() if isinstance(inputs, Mapping) else (("an input file of this command", p) for p in inputs)
     for label, given in named:
         if given is not None and _same_file(path, Path(given)):
-            raise OutputPathError(f"{option} {path}: that is {label} itself ({given}); an input is never "
-                                  "overwritten, even with --force: choose another name")
+            raise OutputPathError(
+                f"{option} {path}: that is {label} itself ({given}); an input is never "
+                "overwritten, even with --force: choose another name"
+            )
     kind = None
     if formats is not None:
         suffix = path.suffix.lower()
         if suffix not in formats:
             allowed = " or ".join(dict.fromkeys(formats))
-            raise OutputPathError(f"{option} {path}: cannot write a '{suffix or '(no suffix)'}' file; give a name "
-                                  f"ending in {allowed}")
+            raise OutputPathError(
+                f"{option} {path}: cannot write a '{suffix or '(no suffix)'}' file; give a name ending in {allowed}"
+            )
         kind = formats[suffix]
         if fmt is not None and fmt != kind:
-            raise OutputPathError(f"{option} {path}: the suffix '{suffix}' says {kind}, --format says {fmt}; make "
-                                  "them agree")
+            raise OutputPathError(
+                f"{option} {path}: the suffix '{suffix}' says {kind}, --format says {fmt}; make them agree"
+            )
     if path.is_dir() and not path.is_symlink():
         raise OutputPathError(f"{option} {path}: is a folder; give a file name")
     if path.exists() and not force:

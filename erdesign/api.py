@@ -15,11 +15,21 @@ from .flow import newtonian as _newtonian
 from .units import unit_aware
 
 __all__ = [
-    "slit_pressure_drop", "annulus_pressure_drop", "thin_gap_error",
-    "yield_pressure_drop", "bingham_number", "bingham_flow_rate", "bingham_pressure_drop", "bingham_plug_fraction",
-    "makris_stress", "maxwell_stress",
-    "couette_poiseuille_bingham", "mixed_mode_damper_force", "mixed_mode_yield_force",
-    "annulus_bingham_pressure_drop", "annulus_bingham_flow_rate",
+    "slit_pressure_drop",
+    "annulus_pressure_drop",
+    "thin_gap_error",
+    "yield_pressure_drop",
+    "bingham_number",
+    "bingham_flow_rate",
+    "bingham_pressure_drop",
+    "bingham_plug_fraction",
+    "makris_stress",
+    "maxwell_stress",
+    "couette_poiseuille_bingham",
+    "mixed_mode_damper_force",
+    "mixed_mode_yield_force",
+    "annulus_bingham_pressure_drop",
+    "annulus_bingham_flow_rate",
 ]
 
 _DUCT = dict(L="m", d="m", h="m")
@@ -38,15 +48,35 @@ makris_stress = unit_aware("Pa", t="s", gamma="", tau_y="Pa", eta="Pa*s", G="Pa"
 maxwell_stress = unit_aware("Pa", t="s", gamma="", eta="Pa*s", G="Pa", tau0="Pa")(_makris.maxwell_stress)
 
 couette_poiseuille_bingham = unit_aware(
-    dict(pressure_gradient="Pa/m", wall_stress_moving="Pa", wall_stress_fixed="Pa", plug_y1="m", plug_y2="m",
-         plug_fraction=""),
-    U="m/s", q="m^2/s", tau_y="Pa", eta="Pa*s", h="m")(_mixed.couette_poiseuille_bingham)
+    dict(
+        pressure_gradient="Pa/m",
+        wall_stress_moving="Pa",
+        wall_stress_fixed="Pa",
+        plug_y1="m",
+        plug_y2="m",
+        plug_fraction="",
+    ),
+    U="m/s",
+    q="m^2/s",
+    tau_y="Pa",
+    eta="Pa*s",
+    h="m",
+)(_mixed.couette_poiseuille_bingham)
 mixed_mode_damper_force = unit_aware(
     dict(force="N", pressure_drop="Pa", pressure_force="N", shear_force="N", flow_rate="m^3/s", plug_fraction=""),
-    v="m/s", tau_y="Pa", eta="Pa*s", L="m", Dp="m", dr="m", h="m")(_mixed.mixed_mode_damper_force)
+    v="m/s",
+    tau_y="Pa",
+    eta="Pa*s",
+    L="m",
+    Dp="m",
+    dr="m",
+    h="m",
+)(_mixed.mixed_mode_damper_force)
 mixed_mode_yield_force = unit_aware("N", tau_y="Pa", L="m", Dp="m", dr="m", h="m")(_mixed.mixed_mode_yield_force)
 
 annulus_bingham_pressure_drop = unit_aware("Pa", Q="m^3/s", tau_y="Pa", eta="Pa*s", **_DUCT)(
-    _annulus_bingham.annulus_bingham_pressure_drop)
+    _annulus_bingham.annulus_bingham_pressure_drop
+)
 annulus_bingham_flow_rate = unit_aware("m^3/s", dp="Pa", tau_y="Pa", eta="Pa*s", **_DUCT)(
-    _annulus_bingham.annulus_bingham_flow_rate)
+    _annulus_bingham.annulus_bingham_flow_rate
+)

@@ -83,8 +83,8 @@ def one_line(message, limit: int = MESSAGE_LIMIT) -> str:
     text = " ".join("".join(parts).split())
     if len(text) > limit:
         tail = min(_TAIL, limit // 4)
-        note = f" [... {len(text) - limit + 40} characters cut ...] "    # 40: room for the note itself
+        note = f" [... {len(text) - limit + 40} characters cut ...] "  # 40: room for the note itself
         head = limit - tail - len(note)
         note = f" [... {len(text) - head - tail} characters cut ...] "
-        text = text[:head].rstrip() + note + text[len(text) - tail:].lstrip()
+        text = text[:head].rstrip() + note + text[len(text) - tail :].lstrip()
     return text

@@ -35,8 +35,17 @@ from typing import Any
 
 from erdesign.errors import ErdesignError
 
-__all__ = ["Executor", "SerialExecutor", "PoolExecutor", "DaskExecutor", "ExecutorError", "executor_for",
-           "executor_scope", "default_jobs", "dask_worker_environ"]
+__all__ = [
+    "Executor",
+    "SerialExecutor",
+    "PoolExecutor",
+    "DaskExecutor",
+    "ExecutorError",
+    "executor_for",
+    "executor_scope",
+    "default_jobs",
+    "dask_worker_environ",
+]
 
 #: ``progress(done, total)``: called in the calling process after each finished task.
 Progress = Callable[[int, int], None]
@@ -50,7 +59,7 @@ def default_jobs() -> int:
     """All the cores this process may use."""
     try:
         return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:          # not on Linux
+    except AttributeError:  # not on Linux
         return max(1, os.cpu_count() or 1)
 
 
@@ -62,6 +71,7 @@ def _one_blas_thread() -> None:
         return
     import scipy.linalg  # noqa: F401  (loads scipy's BLAS)
     from threadpoolctl import threadpool_limits
+
     threadpool_limits(limits=1)
     _LIMITED = True
 
@@ -82,6 +92,7 @@ def _check_address(address: str) -> None:
     before a ``distributed.Client`` is made, whose failed connection would print a traceback when collected."""
     import socket
     from urllib.parse import urlsplit
+
     text = address if "://" in address else f"tcp://{address}"
     parts = urlsplit(text)
     try:
@@ -89,14 +100,18 @@ def _check_address(address: str) -> None:
     except ValueError:
         port = None
     if parts.scheme not in ("tcp", "tls") or not parts.hostname or port is None:
-        raise ExecutorError(f"scheduler: {address!r} is not a Dask scheduler address (expected tcp://host:port, "
-                            "e.g. tcp://10.0.0.5:8786)")
+        raise ExecutorError(
+            f"scheduler: {address!r} is not a Dask scheduler address (expected tcp://host:port, "
+            "e.g. tcp://10.0.0.5:8786)"
+        )
     if parts.scheme == "tcp":
         try:
             socket.create_connection((parts.hostname, port), timeout=10).close()
         except OSError as exc:
-            raise ExecutorError(f"scheduler: cannot reach the Dask scheduler at {address} "
-                                f"({exc.strerror or exc}); is it running, and is the address right?") from None
+            raise ExecutorError(
+                f"scheduler: cannot reach the Dask scheduler at {address} "
+                f"({exc.strerror or exc}); is it running, and is the address right?"
+            ) from None
 
 
 class Executor(abc.ABC):
@@ -168,10 +183,11 @@ class PoolExecutor(Executor):
             if sys.platform.startswith("linux") or sys.platform == "darwin":
                 ctx = multiprocessing.get_context("forkserver")
                 ctx.set_forkserver_preload(["erdesign", "numpy", "scipy.optimize"])
-            else:                                   # Windows: spawn is the only method
+            else:  # Windows: spawn is the only method
                 ctx = multiprocessing.get_context("spawn")
             self._pool = concurrent.futures.ProcessPoolExecutor(
-                max_workers=self.workers, mp_context=ctx, initializer=_one_blas_thread)
+                max_workers=self.workers, mp_context=ctx, initializer=_one_blas_thread
+            )
         return self._pool
 
     def imap(self, fn, items):
@@ -202,8 +218,9 @@ class DaskExecutor(Executor):
         try:
             import distributed
         except ImportError:
-            raise ExecutorError("a Dask scheduler was given, but Dask distributed is not installed: "
-                                "pip install 'erdesign[distributed]'") from None
+            raise ExecutorError(
+                "a Dask scheduler was given, but Dask distributed is not installed: pip install 'erdesign[distributed]'"
+            ) from None
         self._own_client = not isinstance(cluster, distributed.Client)
         if isinstance(cluster, distributed.Client):
             self.client = cluster
@@ -216,11 +233,13 @@ class DaskExecutor(Executor):
                 raise ExecutorError(f"cannot reach the Dask scheduler {cluster!r}: {exc}") from None
         workers = self.client.scheduler_info().get("workers", {})
         self.workers = max(1, sum(w.get("nthreads", 1) for w in workers.values()))
-        self.description = f"Dask cluster at {self.client.scheduler.address} ({len(workers)} workers, " \
-                           f"{self.workers} threads)"
+        self.description = (
+            f"Dask cluster at {self.client.scheduler.address} ({len(workers)} workers, {self.workers} threads)"
+        )
 
     def imap(self, fn, items):
         from distributed import as_completed
+
         items = list(items)
         if not items:
             return
@@ -245,8 +264,9 @@ def dask_worker_environ() -> dict[str, str]:
     return {"MALLOC_TRIM_THRESHOLD_": str(128 * 2**20), "MALLOC_MMAP_THRESHOLD_": str(64 * 2**20)}
 
 
-def executor_for(executor: Executor | Any | None = None, *, jobs: int | None = None,
-                 scheduler: str | Any | None = None) -> Executor:
+def executor_for(
+    executor: Executor | Any | None = None, *, jobs: int | None = None, scheduler: str | Any | None = None
+) -> Executor:
     """The executor for a call's ``executor``, ``jobs`` and ``scheduler`` arguments.
 
     * an :class:`Executor` given is used as it is;
@@ -267,8 +287,9 @@ def executor_for(executor: Executor | Any | None = None, *, jobs: int | None = N
 
 
 @contextlib.contextmanager
-def executor_scope(executor: Executor | Any | None = None, *, jobs: int | None = None,
-                   scheduler: str | Any | None = None):
+def executor_scope(
+    executor: Executor | Any | None = None, *, jobs: int | None = None, scheduler: str | Any | None = None
+):
     """``with executor_scope(executor, jobs=..., scheduler=...) as ex:`` - :func:`executor_for`, closed at the end
     of the block only if it was made here (an :class:`Executor` the caller passed stays open for its next use)."""
     ex = executor_for(executor, jobs=jobs, scheduler=scheduler)

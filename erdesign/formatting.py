@@ -27,9 +27,26 @@ from ._pint import pint  # not `import pint`: erdesign/_pint.py
 from .errors import UnitError
 from .units import Q_, dimension_name, ureg
 
-__all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
-           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system",
-           "CONTROL_LABELS", "control_label", "esr_shown", "SI_UNITS", "si_unit_text"]
+__all__ = [
+    "Shown",
+    "show",
+    "shown_list",
+    "pick_unit",
+    "round_significant",
+    "SIGNIFICANT_DIGITS",
+    "UNIT_CHOICES",
+    "UNIT_SYSTEMS",
+    "unit_system",
+    "use_unit_system",
+    "field_text",
+    "kind_of",
+    "show_in_system",
+    "CONTROL_LABELS",
+    "control_label",
+    "esr_shown",
+    "SI_UNITS",
+    "si_unit_text",
+]
 
 #: Significant figures of every quantity a report prints.
 SIGNIFICANT_DIGITS = 4
@@ -62,14 +79,36 @@ UNIT_CHOICES: dict[str, tuple[str, ...]] = {
 UNIT_SYSTEMS: dict[str, dict[str, tuple[str, ...]]] = {
     "SI": {},
     "mm-kN-s": {
-        "force": ("kN",), "pressure": ("MPa",), "length": ("mm",), "velocity": ("mm/s",), "area": ("mm^2",),
-        "volume": ("mm^3",), "flow": ("mm^3/s",), "viscosity": ("Pa*s",), "damping": ("kN*s/mm",),
-        "stiffness": ("kN/mm",), "energy": ("kN*mm",), "density": ("kg/m^3",), "mass": ("kg",), "time": ("s",),
+        "force": ("kN",),
+        "pressure": ("MPa",),
+        "length": ("mm",),
+        "velocity": ("mm/s",),
+        "area": ("mm^2",),
+        "volume": ("mm^3",),
+        "flow": ("mm^3/s",),
+        "viscosity": ("Pa*s",),
+        "damping": ("kN*s/mm",),
+        "stiffness": ("kN/mm",),
+        "energy": ("kN*mm",),
+        "density": ("kg/m^3",),
+        "mass": ("kg",),
+        "time": ("s",),
     },
     "in-lbf-s": {
-        "force": ("lbf",), "pressure": ("psi",), "length": ("in",), "velocity": ("in/s",), "area": ("in^2",),
-        "volume": ("in^3",), "flow": ("in^3/s",), "viscosity": ("psi*s",), "damping": ("lbf*s/in",),
-        "stiffness": ("lbf/in",), "energy": ("in*lbf",), "density": ("lb/in^3",), "mass": ("lb",), "time": ("s",),
+        "force": ("lbf",),
+        "pressure": ("psi",),
+        "length": ("in",),
+        "velocity": ("in/s",),
+        "area": ("in^2",),
+        "volume": ("in^3",),
+        "flow": ("in^3/s",),
+        "viscosity": ("psi*s",),
+        "damping": ("lbf*s/in",),
+        "stiffness": ("lbf/in",),
+        "energy": ("in*lbf",),
+        "density": ("lb/in^3",),
+        "mass": ("lb",),
+        "time": ("s",),
     },
 }
 
@@ -201,24 +240,27 @@ def show(value: Any, unit: str, *, name: str, digits: int = SIGNIFICANT_DIGITS) 
         q = value
     elif isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
         if not target.dimensionless:
-            raise UnitError(f"report: {name}: the number {value!r} has no unit; expected "
-                            f"{dimension_name(target.dimensionality)} in {unit}")
+            raise UnitError(
+                f"report: {name}: the number {value!r} has no unit; expected "
+                f"{dimension_name(target.dimensionality)} in {unit}"
+            )
         q = Q_(float(value), "")
     else:
         raise UnitError(f"report: {name}: expected a quantity, got {value!r}")
     if np.ndim(q.magnitude) != 0:
         raise UnitError(f"report: {name}: expected one value, got an array")
     if q.dimensionality != target.dimensionality:
-        raise UnitError(f"report: {name}: cannot show {q:~P} ({dimension_name(q.dimensionality)}) in "
-                        f"{unit or 'no unit'} ({dimension_name(target.dimensionality)})")
+        raise UnitError(
+            f"report: {name}: cannot show {q:~P} ({dimension_name(q.dimensionality)}) in "
+            f"{unit or 'no unit'} ({dimension_name(target.dimensionality)})"
+        )
     magnitude = float(q.to(target).magnitude)
     number = round_significant(magnitude, digits) if math.isfinite(magnitude) else "undefined"
     unit_text = f"{target:~P}" if unit and not _is_plain_ratio(target) else ""
     si = q.to_base_units()
     si_unit = "dimensionless" if target.dimensionless else f"{si.units}"
     text = f"{number} {unit_text}".strip() if math.isfinite(magnitude) else number
-    return Shown(text=text, number=number, unit=unit_text, si=float(si.magnitude),
-                 si_unit=si_unit)
+    return Shown(text=text, number=number, unit=unit_text, si=float(si.magnitude), si_unit=si_unit)
 
 
 def esr_shown(x: float, *, name: str = "ESR") -> Shown:
@@ -280,9 +322,23 @@ def kind_of(unit: str) -> str | None:
 
 #: The coherent SI unit of each kind of :data:`UNIT_CHOICES` (CSV headers: numbers in SI, ``force [N]``).
 SI_UNITS: dict[str, str] = {
-    "force": "N", "pressure": "Pa", "length": "m", "velocity": "m/s", "area": "m^2", "volume": "m^3",
-    "flow": "m^3/s", "viscosity": "Pa*s", "damping": "N*s/m", "stiffness": "N/m", "energy": "J", "frequency": "Hz",
-    "electric field": "V/m", "magnetic field": "A/m", "density": "kg/m^3", "mass": "kg", "time": "s",
+    "force": "N",
+    "pressure": "Pa",
+    "length": "m",
+    "velocity": "m/s",
+    "area": "m^2",
+    "volume": "m^3",
+    "flow": "m^3/s",
+    "viscosity": "Pa*s",
+    "damping": "N*s/m",
+    "stiffness": "N/m",
+    "energy": "J",
+    "frequency": "Hz",
+    "electric field": "V/m",
+    "magnetic field": "A/m",
+    "density": "kg/m^3",
+    "mass": "kg",
+    "time": "s",
 }
 
 

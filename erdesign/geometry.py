@@ -33,7 +33,14 @@ from .flow.areas import piston_area
 from .flow.newtonian import thin_gap_error
 from .units import to_si
 
-__all__ = ["Geometry", "mixed_mean_diameter", "CONFIGURATIONS", "THIN_GAP_LIMIT", "POSSIBLE_LENGTHS", "PLAUSIBLE_LENGTHS"]
+__all__ = [
+    "Geometry",
+    "mixed_mean_diameter",
+    "CONFIGURATIONS",
+    "THIN_GAP_LIMIT",
+    "POSSIBLE_LENGTHS",
+    "PLAUSIBLE_LENGTHS",
+]
 
 CONFIGURATIONS = ("valve", "mixed")
 
@@ -43,13 +50,23 @@ THIN_GAP_LIMIT = 0.1
 
 #: Possible range of each length [m]: outside it the value is an error (no damper, or a unit mistake so large that
 #: the arithmetic of the kernels breaks down: a gap of 1e-300 m cubed is zero).
-POSSIBLE_LENGTHS = {"gap": (1e-7, 1.0), "duct_length": (1e-6, 100.0), "duct_mean_diameter": (1e-6, 100.0),
-                    "piston_diameter": (1e-6, 100.0), "rod_diameter": (0.0, 100.0)}
+POSSIBLE_LENGTHS = {
+    "gap": (1e-7, 1.0),
+    "duct_length": (1e-6, 100.0),
+    "duct_mean_diameter": (1e-6, 100.0),
+    "piston_diameter": (1e-6, 100.0),
+    "rod_diameter": (0.0, 100.0),
+}
 #: Plausible range of each length [m]: outside it erdesign warns (a unit mistake is likely).  ER/MR particles are
 #: 1 to 50 um across, so a gap below 50 um jams; gaps above 10 mm take fields no supply gives (Butz and von Stryk
 #: 2002, Table 1).
-PLAUSIBLE_LENGTHS = {"gap": (5e-5, 1e-2), "duct_length": (1e-3, 2.0), "duct_mean_diameter": (1e-3, 1.0),
-                     "piston_diameter": (3e-3, 1.0), "rod_diameter": (0.0, 0.5)}
+PLAUSIBLE_LENGTHS = {
+    "gap": (5e-5, 1e-2),
+    "duct_length": (1e-3, 2.0),
+    "duct_mean_diameter": (1e-3, 1.0),
+    "piston_diameter": (3e-3, 1.0),
+    "rod_diameter": (0.0, 0.5),
+}
 #: Most parallel ducts possible, and the most erdesign takes without a warning.
 MAX_DUCTS, PLAUSIBLE_DUCTS = 10_000, 64
 
@@ -89,8 +106,9 @@ class Geometry:
             return DamperFileError(f"geometry.{key}: {why}")
 
         if self.configuration not in CONFIGURATIONS:
-            raise bad("configuration", f"must be one of {', '.join(map(repr, CONFIGURATIONS))}, "
-                                       f"got {self.configuration!r}")
+            raise bad(
+                "configuration", f"must be one of {', '.join(map(repr, CONFIGURATIONS))}, got {self.configuration!r}"
+            )
         # The constructor takes SI floats, and also quantities or strings ("0.8 mm"), as Geometry.create does.
         for key in ("duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter"):
             value = getattr(self, key)
@@ -110,14 +128,22 @@ class Geometry:
         for key, (lo, hi) in POSSIBLE_LENGTHS.items():
             value = getattr(self, key)
             if not lo <= value <= hi:
-                raise bad(key, f"{_mm(value)} is outside the possible range {_mm(lo)} to {_mm(hi)} of a damper "
-                               f"(a unit mistake?)")
+                raise bad(
+                    key,
+                    f"{_mm(value)} is outside the possible range {_mm(lo)} to {_mm(hi)} of a damper (a unit mistake?)",
+                )
         if self.rod_diameter >= self.piston_diameter:
-            raise bad("rod_diameter", f"must be smaller than the piston diameter ({self.rod_diameter * 1e3:g} mm "
-                                      f">= {self.piston_diameter * 1e3:g} mm)")
+            raise bad(
+                "rod_diameter",
+                f"must be smaller than the piston diameter ({self.rod_diameter * 1e3:g} mm "
+                f">= {self.piston_diameter * 1e3:g} mm)",
+            )
         if self.gap >= self.duct_mean_diameter:
-            raise bad("gap", f"must be smaller than the mean diameter of the annulus ({self.gap * 1e3:g} mm >= "
-                             f"{self.duct_mean_diameter * 1e3:g} mm): the inner wall would have no diameter left")
+            raise bad(
+                "gap",
+                f"must be smaller than the mean diameter of the annulus ({self.gap * 1e3:g} mm >= "
+                f"{self.duct_mean_diameter * 1e3:g} mm): the inner wall would have no diameter left",
+            )
         if not (isinstance(self.ducts, int) and not isinstance(self.ducts, bool) and self.ducts >= 1):
             raise bad("ducts", f"must be a whole number >= 1, got {self.ducts!r}")
         if self.ducts > MAX_DUCTS:
@@ -127,16 +153,22 @@ class Geometry:
                 raise bad("ducts", "applies to the valve configuration only (a mixed damper has one gap)")
             expected = mixed_mean_diameter(self.piston_diameter, self.gap)
             if not math.isclose(self.duct_mean_diameter, expected, rel_tol=1e-3):
-                raise bad("duct_mean_diameter", f"for a mixed damper it is piston_diameter + gap = "
-                                                f"{expected * 1e3:.4g} mm, got {self.duct_mean_diameter * 1e3:.4g} mm")
+                raise bad(
+                    "duct_mean_diameter",
+                    f"for a mixed damper it is piston_diameter + gap = "
+                    f"{expected * 1e3:.4g} mm, got {self.duct_mean_diameter * 1e3:.4g} mm",
+                )
         self._warn_implausible()
         if self.gap_ratio > THIN_GAP_LIMIT:
             warnings.warn(
                 f"geometry.gap: h/d = {self.gap_ratio:.3g} is not small; the thin-gap formulas are off by "
                 f"{100 * self.thin_gap_error:.2g} % for a Newtonian fluid"
-                + ("; the exact annulus is used" if self.configuration == "valve" else
-                   "; the mixed-mode model keeps the thin-gap form (compare erdesign.flow.numerical in annular "
-                   "coordinates)"),
+                + (
+                    "; the exact annulus is used"
+                    if self.configuration == "valve"
+                    else "; the mixed-mode model keeps the thin-gap form (compare erdesign.flow.numerical in annular "
+                    "coordinates)"
+                ),
                 ValidityWarning,
                 stacklevel=3,
             )
@@ -146,11 +178,19 @@ class Geometry:
         for key, (lo, hi) in PLAUSIBLE_LENGTHS.items():
             value = getattr(self, key)
             if not lo <= value <= hi:
-                warnings.warn(f"geometry.{key}: {_mm(value)} is outside the plausible range {_mm(lo)} to {_mm(hi)}; "
-                              "check the value and its unit", PlausibilityWarning, stacklevel=4)
+                warnings.warn(
+                    f"geometry.{key}: {_mm(value)} is outside the plausible range {_mm(lo)} to {_mm(hi)}; "
+                    "check the value and its unit",
+                    PlausibilityWarning,
+                    stacklevel=4,
+                )
         if self.ducts > PLAUSIBLE_DUCTS:
-            warnings.warn(f"geometry.ducts: {self.ducts} parallel ducts is implausibly many (more than "
-                          f"{PLAUSIBLE_DUCTS}); check the value", PlausibilityWarning, stacklevel=4)
+            warnings.warn(
+                f"geometry.ducts: {self.ducts} parallel ducts is implausibly many (more than "
+                f"{PLAUSIBLE_DUCTS}); check the value",
+                PlausibilityWarning,
+                stacklevel=4,
+            )
 
     @classmethod
     def create(
@@ -176,8 +216,9 @@ class Geometry:
         7.7676
         """
         if configuration not in CONFIGURATIONS:
-            raise DamperFileError(f"geometry.configuration: must be one of "
-                                  f"{', '.join(map(repr, CONFIGURATIONS))}, got {configuration!r}")
+            raise DamperFileError(
+                f"geometry.configuration: must be one of {', '.join(map(repr, CONFIGURATIONS))}, got {configuration!r}"
+            )
         L = to_si(duct_length, "m", "geometry.duct_length")
         h = to_si(gap, "m", "geometry.gap")
         Dp = to_si(piston_diameter, "m", "geometry.piston_diameter")
@@ -211,8 +252,9 @@ class Geometry:
             raise TypeError(f"Geometry.with_: unknown value(s) {', '.join(unknown)}; known: {', '.join(names)}")
         values = {key: getattr(self, key) for key in names} | changes
         if values["configuration"] == "mixed" and "duct_mean_diameter" not in changes:
-            values["duct_mean_diameter"] = mixed_mean_diameter(_length_si("piston_diameter", values["piston_diameter"]),
-                                                               _length_si("gap", values["gap"]))
+            values["duct_mean_diameter"] = mixed_mean_diameter(
+                _length_si("piston_diameter", values["piston_diameter"]), _length_si("gap", values["gap"])
+            )
         return Geometry(**values)
 
     @property

@@ -69,11 +69,13 @@ def refuse_symlink(path: str | Path, *, overwrite: bool = False, option: str = "
         return
     try:
         target = os.readlink(path)
-    except OSError:                                           # pragma: no cover - raced away
+    except OSError:  # pragma: no cover - raced away
         target = "?"
     remedy = "give --force" if option.startswith("--") else "pass overwrite=True"
-    raise OutputPathError(f"{option} {path}: is a symbolic link (to {target}); erdesign does not write through "
-                          f"links: {remedy} to replace the link itself by the file, or choose another name")
+    raise OutputPathError(
+        f"{option} {path}: is a symbolic link (to {target}); erdesign does not write through "
+        f"links: {remedy} to replace the link itself by the file, or choose another name"
+    )
 
 
 def _temporary(path: Path, option: str) -> tuple[Path, int]:
@@ -84,7 +86,7 @@ def _temporary(path: Path, option: str) -> tuple[Path, int]:
         tmp = folder / f".{stem}.{secrets.token_hex(4)}.tmp"
         try:
             return tmp, os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o666)
-        except FileExistsError:                               # pragma: no cover - 1 in 4e9
+        except FileExistsError:  # pragma: no cover - 1 in 4e9
             continue
         except FileNotFoundError:
             raise OutputPathError(f"{option} {path}: the folder {folder} does not exist") from None
@@ -93,8 +95,9 @@ def _temporary(path: Path, option: str) -> tuple[Path, int]:
         except PermissionError:
             raise OutputPathError(f"{option} {path}: cannot write in the folder {folder} (permission denied)") from None
         except OSError as exc:
-            raise OutputPathError(f"{option} {path}: cannot create a file in {folder}: "
-                                  f"{exc.strerror or type(exc).__name__}") from None
+            raise OutputPathError(
+                f"{option} {path}: cannot create a file in {folder}: {exc.strerror or type(exc).__name__}"
+            ) from None
     raise OutputPathError(f"{option} {path}: cannot create a temporary file in {folder}")  # pragma: no cover
 
 
@@ -128,8 +131,9 @@ def _link_exclusively(tmp: Path, path: Path, option: str) -> None:
         raise exists from None
     except OSError as exc:
         if exc.errno not in (errno.EPERM, errno.ENOTSUP, errno.EOPNOTSUPP, errno.EXDEV, errno.EMLINK, errno.ENOSYS):
-            raise OutputPathError(f"{option} {path}: cannot create the file: "
-                                  f"{exc.strerror or type(exc).__name__}") from None
+            raise OutputPathError(
+                f"{option} {path}: cannot create the file: {exc.strerror or type(exc).__name__}"
+            ) from None
     # a file system without hard links (FAT, some network shares): claim the name exclusively with an empty
     # file, then put the complete file in its place in one step
     try:
@@ -149,7 +153,7 @@ def _terminate_as_exit() -> Iterator[None]:
         return
     try:
         previous = signal.getsignal(signal.SIGTERM)
-    except (ValueError, OSError):                             # pragma: no cover
+    except (ValueError, OSError):  # pragma: no cover
         yield
         return
     if previous not in (signal.SIG_DFL, None):
@@ -202,7 +206,7 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
             yield tmp
             _fsync_file(tmp)
             if overwrite:
-                with contextlib.suppress(OSError):            # a replaced file keeps its permissions
+                with contextlib.suppress(OSError):  # a replaced file keeps its permissions
                     old = os.stat(path, follow_symlinks=False)
                     if stat.S_ISREG(old.st_mode):
                         os.chmod(tmp, stat.S_IMODE(old.st_mode))
@@ -211,8 +215,9 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
                 except IsADirectoryError:
                     raise OutputPathError(f"{option} {path}: is a folder; give a file name") from None
                 except OSError as exc:
-                    raise OutputPathError(f"{option} {path}: cannot replace the file: "
-                                          f"{exc.strerror or type(exc).__name__}") from None
+                    raise OutputPathError(
+                        f"{option} {path}: cannot replace the file: {exc.strerror or type(exc).__name__}"
+                    ) from None
             else:
                 _link_exclusively(tmp, path, option)
             _fsync_folder(path.parent if str(path.parent) else Path("."))
@@ -222,8 +227,15 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
 
 
 @contextlib.contextmanager
-def open_output(path: str | Path, mode: str = "w", *, overwrite: bool = False, option: str = "path",
-                encoding: str | None = "utf-8", newline: str | None = None) -> Iterator[IO]:
+def open_output(
+    path: str | Path,
+    mode: str = "w",
+    *,
+    overwrite: bool = False,
+    option: str = "path",
+    encoding: str | None = "utf-8",
+    newline: str | None = None,
+) -> Iterator[IO]:
     """:func:`atomic_output` as an open file: ``mode`` ``"w"`` (text, ``encoding``, ``newline``) or ``"wb"``."""
     if mode not in ("w", "wb"):
         raise ValueError(f"mode: expected 'w' or 'wb', got {mode!r}")
@@ -236,8 +248,9 @@ def open_output(path: str | Path, mode: str = "w", *, overwrite: bool = False, o
                 yield fh
 
 
-def write_output(path: str | Path, data: str | bytes, *, overwrite: bool = False, option: str = "path",
-                 encoding: str = "utf-8") -> Path:
+def write_output(
+    path: str | Path, data: str | bytes, *, overwrite: bool = False, option: str = "path", encoding: str = "utf-8"
+) -> Path:
     """Write ``data`` (text as ``encoding``, or bytes) to ``path`` through :func:`atomic_output`; returns the path."""
     raw = data.encode(encoding) if isinstance(data, str) else bytes(data)
     with open_output(path, "wb", overwrite=overwrite, option=option) as fh:

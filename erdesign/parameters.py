@@ -19,7 +19,6 @@ class ParameterError(ErdesignError):
     """Unknown parameter name, or a value outside its physical bounds."""
 
 
-
 @dataclass(frozen=True)
 class Parameter:
     """One parameter of a model.
@@ -55,8 +54,7 @@ class Parameter:
 
     def __post_init__(self) -> None:
         if not self.lower <= self.default <= self.upper:
-            raise ParameterError(f"{self.name}: default {self.default} outside its bounds "
-                                 f"[{self.lower}, {self.upper}]")
+            raise ParameterError(f"{self.name}: default {self.default} outside its bounds [{self.lower}, {self.upper}]")
         if self.log_scale and not self.lower > 0:
             raise ParameterError(f"{self.name}: a log-scale parameter needs a positive lower bound")
 

@@ -45,8 +45,23 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationEr
 from .errors import ErdesignError
 from .units import to_si
 
-__all__ = ["Table", "field", "quantity", "Length", "Number", "WholeNumber", "PositiveWholeNumber", "Text", "Flag",
-           "choice", "whole_number", "checked", "validate", "key_table", "QuantitySpec"]
+__all__ = [
+    "Table",
+    "field",
+    "quantity",
+    "Length",
+    "Number",
+    "WholeNumber",
+    "PositiveWholeNumber",
+    "Text",
+    "Flag",
+    "choice",
+    "whole_number",
+    "checked",
+    "validate",
+    "key_table",
+    "QuantitySpec",
+]
 
 
 class Table(BaseModel):
@@ -74,14 +89,17 @@ class QuantitySpec:
     """What a :func:`quantity` field takes: the SI unit of its dimension and its sign (for the docs and checks)."""
 
     unit: str
-    sign: str = ""          # "", "positive" or "non-negative"
-    dimension: str = ""     # what the docs call it ("length"); the unit's dimension by default
-    text: bool = False      # only a string (a bare number is refused as such, not as a number without unit)
+    sign: str = ""  # "", "positive" or "non-negative"
+    dimension: str = ""  # what the docs call it ("length"); the unit's dimension by default
+    text: bool = False  # only a string (a bare number is refused as such, not as a number without unit)
 
     def check(self, value: Any) -> Any:
-        if isinstance(value, bool) or not isinstance(value, (str, numbers.Real)) or (self.text and
-                                                                                   not isinstance(value, str)):
-            raise _Refused(f"expected a value with a unit as a string (e.g. \"1 {self.unit}\"), got {value!r}")
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, (str, numbers.Real))
+            or (self.text and not isinstance(value, str))
+        ):
+            raise _Refused(f'expected a value with a unit as a string (e.g. "1 {self.unit}"), got {value!r}')
         try:
             x = to_si(value, self.unit, "\x00")
         except ErdesignError as exc:
@@ -109,12 +127,14 @@ def _number(value: Any) -> float:
 
 def whole_number(low: int) -> Any:
     """The type of a key that takes a whole number >= ``low``."""
+
     def check(value: Any) -> int:
         if isinstance(value, bool) or not isinstance(value, numbers.Integral):
             raise _Refused(f"expected a whole number, got {value!r}")
         if value < low:
             raise _Refused(f"must be >= {low}, got {value!r}")
         return int(value)
+
     return Annotated[Any, BeforeValidator(check), f"whole number >= {low}"]
 
 
@@ -122,11 +142,13 @@ def checked(check: Any, kind: str) -> Any:
     """The type of a key checked by ``check(value, name)``, a function that raises an
     :class:`~erdesign.errors.ErdesignError` whose message starts with ``name`` and returns the value to keep;
     ``kind`` says what the key takes (the docs' key table)."""
+
     def run(value: Any) -> Any:
         try:
             return check(value, "\x00")
         except ErdesignError as exc:
             raise _Refused(str(exc).removeprefix("\x00: ")) from None
+
     return Annotated[Any, BeforeValidator(run), kind]
 
 
@@ -226,7 +248,7 @@ def _message(model: type[Table], where: str, error: Mapping[str, Any]) -> str:
     cause = (error.get("ctx") or {}).get("error")
     if isinstance(cause, ValueError):
         return f"{name}: {cause}"
-    return f"{name}: {error['msg']}"                                    # pragma: no cover - a type not declared here
+    return f"{name}: {error['msg']}"  # pragma: no cover - a type not declared here
 
 
 def validate(model: type[Table], data: Any, where: str = "", *, error: type[ErdesignError] = ErdesignError) -> Table:
@@ -246,10 +268,11 @@ def _kind(info: Any) -> str:
     for meta in info.metadata:
         if isinstance(meta, QuantitySpec):
             from .units import dimension_name, ureg
+
             what = meta.dimension or dimension_name(ureg.Quantity(1, meta.unit).dimensionality)
             what = what.removeprefix("a ").removeprefix("an ")
             sign = {"positive": " > 0", "non-negative": " >= 0"}.get(meta.sign, "")
-            return f"{what}{sign}, with a unit (\"1 {meta.unit}\")"
+            return f'{what}{sign}, with a unit ("1 {meta.unit}")'
         if isinstance(meta, _Choice):
             return " or ".join(f'"{o}"' for o in meta.options)
         if isinstance(meta, str):
@@ -268,7 +291,10 @@ def key_table(model: type[Table]) -> str:
         elif info.default is None:
             need = "optional"
         else:
-            need = f"default `{info.default!r}`".replace("'", '"') if not isinstance(info.default, bool) else \
-                f"default `{str(info.default).lower()}`"
+            need = (
+                f"default `{info.default!r}`".replace("'", '"')
+                if not isinstance(info.default, bool)
+                else f"default `{str(info.default).lower()}`"
+            )
         lines.append(f"| `{key}` | {_kind(info)} | {need} | {info.description or ''} |")
     return "\n".join(lines) + "\n"

@@ -37,24 +37,54 @@ from ._pint import application_registry, pint
 from ._util import broadcast_named
 from .errors import UnitError
 
-__all__ = ["ureg", "Q_", "to_si", "positive_si", "plain_number", "parse_quantity", "parse_unit", "clean_value_text",
-           "to_quantity", "unit_aware", "dimension_name", "same_dimension"]
+__all__ = [
+    "ureg",
+    "Q_",
+    "to_si",
+    "positive_si",
+    "plain_number",
+    "parse_quantity",
+    "parse_unit",
+    "clean_value_text",
+    "to_quantity",
+    "unit_aware",
+    "dimension_name",
+    "same_dimension",
+]
 
-ureg = application_registry()   # pint's application registry, its definitions cached (erdesign/_pint.py)
+ureg = application_registry()  # pint's application registry, its definitions cached (erdesign/_pint.py)
 Q_ = ureg.Quantity
 
 # Plain-language names of the dimensions erdesign deals with, for error messages.
 _DIMENSION_NAMES = {
     ureg.Unit(unit).dimensionality: name
     for unit, name in [
-        ("m", "a length"), ("kg", "a mass"), ("s", "a time"), ("m/s", "a velocity"),
-        ("m/s^2", "an acceleration"), ("m^2", "an area"), ("m^3", "a volume"),
-        ("m^3/s", "a volumetric flow rate"), ("Pa", "a pressure or stress"), ("Pa*s", "a dynamic viscosity"),
-        ("m^2/s", "a kinematic viscosity"), ("kg/m^3", "a density"), ("N", "a force"),
-        ("N*s/m", "a damping constant"), ("N/m", "a stiffness"), ("J", "an energy"), ("W", "a power"),
-        ("V/m", "an electric field"), ("A/m", "a magnetic field strength"), ("T", "a magnetic flux density"),
-        ("A", "an electric current"), ("V", "a voltage"), ("K", "a temperature"),
-        ("1/s", "a frequency or shear rate"), ("Pa/m", "a pressure gradient"), ("N*s^2/m", "a mass"),
+        ("m", "a length"),
+        ("kg", "a mass"),
+        ("s", "a time"),
+        ("m/s", "a velocity"),
+        ("m/s^2", "an acceleration"),
+        ("m^2", "an area"),
+        ("m^3", "a volume"),
+        ("m^3/s", "a volumetric flow rate"),
+        ("Pa", "a pressure or stress"),
+        ("Pa*s", "a dynamic viscosity"),
+        ("m^2/s", "a kinematic viscosity"),
+        ("kg/m^3", "a density"),
+        ("N", "a force"),
+        ("N*s/m", "a damping constant"),
+        ("N/m", "a stiffness"),
+        ("J", "an energy"),
+        ("W", "a power"),
+        ("V/m", "an electric field"),
+        ("A/m", "a magnetic field strength"),
+        ("T", "a magnetic flux density"),
+        ("A", "an electric current"),
+        ("V", "a voltage"),
+        ("K", "a temperature"),
+        ("1/s", "a frequency or shear rate"),
+        ("Pa/m", "a pressure gradient"),
+        ("N*s^2/m", "a mass"),
         ("", "a plain number"),
     ]
 }
@@ -103,41 +133,48 @@ def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
 
     shown = text if len(text) <= 60 else text[:57] + "..."
     if len(text) > MAX_VALUE_CHARS:
-        raise UnitError(f"{name}: {len(text)} characters is too long for a value with a unit (at most "
-                        f"{MAX_VALUE_CHARS}), got {shown!r}")
+        raise UnitError(
+            f"{name}: {len(text)} characters is too long for a value with a unit (at most "
+            f"{MAX_VALUE_CHARS}), got {shown!r}"
+        )
     out = []
     for ch in text:
         if ch.isascii():
             if ch.isprintable():
                 out.append(ch)
-            elif ch.isspace():                       # tab, line break
+            elif ch.isspace():  # tab, line break
                 out.append(" ")
             else:
                 raise UnitError(f"{name}: {shown!r} holds the control character {ch!r}")
         elif ch in _MINUS_SIGNS:
             out.append(_MINUS_SIGNS[ch])
-        elif "\uff01" <= ch <= "\uff5e":            # fullwidth ASCII
+        elif "\uff01" <= ch <= "\uff5e":  # fullwidth ASCII
             out.append(chr(ord(ch) - 0xFEE0))
         elif ch.isspace():
             out.append(" ")
-        elif unicodedata.category(ch) == "Cf":       # zero-width space, BOM, direction marks: invisible
+        elif unicodedata.category(ch) == "Cf":  # zero-width space, BOM, direction marks: invisible
             continue
         elif ch in _DASHES:
-            raise UnitError(f"{name}: {shown!r} has the {unicodedata.name(ch, 'dash').lower()} U+{ord(ch):04X}, "
-                            "which is not a minus sign; write '-' for a negative value")
+            raise UnitError(
+                f"{name}: {shown!r} has the {unicodedata.name(ch, 'dash').lower()} U+{ord(ch):04X}, "
+                "which is not a minus sign; write '-' for a negative value"
+            )
         elif ch in _UNIT_CHARACTERS or (ch.isalpha() and not unicodedata.category(ch).startswith("N")):
             out.append(ch)
         else:
             kind = "digit" if ch.isdigit() or ch.isnumeric() else "character"
-            raise UnitError(f"{name}: {shown!r} holds the {kind} {ch!r} ({unicodedata.name(ch, 'unnamed')}, "
-                            f"U+{ord(ch):04X}); write the value in ASCII digits, e.g. '0.8 mm'")
+            raise UnitError(
+                f"{name}: {shown!r} holds the {kind} {ch!r} ({unicodedata.name(ch, 'unnamed')}, "
+                f"U+{ord(ch):04X}); write the value in ASCII digits, e.g. '0.8 mm'"
+            )
     clean = "".join(out)
     if "," in clean:
         if _DECIMAL_COMMA.match(clean):
-            raise UnitError(f"{name}: {shown!r} has a decimal comma; write {clean.replace(',', '.', 1)!r} with a "
-                            "point")
-        raise UnitError(f"{name}: {shown!r} has a ',' (neither a decimal point nor a list is read here); give one "
-                        "value with its unit")
+            raise UnitError(f"{name}: {shown!r} has a decimal comma; write {clean.replace(',', '.', 1)!r} with a point")
+        raise UnitError(
+            f"{name}: {shown!r} has a ',' (neither a decimal point nor a list is read here); give one "
+            "value with its unit"
+        )
     if _DIGIT_SEPARATOR.search(clean):
         plain = _DIGIT_SEPARATOR.sub(lambda m: m[0][0] + m[0][2], clean)
         raise UnitError(f"{name}: {shown!r} has a digit separator; write the number without it ({plain!r})")
@@ -149,13 +186,16 @@ def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
         raise UnitError(f"{name}: {shown!r} is not a number (two decimal points)")
     if number and clean.strip() and not re.search(r"[0-9]|inf|nan", clean, re.IGNORECASE):
         example = f", e.g. '1 {clean.strip()}'" if _is_unit(clean.strip()) else ""
-        raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit: it has no number; give a value "
-                        f"with its unit{example}")
+        raise UnitError(
+            f"{name}: cannot read {shown!r} as a value with a unit: it has no number; give a value "
+            f"with its unit{example}"
+        )
     return clean
 
 
-_PLAIN_NUMBER = re.compile(r"\s*[-+]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|nan|inf|infinity)\s*",
-                           re.ASCII | re.IGNORECASE)
+_PLAIN_NUMBER = re.compile(
+    r"\s*[-+]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|nan|inf|infinity)\s*", re.ASCII | re.IGNORECASE
+)
 
 
 def plain_number(text: str) -> float | None:
@@ -203,7 +243,7 @@ def parse_quantity(text: str, name: str) -> pint.Quantity:
     except Exception as exc:  # noqa: BLE001 - pint raises assorted errors (AssertionError too) for garbled strings
         detail = f" ({exc})" if str(exc) else ""
         raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit{detail}") from None
-    if not isinstance(q, pint.Quantity):       # a bare number: pint returns a plain int or float
+    if not isinstance(q, pint.Quantity):  # a bare number: pint returns a plain int or float
         q = Q_(q)
     return q
 
@@ -312,8 +352,11 @@ def positive_si(value: Any, unit: str, name: str) -> float:
     if np.ndim(si) != 0:
         raise UnitError(f"{name}: expected one value, got an array of shape {np.shape(si)}")
     if not si > 0:
-        shown = value if isinstance(value, str) else (_shown_quantity(value) if isinstance(value, pint.Quantity)
-                                                      else repr(value))
+        shown = (
+            value
+            if isinstance(value, str)
+            else (_shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value))
+        )
         raise UnitError(f"{name}: must be positive, got '{shown}'")
     return float(si)
 
@@ -375,8 +418,11 @@ def _warn_nonfinite(name: str, result: Any) -> None:
     for finite arguments (an overflow, a vanishing gap): never a silent NaN."""
     from .errors import PlausibilityWarning
 
-    parts = result._asdict().items() if hasattr(result, "_asdict") else (
-        enumerate(result) if isinstance(result, tuple) else [("result", result)])
+    parts = (
+        result._asdict().items()
+        if hasattr(result, "_asdict")
+        else (enumerate(result) if isinstance(result, tuple) else [("result", result)])
+    )
     for key, part in parts:
         try:
             arr = np.asarray(part, dtype=float)
@@ -384,9 +430,12 @@ def _warn_nonfinite(name: str, result: Any) -> None:
             continue
         if not np.all(np.isfinite(arr)):
             what = "" if key == "result" else f" ({key})"
-            warnings.warn(f"{name}: the result{what} is not finite for these arguments (an overflow, or a gap or "
-                          "viscosity too small to represent); check their magnitudes and units",
-                          PlausibilityWarning, stacklevel=3)
+            warnings.warn(
+                f"{name}: the result{what} is not finite for these arguments (an overflow, or a gap or "
+                "viscosity too small to represent); check their magnitudes and units",
+                PlausibilityWarning,
+                stacklevel=3,
+            )
             return
 
 

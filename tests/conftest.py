@@ -24,12 +24,14 @@ def dask_client():
     shared by every test of the session that needs one (starting it costs a few seconds)."""
     distributed = pytest.importorskip("distributed", reason="the Dask tests need the test extra (distributed)")
     import dask
+
     # glibc's malloc as in a plain process (docs/scale.md): Dask's default trim threshold makes every large numpy
     # array a fresh mmap, 30 % more CPU per task here; the results are the same either way
     environ = {**dask.config.get("distributed.nanny.pre-spawn-environ"), **dask_worker_environ()}
     dask.config.set({"distributed.nanny.pre-spawn-environ": environ})
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                                       host="127.0.0.1", silence_logs=40)
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, host="127.0.0.1", silence_logs=40
+    )
     client = distributed.Client(cluster, set_as_default=False)
     try:
         yield client

@@ -11,8 +11,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from erdesign.damper.accumulator import (Accumulator, accumulator_from_table, accumulator_preload,
-                                         accumulator_stiffness)
+from erdesign.damper.accumulator import Accumulator, accumulator_from_table, accumulator_preload, accumulator_stiffness
 from erdesign.damper.files import damper_from_dict, damper_spec, load_example, read_toml
 from erdesign.effects import EFFECTS
 from erdesign.errors import DamperFileError, ErdesignError, PlausibilityWarning
@@ -24,6 +23,7 @@ GAS = EFFECTS["gas_spring"]
 
 def _spencer_dict() -> dict:
     from importlib import resources
+
     with resources.as_file(resources.files("erdesign.examples") / "spencer1997.toml") as path:
         return read_toml(path)
 
@@ -58,9 +58,9 @@ def test_units_of_preload_and_stiffness():
     f0 = (Q_(1, "MPa") * Ar).to("N")
     k = (1.4 * Q_(1, "MPa") * Ar**2 / Q_(20, "cm^3")).to("N/m")
     acc = Accumulator(precharge=1.0e6, gas_volume=20e-6, polytropic_index=1.4)
-    assert acc.preload(0.010) == pytest.approx(f0.magnitude, rel=1e-12)      # 78.54 N
-    assert acc.stiffness(0.010) == pytest.approx(k.magnitude, rel=1e-12)     # 431.8 N/m
-    assert f0.magnitude == pytest.approx(78.54, abs=0.01)                    # pi/4 * 1e-4 m^2 * 1e6 Pa
+    assert acc.preload(0.010) == pytest.approx(f0.magnitude, rel=1e-12)  # 78.54 N
+    assert acc.stiffness(0.010) == pytest.approx(k.magnitude, rel=1e-12)  # 431.8 N/m
+    assert f0.magnitude == pytest.approx(78.54, abs=0.01)  # pi/4 * 1e-4 m^2 * 1e6 Pa
 
 
 def test_isothermal_gas_is_softer_by_the_index():
@@ -87,16 +87,19 @@ def test_accumulator_keys_are_optional_and_default_index():
     assert load_example("makris").rod == "double" and load_example("makris").accumulator is None
 
 
-@pytest.mark.parametrize("tables, key", [
-    ({"accumulator": {"gas_volume": "15 cm"}}, "accumulator.gas_volume"),              # a length, not a volume
-    ({"accumulator": {"precharge": "-1 MPa"}}, "accumulator.precharge"),
-    ({"accumulator": {"precharge": "2 N"}}, "accumulator.precharge"),
-    ({"accumulator": {"polytropic_index": 2.0}}, "accumulator.polytropic_index"),
-    ({"accumulator": {"polytropic_index": "1.4"}}, "accumulator.polytropic_index"),
-    ({"accumulator": {"charge": "1 MPa"}}, "accumulator.charge"),                      # unknown key
-    ({"geometry": {"rod": "triple"}}, "geometry.rod"),
-    ({"geometry": {"rod": "double"}}, "accumulator"),                                 # accumulator needs one rod
-])
+@pytest.mark.parametrize(
+    "tables, key",
+    [
+        ({"accumulator": {"gas_volume": "15 cm"}}, "accumulator.gas_volume"),  # a length, not a volume
+        ({"accumulator": {"precharge": "-1 MPa"}}, "accumulator.precharge"),
+        ({"accumulator": {"precharge": "2 N"}}, "accumulator.precharge"),
+        ({"accumulator": {"polytropic_index": 2.0}}, "accumulator.polytropic_index"),
+        ({"accumulator": {"polytropic_index": "1.4"}}, "accumulator.polytropic_index"),
+        ({"accumulator": {"charge": "1 MPa"}}, "accumulator.charge"),  # unknown key
+        ({"geometry": {"rod": "triple"}}, "geometry.rod"),
+        ({"geometry": {"rod": "double"}}, "accumulator"),  # accumulator needs one rod
+    ],
+)
 def test_bad_values_name_the_key(tables, key):
     with pytest.raises(ErdesignError) as info:
         damper_from_dict(_with(_spencer_dict(), **tables), source="d.toml")
@@ -110,8 +113,10 @@ def test_missing_gas_volume_names_the_key():
         damper_from_dict(data)
 
 
-@pytest.mark.parametrize("changes, key", [({"precharge": "0.9 kPa"}, "accumulator.precharge"),
-                                          ({"gas_volume": "50 l"}, "accumulator.gas_volume")])
+@pytest.mark.parametrize(
+    "changes, key",
+    [({"precharge": "0.9 kPa"}, "accumulator.precharge"), ({"gas_volume": "50 l"}, "accumulator.gas_volume")],
+)
 def test_implausible_values_warn(changes, key):
     with pytest.warns(PlausibilityWarning, match=key):
         damper_from_dict(_with(_spencer_dict(), accumulator=changes))
@@ -158,7 +163,7 @@ def test_gas_spring_prior_comes_from_the_accumulator():
 
 def test_gas_spring_plausibility_with_and_without_accumulator():
     d = load_example("spencer1997")
-    assert GAS.plausibility(d, {"gas_preload": -146.7, "gas_stiffness": 900.0}) == "plausible"   # sign is free
+    assert GAS.plausibility(d, {"gas_preload": -146.7, "gas_stiffness": 900.0}) == "plausible"  # sign is free
     verdict = GAS.plausibility(d, {"gas_preload": -146.7, "gas_stiffness": 9925.0})
     assert verdict.startswith("implausible") and "gas_stiffness is 19.8 x" in verdict
     assert "gas_preload" in GAS.plausibility(d, {"gas_preload": 5.0, "gas_stiffness": 500.0})
@@ -171,6 +176,7 @@ def test_gas_spring_plausibility_with_and_without_accumulator():
 def test_accumulator_needs_single_rod_in_the_api():
     d = load_example("makris")
     from dataclasses import replace
+
     with pytest.raises(ErdesignError, match="geometry.rod"):
         replace(d, rod="single", accumulator=Accumulator(1e6, 1e-5), geometry=replace(d.geometry, rod_diameter=0.0))
     with pytest.raises(ErdesignError, match="accumulator:"):
@@ -182,8 +188,12 @@ def test_accumulator_needs_single_rod_in_the_api():
 # 1.5 cm sine: the odd part of its force at +-v on the outer branch (median over the loop's two passes), computed
 # with erdesign's bouc_wen_modified and the published set; the file's quasi-steady force matches it to 6 % (the
 # file has two free internals, L and tau_y, for twelve numbers).
-PUBLISHED_BRANCH = {0.0: (182.0, 281.0, 477.0), 0.75: (502.0, 613.0, 831.0), 1.5: (818.0, 940.0, 1180.0),
-                    2.25: (1127.0, 1261.0, 1524.0)}
+PUBLISHED_BRANCH = {
+    0.0: (182.0, 281.0, 477.0),
+    0.75: (502.0, 613.0, 831.0),
+    1.5: (818.0, 940.0, 1180.0),
+    2.25: (1127.0, 1261.0, 1524.0),
+}
 
 
 @pytest.mark.parametrize("volts", sorted(PUBLISHED_BRANCH))
@@ -203,12 +213,13 @@ def test_published_branch_table_is_the_model():
     f, X = 2.5, 0.015
     t = np.arange(0.0, 4 / f, 1 / 5000)
     x, v = X * np.sin(2 * np.pi * f * t), X * 2 * np.pi * f * np.cos(2 * np.pi * f * t)
-    r = Measurement.from_arrays(t, x, np.zeros_like(t), control=np.full_like(t, 2.25), control_kind="voltage",
-                                velocity=v)
+    r = Measurement.from_arrays(
+        t, x, np.zeros_like(t), control=np.full_like(t, 2.25), control_kind="voltage", velocity=v
+    )
     F = model.simulate(r, s.values)
     last = t >= 2 / f
     for speed, expected in zip((0.05, 0.1, 0.2), PUBLISHED_BRANCH[2.25]):
         up = np.median(F[last & (np.abs(v - speed) < 0.003)])
         down = np.median(F[last & (np.abs(v + speed) < 0.003)])
         assert (up - down) / 2 == pytest.approx(expected, abs=1.0)
-        assert (up + down) / 2 == pytest.approx(-71.5, abs=1.0)        # the accumulator's k1 x0 offset
+        assert (up + down) / 2 == pytest.approx(-71.5, abs=1.0)  # the accumulator's k1 x0 offset

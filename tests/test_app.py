@@ -100,7 +100,7 @@ def test_size_gap_changes_force_and_curves(app):
     damper, _ = state.build_damper(state.spec_text(app.session_state[state.SPEC]))
     expected = damper.state(0.05, np.array([0.0, 1e6, 2e6, 3e6])).force / 1e3
     got = [values(t["y"])[-1] for t in fig["data"]]
-    assert got == pytest.approx(expected, rel=1e-12)     # the same numbers, converted N -> kN
+    assert got == pytest.approx(expected, rel=1e-12)  # the same numbers, converted N -> kN
 
 
 def test_size_bad_value_shows_a_message(app):
@@ -153,7 +153,7 @@ def test_sweep_explorer(app):
     fig = figure(app, "size.fig.tradeoff")
     force, zero, dyn, re_ = fig["data"]
     x = values(force["x"])
-    assert x[0] == pytest.approx(0.4) and x[-1] == pytest.approx(1.6)        # mm
+    assert x[0] == pytest.approx(0.4) and x[-1] == pytest.approx(1.6)  # mm
     i = int(np.argmin(np.abs(x - 0.8)))
     # Round trip: the sweep point at the design's own gap is the design point.
     design = metric(app, "force F").to("kN").magnitude
@@ -164,7 +164,7 @@ def test_sweep_explorer(app):
     # Zero field, thin gap (h/d <= 0.1): F(0) - F_s = C v with C ~ 1/h^3 (Makris eq 15), so (F(0) - F_s) h^3 is
     # the same at every gap of the sweep (to rounding: the same formula, evaluated at each h).
     thin = x / 14.3 <= 0.1
-    F0 = values(zero["y"]) * 1e3 - 112.0                 # kN -> N, minus the seal friction of examples/makris.toml
+    F0 = values(zero["y"]) * 1e3 - 112.0  # kN -> N, minus the seal friction of examples/makris.toml
     assert np.ptp(F0[thin] * x[thin] ** 3) == pytest.approx(0.0, abs=1e-9 * np.max(F0[thin] * x[thin] ** 3))
     assert values(dyn["y"]) == pytest.approx(values(force["y"]) / values(zero["y"]), rel=1e-12)
 
@@ -194,8 +194,9 @@ def test_damper_file_round_trip(app, downloads, tmp_path, capsys):
     assert fresh.session_state[state.DESIGN]["spec"] == app.session_state[state.DESIGN]["spec"]
     assert metric(fresh, "force F") == force
     # a broken file says why, names the file and nothing of the server
-    fresh.file_uploader(key="size.upload").set_value(("bad.toml", b"[geometry]\ngap = '1 kg'\n",
-                                                      "application/toml")).run()
+    fresh.file_uploader(key="size.upload").set_value(
+        ("bad.toml", b"[geometry]\ngap = '1 kg'\n", "application/toml")
+    ).run()
     assert not fresh.exception
     (err,) = fresh.error
     assert err.value.startswith("bad.toml: ") and "/tmp" not in err.value
@@ -210,7 +211,7 @@ def test_pin_a_baseline_and_compare(app):
     (table,) = [t.value for t in app.table if "pinned 1" in t.value]
     rows = {r["quantity"]: r for r in table.to_dict("records")}
     assert rows["gap h"]["pinned 1"] == "0.8 mm" and rows["gap h"]["this design"] == "0.6 mm"
-    assert rows["gap h"]["pinned 1 vs this"] == "+33.3 %"          # 0.8 mm against 0.6 mm
+    assert rows["gap h"]["pinned 1 vs this"] == "+33.3 %"  # 0.8 mm against 0.6 mm
     assert Q_(rows["force F"]["pinned 1"]) == F0 and Q_(rows["force F"]["this design"]) == F1
     change = float(rows["force F"]["pinned 1 vs this"].split()[0])
     assert change == pytest.approx(100 * (F0 / F1 - 1).to("").magnitude, abs=0.1)
@@ -234,7 +235,7 @@ def test_simulate_sine(app):
     app.switch_page("simulate.py").run()
     no_error(app)
     fig = figure(app, "sim.fig.loops")
-    v = values(fig["data"][1]["x"])                # mm/s
+    v = values(fig["data"][1]["x"])  # mm/s
     # Peak velocity of x = X0 sin(2 pi f t): X0 * 2 pi f = 10 mm * 2 pi * 1 Hz (sampled at the peak, t = 0).
     assert v.max() == pytest.approx(20 * math.pi, rel=1e-4)
     peak = metric(app, "peak force").to("N").magnitude
@@ -252,9 +253,9 @@ def test_simulated_history_downloads_as_a_measurement(app, downloads, tmp_path):
     from erdesign.data.measurement import read_measurement
 
     record = read_measurement(path)
-    F = values(figure(app, "sim.fig.time")["data"][-1]["y"])           # kN on the page
+    F = values(figure(app, "sim.fig.time")["data"][-1]["y"])  # kN on the page
     assert record.force / 1e3 == pytest.approx(F, rel=1e-9, abs=1e-9 * np.abs(F).max())
-    assert record.control_kind is not None and record.control.max() == pytest.approx(3e6)    # 3 kV/mm
+    assert record.control_kind is not None and record.control.max() == pytest.approx(3e6)  # 3 kV/mm
 
 
 def test_simulate_library_model_and_effects(app):
@@ -275,14 +276,16 @@ def test_simulate_uploaded_displacement_and_bad_upload(app):
     # A displacement-only record drives the model (no force column needed).
     t = np.linspace(0, 1, 201)
     rows = "\n".join(f"{ti:.4f},{10 * np.sin(2 * np.pi * 2 * ti):.5f}" for ti in t)
-    app.file_uploader(key="sim.upload").set_value(("motion.csv", f"time [s],displacement [mm]\n{rows}\n".encode(),
-                                                   "text/csv")).run()
+    app.file_uploader(key="sim.upload").set_value(
+        ("motion.csv", f"time [s],displacement [mm]\n{rows}\n".encode(), "text/csv")
+    ).run()
     no_error(app)
     F = values(figure(app, "sim.fig.loops")["data"][0]["y"])
     assert np.all(np.isfinite(F)) and np.ptp(F) > 0
     # Too few rows: a clear message, no traceback.
-    app.file_uploader(key="sim.upload").set_value(("motion.csv", b"time [s],displacement [mm]\n0,1\n1,2\n",
-                                                   "text/csv")).run()
+    app.file_uploader(key="sim.upload").set_value(
+        ("motion.csv", b"time [s],displacement [mm]\n0,1\n1,2\n", "text/csv")
+    ).run()
     assert not app.exception
     assert any("a record needs at least 5" in e.value for e in app.error)
 
@@ -291,8 +294,7 @@ def test_simulate_uploaded_displacement_and_bad_upload(app):
 def test_compare_bad_upload(app):
     app.switch_page("compare.py").run()
     app.radio(key="cmp.source").set_value("upload a measurement CSV").run()
-    app.file_uploader(key="cmp.upload").set_value(("broken.csv", b"time,displacement,force\n1,2,3\n",
-                                                   "text/csv")).run()
+    app.file_uploader(key="cmp.upload").set_value(("broken.csv", b"time,displacement,force\n1,2,3\n", "text/csv")).run()
     assert not app.exception
     (err,) = app.error
     assert "broken.csv" in err.value and "unit in square brackets" in err.value
@@ -301,8 +303,11 @@ def test_compare_bad_upload(app):
 def test_compare_diagnose_add_effect_refit(app, downloads):
     app.switch_page("compare.py").run()
     examples = app.selectbox(key="cmp.example").options
-    example = next(e for e in examples if "seal_friction" in e) if any("seal_friction" in e for e in examples) \
+    example = (
+        next(e for e in examples if "seal_friction" in e)
+        if any("seal_friction" in e for e in examples)
         else examples[0]
+    )
     app.selectbox(key="cmp.example").select(example).run()
     app.button(key="cmp.run").click().run()
     no_error(app)
@@ -322,7 +327,7 @@ def test_compare_diagnose_add_effect_refit(app, downloads):
     app.button(key="cmp.add_named").click().run()
     no_error(app)
     esr1 = float(app.metric[0].value)
-    assert esr1 < esr0 / 3                                   # the hidden effect carried most of the error
+    assert esr1 < esr0 / 3  # the hidden effect carried most of the error
     assert any(m.value == "**Model:** baseline + seal_friction" for m in app.markdown)
     bars = figure(app, "cmp.fig.history")
     assert list(bars["data"][0]["x"]) == ["0: baseline", "1: seal_friction"]
@@ -352,8 +357,8 @@ def test_compare_diagnose_add_effect_refit(app, downloads):
 
     table = list(_csv.DictReader(line for line in ranking.splitlines() if not line.startswith("#")))
     quantities = [k for k in table[0] if k.endswith("]")]
-    assert "ESR after adding [1]" in quantities and len(quantities) > 7     # each fitted parameter a column
-    for row in table:                                                       # numbers in the cells, never "815.4 N"
+    assert "ESR after adding [1]" in quantities and len(quantities) > 7  # each fitted parameter a column
+    for row in table:  # numbers in the cells, never "815.4 N"
         for k in quantities:
             assert row[k] == "" or math.isfinite(float(row[k])), (k, row[k])
     (steps,) = [v for k, v in files.items() if k.endswith("-error-history.csv")]
@@ -444,8 +449,9 @@ def test_compare_unexplained_and_refit(app, truth_csv, few_candidates):
     app.selectbox(key="cmp.add").set_value("seal_friction").run()
     app.button(key="cmp.refit").click().run()
     no_error(app)
-    assert [m.value for m in app.markdown if m.value.startswith("**Model:**")] == \
-        ["**Model:** baseline + seal_friction"]
+    assert [m.value for m in app.markdown if m.value.startswith("**Model:**")] == [
+        "**Model:** baseline + seal_friction"
+    ]
     bars = figure(app, "cmp.fig.history")["data"][0]
     assert list(bars["x"]) == ["0: baseline", "1: seal_friction"]
 
@@ -497,7 +503,7 @@ def test_report_page(app, downloads):
     buttons = app.get("download_button")
     assert buttons and "makris-1996-report.html" in buttons[0].proto.label
     html = downloads["makris-1996-report.html"].decode()
-    assert "120.3 kN·s/m" in html                             # Makris eq 15, as on the Size page
+    assert "120.3 kN·s/m" in html  # Makris eq 15, as on the Size page
     app.radio(key="rep.format").set_value("md").run()
     no_error(app)
     assert "makris-1996-report.md" in app.get("download_button")[0].proto.label
@@ -507,7 +513,7 @@ def test_report_page(app, downloads):
 def test_the_report_is_the_design_on_screen(app, downloads):
     """Issue 14: sized at one velocity and field, the report said another; its checks differed from the page's;
     its "as given" column was empty.  Now the report is built from the design on screen."""
-    app.text_input(key="size.geo.gap").set_value("0.0315 in").run()       # Makris's own unit (Makris et al. 1996)
+    app.text_input(key="size.geo.gap").set_value("0.0315 in").run()  # Makris's own unit (Makris et al. 1996)
     app.text_input(key="size.velocity").set_value("1 in/s").run()
     app.text_input(key="size.field").set_value("2 kV/mm").run()
     no_error(app)
@@ -533,8 +539,9 @@ def test_the_report_is_the_design_on_screen(app, downloads):
     assert Q_(q["q-point-force"]).to("N").magnitude == pytest.approx(r.force.to("N").magnitude, rel=FOUR_FIGURES)
     # the same validity checks, status by status
     statuses = re.findall(r'<tr id="check-(\w+)"><td>([^<]+)</td><td class="status-(\w+)"', html)
-    assert [(unescape(name), status) for _, name, status in statuses] == \
-        [(c["check"], c["status"].lower()) for c in checks]
+    assert [(unescape(name), status) for _, name, status in statuses] == [
+        (c["check"], c["status"].lower()) for c in checks
+    ]
     # inputs as typed, with their units
     assert re.search(r"<code>gap</code></td><td><code>0.0315 in</code>", html)
     assert "as typed in the app" in html and "Python" not in re.sub(r"<script.*?</script>", "", html, flags=re.S)
@@ -546,13 +553,13 @@ def test_a_bad_value_keeps_the_last_good_design(app):
     assert not app.exception
     (err,) = app.error
     assert "geometry.gap" in err.value and "last valid design" in err.value
-    assert metric(app, "force F") == force                          # still shown
+    assert metric(app, "force F") == force  # still shown
     assert app.session_state[state.DESIGN]["spec"]["geometry"]["gap"] == "0.8 mm"
     app.text_input(key="size.geo.gap").set_value("0.8 mm")
     app.text_input(key="size.velocity").set_value("fast").run()
     assert not app.exception and [e.value for e in app.error if "design velocity" in e.value]
     assert metric(app, "force F") == force
-    app.switch_page("report.py").run()                              # the report keeps the last good design
+    app.switch_page("report.py").run()  # the report keeps the last good design
     no_error(app)
 
 
@@ -587,7 +594,7 @@ def test_simulate_caption_and_numbers_in_the_unit_system(app):
     assert fig["layout"]["xaxis2"]["title"]["text"] == "velocity v [in/s]"
     # peak velocity X0 * 2 pi f = 10 mm * 2 pi * 1 Hz, in in/s on the axis
     assert values(fig["data"][1]["x"]).max() == pytest.approx(20 * math.pi / 25.4, rel=1e-4)
-    assert any("control 3 kV/mm" in c.value for c in app.caption)      # the control keeps its own unit
+    assert any("control 3 kV/mm" in c.value for c in app.caption)  # the control keeps its own unit
     app.text_input(key="sim.field").set_value("1500 V/mm").run()
     assert any("control 1.5 kV/mm" in c.value for c in app.caption)
 
@@ -617,7 +624,7 @@ def test_compare_fitted_parameters_in_the_unit_system(app, few_candidates):
     rows = {r["parameter"]: r for r in params.to_dict("records")}
     assert rows["friction_force"]["value"].endswith(" lbf")
     assert rows["friction_force"]["± 1σ"].endswith(" lbf")
-    assert " " not in rows["viscosity_factor"]["value"]                  # a plain factor stays a plain number
+    assert " " not in rows["viscosity_factor"]["value"]  # a plain factor stays a plain number
 
 
 def test_baseline_beside_the_design_on_simulate_and_in_the_report(app, downloads):
@@ -644,7 +651,7 @@ def test_baseline_beside_the_design_on_simulate_and_in_the_report(app, downloads
         F0 = Q_(values(traces[trace]["y"])[0], unit)
         expected = damper.size(velocity=v0, field="3 kV/mm").force
         assert F0.to("N").magnitude == pytest.approx(expected.to("N").magnitude, rel=1e-3), trace
-    assert metric(app, "peak force, pinned design") < metric(app, "peak force")    # the wider gap is softer
+    assert metric(app, "peak force, pinned design") < metric(app, "peak force")  # the wider gap is softer
     assert any("geometry.gap = 0.8 mm" in c.value for c in app.caption)
     assert [t["name"] for t in figure(app, "sim.fig.time")["data"]] == ["design", "pinned design"]
 
@@ -655,9 +662,10 @@ def test_baseline_beside_the_design_on_simulate_and_in_the_report(app, downloads
     q = Quantities(html).spans
     for prefix, damper in (("q-baseline-", makris), ("q-this-", narrow)):
         r = damper.size(velocity=velocity, field="3 kV/mm")
-        assert Q_(q[prefix + "force"]).to("N").magnitude == pytest.approx(r.force.to("N").magnitude,
-                                                                         rel=FOUR_FIGURES), prefix
-    assert q["q-this-force"] == q["q-point-force"]                      # this design: its own design point
+        assert Q_(q[prefix + "force"]).to("N").magnitude == pytest.approx(
+            r.force.to("N").magnitude, rel=FOUR_FIGURES
+        ), prefix
+    assert q["q-this-force"] == q["q-point-force"]  # this design: its own design point
     assert re.search(r"<td><code>geometry.gap</code></td><td><code>0.8 mm</code></td><td><code>0.6 mm</code>", html)
     assert 'id="figure-baseline"' in html
     app.checkbox(key="rep.baseline").uncheck().run()
@@ -672,6 +680,7 @@ def test_baseline_beside_the_design_on_simulate_and_in_the_report(app, downloads
 def test_figures_save_as_named_png_or_svg(app, downloads, monkeypatch):
     """Every figure's camera button saves '<design>-<figure>.<format>' in the format of the sidebar; the report's
     static images come as a zip, or, without kaleido or a browser, as a message (never an exception)."""
+
     def configs(at):
         return {c.proto.id: json.loads(c.proto.config) for c in at.get("plotly_chart")}
 
@@ -682,8 +691,9 @@ def test_figures_save_as_named_png_or_svg(app, downloads, monkeypatch):
     app.radio(key=state.IMAGE_FORMAT).set_value("svg").run()
     app.switch_page("simulate.py").run()
     no_error(app)
-    assert {c["toImageButtonOptions"]["filename"]: c["toImageButtonOptions"]["format"]
-            for c in configs(app).values()} == {"makris-1996-loops": "svg", "makris-1996-time": "svg"}
+    assert {
+        c["toImageButtonOptions"]["filename"]: c["toImageButtonOptions"]["format"] for c in configs(app).values()
+    } == {"makris-1996-loops": "svg", "makris-1996-time": "svg"}
 
     app.switch_page("report.py").run()
     html = downloads["makris-1996-report.html"].decode()
@@ -707,13 +717,20 @@ def test_figures_save_as_named_png_or_svg(app, downloads, monkeypatch):
     assert pages.namelist()[0] == "plotly.min.js" and "makris-1996-force.html" in pages.namelist()
     page = pages.read("makris-1996-force.html").decode()
     assert '<script charset="utf-8" src="plotly.min.js"></script>' in page and '"format": "svg"' in page
-    monkeypatch.setattr(export, "figure_images",
-                        lambda figures, image_format="png": {f"{f.key}.{image_format}": b"<svg/>" for f in figures})
+    monkeypatch.setattr(
+        export,
+        "figure_images",
+        lambda figures, image_format="png": {f"{f.key}.{image_format}": b"<svg/>" for f in figures},
+    )
     app.button(key="rep.make_images").click().run()
     no_error(app)
     names = zipfile.ZipFile(io.BytesIO(downloads["makris-1996-figures.zip"])).namelist()
-    assert names == ["makris-1996-pressure_drop.svg", "makris-1996-force.svg", "makris-1996-dynamic_range.svg",
-                     "makris-1996-sine_loops.svg"]
+    assert names == [
+        "makris-1996-pressure_drop.svg",
+        "makris-1996-force.svg",
+        "makris-1996-dynamic_range.svg",
+        "makris-1996-sine_loops.svg",
+    ]
 
 
 # ------------------------------------------------------------------------------------------------ CLI
@@ -784,7 +801,7 @@ def test_simulate_parameters_typed_in_the_unit_system(app, monkeypatch, system):
     app.run()
     no_error(app)
     peak_si = simulated_peak(app)
-    assert peak_si > peak_default           # the edit reached the model: more friction (200 N > 112 N), more force
+    assert peak_si > peak_default  # the edit reached the model: more friction (200 N > 112 N), more force
     monkeypatch.undo()
 
     unit = {"in-lbf-s": "lbf", "mm-kN-s": "kN"}[system]

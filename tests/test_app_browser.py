@@ -25,8 +25,16 @@ import pytest
 
 CHROMIUM = Path("/usr/bin/chromium")
 ROOT = Path(__file__).resolve().parents[1]
-CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+CHROMIUM_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
 #: Streamlit starts in a few seconds; a cold import of scipy / plotly on a slow CI machine can take much longer.
 STARTUP_TIMEOUT = 90.0
 #: Longest wait for one page to react (the diagnosis refits ten models: about 2 s here, allow for slow machines).
@@ -39,8 +47,9 @@ pytestmark = pytest.mark.slow
 
 if not CHROMIUM.exists():
     pytest.skip(f"{CHROMIUM} not found: run .ci/setup_browser.sh (apt-get install chromium)", allow_module_level=True)
-sync_api = pytest.importorskip("playwright.sync_api",
-                               reason="the playwright Python package is missing: run .ci/setup_browser.sh")
+sync_api = pytest.importorskip(
+    "playwright.sync_api", reason="the playwright Python package is missing: run .ci/setup_browser.sh"
+)
 
 
 def _free_port() -> int:
@@ -72,9 +81,26 @@ def app_url(tmp_path_factory):
     env = {**os.environ, "STREAMLIT_BROWSER_GATHER_USAGE_STATS": "false"}
     with open(log, "w") as out:
         process = subprocess.Popen(
-            [sys.executable, "-m", "streamlit", "run", "app.py", "--server.headless", "true",
-             "--server.port", str(port), "--server.address", "127.0.0.1", "--server.fileWatcherType", "none"],
-            cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, env=env)
+            [
+                sys.executable,
+                "-m",
+                "streamlit",
+                "run",
+                "app.py",
+                "--server.headless",
+                "true",
+                "--server.port",
+                str(port),
+                "--server.address",
+                "127.0.0.1",
+                "--server.fileWatcherType",
+                "none",
+            ],
+            cwd=ROOT,
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            env=env,
+        )
     url = f"http://127.0.0.1:{port}"
     try:
         _wait_healthy(url, process, log)
@@ -119,7 +145,7 @@ def _metric(page, label: str):
 
 
 def _shoot(page, path: Path) -> Path:
-    page.wait_for_timeout(500)    # let plotly finish drawing
+    page.wait_for_timeout(500)  # let plotly finish drawing
     page.screenshot(path=str(path), full_page=True)
     print(f"screenshot: {path}")
     return path
@@ -158,11 +184,18 @@ def friction_csv(tmp_path_factory) -> Path:
     from erdesign.simulation.rig import run_rig, stepped_sine
 
     motion = stepped_sine([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300)
-    rig = run_rig(load_example("makris"), motion, hidden={"seal_friction": {"friction_force": 800.0}},
-                  viscosity_factor=1.2, yield_stress_factor=0.8, seed=1)
+    rig = run_rig(
+        load_example("makris"),
+        motion,
+        hidden={"seal_friction": {"friction_force": 800.0}},
+        viscosity_factor=1.2,
+        yield_stress_factor=0.8,
+        seed=1,
+    )
     path = tmp_path_factory.mktemp("measurement") / "friction-test.csv"
-    write_measurement(path, rig.record, units={"displacement": "in", "force": "lbf", "field": "kV/mm"},
-                      comment=rig.comment)
+    write_measurement(
+        path, rig.record, units={"displacement": "in", "force": "lbf", "field": "kV/mm"}, comment=rig.comment
+    )
     return path
 
 
@@ -182,7 +215,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     _commit(page, "design velocity v", "1 in/s")
     expect(_metric(page, "force F").first).to_have_text(SIX_KN)
     assert not SIX_KN.match(before)
-    _commit(page, "seal friction Fs", "25 lbf")          # Makris's P_y in his unit (eq 14)
+    _commit(page, "seal friction Fs", "25 lbf")  # Makris's P_y in his unit (eq 14)
     _idle(page)
     expect(page.locator(".js-plotly-plot").first).to_be_visible()
     _shoot(page, tmp_path / "size.png")
@@ -194,7 +227,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     assert 'seal_friction = "25 lbf"' in text and "design point: v = 1 in/s; E = 3 kV/mm" in text
     from erdesign.damper.files import load_damper
 
-    assert load_damper(toml).seal_friction == pytest.approx(111.2, rel=1e-3)      # 25 lbf in N
+    assert load_damper(toml).seal_friction == pytest.approx(111.2, rel=1e-3)  # 25 lbf in N
 
     # Reload it after changing the page: the upload puts back the inputs and the design point.
     _commit(page, "gap h", "0.6 mm")
@@ -222,7 +255,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     from erdesign.data.measurement import read_measurement
 
     record = read_measurement(simulated)
-    assert np.abs(record.displacement).max() == pytest.approx(0.020, rel=1e-3)       # the 20 mm typed
+    assert np.abs(record.displacement).max() == pytest.approx(0.020, rel=1e-3)  # the 20 mm typed
 
     # Compare and diagnose: upload the measurement; the diagnosis names the hidden seal friction.
     _go(page, "Compare and diagnose")
@@ -249,7 +282,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     _shoot(page, tmp_path / "compare_refit.png")
     page.get_by_role("tab", name="downloads").click()
     params = _download(page, "Fitted parameters", tmp_path).read_text()
-    assert "friction_force [N]" in params and "numbers in SI units" in params     # numbers in the cells
+    assert "friction_force [N]" in params and "numbers in SI units" in params  # numbers in the cells
     history = _download(page, "Error history", tmp_path).read_text().splitlines()
     assert [line.split(",")[1] for line in history[1:]] == ["baseline", effect, "noise floor"]
 
@@ -261,8 +294,8 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     report = _download(page, re.compile(r"Download .*-report\.html"), tmp_path)
     html = report.read_text()
     assert 'id="q-design-velocity"' in html and ">25.4 mm/s</span>" in html and ">3 kV/mm</span>" in html
-    assert "<code>25 lbf</code>" in html                                   # the input as typed
-    assert f"<td>{effect}</td>" in html and "friction-test.csv" in html      # the error history and the record
+    assert "<code>25 lbf</code>" in html  # the input as typed
+    assert f"<td>{effect}</td>" in html and "friction-test.csv" in html  # the error history and the record
     # look at the report as a reader would
     page.goto(report.as_uri())
     _shoot(page, tmp_path / "report_html.png")
@@ -362,8 +395,11 @@ def test_every_page_at_two_sizes_in_three_unit_systems(browser, app_url, tmp_pat
             page.get_by_test_id("stSidebar").get_by_text(system, exact=True).click()
             for title in PAGE_TITLES:
                 _go(page, title)
-                if title == "Compare and diagnose":        # the diagnosis runs once; later visits show it
-                    run, metric = page.get_by_role("button", name="Diagnose", exact=True), page.get_by_test_id("stMetric")
+                if title == "Compare and diagnose":  # the diagnosis runs once; later visits show it
+                    run, metric = (
+                        page.get_by_role("button", name="Diagnose", exact=True),
+                        page.get_by_test_id("stMetric"),
+                    )
                     sync_api.expect(run.or_(metric).first).to_be_visible()
                     if run.count():
                         run.click()

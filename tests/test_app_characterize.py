@@ -42,7 +42,8 @@ def test_characterize_page_on_the_example_records(app):
     assert list(cv.index)[-1] == "average" and np.allclose(cv.iloc[:-1].mean(axis=0), cv.iloc[-1])
     # bad upload: one line naming the file, no traceback
     app.radio(key="chr.source").set_value("upload").run()
-    app.file_uploader(key="chr.upload").set_value([("broken.csv", b"time,displacement,force\n1,2,3\n",
-                                                    "text/csv")]).run()
+    app.file_uploader(key="chr.upload").set_value(
+        [("broken.csv", b"time,displacement,force\n1,2,3\n", "text/csv")]
+    ).run()
     assert not app.exception
     assert any("broken.csv" in e.value for e in app.error)

@@ -47,8 +47,12 @@ def _q(text: str):
     return Q_(text.replace("·", "*").replace("²", "^2").replace("³", "^3"))
 
 
-def test_diagnosis_numbers_agree_on_the_page_in_the_report_and_on_the_command_line(app, downloads, tmp_path,  # noqa: F811
-                                                                                   capsys):
+def test_diagnosis_numbers_agree_on_the_page_in_the_report_and_on_the_command_line(
+    app,
+    downloads,
+    tmp_path,  # noqa: F811
+    capsys,
+):
     """ESR, noise floor and RMS residual of one diagnosis: the Compare page's metrics, the report's comparison
     section and `erdesign diagnose` are one number each (issue 26: 0.002491 beside 0.00238; 118.1 N beside 66.69 N)."""
     record = "makris_hidden_seal_friction.csv"
@@ -70,8 +74,9 @@ def test_diagnosis_numbers_agree_on_the_page_in_the_report_and_on_the_command_li
     q = Quantities(html).spans
     assert q["q-comparison-esr"] == esr and q["q-comparison-noise_floor_esr"] == floor
     assert q["q-comparison-samples"] == judged.group(1)
-    assert _q(q["q-comparison-rms_error"]).to("N").magnitude == pytest.approx(_q(rms).to("N").magnitude,
-                                                                             rel=FOUR_FIGURES)
+    assert _q(q["q-comparison-rms_error"]).to("N").magnitude == pytest.approx(
+        _q(rms).to("N").magnitude, rel=FOUR_FIGURES
+    )
     assert 'id="verdict"' in html and "Verdict: a missing effect." in html
     assert 'id="table-calibration"' in html and "viscosity_factor" in html
 
@@ -102,7 +107,7 @@ def test_diagnosis_numbers_agree_on_the_page_in_the_report_and_on_the_command_li
 def test_a_report_shows_each_quantity_in_one_unit(app, downloads):  # noqa: F811 - the fixture
     """Every force and every pressure of the report (design point, tables, checks) in one unit each, the Size
     page's metrics in the same unit: never 190.8 N in one section and 0.1908 kN in another."""
-    app.text_input(key="size.velocity").set_value("2 mm/s").run()       # small forces beside the curves' kN
+    app.text_input(key="size.velocity").set_value("2 mm/s").run()  # small forces beside the curves' kN
     no_error(app)
     shown = {m.label: m.value for m in app.metric}
     app.switch_page("report.py").run()
@@ -112,7 +117,7 @@ def test_a_report_shows_each_quantity_in_one_unit(app, downloads):  # noqa: F811
     dims = {"force": ureg.N.dimensionality, "pressure": ureg.Pa.dimensionality}
     for key, text in spans.items():
         if key.startswith("q-input-") or re.match(r"q-design-\d+-1$", key) or "yield_stress" in key:
-            continue     # the inputs' SI column is SI by design; a yield stress is a stress, not a pressure
+            continue  # the inputs' SI column is SI by design; a yield stress is a stress, not a pressure
         if not re.match(r"^-?[\d.]+(e[-+]?\d+)? \S", text):
             continue
         value = _q(text)
@@ -160,7 +165,7 @@ def test_simulate_parameters_read_in_prefixed_units_to_four_figures(app):
     rows = list(parameter_rows(app).values())
     assert rows, "the parameter table"
     for row in rows:
-        assert "*" not in row["unit"], row                        # N·s/m, not N*s/m
+        assert "*" not in row["unit"], row  # N·s/m, not N*s/m
         value = float(row["value"])
         digits = len(f"{abs(value):.10g}".replace(".", "").lstrip("0").rstrip("0"))
         assert digits <= 4, row

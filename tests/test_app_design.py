@@ -69,7 +69,7 @@ def test_search_open_and_size_shows_the_design(page):
     assert page.text_input(key="size.geo.gap").value == best["geometry"]["gap"]
     # makris_requirements' point: 1 in/s and 3 kV/mm; Size computes the force of the opened file itself
     assert metric(page, "force F").to("N").magnitude == pytest.approx(best["force_N"], rel=5e-4)
-    assert metric(page, "force F").to("N").magnitude >= 6000.0          # the requirement min_force = 6 kN
+    assert metric(page, "force F").to("N").magnitude >= 6000.0  # the requirement min_force = 6 kN
     page.switch_page("simulate.py").run()
     no_error(page)
     page.switch_page("report.py").run()
@@ -93,7 +93,7 @@ def test_conflicts_are_the_librarys_and_nothing_opens(page):
 
 def test_inputs_follow_the_unit_system_and_a_bad_value_names_its_key(page):
     assert page.text_input(key="designer.req.design.limits.max_outer_diameter").value == "44 mm"
-    page.text_input(key="designer.req.design.limits.max_length").set_value("0.13 m").run()     # edited
+    page.text_input(key="designer.req.design.limits.max_length").set_value("0.13 m").run()  # edited
     page.sidebar.radio(key="app.units").set_value("in-lbf-s").run()
     # 1 in/s (makris_requirements), 44 mm = 1.73228 in and 130 mm = 5.11811 in (/ 25.4) in the inch system
     assert page.text_input(key="designer.req.design.point.0.velocity").value == "1 in/s"
@@ -119,11 +119,11 @@ def test_several_pinned_designs_side_by_side_with_changes_against_this_design():
     from erdesign.units import Q_
 
     at = AppTest.from_file(MAIN, default_timeout=TIMEOUT).run()
-    assert at.button(key="size.pin").label == "Pin this design"          # short: never cut at 1280 px
-    at.button(key="size.pin").click().run()                              # pinned 1: Makris, gap 0.8 mm
+    assert at.button(key="size.pin").label == "Pin this design"  # short: never cut at 1280 px
+    at.button(key="size.pin").click().run()  # pinned 1: Makris, gap 0.8 mm
     at.text_input(key="size.geo.gap").set_value("0.6 mm").run()
-    at.button(key="size.pin").click().run()                              # pinned 2: gap 0.6 mm
-    at.text_input(key="size.geo.gap").set_value("0.7 mm").run()          # this design
+    at.button(key="size.pin").click().run()  # pinned 2: gap 0.6 mm
+    at.text_input(key="size.geo.gap").set_value("0.7 mm").run()  # this design
     no_error(at)
     rows = _table(at)
     assert [rows["gap h"][k] for k in ("this design", "pinned 1", "pinned 2")] == ["0.7 mm", "0.8 mm", "0.6 mm"]
@@ -131,8 +131,12 @@ def test_several_pinned_designs_side_by_side_with_changes_against_this_design():
     assert rows["gap h"]["pinned 1 vs this"] == "+14.3 %" and rows["gap h"]["pinned 2 vs this"] == "-14.3 %"
     # outputs: the library's own forces of the three gaps at the design point (25 mm/s, 3 kV/mm)
     makris = load_example("makris")
-    force = {h: dataclasses.replace(makris, geometry=makris.geometry.with_(gap=f"{h} mm"))
-             .size("25 mm/s", "3 kV/mm").force.m_as("N") for h in (0.6, 0.7, 0.8)}
+    force = {
+        h: dataclasses.replace(makris, geometry=makris.geometry.with_(gap=f"{h} mm"))
+        .size("25 mm/s", "3 kV/mm")
+        .force.m_as("N")
+        for h in (0.6, 0.7, 0.8)
+    }
     for name, h in (("pinned 1", 0.8), ("pinned 2", 0.6)):
         assert Q_(rows["force F"][name]).m_as("N") == pytest.approx(force[h], rel=5e-4)
         shown = float(rows["force F"][f"{name} vs this"].split()[0])
@@ -158,6 +162,6 @@ def test_an_opened_design_sets_the_control_of_simulate_too(page):
         no_error(page)
         assert metric(page, "force F").to("N").magnitude == pytest.approx(found.designs[0]["force_N"], rel=5e-4)
         page.switch_page("simulate.py").run()
-        no_error(page)                         # no "expected a magnetic field strength, got '2 A'"
+        no_error(page)  # no "expected a magnetic field strength, got '2 A'"
         assert page.text_input(key="sim.field").value == control
         page.switch_page("design.py").run()

@@ -30,7 +30,8 @@ def test_size_page_shows_the_circuit(coil_app):
     assert metric(at, "time constant L/R at I").m_as("s") == pytest.approx(float(c.time_constant(2.0)[0]), rel=5e-4)
     assert metric(at, "coil power I²R at I").m_as("W") == pytest.approx(4.0 * c.resistance, rel=5e-4)
     assert metric(at, "gap flux density B_g at I").m_as("T") == pytest.approx(
-        float(c.state(2.0).gap_flux_density[0]), rel=5e-4)
+        float(c.state(2.0).gap_flux_density[0]), rel=5e-4
+    )
     charts = [ch for ch in at.get("plotly_chart") if "size.fig.magnetics" in ch.proto.id]
     data = json.loads(charts[0].proto.spec)["data"]
     assert [t["name"] for t in data] == ["gap flux density B_g", "yield stress τ_y"]

@@ -31,8 +31,9 @@ from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _write_records(folder: Path, n: int, *, viscosity_factor: float = 1.05, start_seed: int = 0,
-                   prefix: str = "r") -> list[str]:
+def _write_records(
+    folder: Path, n: int, *, viscosity_factor: float = 1.05, start_seed: int = 0, prefix: str = "r"
+) -> list[str]:
     damper = load_example("makris")
     motion = sine(0.01, 1.0, damper.fluid.reference_field, cycles=1, rate=100)
     truth = TruthDamper(damper, {}, viscosity_factor=viscosity_factor, yield_stress_factor=0.95)
@@ -56,7 +57,7 @@ def folder(tmp_path_factory):
 
 def _run(folder: Path, *args: str) -> int:
     old = os.getcwd()
-    os.chdir(folder)                    # records named relative to the folder, as a user types them
+    os.chdir(folder)  # records named relative to the folder, as a user types them
     try:
         return main(["batch", *args])
     finally:
@@ -79,10 +80,14 @@ def serial(folder):
 def test_fit_of_200_records_gives_one_table_serially_on_a_pool_and_on_dask(folder, serial, dask_client):
     path, names = folder
     assert _run(path, "fit", *names, "--damper", "makris", "--jobs", "2", "--out", "pool.csv") == 0
-    assert _run(path, "fit", *names, "--damper", "makris", "--scheduler", dask_client.scheduler.address,
-                "--out", "dask.csv") == 0
+    assert (
+        _run(
+            path, "fit", *names, "--damper", "makris", "--scheduler", dask_client.scheduler.address, "--out", "dask.csv"
+        )
+        == 0
+    )
     serial = _without_seconds(path / "serial.csv")
-    assert [r["record"] for r in serial] == names                       # input order, whatever finished first
+    assert [r["record"] for r in serial] == names  # input order, whatever finished first
     assert serial == _without_seconds(path / "pool.csv") == _without_seconds(path / "dask.csv")
     bad = serial[100]
     assert bad["status"] == "error" and "corrupt.csv" in bad["error"] and "unit" in bad["error"]
@@ -91,7 +96,7 @@ def test_fit_of_200_records_gives_one_table_serially_on_a_pool_and_on_dask(folde
     assert len(ok) == 200 and all(r["error"] == "" for r in ok)
     # the truth rig's fluid is 5 % more viscous than the file's: every fit finds it to 1 %
     assert all(r["viscosity_factor [-]"] == pytest.approx(1.05, rel=0.01) for r in ok)
-    assert all(0 < r["esr"] < 1e-3 for r in ok)                         # 1 % force noise: ESR ~ 1e-4
+    assert all(0 < r["esr"] < 1e-3 for r in ok)  # 1 % force noise: ESR ~ 1e-4
 
 
 @pytest.fixture(scope="module")
@@ -103,13 +108,17 @@ def line(tmp_path_factory):
     damper = load_example("makris")
     motion = sine(0.01, 1.0, 0.0, cycles=1, rate=100)
     good = TruthDamper(damper, {}, viscosity_factor=1.05)
-    rubbing = TruthDamper(damper, {"stribeck_friction": {"coulomb_force": 1000.0, "static_force": 1500.0,
-                                                         "stribeck_speed": 0.001}}, viscosity_factor=1.05)
+    rubbing = TruthDamper(
+        damper,
+        {"stribeck_friction": {"coulomb_force": 1000.0, "static_force": 1500.0, "stribeck_speed": 0.001}},
+        viscosity_factor=1.05,
+    )
     names = []
     for i in range(200):
         name = f"d{i:03d}.csv"
-        write_measurement(path / name, simulate_truth(rubbing if i == 50 else good, motion, seed=1000 + i,
-                                                      name=name).measured)
+        write_measurement(
+            path / name, simulate_truth(rubbing if i == 50 else good, motion, seed=1000 + i, name=name).measured
+        )
         names.append(name)
     (path / "corrupt.csv").write_text("garbage,more\n1,2\n")
     names.insert(100, "corrupt.csv")
@@ -123,8 +132,20 @@ def test_diagnose_of_200_records_gives_one_table_serially_on_a_pool_and_on_dask(
     LocalCluster; the corrupt file is an error row; the rubbing damper is the one with a missing effect."""
     path, names = line
     assert _run(path, "diagnose", *names, "--damper", "makris", "--jobs", "2", "--out", "pool.csv") == 0
-    assert _run(path, "diagnose", *names, "--damper", "makris", "--scheduler", dask_client.scheduler.address,
-                "--out", "dask.csv") == 0
+    assert (
+        _run(
+            path,
+            "diagnose",
+            *names,
+            "--damper",
+            "makris",
+            "--scheduler",
+            dask_client.scheduler.address,
+            "--out",
+            "dask.csv",
+        )
+        == 0
+    )
     serial = _without_seconds(path / "serial.csv")
     assert [r["record"] for r in serial] == names
     assert serial == _without_seconds(path / "pool.csv") == _without_seconds(path / "dask.csv")
@@ -154,8 +175,22 @@ def _rows(path: Path) -> int:
 def test_a_batch_killed_half_way_resumes_without_redoing_finished_records(line):
     path, names = line
     out = path / "killed.csv"
-    command = [sys.executable, "-m", "erdesign", "batch", "diagnose", *names, "--damper", "makris", "--jobs", "1",
-               "--save-every", "0", "--out", str(out)]
+    command = [
+        sys.executable,
+        "-m",
+        "erdesign",
+        "batch",
+        "diagnose",
+        *names,
+        "--damper",
+        "makris",
+        "--jobs",
+        "1",
+        "--save-every",
+        "0",
+        "--out",
+        str(out),
+    ]
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     proc = subprocess.Popen(command, cwd=path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 300
@@ -165,14 +200,14 @@ def test_a_batch_killed_half_way_resumes_without_redoing_finished_records(line):
     proc.wait()
     first = read_table(out)
     assert 60 <= len(first) < len(names), "the batch was not caught half-way"
-    assert [r["record"] for r in first] == names[:len(first)]          # the serial batch's finished prefix
+    assert [r["record"] for r in first] == names[: len(first)]  # the serial batch's finished prefix
     args = ("diagnose", *names, "--damper", "makris", "--jobs", "1", "--out", "killed.csv")
-    assert _run(path, *args) == 1                                       # refused: the table exists
+    assert _run(path, *args) == 1  # refused: the table exists
     assert _run(path, *args, "--resume") == 0
     final = read_table(out)
     assert [r["record"] for r in final] == names
     # the rows finished before the kill were kept, not run again: same seconds to the last digit
-    assert [r["seconds"] for r in final[:len(first)]] == [r["seconds"] for r in first]
+    assert [r["seconds"] for r in final[: len(first)]] == [r["seconds"] for r in first]
     # and the resumed table is the uninterrupted one (outliers are judged on the whole table in both)
     assert _without_seconds(out) == _without_seconds(path / "serial.csv")
 
@@ -184,16 +219,18 @@ def test_an_existing_table_is_refused_without_resume(tmp_path, capsys):
     assert _run(tmp_path, "fit", *names, "--damper", "makris", "--jobs", "1", "--out", "t.csv") == 1
     err = capsys.readouterr().err
     assert "t.csv exists" in err and "--resume" in err and "Traceback" not in err
-    assert out.read_text() == "precious\n"                              # untouched
+    assert out.read_text() == "precious\n"  # untouched
 
 
 def test_bad_arguments_are_one_line_errors(tmp_path, capsys):
     names = _write_records(tmp_path, 1)
-    cases = {("fit", *names, "--out", "a.csv"): "--damper",
-             ("identify", *names, "--out", "a.csv"): "--model",
-             ("diagnose", *names, "--damper", "makris", "--model", "bingham", "--out", "a.csv"): "model",
-             ("fit", *names, "--damper", "makris", "--out", "a.txt"): ".csv or .parquet",
-             ("fit", "--manifest", "none.csv", "--damper", "makris", "--out", "a.csv"): "no such file"}
+    cases = {
+        ("fit", *names, "--out", "a.csv"): "--damper",
+        ("identify", *names, "--out", "a.csv"): "--model",
+        ("diagnose", *names, "--damper", "makris", "--model", "bingham", "--out", "a.csv"): "model",
+        ("fit", *names, "--damper", "makris", "--out", "a.txt"): ".csv or .parquet",
+        ("fit", "--manifest", "none.csv", "--damper", "makris", "--out", "a.csv"): "no such file",
+    }
     for args, named in cases.items():
         assert _run(tmp_path, *args) == 1, args
         err = capsys.readouterr().err.strip()
@@ -206,10 +243,12 @@ def test_a_manifest_names_each_records_damper_relative_to_itself(tmp_path):
     sub.mkdir()
     names = _write_records(sub, 2)
     (sub / "damper.toml").write_text((ROOT / "erdesign" / "examples" / "makris.toml").read_text())
-    (sub / "manifest.csv").write_text("record,damper,effects\n"
-                                      f"{names[0]},damper.toml,\n"
-                                      f"{names[1]},mr_valve_current,\n"     # an MR valve for an ER record
-                                      "missing.csv,,\n")
+    (sub / "manifest.csv").write_text(
+        "record,damper,effects\n"
+        f"{names[0]},damper.toml,\n"
+        f"{names[1]},mr_valve_current,\n"  # an MR valve for an ER record
+        "missing.csv,,\n"
+    )
     result = run_batch("fit", manifest=sub / "manifest.csv", damper="makris", out=tmp_path / "t.parquet")
     rows = read_table(tmp_path / "t.parquet")
     assert [r["record"] for r in rows] == [names[0], names[1], "missing.csv"]
@@ -251,7 +290,7 @@ def test_outlier_rule_is_the_robust_z_score_from_median_and_mad():
 def test_the_table_is_written_atomically_and_reads_back_exactly(tmp_path):
     names = _write_records(tmp_path, 2)
     result = run_batch("fit", [str(tmp_path / n) for n in names], damper="makris", out=tmp_path / "t.csv")
-    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []   # no temporary left
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []  # no temporary left
     back = read_table(tmp_path / "t.csv")
     assert [r["esr"] for r in back] == [r["esr"] for r in result.rows]  # floats round-trip to the last bit
     with open(tmp_path / "t.csv", newline="") as fh:
@@ -269,7 +308,7 @@ def test_identify_rows_carry_the_models_parameters_with_units(tmp_path, capsys):
     assert [r["status"] for r in rows] == ["ok", "ok"] and all(r["success"] for r in rows)
     units = {k for k in rows[0] if k.endswith("]")}
     assert units and all("[" in k for k in units)
-    assert all(0 < r["esr"] < 0.2 for r in rows)     # Bingham on an ER damper's loop: a good first fit
+    assert all(0 < r["esr"] < 0.2 for r in rows)  # Bingham on an ER damper's loop: a good first fit
 
 
 def test_resume_of_a_parquet_table_runs_only_the_new_records(tmp_path):

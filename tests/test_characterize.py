@@ -29,11 +29,22 @@ from erdesign.models.semiactive import (
 from erdesign.simulation.programmes import programme
 
 # ------------------------------------------------------------------------------------ closed-form records
-C, CSA, V0 = 2000.0, 3000.0, 0.004       # N s/m, N at full control, m/s
+C, CSA, V0 = 2000.0, 3000.0, 0.004  # N s/m, N at full control, m/s
 
 
-def _closed_form(*, stiffness=0.0, friction=0.0, hysteresis=0.0, inertia=0.0, asymmetry=0.0, gain=True,
-                 preyield=0.0, gain_asymmetry=0.0, noise=5.0, seed=0):
+def _closed_form(
+    *,
+    stiffness=0.0,
+    friction=0.0,
+    hysteresis=0.0,
+    inertia=0.0,
+    asymmetry=0.0,
+    gain=True,
+    preyield=0.0,
+    gain_asymmetry=0.0,
+    noise=5.0,
+    seed=0,
+):
     """Records E2 and E5 (control 0 to 1 A) with a force written in closed form on the exact motion."""
     rng = np.random.default_rng(seed)
     out = []
@@ -64,22 +75,27 @@ def plain():
     return _found(_closed_form())
 
 
-@pytest.mark.parametrize("name, options", [
-    ("stiffness", {"stiffness": 4e4}),
-    ("friction", {"friction": 300.0}),
-    ("hysteresis", {"hysteresis": 0.5e-3}),
-    ("frequency_dependent_loop", {"inertia": 40.0}),
-    ("asymmetry", {"asymmetry": 0.3}),
-    ("asymmetry_semiactive", {"gain_asymmetry": 0.2}),
-    ("preyield", {"preyield": 0.01}),
-])
+@pytest.mark.parametrize(
+    "name, options",
+    [
+        ("stiffness", {"stiffness": 4e4}),
+        ("friction", {"friction": 300.0}),
+        ("hysteresis", {"hysteresis": 0.5e-3}),
+        ("frequency_dependent_loop", {"inertia": 40.0}),
+        ("asymmetry", {"asymmetry": 0.3}),
+        ("asymmetry_semiactive", {"gain_asymmetry": 0.2}),
+        ("preyield", {"preyield": 0.01}),
+    ],
+)
 def test_detector_finds_its_characteristic_only_when_present(plain, name, options):
     assert not plain[name].found, plain[name].evidence
     with_it = _found(_closed_form(**options))[name]
     assert with_it.found, with_it.evidence
     # the evidence names the diagram and the numbers that show it
-    assert "diagram" in with_it.evidence and f"threshold +{THRESHOLD * CHARACTERISTICS[name].threshold_scale:g}" \
-        in with_it.evidence
+    assert (
+        "diagram" in with_it.evidence
+        and f"threshold +{THRESHOLD * CHARACTERISTICS[name].threshold_scale:g}" in with_it.evidence
+    )
     assert with_it.delta_esr > with_it.threshold
 
 
@@ -111,7 +127,7 @@ def test_terms_follow_table_2(plain):
     terms, asym = customized_terms(list(found.values()))
     # the paper's customized model (eq 6): viscous, stiffness, mass, friction, gain and pre-yield, asymmetric
     assert set(terms) == set(PAPER_TERMS) and asym
-    assert len(SemiactiveCustomized(terms, asym).parameters) == 20        # Vivas-López et al. Table 5
+    assert len(SemiactiveCustomized(terms, asym).parameters) == 20  # Vivas-López et al. Table 5
 
 
 # --------------------------------------------------------------------------------------- the customized model
@@ -120,9 +136,22 @@ def test_customized_model_with_all_terms_is_the_general_model():
     # coefficients asymmetric: one implementation of eqs 2-5
     rec = _closed_form()[1]
     general = SemiactiveGeneral()
-    values = {**general.defaults(), "c_p_pos": 3000.0, "c_p_neg": 2000.0, "k_p": 500.0, "f_f": 400.0, "x_f": 3.0,
-              "F_hz": 50.0, "x_hz": 0.4, "F_hv": 30.0, "x_hv": -0.2, "c_sa_pos": 900.0, "c_sa_neg": 700.0,
-              "x_py": 20.0, "m_D": 2.0}
+    values = {
+        **general.defaults(),
+        "c_p_pos": 3000.0,
+        "c_p_neg": 2000.0,
+        "k_p": 500.0,
+        "f_f": 400.0,
+        "x_f": 3.0,
+        "F_hz": 50.0,
+        "x_hz": 0.4,
+        "F_hv": 30.0,
+        "x_hv": -0.2,
+        "c_sa_pos": 900.0,
+        "c_sa_neg": 700.0,
+        "x_py": 20.0,
+        "m_D": 2.0,
+    }
     custom = SemiactiveCustomized(tuple(TERMS), asymmetric=("c_p", "c_sa"))
     assert set(custom.parameter_names) == set(general.parameter_names)
     np.testing.assert_allclose(custom.simulate(rec, values), general.simulate(rec, values), rtol=1e-12)
@@ -165,14 +194,17 @@ def _truth(mechanisms, names=("e2", "e5")):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name, mechanisms", [
-    ("stiffness", {"accumulator": {"charge_pressure": 3e6, "gas_volume": 2e-5}}),
-    ("friction", {"stribeck_friction": {"coulomb_force": 150.0, "static_force": 220.0}}),
-    ("hysteresis", {"compliance": {}}),
-    ("frequency_dependent_loop", {"slug_inertia": {}}),
-    ("asymmetry", {"single_rod": {}}),
-    ("preyield", {"preyield": {}}),
-])
+@pytest.mark.parametrize(
+    "name, mechanisms",
+    [
+        ("stiffness", {"accumulator": {"charge_pressure": 3e6, "gas_volume": 2e-5}}),
+        ("friction", {"stribeck_friction": {"coulomb_force": 150.0, "static_force": 220.0}}),
+        ("hysteresis", {"compliance": {}}),
+        ("frequency_dependent_loop", {"slug_inertia": {}}),
+        ("asymmetry", {"single_rod": {}}),
+        ("preyield", {"preyield": {}}),
+    ],
+)
 def test_detectors_on_the_truth_rig(name, mechanisms):
     without = _found(_truth({}))[name]
     with_it = _found(_truth(mechanisms))[name]
@@ -185,7 +217,8 @@ def test_characterize_truth_rig_records(tmp_path, capsys):
     # issue 25, done when: characterize on truth-rig records with known characteristics finds them and builds a
     # model that beats Eyring-plastic in cross-validation
     from erdesign.cli import main
-    records = demo_records()            # Stribeck friction, gas accumulator, single-ended rod; E2-E5
+
+    records = demo_records()  # Stribeck friction, gas accumulator, single-ended rod; E2-E5
     paths = []
     for r in records:
         paths.append(tmp_path / f"{r.name}.csv")
@@ -206,14 +239,25 @@ def test_characterize_truth_rig_records(tmp_path, capsys):
 # ------------------------------------------------------------------------------------------------- the command
 def test_characterize_command_json_keys_and_errors(tmp_path, capsys):
     from erdesign.cli import main
+
     paths = []
     for r in _closed_form(friction=300.0):
         paths.append(tmp_path / f"{r.name}.csv")
         write_measurement(paths[-1], r, units={"current": "A"})
     assert main(["characterize", *map(str, paths), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
-    assert set(doc) == {"records", "characterized_on", "passive_control", "split", "characteristics", "found",
-                        "model", "cross_validation", "comparison", "out"}
+    assert set(doc) == {
+        "records",
+        "characterized_on",
+        "passive_control",
+        "split",
+        "characteristics",
+        "found",
+        "model",
+        "cross_validation",
+        "comparison",
+        "out",
+    }
     assert [c["name"] for c in doc["characteristics"]] == list(CHARACTERISTICS)
     assert {"viscous_damping", "friction", "gain"} <= set(doc["found"])
     assert doc["records"][0]["force_variance_N2"] > 0 and doc["passive_control"] == 0.0
@@ -238,12 +282,21 @@ def test_the_papers_averages():
     # Vivas-López et al. Table 4: the average row is the mean of each identification column over all the validation
     # experiments, its own included
     from erdesign.identification.identify import CrossValidation
-    table = np.array([[0.0741, 0.0811, 0.1988, 0.1065], [0.0676, 0.0620, 0.1762, 0.1154],
-                      [0.3041, 0.0614, 0.1258, 0.1664], [0.2546, 0.3032, 0.1727, 0.1558]])
-    np.testing.assert_allclose(CrossValidation(["E2", "E3", "E4", "E5"], table).average,
-                               [0.1751, 0.1269, 0.1684, 0.1360], atol=6e-5)     # printed to 4 decimals
+
+    table = np.array(
+        [
+            [0.0741, 0.0811, 0.1988, 0.1065],
+            [0.0676, 0.0620, 0.1762, 0.1154],
+            [0.3041, 0.0614, 0.1258, 0.1664],
+            [0.2546, 0.3032, 0.1727, 0.1558],
+        ]
+    )
+    np.testing.assert_allclose(
+        CrossValidation(["E2", "E3", "E4", "E5"], table).average, [0.1751, 0.1269, 0.1684, 0.1360], atol=6e-5
+    )  # printed to 4 decimals
     # Table 6 and the conclusions: "on average 28.4 % less ESR than the Eyring-plastic model"
     from erdesign.characterization.method import mean_esr_reduction
+
     assert mean_esr_reduction([0.0714, 0.0642, 0.1284], [0.0996, 0.0816, 0.1996]) == pytest.approx(0.284, abs=5e-4)
 
 
@@ -259,8 +312,10 @@ def test_customized_model_linear_parameters_are_linear():
     rec = _closed_form()[1]
     model = SemiactiveCustomized(PAPER_TERMS, asymmetric=True, scales={"force": 5e3, "speed": 0.2, "stroke": 8e-3})
     rng = np.random.default_rng(1)
-    values = {p.name: float(rng.uniform(max(p.lower, -1.0), min(p.upper, 1.0)) * (50.0 if p.unit == "N" else 1.0))
-              for p in model.parameters}
+    values = {
+        p.name: float(rng.uniform(max(p.lower, -1.0), min(p.upper, 1.0)) * (50.0 if p.unit == "N" else 1.0))
+        for p in model.parameters
+    }
     basis, rest = model.linear_terms(rec, values)
     F = rest + sum(values[k] * basis[k] for k in model.linear_parameters)
     np.testing.assert_allclose(F, model.simulate(rec, values), rtol=1e-9, atol=1e-9)
@@ -270,6 +325,7 @@ def test_customized_model_linear_parameters_are_linear():
 
 def test_records_the_method_cannot_read():
     from erdesign.characterization.method import CharacterizationError
+
     rec = _closed_form()[0]
     with pytest.raises(CharacterizationError, match="the force is constant"):
         characterize([rec.with_force(np.full(len(rec), 12.0))])
@@ -284,8 +340,15 @@ def test_characterize_on_e1_identify_on_the_others():
     rng = np.random.default_rng(3)
     m = programme("E1", control_range=(0.0, 1.0), rate=250.0)
     F = C * m.velocity + 300.0 * np.tanh(m.velocity / V0) + CSA * m.control * np.sign(m.velocity)
-    e1 = Measurement.from_arrays(m.time, m.displacement, F + rng.normal(0, 5.0, F.size), control=m.control,
-                                 control_kind="current", velocity=m.velocity, name="e1")
+    e1 = Measurement.from_arrays(
+        m.time,
+        m.displacement,
+        F + rng.normal(0, 5.0, F.size),
+        control=m.control,
+        control_kind="current",
+        velocity=m.velocity,
+        name="e1",
+    )
     result = characterize(_closed_form(friction=300.0), characterize_on=[e1])
     doc = result.to_dict()
     assert [r["name"] for r in doc["characterized_on"]] == ["e1"]

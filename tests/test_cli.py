@@ -11,8 +11,18 @@ import pytest
 from erdesign.cli import main
 
 MAKRIS = str(resources.files("erdesign.examples") / "makris.toml")
-SIZE_KEYS = ["piston_area_m2", "flow_m3_per_s", "pressure_drop_Pa", "force_N", "zero_field_force_N",
-             "dynamic_range", "damping_constant_N_s_per_m", "reynolds", "laminar", "plug_fraction"]
+SIZE_KEYS = [
+    "piston_area_m2",
+    "flow_m3_per_s",
+    "pressure_drop_Pa",
+    "force_N",
+    "zero_field_force_N",
+    "dynamic_range",
+    "damping_constant_N_s_per_m",
+    "reynolds",
+    "laminar",
+    "plug_fraction",
+]
 
 
 def run(capsys, *args):
@@ -87,17 +97,23 @@ def test_console_script_installed():
     exe = shutil.which("erdesign")
     if exe is None:
         pytest.skip("erdesign console script not on PATH (package not installed)")
-    res = subprocess.run([exe, "size", MAKRIS, "--velocity", "1 in/s", "--json"], capture_output=True, text=True,
-                         timeout=120)
+    res = subprocess.run(
+        [exe, "size", MAKRIS, "--velocity", "1 in/s", "--json"], capture_output=True, text=True, timeout=120
+    )
     assert res.returncode == 0 and json.loads(res.stdout)["laminar"] is True
-    res = subprocess.run([exe, "size", MAKRIS, "--velocity", "1 kg", "--json"], capture_output=True, text=True,
-                         timeout=120)
+    res = subprocess.run(
+        [exe, "size", MAKRIS, "--velocity", "1 kg", "--json"], capture_output=True, text=True, timeout=120
+    )
     assert res.returncode == 1 and res.stdout == "" and res.stderr.count("\n") == 1
 
 
 def test_module_entry_point():
-    res = subprocess.run([sys.executable, "-m", "erdesign", "size", MAKRIS, "--velocity", "1 in/s", "--json"],
-                         capture_output=True, text=True, timeout=120)
+    res = subprocess.run(
+        [sys.executable, "-m", "erdesign", "size", MAKRIS, "--velocity", "1 in/s", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert res.returncode == 0 and "force_N" in json.loads(res.stdout)
 
 
@@ -107,7 +123,7 @@ def test_a_bare_number_for_a_dimension_warns(capsys):
     assert code == 0 and json.loads(out)["force_N"] > 0
     assert err == 'warning: --velocity 0.0254: a bare number, read as 0.0254 m/s; give the unit, e.g. "0.0254 m/s"\n'
     code, _, err = run(capsys, "size", MAKRIS, "--velocity", "1 in/s", "--field", "0", "--json")
-    assert code == 0 and err == ""              # zero is zero in any unit
+    assert code == 0 and err == ""  # zero is zero in any unit
 
 
 @pytest.mark.parametrize("command", ["size", "report", "design", "diagnose"])

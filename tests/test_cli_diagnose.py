@@ -22,11 +22,18 @@ MR = str(ROOT / "erdesign" / "examples" / "mr_mixed.toml")
 def friction_csv(tmp_path_factory):
     d = load_example("makris")
     motion = stepped_sine([0.004, 0.008], [1.0, 2.5], [0.0, 3e6, 1.8e6], cycles=2, rate=300)
-    rig = run_rig(d, motion, hidden={"seal_friction": {"friction_force": 800.0}}, viscosity_factor=1.2,
-                  yield_stress_factor=0.8, seed=1)
+    rig = run_rig(
+        d,
+        motion,
+        hidden={"seal_friction": {"friction_force": 800.0}},
+        viscosity_factor=1.2,
+        yield_stress_factor=0.8,
+        seed=1,
+    )
     path = tmp_path_factory.mktemp("m") / "friction.csv"
-    write_measurement(path, rig.record, units={"displacement": "in", "force": "lbf", "field": "kV/mm"},
-                      comment=rig.comment)
+    write_measurement(
+        path, rig.record, units={"displacement": "in", "force": "lbf", "field": "kV/mm"}, comment=rig.comment
+    )
     return str(path)
 
 
@@ -37,8 +44,17 @@ def run(capsys, *args):
 
 
 #: Keys of ``erdesign diagnose --json`` (docs/cli.md).
-CONTRACT_KEYS = {"baseline_esr", "ranking", "missing_effect", "verdict", "noise_floor_esr",
-                 "noise_floor_method", "findings", "records", "missing_effects"}
+CONTRACT_KEYS = {
+    "baseline_esr",
+    "ranking",
+    "missing_effect",
+    "verdict",
+    "noise_floor_esr",
+    "noise_floor_method",
+    "findings",
+    "records",
+    "missing_effects",
+}
 VERDICTS = {"missing_effect", "nothing_missing", "unexplained"}
 
 
@@ -67,7 +83,7 @@ def check_contract(data: dict) -> None:
     for r in data["ranking"]:
         assert {"effect", "esr", "parameters"} <= set(r) <= {"effect", "esr", "parameters", "reason", "effects"}
         if r["esr"] is None:
-            assert r["reason"], r                  # a candidate that could not be evaluated says why
+            assert r["reason"], r  # a candidate that could not be evaluated says why
         else:
             assert isinstance(r["esr"], float) and math.isfinite(r["esr"])
 
@@ -75,7 +91,7 @@ def check_contract(data: dict) -> None:
 def test_diagnose_json_has_exactly_the_contract_keys(capsys, friction_csv):
     code, out, err = run(capsys, "diagnose", friction_csv, "--damper", MAKRIS, "--json")
     assert code == 0, err
-    data = strict_json(out)                        # exactly one JSON object on stdout
+    data = strict_json(out)  # exactly one JSON object on stdout
     check_contract(data)
     assert data["verdict"] == "missing_effect"
     assert data["missing_effect"] == "seal_friction"
@@ -98,9 +114,14 @@ def truth_csvs(tmp_path_factory):
 
     folder = tmp_path_factory.mktemp("truth")
     motion = stepped_sine([0.01], [1.0], [3e6, 1.5e6], cycles=2, rate=100)
-    return {name: str(simulate_truth(TruthDamper(load_example("makris"), mechanisms), motion, seed=1, name=name)
-                      .write(folder / f"{name}.csv"))
-            for name, mechanisms in (("clean", {}), ("blowoff", {"blowoff": {}}))}
+    return {
+        name: str(
+            simulate_truth(TruthDamper(load_example("makris"), mechanisms), motion, seed=1, name=name).write(
+                folder / f"{name}.csv"
+            )
+        )
+        for name, mechanisms in (("clean", {}), ("blowoff", {"blowoff": {}}))
+    }
 
 
 @pytest.fixture
@@ -151,15 +172,18 @@ def test_fit_json_and_report(capsys, friction_csv):
     data = json.loads(out)
     assert set(data) == {"esr", "parameters"}
     assert set(data["parameters"]) == {"viscosity_factor", "yield_stress_factor", "friction_force"}
-    assert float(data["parameters"]["viscosity_factor"]) == pytest.approx(1.2, rel=0.01)   # the true fluid
+    assert float(data["parameters"]["viscosity_factor"]) == pytest.approx(1.2, rel=0.01)  # the true fluid
     code, out, _ = run(capsys, "fit", friction_csv, "--damper", MAKRIS)
     assert code == 0 and "ESR" in out and "viscosity_factor" in out
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--damper", MAKRIS, "--effects", "seal_friction,stiction"], "unknown effect 'stiction'"),
-    (["--damper", MR], "electric field (V/m) but the damper file's reference_field is a magnetic field"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--damper", MAKRIS, "--effects", "seal_friction,stiction"], "unknown effect 'stiction'"),
+        (["--damper", MR], "electric field (V/m) but the damper file's reference_field is a magnetic field"),
+    ],
+)
 @pytest.mark.parametrize("command", ["diagnose", "fit"])
 def test_errors_are_one_line_on_stderr(capsys, friction_csv, command, args, message):
     code, out, err = run(capsys, command, friction_csv, *args, "--json")
@@ -200,7 +224,7 @@ def test_fit_says_when_a_parameter_ends_at_a_bound(capsys):
     damper = ROOT / "erdesign" / "examples" / "makris.toml"
     code, out, err = run(capsys, "fit", str(csv), "--damper", str(damper), "--effects", "gas_spring", "--json")
     assert code == 0, err
-    assert set(json.loads(out)) == {"esr", "parameters"}                     # the contract's keys, nothing more
+    assert set(json.loads(out)) == {"esr", "parameters"}  # the contract's keys, nothing more
     assert "warning: the fit ends at a bound: gas_stiffness at its lower bound" in err
     code, out, err = run(capsys, "fit", str(csv), "--damper", str(damper), "--effects", "seal_friction", "--json")
     assert code == 0 and "bound" not in err

@@ -35,8 +35,11 @@ def bingham_csv(tmp_path):
     rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t))
     F = get_model("bingham").simulate(rec, {"c0": 4000.0, "f_c": 500.0})
     path = tmp_path / "m.csv"
-    write_measurement(path, rec.with_force(F + np.random.default_rng(0).standard_normal(t.size)),
-                      units={"displacement": "mm", "force": "kN"})
+    write_measurement(
+        path,
+        rec.with_force(F + np.random.default_rng(0).standard_normal(t.size)),
+        units={"displacement": "mm", "force": "kN"},
+    )
     return path
 
 
@@ -72,9 +75,11 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "erdesign" / "examples"
 
 
 def test_physics_model_from_the_registry():
-    physics = pytest.importorskip("erdesign.effects.chain",
-                                  reason="erdesign.effects.chain (the physics damper) is not built yet")
+    physics = pytest.importorskip(
+        "erdesign.effects.chain", reason="erdesign.effects.chain (the physics damper) is not built yet"
+    )
     from erdesign import load_example
+
     model = get_model("physics", damper=EXAMPLES / "makris.toml", effects=("seal_friction",))
     assert isinstance(model, physics.PhysicsDamper)
     assert model.parameter_names == ("viscosity_factor", "yield_stress_factor", "friction_force")
@@ -86,11 +91,20 @@ def test_physics_model_from_the_registry():
 
 
 def test_identify_physics_recovers_the_hidden_seal_friction(capsys):
-    pytest.importorskip("erdesign.effects.chain",
-                                  reason="erdesign.effects.chain (the physics damper) is not built yet")
+    pytest.importorskip("erdesign.effects.chain", reason="erdesign.effects.chain (the physics damper) is not built yet")
     csv = EXAMPLES / "measurements" / "makris_hidden_seal_friction.csv"
-    code, out, err = run(capsys, "identify", str(csv), "--model", "physics", "--damper",
-                         str(EXAMPLES / "makris.toml"), "--effects", "seal_friction", "--json")
+    code, out, err = run(
+        capsys,
+        "identify",
+        str(csv),
+        "--model",
+        "physics",
+        "--damper",
+        str(EXAMPLES / "makris.toml"),
+        "--effects",
+        "seal_friction",
+        "--json",
+    )
     assert code == 0, err
     data = json.loads(out)
     p = {k: float(v.split()[0]) for k, v in data["parameters"].items()}
@@ -104,8 +118,9 @@ def test_identify_physics_recovers_the_hidden_seal_friction(capsys):
     assert data["esr"] < 2e-4
     assert data["parameters"]["viscosity_factor"] == data["parameters"]["viscosity_factor"].strip()
     # without the effect the baseline cannot explain the friction: ESR 20 x worse (measured 2.5e-3 against 1.24e-4)
-    code, out, err = run(capsys, "identify", str(csv), "--model", "physics", "--damper",
-                         str(EXAMPLES / "makris.toml"), "--json")
+    code, out, err = run(
+        capsys, "identify", str(csv), "--model", "physics", "--damper", str(EXAMPLES / "makris.toml"), "--json"
+    )
     assert code == 0, err
     assert json.loads(out)["esr"] > 15 * data["esr"]
 
@@ -115,6 +130,7 @@ def test_identify_reports_what_the_data_cannot_tell(capsys, tmp_path):
     only through f_c + f_c_u u, so the pair is not identifiable from it; identify holds them and says so instead of
     printing two values with huge standard errors (issue 12, item 4)."""
     from erdesign.identification.identify import identify
+
     t = np.linspace(0, 2, 1001)
     rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=0.5, control_kind="current")
     F = get_model("bingham").simulate(rec, {"c0": 4000.0, "f_c": 300.0, "f_c_u": 400.0})

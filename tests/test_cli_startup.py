@@ -19,15 +19,22 @@ HEAVY = ("scipy", "pint", "numba", "plotly", "pandas", "erdesign.identification.
 
 
 def _modules_after(code):
-    out = subprocess.run([sys.executable, "-c", code + "\nimport sys, json; print(json.dumps(sorted(sys.modules)))"],
-                         capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", code + "\nimport sys, json; print(json.dumps(sorted(sys.modules)))"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     return set(json.loads(out.stdout.strip().splitlines()[-1]))
 
 
-@pytest.mark.parametrize("code", [
-    "import erdesign",
-    "from erdesign.cli import main\ntry:\n    main(['--help'])\nexcept SystemExit:\n    pass",
-])
+@pytest.mark.parametrize(
+    "code",
+    [
+        "import erdesign",
+        "from erdesign.cli import main\ntry:\n    main(['--help'])\nexcept SystemExit:\n    pass",
+    ],
+)
 def test_bare_import_and_help_load_no_heavy_dependency(code):
     loaded = _modules_after(code)
     assert not [m for m in loaded if m.split(".")[0] in HEAVY or m in HEAVY]
@@ -39,7 +46,8 @@ def test_size_command_does_not_load_scipy_subpackages():
     loaded = _modules_after(
         "import pathlib, erdesign\nfrom erdesign.cli import main\n"
         "main(['size', str(pathlib.Path(erdesign.__file__).parent / 'examples' / 'makris.toml'), "
-        "'--velocity', '0.0254', '--json'])")
+        "'--velocity', '0.0254', '--json'])"
+    )
     assert "erdesign.damper" in loaded
     solvers = ("scipy.optimize", "scipy.stats", "scipy.special", "scipy.integrate", "scipy.interpolate")
     assert not [m for m in loaded if m.startswith(solvers)]
@@ -55,7 +63,8 @@ def test_every_public_name_resolves_to_its_defining_module():
     assert fit_function is real_fit and erdesign.fit is real_fit  # the function, not the deprecated module erdesign.fit
     assert erdesign.Q_ is Q_
     assert erdesign.flow.slit_pressure_drop(1e-6, 7.0, 0.0546, 0.0143, 0.0008) == pytest.approx(
-        erdesign.slit_pressure_drop("1 mL/s", "7 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm").to("Pa").magnitude)
+        erdesign.slit_pressure_drop("1 mL/s", "7 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm").to("Pa").magnitude
+    )
     assert erdesign.materials.__name__ == "erdesign.materials"  # any submodule, as an attribute
     with pytest.raises(AttributeError, match="no attribute 'no_such_name'"):
         erdesign.no_such_name  # noqa: B018

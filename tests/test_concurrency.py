@@ -11,8 +11,22 @@ from erdesign.identification.identify import identify
 from erdesign.models._kernels import coarse_steps, frozen_substeps, step_settings
 from erdesign.models.registry import get_model
 
-TRUE = {"alpha_a": 1.2e5, "alpha_b": 4e5, "c0a": 900.0, "c0b": 3000.0, "c1a": 3e4, "c1b": 1e5, "k0": 50.0,
-        "k1": 0.0, "x0": 0.0, "beta": 3e5, "gamma": 3e5, "delta": 1.0, "n": 2.0, "eta": 190.0}
+TRUE = {
+    "alpha_a": 1.2e5,
+    "alpha_b": 4e5,
+    "c0a": 900.0,
+    "c0b": 3000.0,
+    "c1a": 3e4,
+    "c1b": 1e5,
+    "k0": 50.0,
+    "k1": 0.0,
+    "x0": 0.0,
+    "beta": 3e5,
+    "gamma": 3e5,
+    "delta": 1.0,
+    "n": 2.0,
+    "eta": 190.0,
+}
 
 
 def _record(seed: int) -> Measurement:
@@ -37,7 +51,7 @@ def test_step_settings_are_per_thread():
     def inside_block():
         with coarse_steps(theta=2.0, max_substeps=8):
             seen["block"] = step_settings()
-            barrier.wait()      # hold the block open while the other thread looks
+            barrier.wait()  # hold the block open while the other thread looks
             barrier.wait()
 
     def outside_block():
@@ -46,6 +60,7 @@ def test_step_settings_are_per_thread():
         barrier.wait()
 
     import threading
+
     barrier = threading.Barrier(2)
     threads = [threading.Thread(target=inside_block), threading.Thread(target=outside_block)]
     for th in threads:

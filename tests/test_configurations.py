@@ -39,11 +39,11 @@ REQUIREMENTS = Path(__file__).resolve().parents[1] / "erdesign" / "examples" / "
 class Configuration:
     name: str
     example: str
-    edits: tuple = ()                 # (old text, new text) applied to the example damper file
-    field: str = "3 kV/mm"            # the control of the design point and of the record
+    edits: tuple = ()  # (old text, new text) applied to the example damper file
+    field: str = "3 kV/mm"  # the control of the design point and of the record
     field_si: float = 3e6
-    velocity: float = 0.05            # [m/s], the design point
-    amplitude: float = 0.01           # [m], the record's sine
+    velocity: float = 0.05  # [m/s], the design point
+    amplitude: float = 0.01  # [m], the record's sine
 
 
 CONFIGURATIONS = (
@@ -85,9 +85,12 @@ def truth_force(damper, v: float, control: float) -> float:
     tau_y, eta = float(fl.yield_stress_at(control)), float(fl.viscosity_at(control))
     Ap = g.piston_area
     if g.configuration == "valve":
+
         def excess(dp):
-            return g.ducts * float(bingham_valve_flow(dp, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)) \
-                - v * Ap
+            return (
+                g.ducts * float(bingham_valve_flow(dp, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap)) - v * Ap
+            )
+
         dp = brentq(excess, 0.0, 1e10, xtol=1e-6, rtol=1e-14)
         return dp * Ap + damper.seal_friction
     # mixed: the head moves at -v along the axis of the gap flow while the displaced volume v Ap passes the gap
@@ -110,9 +113,14 @@ def test_size_agrees_with_an_independent_gap_law(config, capsys):
 
         g, fl = damper.geometry, damper.fluid
         assert damper.uses_exact_annulus
-        sol = solve_gap_flow(h=g.gap, tau_y=float(fl.yield_stress_at(c.field_si)),
-                             eta=float(fl.viscosity_at(c.field_si)), flow_rate=c.velocity * g.piston_area / g.ducts,
-                             geometry="annulus", mean_diameter=g.duct_mean_diameter)
+        sol = solve_gap_flow(
+            h=g.gap,
+            tau_y=float(fl.yield_stress_at(c.field_si)),
+            eta=float(fl.viscosity_at(c.field_si)),
+            flow_rate=c.velocity * g.piston_area / g.ducts,
+            geometry="annulus",
+            mean_diameter=g.duct_mean_diameter,
+        )
         expected = abs(float(sol.pressure_gradient)) * g.duct_length * g.piston_area + damper.seal_friction
         # the regularised finite-element solution (801 nodes) is good to about 1e-6 here
         assert out["force_N"] == pytest.approx(expected, rel=1e-5)
@@ -138,8 +146,14 @@ def truth_record(config, tmp_path):
 
     c, path = config
     truth = TruthDamper(load_damper(path), (), viscosity_factor=1.15, yield_stress_factor=0.9)
-    rec = simulate_truth(truth, sine(c.amplitude, 1.93, c.field_si, cycles=3, rate=1000), force_noise=0.005,
-                         displacement_noise=1e-5, seed=3, name=c.name)
+    rec = simulate_truth(
+        truth,
+        sine(c.amplitude, 1.93, c.field_si, cycles=3, rate=1000),
+        force_noise=0.005,
+        displacement_noise=1e-5,
+        seed=3,
+        name=c.name,
+    )
     csv = tmp_path / f"{c.name}.csv"
     rec.write(csv)
     return c, path, csv
@@ -153,12 +167,11 @@ def test_fit_recovers_the_true_fluid_and_simulate_round_trips_it(truth_record, c
     # (the truth rig's thin gap against the exact annulus of the wide gap: 0.3 %, inside the tolerance)
     assert factors["viscosity_factor"] == pytest.approx(1.15, rel=0.02)
     assert factors["yield_stress_factor"] == pytest.approx(0.9, rel=0.01)
-    assert fit["esr"] < 4e-5     # the noise alone leaves 0.005^2 = 2.5e-5
+    assert fit["esr"] < 4e-5  # the noise alone leaves 0.005^2 = 2.5e-5
 
     ident = tmp_path / "physics.json"
     ident.write_text(run(capsys, "identify", csv, "--model", "physics", "--damper", path, "--json", "--quiet"))
-    sim = json.loads(run(capsys, "simulate", csv, "--model", "physics", "--damper", path, "--params", ident,
-                         "--json"))
+    sim = json.loads(run(capsys, "simulate", csv, "--model", "physics", "--damper", path, "--params", ident, "--json"))
     assert sim["esr"] == pytest.approx(json.loads(ident.read_text())["esr"], rel=1e-9)
     assert sim["esr"] == pytest.approx(fit["esr"], rel=0.05)
 
@@ -175,8 +188,19 @@ def test_report_states_the_design_force(config, capsys, tmp_path):
     c, path = config
     size = json.loads(run(capsys, "size", path, "--velocity", f"{c.velocity} m/s", "--field", c.field, "--json"))
     out = tmp_path / "report.md"
-    run(capsys, "report", path, "--out", out, "--format", "md", "--design-velocity", f"{c.velocity} m/s",
-        "--design-field", c.field)
+    run(
+        capsys,
+        "report",
+        path,
+        "--out",
+        out,
+        "--format",
+        "md",
+        "--design-velocity",
+        f"{c.velocity} m/s",
+        "--design-field",
+        c.field,
+    )
     text = out.read_text()
     assert "nan" not in text.lower().replace("nanometre", "")
     # the design force in kN or N to four figures
@@ -229,8 +253,9 @@ def test_design_returns_designs_that_an_independent_gap_law_confirms(requirement
     damper_file = tmp_path / "best.toml"
     damper_file.write_text("\n".join(lines) + "\n")
     point = req["design"]["point"][0]
-    size = json.loads(run(capsys, "size", damper_file, "--velocity", point["velocity"], "--field", point["field"],
-                          "--json"))
+    size = json.loads(
+        run(capsys, "size", damper_file, "--velocity", point["velocity"], "--field", point["field"], "--json")
+    )
     assert size["force_N"] == pytest.approx(best["force_N"], rel=1e-9)
     from erdesign.units import Q_
 
@@ -254,9 +279,10 @@ def test_samples_exactly_on_reversals_do_not_bias_a_fit():
 
     damper = load_example("mr_coil")
     truth = TruthDamper(damper, (), viscosity_factor=1.15, yield_stress_factor=0.9)
-    rec = simulate_truth(truth, sine(0.005, 2.0, 1.0, cycles=3, rate=1000), force_noise=0.0, displacement_noise=0.0,
-                         seed=3).measured
-    assert np.min(np.abs(rec.velocity)) < 1e-9          # samples on the reversals
+    rec = simulate_truth(
+        truth, sine(0.005, 2.0, 1.0, cycles=3, rate=1000), force_noise=0.0, displacement_noise=0.0, seed=3
+    ).measured
+    assert np.min(np.abs(rec.velocity)) < 1e-9  # samples on the reversals
     result = fit(PhysicsDamper(damper), rec)
     assert result.values["viscosity_factor"] == pytest.approx(1.15, rel=1e-3)
     assert result.values["yield_stress_factor"] == pytest.approx(0.9, rel=1e-4)

@@ -43,8 +43,7 @@ def solve_eq8(gamma_dot, breaks, t_eval):
     tau = np.empty_like(t_eval)
     tau0 = 0.0
     for a, b in zip(breaks[:-1], breaks[1:]):
-        sol = solve_ivp(eq8_rhs(gamma_dot), (a, b), [tau0], method="LSODA", rtol=1e-10, atol=1e-8,
-                        dense_output=True)
+        sol = solve_ivp(eq8_rhs(gamma_dot), (a, b), [tau0], method="LSODA", rtol=1e-10, atol=1e-8, dense_output=True)
         inside = (t_eval >= a) & (t_eval <= b)
         tau[inside] = sol.sol(t_eval[inside])[0]
         tau0 = sol.y[0, -1]
@@ -53,6 +52,7 @@ def solve_eq8(gamma_dot, breaks, t_eval):
 
 # --- 1. eq 11 against quadrature, and its a -> 0 limit ----------------------------------------------------------
 
+
 @pytest.mark.parametrize("a", [3.0, 1.0, 0.3, 2000.0, 0.0])
 def test_eq11_matches_quadrature_on_the_printed_interval(a):
     omega = 2 * np.pi * 5.0
@@ -60,8 +60,13 @@ def test_eq11_matches_quadrature_on_the_printed_interval(a):
     closed = integration_factor_exponent(phases, a, G, ETA, omega)
     for phase, value in zip(phases, closed):
         # the integrand printed above eq 11, with gamma0 = 1 and tau_y = a eta omega gamma0
-        ref, _ = quad(lambda t: G * omega * np.cos(omega * t) / (ETA * omega * np.cos(omega * t) + a * ETA * omega),
-                      0.0, phase / omega, epsabs=0.0, epsrel=1e-13)
+        ref, _ = quad(
+            lambda t: G * omega * np.cos(omega * t) / (ETA * omega * np.cos(omega * t) + a * ETA * omega),
+            0.0,
+            phase / omega,
+            epsabs=0.0,
+            epsrel=1e-13,
+        )
         # Makris eq 11: 1e-10 relative; quad reaches ~1e-14, the closed form loses ~a*eps to cancellation
         assert value == pytest.approx(ref, rel=1e-10, abs=1e-12)
 
@@ -74,8 +79,15 @@ def test_eq11_periodic_extension_matches_quadrature_over_two_cycles(a):
     closed = integration_factor_exponent(phases, a, G, ETA, omega)
     for phase, value in zip(phases, closed):
         kinks = [k * np.pi / 2 / omega for k in range(-5, 9) if k % 2 and min(0, phase) < k * np.pi / 2 < max(0, phase)]
-        ref, _ = quad(lambda t: G * abs(np.cos(omega * t)) / (ETA * abs(np.cos(omega * t)) + a * ETA),
-                      0.0, phase / omega, points=kinks or None, epsabs=0.0, epsrel=1e-13, limit=200)
+        ref, _ = quad(
+            lambda t: G * abs(np.cos(omega * t)) / (ETA * abs(np.cos(omega * t)) + a * ETA),
+            0.0,
+            phase / omega,
+            points=kinks or None,
+            epsabs=0.0,
+            epsrel=1e-13,
+            limit=200,
+        )
         # exponent of R = G|gdot|/(eta|gdot| + tau_y), eqs 9-10; 1e-10 relative as above
         assert value == pytest.approx(ref, rel=1e-10, abs=1e-12)
 
@@ -92,16 +104,16 @@ def test_printed_a_to_minus_a_rule_fails_in_closed_form_for_small_a():
     """Makris (text after eq 11): on pi/2 <= wt <= 3pi/2 'a has to be replaced by -a'.  For a < 1 the a < 1 branch
     of eq 11 with -a takes the log of a negative number past wt = pi/2, so the rule holds for the integrand only."""
     a, phase = 0.3, 0.75 * np.pi
-    k = np.sqrt((1 - a) / (1 + a))            # sqrt((1 + a')/(1 - a')) with a' = -a
-    x = np.tan(phase / 2)                     # 2.41 > k = 0.73
-    assert (k + x) / (k - x) < 0.0            # the printed log argument is negative: no real value
+    k = np.sqrt((1 - a) / (1 + a))  # sqrt((1 + a')/(1 - a')) with a' = -a
+    x = np.tan(phase / 2)  # 2.41 > k = 0.73
+    assert (k + x) / (k - x) < 0.0  # the printed log argument is negative: no real value
 
 
 def test_eq11_tends_to_maxwell_and_eq12_is_its_small_a_form():
     phases = np.linspace(-np.pi / 2, np.pi / 2, 101)
     x = np.tan(phases / 2)
     for a in (1e-2, 1e-3, 1e-4):
-        bracket = integration_factor_exponent(phases, a, 1.0, 1.0, 1.0)     # G/(eta omega) = 1
+        bracket = integration_factor_exponent(phases, a, 1.0, 1.0, 1.0)  # G/(eta omega) = 1
         eq12 = phases - a * np.log((1 + a + x) / (1 + a - x))
         # Makris eq 12 is eq 11 with a/sqrt(1-a^2) -> a and sqrt((1+a)/(1-a)) -> 1+a; the terms it drops add up
         # to a^2/2 + O(a^3 ln a) at the ends of the interval (docs/theory/makris.md; measured 0.475 a^2 at
@@ -116,10 +128,11 @@ def test_eq11_tends_to_maxwell_and_eq12_is_its_small_a_form():
 
 # --- 2. the exact-step integrator against solve_ivp ------------------------------------------------------------
 
+
 def test_exact_for_piecewise_linear_strain_at_any_step():
     """A triangle wave (constant rate between samples) is integrated exactly with only 9 samples."""
     t = np.linspace(0.0, 0.4, 9)
-    gamma = np.array([0.0, 0.5, 1.0, 0.5, 0.0, -0.5, -1.0, -0.5, 0.0])     # |gdot| = 10 1/s
+    gamma = np.array([0.0, 0.5, 1.0, 0.5, 0.0, -0.5, -1.0, -0.5, 0.0])  # |gdot| = 10 1/s
     # rate +10 on (0, 0.1), -10 on (0.1, 0.3), +10 on (0.3, 0.4); the midpoint of each piece decides its sign
     ref = solve_eq8(lambda s: 10.0 if s < 0.1 or s > 0.3 else -10.0, [0.0, 0.1, 0.3, 0.4], t)
     tau = makris_stress(t, gamma, TAU_Y, ETA, G)
@@ -128,7 +141,7 @@ def test_exact_for_piecewise_linear_strain_at_any_step():
 
 
 def test_sine_strain_matches_solve_ivp_with_second_order_convergence():
-    omega, gamma0 = 2 * np.pi * 5.0, 1.0                                     # Fig 3 fluid at 5 Hz
+    omega, gamma0 = 2 * np.pi * 5.0, 1.0  # Fig 3 fluid at 5 Hz
     T = 2 * np.pi / omega
     t_ref = np.linspace(0.0, T, 201)
     ref = solve_eq8(lambda s: omega * gamma0 * np.cos(omega * s), [0.0, T / 4, 3 * T / 4, T], t_ref)
@@ -151,8 +164,8 @@ def test_decay_of_a_stress_offset_is_the_eq11_integrating_factor():
     omega = 2 * np.pi
     t, gamma = harmonic(omega, 1.0, 1, 4000)
     for a in (3.0, 1.0, 0.3):
-        eta = G / (0.5 * omega)                       # G/(eta omega) = 0.5: offset decays to ~e^-1 per cycle
-        tau_y = a * eta * omega                       # gamma0 = 1
+        eta = G / (0.5 * omega)  # G/(eta omega) = 0.5: offset decays to ~e^-1 per cycle
+        tau_y = a * eta * omega  # gamma0 = 1
         delta = makris_stress(t, gamma, tau_y, eta, G, tau0=100.0) - makris_stress(t, gamma, tau_y, eta, G)
         exact = 100.0 * np.exp(-integration_factor_exponent(omega * t, a, G, eta, omega))
         # eq 10 / eq 11; the step uses the mean rate, O(dt^2) ~ (2 pi/4000)^2 = 2.5e-6 relative error in E
@@ -160,6 +173,7 @@ def test_decay_of_a_stress_offset_is_the_eq11_integrating_factor():
 
 
 # --- 3. the Maxwell limit (eq 13) ------------------------------------------------------------------------------
+
 
 def test_zero_yield_stress_is_the_maxwell_filter_to_roundoff():
     t, gamma = harmonic(2 * np.pi * 10.0, 0.5, 3, 400)
@@ -178,10 +192,10 @@ def test_maxwell_steady_state_is_the_complex_modulus():
     omega, gamma0 = 2 * np.pi * 10.0, 0.5
     t, gamma = harmonic(omega, gamma0, 10, 4000)
     lam = ETA / G
-    modulus = G * 1j * omega * lam / (1 + 1j * omega * lam)          # eq 13 for gamma = Im(gamma0 e^{i w t})
+    modulus = G * 1j * omega * lam / (1 + 1j * omega * lam)  # eq 13 for gamma = Im(gamma0 e^{i w t})
     steady = np.imag(modulus * gamma0 * np.exp(1j * omega * t))
     tau = maxwell_stress(t, gamma, ETA, G)
-    last = slice(-4001, None)                                        # transient e^{-t/lam} gone after 10 cycles
+    last = slice(-4001, None)  # transient e^{-t/lam} gone after 10 cycles
     # the step replaces gdot by its mean over the step; weighted by e^{-(t - xi)/lam} this leaves a relative error
     # (omega dt)(dt/lam)/12 = 4.3e-6 when omega lam << 1 (derived in docs/theory/makris.md); measured 4.3e-6
     dt = t[1] - t[0]
@@ -192,11 +206,11 @@ def test_maxwell_steady_state_is_the_complex_modulus():
 @pytest.mark.parametrize("deborah", [0.1, 0.5, 1.0, 10.0])
 def test_small_a_tends_to_maxwell(deborah):
     """Fig 4 (bottom): a = 0.05 against the Maxwell model (eq 13), and the approach as a -> 0."""
-    omega = deborah * G / ETA                                        # Deborah number eta omega / G
+    omega = deborah * G / ETA  # Deborah number eta omega / G
     gaps = []
     for a in (0.05, 0.0125, 0.003125):
         gamma0 = TAU_Y / (a * ETA * omega)
-        per_cycle = max(1000, 4 * int(10 / a))                       # >= 6 samples across the |cos wt| < a zone
+        per_cycle = max(1000, 4 * int(10 / a))  # >= 6 samples across the |cos wt| < a zone
         t, gamma = harmonic(omega, gamma0, 5, per_cycle)
         last = slice(-per_cycle - 1, None)
         maxwell = maxwell_stress(t, gamma, ETA, G)[last]
@@ -216,6 +230,7 @@ def test_small_a_tends_to_maxwell(deborah):
 
 # --- 4. the large-a and G -> infinity limits --------------------------------------------------------------------
 
+
 def test_elastic_plastic_closed_form_on_monotone_loading_and_against_eta_zero():
     gamma = np.concatenate([np.linspace(0, 0.8, 50), np.linspace(0.8, -0.3, 70), np.linspace(-0.3, 0.4, 40)])
     tau = elastic_plastic_stress(gamma, TAU_Y, G)
@@ -228,10 +243,9 @@ def test_elastic_plastic_closed_form_on_monotone_loading_and_against_eta_zero():
     tau_r = 0.0
     for lo, hi, end in ((0.0, 0.8, 49), (0.8, -0.3, 119), (-0.3, 0.4, 159)):
         s = np.sign(hi - lo)
-        sol = solve_ivp(lambda g, y: G * (1 - s * y / TAU_Y), (lo, hi), [tau_r], method="LSODA",
-                        rtol=1e-11, atol=1e-9)
+        sol = solve_ivp(lambda g, y: G * (1 - s * y / TAU_Y), (lo, hi), [tau_r], method="LSODA", rtol=1e-11, atol=1e-9)
         tau_r = sol.y[0, -1]
-        assert tau[end] == pytest.approx(tau_r, abs=1e-6 * TAU_Y)        # LSODA rtol 1e-11 at ~tau_y
+        assert tau[end] == pytest.approx(tau_r, abs=1e-6 * TAU_Y)  # LSODA rtol 1e-11 at ~tau_y
     # slope just after the reversal at gamma = 0.8: G (1 + tau_r/tau_y) (derived from eq 8 as gdot -> 0)
     tip = elastic_plastic_stress([0.0, 0.8, 0.8 - 1e-6], TAU_Y, G)
     slope = (tip[2] - tip[1]) / -1e-6
@@ -242,20 +256,20 @@ def test_elastic_plastic_closed_form_on_monotone_loading_and_against_eta_zero():
 def test_elastic_plastic_closed_form_on_a_random_path_with_rests():
     """Branch-wise closed form against the step-by-step law (eta = 0) on a path with many reversals and rests."""
     rng = np.random.default_rng(4)
-    steps = rng.normal(0.0, 0.05, 300) * (rng.random(300) > 0.2)      # a fifth of the steps are rests
-    gamma = np.concatenate([[0.0, 0.0], np.cumsum(steps)])              # starts with a rest too
+    steps = rng.normal(0.0, 0.05, 300) * (rng.random(300) > 0.2)  # a fifth of the steps are rests
+    gamma = np.concatenate([[0.0, 0.0], np.cumsum(steps)])  # starts with a rest too
     tau = elastic_plastic_stress(gamma, TAU_Y, G, tau0=500.0)
     step = makris_stress(np.arange(gamma.size, dtype=float), gamma, TAU_Y, 0.0, G, tau0=500.0)
-    assert tau[1] == 500.0                                               # rest: stress held
+    assert tau[1] == 500.0  # rest: stress held
     # same law (eq 8, eta = 0), two evaluation orders: round-off of a few ulps of tau_y per branch
     np.testing.assert_allclose(tau, step, rtol=0, atol=1e-11 * TAU_Y)
-    assert np.abs(tau).max() < TAU_Y                                     # bounded by the yield stress
+    assert np.abs(tau).max() < TAU_Y  # bounded by the yield stress
 
 
 def test_a_2000_matches_the_zero_frequency_closed_form():
     """Fig 4 (top): the model at a = 2000 against the a = infinity closed form; gamma0 = 1 (G gamma0 = 9.4 tau_y)."""
     gamma0, a = 1.0, 2000.0
-    omega = TAU_Y / (a * ETA * gamma0)                               # 0.069 rad/s
+    omega = TAU_Y / (a * ETA * gamma0)  # 0.069 rad/s
     t, gamma = harmonic(omega, gamma0, 3, 2000)
     gap = np.abs(makris_stress(t, gamma, TAU_Y, ETA, G) - elastic_plastic_stress(gamma, TAU_Y, G)).max()
     # the difference is the viscous stress, at most eta omega gamma0 = tau_y/a = 0.9 Pa (measured 0.994 tau_y/a);
@@ -271,7 +285,7 @@ def test_infinite_modulus_gives_the_bingham_law():
     gamma_dot = omega * gamma0 * np.cos(omega * t)
     bingham = TAU_Y * np.sign(gamma_dot) + ETA * gamma_dot
     bingham_rate = np.abs(ETA * omega**2 * gamma0 * np.sin(omega * t))
-    away = (np.abs(gamma) < 0.9 * gamma0) & (t > t[-1] / 2)          # second cycle, away from the reversals
+    away = (np.abs(gamma) < 0.9 * gamma0) & (t > t[-1] / 2)  # second cycle, away from the reversals
     errors = []
     for modulus in (1e6, 1e7, 1e8):
         tau = makris_stress(t, gamma, TAU_Y, ETA, modulus)
@@ -280,13 +294,13 @@ def test_infinite_modulus_gives_the_bingham_law():
         # quasi-steady lag of eq 8, |d tau_B/dt| / R, plus one step of discretisation, |d tau_B/dt| dt
         assert error <= (bingham_rate / rate)[away].max() + bingham_rate[away].max() * dt
         errors.append(error)
-    assert errors[0] > 5 * errors[1]                                 # lag ~ 1/G while above the dt floor
+    assert errors[0] > 5 * errors[1]  # lag ~ 1/G while above the dt floor
     assert errors[-1] < 1e-4 * (TAU_Y + ETA * omega * gamma0)
 
 
 # --- 5. the Figure 3 setting ------------------------------------------------------------------------------------
 
-FIG3_GAMMA0 = 1.0   # our choice (Fig 3 strain axis not in the text); a = 22.0, 4.4, 2.2 at 1, 5, 10 Hz
+FIG3_GAMMA0 = 1.0  # our choice (Fig 3 strain axis not in the text); a = 22.0, 4.4, 2.2 at 1, 5, 10 Hz
 
 
 @pytest.fixture(scope="module")
@@ -301,7 +315,7 @@ def fig3_loops():
 
 def test_fig3_slope_after_reversal_and_at_zero_stress(fig3_loops):
     for omega, gamma, tau in fig3_loops.values():
-        i = 3 * 4000 + 1000                           # gamma = +gamma0: start of the 4th cycle's unloading
+        i = 3 * 4000 + 1000  # gamma = +gamma0: start of the 4th cycle's unloading
         tau_r = tau[i]
         slope = (tau[i + 1] - tau[i]) / (gamma[i + 1] - gamma[i])
         # eq 8 as gdot -> 0: d tau/d gamma = G (1 + |tau_r|/tau_y), not G (Makris's text reads "the slope of the
@@ -313,12 +327,12 @@ def test_fig3_slope_after_reversal_and_at_zero_stress(fig3_loops):
         # where the unloading branch crosses tau = 0 the slope is exactly G (eq 8 with tau = 0)
         j = i + np.flatnonzero(tau[i:] < 0)[0]
         secant = (tau[j] - tau[j - 1]) / (gamma[j] - gamma[j - 1])
-        assert secant == pytest.approx(G, rel=0.01)   # secant over one step; curvature ~G/tau_y times d gamma ~1e-3
+        assert secant == pytest.approx(G, rel=0.01)  # secant over one step; curvature ~G/tau_y times d gamma ~1e-3
 
 
 def test_fig3_peak_stress_is_below_and_near_the_bingham_bound(fig3_loops):
     for omega, gamma, tau in fig3_loops.values():
-        bound = TAU_Y + ETA * omega * FIG3_GAMMA0                    # max of tau_B = eta gdot + tau_y sgn(gdot)
+        bound = TAU_Y + ETA * omega * FIG3_GAMMA0  # max of tau_B = eta gdot + tau_y sgn(gdot)
         peak = tau[-4001:].max()
         # at a stress maximum d tau/dt = R (tau_B - tau) = 0, so peak = tau_B at a time ~1/R after the peak of
         # tau_B: gap ~ (1/2) eta omega gamma0 (omega/R)^2 (measured 0.65, 4.0, 11 Pa); the bound drops the 1/2
@@ -330,9 +344,9 @@ def test_fig3_loop_area_grows_with_frequency(fig3_loops):
     areas = []
     for omega, gamma, tau in fig3_loops.values():
         g, s = gamma[-4001:], tau[-4001:]
-        areas.append(np.sum(0.5 * (s[1:] + s[:-1]) * np.diff(g)))     # energy per cycle per volume, [J/m^3]
+        areas.append(np.sum(0.5 * (s[1:] + s[:-1]) * np.diff(g)))  # energy per cycle per volume, [J/m^3]
     omegas = [v[0] for v in fig3_loops.values()]
-    assert areas[0] < areas[1] < areas[2]                            # measured 6667, 7571, 8675 J/m^3
+    assert areas[0] < areas[1] < areas[2]  # measured 6667, 7571, 8675 J/m^3
     # the growth is the viscous loop area pi eta omega gamma0^2 of a Bingham solid, less the elastic lag
     # (measured 0.87 of it from 1 to 10 Hz)
     viscous = np.pi * ETA * FIG3_GAMMA0**2 * (omegas[2] - omegas[0])
@@ -350,13 +364,14 @@ def test_fig3_periodic_steady_state(fig3_loops):
 
 # --- interface --------------------------------------------------------------------------------------------------
 
+
 def test_rest_steps_hold_the_stress_unless_maxwell():
     t = np.array([0.0, 0.01, 0.02, 0.03])
     gamma = np.array([0.0, 0.05, 0.05, 0.05])
     tau = makris_stress(t, gamma, TAU_Y, ETA, G)
-    assert tau[1] > 0 and tau[2] == tau[1] == tau[3]                   # eq 8: R = 0 when gdot = 0 and tau_y > 0
+    assert tau[1] > 0 and tau[2] == tau[1] == tau[3]  # eq 8: R = 0 when gdot = 0 and tau_y > 0
     relaxed = makris_stress(t, gamma, 0.0, ETA, G)
-    assert relaxed[2] == pytest.approx(relaxed[1] * np.exp(-G * 0.01 / ETA), rel=1e-13)   # eq 13 relaxation
+    assert relaxed[2] == pytest.approx(relaxed[1] * np.exp(-G * 0.01 / ETA), rel=1e-13)  # eq 13 relaxation
 
 
 def test_trailing_axes_and_time_varying_field():

@@ -65,10 +65,17 @@ def test_field_law_scales_the_yield_force_as_E_to_the_n(makris):
 
 
 def _plain_valve(tau_y="1.8 kPa", eta="7 Pa*s", seal="0 N"):
-    g = Geometry.create(configuration="valve", duct_length="54.6 mm", duct_mean_diameter="14.3 mm", gap="0.8 mm",
-                        piston_diameter="33.4 mm", rod_diameter="11.25 mm")
-    f = Fluid.create(viscosity=eta, yield_stress=tau_y, reference_field="3 kV/mm", yield_exponent=2.0,
-                     density="1100 kg/m^3")
+    g = Geometry.create(
+        configuration="valve",
+        duct_length="54.6 mm",
+        duct_mean_diameter="14.3 mm",
+        gap="0.8 mm",
+        piston_diameter="33.4 mm",
+        rod_diameter="11.25 mm",
+    )
+    f = Fluid.create(
+        viscosity=eta, yield_stress=tau_y, reference_field="3 kV/mm", yield_exponent=2.0, density="1100 kg/m^3"
+    )
     return Damper(geometry=g, fluid=f, seal_friction=Q_(seal).to("N").magnitude)
 
 
@@ -95,8 +102,16 @@ def test_energy_per_cycle_of_the_bingham_damper_matches_quadrature(makris):
     # Independent: adaptive quadrature of F(v(t)) v(t) over one period with the closed-form force.
     X0, f, E = 0.005, 2.0, 3e6
     Om = 2 * math.pi * f
-    expected = 4 * quad(lambda t: makris.force_si(X0 * Om * math.cos(Om * t), E) * X0 * Om * math.cos(Om * t),
-                        0, 0.25 / f, epsrel=1e-12, limit=200)[0]
+    expected = (
+        4
+        * quad(
+            lambda t: makris.force_si(X0 * Om * math.cos(Om * t), E) * X0 * Om * math.cos(Om * t),
+            0,
+            0.25 / f,
+            epsrel=1e-12,
+            limit=200,
+        )[0]
+    )
     r = makris.sine_response("5 mm", "2 Hz", "3 kV/mm", samples_per_cycle=20000)
     # The friction and yield steps at reversals are integrated exactly by the trapezoid on x (F dx): 1e-6.
     assert r.energy_per_cycle == pytest.approx(expected, rel=1e-6)
@@ -116,8 +131,18 @@ def test_dimension_errors_name_the_argument(makris):
 def test_sizing_result_json_keys_and_values(makris):
     r = makris.size(velocity="1 in/s", field="3 kV/mm")
     j = r.as_json()
-    assert list(j) == ["piston_area_m2", "flow_m3_per_s", "pressure_drop_Pa", "force_N", "zero_field_force_N",
-                       "dynamic_range", "damping_constant_N_s_per_m", "reynolds", "laminar", "plug_fraction"]
+    assert list(j) == [
+        "piston_area_m2",
+        "flow_m3_per_s",
+        "pressure_drop_Pa",
+        "force_N",
+        "zero_field_force_N",
+        "dynamic_range",
+        "damping_constant_N_s_per_m",
+        "reynolds",
+        "laminar",
+        "plug_fraction",
+    ]
     assert j["force_N"] == pytest.approx(j["pressure_drop_Pa"] * j["piston_area_m2"] + 112.0)
     assert j["dynamic_range"] == pytest.approx(j["force_N"] / j["zero_field_force_N"])
     assert j["flow_m3_per_s"] == pytest.approx(0.0254 * MAKRIS_AP)
@@ -134,8 +159,12 @@ def test_parallel_ducts_share_the_flow():
     # n identical ducts in parallel: each carries Q/n at the same pressure drop; C falls by n (eq 15 per duct).
     one = _plain_valve()
     g = one.geometry
-    three = Damper(geometry=Geometry("valve", g.duct_length, g.duct_mean_diameter, g.gap, g.piston_diameter,
-                                     g.rod_diameter, ducts=3), fluid=one.fluid)
+    three = Damper(
+        geometry=Geometry(
+            "valve", g.duct_length, g.duct_mean_diameter, g.gap, g.piston_diameter, g.rod_diameter, ducts=3
+        ),
+        fluid=one.fluid,
+    )
     s1, s3 = one.state(0.03, 3e6), three.state(0.09, 3e6)
     assert s3.pressure_drop == pytest.approx(s1.pressure_drop, rel=1e-14)
     assert three.damping_constant_si() == pytest.approx(one.damping_constant_si() / 3, rel=1e-14)
@@ -153,10 +182,12 @@ def test_mixed_damping_constant_is_newtonian_couette_poiseuille():
     g, eta = d.geometry, d.fluid.viscosity
     b = math.pi * g.duct_mean_diameter
     grad = 12 * eta * (g.gap / 2 + g.piston_area / b) / g.gap**3
-    C = grad * g.duct_length * g.piston_area + (eta / g.gap + grad * g.gap / 2) * math.pi * g.piston_diameter * \
-        g.duct_length
+    C = (
+        grad * g.duct_length * g.piston_area
+        + (eta / g.gap + grad * g.gap / 2) * math.pi * g.piston_diameter * g.duct_length
+    )
     assert d.damping_constant_si() == pytest.approx(C, rel=1e-12)
-    assert d.force_si(0.05, 0.0) == pytest.approx(C * 0.05, rel=1e-12)     # no seal friction in this file
+    assert d.force_si(0.05, 0.0) == pytest.approx(C * 0.05, rel=1e-12)  # no seal friction in this file
 
 
 def test_mixed_yield_force_and_small_velocity_limit():
@@ -195,10 +226,13 @@ def test_thick_gap_valve_uses_the_exact_annulus_and_the_difference_is_the_thin_g
     v = np.array([0.05, 0.5])
     dp_exact, dp_slit = exact.state(v, 3e6).pressure_drop, slit.state(v, 3e6).pressure_drop
     bi = bingham_number(v * g.piston_area, 1800.0, 13.0, g.duct_mean_diameter, 5e-3)
-    np.testing.assert_allclose(dp_slit / dp_exact - 1, thin_gap_error_bingham(5e-3 / g.duct_mean_diameter, bi),
-                               rtol=1e-6)
+    np.testing.assert_allclose(
+        dp_slit / dp_exact - 1, thin_gap_error_bingham(5e-3 / g.duct_mean_diameter, bi), rtol=1e-6
+    )
     # Zero field: the damping constant is eq 15 divided by the exact-annulus conductance ratio.
     from erdesign.flow import annulus_conductance_ratio
+
     assert exact.damping_constant_si() == pytest.approx(
-        slit.damping_constant_si() / annulus_conductance_ratio(g.duct_mean_diameter, 5e-3), rel=1e-12)
+        slit.damping_constant_si() / annulus_conductance_ratio(g.duct_mean_diameter, 5e-3), rel=1e-12
+    )
     assert exact.force_si(0.01, 0.0) == pytest.approx(exact.damping_constant_si() * 0.01, rel=1e-9)

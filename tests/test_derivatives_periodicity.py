@@ -25,7 +25,7 @@ def _verdicts(t, x):
     limit = 1.5 * sigma + 1e-7 * np.ptp(x)
     assert f0 * T >= 1.5
     rejects = m._clearly_aperiodic(spectrum, f0, T, (t.size - 1) / T, limit)
-    accepts = m._periodic_derivatives(t, x, f0, sigma) is not None          # the fits alone
+    accepts = m._periodic_derivatives(t, x, f0, sigma) is not None  # the fits alone
     return rejects, accepts
 
 
@@ -67,14 +67,18 @@ def test_non_periodic_records_are_rejected_before_any_fit(kind):
 
 def test_harmonic_fit_equals_svd_least_squares():
     rng = np.random.default_rng(2)
-    t = np.sort(rng.uniform(0, 3.0, 4000))                                  # uneven sampling: any grid
+    t = np.sort(rng.uniform(0, 3.0, 4000))  # uneven sampling: any grid
     f = 1.3
-    x = 0.01 * np.sin(2 * np.pi * f * t) + 0.002 * np.cos(6 * np.pi * f * t) + 0.003 * t + 1e-5 * rng.normal(
-        size=t.size)
+    x = (
+        0.01 * np.sin(2 * np.pi * f * t)
+        + 0.002 * np.cos(6 * np.pi * f * t)
+        + 0.003 * t
+        + 1e-5 * rng.normal(size=t.size)
+    )
     coef, A, r = m._harmonic_fit(t, x, f, 6)
     w = 2 * np.pi * f * (t - t[0])
     B = np.column_stack([np.ones_like(t), t - t[0]] + [g(k * w) for k in range(1, 7) for g in (np.cos, np.sin)])
     ref, *_ = np.linalg.lstsq(B, x, rcond=None)
-    np.testing.assert_allclose(coef, ref, rtol=0, atol=1e-13 * np.max(np.abs(ref)))   # measured 1e-15
-    np.testing.assert_allclose(A[:, 2:], B[:, 2:], rtol=0, atol=1e-13)                 # angle addition: k ulp
+    np.testing.assert_allclose(coef, ref, rtol=0, atol=1e-13 * np.max(np.abs(ref)))  # measured 1e-15
+    np.testing.assert_allclose(A[:, 2:], B[:, 2:], rtol=0, atol=1e-13)  # angle addition: k ulp
     np.testing.assert_allclose(r, x - B @ ref, rtol=0, atol=1e-15)

@@ -41,8 +41,14 @@ EXAMPLES = resources.files("erdesign.examples") / "requirements"
 MAKRIS_REQ = str(EXAMPLES / "makris_requirements.toml")
 MR_REQ = str(EXAMPLES / "mr_requirements.toml")
 INFEASIBLE_REQ = str(EXAMPLES / "infeasible_requirements.toml")
-MAKRIS_GEOMETRY = {"gap": MAKRIS["h"], "duct_length": MAKRIS["L"], "duct_mean_diameter": MAKRIS["d"],
-                   "piston_diameter": MAKRIS["Dp"], "rod_diameter": MAKRIS["dr"], "ducts": 1}
+MAKRIS_GEOMETRY = {
+    "gap": MAKRIS["h"],
+    "duct_length": MAKRIS["L"],
+    "duct_mean_diameter": MAKRIS["d"],
+    "piston_diameter": MAKRIS["Dp"],
+    "rod_diameter": MAKRIS["dr"],
+    "ducts": 1,
+}
 MAKRIS_FLUID = {"material": "makris-zeolite-silicone", "seal_friction": "112 N"}
 
 
@@ -73,22 +79,27 @@ def assert_meets_every_requirement(req, rec):
         if p.max_zero_field_force is not None:
             assert F0 <= p.max_zero_field_force
         if lim.max_pressure is not None:
-            assert max(abs(s.pressure_drop.to("Pa").magnitude), abs(s0.pressure_drop.to("Pa").magnitude)) \
+            assert (
+                max(abs(s.pressure_drop.to("Pa").magnitude), abs(s0.pressure_drop.to("Pa").magnitude))
                 <= lim.max_pressure
+            )
         if lim.laminar:
             assert s.laminar and s0.laminar
         if lim.max_voltage is not None:
             assert p.field * g.gap <= lim.max_voltage
     bore = g.piston_diameter + (2 * g.gap if g.configuration == "mixed" else 0.0)
-    if lim.max_outer_diameter is not None:                       # docs/design.md: bore + 2 x wall
+    if lim.max_outer_diameter is not None:  # docs/design.md: bore + 2 x wall
         assert bore + 2 * env.wall <= lim.max_outer_diameter
-    if lim.max_length is not None:                               # docs/design.md: the body-length model
-        body = (env.stroke + g.duct_length if g.configuration == "mixed"
-                else max(env.stroke + env.head_length, g.duct_length)) + 2 * env.end_allowance
+    if lim.max_length is not None:  # docs/design.md: the body-length model
+        body = (
+            env.stroke + g.duct_length
+            if g.configuration == "mixed"
+            else max(env.stroke + env.head_length, g.duct_length)
+        ) + 2 * env.end_allowance
         assert body <= lim.max_length
     if lim.min_gap is not None:
         assert g.gap >= lim.min_gap
-    assert g.gap_ratio <= 0.1                                    # the thin-gap model holds
+    assert g.gap_ratio <= 0.1  # the thin-gap model holds
     assert rec["fluid_volume_m3"] == pytest.approx(g.active_fluid_volume, rel=1e-12)
 
 
@@ -96,18 +107,30 @@ def makris_own_requirements(slack, **search):
     """Requirements from Makris's damper's own figures (force and dynamic range at 1 in/s and 3 kV/mm, pressure,
     envelope), loosened by ``slack``, with bounds from 2/3 to 3/2 of his dimensions."""
     r = load_example("makris").size("1 in/s", "3 kV/mm")
-    body = max(0.05 + 0.02, MAKRIS["L"]) + 2 * 0.025                # envelope model, default stroke and allowances
-    data = {"fluid": MAKRIS_FLUID,
-            "design": {"configuration": "valve", "objective": "min_fluid_volume",
-                       "point": [{"velocity": "1 in/s", "field": "3 kV/mm",
-                                  "min_force": f"{r.force.to('N').magnitude * (1 - slack)!r} N",
-                                  "min_dynamic_range": r.dynamic_range * (1 - slack)}],
-                       "limits": {"max_outer_diameter": mm((MAKRIS["Dp"] + 2 * 0.005) * (1 + slack)),
-                                  "max_length": mm(body * (1 + slack)),
-                                  "max_pressure": f"{r.pressure_drop.to('Pa').magnitude * (1 + slack)!r} Pa",
-                                  "laminar": True},
-                       "bounds": {k: [mm(v / 1.5), mm(v * 1.5)] for k, v in MAKRIS_GEOMETRY.items() if k != "ducts"},
-                       "search": {k: v for k, v in search.items()}}}
+    body = max(0.05 + 0.02, MAKRIS["L"]) + 2 * 0.025  # envelope model, default stroke and allowances
+    data = {
+        "fluid": MAKRIS_FLUID,
+        "design": {
+            "configuration": "valve",
+            "objective": "min_fluid_volume",
+            "point": [
+                {
+                    "velocity": "1 in/s",
+                    "field": "3 kV/mm",
+                    "min_force": f"{r.force.to('N').magnitude * (1 - slack)!r} N",
+                    "min_dynamic_range": r.dynamic_range * (1 - slack),
+                }
+            ],
+            "limits": {
+                "max_outer_diameter": mm((MAKRIS["Dp"] + 2 * 0.005) * (1 + slack)),
+                "max_length": mm(body * (1 + slack)),
+                "max_pressure": f"{r.pressure_drop.to('Pa').magnitude * (1 + slack)!r} Pa",
+                "laminar": True,
+            },
+            "bounds": {k: [mm(v / 1.5), mm(v * 1.5)] for k, v in MAKRIS_GEOMETRY.items() if k != "ducts"},
+            "search": {k: v for k, v in search.items()},
+        },
+    }
     return requirements_from_dict(data)
 
 
@@ -116,19 +139,37 @@ def test_candidate_figures_equal_damper_state_for_random_valve_and_mixed_geometr
     # The vectorised evaluation must be Damper.state, operation for operation; 1e-13 allows the last bit.
     rng = np.random.default_rng(3)
     for configuration in ("valve", "mixed"):
-        req = requirements_from_dict({"fluid": MAKRIS_FLUID, "design": {
-            "configuration": configuration, "point": [{"velocity": "0.1 m/s", "field": "2 kV/mm", "min_force": "1 N"}],
-            "bounds": {"gap": ["0.5 mm", "2 mm"], "duct_length": ["20 mm", "80 mm"],
-                       **({"duct_mean_diameter": ["20 mm", "40 mm"]} if configuration == "valve" else {}),
-                       "piston_diameter": ["25 mm", "50 mm"], "rod_diameter": ["8 mm", "15 mm"]}}})
+        req = requirements_from_dict(
+            {
+                "fluid": MAKRIS_FLUID,
+                "design": {
+                    "configuration": configuration,
+                    "point": [{"velocity": "0.1 m/s", "field": "2 kV/mm", "min_force": "1 N"}],
+                    "bounds": {
+                        "gap": ["0.5 mm", "2 mm"],
+                        "duct_length": ["20 mm", "80 mm"],
+                        **({"duct_mean_diameter": ["20 mm", "40 mm"]} if configuration == "valve" else {}),
+                        "piston_diameter": ["25 mm", "50 mm"],
+                        "rod_diameter": ["8 mm", "15 mm"],
+                    },
+                },
+            }
+        )
         n = 12
         h, L = rng.uniform(5e-4, 2e-3, n), rng.uniform(0.02, 0.08, n)
         d, Dp, dr = rng.uniform(0.02, 0.04, n), rng.uniform(0.025, 0.05, n), rng.uniform(0.008, 0.015, n)
         ducts = rng.integers(1, 4, n) if configuration == "valve" else np.ones(n)
         fig = evaluate_candidates(req, h, L, d if configuration == "valve" else None, Dp, dr, ducts)
         for i in range(n):
-            g = Geometry(configuration, L[i], d[i] if configuration == "valve" else Dp[i] + h[i], h[i], Dp[i], dr[i],
-                         int(ducts[i]))
+            g = Geometry(
+                configuration,
+                L[i],
+                d[i] if configuration == "valve" else Dp[i] + h[i],
+                h[i],
+                Dp[i],
+                dr[i],
+                int(ducts[i]),
+            )
             damper = Damper(g, req.fluid, req.seal_friction)
             s, s0 = damper.state(0.1, 2e6), damper.state(0.1, 0.0)
             assert fig.force[0, i] == pytest.approx(s.force, rel=1e-13)
@@ -176,13 +217,15 @@ def test_every_returned_design_meets_every_requirement_when_rechecked_with_size(
     for rec in result.designs + result.pareto[::5]:
         assert_meets_every_requirement(req, rec)
     # best first
-    keys = [rec["fluid_volume_m3"] if req.objective == "min_fluid_volume" else rec["zero_field_force_N"]
-            for rec in result.designs]
+    keys = [
+        rec["fluid_volume_m3"] if req.objective == "min_fluid_volume" else rec["zero_field_force_N"]
+        for rec in result.designs
+    ]
     # best first; designs within TIE of each other may be ordered by the secondary objective instead
     from erdesign.design.search import TIE
 
     for i, a in enumerate(keys):
-        assert all(b >= a * (1 - 2 * TIE) for b in keys[i + 1:]), keys
+        assert all(b >= a * (1 - 2 * TIE) for b in keys[i + 1 :]), keys
     # refined designs sit on the limits they are pushed against: margin SAFETY (1e-4) up to rounding (1e-4)
     best = result.designs[0]
     assert best["origin"] == "refined"
@@ -201,8 +244,9 @@ def test_makris_own_figures_give_a_feasible_family_that_contains_his_geometry():
     s = sample_designs(req)
     feasible = s.feasible
     assert feasible.sum() >= 20
-    dist = np.max([np.abs(np.log(getattr(s, k)[feasible] / v)) for k, v in MAKRIS_GEOMETRY.items()
-                   if k != "ducts"], axis=0)
+    dist = np.max(
+        [np.abs(np.log(getattr(s, k)[feasible] / v)) for k, v in MAKRIS_GEOMETRY.items() if k != "ducts"], axis=0
+    )
     # Closest feasible sample: within 10 % of his value in every dimension (measured 7.3 %).  Why not closer: the
     # 2^15 samples fill a 5-D box of ratio 2.25 per side, a spacing of ln(2.25) * 2^(-15/5) = 10 % per dimension,
     # and the feasible set near his design is a thin shell (his force and range are met within 1-2 %).
@@ -219,10 +263,18 @@ def test_refinement_recovers_makris_gap_from_his_force():
     F = load_example("makris").size("1 in/s", "3 kV/mm").force.to("N").magnitude
     bounds = {k: mm(v) for k, v in MAKRIS_GEOMETRY.items() if k != "ducts"}
     bounds["gap"] = ["0.5 mm", "2 mm"]
-    req = requirements_from_dict({"fluid": MAKRIS_FLUID, "design": {
-        "configuration": "valve", "objective": "min_zero_field_force",
-        "point": [{"velocity": "1 in/s", "field": "3 kV/mm", "min_force": f"{F!r} N"}],
-        "bounds": bounds, "search": {"samples": 256, "gap_tolerance": "0 mm", "length_tolerance": "0 mm"}}})
+    req = requirements_from_dict(
+        {
+            "fluid": MAKRIS_FLUID,
+            "design": {
+                "configuration": "valve",
+                "objective": "min_zero_field_force",
+                "point": [{"velocity": "1 in/s", "field": "3 kV/mm", "min_force": f"{F!r} N"}],
+                "bounds": bounds,
+                "search": {"samples": 256, "gap_tolerance": "0 mm", "length_tolerance": "0 mm"},
+            },
+        }
+    )
     best = design(req).designs[0]
     h = Q_(best["geometry"]["gap"]).to("m").magnitude
     assert h == pytest.approx(MAKRIS["h"], rel=1e-3)
@@ -235,16 +287,33 @@ def test_min_fluid_volume_reaches_the_valve_scaling_law_and_no_sample_beats_it()
     # at v with range D holds V = 3 (eta / tau^2) F v D phi(D)^2 between its electrodes, increasing in F and D.  So
     # V(F_min, D_min) is a lower bound no feasible sample may beat (to round-off, 1e-12) and the refined optimum
     # must reach it up to the SLSQP margin of 1e-4 on force and range (dV/V = dF/F + ~1.6 dD/D: 5e-4 allows it).
-    fluid = {"viscosity": "1 Pa*s", "yield_stress": "2 kPa", "reference_field": "3 kV/mm", "yield_exponent": 2.0,
-             "density": "1100 kg/m^3"}
-    req = requirements_from_dict({"fluid": fluid, "design": {
-        "configuration": "valve", "objective": "min_fluid_volume",
-        "point": [{"velocity": "0.05 m/s", "field": "3 kV/mm", "min_force": "3 kN", "min_dynamic_range": 3.0}],
-        "bounds": {"gap": ["0.3 mm", "3 mm"], "duct_length": ["10 mm", "300 mm"],
-                   "duct_mean_diameter": ["5 mm", "80 mm"], "piston_diameter": ["20 mm", "80 mm"],
-                   "rod_diameter": ["5 mm", "20 mm"], "ducts": [1, 3]},
-        # the refinement's precision is under test: no rounding to a manufacturing grid
-        "search": {"samples": 2**14, "gap_tolerance": "0 mm", "length_tolerance": "0 mm"}}})
+    fluid = {
+        "viscosity": "1 Pa*s",
+        "yield_stress": "2 kPa",
+        "reference_field": "3 kV/mm",
+        "yield_exponent": 2.0,
+        "density": "1100 kg/m^3",
+    }
+    req = requirements_from_dict(
+        {
+            "fluid": fluid,
+            "design": {
+                "configuration": "valve",
+                "objective": "min_fluid_volume",
+                "point": [{"velocity": "0.05 m/s", "field": "3 kV/mm", "min_force": "3 kN", "min_dynamic_range": 3.0}],
+                "bounds": {
+                    "gap": ["0.3 mm", "3 mm"],
+                    "duct_length": ["10 mm", "300 mm"],
+                    "duct_mean_diameter": ["5 mm", "80 mm"],
+                    "piston_diameter": ["20 mm", "80 mm"],
+                    "rod_diameter": ["5 mm", "20 mm"],
+                    "ducts": [1, 3],
+                },
+                # the refinement's precision is under test: no rounding to a manufacturing grid
+                "search": {"samples": 2**14, "gap_tolerance": "0 mm", "length_tolerance": "0 mm"},
+            },
+        }
+    )
     V_min = valve_minimum_active_volume(3000.0, 0.05, 3.0, 2000.0, 1.0)
     s = sample_designs(req)
     assert s.feasible.sum() > 10
@@ -285,9 +354,9 @@ def brute_front(Y):
 def test_pareto_mask_equals_the_definition(k):
     rng = np.random.default_rng(k)
     for trial in range(8):
-        n = 1100 if trial == 0 else int(rng.integers(1, 1500))   # beyond one block (1024 rows) of the 3-D filter
+        n = 1100 if trial == 0 else int(rng.integers(1, 1500))  # beyond one block (1024 rows) of the 3-D filter
         Y = rng.integers(0, 6, (n, k)).astype(float) if trial % 2 else rng.random((n, k))
-        if trial % 3 == 0:            # a trade-off: nearly everything on the front
+        if trial % 3 == 0:  # a trade-off: nearly everything on the front
             Y[:, -1] = -Y[:, :-1].sum(axis=1) + 1e-3 * rng.random(n)
         assert np.array_equal(pareto_mask(Y), brute_front(Y))
     Y = rng.random((300, k))
@@ -302,10 +371,18 @@ def test_pareto_mask_equals_the_definition(k):
 # ----------------------------------------------------------------------------------------------- infeasibility
 def piston_only_requirements(min_force, max_outer):
     fixed = {k: mm(v) for k, v in MAKRIS_GEOMETRY.items() if k not in ("ducts", "piston_diameter")}
-    return requirements_from_dict({"fluid": MAKRIS_FLUID, "design": {
-        "configuration": "valve", "point": [{"velocity": "1 in/s", "field": "3 kV/mm", "min_force": min_force}],
-        "limits": {"max_outer_diameter": max_outer},
-        "bounds": {**fixed, "piston_diameter": ["20 mm", "60 mm"]}, "search": {"samples": 1024}}})
+    return requirements_from_dict(
+        {
+            "fluid": MAKRIS_FLUID,
+            "design": {
+                "configuration": "valve",
+                "point": [{"velocity": "1 in/s", "field": "3 kV/mm", "min_force": min_force}],
+                "limits": {"max_outer_diameter": max_outer},
+                "bounds": {**fixed, "piston_diameter": ["20 mm", "60 mm"]},
+                "search": {"samples": 1024},
+            },
+        }
+    )
 
 
 def test_infeasible_requirements_name_the_conflict_and_the_nearest_design():
@@ -321,9 +398,13 @@ def test_infeasible_requirements_name_the_conflict_and_the_nearest_design():
     # The nearest design minimises the sum of squared relative violations; check it against a fine scan of the
     # one free variable (independent of SLSQP): within the scan step of 0.01 mm.
     Dp = np.linspace(0.030, 0.045, 15001)
-    fig = evaluate_candidates(req, *[np.full_like(Dp, MAKRIS_GEOMETRY[k]) for k in ("gap", "duct_length",
-                                                                                  "duct_mean_diameter")],
-                              Dp, np.full_like(Dp, MAKRIS["dr"]), np.ones_like(Dp))
+    fig = evaluate_candidates(
+        req,
+        *[np.full_like(Dp, MAKRIS_GEOMETRY[k]) for k in ("gap", "duct_length", "duct_mean_diameter")],
+        Dp,
+        np.full_like(Dp, MAKRIS["dr"]),
+        np.ones_like(Dp),
+    )
     best = Dp[np.argmin(np.sum(np.minimum(fig.margins, 0) ** 2, axis=0))]
     assert Q_(near["geometry"]["piston_diameter"]).to("m").magnitude == pytest.approx(best, abs=2e-5)
     # The reported shortfalls are those of that geometry, re-checked with Damper.size.
@@ -331,7 +412,8 @@ def test_infeasible_requirements_name_the_conflict_and_the_nearest_design():
     F = d.size("1 in/s", "3 kV/mm").force.to("N").magnitude
     assert near["violations"]["min_force (point 1)"] == pytest.approx(1 - F / 9000.0, rel=1e-9)
     assert near["violations"]["max_outer_diameter"] == pytest.approx(
-        (d.geometry.piston_diameter + 0.01) / 0.04 - 1, rel=1e-9)
+        (d.geometry.piston_diameter + 0.01) / 0.04 - 1, rel=1e-9
+    )
     # The relaxation counts agree with the sampled arrays (same seed, same samples).
     s = sample_designs(req)
     only_force = (s.margins[0] < 0) & (s.margins[1:] >= 0).all(axis=0)
@@ -343,7 +425,7 @@ def test_a_field_above_the_fluid_limit_is_a_conflict_no_geometry_removes():
     req = piston_only_requirements("1 kN", "80 mm")
     data = read_toml(MAKRIS_REQ)
     data["design"]["point"][0]["field"] = "5 kV/mm"
-    with warnings.catch_warnings():   # the fluid may warn that 5 kV/mm lies beyond its characterised range
+    with warnings.catch_warnings():  # the fluid may warn that 5 kV/mm lies beyond its characterised range
         warnings.simplefilter("ignore", ValidityWarning)
         req5 = requirements_from_dict(data)
     result = design(req5.with_search(samples=1024))
@@ -374,43 +456,65 @@ rod_diameter = ["8 mm", "20 mm"]
 """
 
 
-@pytest.mark.parametrize("old, new, message", [
-    ("[fluid]", "colour = 'red'\n[fluid]", "colour: unknown key"),
-    ("material =", "viscosty = '1 Pa*s'\nmaterial =", "fluid.viscosty: unknown key"),
-    ('configuration = "valve"', 'configuration = "valve"\nobjectiv = "x"', "design.objectiv: unknown key"),
-    ('min_force = "5 kN"', 'min_forc = "5 kN"', "design.point[1].min_forc: unknown key"),
-    ('max_length = "250 mm"', 'max_lenght = "250 mm"', "design.limits.max_lenght: unknown key"),
-    ('gap = ["0.5 mm", "2 mm"]', 'gapp = ["0.5 mm", "2 mm"]', "design.bounds.gapp: unknown key"),
-    ('configuration = "valve"', 'configuration = "valve"\n[design.envelope]\nwal = "5 mm"',
-     "design.envelope.wal: unknown key"),
-    ('configuration = "valve"', 'configuration = "valve"\n[design.search]\nsample = 5', "design.search.sample"),
-    ('configuration = "valve"', "", "design.configuration: missing"),
-    ('configuration = "valve"', 'configuration = "shear"', "design.configuration: must be one of"),
-    ('configuration = "valve"', 'configuration = "valve"\nobjective = "cheap"', "design.objective: must be one of"),
-    ('min_force = "5 kN"', 'min_force = "5 kg"', "design.point[1].min_force: expected a force"),
-    ('min_force = "5 kN"', 'min_force = 5000', "design.point[1].min_force: expected a value with a unit"),
-    ('min_force = "5 kN"', 'min_force = "5 kN"\nmin_dynamic_range = "big"', "design.point[1].min_dynamic_range"),
-    ('field = "3 kV/mm"', 'field = "200 kA/m"', "design.point[1].field: expected an electric field"),
-    ('velocity = "1 in/s"', 'velocity = "-1 in/s"', "design.point[1].velocity: must be positive"),
-    ('min_force = "5 kN"', "", "design.point[1]: states no requirement"),
-    ('max_length = "250 mm"', 'laminar = "yes"', "design.limits.laminar: expected true or false"),
-    ('max_length = "250 mm"', 'max_voltage = "5 A"', "design.limits.max_voltage: expected a voltage"),
-    ('gap = ["0.5 mm", "2 mm"]', 'gap = ["2 mm", "0.5 mm"]', "design.bounds.gap: low '2 mm' is above high"),
-    ('gap = ["0.5 mm", "2 mm"]', 'gap = ["0.5 mm", "2 kg"]', "design.bounds.gap: expected a length"),
-    ('gap = ["0.5 mm", "2 mm"]', "", "design.bounds.gap: missing"),
-    ('rod_diameter = ["8 mm", "20 mm"]', 'rod_diameter = ["8 mm", "20 mm"]\nducts = [1.5, 2]',
-     "design.bounds.ducts: expected"),
-    ('rod_diameter = ["8 mm", "20 mm"]', 'rod_diameter = ["80 mm", "90 mm"]', "design.bounds.rod_diameter: the smallest"),
-    ('configuration = "valve"', 'configuration = "valve"\n[design.search]\npareto = ["force", "colour"]',
-     "design.search.pareto: unknown figure 'colour'"),
-    ('configuration = "valve"', 'configuration = "valve"\n[design.search]\nsamples = 0',
-     "design.search.samples: must be >= 1"),
-    ('[[design.point]]', '[design.pont]', "design.pont: unknown key"),
-    ('configuration = "valve"', 'configuration = "mixed"', "design.bounds.duct_mean_diameter: not a free variable"),
-    ('configuration = "valve"', 'configuration = "valve"\n[design.envelope]\nduct_placement = "under"',
-     "design.envelope.duct_placement: must be one of"),
-    ('velocity = "1 in/s"', 'velocity = "1 in/s', "invalid TOML"),
-])
+@pytest.mark.parametrize(
+    "old, new, message",
+    [
+        ("[fluid]", "colour = 'red'\n[fluid]", "colour: unknown key"),
+        ("material =", "viscosty = '1 Pa*s'\nmaterial =", "fluid.viscosty: unknown key"),
+        ('configuration = "valve"', 'configuration = "valve"\nobjectiv = "x"', "design.objectiv: unknown key"),
+        ('min_force = "5 kN"', 'min_forc = "5 kN"', "design.point[1].min_forc: unknown key"),
+        ('max_length = "250 mm"', 'max_lenght = "250 mm"', "design.limits.max_lenght: unknown key"),
+        ('gap = ["0.5 mm", "2 mm"]', 'gapp = ["0.5 mm", "2 mm"]', "design.bounds.gapp: unknown key"),
+        (
+            'configuration = "valve"',
+            'configuration = "valve"\n[design.envelope]\nwal = "5 mm"',
+            "design.envelope.wal: unknown key",
+        ),
+        ('configuration = "valve"', 'configuration = "valve"\n[design.search]\nsample = 5', "design.search.sample"),
+        ('configuration = "valve"', "", "design.configuration: missing"),
+        ('configuration = "valve"', 'configuration = "shear"', "design.configuration: must be one of"),
+        ('configuration = "valve"', 'configuration = "valve"\nobjective = "cheap"', "design.objective: must be one of"),
+        ('min_force = "5 kN"', 'min_force = "5 kg"', "design.point[1].min_force: expected a force"),
+        ('min_force = "5 kN"', "min_force = 5000", "design.point[1].min_force: expected a value with a unit"),
+        ('min_force = "5 kN"', 'min_force = "5 kN"\nmin_dynamic_range = "big"', "design.point[1].min_dynamic_range"),
+        ('field = "3 kV/mm"', 'field = "200 kA/m"', "design.point[1].field: expected an electric field"),
+        ('velocity = "1 in/s"', 'velocity = "-1 in/s"', "design.point[1].velocity: must be positive"),
+        ('min_force = "5 kN"', "", "design.point[1]: states no requirement"),
+        ('max_length = "250 mm"', 'laminar = "yes"', "design.limits.laminar: expected true or false"),
+        ('max_length = "250 mm"', 'max_voltage = "5 A"', "design.limits.max_voltage: expected a voltage"),
+        ('gap = ["0.5 mm", "2 mm"]', 'gap = ["2 mm", "0.5 mm"]', "design.bounds.gap: low '2 mm' is above high"),
+        ('gap = ["0.5 mm", "2 mm"]', 'gap = ["0.5 mm", "2 kg"]', "design.bounds.gap: expected a length"),
+        ('gap = ["0.5 mm", "2 mm"]', "", "design.bounds.gap: missing"),
+        (
+            'rod_diameter = ["8 mm", "20 mm"]',
+            'rod_diameter = ["8 mm", "20 mm"]\nducts = [1.5, 2]',
+            "design.bounds.ducts: expected",
+        ),
+        (
+            'rod_diameter = ["8 mm", "20 mm"]',
+            'rod_diameter = ["80 mm", "90 mm"]',
+            "design.bounds.rod_diameter: the smallest",
+        ),
+        (
+            'configuration = "valve"',
+            'configuration = "valve"\n[design.search]\npareto = ["force", "colour"]',
+            "design.search.pareto: unknown figure 'colour'",
+        ),
+        (
+            'configuration = "valve"',
+            'configuration = "valve"\n[design.search]\nsamples = 0',
+            "design.search.samples: must be >= 1",
+        ),
+        ("[[design.point]]", "[design.pont]", "design.pont: unknown key"),
+        ('configuration = "valve"', 'configuration = "mixed"', "design.bounds.duct_mean_diameter: not a free variable"),
+        (
+            'configuration = "valve"',
+            'configuration = "valve"\n[design.envelope]\nduct_placement = "under"',
+            "design.envelope.duct_placement: must be one of",
+        ),
+        ('velocity = "1 in/s"', 'velocity = "1 in/s', "invalid TOML"),
+    ],
+)
 def test_bad_requirement_files_give_one_line_errors_naming_the_key(tmp_path, capsys, old, new, message):
     assert old in BASE
     path = tmp_path / "req.toml"
@@ -426,9 +530,11 @@ def test_bad_requirement_files_give_one_line_errors_naming_the_key(tmp_path, cap
 def test_mr_voltage_limit_and_duct_rules_are_errors():
     mr = {k: v for k, v in read_toml(MR_REQ)["fluid"].items()}
     base = read_toml(MR_REQ)["design"]
-    for change, message in [({"limits": {"max_voltage": "5 kV"}}, "max_voltage: applies to an ER fluid"),
-                            ({"bounds": {**base["bounds"], "ducts": [1, 2]}}, "design.bounds.ducts: a mixed damper"),
-                            ({"envelope": {"duct_placement": "around"}}, "applies to the valve configuration only")]:
+    for change, message in [
+        ({"limits": {"max_voltage": "5 kV"}}, "max_voltage: applies to an ER fluid"),
+        ({"bounds": {**base["bounds"], "ducts": [1, 2]}}, "design.bounds.ducts: a mixed damper"),
+        ({"envelope": {"duct_placement": "around"}}, "applies to the valve configuration only"),
+    ]:
         with pytest.raises(RequirementsError, match=message.replace("(", r"\(")):
             requirements_from_dict({"fluid": mr, "design": {**base, **change}})
     with pytest.raises(TypeError):
@@ -498,15 +604,28 @@ def test_cli_json_is_one_object_with_the_contract_keys(tmp_path, capsys):
     code = main(["design", small_copy(tmp_path, MAKRIS_REQ, 4096), "--json"])
     out, err = capsys.readouterr()
     assert code == 0 and err == ""
-    data = json.loads(out)                        # exactly one JSON object, nothing else on stdout
+    data = json.loads(out)  # exactly one JSON object, nothing else on stdout
     assert isinstance(data, dict) and data["feasible"] is True and data["conflicts"] == []
     assert {"feasible", "designs", "conflicts"} <= set(data)
     for rec in data["designs"]:
-        assert {"geometry", "force_N", "zero_field_force_N", "dynamic_range", "fluid_volume_m3",
-                "active_constraints"} <= set(rec)
+        assert {
+            "geometry",
+            "force_N",
+            "zero_field_force_N",
+            "dynamic_range",
+            "fluid_volume_m3",
+            "active_constraints",
+        } <= set(rec)
         g = rec["geometry"]
-        assert set(g) == {"configuration", "duct_length", "duct_mean_diameter", "gap", "piston_diameter",
-                          "rod_diameter", "ducts"}
+        assert set(g) == {
+            "configuration",
+            "duct_length",
+            "duct_mean_diameter",
+            "gap",
+            "piston_diameter",
+            "rod_diameter",
+            "ducts",
+        }
         assert all(Q_(g[k]).check("[length]") for k in g if k not in ("configuration", "ducts"))
     assert [r["rank"] for r in data["designs"]] == list(range(1, len(data["designs"]) + 1))
 
@@ -530,10 +649,10 @@ def test_cli_out_writes_csv_with_units_in_the_header(tmp_path, capsys):
     for name in header:
         if name not in ("set", "rank", "configuration", "active_constraints"):
             _, unit = name[:-1].split(" [")
-            Q_(1.0, unit)                             # every unit in the header is one pint reads
+            Q_(1.0, unit)  # every unit in the header is one pint reads
     row = dict(zip(header, body[0]))
     best = data["designs"][0]
-    assert float(row["force [N]"]) == pytest.approx(best["force_N"], rel=1e-7)           # 8 significant figures
+    assert float(row["force [N]"]) == pytest.approx(best["force_N"], rel=1e-7)  # 8 significant figures
     assert float(row["fluid_volume [cm^3]"]) == pytest.approx(best["fluid_volume_m3"] * 1e6, rel=1e-7)
     assert row["gap [mm]"] + " mm" == best["geometry"]["gap"]
 
@@ -595,12 +714,14 @@ def test_design_reports_progress_chunk_by_chunk(capsys):
     # the library calls back after every chunk with the running counts; the command line prints them on stderr
     # once a search has run a while (here: at once), never on stdout (--json stays one object)
     from erdesign.design import design, load_example_requirements
+
     req = load_example_requirements("makris_requirements").with_search(samples=4096, chunk=1024, refine=False)
     calls = []
     result = design(req, progress=lambda done, total, feasible: calls.append((done, total, feasible)))
     assert [c[0] for c in calls] == [1024, 2048, 3072, 4096] and {c[1] for c in calls} == {4096}
     assert calls[-1][2] == result.feasible_count and all(a[2] <= b[2] for a, b in zip(calls, calls[1:]))
     from erdesign.cli.design import _Progress
+
     line = _Progress(every=0.0, after=0.0)
     for done, total, feasible in calls[:-1]:
         line(done, total, feasible)

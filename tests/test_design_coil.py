@@ -23,8 +23,12 @@ def result(req):
 
 def damper_dict(rec):
     """The damper file of a returned design: its [geometry] and [coil] tables as printed, the fluid by name."""
-    return {"name": "designed", "geometry": rec["geometry"], "coil": rec["coil"],
-            "fluid": {"material": "lord-mrf-132dg", "reference_field": "2 A", "seal_friction": "40 N"}}
+    return {
+        "name": "designed",
+        "geometry": rec["geometry"],
+        "coil": rec["coil"],
+        "fluid": {"material": "lord-mrf-132dg", "reference_field": "2 A", "seal_friction": "40 N"},
+    }
 
 
 def test_designs_meet_the_force_at_the_current_through_the_circuit(result):
@@ -57,33 +61,65 @@ def test_batch_of_heads_equals_one_head_at_a_time():
     h = one.head
     rng = np.random.default_rng(3)
     k = 6
-    scale = {"gap": rng.uniform(0.6, 1.4, k), "pole_length": rng.uniform(0.6, 1.4, k),
-             "turns": rng.integers(100, 500, k) / h.turns, "core_radius": rng.uniform(0.7, 1.1, k)}
-    heads = [dict(core_radius=h.core_radius * scale["core_radius"][i], pole_radius=h.pole_radius,
-                  gap=h.gap * scale["gap"][i], housing_outer_radius=h.housing_outer_radius,
-                  pole_length=h.pole_length * scale["pole_length"][i], coil_length=h.coil_length,
-                  turns=round(h.turns * scale["turns"][i]), wire_diameter=h.wire_diameter) for i in range(k)]
-    batch = MagneticCircuit(HeadBatch(**{key: np.array([hd[key] for hd in heads], dtype=float) for key in heads[0]}),
-                            one.steel, one.fluid, one.yield_law)
+    scale = {
+        "gap": rng.uniform(0.6, 1.4, k),
+        "pole_length": rng.uniform(0.6, 1.4, k),
+        "turns": rng.integers(100, 500, k) / h.turns,
+        "core_radius": rng.uniform(0.7, 1.1, k),
+    }
+    heads = [
+        dict(
+            core_radius=h.core_radius * scale["core_radius"][i],
+            pole_radius=h.pole_radius,
+            gap=h.gap * scale["gap"][i],
+            housing_outer_radius=h.housing_outer_radius,
+            pole_length=h.pole_length * scale["pole_length"][i],
+            coil_length=h.coil_length,
+            turns=round(h.turns * scale["turns"][i]),
+            wire_diameter=h.wire_diameter,
+        )
+        for i in range(k)
+    ]
+    batch = MagneticCircuit(
+        HeadBatch(**{key: np.array([hd[key] for hd in heads], dtype=float) for key in heads[0]}),
+        one.steel,
+        one.fluid,
+        one.yield_law,
+    )
     I = np.linspace(0.3, 4.0, k)
     st = batch.state(I)
     for i, hd in enumerate(heads):
         from erdesign.magnetics.circuit import PistonHead
+
         single = MagneticCircuit(PistonHead(**hd), one.steel, one.fluid, one.yield_law).state(I[i])
         assert st.gap_field[i] == pytest.approx(float(single.gap_field[0]), rel=1e-9)
         assert st.flux_linkage[i] == pytest.approx(float(single.flux_linkage[0]), rel=1e-9)
 
 
 def _coil_requirements(**coil_changes):
-    data = {"fluid": {"material": "lord-mrf-132dg", "seal_friction": "40 N"},
-            "design": {"configuration": "mixed", "objective": "min_coil_power",
-                       "point": [{"velocity": "0.1 m/s", "field": "2 A", "min_force": "2 kN"}],
-                       "bounds": {"gap": ["0.5 mm", "1.5 mm"], "duct_length": ["20 mm", "60 mm"],
-                                  "piston_diameter": ["25 mm", "50 mm"], "rod_diameter": "12 mm"},
-                       "coil": {"turns": [50, 800], "wire_diameter": ["0.2 mm", "1.0 mm"],
-                                "core_diameter": ["10 mm", "35 mm"], "pole_length": ["3 mm", "15 mm"],
-                                "housing_outer_diameter": ["35 mm", "60 mm"], "supply_voltage": "12 V"},
-                       "search": {"samples": 512, "designs": 2, "refine": False}}}
+    data = {
+        "fluid": {"material": "lord-mrf-132dg", "seal_friction": "40 N"},
+        "design": {
+            "configuration": "mixed",
+            "objective": "min_coil_power",
+            "point": [{"velocity": "0.1 m/s", "field": "2 A", "min_force": "2 kN"}],
+            "bounds": {
+                "gap": ["0.5 mm", "1.5 mm"],
+                "duct_length": ["20 mm", "60 mm"],
+                "piston_diameter": ["25 mm", "50 mm"],
+                "rod_diameter": "12 mm",
+            },
+            "coil": {
+                "turns": [50, 800],
+                "wire_diameter": ["0.2 mm", "1.0 mm"],
+                "core_diameter": ["10 mm", "35 mm"],
+                "pole_length": ["3 mm", "15 mm"],
+                "housing_outer_diameter": ["35 mm", "60 mm"],
+                "supply_voltage": "12 V",
+            },
+            "search": {"samples": 512, "designs": 2, "refine": False},
+        },
+    }
     data["design"]["coil"].update(coil_changes)
     return data
 
@@ -101,14 +137,17 @@ def test_saturation_is_a_conflict_unless_allowed():
     assert not r.feasible and any("coil.saturation" in c for c in r.conflicts)
 
 
-@pytest.mark.parametrize("change, message", [
-    (lambda d: d["design"].pop("coil"), "design.objective: 'min_coil_power' needs a [design.coil] table"),
-    (lambda d: d["fluid"].update(yield_stress="40 kPa"), "fluid.yield_stress: not allowed with [design.coil]"),
-    (lambda d: d["design"]["coil"].update(turns=[50.5, 800]), "design.coil.turns: expected [low, high] whole"),
-    (lambda d: d["design"]["coil"].update(colour="red"), "design.coil.colour: unknown key"),
-    (lambda d: d["design"]["coil"].pop("pole_length"), "design.coil.pole_length: missing"),
-    (lambda d: d["fluid"].update(material="makris-zeolite-silicone"), "fluid.material:"),
-])
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (lambda d: d["design"].pop("coil"), "design.objective: 'min_coil_power' needs a [design.coil] table"),
+        (lambda d: d["fluid"].update(yield_stress="40 kPa"), "fluid.yield_stress: not allowed with [design.coil]"),
+        (lambda d: d["design"]["coil"].update(turns=[50.5, 800]), "design.coil.turns: expected [low, high] whole"),
+        (lambda d: d["design"]["coil"].update(colour="red"), "design.coil.colour: unknown key"),
+        (lambda d: d["design"]["coil"].pop("pole_length"), "design.coil.pole_length: missing"),
+        (lambda d: d["fluid"].update(material="makris-zeolite-silicone"), "fluid.material:"),
+    ],
+)
 def test_requirement_errors_name_the_field(change, message):
     data = _coil_requirements()
     change(data)

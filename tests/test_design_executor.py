@@ -67,8 +67,10 @@ def test_pool_of_two_gives_the_serial_result(serial):
     with PoolExecutor(2) as pool:
         for name in CASES:
             _check_same(design(_req(name), executor=pool), serial[name])
-        _check_same(design(_req("makris_requirements"), executor=pool, progress=lambda *a: seen.append(a)),
-                    serial["makris_requirements"])
+        _check_same(
+            design(_req("makris_requirements"), executor=pool, progress=lambda *a: seen.append(a)),
+            serial["makris_requirements"],
+        )
     # progress: one call per chunk, the last one with every candidate
     assert len(seen) == 6 and seen[-1][0] == seen[-1][1] == 5 * 1024 + 300
     assert seen[-1][2] == serial["makris_requirements"].feasible_count
@@ -161,14 +163,21 @@ def test_merged_chunk_summaries_are_the_summary_of_the_whole_sample(chunk_parts)
     """Merging the 8 chunk summaries gives the summary of the 8192 candidates taken as one chunk."""
     for req, keep, parts in chunk_parts.values():
         whole = req.with_search(chunk=len(parts) * 1024)
-        one = _Summary.of_chunk(_evaluate(whole, candidate_chunk(whole, 0), constraints_for(req)), req.objective,
-                                req.search.pareto, keep, req.variables)
+        one = _Summary.of_chunk(
+            _evaluate(whole, candidate_chunk(whole, 0), constraints_for(req)),
+            req.objective,
+            req.search.pareto,
+            keep,
+            req.variables,
+        )
         _same_summary(_fold(req, keep, parts), _fold(req, keep, [one]))
 
 
 @settings(max_examples=25, deadline=None)
-@given(cuts=st.lists(st.integers(1, 7), unique=True), name=st.sampled_from(["makris_requirements",
-                                                                          "infeasible_requirements"]))
+@given(
+    cuts=st.lists(st.integers(1, 7), unique=True),
+    name=st.sampled_from(["makris_requirements", "infeasible_requirements"]),
+)
 def test_merge_is_associative_over_random_groupings(chunk_parts, cuts, name):
     """Chunks split into consecutive groups at random cuts, each group merged alone, the groups merged in order:
     the summary of the serial fold, array for array."""
@@ -188,7 +197,7 @@ def test_ties_go_to_the_earlier_candidate():
     assert _smallest(key, 20).tolist() == [7, 1, 3, 2, 4, 6, 8, 0, 5]
     rng = np.random.default_rng(1)
     for _ in range(50):
-        key = rng.integers(0, 5, 40).astype(float)            # many ties
+        key = rng.integers(0, 5, 40).astype(float)  # many ties
         k = int(rng.integers(1, 12))
         whole = _smallest(key, k)
         assert whole.tolist() == np.lexsort((np.arange(40), key))[:k].tolist()

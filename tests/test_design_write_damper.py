@@ -37,11 +37,11 @@ def test_size_of_the_written_file_gives_the_design_numbers(tmp_path, capsys, ran
     # the same geometry strings and fluid, the same quasi-steady kernel: equal to round-off
     assert sized["force_N"] == pytest.approx(rec["force_N"], rel=1e-12)
     assert sized["zero_field_force_N"] == pytest.approx(rec["zero_field_force_N"], rel=1e-12)
-    assert sized["force_N"] >= 6000.0                 # the requirement min_force = 6 kN holds for the written file
+    assert sized["force_N"] >= 6000.0  # the requirement min_force = 6 kN holds for the written file
     damper = load_damper(str(out))
     assert damper.geometry.gap == pytest.approx(float(rec["geometry"]["gap"].removesuffix(" mm")) * 1e-3, rel=1e-15)
     assert damper.geometry.ducts == rec["geometry"]["ducts"]
-    assert damper.seal_friction == 112.0              # the requirements' [fluid] seal friction, kept
+    assert damper.seal_friction == 112.0  # the requirements' [fluid] seal friction, kept
 
 
 def test_a_coil_design_is_written_with_its_coil_and_rated_current(tmp_path, capsys):
@@ -69,16 +69,19 @@ def test_an_existing_file_is_kept_without_force_and_replaced_with_it(tmp_path, c
     assert load_damper(str(out)).geometry.configuration == "valve"
 
 
-@pytest.mark.parametrize("args, words", [
-    (["--write-damper", "0", "x.toml"], "designs 1 (the best) to 10"),
-    (["--write-damper", "11", "x.toml"], "designs 1 (the best) to 10"),
-    (["--write-damper", "1", "x.csv"], "ending in .toml"),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--write-damper", "0", "x.toml"], "designs 1 (the best) to 10"),
+        (["--write-damper", "11", "x.toml"], "designs 1 (the best) to 10"),
+        (["--write-damper", "1", "x.csv"], "ending in .toml"),
+    ],
+)
 def test_a_bad_rank_or_name_is_refused_before_the_search(tmp_path, capsys, args, words):
     req = small_copy(tmp_path, MAKRIS_REQ, 1024)
     assert main(["design", req, *args]) == 1
     captured = capsys.readouterr()
-    assert captured.out == ""                         # refused before any search ran
+    assert captured.out == ""  # refused before any search ran
     assert "\n" not in captured.err.strip() and words in captured.err
     assert not (tmp_path / "x.toml").exists()
 
@@ -88,7 +91,7 @@ def test_nothing_feasible_prints_the_conflicts_and_writes_nothing(tmp_path, caps
     out = tmp_path / "none.toml"
     assert main(["design", req, "--write-damper", "1", str(out)]) == 1
     captured = capsys.readouterr()
-    assert "conflicts:" in captured.out               # the table says why
+    assert "conflicts:" in captured.out  # the table says why
     assert "nothing is feasible" in captured.err and "\n" not in captured.err.strip()
     assert not out.exists()
 
@@ -101,4 +104,4 @@ def test_a_bundled_requirements_name_loads_the_example_and_a_file_of_that_name_w
     monkeypatch.chdir(tmp_path)
     (tmp_path / "makris_requirements").write_text("not toml [")
     with pytest.raises(ErdesignError, match="makris_requirements: invalid TOML"):
-        read_requirements("makris_requirements")     # an existing file is read, never shadowed by the example
+        read_requirements("makris_requirements")  # an existing file is read, never shadowed by the example

@@ -5,7 +5,6 @@ valve damper of Makris (viscous-dominated) and in the MR mixed damper (yield-dom
 differs from the nominal one (viscosity x 1.2, yield stress x 0.8) so that calibration matters.
 """
 
-
 import numpy as np
 import pytest
 
@@ -35,13 +34,15 @@ def _hidden(damper, name, motion):
     if name == "viscous_heating":
         P = np.abs(damper.state(motion.velocity, motion.control).force * motion.velocity)
         energy = float(np.sum(P) * (motion.time[1] - motion.time[0]))
-        return {"thermal_mass": energy / 30.0, "cooling_time": 600.0}     # about 30 K over the record
+        return {"thermal_mass": energy / 30.0, "cooling_time": 600.0}  # about 30 K over the record
     return {
         "seal_friction": {"friction_force": 0.04 * F_peak},
         "fluid_inertia": {"slug_mass": 0.06 * F_peak / a_peak},
         # a column ten times softer than pure oil (entrained air): within the plausible window of the prior
-        "compressibility": {"hydraulic_stiffness": 0.1 * EFFECTS["compressibility"].prior(damper)["hydraulic_stiffness"]},
-        "leakage": {"bypass_damping": Fy / (0.2 * v_peak)},                      # creep at 20 % of peak speed
+        "compressibility": {
+            "hydraulic_stiffness": 0.1 * EFFECTS["compressibility"].prior(damper)["hydraulic_stiffness"]
+        },
+        "leakage": {"bypass_damping": Fy / (0.2 * v_peak)},  # creep at 20 % of peak speed
         "field_lag": {"field_time_constant": 0.03},
         "shear_thinning": {"flow_index": 0.5},
         "gas_spring": {"gas_preload": 0.03 * F_peak, "gas_stiffness": 0.04 * F_peak / x_peak},
@@ -51,8 +52,9 @@ def _hidden(damper, name, motion):
 
 def _check_found(damper, name, seed=1, noise=0.005):
     motion = _motion(damper)
-    rig = run_rig(damper, motion, hidden={name: _hidden(damper, name, motion)}, force_noise=noise, seed=seed,
-                  **TRUE_FLUID)
+    rig = run_rig(
+        damper, motion, hidden={name: _hidden(damper, name, motion)}, force_noise=noise, seed=seed, **TRUE_FLUID
+    )
     d = diagnose(damper, rig.record)
     ranks = [c.effect for c in d.ranking]
     assert d.missing_effect == name, (name, ranks, d.report())
@@ -65,8 +67,9 @@ def _check_found(damper, name, seed=1, noise=0.005):
     return d, rig
 
 
-@pytest.mark.parametrize("example, name", [("makris", "seal_friction"), ("mr_mixed", "compressibility"),
-                                           ("makris", "field_lag")])
+@pytest.mark.parametrize(
+    "example, name", [("makris", "seal_friction"), ("mr_mixed", "compressibility"), ("makris", "field_lag")]
+)
 def test_a_hidden_effect_is_found(example, name):
     _check_found(load_example(example), name)
 
@@ -108,8 +111,10 @@ def test_no_hidden_effect_gives_no_missing_effect(example, noise):
 def test_two_hidden_effects_are_resolved_jointly_or_in_two_rounds():
     damper = load_example("makris")
     motion = _motion(damper)
-    hidden = {"seal_friction": _hidden(damper, "seal_friction", motion),
-              "gas_spring": _hidden(damper, "gas_spring", motion)}
+    hidden = {
+        "seal_friction": _hidden(damper, "seal_friction", motion),
+        "gas_spring": _hidden(damper, "gas_spring", motion),
+    }
     rig = run_rig(damper, motion, hidden=hidden, seed=5, **TRUE_FLUID)
     h = improve(damper, rig.record, max_rounds=3)
     assert sorted(h.effects) == sorted(hidden)
@@ -125,8 +130,9 @@ def test_two_hidden_effects_are_resolved_jointly_or_in_two_rounds():
 def test_effects_already_in_the_model_are_not_candidates():
     damper = load_example("makris")
     motion = _motion(damper)
-    rig = run_rig(damper, motion, hidden={"seal_friction": _hidden(damper, "seal_friction", motion)}, seed=6,
-                  **TRUE_FLUID)
+    rig = run_rig(
+        damper, motion, hidden={"seal_friction": _hidden(damper, "seal_friction", motion)}, seed=6, **TRUE_FLUID
+    )
     d = diagnose(damper, rig.record, effects="seal_friction")
     assert "seal_friction" not in [c.effect for c in d.ranking] and d.missing_effect is None
 
@@ -139,7 +145,7 @@ def test_residual_analysis_locates_a_field_lag_after_field_changes():
     res = calibrate(damper, rig.record)
     a = residual_analysis(model, res, rig.record)
     frac, ratio = a.regions["30 ms after field changes"]
-    assert ratio > 2                                # the error lives right after the field changes
+    assert ratio > 2  # the error lives right after the field changes
     assert any("field lag" in f for f in a.findings)
 
 
@@ -182,9 +188,15 @@ def test_force_column_off_by_a_unit_prefix_names_no_effect(factor):
     # a clean friction record whose force column is in kN or mN but read as N: no effect may be named from it, and
     # the reason names the force column (exactly a factor 1000: the threshold must lie below it)
     import dataclasses
+
     damper = load_example("makris")
-    rec = run_rig(damper, stepped_sine([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500),
-                  hidden={"seal_friction": {"friction_force": 800.0}}, force_noise=0.02, seed=2).record
+    rec = run_rig(
+        damper,
+        stepped_sine([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500),
+        hidden={"seal_friction": {"friction_force": 800.0}},
+        force_noise=0.02,
+        seed=2,
+    ).record
     assert diagnose(damper, rec).missing_effect == "seal_friction"
     result = diagnose(damper, dataclasses.replace(rec, force=rec.force * factor))
     assert result.verdict == "unexplained" and result.missing_effect is None
@@ -213,10 +225,14 @@ def test_close_rivals_are_ordered_by_the_whiteness_of_what_they_leave():
     base = SimpleNamespace(rss=100.0 * n, k=2, residual=10 * white, n=n)
 
     def ranked(*cands):
-        for c in cands:                       # each one's own-count BIC change against the baseline
+        for c in cands:  # each one's own-count BIC change against the baseline
             ne = _effective_n(c.result.residual)
-            c.delta_bic = (ne * np.log(c.result.rss / n) + c.result.k * np.log(ne)
-                           - ne * np.log(base.rss / n) - base.k * np.log(ne))
+            c.delta_bic = (
+                ne * np.log(c.result.rss / n)
+                + c.result.k * np.log(ne)
+                - ne * np.log(base.rss / n)
+                - base.k * np.log(ne)
+            )
         ranking = list(cands)
         rank_candidates(ranking, base)
         return [c.effect for c in ranking]
@@ -224,7 +240,8 @@ def test_close_rivals_are_ordered_by_the_whiteness_of_what_they_leave():
     # whiter but 1.5x the sum of squares: first
     assert ranked(cand("structured", smooth, 1.0), cand("white", white, np.sqrt(1.5) * np.std(smooth)))[0] == "white"
     # whiter but 3x the sum of squares: not a close rival, the sum of squares decides
-    assert ranked(cand("structured", smooth, 1.0), cand("white", white, np.sqrt(3.0) * np.std(smooth)))[0] \
-        == "structured"
+    assert (
+        ranked(cand("structured", smooth, 1.0), cand("white", white, np.sqrt(3.0) * np.std(smooth)))[0] == "structured"
+    )
     # equally structured residuals: the smaller sum of squares first
     assert ranked(cand("a", smooth, 1.0), cand("b", smooth[::-1].copy(), 1.1))[0] == "a"

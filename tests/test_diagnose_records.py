@@ -27,8 +27,9 @@ def long_lagged():
     following with a 20 ms time constant (truth rig ``coil_lag``)."""
     damper = load_example("mr_valve_current")
     ref = damper.fluid.reference_field
-    motion = stepped_sine([0.01], np.resize([1.0, 1.5, 2.0], 30), np.resize([0.0, ref, 0.5 * ref, 0.8 * ref], 30),
-                          cycles=3, rate=1000)
+    motion = stepped_sine(
+        [0.01], np.resize([1.0, 1.5, 2.0], 30), np.resize([0.0, ref, 0.5 * ref, 0.8 * ref], 30), cycles=3, rate=1000
+    )
     truth = TruthDamper(damper, {"coil_lag": {"time_constant": 0.02}}, viscosity_factor=1.1, yield_stress_factor=0.9)
     return damper, simulate_truth(truth, motion, force_noise=0.01, seed=3, name="long").measured
 
@@ -39,8 +40,8 @@ def test_thinning_keeps_every_sample_right_after_a_field_change(long_lagged):
     t = record.time
     change = np.flatnonzero(np.abs(np.diff(record.control)) > 0)[0]
     window = (t > t[change]) & (t <= t[change] + AFTER_FIELD_CHANGE)
-    assert np.isin(np.flatnonzero(window), keep).all()           # full rate (1 ms) after the change
-    assert np.max(np.diff(t[keep])) > 15e-3                      # thinned elsewhere: 65 001 samples -> ~7 000
+    assert np.isin(np.flatnonzero(window), keep).all()  # full rate (1 ms) after the change
+    assert np.max(np.diff(t[keep])) > 15e-3  # thinned elsewhere: 65 001 samples -> ~7 000
     assert len(keep) < 0.15 * len(record)
 
 
@@ -63,9 +64,10 @@ def three_records():
     damper = load_example("mr_valve")
     ref = damper.fluid.reference_field
     truth = TruthDamper(damper, {"stribeck_friction": {}}, viscosity_factor=1.1, yield_stress_factor=0.9)
-    records = [simulate_truth(truth, sine(a, f, e, cycles=3, rate=500), force_noise=0.01, seed=i, name=f"r{i}")
-               .measured for i, (a, f, e) in enumerate([(0.01, 1.0, ref), (0.005, 3.0, 0.5 * ref),
-                                                         (0.02, 0.5, 0.0)])]
+    records = [
+        simulate_truth(truth, sine(a, f, e, cycles=3, rate=500), force_noise=0.01, seed=i, name=f"r{i}").measured
+        for i, (a, f, e) in enumerate([(0.01, 1.0, ref), (0.005, 3.0, 0.5 * ref), (0.02, 0.5, 0.0)])
+    ]
     return damper, records
 
 
@@ -89,6 +91,7 @@ def test_records_need_not_each_show_every_effect(three_records):
     record beside it, it can."""
     damper, records = three_records
     from erdesign.effects import EffectError
+
     with pytest.raises(EffectError, match="seal_friction: cannot be judged"):
         calibrate(damper, records[0], "seal_friction")
     assert calibrate(damper, records, "seal_friction").esr < 0.01
@@ -106,9 +109,10 @@ def test_no_nothing_missing_while_held_out_data_call_for_an_effect(three_records
     still lowers the error on the held-out record by far more than 20 %, so it is named all the same."""
     damper, records = three_records
     from erdesign.data.noise import force_noise
+
     sigma = max(force_noise(r) for r in records)
     d = diagnose(damper, records, force_noise=30 * sigma)
-    assert d.baseline_esr < 1.25 * d.noise_floor_esr                 # what the overstated floor alone would say
+    assert d.baseline_esr < 1.25 * d.noise_floor_esr  # what the overstated floor alone would say
     assert d.verdict == "missing_effect" and d.missing_effects == ["seal_friction"]
     assert d.ranking[0].held_out_gain >= 0.2
 
@@ -119,8 +123,13 @@ def test_clipped_samples_are_found_and_left_out():
     damper = load_example("mr_valve")
     ref = damper.fluid.reference_field
     truth = TruthDamper(damper, {}, viscosity_factor=1.1, yield_stress_factor=0.9)
-    rec = simulate_truth(truth, stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=500),
-                         force_noise=0.01, seed=4, name="clip").measured
+    rec = simulate_truth(
+        truth,
+        stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=500),
+        force_noise=0.01,
+        seed=4,
+        name="clip",
+    ).measured
     top = 0.8 * rec.force.max()
     clipped = rec.with_force(np.minimum(rec.force, top))
     d = diagnose(damper, clipped)
@@ -153,8 +162,13 @@ def test_a_value_far_inside_a_wide_range_is_not_at_its_bound():
     from erdesign.effects.chain import PhysicsDamper
 
     model = PhysicsDamper(load_example("mr_valve"), ["gas_spring"])
-    at = lambda k: parameters_at_bounds(SimpleNamespace(model=model, free=["gas_stiffness"],  # noqa: E731
-                                                        values={"gas_stiffness": k}))
+    at = lambda k: parameters_at_bounds(
+        SimpleNamespace(
+            model=model,
+            free=["gas_stiffness"],  # noqa: E731
+            values={"gas_stiffness": k},
+        )
+    )
     assert at(259.0) == [] and at(1.0) == []
     assert at(0.0) == ["gas_stiffness at its lower bound 0 N/m"]
 
@@ -168,8 +182,13 @@ def test_a_skew_between_channels_is_found_and_never_named_a_lag():
     damper = load_example("mr_valve_current")
     ref = damper.fluid.reference_field
     truth = TruthDamper(damper, {}, viscosity_factor=1.1, yield_stress_factor=0.9)
-    rec = simulate_truth(truth, stepped_sine([0.01], [1.0, 2.0, 1.5], [ref, 0.5 * ref, 0.8 * ref], cycles=3,
-                                             rate=1000), force_noise=0.01, seed=5, name="skew").measured
+    rec = simulate_truth(
+        truth,
+        stepped_sine([0.01], [1.0, 2.0, 1.5], [ref, 0.5 * ref, 0.8 * ref], cycles=3, rate=1000),
+        force_noise=0.01,
+        seed=5,
+        name="skew",
+    ).measured
     d = diagnose(damper, skew_force(rec, 1e-3))
     (skew,) = [f for f in d.findings if f.kind == "channel_skew"]
     assert skew.skew_s == pytest.approx(1e-3, abs=2e-4)
@@ -188,7 +207,7 @@ def test_what_the_record_bounds():
     damper = load_example("mr_valve")
     t = np.linspace(0, 2, 2001)
     x = 0.01 * np.sin(2 * np.pi * t)
-    rec = Measurement.from_arrays(t, x, 1000 * np.sign(np.cos(2 * np.pi * t)))   # |F| <= 1 kN, a = 0.39 m/s^2 peak
+    rec = Measurement.from_arrays(t, x, 1000 * np.sign(np.cos(2 * np.pi * t)))  # |F| <= 1 kN, a = 0.39 m/s^2 peak
     v_peak, a_peak = 2 * np.pi * 0.01, (2 * np.pi) ** 2 * 0.01
 
     def cand(effect, **values):
@@ -196,7 +215,7 @@ def test_what_the_record_bounds():
         res = SimpleNamespace(model=model, values={**model.initial_guess(rec), **values})
         return Candidate(effect, res, 0.1)
 
-    assert _beyond_record(cand("fluid_inertia", slug_mass=3000.0 / a_peak), rec, None)      # 3 kN of inertia
+    assert _beyond_record(cand("fluid_inertia", slug_mass=3000.0 / a_peak), rec, None)  # 3 kN of inertia
     assert not _beyond_record(cand("fluid_inertia", slug_mass=100.0 / a_peak), rec, None)
-    assert _beyond_record(cand("leakage", bypass_damping=300.0 / v_peak), rec, None)        # cannot hold 1 kN
-    assert not _beyond_record(cand("leakage", bypass_damping=30e3 / v_peak), rec, None)     # a small leak
+    assert _beyond_record(cand("leakage", bypass_damping=300.0 / v_peak), rec, None)  # cannot hold 1 kN
+    assert not _beyond_record(cand("leakage", bypass_damping=30e3 / v_peak), rec, None)  # a small leak

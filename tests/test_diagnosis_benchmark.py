@@ -104,8 +104,9 @@ def test_catalogue_meets_the_coverage_rules(catalogue):
 
 def test_catalogue_is_deterministic(catalogue, issue23):
     again = benchmark_cases("full")
-    assert [(c.name, c.seed, c.mechanisms) for c in again] == [(c.name, c.seed, c.mechanisms)
-                                                                for c in catalogue + issue23]
+    assert [(c.name, c.seed, c.mechanisms) for c in again] == [
+        (c.name, c.seed, c.mechanisms) for c in catalogue + issue23
+    ]
 
 
 def test_the_control_changes_at_speed_and_is_on_part_of_the_record(catalogue):
@@ -157,16 +158,16 @@ def test_issue23_classes_are_complete_and_consistent(issue23, catalogue):
             assert {MECHANISMS[m].library_effect for m in c.mechanisms} == set(c.accepted), c.name
         else:
             assert c.kind == "clean" and not c.accepted and not c.mechanisms, c.name
-        c.truth()                               # the truth rig takes the mechanisms and their parameters
+        c.truth()  # the truth rig takes the mechanisms and their parameters
 
 
 def test_long_field_step_records(issue23):
     long_ = [c for c in issue23 if c.group == "long_field_steps"]
     assert all(60.0 <= c.duration <= 80.0 and c.rate == 1000.0 for c in long_)
     lags = {c.damper: c.mechanisms["coil_lag"] for c in long_ if "coil_lag" in c.mechanisms}
-    assert {"mr_valve", "mr_coil"} <= set(lags)                     # an MR valve and a coil-current MR head
+    assert {"mr_valve", "mr_coil"} <= set(lags)  # an MR valve and a coil-current MR head
     assert all(0.01 <= p["time_constant"] <= 0.04 for p in lags.values())
-    assert lags["mr_coil"] == {"time_constant": 0.015, "second_time_constant": 0.008}   # two-stage inductive lag
+    assert lags["mr_coil"] == {"time_constant": 0.015, "second_time_constant": 0.008}  # two-stage inductive lag
     assert sum(c.kind == "clean" for c in long_) >= 1
     assert {c.excitation for c in long_} == {"doe_sine", "swept_sine"}
     for c in long_[:2]:
@@ -177,7 +178,7 @@ def test_long_field_step_records(issue23):
         assert len(steps) >= 25, c.name
         speed = np.abs(m.velocity)
         assert np.all(speed[steps] >= 0.25 * speed.max()), c.name
-        assert all(speed[i] >= speed[max(0, i - 100):i + 100].max() * (1 - 1e-9) for i in steps), c.name
+        assert all(speed[i] >= speed[max(0, i - 100) : i + 100].max() * (1 - 1e-9) for i in steps), c.name
 
 
 def test_band_limited_record_has_no_power_above_the_anti_alias_corner(issue23):
@@ -186,15 +187,17 @@ def test_band_limited_record_has_no_power_above_the_anti_alias_corner(issue23):
     # as Dyke's record: the load cell's noise white up to the Nyquist frequency, 1 % of the RMS force
     plain = case.make()
     assert np.std(plain.measured.force - plain.true_force) == pytest.approx(
-        0.01 * np.sqrt(np.mean(plain.true_force**2)), rel=0.05)
+        0.01 * np.sqrt(np.mean(plain.true_force**2)), rel=0.05
+    )
     # the instrument chain a case may still ask for: both channels through the same anti-alias low-pass
     fc = 1000.0
     case = replace(case, anti_alias=fc)
     rec = case.make()
     F, true = rec.measured.force, rec.true_force
     # Dyke-like motion: +-1 cm, peak speed 1 m/s
-    assert 0.008 < np.abs(rec.motion.displacement).max() < 0.012 and np.abs(rec.motion.velocity).max() == \
-        pytest.approx(1.0, rel=1e-6)
+    assert 0.008 < np.abs(rec.motion.displacement).max() < 0.012 and np.abs(rec.motion.velocity).max() == pytest.approx(
+        1.0, rel=1e-6
+    )
     sos = signal.butter(ANTI_ALIAS_ORDER, fc, fs=3000.0, output="sos")
     filtered = signal.sosfilt(sos, true, zi=signal.sosfilt_zi(sos) * true[0])[0]
     noise = F - filtered
@@ -206,7 +209,7 @@ def test_band_limited_record_has_no_power_above_the_anti_alias_corner(issue23):
     w, h = signal.sosfreqz(sos, worN=fn, fs=3000.0)
     expected = np.sum(np.abs(h[above]) ** 2) / np.sum(np.abs(h) ** 2)
     assert np.sum(pn[above]) / np.sum(pn) == pytest.approx(expected, rel=0.2)
-    assert expected < 0.02                              # unfiltered white noise: 13 % of its power there
+    assert expected < 0.02  # unfiltered white noise: 13 % of its power there
     # both channels pass the same filter: displacement and force are delayed alike and so are not skewed against
     # each other.  Butterworth order 4 at DC: 2 (cos 22.5 deg + cos 67.5 deg) / w_c = 2.613 / w_c; the digital filter
     # (bilinear transform) has the prewarped corner w_c = 2 fs tan(pi fc / fs)
@@ -215,6 +218,7 @@ def test_band_limited_record_has_no_power_above_the_anti_alias_corner(issue23):
     def delay(measured, exact):
         cost = lambda d: np.sum((measured[3000:-3000] - np.interp(t[3000:-3000] - d, t, exact)) ** 2)  # noqa: E731
         return optimize.minimize_scalar(cost, bounds=(0.0, 3e-3), method="bounded", options={"xatol": 1e-7}).x
+
     dx = delay(rec.measured.displacement, rec.motion.displacement)
     assert dx == pytest.approx(2.6131 / (6000.0 * np.tan(np.pi * fc / 3000.0)), rel=0.02)
     assert abs(delay(filtered, true) - dx) < 0.1e-3
@@ -222,11 +226,11 @@ def test_band_limited_record_has_no_power_above_the_anti_alias_corner(issue23):
 
 def test_quantised_100hz_records_are_on_a_5um_grid(issue23, tmp_path):
     cases = [c for c in issue23 if "100Hz-5um" in c.name]
-    assert len(cases) == 2 and {c.noise for c in cases} == {0.01, 0.002}     # 1 % and a quiet 0.2 % load cell
+    assert len(cases) == 2 and {c.noise for c in cases} == {0.01, 0.002}  # 1 % and a quiet 0.2 % load cell
     for case in cases:
         assert case.rate == 100.0 and case.displacement_resolution == 5e-6 and case.kind == "clean"
         rec = case.make()
-        x = read_measurement(rec.write(tmp_path / f"{case.seed}.csv")).displacement   # through the CSV users read
+        x = read_measurement(rec.write(tmp_path / f"{case.seed}.csv")).displacement  # through the CSV users read
         steps = x / 5e-6
         assert np.max(np.abs(steps - np.round(steps))) < 1e-6
         # the readout follows the motion (peak 9.55 mm: +-1910 steps; 5.73 mm: +-1146) on hundreds of levels
@@ -245,7 +249,7 @@ def test_long_heating_records_warm_the_fluid_by_25_to_35_K(issue23):
     for c in heating:
         assert c.load_damper().geometry.configuration == "valve"
         rise = c.make().states["temperature_rise"]
-        assert abs(rise[-1] - HEATING_TARGET) <= 5.0, (c.name, rise[-1])          # 25-35 K (measured 29-31 K)
+        assert abs(rise[-1] - HEATING_TARGET) <= 5.0, (c.name, rise[-1])  # 25-35 K (measured 29-31 K)
         assert rise.max() < 36.0
 
 
@@ -253,7 +257,7 @@ def test_series_springs_and_clean_records_cover_their_dampers(issue23):
     springs = [c for c in issue23 if c.group == "series_springs_mixed"]
     mixed = lambda c: c.load_damper().geometry.configuration == "mixed"  # noqa: E731
     aerated = {c.damper for c in springs if set(c.mechanisms) == {"compliance"} and mixed(c)}
-    assert {"kamath_wereley", "mr_mixed"} <= aerated                # the mixed ER and MR heads
+    assert {"kamath_wereley", "mr_mixed"} <= aerated  # the mixed ER and MR heads
     assert any(set(c.mechanisms) == {"preyield"} and mixed(c) for c in springs)
     assert any(set(c.mechanisms) == {"accumulator", "compliance"} and not mixed(c) for c in springs)
     # every example damper file, clean
@@ -272,24 +276,47 @@ def test_other_generators_are_not_the_teams_random_motion(issue23):
     period = int(round(_one(other, "multisine-1pct").duration / 3 * 500))
     # the multi-sine repeats exactly from period to period away from the fades (half a period at either end)
     half = period // 2
-    np.testing.assert_allclose(ms.displacement[half:period], ms.displacement[period + half:2 * period], atol=1e-12)
-    assert not np.allclose(ms.displacement[:half], ms.displacement[period:period + half], atol=1e-6)
+    np.testing.assert_allclose(ms.displacement[half:period], ms.displacement[period + half : 2 * period], atol=1e-12)
+    assert not np.allclose(ms.displacement[:half], ms.displacement[period : period + half], atol=1e-6)
 
 
 def test_summary_reports_each_class():
     bench = _bench()
-    rows = [{"name": f"r{i}", "group": g, "damper": "mr_valve", "excitation": "sine", "noise": 0.01, "kind": "clean",
-             "size": "", "expected": "nothing_missing", "verdict": v, "missing_effect": None, "correct": ok,
-             "error": None, "error_stage": None, "time_s": t, "effect_size_over_noise": None,
-             "visible_over_noise": None}
-            for i, (g, v, ok, t) in enumerate([("core", "nothing_missing", True, 1.0),
-                                               ("heating_long", "unexplained", False, 7.5),
-                                               ("heating_long", "nothing_missing", True, 2.0)])]
+    rows = [
+        {
+            "name": f"r{i}",
+            "group": g,
+            "damper": "mr_valve",
+            "excitation": "sine",
+            "noise": 0.01,
+            "kind": "clean",
+            "size": "",
+            "expected": "nothing_missing",
+            "verdict": v,
+            "missing_effect": None,
+            "correct": ok,
+            "error": None,
+            "error_stage": None,
+            "time_s": t,
+            "effect_size_over_noise": None,
+            "visible_over_noise": None,
+        }
+        for i, (g, v, ok, t) in enumerate(
+            [
+                ("core", "nothing_missing", True, 1.0),
+                ("heating_long", "unexplained", False, 7.5),
+                ("heating_long", "nothing_missing", True, 2.0),
+            ]
+        )
+    ]
     s = bench.summarise(rows)
-    assert s["per_group"] == {"core": {"cases": 1, "correct": 1, "time_max_s": 1.0},
-                              "heating_long": {"cases": 2, "correct": 1, "time_max_s": 7.5}}
-    text = "\n".join(bench.report_lines(s, None, 1.0, {"diagnose_commit": "0" * 40, "diagnose_dirty": False,
-                                                       "jobs": 1}))
+    assert s["per_group"] == {
+        "core": {"cases": 1, "correct": 1, "time_max_s": 1.0},
+        "heating_long": {"cases": 2, "correct": 1, "time_max_s": 7.5},
+    }
+    text = "\n".join(
+        bench.report_lines(s, None, 1.0, {"diagnose_commit": "0" * 40, "diagnose_dirty": False, "jobs": 1})
+    )
     assert "heating_long           1/2 (50 %); slowest diagnosis 7.5 s" in text
 
 
@@ -299,16 +326,20 @@ def test_fast_subset_is_diagnosed_right(case):
     # the same path as the benchmark: truth rig -> CSV -> read_measurement -> diagnose; an exception is a failure
     row = _bench().run_case(case, detectability=False)
     assert row["error"] is None, row["error"]
-    assert row["correct"], (f"{case.name}: expected {case.expected} ({', '.join(sorted(case.accepted)) or '-'}), "
-                            f"diagnose said {row['verdict']} {row['missing_effect'] or ''}; "
-                            f"top of the ranking {row['ranking']}")
+    assert row["correct"], (
+        f"{case.name}: expected {case.expected} ({', '.join(sorted(case.accepted)) or '-'}), "
+        f"diagnose said {row['verdict']} {row['missing_effect'] or ''}; "
+        f"top of the ranking {row['ranking']}"
+    )
 
 
 #: Springs in series that fit one record almost equally well (residual sums of squares within 2x): the truth rig's
 #: pre-yield elasticity must be named, not compressibility (the whiter residual decides, erdesign.diagnosis.candidates
 #: CLOSE_RIVALS), and the same on a pair where heating is also at work.
-SERIES_RIVALS = ("preyield_elasticity-moderate-kamath_wereley-sine-1pct",
-                 "pair-viscous_heating+preyield_elasticity-kamath_wereley-earthquake-3pct")
+SERIES_RIVALS = (
+    "preyield_elasticity-moderate-kamath_wereley-sine-1pct",
+    "pair-viscous_heating+preyield_elasticity-kamath_wereley-earthquake-3pct",
+)
 
 
 @pytest.mark.slow

@@ -29,8 +29,13 @@ def test_readme_console_example_matches_the_command():
     # args: size examples/makris.toml --velocity 1 in/s --field 3 kV/mm  -> rejoin the values with spaces
     joined = " ".join(args)
     m = re.match(r"size (\S+) --velocity (.+) --field (.+)", joined)
-    res = subprocess.run([sys.executable, "-m", "erdesign", "size", str(ROOT / m[1]), "--velocity", m[2],
-                          "--field", m[3]], capture_output=True, text=True, cwd=ROOT, timeout=120)
+    res = subprocess.run(
+        [sys.executable, "-m", "erdesign", "size", str(ROOT / m[1]), "--velocity", m[2], "--field", m[3]],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=120,
+    )
     assert res.returncode == 0, res.stderr
     assert res.stdout.strip().splitlines() == expected
 
@@ -39,7 +44,7 @@ def test_readme_starts_with_the_two_setup_commands():
     text = (ROOT / "README.md").read_text()
     first_two = blocks(ROOT / "README.md", "bash")[:2]
     assert "streamlit run app.py" in first_two[0] and "pytest" in first_two[1]
-    assert text.index(first_two[0]) < text.index("##")          # before any section
+    assert text.index(first_two[0]) < text.index("##")  # before any section
     ci = (ROOT / ".ci" / "run").read_text()
     assert "second bash block" in ci
 

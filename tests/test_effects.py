@@ -28,15 +28,35 @@ def _sine_record(damper, X0=0.005, f=2.0, field=None, cycles=2, rate=2000.0):
     t = np.linspace(0, cycles / f, int(cycles * rate / f) + 1)
     w = 2 * np.pi * f
     E = damper.fluid.reference_field if field is None else field
-    return Measurement(t, X0 * np.sin(w * t), None, X0 * w * np.cos(w * t), -X0 * w**2 * np.sin(w * t),
-                       np.full(t.size, float(E)), damper.fluid.control, name="sine")
+    return Measurement(
+        t,
+        X0 * np.sin(w * t),
+        None,
+        X0 * w * np.cos(w * t),
+        -X0 * w**2 * np.sin(w * t),
+        np.full(t.size, float(E)),
+        damper.fluid.control,
+        name="sine",
+    )
 
 
 # ------------------------------------------------------------------------------------------------- registry
 def test_registry_walk_every_effect_is_described_and_gives_finite_forces():
-    assert tuple(EFFECTS) == EFFECT_NAMES == ("seal_friction", "fluid_inertia", "compressibility", "leakage",
-                                              "viscous_heating", "field_lag", "shear_thinning", "gas_spring",
-                                              "preyield_elasticity")     # docs/cli.md
+    assert (
+        tuple(EFFECTS)
+        == EFFECT_NAMES
+        == (
+            "seal_friction",
+            "fluid_inertia",
+            "compressibility",
+            "leakage",
+            "viscous_heating",
+            "field_lag",
+            "shear_thinning",
+            "gas_spring",
+            "preyield_elasticity",
+        )
+    )  # docs/cli.md
     for example in ("makris", "mr_mixed", "kamath_wereley"):
         damper = load_example(example)
         rec = _sine_record(damper, rate=500.0)
@@ -89,11 +109,11 @@ def test_fluid_inertia_mass_is_the_kinetic_energy_of_the_duct_fluid():
     # momentum-flux factor removed (plug flow at the mean speed) -> 1/2 m v^2.
     rho, L, Ap, d, h = 1290.0, 0.0546, 7.7676e-4, 0.0143, 0.0008
     v = 0.1
-    U = v * Ap / (math.pi * d * h)                       # mean duct speed
+    U = v * Ap / (math.pi * d * h)  # mean duct speed
     ke_plug = 0.5 * rho * (math.pi * d * h * L) * U**2
     assert slug_mass(rho, L, Ap, d, h) == pytest.approx(2 * ke_plug / v**2, rel=1e-12)
     ke_parabolic = quad(lambda y: 0.5 * rho * L * math.pi * d * (6 * U * (y / h) * (1 - y / h)) ** 2, 0, h)[0]
-    assert ke_parabolic / ke_plug == pytest.approx(6 / 5, rel=1e-10)   # the 6/5 the docstring states
+    assert ke_parabolic / ke_plug == pytest.approx(6 / 5, rel=1e-10)  # the 6/5 the docstring states
     # in the damper: F_i = m a exactly, on top of the quasi-steady force
     dm = load_example("makris")
     rec = _sine_record(dm)
@@ -110,8 +130,9 @@ def test_compressibility_zero_field_is_the_exact_maxwell_element():
     rec = _sine_record(d, X0=X0, f=f, field=0.0, cycles=2, rate=3000.0)
     C = d.damping_constant_si()
     w = 2 * np.pi * f
-    sol = solve_ivp(lambda t, P: k * (X0 * w * np.cos(w * t) - P / C), (0, rec.time[-1]), [C * X0 * w],
-                    t_eval=rec.time, **TIGHT)
+    sol = solve_ivp(
+        lambda t, P: k * (X0 * w * np.cos(w * t) - P / C), (0, rec.time[-1]), [C * X0 * w], t_eval=rec.time, **TIGHT
+    )
     # backward Euler (4 substeps per sample, L-stable): first order in the substep; at 3000 Hz the error is
     # k dt_sub / (2 C) of the transient and less than 1e-3 of the peak on the sine (measured 4e-4)
     # and the physics damper uses it: the model force minus seal friction
@@ -136,13 +157,21 @@ def test_compressibility_with_yield_stress_agrees_with_the_nonlinear_series_mode
         return bingham_flow_rate(P / Ap, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap) / Ap
 
     w = 6 * np.pi
-    P0 = float(bingham_slit_flow(rec.velocity[0] * Ap, tau_y, eta, g.duct_length, g.duct_mean_diameter,
-                                 g.gap).pressure_drop * Ap)
-    sol = solve_ivp(lambda t, P: k * (0.005 * w * np.cos(w * t) - v_d(P)), (0, rec.time[-1]), [P0],
-                    t_eval=rec.time, method="LSODA", rtol=1e-9, atol=1e-6)
+    P0 = float(
+        bingham_slit_flow(rec.velocity[0] * Ap, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap).pressure_drop
+        * Ap
+    )
+    sol = solve_ivp(
+        lambda t, P: k * (0.005 * w * np.cos(w * t) - v_d(P)),
+        (0, rec.time[-1]),
+        [P0],
+        t_eval=rec.time,
+        method="LSODA",
+        rtol=1e-9,
+        atol=1e-6,
+    )
     m = PhysicsDamper(d, ["compressibility"])
-    fluid = m.components(rec, {"viscosity_factor": 1.0, "yield_stress_factor": 1.0,
-                               "hydraulic_stiffness": k})["fluid"]
+    fluid = m.components(rec, {"viscosity_factor": 1.0, "yield_stress_factor": 1.0, "hydraulic_stiffness": k})["fluid"]
     err = np.abs(fluid - sol.y[0]) / np.max(np.abs(sol.y[0]))
     assert np.max(err[rec.time > 0.1]) < 0.005
 
@@ -162,8 +191,9 @@ def test_leakage_flow_split_against_brentq_per_sample():
         v = rec.velocity[i]
         if v == 0:
             continue
-        F = lambda dp: bingham_flow_rate(dp, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap) \
-            + dp * Ap**2 / C_l - Ap * v  # noqa: E731
+        F = lambda dp: (
+            bingham_flow_rate(dp, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap) + dp * Ap**2 / C_l - Ap * v
+        )  # noqa: E731
         dp = brentq(F, -1e9, 1e9, xtol=1e-6, rtol=1e-13)
         assert fluid[i] == pytest.approx(dp * Ap, rel=1e-8, abs=1e-6)
     # creep below yield: |dp| < 2 tau_y L / h  ->  F = C_l v exactly
@@ -188,9 +218,10 @@ def test_viscous_heating_against_the_coupled_ode():
     sol = solve_ivp(rhs, (0, rec.time[-1]), [0.0], t_eval=rec.time, **TIGHT)
     F_ode = C * np.exp(-TEMPERATURE_COEFFICIENT * sol.y[0]) * rec.velocity
     m = PhysicsDamper(d, ["viscous_heating"])
-    fluid = m.components(rec, {"viscosity_factor": 1.0, "yield_stress_factor": 1.0, "thermal_mass": Cth,
-                               "cooling_time": tau})["fluid"]
-    assert sol.y[0][-1] > 2.0                       # a real test: the viscosity fell by more than 4 %
+    fluid = m.components(
+        rec, {"viscosity_factor": 1.0, "yield_stress_factor": 1.0, "thermal_mass": Cth, "cooling_time": tau}
+    )["fluid"]
+    assert sol.y[0][-1] > 2.0  # a real test: the viscosity fell by more than 4 %
     # fixed-point passes to 1e-9; what remains is the discretisation, O(dt^2) of the temperature: 1e-6 of the force
     assert np.max(np.abs(fluid - F_ode)) / np.max(np.abs(F_ode)) < 1e-5
 
@@ -221,7 +252,7 @@ def test_herschel_bulkley_slit_flow_against_quadrature_of_the_velocity_profile(m
     assert Q == pytest.approx(Q_quad, rel=1e-8)
     # round trip through the vectorised root
     assert herschel_bulkley_pressure_drop(Q, tau_y, K, m, L, d, h) == pytest.approx(dp, rel=1e-9)
-    if m == 1.0:   # Bingham: Buckingham-Reiner (Makris eq 6 with h^3)
+    if m == 1.0:  # Bingham: Buckingham-Reiner (Makris eq 6 with h^3)
         assert Q == pytest.approx(bingham_flow_rate(dp, tau_y, K, L, d, h), rel=1e-12)
     # the compiled one-sample twin that the compressibility loop calls (piston speed = n Q / A_p)
     from erdesign.effects.compressibility import _piston_speed
@@ -235,9 +266,10 @@ def test_gas_spring_adds_preload_and_stiffness():
     d = load_example("mr_mixed")
     rec = _sine_record(d)
     base = {"viscosity_factor": 1.0, "yield_stress_factor": 1.0}
-    diff = PhysicsDamper(d, ["gas_spring"]).force(rec, {**base, "gas_preload": 150.0, "gas_stiffness": 2e4}) \
-        - PhysicsDamper(d).force(rec, base)
-    np.testing.assert_allclose(diff, 150.0 + 2e4 * rec.displacement, atol=1e-9)   # the MR-model review eqs 2, 23
+    diff = PhysicsDamper(d, ["gas_spring"]).force(
+        rec, {**base, "gas_preload": 150.0, "gas_stiffness": 2e4}
+    ) - PhysicsDamper(d).force(rec, base)
+    np.testing.assert_allclose(diff, 150.0 + 2e4 * rec.displacement, atol=1e-9)  # the MR-model review eqs 2, 23
 
 
 def test_preyield_elasticity_is_makris_eq8_at_the_damper_level():
@@ -250,8 +282,7 @@ def test_preyield_elasticity_is_makris_eq8_at_the_damper_level():
     rec = _sine_record(d, X0=0.005, f=1.0, cycles=2, rate=4000.0)
     Ap, L, dm, h = g.piston_area, g.duct_length, g.duct_mean_diameter, g.gap
     kappa, beta = 2 * L * Ap / h, 6 * Ap / (math.pi * dm * h**2)
-    tau = makris_stress(rec.time, beta * rec.displacement, tau_y, eta, G,
-                        tau0=eta * beta * rec.velocity[0] + tau_y)
+    tau = makris_stress(rec.time, beta * rec.displacement, tau_y, eta, G, tau0=eta * beta * rec.velocity[0] + tau_y)
     C = kappa * eta * beta
     F_B = C * rec.velocity + kappa * tau_y * np.sign(rec.velocity)
     k_G = G * kappa * beta
@@ -262,8 +293,9 @@ def test_preyield_elasticity_is_makris_eq8_at_the_damper_level():
     # far below yield the damper is a spring k_G (elastic limit of eq 8): 1 um against F_y / k_G = 28 um; the
     # relaxation term is F / F_y ~ 4 % of the elastic force
     small = _sine_record(d, X0=1e-6, f=1.0, cycles=1, rate=4000.0)
-    F_small = elastic_viscoplastic_force(small.time, small.velocity, C * small.velocity + kappa * tau_y * np.sign(
-        small.velocity), k_G, initial=0.0)
+    F_small = elastic_viscoplastic_force(
+        small.time, small.velocity, C * small.velocity + kappa * tau_y * np.sign(small.velocity), k_G, initial=0.0
+    )
     np.testing.assert_allclose(F_small, k_G * small.displacement, atol=0.05 * k_G * 1e-6)
 
 

@@ -9,8 +9,15 @@ import pytest
 from erdesign import load_example
 from erdesign.data.measurement import Measurement
 from erdesign.diagnosis.diagnose import calibrate
-from erdesign.effects import (EFFECT_NAMES, EFFECTS, Effect, EffectError, parse_effect_names, register_effect,
-                              unregister_effect)
+from erdesign.effects import (
+    EFFECT_NAMES,
+    EFFECTS,
+    Effect,
+    EffectError,
+    parse_effect_names,
+    register_effect,
+    unregister_effect,
+)
 from erdesign.effects.base import STAGES
 from erdesign.effects.chain import PhysicsDamper
 from erdesign.parameters import Parameter
@@ -61,8 +68,16 @@ def _record(damper, field_fraction=1.0):
     t = np.linspace(0.0, 1.5, 751)
     w = 2 * np.pi * 2.0
     E = damper.fluid.reference_field * np.where(t < 0.5, 0.0, np.where(t < 1.0, field_fraction, 0.6 * field_fraction))
-    return Measurement(t, 0.005 * np.sin(w * t), None, 0.005 * w * np.cos(w * t), -0.005 * w**2 * np.sin(w * t),
-                       E, damper.fluid.control, name="toy stroke")
+    return Measurement(
+        t,
+        0.005 * np.sin(w * t),
+        None,
+        0.005 * w * np.cos(w * t),
+        -0.005 * w**2 * np.sin(w * t),
+        E,
+        damper.fluid.control,
+        name="toy stroke",
+    )
 
 
 @pytest.mark.parametrize("example, others", [("makris", ["seal_friction"]), ("mr_mixed", ["compressibility"])])
@@ -85,11 +100,20 @@ def test_a_state_toy_effect_is_the_baseline_at_the_scaled_control(toy_effects):
     # the fluid seeing 1.5 x the control is the baseline driven by 1.5 x the control, sample for sample
     d = load_example("mr_valve")
     rec = _record(d, field_fraction=0.5)
-    scaled = Measurement(rec.time, rec.displacement, None, rec.velocity, rec.acceleration, 1.5 * rec.control,
-                         rec.control_kind, name="scaled")
+    scaled = Measurement(
+        rec.time,
+        rec.displacement,
+        None,
+        rec.velocity,
+        rec.acceleration,
+        1.5 * rec.control,
+        rec.control_kind,
+        name="scaled",
+    )
     expected = PhysicsDamper(d).components(scaled, {"viscosity_factor": 1.1, "yield_stress_factor": 0.9})
-    got = PhysicsDamper(d, ["field_gain"]).components(rec, {"viscosity_factor": 1.1, "yield_stress_factor": 0.9,
-                                                            "field_gain": 1.5})
+    got = PhysicsDamper(d, ["field_gain"]).components(
+        rec, {"viscosity_factor": 1.1, "yield_stress_factor": 0.9, "field_gain": 1.5}
+    )
     for part in ("force", "yield_force"):
         np.testing.assert_allclose(got[part], expected[part], rtol=1e-12)
 
@@ -101,8 +125,16 @@ def test_fit_recovers_the_offset_of_a_record_made_with_it(toy_effects):
     rec = _record(d)
     truth = {"viscosity_factor": 1.2, "yield_stress_factor": 0.85, "offset_force": -180.0}
     model = PhysicsDamper(d, ["force_offset"])
-    measured = Measurement(rec.time, rec.displacement, model.simulate(rec, truth), rec.velocity, rec.acceleration,
-                           rec.control, rec.control_kind, name="with offset")
+    measured = Measurement(
+        rec.time,
+        rec.displacement,
+        model.simulate(rec, truth),
+        rec.velocity,
+        rec.acceleration,
+        rec.control,
+        rec.control_kind,
+        name="with offset",
+    )
     res = calibrate(d, measured, ["force_offset"])
     assert res.values["offset_force"] == pytest.approx(-180.0, abs=1e-3)
     assert res.values["viscosity_factor"] == pytest.approx(1.2, rel=1e-6)

@@ -27,13 +27,13 @@ def _record(current=None, noise=5.0, seed=0, n=401):
 def test_resolve_free_holds_control_slopes_the_records_cannot_show():
     model = get_model("bingham")
     slopes = set(model.control_parameters)
-    free, fixed = resolve_free(model, [_record()])                      # no control column
+    free, fixed = resolve_free(model, [_record()])  # no control column
     assert slopes <= set(fixed) and not slopes & set(free)
-    free, fixed = resolve_free(model, [_record(current=0.0)])          # a control column of zeros
+    free, fixed = resolve_free(model, [_record(current=0.0)])  # a control column of zeros
     assert slopes <= set(fixed)
-    free, fixed = resolve_free(model, [_record(current=0.0), _record(current=1.0)])   # one record shows them
+    free, fixed = resolve_free(model, [_record(current=0.0), _record(current=1.0)])  # one record shows them
     assert slopes <= set(free)
-    free, _ = resolve_free(model, [_record()], free=["c0", "c0_u"])    # named free: free
+    free, _ = resolve_free(model, [_record()], free=["c0", "c0_u"])  # named free: free
     assert free == ("c0", "c0_u")
     with pytest.raises(Exception, match="no parameter 'nope'"):
         resolve_free(model, [_record()], fixed={"nope": 1.0})
@@ -42,7 +42,7 @@ def test_resolve_free_holds_control_slopes_the_records_cannot_show():
 
 
 def test_fits_do_not_change_the_callers_model():
-    rec = _record(current=0.5)                    # 0.5 A: the control reference is 0.1 A
+    rec = _record(current=0.5)  # 0.5 A: the control reference is 0.1 A
     assert control_reference_for([rec]) == pytest.approx(0.1)
     model = get_model("bingham")
     r = identify(model, rec, starts=1)
@@ -71,15 +71,23 @@ def test_fit_values_and_standard_errors_equal_the_linear_closed_form():
     assert r.success
     # the one report and the one JSON object carry the same numbers
     d = r.to_dict()
-    assert set(d) >= {"model", "esr", "parameters", "parameters_si", "statistics", "correlations", "success",
-                      "poor_fit"}
+    assert set(d) >= {
+        "model",
+        "esr",
+        "parameters",
+        "parameters_si",
+        "statistics",
+        "correlations",
+        "success",
+        "poor_fit",
+    }
     assert d["parameters_si"]["c0"]["stderr"] == pytest.approx(np.sqrt(cov[0, 0]), rel=1e-4)
     assert d["statistics"]["samples"] == len(v) and d["statistics"]["free_parameters"] == 3
     assert d["esr"] == pytest.approx(rss[0] / np.sum((rec.force - rec.force.mean()) ** 2), rel=1e-9)
     text = r.report()
     assert "[[Statistics]]" in text and "AIC" in text and "+/-" in text
     c0 = next(line for line in text.splitlines() if line.strip().startswith("c0 "))
-    assert f"{100 * np.sqrt(cov[0, 0]) / coef[0]:.2g} %" in c0       # the relative standard error, in %
+    assert f"{100 * np.sqrt(cov[0, 0]) / coef[0]:.2g} %" in c0  # the relative standard error, in %
 
 
 @pytest.fixture(scope="module")
@@ -111,6 +119,7 @@ def test_a_fit_worse_than_the_reference_is_not_a_success(quiroz_record):
 
 def test_multi_starts_on_a_process_pool_give_the_serial_result():
     from erdesign.executor import PoolExecutor
+
     rec = _record()
     serial = fit(get_model("kwok_tanh"), rec, starts=4, max_nfev=40)
     with PoolExecutor(2) as pool:
@@ -122,6 +131,7 @@ def test_problem_is_one_frozen_set_up():
     import dataclasses
 
     from erdesign.identification.engine import problem
+
     model = get_model("bingham")
     rec = _record(current=0.5)
     pb = problem(model, [rec], fixed={"f0": 0.0}, start={"c0": 2500.0})
@@ -141,17 +151,19 @@ def test_cross_validation_on_a_process_pool_gives_the_serial_table():
 
     from erdesign.executor import PoolExecutor
     from erdesign.identification.identify import cross_validation
+
     recs = [_record(current=c, seed=k) for k, c in enumerate((0.25, 0.5, 1.0))]
     serial = cross_validation(partial(get_model, "kwok_tanh"), recs, starts=1, max_nfev=30)
     with PoolExecutor(2) as pool:
         pooled = cross_validation(partial(get_model, "kwok_tanh"), recs, starts=1, max_nfev=30, executor=pool)
     assert np.array_equal(serial.table, pooled.table) and serial.names == pooled.names
-    assert serial.table[1, 1] < serial.table[0, 1]     # a model scores best on the record it was identified on
+    assert serial.table[1, 1] < serial.table[0, 1]  # a model scores best on the record it was identified on
 
 
 def test_solve_with_three_starts_on_a_process_pool_equals_serial():
     from erdesign.executor import PoolExecutor
     from erdesign.identification.engine import Strategy, problem, solve
+
     pb = problem(get_model("kwok_tanh"), [_record()], control_reference=False)
     serial = solve(pb, Strategy(starts=3, max_nfev=40))
     with PoolExecutor(2) as pool:
@@ -173,6 +185,7 @@ BAD_START = {"n": 10.0, "delta": 1e-6, "beta": -1e12, "gamma": -1e12}
 
 def test_a_poor_first_start_is_rescued_by_the_extra_starts(quiroz_record):
     from erdesign.executor import PoolExecutor
+
     alone = identify(get_model("bouc_wen_modified"), quiroz_record, starts=1, start=BAD_START)
     assert alone.esr > 100 * alone.baseline_esr and alone.poor_fit and not alone.success
     rescued = identify(get_model("bouc_wen_modified"), quiroz_record, starts=4, start=BAD_START)
@@ -192,6 +205,7 @@ def test_one_at_bound_rule():
     import erdesign
     from erdesign.identification.engine import at_bound, mostly_at_bounds
     from erdesign.parameters import Parameter
+
     k = Parameter("k", "N/m", 1000.0, 0.0, 1e9)
     # tolerance 1e-6 of the range, or of 1e3 x the parameter's scale when that is smaller (here 1e6 -> 1 N/m)
     assert at_bound(k, 0.5) == "lower" and at_bound(k, 259.0) is None and at_bound(k, 1e9 - 1e2) == "upper"

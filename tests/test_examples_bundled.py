@@ -31,8 +31,11 @@ def test_every_example_file_is_package_data():
     """What a wheel ships: pyproject's package-data globs cover every data file of erdesign/examples."""
     globs = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]
     patterns = globs["erdesign.examples"]
-    data = [p.relative_to(PACKAGE_EXAMPLES).as_posix() for p in PACKAGE_EXAMPLES.rglob("*")
-            if p.is_file() and p.suffix in (".toml", ".csv")]
+    data = [
+        p.relative_to(PACKAGE_EXAMPLES).as_posix()
+        for p in PACKAGE_EXAMPLES.rglob("*")
+        if p.is_file() and p.suffix in (".toml", ".csv")
+    ]
     assert data and not [f for f in data if not any(fnmatch.fnmatch(f, g) for g in patterns)]
 
 
@@ -41,7 +44,8 @@ def test_documented_paths_work_from_a_folder_without_examples(tmp_path, monkeypa
     assert main(["size", "examples/makris.toml", "--velocity", "1 in/s", "--field", "3 kV/mm", "--json"]) == 0
     # Damper.size's doctest: 6.07 kN at 1 in/s and 3 kV/mm (Makris et al. 1996's damper)
     assert json.loads(capsys.readouterr().out)["force_N"] == pytest.approx(
-        load_example("makris").size("1 in/s", "3 kV/mm").force.m_as("N"), rel=1e-12)
+        load_example("makris").size("1 in/s", "3 kV/mm").force.m_as("N"), rel=1e-12
+    )
     path = "examples/requirements/makris_requirements.toml"
     assert read_requirements(path) == load_example_requirements("makris_requirements")
     record = read_measurement("examples/measurements/makris_hidden_seal_friction.csv")
@@ -58,15 +62,19 @@ def test_a_file_of_the_users_own_at_that_path_wins(tmp_path, monkeypatch, capsys
     (tmp_path / "examples" / "makris.toml").write_text(text)
     assert main(["size", "examples/makris.toml", "--velocity", "1 in/s", "--json"]) == 0
     own = json.loads(capsys.readouterr().out)["force_N"]
-    assert own > 1.5 * load_example("makris").size("1 in/s").force.m_as("N")   # (0.8/0.6)^3 more viscous force
+    assert own > 1.5 * load_example("makris").size("1 in/s").force.m_as("N")  # (0.8/0.6)^3 more viscous force
 
 
 def test_no_code_reads_through_the_top_level_links():
     """Tests, benchmarks and the package name erdesign/examples and erdesign/materials, never the links."""
     link = re.compile(r"""(ROOT|parents\[\d\]|parent\.parent)\s*/\s*["'](examples|materials)["']""")
-    offenders = [f"{p.relative_to(ROOT)}:{i}" for folder in ("tests", "benchmarks", "erdesign")
-                 for p in (ROOT / folder).rglob("*.py")
-                 for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), start=1) if link.search(line)]
+    offenders = [
+        f"{p.relative_to(ROOT)}:{i}"
+        for folder in ("tests", "benchmarks", "erdesign")
+        for p in (ROOT / folder).rglob("*.py")
+        for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), start=1)
+        if link.search(line)
+    ]
     assert offenders == []
 
 
@@ -77,7 +85,7 @@ def test_erdesign_examples_lists_the_requirements_too(capsys):
     listed = json.loads(capsys.readouterr().out)["requirements"]
     assert [r["name"] for r in listed] == example_requirements_names()
     assert {r["name"]: r["configuration"] for r in listed}["mr_coil_requirements"] == "mixed"
-    for r in listed:       # each listed name is accepted by erdesign design as it is
+    for r in listed:  # each listed name is accepted by erdesign design as it is
         assert read_requirements(r["name"]).name == r["title"]
 
 

@@ -19,7 +19,7 @@ def test_a_name_loads_the_example_and_a_file_of_that_name_wins(tmp_path, monkeyp
     monkeypatch.chdir(tmp_path)
     (tmp_path / "makris").write_text("not toml [")
     with pytest.raises(ErdesignError):
-        load_damper("makris")                       # an existing file is read, never shadowed by the example
+        load_damper("makris")  # an existing file is read, never shadowed by the example
     with pytest.raises(ErdesignError):
         load_damper("no_such_example")
 

@@ -35,9 +35,9 @@ def test_pool_gives_serial_results_in_item_order():
         seen = []
         pooled = pool.map(_seeded_mean, ITEMS, progress=lambda done, total: seen.append((done, total)))
         pids = {pid for pid, _ in pool.map(_pid_and_square, range(8))}
-    assert pooled == serial                      # bit-identical: the item fixes the random stream
+    assert pooled == serial  # bit-identical: the item fixes the random stream
     assert seen[-1] == (len(ITEMS), len(ITEMS)) and len(seen) == len(ITEMS)
-    assert os.getpid() not in pids               # the tasks ran in worker processes
+    assert os.getpid() not in pids  # the tasks ran in worker processes
 
 
 def test_task_error_reaches_the_caller():
@@ -60,7 +60,7 @@ def test_dask_local_cluster_gives_serial_results(dask_client):
     assert ex.map(_seeded_mean, ITEMS) == serial
     with pytest.raises(ValueError, match="item 3 is bad"):
         ex.map(_fails_on_three, range(5))
-    ex.close()                                   # a client the caller gave stays open
+    ex.close()  # a client the caller gave stays open
     assert dask_client.status == "running"
 
 
@@ -77,8 +77,10 @@ def test_defaults_and_chunks():
     assert sum(b - a for a, b in chunks(10**6 + 3, 65536)) == 10**6 + 3
 
 
-@pytest.mark.parametrize("address, message", [("nonsense", "not a Dask scheduler address"),
-                                              ("tcp://127.0.0.1:9", "cannot reach the Dask scheduler")])
+@pytest.mark.parametrize(
+    "address, message",
+    [("nonsense", "not a Dask scheduler address"), ("tcp://127.0.0.1:9", "cannot reach the Dask scheduler")],
+)
 def test_bad_scheduler_address_is_a_clear_error(address, message):
     pytest.importorskip("distributed")
     with pytest.raises(ExecutorError, match=message):

@@ -17,16 +17,23 @@ import numpy as np
 import pytest
 
 from erdesign.damper.files import load_example
-from erdesign.data.findings import (FINDING_KINDS, LAG_EFFECTS, Finding, excluded_mask, find_data_problems,
-                                    find_time_problems)
+from erdesign.data.findings import (
+    FINDING_KINDS,
+    LAG_EFFECTS,
+    Finding,
+    excluded_mask,
+    find_data_problems,
+    find_time_problems,
+)
 from erdesign.data.measurement import Measurement, MeasurementError
 from erdesign.simulation.truthrig import TruthDamper, simulate_truth
 from erdesign.simulation.truthrig import artefacts as A
 from erdesign.simulation.truthrig.cases import DAMPERS, EXCITATIONS, benchmark_cases
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
-needs_data = pytest.mark.skipif(not DATA.is_dir(), reason="../shared/data (third-party measured records) is absent "
-                                                          "in this checkout")
+needs_data = pytest.mark.skipif(
+    not DATA.is_dir(), reason="../shared/data (third-party measured records) is absent in this checkout"
+)
 
 
 @functools.lru_cache(maxsize=None)
@@ -37,8 +44,9 @@ def _catalogue():
 @functools.lru_cache(maxsize=None)
 def _clean_case(damper: str, excitation: str):
     """The catalogue's clean case of this damper and motion (exactly Bingham, perturbed calibration)."""
-    return next(c for c in _catalogue().values() if c.kind == "clean" and c.damper == damper
-                and c.excitation == excitation)
+    return next(
+        c for c in _catalogue().values() if c.kind == "clean" and c.damper == damper and c.excitation == excitation
+    )
 
 
 @functools.lru_cache(maxsize=None)
@@ -67,15 +75,18 @@ def _lab_programmes(damper):
     steps, sine sweeps and DoE programmes."""
     from erdesign.simulation.rig import field_steps, stepped_sine
     from erdesign.simulation.truthrig.motions import sine_programme, swept_sine
+
     ref = damper.fluid.reference_field
     return {
         "stepped_1_2Hz_3cycles": stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=500),
         "stepped_1_2Hz_3cycles_1kHz": stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=1000),
         "stepped_1_2Hz_3cycles_2kHz": stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=2000),
-        "stepped_4_segments": stepped_sine([0.01], [0.5, 1.0, 2.0, 3.0], [ref, 0.5 * ref, 0.0, ref], cycles=4,
-                                           rate=500),
-        "stepped_1_2_4_8Hz_fields": stepped_sine([0.008, 0.004, 0.002, 0.001], [1.0, 2.0, 4.0, 8.0],
-                                                 [ref, 0.3 * ref], cycles=3, rate=2000),
+        "stepped_4_segments": stepped_sine(
+            [0.01], [0.5, 1.0, 2.0, 3.0], [ref, 0.5 * ref, 0.0, ref], cycles=4, rate=500
+        ),
+        "stepped_1_2_4_8Hz_fields": stepped_sine(
+            [0.008, 0.004, 0.002, 0.001], [1.0, 2.0, 4.0, 8.0], [ref, 0.3 * ref], cycles=3, rate=2000
+        ),
         "field_steps": field_steps(0.01, 1.0, ref, cycles=4, step_period=0.5, rate=1000),
         "sine_sweep": swept_sine(0.2, 0.5, 5.0, duration=20.0, rate=500),
         "doe_programme": sine_programme([0.01, 0.005, 0.003, 0.01], [1.0, 2.0, 0.5, 2.0], duration=12.0, rate=500),
@@ -117,6 +128,7 @@ def test_reversals_on_samples_are_not_a_channel_skew(frequency, rate, seed):
     MR valve jumps just after it - half a sample "late" at every reversal with no delay at all; this was called a
     1 ms skew on every seed (found with issue 23's clean programmes)."""
     from erdesign.simulation.rig import sine
+
     d = load_example("mr_valve")
     truth = TruthDamper(d, {}, viscosity_factor=1.1, yield_stress_factor=0.9)
     motion = sine(0.01 / frequency * 2, frequency, d.fluid.reference_field, cycles=8, rate=rate)
@@ -124,8 +136,9 @@ def test_reversals_on_samples_are_not_a_channel_skew(frequency, rate, seed):
     assert _kinds(find_data_problems(m)) == []
 
 
-@pytest.mark.parametrize("name", [n for n in (f"compressibility-{s}-{d}" for s in ("moderate", "large")
-                                              for d in DAMPERS)])
+@pytest.mark.parametrize(
+    "name", [n for n in (f"compressibility-{s}-{d}" for s in ("moderate", "large") for d in DAMPERS)]
+)
 def test_a_compressible_column_is_not_called_channel_skew(name):
     """A compressible column makes the force lag the motion (truth rig: compliance, 1 kHz); the lag rounds the
     force's reversals and grows with the force, so it is physics, not skew, and nothing else is found either."""
@@ -150,7 +163,7 @@ def test_a_clipped_force_is_found_and_excluded(damper, excitation):
     level = 0.8 * float(m.force.max())
     (f,) = find_data_problems(A.clip_force(m, level))
     assert f.kind == "clipped"
-    assert np.array_equal(f.excluded, m.force >= level)           # every clipped sample, nothing else
+    assert np.array_equal(f.excluded, m.force >= level)  # every clipped sample, nothing else
     assert f"{int((m.force >= level).sum())} samples" in f.where
     assert excluded_mask([f], len(m)).sum() == (m.force >= level).sum()
 
@@ -169,7 +182,7 @@ def test_a_saturated_displacement_channel_is_found_and_excluded(damper, excitati
 def test_a_causal_moving_average_is_found_with_its_window(damper, excitation, window):
     (f,) = find_data_problems(A.moving_average(_record(damper, excitation), window))
     assert f.kind == "smoothed"
-    assert f"{window} samples" in f.where                         # the window exactly: the nulls sit at k fs / N
+    assert f"{window} samples" in f.where  # the window exactly: the nulls sit at k fs / N
     assert {"compressibility", "preyield_elasticity", "field_lag"} <= set(f.unsafe_for)
 
 
@@ -179,7 +192,7 @@ def test_a_channel_skew_is_estimated_within_a_sample(damper, excitation, skew):
     """0.8 ms at 1 kHz (the issue's example) and the force leading by 2 ms; one sample is 1 ms."""
     (f,) = find_data_problems(A.skew_force(_record(damper, excitation), skew))
     assert f.kind == "channel_skew"
-    assert f.skew_s == pytest.approx(skew, abs=0.5e-3)              # measured within 0.2 ms
+    assert f.skew_s == pytest.approx(skew, abs=0.5e-3)  # measured within 0.2 ms
     assert set(LAG_EFFECTS) <= set(f.unsafe_for)
     assert f.as_json()["skew_s"] == f.skew_s
 
@@ -218,9 +231,15 @@ def test_a_force_drift_is_found_and_an_offset_with_the_expected_mean(damper, exc
     assert g.kind == "force_offset_drift" and "offset by" in g.message
 
 
-@pytest.mark.parametrize("damper,excitation,rate", [("mr_valve", "sine", 1000.0), ("makris", "random", 1000.0),
-                                                    ("kamath_wereley", "earthquake", 1000.0),
-                                                    ("mr_valve_current", "sine", 100.0)])
+@pytest.mark.parametrize(
+    "damper,excitation,rate",
+    [
+        ("mr_valve", "sine", 1000.0),
+        ("makris", "random", 1000.0),
+        ("kamath_wereley", "earthquake", 1000.0),
+        ("mr_valve_current", "sine", 100.0),
+    ],
+)
 def test_quantized_displacement_is_found_with_its_step(damper, excitation, rate):
     """5 um steps (the issue's shaking-table record: 0.005 mm at 100 Hz)."""
     (f,) = find_data_problems(A.quantize_displacement(_record(damper, excitation, rate), 5e-6))
@@ -233,9 +252,9 @@ def test_quantized_displacement_is_found_with_its_step(damper, excitation, rate)
 def test_exclude_clipped_decides_where_the_detector_is_unsure():
     t = np.linspace(0, 2, 2001)
     x = 0.01 * np.sin(2 * np.pi * t) + 1e-6 * np.random.default_rng(0).standard_normal(t.size)
-    F = np.round(1000 * np.cos(2 * np.pi * t))          # a force quantised to 1 N: its crests are flat for ~11 samples
+    F = np.round(1000 * np.cos(2 * np.pi * t))  # a force quantised to 1 N: its crests are flat for ~11 samples
     m = Measurement.from_arrays(t, x, F)
-    (f,) = find_data_problems(m)                        # as many at 999 N as at 1000 N: no pile-up at a limit
+    (f,) = find_data_problems(m)  # as many at 999 N as at 1000 N: no pile-up at a limit
     assert f.kind == "clipped" and f.excluded is None and "--exclude-clipped" in f.message
     (g,) = find_data_problems(m, exclude_clipped=True)
     assert np.array_equal(g.excluded, np.abs(F) == 1000)
@@ -267,6 +286,7 @@ def test_dykes_ransim_u_is_clipped_and_not_smoothed():
     19.53 to 19.91 s, the displacement is held at 10.5-11 mm - beyond the 8.4 mm the rest of the record reaches -
     while the force swings from -2.7 kN to the clip: an excursion of the actuator or transducer, left out."""
     from erdesign.data.measurement import read_measurement
+
     m = read_measurement(DATA / "dyke_nees" / "ransim_u.csv")
     findings = find_data_problems(m)
     assert _kinds(findings) == ["clipped", "saturated_displacement"]
@@ -289,6 +309,7 @@ def test_quirozs_preprocessed_files_are_smoothed_over_a_tenth_of_a_period():
     """shared/data/README.md: the source smoothed every preprocessed file by a causal moving average over 1/10 of
     a period; the window is found to the sample on all 30 (5 Hz at 5 ms: 4 samples; 3 Hz at 1 ms: 33)."""
     from erdesign.data.quiroz import QUIROZ_FILE_NAME
+
     files = sorted((DATA / "quiroz2022_utfsm_mr" / "preprocessed").glob("*.txt"))
     assert len(files) == 30
     for path in files:

@@ -24,8 +24,11 @@ class DashpotFriction(Model):
     )
 
     def force(self, record, values):
-        return values["c"] * record.velocity + values["f"] * np.tanh(record.velocity / 1e-3) + \
-            values["k"] * record.displacement
+        return (
+            values["c"] * record.velocity
+            + values["f"] * np.tanh(record.velocity / 1e-3)
+            + values["k"] * record.displacement
+        )
 
 
 def record(noise=5.0, seed=0, f_hz=1.5):
@@ -65,7 +68,9 @@ def test_fixed_parameters_stay_and_aic_prefers_the_true_model():
     assert no_friction.values["f"] == 0.0 and no_friction.k == 2
     assert full.aic < no_friction.aic - 10 and full.bic < no_friction.bic - 10
     # A parameter the data do not need (here: friction when the truth has none) must not win by BIC.
-    m0 = m.with_force(DashpotFriction().force(m, {**true, "f": 0.0}) + 5.0 * np.random.default_rng(1).standard_normal(len(m)))
+    m0 = m.with_force(
+        DashpotFriction().force(m, {**true, "f": 0.0}) + 5.0 * np.random.default_rng(1).standard_normal(len(m))
+    )
     assert fit(DashpotFriction(), m0).bic > fit(DashpotFriction(), m0, fixed={"f": 0.0}).bic - 2 * math.log(len(m))
 
 

@@ -7,8 +7,15 @@ import pint
 import pytest
 import sympy as sp
 
-from erdesign.flow import (bingham_flow_rate, bingham_number, bingham_plug_fraction, bingham_pressure_drop,
-                           bingham_slit_flow, slit_pressure_drop, yield_pressure_drop)
+from erdesign.flow import (
+    bingham_flow_rate,
+    bingham_number,
+    bingham_plug_fraction,
+    bingham_pressure_drop,
+    bingham_slit_flow,
+    slit_pressure_drop,
+    yield_pressure_drop,
+)
 from erdesign.units import Q_
 
 from .conftest import MAKRIS, MAKRIS_AP
@@ -19,12 +26,12 @@ DUCT = (MAKRIS["L"], MAKRIS["d"], MAKRIS["h"])
 def _derived_flow_rate():
     """Q(dp) of slit flow of a Bingham plastic, derived from the constitutive law (Makris eq 5) with sympy."""
     y, s, G, eta, tau_y, h, L, d, dp = sp.symbols("y s G eta tau_y h L d dp", positive=True)
-    y0 = tau_y / G                                   # plug half-thickness: |tau| = G |y| < tau_y
+    y0 = tau_y / G  # plug half-thickness: |tau| = G |y| < tau_y
     # Upper half, y from the centre plane: tau = G y (Makris eq 2 in slit form); eta du/dy = -(G y - tau_y) in the
     # sheared layer, u(h/2) = 0 (no slip).
     u = sp.integrate(-(G * s - tau_y) / eta, (s, h / 2, y))
     q_half = sp.integrate(u, (y, y0, h / 2)) + y0 * u.subs(y, y0)
-    Q = (2 * sp.pi * d * q_half).subs(G, dp / L)     # both halves, width pi d
+    Q = (2 * sp.pi * d * q_half).subs(G, dp / L)  # both halves, width pi d
     return sp.simplify(Q), (eta, tau_y, h, L, d, dp)
 
 
@@ -48,7 +55,7 @@ def test_printed_eq7_fails_a_pint_dimension_check_and_the_corrected_one_passes()
     tau_y, L, h, d = Q_(1.8, "kPa"), Q_(54.6, "mm"), Q_(0.8, "mm"), Q_(14.3, "mm")
     eta, Q = Q_(13, "Pa*s"), Q_(20, "mL/s")
     with pytest.raises(pint.DimensionalityError):
-        3 * tau_y * L / h + 12 * eta * L * Q / (math.pi * d * h**2)      # as printed (Makris eq 7)
+        3 * tau_y * L / h + 12 * eta * L * Q / (math.pi * d * h**2)  # as printed (Makris eq 7)
     coefficient = 3 * tau_y * L / h + 12 * eta * L * Q / (math.pi * d * h**3)
     assert coefficient.check("[pressure]")
 
@@ -57,7 +64,7 @@ def test_corrected_cubic_reduces_to_eq4_as_tau_y_vanishes():
     dp, dpN, ty, L, h = sp.symbols("dp dp_N tau_y L h", positive=True)
     cubic = dp**3 - (3 * ty * L / h + dpN) * dp**2 + 4 * ty**3 * (L / h) ** 3
     roots = sp.solve(cubic.subs(ty, 0), dp)
-    assert max(roots, key=lambda r: r.subs(dpN, 1)) == dpN                # Makris eq 4
+    assert max(roots, key=lambda r: r.subs(dpN, 1)) == dpN  # Makris eq 4
     # Numerically: tau_y -> 0 approaches the Newtonian pressure drop; the first-order correction is +3 tau_y L/h /2
     # per unit of dp_y... so the relative gap must shrink in proportion to tau_y.
     Q = 2e-5
@@ -70,7 +77,7 @@ def test_corrected_cubic_reduces_to_eq4_as_tau_y_vanishes():
 def test_closed_form_root_equals_np_roots(bingham):
     L, d, h = DUCT
     tau_y, eta = 1800.0, 13.0
-    Q = tau_y * h * math.pi * d * h / (eta * bingham)                     # the flow that gives this Bingham number
+    Q = tau_y * h * math.pi * d * h / (eta * bingham)  # the flow that gives this Bingham number
     assert bingham_number(Q, tau_y, eta, d, h) == pytest.approx(bingham)
     dpN = 12 * eta * L * Q / (math.pi * d * h**3)
     roots = np.roots([1.0, -(3 * tau_y * L / h + dpN), 0.0, 4 * tau_y**3 * (L / h) ** 3])
@@ -99,7 +106,7 @@ def test_blocked_gap_gives_the_yield_pressure_drop():
     r = bingham_slit_flow(0.0, 1800.0, 13.0, L, d, h)
     assert r.pressure_drop == pytest.approx(2 * 1800.0 * L / h) == pytest.approx(245700.0)
     assert r.plug_fraction == 1.0
-    assert bingham_pressure_drop(-0.0, 1800.0, 13.0, L, d, h) == -245700.0     # sign from the sign bit
+    assert bingham_pressure_drop(-0.0, 1800.0, 13.0, L, d, h) == -245700.0  # sign from the sign bit
     # Below the yield pressure drop nothing flows.
     assert bingham_flow_rate(np.array([-245699.0, 0.0, 245699.0]), 1800.0, 13.0, L, d, h).tolist() == [0, 0, 0]
 

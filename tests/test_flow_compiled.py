@@ -53,33 +53,34 @@ def test_slit_compiled_pass_equals_the_numpy_path_to_a_few_ulp():
     dp_y = 2 * tau_y * L / h
     Q = N * np.where(tau_y == 1800.0, dp_y, 1.0) * np.pi * d * h**3 / (12 * eta * L) * rng.choice([-1.0, 1.0], n)
     Q[100:104] = [0.0, -0.0, 0.0, -0.0]
-    big = bingham_slit_flow(Q, tau_y, eta, L, d, h)                      # compiled
+    big = bingham_slit_flow(Q, tau_y, eta, L, d, h)  # compiled
     assert big.pressure_drop.shape == (n,)
-    small = [bingham_slit_flow(Q[i:i + 1000], tau_y[i:i + 1000], eta, L, d, h) for i in range(0, n, 1000)]
-    dp_ref = np.concatenate([s.pressure_drop for s in small])             # numpy, below the threshold
+    small = [bingham_slit_flow(Q[i : i + 1000], tau_y[i : i + 1000], eta, L, d, h) for i in range(0, n, 1000)]
+    dp_ref = np.concatenate([s.pressure_drop for s in small])  # numpy, below the threshold
     phi_ref = np.concatenate([s.plug_fraction for s in small])
     # measured 1.1e-15 (the libm's and numpy's sin/arcsin differ in the last bit); at N < 0.5 the sheared fraction
     # 1 - phi comes from the same Newton steps, so the round trip of tests/test_flow_bingham.py holds for both
     np.testing.assert_allclose(big.pressure_drop, dp_ref, rtol=8 * EPS, atol=0)
     np.testing.assert_allclose(big.plug_fraction, phi_ref, rtol=8 * EPS, atol=0)
-    np.testing.assert_array_equal(np.signbit(big.pressure_drop), np.signbit(dp_ref))   # -0.0 gives -dp_y
+    np.testing.assert_array_equal(np.signbit(big.pressure_drop), np.signbit(dp_ref))  # -0.0 gives -dp_y
 
 
 def test_slit_one_duct_loop_equals_the_numpy_path():
     # Many flows through one duct (scalar duct arguments) take the plain loop with the duct's constants hoisted.
     rng = np.random.default_rng(8)
     L, d, h, eta, tau_y = 0.0546, 0.0143, 0.0008, 13.0, 1800.0
-    N = 10.0 ** rng.uniform(-30, 14, (2, COMPILED_MIN_SIZE))                 # beyond 1e12: the large-ratio limit
+    N = 10.0 ** rng.uniform(-30, 14, (2, COMPILED_MIN_SIZE))  # beyond 1e12: the large-ratio limit
     Q = N * (2 * tau_y * L / h) * np.pi * d * h**3 / (12 * eta * L) * rng.choice([-1.0, 1.0], N.shape)
     Q[0, :3] = [0.0, -0.0, np.nan]
     big = bingham_slit_flow(Q, tau_y, eta, L, d, h)
     assert big.pressure_drop.shape == Q.shape
-    small = [bingham_slit_flow(Q[:, i:i + 1000], tau_y, eta, L, d, h) for i in range(0, Q.shape[1], 1000)]
+    small = [bingham_slit_flow(Q[:, i : i + 1000], tau_y, eta, L, d, h) for i in range(0, Q.shape[1], 1000)]
     np.testing.assert_allclose(big.pressure_drop, np.hstack([s.pressure_drop for s in small]), rtol=8 * EPS, atol=0)
     np.testing.assert_allclose(big.plug_fraction, np.hstack([s.plug_fraction for s in small]), rtol=8 * EPS, atol=0)
     assert big.pressure_drop[0, 1] == -2 * tau_y * L / h
     # the pressure drop alone (the loop skips the plug fraction) is the same array
     from erdesign.flow.bingham import bingham_pressure_drop
+
     np.testing.assert_array_equal(bingham_pressure_drop(Q, tau_y, eta, L, d, h), big.pressure_drop)
 
 
@@ -103,10 +104,10 @@ def _mixed_cases(n, seed=3):
     rng = np.random.default_rng(seed)
     w = rng.dirichlet([1.0, 1.0, 1.0], n) * rng.choice([-1.0, 1.0], (n, 3))
     eps = np.abs(w[:, 0]) * 10.0 ** np.where(rng.random(n) < 0.2, rng.uniform(-12, 0, n), 0.0)
-    eps[: n // 10] = 1.0 - 10.0 ** rng.uniform(-9, -1, n // 10)             # nearly blocked
+    eps[: n // 10] = 1.0 - 10.0 ** rng.uniform(-9, -1, n // 10)  # nearly blocked
     U, q = w[:, 1], w[:, 2]
-    U[n // 10: n // 5] = 0.0                                                 # valve mode
-    q[n // 5: n // 4] = -U[n // 5: n // 4] * rng.uniform(1, 10, n // 4 - n // 5)   # the damper's back-flow
+    U[n // 10 : n // 5] = 0.0  # valve mode
+    q[n // 5 : n // 4] = -U[n // 5 : n // 4] * rng.uniform(1, 10, n // 4 - n // 5)  # the damper's back-flow
     scale = (1.0 - eps) / np.maximum(np.abs(U) + np.abs(q), 1e-300)
     cases = np.column_stack([U * scale, q * scale, eps])
     # a case where the secant iteration stalls and Chandrupatla's method takes over (found by a random search)
@@ -116,16 +117,24 @@ def _mixed_cases(n, seed=3):
 def test_mixed_gradient_is_the_root_brentq_finds():
     for U_bar, q_bar, eps in _mixed_cases(400):
         G = compiled._mixed_gradient(U_bar, q_bar, eps)
-        ref = _brentq_decreasing(lambda g, a=U_bar, b=q_bar, e=eps: compiled._mixed_residual(g, a, b, e),
-                                 12.0 * (U_bar / 2 - q_bar), 3 * eps + 1e-3)
+        ref = _brentq_decreasing(
+            lambda g, a=U_bar, b=q_bar, e=eps: compiled._mixed_residual(g, a, b, e),
+            12.0 * (U_bar / 2 - q_bar),
+            3 * eps + 1e-3,
+        )
         # both converge to the round-off of G (an O(1) number in these units): measured 2.6e-18 absolute
         assert G == pytest.approx(ref, rel=1e-13, abs=1e-16), (U_bar, q_bar, eps)
         assert compiled._mixed_gradient_bracketed(U_bar, q_bar, eps) == pytest.approx(ref, rel=1e-13, abs=1e-16)
 
 
 def test_mixed_regime_codes_are_the_enum():
-    assert [compiled.FULLY_YIELDED, compiled.FLOATING_PLUG, compiled.PLUG_AT_MOVING_WALL,
-            compiled.PLUG_AT_FIXED_WALL, compiled.BLOCKED] == [int(r) for r in GapFlowRegime]
+    assert [
+        compiled.FULLY_YIELDED,
+        compiled.FLOATING_PLUG,
+        compiled.PLUG_AT_MOVING_WALL,
+        compiled.PLUG_AT_FIXED_WALL,
+        compiled.BLOCKED,
+    ] == [int(r) for r in GapFlowRegime]
 
 
 def test_mixed_solution_is_the_same_in_any_array_layout():
@@ -162,10 +171,20 @@ def test_annulus_gauss_legendre_rule_equals_adaptive_quadrature(eps):
     for phi in [0.0, 0.3, 0.8]:
         t1 = compiled._plug_offset(phi, R1, 0.5 * (1 - phi))
         r_a, r_b, t2 = R1 + t1, R1 + t1 + phi, 1 - phi - t1
-        j_in = integrate.quad(lambda s, t1=t1, r_b=r_b: s * (2 * R1 + s) * (t1 - s) * (r_b + R1 + s) / (R1 + s), 0, t1,
-                              epsabs=0, epsrel=1e-13)[0]
-        j_out = integrate.quad(lambda s, t2=t2, r_a=r_a: s * (2 * R2 - s) * (t2 - s) * (R2 - s + r_a) / (R2 - s), 0, t2,
-                               epsabs=0, epsrel=1e-13)[0]
+        j_in = integrate.quad(
+            lambda s, t1=t1, r_b=r_b: s * (2 * R1 + s) * (t1 - s) * (r_b + R1 + s) / (R1 + s),
+            0,
+            t1,
+            epsabs=0,
+            epsrel=1e-13,
+        )[0]
+        j_out = integrate.quad(
+            lambda s, t2=t2, r_a=r_a: s * (2 * R2 - s) * (t2 - s) * (R2 - s + r_a) / (R2 - s),
+            0,
+            t2,
+            epsabs=0,
+            epsrel=1e-13,
+        )[0]
         assert compiled._layer_integrals(t1, phi, R1, eps) == pytest.approx(j_in + j_out, rel=1e-13)
 
 
@@ -173,8 +192,14 @@ def test_annulus_plug_fraction_is_the_root_brentq_finds():
     for eps in H_OVER_D:
         for N in [1e-12, 1e-3, 0.1, 1.0, 10.0, 1e3, 1e8, 1e12]:
             phi, t1 = compiled._annulus_phi(N, eps)
-            ref = brentq(lambda p, e=eps, N=N: compiled._annulus_shape(p, e, 0.5 * (1 - p))[0] - N * p, 0.0, 1.0,
-                         xtol=1e-300, rtol=4 * EPS, maxiter=500)
+            ref = brentq(
+                lambda p, e=eps, N=N: compiled._annulus_shape(p, e, 0.5 * (1 - p))[0] - N * p,
+                0.0,
+                1.0,
+                xtol=1e-300,
+                rtol=4 * EPS,
+                maxiter=500,
+            )
             # measured 1e-15; the shape factor's own rounding (P(x) near its series switch) is ~2e-14
             assert phi == pytest.approx(ref, rel=1e-13), (eps, N)
             # the plug offset returned with it is the plug position at that phi (warm-started Newton)
@@ -183,8 +208,7 @@ def test_annulus_plug_fraction_is_the_root_brentq_finds():
 
 def test_annulus_flow_keeps_its_special_cases():
     # Q = 0: the break-away pressure drop with the sign bit of Q and a plug filling the gap; tau_y = 0: Newtonian.
-    r = annulus_bingham_flow(np.array([0.0, -0.0, 1e-6]), np.array([1800.0, 1800.0, 0.0]), 13.0, 0.0546, 0.0143,
-                             0.0008)
+    r = annulus_bingham_flow(np.array([0.0, -0.0, 1e-6]), np.array([1800.0, 1800.0, 0.0]), 13.0, 0.0546, 0.0143, 0.0008)
     dp_y = 2 * 1800.0 * 0.0546 / 0.0008
     assert r.pressure_drop[:2].tolist() == [dp_y, -dp_y]
     assert r.plug_fraction.tolist()[:2] == [1.0, 1.0] and r.plug_fraction[2] == 0.0
@@ -192,5 +216,6 @@ def test_annulus_flow_keeps_its_special_cases():
     # a denormal yield stress (its flow ratio overflows): the Newtonian annulus, not NaN (found by
     # tests/badinput/test_flow_properties.py; the previous implementation returned NaN too)
     newtonian = annulus_bingham_flow(1e-3, 0.0, 41.1, 0.21, 0.037, 0.017).pressure_drop
-    assert annulus_bingham_flow(1e-3, 5e-324, 41.1, 0.21, 0.037, 0.017).pressure_drop == pytest.approx(newtonian,
-                                                                                                       rel=1e-12)
+    assert annulus_bingham_flow(1e-3, 5e-324, 41.1, 0.21, 0.037, 0.017).pressure_drop == pytest.approx(
+        newtonian, rel=1e-12
+    )

@@ -59,15 +59,21 @@ def brute_force(U, q, tau_y, eta, h):
         # At tau0 = -T every stress in the gap is below -tau_y - eta|U|/h - 1, so the no-slip residual is < 0;
         # at +T it is > 0: a guaranteed bracket.
         T = tau_y + abs(g) * h + eta * abs(U) / h + 1.0
-        return brentq(lambda t0: integral(lambda y: dead_zone(t0 + g * y, tau_y), t0, g) + eta * U, -T, T,
-                      xtol=1e-300, rtol=1e-15, maxiter=500)
+        return brentq(
+            lambda t0: integral(lambda y: dead_zone(t0 + g * y, tau_y), t0, g) + eta * U,
+            -T,
+            T,
+            xtol=1e-300,
+            rtol=1e-15,
+            maxiter=500,
+        )
 
     def flow(g):
         t0 = tau0_of(g)
         return U * h + integral(lambda y: (h - y) * dead_zone(t0 + g * y, tau_y), t0, g) / eta
 
     g_newton = 12.0 * eta * (U * h / 2.0 - q) / h**3
-    width = 10.0 * tau_y / h + abs(g_newton) + 1.0    # far wider than the 3 tau_y/h the module relies on
+    width = 10.0 * tau_y / h + abs(g_newton) + 1.0  # far wider than the 3 tau_y/h the module relies on
     g = brentq(lambda g: flow(g) - q, g_newton - width, g_newton + width, xtol=1e-300, rtol=1e-15, maxiter=500)
     return g, tau0_of(g)
 
@@ -108,8 +114,8 @@ def test_fixed_walls_reduce_to_valve_mode_bingham_slit(Q):
 @pytest.mark.parametrize("q", [0.0, -0.0])
 def test_blocked_gap_returns_break_away_gradient_like_bingham_slit(q):
     r = couette_poiseuille_bingham(0.0, q, TAU_Y, ETA, H)
-    ref = bingham_slit_flow(q, TAU_Y, ETA, L, 0.0143, H)      # +-dp_y with the sign bit of Q
-    assert r.pressure_gradient == pytest.approx(-ref.pressure_drop / L, rel=1e-14)   # same value, other rounding
+    ref = bingham_slit_flow(q, TAU_Y, ETA, L, 0.0143, H)  # +-dp_y with the sign bit of Q
+    assert r.pressure_gradient == pytest.approx(-ref.pressure_drop / L, rel=1e-14)  # same value, other rounding
     assert abs(r.pressure_gradient) == pytest.approx(2.0 * TAU_Y / H, rel=1e-15)
     assert r.regime == GapFlowRegime.BLOCKED and r.plug_fraction == 1.0
 
@@ -121,13 +127,13 @@ def test_blocked_gap_returns_break_away_gradient_like_bingham_slit(q):
 # (U [m/s], q [m^2/s]) -> expected regime, for tau_y = 2 kPa, eta = 0.1 Pa s, h = 1 mm.  U h/2 = 5e-4 m^2/s is
 # plain Couette flow at U = 1 m/s.
 REGIME_CASES = [
-    (1.0, -1e-3, GapFlowRegime.FLOATING_PLUG),           # damper-like back-flow: plug moves backwards
-    (1.0, 2e-3, GapFlowRegime.FLOATING_PLUG),            # strong forward flow: plug faster than the wall
-    (0.0, 1e-3, GapFlowRegime.FLOATING_PLUG),            # valve mode
-    (1.0, 2e-4, GapFlowRegime.PLUG_AT_FIXED_WALL),       # adverse gradient, forward net flow
-    (1.0, 8e-4, GapFlowRegime.PLUG_AT_MOVING_WALL),      # favourable gradient, plug carried by the wall
-    (1.0, 4.5e-4, GapFlowRegime.FULLY_YIELDED),          # near-Couette: stress never enters the yield band
-    (-1.0, -8e-4, GapFlowRegime.PLUG_AT_MOVING_WALL),    # mirror images
+    (1.0, -1e-3, GapFlowRegime.FLOATING_PLUG),  # damper-like back-flow: plug moves backwards
+    (1.0, 2e-3, GapFlowRegime.FLOATING_PLUG),  # strong forward flow: plug faster than the wall
+    (0.0, 1e-3, GapFlowRegime.FLOATING_PLUG),  # valve mode
+    (1.0, 2e-4, GapFlowRegime.PLUG_AT_FIXED_WALL),  # adverse gradient, forward net flow
+    (1.0, 8e-4, GapFlowRegime.PLUG_AT_MOVING_WALL),  # favourable gradient, plug carried by the wall
+    (1.0, 4.5e-4, GapFlowRegime.FULLY_YIELDED),  # near-Couette: stress never enters the yield band
+    (-1.0, -8e-4, GapFlowRegime.PLUG_AT_MOVING_WALL),  # mirror images
     (-1.0, -2e-4, GapFlowRegime.PLUG_AT_FIXED_WALL),
 ]
 
@@ -141,7 +147,7 @@ def test_each_regime_profile_satisfies_no_slip_flow_rate_and_bingham_law(U, q, r
     def u(y):
         return couette_poiseuille_bingham_velocity(y, U, q, TAU_Y, ETA, H)
 
-    scale = abs(U) + abs(q) / H + TAU_Y * H / ETA    # velocity scale of the problem, [m/s]
+    scale = abs(U) + abs(q) / H + TAU_Y * H / ETA  # velocity scale of the problem, [m/s]
     # No slip at both walls, to round-off of the O(1) dimensionless profile: 1e-13 of the velocity scale.
     assert u(0.0) == pytest.approx(U, abs=1e-13 * scale)
     assert u(H) == pytest.approx(0.0, abs=1e-13 * scale)
@@ -239,7 +245,7 @@ def test_mirror_symmetry_swaps_the_walls():
     assert np.max(np.abs(b.plug_y1 - (H - a.plug_y2))) < 1e-9 * H
     swap = {2: 3, 3: 2}
     np.testing.assert_array_equal(b.regime, [swap.get(k, k) for k in a.regime])
-    assert set(np.unique(a.regime)) == {0, 1, 2, 3}    # the random grid visits every flowing regime
+    assert set(np.unique(a.regime)) == {0, 1, 2, 3}  # the random grid visits every flowing regime
 
 
 def test_regime_map_boundaries_for_a_forward_moving_wall():
@@ -253,8 +259,22 @@ def test_regime_map_boundaries_for_a_forward_moving_wall():
         q_star = U * H * Y1 / 3
         Uh = U * H
         below, above = 1 - 1e-6, 1 + 1e-6
-        q = np.array([-Uh, 0.0, q_star * below, q_star * above, Uh / 3 * below, Uh / 3 * above, Uh / 2,
-                      2 * Uh / 3 * below, 2 * Uh / 3 * above, (Uh - q_star) * below, (Uh - q_star) * above, 2 * Uh])
+        q = np.array(
+            [
+                -Uh,
+                0.0,
+                q_star * below,
+                q_star * above,
+                Uh / 3 * below,
+                Uh / 3 * above,
+                Uh / 2,
+                2 * Uh / 3 * below,
+                2 * Uh / 3 * above,
+                (Uh - q_star) * below,
+                (Uh - q_star) * above,
+                2 * Uh,
+            ]
+        )
         expected = [1, 1, 1, 3, 3, 0, 0, 0, 2, 2, 1, 1]
         np.testing.assert_array_equal(couette_poiseuille_bingham(U, q, TAU_Y, ETA, H).regime, expected)
 
@@ -289,7 +309,7 @@ def test_bingham_number_sweep_against_brute_force():
             edges = np.clip((np.array([-TAU_Y, TAU_Y]) * np.sign(g) - t0) / g, 0.0, H)
             assert r.plug_y1[k] == pytest.approx(edges[0], abs=1e-9 * H)
             assert r.plug_y2[k] == pytest.approx(edges[1], abs=1e-9 * H)
-    assert seen == {0, 1, 2, 3}      # the sweep visits every flowing regime
+    assert seen == {0, 1, 2, 3}  # the sweep visits every flowing regime
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -308,7 +328,7 @@ def test_damper_plug_always_floats_and_force_is_odd_increasing():
         np.testing.assert_allclose(r.force[::-1], -r.force, rtol=1e-12)
         np.testing.assert_allclose(r.force, r.pressure_force + r.shear_force, rtol=1e-15)
         np.testing.assert_allclose(r.flow_rate, -v * np.pi / 4 * (DP**2 - dr**2), rtol=1e-15)
-        assert np.all(r.shear_force * v > 0)      # the wall drags against the fluid; shear opposes the motion
+        assert np.all(r.shear_force * v > 0)  # the wall drags against the fluid; shear opposes the motion
 
 
 def test_damper_force_tends_to_yield_force_as_velocity_vanishes():
@@ -322,12 +342,12 @@ def test_damper_force_tends_to_yield_force_as_velocity_vanishes():
     # asymptote).  Leading order; the next term is O(delta/h) = 6e-7..6e-6 here, hence 5e-5 relative.
     assert np.all(err > 0) and np.all(np.diff(err) > 0)
     Ap, b, As = np.pi / 4 * (DP**2 - DR**2), np.pi * (DP + H), np.pi * DP * L
-    for k in (0, 2):       # v = 1e-12 and 1e-10 m/s
+    for k in (0, 2):  # v = 1e-12 and 1e-10 m/s
         u_p = v[k] * Ap / (b * H)
         d1, d2 = np.sqrt(ETA * (v[k] + u_p) * H / TAU_Y), np.sqrt(ETA * u_p * H / TAU_Y)
         excess = 2 * TAU_Y / H * ((d1 + d2) * L * Ap / H + d1 * As)
         assert r.force[k] - Fy == pytest.approx(excess, rel=5e-5)
-    assert err[0] < 1.2e-6       # already at the yield force to 1.2 ppm at 1e-12 m/s
+    assert err[0] < 1.2e-6  # already at the yield force to 1.2 ppm at 1e-12 m/s
     # The brief's limit g h / tau_y -> 2: pressure drop -> 2 tau_y L / h (valve-mode blocking pressure).
     assert r.pressure_drop[0] * H / (TAU_Y * L) == pytest.approx(2.0, rel=1e-5)
     # v = +0 and -0 give the break-away forces +F_y and -F_y exactly.
@@ -354,7 +374,7 @@ def test_vector_call_equals_scalar_calls_and_broadcasts():
         for j in range(3):
             s = mixed_mode_damper_force(float(v[i, 0]), float(tau_y[j]), ETA, L, DP, DR, H)
             assert isinstance(s.force, float)
-            assert s.force == pytest.approx(r.force[i, j], rel=1e-13)   # the same arithmetic, element by element
+            assert s.force == pytest.approx(r.force[i, j], rel=1e-13)  # the same arithmetic, element by element
 
 
 def test_bad_inputs_are_errors_that_name_the_argument():

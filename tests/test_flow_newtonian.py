@@ -7,8 +7,13 @@ import pytest
 import sympy as sp
 from scipy.integrate import quad
 
-from erdesign.flow import annulus_conductance_ratio, annulus_flow_rate, slit_flow_rate, slit_pressure_drop, \
-    thin_gap_error
+from erdesign.flow import (
+    annulus_conductance_ratio,
+    annulus_flow_rate,
+    slit_flow_rate,
+    slit_pressure_drop,
+    thin_gap_error,
+)
 
 
 def _annulus_flow_by_quadrature(dp, eta, L, R1, R2):
@@ -35,8 +40,19 @@ def test_conductance_ratio_series_derived_with_sympy():
     e = sp.symbols("e", positive=True)
     exact = sp.Rational(3, 2) / e**3 * (sp.Rational(1, 2) * e * (1 + e**2) - e**2 / (sp.log(1 + e) - sp.log(1 - e)))
     series = sp.series(exact, e, 0, 10).removeO()
-    assert sp.simplify(series - (1 + e**2 / 15 + sp.Rational(11, 315) * e**4 + sp.Rational(107, 4725) * e**6
-                                 + sp.Rational(2549, 155925) * e**8)) == 0
+    assert (
+        sp.simplify(
+            series
+            - (
+                1
+                + e**2 / 15
+                + sp.Rational(11, 315) * e**4
+                + sp.Rational(107, 4725) * e**6
+                + sp.Rational(2549, 155925) * e**8
+            )
+        )
+        == 0
+    )
     # The kernel uses this series below h/d = 0.05 and the closed form above: on both sides it must match the
     # closed form evaluated in 50-digit arithmetic to 1e-13 (float cancellation costs 4e-14 at h/d = 0.05).
     for value in (1e-4, 0.01, 0.0499999, 0.0500001, 0.2, 0.9):
@@ -47,7 +63,7 @@ def test_conductance_ratio_series_derived_with_sympy():
 def test_thin_gap_error_grows_as_h_over_d_squared_over_15():
     # Leading term of the series above: (h/d)^2/15; for Makris's duct (h/d = 0.056) the slit is 0.021 % high.
     assert thin_gap_error(0.8 / 14.3) == pytest.approx((0.8 / 14.3) ** 2 / 15, rel=2e-3)
-    assert thin_gap_error(0.5) == pytest.approx(0.01928, rel=1e-3)   # from the closed form, checked by quadrature
+    assert thin_gap_error(0.5) == pytest.approx(0.01928, rel=1e-3)  # from the closed form, checked by quadrature
     errs = thin_gap_error(np.array([0.01, 0.1, 0.3, 0.6]))
     assert np.all(np.diff(errs) > 0)
 

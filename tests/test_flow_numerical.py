@@ -37,9 +37,9 @@ from erdesign.flow.numerical import gap_grid, solve_gap_flow
 
 ROOT = Path(__file__).resolve().parents[1]
 
-H, ETA, U_MEAN = 1e-3, 1.0, 0.1        # gap [m], plastic viscosity [Pa s], mean velocity [m/s]
-Q_SLIT = U_MEAN * H                    # flow per unit width [m^2/s]
-BINGHAM = np.concatenate([[0.0], np.logspace(-2, 3, 11)])   # Bi = tau_y h / (eta u_mean), 0 to 1e3
+H, ETA, U_MEAN = 1e-3, 1.0, 0.1  # gap [m], plastic viscosity [Pa s], mean velocity [m/s]
+Q_SLIT = U_MEAN * H  # flow per unit width [m^2/s]
+BINGHAM = np.concatenate([[0.0], np.logspace(-2, 3, 11)])  # Bi = tau_y h / (eta u_mean), 0 to 1e3
 TAU_Y = BINGHAM * ETA * U_MEAN / H
 
 
@@ -95,8 +95,10 @@ def test_grid_error_is_second_order():
     # The discretisation error of the Newtonian pressure gradient falls like 1/n^2 (mid-point rule of the shear rate,
     # trapezoid flow rate): halving the spacing divides it by 4 (measured 4.0002 and 4.0000).
     exact = -12 * ETA * Q_SLIT / H**3
-    errors = [solve_gap_flow(h=H, tau_y=0.0, eta=ETA, flow_rate=Q_SLIT, n=n).pressure_gradient / exact - 1
-              for n in (101, 201, 401)]
+    errors = [
+        solve_gap_flow(h=H, tau_y=0.0, eta=ETA, flow_rate=Q_SLIT, n=n).pressure_gradient / exact - 1
+        for n in (101, 201, 401)
+    ]
     assert errors[0] / errors[1] == pytest.approx(4.0, rel=0.02)
     assert errors[1] / errors[2] == pytest.approx(4.0, rel=0.02)
 
@@ -106,8 +108,11 @@ def test_regularisation_error_falls_like_one_over_m():
     # (measured 10.2) and M = 1e8 must leave it below 1e-5 (measured 8.6e-8 with n = 3201).
     tau_y = 1000 * ETA * U_MEAN / H
     exact = bingham_slit_flow(Q_SLIT, tau_y, ETA, 1.0, 1.0 / math.pi, H).pressure_drop
-    err = [-solve_gap_flow(h=H, tau_y=tau_y, eta=ETA, flow_rate=Q_SLIT, regularisation=M, n=3201).pressure_gradient
-           / exact - 1 for M in (1e5, 1e6, 1e8)]
+    err = [
+        -solve_gap_flow(h=H, tau_y=tau_y, eta=ETA, flow_rate=Q_SLIT, regularisation=M, n=3201).pressure_gradient / exact
+        - 1
+        for M in (1e5, 1e6, 1e8)
+    ]
     assert abs(err[0]) / abs(err[1]) == pytest.approx(10, rel=0.3)
     assert abs(err[2]) < 1e-5
 
@@ -197,9 +202,8 @@ def test_annulus_bingham_numerical_matches_exact_plug(annulus_sweep):
 
 def test_annulus_bingham_velocity_profile_matches_exact(annulus_sweep):
     num, exact, d = annulus_sweep
-    r = 0.5 * (d[:, None] - H) + num.y[3]      # Bi = 10, all h/d (nodes, shape (6, n))
-    u = annulus_bingham_velocity(r, exact.pressure_drop[3][:, None], 10 * ETA * U_MEAN / H, ETA, 1.0,
-                                 d[:, None], H)
+    r = 0.5 * (d[:, None] - H) + num.y[3]  # Bi = 10, all h/d (nodes, shape (6, n))
+    u = annulus_bingham_velocity(r, exact.pressure_drop[3][:, None], 10 * ETA * U_MEAN / H, ETA, 1.0, d[:, None], H)
     # Nodal velocities of the FE solution: second order, measured within 6.8e-6 of the peak velocity.
     np.testing.assert_allclose(num.velocity[3], u, rtol=0, atol=3e-5 * u.max())
 
@@ -210,11 +214,17 @@ def test_annulus_moving_inner_wall_newtonian():
     d, U, g = 4e-3, 0.05, -2e5
     R1, R2 = (d - H) / 2, (d + H) / 2
     C = (U - g * (R1**2 - R2**2) / (4 * ETA)) / math.log(R1 / R2)
-    Q = integrate.quad(lambda r: 2 * math.pi * r * (g * (r**2 - R2**2) / (4 * ETA) + C * math.log(r / R2)),
-                       R1, R2, epsabs=0, epsrel=1e-13)[0]
-    num = solve_gap_flow(h=H, tau_y=0.0, eta=ETA, pressure_gradient=g, wall_velocity=U, geometry="annulus",
-                         mean_diameter=d)
-    assert num.flow_rate == pytest.approx(Q, rel=1e-5)          # measured 7.1e-7 (grid)
+    Q = integrate.quad(
+        lambda r: 2 * math.pi * r * (g * (r**2 - R2**2) / (4 * ETA) + C * math.log(r / R2)),
+        R1,
+        R2,
+        epsabs=0,
+        epsrel=1e-13,
+    )[0]
+    num = solve_gap_flow(
+        h=H, tau_y=0.0, eta=ETA, pressure_gradient=g, wall_velocity=U, geometry="annulus", mean_diameter=d
+    )
+    assert num.flow_rate == pytest.approx(Q, rel=1e-5)  # measured 7.1e-7 (grid)
     # Wall stress eta du/dr at R1 (reaction of the boundary node): exact in the FE balance up to the grid error.
     assert num.wall_stress_moving == pytest.approx(ETA * (g * R1 / (2 * ETA) + C / R1), rel=1e-5)
 
@@ -264,7 +274,7 @@ def test_mixed_mode_closed_form_matches_numerical_solver():
     plug = ref.plug_fraction > 0
     np.testing.assert_allclose(num.plug_start[plug], ref.plug_y1[plug], rtol=0, atol=2e-4 * H)
     regimes = set(np.ravel(getattr(ref, "regime", [0, 1, 2, 3])).tolist())
-    assert {0, 1, 2, 3} <= regimes            # the sweep visits every plug position
+    assert {0, 1, 2, 3} <= regimes  # the sweep visits every plug position
 
 
 def test_bad_arguments_are_errors():
@@ -281,13 +291,13 @@ def test_bad_arguments_are_errors():
     with pytest.raises(ErdesignError, match="smaller than the mean diameter"):
         solve_gap_flow(h=H, tau_y=1.0, eta=1.0, flow_rate=1e-5, geometry="annulus", mean_diameter=H)
     with pytest.raises(TypeError):
-        solve_gap_flow(h=H, tau_y=1.0, eta=1.0, flow_rate=1e-5, gap=H)     # unknown keyword
+        solve_gap_flow(h=H, tau_y=1.0, eta=1.0, flow_rate=1e-5, gap=H)  # unknown keyword
     with pytest.raises(ErdesignError, match="grading"):
         gap_grid(11, 1.0)
 
 
 # ------------------------------------------------------------------------------------------------ exact annulus
-MAKRIS = {"L": 0.0546, "d": 0.0143, "h": 0.0008}   # Makris et al. (1996), section 3
+MAKRIS = {"L": 0.0546, "d": 0.0143, "h": 0.0008}  # Makris et al. (1996), section 3
 
 
 def test_exact_annulus_newtonian_limit_is_hagen_poiseuille():
@@ -295,8 +305,11 @@ def test_exact_annulus_newtonian_limit_is_hagen_poiseuille():
     d = 0.01 / e
     # tau_y = 0: the plug shrinks to the radius of maximum velocity and S(0, h/d) is the conductance ratio of
     # Bird, Stewart and Lightfoot eq 2.4-17 (computed differently, from logarithms of R2/R1).  Measured 2e-14.
-    np.testing.assert_allclose(annulus_bingham_pressure_drop(1e-5, 0.0, 7.0, 0.05, d, 0.01),
-                               annulus_pressure_drop(1e-5, 7.0, 0.05, d, 0.01), rtol=1e-12)
+    np.testing.assert_allclose(
+        annulus_bingham_pressure_drop(1e-5, 0.0, 7.0, 0.05, d, 0.01),
+        annulus_pressure_drop(1e-5, 7.0, 0.05, d, 0.01),
+        rtol=1e-12,
+    )
 
 
 def test_exact_annulus_thin_gap_limit_is_the_slit():
@@ -343,12 +356,14 @@ def test_exact_annulus_shape_equals_adaptive_quadrature_of_its_velocity():
     def integrand(r, dp, tau_y, d):
         return 2 * math.pi * r * annulus_bingham_velocity(r, dp, tau_y, eta, L, d, h)
 
-    pieces = integrate.tanhsinh(integrand, edges[:, :-1], edges[:, 1:], rtol=1e-14,
-                                args=(dp[:, None], tau_y[:, None], d[:, None]))
+    pieces = integrate.tanhsinh(
+        integrand, edges[:, :-1], edges[:, 1:], rtol=1e-14, args=(dp[:, None], tau_y[:, None], d[:, None])
+    )
     assert np.all(pieces.success)
     Q = pieces.integral.sum(axis=1)
-    np.testing.assert_allclose(annulus_bingham_shape(phi, h_over_d), Q / (math.pi * d * h**3 * dp / (12 * eta * L)),
-                               rtol=1e-12)
+    np.testing.assert_allclose(
+        annulus_bingham_shape(phi, h_over_d), Q / (math.pi * d * h**3 * dp / (12 * eta * L)), rtol=1e-12
+    )
 
 
 def test_exact_annulus_velocity_obeys_the_bingham_law():
@@ -362,8 +377,10 @@ def test_exact_annulus_velocity_obeys_the_bingham_law():
     assert r_b - r_a == pytest.approx(2 * tau_y / G, rel=1e-12)
     r = np.concatenate([np.linspace(0.5 + 0.01, r_a - 0.01, 5), np.linspace(r_b + 0.01, 1.5 - 0.01, 5)])
     step = 1e-7
-    dudr = (annulus_bingham_velocity(r + step, dp, tau_y, eta, L, d, h)
-            - annulus_bingham_velocity(r - step, dp, tau_y, eta, L, d, h)) / (2 * step)
+    dudr = (
+        annulus_bingham_velocity(r + step, dp, tau_y, eta, L, d, h)
+        - annulus_bingham_velocity(r - step, dp, tau_y, eta, L, d, h)
+    ) / (2 * step)
     tau = G / 2 * (r_a * r_b / r - r)
     np.testing.assert_allclose(dudr, (tau - np.sign(tau) * tau_y) / eta, rtol=1e-6)
     # Rigid plug and no slip.
@@ -403,7 +420,7 @@ def test_thin_gap_error_leading_term():
     bi = np.array([0.0, 0.1, 1.0, 10.0, 100.0, 1000.0])
     phi = bingham_slit_flow(math.pi, bi, 1.0, 1.0, 1.0, 1.0).plug_fraction
     c = table.leading_coefficient(phi)
-    assert c[0] == pytest.approx(1 / 15, rel=1e-15)   # the Newtonian (h/d)^2/15 of erdesign.flow.newtonian
+    assert c[0] == pytest.approx(1 / 15, rel=1e-15)  # the Newtonian (h/d)^2/15 of erdesign.flow.newtonian
     # Eq 3 of thin_gap.md (series derived with sympy) against the exact error: the relative remainder is O((h/d)^2),
     # so it must shrink about 100-fold from h/d = 0.01 to 0.001 (measured: 5.2e-5 -> 5.3e-7 at Bi = 0).
     rem = [thin_gap_error_bingham(e, bi) / (c * e**2) - 1 for e in (1e-2, 1e-3)]

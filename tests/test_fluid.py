@@ -9,8 +9,14 @@ from erdesign.errors import UnitError
 
 
 def makris_fluid(**kw):
-    args = dict(viscosity="7 Pa*s", yield_stress="1.8 kPa", reference_field="3 kV/mm", yield_exponent=2.0,
-                density="1290 kg/m^3", viscosity_at_reference_field="13 Pa*s")
+    args = dict(
+        viscosity="7 Pa*s",
+        yield_stress="1.8 kPa",
+        reference_field="3 kV/mm",
+        yield_exponent=2.0,
+        density="1290 kg/m^3",
+        viscosity_at_reference_field="13 Pa*s",
+    )
     args.update(kw)
     return Fluid.create(**args)
 
@@ -32,8 +38,13 @@ def test_exponent_range_of_seed_001(n):
 
 @pytest.mark.parametrize(
     "reference, kind, si",
-    [("3 kV/mm", "electric field", 3e6), ("200 kA/m", "magnetic field", 2e5), ("0.8 T", "magnetic flux density", 0.8),
-     ("1 A", "current", 1.0), ("5 V", "voltage", 5.0)],
+    [
+        ("3 kV/mm", "electric field", 3e6),
+        ("200 kA/m", "magnetic field", 2e5),
+        ("0.8 T", "magnetic flux density", 0.8),
+        ("1 A", "current", 1.0),
+        ("5 V", "voltage", 5.0),
+    ],
 )
 def test_kinds_of_control(reference, kind, si):
     f = makris_fluid(reference_field=reference)
@@ -51,11 +62,13 @@ def test_control_of_the_wrong_kind_is_refused_by_name():
 
 @pytest.mark.parametrize(
     "key, value, message",
-    [("viscosity", "-7 Pa*s", "fluid.viscosity: must be positive"),
-     ("yield_stress", "-1 kPa", "fluid.yield_stress: must not be negative"),
-     ("yield_exponent", 0.0, "fluid.yield_exponent: must lie in"),
-     ("density", "0 kg/m^3", "fluid.density: must be positive"),
-     ("reference_field", "0 kV/mm", "fluid.reference_field: must be positive")],
+    [
+        ("viscosity", "-7 Pa*s", "fluid.viscosity: must be positive"),
+        ("yield_stress", "-1 kPa", "fluid.yield_stress: must not be negative"),
+        ("yield_exponent", 0.0, "fluid.yield_exponent: must lie in"),
+        ("density", "0 kg/m^3", "fluid.density: must be positive"),
+        ("reference_field", "0 kV/mm", "fluid.reference_field: must be positive"),
+    ],
 )
 def test_bad_values_name_the_key(key, value, message):
     with pytest.raises(UnitError, match=message):

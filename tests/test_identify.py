@@ -21,8 +21,9 @@ def record(amplitude=0.01, f_hz=1.0, current=None, noise_n=5.0, seed=0, n=401):
     x = amplitude * np.sin(2 * np.pi * f_hz * t)
     kw = {} if current is None else {"control": current, "control_kind": "current"}
     rec = Measurement.from_arrays(t, x, **kw, name=f"{amplitude * 1e3:g} mm {f_hz:g} Hz {current} A")
-    clean = get_model("bingham").simulate(rec, TRUE if current is not None else
-                                          {k: TRUE[k] for k in ("c0", "f_c", "f0")})
+    clean = get_model("bingham").simulate(
+        rec, TRUE if current is not None else {k: TRUE[k] for k in ("c0", "f_c", "f0")}
+    )
     return rec.with_force(clean + noise_n * np.random.default_rng(seed).standard_normal(n))
 
 
@@ -61,8 +62,7 @@ def test_identify_joint_without_control_holds_the_slopes():
 def test_cross_validation_table():
     """Vivas-López et al. Table 4: identify on each experiment, score on every other; a right model generalises, so every
     entry is near the noise floor of its validation record, and the diagonal is the identification ESR."""
-    recs = [record(amplitude=a, f_hz=f, seed=k) for k, (a, f) in enumerate(((0.005, 1.0), (0.01, 1.0),
-                                                                              (0.01, 2.0)))]
+    recs = [record(amplitude=a, f_hz=f, seed=k) for k, (a, f) in enumerate(((0.005, 1.0), (0.01, 1.0), (0.01, 2.0)))]
     cv = cross_validation(lambda: get_model("bingham"), recs, starts=1)
     assert cv.table.shape == (3, 3)
     floors = np.array([25.0 / np.var(r.force) for r in recs])

@@ -15,8 +15,11 @@ from erdesign.models.registry import get_model
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data"
 QUIROZ = DATA / "quiroz2022_utfsm_mr"
-needs_quiroz = pytest.mark.skipif(not QUIROZ.is_dir(), reason="the Quiroz (2022) data ../shared/data/quiroz2022_utfsm_mr "
-                                                             "is not here (third-party data, not in the repository)")
+needs_quiroz = pytest.mark.skipif(
+    not QUIROZ.is_dir(),
+    reason="the Quiroz (2022) data ../shared/data/quiroz2022_utfsm_mr "
+    "is not here (third-party data, not in the repository)",
+)
 TRUE = {"c0": 4000.0, "f_c": 500.0, "f_c_u": 150.0, "c0_u": 800.0, "f0": 0.0}
 
 
@@ -32,8 +35,9 @@ def two_currents(tmp_path):
     paths = []
     for k, current in enumerate((0.5, 2.0)):
         t = np.linspace(0, 2, 1001)
-        rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=np.full(t.size, current),
-                                      control_kind="current")
+        rec = Measurement.from_arrays(
+            t, 0.01 * np.sin(2 * np.pi * t), control=np.full(t.size, current), control_kind="current"
+        )
         F = get_model("bingham").simulate(rec, TRUE) + np.random.default_rng(k).standard_normal(t.size)
         path = tmp_path / f"r{k}.csv"
         write_measurement(path, rec.with_force(F), units={"displacement": "mm"})
@@ -66,8 +70,9 @@ def test_several_records_without_joint_is_a_usage_error(capsys, two_currents):
 
 
 def test_fix_holds_a_parameter_given_with_its_unit(capsys, two_currents):
-    code, out, err = run(capsys, *two_currents, "--model", "bingham", "--joint", "--fix", "c0=3.5 N*s/mm",
-                         "--json", "--quiet")
+    code, out, err = run(
+        capsys, *two_currents, "--model", "bingham", "--joint", "--fix", "c0=3.5 N*s/mm", "--json", "--quiet"
+    )
     assert code == 0, err
     d = json.loads(out)
     assert d["parameters_si"]["c0"] == {"value": 3500.0, "unit": "N*s/m", "status": "fixed", "initial": None}
@@ -87,7 +92,7 @@ def _quiroz_like(path, current=0.5, freq=1.0):
 
 
 def test_quiroz_preprocessed_file_is_recognised_by_its_name_and_headerless_rows(tmp_path):
-    rec, = read_records(_quiroz_like(tmp_path / "10mm1Hz0x75A.txt", current=0.75))
+    (rec,) = read_records(_quiroz_like(tmp_path / "10mm1Hz0x75A.txt", current=0.75))
     assert rec.control_kind == "current" and float(rec.control[0]) == 0.75
     assert rec.name == "10mm1Hz 0.75 A"
     assert len(rec) == 501  # the last 2.5 periods at 200 samples per period
@@ -117,8 +122,17 @@ def test_quiroz_joint_bingham_from_the_command_line_reproduces_the_study(capsys)
     study = json.loads(study_file.read_text())["models"]
     files = sorted((QUIROZ / "preprocessed").glob("*.txt"))
     assert len(files) == 30
-    code, out, err = run(capsys, *files, "--model", "bingham", "--joint", "--validate",
-                         QUIROZ / "validation" / "validacion.mat", "--json", "--quiet")
+    code, out, err = run(
+        capsys,
+        *files,
+        "--model",
+        "bingham",
+        "--joint",
+        "--validate",
+        QUIROZ / "validation" / "validacion.mat",
+        "--json",
+        "--quiet",
+    )
     assert code == 0, err
     d = json.loads(out)
     training = {r["record"]: r["esr"] for r in d["records"]}
@@ -138,8 +152,11 @@ def test_quiroz_validation_mat_is_five_records():
 
 
 DYKE = DATA / "dyke_nees" / "ransim_u.csv"
-needs_dyke = pytest.mark.skipif(not DYKE.is_file(), reason="Dyke's NEES record ../shared/data/dyke_nees/ransim_u.csv "
-                                                          "is not here (third-party data, not in the repository)")
+needs_dyke = pytest.mark.skipif(
+    not DYKE.is_file(),
+    reason="Dyke's NEES record ../shared/data/dyke_nees/ransim_u.csv "
+    "is not here (third-party data, not in the repository)",
+)
 
 
 @needs_dyke
@@ -174,7 +191,7 @@ def test_frozen_substeps_make_the_force_smooth_in_the_parameters():
     v = {**model.defaults(), "alpha_a": 1e6, "alpha_b": 3e6, "c0b": 300.0, "c1b": 3e4}
 
     def mismatch(frozen):
-        with frozen_substeps() if frozen else contextlib.nullcontext():   # held counts, or adaptive ones
+        with frozen_substeps() if frozen else contextlib.nullcontext():  # held counts, or adaptive ones
             F0 = model.force(rec, v)
             Fp = model.force(rec, {**v, "alpha_a": 1e6 * (1 + 1e-4)})
             Fm = model.force(rec, {**v, "alpha_a": 1e6 * (1 - 1e-4)})
@@ -193,8 +210,19 @@ def test_quiroz_joint_modified_bouc_wen_from_the_command_line_reproduces_the_stu
     study_file = Path(__file__).resolve().parents[1] / "docs" / "case_studies" / "quiroz.json"
     study = json.loads(study_file.read_text())["models"]
     files = sorted((QUIROZ / "preprocessed").glob("*.txt"))
-    code, out, err = run(capsys, *files, "--model", "bouc_wen_modified", "--joint", "--fix", "eta=190 1/s, delta=1",
-                         "--validate", QUIROZ / "validation" / "validacion.mat", "--json", "--quiet")
+    code, out, err = run(
+        capsys,
+        *files,
+        "--model",
+        "bouc_wen_modified",
+        "--joint",
+        "--fix",
+        "eta=190 1/s, delta=1",
+        "--validate",
+        QUIROZ / "validation" / "validacion.mat",
+        "--json",
+        "--quiet",
+    )
     assert code == 0, err
     d = json.loads(out)
     assert d["parameters_si"]["eta"]["status"] == "fixed" and d["parameters_si"]["delta"]["value"] == 1.0

@@ -100,8 +100,10 @@ def test_fixed_linear_parameter_is_not_projected():
 FOLDER = quiroz_folder()
 
 
-@pytest.mark.skipif(FOLDER is None, reason="../shared/data/quiroz2022_utfsm_mr is absent (the measured MR-damper "
-                                           "data are not part of the repository)")
+@pytest.mark.skipif(
+    FOLDER is None,
+    reason="../shared/data/quiroz2022_utfsm_mr is absent (the measured MR-damper data are not part of the repository)",
+)
 @pytest.mark.parametrize("name", ["bingham", "kwok_tanh", "dahl", "bouc_wen_modified"])
 def test_projection_on_measured_data(name, tight):
     """Quiroz (2022), 10 mm 1 Hz at 0.5 A (500 samples): the projected and plain fits agree."""
@@ -113,6 +115,12 @@ def test_projection_on_measured_data(name, tight):
         # (two local searches of a hysteretic model: with numpy 2.4.6 / scipy 1.17.1 the projected one stops 4e-4
         # above the plain one, where the 1e-6 this asserted before was met on the machine of the previous session)
         assert projected.rss <= plain.rss * (1 + 1e-3)
-        plain = identify(get_model(name), rec, starts=1, projection=False, fixed=fixed,
-                         start={k: projected.values[k] for k in projected.free})
+        plain = identify(
+            get_model(name),
+            rec,
+            starts=1,
+            projection=False,
+            fixed=fixed,
+            start={k: projected.values[k] for k in projected.free},
+        )
     _same_optimum(projected, plain)

@@ -24,8 +24,7 @@ def test_forward_of_inverse_returns_reachable_forces(name):
     vals = model.check_values(CASES[name])
     # a force the damper can produce: the model's own force at a varying current inside [0, 1] A
     i_true = 0.5 + 0.4 * np.sin(2 * np.pi * 3 * T)
-    F_target = model.force(Measurement.from_arrays(T, REC.displacement, control=i_true, control_kind="current"),
-                           vals)
+    F_target = model.force(Measurement.from_arrays(T, REC.displacement, control=i_true, control_kind="current"), vals)
     r = inverse_control(model, REC, F_target, vals, control_range=(0.0, 1.0))
     ok = ~r.unreachable
     assert ok.mean() > 0.9, name  # almost all reachable (those at v = 0 have no authority)

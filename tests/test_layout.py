@@ -26,8 +26,11 @@ def _is_deprecated(module: str) -> bool:
 
 
 def _deprecation_warnings(seen) -> list[str]:
-    return [str(w.message) for w in seen if issubclass(w.category, DeprecationWarning)
-            and " is deprecated; import from erdesign." in str(w.message)]
+    return [
+        str(w.message)
+        for w in seen
+        if issubclass(w.category, DeprecationWarning) and " is deprecated; import from erdesign." in str(w.message)
+    ]
 
 
 @pytest.fixture
@@ -55,7 +58,7 @@ def restored(request):
 @pytest.mark.parametrize("old", sorted(MOVED))
 @pytest.mark.usefixtures("restored")
 def test_old_path_warns_once_and_gives_the_same_objects(old):
-    assert not (ROOT / (old.replace(".", "/") + ".py")).exists()   # no file: the move stays a rename for git
+    assert not (ROOT / (old.replace(".", "/") + ".py")).exists()  # no file: the move stays a rename for git
     new = [importlib.import_module(name) for name in MOVED[old]]
     for name in (old, *(f"{old}.{sub}" for sub in MOVED_SUBMODULES.get(old, ()))):
         sys.modules.pop(name, None)
@@ -104,7 +107,8 @@ print(json.dumps({
         ["erdesign.truthrig is deprecated; import from erdesign.simulation.truthrig", "<string>", 6],
         ["erdesign.field_laws is deprecated; import from erdesign.fluid.field_laws", "<string>", 7],
         ["erdesign.fit is deprecated; import from erdesign.identification.fit", "<string>", 8],
-        ["erdesign.rig is deprecated; import from erdesign.simulation.rig", "<string>", 9]]
+        ["erdesign.rig is deprecated; import from erdesign.simulation.rig", "<string>", 9],
+    ]
     assert all(result.values()), result
 
 
@@ -125,15 +129,27 @@ print(json.dumps({"modules": modules, "fit": f"{fit.__module__}.{fit.__name__}",
 """
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
     result = json.loads(out.stdout.strip().splitlines()[-1])
-    assert result == {"modules": {"diagnose": "erdesign.diagnosis.diagnose",
-                                  "identify": "erdesign.identification.identify", "plots": "erdesign.report.plots",
-                                  "field_laws": "erdesign.fluid.field_laws"},
-                      "fit": "erdesign.identification.fit.fit", "warnings": []}
+    assert result == {
+        "modules": {
+            "diagnose": "erdesign.diagnosis.diagnose",
+            "identify": "erdesign.identification.identify",
+            "plots": "erdesign.report.plots",
+            "field_laws": "erdesign.fluid.field_laws",
+        },
+        "fit": "erdesign.identification.fit.fit",
+        "warnings": [],
+    }
 
 
 def _sources() -> list[Path]:
-    files = [*(ROOT / "erdesign").rglob("*.py"), *(ROOT / "tests").rglob("*.py"), *(ROOT / "benchmarks").rglob("*.py"),
-             *(ROOT / "docs").rglob("*.py"), ROOT / "app.py", ROOT / "conftest.py"]
+    files = [
+        *(ROOT / "erdesign").rglob("*.py"),
+        *(ROOT / "tests").rglob("*.py"),
+        *(ROOT / "benchmarks").rglob("*.py"),
+        *(ROOT / "docs").rglob("*.py"),
+        ROOT / "app.py",
+        ROOT / "conftest.py",
+    ]
     return sorted(p for p in files if "__pycache__" not in p.parts)
 
 
@@ -147,7 +163,7 @@ def _imported(node: ast.ImportFrom | ast.Import, path: Path) -> list[str]:
         package = parts[:-1] if parts[-1] != "__init__" else parts[:-1]
         package = package[: len(package) - (node.level - 1)]
         base = ".".join(package + ([node.module] if node.module else []))
-    lazy = set(erdesign._LAZY) | set(erdesign._SUBMODULES)    # attributes of the curated namespace: not the shims
+    lazy = set(erdesign._LAZY) | set(erdesign._SUBMODULES)  # attributes of the curated namespace: not the shims
     return [base] + [f"{base}.{alias.name}" for alias in node.names if not (base == "erdesign" and alias.name in lazy)]
 
 
@@ -157,8 +173,11 @@ def test_nothing_imports_a_deprecated_path():
         text = path.read_text()
         for node in ast.walk(ast.parse(text)):
             if isinstance(node, (ast.Import, ast.ImportFrom)):
-                found += [f"{path.relative_to(ROOT)}:{node.lineno}: {name}" for name in _imported(node, path)
-                          if _is_deprecated(name)]
+                found += [
+                    f"{path.relative_to(ROOT)}:{node.lineno}: {name}"
+                    for name in _imported(node, path)
+                    if _is_deprecated(name)
+                ]
     # doctests and the code blocks of the docs: import lines in text
     line = re.compile(r"^\s*(?:>>>|\.\.\.)?\s*(?:from|import)\s+(erdesign(?:\.\w+)+)", re.M)
     for path in [*_sources(), *(ROOT / "docs").rglob("*.md"), ROOT / "README.md"]:
@@ -184,11 +203,11 @@ def test_the_three_sweeps_have_names_that_say_what_they_are():
     req = design.load_example_requirements("makris_requirements")
     damper = load_example("makris")
     v, E = np.linspace(0.0, 0.05, 6), np.array([0.0, 3e6])
-    cases = [(search.sweep, search.sample_designs, (req,), {"samples": 256, "seed": 1}, "erdesign.design.search.sweep"),
-             (report.velocity_sweep, curves.force_velocity_curves, (damper, v, E), {},
-              "erdesign.report.velocity_sweep"),
-             (rig.sweep, rig.stepped_sine, ([0.004, 0.008], [1.0, 2.0], [0.0, 3e6]), {"rate": 200},
-              "erdesign.rig.sweep")]
+    cases = [
+        (search.sweep, search.sample_designs, (req,), {"samples": 256, "seed": 1}, "erdesign.design.search.sweep"),
+        (report.velocity_sweep, curves.force_velocity_curves, (damper, v, E), {}, "erdesign.report.velocity_sweep"),
+        (rig.sweep, rig.stepped_sine, ([0.004, 0.008], [1.0, 2.0], [0.0, 3e6]), {"rate": 200}, "erdesign.rig.sweep"),
+    ]
     for old, new, args, kwargs, name in cases:
         with pytest.warns(DeprecationWarning, match=f"^{name} is deprecated; use {new.__module__}.{new.__name__}$"):
             got = old(*args, **kwargs)

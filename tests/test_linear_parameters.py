@@ -44,8 +44,15 @@ def test_force_is_affine_in_the_declared_parameters(name):
     values = model.defaults()
     for p in model.parameters:  # move the nonlinear ones off their defaults, within their bounds
         if p.name not in linear and p.fitted and np.isfinite(p.lower) and np.isfinite(p.upper):
-            values[p.name] = float(np.clip(p.default * (1.0 + 0.2 * rng.uniform(-1, 1)) if p.default else
-                                           0.1 * rng.uniform(0, 1) * min(p.upper, 1.0), p.lower, p.upper))
+            values[p.name] = float(
+                np.clip(
+                    p.default * (1.0 + 0.2 * rng.uniform(-1, 1))
+                    if p.default
+                    else 0.1 * rng.uniform(0, 1) * min(p.upper, 1.0),
+                    p.lower,
+                    p.upper,
+                )
+            )
     values = model.check_values(values)
 
     def force(theta):

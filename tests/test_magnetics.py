@@ -11,13 +11,30 @@ import sympy as sp
 
 from erdesign import materials
 from erdesign.cli import main
-from erdesign.magnetics import (MU0, BHCurve, MagneticCircuit, PistonHead, carlson_curve, carlson_flux_density,
-                                coil_resistance, load_magnetic_circuit)
+from erdesign.magnetics import (
+    MU0,
+    BHCurve,
+    MagneticCircuit,
+    PistonHead,
+    carlson_curve,
+    carlson_flux_density,
+    coil_resistance,
+    load_magnetic_circuit,
+)
 from erdesign.magnetics.circuit import _curve_knee
 
 MR_COIL = str(resources.files("erdesign.examples") / "mr_coil.toml")
-CONTRACT_KEYS = {"gap_flux_density_T", "gap_field_A_per_m", "yield_stress_Pa", "coil_resistance_ohm", "inductance_H",
-                 "time_constant_s", "power_W", "saturated", "limiting_part"}
+CONTRACT_KEYS = {
+    "gap_flux_density_T",
+    "gap_field_A_per_m",
+    "yield_stress_Pa",
+    "coil_resistance_ohm",
+    "inductance_H",
+    "time_constant_s",
+    "power_W",
+    "saturated",
+    "limiting_part",
+}
 
 
 def linear_curve(mu_r: float, name: str) -> BHCurve:
@@ -34,7 +51,7 @@ def circuit():
 def test_carlson_bh_limits():
     # Carlson's law: initial mu_r = 1 + 10.97 * 1.91 phi^1.133, polarisation saturates at 1.91 phi^1.133 (T)
     phi = 0.32
-    J_sat = 1.91 * phi ** 1.133
+    J_sat = 1.91 * phi**1.133
     H = 1e7
     assert carlson_flux_density(H, phi) - MU0 * H == pytest.approx(J_sat, rel=1e-12)
     assert carlson_curve(phi).initial_relative_permeability() == pytest.approx(1 + 10.97 * J_sat, rel=2e-3)
@@ -73,7 +90,7 @@ def test_coil_resistance_against_the_awg_table():
 
 def test_example_coil_figures(circuit):
     # mean turn length pi (12 + 20) mm, 300 turns, 0.5 mm wire: R = rho N l / A by hand, P = I^2 R
-    R = 300 * math.pi * 0.032 / (58e6 * math.pi * 0.25e-3 ** 2)
+    R = 300 * math.pi * 0.032 / (58e6 * math.pi * 0.25e-3**2)
     r = circuit.at("2 A")
     assert r.coil_resistance.to("ohm").magnitude == pytest.approx(R, rel=1e-12)
     assert r.power.to("W").magnitude == pytest.approx(4 * R, rel=1e-12)
@@ -88,23 +105,28 @@ def _closed_form_current(head: PistonHead, mu_s: float, mu_f: float, B_g: float)
     """Coil current and flux linkage of the network with linear materials, every element in closed form."""
     r_, s_ = sp.symbols("r s", positive=True)
     h, Lp, Lc, N = head.gap, head.pole_length, head.coil_length, head.turns
-    rc, Rp, Ri, Ro, rm = (head.core_radius, head.pole_radius, head.housing_inner_radius, head.housing_outer_radius,
-                          head.mean_gap_radius)
+    rc, Rp, Ri, Ro, rm = (
+        head.core_radius,
+        head.pole_radius,
+        head.housing_inner_radius,
+        head.housing_outer_radius,
+        head.mean_gap_radius,
+    )
     Phi_g = 2 * math.pi * rm * Lp * B_g
     F_gap = Phi_g * math.log(Ri / Rp) / (2 * math.pi * mu_f * Lp)
     Phi_fo = 2 * math.pi * rm * mu_f * F_gap * 2 / math.pi * math.log(1 + math.pi * Rp / (2 * h))
     x_c = min(Lc / 2, Rp - rc)
     Phi_fc = 2 * math.pi * rm * F_gap * 2 * MU0 / math.pi * math.log(1 + math.pi * x_c * mu_f / (2 * MU0 * h))
     Phi_e = Phi_g + Phi_fo + Phi_fc
-    F_hp = Phi_e / (2 * math.pi * Lp * mu_s * (Ro ** 2 - Ri ** 2)) * (Ro ** 2 * math.log(Ro / Ri) - (Ro ** 2 - Ri ** 2) / 2)
-    F_wall = Phi_e / (mu_s * math.pi * (Ro ** 2 - Ri ** 2)) * (Lc + Lp)
+    F_hp = Phi_e / (2 * math.pi * Lp * mu_s * (Ro**2 - Ri**2)) * (Ro**2 * math.log(Ro / Ri) - (Ro**2 - Ri**2) / 2)
+    F_wall = Phi_e / (mu_s * math.pi * (Ro**2 - Ri**2)) * (Lc + Lp)
     F_e = 2 * (F_gap + F_hp) + F_wall
     f = (r_ - rc) / (Rp - rc)
     W1 = float(sp.integrate(2 * sp.pi * r_ * f, (r_, rc, Rp)))
-    W2 = float(sp.integrate(2 * sp.pi * r_ * f ** 2, (r_, rc, Rp)))
-    Phi_ax = mu_f * F_e / Lc * math.pi * (Ri ** 2 - Rp ** 2)
+    W2 = float(sp.integrate(2 * sp.pi * r_ * f**2, (r_, rc, Rp)))
+    Phi_ax = mu_f * F_e / Lc * math.pi * (Ri**2 - Rp**2)
     Phi_c = Phi_e + Phi_ax + MU0 * F_e / Lc * W1
-    F_core = Phi_c / (mu_s * math.pi * rc ** 2) * (Lc + Lp)
+    F_core = Phi_c / (mu_s * math.pi * rc**2) * (Lc + Lp)
     F_pole = Phi_c / (4 * math.pi * Lp * mu_s) + Phi_c * math.log(Rp / rc) / (2 * math.pi * Lp * mu_s)
     NI = F_core + 2 * F_pole + F_e
     lam = N * (Phi_e + Phi_ax + MU0 * F_e / Lc * W2)
@@ -126,10 +148,22 @@ def test_linear_limit_matches_the_closed_form(circuit):
 def test_ideal_steel_limit_is_amperes_law_across_the_two_gaps():
     # Steel of mu_r 1e9 takes no MMF, so N I = 2 int_{R_p}^{R_i} H dr with B = Phi / (2 pi r L_p) (whatever the
     # leakage, which only loads the steel): B(r_m) = mu_f N I / (2 r_m ln(R_i / R_p)) -> mu_f N I / (2 h) when thin.
-    head = PistonHead(core_radius=10e-3, pole_radius=20e-3, gap=0.5e-3, housing_outer_radius=30e-3, pole_length=10e-3,
-                      coil_length=10e-3, turns=100, wire_diameter=0.5e-3)
-    lin = MagneticCircuit(head, linear_curve(1e9, "steel"), linear_curve(5, "fluid"),
-                          materials.material_fluid("lord-mrf-132dg").yield_curve)
+    head = PistonHead(
+        core_radius=10e-3,
+        pole_radius=20e-3,
+        gap=0.5e-3,
+        housing_outer_radius=30e-3,
+        pole_length=10e-3,
+        coil_length=10e-3,
+        turns=100,
+        wire_diameter=0.5e-3,
+    )
+    lin = MagneticCircuit(
+        head,
+        linear_curve(1e9, "steel"),
+        linear_curve(5, "fluid"),
+        materials.material_fluid("lord-mrf-132dg").yield_curve,
+    )
     expected = 5 * MU0 * 100 * 0.2 / (2 * head.mean_gap_radius * math.log(head.housing_inner_radius / 20e-3))
     assert float(lin.state(0.2).gap_flux_density[0]) == pytest.approx(expected, rel=1e-5)
     assert expected == pytest.approx(5 * MU0 * 100 * 0.2 / (2 * 0.5e-3), rel=1e-4)
@@ -150,7 +184,7 @@ def test_vectorised_equals_one_at_a_time(circuit):
     batch = circuit.state(I).gap_flux_density
     single = [float(circuit.state(i).gap_flux_density[0]) for i in I]
     assert batch == pytest.approx(single, rel=1e-9, abs=1e-12)
-    assert circuit.state(-1.1).gap_flux_density[0] == pytest.approx(-batch[2])   # odd in the current
+    assert circuit.state(-1.1).gap_flux_density[0] == pytest.approx(-batch[2])  # odd in the current
 
 
 # ------------------------------------------------------------------------------------------------ FE check
@@ -161,6 +195,7 @@ FE_CURRENTS = np.array([0.05, 0.15, 0.3, 0.45, 0.6, 0.8, 1.0, 1.3, 1.7, 2.2, 3.0
 def fem(circuit):
     pytest.importorskip("skfem")
     from erdesign.magnetics.fem import solve_fem
+
     return solve_fem(circuit.head, circuit.steel, circuit.fluid, FE_CURRENTS, refine=1.0)
 
 
@@ -192,8 +227,17 @@ def test_fem_linear_limit_against_the_thin_gap_law():
     # gap flux density B = mu0 N I / (2 h) up to fringing/leakage of a few per cent.
     pytest.importorskip("skfem")
     from erdesign.magnetics.fem import solve_fem
-    head = PistonHead(core_radius=12e-3, pole_radius=20e-3, gap=0.5e-3, housing_outer_radius=28e-3,
-                      pole_length=10e-3, coil_length=16e-3, turns=200, wire_diameter=0.5e-3)
+
+    head = PistonHead(
+        core_radius=12e-3,
+        pole_radius=20e-3,
+        gap=0.5e-3,
+        housing_outer_radius=28e-3,
+        pole_length=10e-3,
+        coil_length=16e-3,
+        turns=200,
+        wire_diameter=0.5e-3,
+    )
     res = solve_fem(head, linear_curve(1e5, "steel"), linear_curve(1.0, "fluid"), [1.0])
     assert res.gap_flux_density[0] == pytest.approx(MU0 * 200 * 1.0 / (2 * 0.5e-3), rel=0.05)
 
@@ -226,10 +270,13 @@ def test_cli_several_currents(capsys):
     assert code == 0 and "B_gap [T]" in out and "saturates first: core" in out
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--current", "2 kg"], "--current: '2 kg' is not a current"),
-    (["--current", "abc"], "--current: cannot read"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--current", "2 kg"], "--current: '2 kg' is not a current"),
+        (["--current", "abc"], "--current: cannot read"),
+    ],
+)
 def test_cli_errors_are_one_line(capsys, args, message):
     code, out, err = run(capsys, "magnetics", MR_COIL, *args, "--json")
     assert code == 1 and out == "" and message in err and err.count("\n") == 1

@@ -30,8 +30,13 @@ from erdesign.fluid.field_laws import (
 )
 from erdesign.units import Q_, to_si
 
-MIXED = {"configuration": "mixed", "duct_length": "25 mm", "gap": "1 mm", "piston_diameter": "40 mm",
-         "rod_diameter": "12 mm"}
+MIXED = {
+    "configuration": "mixed",
+    "duct_length": "25 mm",
+    "gap": "1 mm",
+    "piston_diameter": "40 mm",
+    "rod_diameter": "12 mm",
+}
 
 
 def damper_with(fluid):
@@ -47,7 +52,7 @@ def test_every_material_loads_and_gives_a_working_damper(name):
     lo, hi = d.fluid.field_range
     E = np.linspace(lo, hi, 5)
     with warnings.catch_warnings():
-        warnings.simplefilter("error")            # inside its own range a material never warns
+        warnings.simplefilter("error")  # inside its own range a material never warns
         F = d.force_si(np.array([[0.0], [0.01], [0.3]]), d.fluid.field_si(Q_(E, d.fluid.control_unit)))
     assert np.all(np.isfinite(F)) and np.all(F >= 0) and np.all(F[1:] > 0)
     # The force grows with the control at a fixed velocity (a yield stress that falls with field is a data error).
@@ -60,8 +65,9 @@ def test_every_source_names_a_reference_with_a_date(name):
     keys = {r["key"] for r in record["references"]}
     assert all(r["date"] for r in record["references"])
     for key, text in record["sources"].items():
-        assert any(k in text for k in keys) or text.startswith(("chosen", "erdesign", "assumed", "not published")), \
+        assert any(k in text for k in keys) or text.startswith(("chosen", "erdesign", "assumed", "not published")), (
             f"{name}: sources.{key} cites no reference"
+        )
 
 
 @pytest.mark.parametrize("name", [n for n in materials.names() if "spread" in materials.load(n)])
@@ -104,7 +110,8 @@ def test_power_law_summary_agrees_with_the_yield_curve_it_summarises(name):
     lo, hi = (to_si(x, control, "fit_range") for x in record["yield_curve"]["fit_range"])
     # [fluid] yield_stress is printed to 4 significant figures: within 5e-4 of the curve at the reference field.
     assert to_si(record["fluid"]["yield_stress"], "Pa", "tau") == pytest.approx(
-        spec.yield_curve.yield_stress(E_ref), rel=5e-4)
+        spec.yield_curve.yield_stress(E_ref), rel=5e-4
+    )
     # The exponent is the fit over the stated range, printed to 2 decimals.
     fit = spec.yield_curve.fit(hi, lo, reference_field=E_ref)
     assert record["fluid"]["yield_exponent"] == pytest.approx(fit.yield_exponent, abs=0.005)
@@ -139,7 +146,7 @@ def test_a_material_with_a_curve_gives_the_fluid_that_curve():
 
 def test_damper_file_keys_override_the_material_and_a_power_law_key_replaces_the_curve():
     f = damper_with({"material": "lord-mrf-132dg", "viscosity": "0.2 Pa*s"}).fluid
-    assert f.viscosity == 0.2 and isinstance(f.field_law, SaturatingLaw)      # the curve stays
+    assert f.viscosity == 0.2 and isinstance(f.field_law, SaturatingLaw)  # the curve stays
     g = damper_with({"material": "lord-mrf-132dg", "yield_exponent": 1.0}).fluid
     assert g.field_law is None and isinstance(g.yield_law, PowerLaw)
     # The power law of the merged values: 43.98 kPa at 250 kA/m from the material, n = 1 from the file.
@@ -157,13 +164,16 @@ def test_range_is_dropped_when_the_file_changes_the_kind_of_control():
 
 def test_a_field_outside_the_range_warns_and_one_inside_does_not():
     d = damper_with({"material": "makris-zeolite-silicone"})
-    with pytest.warns(ValidityWarning, match=r"field: 4 kV/mm is outside the range 0 to 3 kV/mm on which material "
-                                             r"'makris-zeolite-silicone' is characterised"):
+    with pytest.warns(
+        ValidityWarning,
+        match=r"field: 4 kV/mm is outside the range 0 to 3 kV/mm on which material "
+        r"'makris-zeolite-silicone' is characterised",
+    ):
         d.size(velocity="1 in/s", field="4 kV/mm")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         d.size(velocity="1 in/s", field="3 kV/mm")
-        d.size(velocity="1 in/s", field="-3 kV/mm")     # the law is even in the field
+        d.size(velocity="1 in/s", field="-3 kV/mm")  # the law is even in the field
 
 
 # ---------------------------------------------------------------------------------------------- material files
@@ -208,15 +218,18 @@ def test_a_material_file_with_a_table_reads(tmp_path):
     assert isinstance(law, TabulatedLaw) and law.yield_stress(100e3) == pytest.approx(20e3, rel=1e-12)
 
 
-@pytest.mark.parametrize("edit, message", [
-    (lambda t: t.replace('range = "x2020"', ""), "sources.range: missing"),
-    (lambda t: t.replace('kind = "MR"', 'kind = "XR"'), "kind: expected"),
-    (lambda t: t.replace('description = "test"', 'description = "test"\ncolour = "red"'), "colour: unknown key"),
-    (lambda t: t.replace('"20 kPa"', '"40 kPa"'), "yield stresses must be >= 0 and must not decrease"),
-    (lambda t: t.replace('field_unit = "kA/m"', 'field_unit = "kV/mm"'), "not of the kind of the fluid's"),
-    (lambda t: t.replace('field = ["0 kA/m", "200 kA/m"]', 'field = ["0 kA/m", "2 s"]'), "range.field"),
-    (lambda t: t.replace('date = "2020"\n', ""), r"references\[0\]: needs key, citation and date"),
-])
+@pytest.mark.parametrize(
+    "edit, message",
+    [
+        (lambda t: t.replace('range = "x2020"', ""), "sources.range: missing"),
+        (lambda t: t.replace('kind = "MR"', 'kind = "XR"'), "kind: expected"),
+        (lambda t: t.replace('description = "test"', 'description = "test"\ncolour = "red"'), "colour: unknown key"),
+        (lambda t: t.replace('"20 kPa"', '"40 kPa"'), "yield stresses must be >= 0 and must not decrease"),
+        (lambda t: t.replace('field_unit = "kA/m"', 'field_unit = "kV/mm"'), "not of the kind of the fluid's"),
+        (lambda t: t.replace('field = ["0 kA/m", "200 kA/m"]', 'field = ["0 kA/m", "2 s"]'), "range.field"),
+        (lambda t: t.replace('date = "2020"\n', ""), r"references\[0\]: needs key, citation and date"),
+    ],
+)
 def test_bad_material_files_name_the_key(tmp_path, edit, message):
     path = tmp_path / "bad.toml"
     path.write_text(edit(GOOD.format(name="bad")))
@@ -260,8 +273,8 @@ def test_tabulated_curve_passes_through_its_points_and_holds_beyond_them():
     tau = np.array([0.0, 15e3, 27e3, 35e3, 42e3])
     law = TabulatedLaw("A/m", fields=tuple(E), stresses=tuple(tau))
     np.testing.assert_allclose(law.yield_stress(E), tau, rtol=0, atol=1e-9)
-    np.testing.assert_allclose(law.yield_stress(-E), tau, rtol=0, atol=1e-9)          # even in the field
-    assert law.yield_stress(1e6) == 42e3                                                # held, not extrapolated
+    np.testing.assert_allclose(law.yield_stress(-E), tau, rtol=0, atol=1e-9)  # even in the field
+    assert law.yield_stress(1e6) == 42e3  # held, not extrapolated
 
 
 def test_tabulated_curve_is_monotone_where_a_cubic_spline_overshoots():
@@ -271,7 +284,7 @@ def test_tabulated_curve_is_monotone_where_a_cubic_spline_overshoots():
     tau = np.array([0.0, 30e3, 40e3, 41e3, 41.5e3, 41.6e3])
     dense = np.linspace(0, 300e3, 3001)
     spline = CubicSpline(E, tau)(dense)
-    assert np.any(np.diff(spline) < 0)                 # the test case does trip a plain spline
+    assert np.any(np.diff(spline) < 0)  # the test case does trip a plain spline
     law = TabulatedLaw("A/m", fields=tuple(E), stresses=tuple(tau))
     y = law.yield_stress(dense)
     assert np.all(np.diff(y) >= 0) and y.max() <= tau.max()
@@ -291,12 +304,15 @@ def test_tabulated_curve_interpolates_a_smooth_law_closely():
     assert errors[0] < 0.005 and errors[0] / errors[1] > 4
 
 
-@pytest.mark.parametrize("fields, stresses, message", [
-    ((10.0, 20.0), (1.0, 2.0), "first point must be at zero field"),
-    ((0.0, 20.0, 20.0), (0.0, 2.0, 3.0), "fields must increase strictly"),
-    ((0.0, 20.0), (3.0, 2.0), "must not decrease"),
-    ((0.0,), (0.0,), "at least two points"),
-])
+@pytest.mark.parametrize(
+    "fields, stresses, message",
+    [
+        ((10.0, 20.0), (1.0, 2.0), "first point must be at zero field"),
+        ((0.0, 20.0, 20.0), (0.0, 2.0, 3.0), "fields must increase strictly"),
+        ((0.0, 20.0), (3.0, 2.0), "must not decrease"),
+        ((0.0,), (0.0,), "at least two points"),
+    ],
+)
 def test_bad_tables_are_refused(fields, stresses, message):
     with pytest.raises(ErdesignError, match=message):
         TabulatedLaw("A/m", fields=fields, stresses=stresses)
@@ -306,8 +322,7 @@ def test_yield_curve_tables_from_files_check_units_and_keys():
     law = field_law_from_dict({"law": "table", "field": ["0 kA/m", "0.1 MA/m"], "yield_stress": ["0 Pa", "1 kPa"]})
     assert law.fields == (0.0, 1e5) and law.stresses == (0.0, 1000.0)
     with pytest.raises(ErdesignError, match=r"yield_curve.sat: unknown key for law = 'saturating'"):
-        field_law_from_dict({"law": "saturating", "saturation_stress": "1 kPa", "saturation_field": "1 kA/m",
-                             "sat": 1})
+        field_law_from_dict({"law": "saturating", "saturation_stress": "1 kPa", "saturation_field": "1 kA/m", "sat": 1})
     with pytest.raises(UnitError, match="yield_curve.saturation_stress: expected a pressure"):
         field_law_from_dict({"law": "saturating", "saturation_stress": "1 kA/m", "saturation_field": "1 kA/m"})
     with pytest.raises(UnitError, match="Carlson's law takes a magnetic field"):
@@ -397,6 +412,7 @@ def test_steel_values_as_in_the_femm_library():
 @pytest.mark.parametrize("name, phi", [("lord-mrf-122eg", 0.22), ("lord-mrf-132dg", 0.32), ("lord-mrf-140cg", 0.40)])
 def test_lord_fluids_have_carlson_magnetisation(name, phi):
     from erdesign.magnetics import carlson_flux_density
+
     record = materials.load(name)
     assert record["magnetization"] == {"law": "carlson", "volume_fraction": phi}
     assert "NOT VERIFIED" in record["sources"]["magnetization"]
@@ -452,21 +468,28 @@ def test_verification_states_what_was_and_was_not_found():
     assert "verification" in materials.summary("lord-mrf-132dg")
 
 
-_VERIFIED = '\n[verification.viscosity]\nstatus = "verified"\nsource = "butz2002"\nlocation = "Table 1"\nfound_at = "seed"\n'
+_VERIFIED = (
+    '\n[verification.viscosity]\nstatus = "verified"\nsource = "butz2002"\nlocation = "Table 1"\nfound_at = "seed"\n'
+)
 
 
-@pytest.mark.parametrize("edit, message", [
-    (lambda t: t + _VERIFIED.replace('status = "verified"', 'status = "checked"'), "verification.viscosity.status"),
-    (lambda t: t + _VERIFIED.replace('location = "Table 1"\n', ""), "verification.viscosity.location: missing"),
-    (lambda t: t + _VERIFIED.replace('"butz2002"', '"nobody2020"'), "verification.viscosity.source"),
-    (lambda t: t + _VERIFIED.replace("viscosity]", "colour]"), "verification.colour: not a key of"),
-    (lambda t: t + _VERIFIED.replace('status = "verified"', 'status = "not verified"'),
-     "verification.viscosity.searched: missing"),
-    (lambda t: t + _VERIFIED + 'where = "x"\n', "verification.viscosity.where: unknown key"),
-])
+@pytest.mark.parametrize(
+    "edit, message",
+    [
+        (lambda t: t + _VERIFIED.replace('status = "verified"', 'status = "checked"'), "verification.viscosity.status"),
+        (lambda t: t + _VERIFIED.replace('location = "Table 1"\n', ""), "verification.viscosity.location: missing"),
+        (lambda t: t + _VERIFIED.replace('"butz2002"', '"nobody2020"'), "verification.viscosity.source"),
+        (lambda t: t + _VERIFIED.replace("viscosity]", "colour]"), "verification.colour: not a key of"),
+        (
+            lambda t: t + _VERIFIED.replace('status = "verified"', 'status = "not verified"'),
+            "verification.viscosity.searched: missing",
+        ),
+        (lambda t: t + _VERIFIED + 'where = "x"\n', "verification.viscosity.where: unknown key"),
+    ],
+)
 def test_bad_verification_is_an_error_naming_the_key(tmp_path, edit, message):
     text = (materials.resources.files("erdesign.materials") / "typical-er.toml").read_text()
-    text = text.split("\n# How far each value")[0]           # the record without its own verification tables
+    text = text.split("\n# How far each value")[0]  # the record without its own verification tables
     path = tmp_path / "typical-er.toml"
     path.write_text(edit(text))
     with pytest.raises(ErdesignError, match=message.replace(".", r"\.")):

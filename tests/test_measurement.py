@@ -25,8 +25,8 @@ def write(tmp_path, text, name="m.csv"):
 
 def test_reads_any_units_into_si(tmp_path):
     m = read_measurement(write(tmp_path, GOOD))
-    np.testing.assert_allclose(m.displacement[:3], [0.0, 0.00254, 0.00508])       # 1 in = 25.4 mm exactly
-    np.testing.assert_allclose(m.force[0], 4.4482216152605)                       # 1 lbf, exact definition
+    np.testing.assert_allclose(m.displacement[:3], [0.0, 0.00254, 0.00508])  # 1 in = 25.4 mm exactly
+    np.testing.assert_allclose(m.force[0], 4.4482216152605)  # 1 lbf, exact definition
     np.testing.assert_allclose(m.control, 3e6)
     assert m.control_kind == "electric field"
     np.testing.assert_allclose(m.temperature, 298.15)
@@ -34,8 +34,7 @@ def test_reads_any_units_into_si(tmp_path):
 
 
 def test_current_control_and_missing_control(tmp_path):
-    text = "displacement [mm],time [ms],force [kN],current [A]\n" + "\n".join(
-        f"{i},{i},{i},0.5" for i in range(8))
+    text = "displacement [mm],time [ms],force [kN],current [A]\n" + "\n".join(f"{i},{i},{i},0.5" for i in range(8))
     m = read_measurement(write(tmp_path, text))
     assert m.control_kind == "current" and m.control[0] == 0.5 and m.time[1] == pytest.approx(1e-3)
     text = "time [s],displacement [mm],force [N]\n" + "\n".join(f"{i},{i},{i}" for i in range(8))
@@ -76,8 +75,9 @@ def test_two_controls_and_too_few_rows(tmp_path):
 
 def test_round_trip_through_write(tmp_path):
     t = np.linspace(0, 1, 501)
-    m = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), 100 * np.cos(2 * np.pi * t),
-                                control=2e5, control_kind="magnetic field")
+    m = Measurement.from_arrays(
+        t, 0.01 * np.sin(2 * np.pi * t), 100 * np.cos(2 * np.pi * t), control=2e5, control_kind="magnetic field"
+    )
     p = tmp_path / "w.csv"
     write_measurement(p, m, units={"displacement": "mm", "field": "kA/m"}, comment="written by a test")
     back = read_measurement(p)
@@ -89,9 +89,9 @@ def test_round_trip_through_write(tmp_path):
 def _fourier_and_fourth_order(t, x, harmonics=5):
     """the method of Kamath and Wereley (1997): Fourier filtering of the displacement, then a fourth-order central
     difference."""
-    n = t.size - 1                                   # whole number of cycles: drop the duplicated end point
+    n = t.size - 1  # whole number of cycles: drop the duplicated end point
     X = np.fft.rfft(x[:n])
-    X[harmonics + 1:] = 0
+    X[harmonics + 1 :] = 0
     xf = np.fft.irfft(X, n)
     xf = np.concatenate([xf, xf[:1]])
     dt = t[1] - t[0]
@@ -117,7 +117,7 @@ def test_derivative_of_a_noisy_sine_beats_plain_differences_and_matches_seed_000
     # Noise amplification of a plain difference is ~ noise / (2 pi f dt) = 80 x noise; the smoothed derivative must
     # be at least 10 x better.
     assert err < err_gradient / 10
-    assert err_seed < err_gradient / 10           # the reference method itself works on this record
+    assert err_seed < err_gradient / 10  # the reference method itself works on this record
     # At least as good as Kamath and Wereley (1997) (Fourier filter of 5 harmonics + fourth-order difference):
     # measured ratios
     # err / err_seed = 0.63, 0.67, 0.62 for noise 1e-4, 1e-3, 1e-2 (significant harmonics only, analytic derivative).
@@ -144,9 +144,11 @@ def test_derivative_of_noisy_non_periodic_records(kind, noise):
     # The virtual rig's motions carry their exact velocity (differentiated on an 8 x finer grid).
     from erdesign.simulation.rig import earthquake_motion, random_motion, stepped_sine
 
-    m = {"random": lambda: random_motion(0.003, (0.5, 5.0), duration=4.0, rate=500.0, seed=1),
-         "earthquake": lambda: earthquake_motion(0.01, rate=500.0, seed=2),
-         "sweep": lambda: stepped_sine([0.004, 0.008], [1.0, 2.0], [0.0], cycles=2, rate=300.0)}[kind]()
+    m = {
+        "random": lambda: random_motion(0.003, (0.5, 5.0), duration=4.0, rate=500.0, seed=1),
+        "earthquake": lambda: earthquake_motion(0.01, rate=500.0, seed=2),
+        "sweep": lambda: stepped_sine([0.004, 0.008], [1.0, 2.0], [0.0], cycles=2, rate=300.0),
+    }[kind]()
     rng = np.random.default_rng(5)
     x = m.displacement + noise * np.max(np.abs(m.displacement)) * rng.standard_normal(m.time.size)
     v, _ = derivatives(m.time, x)
@@ -189,8 +191,10 @@ def test_fast_reader_gives_the_line_by_line_result(tmp_path, variant):
     """read_measurement parses well-formed files with numpy's C parser and falls back to the line-by-line reader
     for anything irregular; both must give the same arrays (the fallback is forced with a quoted cell)."""
     rng = np.random.default_rng(1)
-    rows = [f"{i / 1000:.6f},{x:.6g},{f:.6g},{u:.4g}" for i, (x, f, u) in
-            enumerate(zip(rng.normal(0, 5, 200), rng.normal(0, 300, 200), rng.uniform(0, 2, 200)))]
+    rows = [
+        f"{i / 1000:.6f},{x:.6g},{f:.6g},{u:.4g}"
+        for i, (x, f, u) in enumerate(zip(rng.normal(0, 5, 200), rng.normal(0, 300, 200), rng.uniform(0, 2, 200)))
+    ]
     head = ["# header comment", "time [s],displacement [mm],force [N],voltage [V]"]
     if variant == "blank lines":
         rows[50:50] = ["", "  ", ",,,"]
@@ -202,8 +206,7 @@ def test_fast_reader_gives_the_line_by_line_result(tmp_path, variant):
     if variant == "crlf":
         text = text.replace("\n", "\r\n")
     fast = read_measurement(write(tmp_path, text))
-    slow = read_measurement(write(tmp_path, text.replace(rows[0], '"' + rows[0].replace(",", '","') + '"'),
-                                  "slow.csv"))
+    slow = read_measurement(write(tmp_path, text.replace(rows[0], '"' + rows[0].replace(",", '","') + '"'), "slow.csv"))
     for k in ("time", "displacement", "force", "control", "velocity"):
         assert np.array_equal(getattr(fast, k), getattr(slow, k)), k
     assert fast.control_kind == slow.control_kind == "voltage" and len(fast) == 200
@@ -220,23 +223,26 @@ def test_fast_reader_errors_name_the_line(tmp_path):
 
 def test_clipped_force_samples_are_found():
     from erdesign.data.measurement import clipped_samples
+
     t = np.linspace(0, 2, 2001)
     F = 1000 * np.sin(2 * np.pi * t) + np.random.default_rng(0).normal(0, 5, t.size)
-    assert not clipped_samples(F).any()            # a noisy peak reaches its extreme once
-    clipped = np.minimum(F, 900.0)                 # a load cell saturating at 900 N
+    assert not clipped_samples(F).any()  # a noisy peak reaches its extreme once
+    clipped = np.minimum(F, 900.0)  # a load cell saturating at 900 N
     mask = clipped_samples(clipped)
     assert np.array_equal(mask, F >= 900.0)
 
 
 def test_a_velocity_column_that_disagrees_with_the_displacement_is_warned_about():
     from erdesign.errors import ErdesignWarning
+
     t = np.linspace(0, 2, 2001)
     x = 0.01 * np.sin(2 * np.pi * t)
     v = 0.01 * 2 * np.pi * np.cos(2 * np.pi * t)
     import warnings
+
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        m = Measurement.from_arrays(t, x, velocity=v)     # consistent: no warning, the column is used as given
+        m = Measurement.from_arrays(t, x, velocity=v)  # consistent: no warning, the column is used as given
     assert np.array_equal(m.velocity, v)
     with pytest.warns(ErdesignWarning, match="velocity column is 10 x the derivative"):
-        Measurement.from_arrays(t, x, velocity=10 * v)    # cm/s written as m/s
+        Measurement.from_arrays(t, x, velocity=10 * v)  # cm/s written as m/s

@@ -67,8 +67,9 @@ def test_clean_record_of_every_damper_kind_is_calibrated_to_its_noise(case):
     assert res.values["yield_stress_factor"] == pytest.approx(case.yield_stress_factor, rel=0.02)
 
 
-@pytest.mark.parametrize("name", ["compressibility-moderate-kamath_wereley-sine-1pct",
-                                  "compressibility-large-mr_mixed-sine-1pct"])
+@pytest.mark.parametrize(
+    "name", ["compressibility-moderate-kamath_wereley-sine-1pct", "compressibility-large-mr_mixed-sine-1pct"]
+)
 def test_compressibility_on_a_mixed_head_reaches_the_noise_and_the_true_stiffness(name):
     # the benchmark's compliant columns on the ER and the MR moving-electrode heads (the ER one was named
     # preyield_elasticity while the gap's flow was read at a speed equal to the head's, docs/diagnosis.md)
@@ -114,13 +115,17 @@ def test_at_rest_the_model_expects_the_mean_of_the_break_away_forces(damper_name
     F = PhysicsDamper(damper).force(exact, {"viscosity_factor": 1.0, "yield_stress_factor": 1.0})
     scale = np.max(np.abs(truth.true_force))
     assert np.all(truth.true_force[at_rest] == 0.0)
-    assert np.all(np.abs(F[at_rest]) < 1e-12 * scale)          # the yield force less itself: round-off
+    assert np.all(np.abs(F[at_rest]) < 1e-12 * scale)  # the yield force less itself: round-off
     np.testing.assert_allclose(F, truth.true_force, rtol=0, atol=1e-6 * scale)
 
 
-@pytest.mark.parametrize("name, effect, bound", [
-    ("preyield_elasticity-moderate-makris-earthquake-1pct", "preyield_elasticity", 0.3),   # measured 0.17
-    ("compressibility-moderate-kamath_wereley-sine-1pct", "compressibility", 0.6)])        # measured 0.42
+@pytest.mark.parametrize(
+    "name, effect, bound",
+    [
+        ("preyield_elasticity-moderate-makris-earthquake-1pct", "preyield_elasticity", 0.3),  # measured 0.17
+        ("compressibility-moderate-kamath_wereley-sine-1pct", "compressibility", 0.6),
+    ],
+)  # measured 0.42
 def test_laws_in_time_see_the_control_step_where_the_rig_makes_it(name, effect, bound):
     # The rig holds each command over the sample interval that follows it (zero-order hold).  At the true values
     # and the exact velocity the model's force is the rig's to well below the noise; what is left sits at the
@@ -132,14 +137,15 @@ def test_laws_in_time_see_the_control_step_where_the_rig_makes_it(name, effect, 
     truth = case.make()
     damper = case.load_damper()
     v = np.asarray(truth.motion.velocity, float)
-    exact = replace(truth.measured, velocity=v, acceleration=np.asarray(truth.motion.acceleration, float),
-                    velocity_noise=0.0)
+    exact = replace(
+        truth.measured, velocity=v, acceleration=np.asarray(truth.motion.acceleration, float), velocity_noise=0.0
+    )
     values = {"viscosity_factor": case.viscosity_factor, "yield_stress_factor": case.yield_stress_factor}
     if effect == "compressibility":
         values["hydraulic_stiffness"] = truth.truth.compliance_stiffness
     else:
         values["shear_modulus"] = case.mechanisms["preyield"]["shear_modulus"]
     r = PhysicsDamper(damper, [effect]).force(exact, values) - truth.true_force
-    r = r[30:]                                  # the rig starts unloaded, the model settled
+    r = r[30:]  # the rig starts unloaded, the model settled
     sigma = case.noise * np.sqrt(np.mean(truth.true_force**2))
     assert np.mean(r**2) / sigma**2 < bound

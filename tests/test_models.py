@@ -35,8 +35,10 @@ def edge_records():
     walk = np.cumsum(rng.standard_normal(t.size)) * 1e-4
     yield "random walk", Measurement.from_arrays(t, walk, control=rng.uniform(0, 1, t.size), control_kind="voltage")
     tu = np.sort(np.r_[0.0, rng.uniform(0, 1, 400), 1.0])
-    yield "uneven steps", Measurement.from_arrays(tu, 0.01 * np.sin(2 * np.pi * tu), control=0.5,
-                                                 control_kind="current")
+    yield (
+        "uneven steps",
+        Measurement.from_arrays(tu, 0.01 * np.sin(2 * np.pi * tu), control=0.5, control_kind="current"),
+    )
 
 
 @pytest.mark.parametrize("name", NAMES)
@@ -51,10 +53,32 @@ def test_every_model_gives_finite_forces_on_edge_cases(name):
 def test_registry_entries_follow_the_contract():
     entries = describe_models()
     assert [e["name"] for e in entries] == model_names()
-    contract = {"bingham", "bingham_extended", "powell", "bingmax", "maxwell", "bouc_wen", "bouc_wen_modified",
-                "bouc_wen_normalized", "kamath_wereley_4", "kamath_wereley_6", "biviscous", "biviscous_hysteretic",
-                "eyring_plastic", "semiactive_general", "dahl", "dahl_viscous", "lugre", "lugre_modified",
-                "weng_arctan", "kwok_tanh", "magic_formula", "chebyshev", "maxwell_neural", "physics"}
+    contract = {
+        "bingham",
+        "bingham_extended",
+        "powell",
+        "bingmax",
+        "maxwell",
+        "bouc_wen",
+        "bouc_wen_modified",
+        "bouc_wen_normalized",
+        "kamath_wereley_4",
+        "kamath_wereley_6",
+        "biviscous",
+        "biviscous_hysteretic",
+        "eyring_plastic",
+        "semiactive_general",
+        "dahl",
+        "dahl_viscous",
+        "lugre",
+        "lugre_modified",
+        "weng_arctan",
+        "kwok_tanh",
+        "magic_formula",
+        "chebyshev",
+        "maxwell_neural",
+        "physics",
+    }
     assert contract <= set(model_names())
     for e in entries:
         assert e["source"], e["name"]
@@ -110,8 +134,23 @@ def test_extended_bingham_matches_a_tight_radau_solution():
 
 
 #: Spencer, Dyke, Sain and Carlson (1997), Table 1 (as in shared/data/README.md), SI: N, m, s, V.
-SPENCER_1997 = dict(c0a=2100.0, c0b=350.0, k0=4690.0, c1a=28300.0, c1b=295.0, k1=500.0, x0=0.143, alpha_a=14000.0,
-                    alpha_b=69500.0, alpha_c=0.0, gamma=3.63e6, beta=3.63e6, delta=301.0, n=2.0, eta=190.0)
+SPENCER_1997 = dict(
+    c0a=2100.0,
+    c0b=350.0,
+    k0=4690.0,
+    c1a=28300.0,
+    c1b=295.0,
+    k1=500.0,
+    x0=0.143,
+    alpha_a=14000.0,
+    alpha_b=69500.0,
+    alpha_c=0.0,
+    gamma=3.63e6,
+    beta=3.63e6,
+    delta=301.0,
+    n=2.0,
+    eta=190.0,
+)
 
 
 def _piecewise_linear_reference(t, x, u, p):
@@ -147,7 +186,7 @@ def test_modified_bouc_wen_matches_solve_ivp_at_3_khz_with_a_random_voltage():
     f, phase = rng.uniform(0.5, 15.0, 12), rng.uniform(0, 2 * np.pi, 12)
     x = np.sum(np.sin(2 * np.pi * f[:, None] * t + phase[:, None]), axis=0)
     x *= 0.011 / np.max(np.abs(x))
-    u = np.repeat(rng.uniform(0.0, 2.25, 26), 60)[:t.size]
+    u = np.repeat(rng.uniform(0.0, 2.25, 26), 60)[: t.size]
     v = np.gradient(x, t)
     rec = Measurement.from_arrays(t, x, control=u, control_kind="voltage", velocity=v)
     model = get_model("bouc_wen_modified")
@@ -180,16 +219,22 @@ def test_modified_bouc_wen_matches_solve_ivp_with_spencer_parameters():
     assert np.max(np.abs(F - F_ref)) < 1e-4 * np.ptp(F_ref)
 
 
-@pytest.mark.parametrize("beta,gamma,delta,n", [(2e6, 2e6, 207.0, 2.0),      # Spencer's passive damper (n = 2)
-                                                (-1e6, 3e6, 207.0, 2.0),     # beta < 0: the tan branch
-                                                (0.0, 1500.0, 1500.0, 1.0),  # normalised form, sigma = 1, n = 1
-                                                (2e8, 2e8, 207.0, 3.0)])     # n = 3: RK4 in the travel
+@pytest.mark.parametrize(
+    "beta,gamma,delta,n",
+    [
+        (2e6, 2e6, 207.0, 2.0),  # Spencer's passive damper (n = 2)
+        (-1e6, 3e6, 207.0, 2.0),  # beta < 0: the tan branch
+        (0.0, 1500.0, 1500.0, 1.0),  # normalised form, sigma = 1, n = 1
+        (2e8, 2e8, 207.0, 3.0),
+    ],
+)  # n = 3: RK4 in the travel
 def test_bouc_wen_state_matches_radau(beta, gamma, delta, n):
     """The Bouc-Wen variable (Butz and von Stryk 2002, eq 9) on a 1 Hz, 1 cm sine sampled at 3 kHz against Radau at
     rtol 1e-10
     on the analytic velocity.  The kernel is exact for n = 1, 2 (closed form) given the piecewise-linear input,
     which differs from the sine by ~2e-7: 1e-4 of the range of z is required (issue 12)."""
     from erdesign.models._kernels import bouc_wen_state
+
     t = np.linspace(0, 2, 6001)
     x = 0.01 * np.sin(2 * np.pi * t)
     z = bouc_wen_state(x, beta, gamma, delta, n)
@@ -227,34 +272,59 @@ def _round_trip(name, true, record, *, free=None, fixed=None, noise_frac=0.01, s
 ROUND_TRIPS = {
     # name: (true values, record options, free, tolerance)
     "bingham": ({"c0": 5000.0, "f_c": 670.0, "f0": 20.0}, {}, None, 0.01),
-    "kwok_tanh": ({"k": 2000.0, "c": 3000.0, "alpha": 600.0, "beta": 300.0, "delta": 0.3, "f0": 10.0}, {}, None,
-                  0.03),
+    "kwok_tanh": ({"k": 2000.0, "c": 3000.0, "alpha": 600.0, "beta": 300.0, "delta": 0.3, "f0": 10.0}, {}, None, 0.03),
     "dahl": ({"k0": 1000.0, "c0": 2500.0, "f_d": 500.0, "rho": 2000.0, "f0": 5.0}, {}, None, 0.03),
-    "lugre": ({"sigma0": 5e5, "sigma1": 0.0, "sigma2": 2500.0, "a0": 2e-3, "f0": 0.0}, {},
-              ["sigma0", "sigma2", "a0", "f0"], 0.03),
+    "lugre": (
+        {"sigma0": 5e5, "sigma1": 0.0, "sigma2": 2500.0, "a0": 2e-3, "f0": 0.0},
+        {},
+        ["sigma0", "sigma2", "a0", "f0"],
+        0.03,
+    ),
     "biviscous": ({"C_pre": 1e5, "C_post": 3000.0, "F_y": 600.0, "f0": 0.0}, {}, None, 0.03),
-    "weng_arctan": ({"f_y": 500.0, "c_b": 2000.0, "k": 300.0, "v0": 0.004, "m": 0.0, "f0": 0.0}, {},
-                    ["f_y", "c_b", "k", "v0", "f0"], 0.03),
-    "kamath_wereley_6": ({**KAMATH_WERELEY_TABLE1}, {"amplitude": 1e-3, "f_hz": 10.0, "cycles": 3,
-                                                    "n_per_cycle": 600}, None, 0.1),
+    "weng_arctan": (
+        {"f_y": 500.0, "c_b": 2000.0, "k": 300.0, "v0": 0.004, "m": 0.0, "f0": 0.0},
+        {},
+        ["f_y", "c_b", "k", "v0", "f0"],
+        0.03,
+    ),
+    "kamath_wereley_6": (
+        {**KAMATH_WERELEY_TABLE1},
+        {"amplitude": 1e-3, "f_hz": 10.0, "cycles": 3, "n_per_cycle": 600},
+        None,
+        0.1,
+    ),
     "maxwell": ({"C": 1.2e5, "K": 2e6, "f0": 0.0}, {}, None, 0.02),
-    "bingham_extended": ({"c0": 3000.0, "f_c": 400.0, "k1": 5e4, "c1": 3e4, "k2": 3e5, "f0": 0.0}, {}, None,
-                         0.03),
+    "bingham_extended": ({"c0": 3000.0, "f_c": 400.0, "k1": 5e4, "c1": 3e4, "k2": 3e5, "f0": 0.0}, {}, None, 0.03),
     "bingmax": ({"C": 8e4, "K": 5e6, "F_y": 700.0, "f0": 0.0}, {}, None, 0.02),
-    "bouc_wen": ({"c0a": 4000.0, "k0": 1000.0, "x0": 0.0, "alpha_a": 7e4, "beta": 1.5e6, "gamma": 2.5e6}, {},
-                 ["c0a", "k0", "alpha_a", "beta", "gamma"], 0.06),
-    "kamath_wereley_4": ({"C1": 12000.0, "C2": 9000.0, "K1": 1.2e5, "Cv": 2500.0, "f0": 0.0},
-                         {"amplitude": 1e-3, "f_hz": 10.0, "cycles": 3, "n_per_cycle": 600}, None, 0.03),
-    "biviscous_hysteretic": ({"C_pre": 2e5, "C_post": 4000.0, "F_y": 600.0, "v0": 0.004, "f0": 0.0}, {}, None,
-                             0.03),
+    "bouc_wen": (
+        {"c0a": 4000.0, "k0": 1000.0, "x0": 0.0, "alpha_a": 7e4, "beta": 1.5e6, "gamma": 2.5e6},
+        {},
+        ["c0a", "k0", "alpha_a", "beta", "gamma"],
+        0.06,
+    ),
+    "kamath_wereley_4": (
+        {"C1": 12000.0, "C2": 9000.0, "K1": 1.2e5, "Cv": 2500.0, "f0": 0.0},
+        {"amplitude": 1e-3, "f_hz": 10.0, "cycles": 3, "n_per_cycle": 600},
+        None,
+        0.03,
+    ),
+    "biviscous_hysteretic": ({"C_pre": 2e5, "C_post": 4000.0, "F_y": 600.0, "v0": 0.004, "f0": 0.0}, {}, None, 0.03),
     # the general model of Vivas-López et al. (n.d.): its passive part (asymmetric damping, stiffness, friction);
     # the hysteresis terms
     # held at zero
-    "semiactive_general": ({"c_p_pos": 3000.0, "c_p_neg": 2000.0, "k_p": 500.0, "f_f": 400.0, "v_f": 60.0,
-                            "f0": 0.0}, {}, ["c_p_pos", "c_p_neg", "k_p", "f_f", "v_f", "f0"], 0.05),
+    "semiactive_general": (
+        {"c_p_pos": 3000.0, "c_p_neg": 2000.0, "k_p": 500.0, "f_f": 400.0, "v_f": 60.0, "f0": 0.0},
+        {},
+        ["c_p_pos", "c_p_neg", "k_p", "f_f", "v_f", "f0"],
+        0.05,
+    ),
     # Powell: the shape factor e of the smoothed sign and the softening spring held at their true values
-    "powell": ({"f_cs": 300.0, "f_cd": 200.0, "a": 40.0, "b": 60.0, "e": 400.0, "c": 2500.0, "k": 0.0, "d": 100.0,
-                "f0": 0.0}, {}, ["f_cs", "f_cd", "a", "b", "c"], 0.05),
+    "powell": (
+        {"f_cs": 300.0, "f_cd": 200.0, "a": 40.0, "b": 60.0, "e": 400.0, "c": 2500.0, "k": 0.0, "d": 100.0, "f0": 0.0},
+        {},
+        ["f_cs", "f_cd", "a", "b", "c"],
+        0.05,
+    ),
 }
 
 
@@ -262,8 +332,15 @@ ROUND_TRIPS = {
 def test_round_trip_recovers_parameters(name):
     true, opts, free, tol = ROUND_TRIPS[name]
     # parameters not fitted are held at their true values (a round trip tests the fit, not a guess of them)
-    fixed = {} if free is None else {k: v for k, v in {**get_model(name).defaults(), **true}.items()
-                                     if k not in free and get_model(name).parameter(k).fitted}
+    fixed = (
+        {}
+        if free is None
+        else {
+            k: v
+            for k, v in {**get_model(name).defaults(), **true}.items()
+            if k not in free and get_model(name).parameter(k).fitted
+        }
+    )
     _round_trip(name, true, sine(**opts), free=free, fixed=fixed, tol=tol)
 
 
@@ -273,10 +350,24 @@ def test_round_trip_modified_lugre_with_a_switched_control():
     t = np.linspace(0, 2, 2001)
     u = 0.5 + 0.5 * np.sign(np.sin(np.pi * t + 0.3))
     rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=u, control_kind="voltage")
-    true = {"sigma0": 8e5, "sigma1": 0.0, "sigma2": 2500.0, "sigma_a": 2e5, "sigma_b": 1500.0, "a0": 2e-3,
-            "a1": 0.0, "f0": 0.0}
-    _round_trip("lugre_modified", true, rec, free=["sigma0", "sigma2", "sigma_a", "sigma_b", "a0", "f0"],
-                fixed={"sigma1": 0.0, "a1": 0.0}, tol=0.03)
+    true = {
+        "sigma0": 8e5,
+        "sigma1": 0.0,
+        "sigma2": 2500.0,
+        "sigma_a": 2e5,
+        "sigma_b": 1500.0,
+        "a0": 2e-3,
+        "a1": 0.0,
+        "f0": 0.0,
+    }
+    _round_trip(
+        "lugre_modified",
+        true,
+        rec,
+        free=["sigma0", "sigma2", "sigma_a", "sigma_b", "a0", "f0"],
+        fixed={"sigma1": 0.0, "a1": 0.0},
+        tol=0.03,
+    )
 
 
 def test_round_trip_spencer_modified_bouc_wen():
@@ -298,14 +389,30 @@ def test_round_trip_spencer_modified_bouc_wen():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name,true", [
-    ("magic_formula", {"D": 600.0, "C": 1.2, "B": 150.0, "E": -0.5, "A": 3.0, "k_c": 2000.0, "k": 1000.0,
-                       "f0": 0.0}),
-    ("bouc_wen_normalized", {"k_x": 1000.0, "k_v": 3000.0, "k_w": 500.0, "rho": 800.0, "sigma": 1.5, "f0": 0.0}),
-    ("dahl_viscous", {"k_x": 3000.0, "k_w": 500.0, "rho": 1500.0, "f0": 0.0}),
-    ("eyring_plastic", {"F_alpha": 200.0, "lambda1": 300.0, "lambda2": 0.0, "beta1": 0.0, "beta2": 10.0,
-                        "c1": 2000.0, "c3": 0.0, "f0": 0.0}),
-])
+@pytest.mark.parametrize(
+    "name,true",
+    [
+        (
+            "magic_formula",
+            {"D": 600.0, "C": 1.2, "B": 150.0, "E": -0.5, "A": 3.0, "k_c": 2000.0, "k": 1000.0, "f0": 0.0},
+        ),
+        ("bouc_wen_normalized", {"k_x": 1000.0, "k_v": 3000.0, "k_w": 500.0, "rho": 800.0, "sigma": 1.5, "f0": 0.0}),
+        ("dahl_viscous", {"k_x": 3000.0, "k_w": 500.0, "rho": 1500.0, "f0": 0.0}),
+        (
+            "eyring_plastic",
+            {
+                "F_alpha": 200.0,
+                "lambda1": 300.0,
+                "lambda2": 0.0,
+                "beta1": 0.0,
+                "beta2": 10.0,
+                "c1": 2000.0,
+                "c3": 0.0,
+                "f0": 0.0,
+            },
+        ),
+    ],
+)
 def test_round_trip_more_models(name, true):
     # Held at their true values: the Eyring correction terms (zero here) and the magic formula's shape and
     # curvature factors C and E, which trade off against D and B on one sinusoid (correlation > 0.99).
@@ -341,6 +448,7 @@ def test_models_doc_is_generated_from_the_registry():
     script after changing a model) and cover every registered model."""
     import importlib.util
     from pathlib import Path
+
     root = Path(__file__).resolve().parents[1]
     spec = importlib.util.spec_from_file_location("make_models_doc", root / "docs" / "make_models_doc.py")
     module = importlib.util.module_from_spec(spec)

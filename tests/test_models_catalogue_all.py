@@ -12,7 +12,7 @@ from erdesign.identification.identify import identify
 from erdesign.identification.inverse import InverseError, inverse_control
 from erdesign.models.registry import describe_models, get_model, model_names
 
-NAMES = [n for n in model_names() if n != "physics"]   # the physics damper needs a damper file (tests/test_physics.py)
+NAMES = [n for n in model_names() if n != "physics"]  # the physics damper needs a damper file (tests/test_physics.py)
 
 
 def record_for(model, seed=0):
@@ -23,7 +23,7 @@ def record_for(model, seed=0):
     u = 0.5 + 0.3 * np.sin(2 * np.pi * 0.4 * t) if model.uses_control else None
     rec = Measurement.from_arrays(t, x, control=u, control_kind="current" if model.uses_control else None)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")   # Kamath-Wereley's record-scale warning does not concern this record
+        warnings.simplefilter("ignore")  # Kamath-Wereley's record-scale warning does not concern this record
         F = model.simulate(rec)
     rng = np.random.default_rng(seed)
     return rec.with_force(F + 0.01 * (np.std(F) + 1.0) * rng.standard_normal(t.size))
@@ -34,8 +34,14 @@ def test_every_model_says_whether_it_is_invertible():
     assert set(entries) == set(model_names())
     assert all(isinstance(e["invertible"], bool) for e in entries.values())
     # the six models the review marks invertible (Table 1) are
-    for name in ("kwok_tanh", "magic_formula", "lugre_modified", "bouc_wen_normalized", "li_viscoelastic_plastic",
-                 "cheng_tanh"):
+    for name in (
+        "kwok_tanh",
+        "magic_formula",
+        "lugre_modified",
+        "bouc_wen_normalized",
+        "li_viscoelastic_plastic",
+        "cheng_tanh",
+    ):
         assert entries[name]["invertible"], name
     # passive models are not
     assert not entries["bingham_extended"]["invertible"] and not entries["bouc_wen_modified"]["invertible"]
@@ -52,8 +58,9 @@ def test_simulate_identify_invert(name):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         r = identify(model, rec, starts=1, max_nfev=200)
-        guess_esr = evaluate(r.model, rec, {**r.model.defaults(), **r.model.initial_guess(rec),
-                                            **r.model.fixed_for(rec)})
+        guess_esr = evaluate(
+            r.model, rec, {**r.model.defaults(), **r.model.initial_guess(rec), **r.model.fixed_for(rec)}
+        )
     assert np.isfinite(r.esr) and r.esr <= guess_esr * (1 + 1e-6) + 1e-12, (r.esr, guess_esr)
     for p in model.parameters:
         assert p.lower <= r.values[p.name] <= p.upper
@@ -64,7 +71,7 @@ def test_simulate_identify_invert(name):
         assert np.all(np.isfinite(res.force))
         # the force the inverse asks for is reached wherever it is not reported out of reach
         ok = ~res.unreachable
-        assert np.max(np.abs(res.force - r.force)[ok], initial=0.0) <= 1e-4 * (np.ptp(r.force) + 1.0)   # root tolerance
+        assert np.max(np.abs(res.force - r.force)[ok], initial=0.0) <= 1e-4 * (np.ptp(r.force) + 1.0)  # root tolerance
     elif model.uses_control:
         with pytest.raises(InverseError, match="no inverse"):
             inverse_control(model, rec, F, model.defaults())

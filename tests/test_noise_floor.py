@@ -19,8 +19,15 @@ from scipy.signal import butter, sosfiltfilt
 from erdesign.damper.files import load_example
 from erdesign.data.measurement import Measurement, read_measurement
 from erdesign.data.noise import force_noise, sign_known
-from erdesign.data.noise_floor import (METHODS, NoiseFloor, estimate_noise_floor, force_noise_from_cycles,
-                                       force_noise_from_still_segment, motion_noise, quantisation_step)
+from erdesign.data.noise_floor import (
+    METHODS,
+    NoiseFloor,
+    estimate_noise_floor,
+    force_noise_from_cycles,
+    force_noise_from_still_segment,
+    motion_noise,
+    quantisation_step,
+)
 from erdesign.errors import ErdesignError
 from erdesign.simulation.rig import Motion, earthquake_motion, random_motion, sine
 from erdesign.simulation.truthrig import TruthDamper, simulate_truth
@@ -67,12 +74,16 @@ def test_rigid_yield_jumps_do_not_inflate_the_spectrum():
     raw spectrum (their harmonics fall as 1/f^2, 80 times the 1 % noise at the Nyquist frequency); with them taken
     out the plateau is the noise's."""
     from scipy.signal import welch
-    rec = simulate_truth(TruthDamper(load_example("mr_valve"), {}),
-                         random_motion(0.003, (0.5, 5.0), 2e5, duration=4.0, rate=1000, seed=1), force_noise=0.01,
-                         seed=3)
+
+    rec = simulate_truth(
+        TruthDamper(load_example("mr_valve"), {}),
+        random_motion(0.003, (0.5, 5.0), 2e5, duration=4.0, rate=1000, seed=1),
+        force_noise=0.01,
+        seed=3,
+    )
     truth = _true_sigma(rec, 0.01)
     f, P = welch(rec.measured.force, fs=1000.0, nperseg=512)
-    raw_top = math.sqrt(float(np.median(P[f > 300])) * 500.0)     # white at the raw spectrum's top level
+    raw_top = math.sqrt(float(np.median(P[f > 300])) * 500.0)  # white at the raw spectrum's top level
     assert raw_top > 2.5 * truth
     floor = estimate_noise_floor(rec.measured)
     assert floor.method == SPECTRUM and 0.85 < floor.sigma_force / truth < 1.15
@@ -83,8 +94,9 @@ def test_rigid_yield_jumps_do_not_inflate_the_spectrum():
 def fast_record():
     """20 s at 3 kHz (60,000 samples): a compliant MR valve on random motion to 15 Hz, 1 % load-cell noise."""
     truth = TruthDamper(load_example("mr_valve"), {"compliance": {"bulk_modulus": 5e7}})
-    return simulate_truth(truth, random_motion(0.003, (0.5, 15.0), 2e5, duration=20.0, rate=3000.0, seed=4),
-                          force_noise=0.01, seed=5)
+    return simulate_truth(
+        truth, random_motion(0.003, (0.5, 15.0), 2e5, duration=20.0, rate=3000.0, seed=4), force_noise=0.01, seed=5
+    )
 
 
 def _low_passed(rec, cutoff):
@@ -111,8 +123,10 @@ def test_band_limited_3khz_floor_is_the_noise_not_the_fast_force(band_limited):
     # the truth); on the copy a diagnosis thins to 4000 samples the fast force counts as noise (4.0 times it)
     full = force_noise(record)
     thinned = force_noise(record.select(slice(None, None, math.ceil(len(record) / 4000))))
-    print(f"\nband-limited 3 kHz: truth {truth:.2f} N; floor {floor.sigma_force:.2f} N ({floor.method}); fourth "
-          f"differences {full:.2f} N on the full record, {thinned:.2f} N on the thinned copy")
+    print(
+        f"\nband-limited 3 kHz: truth {truth:.2f} N; floor {floor.sigma_force:.2f} N ({floor.method}); fourth "
+        f"differences {full:.2f} N on the full record, {thinned:.2f} N on the thinned copy"
+    )
     assert full < 0.5 * truth and thinned > 2.5 * truth
 
 
@@ -123,13 +137,13 @@ def test_low_passed_channel_without_a_plateau_gives_an_upper_bound(fast_record):
     record, truth = _low_passed(fast_record, 500.0)
     floor = estimate_noise_floor(record)
     assert floor.method == SPECTRUM and "upper bound" in floor.note and "no flat plateau" in floor.note
-    assert 1.0 < floor.sigma_force / truth < 1.6          # measured 1.20
+    assert 1.0 < floor.sigma_force / truth < 1.6  # measured 1.20
     assert force_noise(record) < 0.1 * truth
 
 
 def test_floor_is_cheap_on_60k_samples(band_limited):
     record, _ = band_limited
-    estimate_noise_floor(record)                                   # scipy.signal imported
+    estimate_noise_floor(record)  # scipy.signal imported
     start = time.perf_counter()
     estimate_noise_floor(record)
     # the brief asks < 0.3 s (measured 0.1-0.2 s); 1 s leaves room for a machine shared by several jobs
@@ -149,13 +163,15 @@ def test_quantised_displacement_at_100_hz_sets_the_floor_through_the_velocity():
     motion = earthquake_motion(0.01, 0.0, duration=30.0, rate=100.0, seed=7)
     exact = simulate_truth(truth, motion, force_noise=0.0, displacement_noise=0.0)
     xq = np.round(motion.displacement / q) * q
-    record = Measurement.from_arrays(motion.time, xq, exact.true_force, control=motion.control,
-                                     control_kind=exact.measured.control_kind)
+    record = Measurement.from_arrays(
+        motion.time, xq, exact.true_force, control=motion.control, control_kind=exact.measured.control_kind
+    )
     clean = Measurement.from_arrays(motion.time, motion.displacement, exact.true_force)
 
     def rig(v, a):
-        return simulate_truth(truth, replace(motion, velocity=v, acceleration=a), force_noise=0.0,
-                              displacement_noise=0.0).true_force
+        return simulate_truth(
+            truth, replace(motion, velocity=v, acceleration=a), force_noise=0.0, displacement_noise=0.0
+        ).true_force
 
     cost = rig(record.velocity, record.acceleration) - rig(clean.velocity, clean.acceleration)
     dv, da = 1e-4 * np.ptp(motion.velocity), 1e-3 * np.ptp(motion.acceleration)
@@ -166,12 +182,14 @@ def test_quantised_displacement_at_100_hz_sets_the_floor_through_the_velocity():
     true_esr = float(np.sum(cost[known] ** 2) / np.sum((F - F.mean()) ** 2))
     floor = estimate_noise_floor(record, known, sensitivity=(s_v, s_a))
     assert quantisation_step(xq) == pytest.approx(q, rel=1e-9)
-    assert floor.sigma_displacement == pytest.approx(q / math.sqrt(12), rel=1e-9)   # uniform error of one step
+    assert floor.sigma_displacement == pytest.approx(q / math.sqrt(12), rel=1e-9)  # uniform error of one step
     # first-order propagation of a white noise: measured 1.10 here, 0.76-1.19 for peaks of 4 to 20 mm (a digitisation
     # error is white only while the motion crosses several steps a sample, and the derivative's adaptive cut-off
     # moves with the noise): within a factor 1.4
-    print(f"\n100 Hz, 5 um steps: motion_esr {floor.motion_esr:.3g}, the digitisation costs an exact model "
-          f"{true_esr:.3g}; load cell {floor.esr:.3g}")
+    print(
+        f"\n100 Hz, 5 um steps: motion_esr {floor.motion_esr:.3g}, the digitisation costs an exact model "
+        f"{true_esr:.3g}; load cell {floor.esr:.3g}"
+    )
     assert 1 / 1.4 < floor.motion_esr / true_esr < 1.4, (floor.motion_esr, true_esr)
     assert floor.total() == pytest.approx(floor.esr + floor.motion_esr)
     assert floor.total() > floor.esr
@@ -198,8 +216,9 @@ def test_given_force_noise(value):
     assert floor.esr == pytest.approx(5.0e-5, rel=1e-3)
 
 
-@pytest.mark.parametrize("value,match", [("5 m", "force_noise"), (-1.0, "force_noise"), (True, "force_noise"),
-                                         (float("nan"), "force_noise")])
+@pytest.mark.parametrize(
+    "value,match", [("5 m", "force_noise"), (-1.0, "force_noise"), (True, "force_noise"), (float("nan"), "force_noise")]
+)
 def test_given_force_noise_errors_name_the_argument(value, match):
     t = np.arange(100) / 100.0
     rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), np.cos(2 * np.pi * t))
@@ -222,29 +241,34 @@ def test_still_segment_before_the_motion():
     """An MR valve held still for 1.5 s, then driven at 2 Hz: the force's spread at rest is the load cell's."""
     rate, rest = 1000.0, 1500
     m = sine(0.005, 2.0, 2e5, cycles=3, rate=rate)
-    motion = Motion(np.arange(rest + m.time.size) / rate, np.concatenate([np.zeros(rest), m.displacement]),
-                    np.concatenate([np.zeros(rest), m.velocity]), np.concatenate([np.zeros(rest), m.acceleration]),
-                    np.concatenate([np.full(rest, 2e5), m.control]), "rest, then a sine")
+    motion = Motion(
+        np.arange(rest + m.time.size) / rate,
+        np.concatenate([np.zeros(rest), m.displacement]),
+        np.concatenate([np.zeros(rest), m.velocity]),
+        np.concatenate([np.zeros(rest), m.acceleration]),
+        np.concatenate([np.full(rest, 2e5), m.control]),
+        "rest, then a sine",
+    )
     rec = simulate_truth(TruthDamper(load_example("mr_valve"), {"accumulator": {}}), motion, force_noise=0.01, seed=8)
     truth = _true_sigma(rec, 0.01)
-    assert np.ptp(rec.true_force[:rest]) < 1e-9 * np.ptp(rec.true_force)     # the gas preload: constant at rest
+    assert np.ptp(rec.true_force[:rest]) < 1e-9 * np.ptp(rec.true_force)  # the gas preload: constant at rest
     floor = estimate_noise_floor(rec.measured)
     assert floor.method == STILL, floor.note
     # 1500 samples: the spread is known to about 2 %; 10 %
     assert 0.9 < floor.sigma_force / truth < 1.1
-    assert force_noise_from_still_segment(rec.measured.select(slice(rest, None))) is None    # no rest, no segment
+    assert force_noise_from_still_segment(rec.measured.select(slice(rest, None))) is None  # no rest, no segment
 
 
 def test_repeated_cycles_with_heating_and_a_period_of_no_whole_number_of_samples():
     """An MR valve heating over 12 cycles (its force falls as the fluid warms) at 1.3 Hz sampled at 500 Hz
     (384.6 samples a period): adjacent cycles cancel the drift and the interpolation's effect is divided out."""
-    truth = TruthDamper(load_example("mr_valve"), {"thermal": {"heat_capacity": 20.0}})     # warms 77 K
+    truth = TruthDamper(load_example("mr_valve"), {"thermal": {"heat_capacity": 20.0}})  # warms 77 K
     rec = simulate_truth(truth, sine(0.008, 1.3, 2e5, cycles=12, rate=500), force_noise=0.01, seed=9)
     F = rec.true_force
     period = int(round(500 / 1.3))
-    drift = abs(np.max(F[period:2 * period]) - np.max(F[-2 * period:-period]))
+    drift = abs(np.max(F[period : 2 * period]) - np.max(F[-2 * period : -period]))
     noise = _true_sigma(rec, 0.01)
-    assert drift > 3 * noise                                          # the heating is there, above the noise
+    assert drift > 3 * noise  # the heating is there, above the noise
     found = force_noise_from_cycles(rec.measured)
     assert found is not None
     assert 0.85 < found[0] / noise < 1.15
@@ -260,12 +284,15 @@ def test_methods_constant_and_result_type():
 
 
 # ------------------------------------------------------------------------------------------------------ real data
-needs_dyke = pytest.mark.skipif(not (DATA / "dyke_nees" / "ransim_u.csv").is_file(),
-                                reason="../shared/data/dyke_nees/ransim_u.csv is absent (the measured MR-damper data "
-                                       "are not part of the repository)")
-needs_quiroz = pytest.mark.skipif(not (DATA / "quiroz2022_utfsm_mr").is_dir(),
-                                  reason="../shared/data/quiroz2022_utfsm_mr is absent (the measured MR-damper data "
-                                         "are not part of the repository)")
+needs_dyke = pytest.mark.skipif(
+    not (DATA / "dyke_nees" / "ransim_u.csv").is_file(),
+    reason="../shared/data/dyke_nees/ransim_u.csv is absent (the measured MR-damper data "
+    "are not part of the repository)",
+)
+needs_quiroz = pytest.mark.skipif(
+    not (DATA / "quiroz2022_utfsm_mr").is_dir(),
+    reason="../shared/data/quiroz2022_utfsm_mr is absent (the measured MR-damper data are not part of the repository)",
+)
 
 
 @needs_dyke
@@ -274,13 +301,14 @@ def test_dyke_ransim_u_floor_is_far_below_a_13_parameter_model():
     13-parameter Bouc-Wen reaches there (ESR 0.026, issue 23); the old fourth differences on the copy a diagnosis
     thinned to 4000 samples read 62 N, an ESR of 0.006, and the loop's rounds 0.058-0.073."""
     from erdesign.data.measurement import clipped_samples
+
     record = read_measurement(DATA / "dyke_nees" / "ransim_u.csv")
     unclipped = ~clipped_samples(record.force)
     floor = estimate_noise_floor(record, unclipped)
     print(f"\nransim_u: {floor.sigma_force:.3g} N, ESR {floor.esr:.3g} ({floor.method}: {floor.note})")
     assert floor.method == SPECTRUM
     assert floor.esr < 0.026 / 100
-    assert 0.1 < floor.sigma_force < 5.0          # measured 0.53 N; the load cell's digitisation step is 0.14 N
+    assert 0.1 < floor.sigma_force < 5.0  # measured 0.53 N; the load cell's digitisation step is 0.14 N
 
 
 def _read_quiroz_raw(path, segment=0):
@@ -319,8 +347,10 @@ def test_quiroz_preprocessed_record_floor_from_its_cycles():
     a = np.loadtxt(DATA / "quiroz2022_utfsm_mr" / "preprocessed" / "10mm1Hz0x5A.txt")
     record = Measurement.from_arrays(a[:, 0] - a[0, 0], a[:, 1] * 1e-3, a[:, 3], name="10mm1Hz0x5A")
     floor = estimate_noise_floor(record)
-    print(f"\nQuiroz preprocessed 10mm1Hz0x5A: {floor.sigma_force:.3g} N, ESR {floor.esr:.3g} ({floor.method}: "
-          f"{floor.note})")
+    print(
+        f"\nQuiroz preprocessed 10mm1Hz0x5A: {floor.sigma_force:.3g} N, ESR {floor.esr:.3g} ({floor.method}: "
+        f"{floor.note})"
+    )
     # the file is smoothed (a causal moving average over a tenth of a period): the fourth differences see almost
     # nothing (0.017 N); what a model of one cycle cannot follow is the spread between cycles (measured 1.0 N)
     assert floor.method == CYCLES
@@ -331,15 +361,21 @@ def test_quiroz_preprocessed_record_floor_from_its_cycles():
 def test_one_floor_judged_on_a_thinned_copy():
     """The floor is estimated on the full record; on the copy a diagnosis thins it keeps its noise levels, and its
     ESR on the thinned samples equals the full record's (every 15th sample of a long random record)."""
-    rec = simulate_truth(TruthDamper(load_example("makris"), {}),
-                         random_motion(0.003, (0.5, 5.0), 3e6, duration=8.0, rate=1000, seed=1), force_noise=0.01,
-                         seed=3)
+    rec = simulate_truth(
+        TruthDamper(load_example("makris"), {}),
+        random_motion(0.003, (0.5, 5.0), 3e6, duration=8.0, rate=1000, seed=1),
+        force_noise=0.01,
+        seed=3,
+    )
     n = len(rec.measured)
     s_v = np.full(n, 2e3)
     full = estimate_noise_floor(rec.measured, sensitivity=(s_v, None))
     thinned = full.on(rec.measured.select(slice(None, None, 15)), sensitivity=(s_v[::15], None))
-    assert (thinned.sigma_force, thinned.method, thinned.sigma_velocity) == (full.sigma_force, full.method,
-                                                                            full.sigma_velocity)
+    assert (thinned.sigma_force, thinned.method, thinned.sigma_velocity) == (
+        full.sigma_force,
+        full.method,
+        full.sigma_velocity,
+    )
     # the same variances over a sample of the same record: equal to within the sampling of the force's variance
     assert thinned.esr == pytest.approx(full.esr, rel=0.05)
     assert thinned.motion_esr == pytest.approx(full.motion_esr, rel=0.05)
@@ -366,11 +402,15 @@ def test_clipped_samples_out_of_the_mask_do_not_lower_the_floor(level):
     entered the cycle differences (17.8 N and 9.1 N).  The brief's tolerance: 20 %."""
     from erdesign.data.findings import excluded_mask, find_data_problems
     from erdesign.simulation.rig import stepped_sine
+
     d = load_example("mr_valve")
     ref = d.fluid.reference_field
-    tr = simulate_truth(TruthDamper(d, {}, viscosity_factor=1.1, yield_stress_factor=0.9),
-                        stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=500), force_noise=0.01,
-                        seed=4)
+    tr = simulate_truth(
+        TruthDamper(d, {}, viscosity_factor=1.1, yield_stress_factor=0.9),
+        stepped_sine([0.01], [1.0, 2.0], [ref, 0.5 * ref], cycles=3, rate=500),
+        force_noise=0.01,
+        seed=4,
+    )
     rec = tr.measured
     truth = float(np.std(rec.force - tr.true_force))
     clipped = rec.with_force(np.minimum(rec.force, level * rec.force.max()))

@@ -48,7 +48,7 @@ def test_dsfs_steps_follow_table_1():
 
 def test_dsfs_rejects_what_no_rig_can_play():
     with pytest.raises(ProgrammeError, match="frequency"):
-        dsfs(rate=100.0)                     # 14.5 Hz needs at least 8 samples a period
+        dsfs(rate=100.0)  # 14.5 Hz needs at least 8 samples a period
     with pytest.raises(ProgrammeError, match="frequency_range"):
         dsfs(frequency_range=(5.0, 1.0))
 
@@ -79,9 +79,9 @@ def test_stepped_control_staircase():
     t = np.arange(0.0, 16.0, 0.01)
     u = stepped_control(t, 0.1, 0.8, steps=8, hold=1.0)
     levels, lengths = _runs(u)
-    np.testing.assert_allclose(np.unique(u), np.linspace(0.1, 0.8, 8), atol=1e-12)   # 10 % increments of duty
-    assert np.all(lengths == 100)                                                     # 1 s at 100 Hz each
-    np.testing.assert_allclose(levels[:8], np.linspace(0.1, 0.8, 8))                  # rising, then repeated
+    np.testing.assert_allclose(np.unique(u), np.linspace(0.1, 0.8, 8), atol=1e-12)  # 10 % increments of duty
+    assert np.all(lengths == 100)  # 1 s at 100 Hz each
+    np.testing.assert_allclose(levels[:8], np.linspace(0.1, 0.8, 8))  # rising, then repeated
 
 
 def test_icps_clock_period_increases():
@@ -119,8 +119,8 @@ def test_prbs_signal_levels_and_clock():
     u = prbs(t, 0.1, 0.8, clock=0.1, order=8)
     assert set(np.unique(u)) == {0.1, 0.8}
     _, lengths = _runs(u)
-    assert np.all(lengths % 10 == 0)                      # changes only on the clock
-    assert np.max(lengths) == 8 * 10                      # longest run of an order-8 m-sequence: 8 bits
+    assert np.all(lengths % 10 == 0)  # changes only on the clock
+    assert np.max(lengths) == 8 * 10  # longest run of an order-8 m-sequence: 8 bits
     with pytest.raises(ProgrammeError, match="order"):
         prbs_bits(20)
 
@@ -139,7 +139,7 @@ def test_experiments_pair_table_1_signals(name):
     else:
         assert levels.size > 8
     peak = np.max(np.abs(m.displacement))
-    assert peak == pytest.approx(8e-3, rel=0.01)          # +-8 mm at most in every row of Table 1
+    assert peak == pytest.approx(8e-3, rel=0.01)  # +-8 mm at most in every row of Table 1
     assert m.description.startswith(name.upper())
 
 
@@ -179,12 +179,15 @@ def test_doe_writes_a_playable_record(tmp_path, capsys):
     assert code != 0 and "exists" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("args, words", [
-    (["--programme", "sc"], "pair it with a displacement"),
-    (["--programme", "E1", "--amplitudes", "8 mm"], "--amplitudes"),
-    (["--programme", "dsfs", "--duration", "3 s"], "--duration"),
-    (["--programme", "E2", "--control-range", "1 m, 2 m"], "--control-range"),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--programme", "sc"], "pair it with a displacement"),
+        (["--programme", "E1", "--amplitudes", "8 mm"], "--amplitudes"),
+        (["--programme", "dsfs", "--duration", "3 s"], "--duration"),
+        (["--programme", "E2", "--control-range", "1 m, 2 m"], "--control-range"),
+    ],
+)
 def test_doe_bad_options_are_one_line(tmp_path, capsys, args, words):
     code = main(["doe", *args, "--out", str(tmp_path / "p.csv")])
     err = capsys.readouterr().err.strip()
@@ -196,8 +199,21 @@ def test_simulate_runs_a_plan_without_scoring_it(tmp_path, capsys):
     plan, forces = tmp_path / "e2.csv", tmp_path / "forces.csv"
     assert main(["doe", "--programme", "E2", "--control-range", "0 A, 1 A", "--out", str(plan)]) == 0
     capsys.readouterr()
-    code = main(["simulate", str(plan), "--model", "bingham", "--params", "c0=2 kN*s/m, f_c=0.5 kN, f_c_u=1 kN",
-                 "--control-reference", "1 A", "--out", str(forces), "--json"])
+    code = main(
+        [
+            "simulate",
+            str(plan),
+            "--model",
+            "bingham",
+            "--params",
+            "c0=2 kN*s/m, f_c=0.5 kN, f_c_u=1 kN",
+            "--control-reference",
+            "1 A",
+            "--out",
+            str(forces),
+            "--json",
+        ]
+    )
     assert code == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["esr"] is None and doc["samples_scored"] == 0 and doc["samples"] > 0

@@ -6,35 +6,62 @@ import numpy as np
 import pytest
 
 from erdesign import Damper, Fluid, Geometry
-from erdesign.damper.quasi_steady import (QuasiSteadyState, mixed_gap_table, mixed_state, quasi_steady_state,
-                                          valve_pressure_drop, valve_state)
+from erdesign.damper.quasi_steady import (
+    QuasiSteadyState,
+    mixed_gap_table,
+    mixed_state,
+    quasi_steady_state,
+    valve_pressure_drop,
+    valve_state,
+)
 from erdesign.flow.mixed_mode import mixed_mode_yield_force
 from erdesign.flow.newtonian import slit_pressure_drop
 
-FLUID = Fluid.create(viscosity="0.3 Pa*s", yield_stress="3 kPa", reference_field="3 kV/mm", yield_exponent=2.0,
-                     density="1200 kg/m^3", viscosity_at_reference_field="0.5 Pa*s")
+FLUID = Fluid.create(
+    viscosity="0.3 Pa*s",
+    yield_stress="3 kPa",
+    reference_field="3 kV/mm",
+    yield_exponent=2.0,
+    density="1200 kg/m^3",
+    viscosity_at_reference_field="0.5 Pa*s",
+)
 V = np.array([0.0, -0.0, 1e-9, -1e-9, 1e-4, 0.02, -0.02, 0.3, -1.5])
 E = np.array([0.0, 0.4e6, 3e6, -2e6])
 SEAL = 25.0
 
 # (h, L, d, Dp, dr, n) per damper; the valve ones are thin (h/d <= 0.06) for "thin_gap" and wide (h/d >= 0.12)
 # for "annulus", so that flow_model="auto" would pick the same model
-THIN = [(0.8e-3, 0.05, 0.0143, 0.0334, 0.01125, 1), (1.0e-3, 0.04, 0.03, 0.04, 0.012, 2),
-        (0.5e-3, 0.09, 0.02, 0.06, 0.02, 4)]
-WIDE = [(2.0e-3, 0.05, 0.0143, 0.0334, 0.01125, 1), (4.0e-3, 0.04, 0.03, 0.04, 0.012, 3),
-        (3.0e-3, 0.03, 0.012, 0.025, 0.008, 1)]
-MIXED = [(1.0e-3, 0.02, None, 0.03, 0.01, 1), (2.54e-3, 0.05, None, 0.038, 0.0127, 1),
-         (0.6e-3, 0.08, None, 0.05, 0.02, 1)]
+THIN = [
+    (0.8e-3, 0.05, 0.0143, 0.0334, 0.01125, 1),
+    (1.0e-3, 0.04, 0.03, 0.04, 0.012, 2),
+    (0.5e-3, 0.09, 0.02, 0.06, 0.02, 4),
+]
+WIDE = [
+    (2.0e-3, 0.05, 0.0143, 0.0334, 0.01125, 1),
+    (4.0e-3, 0.04, 0.03, 0.04, 0.012, 3),
+    (3.0e-3, 0.03, 0.012, 0.025, 0.008, 1),
+]
+MIXED = [
+    (1.0e-3, 0.02, None, 0.03, 0.01, 1),
+    (2.54e-3, 0.05, None, 0.038, 0.0127, 1),
+    (0.6e-3, 0.08, None, 0.05, 0.02, 1),
+]
 CASES = {"thin_gap": ("valve", THIN), "annulus": ("valve", WIDE), "mixed": ("mixed", MIXED)}
 
 
 def _damper(configuration, row, flow_model):
     h, L, d, Dp, dr, n = row
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")      # the wide gaps warn that the exact annulus is used
-        g = Geometry.create(configuration=configuration, gap=f"{h} m", duct_length=f"{L} m",
-                            duct_mean_diameter=None if d is None else f"{d} m", piston_diameter=f"{Dp} m",
-                            rod_diameter=f"{dr} m", ducts=n)
+        warnings.simplefilter("ignore")  # the wide gaps warn that the exact annulus is used
+        g = Geometry.create(
+            configuration=configuration,
+            gap=f"{h} m",
+            duct_length=f"{L} m",
+            duct_mean_diameter=None if d is None else f"{d} m",
+            piston_diameter=f"{Dp} m",
+            rod_diameter=f"{dr} m",
+            ducts=n,
+        )
     return Damper(geometry=g, fluid=FLUID, seal_friction=SEAL, flow_model=flow_model)
 
 
@@ -46,14 +73,15 @@ def test_kernel_over_geometries_is_damper_state_one_by_one(case):
     configuration, rows = CASES[case]
     flow_model = "auto" if case == "mixed" else case
     dampers = [_damper(configuration, row, flow_model) for row in rows]
-    geo = [np.array([getattr(dm.geometry, k) for dm in dampers], dtype=float)[:, None, None]
-           for k in ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter", "ducts")]
+    geo = [
+        np.array([getattr(dm.geometry, k) for dm in dampers], dtype=float)[:, None, None]
+        for k in ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter", "ducts")
+    ]
     exact = np.array([dm.uses_exact_annulus for dm in dampers])[:, None, None]
     assert exact.all() == (case == "annulus") and exact.any() == (case == "annulus")
     tau_y = FLUID.yield_stress_at(E)[None, :, None]
     eta = FLUID.viscosity_at(E)[None, :, None]
-    s = quasi_steady_state(configuration, V[None, None, :], tau_y, eta, FLUID.density, SEAL, *geo,
-                           exact_annulus=exact)
+    s = quasi_steady_state(configuration, V[None, None, :], tau_y, eta, FLUID.density, SEAL, *geo, exact_annulus=exact)
     for i, dm in enumerate(dampers):
         one = dm.state(V[None, :], E[:, None])
         for name in QuasiSteadyState._fields:
@@ -113,7 +141,7 @@ def test_mixed_gap_table_is_mixed_state_within_its_interpolation_error(row):
     root of mixed_state at every velocity and control, from creeping flow (plug filling the gap) to Newtonian."""
     h, L, _, Dp, dr, _ = row
     table = mixed_gap_table(h, Dp, dr)
-    assert mixed_gap_table(h, Dp, dr) is table                     # built once per head
+    assert mixed_gap_table(h, Dp, dr) is table  # built once per head
     v = np.concatenate([-np.geomspace(1e-5, 2.0, 40), np.geomspace(1e-5, 2.0, 40)])
     for tau_y in (0.0, 50.0, 3e3, 40e3):
         eta = 0.3

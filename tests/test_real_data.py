@@ -14,14 +14,22 @@ import pytest
 
 from erdesign.case_studies.quiroz import QUIROZ_STUDY_MODELS
 from erdesign.data.metrics import esr
-from erdesign.data.quiroz import QUIROZ_CURRENTS, QUIROZ_TESTS, quiroz_folder, read_quiroz_sinusoid, read_quiroz_validation
+from erdesign.data.quiroz import (
+    QUIROZ_CURRENTS,
+    QUIROZ_TESTS,
+    quiroz_folder,
+    read_quiroz_sinusoid,
+    read_quiroz_validation,
+)
 from erdesign.identification.identify import identify_joint
 from erdesign.models.registry import get_model
 
 ROOT = Path(__file__).resolve().parents[1]
 FOLDER = quiroz_folder(ROOT)
-pytestmark = pytest.mark.skipif(FOLDER is None, reason="../shared/data/quiroz2022_utfsm_mr is absent (the measured "
-                                                         "MR-damper data are not part of the repository)")
+pytestmark = pytest.mark.skipif(
+    FOLDER is None,
+    reason="../shared/data/quiroz2022_utfsm_mr is absent (the measured MR-damper data are not part of the repository)",
+)
 STUDY = json.loads((ROOT / "docs" / "case_studies" / "quiroz.json").read_text())
 
 
@@ -31,8 +39,9 @@ def training():
 
 
 def _make_script():
-    spec = importlib.util.spec_from_file_location("make_real_data",
-                                                  ROOT / "docs" / "case_studies" / "make_real_data.py")
+    spec = importlib.util.spec_from_file_location(
+        "make_real_data", ROOT / "docs" / "case_studies" / "make_real_data.py"
+    )
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -41,8 +50,9 @@ def _make_script():
 def test_doc_is_the_rendering_of_the_study():
     # the Markdown is generated from the JSON, never edited by hand
     # (the generated part ends where the hand-written command-line study of Dyke's record begins)
-    assert (ROOT / "docs" / "case_studies" / "quiroz.md").read_text().split("\n<!-- dyke-cli -->")[0] == \
-        _make_script().render(STUDY).rstrip("\n") + ("\n" if _make_script().render(STUDY).endswith("\n") else "")
+    assert (ROOT / "docs" / "case_studies" / "quiroz.md").read_text().split("\n<!-- dyke-cli -->")[
+        0
+    ] == _make_script().render(STUDY).rstrip("\n") + ("\n" if _make_script().render(STUDY).endswith("\n") else "")
 
 
 def test_documented_training_esrs_reproduce(training):
@@ -50,8 +60,9 @@ def test_documented_training_esrs_reproduce(training):
         model = get_model(name)
         for rec in training:
             # same data, same parameters, same deterministic simulation: equal to round-off
-            assert esr(rec.force, model.simulate(rec, d["values"])) == pytest.approx(d["training_esr"][rec.name],
-                                                                                  rel=1e-9, abs=1e-12), (name, rec.name)
+            assert esr(rec.force, model.simulate(rec, d["values"])) == pytest.approx(
+                d["training_esr"][rec.name], rel=1e-9, abs=1e-12
+            ), (name, rec.name)
 
 
 def test_documented_validation_esrs_reproduce():
@@ -59,8 +70,9 @@ def test_documented_validation_esrs_reproduce():
     for name, d in STUDY["models"].items():
         model = get_model(name)
         for rec in validation:
-            assert esr(rec.force, model.simulate(rec, d["values"])) == pytest.approx(d["validation_esr"][rec.name],
-                                                                                  rel=1e-9, abs=1e-12), (name, rec.name)
+            assert esr(rec.force, model.simulate(rec, d["values"])) == pytest.approx(
+                d["validation_esr"][rec.name], rel=1e-9, abs=1e-12
+            ), (name, rec.name)
 
 
 def test_bingham_joint_identification_reproduces_the_doc(training):
@@ -110,6 +122,7 @@ def test_raw_records_force_levels():
     # the six raw DAQ files give five records each, in rising current order: the force's peak-to-peak grows
     # record by record in every file (measured at 10 mm 2 Hz: 494, 1125, 1927, 2634, 3178 N)
     from erdesign.data.quiroz import QUIROZ_RAW_TESTS, read_quiroz_raw
+
     for test, freq, _ in QUIROZ_RAW_TESTS:
         recs = read_quiroz_raw(FOLDER, test)
         assert [float(r.control[0]) for r in recs] == list(QUIROZ_CURRENTS)
@@ -127,6 +140,7 @@ def test_equivalent_damper_file_matches_the_measured_force_levels():
     # sit above it) and 1.01-1.08 x at 1 A
     from erdesign.damper.files import load_example
     from erdesign.data.quiroz import QUIROZ_RAW_TESTS, read_quiroz_raw
+
     damper = load_example("quiroz2022")
     ratios = {0.0: [], 1.0: []}
     for test, _, _ in QUIROZ_RAW_TESTS:
@@ -144,15 +158,22 @@ def test_equivalent_damper_file_matches_the_measured_force_levels():
 def test_undoing_the_sources_moving_average():
     # the validation record's displacement, un-smoothed and smoothed again, is the stored one (round-off), and its
     # range widens as an average's undoing must (stored -7.95..6.66 mm; before the average -8.80..7.22 mm)
-    from erdesign.data.quiroz import (QUIROZ_VALIDATION_WINDOW, causal_moving_average,
-                                      read_quiroz_validation_unsmoothed, undo_causal_moving_average)
+    from erdesign.data.quiroz import (
+        QUIROZ_VALIDATION_WINDOW,
+        causal_moving_average,
+        read_quiroz_validation_unsmoothed,
+        undo_causal_moving_average,
+    )
+
     stored = read_quiroz_validation(FOLDER, step=1)[0].displacement
     x = undo_causal_moving_average(stored, QUIROZ_VALIDATION_WINDOW)
-    again = causal_moving_average(np.r_[np.full(QUIROZ_VALIDATION_WINDOW, x[0]), x],
-                                  QUIROZ_VALIDATION_WINDOW)[QUIROZ_VALIDATION_WINDOW:]
+    again = causal_moving_average(np.r_[np.full(QUIROZ_VALIDATION_WINDOW, x[0]), x], QUIROZ_VALIDATION_WINDOW)[
+        QUIROZ_VALIDATION_WINDOW:
+    ]
     assert np.max(np.abs(again - stored)) < 1e-12
     assert (x.min(), x.max()) == pytest.approx((-8.797e-3, 7.225e-3), abs=2e-6)
     assert np.array_equal(read_quiroz_validation_unsmoothed(FOLDER)[0].displacement, x)
+
 
 # ------------------------------------------------------------------ the physics model of the equivalent damper file
 PHYSICS = STUDY.get("physics")
@@ -166,6 +187,7 @@ def test_documented_physics_validation_esrs_reproduce():
     from erdesign.case_studies.quiroz import physics_validation_esr
     from erdesign.damper.files import load_example
     from erdesign.effects.chain import PhysicsDamper
+
     damper = load_example(PHYSICS["damper"])
     for label, d in PHYSICS["models"].items():
         got = physics_validation_esr(PhysicsDamper(damper, tuple(d["effects"])), d["values"], FOLDER)
@@ -178,8 +200,9 @@ def test_documented_physics_validation_esrs_reproduce():
 def test_findings_of_the_physics_model():
     def mean(val):
         return float(np.mean(list(val.values())))
-    bw_doc = mean(STUDY["models"]["bouc_wen_modified"]["validation_esr"])            # 0.066
-    bw_raw = mean(PHYSICS["bouc_wen_modified_raw"]["validation_esr"]["through_smoothing"])   # 0.037
+
+    bw_doc = mean(STUDY["models"]["bouc_wen_modified"]["validation_esr"])  # 0.066
+    bw_raw = mean(PHYSICS["bouc_wen_modified_raw"]["validation_esr"]["through_smoothing"])  # 0.037
     models = {k: mean(d["validation_esr"]["through_smoothing"]) for k, d in PHYSICS["models"].items()}
     rounds = PHYSICS["rounds"]
     # the loop names pre-yield elasticity first (ESR 0.087 -> 0.012 on the 30 raw records), then stops

@@ -29,8 +29,11 @@ from erdesign.effects.chain import PhysicsDamper
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORD = ROOT.parent / "shared" / "data" / "dyke_nees" / "ransim_u.csv"
-pytestmark = pytest.mark.skipif(not RECORD.is_file(), reason="../shared/data/dyke_nees/ransim_u.csv is absent (the "
-                                                             "measured MR-damper data are not part of the repository)")
+pytestmark = pytest.mark.skipif(
+    not RECORD.is_file(),
+    reason="../shared/data/dyke_nees/ransim_u.csv is absent (the "
+    "measured MR-damper data are not part of the repository)",
+)
 
 
 def held_at_extreme(t, x, *, fraction=0.05, min_duration=0.05, bridge=0.02, guard=0.005):
@@ -46,7 +49,7 @@ def held_at_extreme(t, x, *, fraction=0.05, min_duration=0.05, bridge=0.02, guar
         for a, b in zip(np.r_[idx[0], idx[breaks + 1]], np.r_[idx[breaks], idx[-1]]):
             if t[b] - t[a] >= min_duration:
                 g = int(round(guard / dt))
-                out[max(a - g, 0):b + g + 1] = True
+                out[max(a - g, 0) : b + g + 1] = True
     return out
 
 
@@ -63,14 +66,14 @@ def masks(record):
 
 def test_the_record_has_a_clipped_force_and_a_held_displacement(record, masks):
     unclipped, kept = masks
-    assert (~unclipped).sum() == 217                                   # shared/data/README.md: about 220 at +4545 N
+    assert (~unclipped).sum() == 217  # shared/data/README.md: about 220 at +4545 N
     held = unclipped & ~kept
     t = record.time[held]
-    assert 800 <= held.sum() <= 870                                    # 834 measured
+    assert 800 <= held.sum() <= 870  # 834 measured
     assert t.min() == pytest.approx(19.53, abs=0.01) and t.max() == pytest.approx(19.91, abs=0.01)
-    assert np.median(record.displacement[held]) > 0.0105               # m: the channel sits at 10.5-11.0 mm ...
-    assert record.displacement[~held & unclipped].max() < 0.0085       # ... beyond its largest value elsewhere (8.4 mm)
-    assert np.ptp(record.force[held]) > 6000.0                          # N: while the force swings by 6-7 kN
+    assert np.median(record.displacement[held]) > 0.0105  # m: the channel sits at 10.5-11.0 mm ...
+    assert record.displacement[~held & unclipped].max() < 0.0085  # ... beyond its largest value elsewhere (8.4 mm)
+    assert np.ptp(record.force[held]) > 6000.0  # N: while the force swings by 6-7 kN
 
 
 def test_field_lag_and_accumulator_on_ransim_u(record, masks):
@@ -89,7 +92,7 @@ def test_field_lag_and_accumulator_on_ransim_u(record, masks):
     assert 0.006 < v["field_time_constant"] < 0.011
     # the accumulator's force at rest: -140 N in the rig's sign convention (Spencer's k1 x0 = 71.5 N in 1997)
     assert -160.0 < v["gas_preload"] < -115.0
-    assert v["gas_stiffness"] == pytest.approx(2503.0, rel=1e-3)        # at 5 x the accumulator's k
+    assert v["gas_stiffness"] == pytest.approx(2503.0, rel=1e-3)  # at 5 x the accumulator's k
     assert 1.3 < v["viscosity_factor"] < 1.65 and 0.68 < v["yield_stress_factor"] < 0.85
 
     first = np.arange(len(record)) < len(record) // 2
@@ -98,7 +101,7 @@ def test_field_lag_and_accumulator_on_ransim_u(record, masks):
     own = esr(record.force[kept & first], predicted[kept & first])
     ahead = esr(record.force[kept & ~first], predicted[kept & ~first])
     assert own == pytest.approx(0.0621, abs=0.004)
-    assert ahead / own < 1.45                                          # measured 1.31
+    assert ahead / own < 1.45  # measured 1.31
 
 
 def test_without_field_lag_the_yield_factor_reads_low(record, masks):
@@ -130,9 +133,9 @@ def test_seven_parameter_physics_model_on_ransim_u(record):
     assert esr(thin.force[kept], force[kept]) == pytest.approx(0.0214, abs=0.003)
     assert esr(thin.force[unclipped], force[unclipped]) == pytest.approx(0.0996, abs=0.004)
     v = fit.values
-    assert v["viscosity_factor"] == pytest.approx(1.03, abs=0.07)         # the file's zero-field slope holds
+    assert v["viscosity_factor"] == pytest.approx(1.03, abs=0.07)  # the file's zero-field slope holds
     assert v["yield_stress_factor"] == pytest.approx(1.30, abs=0.08)
-    assert 18e3 < v["bypass_damping"] < 30e3                               # N s/m (Spencer's c1a: 28.3 kN s/m)
+    assert 18e3 < v["bypass_damping"] < 30e3  # N s/m (Spencer's c1a: 28.3 kN s/m)
     assert 0.007 < v["field_time_constant"] < 0.0105
 
     first = np.arange(len(thin)) < len(thin) // 2

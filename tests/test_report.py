@@ -32,7 +32,7 @@ from erdesign.report import (
 )
 from erdesign.units import Q_
 
-ROUNDING = 5e-4     # 4 significant figures (module docstring)
+ROUNDING = 5e-4  # 4 significant figures (module docstring)
 ROOT = Path(__file__).resolve().parents[1]
 MAKRIS = str(ROOT / "erdesign" / "examples" / "makris.toml")
 
@@ -115,7 +115,7 @@ def test_html_damping_constant_and_area_are_the_librarys(spans):
 
 def test_html_design_table_is_the_librarys_state(makris_report, spans):
     d = load_example("makris")
-    v = 2 * 0.0254                                           # the design velocity: top of the range, 2 in/s
+    v = 2 * 0.0254  # the design velocity: top of the range, 2 in/s
     cols = makris_report.design_table.columns
     i_force = cols.index(next(c for c in cols if c.startswith("force F")))
     i_re = cols.index(next(c for c in cols if c.startswith("Reynolds")))
@@ -129,7 +129,7 @@ def test_html_design_table_is_the_librarys_state(makris_report, spans):
 
 def test_html_sine_energy_is_the_librarys(makris_report, spans):
     d = load_example("makris")
-    X0, f = 0.01, 2 * 0.0254 / (2 * np.pi * 0.01)            # default 10 mm; peak velocity = top of the range
+    X0, f = 0.01, 2 * 0.0254 / (2 * np.pi * 0.01)  # default 10 mm; peak velocity = top of the range
     for i, E in enumerate(["0 kV/mm", "1.5 kV/mm", "3 kV/mm"]):
         r = d.sine_response(Q_(X0, "m"), Q_(f, "Hz"), E, samples_per_cycle=480)
         close(spans.spans[f"q-sine-{i}-2"]["text"], Q_(r.energy_per_cycle, "J"))
@@ -194,7 +194,7 @@ def test_every_html_quantity_has_its_unit_and_si_value(spans):
         # The printed number is the SI value, rounded.
         assert q.to_base_units().magnitude == pytest.approx(s["si"], rel=ROUNDING, abs=1e-12), (key, s)
         digits = re.sub(r"[^0-9]", "", s["text"].split()[0].lstrip("0.").split("e")[0])
-        assert len(digits.rstrip("0")) <= 4, (key, s)            # consistent significant figures
+        assert len(digits.rstrip("0")) <= 4, (key, s)  # consistent significant figures
 
 
 def test_no_bare_number_in_a_value_cell(spans):
@@ -246,12 +246,12 @@ def test_every_markdown_quantity_has_the_unit_of_its_column(markdown):
 def test_html_embeds_plotly_once_and_loads_nothing(html, makris_report):
     assert not re.search(r"<script[^>]*\bsrc\s*=", html)
     assert not re.search(r"<link[^>]*\bhref\s*=\s*[\"']https?:", html)
-    assert len(re.findall(r"plotly\.js v\d", html)) == 1                # the library, embedded once
+    assert len(re.findall(r"plotly\.js v\d", html)) == 1  # the library, embedded once
     assert html.count('class="plotly-graph-div"') == len(makris_report.figures) == 4
 
 
 def test_templates_are_strict(makris_report):
-    class Incomplete:          # has what the renderer reads in Python, lacks what the template reads
+    class Incomplete:  # has what the renderer reads in Python, lacks what the template reads
         title = "x"
         history = ()
 
@@ -276,7 +276,8 @@ def test_low_velocity_warns_of_seal_friction_and_of_the_plug():
     # At 0.01 mm/s the zero-field force is C v + F_s = 1.2 N + 112 N: the seals take 99 %.
     assert status["seal_friction"].status == "warn"
     assert parse_quantity(status["seal_friction"].value.text).to("").magnitude == pytest.approx(
-        112.0 / d.state(0.01e-3, 0.0).force, rel=ROUNDING)
+        112.0 / d.state(0.01e-3, 0.0).force, rel=ROUNDING
+    )
     # At 3 kV/mm the plug fills 91 % of the gap (Makris eqs 5-7); the check warns above 90 %.
     close(status["plug"].value.text, Q_(d.state(0.01e-3, 3e6).plug_fraction, ""))
     assert status["plug"].status == "warn"
@@ -286,12 +287,13 @@ def test_field_outside_the_material_range_warns(tmp_path):
     path = tmp_path / "mr.toml"
     path.write_text(
         'name = "mr"\n[geometry]\nconfiguration = "mixed"\nduct_length = "25 mm"\ngap = "1 mm"\n'
-        'piston_diameter = "40 mm"\nrod_diameter = "12 mm"\n[fluid]\nmaterial = "lord-mrf-132dg"\n')
+        'piston_diameter = "40 mm"\nrod_diameter = "12 mm"\n[fluid]\nmaterial = "lord-mrf-132dg"\n'
+    )
     with pytest.warns(ValidityWarning, match="300 kA/m is outside the range 0 to 250 kA/m"):
         r = build_report(path, fields=["300 kA/m"], velocity_range=("0 m/s", "20 m/s"))
     status = {c.key: c.status for c in r.checks}
     assert status["field_range"] == "warn"
-    assert status["laminar"] == "warn"            # 20 m/s in a 1 mm gap of a 0.112 Pa s fluid: Re about 5000
+    assert status["laminar"] == "warn"  # 20 m/s in a 1 mm gap of a 0.112 Pa s fluid: Re about 5000
     assert r.material["name"] == "lord-mrf-132dg" and "saturating law" in r.material["law"]
     origins = {row.key: row.origin for row in r.inputs}
     assert origins["viscosity"] == "material lord-mrf-132dg"
@@ -302,11 +304,21 @@ def test_measurement_section_only_when_given(markdown, html):
     assert "Measurement comparison" not in markdown and "Measurement comparison" not in html
     d = load_example("makris")
     x = np.linspace(0, 1, 50)
-    r = build_report(d, fields=["3 kV/mm"],
-                     comparison=MeasurementComparison("test.csv", esr=0.082, samples=50, rms_error="85 N",
-                                                      displacement=x * 1e-3, velocity=x * 1e-2, force_measured=x * 1e3,
-                                                      force_model=x * 1.1e3),
-                     history=[(0, "baseline", 0.31), ErrorHistoryStep(1, "seal_friction", 0.082)])
+    r = build_report(
+        d,
+        fields=["3 kV/mm"],
+        comparison=MeasurementComparison(
+            "test.csv",
+            esr=0.082,
+            samples=50,
+            rms_error="85 N",
+            displacement=x * 1e-3,
+            velocity=x * 1e-2,
+            force_measured=x * 1e3,
+            force_model=x * 1.1e3,
+        ),
+        history=[(0, "baseline", 0.31), ErrorHistoryStep(1, "seal_friction", 0.082)],
+    )
     md = render_markdown(r)
     assert "## 7. Measurement comparison and error history (optional)" in md
     # the RMS error in the report's one force unit (kN: the curves' forces), not N beside the tables' kN
@@ -323,8 +335,9 @@ def test_measurement_section_only_when_given(markdown, html):
 # ------------------------------------------------------------------------------------------------------ the CLI
 def test_cli_writes_markdown_and_reports_json(tmp_path, capsys):
     out = tmp_path / "r.md"
-    code = main(["report", MAKRIS, "--velocity-range", "0 in/s", "1 in/s", "--field", "3 kV/mm",
-                 "--out", str(out), "--json"])
+    code = main(
+        ["report", MAKRIS, "--velocity-range", "0 in/s", "1 in/s", "--field", "3 kV/mm", "--out", str(out), "--json"]
+    )
     stdout, stderr = capsys.readouterr()
     data = json.loads(stdout)
     assert code == 0 and stderr == "" and data["format"] == "md" and data["warnings"] == 0
@@ -394,7 +407,7 @@ def test_cli_design_point_and_bare_numbers(tmp_path, capsys):
     # a bare number is read in SI units, with a warning that says so
     code = main(["report", MAKRIS, "--design-velocity", "0.025", "--out", str(out), "--force"])
     _, stderr = capsys.readouterr()
-    assert code == 0 and 'warning: --design-velocity 0.025: a bare number, read as 0.025 m/s' in stderr
+    assert code == 0 and "warning: --design-velocity 0.025: a bare number, read as 0.025 m/s" in stderr
 
 
 def test_report_from_the_content_of_a_damper_file_at_a_design_point():
@@ -403,8 +416,13 @@ def test_report_from_the_content_of_a_damper_file_at_a_design_point():
 
     spec = read_toml(MAKRIS)
     spec["geometry"]["gap"] = "0.0315 in"
-    r = build_report(spec, velocity_range=("0 mm/s", "50 mm/s"), design_velocity="1 in/s", design_field="3 kV/mm",
-                     origin="as typed in the app")
+    r = build_report(
+        spec,
+        velocity_range=("0 mm/s", "50 mm/s"),
+        design_velocity="1 in/s",
+        design_field="3 kV/mm",
+        origin="as typed in the app",
+    )
     assert r.setting("velocity_design").value.text == "25.4 mm/s"
     assert r.setting("velocity_max").value.text == "50 mm/s"
     gap = [row for row in r.inputs if row.key == "gap"][0]
@@ -435,8 +453,9 @@ def test_baseline_section_is_the_librarys_design_point_of_each_design():
     assert rows["force"]["this"].si == pytest.approx(F_now, rel=1e-12)
     assert rows["force"]["change"] == f"{100 * (F_now / F_base - 1):+.1f} %"
     # the inputs that differ, with the change of this design against the baseline: 0.6 / 0.8 - 1 = -25 %
-    assert report.baseline["inputs"] == ({"key": "geometry.gap", "baseline": "0.8 mm", "this": "0.6 mm",
-                                          "change": "-25.0 %"},)
+    assert report.baseline["inputs"] == (
+        {"key": "geometry.gap", "baseline": "0.8 mm", "this": "0.6 mm", "change": "-25.0 %"},
+    )
     assert [f.key for f in report.figures][-1] == "baseline" and build_report(narrow, **point).baseline is None
     md = render_markdown(report)
     assert f"| force F | {rows['force']['baseline'].text} | {rows['force']['this'].text} |" in md
@@ -448,7 +467,7 @@ def test_figure_images_without_kaleido_or_a_browser_say_what_is_needed(monkeypat
 
     from erdesign.report.export import IMAGES_NEED, figure_images
 
-    monkeypatch.setitem(sys.modules, "kaleido", None)           # `import kaleido` fails as when not installed
+    monkeypatch.setitem(sys.modules, "kaleido", None)  # `import kaleido` fails as when not installed
     with pytest.raises(ErdesignError, match="kaleido is not installed") as info:
         figure_images(makris_report.figures, "png")
     assert IMAGES_NEED in str(info.value) and "camera button" in str(info.value)
@@ -459,9 +478,9 @@ def test_figure_images_without_kaleido_or_a_browser_say_what_is_needed(monkeypat
     except ImportError:
         return
 
-    class NoBrowser:                                              # what kaleido does on a machine without one
+    class NoBrowser:  # what kaleido does on a machine without one
         def __init__(self, **kwargs):
-            assert kwargs["mathjax"] is False                     # never MathJax from a CDN
+            assert kwargs["mathjax"] is False  # never MathJax from a CDN
 
         async def __aenter__(self):
             raise ChromeNotFoundError("no chrome found")
@@ -512,7 +531,7 @@ def test_cli_figures_without_kaleido_is_one_line_and_writes_nothing(tmp_path, ca
 
     from erdesign.report.export import IMAGES_NEED
 
-    monkeypatch.setitem(sys.modules, "kaleido", None)           # `import kaleido` fails as when not installed
+    monkeypatch.setitem(sys.modules, "kaleido", None)  # `import kaleido` fails as when not installed
     out, figs = tmp_path / "r.html", tmp_path / "figs"
     code = main(["report", MAKRIS, "--out", str(out), "--figures", str(figs)])
     stdout, err = capsys.readouterr()
@@ -530,7 +549,7 @@ def test_cli_figures_without_a_browser_is_one_line(tmp_path, capsys, monkeypatch
     kaleido = pytest.importorskip("kaleido")
     from kaleido.errors import ChromeNotFoundError
 
-    class NoBrowser:                                              # what kaleido does on a machine without one
+    class NoBrowser:  # what kaleido does on a machine without one
         def __init__(self, **kwargs):
             pass
 
@@ -564,12 +583,23 @@ def test_cli_figures_with_kaleido_and_chromium(tmp_path, capsys):
     assert sorted(p.name for p in figs.iterdir()) == sorted(names)
     assert json.loads(stdout)["figures"] == [str(figs / n) for n in names]
     for name in names:
-        assert (figs / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"       # the PNG signature (RFC 2083, 3.1)
+        assert (figs / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"  # the PNG signature (RFC 2083, 3.1)
     before = (figs / names[1]).stat().st_mtime_ns
     code = main(["report", MAKRIS, "--out", str(tmp_path / "s.html"), "--figures", str(figs)])
     _, err = capsys.readouterr()
     assert code == 1 and "exists; give --force" in err and not (tmp_path / "s.html").exists()
     assert (figs / names[1]).stat().st_mtime_ns == before
-    code = main(["report", MAKRIS, "--out", str(tmp_path / "r.html"), "--figures", str(figs), "--force",
-                 "--figure-format", "svg"])
+    code = main(
+        [
+            "report",
+            MAKRIS,
+            "--out",
+            str(tmp_path / "r.html"),
+            "--figures",
+            str(figs),
+            "--force",
+            "--figure-format",
+            "svg",
+        ]
+    )
     assert code == 0 and (figs / "makris-1996-force.svg").read_bytes().lstrip().startswith(b"<svg")

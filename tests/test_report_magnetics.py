@@ -19,9 +19,9 @@ def test_magnetic_rows_are_the_circuit_at_the_rated_current(report):
     c = load_magnetic_circuit(MR_COIL)
     rows = {r.key: r.value for r in report.magnetics["rows"]}
     # Shown.si is the number rounded to four significant figures, in SI
-    assert rows["time_constant"].si == pytest.approx(float(c.time_constant(2.0)[0]), rel=5e-4)    # 46.03 ms
-    assert rows["coil_resistance"].si == pytest.approx(c.resistance, rel=5e-4)                     # 2.648 ohm
-    assert rows["power"].si == pytest.approx(4.0 * c.resistance, rel=5e-4)                         # 10.59 W
+    assert rows["time_constant"].si == pytest.approx(float(c.time_constant(2.0)[0]), rel=5e-4)  # 46.03 ms
+    assert rows["coil_resistance"].si == pytest.approx(c.resistance, rel=5e-4)  # 2.648 ohm
+    assert rows["power"].si == pytest.approx(4.0 * c.resistance, rel=5e-4)  # 10.59 W
     assert rows["gap_flux_density"].si == pytest.approx(float(c.state(2.0).gap_flux_density[0]), rel=5e-4)
     assert rows["knee_current"].si == pytest.approx(c.knee_current(), rel=5e-4)
     assert report.magnetics["limiting_part"] == "core" and report.magnetics["saturated"]

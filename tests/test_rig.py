@@ -4,8 +4,15 @@ import numpy as np
 import pytest
 
 from erdesign import load_example
-from erdesign.simulation.rig import (OVERSAMPLING, earthquake_motion, field_steps, random_motion, run_rig, sine,
-                                     stepped_sine)
+from erdesign.simulation.rig import (
+    OVERSAMPLING,
+    earthquake_motion,
+    field_steps,
+    random_motion,
+    run_rig,
+    sine,
+    stepped_sine,
+)
 
 
 def test_sine_kinematics_are_exact():
@@ -13,8 +20,7 @@ def test_sine_kinematics_are_exact():
     w = 4 * np.pi
     # differentiated on an 8x finer grid with second-order differences: error (w dt/8)^2 / 6 ~ 1e-7 relative
     np.testing.assert_allclose(m.velocity, 0.005 * w * np.cos(w * m.time), atol=1e-5 * 0.005 * w)
-    np.testing.assert_allclose(m.acceleration[1:-1], -0.005 * w**2 * np.sin(w * m.time[1:-1]),
-                               atol=1e-4 * 0.005 * w**2)
+    np.testing.assert_allclose(m.acceleration[1:-1], -0.005 * w**2 * np.sin(w * m.time[1:-1]), atol=1e-4 * 0.005 * w**2)
     assert OVERSAMPLING == 8 and np.all(m.control == 3e6)
 
 
@@ -34,14 +40,21 @@ def test_field_steps_random_and_earthquake_motions():
     # the RMS is set on the 8x finer grid; every eighth sample keeps it to within 1 %
     assert np.sqrt(np.mean(r.displacement**2)) == pytest.approx(0.003, rel=0.01)
     q = earthquake_motion(0.01, duration=8.0, rate=500, seed=2)
-    assert np.max(np.abs(q.displacement)) == pytest.approx(0.01, rel=1e-3)   # peak set on the fine grid
-    assert abs(q.displacement[-1]) < 1e-6          # comes to rest
+    assert np.max(np.abs(q.displacement)) == pytest.approx(0.01, rel=1e-3)  # peak set on the fine grid
+    assert abs(q.displacement[-1]) < 1e-6  # comes to rest
 
 
 def test_noise_and_truth_are_as_requested():
     d = load_example("makris")
-    rig = run_rig(d, sine(0.005, 2.0, 3e6, cycles=4, rate=500), hidden={"seal_friction": {"friction_force": 250.0}},
-                  viscosity_factor=1.3, force_noise=0.01, displacement_noise=1e-3, seed=3)
+    rig = run_rig(
+        d,
+        sine(0.005, 2.0, 3e6, cycles=4, rate=500),
+        hidden={"seal_friction": {"friction_force": 250.0}},
+        viscosity_factor=1.3,
+        force_noise=0.01,
+        displacement_noise=1e-3,
+        seed=3,
+    )
     noise = rig.record.force - rig.true_force
     rms = np.sqrt(np.mean(rig.true_force**2))
     # 2001 samples: the sample standard deviation is within 3 / sqrt(2 n) = 5 % of the true one

@@ -13,8 +13,11 @@ from erdesign.models.published import published_set, published_sets
 from erdesign.models.registry import get_model
 
 DYKE = Path(__file__).resolve().parents[2] / "shared" / "data" / "dyke_nees" / "ransim_u.csv"
-needs_dyke = pytest.mark.skipif(not DYKE.is_file(), reason="Dyke's NEES record ../shared/data/dyke_nees/ransim_u.csv "
-                                                          "is not here (third-party data, not in the repository)")
+needs_dyke = pytest.mark.skipif(
+    not DYKE.is_file(),
+    reason="Dyke's NEES record ../shared/data/dyke_nees/ransim_u.csv "
+    "is not here (third-party data, not in the repository)",
+)
 
 
 def run(capsys, *args):
@@ -26,12 +29,14 @@ def run(capsys, *args):
 @pytest.fixture
 def bingham_csv(tmp_path):
     t = np.linspace(0, 2, 1001)
-    rec = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=np.where(t < 1, 0.0, 2.0),
-                                  control_kind="current")
+    rec = Measurement.from_arrays(
+        t, 0.01 * np.sin(2 * np.pi * t), control=np.where(t < 1, 0.0, 2.0), control_kind="current"
+    )
     F = get_model("bingham").simulate(rec, {"c0": 4000.0, "f_c": 500.0, "f_c_u": 150.0})
     path = tmp_path / "m.csv"
-    write_measurement(path, rec.with_force(F + np.random.default_rng(0).standard_normal(t.size)),
-                      units={"displacement": "mm"})
+    write_measurement(
+        path, rec.with_force(F + np.random.default_rng(0).standard_normal(t.size)), units={"displacement": "mm"}
+    )
     return path
 
 
@@ -43,11 +48,20 @@ def test_published_spencer_set_on_dykes_record(capsys):
     assert code == 0, err
     data = json.loads(out)
     assert {"model", "esr", "parameters"} <= set(data)
-    assert data["esr"] == pytest.approx(0.23, abs=0.01)          # measured 0.2364
+    assert data["esr"] == pytest.approx(0.23, abs=0.01)  # measured 0.2364
     assert data["clipped_samples"] == pytest.approx(220, abs=10)  # measured 217 at 4545.45 N
     assert any("flat top" in w for w in data["warnings"])
-    code, out, err = run(capsys, "simulate", DYKE, "--model", "bouc_wen_modified", "--params", "spencer1997",
-                         "--exclude-clipped", "--json")
+    code, out, err = run(
+        capsys,
+        "simulate",
+        DYKE,
+        "--model",
+        "bouc_wen_modified",
+        "--params",
+        "spencer1997",
+        "--exclude-clipped",
+        "--json",
+    )
     assert json.loads(out)["esr"] == pytest.approx(0.13, abs=0.01)  # measured 0.1336
 
 
@@ -55,15 +69,15 @@ def test_published_sets_are_the_printed_values():
     """Spot checks against the prints: Spencer (1997) via shared/data/README.md in SI, Kamath and Wereley (1997)
     Table 1 case 2 (the values the library's doctests and round trips use)."""
     s = published_set("bouc_wen_modified", "spencer1997")
-    assert s.values["c0a"] == pytest.approx(21.0 * 100)        # 21.0 N s/cm
-    assert s.values["alpha_b"] == pytest.approx(695 * 100)     # 695 N/(cm V), per volt
-    assert s.values["beta"] == pytest.approx(363 * 1e4)        # 363 cm^-2
+    assert s.values["c0a"] == pytest.approx(21.0 * 100)  # 21.0 N s/cm
+    assert s.values["alpha_b"] == pytest.approx(695 * 100)  # 695 N/(cm V), per volt
+    assert s.values["beta"] == pytest.approx(363 * 1e4)  # 363 cm^-2
     assert s.values["x0"] == pytest.approx(0.143) and s.values["eta"] == 190.0
     case2 = published_set("kamath_wereley_6", "kamath_wereley1997_case2").values
     assert case2 == pytest.approx({k: KAMATH_WERELEY_TABLE1[k] for k in case2})
     for model, name in published_sets():
         p = published_set(model, name)
-        get_model(model).check_values(p.values)   # within the model's bounds
+        get_model(model).check_values(p.values)  # within the model's bounds
         assert p.source and all(p.value_sources.values()), (model, name)
 
 
@@ -84,8 +98,16 @@ def test_identify_json_round_trips_through_simulate(capsys, tmp_path, bingham_cs
 def test_parameter_list_with_units_and_per_control_units(capsys, bingham_csv):
     """Values with any unit; a coefficient per unit control may be given per ampere ("N/A").  The record's
     current peaks at 2 A, so identify's rule takes u = current / 1 A: 150 N/A is 150 N per unit u."""
-    code, out, err = run(capsys, "simulate", bingham_csv, "--model", "bingham", "--params",
-                         "c0=4 kN*s/m, f_c=0.5 kN, f_c_u=150 N/A", "--json")
+    code, out, err = run(
+        capsys,
+        "simulate",
+        bingham_csv,
+        "--model",
+        "bingham",
+        "--params",
+        "c0=4 kN*s/m, f_c=0.5 kN, f_c_u=150 N/A",
+        "--json",
+    )
     assert code == 0, err
     data = json.loads(out)
     # the noise is 1 N on ~600-800 N forces: at the noise floor
@@ -99,16 +121,16 @@ def test_parameter_list_with_units_and_per_control_units(capsys, bingham_csv):
 
 def test_out_writes_the_model_force_and_refuses_to_overwrite(capsys, tmp_path, bingham_csv):
     out_csv = tmp_path / "forces.csv"
-    args = ["simulate", bingham_csv, "--model", "bingham", "--params", "c0=4000, f_c=500, f_c_u=150",
-            "--out", out_csv]
+    args = ["simulate", bingham_csv, "--model", "bingham", "--params", "c0=4000, f_c=500, f_c_u=150", "--out", out_csv]
     code, out, err = run(capsys, *args)
     assert code == 0, err
     written = read_measurement(out_csv)
     rec = read_measurement(bingham_csv)
     expected = get_model("bingham")
     expected.control_reference = 1.0
-    assert np.allclose(written.force, expected.simulate(rec, {"c0": 4000.0, "f_c": 500.0, "f_c_u": 150.0}),
-                       rtol=1e-8, atol=1e-6)
+    assert np.allclose(
+        written.force, expected.simulate(rec, {"c0": 4000.0, "f_c": 500.0, "f_c_u": 150.0}), rtol=1e-8, atol=1e-6
+    )
     code, out, err = run(capsys, *args)
     assert code == 1 and out == "" and err.count("\n") == 1 and "exists; give --force" in err
     code, out, err = run(capsys, *args, "--force")

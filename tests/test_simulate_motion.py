@@ -18,8 +18,9 @@ def run(capsys, *args):
 
 
 def test_bingham_energy_per_cycle_is_the_closed_form(capsys):
-    code, out, err = run(capsys, "--model", "bingham", "--params", "c0=2000 N*s/m, f_c=300 N", "--motion",
-                         "sine 10 mm 2 Hz", "--json")
+    code, out, err = run(
+        capsys, "--model", "bingham", "--params", "c0=2000 N*s/m, f_c=300 N", "--motion", "sine 10 mm 2 Hz", "--json"
+    )
     assert code == 0, err
     d = json.loads(out)
     X0, w = 0.01, 2 * math.pi * 2.0
@@ -35,8 +36,22 @@ def test_bingham_energy_per_cycle_is_the_closed_form(capsys):
 
 def test_physics_damper_energy_per_active_volume(capsys, tmp_path):
     out_file = tmp_path / "forces.csv"
-    code, out, err = run(capsys, "--model", "physics", "--damper", "makris", "--params", "viscosity_factor=1",
-                         "--motion", "sine 5 mm 1 Hz 2 cycles", "--field", "2 kV/mm", "--json", "--out", str(out_file))
+    code, out, err = run(
+        capsys,
+        "--model",
+        "physics",
+        "--damper",
+        "makris",
+        "--params",
+        "viscosity_factor=1",
+        "--motion",
+        "sine 5 mm 1 Hz 2 cycles",
+        "--field",
+        "2 kV/mm",
+        "--json",
+        "--out",
+        str(out_file),
+    )
     assert code == 0, err
     d = json.loads(out)
     g = load_damper("makris").geometry
@@ -47,19 +62,31 @@ def test_physics_damper_energy_per_active_volume(capsys, tmp_path):
 
 
 def test_published_set_on_a_generated_motion(capsys):
-    code, out, err = run(capsys, "--model", "kamath_wereley_4", "--params", "kamath_wereley1997_case2", "--motion",
-                         "sine 1 mm 10 Hz", "--active-volume", "16.2 cm^3")
+    code, out, err = run(
+        capsys,
+        "--model",
+        "kamath_wereley_4",
+        "--params",
+        "kamath_wereley1997_case2",
+        "--motion",
+        "sine 1 mm 10 Hz",
+        "--active-volume",
+        "16.2 cm^3",
+    )
     assert code == 0, err
     assert "energy per cycle" in out and "kJ/m^3" in out
 
 
-@pytest.mark.parametrize("args,words", [
-    (["--model", "bingham", "--params", "c0=1 kN*s/m"], "MEASUREMENT.csv or --motion"),
-    (["REC.csv", "--model", "bingham", "--params", "c0=1 kN*s/m", "--motion", "sine 1 mm 1 Hz"], "one of them"),
-    (["--model", "bingham", "--params", "c0=1 kN*s/m", "--motion", "square 1 mm 1 Hz"], "sine AMPLITUDE"),
-    (["--model", "bingham", "--params", "c0=1 kN*s/m", "--motion", "sine 1 kg 1 Hz"], "amplitude"),
-    (["--model", "bingham", "--params", "c0=1 kN*s/m", "--motion", "sine 1 mm 1 Hz 0.5 cycles"], "cycles"),
-])
+@pytest.mark.parametrize(
+    "args,words",
+    [
+        (["--model", "bingham", "--params", "c0=1 kN*s/m"], "MEASUREMENT.csv or --motion"),
+        (["REC.csv", "--model", "bingham", "--params", "c0=1 kN*s/m", "--motion", "sine 1 mm 1 Hz"], "one of them"),
+        (["--model", "bingham", "--params", "c0=1 kN*s/m", "--motion", "square 1 mm 1 Hz"], "sine AMPLITUDE"),
+        (["--model", "bingham", "--params", "c0=1 kN*s/m", "--motion", "sine 1 kg 1 Hz"], "amplitude"),
+        (["--model", "bingham", "--params", "c0=1 kN*s/m", "--motion", "sine 1 mm 1 Hz 0.5 cycles"], "cycles"),
+    ],
+)
 def test_bad_motion_is_one_line(capsys, args, words):
     code, out, err = run(capsys, *args, "--json")
     assert code != 0 and out == "" and words in err and len(err.strip().splitlines()) == 1

@@ -34,15 +34,23 @@ def run(capsys, *args):
     return code, out, err
 
 
-@pytest.mark.parametrize("example, field", [("makris", 3e6), ("kamath_wereley", None), ("mr_valve_current", 1.0),
-                                            ("mr_mixed", None)])
+@pytest.mark.parametrize(
+    "example, field", [("makris", 3e6), ("kamath_wereley", None), ("mr_valve_current", 1.0), ("mr_mixed", None)]
+)
 def test_nominal_sample_is_damper_size(example, field):
     """A sample at the file's values gives what ``erdesign size`` gives (the same kernel), to rounding."""
     d = load_example(example)
     E = d.fluid.reference_field if field is None else field
     r = d.size(velocity="0.05 m/s", field=f"{E} {d.fluid.control_unit}").as_json()
-    vary = tuple(parse_variation(s, d) for s in ("geometry.gap=+-1 %", "fluid.viscosity=+-5 %",
-                                                   "fluid.yield_stress=+-5 %", "geometry.duct_length=+-1 %"))
+    vary = tuple(
+        parse_variation(s, d)
+        for s in (
+            "geometry.gap=+-1 %",
+            "fluid.viscosity=+-5 %",
+            "fluid.yield_stress=+-5 %",
+            "geometry.duct_length=+-1 %",
+        )
+    )
     study = ToleranceStudy(d, 0.05, float(E), vary)
     y = evaluate_samples(study, np.array([[v.nominal for v in vary]]))
     for key in OUTPUTS:
@@ -85,7 +93,7 @@ def test_sobol_indices_match_one_at_a_time_linearisation(makris):
         cd = evaluate_samples(r.study, down)["damping_constant_N_s_per_m"][0]
         g = (math.log(cu) - math.log(cd)) / (2 * step)
         shares.append((g * v.delta / v.nominal) ** 2)
-    assert shares[0] / shares[1] == pytest.approx(9 * 0.01**2 / 0.02**2, rel=1e-4)    # g = -3 and 1
+    assert shares[0] / shares[1] == pytest.approx(9 * 0.01**2 / 0.02**2, rel=1e-4)  # g = -3 and 1
     expected = np.array(shares) / sum(shares)
     s = r.sensitivity["damping_constant_N_s_per_m"]
     total_first = 0.0
@@ -132,48 +140,73 @@ def test_one_million_samples_same_quantiles_serial_pool_and_dask(makris, dask_cl
 
 def test_non_physical_draws_are_rejected_and_counted(makris):
     # gap 0.8 mm with sd 0.4 mm: P(h <= 0) = Phi(-2) = 2.3 %
-    r = tolerance_study(makris, ["geometry.gap=+-50 %"], velocity=0.0254, samples=20_000, seed=1,
-                        sensitivity=False, keep_samples=True)
+    r = tolerance_study(
+        makris, ["geometry.gap=+-50 %"], velocity=0.0254, samples=20_000, seed=1, sensitivity=False, keep_samples=True
+    )
     assert r.samples["geometry.gap"].min() > 0
     assert r.rejected == pytest.approx(0.02275 / (1 - 0.02275) * 20_000, rel=0.2)
     with pytest.raises(ToleranceError, match=r"--vary 'fluid.viscosity=\+-300 %'.*no physical damper"):
         tolerance_study(makris, ["geometry.gap=+-1 %", "fluid.viscosity=+-300 %"], velocity=0.0254, samples=1000)
 
 
-@pytest.mark.parametrize("spec, message", [
-    ("geometry.gapp=+-1 %", "'geometry.gapp' is not a value a study can vary"),
-    ("geometry.gap=0.9 mm +- 1 um", "disagrees with the damper file, which gives geometry.gap = 0.8 mm"),
-    ("geometry.gap=0.8 mm +- 1 kg", "DELTA '1 kg' is a mass, expected a length"),
-    ("geometry.gap=0.8 kg +- 1 um", "VALUE '0.8 kg' is a mass"),
-    ("geometry.gap +- 3 um", "expected \"KEY=VALUE"),
-    ("geometry.gap=+-0 %", "must be a positive amount"),
-    ("geometry.gap=+--3 um", "must be a positive amount"),
-    ("geometry.gap=+-3", "has no unit"),
-    ("fluid.viscosity=+-lots", "cannot read DELTA"),
-])
+@pytest.mark.parametrize(
+    "spec, message",
+    [
+        ("geometry.gapp=+-1 %", "'geometry.gapp' is not a value a study can vary"),
+        ("geometry.gap=0.9 mm +- 1 um", "disagrees with the damper file, which gives geometry.gap = 0.8 mm"),
+        ("geometry.gap=0.8 mm +- 1 kg", "DELTA '1 kg' is a mass, expected a length"),
+        ("geometry.gap=0.8 kg +- 1 um", "VALUE '0.8 kg' is a mass"),
+        ("geometry.gap +- 3 um", 'expected "KEY=VALUE'),
+        ("geometry.gap=+-0 %", "must be a positive amount"),
+        ("geometry.gap=+--3 um", "must be a positive amount"),
+        ("geometry.gap=+-3", "has no unit"),
+        ("fluid.viscosity=+-lots", "cannot read DELTA"),
+    ],
+)
 def test_bad_vary_is_a_one_line_error_naming_it(capsys, spec, message):
-    code, out, err = run(capsys, "tolerance", "makris", "--vary", spec, "--velocity", "1 in/s", "--samples", "100",
-                         "--jobs", "1")
+    code, out, err = run(
+        capsys, "tolerance", "makris", "--vary", spec, "--velocity", "1 in/s", "--samples", "100", "--jobs", "1"
+    )
     assert code == 1 and out == ""
     assert err.startswith(f"error: --vary {spec!r}") and message in err and err.count("\n") == 1
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--samples", "0"], "--samples"),
-    (["--samples", "-5"], "--samples"),
-    (["--vary", "geometry.gap=+-2 %"], "geometry.gap is varied twice"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--samples", "0"], "--samples"),
+        (["--samples", "-5"], "--samples"),
+        (["--vary", "geometry.gap=+-2 %"], "geometry.gap is varied twice"),
+    ],
+)
 def test_bad_options_are_named(capsys, args, message):
-    code, _, err = run(capsys, "tolerance", "makris", "--vary", "geometry.gap=+-1 %", "--velocity", "1 in/s",
-                       "--jobs", "1", *args)
+    code, _, err = run(
+        capsys, "tolerance", "makris", "--vary", "geometry.gap=+-1 %", "--velocity", "1 in/s", "--jobs", "1", *args
+    )
     assert code in (1, 2) and message in err and err.count("\n") == 1
 
 
 def test_cli_json_keys_and_out_file(capsys, tmp_path):
     out = tmp_path / "samples.parquet"
-    code, text, err = run(capsys, "tolerance", "makris", *VARY_ARGS,
-                          "--velocity", "1 in/s", "--field", "3 kV/mm", "--samples", "5000", "--seed", "3",
-                          "--jobs", "1", "--json", "--out", str(out))
+    code, text, err = run(
+        capsys,
+        "tolerance",
+        "makris",
+        *VARY_ARGS,
+        "--velocity",
+        "1 in/s",
+        "--field",
+        "3 kV/mm",
+        "--samples",
+        "5000",
+        "--seed",
+        "3",
+        "--jobs",
+        "1",
+        "--json",
+        "--out",
+        str(out),
+    )
     assert code == 0, err
     obj = json.loads(text)
     assert obj["samples"] == 5000
@@ -186,21 +219,60 @@ def test_cli_json_keys_and_out_file(capsys, tmp_path):
     r = tolerance_study(load_example("makris"), VARY, velocity=0.0254, field=3e6, samples=5000, seed=3)
     assert obj["quantiles"]["force_N"] == pytest.approx(r.quantiles["force_N"], rel=1e-12)
     import pandas as pd
+
     frame = pd.read_parquet(out)
     assert len(frame) == 5000 and "geometry.gap [m]" in frame.columns and "force_N" in frame.columns
     assert np.quantile(frame["force_N"], 0.05) == pytest.approx(obj["quantiles"]["force_N"]["5"], rel=1e-12)
     # an existing file is never overwritten silently
-    code, text, err = run(capsys, "tolerance", "makris", "--vary", VARY[0], "--velocity", "1 in/s",
-                          "--samples", "100", "--jobs", "1", "--out", str(out))
+    code, text, err = run(
+        capsys,
+        "tolerance",
+        "makris",
+        "--vary",
+        VARY[0],
+        "--velocity",
+        "1 in/s",
+        "--samples",
+        "100",
+        "--jobs",
+        "1",
+        "--out",
+        str(out),
+    )
     assert code == 1 and "exists; give --force" in err
-    code, text, err = run(capsys, "tolerance", "makris", "--vary", VARY[0], "--velocity", "1 in/s",
-                          "--samples", "100", "--jobs", "1", "--out", str(tmp_path / "s.xlsx"))
+    code, text, err = run(
+        capsys,
+        "tolerance",
+        "makris",
+        "--vary",
+        VARY[0],
+        "--velocity",
+        "1 in/s",
+        "--samples",
+        "100",
+        "--jobs",
+        "1",
+        "--out",
+        str(tmp_path / "s.xlsx"),
+    )
     assert code == 1 and "cannot write a '.xlsx' file" in err
 
 
 def test_cli_table(capsys):
-    code, text, err = run(capsys, "tolerance", "makris", *VARY_ARGS,
-                          "--velocity", "1 in/s", "--field", "3 kV/mm", "--samples", "3000", "--jobs", "1")
+    code, text, err = run(
+        capsys,
+        "tolerance",
+        "makris",
+        *VARY_ARGS,
+        "--velocity",
+        "1 in/s",
+        "--field",
+        "3 kV/mm",
+        "--samples",
+        "3000",
+        "--jobs",
+        "1",
+    )
     assert code == 0, err
     assert "damping constant [kN s/m]" in text and "Sobol indices" in text and "geometry.gap" in text
 
@@ -237,32 +309,64 @@ def test_report_shows_the_tolerance_figures():
     from erdesign.report import build_report, render_markdown
 
     vary = ["geometry.gap=+-2.5 %", "fluid.viscosity_at_reference_field=+-10 %"]
-    rep = build_report(load_example("makris"), tolerances=vary, tolerance_samples=4000,
-                       design_velocity="50 mm/s", design_field="3 kV/mm")
+    rep = build_report(
+        load_example("makris"),
+        tolerances=vary,
+        tolerance_samples=4000,
+        design_velocity="50 mm/s",
+        design_field="3 kV/mm",
+    )
     keys = [f.key for f in rep.figures]
     assert "tolerance" in keys and "tornado" in keys
     table = next(f for f in rep.figures if f.key == "tolerance").table
     r = tolerance_study(load_example("makris"), vary, velocity=0.05, field=3e6, samples=4000)
-    median = table.rows[2][1]                                   # the 50 % row, force column
-    assert median.si == pytest.approx(r.quantiles["force_N"]["50"], rel=1e-3)   # shown to 4 figures
+    median = table.rows[2][1]  # the 50 % row, force column
+    assert median.si == pytest.approx(r.quantiles["force_N"]["50"], rel=1e-3)  # shown to 4 figures
     assert "What drives the spread of the force" in render_markdown(rep)
 
 
 def test_cli_csv_out_leaves_no_temporary_file(capsys, tmp_path):
     out = tmp_path / "samples.csv"
-    code, _, err = run(capsys, "tolerance", "makris", "--vary", "uniform:geometry.gap=+-20 um", "--velocity",
-                       "1 in/s", "--samples", "300", "--jobs", "1", "--json", "--out", str(out))
+    code, _, err = run(
+        capsys,
+        "tolerance",
+        "makris",
+        "--vary",
+        "uniform:geometry.gap=+-20 um",
+        "--velocity",
+        "1 in/s",
+        "--samples",
+        "300",
+        "--jobs",
+        "1",
+        "--json",
+        "--out",
+        str(out),
+    )
     assert code == 0, err
     assert [p.name for p in tmp_path.iterdir()] == ["samples.csv"]
     import pandas as pd
+
     gap = pd.read_csv(out)["geometry.gap [m]"]
-    assert len(gap) == 300 and 0.78e-3 <= gap.min() and gap.max() <= 0.82e-3     # uniform, half-width 20 um
+    assert len(gap) == 300 and 0.78e-3 <= gap.min() and gap.max() <= 0.82e-3  # uniform, half-width 20 um
 
 
 @pytest.mark.slow
 def test_cli_on_a_dask_scheduler_gives_the_serial_json(capsys, dask_client):
-    args = ["tolerance", "makris", *VARY_ARGS, "--velocity", "1 in/s", "--field", "3 kV/mm", "--samples", "100000",
-            "--seed", "9", "--json"]
+    args = [
+        "tolerance",
+        "makris",
+        *VARY_ARGS,
+        "--velocity",
+        "1 in/s",
+        "--field",
+        "3 kV/mm",
+        "--samples",
+        "100000",
+        "--seed",
+        "9",
+        "--json",
+    ]
     _, serial, err = run(capsys, *args, "--jobs", "1")
     code, dask, err = run(capsys, *args, "--scheduler", dask_client.scheduler.address)
     assert code == 0, err

@@ -20,8 +20,14 @@ def test_one_application_registry():
 
 @pytest.mark.parametrize(
     "value, unit, expected",
-    [("0.0315 in", "m", 0.0315 * 0.0254), ("3 kV/mm", "V/m", 3e6), ("40 kA/m", "A/m", 4e4),
-     ("1 in/s", "m/s", 0.0254), ("25 lbf", "N", 25 * 4.4482216152605), ("0.001 psi*s", "Pa*s", 6.894757293168)],
+    [
+        ("0.0315 in", "m", 0.0315 * 0.0254),
+        ("3 kV/mm", "V/m", 3e6),
+        ("40 kA/m", "A/m", 4e4),
+        ("1 in/s", "m/s", 0.0254),
+        ("25 lbf", "N", 25 * 4.4482216152605),
+        ("0.001 psi*s", "Pa*s", 6.894757293168),
+    ],
 )
 def test_to_si_converts(value, unit, expected):
     # Exact definitions: 1 in = 25.4 mm, 1 lbf = 4.4482216152605 N, 1 psi = 6894.757293168 Pa.
@@ -30,8 +36,14 @@ def test_to_si_converts(value, unit, expected):
 
 @pytest.mark.parametrize(
     "value, fragment",
-    [("3 kg", "gap: expected a length"), ("0.8", "gap: '0.8' is not"), (0.8, "gap: 0.8 has no unit"),
-     ("0.8 mmm", "gap: unknown unit"), ("nan mm", "gap: value must be finite"), ("inf m", "gap: value must be finite")],
+    [
+        ("3 kg", "gap: expected a length"),
+        ("0.8", "gap: '0.8' is not"),
+        (0.8, "gap: 0.8 has no unit"),
+        ("0.8 mmm", "gap: unknown unit"),
+        ("nan mm", "gap: value must be finite"),
+        ("inf m", "gap: value must be finite"),
+    ],
 )
 def test_to_si_errors_name_the_argument(value, fragment):
     with pytest.raises(UnitError) as err:

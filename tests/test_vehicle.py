@@ -12,8 +12,14 @@ from erdesign.models.registry import get_model
 from erdesign.simulation.roads import ISO8608_BAND, ISO8608_N0, bump_road, iso8608_road, make_road, step_road
 from erdesign.simulation.control import lqr_gains
 from erdesign.simulation.ride import weighted_rms, wk_weighting
-from erdesign.simulation.vehicle import (CONVENTIONAL_DAMPING, QUARTER_CAR, QuarterCar, VehicleDamper,
-                                         settling_time, simulate_vehicle)
+from erdesign.simulation.vehicle import (
+    CONVENTIONAL_DAMPING,
+    QUARTER_CAR,
+    QuarterCar,
+    VehicleDamper,
+    settling_time,
+    simulate_vehicle,
+)
 from erdesign.simulation.vehicle_setup import quarter_car, vehicle_damper
 
 M1, M2, K, C, k = (QUARTER_CAR[n] for n in ("m1", "m2", "K", "C", "k"))
@@ -30,12 +36,14 @@ def bingham():
 
 
 def bouc_wen():
-    return VehicleDamper(get_model("bouc_wen_modified"),
-                         published_set("bouc_wen_modified", "butz_vonstryk2002").values, label="bouc-wen")
+    return VehicleDamper(
+        get_model("bouc_wen_modified"), published_set("bouc_wen_modified", "butz_vonstryk2002").values, label="bouc-wen"
+    )
 
 
 def reference_solution(c0, f_c, road, t, v_eps=1e-4):
     """Eqs 31-32 with F = f_c tanh(dv / v_eps) + c0 dv, integrated by LSODA independently of the co-simulation."""
+
     def rhs(_, s):
         u1, v1, u2, v2 = s
         dv = v2 - v1
@@ -43,8 +51,9 @@ def reference_solution(c0, f_c, road, t, v_eps=1e-4):
         r, dr = float(road.profile(_)), float(road.rate(_))
         return [v1, (K * (r - u1) + C * (dr - v1) + k * (u2 - u1) + F) / M1, v2, (-k * (u2 - u1) - F) / M2]
 
-    sol = solve_ivp(rhs, (0, t[-1]), [0, C * road.step / M1, 0, 0], t_eval=t, method="LSODA", rtol=1e-9,
-                    atol=1e-11, max_step=1e-3)
+    sol = solve_ivp(
+        rhs, (0, t[-1]), [0, C * road.step / M1, 0, 0], t_eval=t, method="LSODA", rtol=1e-9, atol=1e-11, max_step=1e-3
+    )
     assert sol.success
     return sol.y
 
@@ -85,7 +94,7 @@ def test_random_road_matches_the_frequency_domain_solution():
     det = (M1 * s**2 + (C + c) * s + K + k) * (M2 * s**2 + c * s + k) - (c * s + k) ** 2
     U2 = (c * s + k) * (C * s + K) / det
     expected = np.sqrt(np.sum(A**2 / 2 * np.abs(s**2 * U2) ** 2))
-    late = r.time > 10.0                 # the start from rest has died away (body mode ~1.3 Hz, damped)
+    late = r.time > 10.0  # the start from rest has died away (body mode ~1.3 Hz, damped)
     measured = np.sqrt(np.mean(r.a2[late] ** 2))
     # cross terms of neighbouring cosines over the 30 s window and the held force (1 ms): within 3 %
     assert measured == pytest.approx(expected, rel=0.03)
@@ -102,8 +111,10 @@ def test_step_impulse_and_static_equilibrium():
 @pytest.mark.slow
 @pytest.mark.parametrize("road,final", [(step_road(0.1), 0.1), (bump_road(0.1), 0.0)], ids=["step", "bump"])
 def test_mr_damper_settles_the_body_faster_than_the_conventional_damper(road, final):
-    runs = {name: simulate_vehicle(d, road, duration=3.0, dt=1e-3)
-            for name, d in (("conventional", conventional()), ("bingham", bingham()), ("bouc_wen", bouc_wen()))}
+    runs = {
+        name: simulate_vehicle(d, road, duration=3.0, dt=1e-3)
+        for name, d in (("conventional", conventional()), ("bingham", bingham()), ("bouc_wen", bouc_wen()))
+    }
     # Butz and von Stryk (2002) Figs 22, 26, 28: faster decay with the MR damper.  Band 10 mm = 10 % of the 0.1 m
     # disturbance (the Bingham friction can hold the body up to f_c / k = 6 mm off equilibrium).  Measured (step):
     # 1.19 s conventional, 0.85 s Bingham, 0.84 s Bouc-Wen; (bump) 1.91, 1.49, 1.52 s.
@@ -128,12 +139,23 @@ def test_iso8608_road_has_the_variance_of_its_class():
     # the rate is the derivative of the profile (central difference over 2 us: error ~ (w h)^2 ~ 1e-6)
     h = 1e-6
     tt = np.array([1.0 - h, 1.0, 1.0 + h])
-    assert road.rate(tt[1:2])[0] == pytest.approx((road.profile(tt[2:]) - road.profile(tt[:1]))[0] / (2 * h),
-                                                  rel=1e-4)
+    assert road.rate(tt[1:2])[0] == pytest.approx((road.profile(tt[2:]) - road.profile(tt[:1]))[0] / (2 * h), rel=1e-4)
 
 
-@pytest.mark.parametrize("f,table", [(0.5, 0.418), (1.0, 0.482), (2.0, 0.531), (4.0, 0.967), (6.3, 1.054),
-                                     (10.0, 0.988), (16.0, 0.768), (31.5, 0.405), (80.0, 0.132)])
+@pytest.mark.parametrize(
+    "f,table",
+    [
+        (0.5, 0.418),
+        (1.0, 0.482),
+        (2.0, 0.531),
+        (4.0, 0.967),
+        (6.3, 1.054),
+        (10.0, 0.988),
+        (16.0, 0.768),
+        (31.5, 0.405),
+        (80.0, 0.132),
+    ],
+)
 def test_wk_weighting_reproduces_the_iso_2631_table(f, table):
     # ISO 2631-1 (1997) Table 3, W_k factors x 1000 printed to three digits at the nominal one-third-octave
     # frequencies (which differ from the exact centres 10^(n/10) Hz by up to 1 %): one unit of the last digit
@@ -143,7 +165,7 @@ def test_wk_weighting_reproduces_the_iso_2631_table(f, table):
 
 def test_weighted_rms_of_a_sine_is_its_rms_times_the_weighting():
     t = np.arange(0, 20.0, 1e-3)
-    a = 2.0 * np.sin(2 * np.pi * 4.0 * t)       # whole number of periods: no leakage
+    a = 2.0 * np.sin(2 * np.pi * 4.0 * t)  # whole number of periods: no leakage
     assert weighted_rms(t, a) == pytest.approx(2.0 / np.sqrt(2) * abs(wk_weighting(4.0)), rel=1e-6)
 
 
@@ -173,7 +195,7 @@ def test_clipped_optimal_switches_between_the_limits_by_dykes_rule():
     K_lqr = lqr_gains(QuarterCar())
     Fd = -(K_lqr[0] * (r.u1 - r.u0) + K_lqr[1] * r.v1 + K_lqr[2] * (r.u2 - r.u1) + K_lqr[3] * r.v2)
     F_prev = np.concatenate(([0.0], r.force[:-1]))
-    on = (Fd - F_prev) * F_prev > 0       # Dyke et al. (1996): v = V_max H((f_c - f) f)
+    on = (Fd - F_prev) * F_prev > 0  # Dyke et al. (1996): v = V_max H((f_c - f) f)
     # the rule as the test computes it, at every sample but the few whose (F_d - F) F lies within round-off of 0
     assert np.mean((r.control == 2.0) == on) > 0.999
     with pytest.raises(ErdesignError, match="gain: applies to skyhook and groundhook"):
@@ -193,10 +215,10 @@ def test_lqr_gains_are_optimal_for_the_linear_vehicle():
     def cost(gains):
         Acl = A - np.outer(B, gains)
         assert np.all(np.linalg.eigvals(Acl).real < 0)
-        c_cl = ca - da * gains                          # body acceleration of the closed loop
+        c_cl = ca - da * gains  # body acceleration of the closed loop
         Q = np.outer(c_cl, c_cl) + np.diag([1e5, 0, 1e4, 0])
         P = solve_continuous_lyapunov(Acl.T, -Q)
-        x0 = np.array([0.01, 0.0, 0.0, 0.0])          # a 1 cm tyre deflection
+        x0 = np.array([0.01, 0.0, 0.0, 0.0])  # a 1 cm tyre deflection
         return x0 @ P @ x0
 
     best = lqr_gains(car)
@@ -226,8 +248,12 @@ def test_a_model_without_inverse_is_refused_for_skyhook_and_runs_clipped_optimal
 
 def test_a_damper_the_control_cannot_change_is_refused():
     with pytest.raises(ErdesignError, match="nothing to control"):
-        simulate_vehicle(VehicleDamper(get_model("kwok_tanh"), {"alpha_u": 0.0}, "current", (0.0, 2.0)),
-                         step_road(), "skyhook", duration=0.5)
+        simulate_vehicle(
+            VehicleDamper(get_model("kwok_tanh"), {"alpha_u": 0.0}, "current", (0.0, 2.0)),
+            step_road(),
+            "skyhook",
+            duration=0.5,
+        )
 
 
 def test_physics_damper_from_a_damper_file():
@@ -274,6 +300,7 @@ def test_skyhook_beats_both_passive_settings_on_comfort():
 
 def test_implausible_roads_warn():
     from erdesign.errors import PlausibilityWarning
+
     with pytest.warns(PlausibilityWarning, match="speed: 200 m/s"):
         iso8608_road("C", 200.0, components=10)
     with pytest.warns(PlausibilityWarning, match="height: 1.5 m"):

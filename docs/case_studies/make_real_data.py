@@ -62,12 +62,16 @@ def render(out: dict) -> str:
         "|---" * (len(QUIROZ_VALIDATION_CURRENTS) + 3) + "|",
     ]
     rows = [(TITLES[n], d["validation_esr"], d["training_esr"]) for n, d in models.items()]
-    rows += [(f"source's parameters ({label})", d["validation_esr"], d["training_esr"])
-             for label, d in out["source"].items()]
+    rows += [
+        (f"source's parameters ({label})", d["validation_esr"], d["training_esr"]) for label, d in out["source"].items()
+    ]
     for title, val, train in rows:
         v = [val[f"earthquake {i:g} A"] for i in QUIROZ_VALIDATION_CURRENTS]
-        lines.append(f"| {title} | " + " | ".join(f"{x:.3f}" for x in v)
-                     + f" | {np.mean(v):.3f} | {np.mean(list(train.values())):.3f} |")
+        lines.append(
+            f"| {title} | "
+            + " | ".join(f"{x:.3f}" for x in v)
+            + f" | {np.mean(v):.3f} | {np.mean(list(train.values())):.3f} |"
+        )
     lines += ["", "## ESR on the training sinusoids", ""]
     for name, d in models.items():
         lines += [f"### {TITLES[name]} (identified in {d['seconds']:.1f} s)", "", *_esr_grid(d["training_esr"]), ""]
@@ -75,20 +79,30 @@ def render(out: dict) -> str:
     for name, d in models.items():
         model = get_model(name)
         held = QUIROZ_STUDY_MODELS[name]
-        cells = [f"{k} = {model.parameter(k).format(v, 5)}" + (" (held)" if k in held else "")
-                 for k, v in d["values"].items()]
+        cells = [
+            f"{k} = {model.parameter(k).format(v, 5)}" + (" (held)" if k in held else "")
+            for k, v in d["values"].items()
+        ]
         lines += [f"- **{TITLES[name]}** (`{name}`, control u = current / 1 A): " + "; ".join(cells) + "."]
     folder = quiroz_folder(ROOT)
     values = models.get("bouc_wen_modified", {}).get("values")
     if values and folder is not None:
-        lines += ["", "## Modified Bouc-Wen: damping laws against the source's own fit", "",
-                  "The source (parametros_ajuste2.mat) fitted c0 = p9 i + p10 and c1 = p11 i + p12 [N s/mm]; here",
-                  "c0 = c0a + c0b u and c1 = c1a + c1b u [N s/m]. These two are comparable whatever the scaling of z:",
-                  "", "| current | c0 here [N s/m] | c0 source | c1 here [N s/m] | c1 source |", "|---|---|---|---|---|"]
+        lines += [
+            "",
+            "## Modified Bouc-Wen: damping laws against the source's own fit",
+            "",
+            "The source (parametros_ajuste2.mat) fitted c0 = p9 i + p10 and c1 = p11 i + p12 [N s/mm]; here",
+            "c0 = c0a + c0b u and c1 = c1a + c1b u [N s/m]. These two are comparable whatever the scaling of z:",
+            "",
+            "| current | c0 here [N s/m] | c0 source | c1 here [N s/m] | c1 source |",
+            "|---|---|---|---|---|",
+        ]
         for i in QUIROZ_CURRENTS:
             s = quiroz_source_values(folder, i)
-            lines.append(f"| {i:g} A | {values['c0a'] + values['c0b'] * i:.0f} | {s['c0a']:.0f} | "
-                         f"{values['c1a'] + values['c1b'] * i:.0f} | {s['c1a']:.0f} |")
+            lines.append(
+                f"| {i:g} A | {values['c0a'] + values['c0b'] * i:.0f} | {s['c0a']:.0f} | "
+                f"{values['c1a'] + values['c1b'] * i:.0f} | {s['c1a']:.0f} |"
+            )
     lines += [
         "",
         "## Reading these numbers",
@@ -125,6 +139,7 @@ def render_physics(ph: dict, out: dict) -> list[str]:
     """The physics-model section of the page, from ``out["physics"]`` (:func:`erdesign.case_studies.quiroz.physics_study`)."""
     from erdesign.effects.chain import PhysicsDamper
     from erdesign.damper.files import load_example
+
     lines = [
         "",
         "## Physics model of an equivalent damper, following the diagnosis",
@@ -143,12 +158,14 @@ def render_physics(ph: dict, out: dict) -> list[str]:
     ]
     for k, r in enumerate(ph["rounds"]):
         cands = ", ".join(f"{c['effect']} {c['esr']:.4f}" for c in r["ranking"] if c["esr"] is not None)
-        lines.append(f"| {k} | baseline{''.join(' + ' + e for e in r['effects'])} | {r['verdict']} | "
-                     f"{', '.join(r['missing_effects']) or '-'} | {r['esr']:.4f} | {r['noise_floor_esr']:.2g} "
-                     f"({r['noise_floor_method'] or 'estimated'}) | {cands} | {r['seconds']:.0f} |")
+        lines.append(
+            f"| {k} | baseline{''.join(' + ' + e for e in r['effects'])} | {r['verdict']} | "
+            f"{', '.join(r['missing_effects']) or '-'} | {r['esr']:.4f} | {r['noise_floor_esr']:.2g} "
+            f"({r['noise_floor_method'] or 'estimated'}) | {cands} | {r['seconds']:.0f} |"
+        )
     last = ph["rounds"][-1]
     if last.get("reason"):
-        lines += ["", f"Last verdict, in the tool's words: \"{last['reason']}\""]
+        lines += ["", f'Last verdict, in the tool\'s words: "{last["reason"]}"']
     bw_doc = out["models"].get("bouc_wen_modified")
     lines += [
         "",
@@ -162,24 +179,32 @@ def render_physics(ph: dict, out: dict) -> list[str]:
         "judged fairly the second way; the modified Bouc-Wen fitted on the preprocessed files carries the training",
         "files' smoothing in its parameters and is judged directly (first table).",
         "",
-        "| model | fitted on | judged | " + " | ".join(f"{i:g} A" for i in QUIROZ_VALIDATION_CURRENTS)
+        "| model | fitted on | judged | "
+        + " | ".join(f"{i:g} A" for i in QUIROZ_VALIDATION_CURRENTS)
         + " | mean | training ESR |",
         "|---" * (len(QUIROZ_VALIDATION_CURRENTS) + 5) + "|",
     ]
     if bw_doc:
         v, m = _val_cells(bw_doc["validation_esr"])
-        lines.append("| modified Bouc-Wen (first table) | 30 preprocessed | direct | " + " | ".join(f"{x:.3f}" for x in v)
-                     + f" | {m:.3f} | {np.mean(list(bw_doc['training_esr'].values())):.3f} (mean) |")
-    rows = [(f"physics: baseline{''.join(' + ' + e for e in d['effects'])} ({label})", d)
-            for label, d in ph["models"].items()]
+        lines.append(
+            "| modified Bouc-Wen (first table) | 30 preprocessed | direct | "
+            + " | ".join(f"{x:.3f}" for x in v)
+            + f" | {m:.3f} | {np.mean(list(bw_doc['training_esr'].values())):.3f} (mean) |"
+        )
+    rows = [
+        (f"physics: baseline{''.join(' + ' + e for e in d['effects'])} ({label})", d)
+        for label, d in ph["models"].items()
+    ]
     rows.append(("modified Bouc-Wen", ph["bouc_wen_modified_raw"]))
     for title, d in rows:
-        train = (f"{d['esr']:.4f} (joint)" if "esr" in d
-                 else f"{np.mean(list(d['training_esr'].values())):.4f} (mean)")
+        train = f"{d['esr']:.4f} (joint)" if "esr" in d else f"{np.mean(list(d['training_esr'].values())):.4f} (mean)"
         for how in ("through_smoothing", "direct"):
             v, m = _val_cells(d["validation_esr"][how])
-            lines.append(f"| {title} | 30 raw | {how.replace('_', ' ')} | " + " | ".join(f"{x:.3f}" for x in v)
-                         + f" | {m:.3f} | {train} |")
+            lines.append(
+                f"| {title} | 30 raw | {how.replace('_', ' ')} | "
+                + " | ".join(f"{x:.3f}" for x in v)
+                + f" | {m:.3f} | {train} |"
+            )
     lines += ["", "Fitted values (SI):", ""]
     dmp = load_example(ph["damper"])
     for label, d in ph["models"].items():
@@ -188,8 +213,10 @@ def render_physics(ph: dict, out: dict) -> list[str]:
         lines.append(f"- physics ({label}, calibrated in {d['seconds']:.0f} s): " + "; ".join(cells) + ".")
     bw = get_model("bouc_wen_modified")
     cells = [f"{k} = {bw.parameter(k).format(v, 4)}" for k, v in ph["bouc_wen_modified_raw"]["values"].items()]
-    lines.append(f"- modified Bouc-Wen on the raw records (identified in "
-                 f"{ph['bouc_wen_modified_raw']['seconds']:.0f} s): " + "; ".join(cells) + ".")
+    lines.append(
+        f"- modified Bouc-Wen on the raw records (identified in "
+        f"{ph['bouc_wen_modified_raw']['seconds']:.0f} s): " + "; ".join(cells) + "."
+    )
     mean = {label: _val_cells(d["validation_esr"]["through_smoothing"])[1] for label, d in ph["models"].items()}
     bw_raw = _val_cells(ph["bouc_wen_modified_raw"]["validation_esr"]["through_smoothing"])[1]
     bw_pre = _val_cells(bw_doc["validation_esr"])[1] if bw_doc else float("nan")
@@ -232,7 +259,7 @@ HAND_WRITTEN = "\n<!-- dyke-cli -->"
 def write_page(text: str) -> None:
     """Write the rendered study to the page, keeping its hand-written part (from :data:`HAND_WRITTEN` on)."""
     old = MD_PATH.read_text() if MD_PATH.exists() else ""
-    tail = old[old.index(HAND_WRITTEN):] if HAND_WRITTEN in old else ""
+    tail = old[old.index(HAND_WRITTEN) :] if HAND_WRITTEN in old else ""
     MD_PATH.write_text(text.rstrip("\n") + "\n" + tail if tail else text)
 
 

@@ -20,7 +20,7 @@ __all__ = ["H_OVER_D", "BINGHAM_NUMBERS", "table", "update", "leading_coefficien
 DOC = Path(__file__).with_name("thin_gap.md")
 BEGIN, END = "<!-- BEGIN thin-gap table (make_thin_gap_table.py) -->", "<!-- END thin-gap table -->"
 
-H_OVER_D = (0.01, 0.02, 0.05, 0.0559, 0.1, 0.2, 0.3, 0.5, 0.8)   # 0.0559: Makris's duct (0.8 mm / 14.3 mm)
+H_OVER_D = (0.01, 0.02, 0.05, 0.0559, 0.1, 0.2, 0.3, 0.5, 0.8)  # 0.0559: Makris's duct (0.8 mm / 14.3 mm)
 BINGHAM_NUMBERS = (0.0, 0.1, 1.0, 10.0, 100.0, 1000.0)
 
 
@@ -39,8 +39,7 @@ def table() -> str:
     phi = bingham_slit_flow(np.pi, bi, 1.0, 1.0, 1.0, 1.0).plug_fraction
     head = "| h/d | " + " | ".join(f"Bi = {b:g}" for b in bi) + " |"
     rule = "| ---: | " + " | ".join("---:" for _ in bi) + " |"
-    rows = [head, rule,
-            "| plug fraction phi (thin gap) | " + " | ".join(f"{p:.4f}" for p in phi) + " |"]
+    rows = [head, rule, "| plug fraction phi (thin gap) | " + " | ".join(f"{p:.4f}" for p in phi) + " |"]
     for e, line in zip(H_OVER_D, err):
         label = f"{e:g}" + (" (Makris)" if e == 0.0559 else "")
         rows.append(f"| {label} | " + " | ".join(f"{100 * v:.3g} %" for v in line) + " |")

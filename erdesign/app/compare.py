@@ -35,17 +35,27 @@ _BUILT_IN, _UPLOAD = "built-in example (hidden effect)", "upload a measurement C
 
 def _record_source() -> tuple[bytes, str, bool] | None:
     """Draw the source inputs; return (CSV bytes, name, built in) or None."""
-    source = state.widget(st.radio, "measurement", "cmp.source", _BUILT_IN, options=[_BUILT_IN, _UPLOAD],
-                          horizontal=True)
+    source = state.widget(
+        st.radio, "measurement", "cmp.source", _BUILT_IN, options=[_BUILT_IN, _UPLOAD], horizontal=True
+    )
     if source == _BUILT_IN:
-        name = state.widget(st.selectbox, "example", "cmp.example", state.example_records()[0],
-                            options=state.example_records(),
-                            help="Measured on the virtual rig (erdesign.simulation.rig) with effects the quasi-steady "
-                                 "model leaves out; the diagnosis has to find them.")
+        name = state.widget(
+            st.selectbox,
+            "example",
+            "cmp.example",
+            state.example_records()[0],
+            options=state.example_records(),
+            help="Measured on the virtual rig (erdesign.simulation.rig) with effects the quasi-steady "
+            "model leaves out; the diagnosis has to find them.",
+        )
         return state.example_record_bytes(name), name, True
-    upload = st.file_uploader("measurement CSV", type=["csv", "txt"], key="cmp.upload",
-                              help="Columns with units in brackets: time [s], displacement [mm], force [N], "
-                                   "optionally field [kV/mm] (docs/cli.md).")
+    upload = st.file_uploader(
+        "measurement CSV",
+        type=["csv", "txt"],
+        key="cmp.upload",
+        help="Columns with units in brackets: time [s], displacement [mm], force [N], "
+        "optionally field [kV/mm] (docs/cli.md).",
+    )
     if upload is None:
         st.info("Upload a CSV file with a header such as `time [s],displacement [mm],force [N],field [kV/mm]`.")
         return None
@@ -67,10 +77,16 @@ def _report_details(diagnosis) -> str:
     """What the report adds to the comparison (verdict, its reason, noise floor, the calibration's fit report), as
     JSON text (hashable, for the cached report); numbers formatted in the unit system by :mod:`erdesign.report.fit`."""
     result = diagnosis.baseline
-    return json.dumps({"verdict": diagnosis.verdict, "reason": _sentence(diagnosis.reason),
-                       "noise_floor_esr": float(diagnosis.noise_floor_esr),
-                       "parameters": parameter_rows(result), "statistics": statistics_rows(result),
-                       "correlations": correlation_rows(result)})
+    return json.dumps(
+        {
+            "verdict": diagnosis.verdict,
+            "reason": _sentence(diagnosis.reason),
+            "noise_floor_esr": float(diagnosis.noise_floor_esr),
+            "parameters": parameter_rows(result),
+            "statistics": statistics_rows(result),
+            "correlations": correlation_rows(result),
+        }
+    )
 
 
 def judged_samples(diagnosis) -> int:
@@ -87,7 +103,7 @@ def _fitted(candidate) -> str:
     """The effect parameters a candidate fitted, each ``name = value ± error (share)`` in the unit system (the
     values and errors of its fit, formatted by :mod:`erdesign.report.fit`)."""
     result = candidate.result
-    model = fitted_model(result)       # fitted on part of the record: the model for the whole record
+    model = fitted_model(result)  # fitted on part of the record: the model for the whole record
     rows = {r["parameter"]: r for r in parameter_rows(dataclasses.replace(result, model=model))}
     parts = []
     for name in candidate.parameters():
@@ -103,23 +119,36 @@ def _ranking_table(diagnosis) -> list[dict]:
     for i, c in enumerate(diagnosis.ranking, 1):
         row = {"rank": i, "effect": c.effect, "significant": "yes" if c.significant else "no"}
         if not c.evaluated:
-            row.update({"ESR after adding": "not evaluated", "explains": "", "ΔBIC": "", "gain": "", "fitted": "",
-                        "against the prior": "", "note": c.reason or c.note})
+            row.update(
+                {
+                    "ESR after adding": "not evaluated",
+                    "explains": "",
+                    "ΔBIC": "",
+                    "gain": "",
+                    "fitted": "",
+                    "against the prior": "",
+                    "note": c.reason or c.note,
+                }
+            )
             rows.append(row)
             continue
         notes = [c.note] if c.note else []
-        if c.implausible:        # the diagnosis marks a fitted size it does not believe: shown as such
+        if c.implausible:  # the diagnosis marks a fitted size it does not believe: shown as such
             notes.insert(0, "implausible: " + "; ".join(c.implausible))
         if c.at_bounds:
             notes.append("at bounds: " + "; ".join(c.at_bounds))
-        row.update({
-            "ESR after adding": f"{c.esr:.4g}",
-            # a negative share is a refit that ended a hair worse than the baseline: nothing explained
-            "explains": f"{100 * max(c.explained, 0.0):.0f} % of the excess",
-            "ΔBIC": f"{c.delta_bic:+.1f}" if math.isfinite(c.delta_bic) else "",
-            "gain": f"{100 * c.gain:.1f} %",
-            "fitted": _fitted(c),
-            "against the prior": c.plausibility, "note": "; ".join(notes)})
+        row.update(
+            {
+                "ESR after adding": f"{c.esr:.4g}",
+                # a negative share is a refit that ended a hair worse than the baseline: nothing explained
+                "explains": f"{100 * max(c.explained, 0.0):.0f} % of the excess",
+                "ΔBIC": f"{c.delta_bic:+.1f}" if math.isfinite(c.delta_bic) else "",
+                "gain": f"{100 * c.gain:.1f} %",
+                "fitted": _fitted(c),
+                "against the prior": c.plausibility,
+                "note": "; ".join(notes),
+            }
+        )
         rows.append(row)
     return rows
 
@@ -133,7 +162,7 @@ def _add_effect(chosen: str | None = None) -> None:
     """Callback of the refit buttons: accept ``chosen`` (or the effect of the selectbox; both of a pair)."""
     chosen = chosen or st.session_state.get("cmp.add")
     work = st.session_state.setdefault(state.DIAGNOSIS, {"effects": []})
-    for effect in (chosen.split(" + ") if chosen else []):
+    for effect in chosen.split(" + ") if chosen else []:
         if effect not in work["effects"]:
             work["effects"] = [*work["effects"], effect]
 
@@ -157,20 +186,24 @@ def render() -> None:
     example = state.example_damper_for(data) if built_in else None
     if example is not None and state.example_spec(example).get("name") != spec.get("name"):
         spec = state.example_spec(example)
-        st.caption(f"This example was measured on the damper of examples/{example}.toml: it is compared with that "
-                   "damper, not with the design of the Size page.")
+        st.caption(
+            f"This example was measured on the damper of examples/{example}.toml: it is compared with that "
+            "damper, not with the design of the Size page."
+        )
     text = state.spec_text(spec)
     damper = state.damper_or_error(text)
     if damper is None:
         return
-    st.caption(f"Model: the physics damper of {damper.name or 'the design'}, calibrated to the record "
-               "(viscosity and yield-stress factors) plus the effects accepted below.")
+    st.caption(
+        f"Model: the physics damper of {damper.name or 'the design'}, calibrated to the record "
+        "(viscosity and yield-stress factors) plus the effects accepted below."
+    )
     try:
         record = state.read_record(data, name)
     except ErdesignError as exc:
         st.error(f"Cannot read the measurement: {state.clean_message(str(exc))}")
         return
-    try:    # what looks wrong in the record and against the damper (a unit mistake): said before any fit
+    try:  # what looks wrong in the record and against the damper (a unit mistake): said before any fit
         doubts = check_record(record, damper, warn=False)
     except ErdesignError as exc:
         st.error(f"Cannot use the measurement: {state.clean_message(str(exc))}")
@@ -189,8 +222,9 @@ def render() -> None:
     effects = tuple(work["effects"])
     diagnoses = []
     try:
-        with st.status("Diagnosing: calibrating the baseline and refitting with each effect ...",
-                       expanded=False) as status:
+        with st.status(
+            "Diagnosing: calibrating the baseline and refitting with each effect ...", expanded=False
+        ) as status:
             for k in range(len(effects) + 1):
                 status.update(label=f"Diagnosing with {', '.join(effects[:k]) or 'the baseline'} ...")
                 diagnoses.append(state.run_diagnosis(text, data, name, effects[:k]))
@@ -209,51 +243,88 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
     rms = Q_(float(diagnosis.analysis.rms), "N")
     # the report states the diagnosis' own numbers (ESR, RMS on the judged samples): one number for one thing
     st.session_state["report.comparison"] = (
-        name, float(diagnosis.baseline_esr), judged, float(rms.magnitude), record.displacement, record.velocity, F,
-        model_force, _report_details(diagnosis))
+        name,
+        float(diagnosis.baseline_esr),
+        judged,
+        float(rms.magnitude),
+        record.displacement,
+        record.velocity,
+        F,
+        model_force,
+        _report_details(diagnosis),
+    )
     st.session_state["report.history"] = tuple((s.step, s.effect, s.esr) for s in steps)
     model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
     st.markdown(f"**Model:** {model}")
     c = st.columns(3)
     # ESRs to the 3 figures of the verdict's text, so that the metric and the sentence read the same number
-    c[0].metric("ESR of the calibrated model", esr_shown(diagnosis.baseline_esr).text,
-                delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}", delta_color="inverse",
-                help="Error-to-signal ratio (Vivas-López et al., eq 7): residual variance over force variance, on "
-                     "the judged samples.")
-    c[1].metric("noise floor ESR", esr_shown(diagnosis.noise_floor_esr).text,
-                help="The ESR that the load cell's noise alone would leave on the same samples: one figure per "
-                     f"record, the same at every step (found by: {diagnosis.noise_floor_method or 'estimate'}; "
-                     "docs/diagnosis.md).")
-    c[2].metric("RMS residual", show(rms, pick_unit(rms, "force"), name="RMS residual").text,
-                help="Root mean square of measured minus model force on the judged samples (the report's RMS "
-                     "force error).")
-    st.caption(f"All three on the {judged} judged samples of {diagnosis.samples[1]} analysed "
-               f"({100 * diagnosis.judged_share:.0f} %: where the sign of the velocity is known and no data finding "
-               "excludes them); the verdict below compares the same ESR with the same floor.")
+    c[0].metric(
+        "ESR of the calibrated model",
+        esr_shown(diagnosis.baseline_esr).text,
+        delta=None if len(steps) < 2 else f"{steps[-1].esr - steps[-2].esr:.3g}",
+        delta_color="inverse",
+        help="Error-to-signal ratio (Vivas-López et al., eq 7): residual variance over force variance, on "
+        "the judged samples.",
+    )
+    c[1].metric(
+        "noise floor ESR",
+        esr_shown(diagnosis.noise_floor_esr).text,
+        help="The ESR that the load cell's noise alone would leave on the same samples: one figure per "
+        f"record, the same at every step (found by: {diagnosis.noise_floor_method or 'estimate'}; "
+        "docs/diagnosis.md).",
+    )
+    c[2].metric(
+        "RMS residual",
+        show(rms, pick_unit(rms, "force"), name="RMS residual").text,
+        help="Root mean square of measured minus model force on the judged samples (the report's RMS force error).",
+    )
+    st.caption(
+        f"All three on the {judged} judged samples of {diagnosis.samples[1]} analysed "
+        f"({100 * diagnosis.judged_share:.0f} %: where the sign of the velocity is known and no data finding "
+        "excludes them); the verdict below compares the same ESR with the same floor."
+    )
     left, right = st.columns([3, 2], gap="large")
     with left:
         for finding in diagnosis.findings:
-            st.info(f"Data finding ({finding.kind}): {finding.message}"
-                    + (f" ({finding.where})" if finding.where else ""))
+            st.info(
+                f"Data finding ({finding.kind}): {finding.message}" + (f" ({finding.where})" if finding.where else "")
+            )
         _verdict(diagnosis)
         for warning in diagnosis.warnings:
             st.warning(f"Check: {warning}")
-    with right:       # the error history stays in view while effects are added
-        st.plotly_chart(plots.error_history_figure(steps, noise_floor=float(diagnosis.noise_floor_esr)),
-                        key="cmp.fig.history", config=state.chart_config("cmp.fig.history"))
+    with right:  # the error history stays in view while effects are added
+        st.plotly_chart(
+            plots.error_history_figure(steps, noise_floor=float(diagnosis.noise_floor_esr)),
+            key="cmp.fig.history",
+            config=state.chart_config("cmp.fig.history"),
+        )
 
     tabs = st.tabs(["overlay", "residual", "missing effects", "parameters", "downloads"])
     with tabs[0]:
-        st.plotly_chart(plots.measured_loops_figure(record.displacement, record.velocity, F, model_force),
-                        key="cmp.fig.loops", config=state.chart_config("cmp.fig.loops"))
-        st.plotly_chart(figures.time_figure(record.time, model_force, label="model", measured=F), key="cmp.fig.time",
-                        config=state.chart_config("cmp.fig.time"))
+        st.plotly_chart(
+            plots.measured_loops_figure(record.displacement, record.velocity, F, model_force),
+            key="cmp.fig.loops",
+            config=state.chart_config("cmp.fig.loops"),
+        )
+        st.plotly_chart(
+            figures.time_figure(record.time, model_force, label="model", measured=F),
+            key="cmp.fig.time",
+            config=state.chart_config("cmp.fig.time"),
+        )
     with tabs[1]:
-        st.plotly_chart(figures.residual_figure(record.time, record.velocity, F - model_force), key="cmp.fig.res",
-                        config=state.chart_config("cmp.fig.res"))
+        st.plotly_chart(
+            figures.residual_figure(record.time, record.velocity, F - model_force),
+            key="cmp.fig.res",
+            config=state.chart_config("cmp.fig.res"),
+        )
         st.markdown("**Where the model fails** (share of samples, RMS there over overall RMS):")
-        st.dataframe([{"region": k, "share of samples %": round(100 * a, 1), "RMS ratio": round(b, 2)}
-                      for k, (a, b) in diagnosis.analysis.regions.items()], hide_index=True)
+        st.dataframe(
+            [
+                {"region": k, "share of samples %": round(100 * a, 1), "RMS ratio": round(b, 2)}
+                for k, (a, b) in diagnosis.analysis.regions.items()
+            ],
+            hide_index=True,
+        )
     ranking = _ranking_table(diagnosis)
     with tabs[2]:
         st.markdown("**What the residual looks like:**")
@@ -275,8 +346,10 @@ def _show(diagnosis, record, model_force, chain, name) -> None:
             cols[1].button("Add effect and refit", on_click=_add_effect, key="cmp.refit")
     parameters = _parameters_table(diagnosis.baseline)
     with tabs[3]:
-        st.markdown(f"**Calibrated parameters** of {model}: value, standard error (1 σ) and its share of the value, "
-                    "start value, bounds and status (free, fixed, at a bound, not identifiable):")
+        st.markdown(
+            f"**Calibrated parameters** of {model}: value, standard error (1 σ) and its share of the value, "
+            "start value, bounds and status (free, fixed, at a bound, not identifiable):"
+        )
         st.dataframe(parameters, hide_index=True, key="cmp.parameters")
         left, right = st.columns(2)
         left.markdown("**Statistics** of the calibration (on the samples fitted)")
@@ -297,34 +370,68 @@ def _downloads(name, record, model_force, ranking, parameters, steps, diagnosis)
     """CSV files of the comparison: time histories and residual, ranking, fitted parameters, error history."""
     stem = state.file_stem(Path(name).stem)
     F = record.force
-    columns = [("time", "s", record.time), ("displacement", "m", record.displacement),
-               ("velocity", "m/s", record.velocity), ("force", "N", F), ("model force", "N", model_force),
-               ("residual", "N", F - model_force)]
+    columns = [
+        ("time", "s", record.time),
+        ("displacement", "m", record.displacement),
+        ("velocity", "m/s", record.velocity),
+        ("force", "N", F),
+        ("model force", "N", model_force),
+        ("residual", "N", F - model_force),
+    ]
     model = "baseline" + "".join(f" + {e}" for e in diagnosis.effects)
-    histories = csv_text(columns, comment=f"{name}: measured force, force of the calibrated model ({model}) and "
-                                          f"residual (measured minus model); numbers in {EXPORT_UNITS} units")
+    histories = csv_text(
+        columns,
+        comment=f"{name}: measured force, force of the calibrated model ({model}) and "
+        f"residual (measured minus model); numbers in {EXPORT_UNITS} units",
+    )
     st.markdown("Each file is CSV with units in the header; the time histories read back as a measurement.")
     cols = st.columns(4)
-    cols[0].download_button("Time histories and residual", histories, file_name=f"{stem}-model.csv",
-                            mime="text/csv", key="cmp.dl.history", icon=":material/download:")
-    cols[1].download_button("Ranking of the effects", rows_csv(
-        _ranking_numbers(diagnosis), comment=f"diagnosis of {name} ({model})\nnumbers in {EXPORT_UNITS} units; "
-                                             "each fitted parameter a column NAME [unit], its standard error NAME "
-                                             "stderr [unit]"),
-        file_name=f"{stem}-ranking.csv", mime="text/csv", key="cmp.dl.ranking", icon=":material/download:")
-    cols[2].download_button("Fitted parameters", parameters_csv(diagnosis.baseline,
-                                                                comment=f"calibrated {model} on {name}"),
-                            file_name=f"{stem}-parameters.csv", mime="text/csv", key="cmp.dl.parameters",
-                            icon=":material/download:")
-    cols[3].download_button("Error history", rows_csv(
-        [{"step": s.step, "effect added": s.effect, "ESR [1]": f"{s.esr:.6g}"} for s in steps]
-        + [{"step": "", "effect added": "noise floor", "ESR [1]": f"{diagnosis.noise_floor_esr:.6g}"}]),
-        file_name=f"{stem}-error-history.csv", mime="text/csv", key="cmp.dl.steps", icon=":material/download:")
+    cols[0].download_button(
+        "Time histories and residual",
+        histories,
+        file_name=f"{stem}-model.csv",
+        mime="text/csv",
+        key="cmp.dl.history",
+        icon=":material/download:",
+    )
+    cols[1].download_button(
+        "Ranking of the effects",
+        rows_csv(
+            _ranking_numbers(diagnosis),
+            comment=f"diagnosis of {name} ({model})\nnumbers in {EXPORT_UNITS} units; "
+            "each fitted parameter a column NAME [unit], its standard error NAME "
+            "stderr [unit]",
+        ),
+        file_name=f"{stem}-ranking.csv",
+        mime="text/csv",
+        key="cmp.dl.ranking",
+        icon=":material/download:",
+    )
+    cols[2].download_button(
+        "Fitted parameters",
+        parameters_csv(diagnosis.baseline, comment=f"calibrated {model} on {name}"),
+        file_name=f"{stem}-parameters.csv",
+        mime="text/csv",
+        key="cmp.dl.parameters",
+        icon=":material/download:",
+    )
+    cols[3].download_button(
+        "Error history",
+        rows_csv(
+            [{"step": s.step, "effect added": s.effect, "ESR [1]": f"{s.esr:.6g}"} for s in steps]
+            + [{"step": "", "effect added": "noise floor", "ESR [1]": f"{diagnosis.noise_floor_esr:.6g}"}]
+        ),
+        file_name=f"{stem}-error-history.csv",
+        mime="text/csv",
+        key="cmp.dl.steps",
+        icon=":material/download:",
+    )
 
 
 def _ranking_numbers(diagnosis) -> list[dict]:
     """The ranking as numbers in SI (the CSV download): ESR, ΔBIC, gain and share explained, and each fitted effect
     parameter with its standard error in a column ``NAME [unit]`` (empty where a candidate has no such parameter)."""
+
     def number(x) -> str:
         return "" if x is None or not math.isfinite(x) else f"{x:.6g}"
 
@@ -338,11 +445,20 @@ def _ranking_numbers(diagnosis) -> list[dict]:
                 names[n] = unit
                 fitted[f"{n} [{unit}]"] = number(c.result.values[n])
                 fitted[f"{n} stderr [{unit}]"] = number(c.result.stderr.get(n))
-        rows.append({"rank": len(rows) + 1, "effect": " + ".join(c.effects), "significant": int(c.significant),
-                     "ESR after adding [1]": number(c.esr), "delta BIC [1]": number(c.delta_bic),
-                     "gain [%]": number(100 * c.gain) if c.evaluated else "",
-                     "explains [%]": number(100 * c.explained) if c.evaluated else "", **fitted,
-                     "implausible": "; ".join(c.implausible), "note": c.reason or c.note})
+        rows.append(
+            {
+                "rank": len(rows) + 1,
+                "effect": " + ".join(c.effects),
+                "significant": int(c.significant),
+                "ESR after adding [1]": number(c.esr),
+                "delta BIC [1]": number(c.delta_bic),
+                "gain [%]": number(100 * c.gain) if c.evaluated else "",
+                "explains [%]": number(100 * c.explained) if c.evaluated else "",
+                **fitted,
+                "implausible": "; ".join(c.implausible),
+                "note": c.reason or c.note,
+            }
+        )
     columns = ["rank", "effect", "significant", "ESR after adding [1]", "delta BIC [1]", "gain [%]", "explains [%]"]
     columns += [f"{n} {part}[{u}]" for n, u in names.items() for part in ("", "stderr ")]
     columns += ["implausible", "note"]
@@ -363,8 +479,14 @@ def _verdict(diagnosis) -> None:
             named = diagnosis.missing_effect
         with st.container(border=True):
             st.success(f"{head}\n\n{_sentence(diagnosis.reason)}")
-            st.button(f"Add {named} and refit", on_click=_add_effect, args=(named,), key="cmp.add_named",
-                      type="primary", icon=":material/add:")
+            st.button(
+                f"Add {named} and refit",
+                on_click=_add_effect,
+                args=(named,),
+                key="cmp.add_named",
+                type="primary",
+                icon=":material/add:",
+            )
     elif diagnosis.verdict == "unexplained":
         st.warning(f"**Unexplained:** {_sentence(diagnosis.reason)}")
     else:

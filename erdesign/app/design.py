@@ -39,8 +39,16 @@ _RESULT = _PREFIX + "result"
 _OPENED = _PREFIX + "opened"
 #: Search settings that have inputs of their own on the page (not among the requirement values).
 _OWN_INPUTS = (("design", "search", "samples"), ("design", "search", "designs"))
-_SECTIONS = {"fluid": "Fluid", "point": "Design point", "limits": "Limits", "bounds": "Bounds of the geometry",
-             "coil": "Coil", "envelope": "Envelope", "search": "Search", "": "Damper"}
+_SECTIONS = {
+    "fluid": "Fluid",
+    "point": "Design point",
+    "limits": "Limits",
+    "bounds": "Bounds of the geometry",
+    "coil": "Coil",
+    "envelope": "Envelope",
+    "search": "Search",
+    "": "Damper",
+}
 
 
 # ------------------------------------------------------------------------------------------------ requirements
@@ -99,8 +107,7 @@ def _in_system(value: Any) -> str:
 
 def requirement_inputs(data: dict) -> list[tuple[tuple, Any, str]]:
     """``(path, value as written, widget key)`` of each value of a requirements file that has an input."""
-    return [(path, value, f"{_PREFIX}req.{_dotted(path)}") for path, value in _leaves(data)
-            if path not in _OWN_INPUTS]
+    return [(path, value, f"{_PREFIX}req.{_dotted(path)}") for path, value in _leaves(data) if path not in _OWN_INPUTS]
 
 
 def requirements_data(data: dict, texts: dict[str, str]) -> dict:
@@ -160,17 +167,30 @@ def _inputs(data: dict) -> dict[str, str]:
             cols = st.columns(3)
             for i, (path, value, key) in enumerate(items):
                 with cols[i % 3]:
-                    texts[key] = state.widget(st.text_input, _label(path), key, _in_system(value),
-                                              help=f"{_dotted(path)} of the requirements file (docs/design.md)")
+                    texts[key] = state.widget(
+                        st.text_input,
+                        _label(path),
+                        key,
+                        _in_system(value),
+                        help=f"{_dotted(path)} of the requirements file (docs/design.md)",
+                    )
     return texts
 
 
 # ------------------------------------------------------------------------------------------------ results
 #: Column titles of the figures (FIGURES describes them in full).
-_SHORT = {"force": "force F", "controllable_force": "controllable force", "zero_field_force": "zero-field force F0",
-          "dynamic_range": "dynamic range F/F0", "fluid_volume": "active fluid volume",
-          "total_fluid_volume": "fluid volume", "outer_diameter": "outer diameter", "length": "body length",
-          "coil_power": "coil power", "time_constant": "coil time constant"}
+_SHORT = {
+    "force": "force F",
+    "controllable_force": "controllable force",
+    "zero_field_force": "zero-field force F0",
+    "dynamic_range": "dynamic range F/F0",
+    "fluid_volume": "active fluid volume",
+    "total_fluid_volume": "fluid volume",
+    "outer_diameter": "outer diameter",
+    "length": "body length",
+    "coil_power": "coil power",
+    "time_constant": "coil time constant",
+}
 
 
 def _column(values: list[float | None], si_unit: str) -> tuple[list[str], str]:
@@ -178,16 +198,20 @@ def _column(values: list[float | None], si_unit: str) -> tuple[list[str], str]:
     finite = [abs(v) for v in values if v is not None and np.isfinite(v)]
     kind = kind_of(si_unit) if si_unit else None
     unit = pick_unit(Q_(max(finite), si_unit), kind) if kind and finite else si_unit
-    texts = ["-" if v is None else round_significant(float(Q_(v, si_unit).to(unit).magnitude if unit else v))
-             for v in values]
+    texts = [
+        "-" if v is None else round_significant(float(Q_(v, si_unit).to(unit).magnitude if unit else v)) for v in values
+    ]
     return texts, f"{Q_(1.0, unit).units:~P}" if unit else ""
 
 
 def _table(records: list[dict], req) -> list[dict]:
     """One row per design: geometry, figures at point 1 and the limits it sits on, in the chosen unit system."""
     columns: dict[str, tuple[list[str], str]] = {}
-    geometry_keys = [k for k in ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter")
-                     if k in records[0]["geometry"]]
+    geometry_keys = [
+        k
+        for k in ("gap", "duct_length", "duct_mean_diameter", "piston_diameter", "rod_diameter")
+        if k in records[0]["geometry"]
+    ]
     for key in geometry_keys:
         columns[key.replace("_", " ")] = _column([to_si(r["geometry"][key], "m", key) for r in records], "m")
     figures = ["force", "zero_field_force", "dynamic_range", "fluid_volume", "outer_diameter", "length"]
@@ -239,17 +263,32 @@ def _pareto_figure(result):
     marker: dict[str, Any] = {"size": 7, "opacity": 0.75}
     if len(names) > 2:
         colour, uc = axis(names[2], front)
-        marker.update(color=colour, colorscale="Viridis", showscale=True,
-                      colorbar={"title": {"text": f"{title[names[2]]} [{uc}]" if uc else title[names[2]]}})
+        marker.update(
+            color=colour,
+            colorscale="Viridis",
+            showscale=True,
+            colorbar={"title": {"text": f"{title[names[2]]} [{uc}]" if uc else title[names[2]]}},
+        )
     fig = go.Figure()
     fig.add_trace(go.Scatter(x=fx[:n], y=fy[:n], mode="markers", marker=marker, name="Pareto front (feasible)"))
-    fig.add_trace(go.Scatter(x=fx[n:], y=fy[n:], mode="markers+text", text=[str(r["rank"]) for r in ranked],
-                             textposition="top center", name="ranked designs",
-                             marker={"symbol": "diamond-open", "size": 12, "color": "#d62728", "line": {"width": 2}}))
-    fig.update_layout(xaxis_title=f"{title[x_name]} [{ux}]" if ux else title[x_name],
-                      yaxis_title=f"{title[y_name]} [{uy}]" if uy else title[y_name],
-                      legend={"orientation": "h", "yanchor": "bottom", "y": 1.02, "x": 0}, margin={"t": 40},
-                      height=480)
+    fig.add_trace(
+        go.Scatter(
+            x=fx[n:],
+            y=fy[n:],
+            mode="markers+text",
+            text=[str(r["rank"]) for r in ranked],
+            textposition="top center",
+            name="ranked designs",
+            marker={"symbol": "diamond-open", "size": 12, "color": "#d62728", "line": {"width": 2}},
+        )
+    )
+    fig.update_layout(
+        xaxis_title=f"{title[x_name]} [{ux}]" if ux else title[x_name],
+        yaxis_title=f"{title[y_name]} [{uy}]" if uy else title[y_name],
+        legend={"orientation": "h", "yanchor": "bottom", "y": 1.02, "x": 0},
+        margin={"t": 40},
+        height=480,
+    )
     return fig
 
 
@@ -260,15 +299,14 @@ def _open(result, rank: int, point: dict) -> None:
     if to_si(design["v_top"], "m/s", "top velocity") < to_si(point["velocity"], "m/s", "velocity"):
         design["v_top"] = point["velocity"]
     state.set_design(design)
-    state.forget("size.")             # the Size page reloads its inputs from the current design
-    state.forget("sim.field")         # Simulate's control starts at the new design's (its unit may differ)
+    state.forget("size.")  # the Size page reloads its inputs from the current design
+    state.forget("sim.field")  # Simulate's control starts at the new design's (its unit may differ)
     st.session_state[_OPENED] = (rank, spec["name"])
 
 
 def _results(result, data: dict) -> None:
     req = result.requirements
-    st.caption(f"{result.evaluated} candidates evaluated, {result.feasible_count} feasible; "
-               f"{result.ranking_note()}.")
+    st.caption(f"{result.evaluated} candidates evaluated, {result.feasible_count} feasible; {result.ranking_note()}.")
     if not result.feasible:
         st.error(f"No design meets every requirement: {len(result.conflicts)} conflict(s).", icon="🚫")
         st.markdown("\n".join(f"- {c}" for c in result.conflicts))
@@ -280,41 +318,67 @@ def _results(result, data: dict) -> None:
     st.subheader("Ranked designs")
     p = data["design"]["point"][0]
     st.caption(f"Figures at design point 1 (v = {p['velocity']}, control {p['field']}), best first.")
-    st.table(_table(result.designs, req))           # a table: every column in view, no inner scrolling
+    st.table(_table(result.designs, req))  # a table: every column in view, no inner scrolling
     st.caption("The limits each design sits on (within the active tolerance):")
     st.markdown(_limits(result.designs))
     cols = st.columns([2, 2, 3])
-    rank = cols[0].selectbox("design to open", [r["rank"] for r in result.designs], key=_PREFIX + "rank",
-                             format_func=lambda r: f"design {r}")
-    if cols[1].button("Open this design", key=_PREFIX + "open", icon=":material/open_in_new:",
-                      help="Makes it the current damper: the Size, Simulate and Report pages show it."):
+    rank = cols[0].selectbox(
+        "design to open", [r["rank"] for r in result.designs], key=_PREFIX + "rank", format_func=lambda r: f"design {r}"
+    )
+    if cols[1].button(
+        "Open this design",
+        key=_PREFIX + "open",
+        icon=":material/open_in_new:",
+        help="Makes it the current damper: the Size, Simulate and Report pages show it.",
+    ):
         _open(result, rank, {"velocity": str(p["velocity"]), "field": str(p["field"])})
     if _OPENED in st.session_state:
         opened, name = st.session_state[_OPENED]
-        cols[2].success(f"Design {opened} ({name}) is the current damper: the Size, Simulate and Report pages "
-                        "show it.")
+        cols[2].success(f"Design {opened} ({name}) is the current damper: the Size, Simulate and Report pages show it.")
     st.subheader("Trade-offs")
-    st.caption(f"Pareto front of {', '.join(_SHORT[n] for n in req.search.pareto)}: {len(result.pareto)} "
-               "feasible sampled designs that no other beats on all of them; the ranked designs are marked.")
+    st.caption(
+        f"Pareto front of {', '.join(_SHORT[n] for n in req.search.pareto)}: {len(result.pareto)} "
+        "feasible sampled designs that no other beats on all of them; the ranked designs are marked."
+    )
     st.plotly_chart(_pareto_figure(result), key=_PREFIX + "fig.pareto", config=state.chart_config("design.pareto"))
 
 
 def render() -> None:
     """Draw the Design page."""
     st.title("Design from requirements")
-    st.caption("What the damper must do, the room it has and the parts you can make; the search finds the "
-               "geometries that meet them all, ranked, or says which requirements conflict.")
+    st.caption(
+        "What the damper must do, the room it has and the parts you can make; the search finds the "
+        "geometries that meet them all, ranked, or says which requirements conflict."
+    )
     names = example_requirements_names()
     top = st.columns([2, 1, 1])
-    name = state.widget(top[0].selectbox, "start from the requirements of", _PREFIX + "example",
-                        DEFAULT_REQUIREMENTS, options=names, on_change=_on_example)
+    name = state.widget(
+        top[0].selectbox,
+        "start from the requirements of",
+        _PREFIX + "example",
+        DEFAULT_REQUIREMENTS,
+        options=names,
+        on_change=_on_example,
+    )
     data = _example_data(name)
     search = data.get("design", {}).get("search", {})
-    samples = state.widget(top[1].number_input, "candidates to sample", _PREFIX + "samples",
-                           int(min(search.get("samples", DEFAULT_SAMPLES), DEFAULT_SAMPLES)), min_value=256,
-                           max_value=2**20, step=1024)
-    keep = state.widget(top[2].number_input, "designs to keep", _PREFIX + "designs", int(search.get("designs", 5)),
-                        min_value=1, max_value=50)
+    samples = state.widget(
+        top[1].number_input,
+        "candidates to sample",
+        _PREFIX + "samples",
+        int(min(search.get("samples", DEFAULT_SAMPLES), DEFAULT_SAMPLES)),
+        min_value=256,
+        max_value=2**20,
+        step=1024,
+    )
+    keep = state.widget(
+        top[2].number_input,
+        "designs to keep",
+        _PREFIX + "designs",
+        int(search.get("designs", 5)),
+        min_value=1,
+        max_value=50,
+    )
     texts = _inputs(data)
     try:
         values = requirements_data(data, texts)
@@ -327,8 +391,9 @@ def render() -> None:
         bar = st.progress(0.0, text="sampling the design space")
 
         def progress(evaluated: int, total: int, feasible: int) -> None:
-            bar.progress(min(evaluated / total, 1.0), text=f"{evaluated} of {total} candidates evaluated, "
-                                                          f"{feasible} feasible")
+            bar.progress(
+                min(evaluated / total, 1.0), text=f"{evaluated} of {total} candidates evaluated, {feasible} feasible"
+            )
 
         try:
             result, warned = state.caught(lambda: run_design(req, progress=progress))

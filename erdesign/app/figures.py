@@ -45,20 +45,45 @@ def tradeoff_figure(sweep: dict, label: str, field_label: str, velocity_label: s
     x, x_unit = _in(sweep["value"], "m", "length")
     F, f_unit = _in(np.concatenate([sweep["force"], sweep["zero_field_force"]]), "N", "force")
     n = x.size
-    fig = make_subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06,
-                        subplot_titles=(f"force at {velocity_label}", f"dynamic range F({field_label}) / F(0)",
-                                        "Reynolds number"))
-    fig.add_trace(go.Scatter(x=x, y=F[:n], mode="lines+markers", name=field_label, line=dict(color=_MODEL)),
-                  row=1, col=1)
-    fig.add_trace(go.Scatter(x=x, y=F[n:], mode="lines+markers", name="zero field", line=dict(color=_OTHER)),
-                  row=1, col=1)
-    fig.add_trace(go.Scatter(x=x, y=sweep["dynamic_range"], mode="lines+markers", name="dynamic range",
-                             line=dict(color=_MEASURED), showlegend=False), row=2, col=1)
-    fig.add_trace(go.Scatter(x=x, y=sweep["reynolds"], mode="lines+markers", name="Reynolds number",
-                             line=dict(color="#2ca02c"), showlegend=False), row=3, col=1)
+    fig = make_subplots(
+        rows=3,
+        cols=1,
+        shared_xaxes=True,
+        vertical_spacing=0.06,
+        subplot_titles=(f"force at {velocity_label}", f"dynamic range F({field_label}) / F(0)", "Reynolds number"),
+    )
+    fig.add_trace(
+        go.Scatter(x=x, y=F[:n], mode="lines+markers", name=field_label, line=dict(color=_MODEL)), row=1, col=1
+    )
+    fig.add_trace(
+        go.Scatter(x=x, y=F[n:], mode="lines+markers", name="zero field", line=dict(color=_OTHER)), row=1, col=1
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=x,
+            y=sweep["dynamic_range"],
+            mode="lines+markers",
+            name="dynamic range",
+            line=dict(color=_MEASURED),
+            showlegend=False,
+        ),
+        row=2,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=x,
+            y=sweep["reynolds"],
+            mode="lines+markers",
+            name="Reynolds number",
+            line=dict(color="#2ca02c"),
+            showlegend=False,
+        ),
+        row=3,
+        col=1,
+    )
     # log axes only where the values span decades, every tick labelled in full (plots.value_axis)
-    fig.update_yaxes(title_text=f"F [{f_unit}]" + (" (log)" if spans_decades(F) else ""), **value_axis(F),
-                     row=1, col=1)
+    fig.update_yaxes(title_text=f"F [{f_unit}]" + (" (log)" if spans_decades(F) else ""), **value_axis(F), row=1, col=1)
     fig.update_yaxes(title_text="F(E)/F(0) [-]", row=2, col=1)
     Re = sweep["reynolds"]
     fig.update_yaxes(title_text="Re [-]" + (" (log)" if spans_decades(Re) else ""), **value_axis(Re), row=3, col=1)
@@ -75,8 +100,16 @@ def _forces(*forces) -> np.ndarray:
     return np.concatenate([np.ravel(np.asarray(F, dtype=float)) for F in forces if F is not None])
 
 
-def loops_figure(displacement, velocity, force, *, label: str = "model", measured=None, baseline=None,
-                 baseline_label: str = "pinned design") -> go.Figure:
+def loops_figure(
+    displacement,
+    velocity,
+    force,
+    *,
+    label: str = "model",
+    measured=None,
+    baseline=None,
+    baseline_label: str = "pinned design",
+) -> go.Figure:
     """Force-displacement and force-velocity loops of one force record (and the measured force, and the force of
     the baseline design on the same motion, when given)."""
     x, x_unit = _in(displacement, "m", "length")
@@ -105,22 +138,42 @@ def _unit_of(printed: str) -> str:
     return printed.replace("·", "*")
 
 
-def time_figure(time, force, *, label: str = "model", measured=None, baseline=None,
-                baseline_label: str = "pinned design") -> go.Figure:
+def time_figure(
+    time, force, *, label: str = "model", measured=None, baseline=None, baseline_label: str = "pinned design"
+) -> go.Figure:
     """Force against time: the model (and the measurement, and the baseline design's force, when given)."""
     t = np.asarray(time, dtype=float)
     _, f_unit = _in(_forces(force, measured, baseline), "N", "force")
     fig = go.Figure()
-    if measured is not None:      # under the model's thin line, so that both stay visible where they agree
-        fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
-                                 name="measured", **MEASURED_STYLE))
-    fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(force, float), "N").to(_unit_of(f_unit)).magnitude,
-                             name=label, **MODEL_STYLE))
+    if measured is not None:  # under the model's thin line, so that both stay visible where they agree
+        fig.add_trace(
+            go.Scatter(
+                x=t,
+                y=Q_(np.asarray(measured, float), "N").to(_unit_of(f_unit)).magnitude,
+                name="measured",
+                **MEASURED_STYLE,
+            )
+        )
+    fig.add_trace(
+        go.Scatter(x=t, y=Q_(np.asarray(force, float), "N").to(_unit_of(f_unit)).magnitude, name=label, **MODEL_STYLE)
+    )
     if baseline is not None:
-        fig.add_trace(go.Scatter(x=t, y=Q_(np.asarray(baseline, float), "N").to(_unit_of(f_unit)).magnitude,
-                                 name=baseline_label, **BASELINE_STYLE))
-    fig.update_layout(title="Force against time", xaxis_title="time t [s]", yaxis_title=f"force F [{f_unit}]",
-                      height=380, showlegend=len(fig.data) > 1, **_LAYOUT)
+        fig.add_trace(
+            go.Scatter(
+                x=t,
+                y=Q_(np.asarray(baseline, float), "N").to(_unit_of(f_unit)).magnitude,
+                name=baseline_label,
+                **BASELINE_STYLE,
+            )
+        )
+    fig.update_layout(
+        title="Force against time",
+        xaxis_title="time t [s]",
+        yaxis_title=f"force F [{f_unit}]",
+        height=380,
+        showlegend=len(fig.data) > 1,
+        **_LAYOUT,
+    )
     return fig
 
 

@@ -43,26 +43,45 @@ _STYLE = """<style>
 def main() -> None:
     """Configure the page and run the page the user chose."""
     st.set_page_config(page_title="erdesign", page_icon=":material/tune:", layout="wide")
-    pages = [st.Page(_HERE / file, title=title, icon=icon, url_path=url, default=(i == 0))
-             for i, (file, title, icon, url) in enumerate(PAGES)]
+    pages = [
+        st.Page(_HERE / file, title=title, icon=icon, url_path=url, default=(i == 0))
+        for i, (file, title, icon, url) in enumerate(PAGES)
+    ]
     page = st.navigation(pages)
     st.html(_STYLE)
     with st.sidebar:
-        system = state.widget(st.radio, "units of displayed numbers", state.UNITS, "SI", options=list(UNIT_SYSTEMS),
-                              help="Numbers shown and reported in this unit system; controls stay in the fluid's "
-                                   "own unit (kV/mm, kA/m, A, V). Inputs take any unit you type.")
-        state.widget(st.radio, "figures save as", state.IMAGE_FORMAT, "png", options=["png", "svg"], horizontal=True,
-                     format_func=str.upper, help="The camera button at the top right of every figure saves it in "
-                                                  "this format (drawn by your browser).")
-        st.caption("erdesign: design and diagnose ER and MR dampers with annular ducts. The design you enter on "
-                   "the Size page is used by every page.")
+        system = state.widget(
+            st.radio,
+            "units of displayed numbers",
+            state.UNITS,
+            "SI",
+            options=list(UNIT_SYSTEMS),
+            help="Numbers shown and reported in this unit system; controls stay in the fluid's "
+            "own unit (kV/mm, kA/m, A, V). Inputs take any unit you type.",
+        )
+        state.widget(
+            st.radio,
+            "figures save as",
+            state.IMAGE_FORMAT,
+            "png",
+            options=["png", "svg"],
+            horizontal=True,
+            format_func=str.upper,
+            help="The camera button at the top right of every figure saves it in this format (drawn by your browser).",
+        )
+        st.caption(
+            "erdesign: design and diagnose ER and MR dampers with annular ducts. The design you enter on "
+            "the Size page is used by every page."
+        )
     with use_unit_system(system):
         try:
             page.run()
         except Exception as exc:  # a bug, not bad input: one line in the page, never a traceback or a server path
             logging.getLogger("erdesign.app").exception("internal error on page %s", page.title)
-            st.error(f"Internal error: {type(exc).__name__}: {state.clean_message(str(exc))} (please report it "
-                     "with the steps that led here).")
+            st.error(
+                f"Internal error: {type(exc).__name__}: {state.clean_message(str(exc))} (please report it "
+                "with the steps that led here)."
+            )
 
 
 if __name__ == "__main__":

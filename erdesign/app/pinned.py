@@ -111,16 +111,25 @@ def render(design: dict, report, labels: Mapping[str, str]) -> None:
     st.subheader("Compare designs")
     designs = pinned_designs()
     cols = st.columns([2, 2, 3])
-    if cols[0].button("Pin this design", key="size.pin", icon=":material/push_pin:",
-                      help=f"Keep it for comparison (up to {MAX_PINNED}); the first pinned is the baseline the "
-                           "Simulate and Report pages compare with."):
+    if cols[0].button(
+        "Pin this design",
+        key="size.pin",
+        icon=":material/push_pin:",
+        help=f"Keep it for comparison (up to {MAX_PINNED}); the first pinned is the baseline the "
+        "Simulate and Report pages compare with.",
+    ):
         why = pin(design)
         if why:
             cols[2].info(why)
     if designs:
         names = [f"pinned {i + 1}" for i in range(len(designs))]
-        which = cols[1].selectbox("unpin", range(len(designs)), format_func=lambda i: names[i],
-                                  key="size.unpin.which", label_visibility="collapsed")
+        which = cols[1].selectbox(
+            "unpin",
+            range(len(designs)),
+            format_func=lambda i: names[i],
+            key="size.unpin.which",
+            label_visibility="collapsed",
+        )
         if cols[1].button("Unpin", key="size.unpin", icon=":material/close:"):
             unpin(int(which))
             st.rerun()
@@ -130,16 +139,22 @@ def render(design: dict, report, labels: Mapping[str, str]) -> None:
     reports = []
     for i, pinned in enumerate(list(designs)):
         try:
-            reports.append((f"pinned {i + 1}",
-                            state.design_report(state.design_text(pinned), state.unit_system())))
-        except ErdesignError as exc:     # a design from before a change of the library: drop it
+            reports.append((f"pinned {i + 1}", state.design_report(state.design_text(pinned), state.unit_system())))
+        except ErdesignError as exc:  # a design from before a change of the library: drop it
             unpin(i)
             st.info(f"Pinned design {i + 1} can no longer be evaluated ({state.clean_message(str(exc))}); unpinned.")
             return
-    st.caption("; ".join(f"pinned {i + 1}: {d['spec'].get('name') or 'design'} at v = {d['velocity']}, "
-                         f"E = {d['field']}" for i, d in enumerate(designs))
-               + ". 'vs this': the pinned value's change against this design.")
+    st.caption(
+        "; ".join(
+            f"pinned {i + 1}: {d['spec'].get('name') or 'design'} at v = {d['velocity']}, E = {d['field']}"
+            for i, d in enumerate(designs)
+        )
+        + ". 'vs this': the pinned value's change against this design."
+    )
     st.table(comparison_rows(report, reports, labels))
-    st.plotly_chart(plots.force_velocity_figure(report.sweep, baseline=reports[0][1].sweep), key="size.fig.compare",
-                    config=state.chart_config("size.fig.compare"))
+    st.plotly_chart(
+        plots.force_velocity_figure(report.sweep, baseline=reports[0][1].sweep),
+        key="size.fig.compare",
+        config=state.chart_config("size.fig.compare"),
+    )
     st.caption("Dashed: pinned 1, the baseline.")

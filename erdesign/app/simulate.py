@@ -23,9 +23,13 @@ from erdesign.units import Q_, to_si, ureg
 
 __all__ = ["render", "EXCITATIONS", "model_label"]
 
-EXCITATIONS = {"sine": "sine", "sweep": "sine sweep (two amplitudes and frequencies)",
-               "earthquake": "earthquake-like record", "upload": "uploaded displacement (measurement CSV)",
-               "programme": "test programme E1-E5 (Vivas-López et al.)"}
+EXCITATIONS = {
+    "sine": "sine",
+    "sweep": "sine sweep (two amplitudes and frequencies)",
+    "earthquake": "earthquake-like record",
+    "upload": "uploaded displacement (measurement CSV)",
+    "programme": "test programme E1-E5 (Vivas-López et al.)",
+}
 
 
 def _excitation(fluid, design_field: str):
@@ -36,14 +40,19 @@ def _excitation(fluid, design_field: str):
     and it takes the design control of the Size page whenever that changes (another damper, another control);
     a value typed here holds until then."""
     control_unit = fluid.control_unit
-    kind = state.widget(st.selectbox, "excitation", "sim.kind", "sine", options=list(EXCITATIONS),
-                        format_func=EXCITATIONS.get)
+    kind = state.widget(
+        st.selectbox, "excitation", "sim.kind", "sine", options=list(EXCITATIONS), format_func=EXCITATIONS.get
+    )
     if st.session_state.get("sim.field.source") != design_field:
         state.set_widget("sim.field", design_field)
         st.session_state["sim.field.source"] = design_field
-    field_text = state.widget(st.text_input, control_label(fluid.control), "sim.field", design_field,
-                              help="The control during the test, with its unit (the design control of the Size "
-                                   "page to start with).")
+    field_text = state.widget(
+        st.text_input,
+        control_label(fluid.control),
+        "sim.field",
+        design_field,
+        help="The control during the test, with its unit (the design control of the Size page to start with).",
+    )
     try:
         E = float(to_si(field_text, control_unit, "field"))
         if kind == "sine":
@@ -51,39 +60,69 @@ def _excitation(fluid, design_field: str):
             X0 = to_si(state.widget(c[0].text_input, "amplitude X0", "sim.amplitude", "10 mm"), "m", "amplitude")
             f = to_si(state.widget(c[1].text_input, "frequency f", "sim.frequency", "1 Hz"), "Hz", "frequency")
             cycles = state.widget(c[2].number_input, "cycles", "sim.cycles", 2, min_value=1, max_value=20)
-            return (("kind", "sine"), ("amplitude", float(X0)), ("frequency", float(f)), ("field", E),
-                    ("cycles", float(cycles)), ("rate", _rate(float(f)))), None
+            return (
+                ("kind", "sine"),
+                ("amplitude", float(X0)),
+                ("frequency", float(f)),
+                ("field", E),
+                ("cycles", float(cycles)),
+                ("rate", _rate(float(f))),
+            ), None
         if kind == "sweep":
             c = st.columns(2)
-            A = [to_si(state.widget(c[0].text_input, f"amplitude {i + 1}", f"sim.sweep.a{i}", a), "m", "amplitude")
-                 for i, a in enumerate(("5 mm", "15 mm"))]
-            f = [to_si(state.widget(c[1].text_input, f"frequency {i + 1}", f"sim.sweep.f{i}", q), "Hz", "frequency")
-                 for i, q in enumerate(("2 Hz", "0.5 Hz"))]
-            return (("kind", "sweep"), ("amplitudes", tuple(map(float, A))), ("frequencies", tuple(map(float, f))),
-                    ("fields", (E, E)), ("cycles", 2.0), ("rate", _rate(max(f)))), None
+            A = [
+                to_si(state.widget(c[0].text_input, f"amplitude {i + 1}", f"sim.sweep.a{i}", a), "m", "amplitude")
+                for i, a in enumerate(("5 mm", "15 mm"))
+            ]
+            f = [
+                to_si(state.widget(c[1].text_input, f"frequency {i + 1}", f"sim.sweep.f{i}", q), "Hz", "frequency")
+                for i, q in enumerate(("2 Hz", "0.5 Hz"))
+            ]
+            return (
+                ("kind", "sweep"),
+                ("amplitudes", tuple(map(float, A))),
+                ("frequencies", tuple(map(float, f))),
+                ("fields", (E, E)),
+                ("cycles", 2.0),
+                ("rate", _rate(max(f))),
+            ), None
         if kind == "earthquake":
             c = st.columns(3)
             peak = to_si(state.widget(c[0].text_input, "peak displacement", "sim.peak", "10 mm"), "m", "peak")
             duration = to_si(state.widget(c[1].text_input, "duration", "sim.duration", "8 s"), "s", "duration")
             seed = state.widget(c[2].number_input, "random seed", "sim.seed", 0, min_value=0, max_value=10_000)
-            return (("kind", "earthquake"), ("peak", float(peak)), ("field", E), ("duration", float(duration)),
-                    ("rate", 500.0), ("seed", int(seed))), None
+            return (
+                ("kind", "earthquake"),
+                ("peak", float(peak)),
+                ("field", E),
+                ("duration", float(duration)),
+                ("rate", 500.0),
+                ("seed", int(seed)),
+            ), None
         if kind == "programme":
             from erdesign.simulation.programmes import EXPERIMENTS
-            name = state.widget(st.selectbox, "experiment", "sim.programme", "E5",
-                                options=[k.upper() for k in EXPERIMENTS],
-                                help="Table 1 of Vivas-López et al.: the control steps between E/8 and E (their PWM "
-                                     "duty cycle 10 % to 80 %); docs/characterize.md.")
+
+            name = state.widget(
+                st.selectbox,
+                "experiment",
+                "sim.programme",
+                "E5",
+                options=[k.upper() for k in EXPERIMENTS],
+                help="Table 1 of Vivas-López et al.: the control steps between E/8 and E (their PWM "
+                "duty cycle 10 % to 80 %); docs/characterize.md.",
+            )
             return (("kind", "programme"), ("name", name), ("control_range", (E / 8, E)), ("rate", 250.0)), None
     except ErdesignError as exc:
         st.error(state.clean_message(str(exc)))
         return None
-    upload = st.file_uploader("displacement CSV (time and displacement columns with units; force optional)",
-                              type=["csv"],
-                              key="sim.upload")
+    upload = st.file_uploader(
+        "displacement CSV (time and displacement columns with units; force optional)", type=["csv"], key="sim.upload"
+    )
     if upload is None:
-        st.info("Upload a CSV with time and displacement columns: the displacement drives the model; a force column, "
-                "if there is one, is shown for comparison. Without a field column the field above is applied.")
+        st.info(
+            "Upload a CSV with time and displacement columns: the displacement drives the model; a force column, "
+            "if there is one, is shown for comparison. Without a field column the field above is applied."
+        )
         return None
     return (("kind", "upload"), ("field", E)), upload
 
@@ -95,13 +134,27 @@ def _rate(frequency: float) -> float:
 
 def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]] | None:
     names = model_names()
-    name = state.widget(st.selectbox, "model", "sim.model", "physics", options=names,
-                        help="physics: the damper of the Size page with effects; the others are the "
-                             "phenomenological models of the library (erdesign models).")
+    name = state.widget(
+        st.selectbox,
+        "model",
+        "sim.model",
+        "physics",
+        options=names,
+        help="physics: the damper of the Size page with effects; the others are the "
+        "phenomenological models of the library (erdesign models).",
+    )
     effects: tuple[str, ...] = ()
     if name == "physics":
-        effects = tuple(state.widget(st.multiselect, "effects", "sim.effects", [], options=list(EFFECT_NAMES),
-                                     help="Physical effects added to the quasi-steady damper (erdesign.effects)."))
+        effects = tuple(
+            state.widget(
+                st.multiselect,
+                "effects",
+                "sim.effects",
+                [],
+                options=list(EFFECT_NAMES),
+                help="Physical effects added to the quasi-steady damper (erdesign.effects).",
+            )
+        )
         for e in effects:
             st.caption(f"**{e}**: {EFFECTS[e].mechanism}")
         model = get_model("physics", damper=damper, effects=effects)
@@ -117,21 +170,32 @@ def _model(damper) -> tuple[str, tuple[str, ...], tuple[tuple[str, float], ...]]
     if st.session_state.get("sim.values.table") != key or f"{key}.start" not in st.session_state:
         last = st.session_state.get(f"{model_key}.si", {})
         st.session_state[f"{key}.start"] = {p.name: float(last.get(p.name, p.default)) for p in model.parameters}
-        st.session_state.pop(key, None)          # a table left earlier in this system holds stale edits
+        st.session_state.pop(key, None)  # a table left earlier in this system holds stale edits
         st.session_state["sim.values.table"] = key
     start = st.session_state[f"{key}.start"]
     # each value in a prefixed unit of the unit system that keeps it between 1 and 1000, to 4 significant figures
     # (43.24 MN/m, not 43241692.2085 N/m); a value left as shown is the exact start value (_to_si)
     shown = {p.name: _display_unit(p.unit, start[p.name]) for p in model.parameters}
-    shown_start = {p.name: float(round_significant(_to_unit(start[p.name], p.unit, shown[p.name])))
-                   for p in model.parameters}
-    rows = [{"parameter": p.name, "value": shown_start[p.name], "unit": _pretty(shown[p.name]),
-             "description": p.description} for p in model.parameters]
-    edited = st.data_editor(rows, key=key, disabled=["parameter", "unit", "description"], hide_index=True,
-                            width="stretch")
+    shown_start = {
+        p.name: float(round_significant(_to_unit(start[p.name], p.unit, shown[p.name]))) for p in model.parameters
+    }
+    rows = [
+        {
+            "parameter": p.name,
+            "value": shown_start[p.name],
+            "unit": _pretty(shown[p.name]),
+            "description": p.description,
+        }
+        for p in model.parameters
+    ]
+    edited = st.data_editor(
+        rows, key=key, disabled=["parameter", "unit", "description"], hide_index=True, width="stretch"
+    )
     try:
-        values = tuple((r["parameter"], _to_si(r["parameter"], float(r["value"]), model, shown, shown_start, start))
-                       for r in edited)
+        values = tuple(
+            (r["parameter"], _to_si(r["parameter"], float(r["value"]), model, shown, shown_start, start))
+            for r in edited
+        )
         model.check_values(dict(values))
     except (ErdesignError, TypeError, ValueError) as exc:
         st.error(f"Parameter values: {state.clean_message(str(exc))}")
@@ -199,8 +263,10 @@ def render() -> None:
             return
         st.session_state["sim.last"] = {"title": sim["title"], "description": sim["description"]}
         label = model_label(name, effects, sim["title"])
-        st.caption(f"{label}: {sim['description']}"
-                   + (f" (effects: {', '.join(effects)})" if name == "physics" and len(effects) > 1 else ""))
+        st.caption(
+            f"{label}: {sim['description']}"
+            + (f" (effects: {', '.join(effects)})" if name == "physics" and len(effects) > 1 else "")
+        )
         F = sim["force"]
         base = _baseline(design, damper, name, effects, values, excitation, upload, upload_name)
         Fb = None if base is None else base["force"]
@@ -212,13 +278,23 @@ def render() -> None:
         c[2].metric("duration", f"{sim['time'][-1] - sim['time'][0]:.3g} s")
         if Fb is not None:
             peak_b = Q_(float(np.max(np.abs(Fb))), "N")
-            c[3].metric("peak force, pinned design", show(peak_b, unit, name="pinned design's peak force").text,
-                        help="The design pinned on the Size page, with the same model, effects and excitation.")
-        st.plotly_chart(figures.loops_figure(sim["displacement"], sim["velocity"], F, label=label,
-                                             measured=sim["measured"], baseline=Fb), key="sim.fig.loops",
-                        config=state.chart_config("sim.fig.loops"))
-        st.plotly_chart(figures.time_figure(sim["time"], F, label=label, measured=sim["measured"],
-                                            baseline=Fb), key="sim.fig.time", config=state.chart_config("sim.fig.time"))
+            c[3].metric(
+                "peak force, pinned design",
+                show(peak_b, unit, name="pinned design's peak force").text,
+                help="The design pinned on the Size page, with the same model, effects and excitation.",
+            )
+        st.plotly_chart(
+            figures.loops_figure(
+                sim["displacement"], sim["velocity"], F, label=label, measured=sim["measured"], baseline=Fb
+            ),
+            key="sim.fig.loops",
+            config=state.chart_config("sim.fig.loops"),
+        )
+        st.plotly_chart(
+            figures.time_figure(sim["time"], F, label=label, measured=sim["measured"], baseline=Fb),
+            key="sim.fig.time",
+            config=state.chart_config("sim.fig.time"),
+        )
         _download(sim, damper, name, effects, values)
 
 
@@ -257,12 +333,18 @@ def _baseline(design: dict, damper, name: str, effects, values, excitation, uplo
     except ErdesignError as exc:
         st.info(f"The pinned baseline design cannot be simulated: {state.clean_message(str(exc))}")
         return None
-    changed = [f"{section}.{k} = {v}" for section in ("geometry", "fluid")
-               for k, v in base["spec"].get(section, {}).items()
-               if design["spec"].get(section, {}).get(k) != v]
-    st.caption(f"Dashed: the design pinned on the Size page ({base['spec'].get('name') or 'design'}"
-               + (f"; where it differs: {', '.join(changed)}" if changed else "") + "), with the same model, effects "
-               "and excitation.")
+    changed = [
+        f"{section}.{k} = {v}"
+        for section in ("geometry", "fluid")
+        for k, v in base["spec"].get(section, {}).items()
+        if design["spec"].get(section, {}).get(k) != v
+    ]
+    st.caption(
+        f"Dashed: the design pinned on the Size page ({base['spec'].get('name') or 'design'}"
+        + (f"; where it differs: {', '.join(changed)}" if changed else "")
+        + "), with the same model, effects "
+        "and excitation."
+    )
     return sim
 
 
@@ -271,20 +353,32 @@ def _download(sim: dict, damper, name: str, effects, values) -> None:
     fluid = damper.fluid
     column = {"A": "current", "V": "voltage"}.get(fluid.control_unit, "field")
     # every number in SI (EXPORT_UNITS), the unit in the header: the control in its SI unit too (V/m, A/m, A)
-    columns = [("time", "s", sim["time"]), ("displacement", "m", sim["displacement"]),
-               ("velocity", "m/s", sim["velocity"]), ("force", "N", sim["force"]),
-               (column, fluid.control_unit, np.asarray(sim["control"], float))]
+    columns = [
+        ("time", "s", sim["time"]),
+        ("displacement", "m", sim["displacement"]),
+        ("velocity", "m/s", sim["velocity"]),
+        ("force", "N", sim["force"]),
+        (column, fluid.control_unit, np.asarray(sim["control"], float)),
+    ]
     if sim["measured"] is not None:
         columns.append(("measured force", "N", sim["measured"]))
     model = name + ("".join(f" + {e}" for e in effects) if name == "physics" else "")
     parameters = ", ".join(f"{k} = {v:.6g} {sim['units'].get(k) or ''}".strip() for k, v in dict(values).items())
-    comment = (f"simulated by erdesign: {model} on {sim['description']}; numbers in {EXPORT_UNITS} units\n"
-               f"damper: {damper.name or 'design'}; parameters: {parameters or 'none'}")
+    comment = (
+        f"simulated by erdesign: {model} on {sim['description']}; numbers in {EXPORT_UNITS} units\n"
+        f"damper: {damper.name or 'design'}; parameters: {parameters or 'none'}"
+    )
     stem = state.file_stem(damper.name or "design", f"-{name}-simulated")
-    st.download_button("Simulated time history (CSV)", csv_text(columns, comment=comment),
-                       file_name=f"{stem}.csv", mime="text/csv", key="sim.dl.history", icon=":material/download:",
-                       help="time, displacement, velocity, force and control with units in the header: it reads "
-                            "back as a measurement (Compare page).")
+    st.download_button(
+        "Simulated time history (CSV)",
+        csv_text(columns, comment=comment),
+        file_name=f"{stem}.csv",
+        mime="text/csv",
+        key="sim.dl.history",
+        icon=":material/download:",
+        help="time, displacement, velocity, force and control with units in the header: it reads "
+        "back as a measurement (Compare page).",
+    )
 
 
 if __name__ == "__main__":

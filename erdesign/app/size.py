@@ -34,8 +34,15 @@ from erdesign.report.fit import EXPORT_UNITS
 from erdesign.report.formatting import control_label, field_text, pick_unit, show
 from erdesign.units import Q_, to_si
 
-__all__ = ["render", "FLUID_FIELDS", "GEOMETRY_FIELDS", "FILE_VALUES", "spec_from_widgets", "design_comment",
-           "design_point_csv"]
+__all__ = [
+    "render",
+    "FLUID_FIELDS",
+    "GEOMETRY_FIELDS",
+    "FILE_VALUES",
+    "spec_from_widgets",
+    "design_comment",
+    "design_point_csv",
+]
 
 #: Material choice meaning "the values of the damper file".
 FILE_VALUES = "(values of the damper file)"
@@ -66,8 +73,11 @@ def _text(value: Any) -> str:
 
 
 #: The comment line of a damper file written by the app that carries the design point it was sized for.
-_POINT_LINE = re.compile(r"^#\s*design point:\s*v\s*=\s*(?P<v>[^;]+);\s*E\s*=\s*(?P<E>[^;]+?)"
-                         r"(?:;\s*curves to\s*(?P<top>[^;]+?))?\s*$", re.MULTILINE)
+_POINT_LINE = re.compile(
+    r"^#\s*design point:\s*v\s*=\s*(?P<v>[^;]+);\s*E\s*=\s*(?P<E>[^;]+?)"
+    r"(?:;\s*curves to\s*(?P<top>[^;]+?))?\s*$",
+    re.MULTILINE,
+)
 
 
 def design_comment(design: dict) -> str:
@@ -77,9 +87,11 @@ def design_comment(design: dict) -> str:
     damper file of the design d, written by the erdesign app; read it with `erdesign size` or the app's upload
     design point: v = 25 mm/s; E = 3 kV/mm; curves to 50 mm/s
     """
-    return (f"damper file of the design {design['spec'].get('name') or 'design'}, written by the erdesign app; "
-            "read it with `erdesign size` or the app's upload\n"
-            f"design point: v = {design['velocity']}; E = {design['field']}; curves to {design['v_top']}")
+    return (
+        f"damper file of the design {design['spec'].get('name') or 'design'}, written by the erdesign app; "
+        "read it with `erdesign size` or the app's upload\n"
+        f"design point: v = {design['velocity']}; E = {design['field']}; curves to {design['v_top']}"
+    )
 
 
 def _load(spec: dict, source: str, point: dict | None = None) -> None:
@@ -97,7 +109,8 @@ def _load(spec: dict, source: str, point: dict | None = None) -> None:
     st.session_state["size.coil"] = dict(spec["coil"]) if isinstance(spec.get("coil"), dict) else None
     st.session_state["size.kept"] = {
         "rod": {"rod": geo["rod"]} if "rod" in geo else {},
-        "accumulator": dict(spec["accumulator"]) if isinstance(spec.get("accumulator"), dict) else None}
+        "accumulator": dict(spec["accumulator"]) if isinstance(spec.get("accumulator"), dict) else None,
+    }
     state.set_widget("size.name", str(spec.get("name") or Path(source).stem))
     state.set_widget("size.material", material or FILE_VALUES)
     base = fluid_values(material) if material else {}
@@ -125,7 +138,7 @@ def _on_upload() -> None:
     try:
         text = upload.getvalue().decode("utf-8")
         data = tomllib.loads(text)
-        damper_from_dict(data, source=name)      # check before taking it
+        damper_from_dict(data, source=name)  # check before taking it
     except UnicodeDecodeError:
         st.session_state[_ERROR] = f"{name}: not a text (UTF-8) file; expected a damper file (TOML)"
         return
@@ -143,7 +156,7 @@ def _on_upload() -> None:
         return
     point = None
     match = _POINT_LINE.search(text)
-    if match:      # a file the app wrote: take its design point back too
+    if match:  # a file the app wrote: take its design point back too
         point = {"velocity": match["v"].strip(), "field": match["E"].strip()}
         if match["top"]:
             point["v_top"] = match["top"].strip()
@@ -154,8 +167,7 @@ def _on_upload() -> None:
 def _on_material() -> None:
     """Show the chosen material's values (or the damper file's) in the fluid inputs; seal friction stays."""
     material = st.session_state["size.material"]
-    values = (st.session_state.get("size.file_fluid", {}) if material == FILE_VALUES
-              else fluid_values(material))
+    values = st.session_state.get("size.file_fluid", {}) if material == FILE_VALUES else fluid_values(material)
     for key in FLUID_FIELDS:
         if key != "seal_friction":
             state.set_widget(f"size.fluid.{key}", _text(values.get(key)))
@@ -187,7 +199,7 @@ def spec_from_widgets(values: dict) -> dict:
     geometry: dict[str, Any] = {"configuration": configuration}
     for key in GEOMETRY_FIELDS:
         if configuration == "mixed" and key == "duct_mean_diameter":
-            continue                                   # Dp + h for a mixed damper
+            continue  # Dp + h for a mixed damper
         geometry[key] = values[key].strip()
     if configuration == "valve":
         geometry["ducts"] = int(values["ducts"])
@@ -218,41 +230,61 @@ def spec_from_widgets(values: dict) -> dict:
 def _inputs() -> dict:
     """Draw the inputs; return their values."""
     values: dict[str, Any] = {"coil": st.session_state.get("size.coil"), "kept": st.session_state.get("size.kept")}
-    values["name"] = state.widget(st.text_input, "design name", "size.name", "design",
-                                  help="Names the damper file and the report you download.")
+    values["name"] = state.widget(
+        st.text_input, "design name", "size.name", "design", help="Names the damper file and the report you download."
+    )
     st.subheader("Geometry")
     values["configuration"] = state.widget(
-        st.radio, "configuration", "size.configuration", "valve", options=["valve", "mixed"], horizontal=True,
+        st.radio,
+        "configuration",
+        "size.configuration",
+        "valve",
+        options=["valve", "mixed"],
+        horizontal=True,
         help="valve: fluid pushed through stationary ducts (Makris); mixed: the piston head is the moving "
-             "electrode and shears the fluid it pushes (Kamath and Wereley).")
+        "electrode and shears the fluid it pushes (Kamath and Wereley).",
+    )
     for key, (label, helptext) in GEOMETRY_FIELDS.items():
         if key == "duct_mean_diameter" and values["configuration"] == "mixed":
             values[key] = ""
             continue
         values[key] = state.widget(st.text_input, label, f"size.geo.{key}", "", help=helptext + " With its unit.")
     if values["configuration"] == "valve":
-        values["ducts"] = state.widget(st.number_input, "ducts in parallel n", "size.geo.ducts", 1, min_value=1,
-                                       max_value=64, step=1)
+        values["ducts"] = state.widget(
+            st.number_input, "ducts in parallel n", "size.geo.ducts", 1, min_value=1, max_value=64, step=1
+        )
     else:
         values["ducts"] = 1
     st.subheader("Fluid")
     values["material"] = state.widget(
-        st.selectbox, "material", "size.material", FILE_VALUES, options=[FILE_VALUES, *state.material_names()],
-        on_change=_on_material, help="From the materials database (docs/materials.md); any value below overrides it.")
+        st.selectbox,
+        "material",
+        "size.material",
+        FILE_VALUES,
+        options=[FILE_VALUES, *state.material_names()],
+        on_change=_on_material,
+        help="From the materials database (docs/materials.md); any value below overrides it.",
+    )
     coil = bool(values["coil"])
     for key, (label, helptext) in FLUID_FIELDS.items():
         if coil and key in _CIRCUIT_KEYS:
             # the yield stress of a coil damper follows from the magnetic circuit at each current: a material's
             # value at its own reference field (43.98 kPa at 250 kA/m) would read as the value at the rated current
-            st.text_input(label, value="from the magnetic circuit (below)", disabled=True, key=f"size.coil.{key}",
-                          help="With a [coil], τy(I) is the fluid's yield curve at the gap field H_g(I) of the "
-                               "magnetic circuit: the Magnetic circuit section shows it at each current.")
+            st.text_input(
+                label,
+                value="from the magnetic circuit (below)",
+                disabled=True,
+                key=f"size.coil.{key}",
+                help="With a [coil], τy(I) is the fluid's yield curve at the gap field H_g(I) of the "
+                "magnetic circuit: the Magnetic circuit section shows it at each current.",
+            )
             values[key] = _text(st.session_state.get("size.file_fluid", {}).get(key))
             continue
         if coil and key == "reference_field":
             label = "reference field: the rated coil current"
-        values[key] = state.widget(st.text_input, label, f"size.fluid.{key}", "",
-                                   help=(helptext + " With its unit.").strip())
+        values[key] = state.widget(
+            st.text_input, label, f"size.fluid.{key}", "", help=(helptext + " With its unit.").strip()
+        )
     return values
 
 
@@ -277,15 +309,33 @@ def _point_inputs(kind: str | None) -> dict:
     """Draw the design point's inputs (as typed) with the control labelled by its ``kind``; return them."""
     cols = st.columns([1, 1, 1, 1])
     point = {
-        "velocity": state.widget(cols[0].text_input, "design velocity v", "size.velocity", "25 mm/s",
-                                 help="Piston velocity of the design point, with its unit (mm/s, in/s, m/s)."),
-        "field": state.widget(cols[1].text_input, control_label(kind, "design"), "size.field", "3 kV/mm",
-                              help="The control, with its unit: the same kind as the fluid's reference field "
-                                   "(kV/mm, kA/m, T or A)."),
+        "velocity": state.widget(
+            cols[0].text_input,
+            "design velocity v",
+            "size.velocity",
+            "25 mm/s",
+            help="Piston velocity of the design point, with its unit (mm/s, in/s, m/s).",
+        ),
+        "field": state.widget(
+            cols[1].text_input,
+            control_label(kind, "design"),
+            "size.field",
+            "3 kV/mm",
+            help="The control, with its unit: the same kind as the fluid's reference field (kV/mm, kA/m, T or A).",
+        ),
         "v_top": state.widget(cols[2].text_input, "top velocity of the curves", "size.v_top", "50 mm/s"),
-        "levels": int(state.widget(cols[3].number_input, "control levels", "size.levels", 4, min_value=1,
-                                   max_value=6, step=1,
-                                   help="Controls of the curves, from the design control down to 0.")),
+        "levels": int(
+            state.widget(
+                cols[3].number_input,
+                "control levels",
+                "size.levels",
+                4,
+                min_value=1,
+                max_value=6,
+                step=1,
+                help="Controls of the curves, from the design control down to 0.",
+            )
+        ),
     }
     return point
 
@@ -307,7 +357,7 @@ def _metrics(report) -> None:
     rows = [r for r in report.design_point if r.key not in ("velocity", "field")]
     for i in range(0, len(rows), 3):
         cols = st.columns(3)
-        for col, row in zip(cols, rows[i:i + 3]):
+        for col, row in zip(cols, rows[i : i + 3]):
             col.metric(row.label, row.value.text, help=row.note or None)
 
 
@@ -323,8 +373,18 @@ def _checks(report) -> None:
     else:
         st.warning(f"Validity checks: {report.warnings} of {len(report.checks)} warn (the report's section 4).")
     # a table, not a dataframe: the details wrap instead of being cut off
-    st.table([{"check": c.name, "status": _STATUS[c.status], "value": c.value.text if c.value else "",
-               "limit": c.limit.text if c.limit else "", "detail": c.detail} for c in report.checks])
+    st.table(
+        [
+            {
+                "check": c.name,
+                "status": _STATUS[c.status],
+                "value": c.value.text if c.value else "",
+                "limit": c.limit.text if c.limit else "",
+                "detail": c.detail,
+            }
+            for c in report.checks
+        ]
+    )
 
 
 def _curves_csv(report) -> str:
@@ -339,22 +399,41 @@ def _curves_csv(report) -> str:
             columns.append((f"dynamic range at {label}", "", row))
     for label, row in zip(sweep.field_labels(), sweep.reynolds):
         columns.append((f"Reynolds number at {label}", "", row))
-    return csv_text(columns, comment=f"quasi-steady curves of {report.title} (erdesign.damper.curves); numbers in "
-                                     f"{EXPORT_UNITS} units")
+    return csv_text(
+        columns,
+        comment=f"quasi-steady curves of {report.title} (erdesign.damper.curves); numbers in {EXPORT_UNITS} units",
+    )
 
 
 def _downloads(design: dict, report) -> None:
     stem = state.file_stem(design["spec"].get("name") or "design")
-    cols = st.columns([4, 3, 4])     # the labels whole at 1280 px
-    cols[0].download_button("Damper file (TOML)", damper_toml(design["spec"], comment=design_comment(design)),
-                            file_name=f"{stem}.toml", mime="application/toml", key="size.dl.toml",
-                            icon=":material/download:", help="Opens again with the upload above, and in "
-                            "`erdesign size`; the design point is kept as a comment.")
-    cols[1].download_button("Curves (CSV)", _curves_csv(report), file_name=f"{stem}-curves.csv", mime="text/csv",
-                            key="size.dl.curves", icon=":material/download:")
+    cols = st.columns([4, 3, 4])  # the labels whole at 1280 px
+    cols[0].download_button(
+        "Damper file (TOML)",
+        damper_toml(design["spec"], comment=design_comment(design)),
+        file_name=f"{stem}.toml",
+        mime="application/toml",
+        key="size.dl.toml",
+        icon=":material/download:",
+        help="Opens again with the upload above, and in `erdesign size`; the design point is kept as a comment.",
+    )
+    cols[1].download_button(
+        "Curves (CSV)",
+        _curves_csv(report),
+        file_name=f"{stem}-curves.csv",
+        mime="text/csv",
+        key="size.dl.curves",
+        icon=":material/download:",
+    )
     point = design_point_csv(report)
-    cols[2].download_button("Design point (CSV)", point, file_name=f"{stem}-design-point.csv",
-                            mime="text/csv", key="size.dl.point", icon=":material/download:")
+    cols[2].download_button(
+        "Design point (CSV)",
+        point,
+        file_name=f"{stem}-design-point.csv",
+        mime="text/csv",
+        key="size.dl.point",
+        icon=":material/download:",
+    )
 
 
 def design_point_csv(report) -> str:
@@ -365,8 +444,10 @@ def design_point_csv(report) -> str:
     columns = [("design control", si_unit_text(field.si_unit), field.si)]
     columns += [(r.label, si_unit_text(r.value.si_unit), r.value.si) for r in rows]
     checks = "\n".join(f"check {c.name}: {c.status}" + (f" ({c.detail})" if c.detail else "") for c in report.checks)
-    return csv_text([(name, unit, [value]) for name, unit, value in columns],
-                    comment=f"design point of {report.title} (numbers in {EXPORT_UNITS} units)\n{checks}")
+    return csv_text(
+        [(name, unit, [value]) for name, unit, value in columns],
+        comment=f"design point of {report.title} (numbers in {EXPORT_UNITS} units)\n{checks}",
+    )
 
 
 def _baseline(design: dict, report) -> None:
@@ -384,41 +465,77 @@ def _magnetics(report) -> None:
     fig = next(f for f in report.figures if f.key == "magnetics")
     st.plotly_chart(fig.figure, key="size.fig.magnetics", config=state.chart_config("size.fig.magnetics"))
     rows = {r.key: r for r in m["rows"]}
-    keys = ["gap_flux_density", "yield_stress_rated", "coil_resistance", "inductance", "time_constant", "power",
-            "voltage", "current_density", "knee_current"]
+    keys = [
+        "gap_flux_density",
+        "yield_stress_rated",
+        "coil_resistance",
+        "inductance",
+        "time_constant",
+        "power",
+        "voltage",
+        "current_density",
+        "knee_current",
+    ]
     shown = [rows[k] for k in keys if k in rows]
     for i in range(0, len(shown), 3):
-        for col, row in zip(st.columns(3), shown[i:i + 3]):
+        for col, row in zip(st.columns(3), shown[i : i + 3]):
             col.metric(row.label, row.value.text, help=row.note or None)
     if m["saturated"]:
-        st.info(f"At the rated current the circuit is past the knee of a B-H curve: the {m['limiting_part']} "
-                "saturates first (more current buys little more yield stress).")
-    st.table([{"current": r[0].text, "B_g": r[1].text, "H_g": r[2].text, "τ_y": r[3].text, "L": r[4].text,
-               "L/R": r[5].text, "power": r[6].text, "saturated": r[7].text} for r in m["table"].rows])
+        st.info(
+            f"At the rated current the circuit is past the knee of a B-H curve: the {m['limiting_part']} "
+            "saturates first (more current buys little more yield stress)."
+        )
+    st.table(
+        [
+            {
+                "current": r[0].text,
+                "B_g": r[1].text,
+                "H_g": r[2].text,
+                "τ_y": r[3].text,
+                "L": r[4].text,
+                "L/R": r[5].text,
+                "power": r[6].text,
+                "saturated": r[7].text,
+            }
+            for r in m["table"].rows
+        ]
+    )
     coil = st.session_state.get("size.coil") or {}
     st.caption("coil: " + ", ".join(f"{k} = {v}" for k, v in coil.items()))
 
 
 def _curves(report) -> None:
     tab_f, tab_d, tab_p = st.tabs(["force - velocity", "dynamic range - velocity", "pressure drop - velocity"])
-    tab_f.plotly_chart(plots.force_velocity_figure(report.sweep), key="size.fig.force",
-                       config=state.chart_config("size.fig.force"))
-    tab_d.plotly_chart(plots.dynamic_range_figure(report.sweep), key="size.fig.range",
-                       config=state.chart_config("size.fig.range"))
-    tab_p.plotly_chart(plots.pressure_drop_figure(report.sweep), key="size.fig.pressure",
-                       config=state.chart_config("size.fig.pressure"))
+    tab_f.plotly_chart(
+        plots.force_velocity_figure(report.sweep), key="size.fig.force", config=state.chart_config("size.fig.force")
+    )
+    tab_d.plotly_chart(
+        plots.dynamic_range_figure(report.sweep), key="size.fig.range", config=state.chart_config("size.fig.range")
+    )
+    tab_p.plotly_chart(
+        plots.pressure_drop_figure(report.sweep),
+        key="size.fig.pressure",
+        config=state.chart_config("size.fig.pressure"),
+    )
 
 
 def _explorer(text: str, damper, v: float, E: float) -> None:
     st.subheader("Sweep explorer")
-    st.caption("Vary one dimension of the design and see force, dynamic range and Reynolds number trade off "
-               "(at the design velocity and field).")
-    parameter = state.widget(st.selectbox, "vary", "size.sweep.parameter", "gap",
-                             options=list(state.GEOMETRY_SWEEPS), format_func=state.GEOMETRY_SWEEPS.get)
+    st.caption(
+        "Vary one dimension of the design and see force, dynamic range and Reynolds number trade off "
+        "(at the design velocity and field)."
+    )
+    parameter = state.widget(
+        st.selectbox,
+        "vary",
+        "size.sweep.parameter",
+        "gap",
+        options=list(state.GEOMETRY_SWEEPS),
+        format_func=state.GEOMETRY_SWEEPS.get,
+    )
     current = getattr(damper.geometry, parameter)
     cols = st.columns(3)
-    lo_text = state.widget(cols[0].text_input, "from", f"size.sweep.from.{parameter}",
-                           f"{current * 1e3 * 0.5:.4g} mm")
+    lo_text = state.widget(cols[0].text_input, "from", f"size.sweep.from.{parameter}", f"{current * 1e3 * 0.5:.4g} mm")
     hi_text = state.widget(cols[1].text_input, "to", f"size.sweep.to.{parameter}", f"{current * 1e3 * 2:.4g} mm")
     points = state.widget(cols[2].slider, "points", "size.sweep.points", 21, min_value=5, max_value=61)
     try:
@@ -435,17 +552,31 @@ def _explorer(text: str, damper, v: float, E: float) -> None:
         st.info(f"Some values give no buildable damper and are left out, e.g. {result['invalid']}")
     field_label = field_text(E, damper.fluid.control_unit, damper.fluid.field_unit)
     velocity_label = show(Q_(v, "m/s"), pick_unit(Q_(v, "m/s"), "velocity"), name="velocity").text
-    st.plotly_chart(figures.tradeoff_figure(result, state.GEOMETRY_SWEEPS[parameter], field_label,
-                                            velocity_label), key="size.fig.tradeoff",
-                    config=state.chart_config("size.fig.tradeoff"))
-    data = csv_text([(parameter, "m", result["value"]), (f"force at {field_label}", "N", result["force"]),
-                     ("zero-field force", "N", result["zero_field_force"]),
-                     ("dynamic range", "", result["dynamic_range"]), ("Reynolds number", "", result["reynolds"]),
-                     ("gap ratio h/d", "", result["gap_ratio"])],
-                    comment=f"sweep of the {state.GEOMETRY_SWEEPS[parameter]} at {velocity_label} and {field_label}; "
-                            f"numbers in {EXPORT_UNITS} units")
-    st.download_button("Sweep (CSV)", data, file_name=f"sweep-{parameter}.csv", mime="text/csv",
-                       key="size.dl.sweep", icon=":material/download:")
+    st.plotly_chart(
+        figures.tradeoff_figure(result, state.GEOMETRY_SWEEPS[parameter], field_label, velocity_label),
+        key="size.fig.tradeoff",
+        config=state.chart_config("size.fig.tradeoff"),
+    )
+    data = csv_text(
+        [
+            (parameter, "m", result["value"]),
+            (f"force at {field_label}", "N", result["force"]),
+            ("zero-field force", "N", result["zero_field_force"]),
+            ("dynamic range", "", result["dynamic_range"]),
+            ("Reynolds number", "", result["reynolds"]),
+            ("gap ratio h/d", "", result["gap_ratio"]),
+        ],
+        comment=f"sweep of the {state.GEOMETRY_SWEEPS[parameter]} at {velocity_label} and {field_label}; "
+        f"numbers in {EXPORT_UNITS} units",
+    )
+    st.download_button(
+        "Sweep (CSV)",
+        data,
+        file_name=f"sweep-{parameter}.csv",
+        mime="text/csv",
+        key="size.dl.sweep",
+        icon=":material/download:",
+    )
 
 
 #: The tolerances the page starts with (issue 24: gap +- 20 um on 0.8 mm, viscosity +- 10 %, yield stress +- 15 %).
@@ -462,13 +593,16 @@ def _tolerance_study(text: str, specs: tuple[str, ...], v: float, E: float, samp
 
 def _tolerances(text: str, v: float, E: float) -> None:
     with st.expander("Tolerances: spread of the design point and what drives it"):
-        st.caption("One tolerance per line, as `erdesign tolerance --vary` takes them: `KEY=+-P %` or "
-                   "`KEY=VALUE +- DELTA` (one standard deviation of a normal; prefix `uniform:` for a uniform "
-                   "spread of half-width DELTA). Keys as in the damper file (docs/tolerance.md).")
+        st.caption(
+            "One tolerance per line, as `erdesign tolerance --vary` takes them: `KEY=+-P %` or "
+            "`KEY=VALUE +- DELTA` (one standard deviation of a normal; prefix `uniform:` for a uniform "
+            "spread of half-width DELTA). Keys as in the damper file (docs/tolerance.md)."
+        )
         specs_text = state.widget(st.text_area, "tolerances", "size.tol.vary", DEFAULT_TOLERANCES, height=110)
         cols = st.columns(3)
-        samples = state.widget(cols[0].number_input, "samples", "size.tol.samples", 2000, min_value=100,
-                               max_value=200000, step=1000)
+        samples = state.widget(
+            cols[0].number_input, "samples", "size.tol.samples", 2000, min_value=100, max_value=200000, step=1000
+        )
         seed = state.widget(cols[1].number_input, "seed", "size.tol.seed", 0, min_value=0, step=1)
         run = state.widget(cols[2].checkbox, "run the study", "size.tol.run", False)
         if not run:
@@ -484,14 +618,25 @@ def _tolerances(text: str, v: float, E: float) -> None:
 
         if result.rejected:
             st.info(f"{result.rejected} non-physical draws were rejected and drawn again.")
-        output = state.widget(st.selectbox, "output", "size.tol.output", "force_N",
-                              options=list(plots.TOLERANCE_OUTPUTS),
-                              format_func=lambda k: plots.TOLERANCE_OUTPUTS[k][0])
+        output = state.widget(
+            st.selectbox,
+            "output",
+            "size.tol.output",
+            "force_N",
+            options=list(plots.TOLERANCE_OUTPUTS),
+            format_func=lambda k: plots.TOLERANCE_OUTPUTS[k][0],
+        )
         left, right = st.columns(2)
-        left.plotly_chart(plots.tolerance_histogram_figure(result, output), key="size.fig.tolerance",
-                          config=state.chart_config("size.fig.tolerance"))
-        right.plotly_chart(plots.sensitivity_tornado_figure(result, output), key="size.fig.tornado",
-                           config=state.chart_config("size.fig.tornado"))
+        left.plotly_chart(
+            plots.tolerance_histogram_figure(result, output),
+            key="size.fig.tolerance",
+            config=state.chart_config("size.fig.tolerance"),
+        )
+        right.plotly_chart(
+            plots.sensitivity_tornado_figure(result, output),
+            key="size.fig.tornado",
+            config=state.chart_config("size.fig.tornado"),
+        )
         st.code(tolerance_table(result), language=None)
 
 
@@ -504,8 +649,14 @@ def render() -> None:
         st.session_state.setdefault("_keep.size.example", state.DEFAULT_EXAMPLE)
     top = st.columns([2, 3])
     examples = example_names() + ([UPLOADED] if st.session_state.get("_keep.size.example") == UPLOADED else [])
-    state.widget(top[0].selectbox, "start from an example", "size.example", state.DEFAULT_EXAMPLE,
-                 options=examples, on_change=_on_example)
+    state.widget(
+        top[0].selectbox,
+        "start from an example",
+        "size.example",
+        state.DEFAULT_EXAMPLE,
+        options=examples,
+        on_change=_on_example,
+    )
     top[1].file_uploader("or load a damper file (TOML)", type=["toml"], key="size.upload", on_change=_on_upload)
     if _ERROR in st.session_state:
         st.error(st.session_state[_ERROR])
@@ -528,8 +679,10 @@ def render() -> None:
             state.set_design(design)
         _metrics(report)
         flow = next(n for n in report.notes if n.startswith("flow model"))
-        st.caption(f"At v = {report.setting('velocity_design').value.text} and E = "
-                   f"{report.setting('field_design').value.text}; {flow}.")
+        st.caption(
+            f"At v = {report.setting('velocity_design').value.text} and E = "
+            f"{report.setting('field_design').value.text}; {flow}."
+        )
         _checks(report)
         if report.magnetics is not None:
             _magnetics(report)

@@ -33,14 +33,51 @@ from ..errors import ErdesignError, one_line
 from ..units import Q_, to_si
 
 __all__ = [
-    "DEFAULT_EXAMPLE", "SPEC", "DESIGN", "DIAGNOSIS", "BASELINE", "UNITS", "IMAGE_FORMAT",
-    "chart_config", "image_format", "report_images", "widget", "forget", "example_spec",
-    "current_spec", "set_spec", "default_design", "current_design", "set_design", "design_text", "design_report",
-    "unit_system", "pinned_baseline", "report_inputs", "clean_message", "file_stem",
-    "spec_text", "build_damper", "damper_or_error", "caught", "force_velocity_curves", "geometry_sweep",
-    "GEOMETRY_SWEEPS", "read_record",
-    "example_records", "example_record_bytes", "example_damper_for", "RIG_EXAMPLES", "simulate", "run_diagnosis",
-    "render_report", "report_pages", "clear_caches", "material_names", "set_widget", "widget_value",
+    "DEFAULT_EXAMPLE",
+    "SPEC",
+    "DESIGN",
+    "DIAGNOSIS",
+    "BASELINE",
+    "UNITS",
+    "IMAGE_FORMAT",
+    "chart_config",
+    "image_format",
+    "report_images",
+    "widget",
+    "forget",
+    "example_spec",
+    "current_spec",
+    "set_spec",
+    "default_design",
+    "current_design",
+    "set_design",
+    "design_text",
+    "design_report",
+    "unit_system",
+    "pinned_baseline",
+    "report_inputs",
+    "clean_message",
+    "file_stem",
+    "spec_text",
+    "build_damper",
+    "damper_or_error",
+    "caught",
+    "force_velocity_curves",
+    "geometry_sweep",
+    "GEOMETRY_SWEEPS",
+    "read_record",
+    "example_records",
+    "example_record_bytes",
+    "example_damper_for",
+    "RIG_EXAMPLES",
+    "simulate",
+    "run_diagnosis",
+    "render_report",
+    "report_pages",
+    "clear_caches",
+    "material_names",
+    "set_widget",
+    "widget_value",
 ]
 
 #: The damper the app opens on.
@@ -140,9 +177,13 @@ def default_design(spec: dict) -> dict:
     v_top = default_velocity_max(damper)
     unit = pick_unit(Q_(v_top, "m/s"), "velocity")
     fluid = damper.fluid
-    return {"spec": spec, "velocity": _quantity_text(Q_(v_top / 2, "m/s").to(unit)),
-            "field": _quantity_text(Q_(fluid.reference_field, fluid.control_unit).to(fluid.field_unit)),
-            "v_top": _quantity_text(Q_(v_top, "m/s").to(unit)), "levels": 4}
+    return {
+        "spec": spec,
+        "velocity": _quantity_text(Q_(v_top / 2, "m/s").to(unit)),
+        "field": _quantity_text(Q_(fluid.reference_field, fluid.control_unit).to(fluid.field_unit)),
+        "v_top": _quantity_text(Q_(v_top, "m/s").to(unit)),
+        "levels": 4,
+    }
 
 
 def current_design() -> dict:
@@ -189,13 +230,23 @@ def report_inputs(design: dict, control_unit: str) -> dict:
     E = abs(float(to_si(design["field"], control_unit, "design field")))
     levels = int(design.get("levels", 4))
     fields = [Q_(float(x), control_unit) for x in np.linspace(0.0, E, levels)[1:]] if E else []
-    return {"velocity_range": (Q_(0.0, "m/s"), design["v_top"]), "fields": fields or None,
-            "design_velocity": design["velocity"], "design_field": design["field"], "origin": "as typed in the app"}
+    return {
+        "velocity_range": (Q_(0.0, "m/s"), design["v_top"]),
+        "fields": fields or None,
+        "design_velocity": design["velocity"],
+        "design_field": design["field"],
+        "origin": "as typed in the app",
+    }
 
 
 @st.cache_data(show_spinner=False, max_entries=32)
-def design_report(text: str, system: str, comparison: tuple | None = None,
-                  history: tuple[tuple[int, str, float], ...] = (), baseline: str | None = None):
+def design_report(
+    text: str,
+    system: str,
+    comparison: tuple | None = None,
+    history: tuple[tuple[int, str, float], ...] = (),
+    baseline: str | None = None,
+):
     """:func:`erdesign.report.build_report` of a design (:func:`design_text`) in the unit system ``system``.
 
     The Size page shows its design point, checks and curves; the Report page renders it: one computation, so the
@@ -220,17 +271,33 @@ def design_report(text: str, system: str, comparison: tuple | None = None,
         Fm, Fmod = np.asarray(Fm), np.asarray(Fmod)
         extra = json.loads(details) if details else {}
         comp = MeasurementComparison(
-            label=label, esr=esr_value, samples=samples, rms_error=Q_(rms, "N"),
-            verdict=extra.get("verdict", ""), reason=extra.get("reason", ""),
-            noise_floor_esr=extra.get("noise_floor_esr"), parameters=tuple(extra.get("parameters", ())),
-            statistics=tuple(extra.get("statistics", ())), correlations=tuple(extra.get("correlations", ())),
+            label=label,
+            esr=esr_value,
+            samples=samples,
+            rms_error=Q_(rms, "N"),
+            verdict=extra.get("verdict", ""),
+            reason=extra.get("reason", ""),
+            noise_floor_esr=extra.get("noise_floor_esr"),
+            parameters=tuple(extra.get("parameters", ())),
+            statistics=tuple(extra.get("statistics", ())),
+            correlations=tuple(extra.get("correlations", ())),
             peak_force_measured=Q_(float(np.max(np.abs(Fm))), "N"),
             peak_force_model=Q_(float(np.max(np.abs(Fmod))), "N"),
-            displacement=np.asarray(x), velocity=np.asarray(v), force_measured=Fm, force_model=Fmod)
+            displacement=np.asarray(x),
+            velocity=np.asarray(v),
+            force_measured=Fm,
+            force_model=Fmod,
+        )
     with use_unit_system(system):
-        return caught(lambda: build_report(
-            design["spec"], **report_inputs(design, damper.fluid.control_unit), comparison=comp,
-            history=[ErrorHistoryStep(*h) for h in history] or None, baseline=base))[0]
+        return caught(
+            lambda: build_report(
+                design["spec"],
+                **report_inputs(design, damper.fluid.control_unit),
+                comparison=comp,
+                history=[ErrorHistoryStep(*h) for h in history] or None,
+                baseline=base,
+            )
+        )[0]
 
 
 _PATH = re.compile(r"(?:[A-Za-z]:)?(?:[\\/][^\\/\s:'\"]+)+[\\/]([^\\/\s:'\"]+)")
@@ -287,8 +354,9 @@ def force_velocity_curves(text: str, v_max: float, fields: tuple[float, ...], po
     from ..damper import curves
 
     damper, _ = build_damper(text)
-    return caught(lambda: curves.force_velocity_curves(damper, np.linspace(0.0, v_max, points),
-                                                np.asarray(fields, dtype=float)))[0]
+    return caught(
+        lambda: curves.force_velocity_curves(damper, np.linspace(0.0, v_max, points), np.asarray(fields, dtype=float))
+    )[0]
 
 
 #: Geometry values the sweep explorer varies: key -> label.
@@ -313,8 +381,8 @@ def geometry_sweep(text: str, parameter: str, values: tuple[float, ...], velocit
     for i, value in enumerate(values):
         try:
             with warnings.catch_warnings():
-                warnings.simplefilter("ignore")      # the thin-gap warning: the sweep shows h/d instead
-                geometry = g.with_(**{parameter: float(value)})     # a mixed gap's mean diameter follows
+                warnings.simplefilter("ignore")  # the thin-gap warning: the sweep shows h/d instead
+                geometry = g.with_(**{parameter: float(value)})  # a mixed gap's mean diameter follows
                 d = dataclasses.replace(damper, geometry=geometry)
                 s, s0 = d.state(velocity, field), d.state(velocity, 0.0)
         except ErdesignError as exc:
@@ -344,7 +412,7 @@ def read_record(data: bytes, name: str, require_force: bool = True) -> Measureme
         path.write_bytes(data)
         try:
             record = read_measurement(path, require_force=require_force)
-        except MeasurementError as exc:     # the message names the temporary file: show the upload's name
+        except MeasurementError as exc:  # the message names the temporary file: show the upload's name
             raise MeasurementError(clean_message(str(exc).replace(str(path), path.name))) from None
     return record
 
@@ -380,8 +448,8 @@ def example_damper_for(data: bytes) -> str | None:
     prefix = next((p for p in ("# virtual rig:", "# truth rig:") if first.startswith(p)), None)
     if prefix is None:
         return None
-    damper_name = first[len(prefix):].split(";")[0].strip()
-    if damper_name.endswith(")") and " (" in damper_name:          # the truth rig adds the configuration
+    damper_name = first[len(prefix) :].split(";")[0].strip()
+    if damper_name.endswith(")") and " (" in damper_name:  # the truth rig adds the configuration
         damper_name = damper_name[: damper_name.rindex(" (")]
     for example in example_names():
         if example_spec(example).get("name") == damper_name:
@@ -400,20 +468,37 @@ def example_record_bytes(name: str) -> bytes:
 
     hidden, viscosity_factor = RIG_EXAMPLES[name]
     motion = stepped_sine([0.005, 0.01], [2.0, 1.0], [3e6, 1.5e6], cycles=2, rate=500)
-    rig = run_rig(load_example("makris"), motion, hidden=hidden, viscosity_factor=viscosity_factor, force_noise=0.02,
-                  seed=2, name=name.replace(" ", "_"))
+    rig = run_rig(
+        load_example("makris"),
+        motion,
+        hidden=hidden,
+        viscosity_factor=viscosity_factor,
+        force_noise=0.02,
+        seed=2,
+        name=name.replace(" ", "_"),
+    )
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "rig.csv"
-        write_measurement(path, rig.record, units={"displacement": "mm", "field": "kV/mm"},
-                          comment="virtual rig (erdesign.simulation.rig); the hidden effect is for the diagnosis to "
-                                  "find")
+        write_measurement(
+            path,
+            rig.record,
+            units={"displacement": "mm", "field": "kV/mm"},
+            comment="virtual rig (erdesign.simulation.rig); the hidden effect is for the diagnosis to find",
+        )
         return path.read_bytes()
 
 
 # ------------------------------------------------------------------------------------------------ simulate
 @st.cache_data(show_spinner=False, max_entries=32)
-def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple[tuple[str, float], ...],
-             excitation: tuple[tuple[str, Any], ...], upload: bytes | None = None, upload_name: str = "") -> dict:
+def simulate(
+    text: str,
+    model_name: str,
+    effects: tuple[str, ...],
+    values: tuple[tuple[str, float], ...],
+    excitation: tuple[tuple[str, Any], ...],
+    upload: bytes | None = None,
+    upload_name: str = "",
+) -> dict:
     """Force of a model (``physics`` with ``effects``, or a registry model) for an excitation.
 
     ``excitation`` is plain data: ``kind`` (``sine``, ``sweep``, ``earthquake``, ``programme`` or ``upload``) and its numbers
@@ -431,32 +516,53 @@ def simulate(text: str, model_name: str, effects: tuple[str, ...], values: tuple
     if kind == "upload":
         record = read_record(upload, upload_name, require_force=False)
         if record.control_kind is None:
-            record = dataclasses.replace(record, control=np.full(len(record), float(ex["field"])),
-                                         control_kind=damper.fluid.control)
+            record = dataclasses.replace(
+                record, control=np.full(len(record), float(ex["field"])), control_kind=damper.fluid.control
+            )
         measured = record.force
         description = f"displacement of {upload_name} ({len(record)} samples)"
     else:
-        if kind in ("sine", "sweep"):       # the description prints the control in the fluid's unit (3 kV/mm)
+        if kind in ("sine", "sweep"):  # the description prints the control in the fluid's unit (3 kV/mm)
             ex["control_unit"] = damper.fluid.field_unit
         from ..simulation.programmes import programme
-        motion = {"sine": rig.sine, "sweep": rig.stepped_sine, "earthquake": rig.earthquake_motion,
-                  "programme": programme}[kind](**ex)
-        record = Measurement(time=motion.time, displacement=motion.displacement, force=None,
-                             velocity=motion.velocity, acceleration=motion.acceleration, control=motion.control,
-                             control_kind=damper.fluid.control, name=kind)
+
+        motion = {
+            "sine": rig.sine,
+            "sweep": rig.stepped_sine,
+            "earthquake": rig.earthquake_motion,
+            "programme": programme,
+        }[kind](**ex)
+        record = Measurement(
+            time=motion.time,
+            displacement=motion.displacement,
+            force=None,
+            velocity=motion.velocity,
+            acceleration=motion.acceleration,
+            control=motion.control,
+            control_kind=damper.fluid.control,
+            name=kind,
+        )
         description = motion.description
-    damper.fluid.check_plausible_field(record.control, "field")     # a unit mistake is an error, not a result
+    damper.fluid.check_plausible_field(record.control, "field")  # a unit mistake is an error, not a result
     if model_name == "physics":
         model = get_model("physics", damper=damper, effects=effects)
     else:
         model = get_model(model_name)
-        model.control_reference = damper.fluid.reference_field   # u = 1 at the fluid's reference control
+        model.control_reference = damper.fluid.reference_field  # u = 1 at the fluid's reference control
     used = model.check_values(dict(values))
     force = model.simulate(record, used)
-    return {"time": record.time, "displacement": record.displacement, "velocity": record.velocity,
-            "control": record.control, "force": force, "measured": measured, "values": used,
-            "units": {p.name: p.unit for p in model.parameters}, "description": description,
-            "title": model.title or model.name}
+    return {
+        "time": record.time,
+        "displacement": record.displacement,
+        "velocity": record.velocity,
+        "control": record.control,
+        "force": force,
+        "measured": measured,
+        "values": used,
+        "units": {p.name: p.unit for p in model.parameters},
+        "description": description,
+        "title": model.title or model.name,
+    }
 
 
 # ------------------------------------------------------------------------------------------------ diagnosis
@@ -481,8 +587,15 @@ def run_diagnosis(text: str, data: bytes, name: str, effects: tuple[str, ...]):
 
 # ------------------------------------------------------------------------------------------------ report
 @st.cache_data(show_spinner=False, max_entries=8)
-def render_report(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
-                  fmt: str, baseline: str | None = None, image_format: str = "png") -> str:
+def render_report(
+    text: str,
+    system: str,
+    comparison: tuple | None,
+    history: tuple[tuple[int, str, float], ...],
+    fmt: str,
+    baseline: str | None = None,
+    image_format: str = "png",
+) -> str:
     """The report of a design (:func:`design_report`) as HTML (figures saved by their camera button as
     ``image_format``) or Markdown text."""
     from ..report import render_html, render_markdown
@@ -497,8 +610,14 @@ def image_format() -> str:
 
 
 @st.cache_data(show_spinner=False, max_entries=4)
-def report_images(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
-                  baseline: str | None, image_format: str) -> bytes:
+def report_images(
+    text: str,
+    system: str,
+    comparison: tuple | None,
+    history: tuple[tuple[int, str, float], ...],
+    baseline: str | None,
+    image_format: str,
+) -> bytes:
     """The report's figures as static images in one ZIP archive (:func:`erdesign.report.export.figure_images`:
     kaleido and a Chrome or Chromium already on the machine).
 
@@ -512,8 +631,14 @@ def report_images(text: str, system: str, comparison: tuple | None, history: tup
 
 
 @st.cache_data(show_spinner=False, max_entries=4)
-def report_pages(text: str, system: str, comparison: tuple | None, history: tuple[tuple[int, str, float], ...],
-                 baseline: str | None, image_format: str) -> bytes:
+def report_pages(
+    text: str,
+    system: str,
+    comparison: tuple | None,
+    history: tuple[tuple[int, str, float], ...],
+    baseline: str | None,
+    image_format: str,
+) -> bytes:
     """The report's figures as interactive HTML pages in one ZIP archive (:func:`erdesign.report.export.figure_pages`):
     the fallback of :func:`report_images` that needs no extra install."""
     from ..report.export import figure_pages, images_zip
@@ -526,6 +651,16 @@ def report_pages(text: str, system: str, comparison: tuple | None, history: tupl
 
 def clear_caches() -> None:
     """Empty every cache of the app (tests call it between tests)."""
-    for fn in (force_velocity_curves, geometry_sweep, read_record, example_record_bytes, simulate, run_diagnosis,
-               design_report, render_report, report_images, report_pages):
+    for fn in (
+        force_velocity_curves,
+        geometry_sweep,
+        read_record,
+        example_record_bytes,
+        simulate,
+        run_diagnosis,
+        design_report,
+        render_report,
+        report_images,
+        report_pages,
+    ):
         fn.clear()

@@ -49,15 +49,30 @@ def _run(spec_text: str, damper_name: str, control: str, road: tuple, duration: 
     else:
         d = vehicle_damper(**PRESET_DAMPERS[damper_name])
     r = simulate_vehicle(d, make_road(road[0], **dict(road[1:])), control, duration=duration)
-    step = max(1, r.time.size // 2000)           # at most 2000 points per curve in the browser
-    return {"time": r.time[::step], "u0": r.u0[::step], "u2": r.u2[::step], "a2": r.a2[::step],
-            "ride": r.ride(), "control_kind": r.control_kind}
+    step = max(1, r.time.size // 2000)  # at most 2000 points per curve in the browser
+    return {
+        "time": r.time[::step],
+        "u0": r.u0[::step],
+        "u2": r.u2[::step],
+        "a2": r.a2[::step],
+        "ride": r.ride(),
+        "control_kind": r.control_kind,
+    }
 
 
 def _road() -> tuple | None:
-    kind = state.widget(st.selectbox, "road", "veh.road", "bump", options=["step", "bump", "random"],
-                        format_func={"step": "step (Butz and von Stryk 4.4)", "bump": "(1 - cos) bump (4.5)",
-                                     "random": "ISO 8608 random road"}.get)
+    kind = state.widget(
+        st.selectbox,
+        "road",
+        "veh.road",
+        "bump",
+        options=["step", "bump", "random"],
+        format_func={
+            "step": "step (Butz and von Stryk 4.4)",
+            "bump": "(1 - cos) bump (4.5)",
+            "random": "ISO 8608 random road",
+        }.get,
+    )
     try:
         if kind == "random":
             c = st.columns(2)
@@ -100,8 +115,14 @@ def time_figure(runs: dict, key: str, label: str, unit: str, factor: float, road
         fig.add_scatter(x=road["time"], y=factor * road["u0"], name="road u0", line=dict(color="#999999", dash="dot"))
     for name, run in runs.items():
         fig.add_scatter(x=run["time"], y=factor * run[key], name=name)
-    fig.update_layout(template="plotly_white", title=label, xaxis_title="time t [s]",
-                      yaxis_title=f"{label} [{unit}]", margin=dict(l=70, r=20, t=60, b=60), legend=_LEGEND_BELOW)
+    fig.update_layout(
+        template="plotly_white",
+        title=label,
+        xaxis_title="time t [s]",
+        yaxis_title=f"{label} [{unit}]",
+        margin=dict(l=70, r=20, t=60, b=60),
+        legend=_LEGEND_BELOW,
+    )
     return fig
 
 
@@ -111,30 +132,48 @@ def bar_figure(runs: dict, key: str) -> go.Figure:
     names = list(runs)
     values = [np.nan if runs[n]["ride"][key] is None else factor * runs[n]["ride"][key] for n in names]
     fig = go.Figure(go.Bar(x=names, y=values, text=[f"{v:.3g}" for v in values], textposition="auto"))
-    fig.update_layout(template="plotly_white", yaxis_title=f"{label} [{unit}]",   # the axis names it: no title
-                      margin=dict(l=70, r=20, t=30, b=120))
+    fig.update_layout(
+        template="plotly_white",
+        yaxis_title=f"{label} [{unit}]",  # the axis names it: no title
+        margin=dict(l=70, r=20, t=30, b=120),
+    )
     return fig
 
 
 def render() -> None:
     """Draw the Vehicle page."""
     st.title("Vehicle")
-    st.caption("The quarter vehicle of Butz and von Stryk (2002), section 4: axle 250 kg, body 1300 kg, tyre 650 kN/m "
-               "and 800 N s/m, suspension spring 110 kN/m, with the dampers and control laws chosen below "
-               "(docs/vehicle.md).")
+    st.caption(
+        "The quarter vehicle of Butz and von Stryk (2002), section 4: axle 250 kg, body 1300 kg, tyre 650 kN/m "
+        "and 800 N s/m, suspension spring 110 kN/m, with the dampers and control laws chosen below "
+        "(docs/vehicle.md)."
+    )
     design = state.current_design()
     text = state.spec_text(design["spec"])
     left, right = st.columns([1, 2], gap="large")
     with left:
-        dampers = state.widget(st.multiselect, "dampers", "veh.dampers", list(PRESET_DAMPERS)[:2],
-                               options=[DESIGN_DAMPER, *PRESET_DAMPERS], format_func=short,
-                               help="The design of the Size page runs as its physics damper (control range 0 to "
-                                    "its reference field). The others: " + "; ".join(PRESET_DAMPERS) + ".")
-        controls = state.widget(st.multiselect, "control laws", "veh.controls", ["passive"], options=list(CONTROLLERS),
-                                help="Semi-active laws need a damper whose force the control changes.")
+        dampers = state.widget(
+            st.multiselect,
+            "dampers",
+            "veh.dampers",
+            list(PRESET_DAMPERS)[:2],
+            options=[DESIGN_DAMPER, *PRESET_DAMPERS],
+            format_func=short,
+            help="The design of the Size page runs as its physics damper (control range 0 to "
+            "its reference field). The others: " + "; ".join(PRESET_DAMPERS) + ".",
+        )
+        controls = state.widget(
+            st.multiselect,
+            "control laws",
+            "veh.controls",
+            ["passive"],
+            options=list(CONTROLLERS),
+            help="Semi-active laws need a damper whose force the control changes.",
+        )
         road = _road()
-        duration = state.widget(st.number_input, "simulated time [s]", "veh.duration", 2.0, min_value=0.5,
-                                max_value=20.0, step=0.5)
+        duration = state.widget(
+            st.number_input, "simulated time [s]", "veh.duration", 2.0, min_value=0.5, max_value=20.0, step=0.5
+        )
     with right:
         if road is None or not dampers or not controls:
             st.info("Choose at least one damper and one control law.")
@@ -151,17 +190,35 @@ def render() -> None:
             st.warning(message)
         if not runs:
             return
-        rows = [{"run": name, **{FIGURES[k][0] + f" [{FIGURES[k][1]}]":
-                                 (None if run["ride"][k] is None else round(FIGURES[k][2] * run["ride"][k], 4))
-                                 for k in FIGURES}} for name, run in runs.items()]
+        rows = [
+            {
+                "run": name,
+                **{
+                    FIGURES[k][0] + f" [{FIGURES[k][1]}]": (
+                        None if run["ride"][k] is None else round(FIGURES[k][2] * run["ride"][k], 4)
+                    )
+                    for k in FIGURES
+                },
+            }
+            for name, run in runs.items()
+        ]
         st.dataframe(rows, hide_index=True, key="veh.table")
         first = next(iter(runs.values()))
-        st.plotly_chart(time_figure(runs, "u2", "body displacement u2", "mm", 1e3, road=first),
-                        key="veh.fig.body", config=state.chart_config("veh.fig.body"))
-        st.plotly_chart(time_figure(runs, "a2", "body acceleration a2", "m/s^2", 1.0),
-                        key="veh.fig.acceleration", config=state.chart_config("veh.fig.acceleration"))
-        st.plotly_chart(bar_figure(runs, "body_acceleration_weighted_rms_m_per_s2"), key="veh.fig.comfort",
-                        config=state.chart_config("veh.fig.comfort"))
+        st.plotly_chart(
+            time_figure(runs, "u2", "body displacement u2", "mm", 1e3, road=first),
+            key="veh.fig.body",
+            config=state.chart_config("veh.fig.body"),
+        )
+        st.plotly_chart(
+            time_figure(runs, "a2", "body acceleration a2", "m/s^2", 1.0),
+            key="veh.fig.acceleration",
+            config=state.chart_config("veh.fig.acceleration"),
+        )
+        st.plotly_chart(
+            bar_figure(runs, "body_acceleration_weighted_rms_m_per_s2"),
+            key="veh.fig.comfort",
+            config=state.chart_config("veh.fig.comfort"),
+        )
 
 
 if __name__ == "__main__":

@@ -37,9 +37,23 @@ from ..errors import ErdesignError
 from ..executor import Executor, executor_for
 from ..output import atomic_output
 
-__all__ = ["BatchTask", "BatchResult", "BatchCommand", "COMMANDS", "run_batch", "run_task", "make_tasks",
-           "read_manifest", "flag_outliers", "read_table", "write_table", "file_sha256", "OUTLIER_Z",
-           "OUTLIER_MIN_ROWS", "TABLE_FORMATS"]
+__all__ = [
+    "BatchTask",
+    "BatchResult",
+    "BatchCommand",
+    "COMMANDS",
+    "run_batch",
+    "run_task",
+    "make_tasks",
+    "read_manifest",
+    "flag_outliers",
+    "read_table",
+    "write_table",
+    "file_sha256",
+    "OUTLIER_Z",
+    "OUTLIER_MIN_ROWS",
+    "TABLE_FORMATS",
+]
 
 #: A record is an outlier when the robust z-score of any of its parameters (or of log ESR) exceeds this.
 OUTLIER_Z = 5.0
@@ -59,6 +73,7 @@ _FLOATS = {"esr", "seconds"}
 
 # --------------------------------------------------------------------------------------------------- the commands
 
+
 def _one_line(text: str) -> str:
     return " ".join(str(text).split())
 
@@ -75,40 +90,55 @@ def _parameter_columns(model, values: Mapping[str, float]) -> dict[str, float]:
 def _read_for_damper(path: str, damper):
     """A measurement file checked against the damper, as ``erdesign fit`` and ``diagnose`` read it."""
     from ..data.measurement import read_for_damper
+
     return read_for_damper([path], damper)[0]
 
 
 def _fit_row(path: str, damper_file: str, effects: str, options: Mapping[str, Any]) -> dict:
     from ..damper.files import load_damper
     from ..diagnosis.diagnose import calibrate, parameters_at_bounds
+
     damper = load_damper(damper_file)
     record = _read_for_damper(path, damper)
     result = calibrate(damper, record, effects, exclude_clipped=True if options.get("exclude_clipped") else None)
-    return {"esr": result.esr,
-            "findings": ",".join(sorted({f.kind for f in result.findings})),
-            "at_bounds": "; ".join(parameters_at_bounds(result)),
-            **_parameter_columns(result.model, result.values)}
+    return {
+        "esr": result.esr,
+        "findings": ",".join(sorted({f.kind for f in result.findings})),
+        "at_bounds": "; ".join(parameters_at_bounds(result)),
+        **_parameter_columns(result.model, result.values),
+    }
 
 
 def _diagnose_row(path: str, damper_file: str, effects: str, options: Mapping[str, Any]) -> dict:
     from ..damper.files import load_damper
     from ..diagnosis.diagnose import diagnose
+
     damper = load_damper(damper_file)
     record = _read_for_damper(path, damper)
-    result = diagnose(damper, record, effects, exclude_clipped=True if options.get("exclude_clipped") else None,
-                      force_noise=options.get("force_noise"))
+    result = diagnose(
+        damper,
+        record,
+        effects,
+        exclude_clipped=True if options.get("exclude_clipped") else None,
+        force_noise=options.get("force_noise"),
+    )
     out = result.as_json()
-    return {"esr": out["baseline_esr"], "verdict": out["verdict"], "missing_effect": out["missing_effect"] or "",
-            "missing_effects": ",".join(out["missing_effects"]),
-            "noise_floor_esr": out["noise_floor_esr"],
-            "findings": ",".join(sorted({f["kind"] for f in out["findings"]})),
-            **_parameter_columns(result.baseline.model, result.baseline.values)}
+    return {
+        "esr": out["baseline_esr"],
+        "verdict": out["verdict"],
+        "missing_effect": out["missing_effect"] or "",
+        "missing_effects": ",".join(out["missing_effects"]),
+        "noise_floor_esr": out["noise_floor_esr"],
+        "findings": ",".join(sorted({f["kind"] for f in out["findings"]})),
+        **_parameter_columns(result.baseline.model, result.baseline.values),
+    }
 
 
 def _identify_row(path: str, damper_file: str | None, effects: str, options: Mapping[str, Any]) -> dict:
     from ..data.readers import read_records
     from ..identification.identify import control_reference_text, identify, result_json
     from ..models.registry import get_model
+
     name = options["model"]
     records = read_records(path, "auto", "record")
     if len(records) != 1:
@@ -116,13 +146,24 @@ def _identify_row(path: str, damper_file: str | None, effects: str, options: Map
     record = records[0]
     extra = {"damper": damper_file, "effects": tuple(e for e in effects.split(",") if e)} if name == "physics" else {}
     model = get_model(name, **extra)
-    result = identify(model, record, starts=options.get("starts", 4), max_time=options.get("max_time"),
-                      decimate=options.get("decimate", 1), exclude_clipped=bool(options.get("exclude_clipped")))
+    result = identify(
+        model,
+        record,
+        starts=options.get("starts", 4),
+        max_time=options.get("max_time"),
+        decimate=options.get("decimate", 1),
+        exclude_clipped=bool(options.get("exclude_clipped")),
+    )
     reference = control_reference_text(result.model, record.control_kind)
     out = result_json(result, name, reference)
-    return {"esr": out["esr"], "success": out["success"], "control_reference": reference or "",
-            "at_bounds": ",".join(out["at_bounds"]), "not_identifiable": ",".join(out["not_identifiable"]),
-            **{f"{n} [{p['unit'] or '-'}]": p["value"] for n, p in out["parameters_si"].items()}}
+    return {
+        "esr": out["esr"],
+        "success": out["success"],
+        "control_reference": reference or "",
+        "at_bounds": ",".join(out["at_bounds"]),
+        "not_identifiable": ",".join(out["not_identifiable"]),
+        **{f"{n} [{p['unit'] or '-'}]": p["value"] for n, p in out["parameters_si"].items()},
+    }
 
 
 @dataclass(frozen=True)
@@ -141,15 +182,26 @@ class BatchCommand:
 
 #: The commands of ``erdesign batch``, by name.
 COMMANDS: dict[str, BatchCommand] = {
-    "identify": BatchCommand("identify", _identify_row, ("model", "starts", "max_time", "decimate", "exclude_clipped"),
-                             False, ("success", "control_reference", "at_bounds", "not_identifiable")),
+    "identify": BatchCommand(
+        "identify",
+        _identify_row,
+        ("model", "starts", "max_time", "decimate", "exclude_clipped"),
+        False,
+        ("success", "control_reference", "at_bounds", "not_identifiable"),
+    ),
     "fit": BatchCommand("fit", _fit_row, ("exclude_clipped", "force_noise"), True, ("findings", "at_bounds")),
-    "diagnose": BatchCommand("diagnose", _diagnose_row, ("exclude_clipped", "force_noise"), True,
-                             ("verdict", "missing_effect", "missing_effects", "noise_floor_esr", "findings")),
+    "diagnose": BatchCommand(
+        "diagnose",
+        _diagnose_row,
+        ("exclude_clipped", "force_noise"),
+        True,
+        ("verdict", "missing_effect", "missing_effects", "noise_floor_esr", "findings"),
+    ),
 }
 
 
 # ------------------------------------------------------------------------------------------------------ the tasks
+
 
 @dataclass(frozen=True)
 class BatchTask:
@@ -190,7 +242,7 @@ def run_task(task: BatchTask) -> dict:
             row.update(status="error", error=_one_line(f"{task.record}: {exc.strerror or exc}"))
         except Exception as exc:  # noqa: BLE001  (a bug, not bad input: still a row, and it says so)
             row.update(status="error", error=_one_line(f"internal error: {type(exc).__name__}: {exc}"))
-    if task.path != task.record:            # messages name the record as the user gave it
+    if task.path != task.record:  # messages name the record as the user gave it
         row["error"] = row["error"].replace(task.path, task.record)
     row["warnings"] = "; ".join(dict.fromkeys(_one_line(w.message) for w in caught))
     row["seconds"] = time.perf_counter() - start
@@ -200,7 +252,7 @@ def run_task(task: BatchTask) -> dict:
 def file_sha256(path: str | Path) -> str:
     """sha256 of a file's bytes (hex), or "" when it cannot be read (its task then says why)."""
     digest = hashlib.sha256()
-    if not Path(path).is_file():        # a folder, a device (/dev/zero never ends) or nothing: its task says why
+    if not Path(path).is_file():  # a folder, a device (/dev/zero never ends) or nothing: its task says why
         return ""
     try:
         with open(path, "rb") as fh:
@@ -216,6 +268,7 @@ def _damper_reference(damper: str | None, folder: Path | None) -> str:
     if not damper:
         return ""
     from ..damper.files import example_names
+
     path = Path(damper) if folder is None else folder / damper
     if path.exists() or damper not in example_names():
         return str(path.resolve())
@@ -231,20 +284,28 @@ def read_manifest(path: str | Path) -> list[dict[str, str]]:
             reader = csv.DictReader(fh)
             fields = [f.strip() for f in (reader.fieldnames or [])]
             if "record" not in fields:
-                raise ErdesignError(f"--manifest: {path} has no 'record' column "
-                                    f"(columns: {', '.join(fields) or 'none'})")
+                raise ErdesignError(
+                    f"--manifest: {path} has no 'record' column (columns: {', '.join(fields) or 'none'})"
+                )
             unknown = sorted(set(fields) - {"record", "damper", "effects"})
             if unknown:
-                raise ErdesignError(f"--manifest: {path}: unknown column(s) {', '.join(unknown)}; a manifest has "
-                                    "'record' and optional 'damper' and 'effects'")
+                raise ErdesignError(
+                    f"--manifest: {path}: unknown column(s) {', '.join(unknown)}; a manifest has "
+                    "'record' and optional 'damper' and 'effects'"
+                )
             rows = []
             for line, raw in enumerate(reader, start=2):
                 row = {k.strip(): (v or "").strip() for k, v in raw.items() if k is not None}
                 if not row.get("record"):
                     raise ErdesignError(f"--manifest: {path} line {line}: empty 'record'")
-                rows.append({"record": row["record"], "path": str((path.parent / row["record"]).resolve()),
-                             "damper": _damper_reference(row.get("damper"), path.parent),
-                             "effects": row.get("effects", "")})
+                rows.append(
+                    {
+                        "record": row["record"],
+                        "path": str((path.parent / row["record"]).resolve()),
+                        "damper": _damper_reference(row.get("damper"), path.parent),
+                        "effects": row.get("effects", ""),
+                    }
+                )
     except FileNotFoundError:
         raise ErdesignError(f"--manifest: no such file {path}") from None
     except (UnicodeDecodeError, csv.Error) as exc:
@@ -254,9 +315,15 @@ def read_manifest(path: str | Path) -> list[dict[str, str]]:
     return rows
 
 
-def make_tasks(command: str, records: Sequence[str] = (), *, manifest: str | Path | None = None,
-               damper: str | None = None, effects: str = "", options: Mapping[str, Any] | None = None
-               ) -> list[BatchTask]:
+def make_tasks(
+    command: str,
+    records: Sequence[str] = (),
+    *,
+    manifest: str | Path | None = None,
+    damper: str | None = None,
+    effects: str = "",
+    options: Mapping[str, Any] | None = None,
+) -> list[BatchTask]:
     """The tasks of a batch, in input order: the ``records`` given, or the rows of a ``manifest`` (whose ``damper``
     and ``effects``, when given on a row, replace the batch's).  Checks the command and its options."""
     if command not in COMMANDS:
@@ -269,29 +336,37 @@ def make_tasks(command: str, records: Sequence[str] = (), *, manifest: str | Pat
     if command == "identify" and not options.get("model"):
         raise ErdesignError("batch identify: give the model (--model NAME)")
     if bool(records) == (manifest is not None):
-        raise ErdesignError(f"batch {command}: give the records or a manifest (--manifest), not both"
-                            if records else f"batch {command}: give the records, or a manifest (--manifest)")
+        raise ErdesignError(
+            f"batch {command}: give the records or a manifest (--manifest), not both"
+            if records
+            else f"batch {command}: give the records, or a manifest (--manifest)"
+        )
     if manifest is not None:
         entries = read_manifest(manifest)
         for e in entries:
             e["damper"] = e["damper"] or _damper_reference(damper, None)
             e["effects"] = e["effects"] or effects
     else:
-        entries = [{"record": r, "path": str(Path(r).resolve()), "damper": _damper_reference(damper, None),
-                    "effects": effects} for r in records]
+        entries = [
+            {"record": r, "path": str(Path(r).resolve()), "damper": _damper_reference(damper, None), "effects": effects}
+            for r in records
+        ]
     needs_damper = spec.needs_damper or options.get("model") == "physics"
     if needs_damper and any(not e["damper"] for e in entries):
-        raise ErdesignError(f"batch {command}: give the damper (--damper D.toml, or a 'damper' column in the "
-                            "manifest)")
+        raise ErdesignError(f"batch {command}: give the damper (--damper D.toml, or a 'damper' column in the manifest)")
     frozen = tuple(sorted(options.items()))
-    return [BatchTask(command, e["record"], e["path"], file_sha256(e["path"]), e["damper"], e["effects"], frozen)
-            for e in entries]
+    return [
+        BatchTask(command, e["record"], e["path"], file_sha256(e["path"]), e["damper"], e["effects"], frozen)
+        for e in entries
+    ]
 
 
 # ------------------------------------------------------------------------------------------------------ outliers
 
-def flag_outliers(rows: list[dict], columns: Sequence[str], *, z_max: float = OUTLIER_Z,
-                  min_rows: int = OUTLIER_MIN_ROWS) -> None:
+
+def flag_outliers(
+    rows: list[dict], columns: Sequence[str], *, z_max: float = OUTLIER_Z, min_rows: int = OUTLIER_MIN_ROWS
+) -> None:
     """Flag the rows whose parameters sit far from the batch's distribution (sets ``outlier`` and
     ``outlier_reason`` in place).
 
@@ -350,6 +425,7 @@ def _number(x) -> float | None:
 
 # ------------------------------------------------------------------------------------------------------ the table
 
+
 def _columns(rows: Sequence[dict], command: str) -> list[str]:
     """The table's columns: the fixed head, the command's columns, the parameters (first seen first), the tail."""
     own = list(COMMANDS[command].columns) if command in COMMANDS else []
@@ -363,8 +439,9 @@ def _is_float_column(name: str) -> bool:
     return name in _FLOATS or name.endswith(("]", "_esr"))
 
 
-def write_table(path: str | Path, rows: Sequence[dict], columns: Sequence[str], *, overwrite: bool = False,
-                option: str = "--out") -> None:
+def write_table(
+    path: str | Path, rows: Sequence[dict], columns: Sequence[str], *, overwrite: bool = False, option: str = "--out"
+) -> None:
     """Write the table atomically (:func:`erdesign.output.atomic_output`: a temporary file in the same folder, synced,
     then given the name; a reader, or a batch killed while writing, sees the old table or the new one, never half of
     one).  An existing ``path`` only with ``overwrite`` (the batch's own table, saved again as it runs)."""
@@ -441,6 +518,7 @@ def read_table(path: str | Path) -> list[dict]:
 
 # ---------------------------------------------------------------------------------------------------- the batch
 
+
 @dataclass
 class BatchResult:
     """The table of a batch (rows in input order) and how it was made."""
@@ -465,17 +543,37 @@ class BatchResult:
     def summary(self) -> dict:
         """The ``erdesign batch --json`` object."""
         ran = len(self.rows) - self.reused
-        return {"command": self.command, "records": len(self.rows), "ok": len(self.rows) - self.errors,
-                "errors": self.errors, "outliers": self.outliers, "reused": self.reused, "ran": ran,
-                "seconds": self.seconds, "records_per_second": ran / self.seconds if self.seconds > 0 else None,
-                "executor": self.executor, "out": self.out}
+        return {
+            "command": self.command,
+            "records": len(self.rows),
+            "ok": len(self.rows) - self.errors,
+            "errors": self.errors,
+            "outliers": self.outliers,
+            "reused": self.reused,
+            "ran": ran,
+            "seconds": self.seconds,
+            "records_per_second": ran / self.seconds if self.seconds > 0 else None,
+            "executor": self.executor,
+            "out": self.out,
+        }
 
 
-def run_batch(command: str, records: Sequence[str] = (), *, manifest: str | Path | None = None,
-              damper: str | None = None, effects: str = "", options: Mapping[str, Any] | None = None,
-              out: str | Path | None = None, resume: bool = False, executor: Executor | Any = None,
-              jobs: int | None = None, scheduler: str | Any = None,
-              progress: Callable[[int, int, float], None] | None = None, save_every: float = 2.0) -> BatchResult:
+def run_batch(
+    command: str,
+    records: Sequence[str] = (),
+    *,
+    manifest: str | Path | None = None,
+    damper: str | None = None,
+    effects: str = "",
+    options: Mapping[str, Any] | None = None,
+    out: str | Path | None = None,
+    resume: bool = False,
+    executor: Executor | Any = None,
+    jobs: int | None = None,
+    scheduler: str | Any = None,
+    progress: Callable[[int, int, float], None] | None = None,
+    save_every: float = 2.0,
+) -> BatchResult:
     """Run ``command`` (``"identify"``, ``"fit"`` or ``"diagnose"``) on every record; one row per record.
 
     Parameters
@@ -512,8 +610,10 @@ def run_batch(command: str, records: Sequence[str] = (), *, manifest: str | Path
         if out.suffix.lower() not in TABLE_FORMATS:
             raise ErdesignError(f"--out: {out} must end in .csv or .parquet")
         if out.exists() and not resume:
-            raise ErdesignError(f"--out: {out} exists; add --resume to continue that batch, or choose another file "
-                                "(it is never overwritten)")
+            raise ErdesignError(
+                f"--out: {out} exists; add --resume to continue that batch, or choose another file "
+                "(it is never overwritten)"
+            )
         if not out.parent.is_dir():
             raise ErdesignError(f"--out: no such folder {out.parent}")
         if out.suffix.lower() == ".parquet":
@@ -531,7 +631,7 @@ def run_batch(command: str, records: Sequence[str] = (), *, manifest: str | Path
     reused = sum(r is not None for r in rows)
     todo = [i for i, r in enumerate(rows) if r is None]
 
-    saved = [bool(resume)]       # the first save creates the table exclusively (unless resuming it)
+    saved = [bool(resume)]  # the first save creates the table exclusively (unless resuming it)
 
     def save() -> None:
         done = [r for r in rows if r is not None]
@@ -555,7 +655,7 @@ def run_batch(command: str, records: Sequence[str] = (), *, manifest: str | Path
                 last_save = time.perf_counter()
     except BaseException:
         if out is not None and done > reused:
-            save()                  # an interrupted batch keeps what it finished, for --resume
+            save()  # an interrupted batch keeps what it finished, for --resume
         raise
     finally:
         if owned:
@@ -564,6 +664,12 @@ def run_batch(command: str, records: Sequence[str] = (), *, manifest: str | Path
     flag_outliers(rows, [c for c in columns if c.endswith("]")])
     if out is not None:
         save()
-    return BatchResult(command, list(rows), columns, reused=reused,
-                       seconds=time.perf_counter() - started, executor=ex.description,
-                       out=None if out is None else str(out))
+    return BatchResult(
+        command,
+        list(rows),
+        columns,
+        reused=reused,
+        seconds=time.perf_counter() - started,
+        executor=ex.description,
+        out=None if out is None else str(out),
+    )

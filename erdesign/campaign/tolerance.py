@@ -139,6 +139,7 @@ class Variation:
         if self.distribution == "uniform":
             return self.nominal + self.delta * (2.0 * u - 1.0)
         from scipy.special import ndtri
+
         return self.nominal + self.delta * ndtri(u)
 
     def draw(self, rng: np.random.Generator, n: int) -> np.ndarray:
@@ -162,8 +163,10 @@ class Variation:
 _KINDS = {"m": "length", "Pa*s": "viscosity", "Pa": "pressure", "kg/m^3": "density", "N": "force"}
 
 
-_SPEC = re.compile(r"^\s*(?P<uniform>uniform:)?\s*(?P<key>[A-Za-z_.]+)\s*=\s*(?P<value>.*?)\s*(\+-|±|\+/-)"
-                   r"\s*(?P<delta>.+?)\s*$")
+_SPEC = re.compile(
+    r"^\s*(?P<uniform>uniform:)?\s*(?P<key>[A-Za-z_.]+)\s*=\s*(?P<value>.*?)\s*(\+-|±|\+/-)"
+    r"\s*(?P<delta>.+?)\s*$"
+)
 
 
 def parse_variation(spec: str, damper: Damper) -> Variation:
@@ -180,8 +183,10 @@ def parse_variation(spec: str, damper: Damper) -> Variation:
     where = f"--vary {spec!r}"
     m = _SPEC.match(spec or "")
     if m is None:
-        raise ToleranceError(f"{where}: expected \"KEY=VALUE +- DELTA\" or \"KEY=+-P %\" (prefix \"uniform:\" for a "
-                             "uniform spread), e.g. \"geometry.gap=0.8 mm +- 0.02 mm\"")
+        raise ToleranceError(
+            f'{where}: expected "KEY=VALUE +- DELTA" or "KEY=+-P %" (prefix "uniform:" for a '
+            'uniform spread), e.g. "geometry.gap=0.8 mm +- 0.02 mm"'
+        )
     key = m["key"]
     if key not in VARIABLES:
         raise ToleranceError(f"{where}: {key!r} is not a value a study can vary; keys: {', '.join(VARIABLES)}")
@@ -194,9 +199,11 @@ def parse_variation(spec: str, damper: Damper) -> Variation:
         value = _si(m["value"], var.si_unit, where, "VALUE")
         if not math.isclose(value, nominal, rel_tol=1e-6, abs_tol=0.0):
             given = Q_(m["value"]).units
-            raise ToleranceError(f"{where}: VALUE {m['value']} disagrees with the damper file, which gives "
-                                 f"{key} = {Q_(nominal, var.si_unit).to(given).magnitude:.6g} {given:~P}; give the "
-                                 f"file's value or leave it out (\"{key}=+-5 %\")")
+            raise ToleranceError(
+                f"{where}: VALUE {m['value']} disagrees with the damper file, which gives "
+                f"{key} = {Q_(nominal, var.si_unit).to(given).magnitude:.6g} {given:~P}; give the "
+                f'file\'s value or leave it out ("{key}=+-5 %")'
+            )
     delta_text = m["delta"]
     pm = re.fullmatch(r"([-+0-9.eE]+)\s*%", delta_text)
     if pm:
@@ -205,15 +212,18 @@ def parse_variation(spec: str, damper: Damper) -> Variation:
         except ValueError:
             raise ToleranceError(f"{where}: cannot read the percentage {delta_text!r}") from None
         if nominal == 0:
-            raise ToleranceError(f"{where}: {key} is 0 in the damper file, so a tolerance in % is 0; give it with "
-                                 f"a unit, e.g. \"{key}=+-1 {unit_text}\"")
+            raise ToleranceError(
+                f"{where}: {key} is 0 in the damper file, so a tolerance in % is 0; give it with "
+                f'a unit, e.g. "{key}=+-1 {unit_text}"'
+            )
     else:
         delta = _si(delta_text, var.si_unit, where, "DELTA")
     if not (math.isfinite(delta) and delta > 0):
         raise ToleranceError(f"{where}: the tolerance must be a positive amount, got {delta_text!r}")
     if key == "fluid.yield_stress" and nominal == 0:
-        raise ToleranceError(f"{where}: the fluid's yield stress is 0; a tolerance on it scales the yield curve, "
-                             "which has none")
+        raise ToleranceError(
+            f"{where}: the fluid's yield stress is 0; a tolerance on it scales the yield curve, which has none"
+        )
     return Variation(key, nominal, float(delta), "uniform" if m["uniform"] else "normal", spec)
 
 
@@ -224,13 +234,17 @@ def _si(text: str, si_unit: str, where: str, part: str) -> float:
     except ErdesignError as exc:
         raise ToleranceError(f"{where}: cannot read {part} {text!r}: {str(exc).removeprefix(part + ': ')}") from None
     if not hasattr(q, "units") or q.dimensionless:
-        raise ToleranceError(f"{where}: {part} {text!r} has no unit; give one, e.g. \"{text} "
-                             f"{Q_(1.0, si_unit).units:~P}\"" + (", or a percentage" if part == "DELTA" else ""))
+        raise ToleranceError(
+            f'{where}: {part} {text!r} has no unit; give one, e.g. "{text} '
+            f'{Q_(1.0, si_unit).units:~P}"' + (", or a percentage" if part == "DELTA" else "")
+        )
     try:
         value = float(q.to(si_unit).magnitude)
     except Exception:  # noqa: BLE001 - pint's DimensionalityError
-        raise ToleranceError(f"{where}: {part} {text!r} is {dimension_name(q.dimensionality)}, expected "
-                             f"{dimension_name(Q_(1.0, si_unit).dimensionality)}") from None
+        raise ToleranceError(
+            f"{where}: {part} {text!r} is {dimension_name(q.dimensionality)}, expected "
+            f"{dimension_name(Q_(1.0, si_unit).dimensionality)}"
+        ) from None
     if not math.isfinite(value):
         raise ToleranceError(f"{where}: {part} {text!r} is not a finite number")
     return value
@@ -258,7 +272,7 @@ def _values(study: ToleranceStudy, x: np.ndarray) -> dict[str, np.ndarray | floa
     out: dict[str, Any] = {key: var.nominal(study.damper) for key, var in VARIABLES.items()}
     for j, v in enumerate(study.variations):
         out[v.key] = x[:, j]
-    if study.damper.geometry.configuration == "mixed":       # d = Dp + h (docs/file_formats.md)
+    if study.damper.geometry.configuration == "mixed":  # d = Dp + h (docs/file_formats.md)
         out["geometry.duct_mean_diameter"] = out["geometry.piston_diameter"] + out["geometry.gap"]
     return out
 
@@ -292,24 +306,32 @@ def evaluate_samples(study: ToleranceStudy, x: np.ndarray) -> dict[str, np.ndarr
     eta = plastic_viscosity(eta0, p["fluid.viscosity_at_reference_field"], ratio)
     g = d.geometry
     h, L, dm = p["geometry.gap"], p["geometry.duct_length"], p["geometry.duct_mean_diameter"]
-    Dp, dr, rho, Fs = p["geometry.piston_diameter"], p["geometry.rod_diameter"], p["fluid.density"], \
-        p["fluid.seal_friction"]
+    Dp, dr, rho, Fs = (
+        p["geometry.piston_diameter"],
+        p["geometry.rod_diameter"],
+        p["fluid.density"],
+        p["fluid.seal_friction"],
+    )
     annulus = exact_annulus_for(g.configuration, d.flow_model, np.asarray(h) / np.asarray(dm))
     n = len(x)
 
     def state(tau, visc):
-        s = quasi_steady_state(g.configuration, study.velocity, tau, visc, rho, Fs, h, L, dm, Dp, dr, g.ducts,
-                               annulus)
+        s = quasi_steady_state(g.configuration, study.velocity, tau, visc, rho, Fs, h, L, dm, Dp, dr, g.ducts, annulus)
         return np.broadcast_to(np.asarray(s.force, dtype=float), (n,))
 
     force = state(tau_y, eta)
     zero = state(0.0, eta0)
     with np.errstate(divide="ignore", invalid="ignore"):
         dynamic_range = np.where(zero != 0, force / zero, np.nan)
-    C = np.broadcast_to(np.asarray(damping_constant(g.configuration, eta0, rho, h, L, dm, Dp, dr, g.ducts, annulus),
-                                   dtype=float), (n,))
-    return {"force_N": np.array(force), "zero_field_force_N": np.array(zero), "dynamic_range": dynamic_range,
-            "damping_constant_N_s_per_m": np.array(C)}
+    C = np.broadcast_to(
+        np.asarray(damping_constant(g.configuration, eta0, rho, h, L, dm, Dp, dr, g.ducts, annulus), dtype=float), (n,)
+    )
+    return {
+        "force_N": np.array(force),
+        "zero_field_force_N": np.array(zero),
+        "dynamic_range": dynamic_range,
+        "damping_constant_N_s_per_m": np.array(C),
+    }
 
 
 class _Chunk(NamedTuple):
@@ -342,13 +364,16 @@ def _monte_carlo_chunk(task: tuple[ToleranceStudy, int, int, bool]) -> _Chunk:
 def _too_wide(study: ToleranceStudy, bad: np.ndarray) -> str:
     """The message for draws that give no damper: the --vary whose own bound most draws cross, else all of them
     (the draws cross a bound between two values: a rod as thick as the piston)."""
-    culprits = [v for j, v in enumerate(study.variations) if len(bad) and np.mean(
-        bad[:, j] <= VARIABLES[v.key].lower) > 0.5]
+    culprits = [
+        v for j, v in enumerate(study.variations) if len(bad) and np.mean(bad[:, j] <= VARIABLES[v.key].lower) > 0.5
+    ]
     named = culprits[:1] or study.variations
     where = ", ".join(f"--vary {v.spec or v.key!r}" for v in named)
-    return (f"{where}: more than {MAX_REJECTED_FRACTION:.0%} of the draws give no physical damper (a value at or "
-            "below 0, a rod as thick as the piston, a gap as wide as its duct); the tolerances are far too wide for "
-            "this damper")
+    return (
+        f"{where}: more than {MAX_REJECTED_FRACTION:.0%} of the draws give no physical damper (a value at or "
+        "below 0, a rod as thick as the piston, a gap as wide as its duct); the tolerances are far too wide for "
+        "this damper"
+    )
 
 
 def _sobol_chunk(task: tuple[ToleranceStudy, np.ndarray]) -> dict[str, np.ndarray]:
@@ -358,7 +383,7 @@ def _sobol_chunk(task: tuple[ToleranceStudy, np.ndarray]) -> dict[str, np.ndarra
 
 #: Largest default base of the Sobol design: 2^14 gives indices to about +-0.02 (95 %), and SALib's bootstrap of
 #: the confidence intervals grows faster than linearly beyond it (1.6 s at 2^14, 36 s at 2^17 for four outputs).
-SOBOL_BASE_MAX = 2 ** 14
+SOBOL_BASE_MAX = 2**14
 
 
 def sobol_base_samples(samples: int, inputs: int) -> int:
@@ -407,8 +432,16 @@ class ToleranceResult:
             "seed": self.study.seed,
             "velocity_m_per_s": self.study.velocity,
             "field": self.study.field,
-            "vary": [{"key": v.key, "nominal": v.nominal, "delta": v.delta, "distribution": v.distribution,
-                      "unit": VARIABLES[v.key].si_unit} for v in self.study.variations],
+            "vary": [
+                {
+                    "key": v.key,
+                    "nominal": v.nominal,
+                    "delta": v.delta,
+                    "distribution": v.distribution,
+                    "unit": VARIABLES[v.key].si_unit,
+                }
+                for v in self.study.variations
+            ],
             "nominal": self.nominal,
             "mean": self.mean,
             "std": self.std,
@@ -421,10 +454,22 @@ class ToleranceResult:
         }
 
 
-def tolerance_study(damper: Damper, variations, *, velocity: float, field: float = 0.0, samples: int = 10000,
-                    seed: int = 0, sobol_base: int | None = None, sensitivity: bool = True,
-                    keep_samples: bool = False, executor: Executor | Any | None = None, jobs: int | None = None,
-                    scheduler: Any = None, progress: Callable[[int, int], None] | None = None) -> ToleranceResult:
+def tolerance_study(
+    damper: Damper,
+    variations,
+    *,
+    velocity: float,
+    field: float = 0.0,
+    samples: int = 10000,
+    seed: int = 0,
+    sobol_base: int | None = None,
+    sensitivity: bool = True,
+    keep_samples: bool = False,
+    executor: Executor | Any | None = None,
+    jobs: int | None = None,
+    scheduler: Any = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> ToleranceResult:
     """Monte-Carlo quantiles and Sobol indices of the design point of ``damper`` under tolerances.
 
     Parameters
@@ -472,12 +517,13 @@ def tolerance_study(damper: Damper, variations, *, velocity: float, field: float
         raise ToleranceError(f"samples: must be a whole number >= 1, got {samples!r}")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ToleranceError(f"seed: must be a whole number >= 0, got {seed!r}")
-    if isinstance(velocity, bool) or not (isinstance(velocity, (int, float)) and math.isfinite(velocity)
-                                          and velocity > 0):
+    if isinstance(velocity, bool) or not (
+        isinstance(velocity, (int, float)) and math.isfinite(velocity) and velocity > 0
+    ):
         raise ToleranceError(f"velocity: must be a positive speed, got {velocity!r} m/s")
     variations = tuple(v if isinstance(v, Variation) else parse_variation(v, damper) for v in variations)
     if not variations:
-        raise ToleranceError("--vary: give at least one tolerance, e.g. --vary \"geometry.gap=+-2.5 %\"")
+        raise ToleranceError('--vary: give at least one tolerance, e.g. --vary "geometry.gap=+-2.5 %"')
     keys = [v.key for v in variations]
     twice = sorted({k for k in keys if keys.count(k) > 1})
     if twice:
@@ -521,9 +567,10 @@ def tolerance_study(damper: Damper, variations, *, velocity: float, field: float
     finally:
         if owned:
             ex.close()
-    quantiles = {key: {str(q): float(v) for q, v in zip(QUANTILES, np.quantile(outputs[key],
-                                                                                [q / 100 for q in QUANTILES]))}
-                 for key in OUTPUTS}
+    quantiles = {
+        key: {str(q): float(v) for q, v in zip(QUANTILES, np.quantile(outputs[key], [q / 100 for q in QUANTILES]))}
+        for key in OUTPUTS
+    }
     nominal_y = evaluate_samples(study, np.array([[v.nominal for v in variations]]))
     histograms = {key: _histogram(outputs[key]) for key in OUTPUTS}
     sens = _sobol_indices(study, base, sobol_y) if sobol_y is not None else {}
@@ -531,11 +578,21 @@ def tolerance_study(damper: Damper, variations, *, velocity: float, field: float
     if keep_samples:
         kept = {v.key: inputs[:, j] for j, v in enumerate(variations)} | outputs
     return ToleranceResult(
-        study=study, count=int(samples), rejected=rejected, quantiles=quantiles,
-        mean={k: float(np.mean(outputs[k])) for k in OUTPUTS}, std={k: float(np.std(outputs[k])) for k in OUTPUTS},
-        nominal={k: float(nominal_y[k][0]) for k in OUTPUTS}, sensitivity=sens, sobol_base=base,
-        sobol_evaluations=0 if sobol_x is None else len(sobol_x), executor=description,
-        seconds=time.perf_counter() - t0, histograms=histograms, samples=kept)
+        study=study,
+        count=int(samples),
+        rejected=rejected,
+        quantiles=quantiles,
+        mean={k: float(np.mean(outputs[k])) for k in OUTPUTS},
+        std={k: float(np.std(outputs[k])) for k in OUTPUTS},
+        nominal={k: float(nominal_y[k][0]) for k in OUTPUTS},
+        sensitivity=sens,
+        sobol_base=base,
+        sobol_evaluations=0 if sobol_x is None else len(sobol_x),
+        executor=description,
+        seconds=time.perf_counter() - t0,
+        histograms=histograms,
+        samples=kept,
+    )
 
 
 def _histogram(values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -563,19 +620,22 @@ def _sobol_design(study: ToleranceStudy, base: int) -> np.ndarray:
     from SALib.sample import sobol as sobol_sample
 
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")       # SALib's note on N not a power of two: the caller's choice
+        warnings.simplefilter("ignore")  # SALib's note on N not a power of two: the caller's choice
         u = sobol_sample.sample(_problem(study), int(base), calc_second_order=False, seed=study.seed)
     x = np.empty_like(u)
     for j, v in enumerate(study.variations):
         var = VARIABLES[v.key]
-        lo = _cdf(v, var.lower)             # mass below the physical bound, rejected by the Monte Carlo
+        lo = _cdf(v, var.lower)  # mass below the physical bound, rejected by the Monte Carlo
         x[:, j] = v.ppf(lo + (1.0 - lo) * u[:, j])
         if not var.inclusive:
             x[:, j] = np.maximum(x[:, j], np.nextafter(var.lower, np.inf))
     ok = physical(study, x)
     if not np.all(ok):
-        raise ToleranceError(_too_wide(study, x[~ok]).replace(f"more than {MAX_REJECTED_FRACTION:.0%} of the draws",
-                                                               "some points of the Sobol design"))
+        raise ToleranceError(
+            _too_wide(study, x[~ok]).replace(
+                f"more than {MAX_REJECTED_FRACTION:.0%} of the draws", "some points of the Sobol design"
+            )
+        )
     return x
 
 
@@ -583,6 +643,7 @@ def _cdf(v: Variation, value: float) -> float:
     if v.distribution == "uniform":
         return float(np.clip((value - (v.nominal - v.delta)) / (2 * v.delta), 0.0, 1.0))
     from scipy.special import ndtr
+
     return float(ndtr((value - v.nominal) / v.delta))
 
 
@@ -597,14 +658,22 @@ def _sobol_indices(study: ToleranceStudy, base: int, y: dict[str, np.ndarray]) -
     for key in OUTPUTS:
         values = y[key]
         if not np.all(np.isfinite(values)) or np.ptp(values) <= 1e-12 * max(1.0, float(np.max(np.abs(values)))):
-            out[key] = {name: {"first": None, "total": None, "first_conf": None, "total_conf": None}
-                        for name in study.keys}
+            out[key] = {
+                name: {"first": None, "total": None, "first_conf": None, "total_conf": None} for name in study.keys
+            }
             continue
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             s = sobol_analyze.analyze(_problem(study), values, calc_second_order=False, seed=study.seed)
-        out[key] = {name: {"first": _num(s["S1"][j]), "total": _num(s["ST"][j]), "first_conf": _num(s["S1_conf"][j]),
-                           "total_conf": _num(s["ST_conf"][j])} for j, name in enumerate(study.keys)}
+        out[key] = {
+            name: {
+                "first": _num(s["S1"][j]),
+                "total": _num(s["ST"][j]),
+                "first_conf": _num(s["S1_conf"][j]),
+                "total_conf": _num(s["ST_conf"][j]),
+            }
+            for j, name in enumerate(study.keys)
+        }
     return out
 
 
@@ -616,8 +685,9 @@ def _num(x) -> float | None:
 SAMPLE_FORMATS = {".parquet": "parquet", ".csv": "csv"}
 
 
-def write_samples(result: ToleranceResult, path: str | Path, fmt: str, *, overwrite: bool = False,
-                  option: str = "path") -> None:
+def write_samples(
+    result: ToleranceResult, path: str | Path, fmt: str, *, overwrite: bool = False, option: str = "path"
+) -> None:
     """Write the samples of a study kept with ``keep_samples`` (one row per sample: the varied inputs, then the
     outputs, SI; column names carry the unit), whole or not at all; an existing ``path`` only with ``overwrite``
     (:mod:`erdesign.output`)."""

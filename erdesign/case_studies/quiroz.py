@@ -19,8 +19,16 @@ from ..data.metrics import esr
 from ..data.quiroz import QUIROZ_CURRENTS, QUIROZ_TESTS, read_quiroz_sinusoid, read_quiroz_validation
 from ..identification.identify import identify_joint
 
-__all__ = ["real_data_study", "quiroz_source_values", "quiroz_hidden_constants", "QUIROZ_STUDY_MODELS",
-           "physics_study", "physics_validation_esr", "QUIROZ_DAMPER"]
+__all__ = [
+    "real_data_study",
+    "quiroz_source_values",
+    "quiroz_hidden_constants",
+    "QUIROZ_STUDY_MODELS",
+    "physics_study",
+    "physics_validation_esr",
+    "QUIROZ_DAMPER",
+]
+
 
 def quiroz_source_values(folder, current: float, *, A: float = 1.0, beta_ratio: float = 1.0) -> dict[str, float]:
     r"""The source's own current-dependent modified Bouc-Wen parameters (parametros_ajuste2.mat) at one current,
@@ -34,14 +42,26 @@ def quiroz_source_values(folder, current: float, *, A: float = 1.0, beta_ratio: 
     """
     from pathlib import Path
     from scipy.io import loadmat
+
     p = loadmat(str(Path(folder) / "parametros_ajuste2.mat"))["parametros"].ravel()
     i = float(current)
     gamma = p[6] * math.exp(p[7] * i) * 1e6
-    out = {"k0": p[0] * 1e3, "k1": p[1] * 1e3, "x0": p[2] * 1e-3,
-            "alpha_a": (p[3] * i**2 + p[4] * i + p[5]) * 1e3, "gamma": gamma,
-            "beta": beta_ratio * gamma, "delta": A, "n": 2.0,
-            "c0a": (p[8] * i + p[9]) * 1e3, "c1a": (p[10] * i + p[11]) * 1e3,
-            "c0b": 0.0, "c1b": 0.0, "alpha_b": 0.0, "alpha_c": 0.0}
+    out = {
+        "k0": p[0] * 1e3,
+        "k1": p[1] * 1e3,
+        "x0": p[2] * 1e-3,
+        "alpha_a": (p[3] * i**2 + p[4] * i + p[5]) * 1e3,
+        "gamma": gamma,
+        "beta": beta_ratio * gamma,
+        "delta": A,
+        "n": 2.0,
+        "c0a": (p[8] * i + p[9]) * 1e3,
+        "c1a": (p[10] * i + p[11]) * 1e3,
+        "c0b": 0.0,
+        "c1b": 0.0,
+        "alpha_b": 0.0,
+        "alpha_c": 0.0,
+    }
     return {k: float(v) for k, v in out.items()}
 
 
@@ -60,14 +80,31 @@ def _quiroz_start(name: str, folder) -> dict[str, float]:
         return {}
     s0, s1 = quiroz_source_values(folder, 0.0), quiroz_source_values(folder, 1.0)
     mid = quiroz_source_values(folder, 0.5)["gamma"]
-    return {"c0a": s0["c0a"], "c0b": s1["c0a"] - s0["c0a"], "c1a": s0["c1a"], "c1b": s1["c1a"] - s0["c1a"],
-            "k0": 1.0, "k1": s0["k1"], "x0": 0.0, "alpha_a": s0["alpha_a"],
-            "alpha_b": (s1["alpha_a"] - s0["alpha_a"]) * 2.0, "alpha_c": -(s1["alpha_a"] - s0["alpha_a"]),
-            "beta": mid, "gamma": mid, "delta": 1.0}
+    return {
+        "c0a": s0["c0a"],
+        "c0b": s1["c0a"] - s0["c0a"],
+        "c1a": s0["c1a"],
+        "c1b": s1["c1a"] - s0["c1a"],
+        "k0": 1.0,
+        "k1": s0["k1"],
+        "x0": 0.0,
+        "alpha_a": s0["alpha_a"],
+        "alpha_b": (s1["alpha_a"] - s0["alpha_a"]) * 2.0,
+        "alpha_c": -(s1["alpha_a"] - s0["alpha_a"]),
+        "beta": mid,
+        "gamma": mid,
+        "delta": 1.0,
+    }
 
 
-def real_data_study(folder, *, models: Sequence[str] = tuple(QUIROZ_STUDY_MODELS), validation_step: int = 2,
-                    records=None, validation=None) -> dict:
+def real_data_study(
+    folder,
+    *,
+    models: Sequence[str] = tuple(QUIROZ_STUDY_MODELS),
+    validation_step: int = 2,
+    records=None,
+    validation=None,
+) -> dict:
     """Identify current-dependent models on all 30 Quiroz sinusoids jointly, score them on the earthquake record.
 
     Returns a JSON-ready dict: per model the identified values (SI), the ESR on every training record and on the
@@ -77,8 +114,12 @@ def real_data_study(folder, *, models: Sequence[str] = tuple(QUIROZ_STUDY_MODELS
     """
     import time as _time
     from ..models.registry import get_model
-    records = records if records is not None else [read_quiroz_sinusoid(folder, test, i) for test, _ in QUIROZ_TESTS
-                                                   for i in QUIROZ_CURRENTS]
+
+    records = (
+        records
+        if records is not None
+        else [read_quiroz_sinusoid(folder, test, i) for test, _ in QUIROZ_TESTS for i in QUIROZ_CURRENTS]
+    )
     validation = validation if validation is not None else read_quiroz_validation(folder, step=validation_step)
     out = {"training": [r.name for r in records], "validation": [r.name for r in validation], "models": {}}
     for name in models:
@@ -87,19 +128,29 @@ def real_data_study(folder, *, models: Sequence[str] = tuple(QUIROZ_STUDY_MODELS
         res = identify_joint(model, records, fixed=QUIROZ_STUDY_MODELS.get(name, {}), start=_quiroz_start(name, folder))
         seconds = _time.perf_counter() - t0
         out["models"][name] = {
-            "values": res.values, "success": res.success, "seconds": seconds,
+            "values": res.values,
+            "success": res.success,
+            "seconds": seconds,
             "training_esr": dict(zip(res.names, res.record_esr)),
-            "validation_esr": {r.name: esr(r.require_force(), res.model.simulate(r, res.values)) for r in validation}}
+            "validation_esr": {r.name: esr(r.require_force(), res.model.simulate(r, res.values)) for r in validation},
+        }
     model = get_model("bouc_wen_modified")
     A, ratio = quiroz_hidden_constants(folder, records)
     source = {}
-    for label, kw in (("A = 1, beta = gamma", {}), (f"A = {A:.4g}, beta = {ratio:.4g} gamma", {"A": A,
-                                                                                          "beta_ratio": ratio})):
+    for label, kw in (
+        ("A = 1, beta = gamma", {}),
+        (f"A = {A:.4g}, beta = {ratio:.4g} gamma", {"A": A, "beta_ratio": ratio}),
+    ):
+
         def score(r):
             return esr(r.require_force(), model.simulate(r, quiroz_source_values(folder, float(r.control[0]), **kw)))
-        source[label] = {"A": kw.get("A", 1.0), "beta_ratio": kw.get("beta_ratio", 1.0),
-                         "training_esr": {r.name: score(r) for r in records},
-                         "validation_esr": {r.name: score(r) for r in validation}}
+
+        source[label] = {
+            "A": kw.get("A", 1.0),
+            "beta_ratio": kw.get("beta_ratio", 1.0),
+            "training_esr": {r.name: score(r) for r in records},
+            "validation_esr": {r.name: score(r) for r in validation},
+        }
     out["source"] = source
     return out
 
@@ -108,21 +159,30 @@ def quiroz_hidden_constants(folder, records: Sequence[Measurement]) -> tuple[flo
     """The two constants the source's Simulink model hides, A and beta / gamma (n = 2), by least squares on
     ``records`` with all of the source's published parameters held: (A, beta_ratio)."""
     from ..models.registry import get_model
+
     model = get_model("bouc_wen_modified")
     base = [{**model.defaults(), **quiroz_source_values(folder, float(r.control[0]))} for r in records]
     scale = [1.0 / max(float(np.std(r.require_force())), 1e-12) for r in records]
 
     def residual(z):
-        parts = [w * (model.force(r, {**v, "delta": math.exp(z[0]), "beta": z[1] * v["gamma"]}) - r.force)
-                 for r, v, w in zip(records, base, scale)]
+        parts = [
+            w * (model.force(r, {**v, "delta": math.exp(z[0]), "beta": z[1] * v["gamma"]}) - r.force)
+            for r, v, w in zip(records, base, scale)
+        ]
         out = np.concatenate(parts)
         return np.where(np.isfinite(out), out, 1e6)
 
     from scipy.optimize import least_squares  # imported on use: not at start-up
 
     # a few starts: the loss has several basins in (A, beta/gamma)
-    best = min((least_squares(residual, [math.log(a0), r0], bounds=([-10.0, -0.99], [15.0, 50.0]), max_nfev=60)
-                for a0 in (1.0, 10.0, 100.0) for r0 in (1.0, 0.0, -0.5)), key=lambda res: res.cost)
+    best = min(
+        (
+            least_squares(residual, [math.log(a0), r0], bounds=([-10.0, -0.99], [15.0, 50.0]), max_nfev=60)
+            for a0 in (1.0, 10.0, 100.0)
+            for r0 in (1.0, 0.0, -0.5)
+        ),
+        key=lambda res: res.cost,
+    )
     return float(math.exp(best.x[0])), float(best.x[1])
 
 
@@ -142,13 +202,16 @@ def physics_validation_esr(model, values: dict, folder, *, direct=None, unsmooth
     the records when already read.
     """
     from ..data.quiroz import QUIROZ_VALIDATION_WINDOW, causal_moving_average, read_quiroz_validation_unsmoothed
+
     direct = direct if direct is not None else read_quiroz_validation(folder, step=1)
     unsmoothed = unsmoothed if unsmoothed is not None else read_quiroz_validation_unsmoothed(folder)
     return {
         "direct": {r.name: esr(r.require_force(), model.simulate(r, values)) for r in direct},
-        "through_smoothing": {r.name: esr(r.require_force(), causal_moving_average(model.simulate(r, values),
-                                                                                   QUIROZ_VALIDATION_WINDOW))
-                              for r in unsmoothed}}
+        "through_smoothing": {
+            r.name: esr(r.require_force(), causal_moving_average(model.simulate(r, values), QUIROZ_VALIDATION_WINDOW))
+            for r in unsmoothed
+        },
+    }
 
 
 def physics_study(folder, *, damper=QUIROZ_DAMPER, max_rounds: int = 4, records=None, progress=None) -> dict:
@@ -170,10 +233,14 @@ def physics_study(folder, *, damper=QUIROZ_DAMPER, max_rounds: int = 4, records=
     from ..data.quiroz import QUIROZ_RAW_TESTS, read_quiroz_raw, read_quiroz_validation_unsmoothed
     from ..diagnosis.diagnose import calibrate, diagnose, fitted_model
     from ..models.registry import get_model
+
     say = progress or (lambda line: None)
     dmp = load_example(damper) if isinstance(damper, str) else damper
-    records = records if records is not None else [r for test, _, _ in QUIROZ_RAW_TESTS
-                                                   for r in read_quiroz_raw(folder, test)]
+    records = (
+        records
+        if records is not None
+        else [r for test, _, _ in QUIROZ_RAW_TESTS for r in read_quiroz_raw(folder, test)]
+    )
     direct = read_quiroz_validation(folder, step=1)
     unsmoothed = read_quiroz_validation_unsmoothed(folder)
     rounds, effects = [], ()
@@ -181,13 +248,23 @@ def physics_study(folder, *, damper=QUIROZ_DAMPER, max_rounds: int = 4, records=
         t0 = _time.perf_counter()
         d = diagnose(dmp, records, effects)
         seconds = _time.perf_counter() - t0
-        rounds.append({"effects": list(effects), "verdict": d.verdict, "missing_effects": list(d.missing_effects),
-                       "esr": d.baseline_esr, "noise_floor_esr": d.noise_floor_esr,
-                       "noise_floor_method": getattr(d, "noise_floor_method", None), "seconds": seconds,
-                       "ranking": [{"effect": c.effect, "esr": c.esr} for c in d.ranking[:4]],
-                       "reason": getattr(d, "reason", None) or None})
-        say(f"round {len(rounds) - 1}: {' + '.join(effects) or 'baseline'}: {d.verdict} "
-            f"{d.missing_effects} ESR {d.baseline_esr:.4g} ({seconds:.0f} s)")
+        rounds.append(
+            {
+                "effects": list(effects),
+                "verdict": d.verdict,
+                "missing_effects": list(d.missing_effects),
+                "esr": d.baseline_esr,
+                "noise_floor_esr": d.noise_floor_esr,
+                "noise_floor_method": getattr(d, "noise_floor_method", None),
+                "seconds": seconds,
+                "ranking": [{"effect": c.effect, "esr": c.esr} for c in d.ranking[:4]],
+                "reason": getattr(d, "reason", None) or None,
+            }
+        )
+        say(
+            f"round {len(rounds) - 1}: {' + '.join(effects) or 'baseline'}: {d.verdict} "
+            f"{d.missing_effects} ESR {d.baseline_esr:.4g} ({seconds:.0f} s)"
+        )
         if d.verdict != "missing_effect":
             break
         effects = effects + tuple(d.missing_effects)
@@ -203,19 +280,30 @@ def physics_study(folder, *, damper=QUIROZ_DAMPER, max_rounds: int = 4, records=
         t0 = _time.perf_counter()
         res = calibrate(dmp, records, eff)
         model = fitted_model(res)
-        models[label] = {"effects": list(eff), "values": dict(res.values), "esr": res.esr,
-                         "seconds": _time.perf_counter() - t0,
-                         "training_esr": {r["name"]: r["esr"] for r in res.records},
-                         "validation_esr": physics_validation_esr(model, res.values, folder, direct=direct,
-                                                                  unsmoothed=unsmoothed)}
+        models[label] = {
+            "effects": list(eff),
+            "values": dict(res.values),
+            "esr": res.esr,
+            "seconds": _time.perf_counter() - t0,
+            "training_esr": {r["name"]: r["esr"] for r in res.records},
+            "validation_esr": physics_validation_esr(model, res.values, folder, direct=direct, unsmoothed=unsmoothed),
+        }
         say(f"{label}: {' + '.join(eff)}: training ESR {res.esr:.4g}")
     bw = get_model("bouc_wen_modified")
     t0 = _time.perf_counter()
-    res = identify_joint(bw, records, fixed=QUIROZ_STUDY_MODELS["bouc_wen_modified"],
-                         start=_quiroz_start("bouc_wen_modified", folder))
-    reference = {"values": res.values, "seconds": _time.perf_counter() - t0,
-                 "training_esr": dict(zip(res.names, res.record_esr)),
-                 "validation_esr": physics_validation_esr(res.model, res.values, folder, direct=direct,
-                                                          unsmoothed=unsmoothed)}
-    return {"damper": damper if isinstance(damper, str) else dmp.name, "training": [r.name for r in records],
-            "rounds": rounds, "models": models, "bouc_wen_modified_raw": reference}
+    res = identify_joint(
+        bw, records, fixed=QUIROZ_STUDY_MODELS["bouc_wen_modified"], start=_quiroz_start("bouc_wen_modified", folder)
+    )
+    reference = {
+        "values": res.values,
+        "seconds": _time.perf_counter() - t0,
+        "training_esr": dict(zip(res.names, res.record_esr)),
+        "validation_esr": physics_validation_esr(res.model, res.values, folder, direct=direct, unsmoothed=unsmoothed),
+    }
+    return {
+        "damper": damper if isinstance(damper, str) else dmp.name,
+        "training": [r.name for r in records],
+        "rounds": rounds,
+        "models": models,
+        "bouc_wen_modified_raw": reference,
+    }

@@ -96,8 +96,10 @@ def _m(fit: LinearFit, V: float, Z: float) -> str:
 
 def _a(fit: LinearFit, V: float, Z: float) -> str:
     cf = fit.coefficients["asymmetry"]
-    return (f"extension and compression differ by {2 * cf[0]:.4g} N s/m of damping and "
-            f"{2 * float(np.sum(cf[1:])):.4g} N of friction")
+    return (
+        f"extension and compression differ by {2 * cf[0]:.4g} N s/m of damping and "
+        f"{2 * float(np.sum(cf[1:])):.4g} N of friction"
+    )
 
 
 def _asa(fit: LinearFit, V: float, Z: float) -> str:
@@ -114,24 +116,89 @@ def _p(fit: LinearFit, V: float, Z: float) -> str:
 
 
 #: The registry: name -> characteristic (Vivas-López et al. Table 2).
-CHARACTERISTICS: dict[str, Characteristic] = {c.name: c for c in (
-    Characteristic("viscous_damping", "Viscous damping", "passive FV", "c_p ż", ("viscous",), "passive", "viscous",
-                   _c),
-    Characteristic("stiffness", "Stiffness", "passive FD", "k_p z", ("stiffness",), "passive", "stiffness", _k),
-    Characteristic("friction", "Friction", "passive FV", "f_fr", ("friction",), "passive", "friction", _f),
-    Characteristic("hysteresis", "Hysteresis loop", "FV", "f_h,z", ("hysteresis_z",), "damper",
-                   "hysteresis", _h, ("hysteresis", "hysteresis_sa"), False, 2.0),
-    Characteristic("frequency_dependent_loop", "Frequency dependent hysteresis loop", "passive FV", "f_h,ż, m_D",
-                   ("inertia",), "passive", "inertia", _m),
-    Characteristic("asymmetry", "Asymmetry of the passive force", "passive FV", "coefficients for ż ≥ 0 and ż < 0",
-                   (), "passive", "asymmetry", _a, (), True, 0.5),
-    Characteristic("gain", "Gain in force due to manipulation", "SA FV", "c_SA", ("gain",), "semiactive", "gain",
-                   _g, SEMIACTIVE_GROUPS),
-    Characteristic("preyield", "Pre-yield zone", "SA FV", "f_pre-y,ż,V", ("preyield",), "semiactive", "preyield", _p,
-                   (), False, 3.0),
-    Characteristic("asymmetry_semiactive", "Asymmetry of the force gain", "SA FM", "c_SA for ż ≥ 0 and ż < 0", (),
-                   "semiactive", "asymmetry_sa", _asa, (), True, 0.5),
-)}
+CHARACTERISTICS: dict[str, Characteristic] = {
+    c.name: c
+    for c in (
+        Characteristic(
+            "viscous_damping", "Viscous damping", "passive FV", "c_p ż", ("viscous",), "passive", "viscous", _c
+        ),
+        Characteristic("stiffness", "Stiffness", "passive FD", "k_p z", ("stiffness",), "passive", "stiffness", _k),
+        Characteristic("friction", "Friction", "passive FV", "f_fr", ("friction",), "passive", "friction", _f),
+        Characteristic(
+            "hysteresis",
+            "Hysteresis loop",
+            "FV",
+            "f_h,z",
+            ("hysteresis_z",),
+            "damper",
+            "hysteresis",
+            _h,
+            ("hysteresis", "hysteresis_sa"),
+            False,
+            2.0,
+        ),
+        Characteristic(
+            "frequency_dependent_loop",
+            "Frequency dependent hysteresis loop",
+            "passive FV",
+            "f_h,ż, m_D",
+            ("inertia",),
+            "passive",
+            "inertia",
+            _m,
+        ),
+        Characteristic(
+            "asymmetry",
+            "Asymmetry of the passive force",
+            "passive FV",
+            "coefficients for ż ≥ 0 and ż < 0",
+            (),
+            "passive",
+            "asymmetry",
+            _a,
+            (),
+            True,
+            0.5,
+        ),
+        Characteristic(
+            "gain",
+            "Gain in force due to manipulation",
+            "SA FV",
+            "c_SA",
+            ("gain",),
+            "semiactive",
+            "gain",
+            _g,
+            SEMIACTIVE_GROUPS,
+        ),
+        Characteristic(
+            "preyield",
+            "Pre-yield zone",
+            "SA FV",
+            "f_pre-y,ż,V",
+            ("preyield",),
+            "semiactive",
+            "preyield",
+            _p,
+            (),
+            False,
+            3.0,
+        ),
+        Characteristic(
+            "asymmetry_semiactive",
+            "Asymmetry of the force gain",
+            "SA FM",
+            "c_SA for ż ≥ 0 and ż < 0",
+            (),
+            "semiactive",
+            "asymmetry_sa",
+            _asa,
+            (),
+            True,
+            0.5,
+        ),
+    )
+}
 
 
 @dataclass(frozen=True)
@@ -153,9 +220,18 @@ class Finding:
 
     def to_dict(self) -> dict:
         c = self.characteristic
-        return {"name": c.name, "title": c.title, "diagram": c.diagram, "model_term": c.model_term,
-                "found": self.found, "evidence": self.evidence, "esr_with": self.esr_with,
-                "esr_without": self.esr_without, "delta_esr": self.delta_esr, "threshold": self.threshold}
+        return {
+            "name": c.name,
+            "title": c.title,
+            "diagram": c.diagram,
+            "model_term": c.model_term,
+            "found": self.found,
+            "evidence": self.evidence,
+            "esr_with": self.esr_with,
+            "esr_without": self.esr_without,
+            "delta_esr": self.delta_esr,
+            "threshold": self.threshold,
+        }
 
 
 def _judge(c: Characteristic, columns, F, F_D, groups, V, Z, threshold, diagram_text) -> Finding:
@@ -165,9 +241,11 @@ def _judge(c: Characteristic, columns, F, F_D, groups, V, Z, threshold, diagram_
     e_with, e_without = full.esr(F_D), without.esr(F_D)
     delta = e_without - e_with
     found = bool(delta > threshold)
-    evidence = (f"{'found' if found else 'not found'} in the {diagram_text}: {c.value(full, V, Z)}; without the "
-                f"term the ESR of the fit rises from {e_with:.4f} to {e_without:.4f} (+{delta:.4f}, threshold "
-                f"+{threshold:g})")
+    evidence = (
+        f"{'found' if found else 'not found'} in the {diagram_text}: {c.value(full, V, Z)}; without the "
+        f"term the ESR of the fit rises from {e_with:.4f} to {e_without:.4f} (+{delta:.4f}, threshold "
+        f"+{threshold:g})"
+    )
     return Finding(c, found, evidence, e_with, e_without, threshold)
 
 
@@ -196,27 +274,58 @@ def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Find
     columns_damper = {**columns_all, **semiactive_features(samples, V, Z)}
     for c in CHARACTERISTICS.values():
         if c.stage == "damper":
-            findings.append(_judge(c, columns_damper, samples.F, samples.F, PASSIVE_GROUPS + SEMIACTIVE_GROUPS, V, Z,
-                                   threshold, "FV and FM diagrams"))
+            findings.append(
+                _judge(
+                    c,
+                    columns_damper,
+                    samples.F,
+                    samples.F,
+                    PASSIVE_GROUPS + SEMIACTIVE_GROUPS,
+                    V,
+                    Z,
+                    threshold,
+                    "FV and FM diagrams",
+                )
+            )
         elif c.stage == "passive":
             if not passive_ok:
-                findings.append(_unobservable(c, f"{int(passive.sum())} samples at the passive control (need "
-                                                 f"{MIN_SAMPLES})", threshold))
+                findings.append(
+                    _unobservable(
+                        c, f"{int(passive.sum())} samples at the passive control (need {MIN_SAMPLES})", threshold
+                    )
+                )
                 continue
-            findings.append(_judge(c, columns, ps.F, ps.F, PASSIVE_GROUPS, V, Z, threshold,
-                                   f"passive {c.diagram.split()[-1]} diagram"))
+            findings.append(
+                _judge(
+                    c, columns, ps.F, ps.F, PASSIVE_GROUPS, V, Z, threshold, f"passive {c.diagram.split()[-1]} diagram"
+                )
+            )
         else:
             if samples.u_passive is None or samples.u_span == 0:
-                findings.append(_unobservable(c, "the control never varies (no semi-active force to read)",
-                                              threshold))
+                findings.append(_unobservable(c, "the control never varies (no semi-active force to read)", threshold))
                 continue
             if controlled.sum() < MIN_SAMPLES or not passive_ok:
-                findings.append(_unobservable(c, f"{int(controlled.sum())} samples above the passive control and "
-                                                 f"{int(passive.sum())} at it (need {MIN_SAMPLES} of each)",
-                                              threshold))
+                findings.append(
+                    _unobservable(
+                        c,
+                        f"{int(controlled.sum())} samples above the passive control and "
+                        f"{int(passive.sum())} at it (need {MIN_SAMPLES} of each)",
+                        threshold,
+                    )
+                )
                 continue
             # the semi-active fit explains F_SA (eq 1); its ESR is over the damper force F_D (eq 7)
-            findings.append(_judge(c, semiactive_features(sa, V, Z), sa.F - F_P[controlled], sa.F,
-                                   SEMIACTIVE_GROUPS, V, Z, threshold,
-                                   f"semi-active {c.diagram.split()[-1]} diagram"))
+            findings.append(
+                _judge(
+                    c,
+                    semiactive_features(sa, V, Z),
+                    sa.F - F_P[controlled],
+                    sa.F,
+                    SEMIACTIVE_GROUPS,
+                    V,
+                    Z,
+                    threshold,
+                    f"semi-active {c.diagram.split()[-1]} diagram",
+                )
+            )
     return findings, F_P

@@ -14,9 +14,11 @@ import numpy as np
 __all__ = ["DIAGRAMS", "Density", "density", "diagram_axes"]
 
 #: Diagram name -> (x quantity, its SI unit, title) (Vivas-López et al. section 3).
-DIAGRAMS = {"FD": ("displacement", "m", "force-displacement"),
-            "FV": ("velocity", "m/s", "force-velocity"),
-            "FM": ("control", "SI", "force-manipulation")}
+DIAGRAMS = {
+    "FD": ("displacement", "m", "force-displacement"),
+    "FV": ("velocity", "m/s", "force-velocity"),
+    "FM": ("control", "SI", "force-manipulation"),
+}
 
 
 def diagram_axes(record, diagram: str, force=None) -> tuple[np.ndarray, np.ndarray]:

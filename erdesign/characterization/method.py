@@ -38,8 +38,11 @@ __all__ = [
 
 #: The truth-rig damper of :func:`demo_records`: Stribeck seal friction, a gas accumulator and a single-ended rod
 #: (friction, stiffness and asymmetry to find) on the ``mr_valve_current`` example.
-DEMO_MECHANISMS = {"stribeck_friction": {"coulomb_force": 150.0, "static_force": 220.0},
-                   "accumulator": {"charge_pressure": 3e6, "gas_volume": 2e-5}, "single_rod": {}}
+DEMO_MECHANISMS = {
+    "stribeck_friction": {"coulomb_force": 150.0, "static_force": 220.0},
+    "accumulator": {"charge_pressure": 3e6, "gas_volume": 2e-5},
+    "single_rod": {},
+}
 
 
 class CharacterizationError(ErdesignError):
@@ -143,11 +146,19 @@ class Characterization:
         predicts the records it was not identified on)."""
         c_diag, e_diag = np.diag(self.customized.table), np.diag(self.eyring.table)
         c, e = float(np.mean(self.customized.table)), float(np.mean(self.eyring.table))
-        return {"identification": {"customized": c_diag.tolist(), "eyring_plastic": e_diag.tolist(),
-                                   "esr_reduction": mean_esr_reduction(c_diag, e_diag)},
-                "cross_validation": {"customized_mean_esr": c, "eyring_plastic_mean_esr": e,
-                                     "esr_reduction": (e - c) / e if e > 0 else 0.0},
-                "customized_better": bool(c < e)}
+        return {
+            "identification": {
+                "customized": c_diag.tolist(),
+                "eyring_plastic": e_diag.tolist(),
+                "esr_reduction": mean_esr_reduction(c_diag, e_diag),
+            },
+            "cross_validation": {
+                "customized_mean_esr": c,
+                "eyring_plastic_mean_esr": e,
+                "esr_reduction": (e - c) / e if e > 0 else 0.0,
+            },
+            "customized_better": bool(c < e),
+        }
 
     def split(self) -> dict:
         """The passive / semi-active split (eq 1) over all samples: the RMS of F_P and of F_SA = F_D - F_P [N], and
@@ -157,8 +168,11 @@ class Characterization:
         F_P = np.concatenate(self.passive_force)
         F = np.concatenate([r.force for r in self.read_from])
         F_SA = F - F_P
-        out = {"passive_force_rms_N": float(np.sqrt(np.mean((F_P - F_P.mean()) ** 2))),
-               "semiactive_force_rms_N": float(np.sqrt(np.mean(F_SA ** 2))), "force_gain": None}
+        out = {
+            "passive_force_rms_N": float(np.sqrt(np.mean((F_P - F_P.mean()) ** 2))),
+            "semiactive_force_rms_N": float(np.sqrt(np.mean(F_SA**2))),
+            "force_gain": None,
+        }
         u = np.concatenate([r.control for r in self.read_from])
         sv = np.sign(np.concatenate([r.velocity for r in self.read_from]))
         if self.passive_control is None or np.ptp(u) == 0:
@@ -173,8 +187,12 @@ class Characterization:
         slope, intercept = np.polyfit(x, y, 1)
         resid = y - (slope * x + intercept)
         r2 = 1.0 - float(np.sum(resid**2) / np.sum((y - y.mean()) ** 2)) if np.ptp(y) > 0 else 1.0
-        out["force_gain"] = {"control": x.tolist(), "force_N": y.tolist(), "slope_N_per_control_unit": float(slope),
-                             "r_squared": r2}
+        out["force_gain"] = {
+            "control": x.tolist(),
+            "force_N": y.tolist(),
+            "slope_N_per_control_unit": float(slope),
+            "r_squared": r2,
+        }
         return out
 
     def model_force(self, name: str, k: int) -> np.ndarray:
@@ -187,33 +205,58 @@ class Characterization:
         """The JSON of ``erdesign characterize --json`` (keys in docs/cli.md)."""
         model = self.model
         fit = self.fits["customized"]
+
         def cv(t):
-            return ({"table": _finite(t.table), "average": _finite(t.average)})
-        return _finite_tree({
-            "records": [{"name": r.name, "samples": len(r), "control_kind": r.control_kind,
-                         "force_variance_N2": float(np.var(r.force))} for r in self.records],
-            "characterized_on": [{"name": r.name, "samples": len(r), "passive_samples": int(np.sum(self.passive[k]))}
-                                 for k, r in enumerate(self.read_from)],
-            "passive_control": self.passive_control,
-            "split": self.split(),
-            "characteristics": [f.to_dict() for f in self.findings],
-            "found": [f.characteristic.name for f in self.findings if f.found],
-            "model": {"terms": list(self.terms), "asymmetric": self.asymmetric,
-                      "parameter_count": len(model.parameters),
-                      "model_terms": [f.characteristic.model_term for f in self.findings if f.found],
-                      "identified_on": self.records[self.identified_on].name,
-                      "esr": float(fit.esr),
-                      "parameters": {n: model.parameter(n).format(v) for n, v in fit.values.items()},
-                      "parameters_si": {n: float(v) for n, v in fit.values.items()},
-                      "control_reference": float(fit.model.control_reference)},
-            "cross_validation": {"records": self.customized.names, "customized": cv(self.customized),
-                                 "eyring_plastic": cv(self.eyring)},
-            "comparison": self.comparison(),
-        })
+            return {"table": _finite(t.table), "average": _finite(t.average)}
+
+        return _finite_tree(
+            {
+                "records": [
+                    {
+                        "name": r.name,
+                        "samples": len(r),
+                        "control_kind": r.control_kind,
+                        "force_variance_N2": float(np.var(r.force)),
+                    }
+                    for r in self.records
+                ],
+                "characterized_on": [
+                    {"name": r.name, "samples": len(r), "passive_samples": int(np.sum(self.passive[k]))}
+                    for k, r in enumerate(self.read_from)
+                ],
+                "passive_control": self.passive_control,
+                "split": self.split(),
+                "characteristics": [f.to_dict() for f in self.findings],
+                "found": [f.characteristic.name for f in self.findings if f.found],
+                "model": {
+                    "terms": list(self.terms),
+                    "asymmetric": self.asymmetric,
+                    "parameter_count": len(model.parameters),
+                    "model_terms": [f.characteristic.model_term for f in self.findings if f.found],
+                    "identified_on": self.records[self.identified_on].name,
+                    "esr": float(fit.esr),
+                    "parameters": {n: model.parameter(n).format(v) for n, v in fit.values.items()},
+                    "parameters_si": {n: float(v) for n, v in fit.values.items()},
+                    "control_reference": float(fit.model.control_reference),
+                },
+                "cross_validation": {
+                    "records": self.customized.names,
+                    "customized": cv(self.customized),
+                    "eyring_plastic": cv(self.eyring),
+                },
+                "comparison": self.comparison(),
+            }
+        )
 
 
-def characterize(records: Sequence, *, characterize_on: Sequence = (), threshold: float = THRESHOLD, executor=None,
-                 identify_options: dict | None = None) -> Characterization:
+def characterize(
+    records: Sequence,
+    *,
+    characterize_on: Sequence = (),
+    threshold: float = THRESHOLD,
+    executor=None,
+    identify_options: dict | None = None,
+) -> Characterization:
     """Characterize a damper from its records and build, identify and cross-validate its customized model.
 
     Parameters
@@ -247,38 +290,72 @@ def characterize(records: Sequence, *, characterize_on: Sequence = (), threshold
         raise CharacterizationError("records: none given")
     for r in records + read_from:
         if r.force is None:
-            raise CharacterizationError(f"{r.name or 'record'}: has no force column (characterize reads measured "
-                                        "forces; a test plan from 'erdesign doe' must be played on a rig first)")
+            raise CharacterizationError(
+                f"{r.name or 'record'}: has no force column (characterize reads measured "
+                "forces; a test plan from 'erdesign doe' must be played on a rig first)"
+            )
         if not np.ptp(r.force) > 0:
-            raise CharacterizationError(f"{r.name or 'record'}: the force is constant ({r.force[0]:.6g} N): no "
-                                        "diagram to read (a disconnected load cell?)")
+            raise CharacterizationError(
+                f"{r.name or 'record'}: the force is constant ({r.force[0]:.6g} N): no "
+                "diagram to read (a disconnected load cell?)"
+            )
     kinds = {r.control_kind for r in records + read_from} - {None}
     if len(kinds) > 1:
-        raise CharacterizationError(f"records: controls of different kinds ({', '.join(sorted(kinds))}); the records "
-                                    "of one damper share one control column")
+        raise CharacterizationError(
+            f"records: controls of different kinds ({', '.join(sorted(kinds))}); the records "
+            "of one damper share one control column"
+        )
     samples = Samples.pool(read_from)
     findings, F_P = detect(samples, threshold=threshold)
     terms, asymmetric = customized_terms(findings)
     options = {"starts": 1, **dict(identify_options or {})}
+
     def every(name):
-        return (np.concatenate([getattr(r, name) for r in records + read_from]))
-    scales = {"force": robust_peak(every("force")), "speed": robust_peak(every("velocity")),
-              "stroke": robust_peak(every("displacement"))}
-    factories = {"customized": partial(SemiactiveCustomized, terms, asymmetric, scales),
-                 "eyring_plastic": partial(get_model, "eyring_plastic")}
+        return np.concatenate([getattr(r, name) for r in records + read_from])
+
+    scales = {
+        "force": robust_peak(every("force")),
+        "speed": robust_peak(every("velocity")),
+        "stroke": robust_peak(every("displacement")),
+    }
+    factories = {
+        "customized": partial(SemiactiveCustomized, terms, asymmetric, scales),
+        "eyring_plastic": partial(get_model, "eyring_plastic"),
+    }
     tables = {name: cross_validation(f, records, executor=executor, **options) for name, f in factories.items()}
     best = int(np.argmin(tables["customized"].average))
     fits = {name: identify(f(), records[best], **options) for name, f in factories.items()}
     splits = np.cumsum([0] + [len(r) for r in read_from])
+
     def per_record(a):
-        return ([a[splits[k]:splits[k + 1]] for k in range(len(read_from))])
-    return Characterization(records, findings, per_record(F_P), per_record(samples.passive), samples.u_passive,
-                            terms, asymmetric, scales, tables["customized"], tables["eyring_plastic"], fits, best,
-                            list(characterize_on))
+        return [a[splits[k] : splits[k + 1]] for k in range(len(read_from))]
+
+    return Characterization(
+        records,
+        findings,
+        per_record(F_P),
+        per_record(samples.passive),
+        samples.u_passive,
+        terms,
+        asymmetric,
+        scales,
+        tables["customized"],
+        tables["eyring_plastic"],
+        fits,
+        best,
+        list(characterize_on),
+    )
 
 
-def demo_records(mechanisms=None, names=("e2", "e3", "e4", "e5"), *, damper: str = "mr_valve_current",
-                 control_range=(0.0, 0.8), rate: float = 250.0, seed: int = 2) -> list:
+def demo_records(
+    mechanisms=None,
+    names=("e2", "e3", "e4", "e5"),
+    *,
+    damper: str = "mr_valve_current",
+    control_range=(0.0, 0.8),
+    rate: float = 250.0,
+    seed: int = 2,
+) -> list:
     """Records of the experiments ``names`` (:mod:`erdesign.simulation.programmes`) measured on the independent
     truth rig (:mod:`erdesign.simulation.truthrig`) with ``mechanisms`` (default :data:`DEMO_MECHANISMS`): the
     records of docs/characterize.md, the app's example and the tests' (control in A for the default damper)."""
@@ -287,5 +364,7 @@ def demo_records(mechanisms=None, names=("e2", "e3", "e4", "e5"), *, damper: str
     from ..simulation.truthrig import TruthDamper, simulate_truth
 
     truth = TruthDamper(load_example(damper), DEMO_MECHANISMS if mechanisms is None else mechanisms)
-    return [simulate_truth(truth, programme(n, control_range=control_range, rate=rate), seed=seed, name=n).measured
-            for n in names]
+    return [
+        simulate_truth(truth, programme(n, control_range=control_range, rate=rate), seed=seed, name=n).measured
+        for n in names
+    ]

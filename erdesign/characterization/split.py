@@ -57,16 +57,25 @@ class Samples:
     def pool(cls, records, *, passive_band: float = 0.02) -> Samples:
         """Pool ``records``; the passive level is the lowest control, and samples within ``passive_band`` of the
         control span above it count as passive."""
+
         def cat(name):
-            return (np.concatenate([np.asarray(getattr(r, name), dtype=float) for r in records]))
+            return np.concatenate([np.asarray(getattr(r, name), dtype=float) for r in records])
+
         u = cat("control")
         controlled = any(r.control_kind is not None for r in records)
         lo, hi = (float(u.min()), float(u.max())) if controlled else (None, 0.0)
         span = (hi - lo) if controlled else 0.0
-        return cls(cat("displacement"), cat("velocity"), cat("acceleration"), u,
-                   np.concatenate([r.require_force() for r in records]),
-                   np.concatenate([np.full(len(r), k) for k, r in enumerate(records)]),
-                   lo, span if span > 0 else 0.0, passive_band)
+        return cls(
+            cat("displacement"),
+            cat("velocity"),
+            cat("acceleration"),
+            u,
+            np.concatenate([r.require_force() for r in records]),
+            np.concatenate([np.full(len(r), k) for k, r in enumerate(records)]),
+            lo,
+            span if span > 0 else 0.0,
+            passive_band,
+        )
 
     @property
     def passive(self) -> np.ndarray:
@@ -83,8 +92,17 @@ class Samples:
         return (self.u - self.u_passive) / self.u_span
 
     def select(self, mask) -> Samples:
-        return Samples(self.z[mask], self.v[mask], self.a[mask], self.u[mask], self.F[mask], self.record[mask],
-                       self.u_passive, self.u_span, self.band)
+        return Samples(
+            self.z[mask],
+            self.v[mask],
+            self.a[mask],
+            self.u[mask],
+            self.F[mask],
+            self.record[mask],
+            self.u_passive,
+            self.u_span,
+            self.band,
+        )
 
 
 def robust_peak(values: np.ndarray) -> float:
@@ -118,7 +136,7 @@ def passive_features(s: Samples, V: float, Z: float) -> dict[str, np.ndarray]:
     return {
         "offset": one[:, None],
         "viscous": v[:, None],
-        "stiffness": z[:, None] / Z * V,       # scaled to the size of the viscous column (conditioning only)
+        "stiffness": z[:, None] / Z * V,  # scaled to the size of the viscous column (conditioning only)
         "friction": sat,
         "hysteresis": _branch(v, z, V),
         "inertia": np.column_stack([a, a * np.abs(v) / V]),
@@ -141,10 +159,12 @@ def semiactive_features(s: Samples, V: float, Z: float) -> dict[str, np.ndarray]
     hysteresis columns of :func:`passive_features`; du is the control above the passive level over the
     control span."""
     du, v, z = s.du, s.v, s.z
-    return {"gain": (du * np.sign(v))[:, None],
-            "preyield": np.column_stack([du * S(v / (k * V)) for k in SPEED_SCALES] + [du * S(z / (0.3 * Z))]),
-            "asymmetry_sa": np.column_stack([du, du * np.abs(S(v / (0.1 * V)))]),
-            "hysteresis_sa": du[:, None] * _branch(v, z, V)}
+    return {
+        "gain": (du * np.sign(v))[:, None],
+        "preyield": np.column_stack([du * S(v / (k * V)) for k in SPEED_SCALES] + [du * S(z / (0.3 * Z))]),
+        "asymmetry_sa": np.column_stack([du, du * np.abs(S(v / (0.1 * V)))]),
+        "hysteresis_sa": du[:, None] * _branch(v, z, V),
+    }
 
 
 #: The groups in the order they are listed.
@@ -181,5 +201,5 @@ def fit_groups(columns: Mapping[str, np.ndarray], F: np.ndarray, groups) -> Line
     theta = theta / scale
     pred = A @ theta
     sizes = np.cumsum([0] + [columns[g].shape[1] for g in groups])
-    coeffs = {g: theta[sizes[k]:sizes[k + 1]] for k, g in enumerate(groups)}
+    coeffs = {g: theta[sizes[k] : sizes[k + 1]] for k, g in enumerate(groups)}
     return LinearFit(groups, coeffs, float(np.sum((F - pred) ** 2)), pred)

@@ -25,23 +25,52 @@ Examples:
 
 @cli.command(epilog=_EXAMPLES)
 @click.argument("records", nargs=-1, required=True, metavar="RECORDS...")
-@click.option("--characterize-on", "characterize_on", multiple=True, metavar="RECORD.csv",
-              help="Read the characteristics from this record (repeatable; the paper's E1) and only identify and "
-                   "cross-validate RECORDS (E2-E5); default: RECORDS.")
-@click.option("--threshold", default=0.001, show_default=True, type=click.FloatRange(min=0.0, max=1.0),
-              help="Rise of the ESR (a fraction of the force variance) a characteristic must account for to be "
-                   "found.")
-@click.option("--starts", default=1, show_default=True, type=click.IntRange(min=1),
-              help="Starts of each identification (more only run when the first is no better than a Bingham fit).")
-@click.option("--max-time", default=None, type=click.FloatRange(min=0.0, min_open=True), metavar="SECONDS",
-              help="Time limit of each identification.")
+@click.option(
+    "--characterize-on",
+    "characterize_on",
+    multiple=True,
+    metavar="RECORD.csv",
+    help="Read the characteristics from this record (repeatable; the paper's E1) and only identify and "
+    "cross-validate RECORDS (E2-E5); default: RECORDS.",
+)
+@click.option(
+    "--threshold",
+    default=0.001,
+    show_default=True,
+    type=click.FloatRange(min=0.0, max=1.0),
+    help="Rise of the ESR (a fraction of the force variance) a characteristic must account for to be found.",
+)
+@click.option(
+    "--starts",
+    default=1,
+    show_default=True,
+    type=click.IntRange(min=1),
+    help="Starts of each identification (more only run when the first is no better than a Bingham fit).",
+)
+@click.option(
+    "--max-time",
+    default=None,
+    type=click.FloatRange(min=0.0, min_open=True),
+    metavar="SECONDS",
+    help="Time limit of each identification.",
+)
 @executor_options(default_jobs="1")
-@click.option("--out", default=None, metavar="REPORT.html",
-              help="Write the diagrams, densities and tables as one HTML page.")
+@click.option(
+    "--out", default=None, metavar="REPORT.html", help="Write the diagrams, densities and tables as one HTML page."
+)
 @click.option("--force", "overwrite", is_flag=True, help="Let --out replace an existing file.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
-def characterize(records: tuple[str, ...], characterize_on: tuple[str, ...], threshold: float, starts: int, max_time: float | None, executor: dict,
-                 out: str | None, overwrite: bool, as_json: bool) -> None:
+def characterize(
+    records: tuple[str, ...],
+    characterize_on: tuple[str, ...],
+    threshold: float,
+    starts: int,
+    max_time: float | None,
+    executor: dict,
+    out: str | None,
+    overwrite: bool,
+    as_json: bool,
+) -> None:
     """Find a damper's characteristics, build its customized model and cross-validate it (Vivas-López et al.)."""
     from .._util import check_output_path
     from ..characterization.method import characterize as run
@@ -49,15 +78,20 @@ def characterize(records: tuple[str, ...], characterize_on: tuple[str, ...], thr
     from ..executor import executor_scope
 
     if out is not None:
-        out, _ = check_output_path(out, force=overwrite, formats={".html": "html"},
-                                   inputs=(*records, *characterize_on))
+        out, _ = check_output_path(out, force=overwrite, formats={".html": "html"}, inputs=(*records, *characterize_on))
     recs = [read_measurement(r) for r in records]
     options = {"starts": starts, **({} if max_time is None else {"max_time": max_time})}
     with executor_scope(**executor) as runner:
-        result = run(recs, characterize_on=[read_measurement(r) for r in characterize_on], threshold=threshold,
-                     executor=runner, identify_options=options)
+        result = run(
+            recs,
+            characterize_on=[read_measurement(r) for r in characterize_on],
+            threshold=threshold,
+            executor=runner,
+            identify_options=options,
+        )
     if out is not None:
         from ..report.characterization import write_characterization
+
         write_characterization(result, out, overwrite=overwrite, option="--out")
     doc = result.to_dict()
     if as_json:
@@ -74,14 +108,18 @@ def _cell(x) -> str:
 def _text(doc: dict) -> str:
     """The readable report of the JSON document."""
     from ..report.characterization import esr_change_text as _less
+
     lines = [f"Characteristics of {', '.join(r['name'] for r in doc['characterized_on'])} (Vivas-López et al.):"]
     for c in doc["characteristics"]:
-        lines.append(f"  [{'x' if c['found'] else ' '}] {c['title']} ({c['diagram']} -> {c['model_term']}): "
-                     f"{c['evidence']}")
+        lines.append(
+            f"  [{'x' if c['found'] else ' '}] {c['title']} ({c['diagram']} -> {c['model_term']}): {c['evidence']}"
+        )
     m = doc["model"]
-    lines.append(f"Customized model: terms {', '.join(m['terms'])}; "
-                 f"{'asymmetric' if m['asymmetric'] else 'symmetric'} coefficients; {m['parameter_count']} "
-                 f"parameters; identified on {m['identified_on']} (ESR {m['esr']:.4f})")
+    lines.append(
+        f"Customized model: terms {', '.join(m['terms'])}; "
+        f"{'asymmetric' if m['asymmetric'] else 'symmetric'} coefficients; {m['parameter_count']} "
+        f"parameters; identified on {m['identified_on']} (ESR {m['esr']:.4f})"
+    )
     width = max(len(k) for k in m["parameters"])
     lines += [f"  {k:<{width}}  {v}" for k, v in m["parameters"].items()]
     cv = doc["cross_validation"]
@@ -95,10 +133,14 @@ def _text(doc: dict) -> str:
         lines.append(f"  {'average':<{w}}" + "".join(_cell(x) for x in cv[key]["average"]))
     c = doc["comparison"]
     ident, cvc = c["identification"], c["cross_validation"]
-    lines.append(f"Identification ESR (Table 6): customized {', '.join(_cell(x).strip() for x in ident['customized'])}; "
-                 f"Eyring-plastic {', '.join(_cell(x).strip() for x in ident['eyring_plastic'])} "
-                 f"({_less(ident['esr_reduction'])} on average)")
-    lines.append(f"Cross-validation mean ESR: customized {cvc['customized_mean_esr']:.4f}, Eyring-plastic "
-                 f"{cvc['eyring_plastic_mean_esr']:.4f} ({_less(cvc['esr_reduction'])}); the customized "
-                 f"model is {'better' if c['customized_better'] else 'not better'}")
+    lines.append(
+        f"Identification ESR (Table 6): customized {', '.join(_cell(x).strip() for x in ident['customized'])}; "
+        f"Eyring-plastic {', '.join(_cell(x).strip() for x in ident['eyring_plastic'])} "
+        f"({_less(ident['esr_reduction'])} on average)"
+    )
+    lines.append(
+        f"Cross-validation mean ESR: customized {cvc['customized_mean_esr']:.4f}, Eyring-plastic "
+        f"{cvc['eyring_plastic_mean_esr']:.4f} ({_less(cvc['esr_reduction'])}); the customized "
+        f"model is {'better' if c['customized_better'] else 'not better'}"
+    )
     return "\n".join(lines)

@@ -33,16 +33,34 @@ Rounding and ties ([design.search] of the requirements file):
 @cli.command(epilog=_EXAMPLES)
 @click.argument("requirements_file", metavar="REQUIREMENTS.toml")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units) instead of a table.")
-@click.option("--out", "out", default=None, metavar="designs.csv",
-              help="Also write the ranked designs, the Pareto front (and the nearest design when nothing is "
-                   "feasible) to a CSV file with units in the header.")
-@click.option("--write-damper", "write_damper", type=(int, str), default=None, metavar="N OUT.toml",
-              help="Also write the design ranked N (1 is the best) as a damper file that every command loads.")
-@click.option("--force", is_flag=True,
-              help="Let --out and --write-damper replace existing files (never the requirements file).")
+@click.option(
+    "--out",
+    "out",
+    default=None,
+    metavar="designs.csv",
+    help="Also write the ranked designs, the Pareto front (and the nearest design when nothing is "
+    "feasible) to a CSV file with units in the header.",
+)
+@click.option(
+    "--write-damper",
+    "write_damper",
+    type=(int, str),
+    default=None,
+    metavar="N OUT.toml",
+    help="Also write the design ranked N (1 is the best) as a damper file that every command loads.",
+)
+@click.option(
+    "--force", is_flag=True, help="Let --out and --write-damper replace existing files (never the requirements file)."
+)
 @executor_options(default_jobs="1")
-def design(requirements_file: str, as_json: bool, out: str | None, write_damper: tuple[int, str] | None,
-           force: bool, executor: dict) -> None:
+def design(
+    requirements_file: str,
+    as_json: bool,
+    out: str | None,
+    write_damper: tuple[int, str] | None,
+    force: bool,
+    executor: dict,
+) -> None:
     """Feasible damper geometries ranked by the objective, or the conflicts when there are none."""
     inputs = {"the requirements file": requirements_file}
     if out is not None:  # checked before the search: a refused name must not cost a long run
@@ -52,10 +70,17 @@ def design(requirements_file: str, as_json: bool, out: str | None, write_damper:
     if write_damper is not None:
         rank, damper_out = write_damper
         if not 1 <= rank <= req.search.designs:
-            raise ErdesignError(f"--write-damper {rank}: the search returns designs 1 (the best) to "
-                                f"{req.search.designs} (design.search.designs of {requirements_file})")
-        damper_out, _ = check_output_path(damper_out, force=force, option="--write-damper",
-                                          inputs={**inputs, "the --out file": out}, formats={".toml": "toml"})
+            raise ErdesignError(
+                f"--write-damper {rank}: the search returns designs 1 (the best) to "
+                f"{req.search.designs} (design.search.designs of {requirements_file})"
+            )
+        damper_out, _ = check_output_path(
+            damper_out,
+            force=force,
+            option="--write-damper",
+            inputs={**inputs, "the --out file": out},
+            formats={".toml": "toml"},
+        )
     result = run_design(req, progress=_Progress(), **executor)
     if out is not None:
         result.write_csv(out, overwrite=force, option="--out")
@@ -63,7 +88,7 @@ def design(requirements_file: str, as_json: bool, out: str | None, write_damper:
         emit_json(result.as_json())
     else:
         click.echo(_table(result))
-    if damper_out is not None:      # after the table: when nothing is feasible its conflicts say why
+    if damper_out is not None:  # after the table: when nothing is feasible its conflicts say why
         _write_damper(result, rank, damper_out, requirements_file, force)
 
 
@@ -75,9 +100,11 @@ def _write_damper(result, rank: int, path, requirements_file: str, force: bool) 
         raise ErdesignError(f"--write-damper {exc}") from None
     rec = result.design(rank)
     p = result.requirements.points[0]
-    comment = (f"design {rank} of erdesign design {requirements_file} (objective {result.requirements.objective})\n"
-               f"at point 1 (v = {p.velocity:.6g} m/s, field {rec['points'][0]['field']}): "
-               f"force {rec['force_N']:.6g} N, zero-field force {rec['zero_field_force_N']:.6g} N")
+    comment = (
+        f"design {rank} of erdesign design {requirements_file} (objective {result.requirements.objective})\n"
+        f"at point 1 (v = {p.velocity:.6g} m/s, field {rec['points'][0]['field']}): "
+        f"force {rec['force_N']:.6g} N, zero-field force {rec['zero_field_force_N']:.6g} N"
+    )
     save_damper(spec, path, comment=comment, overwrite=force, option="--write-damper")
     click.echo(f"design {rank} written to {path}", err=True)
 
@@ -93,8 +120,11 @@ class _Progress:
     def __call__(self, evaluated: int, total: int, feasible: int) -> None:
         now = time.monotonic()
         if now >= self.next and evaluated < total:
-            click.echo(f"design: {evaluated} of {total} candidates evaluated ({100 * evaluated / total:.0f} %), "
-                       f"{feasible} feasible so far, {now - self.start:.0f} s", err=True)
+            click.echo(
+                f"design: {evaluated} of {total} candidates evaluated ({100 * evaluated / total:.0f} %), "
+                f"{feasible} feasible so far, {now - self.start:.0f} s",
+                err=True,
+            )
             self.next = now + self.every
 
 
@@ -104,21 +134,51 @@ def _geometry_cells(rec: dict) -> list[str]:
     def mm(key: str) -> str:
         return g[key].removesuffix(" mm") if key in g else "-"
 
-    return [mm("gap"), mm("duct_length"), mm("duct_mean_diameter"), mm("piston_diameter"), mm("rod_diameter"),
-            str(g.get("ducts", 1))]
+    return [
+        mm("gap"),
+        mm("duct_length"),
+        mm("duct_mean_diameter"),
+        mm("piston_diameter"),
+        mm("rod_diameter"),
+        str(g.get("ducts", 1)),
+    ]
 
 
 def _row(rec: dict, label: str) -> list[str]:
     dyn = rec["dynamic_range"]
-    return [label, *_geometry_cells(rec), f"{rec['force_N'] / 1e3:.4g}", f"{rec['zero_field_force_N'] / 1e3:.4g}",
-            "-" if dyn is None else f"{dyn:.4g}", f"{rec['fluid_volume_m3'] * 1e6:.4g}",
-            f"{rec['outer_diameter_m'] * 1e3:.4g}", f"{rec['length_m'] * 1e3:.4g}",
-            f"{rec['bingham_number']:.3g}" if rec["bingham_number"] is not None else "-",
-            f"{rec['plug_fraction']:.3g}", f"{rec['gap_ratio']:.3g}"]
+    return [
+        label,
+        *_geometry_cells(rec),
+        f"{rec['force_N'] / 1e3:.4g}",
+        f"{rec['zero_field_force_N'] / 1e3:.4g}",
+        "-" if dyn is None else f"{dyn:.4g}",
+        f"{rec['fluid_volume_m3'] * 1e6:.4g}",
+        f"{rec['outer_diameter_m'] * 1e3:.4g}",
+        f"{rec['length_m'] * 1e3:.4g}",
+        f"{rec['bingham_number']:.3g}" if rec["bingham_number"] is not None else "-",
+        f"{rec['plug_fraction']:.3g}",
+        f"{rec['gap_ratio']:.3g}",
+    ]
 
 
-_HEAD = ["#", "h [mm]", "L [mm]", "d [mm]", "Dp [mm]", "dr [mm]", "n", "F [kN]", "F0 [kN]", "F/F0", "V [cm3]",
-         "OD [mm]", "len [mm]", "Bi", "phi", "h/d"]
+_HEAD = [
+    "#",
+    "h [mm]",
+    "L [mm]",
+    "d [mm]",
+    "Dp [mm]",
+    "dr [mm]",
+    "n",
+    "F [kN]",
+    "F0 [kN]",
+    "F/F0",
+    "V [cm3]",
+    "OD [mm]",
+    "len [mm]",
+    "Bi",
+    "phi",
+    "h/d",
+]
 
 
 def _grid(rows: list[list[str]]) -> str:
@@ -129,19 +189,24 @@ def _grid(rows: list[list[str]]) -> str:
 def _table(result) -> str:
     req = result.requirements
     p = req.points[0]
-    lines = [f"{req.name or 'requirements'}: {req.configuration} damper, objective {req.objective}",
-             (f"{result.evaluated} candidates evaluated, {result.feasible_count} feasible "
-              f"(figures at point 1: v = {p.velocity * 1e3:.4g} mm/s)"),
-             result.ranking_note()]
+    lines = [
+        f"{req.name or 'requirements'}: {req.configuration} damper, objective {req.objective}",
+        (
+            f"{result.evaluated} candidates evaluated, {result.feasible_count} feasible "
+            f"(figures at point 1: v = {p.velocity * 1e3:.4g} mm/s)"
+        ),
+        result.ranking_note(),
+    ]
     if result.feasible:
         lines.append(_grid([_HEAD] + [_row(d, str(d["rank"])) for d in result.designs]))
         lines.append("active constraints: (the limits each design sits on, within the active tolerance)")
-        lines += [f"  {d['rank']}: {', '.join(d['active_constraints']) or 'none (inside every limit)'}"
-                  for d in result.designs]
+        lines += [
+            f"  {d['rank']}: {', '.join(d['active_constraints']) or 'none (inside every limit)'}"
+            for d in result.designs
+        ]
         if req.coil is not None:
             lines.append(_coil_grid(result.designs))
-        lines.append(f"Pareto front ({', '.join(req.search.pareto)}): {len(result.pareto)} designs "
-                     "(--out writes them)")
+        lines.append(f"Pareto front ({', '.join(req.search.pareto)}): {len(result.pareto)} designs (--out writes them)")
     else:
         lines.append("no feasible design; conflicts:")
         lines += [f"  - {c}" for c in result.conflicts]
@@ -151,8 +216,23 @@ def _table(result) -> str:
     return "\n".join(lines)
 
 
-_COIL_HEAD = ["#", "N", "d_w [mm]", "d_c [mm]", "L_p [mm]", "OD [mm]", "I [A]", "B_g [T]", "tau_y [kPa]", "R [ohm]",
-              "P [W]", "L/R [ms]", "J [A/mm2]", "fill", "sat"]
+_COIL_HEAD = [
+    "#",
+    "N",
+    "d_w [mm]",
+    "d_c [mm]",
+    "L_p [mm]",
+    "OD [mm]",
+    "I [A]",
+    "B_g [T]",
+    "tau_y [kPa]",
+    "R [ohm]",
+    "P [W]",
+    "L/R [ms]",
+    "J [A/mm2]",
+    "fill",
+    "sat",
+]
 
 
 def _coil_grid(designs: list[dict]) -> str:
@@ -161,12 +241,26 @@ def _coil_grid(designs: list[dict]) -> str:
     for d in designs:
         c, m, p = d["coil"], d["magnetics"], d["points"][0]
         tc = m["time_constant_s"]
-        rows.append([str(d.get("rank", "-")), str(c["turns"]),
-                     *(c[k].removesuffix(" mm") for k in ("wire_diameter", "core_diameter", "pole_length",
-                                                          "housing_outer_diameter")),
-                     f"{m['design_current_A']:.4g}", f"{p['gap_flux_density_T']:.3g}",
-                     f"{p['yield_stress_Pa'] / 1e3:.4g}", f"{m['coil_resistance_ohm']:.4g}", f"{m['power_W']:.4g}",
-                     "-" if tc is None else f"{tc * 1e3:.4g}", f"{p['current_density_A_per_m2'] / 1e6:.3g}",
-                     f"{m['fill_factor']:.2f}", f"{p['saturation_ratio']:.2f}"])
-    return "coils (magnetic circuit at the design current; sat: largest field over the knee field of a part):\n" \
+        rows.append(
+            [
+                str(d.get("rank", "-")),
+                str(c["turns"]),
+                *(
+                    c[k].removesuffix(" mm")
+                    for k in ("wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter")
+                ),
+                f"{m['design_current_A']:.4g}",
+                f"{p['gap_flux_density_T']:.3g}",
+                f"{p['yield_stress_Pa'] / 1e3:.4g}",
+                f"{m['coil_resistance_ohm']:.4g}",
+                f"{m['power_W']:.4g}",
+                "-" if tc is None else f"{tc * 1e3:.4g}",
+                f"{p['current_density_A_per_m2'] / 1e6:.3g}",
+                f"{m['fill_factor']:.2f}",
+                f"{p['saturation_ratio']:.2f}",
+            ]
+        )
+    return (
+        "coils (magnetic circuit at the design current; sat: largest field over the knee field of a part):\n"
         + _grid(rows)
+    )

@@ -21,10 +21,12 @@ def force_noise_option(text: str | None):
     if text is None:
         return None
     from ..units import to_si
+
     value = to_si(text, "N", "--force-noise")
     if not value > 0:
         raise click.BadParameter(f"must be a positive force, got {text!r}", param_hint="--force-noise")
     return value
+
 
 _EXAMPLES = """
 \b
@@ -36,8 +38,14 @@ Examples:
 """
 
 
-def next_command(measurement: str | Sequence[str], damper_file: str, effects: list[str] | tuple[str, ...],
-                 verdict: str, named: tuple[str, ...], options: Sequence[str] = ()) -> str | None:
+def next_command(
+    measurement: str | Sequence[str],
+    damper_file: str,
+    effects: list[str] | tuple[str, ...],
+    verdict: str,
+    named: tuple[str, ...],
+    options: Sequence[str] = (),
+) -> str | None:
     """The command that adds the effect(s) the diagnosis named and diagnoses again, or None when nothing is named.
 
     >>> next_command("my test.csv", "d.toml", [], "missing_effect", ("seal_friction",))
@@ -50,23 +58,46 @@ def next_command(measurement: str | Sequence[str], damper_file: str, effects: li
         return None
     chosen = list(dict.fromkeys([*effects, *named]))
     files = [measurement] if isinstance(measurement, str) else list(measurement)
-    return " ".join(["erdesign diagnose", *map(shlex.quote, files), "--damper", shlex.quote(damper_file),
-                     "--effects", shlex.quote(",".join(chosen)), *map(shlex.quote, options)])
+    return " ".join(
+        [
+            "erdesign diagnose",
+            *map(shlex.quote, files),
+            "--damper",
+            shlex.quote(damper_file),
+            "--effects",
+            shlex.quote(",".join(chosen)),
+            *map(shlex.quote, options),
+        ]
+    )
 
 
 @cli.command(epilog=_EXAMPLES)
 @click.argument("measurements", metavar="MEASUREMENT.csv...", nargs=-1, required=True)
 @click.option("--damper", "damper_file", required=True, metavar="DAMPER.toml", help="Damper file (geometry, fluid).")
 @click.option("--effects", default="", help="Effects already in the model, comma separated.")
-@click.option("--exclude-clipped", is_flag=True,
-              help="Leave force samples at a flat top or bottom out even where the detector is unsure "
-                   "(clipped samples it is sure of are left out anyway).")
-@click.option("--force-noise", default=None, metavar="F",
-              help='The load cell\'s noise when known, e.g. "5 N" (otherwise estimated from the record).')
+@click.option(
+    "--exclude-clipped",
+    is_flag=True,
+    help="Leave force samples at a flat top or bottom out even where the detector is unsure "
+    "(clipped samples it is sure of are left out anyway).",
+)
+@click.option(
+    "--force-noise",
+    default=None,
+    metavar="F",
+    help='The load cell\'s noise when known, e.g. "5 N" (otherwise estimated from the record).',
+)
 @executor_options(default_jobs="1")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
-def diagnose(measurements: tuple[str, ...], damper_file: str, effects: str, exclude_clipped: bool,
-             force_noise: str | None, executor: dict, as_json: bool) -> None:
+def diagnose(
+    measurements: tuple[str, ...],
+    damper_file: str,
+    effects: str,
+    exclude_clipped: bool,
+    force_noise: str | None,
+    executor: dict,
+    as_json: bool,
+) -> None:
     """Calibrate the physics baseline, show where it fails and rank the effects that could be missing.
 
     The verdict is a missing effect, nothing missing (the residual is at the noise floor) or unexplained (no
@@ -75,8 +106,14 @@ def diagnose(measurements: tuple[str, ...], damper_file: str, effects: str, excl
     """
     damper = load_damper(damper_file)
     records = read_for_damper(measurements, damper)
-    result = run_diagnosis(damper, records, effects, exclude_clipped=True if exclude_clipped else None,
-                           force_noise=force_noise_option(force_noise), **executor)
+    result = run_diagnosis(
+        damper,
+        records,
+        effects,
+        exclude_clipped=True if exclude_clipped else None,
+        force_noise=force_noise_option(force_noise),
+        **executor,
+    )
     if as_json:
         emit_json(result.as_json())
         return
@@ -84,7 +121,8 @@ def diagnose(measurements: tuple[str, ...], damper_file: str, effects: str, excl
     named = tuple(result.missing_effects)
     given = [e.strip() for e in effects.split(",") if e.strip()]
     options = (["--exclude-clipped"] if exclude_clipped else []) + (
-        ["--force-noise", force_noise] if force_noise else [])
+        ["--force-noise", force_noise] if force_noise else []
+    )
     command = next_command(list(measurements), damper_file, given, result.verdict, named, options)
     if command:
         click.echo(f"\nnext: add {' and '.join(named)} and diagnose again:\n  {command}")

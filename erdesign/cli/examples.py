@@ -29,13 +29,25 @@ def examples_command(as_json: bool) -> None:
     items = []
     for name in example_names():
         damper = load_example(name)
-        items.append({"name": name, "title": damper.name, "configuration": damper.geometry.configuration,
-                      "source": f"examples/{name}.toml"})
+        items.append(
+            {
+                "name": name,
+                "title": damper.name,
+                "configuration": damper.geometry.configuration,
+                "source": f"examples/{name}.toml",
+            }
+        )
     requirements = []
     for name in example_requirements_names():
         req = load_example_requirements(name)
-        requirements.append({"name": name, "title": req.name, "configuration": req.configuration,
-                             "source": f"examples/requirements/{name}.toml"})
+        requirements.append(
+            {
+                "name": name,
+                "title": req.name,
+                "configuration": req.configuration,
+                "source": f"examples/requirements/{name}.toml",
+            }
+        )
     if as_json:
         emit_json({"examples": items, "requirements": requirements})
         return

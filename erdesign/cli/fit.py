@@ -26,14 +26,27 @@ Examples:
 @click.argument("measurements", metavar="MEASUREMENT.csv...", nargs=-1, required=True)
 @click.option("--damper", "damper_file", required=True, metavar="DAMPER.toml", help="Damper file (geometry, fluid).")
 @click.option("--effects", default="", help="Effects to add to the baseline, comma separated (e.g. seal_friction).")
-@click.option("--exclude-clipped", is_flag=True,
-              help="Leave force samples at a flat top or bottom out even where the detector is unsure "
-                   "(clipped samples it is sure of are left out anyway).")
-@click.option("--force-noise", default=None, metavar="F",
-              help='The load cell\'s noise when known, e.g. "5 N" (accepted as by diagnose; the fit does not use it).')
+@click.option(
+    "--exclude-clipped",
+    is_flag=True,
+    help="Leave force samples at a flat top or bottom out even where the detector is unsure "
+    "(clipped samples it is sure of are left out anyway).",
+)
+@click.option(
+    "--force-noise",
+    default=None,
+    metavar="F",
+    help='The load cell\'s noise when known, e.g. "5 N" (accepted as by diagnose; the fit does not use it).',
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a report.")
-def fit(measurements: tuple[str, ...], damper_file: str, effects: str, exclude_clipped: bool,
-        force_noise: str | None, as_json: bool) -> None:
+def fit(
+    measurements: tuple[str, ...],
+    damper_file: str,
+    effects: str,
+    exclude_clipped: bool,
+    force_noise: str | None,
+    as_json: bool,
+) -> None:
     """Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects.
 
     The fit and its ESR are judged on the samples ``erdesign diagnose`` judges, so both state the same ESR for the
@@ -45,14 +58,18 @@ def fit(measurements: tuple[str, ...], damper_file: str, effects: str, exclude_c
     for f in result.findings:
         click.echo(f"note: {f.kind}: {f.record}: {f.message}", err=True)
     if len(result.records) > 1:
-        click.echo("ESR per record: " + ", ".join(f"{r['name']} {r['esr']:.4g}" if r["esr"] is not None else
-                                                  f"{r['name']} -" for r in result.records), err=True)
+        click.echo(
+            "ESR per record: "
+            + ", ".join(
+                f"{r['name']} {r['esr']:.4g}" if r["esr"] is not None else f"{r['name']} -" for r in result.records
+            ),
+            err=True,
+        )
     at_bounds = parameters_at_bounds(result)
     for text in at_bounds:
         click.echo(f"warning: the fit ends at a bound: {text}; the value is not an estimate", err=True)
     if as_json:
         # exactly the contract's keys (docs/cli.md): the bounds are said on stderr
-        emit_json({"esr": json_number(result.esr),
-                   "parameters": result.parameters_with_units()})
+        emit_json({"esr": json_number(result.esr), "parameters": result.parameters_with_units()})
         return
     click.echo(result.report())

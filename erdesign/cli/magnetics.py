@@ -24,8 +24,10 @@ def parse_currents(text: str) -> list[float]:
     if not any(parts):
         raise ErdesignError(f"--current: expected a current such as '2 A', got {text!r}")
     if not all(parts):
-        raise ErdesignError(f"--current: {text!r} has an empty item (two commas in a row, or one at an end); give "
-                            "currents separated by commas, e.g. '0.5,1,2 A'")
+        raise ErdesignError(
+            f"--current: {text!r} has an empty item (two commas in a row, or one at an end); give "
+            "currents separated by commas, e.g. '0.5,1,2 A'"
+        )
     unit = None
     last = parts[-1].split()
     if len(last) > 1:
@@ -51,8 +53,7 @@ Examples:
 
 @cli.command(epilog=_EXAMPLES)
 @click.argument("damper_file", metavar="DAMPER.toml")
-@click.option("--current", required=True,
-              help='Coil current, e.g. "2 A"; several separated by commas: "0.5,1,2 A".')
+@click.option("--current", required=True, help='Coil current, e.g. "2 A"; several separated by commas: "0.5,1,2 A".')
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units) instead of a table.")
 def magnetics(damper_file: str, current: str, as_json: bool) -> None:
     """Magnetic circuit of an MR damper with a [coil]: gap flux density, yield stress, coil R, L, L/R, power."""
@@ -77,15 +78,22 @@ def _table(circuit, r) -> str:
         + f"; knee of B_gap(I) at {r.knee_current.to('A').magnitude:.3g} A",
         "",
     ]
-    cols = ["I [A]", "B_gap [T]", "H_gap [kA/m]", "tau_y [kPa]", "L [H]", "L/R [ms]", "P [W]", "J [A/mm2]",
-            "saturated"]
+    cols = ["I [A]", "B_gap [T]", "H_gap [kA/m]", "tau_y [kPa]", "L [H]", "L/R [ms]", "P [W]", "J [A/mm2]", "saturated"]
     rows = []
     for i in range(len(r.current.magnitude)):
-        rows.append([f"{r.current.magnitude[i]:.4g}", f"{r.gap_flux_density.magnitude[i]:.4g}",
-                     f"{r.gap_field.to('kA/m').magnitude[i]:.4g}", f"{r.yield_stress.to('kPa').magnitude[i]:.4g}",
-                     f"{r.inductance.to('H').magnitude[i]:.4g}", f"{r.time_constant.to('ms').magnitude[i]:.4g}",
-                     f"{r.power.to('W').magnitude[i]:.4g}", f"{r.current_density.to('A/mm^2').magnitude[i]:.3g}",
-                     "yes" if r.saturated[i] else "no"])
+        rows.append(
+            [
+                f"{r.current.magnitude[i]:.4g}",
+                f"{r.gap_flux_density.magnitude[i]:.4g}",
+                f"{r.gap_field.to('kA/m').magnitude[i]:.4g}",
+                f"{r.yield_stress.to('kPa').magnitude[i]:.4g}",
+                f"{r.inductance.to('H').magnitude[i]:.4g}",
+                f"{r.time_constant.to('ms').magnitude[i]:.4g}",
+                f"{r.power.to('W').magnitude[i]:.4g}",
+                f"{r.current_density.to('A/mm^2').magnitude[i]:.3g}",
+                "yes" if r.saturated[i] else "no",
+            ]
+        )
     widths = [max(len(c), *(len(row[j]) for row in rows)) for j, c in enumerate(cols)]
     lines.append("  ".join(c.rjust(w) for c, w in zip(cols, widths)))
     lines += ["  ".join(v.rjust(w) for v, w in zip(row, widths)) for row in rows]

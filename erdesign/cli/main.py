@@ -35,31 +35,48 @@ __all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number", "check
 COMMANDS: dict[str, tuple[str, str]] = {
     "app": ("app", "Open the design app (Size, Simulate, Compare and diagnose, Report) in the browser."),
     "batch": ("batch", "Run identify, fit or diagnose on every record; one row per record in one table."),
-    "characterize": ("characterize", "Find a damper's characteristics, build its customized model and cross-validate "
-                                     "it (Vivas-López et al.)."),
+    "characterize": (
+        "characterize",
+        "Find a damper's characteristics, build its customized model and cross-validate it (Vivas-López et al.).",
+    ),
     "design": ("design", "Feasible damper geometries ranked by the objective, or the conflicts when there are none."),
     "doe": ("doe", "Write a test programme (RP, DSFS; SC, ICPS, PRBS actuation; E1-E5) as a record to play."),
-    "diagnose": ("diagnose",
-                 "Calibrate the physics baseline, show where it fails and rank the effects that could be missing."),
-    "examples": ("examples", "List the bundled example dampers and requirements; their names work wherever "
-                             "such a file is asked for."),
-    "fit": ("fit",
-            "Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects."),
-    "identify": ("identify",
-                 "Identify a model's parameters from a measurement (simulation from rest at the first sample)."),
-    "magnetics": ("magnetics", "Magnetic circuit of an MR damper with a [coil]: gap flux density, yield stress, "
-                               "coil R, L, L/R, power."),
-    "materials": ("materials",
-                  'List the fluids of the materials database (name it in a damper file: material = "...").'),
+    "diagnose": (
+        "diagnose",
+        "Calibrate the physics baseline, show where it fails and rank the effects that could be missing.",
+    ),
+    "examples": (
+        "examples",
+        "List the bundled example dampers and requirements; their names work wherever such a file is asked for.",
+    ),
+    "fit": ("fit", "Calibrate the baseline of the damper (viscosity and yield-stress factors) plus the named effects."),
+    "identify": (
+        "identify",
+        "Identify a model's parameters from a measurement (simulation from rest at the first sample).",
+    ),
+    "magnetics": (
+        "magnetics",
+        "Magnetic circuit of an MR damper with a [coil]: gap flux density, yield stress, coil R, L, L/R, power.",
+    ),
+    "materials": (
+        "materials",
+        'List the fluids of the materials database (name it in a damper file: material = "...").',
+    ),
     "models": ("models", "List the damper models with their sources and parameters."),
-    "report": ("report", "Write a self-contained engineering report on a damper (inputs, results, equations, "
-                         "checks, plots)."),
+    "report": (
+        "report",
+        "Write a self-contained engineering report on a damper (inputs, results, equations, checks, plots).",
+    ),
     "simulate": ("simulate", "Run a model with given parameters on a measurement and score it (ESR and more)."),
     "size": ("size", "Quasi-steady design point of a damper at one piston velocity and control."),
-    "vehicle": ("vehicle", "Quarter vehicle with the damper, passive or semi-active: ride figures (Butz and von "
-                           "Stryk 2002)."),
-    "tolerance": ("tolerance", "Spread of force, zero-field force, dynamic range and damping constant under "
-                               "tolerances, with Sobol indices."),
+    "vehicle": (
+        "vehicle",
+        "Quarter vehicle with the damper, passive or semi-active: ride figures (Butz and von Stryk 2002).",
+    ),
+    "tolerance": (
+        "tolerance",
+        "Spread of force, zero-field force, dynamic range and damping constant under tolerances, with Sobol indices.",
+    ),
 }
 
 
@@ -72,15 +89,22 @@ class LazyGroup(click.Group):
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
         if cmd_name not in self.commands and cmd_name in COMMANDS:
             importlib.import_module(f".{COMMANDS[cmd_name][0]}", __package__)
-        install_option_checks(self)          # the shared option checks, on commands however they were imported
+        install_option_checks(self)  # the shared option checks, on commands however they were imported
         return self.commands.get(cmd_name)
 
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
         """The command list of ``--help`` from :data:`COMMANDS`, without importing the commands."""
         names = self.list_commands(ctx)
         limit = formatter.width - 6 - max((len(name) for name in names), default=0)
-        rows = [(name, self.commands[name].get_short_help_str(limit) if name in self.commands
-                 else click.utils.make_default_short_help(COMMANDS[name][1], limit)) for name in names]
+        rows = [
+            (
+                name,
+                self.commands[name].get_short_help_str(limit)
+                if name in self.commands
+                else click.utils.make_default_short_help(COMMANDS[name][1], limit),
+            )
+            for name in names
+        ]
         if rows:
             with formatter.section("Commands"):
                 formatter.write_dl(rows)
@@ -101,8 +125,11 @@ def check_effects_option(ctx, param, value):
         return value
     items = [e.strip() for e in value.split(",")]
     if any(not e for e in items):
-        raise click.BadParameter(f"{value!r} has an empty name; give effect names separated by commas, e.g. "
-                                 "'seal_friction,fluid_inertia'", ctx=ctx, param=param)
+        raise click.BadParameter(
+            f"{value!r} has an empty name; give effect names separated by commas, e.g. 'seal_friction,fluid_inertia'",
+            ctx=ctx,
+            param=param,
+        )
     twice = sorted({e for e in items if items.count(e) > 1})
     if twice:
         raise click.BadParameter(f"{', '.join(twice)} given twice", ctx=ctx, param=param)
@@ -128,21 +155,36 @@ def executor_options(default_jobs: str):
         def settle(ctx, param, value):
             jobs, scheduler = ctx.params.pop("jobs", None), value
             if jobs is not None and scheduler:
-                raise click.UsageError("--jobs and --scheduler: give one of them (the cluster's workers replace "
-                                       "the local processes)")
+                raise click.UsageError(
+                    "--jobs and --scheduler: give one of them (the cluster's workers replace the local processes)"
+                )
             if scheduler:
                 return {"jobs": None, "scheduler": scheduler}
             if jobs is None:
                 from ..executor import default_jobs as all_cores
+
                 jobs = all_cores() if default_jobs == "all" else 1
             return {"jobs": jobs, "scheduler": None}
 
-        command = click.option("--scheduler", "executor", default=None, metavar="ADDRESS", callback=settle,
-                               help="Run the tasks on a Dask distributed cluster, e.g. tcp://10.0.0.5:8786 (its "
-                                    "workers need erdesign and the files).")(command)
-        return click.option("--jobs", default=None, type=click.IntRange(min=1), metavar="N", is_eager=True,
-                            help=f"Run the independent tasks on N local processes (default: {default_text}); the "
-                                 "results are the same for any N.")(command)
+        command = click.option(
+            "--scheduler",
+            "executor",
+            default=None,
+            metavar="ADDRESS",
+            callback=settle,
+            help="Run the tasks on a Dask distributed cluster, e.g. tcp://10.0.0.5:8786 (its "
+            "workers need erdesign and the files).",
+        )(command)
+        return click.option(
+            "--jobs",
+            default=None,
+            type=click.IntRange(min=1),
+            metavar="N",
+            is_eager=True,
+            help=f"Run the independent tasks on N local processes (default: {default_text}); the "
+            "results are the same for any N.",
+        )(command)
+
     return decorate
 
 
@@ -155,8 +197,11 @@ def json_number(x: float | None) -> float | None:
 
 
 #: Library argument names in messages -> the flags that set them (the library names its own arguments).
-LIBRARY_TO_FLAG = (("exclude_clipped=True", "--exclude-clipped"), ("max_time", "--max-time"),
-                   ("control_reference: ", "--control-reference: "))
+LIBRARY_TO_FLAG = (
+    ("exclude_clipped=True", "--exclude-clipped"),
+    ("max_time", "--max-time"),
+    ("control_reference: ", "--control-reference: "),
+)
 
 
 def as_flags(text: str) -> str:
@@ -194,7 +239,7 @@ def main(argv: list[str] | None = None) -> int:
     except click.exceptions.Abort:
         click.echo("erdesign: aborted", err=True)
         return 1
-    except RecursionError:    # a Python limit reached by the input (deeply nested data), not a bug to report
+    except RecursionError:  # a Python limit reached by the input (deeply nested data), not a bug to report
         click.echo("error: the input is nested too deeply to read", err=True)
         return 1
     except click.UsageError as exc:
@@ -211,8 +256,11 @@ def main(argv: list[str] | None = None) -> int:
         click.echo(f"error: {one_line(exc)}", err=True)
         return 1
     except Exception as exc:  # a bug, not bad input: still one line, but say so
-        click.echo(f"internal error: {type(exc).__name__}: {one_line(exc)} "
-                   "(please report this with the command that caused it)", err=True)
+        click.echo(
+            f"internal error: {type(exc).__name__}: {one_line(exc)} "
+            "(please report this with the command that caused it)",
+            err=True,
+        )
         return 3
     return 0
 

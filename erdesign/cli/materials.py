@@ -29,10 +29,10 @@ def materials_command(as_json: bool) -> None:
     width = max(len(m["name"]) for m in items)
     for m in items:
         fluid = m["fluid"]
-        law = m["yield_curve"]["description"] if m["yield_curve"] else (
-            f"power law, n = {fluid['yield_exponent']}")
+        law = m["yield_curve"]["description"] if m["yield_curve"] else (f"power law, n = {fluid['yield_exponent']}")
         field = m["range"].get("field")
-        click.echo(f"{m['name']:<{width}}  {m['kind']}  tau_y {fluid['yield_stress']} at {fluid['reference_field']}"
-                   f", eta {fluid['viscosity']}, rho {fluid['density']}")
-        click.echo(f"{'':<{width}}      {law}; range "
-                   + (f"{field[0]} to {field[1]}" if field else "not stated"))
+        click.echo(
+            f"{m['name']:<{width}}  {m['kind']}  tau_y {fluid['yield_stress']} at {fluid['reference_field']}"
+            f", eta {fluid['viscosity']}, rho {fluid['density']}"
+        )
+        click.echo(f"{'':<{width}}      {law}; range " + (f"{field[0]} to {field[1]}" if field else "not stated"))

@@ -38,24 +38,32 @@ def quantity_option(text: str, si_unit: str, option: str) -> Any:
     value = plain_number(text)
     if value is None:
         return text
-    if value != 0 and math.isfinite(value):      # 0 is 0 in any unit; NaN is an error of its own
+    if value != 0 and math.isfinite(value):  # 0 is 0 in any unit; NaN is an error of its own
         unit = f"{Q_(1.0, si_unit).units:~P}"
-        warnings.warn(f"{option} {text}: a bare number, read as {text} {unit}; give the unit, e.g. "
-                      f"\"{text} {unit}\"", ErdesignWarning, stacklevel=2)
+        warnings.warn(
+            f'{option} {text}: a bare number, read as {text} {unit}; give the unit, e.g. "{text} {unit}"',
+            ErdesignWarning,
+            stacklevel=2,
+        )
     return Q_(value, si_unit)
 
 
 @cli.command(epilog=_EXAMPLES)
 @click.argument("damper_file", metavar="DAMPER.toml")
-@click.option("--velocity", required=True,
-              help='Piston velocity with its unit, e.g. "1 in/s" (a bare number is read in m/s, with a warning).')
+@click.option(
+    "--velocity",
+    required=True,
+    help='Piston velocity with its unit, e.g. "1 in/s" (a bare number is read in m/s, with a warning).',
+)
 @click.option("--field", default=None, help='Control: field, current or voltage, e.g. "3 kV/mm" (default 0).')
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI units) instead of a table.")
 def size(damper_file: str, velocity: str, field: str | None, as_json: bool) -> None:
     """Quasi-steady design point of a damper at one piston velocity and control."""
     damper = load_damper(damper_file)
-    r = damper.size(velocity=quantity_option(velocity, "m/s", "--velocity"),
-                    field=None if field is None else quantity_option(field, damper.fluid.control_unit, "--field"))
+    r = damper.size(
+        velocity=quantity_option(velocity, "m/s", "--velocity"),
+        field=None if field is None else quantity_option(field, damper.fluid.control_unit, "--field"),
+    )
     if as_json:
         out = r.as_json()
         out["dynamic_range"] = json_number(out["dynamic_range"])
@@ -73,23 +81,31 @@ def _size_table(damper, r) -> str:
     config = f"{g.configuration}, {r.flow_model}, h/d = {r.gap_ratio:.3g}"
     rows = [
         ("piston area A_p", q(r.piston_area, "cm^2")),
-        ("flow rate Q = v A_p", q(r.flow_rate, "mL/s")
-         + (f"  ({q(r.flow_per_duct, 'mL/s')} per duct)" if g.ducts > 1 else "")),
+        (
+            "flow rate Q = v A_p",
+            q(r.flow_rate, "mL/s") + (f"  ({q(r.flow_per_duct, 'mL/s')} per duct)" if g.ducts > 1 else ""),
+        ),
         ("yield stress / viscosity", f"{q(r.yield_stress, 'kPa')} / {q(r.viscosity, 'Pa*s')}"),
         ("pressure drop", q(r.pressure_drop, "MPa")),
         ("force (with seal friction)", q(r.force)),
         ("zero-field force", q(r.zero_field_force)),
-        ("dynamic range F(E)/F(0)", "undefined (zero-field force is 0)" if r.dynamic_range is None
-         else f"{r.dynamic_range:.4g}"),
+        (
+            "dynamic range F(E)/F(0)",
+            "undefined (zero-field force is 0)" if r.dynamic_range is None else f"{r.dynamic_range:.4g}",
+        ),
         ("yield force of the fluid", q(r.yield_force)),
         ("seal friction", q(r.seal_friction, "N")),
-        ("damping constant C (eq 15)" if g.configuration == "valve" else "damping constant C (zero field)",
-         q(r.damping_constant, "kN*s/m")),
+        (
+            "damping constant C (eq 15)" if g.configuration == "valve" else "damping constant C (zero field)",
+            q(r.damping_constant, "kN*s/m"),
+        ),
         ("Reynolds number (eq 1)", f"{r.reynolds:.4g} ({'laminar' if r.laminar else 'NOT laminar: > 2300'})"),
         ("plug fraction", f"{r.plug_fraction:.4g}"),
     ]
     width = max(len(k) for k, _ in rows)
-    head = (f"{damper.name or 'damper'} ({config})\n"
-            f"at v = {format_quantity(r.velocity.to_compact())}, "
-            f"control = {format_quantity(r.field.to(damper.fluid.field_unit))}")
+    head = (
+        f"{damper.name or 'damper'} ({config})\n"
+        f"at v = {format_quantity(r.velocity.to_compact())}, "
+        f"control = {format_quantity(r.field.to(damper.fluid.field_unit))}"
+    )
     return head + "\n" + "\n".join(f"  {k:<{width}}  {v}" for k, v in rows)

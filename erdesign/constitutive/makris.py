@@ -382,9 +382,7 @@ def _eq11_bracket(theta, a):
     with np.errstate(divide="ignore", invalid="ignore"):
         # a > 1: sqrt(a^2 - 1) written as sqrt((a - 1)(a + 1)) to keep its digits near a = 1.
         root_above = np.sqrt((a - 1.0) * (a + 1.0))
-        atan_term = np.where(
-            above, 2.0 * a / root_above * np.arctan(root_above * x / (a + 1.0)), 0.0
-        )
+        atan_term = np.where(above, 2.0 * a / root_above * np.arctan(root_above * x / (a + 1.0)), 0.0)
         # a < 1: ln((k + x)/(k - x)) = log1p(2x/(k - x)); k -> inf as a -> 1 and the term tends to x.
         root_below = np.sqrt((1.0 - a) * (1.0 + a))
         k = np.sqrt((1.0 + a) / (1.0 - a))

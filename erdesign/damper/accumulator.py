@@ -42,9 +42,19 @@ from ..errors import DamperFileError, PlausibilityWarning
 from ..schema import Number, Table, field, quantity, validate
 from ..units import to_si
 
-__all__ = ["Accumulator", "accumulator_from_table", "accumulator_table", "accumulator_preload",
-           "accumulator_stiffness", "AccumulatorTable", "ACCUMULATOR_KEYS", "DEFAULT_POLYTROPIC_INDEX", "ROD_KINDS",
-           "PLAUSIBLE_PRECHARGE", "PLAUSIBLE_GAS_VOLUME"]
+__all__ = [
+    "Accumulator",
+    "accumulator_from_table",
+    "accumulator_table",
+    "accumulator_preload",
+    "accumulator_stiffness",
+    "AccumulatorTable",
+    "ACCUMULATOR_KEYS",
+    "DEFAULT_POLYTROPIC_INDEX",
+    "ROD_KINDS",
+    "PLAUSIBLE_PRECHARGE",
+    "PLAUSIBLE_GAS_VOLUME",
+]
 
 #: Values of ``[geometry] rod``: a rod on both sides of the piston (the default) or on one side only.
 ROD_KINDS = ("double", "single")
@@ -57,8 +67,9 @@ class AccumulatorTable(Table):
 
     precharge: quantity("Pa", "positive") = field("p_0, gas pressure with the rod at mid-stroke")
     gas_volume: quantity("m^3", "positive") = field("V_0, gas volume with the rod at mid-stroke")
-    polytropic_index: Number = field("n of p V^n = const (1 isothermal, 1.4 adiabatic air or nitrogen)",
-                                     default=DEFAULT_POLYTROPIC_INDEX)
+    polytropic_index: Number = field(
+        "n of p V^n = const (1 isothermal, 1.4 adiabatic air or nitrogen)", default=DEFAULT_POLYTROPIC_INDEX
+    )
 
 
 #: Keys of the damper file's ``[accumulator]`` table (docs/file_formats.md).
@@ -157,14 +168,20 @@ class Accumulator:
     def __post_init__(self) -> None:
         for key in ("precharge", "gas_volume", "polytropic_index"):
             value = getattr(self, key)
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-                    or not value > 0:
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, (int, float))
+                or not math.isfinite(value)
+                or not value > 0
+            ):
                 raise DamperFileError(f"accumulator.{key}: must be a positive finite number, got {value!r}")
             object.__setattr__(self, key, float(value))
         lo, hi = POLYTROPIC_RANGE
         if not lo <= self.polytropic_index <= hi:
-            raise DamperFileError(f"accumulator.polytropic_index: must lie between {lo:g} (isothermal) and "
-                                  f"{hi:.4g} (adiabatic monatomic gas), got {self.polytropic_index:g}")
+            raise DamperFileError(
+                f"accumulator.polytropic_index: must lie between {lo:g} (isothermal) and "
+                f"{hi:.4g} (adiabatic monatomic gas), got {self.polytropic_index:g}"
+            )
 
     @staticmethod
     def rod_area(rod_diameter: float) -> float:
@@ -177,8 +194,9 @@ class Accumulator:
 
     def stiffness(self, rod_diameter: float) -> float:
         """k = n p_0 A_r^2 / V_0, [N/m], for a rod of diameter ``rod_diameter`` [m]."""
-        return accumulator_stiffness(self.precharge, self.gas_volume, self.rod_area(rod_diameter),
-                                     self.polytropic_index)
+        return accumulator_stiffness(
+            self.precharge, self.gas_volume, self.rod_area(rod_diameter), self.polytropic_index
+        )
 
 
 def accumulator_from_table(table: Any, where: str = "accumulator") -> Accumulator:
@@ -193,17 +211,25 @@ def accumulator_from_table(table: Any, where: str = "accumulator") -> Accumulato
     V0 = to_si(given.gas_volume, "m^3", f"{where}.gas_volume")
     n = given.polytropic_index
     acc = Accumulator(precharge=p0, gas_volume=V0, polytropic_index=float(n))
-    for key, value, (lo, hi), unit, scale in (("precharge", p0, PLAUSIBLE_PRECHARGE, "MPa", 1e-6),
-                                              ("gas_volume", V0, PLAUSIBLE_GAS_VOLUME, "cm^3", 1e6)):
+    for key, value, (lo, hi), unit, scale in (
+        ("precharge", p0, PLAUSIBLE_PRECHARGE, "MPa", 1e-6),
+        ("gas_volume", V0, PLAUSIBLE_GAS_VOLUME, "cm^3", 1e6),
+    ):
         if not lo <= value <= hi:
-            warnings.warn(f"{where}.{key}: {value * scale:.4g} {unit} is outside the plausible range "
-                          f"{lo * scale:g} to {hi * scale:g} {unit} of a damper's accumulator (a unit mistake?)",
-                          PlausibilityWarning, stacklevel=3)
+            warnings.warn(
+                f"{where}.{key}: {value * scale:.4g} {unit} is outside the plausible range "
+                f"{lo * scale:g} to {hi * scale:g} {unit} of a damper's accumulator (a unit mistake?)",
+                PlausibilityWarning,
+                stacklevel=3,
+            )
     return acc
 
 
 def accumulator_table(acc: Accumulator) -> dict:
     """The ``[accumulator]`` table of a damper file for ``acc`` (values as strings with units; the inverse of
     :func:`accumulator_from_table`, for writing a damper file back)."""
-    return {"precharge": f"{acc.precharge!r} Pa", "gas_volume": f"{acc.gas_volume!r} m^3",
-            "polytropic_index": acc.polytropic_index}
+    return {
+        "precharge": f"{acc.precharge!r} Pa",
+        "gas_volume": f"{acc.gas_volume!r} m^3",
+        "polytropic_index": acc.polytropic_index,
+    }

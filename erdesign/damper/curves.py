@@ -70,11 +70,17 @@ def force_velocity_curves(damper: Damper, velocity, field) -> ForceVelocityCurve
     with np.errstate(divide="ignore", invalid="ignore"):
         dyn = np.where(s0.force != 0, force / np.where(s0.force != 0, s0.force, 1.0), np.nan)
     return ForceVelocityCurves(
-        velocity=v, field=E, control_unit=damper.fluid.control_unit, field_unit=damper.fluid.field_unit,
-        force=np.array(force), pressure_drop=np.broadcast_to(s.pressure_drop, force.shape).copy(),
-        zero_field_force=np.asarray(s0.force, dtype=float), dynamic_range=dyn,
+        velocity=v,
+        field=E,
+        control_unit=damper.fluid.control_unit,
+        field_unit=damper.fluid.field_unit,
+        force=np.array(force),
+        pressure_drop=np.broadcast_to(s.pressure_drop, force.shape).copy(),
+        zero_field_force=np.asarray(s0.force, dtype=float),
+        dynamic_range=dyn,
         reynolds=np.broadcast_to(s.reynolds, force.shape).copy(),
-        plug_fraction=np.broadcast_to(s.plug_fraction, force.shape).copy())
+        plug_fraction=np.broadcast_to(s.plug_fraction, force.shape).copy(),
+    )
 
 
 #: Deprecated names of :class:`ForceVelocityCurves` and :func:`force_velocity_curves` ("sweep" also named a sample of
@@ -108,8 +114,7 @@ def _labels(field, control_unit: str, field_unit: str) -> list[str]:
     return [f"E = {Q_(E, control_unit).to(field_unit).magnitude:.4g} {unit}" for E in field]
 
 
-def sine_loops(damper: Damper, amplitude: float, frequency: float, field, *,
-               samples_per_cycle: int = 480) -> SineLoops:
+def sine_loops(damper: Damper, amplitude: float, frequency: float, field, *, samples_per_cycle: int = 480) -> SineLoops:
     """Force-displacement and force-velocity loops of x = X0 sin(2 pi f t) at each control (SI inputs).
 
     480 samples per cycle: a multiple of 24, so that the report's loop table can sample the cycle at 15, 45, ...
@@ -121,7 +126,9 @@ def sine_loops(damper: Damper, amplitude: float, frequency: float, field, *,
         # The controls were range-checked by the caller; do not repeat the warning once per control here.
         warnings.filterwarnings("ignore", message=r".*is outside the range", category=ValidityWarning)
         responses = tuple(
-            damper.sine_response(Q_(amplitude, "m"), Q_(frequency, "Hz"), Q_(float(e), unit),
-                                 samples_per_cycle=samples_per_cycle)
-            for e in E)
+            damper.sine_response(
+                Q_(amplitude, "m"), Q_(frequency, "Hz"), Q_(float(e), unit), samples_per_cycle=samples_per_cycle
+            )
+            for e in E
+        )
     return SineLoops(amplitude, frequency, E, unit, damper.fluid.field_unit, responses)

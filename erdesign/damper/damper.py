@@ -43,8 +43,15 @@ from ..units import Q_, positive_si, to_si
 from .accumulator import ROD_KINDS, Accumulator
 from .quasi_steady import CRITICAL_REYNOLDS, QuasiSteadyState, damper_state, damping_constant
 
-__all__ = ["Damper", "exact_annulus_for", "QuasiSteadyState", "SizingResult", "SineResponse", "CRITICAL_REYNOLDS",
-           "FLOW_MODELS"]
+__all__ = [
+    "Damper",
+    "exact_annulus_for",
+    "QuasiSteadyState",
+    "SizingResult",
+    "SineResponse",
+    "CRITICAL_REYNOLDS",
+    "FLOW_MODELS",
+]
 
 FLOW_MODELS = ("auto", "thin_gap", "annulus")
 
@@ -176,11 +183,15 @@ class Damper:
             if not isinstance(self.accumulator, Accumulator):
                 raise ErdesignError(f"accumulator: expected an Accumulator, got {self.accumulator!r}")
             if self.rod != "single":
-                raise ErdesignError("accumulator: a gas accumulator pushes on the rod only when the rod is "
-                                    "single-ended; set geometry.rod = \"single\"")
+                raise ErdesignError(
+                    "accumulator: a gas accumulator pushes on the rod only when the rod is "
+                    'single-ended; set geometry.rod = "single"'
+                )
             if self.geometry.rod_diameter <= 0:
-                raise ErdesignError("geometry.rod_diameter: a single-ended damper with an accumulator needs the "
-                                    "rod's diameter (the gas pushes on its cross-section), got 0")
+                raise ErdesignError(
+                    "geometry.rod_diameter: a single-ended damper with an accumulator needs the "
+                    "rod's diameter (the gas pushes on its cross-section), got 0"
+                )
 
     # ------------------------------------------------------------------ accumulator (single-ended rod)
     def gas_preload_si(self) -> float | None:
@@ -226,9 +237,20 @@ class Damper:
         which is linear in the velocity, so exact at any velocity.  Seal friction is not part of C.
         """
         g = self.geometry
-        return float(damping_constant(g.configuration, self.fluid.viscosity, self.fluid.density, g.gap,
-                                      g.duct_length, g.duct_mean_diameter, g.piston_diameter, g.rod_diameter,
-                                      g.ducts, self.uses_exact_annulus))
+        return float(
+            damping_constant(
+                g.configuration,
+                self.fluid.viscosity,
+                self.fluid.density,
+                g.gap,
+                g.duct_length,
+                g.duct_mean_diameter,
+                g.piston_diameter,
+                g.rod_diameter,
+                g.ducts,
+                self.uses_exact_annulus,
+            )
+        )
 
     def yield_force_si(self, field) -> Any:
         """Controllable (yield) force of the fluid at control ``field`` (SI): the fluid force as v -> 0+, [N].
@@ -289,7 +311,10 @@ class Damper:
         if not laminar:
             warnings.warn(
                 f"velocity: Reynolds number {s.reynolds:.4g} exceeds {CRITICAL_REYNOLDS:g}; the laminar gap-flow "
-                "model does not hold (Makris eq 1)", ValidityWarning, stacklevel=2)
+                "model does not hold (Makris eq 1)",
+                ValidityWarning,
+                stacklevel=2,
+            )
         unit = self.fluid.control_unit
         return SizingResult(
             velocity=Q_(v, "m/s"),
@@ -313,8 +338,9 @@ class Damper:
             flow_model="exact annulus" if self.uses_exact_annulus else "thin gap",
         )
 
-    def sine_response(self, amplitude: Any, frequency: Any, field: Any = None, *, cycles: int = 1,
-                      samples_per_cycle: int = 2000) -> SineResponse:
+    def sine_response(
+        self, amplitude: Any, frequency: Any, field: Any = None, *, cycles: int = 1, samples_per_cycle: int = 2000
+    ) -> SineResponse:
         """Quasi-steady force for x = X0 sin(2 pi f t), with energy per cycle and C_eqv (Kamath and Wereley 1997, eqs
         1-2).
 
@@ -333,8 +359,9 @@ class Damper:
         """
         X0 = positive_si(amplitude, "m", "amplitude")
         f = positive_si(frequency, "Hz", "frequency")
-        if not (isinstance(cycles, int) and cycles >= 1 and isinstance(samples_per_cycle, int)
-                and samples_per_cycle >= 16):
+        if not (
+            isinstance(cycles, int) and cycles >= 1 and isinstance(samples_per_cycle, int) and samples_per_cycle >= 16
+        ):
             raise ErdesignError("cycles must be a whole number >= 1 and samples_per_cycle >= 16")
         E = self.fluid.field_si(field)
         omega = 2 * math.pi * f

@@ -39,9 +39,21 @@ from ..units import Q_, same_dimension, to_si
 from .accumulator import ROD_KINDS, AccumulatorTable, accumulator_from_table, accumulator_table
 from .damper import Damper
 
-__all__ = ["load_damper", "damper_file_path", "damper_from_dict", "read_toml", "load_example", "example_names", "parse_fluid_table",
-           "GEOMETRY_KEYS", "FLUID_KEYS", "POWER_LAW_KEYS", "coil_fluid", "COIL_CURRENT_SPAN", "damper_spec"]
-
+__all__ = [
+    "load_damper",
+    "damper_file_path",
+    "damper_from_dict",
+    "read_toml",
+    "load_example",
+    "example_names",
+    "parse_fluid_table",
+    "GEOMETRY_KEYS",
+    "FLUID_KEYS",
+    "POWER_LAW_KEYS",
+    "coil_fluid",
+    "COIL_CURRENT_SPAN",
+    "damper_spec",
+]
 
 
 # ------------------------------------------------------------------------------------- the schema, declared once
@@ -56,44 +68,57 @@ def _control(value: Any) -> Any:
     return value
 
 
-Control = Annotated[Any, BeforeValidator(_control), "control with its unit: electric field (kV/mm), magnetic field "
-                    "(kA/m, T), coil current (A) or driver voltage (V)"]
+Control = Annotated[
+    Any,
+    BeforeValidator(_control),
+    "control with its unit: electric field (kV/mm), magnetic field (kA/m, T), coil current (A) or driver voltage (V)",
+]
 
 
 class GeometryTable(Table):
     """``[geometry]`` of a damper file."""
 
     configuration: choice(*CONFIGURATIONS) = field(
-        "\"valve\": the piston pushes the fluid through stationary annular ducts (Makris et al. 1996); \"mixed\": "
+        '"valve": the piston pushes the fluid through stationary annular ducts (Makris et al. 1996); "mixed": '
         "the piston head is the moving inner electrode, flow and shear in the gap around it (Kamath and Wereley "
-        "1997)")
-    duct_length: Length = field("L, length of each duct; for \"mixed\": length of the piston head (electrode)")
-    duct_mean_diameter: Length = field("d, mean diameter of the annulus; for \"mixed\" it may be omitted (it is "
-                                       "piston_diameter + gap) and must agree when given; required for \"valve\"",
-                                       default=None)
+        "1997)"
+    )
+    duct_length: Length = field('L, length of each duct; for "mixed": length of the piston head (electrode)')
+    duct_mean_diameter: Length = field(
+        'd, mean diameter of the annulus; for "mixed" it may be omitted (it is '
+        'piston_diameter + gap) and must agree when given; required for "valve"',
+        default=None,
+    )
     gap: Length = field("h, width of the annular gap")
-    piston_diameter: Length = field("Dp, piston diameter (for \"mixed\": the head, inner electrode)")
+    piston_diameter: Length = field('Dp, piston diameter (for "mixed": the head, inner electrode)')
     rod_diameter: Length = field("dr, rod diameter (the same on both sides for a double-ended rod)")
     ducts: PositiveWholeNumber = field("number of parallel ducts (valve only)", default=1)
-    rod: choice(*ROD_KINDS) = field("\"double\": a rod on both sides of the piston; \"single\": one rod, with a "
-                                    "gas accumulator ([accumulator])", default="double")
+    rod: choice(*ROD_KINDS) = field(
+        '"double": a rod on both sides of the piston; "single": one rod, with a gas accumulator ([accumulator])',
+        default="double",
+    )
 
 
 class FluidTable(Table):
     """``[fluid]`` of a damper file (and of a requirements file)."""
 
-    material: Text = field("name of a material of the materials database (docs/materials.md): its values are the "
-                           "defaults, the keys given here override them", default=None)
+    material: Text = field(
+        "name of a material of the materials database (docs/materials.md): its values are the "
+        "defaults, the keys given here override them",
+        default=None,
+    )
     viscosity: quantity("Pa*s") = field("eta_0, plastic viscosity at zero field", default=None)
     yield_stress: quantity("Pa") = field("tau_ref, yield stress at reference_field", default=None)
     reference_field: Control = field("control at which yield_stress holds", default=None)
     yield_exponent: Number = field("n in tau_y = yield_stress * (E / reference_field) ** n", default=None)
     density: quantity("kg/m^3") = field("rho, density of the fluid", default=None)
-    viscosity_at_reference_field: quantity("Pa*s") = field("plastic viscosity at reference_field (default: "
-                                                           "viscosity)", default=None)
+    viscosity_at_reference_field: quantity("Pa*s") = field(
+        "plastic viscosity at reference_field (default: viscosity)", default=None
+    )
     shear_modulus: quantity("Pa") = field("G, pre-yield shear modulus (Makris et al. 1996, eq 8)", default=None)
-    seal_friction: quantity("N", "non-negative") = field("F_s, Coulomb friction of the seals (Makris et al. 1996, "
-                                                         "eq 14)", default=None)
+    seal_friction: quantity("N", "non-negative") = field(
+        "F_s, Coulomb friction of the seals (Makris et al. 1996, eq 14)", default=None
+    )
 
 
 class DamperFile(Table):
@@ -102,8 +127,7 @@ class DamperFile(Table):
     name: Text = field("free text naming the damper", default="")
     geometry: GeometryTable = field("the ducts, the piston and the rod")
     fluid: FluidTable = field("the fluid and the seals")
-    coil: dict = field("the coil of an MR damper whose control is the coil current (docs/magnetics.md)",
-                       default=None)
+    coil: dict = field("the coil of an MR damper whose control is the coil current (docs/magnetics.md)", default=None)
     accumulator: AccumulatorTable = field("the gas accumulator of a single-ended rod", default=None)
 
 
@@ -120,8 +144,9 @@ _REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_expone
 def read_toml(path: str | Path) -> dict:
     """Parse a TOML file; a missing file or a syntax error is a :class:`DamperFileError` naming the file."""
     if not is_path_like(path):
-        raise DamperFileError(f"path: expected the name of a TOML file (a str or Path), got {type(path).__name__} "
-                              f"{path!r:.60}")
+        raise DamperFileError(
+            f"path: expected the name of a TOML file (a str or Path), got {type(path).__name__} {path!r:.60}"
+        )
     path = Path(path)
     try:
         text = read_input_bytes(path, MAX_TOML_BYTES, "a TOML file").decode("utf-8")
@@ -138,7 +163,7 @@ def read_toml(path: str | Path) -> dict:
         raise DamperFileError(f"{path}: invalid TOML: {exc}") from None
     except UnicodeDecodeError:
         raise DamperFileError(f"{path}: not a text (UTF-8) file") from None
-    except ValueError as exc:   # beyond the parser's limits: an integer of more than 4300 digits
+    except ValueError as exc:  # beyond the parser's limits: an integer of more than 4300 digits
         detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
         raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
 
@@ -211,15 +236,24 @@ def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_mo
         accumulator = None
         if spec.accumulator is not None:
             if rod != "single":
-                raise DamperFileError("accumulator: a gas accumulator pushes on the rod only when the rod is "
-                                      "single-ended; add rod = \"single\" to [geometry]")
+                raise DamperFileError(
+                    "accumulator: a gas accumulator pushes on the rod only when the rod is "
+                    'single-ended; add rod = "single" to [geometry]'
+                )
             accumulator = accumulator_from_table(data["accumulator"])
         if spec.coil is not None:
             fluid, seal_friction = coil_fluid(data, geometry)
         else:
             fluid, seal_friction = parse_fluid_table(data["fluid"])
-        return Damper(geometry=geometry, fluid=fluid, seal_friction=seal_friction, name=spec.name,
-                      flow_model=flow_model, rod=rod, accumulator=accumulator)
+        return Damper(
+            geometry=geometry,
+            fluid=fluid,
+            seal_friction=seal_friction,
+            name=spec.name,
+            flow_model=flow_model,
+            rod=rod,
+            accumulator=accumulator,
+        )
     except ErdesignError as exc:
         raise type(exc)(f"{source}: {exc}") from None
 
@@ -241,32 +275,43 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
     table = validate(FluidTable, data["fluid"], "fluid", error=DamperFileError).given()
     for key in _COIL_COMPUTED_KEYS:
         if key in table:
-            raise DamperFileError(f"fluid.{key}: not allowed with a [coil]: the magnetic circuit gives the yield "
-                                  "stress at each current (erdesign magnetics)")
+            raise DamperFileError(
+                f"fluid.{key}: not allowed with a [coil]: the magnetic circuit gives the yield "
+                "stress at each current (erdesign magnetics)"
+            )
     if "material" not in table:
-        raise DamperFileError("fluid.material: missing; a damper with a [coil] takes the fluid's B-H and yield "
-                              "curves from the materials database")
+        raise DamperFileError(
+            "fluid.material: missing; a damper with a [coil] takes the fluid's B-H and yield "
+            "curves from the materials database"
+        )
     if "reference_field" not in table:
-        raise DamperFileError("fluid.reference_field: missing; with a [coil] it is the rated coil current, e.g. "
-                              "\"2 A\"")
+        raise DamperFileError('fluid.reference_field: missing; with a [coil] it is the rated coil current, e.g. "2 A"')
     try:
         I_ref = to_si(table["reference_field"], "A", "fluid.reference_field")
     except ErdesignError as exc:
         raise DamperFileError(f"{exc} (with a [coil] the control is the coil current)") from None
     if not (isinstance(I_ref, float) and I_ref > 0):
-        raise DamperFileError(f"fluid.reference_field: the rated current must be positive, got "
-                              f"{table['reference_field']!r}")
+        raise DamperFileError(
+            f"fluid.reference_field: the rated current must be positive, got {table['reference_field']!r}"
+        )
     if I_ref > 20.0:
         import warnings
         from ..errors import ValidityWarning
-        warnings.warn(f"fluid.reference_field: a rated coil current of {I_ref:.3g} A is implausibly large for an "
-                      "MR damper coil; check the unit", ValidityWarning, stacklevel=3)
+
+        warnings.warn(
+            f"fluid.reference_field: a rated coil current of {I_ref:.3g} A is implausibly large for an "
+            "MR damper coil; check the unit",
+            ValidityWarning,
+            stacklevel=3,
+        )
     coil = coil_from_table(data["coil"])
     circuit = build_circuit(geometry, coil, table["material"], name=str(data.get("name", "")))
     if coil.supply_voltage is not None and not coil.supply_voltage > I_ref * circuit.resistance:
-        raise DamperFileError(f"coil.supply_voltage: {coil.supply_voltage:.4g} V cannot drive the rated current "
-                              f"{I_ref:.4g} A (fluid.reference_field) through the coil's {circuit.resistance:.4g} ohm "
-                              f"(needs more than {I_ref * circuit.resistance:.4g} V)")
+        raise DamperFileError(
+            f"coil.supply_voltage: {coil.supply_voltage:.4g} V cannot drive the rated current "
+            f"{I_ref:.4g} A (fluid.reference_field) through the coil's {circuit.resistance:.4g} ohm "
+            f"(needs more than {I_ref * circuit.resistance:.4g} V)"
+        )
     law = coil_law(circuit, COIL_CURRENT_SPAN * I_ref, I_ref, supply_voltage=coil.supply_voltage)
     fit = law.fit(I_ref)
     values = dict(table)
@@ -293,12 +338,19 @@ def damper_spec(damper: Damper) -> dict:
     """
     g, f = damper.geometry, damper.fluid
     if f.field_law is not None:
-        raise DamperFileError(f"fluid: {damper.name or 'this damper'} follows "
-                              f"{'the yield curve of ' + f.material if f.material else 'a tabulated field law'}; "
-                              "only a power-law fluid can be written back as plain values")
-    geometry = {"configuration": g.configuration, "duct_length": f"{g.duct_length!r} m",
-                "duct_mean_diameter": f"{g.duct_mean_diameter!r} m", "gap": f"{g.gap!r} m",
-                "piston_diameter": f"{g.piston_diameter!r} m", "rod_diameter": f"{g.rod_diameter!r} m"}
+        raise DamperFileError(
+            f"fluid: {damper.name or 'this damper'} follows "
+            f"{'the yield curve of ' + f.material if f.material else 'a tabulated field law'}; "
+            "only a power-law fluid can be written back as plain values"
+        )
+    geometry = {
+        "configuration": g.configuration,
+        "duct_length": f"{g.duct_length!r} m",
+        "duct_mean_diameter": f"{g.duct_mean_diameter!r} m",
+        "gap": f"{g.gap!r} m",
+        "piston_diameter": f"{g.piston_diameter!r} m",
+        "rod_diameter": f"{g.rod_diameter!r} m",
+    }
     if g.configuration == "valve":
         geometry["ducts"] = g.ducts
     if damper.rod != "double":
@@ -306,9 +358,13 @@ def damper_spec(damper: Damper) -> dict:
     # the control in the unit it was given in (kV/mm stays kV/mm), so that the file reads back to the same fluid
     unit = f.field_unit
     reference = float(Q_(f.reference_field, f.control_unit).to(unit).magnitude)
-    fluid = {"viscosity": f"{f.viscosity!r} Pa*s", "yield_stress": f"{f.yield_stress!r} Pa",
-             "reference_field": f"{reference!r} {unit}", "yield_exponent": f.yield_exponent,
-             "density": f"{f.density!r} kg/m^3"}
+    fluid = {
+        "viscosity": f"{f.viscosity!r} Pa*s",
+        "yield_stress": f"{f.yield_stress!r} Pa",
+        "reference_field": f"{reference!r} {unit}",
+        "yield_exponent": f.yield_exponent,
+        "density": f"{f.density!r} kg/m^3",
+    }
     if f.viscosity_at_reference_field is not None:
         fluid["viscosity_at_reference_field"] = f"{f.viscosity_at_reference_field!r} Pa*s"
     if f.shear_modulus is not None:
@@ -340,8 +396,9 @@ def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
     (``makris``, ``mr_valve``, ...) or its documented path ``examples/makris.toml`` loads that example
     (:func:`damper_file_path`)."""
     if not is_path_like(path):
-        raise DamperFileError(f"path: expected the name of a damper file (a str or Path), got "
-                              f"{type(path).__name__} {path!r:.60}")
+        raise DamperFileError(
+            f"path: expected the name of a damper file (a str or Path), got {type(path).__name__} {path!r:.60}"
+        )
     by_name = isinstance(path, str) and not Path(path).exists() and path in example_names()
     source = f"examples/{path}.toml" if by_name else str(path)
     return damper_from_dict(read_toml(damper_file_path(path)), source=source, flow_model=flow_model)

@@ -52,8 +52,18 @@ from ..flow.newtonian import slit_pressure_drop
 if TYPE_CHECKING:  # pragma: no cover
     from .damper import Damper
 
-__all__ = ["QuasiSteadyState", "quasi_steady_state", "damping_constant", "valve_state", "valve_pressure_drop",
-           "mixed_state", "MixedGapTable", "mixed_gap_table", "damper_state", "CRITICAL_REYNOLDS"]
+__all__ = [
+    "QuasiSteadyState",
+    "quasi_steady_state",
+    "damping_constant",
+    "valve_state",
+    "valve_pressure_drop",
+    "mixed_state",
+    "MixedGapTable",
+    "mixed_gap_table",
+    "damper_state",
+    "CRITICAL_REYNOLDS",
+]
 
 #: Reynolds number below which the duct flow is taken as laminar (Makris et al., section 2: R_crit = 2300).
 CRITICAL_REYNOLDS = 2300.0
@@ -89,9 +99,26 @@ class QuasiSteadyState(NamedTuple):
 
 
 def _state(force, dp, pressure_force, shear_force, friction, Q_total, Q, phi, mean_velocity, h, rho, tau_y, eta):
-    reynolds = mean_velocity * h * rho / eta   # Makris eq 1: Re = u h / nu = Q / (pi d nu)
-    return QuasiSteadyState(*(scalar_or_array(a) for a in (
-        force, dp, pressure_force, shear_force, friction, Q_total, Q, phi, reynolds, tau_y, eta, mean_velocity)))
+    reynolds = mean_velocity * h * rho / eta  # Makris eq 1: Re = u h / nu = Q / (pi d nu)
+    return QuasiSteadyState(
+        *(
+            scalar_or_array(a)
+            for a in (
+                force,
+                dp,
+                pressure_force,
+                shear_force,
+                friction,
+                Q_total,
+                Q,
+                phi,
+                reynolds,
+                tau_y,
+                eta,
+                mean_velocity,
+            )
+        )
+    )
 
 
 def _valve_gap_flow(Q, tau_y, eta, L, d, h, exact_annulus):
@@ -111,8 +138,9 @@ def _valve_gap_flow(Q, tau_y, eta, L, d, h, exact_annulus):
     dp, phi = np.empty(Q.shape), np.empty(Q.shape)
     for where, exact in ((~annulus, False), (annulus, True)):
         if np.any(where):
-            dp[where], phi[where] = _valve_gap_flow(Q[where], tau_y[where], eta[where], L[where], d[where], h[where],
-                                                    exact)
+            dp[where], phi[where] = _valve_gap_flow(
+                Q[where], tau_y[where], eta[where], L[where], d[where], h[where], exact
+            )
     return dp, phi
 
 
@@ -177,8 +205,21 @@ def valve_state(v, tau_y, eta, rho, seal_friction, h, L, d, Ap, n=1, exact_annul
     shear_force = np.zeros(np.broadcast(dp, v).shape)
     friction = np.copysign(seal_friction, v)
     mean_velocity = np.abs(Q) / (np.pi * d * h)
-    return _state(pressure_force + shear_force + friction, dp, pressure_force, shear_force, friction, Q_total, Q,
-                  phi, mean_velocity, h, rho, tau_y, eta)
+    return _state(
+        pressure_force + shear_force + friction,
+        dp,
+        pressure_force,
+        shear_force,
+        friction,
+        Q_total,
+        Q,
+        phi,
+        mean_velocity,
+        h,
+        rho,
+        tau_y,
+        eta,
+    )
 
 
 def mixed_state(v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr) -> QuasiSteadyState:
@@ -230,8 +271,21 @@ def mixed_state(v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr) -> QuasiStea
     friction = np.copysign(seal_friction, v)
     # the fluid in the gap moves at up to the wall speed |v| as well as at the mean flow speed
     mean_velocity = np.maximum(np.abs(Q_total) / (np.pi * d * h), np.abs(v))
-    return _state(m.pressure_force + m.shear_force + friction, m.pressure_drop, m.pressure_force, m.shear_force,
-                  friction, Q_total, Q_total, m.plug_fraction, mean_velocity, h, rho, tau_y, eta)
+    return _state(
+        m.pressure_force + m.shear_force + friction,
+        m.pressure_drop,
+        m.pressure_force,
+        m.shear_force,
+        friction,
+        Q_total,
+        Q_total,
+        m.plug_fraction,
+        mean_velocity,
+        h,
+        rho,
+        tau_y,
+        eta,
+    )
 
 
 def valve_pressure_drop(Q, tau_y, eta, L, d, h, exact_annulus=False):
@@ -326,8 +380,9 @@ def mixed_gap_table(h: float, Dp: float, dr: float) -> MixedGapTable:
     return MixedGapTable(h, Dp, dr)
 
 
-def quasi_steady_state(configuration, v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr, n=1,
-                       exact_annulus=False) -> QuasiSteadyState:
+def quasi_steady_state(
+    configuration, v, tau_y, eta, rho, seal_friction, h, L, d, Dp, dr, n=1, exact_annulus=False
+) -> QuasiSteadyState:
     r"""Quasi-steady state of dampers of one configuration, vectorised over velocity, fluid and geometry.
 
     Dispatches to :func:`valve_state` (with :math:`A_p = \frac{\pi}{4}(D_p^2 - d_r^2)`) or :func:`mixed_state`;
@@ -407,6 +462,18 @@ def damper_state(damper: "Damper", v, tau_y, eta) -> QuasiSteadyState:
     6.07
     """
     g = damper.geometry
-    return quasi_steady_state(g.configuration, v, tau_y, eta, damper.fluid.density, damper.seal_friction, g.gap,
-                              g.duct_length, g.duct_mean_diameter, g.piston_diameter, g.rod_diameter, g.ducts,
-                              damper.uses_exact_annulus)
+    return quasi_steady_state(
+        g.configuration,
+        v,
+        tau_y,
+        eta,
+        damper.fluid.density,
+        damper.seal_friction,
+        g.gap,
+        g.duct_length,
+        g.duct_mean_diameter,
+        g.piston_diameter,
+        g.rod_diameter,
+        g.ducts,
+        damper.uses_exact_annulus,
+    )

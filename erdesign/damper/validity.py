@@ -50,8 +50,9 @@ class Check:
     source: str
 
 
-def validity_checks(damper: Damper, sweep: ForceVelocityCurves, fields: np.ndarray, v_design: float,
-                    field_design: float | None = None) -> tuple[Check, ...]:
+def validity_checks(
+    damper: Damper, sweep: ForceVelocityCurves, fields: np.ndarray, v_design: float, field_design: float | None = None
+) -> tuple[Check, ...]:
     """The validity checks of a design (module notes): the report's section 4 and the app's Size page.
 
     ``sweep`` holds the force-velocity curves on the grid of :func:`erdesign.report.builder.report_grid`; ``fields``
@@ -61,61 +62,125 @@ def validity_checks(damper: Damper, sweep: ForceVelocityCurves, fields: np.ndarr
     g, fluid = damper.geometry, damper.fluid
     out = []
     re_max = float(np.nanmax(sweep.reynolds))
-    out.append(Check(
-        "laminar", "Laminar flow (Reynolds number)", "pass" if re_max < CRITICAL_REYNOLDS else "warn",
-        show(re_max, "", name="largest Reynolds number"), show(CRITICAL_REYNOLDS, "", name="critical Reynolds"),
-        "largest Re of the velocity and control sweep" + ("" if re_max < CRITICAL_REYNOLDS else
-                                                           ": the laminar gap-flow model does not hold"),
-        "Makris et al. (1996), eq 1"))
+    out.append(
+        Check(
+            "laminar",
+            "Laminar flow (Reynolds number)",
+            "pass" if re_max < CRITICAL_REYNOLDS else "warn",
+            show(re_max, "", name="largest Reynolds number"),
+            show(CRITICAL_REYNOLDS, "", name="critical Reynolds"),
+            "largest Re of the velocity and control sweep"
+            + ("" if re_max < CRITICAL_REYNOLDS else ": the laminar gap-flow model does not hold"),
+            "Makris et al. (1996), eq 1",
+        )
+    )
     ratio = g.gap_ratio
     thin_ok = ratio <= THIN_GAP_LIMIT
     detail = f"thin-gap error {g.thin_gap_error * 100:.3g} % of the Newtonian pressure drop"
     if not thin_ok:
-        detail += ("; the valve flow uses the exact annulus" if damper.uses_exact_annulus else
-                   "; the mixed-mode model keeps the thin-gap form and carries this error")
-    out.append(Check("thin_gap", "Thin gap (h/d)", "pass" if thin_ok or damper.uses_exact_annulus else "warn",
-                     show(ratio, "", name="h/d"), show(THIN_GAP_LIMIT, "", name="h/d limit"), detail,
-                     "Bird, Stewart and Lightfoot (2002), eq 2.4-17 (erdesign.flow.newtonian.thin_gap_error)"))
+        detail += (
+            "; the valve flow uses the exact annulus"
+            if damper.uses_exact_annulus
+            else "; the mixed-mode model keeps the thin-gap form and carries this error"
+        )
+    out.append(
+        Check(
+            "thin_gap",
+            "Thin gap (h/d)",
+            "pass" if thin_ok or damper.uses_exact_annulus else "warn",
+            show(ratio, "", name="h/d"),
+            show(THIN_GAP_LIMIT, "", name="h/d limit"),
+            detail,
+            "Bird, Stewart and Lightfoot (2002), eq 2.4-17 (erdesign.flow.newtonian.thin_gap_error)",
+        )
+    )
     unit = fluid.field_unit
     if fluid.field_range is None:
-        out.append(Check("field_range", "Control within the fluid's range", "info", None, None,
-                         "the fluid states no characterised range (name a material to check it)", "materials/"))
+        out.append(
+            Check(
+                "field_range",
+                "Control within the fluid's range",
+                "info",
+                None,
+                None,
+                "the fluid states no characterised range (name a material to check it)",
+                "materials/",
+            )
+        )
     else:
         lo, hi = fluid.field_range
         E = np.abs(fields)
         outside = E[(E != 0) & ((E > hi * (1 + 1e-9)) | (E < lo * (1 - 1e-9)))]
         worst = float(E.max())
-        out.append(Check(
-            "field_range", "Control within the fluid's range", "warn" if outside.size else "pass",
-            show(Q_(worst, fluid.control_unit), unit, name="largest control"),
-            show(Q_(hi, fluid.control_unit), unit, name="top of the range"),
-            (f"{outside.size} control(s) outside {show(Q_(lo, fluid.control_unit), unit, name='range low')} to "
-             f"{show(Q_(hi, fluid.control_unit), unit, name='range high')}: the yield stress is extrapolated")
-            if outside.size else "every control asked for is inside the characterised range",
-            f"materials/{fluid.material}.toml [range]" if fluid.material else "fluid.field_range"))
+        out.append(
+            Check(
+                "field_range",
+                "Control within the fluid's range",
+                "warn" if outside.size else "pass",
+                show(Q_(worst, fluid.control_unit), unit, name="largest control"),
+                show(Q_(hi, fluid.control_unit), unit, name="top of the range"),
+                (
+                    f"{outside.size} control(s) outside {show(Q_(lo, fluid.control_unit), unit, name='range low')} to "
+                    f"{show(Q_(hi, fluid.control_unit), unit, name='range high')}: the yield stress is extrapolated"
+                )
+                if outside.size
+                else "every control asked for is inside the characterised range",
+                f"materials/{fluid.material}.toml [range]" if fluid.material else "fluid.field_range",
+            )
+        )
     i_design = int(np.argmin(np.abs(sweep.velocity - v_design)))
-    i_field = (int(np.argmax(np.abs(sweep.field))) if field_design is None
-               else int(np.argmin(np.abs(np.abs(sweep.field) - abs(field_design)))))
+    i_field = (
+        int(np.argmax(np.abs(sweep.field)))
+        if field_design is None
+        else int(np.argmin(np.abs(np.abs(sweep.field) - abs(field_design))))
+    )
     phi = float(sweep.plug_fraction[i_field, i_design])
-    out.append(Check(
-        "plug", "Plug does not block the gap", "pass" if phi <= PLUG_FRACTION_LIMIT else "warn",
-        show(phi, "", name="plug fraction"), show(PLUG_FRACTION_LIMIT, "", name="plug fraction limit"),
-        "plug thickness over gap at the design velocity and control"
-        + ("" if phi <= PLUG_FRACTION_LIMIT else ": the gap is nearly blocked, the force is set by the yield stress "
-                                                  "and pre-yield elasticity (Makris eq 8), not modelled here, matters"),
-        "Makris et al. (1996), eqs 2 and 5 (plug of thickness 2 tau_y L / dp)"))
+    out.append(
+        Check(
+            "plug",
+            "Plug does not block the gap",
+            "pass" if phi <= PLUG_FRACTION_LIMIT else "warn",
+            show(phi, "", name="plug fraction"),
+            show(PLUG_FRACTION_LIMIT, "", name="plug fraction limit"),
+            "plug thickness over gap at the design velocity and control"
+            + (
+                ""
+                if phi <= PLUG_FRACTION_LIMIT
+                else ": the gap is nearly blocked, the force is set by the yield stress "
+                "and pre-yield elasticity (Makris eq 8), not modelled here, matters"
+            ),
+            "Makris et al. (1996), eqs 2 and 5 (plug of thickness 2 tau_y L / dp)",
+        )
+    )
     if damper.seal_friction == 0:
-        out.append(Check("seal_friction", "Seal friction share of the force", "info", None, None,
-                         "no seal friction given (fluid.seal_friction)", "Makris et al. (1996), eq 14"))
+        out.append(
+            Check(
+                "seal_friction",
+                "Seal friction share of the force",
+                "info",
+                None,
+                None,
+                "no seal friction given (fluid.seal_friction)",
+                "Makris et al. (1996), eq 14",
+            )
+        )
     else:
         F0 = float(sweep.zero_field_force[i_design])
         share = damper.seal_friction / abs(F0)
-        out.append(Check(
-            "seal_friction", "Seal friction share of the force", "pass" if share <= SEAL_SHARE_LIMIT else "warn",
-            show(Q_(share, ""), "percent", name="seal friction share"),
-            show(Q_(SEAL_SHARE_LIMIT, ""), "percent", name="seal friction share limit"),
-            "seal friction over the zero-field force at the design velocity"
-            + ("" if share <= SEAL_SHARE_LIMIT else ": the off-state force and the dynamic range depend mostly on "
-                                                      "the seals"),
-            "Makris et al. (1996), eq 14"))
+        out.append(
+            Check(
+                "seal_friction",
+                "Seal friction share of the force",
+                "pass" if share <= SEAL_SHARE_LIMIT else "warn",
+                show(Q_(share, ""), "percent", name="seal friction share"),
+                show(Q_(SEAL_SHARE_LIMIT, ""), "percent", name="seal friction share limit"),
+                "seal friction over the zero-field force at the design velocity"
+                + (
+                    ""
+                    if share <= SEAL_SHARE_LIMIT
+                    else ": the off-state force and the dynamic range depend mostly on the seals"
+                ),
+                "Makris et al. (1996), eq 14",
+            )
+        )
     return tuple(out)

@@ -44,8 +44,10 @@ _COMMENT_FORBIDDEN = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")
 def _no_surrogate(text: str, where: str) -> None:
     bad = _SURROGATE.search(text)
     if bad:
-        raise ErdesignError(f"{where}: holds the lone surrogate U+{ord(bad.group()):04X}, which is not a character "
-                            "and cannot be written to a (UTF-8) file")
+        raise ErdesignError(
+            f"{where}: holds the lone surrogate U+{ord(bad.group()):04X}, which is not a character "
+            "and cannot be written to a (UTF-8) file"
+        )
 
 
 def toml_string(text: str, where: str = "value") -> str:
@@ -109,8 +111,9 @@ def damper_toml(spec: Mapping[str, Any], *, comment: str = "") -> str:
     lines.append("")
     unknown = [k for k in spec if k not in ("name", *DAMPER_TABLES)]
     if unknown:
-        raise ErdesignError(f"{unknown[0]}: not a key of a damper file (name, [geometry], [fluid], [coil], "
-                            "[accumulator])")
+        raise ErdesignError(
+            f"{unknown[0]}: not a key of a damper file (name, [geometry], [fluid], [coil], [accumulator])"
+        )
     if "name" in spec:
         lines.append(f"name = {_toml_value(str(spec['name']), 'name')}")
     for table in DAMPER_TABLES:
@@ -118,13 +121,16 @@ def damper_toml(spec: Mapping[str, Any], *, comment: str = "") -> str:
         if values is None:
             continue
         lines += ["", f"[{table}]"]
-        lines += [f"{toml_key(str(key), f'{table}.{key}')} = {_toml_value(value, f'{table}.{key}')}"
-                  for key, value in values.items()]
+        lines += [
+            f"{toml_key(str(key), f'{table}.{key}')} = {_toml_value(value, f'{table}.{key}')}"
+            for key, value in values.items()
+        ]
     return "\n".join(lines) + "\n"
 
 
-def save_damper(damper: Any, path: str | Path, *, comment: str = "", overwrite: bool = False,
-                option: str = "path") -> Path:
+def save_damper(
+    damper: Any, path: str | Path, *, comment: str = "", overwrite: bool = False, option: str = "path"
+) -> Path:
     """Write ``damper`` (a :class:`~erdesign.damper.Damper` of a power-law fluid, or a damper spec as
     :func:`~erdesign.damper.files.damper_spec` makes it) as a damper file that :func:`load_damper` reads back to the
     same damper.  Written whole or not at all; an existing ``path`` only with ``overwrite`` (:mod:`erdesign.output`).

@@ -46,11 +46,28 @@ import numpy as np
 
 from .measurement import Measurement, _noise_level, clipped_samples
 
-__all__ = ["FINDING_KINDS", "Finding", "find_data_problems", "find_time_problems", "excluded_mask", "DETECTORS",
-           "LAG_EFFECTS", "SMOOTHING_MIMICS", "GAP_FACTOR"]
+__all__ = [
+    "FINDING_KINDS",
+    "Finding",
+    "find_data_problems",
+    "find_time_problems",
+    "excluded_mask",
+    "DETECTORS",
+    "LAG_EFFECTS",
+    "SMOOTHING_MIMICS",
+    "GAP_FACTOR",
+]
 
-FINDING_KINDS = ("clipped", "saturated_displacement", "smoothed", "channel_skew", "time_gap",
-                 "non_monotonic_time", "force_offset_drift", "quantized_displacement")
+FINDING_KINDS = (
+    "clipped",
+    "saturated_displacement",
+    "smoothed",
+    "channel_skew",
+    "time_gap",
+    "non_monotonic_time",
+    "force_offset_drift",
+    "quantized_displacement",
+)
 
 #: Effects whose signature is a lag of the force behind the motion: a smoothed record or a skewed channel makes a
 #: verdict on them unsafe.
@@ -63,7 +80,7 @@ SMOOTHING_MIMICS = (*LAG_EFFECTS, "leakage")
 GAP_FACTOR = 3.0
 
 
-@dataclass(frozen=True, eq=False)       # compared by identity: it may hold a mask
+@dataclass(frozen=True, eq=False)  # compared by identity: it may hold a mask
 class Finding:
     """One data-quality finding about one record.
 
@@ -124,8 +141,9 @@ def excluded_mask(findings, n: int) -> np.ndarray:
     for f in findings:
         if f.excluded is not None:
             if f.excluded.shape != mask.shape:
-                raise ValueError(f"findings: the {f.kind} finding of {f.record!r} has a mask of "
-                                 f"{f.excluded.size} samples, not {n}")
+                raise ValueError(
+                    f"findings: the {f.kind} finding of {f.record!r} has a mask of {f.excluded.size} samples, not {n}"
+                )
             mask |= f.excluded
     return mask
 
@@ -164,7 +182,7 @@ def _pile_up(y: np.ndarray, at: np.ndarray, level: float, q: float | None) -> bo
     """Whether the samples at an extreme ``level`` pile up there (a limit) rather than a quantised peak touching it:
     at least 5 and more than three times as many as at the next level in, one quantisation step away."""
     if q is None:
-        return True          # exact repeats of an unquantised extreme happen only at a limit
+        return True  # exact repeats of an unquantised extreme happen only at a limit
     inside = np.sign(np.mean(y) - level)
     nxt = np.abs(y - (level + inside * q)) <= 0.02 * q
     return at.sum() >= 5 and at.sum() > 3 * nxt.sum()
@@ -182,7 +200,7 @@ def _beyond_level(x: np.ndarray, at: np.ndarray, level: float, q: float | None) 
     w = int(np.clip(b - a, 4, 12))
     if a - w < 0 or b + w > x.size:
         return b - a >= 3 and q is None
-    idx = np.r_[a - w:a, b:b + w]
+    idx = np.r_[a - w : a, b : b + w]
     c2, c1, c0 = np.polyfit(idx - 0.5 * (a + b), x[idx], 2)
     if c2 == 0:
         return False
@@ -208,6 +226,7 @@ def _correlation_length(r: np.ndarray) -> float:
 def _dominant_period(record: Measurement) -> float:
     """Period of the displacement's largest Fourier component, [s] (the record's length if none)."""
     from .measurement import _dominant_frequency
+
     f = _dominant_frequency(record.time, record.displacement)
     return 1.0 / f if f > 0 else record.duration
 
@@ -226,7 +245,7 @@ def _clipped(record: Measurement, opt: _Options) -> list[Finding]:
     F = record.force
     mask = clipped_samples(F)
     if not mask.any() or mask.mean() > 0.5:
-        return []           # none, or a constant or two-level force: a dead channel or a noise-free synthetic one
+        return []  # none, or a constant or two-level force: a dead channel or a noise-free synthetic one
     q = _grid_step(F)
     tol = 1e-9 * float(np.ptp(F))
     sure = True
@@ -237,18 +256,25 @@ def _clipped(record: Measurement, opt: _Options) -> list[Finding]:
             # run the force on either side would have overshot
             sure &= _pile_up(F, at, lvl, q) and (at.sum() >= CLIPPED_SURE or _beyond_level(F, at, lvl, q))
     if not sure and opt.exclude_clipped is not True and mask.sum() < 5:
-        return []           # a flat peak of a few samples (a smoothed or quantised force): not worth a word
+        return []  # a flat peak of a few samples (a smoothed or quantised force): not worth a word
     exclude = sure if opt.exclude_clipped is None else opt.exclude_clipped
     levels = sorted({float(v) for v in F[mask]})
     level_text = " and ".join(f"{v:.6g} N" for v in levels)
     if sure:
-        msg = (f"the force sits at {level_text} on {int(mask.sum())} samples in {_runs(mask)} flat runs: a load cell "
-               "or amplifier at its limit; the true force there is unknown")
+        msg = (
+            f"the force sits at {level_text} on {int(mask.sum())} samples in {_runs(mask)} flat runs: a load cell "
+            "or amplifier at its limit; the true force there is unknown"
+        )
     else:
-        msg = (f"the force repeats its extreme {level_text} on {int(mask.sum())} samples; that may be a limit or "
-               "a flat peak (quantised or smoothed)")
-    msg += (": those samples are left out of the fit" if exclude else
-            ": those samples are kept (--exclude-clipped leaves them out)")
+        msg = (
+            f"the force repeats its extreme {level_text} on {int(mask.sum())} samples; that may be a limit or "
+            "a flat peak (quantised or smoothed)"
+        )
+    msg += (
+        ": those samples are left out of the fit"
+        if exclude
+        else ": those samples are kept (--exclude-clipped leaves them out)"
+    )
     return [Finding("clipped", msg, record.name, _span(record.time, mask), excluded=mask if exclude else None)]
 
 
@@ -270,24 +296,31 @@ def _saturated_displacement(record: Measurement, opt: _Options) -> list[Finding]
         if not at.any():
             continue
         # the force keeps changing while the displacement stands still: the channel, not the piston, stopped
-        if (np.ptp(F[at]) > max(10 * sigma, 0.05 * np.ptp(F)) and _pile_up(x, at, lvl, q)
-                and _beyond_level(x, at, lvl, q)):
+        if (
+            np.ptp(F[at]) > max(10 * sigma, 0.05 * np.ptp(F))
+            and _pile_up(x, at, lvl, q)
+            and _beyond_level(x, at, lvl, q)
+        ):
             keep |= at
     out = []
     if keep.any():
         levels = " and ".join(f"{v * 1e3:.6g} mm" for v in sorted({float(v) for v in x[keep]}))
-        msg = (f"the displacement stands at {levels} on {int(keep.sum())} samples in {_runs(keep)} flat runs while "
-               "the force keeps changing: a displacement channel at the end of its range; the motion there is "
-               "unknown and those samples are left out of the fit")
+        msg = (
+            f"the displacement stands at {levels} on {int(keep.sum())} samples in {_runs(keep)} flat runs while "
+            "the force keeps changing: a displacement channel at the end of its range; the motion there is "
+            "unknown and those samples are left out of the fit"
+        )
         out.append(Finding("saturated_displacement", msg, record.name, _span(record.time, keep), excluded=keep))
     held = np.zeros_like(keep) if keep.any() else _held_beyond(record)
     if held.any():
         lo, hi = (float(v) for v in np.percentile(x[held], [10, 90]))
         rest = x[~held]
-        msg = (f"the displacement is held at {lo * 1e3:.3g} to {hi * 1e3:.3g} mm (10-90 %), beyond anything the rest of the "
-               f"record reaches ({rest.min() * 1e3:.3g} to {rest.max() * 1e3:.3g} mm), while the force swings by "
-               f"{np.ptp(F[held]):.3g} N: an actuator or transducer excursion, not the damper's motion; those "
-               "samples are left out of the fit")
+        msg = (
+            f"the displacement is held at {lo * 1e3:.3g} to {hi * 1e3:.3g} mm (10-90 %), beyond anything the rest of the "
+            f"record reaches ({rest.min() * 1e3:.3g} to {rest.max() * 1e3:.3g} mm), while the force swings by "
+            f"{np.ptp(F[held]):.3g} N: an actuator or transducer excursion, not the damper's motion; those "
+            "samples are left out of the fit"
+        )
         out.append(Finding("saturated_displacement", msg, record.name, _span(record.time, held), excluded=held))
     return out
 
@@ -323,16 +356,16 @@ def _held_beyond(record: Measurement) -> np.ndarray:
         near = y >= y.max() - HELD_TOP * span
         idx = np.flatnonzero(near)
         if np.any(np.diff(idx) > bridge):
-            continue                                    # the extreme is visited more than once
+            continue  # the extreme is visited more than once
         a, b = idx[0], idx[-1]
         if t[b] - t[a] < HELD_MIN_DURATION:
             continue
         # the typical speed there (a median: the transducer's own jumps and dips do not count)
         if np.median(speed[near]) >= HELD_SLOW * float(speed.max()):
             continue
-        if np.ptp(F[a:b + 1]) < HELD_FORCE_SWING * float(np.ptp(F)):
+        if np.ptp(F[a : b + 1]) < HELD_FORCE_SWING * float(np.ptp(F)):
             continue
-        out[a:b + 1] = True
+        out[a : b + 1] = True
     return out
 
 
@@ -359,9 +392,10 @@ def _null_depths(y: np.ndarray, N: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if not np.any(P > 0):
         return np.full(N.size, np.inf), np.zeros(N.size, dtype=bool)
     from scipy.ndimage import median_filter
+
     local = median_filter(P, size=41, mode="nearest")
     ok = P <= 30 * local + 1e-300
-    ok[:3] = False                                   # the trend and the lowest bins carry the motion itself
+    ok[:3] = False  # the trend and the lowest bins carry the motion itself
     cs = np.r_[0.0, np.cumsum(np.where(ok, P, 0.0))]
     cc = np.r_[0, np.cumsum(ok)]
 
@@ -373,12 +407,12 @@ def _null_depths(y: np.ndarray, N: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
     kmax = np.minimum(N // 2, 40)
     rows = np.repeat(np.arange(N.size), kmax)
-    j = np.arange(rows.size) - np.repeat(np.cumsum(kmax) - kmax, kmax)       # 0 .. kmax - 1
+    j = np.arange(rows.size) - np.repeat(np.cumsum(kmax) - kmax, kmax)  # 0 .. kmax - 1
     # 40 nulls spread from the first to the last below the Nyquist frequency: a filter zeroes them all, the noise
     # included, where the valleys between a signal's harmonics fill with noise at high frequencies
     last = N[rows] // 2
     k = np.where(last <= 40, j + 1, 1 + np.round(j * (last - 1) / 39.0).astype(int))
-    spacing = n / N[rows]                              # bins between nulls
+    spacing = n / N[rows]  # bins between nulls
     centre = k * spacing
     half = np.maximum(0.5, 0.02 * spacing)
     null, ncount = band(np.floor(centre - half + 0.5).astype(int), np.floor(centre + half + 0.5).astype(int) + 1)
@@ -466,13 +500,22 @@ def _smoothed(record: Measurement, opt: _Options) -> list[Finding]:
     N = found[0][1][0]
     names = " and ".join(name for name, _ in found)
     period = _dominant_period(record)
-    msg = (f"the {names} {'was' if len(found) == 1 else 'were'} smoothed by a moving average over about {N} samples "
-           f"({N * dt:.3g} s, {N * dt / period:.2g} of the motion's period): its spectrum is zero at every multiple "
-           f"of {1 / (N * dt):.4g} Hz. A causal average delays a channel by {(N - 1) * dt / 2:.3g} s and rounds the "
-           "force at reversals: a lag no physics made, so verdicts on lag-type effects and leakage "
-           f"({', '.join(SMOOTHING_MIMICS)}) are unsafe")
-    return [Finding("smoothed", msg, record.name, f"whole record, {N} samples ({N * dt:.3g} s) window",
-                    unsafe_for=SMOOTHING_MIMICS)]
+    msg = (
+        f"the {names} {'was' if len(found) == 1 else 'were'} smoothed by a moving average over about {N} samples "
+        f"({N * dt:.3g} s, {N * dt / period:.2g} of the motion's period): its spectrum is zero at every multiple "
+        f"of {1 / (N * dt):.4g} Hz. A causal average delays a channel by {(N - 1) * dt / 2:.3g} s and rounds the "
+        "force at reversals: a lag no physics made, so verdicts on lag-type effects and leakage "
+        f"({', '.join(SMOOTHING_MIMICS)}) are unsafe"
+    )
+    return [
+        Finding(
+            "smoothed",
+            msg,
+            record.name,
+            f"whole record, {N} samples ({N * dt:.3g} s) window",
+            unsafe_for=SMOOTHING_MIMICS,
+        )
+    ]
 
 
 def _reversal_jumps(record: Measurement):
@@ -513,7 +556,7 @@ def _reversal_jumps(record: Measurement):
         if J * np.sign(v[i + 1]) < 8 * sigma:
             continue
         r = ff - coef[0] - coef[1] * tt - coef[2] * np.where(np.arange(tt.size) >= split, 0.5, -0.5)
-        near = r[max(0, split - 3):split + 3]
+        near = r[max(0, split - 3) : split + 3]
         sharp = float(np.sqrt(np.mean(near**2))) < 3 * sigma
         d = 0.5 * (tt[split - 1] + tt[split]) * dt
         # a jump between samples that bracket the zero (or touch it) is no evidence of a delay
@@ -529,7 +572,7 @@ def _best_step(tt: np.ndarray, ff: np.ndarray):
     splits = np.arange(n // 4, n - n // 4)
     ct, cf, ctf = (np.r_[0.0, np.cumsum(y)] for y in (tt, ff, tt * ff))
     St, Sf, Stt, Stf = tt.sum(), ff.sum(), tt @ tt, tt @ ff
-    after = lambda c, total: total - c[splits]      # noqa: E731
+    after = lambda c, total: total - c[splits]  # noqa: E731
     Ss = 0.5 * ((n - splits) - splits)
     Sts = 0.5 * (after(ct, St) - ct[splits])
     Ssf = 0.5 * (after(cf, Sf) - cf[splits])
@@ -565,7 +608,7 @@ def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
         return []
     sharp = np.array([j[2] for j in jumps])
     if sharp.sum() < 4 or sharp.mean() < 0.6:
-        return []           # the force turns over gradually at reversals: a physical lag, not judged here
+        return []  # the force turns over gradually at reversals: a physical lag, not judged here
     d = np.array([j[0] for j in jumps])[sharp]
     apart = np.array([j[3] for j in jumps])[sharp]
     dt = record.duration / (len(record) - 1)
@@ -575,15 +618,25 @@ def _channel_skew(record: Measurement, opt: _Options) -> list[Finding]:
     if abs(mean) < 0.4 * dt or abs(mean) < 4 * se or spread > 0.5 * dt:
         return []
     if np.mean(apart & (np.sign(d) == np.sign(mean))) < SKEW_APART:
-        return []           # the jumps touch the velocity's zero: reversals on samples, not a delay
+        return []  # the jumps touch the velocity's zero: reversals on samples, not a delay
     lag = "lags" if mean > 0 else "leads"
-    msg = (f"the force {lag} the displacement by {abs(mean) * 1e3:.3g} ms ({abs(mean) / dt:.2g} samples): at "
-           f"{d.size} reversals it jumps as sharply as a sample but the same time after the velocity's zero "
-           f"(spread {spread * 1e3:.2g} ms), a constant delay between the channels (sampling skew), not a physical "
-           f"lag; shift the force by {-mean * 1e3:.3g} ms before fitting. Verdicts on lag-type effects "
-           f"({', '.join(LAG_EFFECTS)}) are unsafe")
-    return [Finding("channel_skew", msg, record.name, f"{d.size} reversals over the whole record", skew_s=mean,
-                    unsafe_for=LAG_EFFECTS)]
+    msg = (
+        f"the force {lag} the displacement by {abs(mean) * 1e3:.3g} ms ({abs(mean) / dt:.2g} samples): at "
+        f"{d.size} reversals it jumps as sharply as a sample but the same time after the velocity's zero "
+        f"(spread {spread * 1e3:.2g} ms), a constant delay between the channels (sampling skew), not a physical "
+        f"lag; shift the force by {-mean * 1e3:.3g} ms before fitting. Verdicts on lag-type effects "
+        f"({', '.join(LAG_EFFECTS)}) are unsafe"
+    )
+    return [
+        Finding(
+            "channel_skew",
+            msg,
+            record.name,
+            f"{d.size} reversals over the whole record",
+            skew_s=mean,
+            unsafe_for=LAG_EFFECTS,
+        )
+    ]
 
 
 def _time_gap(record: Measurement, opt: _Options) -> list[Finding]:
@@ -619,18 +672,17 @@ def _force_offset_drift(record: Measurement, opt: _Options) -> list[Finding]:
     xs = (x - x.mean()) / (float(np.ptp(x)) or 1.0)
     amax = float(np.max(np.abs(a))) or 1.0
     cols = [np.ones_like(t), tau]
-    odd = [np.sign(v), np.tanh(vn / 0.003), np.tanh(vn / 0.03), vn, vn * np.abs(vn),
-           np.sign(v) * np.sqrt(np.abs(vn))]
+    odd = [np.sign(v), np.tanh(vn / 0.003), np.tanh(vn / 0.03), vn, vn * np.abs(vn), np.sign(v) * np.sqrt(np.abs(vn))]
     for g in odd:
         cols += [g, g * un, g * un**2, g * tau]
     cols += [xs, xs**2, a / amax]
     A = np.column_stack(cols)
-    coef = np.linalg.lstsq(A.T @ A, A.T @ F, rcond=None)[0]     # normal equations: 30 columns, fast
+    coef = np.linalg.lstsq(A.T @ A, A.T @ F, rcond=None)[0]  # normal equations: 30 columns, fast
     r = F - A @ coef
     rms = float(np.sqrt(np.mean((F - F.mean()) ** 2)))
     if rms == 0:
         return []
-    drift = float(coef[1])                                   # change over the whole record, [N]
+    drift = float(coef[1])  # change over the whole record, [N]
     # standard error with the residual's correlation: n / (1 + 2 sum of its autocorrelation up to its first zero)
     n_eff = len(record) / _correlation_length(r)
     se = float(np.std(r)) / (np.std(tau) * math.sqrt(n_eff))
@@ -642,23 +694,33 @@ def _force_offset_drift(record: Measurement, opt: _Options) -> list[Finding]:
     drifting = found
     parts = []
     if drifting:
-        parts.append(f"the force drifts by {drift:+.3g} N over the record ({100 * abs(drift) / rms:.2g} % of its RMS), "
-                     "a trend no velocity, displacement or acceleration term explains: a load cell warming or "
-                     "creeping")
+        parts.append(
+            f"the force drifts by {drift:+.3g} N over the record ({100 * abs(drift) / rms:.2g} % of its RMS), "
+            "a trend no velocity, displacement or acceleration term explains: a load cell warming or "
+            "creeping"
+        )
     offset = None
     if opt.expected_mean_force is not None:
         offset = float(coef[0]) - float(opt.expected_mean_force)
         offset_se = float(np.std(r)) / math.sqrt(n_eff)
         if abs(offset) > DRIFT_FRACTION * rms and abs(offset) > 4 * offset_se:
-            parts.append(f"the force is offset by {offset:+.3g} N from the {opt.expected_mean_force:.3g} N the damper "
-                         "should show at mid-stroke and rest")
+            parts.append(
+                f"the force is offset by {offset:+.3g} N from the {opt.expected_mean_force:.3g} N the damper "
+                "should show at mid-stroke and rest"
+            )
             found = True
     if not found:
         return []
     msg = "; ".join(parts) + ": remove it (or fit an offset) before judging gas_spring or viscous_heating"
-    return [Finding("force_offset_drift", msg, record.name,
-                    f"t = {t[0]:.4g}-{t[-1]:.4g} s, the whole record",
-                    unsafe_for=("gas_spring", "viscous_heating"))]
+    return [
+        Finding(
+            "force_offset_drift",
+            msg,
+            record.name,
+            f"t = {t[0]:.4g}-{t[-1]:.4g} s, the whole record",
+            unsafe_for=("gas_spring", "viscous_heating"),
+        )
+    ]
 
 
 #: A displacement grid coarser than this fraction of the stroke is always reported.
@@ -678,9 +740,11 @@ def _quantized_displacement(record: Measurement, opt: _Options) -> list[Finding]
     if q < QUANTIZATION_FRACTION * stroke and (q / math.sqrt(12) < 0.5 * noise or q < 1e-6 * stroke):
         return []
     dt = record.duration / (len(record) - 1)
-    msg = (f"the displacement lies on a grid of {q * 1e6:.3g} um steps ({q / float(np.ptp(x)):.2g} of the stroke): "
-           f"the velocity derived from it carries a rounding noise of about {q / dt / math.sqrt(6):.3g} m/s per "
-           "two-point difference, which sets the error floor at low sample rates")
+    msg = (
+        f"the displacement lies on a grid of {q * 1e6:.3g} um steps ({q / float(np.ptp(x)):.2g} of the stroke): "
+        f"the velocity derived from it carries a rounding noise of about {q / dt / math.sqrt(6):.3g} m/s per "
+        "two-point difference, which sets the error floor at low sample rates"
+    )
     return [Finding("quantized_displacement", msg, record.name, f"whole record, step {q * 1e6:.3g} um")]
 
 
@@ -720,11 +784,14 @@ def find_time_problems(time, *, record: str = "") -> list[Finding]:
         first = int(bad[0]) + 1
         back = int(np.count_nonzero(steps < 0))
         same = int(np.count_nonzero(steps == 0))
-        msg = (f"time does not increase at {bad.size} samples ({back} going back, {same} repeated), first at sample "
-               f"{first} ({t[first - 1]:g} s then {t[first]:g} s): rows out of order, a restarted clock or joined "
-               "files; sort or split the record before any fit")
-        out.append(Finding("non_monotonic_time", msg, record, f"sample {first} (t = {t[first]:.4g} s), "
-                                                              f"{bad.size} samples"))
+        msg = (
+            f"time does not increase at {bad.size} samples ({back} going back, {same} repeated), first at sample "
+            f"{first} ({t[first - 1]:g} s then {t[first]:g} s): rows out of order, a restarted clock or joined "
+            "files; sort or split the record before any fit"
+        )
+        out.append(
+            Finding("non_monotonic_time", msg, record, f"sample {first} (t = {t[first]:.4g} s), {bad.size} samples")
+        )
     positive = steps[steps > 0]
     if positive.size == 0:
         return out
@@ -733,15 +800,18 @@ def find_time_problems(time, *, record: str = "") -> list[Finding]:
     if gaps.size:
         missing = float(np.sum(steps[gaps] - dt))
         listed = ", ".join(f"{t[g]:.4g}-{t[g + 1]:.4g} s" for g in gaps[:3]) + (" ..." if gaps.size > 3 else "")
-        msg = (f"the time column has {gaps.size} hole{'s' if gaps.size > 1 else ''} ({missing:.3g} s missing, "
-               f"about {int(round(missing / dt))} samples at the {dt:.3g} s step): derivatives and time-stepped "
-               "effects are not continuous across a hole; fit the pieces as separate records")
+        msg = (
+            f"the time column has {gaps.size} hole{'s' if gaps.size > 1 else ''} ({missing:.3g} s missing, "
+            f"about {int(round(missing / dt))} samples at the {dt:.3g} s step): derivatives and time-stepped "
+            "effects are not continuous across a hole; fit the pieces as separate records"
+        )
         out.append(Finding("time_gap", msg, record, listed))
     return out
 
 
-def find_data_problems(record: Measurement, *, exclude_clipped: bool | None = None,
-                       expected_mean_force: float | None = None) -> list[Finding]:
+def find_data_problems(
+    record: Measurement, *, exclude_clipped: bool | None = None, expected_mean_force: float | None = None
+) -> list[Finding]:
     """The data-quality findings of a record, in the order of :data:`FINDING_KINDS`.
 
     Parameters

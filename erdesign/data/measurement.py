@@ -48,8 +48,18 @@ from ..fluid import CONTROL_UNITS
 from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, is_path_like, read_input_bytes
 from ..units import Q_, dimension_name, parse_unit, ureg
 
-__all__ = ["Measurement", "MeasurementError", "read_measurement", "write_measurement", "derivatives",
-           "clipped_samples", "check_record", "check_against_damper", "COLUMNS", "CONTROL_COLUMNS"]
+__all__ = [
+    "Measurement",
+    "MeasurementError",
+    "read_measurement",
+    "write_measurement",
+    "derivatives",
+    "clipped_samples",
+    "check_record",
+    "check_against_damper",
+    "COLUMNS",
+    "CONTROL_COLUMNS",
+]
 
 
 class MeasurementError(ErdesignError):
@@ -118,8 +128,19 @@ class Measurement:
     value of the full record); None: estimate it from the record (:func:`erdesign.data.noise.velocity_noise`)."""
 
     @classmethod
-    def from_arrays(cls, time, displacement, force=None, *, control=None, control_kind=None, velocity=None,
-                    temperature=None, name: str = "", window: int | None = None) -> "Measurement":
+    def from_arrays(
+        cls,
+        time,
+        displacement,
+        force=None,
+        *,
+        control=None,
+        control_kind=None,
+        velocity=None,
+        temperature=None,
+        name: str = "",
+        window: int | None = None,
+    ) -> "Measurement":
         """A record from SI arrays; velocity and acceleration are derived when not given.
 
         Parameters
@@ -144,13 +165,18 @@ class Measurement:
         x = _as_1d(displacement, "displacement", n, unit="m")
         F = None if force is None else _as_1d(force, "force", n, unit="N")
         if control is not None and control_kind not in CONTROL_UNITS:
-            raise MeasurementError(f"control_kind: must be one of {', '.join(CONTROL_UNITS)} when a control is "
-                                   f"given, got {control_kind!r}")
+            raise MeasurementError(
+                f"control_kind: must be one of {', '.join(CONTROL_UNITS)} when a control is given, got {control_kind!r}"
+            )
         if control is not None and hasattr(control, "units"):
             from ..units import to_si
+
             control = to_si(control, CONTROL_UNITS[control_kind], "control")
-        u = np.zeros(n) if control is None else _as_1d(np.broadcast_to(_as_1d_any(control, "control"), (n,)),
-                                                         "control", n)
+        u = (
+            np.zeros(n)
+            if control is None
+            else _as_1d(np.broadcast_to(_as_1d_any(control, "control"), (n,)), "control", n)
+        )
         T = None if temperature is None else _as_1d(temperature, "temperature", n, unit="K")
         for column, values in (("time", t), ("displacement", x), ("force", F), ("velocity", velocity)):
             if values is not None:
@@ -177,12 +203,20 @@ class Measurement:
 
     def select(self, mask_or_slice) -> "Measurement":
         """The samples picked by a boolean mask or slice (derivatives are kept, not recomputed)."""
+
         def pick(a):
-            return (None if a is None else a[mask_or_slice])
-        return replace(self, time=self.time[mask_or_slice], displacement=self.displacement[mask_or_slice],
-                       force=pick(self.force), velocity=self.velocity[mask_or_slice],
-                       acceleration=self.acceleration[mask_or_slice], control=self.control[mask_or_slice],
-                       temperature=pick(self.temperature))
+            return None if a is None else a[mask_or_slice]
+
+        return replace(
+            self,
+            time=self.time[mask_or_slice],
+            displacement=self.displacement[mask_or_slice],
+            force=pick(self.force),
+            velocity=self.velocity[mask_or_slice],
+            acceleration=self.acceleration[mask_or_slice],
+            control=self.control[mask_or_slice],
+            temperature=pick(self.temperature),
+        )
 
     def with_force(self, force) -> "Measurement":
         """The same motion with another force (e.g. a model's prediction)."""
@@ -195,10 +229,11 @@ class Measurement:
 
 
 def _as_1d(values, name: str, n: int | None = None, unit: str | None = None) -> np.ndarray:
-    if hasattr(values, "units") and hasattr(values, "magnitude"):      # a pint quantity: converted, never stripped
+    if hasattr(values, "units") and hasattr(values, "magnitude"):  # a pint quantity: converted, never stripped
         if unit is None:
             raise MeasurementError(f"{name}: expected SI numbers, got a quantity in {values.units:~P}")
         from ..units import to_si
+
         values = to_si(values, unit, name)
     try:
         arr = np.asarray(values, dtype=float)
@@ -232,9 +267,13 @@ def _check_velocity(v: np.ndarray, v_derived: np.ndarray, name: str) -> None:
     scale = float(np.dot(v, v_derived)) / power
     rest = float(np.sum((v - scale * v_derived) ** 2)) / power
     if rest > 0.1 or abs(scale - 1.0) > 0.2:
-        warnings.warn(f"{name or 'record'}: the velocity column is {scale:.3g} x the derivative of the displacement "
-                      f"(with {100 * rest:.2g} % of its power left over): check its unit and sign; the models use the "
-                      "velocity column as given", ErdesignWarning, stacklevel=3)
+        warnings.warn(
+            f"{name or 'record'}: the velocity column is {scale:.3g} x the derivative of the displacement "
+            f"(with {100 * rest:.2g} % of its power left over): check its unit and sign; the models use the "
+            "velocity column as given",
+            ErdesignWarning,
+            stacklevel=3,
+        )
 
 
 def clipped_samples(force, *, min_count: int = 3) -> np.ndarray:
@@ -273,8 +312,9 @@ def _check_time(t: np.ndarray, where) -> None:
     steps = np.diff(t)
     bad = np.flatnonzero(steps <= 0)
     if bad.size:
-        raise MeasurementError(f"{where(bad[0] + 1)}: time must increase strictly "
-                               f"({t[bad[0]]:g} s then {t[bad[0] + 1]:g} s)")
+        raise MeasurementError(
+            f"{where(bad[0] + 1)}: time must increase strictly ({t[bad[0]]:g} s then {t[bad[0] + 1]:g} s)"
+        )
 
 
 def _detrend(t: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -336,7 +376,7 @@ def _clearly_aperiodic(spectrum, f0: float, T: float, fs: float, limit: float) -
     df = freqs[1]
     K = int(max(1, min(15, np.floor(0.4 * fs / max(f0 - 0.5 / T, 1e-300)))))
     power = magnitude**2
-    keep = freqs > 4.5 * df                                 # the trend line's residue at the lowest bins
+    keep = freqs > 4.5 * df  # the trend line's residue at the lowest bins
     for k in range(1, K + 1):
         keep &= np.abs(freqs - k * f0) > 5.0 * df + 0.5 * k / T
     off = float(np.sum(power[keep]))
@@ -382,7 +422,7 @@ def _harmonic_fit(t: np.ndarray, x: np.ndarray, f: float, harmonics: int):
     r = x - A @ coef
     coef += np.linalg.solve(gram, A.T @ r)
     r = x - A @ coef
-    coef[0] -= coef[1]                      # back to the columns 1 and t - t[0]
+    coef[0] -= coef[1]  # back to the columns 1 and t - t[0]
     coef[1] *= 2.0 / T
     return coef, A, r
 
@@ -412,8 +452,12 @@ def _harmonic_derivatives(t, x, f0, sigma, T, fs, limit):
     harmonics; None when they leave more than noise."""
     from scipy.optimize import minimize_scalar
 
-    res = minimize_scalar(lambda f: float(np.sum(_harmonic_fit(t, x, f, 1)[2] ** 2)),
-                          bounds=(f0 - 0.5 / T, f0 + 0.5 / T), method="bounded", options={"xatol": 1e-10 * f0})
+    res = minimize_scalar(
+        lambda f: float(np.sum(_harmonic_fit(t, x, f, 1)[2] ** 2)),
+        bounds=(f0 - 0.5 / T, f0 + 0.5 / T),
+        method="bounded",
+        options={"xatol": 1e-10 * f0},
+    )
     f = float(res.x)
     K = int(max(1, min(15, np.floor(0.4 * fs / f))))
     if t.size >= 64 * (2 * K + 2):
@@ -545,6 +589,7 @@ def derivatives(t, x, *, window: int | None = None, polyorder: int = 3):
         if window > n:
             raise MeasurementError(f"derivatives: the record ({n} samples) is too short for a window of {window}")
         from scipy.signal import savgol_filter  # imported on use: scipy.signal costs start-up time
+
         v = savgol_filter(xu, window, polyorder, deriv=1, delta=dt, mode="interp")
         a = savgol_filter(xu, window, polyorder, deriv=2, delta=dt, mode="interp")
     else:
@@ -569,29 +614,35 @@ def derivatives(t, x, *, window: int | None = None, polyorder: int = 3):
     return v, a
 
 
-def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool = True
-                  ) -> list[tuple[str, str, Any]]:
+def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool = True) -> list[tuple[str, str, Any]]:
     columns = []
     seen: dict[str, int] = {}
     if len(cells) == 1 and ("\t" in cells[0] or ";" in cells[0]):
         sep = "tabs" if "\t" in cells[0] else "semicolons"
-        raise MeasurementError(f"{path}: line {lineno}: the columns are separated by {sep}; erdesign reads "
-                               "comma-separated files (save as CSV with ',' between columns and '.' as the decimal "
-                               "point)")
+        raise MeasurementError(
+            f"{path}: line {lineno}: the columns are separated by {sep}; erdesign reads "
+            "comma-separated files (save as CSV with ',' between columns and '.' as the decimal "
+            "point)"
+        )
     for col, cell in enumerate(cells, start=1):
         if len(cell) > MAX_CELL_CHARS:
-            raise MeasurementError(f"{path}: line {lineno}, column {col}: a header cell of {len(cell):,} characters "
-                                   f"(at most {MAX_CELL_CHARS:,}); a header cell is a name and its unit, e.g. "
-                                   "'time [s]'")
+            raise MeasurementError(
+                f"{path}: line {lineno}, column {col}: a header cell of {len(cell):,} characters "
+                f"(at most {MAX_CELL_CHARS:,}); a header cell is a name and its unit, e.g. "
+                "'time [s]'"
+            )
         m = _HEADER.match(cell)
         if not m:
-            raise MeasurementError(f"{path}: line {lineno}, column {col} ({cell.strip()!r}): expected a name with "
-                                   f"its unit in square brackets, e.g. 'time [s]'")
+            raise MeasurementError(
+                f"{path}: line {lineno}, column {col} ({cell.strip()!r}): expected a name with "
+                f"its unit in square brackets, e.g. 'time [s]'"
+            )
         name, unit = m[1].lower(), m[2].strip()
         where = f"{path}: line {lineno}, column {col} ({name})"
         if "\t" in unit or ";" in unit:
-            raise MeasurementError(f"{where}: a tab or ';' inside the header: erdesign reads comma-separated files "
-                                   "(',' between columns)")
+            raise MeasurementError(
+                f"{where}: a tab or ';' inside the header: erdesign reads comma-separated files (',' between columns)"
+            )
         if name not in COLUMNS and name not in CONTROL_COLUMNS:
             raise MeasurementError(f"{where}: unknown column; known: {', '.join([*COLUMNS, *CONTROL_COLUMNS])}")
         if name in seen:
@@ -603,16 +654,21 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
             raise MeasurementError(f"{where}: {str(exc).removeprefix('unit: ')}") from None
         if name in COLUMNS:
             if q.dimensionality != ureg.Unit(COLUMNS[name]).dimensionality:
-                raise MeasurementError(f"{where}: unit {unit!r} is {dimension_name(q.dimensionality)}; expected "
-                                       f"{dimension_name(ureg.Unit(COLUMNS[name]).dimensionality)}")
+                raise MeasurementError(
+                    f"{where}: unit {unit!r} is {dimension_name(q.dimensionality)}; expected "
+                    f"{dimension_name(ureg.Unit(COLUMNS[name]).dimensionality)}"
+                )
             kind = None
         else:
-            kind = next((k for k in CONTROL_COLUMNS[name]
-                         if q.dimensionality == ureg.Unit(CONTROL_UNITS[k]).dimensionality), None)
+            kind = next(
+                (k for k in CONTROL_COLUMNS[name] if q.dimensionality == ureg.Unit(CONTROL_UNITS[k]).dimensionality),
+                None,
+            )
             if kind is None:
                 allowed = " or ".join(CONTROL_UNITS[k] for k in CONTROL_COLUMNS[name])
-                raise MeasurementError(f"{where}: unit {unit!r} is {dimension_name(q.dimensionality)}; a '{name}' "
-                                       f"column takes {allowed}")
+                raise MeasurementError(
+                    f"{where}: unit {unit!r} is {dimension_name(q.dimensionality)}; a '{name}' column takes {allowed}"
+                )
         columns.append((name, unit, kind))
     required = ("time", "displacement", "force") if require_force else ("time", "displacement")
     missing = [c for c in required if c not in seen]
@@ -620,8 +676,10 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
         raise MeasurementError(f"{path}: line {lineno}: missing required column '{missing[0]} [...]'")
     controls = [c for c in seen if c in CONTROL_COLUMNS]
     if len(controls) > 1:
-        raise MeasurementError(f"{path}: line {lineno}: more than one control column ({', '.join(controls)}); "
-                               "give one of field, current or voltage")
+        raise MeasurementError(
+            f"{path}: line {lineno}: more than one control column ({', '.join(controls)}); "
+            "give one of field, current or voltage"
+        )
     return columns
 
 
@@ -636,11 +694,12 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     non-increasing time, fewer than 5 samples.
     """
     if not is_path_like(path):
-        raise MeasurementError(f"path: expected the name of a measurement file (a str or Path), got "
-                               f"{type(path).__name__} {path!r:.60}")
+        raise MeasurementError(
+            f"path: expected the name of a measurement file (a str or Path), got {type(path).__name__} {path!r:.60}"
+        )
     path = Path(path)
     label = str(path)
-    path = bundled_file(path) or path       # the documented examples/measurements/... from any folder
+    path = bundled_file(path) or path  # the documented examples/measurements/... from any folder
     try:
         raw = read_input_bytes(path, MAX_RECORD_BYTES, "a measurement CSV file")
         text = raw.decode("utf-8-sig")
@@ -656,32 +715,43 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
         raise MeasurementError(f"{label}: cannot be read ({exc.strerror or exc})") from None
     rows_given = text.count("\n")
     if rows_given > MAX_RECORD_ROWS:
-        raise MeasurementError(f"{label}: {rows_given:,} lines, more than the {MAX_RECORD_ROWS:,} rows erdesign reads "
-                               "in one record; thin or split the file")
+        raise MeasurementError(
+            f"{label}: {rows_given:,} lines, more than the {MAX_RECORD_ROWS:,} rows erdesign reads "
+            "in one record; thin or split the file"
+        )
     fast = _read_fast(text, label, require_force)
     if fast is not None:
         columns, data = fast
         return _measurement_from_table(path, label, columns, data, None, window)
     lines = _csv_lines(text, label)
-    rows = [(i, r) for i, r in enumerate(lines, start=1) if r and not r[0].lstrip().startswith("#")
-            and any(c.strip() for c in r)]
+    rows = [
+        (i, r)
+        for i, r in enumerate(lines, start=1)
+        if r and not r[0].lstrip().startswith("#") and any(c.strip() for c in r)
+    ]
     if not rows:
-        raise MeasurementError(f"{label}: empty file (expected a header line such as 'time [s],displacement [mm],"
-                               "force [N]')")
+        raise MeasurementError(
+            f"{label}: empty file (expected a header line such as 'time [s],displacement [mm],force [N]')"
+        )
     header_line, header = rows[0]
     columns = _parse_header(header, header_line, label, require_force)
     data = np.empty((len(rows) - 1, len(columns)))
     for r, (lineno, cells) in enumerate(rows[1:]):
         if len(cells) != len(columns):
-            hint = ("; a decimal comma? erdesign reads '.' as the decimal point and ',' between columns"
-                    if len(cells) > len(columns) and any(re.fullmatch(r"\s*-?\d+", c) for c in cells[1:]) else "")
-            raise MeasurementError(f"{label}: line {lineno}: {len(cells)} cells, expected {len(columns)} "
-                                   f"(one per header column){hint}")
+            hint = (
+                "; a decimal comma? erdesign reads '.' as the decimal point and ',' between columns"
+                if len(cells) > len(columns) and any(re.fullmatch(r"\s*-?\d+", c) for c in cells[1:])
+                else ""
+            )
+            raise MeasurementError(
+                f"{label}: line {lineno}: {len(cells)} cells, expected {len(columns)} (one per header column){hint}"
+            )
         for c, cell in enumerate(cells):
             value = _cell_number(cell, lambda: f"{label}: line {lineno}, column {c + 1} ({columns[c][0]})")
             if not math.isfinite(value):
-                raise MeasurementError(f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): "
-                                       f"{cell.strip()!r} is not a finite number")
+                raise MeasurementError(
+                    f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): {cell.strip()!r} is not a finite number"
+                )
             data[r, c] = value
     return _measurement_from_table(path, label, columns, data, [lineno for lineno, _ in rows[1:]], window)
 
@@ -695,14 +765,17 @@ def _csv_lines(text: str, label: str) -> list[list[str]]:
         for cells in reader:
             for col, cell in enumerate(cells, start=1):
                 if len(cell) > MAX_CELL_CHARS:
-                    raise MeasurementError(f"{label}: line {reader.line_num}, column {col}: a cell of {len(cell):,} "
-                                           f"characters (at most {MAX_CELL_CHARS:,}); a cell is a number or a "
-                                           "header such as 'time [s]'")
+                    raise MeasurementError(
+                        f"{label}: line {reader.line_num}, column {col}: a cell of {len(cell):,} "
+                        f"characters (at most {MAX_CELL_CHARS:,}); a cell is a number or a "
+                        "header such as 'time [s]'"
+                    )
             lines.append(cells)
     except csv.Error as exc:
-        detail = ("a cell longer than the CSV reader takes" if "field limit" in str(exc) else str(exc))
-        raise MeasurementError(f"{label}: line {max(reader.line_num, 1)}: {detail} (at most {MAX_CELL_CHARS:,} "
-                               "characters a cell)") from None
+        detail = "a cell longer than the CSV reader takes" if "field limit" in str(exc) else str(exc)
+        raise MeasurementError(
+            f"{label}: line {max(reader.line_num, 1)}: {detail} (at most {MAX_CELL_CHARS:,} characters a cell)"
+        ) from None
     return lines
 
 
@@ -742,7 +815,7 @@ def _read_fast(text: str, label: str, require_force: bool):
                 end = min(end, k)
         line = text[pos:end]
         pos = end + 1
-        if end < len(text) and text[end] == "\r" and text[end + 1:end + 2] == "\n":
+        if end < len(text) and text[end] == "\r" and text[end + 1 : end + 2] == "\n":
             pos += 1
         stripped = line.strip()
         if stripped and not stripped.startswith("#") and stripped.replace(",", "").strip():
@@ -763,8 +836,13 @@ def _read_fast(text: str, label: str, require_force: bool):
         if "pandas" in sys.modules and body.strip():
             # already loaded (the app): its C parser is twice as fast as numpy's; not imported for this alone
             # (importing pandas costs ten times what it saves on a 60k-row file)
-            data = sys.modules["pandas"].read_csv(io.StringIO(body), header=None, dtype=float, engine="c",
-                                                  skip_blank_lines=True, na_filter=False).to_numpy()
+            data = (
+                sys.modules["pandas"]
+                .read_csv(
+                    io.StringIO(body), header=None, dtype=float, engine="c", skip_blank_lines=True, na_filter=False
+                )
+                .to_numpy()
+            )
         else:
             data = np.loadtxt(io.StringIO(body), delimiter=",", comments=None, ndmin=2, dtype=float)
     except (ValueError, TypeError):
@@ -795,13 +873,21 @@ def _measurement_from_table(path: Path, label: str, columns, data: np.ndarray, l
         _check_possible(si[name], name, unit, label, c + 1)
     t = si["time"]
     if line_of is not None:
-        _check_time(t, lambda i: f"{label}: line {line_of[i]}, column {[c[0] for c in columns].index('time') + 1} "
-                                 f"(time)")
+        _check_time(
+            t, lambda i: f"{label}: line {line_of[i]}, column {[c[0] for c in columns].index('time') + 1} (time)"
+        )
     control_name = next((c for c in si if c in CONTROL_COLUMNS), None)
     m = Measurement.from_arrays(
-        t, si["displacement"], si.get("force"),
-        control=si.get(control_name) if control_name else None, control_kind=kind,
-        velocity=si.get("velocity"), temperature=si.get("temperature"), name=path.name, window=window)
+        t,
+        si["displacement"],
+        si.get("force"),
+        control=si.get(control_name) if control_name else None,
+        control_kind=kind,
+        velocity=si.get("velocity"),
+        temperature=si.get("temperature"),
+        name=path.name,
+        window=window,
+    )
     m = replace(m, units=units)
     check_record(m)
     return m
@@ -820,8 +906,9 @@ def _check_possible(values: np.ndarray, name: str, unit: str, label: str, col: i
     if not np.all(np.isfinite(values)):
         raise MeasurementError(f"{where}: a value is not finite in SI units")
     if name == "temperature" and values.size and float(values.min()) < 0.0:
-        raise MeasurementError(f"{where}: {float(values.min()):.4g} K is below absolute zero; is the unit right "
-                               "(degC, not K)?")
+        raise MeasurementError(
+            f"{where}: {float(values.min()):.4g} K is below absolute zero; is the unit right (degC, not K)?"
+        )
     _check_magnitude(values, name, where)
 
 
@@ -833,13 +920,17 @@ def _check_magnitude(values: np.ndarray, name: str, where: str) -> None:
         peak = float(np.max(np.abs(values)))
         if peak > limit:
             si = COLUMNS[name]
-            raise MeasurementError(f"{where}: {peak:.3g} {si} is beyond any damper record (at most {limit:g} {si}); "
-                                   "check the column's unit")
+            raise MeasurementError(
+                f"{where}: {peak:.3g} {si} is beyond any damper record (at most {limit:g} {si}); "
+                "check the column's unit"
+            )
     if name == "time" and values.size > 1:
         step = float(values[-1] - values[0]) / (values.size - 1)
         if 0 < step < SHORTEST_TIME_STEP:
-            raise MeasurementError(f"{where}: a mean time step of {step:.3g} s is beyond any clock (at least "
-                                   f"{SHORTEST_TIME_STEP:g} s); check the unit of the time")
+            raise MeasurementError(
+                f"{where}: a mean time step of {step:.3g} s is beyond any clock (at least "
+                f"{SHORTEST_TIME_STEP:g} s); check the unit of the time"
+            )
 
 
 #: Temperatures [K] of any damper test (-73 to 227 degC): outside them a warning names the likely unit mistake.
@@ -870,39 +961,54 @@ def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> li
     out: list[str] = []
     stroke = float(np.ptp(x))
     if stroke == 0.0:
-        raise MeasurementError(f"{name}: displacement: constant ({x[0]:g} m): the record has no motion, so there "
-                               "is nothing to fit or judge")
+        raise MeasurementError(
+            f"{name}: displacement: constant ({x[0]:g} m): the record has no motion, so there "
+            "is nothing to fit or judge"
+        )
     n = len(record)
     f0 = _dominant_frequency(t, x)
-    cycles = _reversals(v) / 2.0      # the FFT's lowest bin is one cycle per record: count reversals instead
+    cycles = _reversals(v) / 2.0  # the FFT's lowest bin is one cycle per record: count reversals instead
     if n < FEW_SAMPLES:
-        out.append(f"{name}: time: only {n} samples; a fit or a diagnosis needs a few hundred over at least one "
-                   "cycle")
+        out.append(f"{name}: time: only {n} samples; a fit or a diagnosis needs a few hundred over at least one cycle")
     if cycles < 1.0:
-        out.append(f"{name}: displacement: the piston reverses {int(2 * cycles)} times; at least one full cycle "
-                   "(two reversals) is needed to tell viscous from yield forces")
+        out.append(
+            f"{name}: displacement: the piston reverses {int(2 * cycles)} times; at least one full cycle "
+            "(two reversals) is needed to tell viscous from yield forces"
+        )
     elif f0 > 0 and record.sample_rate / f0 < SAMPLES_PER_CYCLE:
-        out.append(f"{name}: time: {record.sample_rate / f0:.3g} samples per cycle of the motion "
-                   f"({f0:.3g} Hz sampled at {record.sample_rate:.3g} Hz) cannot resolve it; need at least "
-                   f"{SAMPLES_PER_CYCLE} (is the time column's unit [{unit('time', 's')}] right?)")
+        out.append(
+            f"{name}: time: {record.sample_rate / f0:.3g} samples per cycle of the motion "
+            f"({f0:.3g} Hz sampled at {record.sample_rate:.3g} Hz) cannot resolve it; need at least "
+            f"{SAMPLES_PER_CYCLE} (is the time column's unit [{unit('time', 's')}] right?)"
+        )
     if record.sample_rate > 1e7:
-        out.append(f"{name}: time: a sampling rate of {record.sample_rate:.3g} Hz is beyond any damper test rig; "
-                   f"is the time column's unit [{unit('time', 's')}] right?")
+        out.append(
+            f"{name}: time: a sampling rate of {record.sample_rate:.3g} Hz is beyond any damper test rig; "
+            f"is the time column's unit [{unit('time', 's')}] right?"
+        )
     if float(np.max(np.abs(v))) > 20.0:
         speed = float(np.max(np.abs(v)))
-        out.append(f"{name}: velocity: the piston speed reaches {speed:.3g} m/s, beyond any damper test; is the unit "
-                   f"of the displacement [{unit('displacement', 'm')}] or time [{unit('time', 's')}] column right?")
-    from .findings import find_time_problems       # the one detector of holes in the time column
+        out.append(
+            f"{name}: velocity: the piston speed reaches {speed:.3g} m/s, beyond any damper test; is the unit "
+            f"of the displacement [{unit('displacement', 'm')}] or time [{unit('time', 's')}] column right?"
+        )
+    from .findings import find_time_problems  # the one detector of holes in the time column
 
     out += [f"{name}: time: {f.message} (at {f.where})" for f in find_time_problems(t) if f.kind == "time_gap"]
     T = record.temperature
     if T is not None and (float(T.min()) < PLAUSIBLE_TEMPERATURE[0] or float(T.max()) > PLAUSIBLE_TEMPERATURE[1]):
         lo, hi = PLAUSIBLE_TEMPERATURE
-        as_celsius = (f"; read as degC they would be {float(T.min()):.4g} to {float(T.max()):.4g} degC, plausible: a "
-                      "likely unit mistake" if lo - 273.15 <= T.min() and T.max() <= hi - 273.15 else "")
-        out.append(f"{name}: temperature: {float(T.min()):.4g} to {float(T.max()):.4g} K, outside the {lo:g} to "
-                   f"{hi:g} K any damper test runs at{as_celsius}; is the column's unit [{unit('temperature', 'K')}] "
-                   "right?")
+        as_celsius = (
+            f"; read as degC they would be {float(T.min()):.4g} to {float(T.max()):.4g} degC, plausible: a "
+            "likely unit mistake"
+            if lo - 273.15 <= T.min() and T.max() <= hi - 273.15
+            else ""
+        )
+        out.append(
+            f"{name}: temperature: {float(T.min()):.4g} to {float(T.max()):.4g} K, outside the {lo:g} to "
+            f"{hi:g} K any damper test runs at{as_celsius}; is the column's unit [{unit('temperature', 'K')}] "
+            "right?"
+        )
     if damper is not None:
         out += _check_against_damper(record, damper)
     if warn:
@@ -946,8 +1052,12 @@ def _reversals(v: np.ndarray) -> int:
 
 def _factor_hint(ratio: float) -> str:
     """' (a factor near 1000: ...)' when ``ratio`` (measured / expected) is within a factor 5 of 1e3 or 1e-3."""
-    for k, text in ((1e3, "1000 too large"), (1e-3, "1000 too small"), (1e6, "a million too large"),
-                    (1e-6, "a million too small")):
+    for k, text in (
+        (1e3, "1000 too large"),
+        (1e-3, "1000 too small"),
+        (1e6, "a million too large"),
+        (1e-6, "a million too small"),
+    ):
         if k / 5 < ratio < k * 5:
             return f"; it is about {text}: a likely unit mistake"
     return ""
@@ -962,16 +1072,28 @@ def _check_against_damper(record: "Measurement", damper) -> list[str]:
         damper.fluid.check_plausible_field(record.control, f"{name}: {_control_column(record)} column")
     Dp = damper.geometry.piston_diameter
     if stroke > max(1.0, 30 * Dp):
-        hint = (f"; in a unit 1000 x smaller it would be {stroke:.3g} mm, a plausible stroke: a likely unit mistake "
-                "(values in mm given as m?)" if stroke / 1e3 <= 30 * Dp else "")
-        out.append(f"{name}: displacement: the stroke is {stroke:.3g} m, {stroke / Dp:.3g} x the piston diameter of "
-                   f"the damper{hint}; is the column's unit [{unit('displacement', 'm')}] right?")
+        hint = (
+            f"; in a unit 1000 x smaller it would be {stroke:.3g} mm, a plausible stroke: a likely unit mistake "
+            "(values in mm given as m?)"
+            if stroke / 1e3 <= 30 * Dp
+            else ""
+        )
+        out.append(
+            f"{name}: displacement: the stroke is {stroke:.3g} m, {stroke / Dp:.3g} x the piston diameter of "
+            f"the damper{hint}; is the column's unit [{unit('displacement', 'm')}] right?"
+        )
     elif stroke < 1e-3 * Dp:
-        hint = (f"; in a unit 1000 x larger it would be {stroke * 1e6:.3g} mm, a plausible stroke: a likely unit "
-                "mistake (values in mm given as um?)" if stroke * 1e3 <= 30 * Dp else "")
-        out.append(f"{name}: displacement: the stroke is {stroke * 1e6:.3g} um, {stroke / Dp:.2g} x the piston "
-                   f"diameter, too small for a damper test{hint}; is the column's unit "
-                   f"[{unit('displacement', 'm')}] right?")
+        hint = (
+            f"; in a unit 1000 x larger it would be {stroke * 1e6:.3g} mm, a plausible stroke: a likely unit "
+            "mistake (values in mm given as um?)"
+            if stroke * 1e3 <= 30 * Dp
+            else ""
+        )
+        out.append(
+            f"{name}: displacement: the stroke is {stroke * 1e6:.3g} um, {stroke / Dp:.2g} x the piston "
+            f"diameter, too small for a damper test{hint}; is the column's unit "
+            f"[{unit('displacement', 'm')}] right?"
+        )
     F = record.force
     if F is None or record.control_kind not in (None, damper.fluid.control):
         return out
@@ -990,10 +1112,12 @@ def _check_against_damper(record: "Measurement", damper) -> list[str]:
         return out
     ratio = measured / expected
     if ratio > 30 or ratio < 1 / 30:
-        out.append(f"{name}: force: the measured force spans {measured:.3g} N, {ratio:.3g} x the {expected:.3g} N the "
-                   f"damper file predicts at the record's motion and control{_factor_hint(ratio)}; is the unit of "
-                   f"the force [{unit('force', 'N')}] or displacement [{unit('displacement', 'm')}] column right, and "
-                   "is it the right damper file?")
+        out.append(
+            f"{name}: force: the measured force spans {measured:.3g} N, {ratio:.3g} x the {expected:.3g} N the "
+            f"damper file predicts at the record's motion and control{_factor_hint(ratio)}; is the unit of "
+            f"the force [{unit('force', 'N')}] or displacement [{unit('displacement', 'm')}] column right, and "
+            "is it the right damper file?"
+        )
     return out
 
 
@@ -1001,8 +1125,15 @@ def _control_column(record: "Measurement") -> str:
     return next((c for c, kinds in CONTROL_COLUMNS.items() if record.control_kind in kinds), "control")
 
 
-def write_measurement(path: str | Path, m: Measurement, *, units: dict[str, str] | None = None,
-                      comment: str = "", overwrite: bool = False, option: str = "path") -> None:
+def write_measurement(
+    path: str | Path,
+    m: Measurement,
+    *,
+    units: dict[str, str] | None = None,
+    comment: str = "",
+    overwrite: bool = False,
+    option: str = "path",
+) -> None:
     """Write a record as a measurement CSV file (SI units unless ``units`` maps column -> unit).
 
     Written whole or not at all (an interrupt leaves no half-written file), and an existing ``path`` only with

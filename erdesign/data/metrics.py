@@ -100,10 +100,12 @@ def esr(F_measured, F_model):
     """
     F, M = si_array(F_measured, "F_measured"), si_array(F_model, "F_model")
     if F.shape != M.shape:
-        raise ErdesignError(f"F_measured and F_model: {F.size} and {M.size} samples (shapes {F.shape} and "
-                            f"{M.shape}); give one model force per measured force")
+        raise ErdesignError(
+            f"F_measured and F_model: {F.size} and {M.size} samples (shapes {F.shape} and "
+            f"{M.shape}); give one model force per measured force"
+        )
     scale = float(np.max(np.abs(F))) if F.size else 0.0
-    if scale > 0:                       # the ratio is scale-free: scaled, sums of squares of huge forces stay finite
+    if scale > 0:  # the ratio is scale-free: scaled, sums of squares of huge forces stay finite
         F, M = F / scale, M / scale
     spread = np.sum((F - F.mean()) ** 2)
     if spread == 0:
@@ -166,6 +168,8 @@ def loops(record, force_model=None, *, last_cycles: float | None = None, frequen
         if not frequency or frequency <= 0:
             raise ErdesignError("loops: last_cycles needs the excitation frequency [Hz]")
         keep = record.time >= record.time[-1] - last_cycles / frequency - 1e-12
+
     def pick(a):
-        return (None if a is None else np.asarray(a, dtype=float)[keep])
+        return None if a is None else np.asarray(a, dtype=float)[keep]
+
     return Loops(record.displacement[keep], record.velocity[keep], pick(record.force), pick(force_model))

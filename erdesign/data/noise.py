@@ -43,8 +43,16 @@ from scipy.special import erf
 
 from .measurement import Measurement, _noise_level, derivatives
 
-__all__ = ["displacement_noise", "velocity_noise", "force_noise", "noise_floor_esr", "sign_known",
-           "force_noise_esr", "SIGN_BAND", "EDGE_FRACTION"]
+__all__ = [
+    "displacement_noise",
+    "velocity_noise",
+    "force_noise",
+    "noise_floor_esr",
+    "sign_known",
+    "force_noise_esr",
+    "SIGN_BAND",
+    "EDGE_FRACTION",
+]
 
 #: Half-width of the reversal band, in units of the velocity noise: inside it the sign of the velocity is unknown.
 SIGN_BAND = 3.0
@@ -110,7 +118,10 @@ def velocity_noise(record: Measurement) -> float:
             edge = min(max(3, int(EDGE_FRACTION * x.size)), x.size // 4)
             try:
                 _ACCELERATION_CACHE[id(record.displacement)] = (
-                    weakref.ref(record.displacement), sx, float(np.sqrt(np.mean((a2 - a1)[edge:x.size - edge] ** 2))))
+                    weakref.ref(record.displacement),
+                    sx,
+                    float(np.sqrt(np.mean((a2 - a1)[edge : x.size - edge] ** 2))),
+                )
             except TypeError:
                 pass
     # A velocity is never known better than VELOCITY_RESOLUTION of its peak: on a record without noise the
@@ -120,7 +131,7 @@ def velocity_noise(record: Measurement) -> float:
     sigma = max(sigma, VELOCITY_RESOLUTION * peak)
     try:
         _CACHE[key] = (weakref.ref(record.velocity), sigma)
-    except TypeError:       # an array type without weak references: no cache
+    except TypeError:  # an array type without weak references: no cache
         pass
     if len(_CACHE) > 256:
         for k in [k for k, (ref, _) in _CACHE.items() if ref() is None]:
@@ -157,7 +168,7 @@ def sign_known(record: Measurement, sigma_v: float | None = None) -> np.ndarray:
     known = speed >= band if band > 0 else np.ones(n, dtype=bool)
     edge = min(max(3, int(EDGE_FRACTION * n)), n // 4)
     known[:edge] = False
-    known[n - edge:] = False
+    known[n - edge :] = False
     return known
 
 
@@ -228,4 +239,3 @@ def noise_floor_esr(record: Measurement, jump=0.0, *, sigma_v: float | None = No
         sign = float(np.sum(J**2 * (1 - p**2)))
     out = (F.size * sF**2 + sign) / ss
     return float(min(out, 1.0)) if math.isfinite(out) else 1.0
-

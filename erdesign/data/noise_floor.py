@@ -89,9 +89,24 @@ from ..errors import ErdesignError
 from .measurement import Measurement, _noise_level, derivatives
 from .noise import _ACCELERATION_CACHE, EDGE_FRACTION, velocity_noise
 
-__all__ = ["still_samples", "NoiseFloor", "estimate_noise_floor", "motion_noise", "quantisation_step", "displacement_noise_level",
-           "force_noise_from_spectrum", "force_noise_from_cycles", "force_noise_from_still_segment", "METHODS",
-           "MIN_STILL", "FLAT", "PLATEAU_SPAN", "MAX_SLOPE", "ROLL_OFF", "HARMONIC_MARGIN"]
+__all__ = [
+    "still_samples",
+    "NoiseFloor",
+    "estimate_noise_floor",
+    "motion_noise",
+    "quantisation_step",
+    "displacement_noise_level",
+    "force_noise_from_spectrum",
+    "force_noise_from_cycles",
+    "force_noise_from_still_segment",
+    "METHODS",
+    "MIN_STILL",
+    "FLAT",
+    "PLATEAU_SPAN",
+    "MAX_SLOPE",
+    "ROLL_OFF",
+    "HARMONIC_MARGIN",
+]
 
 #: The methods, in order of preference (module notes).
 METHODS = ("given", "still segment", "repeated cycles", "spectrum above the excited band", "fourth differences")
@@ -164,11 +179,20 @@ class NoiseFloor:
         F = record.require_force()
         k = _mask(mask, F.size)
         esr, motion = _esrs(F, k, self.sigma_force, self.sigma_velocity, self.sigma_acceleration, sensitivity)
-        return NoiseFloor(self.sigma_force, self.method, esr, motion, self.sigma_velocity, self.sigma_acceleration,
-                          self.sigma_displacement, self.note)
+        return NoiseFloor(
+            self.sigma_force,
+            self.method,
+            esr,
+            motion,
+            self.sigma_velocity,
+            self.sigma_acceleration,
+            self.sigma_displacement,
+            self.note,
+        )
 
 
 # ----------------------------------------------------------------------------------------------------- helpers
+
 
 def _uniform(t: np.ndarray) -> bool:
     """Regular sampling: every time within 0.3 steps of a uniform grid (a time column printed with few digits,
@@ -195,7 +219,7 @@ def quantisation_step(x) -> float:
     if levels.size < 3:
         return 0.0
     gaps = np.diff(levels)
-    gaps = gaps[gaps > 1e-9 * (levels[-1] - levels[0])]      # below: round-off of a unit conversion
+    gaps = gaps[gaps > 1e-9 * (levels[-1] - levels[0])]  # below: round-off of a unit conversion
     if gaps.size < 2:
         return 0.0
     q = float(gaps.min())
@@ -289,6 +313,7 @@ def _robust_sigma(d: np.ndarray) -> float:
 
 # ----------------------------------------------------------------------------------------------- still segment
 
+
 def _still(record: Measurement, one_sided: bool = False) -> tuple[np.ndarray, float] | None:
     """(True where the piston is at rest, the displacement tolerance [m]) or None for a record too short to tell.
     The window is centred on the sample, or with ``one_sided`` starts or ends at it."""
@@ -307,11 +332,11 @@ def _still(record: Measurement, one_sided: bool = False) -> tuple[np.ndarray, fl
     def steady(y, limit):
         # the window of w samples that starts at i, and the one that ends at i: a sample right after the motion
         # stops (or right before it starts) is at rest on one side
-        c = (maximum_filter1d(y, w) - minimum_filter1d(y, w)) <= limit       # centred on i
+        c = (maximum_filter1d(y, w) - minimum_filter1d(y, w)) <= limit  # centred on i
         h = w // 2
         ahead, behind = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
-        ahead[:n - h] = c[h:]
-        behind[w - 1 - h:] = c[:n - (w - 1 - h)]
+        ahead[: n - h] = c[h:]
+        behind[w - 1 - h :] = c[: n - (w - 1 - h)]
         return ahead, behind
 
     if not one_sided:
@@ -348,8 +373,9 @@ def still_samples(record: Measurement) -> np.ndarray:
     return np.zeros(len(record), dtype=bool) if found is None else found[0]
 
 
-def force_noise_from_still_segment(record: Measurement, mask=None, *,
-                                   min_samples: int = MIN_STILL) -> tuple[float, str] | None:
+def force_noise_from_still_segment(
+    record: Measurement, mask=None, *, min_samples: int = MIN_STILL
+) -> tuple[float, str] | None:
     """The force's spread where the piston is at rest, [N], and a note; None without such a stretch.
 
     A sample is at rest when, over a centred window of ``max(64, 0.2 s)`` samples, the displacement stays within
@@ -384,8 +410,11 @@ def force_noise_from_still_segment(record: Measurement, mask=None, *,
     # a stretch held at the record's largest or smallest displacement may be a saturated transducer while the
     # piston moves on: not taken
     top, bottom = float(np.max(x)), float(np.min(x))
-    runs = [(a, b) for a, b in zip(edges[::2], edges[1::2]) if b - a >= 64
-            and (span <= 4 * tol or min(top - np.max(x[a:b]), np.min(x[a:b]) - bottom) > tol)]
+    runs = [
+        (a, b)
+        for a, b in zip(edges[::2], edges[1::2])
+        if b - a >= 64 and (span <= 4 * tol or min(top - np.max(x[a:b]), np.min(x[a:b]) - bottom) > tol)
+    ]
     if sum(b - a for a, b in runs) < min_samples:
         return None
     residuals = []
@@ -407,14 +436,15 @@ def force_noise_from_still_segment(record: Measurement, mask=None, *,
 
 # ---------------------------------------------------------------------------------------------- repeated cycles
 
+
 def _lagged_difference(y: np.ndarray, lag: float) -> tuple[np.ndarray, float]:
     """y(i + lag) - y(i) with linear interpolation for a fractional lag, and the variance factor of white noise."""
     m = int(math.floor(lag))
     alpha = lag - m
     if alpha < 1e-6:
-        return y[m:] - y[:y.size - m], 2.0
-    shifted = (1 - alpha) * y[m:-1] + alpha * y[m + 1:]
-    return shifted - y[:shifted.size], 1.0 + (1 - alpha) ** 2 + alpha ** 2
+        return y[m:] - y[: y.size - m], 2.0
+    shifted = (1 - alpha) * y[m:-1] + alpha * y[m + 1 :]
+    return shifted - y[: shifted.size], 1.0 + (1 - alpha) ** 2 + alpha**2
 
 
 def _lagged_inside(k: np.ndarray, lag: float) -> np.ndarray:
@@ -422,8 +452,8 @@ def _lagged_inside(k: np.ndarray, lag: float) -> np.ndarray:
     neighbours of i + lag when it falls between samples)."""
     m = int(math.floor(lag))
     if lag - m < 1e-6:
-        return k[m:] & k[:k.size - m]
-    return k[m:-1] & k[m + 1:] & k[:k.size - m - 1]
+        return k[m:] & k[: k.size - m]
+    return k[m:-1] & k[m + 1 :] & k[: k.size - m - 1]
 
 
 def force_noise_from_cycles(record: Measurement, mask=None) -> tuple[float, str] | None:
@@ -458,7 +488,7 @@ def force_noise_from_cycles(record: Measurement, mask=None) -> tuple[float, str]
     f0 = _dominant_frequency(t, x)
     if not f0 > 0:
         return None
-    period = 1.0 / (f0 * dt)                      # samples
+    period = 1.0 / (f0 * dt)  # samples
     if n < period + 150 or period < 8:
         return None
     # the dominant frequency is known to about half a Fourier bin: a grid of whole lags over a bin each side,
@@ -499,11 +529,14 @@ def force_noise_from_cycles(record: Measurement, mask=None) -> tuple[float, str]
         return None
     dF, factor = _lagged_difference(F, lag)
     s = _robust_sigma(dF[same]) / math.sqrt(factor)
-    return s, (f"{int(same.sum())} pairs of samples one period ({lag * dt:.5g} s, {1 / (lag * dt):.4g} Hz) apart "
-               "where the motion repeats")
+    return s, (
+        f"{int(same.sum())} pairs of samples one period ({lag * dt:.5g} s, {1 / (lag * dt):.4g} Hz) apart "
+        "where the motion repeats"
+    )
 
 
 # ------------------------------------------------------------------------------------------------------ spectrum
+
 
 def _band_top(f: np.ndarray, P: np.ndarray, share: float = 0.99) -> float:
     """Frequency below which ``share`` of the power of a one-sided spectrum lies."""
@@ -535,8 +568,11 @@ def _dejumped_spectrum(F: np.ndarray, fs: float, nper: int) -> tuple[np.ndarray,
 
     e = np.diff(F, 4)
     s = _robust_sigma(e)
-    bad = maximum_filter1d((np.abs(e - np.median(e)) > 6 * s).astype(np.int8), 9).astype(bool) if s > 0 \
+    bad = (
+        maximum_filter1d((np.abs(e - np.median(e)) > 6 * s).astype(np.int8), 9).astype(bool)
+        if s > 0
         else np.zeros(e.size, dtype=bool)
+    )
     kept = 1.0 - float(bad.mean())
     e = np.where(bad, 0.0, e)
     f, Pe = welch(e, fs=fs, nperseg=nper, detrend="constant", average="median")
@@ -603,7 +639,7 @@ def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float,
     # the pass band ends where the spectrum first falls faster than any force does
     slopes = np.diff(np.log10(np.maximum(levels, 1e-300))) / np.diff(centres) if len(bands) > 1 else np.zeros(0)
     steep = np.flatnonzero(slopes < ROLL_OFF)
-    end = int(steep[0]) + 1 if steep.size else len(bands)       # bands[:end] are the pass band
+    end = int(steep[0]) + 1 if steep.size else len(bands)  # bands[:end] are the pass band
     lowpassed = bool(steep.size) and levels[-1] < 1e-2 * levels[max(end - 1, 0)]
     if not lowpassed:
         end = len(bands)
@@ -615,8 +651,8 @@ def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float,
             if hi > FLAT * lo:
                 break
             if bands[j][1] / bands[i][0] >= PLATEAU_SPAN:
-                if abs(np.polyfit(centres[i:j + 1], np.log10(levels[i:j + 1]), 1)[0]) > MAX_SLOPE:
-                    continue        # still falling: the harmonics of the motion, or a filter's knee
+                if abs(np.polyfit(centres[i : j + 1], np.log10(levels[i : j + 1]), 1)[0]) > MAX_SLOPE:
+                    continue  # still falling: the harmonics of the motion, or a filter's knee
                 level = _plateau_level(P[(f >= bands[i][0]) & (f <= bands[j][1])])
                 if best is None or level < best[0]:
                     best = (level, bands[i][0], bands[j][1])
@@ -626,16 +662,27 @@ def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float,
 
     # the bound from the pass band below the filter's knee (at 0.75 of the roll-off's start a Butterworth filter of
     # order 4 run both ways keeps 80 % of the power)
-    knee = max(1, int(np.searchsorted([bd[1] for bd in bands], 0.75 * bands[end - 1][1], side="right"))) \
-        if lowpassed else end
+    knee = (
+        max(1, int(np.searchsorted([bd[1] for bd in bands], 0.75 * bands[end - 1][1], side="right")))
+        if lowpassed
+        else end
+    )
     jmin = int(np.argmin(levels[:knee]))
     bound = math.sqrt(levels[jmin] * bands[jmin][1] + above(bands[jmin][1]))
     band = f"excited band up to {fe:.3g} Hz"
     if best is None:
-        where = (f"the pass band, up to {bands[end - 1][1]:.4g} Hz where a roll-off begins" if lowpassed
-                 else f"{nyq:.4g} Hz")
-        return None, bound, (f"no flat plateau above the {band}: the spectrum falls to {where}, at least to "
-                             f"{levels[jmin]:.3g} N^2/Hz near {bands[jmin][0]:.4g} Hz"), lowpassed
+        where = (
+            f"the pass band, up to {bands[end - 1][1]:.4g} Hz where a roll-off begins" if lowpassed else f"{nyq:.4g} Hz"
+        )
+        return (
+            None,
+            bound,
+            (
+                f"no flat plateau above the {band}: the spectrum falls to {where}, at least to "
+                f"{levels[jmin]:.3g} N^2/Hz near {bands[jmin][0]:.4g} Hz"
+            ),
+            lowpassed,
+        )
     level, a, b = best
     top = min(b, nyq)
     sigma = math.sqrt(level * top + above(top))
@@ -650,6 +697,7 @@ def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float,
 
 # ------------------------------------------------------------------------------------------------------- the floor
 
+
 def _given_force_noise(value) -> float:
     if isinstance(value, (bool, np.bool_)):
         raise ErdesignError(f"force_noise: must be a force (e.g. '5 N') or a number of newtons, got {value!r}")
@@ -657,6 +705,7 @@ def _given_force_noise(value) -> float:
         s = float(value)
     else:
         from ..units import to_si
+
         s = float(to_si(value, "N", "force_noise"))
     if not (math.isfinite(s) and s >= 0):
         raise ErdesignError(f"force_noise: must be finite and >= 0 N, got {value!r}")
@@ -669,15 +718,23 @@ def _sensitivity(sensitivity, n: int) -> tuple[np.ndarray, np.ndarray]:
     try:
         dv, da = sensitivity
     except (TypeError, ValueError):
-        raise ErdesignError("sensitivity: must be a pair (dF/dv [N s/m], dF/da [N s^2/m]) of arrays of the "
-                            f"record's length {n} (or None for either), got {type(sensitivity).__name__}") from None
+        raise ErdesignError(
+            "sensitivity: must be a pair (dF/dv [N s/m], dF/da [N s^2/m]) of arrays of the "
+            f"record's length {n} (or None for either), got {type(sensitivity).__name__}"
+        ) from None
     out = []
     for name, s in (("dF/dv", dv), ("dF/da", da)):
-        arr = np.zeros(n) if s is None else np.broadcast_to(np.asarray(s, dtype=float), (n,)) if np.ndim(s) == 0 \
+        arr = (
+            np.zeros(n)
+            if s is None
+            else np.broadcast_to(np.asarray(s, dtype=float), (n,))
+            if np.ndim(s) == 0
             else np.asarray(s, dtype=float)
+        )
         if arr.shape != (n,) or not np.all(np.isfinite(arr)):
-            raise ErdesignError(f"sensitivity: {name} must be finite with one value per sample ({n}), got shape "
-                                f"{np.shape(s)}")
+            raise ErdesignError(
+                f"sensitivity: {name} must be finite with one value per sample ({n}), got shape {np.shape(s)}"
+            )
         out.append(arr)
     return out[0], out[1]
 
@@ -738,8 +795,10 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
             if not k.all():
                 a, b = _longest_run(k)
                 stretch = record.select(slice(a, b))
-                part = (f"on the longest stretch of samples kept, {record.time[a]:.4g}-{record.time[b - 1]:.4g} s "
-                        f"({b - a} of {n} samples): ")
+                part = (
+                    f"on the longest stretch of samples kept, {record.time[a]:.4g}-{record.time[b - 1]:.4g} s "
+                    f"({b - a} of {n} samples): "
+                )
             s_spec, bound, note, lowpassed = force_noise_from_spectrum(stretch)
             note = part + note
             F4 = np.asarray(stretch.force, dtype=float)
@@ -747,19 +806,33 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
                 found, method = (s_spec, note), "spectrum above the excited band"
             else:
                 s4 = _noise_level(F4)
-                if lowpassed:       # fourth differences see what the filter left of the noise: use the bound
-                    found, method = (bound, note + "; a low-passed channel: the noise taken at that level, an "
-                                     f"upper bound (fourth differences {s4:.3g} N)"), "spectrum above the excited band"
+                if lowpassed:  # fourth differences see what the filter left of the noise: use the bound
+                    found, method = (
+                        (
+                            bound,
+                            note + "; a low-passed channel: the noise taken at that level, an "
+                            f"upper bound (fourth differences {s4:.3g} N)",
+                        ),
+                        "spectrum above the excited band",
+                    )
                 elif bound < s4:
-                    found, method = (bound, note + "; taken as white at that level: an upper bound, below the "
-                                     f"fourth differences' {s4:.3g} N"), "spectrum above the excited band"
+                    found, method = (
+                        (
+                            bound,
+                            note + "; taken as white at that level: an upper bound, below the "
+                            f"fourth differences' {s4:.3g} N",
+                        ),
+                        "spectrum above the excited band",
+                    )
                 else:
-                    found, method = (s4, note + f"; fourth differences {s4:.3g} N, below the spectrum's bound "
-                                     f"{bound:.3g} N"), "fourth differences"
+                    found, method = (
+                        (s4, note + f"; fourth differences {s4:.3g} N, below the spectrum's bound {bound:.3g} N"),
+                        "fourth differences",
+                    )
         sigma, note = found
     sx = sv = sa = 0.0
     if sensitivity is not None:
-        _sensitivity(sensitivity, n)                 # checked before the differentiations
+        _sensitivity(sensitivity, n)  # checked before the differentiations
         sx, sv, sa = motion_noise(record)
     esr, motion = _esrs(F, k, float(sigma), sv, sa, sensitivity)
     return NoiseFloor(float(sigma), method, esr, motion, float(sv), float(sa), float(sx), note)
@@ -780,8 +853,9 @@ def _mask(mask, n: int) -> np.ndarray:
         return np.ones(n, dtype=bool)
     k = np.asarray(mask)
     if k.dtype != bool or k.shape != (n,):
-        raise ErdesignError(f"mask: must be a boolean array of the record's length {n}, got {k.dtype} of shape "
-                            f"{k.shape}")
+        raise ErdesignError(
+            f"mask: must be a boolean array of the record's length {n}, got {k.dtype} of shape {k.shape}"
+        )
     return k
 
 

@@ -27,33 +27,44 @@ def read_records(path, fmt: str = "auto", where: str = "MEASUREMENT") -> list[Me
     """
     from pathlib import Path
     from .measurement import read_measurement
+
     if fmt not in RECORD_FORMATS:
         raise ErdesignError(f"--format: {fmt!r} is not one of {', '.join(RECORD_FORMATS)}")
     path = Path(path)
     if not path.is_file():
-        what = ("is a folder" if path.is_dir() else "is not a regular file (a device or a pipe)" if path.exists()
-                else "no such file")
+        what = (
+            "is a folder"
+            if path.is_dir()
+            else "is not a regular file (a device or a pipe)"
+            if path.exists()
+            else "no such file"
+        )
         raise ErdesignError(f"{where}: {what} {path}" if what == "no such file" else f"{where}: {path} {what}")
     if path.stat().st_size > MAX_RECORD_BYTES:
-        raise ErdesignError(f"{where}: {path} is larger than {size_text(MAX_RECORD_BYTES)}, the most erdesign reads "
-                            "as one record file; thin or split the file")
+        raise ErdesignError(
+            f"{where}: {path} is larger than {size_text(MAX_RECORD_BYTES)}, the most erdesign reads "
+            "as one record file; thin or split the file"
+        )
     if fmt == "auto":
         if path.suffix.lower() == ".mat":
             fmt = "quiroz-mat"
         else:
             with open(path, "rb") as fh:
-                head = fh.read(_SNIFF_BYTES)      # never a whole file: a line may be gigabytes long
+                head = fh.read(_SNIFF_BYTES)  # never a whole file: a line may be gigabytes long
             lines = head.decode("utf-8", "replace").splitlines()
             if len(head) == _SNIFF_BYTES and len(lines) > 1:
-                lines = lines[:-1]                 # cut by the read
+                lines = lines[:-1]  # cut by the read
             first = next((line.strip() for line in lines if line.strip() and not line.strip().startswith("#")), "")
             numeric = bool(first) and all(_is_number(tok) for tok in first.replace(",", " ").split())
             if numeric:
                 import re
+
                 if re.fullmatch(QUIROZ_FILE_NAME, path.stem) is None:
-                    raise ErdesignError(f"{where}: {path} has no header line with units (e.g. 'time [s],displacement "
-                                        "[mm],force [N]') and is not a Quiroz (2022) preprocessed file "
-                                        "(<amp>mm<freq>Hz<current>A.txt); see docs/case_studies/quiroz.md")
+                    raise ErdesignError(
+                        f"{where}: {path} has no header line with units (e.g. 'time [s],displacement "
+                        "[mm],force [N]') and is not a Quiroz (2022) preprocessed file "
+                        "(<amp>mm<freq>Hz<current>A.txt); see docs/case_studies/quiroz.md"
+                    )
                 fmt = "quiroz"
             else:
                 fmt = "csv"

@@ -67,32 +67,54 @@ def design_current(req: "Requirements") -> float:
 def _materials(material: str, steel: str):
     from .. import materials
 
-    return (materials.steel_curve(steel), materials.magnetization_curve(material),
-            materials.material_fluid(material).yield_curve)
+    return (
+        materials.steel_curve(steel),
+        materials.magnetization_curve(material),
+        materials.material_fluid(material).yield_curve,
+    )
 
 
 #: Placeholder head (m, turns) evaluated in place of impossible ones, so that no kernel sees them.
-_PLACEHOLDER = dict(core_radius=0.012, pole_radius=0.02, gap=1e-3, housing_outer_radius=0.026, pole_length=0.008,
-                    coil_length=0.02, turns=300.0, wire_diameter=5e-4)
+_PLACEHOLDER = dict(
+    core_radius=0.012,
+    pole_radius=0.02,
+    gap=1e-3,
+    housing_outer_radius=0.026,
+    pole_length=0.008,
+    coil_length=0.02,
+    turns=300.0,
+    wire_diameter=5e-4,
+)
 
 
-def coil_figures(req: "Requirements", h, L, d, turns, wire_diameter, core_diameter, pole_length,
-                 housing_outer_diameter) -> CoilFigures:
+def coil_figures(
+    req: "Requirements", h, L, d, turns, wire_diameter, core_diameter, pole_length, housing_outer_diameter
+) -> CoilFigures:
     """Coil figures of N candidates (SI arrays of shape (N,)) at every design point of ``req`` (module notes)."""
     from ..magnetics.circuit import HeadBatch, MagneticCircuit
 
     steel, fluid_bh, yield_law = _materials(req.coil.material, req.coil.steel)
-    head = dict(core_radius=0.5 * np.asarray(core_diameter, dtype=float),
-                pole_radius=0.5 * (np.asarray(d, dtype=float) - h), gap=np.asarray(h, dtype=float),
-                housing_outer_radius=0.5 * np.asarray(housing_outer_diameter, dtype=float),
-                pole_length=np.asarray(pole_length, dtype=float),
-                coil_length=np.asarray(L, dtype=float) - 2.0 * np.asarray(pole_length, dtype=float),
-                turns=np.asarray(turns, dtype=float), wire_diameter=np.asarray(wire_diameter, dtype=float))
+    head = dict(
+        core_radius=0.5 * np.asarray(core_diameter, dtype=float),
+        pole_radius=0.5 * (np.asarray(d, dtype=float) - h),
+        gap=np.asarray(h, dtype=float),
+        housing_outer_radius=0.5 * np.asarray(housing_outer_diameter, dtype=float),
+        pole_length=np.asarray(pole_length, dtype=float),
+        coil_length=np.asarray(L, dtype=float) - 2.0 * np.asarray(pole_length, dtype=float),
+        turns=np.asarray(turns, dtype=float),
+        wire_diameter=np.asarray(wire_diameter, dtype=float),
+    )
     n = np.broadcast_shapes(*(np.shape(v) for v in head.values()))
     head = {k: np.broadcast_to(v, n).astype(float) for k, v in head.items()}
-    valid = ((head["core_radius"] > 0) & (head["core_radius"] < head["pole_radius"]) & (head["coil_length"] > 0)
-             & (head["housing_outer_radius"] > head["pole_radius"] + head["gap"]) & (head["gap"] > 0)
-             & (head["turns"] >= 1) & (head["wire_diameter"] > 0))
+    valid = (
+        (head["core_radius"] > 0)
+        & (head["core_radius"] < head["pole_radius"])
+        & (head["coil_length"] > 0)
+        & (head["housing_outer_radius"] > head["pole_radius"] + head["gap"])
+        & (head["gap"] > 0)
+        & (head["turns"] >= 1)
+        & (head["wire_diameter"] > 0)
+    )
     if not np.all(valid):
         head = {k: np.where(valid, v, _PLACEHOLDER[k]) for k, v in head.items()}
     batch = HeadBatch(**head)
@@ -111,14 +133,27 @@ def coil_figures(req: "Requirements", h, L, d, turns, wire_diameter, core_diamet
             else:
                 st = circuit.state(np.full(n, I))
                 sat = np.max([st.part_field[k] / knee[k] for k in knee], axis=0)
-                solved[I] = (np.asarray(st.yield_stress, dtype=float), np.abs(st.gap_flux_density), sat,
-                             np.abs(st.flux_linkage))
+                solved[I] = (
+                    np.asarray(st.yield_stress, dtype=float),
+                    np.abs(st.gap_flux_density),
+                    sat,
+                    np.abs(st.flux_linkage),
+                )
         tau, B, sat, linkage = solved[I]
         rows.append((tau, B, I * R, I / wire_area, sat))
     I_d = design_current(req)
     linkage = solved[float(abs(I_d))][3]
     L_over_R = linkage / I_d / R if I_d > 0 else np.full(n, np.nan)
     stack = [np.stack([r[j] for r in rows]) for j in range(5)]
-    return CoilFigures(valid=valid, yield_stress=stack[0], gap_flux_density=stack[1], voltage=stack[2],
-                       current_density=stack[3], saturation=stack[4], fill_factor=batch.fill_factor * np.ones(n),
-                       resistance=R, power=I_d ** 2 * R, time_constant=L_over_R)
+    return CoilFigures(
+        valid=valid,
+        yield_stress=stack[0],
+        gap_flux_density=stack[1],
+        voltage=stack[2],
+        current_density=stack[3],
+        saturation=stack[4],
+        fill_factor=batch.fill_factor * np.ones(n),
+        resistance=R,
+        power=I_d**2 * R,
+        time_constant=L_over_R,
+    )

@@ -141,8 +141,19 @@ def _point_figures(s: QuasiSteadyState, s0: QuasiSteadyState, h) -> PointFigures
     """The figures of the kernel's states at the field (``s``) and at zero field (``s0``), and Bi."""
     with np.errstate(divide="ignore", invalid="ignore"):
         bingham = s.yield_stress * h / (s.viscosity * s.mean_velocity)
-    return PointFigures._make(scalar_or_array(a) for a in (
-        s.force, s0.force, s.pressure_drop, s0.pressure_drop, s.plug_fraction, s.reynolds, s0.reynolds, bingham))
+    return PointFigures._make(
+        scalar_or_array(a)
+        for a in (
+            s.force,
+            s0.force,
+            s.pressure_drop,
+            s0.pressure_drop,
+            s.plug_fraction,
+            s.reynolds,
+            s0.reynolds,
+            bingham,
+        )
+    )
 
 
 def mixed_point_figures(v, tau_y, eta, eta0, rho, seal_friction, h, L, Dp, dr):
@@ -313,29 +324,66 @@ def constraints_for(req: "Requirements") -> tuple[Constraint, ...]:
         if p.min_force is not None:
             out.append(Constraint("min_force" + tag, _per_point("force", i), p.min_force, False, "kN", 1e3))
         if p.min_dynamic_range is not None:
-            out.append(Constraint("min_dynamic_range" + tag, _per_point("dynamic_range", i), p.min_dynamic_range,
-                                  False, "", 1.0))
+            out.append(
+                Constraint(
+                    "min_dynamic_range" + tag, _per_point("dynamic_range", i), p.min_dynamic_range, False, "", 1.0
+                )
+            )
         if p.max_zero_field_force is not None:
-            out.append(Constraint("max_zero_field_force" + tag, _per_point("zero_field_force", i),
-                                  p.max_zero_field_force, True, "kN", 1e3))
+            out.append(
+                Constraint(
+                    "max_zero_field_force" + tag,
+                    _per_point("zero_field_force", i),
+                    p.max_zero_field_force,
+                    True,
+                    "kN",
+                    1e3,
+                )
+            )
         if req.limits.max_pressure is not None:
-            out.append(Constraint("max_pressure" + tag, _peak("pressure_drop", "zero_field_pressure_drop", i),
-                                  req.limits.max_pressure, True, "MPa", 1e6))
+            out.append(
+                Constraint(
+                    "max_pressure" + tag,
+                    _peak("pressure_drop", "zero_field_pressure_drop", i),
+                    req.limits.max_pressure,
+                    True,
+                    "MPa",
+                    1e6,
+                )
+            )
         if req.limits.laminar:
-            out.append(Constraint("laminar" + tag, _peak("reynolds", "zero_field_reynolds", i, absolute=False),
-                                  CRITICAL_REYNOLDS, True, "", 1.0))
+            out.append(
+                Constraint(
+                    "laminar" + tag,
+                    _peak("reynolds", "zero_field_reynolds", i, absolute=False),
+                    CRITICAL_REYNOLDS,
+                    True,
+                    "",
+                    1.0,
+                )
+            )
         if req.limits.max_field is not None:
-            out.append(Constraint("max_field" + tag, (lambda f, E=p.field: np.full(len(f), E)),
-                                  req.limits.max_field, True, unit, field_scale))
+            out.append(
+                Constraint(
+                    "max_field" + tag,
+                    (lambda f, E=p.field: np.full(len(f), E)),
+                    req.limits.max_field,
+                    True,
+                    unit,
+                    field_scale,
+                )
+            )
         if req.limits.max_voltage is not None:
-            out.append(Constraint("max_voltage" + tag, _per_point("voltage", i), req.limits.max_voltage, True, "kV",
-                                  1e3))
+            out.append(
+                Constraint("max_voltage" + tag, _per_point("voltage", i), req.limits.max_voltage, True, "kV", 1e3)
+            )
     if req.coil is not None:
         out += _coil_constraints(req)
     lim = req.limits
     if lim.max_outer_diameter is not None:
-        out.append(Constraint("max_outer_diameter", lambda f: f.outer_diameter, lim.max_outer_diameter, True, "mm",
-                              1e-3))
+        out.append(
+            Constraint("max_outer_diameter", lambda f: f.outer_diameter, lim.max_outer_diameter, True, "mm", 1e-3)
+        )
     if lim.max_length is not None:
         out.append(Constraint("max_length", lambda f: f.length, lim.max_length, True, "mm", 1e-3))
     if lim.min_gap is not None:
@@ -343,9 +391,16 @@ def constraints_for(req: "Requirements") -> tuple[Constraint, ...]:
     out.append(Constraint("thin_gap", lambda f: f.gap_ratio, THIN_GAP_LIMIT, True, "", 1.0))
     if req.configuration == "valve" and req.envelope.duct_placement == "around":
         wall = req.envelope.wall
-        out.append(Constraint("duct_around_cylinder",
-                              lambda f: envelope.duct_clearance_ratio(f.piston_diameter, f.gap, f.duct_mean_diameter,
-                                                                      wall), 1.0, False, "", 1.0))
+        out.append(
+            Constraint(
+                "duct_around_cylinder",
+                lambda f: envelope.duct_clearance_ratio(f.piston_diameter, f.gap, f.duct_mean_diameter, wall),
+                1.0,
+                False,
+                "",
+                1.0,
+            )
+        )
     return tuple(out)
 
 
@@ -357,23 +412,42 @@ def _coil_constraints(req: "Requirements") -> list[Constraint]:
             continue
         tag = f" (point {i + 1})"
         if c.supply_voltage is not None:
-            out.append(Constraint("coil.supply_voltage" + tag, _per_point("voltage", i), c.supply_voltage, True, "V",
-                                  1.0))
-        out.append(Constraint("coil.max_current_density" + tag, _per_point("current_density", i),
-                              c.max_current_density, True, "A/mm^2", 1e6))
+            out.append(
+                Constraint("coil.supply_voltage" + tag, _per_point("voltage", i), c.supply_voltage, True, "V", 1.0)
+            )
+        out.append(
+            Constraint(
+                "coil.max_current_density" + tag,
+                _per_point("current_density", i),
+                c.max_current_density,
+                True,
+                "A/mm^2",
+                1e6,
+            )
+        )
         if not c.allow_saturation:
             out.append(Constraint("coil.saturation" + tag, _per_point("saturation", i), 1.0, True, "x knee", 1.0))
     out.append(Constraint("coil.max_fill_factor", lambda f: f.fill_factor, c.max_fill_factor, True, "", 1.0))
     if c.max_power is not None:
         out.append(Constraint("coil.max_power", lambda f: f.coil_power, c.max_power, True, "W", 1.0))
     if c.max_time_constant is not None:
-        out.append(Constraint("coil.max_time_constant", lambda f: f.time_constant, c.max_time_constant, True, "ms",
-                              1e-3))
+        out.append(
+            Constraint("coil.max_time_constant", lambda f: f.time_constant, c.max_time_constant, True, "ms", 1e-3)
+        )
     return out
 
 
-def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diameter, piston_diameter, rod_diameter,
-                        ducts, constraints: tuple[Constraint, ...] | None = None, coil=None) -> CandidateFigures:
+def evaluate_candidates(
+    req: "Requirements",
+    gap,
+    duct_length,
+    duct_mean_diameter,
+    piston_diameter,
+    rod_diameter,
+    ducts,
+    constraints: tuple[Constraint, ...] | None = None,
+    coil=None,
+) -> CandidateFigures:
     r"""Figures and constraint margins of N candidate geometries at every design point of ``req`` (vectorised).
 
     Parameters
@@ -418,8 +492,9 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
     valid = (h > 0) & (L > 0) & (dr >= 0) & (dr < Dp) & (h < d) & (n >= 1)
     all_valid = bool(np.all(valid))
     if not all_valid:  # placeholder geometry, so that no kernel sees an impossible duct
-        h, L, d, Dp, dr, n = (np.where(valid, a, s) for a, s in
-                              zip((h, L, d, Dp, dr, n), (1e-3, 0.05, 0.02, 0.04, 0.01, 1.0)))
+        h, L, d, Dp, dr, n = (
+            np.where(valid, a, s) for a, s in zip((h, L, d, Dp, dr, n), (1e-3, 0.05, 0.02, 0.04, 0.01, 1.0))
+        )
     Ap = piston_area(Dp, dr)
     fl, env = req.fluid, req.envelope
     cf = None
@@ -429,8 +504,17 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
         if coil is None:
             raise ValueError("evaluate_candidates: requirements with [design.coil] need the coil variables")
         cv = {k: np.broadcast_to(np.asarray(coil[k], dtype=float), h.shape) for k in coil}
-        cf = coil_figures(req, h, L, d, cv["turns"], cv["wire_diameter"], cv["core_diameter"], cv["pole_length"],
-                          cv["housing_outer_diameter"])
+        cf = coil_figures(
+            req,
+            h,
+            L,
+            d,
+            cv["turns"],
+            cv["wire_diameter"],
+            cv["core_diameter"],
+            cv["pole_length"],
+            cv["housing_outer_diameter"],
+        )
         valid = valid & cf.valid
         all_valid = bool(np.all(valid))
     rows = []
@@ -438,29 +522,38 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
         tau_y = float(fl.yield_stress_at(p.field)) if cf is None else cf.yield_stress[i]
         eta = float(fl.viscosity_at(p.field)) if cf is None else fl.viscosity
         if mixed:
-            rows.append(mixed_point_figures(p.velocity, tau_y, eta, fl.viscosity, fl.density, req.seal_friction,
-                                            h, L, Dp, dr))
+            rows.append(
+                mixed_point_figures(p.velocity, tau_y, eta, fl.viscosity, fl.density, req.seal_friction, h, L, Dp, dr)
+            )
         else:
-            rows.append(valve_point_figures(p.velocity, tau_y, eta, fl.viscosity, fl.density, req.seal_friction,
-                                            h, L, d, Ap, n))
-    if len(rows) == 1:   # a view, no copy (the common case of one design point)
+            rows.append(
+                valve_point_figures(p.velocity, tau_y, eta, fl.viscosity, fl.density, req.seal_friction, h, L, d, Ap, n)
+            )
+    if len(rows) == 1:  # a view, no copy (the common case of one design point)
         stacked = {key: np.broadcast_to(getattr(rows[0], key), h.shape)[None, :] for key in PointFigures._fields}
     else:
-        stacked = {key: np.stack([np.broadcast_to(getattr(r, key), h.shape) for r in rows])
-                   for key in PointFigures._fields}
+        stacked = {
+            key: np.stack([np.broadcast_to(getattr(r, key), h.shape) for r in rows]) for key in PointFigures._fields
+        }
     fields = np.array([p.field for p in req.points])[:, None]
     with np.errstate(divide="ignore", invalid="ignore"):
         dynamic_range = stacked["force"] / stacked["zero_field_force"]
     figures = CandidateFigures(
-        gap=h, duct_length=L, duct_mean_diameter=d, piston_diameter=Dp, rod_diameter=dr, ducts=n,
+        gap=h,
+        duct_length=L,
+        duct_mean_diameter=d,
+        piston_diameter=Dp,
+        rod_diameter=dr,
+        ducts=n,
         valid=valid,
         piston_area=Ap,
         gap_ratio=h / d,
         fluid_volume=envelope.active_fluid_volume(h, L, d, n),
         total_fluid_volume=envelope.total_fluid_volume(Ap, h, L, d, n, env.stroke, req.configuration),
         outer_diameter=envelope.outer_diameter(Dp, h, d, env.wall, req.configuration, env.duct_placement),
-        length=np.broadcast_to(envelope.body_length(L, env.stroke, env.head_length, env.end_allowance,
-                                                    req.configuration), h.shape),
+        length=np.broadcast_to(
+            envelope.body_length(L, env.stroke, env.head_length, env.end_allowance, req.configuration), h.shape
+        ),
         controllable_force=stacked["force"] - stacked["zero_field_force"],
         dynamic_range=dynamic_range,
         voltage=fields * h if cf is None else cf.voltage,
@@ -470,11 +563,17 @@ def evaluate_candidates(req: "Requirements", gap, duct_length, duct_mean_diamete
     if cf is not None:
         for key in coil:
             object.__setattr__(figures, key, cv[key])
-        for key, value in (("yield_stress", cf.yield_stress), ("gap_flux_density", cf.gap_flux_density),
-                           ("current_density", cf.current_density), ("saturation", cf.saturation),
-                           ("fill_factor", cf.fill_factor), ("coil_resistance", cf.resistance),
-                           ("coil_power", cf.power), ("time_constant", cf.time_constant),
-                           ("outer_diameter", cv["housing_outer_diameter"])):
+        for key, value in (
+            ("yield_stress", cf.yield_stress),
+            ("gap_flux_density", cf.gap_flux_density),
+            ("current_density", cf.current_density),
+            ("saturation", cf.saturation),
+            ("fill_factor", cf.fill_factor),
+            ("coil_resistance", cf.resistance),
+            ("coil_power", cf.power),
+            ("time_constant", cf.time_constant),
+            ("outer_diameter", cv["housing_outer_diameter"]),
+        ):
             object.__setattr__(figures, key, value)
     margins = np.empty((len(constraints), h.shape[0]))
     for j, c in enumerate(constraints):

@@ -36,8 +36,9 @@ FIGURES = {
     "outer_diameter": Figure("outer_diameter", False, "m", "min", "outer diameter of the body"),
     "length": Figure("length", False, "m", "min", "body length"),
     "coil_power": Figure("coil_power", False, "W", "min", "coil power I^2 R at the design current ([design.coil])"),
-    "time_constant": Figure("time_constant", False, "s", "min",
-                            "coil time constant L/R at the design current ([design.coil])"),
+    "time_constant": Figure(
+        "time_constant", False, "s", "min", "coil time constant L/R at the design current ([design.coil])"
+    ),
 }
 
 #: Objectives of ``design.objective``: name -> figure of :data:`FIGURES` (its ``better`` gives the sense).

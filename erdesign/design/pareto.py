@@ -103,16 +103,16 @@ def _front3(y, block=256):
     order = np.lexsort((np.arange(n), y[:, 2], y[:, 1], y[:, 0]))
     a, b = y[order, 1], y[order, 2]
     on_front = np.ones(n, dtype=bool)
-    stair_a = np.empty(0)       # staircase: a ascending, b strictly descending
+    stair_a = np.empty(0)  # staircase: a ascending, b strictly descending
     stair_b = np.empty(0)
     for start in range(0, n, block):
-        sa, sb = a[start:start + block], b[start:start + block]
+        sa, sb = a[start : start + block], b[start : start + block]
         pos = np.searchsorted(stair_a, sa, side="right") - 1
         dominated = (pos >= 0) & (stair_b[np.maximum(pos, 0)] <= sb if stair_b.size else False)
         m = sa.size
-        earlier = np.tri(m, m, -1, dtype=bool)            # [i, j]: j comes before i
+        earlier = np.tri(m, m, -1, dtype=bool)  # [i, j]: j comes before i
         dominated |= np.any(earlier & (sa[None, :] <= sa[:, None]) & (sb[None, :] <= sb[:, None]), axis=1)
-        on_front[start:start + m] = ~dominated
+        on_front[start : start + m] = ~dominated
         ma, mb = np.concatenate([stair_a, sa]), np.concatenate([stair_b, sb])
         o = np.lexsort((mb, ma))
         ma, mb = ma[o], mb[o]

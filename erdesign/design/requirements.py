@@ -135,6 +135,7 @@ SAMPLINGS = ("sobol", "lhs")
 #: the most it takes without a warning, and the largest chunk evaluated at once (memory: ~1 kB per candidate).
 MAX_SAMPLES, PLAUSIBLE_SAMPLES, MAX_CHUNK = 2**24, 2**21, 2**20
 
+
 @dataclass(frozen=True)
 class CoilDesign:
     """The ``[design.coil]`` table, SI: the fluid's magnetic material, the steel, and the coil's limits."""
@@ -275,8 +276,9 @@ class Requirements:
     @property
     def free_variables(self) -> tuple[str, ...]:
         """Names of the variables whose bounds are a range (low < high)."""
-        return tuple(k for k in self.variables
-                     if self.bounds.get(k) is not None and self.bounds[k][0] < self.bounds[k][1])
+        return tuple(
+            k for k in self.variables if self.bounds.get(k) is not None and self.bounds[k][0] < self.bounds[k][1]
+        )
 
 
 # ---------------------------------------------------------------------------------------------------- parsing
@@ -304,8 +306,9 @@ def load_example_requirements(name: str = "makris_requirements") -> Requirements
     'mixed'
     """
     if name not in example_requirements_names():
-        raise RequirementsError(f"example: unknown requirements example {name!r}; available: "
-                                f"{', '.join(example_requirements_names())}")
+        raise RequirementsError(
+            f"example: unknown requirements example {name!r}; available: {', '.join(example_requirements_names())}"
+        )
     with resources.as_file(resources.files("erdesign.examples") / "requirements" / f"{name}.toml") as path:
         return requirements_from_dict(read_toml(path), source=f"examples/requirements/{name}.toml")
 
@@ -320,8 +323,9 @@ def _range(value: Any, name: str, whole: bool = False) -> tuple[float, float]:
         lo, hi = float(items[0]), float(items[-1])
     else:
         if not 1 <= len(items) <= 2 or not all(isinstance(v, str) for v in items):
-            raise RequirementsError(f"{name}: expected [\"low unit\", \"high unit\"] or one value with a unit, "
-                                    f"got {value!r}")
+            raise RequirementsError(
+                f'{name}: expected ["low unit", "high unit"] or one value with a unit, got {value!r}'
+            )
         lo, hi = (to_si(v, "m", name) for v in (items[0], items[-1]))
     if not lo > 0:
         raise RequirementsError(f"{name}: must be positive, got {items[0]!r}")
@@ -346,7 +350,7 @@ def _q(unit: str, sign: str = "", dimension: str = "") -> Any:
 
 Length = _q("m", "positive")
 #: A free variable's range: ``["low unit", "high unit"]`` or one value (fixed); read as ``(low, high)`` in SI.
-LengthRange = checked(_range, "[\"low\", \"high\"] lengths with units, or one (fixed)")
+LengthRange = checked(_range, '["low", "high"] lengths with units, or one (fixed)')
 #: A whole-number variable's range: ``[low, high]`` or one number.
 WholeRange = checked(_whole_range, "[low, high] whole numbers, or one (fixed)")
 
@@ -374,28 +378,30 @@ class PointTable(Table):
 
     velocity: _q("m/s", "positive") = key("piston velocity")
     field: Control = key("the control (with [design.coil]: the coil current), default 0", default=None)
-    min_force: _q("N", "positive") = key("least total force (with seal friction) at velocity and field",
-                                               default=None)
-    min_dynamic_range: PositiveNumber = key("least force at field / force at zero field, at velocity",
-                                            default=None)
-    max_zero_field_force: _q("N", "positive") = key("largest force at velocity with no field (beyond the "
-                                                          "contract)", default=None)
+    min_force: _q("N", "positive") = key("least total force (with seal friction) at velocity and field", default=None)
+    min_dynamic_range: PositiveNumber = key("least force at field / force at zero field, at velocity", default=None)
+    max_zero_field_force: _q("N", "positive") = key(
+        "largest force at velocity with no field (beyond the contract)", default=None
+    )
 
 
 class LimitsTable(Table):
     """``[design.limits]``: what every design must respect (all optional)."""
 
-    max_outer_diameter: Length = key("cylinder outer diameter: piston diameter + 2 x wall (valve ducts "
-                                     "\"around\": the outer tube)", default=None)
+    max_outer_diameter: Length = key(
+        'cylinder outer diameter: piston diameter + 2 x wall (valve ducts "around": the outer tube)', default=None
+    )
     max_length: Length = key("body length of the envelope model (docs/design.md)", default=None)
-    max_pressure: _q("Pa", "positive") = key("pressure drop across the piston, at field and at zero field",
-                                                   default=None)
+    max_pressure: _q("Pa", "positive") = key(
+        "pressure drop across the piston, at field and at zero field", default=None
+    )
     laminar: Flag = key("Reynolds number (Makris et al. 1996, eq 1) below 2300 at every point", default=False)
     min_gap: Length = key("manufacturable minimum gap (at most the largest gap of [design.bounds])", default=None)
-    max_field: Control = key("largest control the fluid takes (default: 4 kV/mm ER, 250 kA/m MR; Butz and von "
-                             "Stryk 2002, Table 1)", default=None)
-    max_voltage: _q("V", "positive") = key("largest electrode voltage E h across the gap (ER only)",
-                                                 default=None)
+    max_field: Control = key(
+        "largest control the fluid takes (default: 4 kV/mm ER, 250 kA/m MR; Butz and von Stryk 2002, Table 1)",
+        default=None,
+    )
+    max_voltage: _q("V", "positive") = key("largest electrode voltage E h across the gap (ER only)", default=None)
 
 
 class EnvelopeTable(Table):
@@ -404,10 +410,10 @@ class EnvelopeTable(Table):
     stroke: _q("m", "non-negative") = key("full piston stroke (default 50 mm)", default=None)
     wall: _q("m", "non-negative") = key("wall allowance of the cylinder (default 5 mm)", default=None)
     head_length: _q("m", "non-negative") = key("valve piston head length (default 20 mm)", default=None)
-    end_allowance: _q("m", "non-negative") = key("each end cap with seal and bearing (default 25 mm)",
-                                                       default=None)
-    duct_placement: choice(*DUCT_PLACEMENTS) = key("valve: ducts \"beside\" the cylinder (Makris Fig 1) or one "
-                                                   "annulus \"around\" it", default="beside")
+    end_allowance: _q("m", "non-negative") = key("each end cap with seal and bearing (default 25 mm)", default=None)
+    duct_placement: choice(*DUCT_PLACEMENTS) = key(
+        'valve: ducts "beside" the cylinder (Makris Fig 1) or one annulus "around" it', default="beside"
+    )
 
 
 class BoundsTable(Table):
@@ -415,8 +421,7 @@ class BoundsTable(Table):
 
     gap: LengthRange = key("h")
     duct_length: LengthRange = key("L")
-    duct_mean_diameter: LengthRange = key("d (valve only: a mixed damper's is piston_diameter + gap)",
-                                          default=None)
+    duct_mean_diameter: LengthRange = key("d (valve only: a mixed damper's is piston_diameter + gap)", default=None)
     piston_diameter: LengthRange = key("Dp")
     rod_diameter: LengthRange = key("dr")
     ducts: WholeRange = key("parallel ducts (valve only)", default=1)
@@ -432,12 +437,13 @@ class SearchTable(Table):
     refine: Flag = key("refine the best designs locally", default=SearchSettings.refine)
     designs: whole_number(1) = key("how many designs to return", default=SearchSettings.designs)
     pareto: FigureList = key("figures of the Pareto front (erdesign.design.figures.FIGURES)", default=None)
-    active_tolerance: Number = key("relative margin below which a constraint counts as active",
-                                   default=SearchSettings.active_tolerance)
-    gap_tolerance: _q("m") = key("grid the returned gap is rounded to, 0 to 10 mm (default 0.01 mm)",
-                                       default=None)
-    length_tolerance: _q("m") = key("grid the other returned lengths are rounded to, 0 to 10 mm (default "
-                                          "0.1 mm)", default=None)
+    active_tolerance: Number = key(
+        "relative margin below which a constraint counts as active", default=SearchSettings.active_tolerance
+    )
+    gap_tolerance: _q("m") = key("grid the returned gap is rounded to, 0 to 10 mm (default 0.01 mm)", default=None)
+    length_tolerance: _q("m") = key(
+        "grid the other returned lengths are rounded to, 0 to 10 mm (default 0.1 mm)", default=None
+    )
     secondary: choice(*OBJECTIVES) = key("objective that breaks ties (default: per objective)", default=None)
 
 
@@ -452,7 +458,8 @@ class CoilTable(Table):
     steel: Text = key("steel of the materials database", default="steel-1018")
     supply_voltage: _q("V", "positive") = key("largest I R at every point", default=None)
     max_current_density: _q("A/m^2", "positive", "current density") = key(
-        "current density limit (default 5 A/mm^2)", default=None)
+        "current density limit (default 5 A/mm^2)", default=None
+    )
     max_fill_factor: Number = key("copper fill factor limit, in (0, 0.9] (default 0.6)", default=None)
     allow_saturation: Flag = key("allow a part of the circuit past the knee of its B-H curve", default=False)
     max_power: _q("W", "positive") = key("coil power at the first point's current", default=None)
@@ -462,10 +469,11 @@ class CoilTable(Table):
 class DesignTable(Table):
     """``[design]`` of a requirements file."""
 
-    configuration: choice(*CONFIGURATIONS) = key("\"valve\" or \"mixed\", as in the damper file")
+    configuration: choice(*CONFIGURATIONS) = key('"valve" or "mixed", as in the damper file')
     objective: choice(*OBJECTIVES) = key("what the ranking minimises or maximises", default="min_fluid_volume")
     point: Annotated[list[PointTable], BeforeValidator(_tables), "list of tables"] = key(
-        "one or more [[design.point]] tables")
+        "one or more [[design.point]] tables"
+    )
     limits: LimitsTable = key("[design.limits]", default=None)
     bounds: BoundsTable = key("[design.bounds]: the free variables and their ranges")
     envelope: EnvelopeTable = key("[design.envelope]", default=None)
@@ -477,7 +485,7 @@ class RequirementsFile(Table):
     """A requirements file (TOML) of ``erdesign design``."""
 
     name: Text = key("free text", default="")
-    fluid: FluidTable = key("exactly as in a damper file (or material = \"...\")")
+    fluid: FluidTable = key('exactly as in a damper file (or material = "...")')
     design: DesignTable = key("what the damper must do, its envelope and its free geometry")
 
 
@@ -517,13 +525,26 @@ def _parse(data: Mapping[str, Any]) -> Requirements:
             raise RequirementsError("design.bounds.ducts: a coil sits in a head with one annular gap (ducts = 1)")
         bounds.update(coil_bounds)
     if limits.min_gap is not None and limits.min_gap > bounds["gap"][1]:
-        raise RequirementsError(f"design.limits.min_gap: {limits.min_gap * 1e3:g} mm is above the largest gap of "
-                                f"design.bounds.gap ({bounds['gap'][1] * 1e3:g} mm): no design can meet both; lower "
-                                "min_gap or widen the gap's bounds")
+        raise RequirementsError(
+            f"design.limits.min_gap: {limits.min_gap * 1e3:g} mm is above the largest gap of "
+            f"design.bounds.gap ({bounds['gap'][1] * 1e3:g} mm): no design can meet both; lower "
+            "min_gap or widen the gap's bounds"
+        )
     search = _parse_search(design.search or SearchTable())
-    return Requirements(fluid=fluid, seal_friction=seal_friction, fluid_table=fluid_table,
-                        configuration=configuration, objective=objective, points=points, bounds=bounds,
-                        limits=limits, envelope=envelope, search=search, name=spec.name, coil=coil)
+    return Requirements(
+        fluid=fluid,
+        seal_friction=seal_friction,
+        fluid_table=fluid_table,
+        configuration=configuration,
+        objective=objective,
+        points=points,
+        bounds=bounds,
+        limits=limits,
+        envelope=envelope,
+        search=search,
+        name=spec.name,
+        coil=coil,
+    )
 
 
 def _parse_coil(table: CoilTable, fluid_table: Mapping[str, Any]):
@@ -534,12 +555,16 @@ def _parse_coil(table: CoilTable, fluid_table: Mapping[str, Any]):
     where = "design.coil"
     for k in POWER_LAW_KEYS:
         if k in fluid_table:
-            raise RequirementsError(f"fluid.{k}: not allowed with [design.coil]: each candidate's magnetic circuit "
-                                    "gives the yield stress at the point's coil current")
+            raise RequirementsError(
+                f"fluid.{k}: not allowed with [design.coil]: each candidate's magnetic circuit "
+                "gives the yield stress at the point's coil current"
+            )
     name = fluid_table.get("material")
     if not isinstance(name, str):
-        raise RequirementsError("fluid.material: missing; with [design.coil] the fluid's B-H and yield curves come "
-                                "from the materials database")
+        raise RequirementsError(
+            "fluid.material: missing; with [design.coil] the fluid's B-H and yield curves come "
+            "from the materials database"
+        )
     try:
         materials.magnetization_curve(name)
         law = materials.material_fluid(name).yield_curve
@@ -556,19 +581,23 @@ def _parse_coil(table: CoilTable, fluid_table: Mapping[str, Any]):
     values.update(yield_stress=spec.values["yield_stress"], reference_field="1 A", yield_exponent=1.0)
     fluid, seal_friction = parse_fluid_table(values, "fluid")
     if table.steel not in materials.steel_names():
-        raise RequirementsError(f"{where}.steel: unknown steel {table.steel!r}; known steels: "
-                                f"{', '.join(materials.steel_names())}")
+        raise RequirementsError(
+            f"{where}.steel: unknown steel {table.steel!r}; known steels: {', '.join(materials.steel_names())}"
+        )
     fill = table.max_fill_factor
     if fill is not None and not 0 < fill <= 0.9:
         raise RequirementsError(f"{where}.max_fill_factor: must lie in (0, 0.9], got {fill!r}")
     J = _si(table.max_current_density, "A/m^2", f"{where}.max_current_density")
-    coil = CoilDesign(material=name, steel=table.steel,
-                      supply_voltage=_si(table.supply_voltage, "V", f"{where}.supply_voltage"),
-                      max_current_density=DEFAULT_CURRENT_DENSITY if J is None else J,
-                      max_fill_factor=DEFAULT_FILL_FACTOR if fill is None else float(fill),
-                      allow_saturation=table.allow_saturation,
-                      max_power=_si(table.max_power, "W", f"{where}.max_power"),
-                      max_time_constant=_si(table.max_time_constant, "s", f"{where}.max_time_constant"))
+    coil = CoilDesign(
+        material=name,
+        steel=table.steel,
+        supply_voltage=_si(table.supply_voltage, "V", f"{where}.supply_voltage"),
+        max_current_density=DEFAULT_CURRENT_DENSITY if J is None else J,
+        max_fill_factor=DEFAULT_FILL_FACTOR if fill is None else float(fill),
+        allow_saturation=table.allow_saturation,
+        max_power=_si(table.max_power, "W", f"{where}.max_power"),
+        max_time_constant=_si(table.max_time_constant, "s", f"{where}.max_time_constant"),
+    )
     return fluid, seal_friction, coil, {k: getattr(table, k) for k in COIL_VARIABLES}
 
 
@@ -589,8 +618,9 @@ def _parse_points(tables: list[PointTable], fluid: Fluid) -> tuple[DesignPoint, 
             max_zero_field_force=_si(table.max_zero_field_force, "N", f"{where}.max_zero_field_force"),
         )
         if point.min_force is None and point.min_dynamic_range is None and point.max_zero_field_force is None:
-            raise RequirementsError(f"{where}: states no requirement (give min_force, min_dynamic_range or "
-                                    "max_zero_field_force)")
+            raise RequirementsError(
+                f"{where}: states no requirement (give min_force, min_dynamic_range or max_zero_field_force)"
+            )
         points.append(point)
     return tuple(points)
 
@@ -604,8 +634,10 @@ def _parse_limits(table: LimitsTable, fluid: Fluid) -> Limits:
             raise RequirementsError(f"{where}.max_field: must be positive, got {table.max_field!r}")
     max_voltage = _si(table.max_voltage, "V", f"{where}.max_voltage")
     if max_voltage is not None and fluid.control != "electric field":
-        raise RequirementsError(f"{where}.max_voltage: applies to an ER fluid controlled by an electric field "
-                                f"(this fluid's control is a {fluid.control})")
+        raise RequirementsError(
+            f"{where}.max_voltage: applies to an ER fluid controlled by an electric field "
+            f"(this fluid's control is a {fluid.control})"
+        )
     return Limits(
         max_outer_diameter=_si(table.max_outer_diameter, "m", f"{where}.max_outer_diameter"),
         max_length=_si(table.max_length, "m", f"{where}.max_length"),
@@ -620,8 +652,10 @@ def _parse_limits(table: LimitsTable, fluid: Fluid) -> Limits:
 def _parse_envelope(table: EnvelopeTable, configuration: str) -> Envelope:
     where = "design.envelope"
     defaults = Envelope()
-    values = {k: getattr(defaults, k) if getattr(table, k) is None else _si(getattr(table, k), "m", f"{where}.{k}")
-              for k in ("stroke", "wall", "head_length", "end_allowance")}
+    values = {
+        k: getattr(defaults, k) if getattr(table, k) is None else _si(getattr(table, k), "m", f"{where}.{k}")
+        for k in ("stroke", "wall", "head_length", "end_allowance")
+    }
     if "duct_placement" in table.model_fields_set and configuration != "valve":
         raise RequirementsError(f"{where}.duct_placement: applies to the valve configuration only")
     return Envelope(duct_placement=table.duct_placement, **values)
@@ -632,8 +666,10 @@ def _parse_bounds(table: BoundsTable, configuration: str, envelope: Envelope) ->
     bounds: dict[str, tuple[float, float] | None] = {k: getattr(table, k) for k in VARIABLES[:-1]}
     if configuration == "mixed":
         if table.duct_mean_diameter is not None:
-            raise RequirementsError(f"{where}.duct_mean_diameter: not a free variable of a mixed damper (it is "
-                                    "piston_diameter + gap); remove it")
+            raise RequirementsError(
+                f"{where}.duct_mean_diameter: not a free variable of a mixed damper (it is "
+                "piston_diameter + gap); remove it"
+            )
     elif table.duct_mean_diameter is None:
         raise RequirementsError(f"{where}.duct_mean_diameter: missing ([low, high] or a single value)")
     ducts = table.ducts if "ducts" in table.model_fields_set else (1.0, 1.0)
@@ -641,13 +677,16 @@ def _parse_bounds(table: BoundsTable, configuration: str, envelope: Envelope) ->
     if configuration == "mixed" and hi != 1:
         raise RequirementsError(f"{where}.ducts: a mixed damper has one gap (ducts must be 1), got {[lo, hi]!r}")
     if envelope.duct_placement == "around" and hi != 1:
-        raise RequirementsError(f"{where}.ducts: one annulus fits around the cylinder (duct_placement = "
-                                f"\"around\"), got {[lo, hi]!r}")
+        raise RequirementsError(
+            f'{where}.ducts: one annulus fits around the cylinder (duct_placement = "around"), got {[lo, hi]!r}'
+        )
     bounds["ducts"] = (lo, hi)
     lo_dr, hi_dp = bounds["rod_diameter"][0], bounds["piston_diameter"][1]
     if lo_dr >= hi_dp:
-        raise RequirementsError(f"{where}.rod_diameter: the smallest rod ({lo_dr * 1e3:g} mm) is not smaller than "
-                                f"the largest piston ({hi_dp * 1e3:g} mm)")
+        raise RequirementsError(
+            f"{where}.rod_diameter: the smallest rod ({lo_dr * 1e3:g} mm) is not smaller than "
+            f"the largest piston ({hi_dp * 1e3:g} mm)"
+        )
     if bounds["duct_mean_diameter"] is not None and bounds["gap"][0] >= bounds["duct_mean_diameter"][1]:
         raise RequirementsError(f"{where}.gap: the smallest gap is not smaller than the largest duct_mean_diameter")
     return bounds
@@ -656,8 +695,9 @@ def _parse_bounds(table: BoundsTable, configuration: str, envelope: Envelope) ->
 def _parse_search(table: SearchTable) -> SearchSettings:
     where = "design.search"
     defaults = SearchSettings()
-    values: dict[str, Any] = {k: getattr(table, k) for k in ("samples", "seed", "chunk", "designs", "sampling",
-                                                               "refine", "active_tolerance")}
+    values: dict[str, Any] = {
+        k: getattr(table, k) for k in ("samples", "seed", "chunk", "designs", "sampling", "refine", "active_tolerance")
+    }
     values["pareto"] = defaults.pareto if table.pareto is None else tuple(table.pareto)
     for k in ("gap_tolerance", "length_tolerance"):
         if getattr(table, k) is not None:
@@ -686,14 +726,21 @@ def _check_search(search: SearchSettings, where: str) -> None:
         if not (isinstance(getattr(search, name), int) and getattr(search, name) >= 1):
             raise RequirementsError(f"{where}.{name}: must be a whole number >= 1")
     if search.samples > MAX_SAMPLES:
-        raise RequirementsError(f"{where}.samples: {search.samples} is more than the search takes (at most "
-                                f"{MAX_SAMPLES} = 2**24, hours of computing); narrow the bounds instead")
+        raise RequirementsError(
+            f"{where}.samples: {search.samples} is more than the search takes (at most "
+            f"{MAX_SAMPLES} = 2**24, hours of computing); narrow the bounds instead"
+        )
     if search.samples > PLAUSIBLE_SAMPLES:
         import warnings
 
         from ..errors import PlausibilityWarning
-        warnings.warn(f"{where}.samples: {search.samples} candidates take minutes to evaluate (the default is "
-                      f"{SearchSettings().samples})", PlausibilityWarning, stacklevel=3)
+
+        warnings.warn(
+            f"{where}.samples: {search.samples} candidates take minutes to evaluate (the default is "
+            f"{SearchSettings().samples})",
+            PlausibilityWarning,
+            stacklevel=3,
+        )
     if search.designs > 1000:
         raise RequirementsError(f"{where}.designs: at most 1000 designs are returned, got {search.designs}")
     if not (isinstance(search.chunk, int) and 1024 <= search.chunk <= MAX_CHUNK):

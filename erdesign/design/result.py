@@ -61,11 +61,16 @@ CSV_COLUMNS = (
 
 #: Where each figure of :data:`~erdesign.design.figures.FIGURES` sits in a design record (first design point).
 RECORD_KEYS = {
-    "force": ("force_N",), "controllable_force": ("controllable_force_N",),
-    "zero_field_force": ("zero_field_force_N",), "dynamic_range": ("dynamic_range",),
-    "fluid_volume": ("fluid_volume_m3",), "total_fluid_volume": ("total_fluid_volume_m3",),
-    "outer_diameter": ("outer_diameter_m",), "length": ("length_m",),
-    "coil_power": ("magnetics", "power_W"), "time_constant": ("magnetics", "time_constant_s"),
+    "force": ("force_N",),
+    "controllable_force": ("controllable_force_N",),
+    "zero_field_force": ("zero_field_force_N",),
+    "dynamic_range": ("dynamic_range",),
+    "fluid_volume": ("fluid_volume_m3",),
+    "total_fluid_volume": ("total_fluid_volume_m3",),
+    "outer_diameter": ("outer_diameter_m",),
+    "length": ("length_m",),
+    "coil_power": ("magnetics", "power_W"),
+    "time_constant": ("magnetics", "time_constant_s"),
 }
 
 
@@ -86,8 +91,14 @@ def _finite(x: float) -> float | None:
     return x if np.isfinite(x) else None
 
 
-def design_record(req: Requirements, constraints: tuple[Constraint, ...], fig: CandidateFigures, geometry: dict,
-                  tol: float, origin: str) -> dict:
+def design_record(
+    req: Requirements,
+    constraints: tuple[Constraint, ...],
+    fig: CandidateFigures,
+    geometry: dict,
+    tol: float,
+    origin: str,
+) -> dict:
     """JSON-ready record of one design (``fig`` holds exactly that design; ``geometry`` its [geometry] table)."""
     margins = fig.margins[:, 0]
     geometry = dict(geometry)
@@ -108,17 +119,19 @@ def design_record(req: Requirements, constraints: tuple[Constraint, ...], fig: C
     field_unit = req.fluid.field_unit
     points = []
     for i, p in enumerate(req.points):
-        points.append({
-            "velocity_m_per_s": p.velocity,
-            "field": f"{Q_(p.field, control).to(field_unit).magnitude:.6g} {field_unit}",
-            "force_N": float(fig.force[i, 0]),
-            "zero_field_force_N": float(fig.zero_field_force[i, 0]),
-            "dynamic_range": _finite(fig.dynamic_range[i, 0]),
-            "pressure_drop_Pa": float(fig.pressure_drop[i, 0]),
-            "reynolds": float(fig.reynolds[i, 0]),
-            "bingham_number": _finite(fig.bingham_number[i, 0]),
-            "plug_fraction": float(fig.plug_fraction[i, 0]),
-        })
+        points.append(
+            {
+                "velocity_m_per_s": p.velocity,
+                "field": f"{Q_(p.field, control).to(field_unit).magnitude:.6g} {field_unit}",
+                "force_N": float(fig.force[i, 0]),
+                "zero_field_force_N": float(fig.zero_field_force[i, 0]),
+                "dynamic_range": _finite(fig.dynamic_range[i, 0]),
+                "pressure_drop_Pa": float(fig.pressure_drop[i, 0]),
+                "reynolds": float(fig.reynolds[i, 0]),
+                "bingham_number": _finite(fig.bingham_number[i, 0]),
+                "plug_fraction": float(fig.plug_fraction[i, 0]),
+            }
+        )
     first = points[0]
     record: dict[str, Any] = {
         "geometry": geometry,
@@ -153,11 +166,13 @@ def design_record(req: Requirements, constraints: tuple[Constraint, ...], fig: C
             "fill_factor": float(fig.fill_factor[0]),
         }
         for i, p in enumerate(points):
-            p.update(yield_stress_Pa=float(fig.yield_stress[i, 0]),
-                     gap_flux_density_T=float(fig.gap_flux_density[i, 0]),
-                     coil_voltage_V=float(fig.voltage[i, 0]),
-                     current_density_A_per_m2=float(fig.current_density[i, 0]),
-                     saturation_ratio=float(fig.saturation[i, 0]))
+            p.update(
+                yield_stress_Pa=float(fig.yield_stress[i, 0]),
+                gap_flux_density_T=float(fig.gap_flux_density[i, 0]),
+                coil_voltage_V=float(fig.voltage[i, 0]),
+                current_density_A_per_m2=float(fig.current_density[i, 0]),
+                saturation_ratio=float(fig.saturation[i, 0]),
+            )
     return record
 
 
@@ -219,8 +234,10 @@ class DesignResult:
         """The design record of rank ``rank`` (1 is the best); an :class:`~erdesign.errors.ErdesignError` naming
         the rank when there is no such design (nothing feasible, or fewer designs returned)."""
         if not self.designs:
-            raise ErdesignError(f"rank {rank}: nothing is feasible, so there is no design to take (the search "
-                                f"explains {len(self.conflicts)} conflict(s))")
+            raise ErdesignError(
+                f"rank {rank}: nothing is feasible, so there is no design to take (the search "
+                f"explains {len(self.conflicts)} conflict(s))"
+            )
         if isinstance(rank, bool) or not isinstance(rank, (int, np.integer)) or not 1 <= rank <= len(self.designs):
             raise ErdesignError(f"rank {rank!r}: the search returned designs 1 to {len(self.designs)}")
         return self.designs[int(rank) - 1]
@@ -245,8 +262,11 @@ class DesignResult:
         rec = self.design(rank)
         req = self.requirements
         fluid = dict(req.fluid_table)
-        spec: dict[str, Any] = {"name": f"{req.name or 'design'} #{int(rank)}", "geometry": dict(rec["geometry"]),
-                                "fluid": fluid}
+        spec: dict[str, Any] = {
+            "name": f"{req.name or 'design'} #{int(rank)}",
+            "geometry": dict(rec["geometry"]),
+            "fluid": fluid,
+        }
         if "coil" in rec:
             fluid["reference_field"] = f"{rec['magnetics']['design_current_A']!r} A"
             spec["coil"] = dict(rec["coil"])
@@ -258,12 +278,16 @@ class DesignResult:
 
         s = self.requirements.search
         if s.gap_tolerance and s.length_tolerance:
-            rounding = (f"dimensions rounded to {s.gap_tolerance * 1e3:g} mm (gap) and {s.length_tolerance * 1e3:g} mm "
-                        "(other lengths), then re-checked")
+            rounding = (
+                f"dimensions rounded to {s.gap_tolerance * 1e3:g} mm (gap) and {s.length_tolerance * 1e3:g} mm "
+                "(other lengths), then re-checked"
+            )
         else:
             rounding = "dimensions to six significant figures, re-checked"
-        return (f"{rounding}; ranked by {self.requirements.objective}, designs within {TIE * 100:g} % of each other "
-                f"by {secondary_objective(self.requirements)}")
+        return (
+            f"{rounding}; ranked by {self.requirements.objective}, designs within {TIE * 100:g} % of each other "
+            f"by {secondary_objective(self.requirements)}"
+        )
 
     def csv_rows(self) -> list[dict]:
         """Rows of the CSV file: ranked designs, then the Pareto front, then the nearest infeasible design."""

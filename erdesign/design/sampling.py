@@ -23,8 +23,7 @@ from scipy.stats import qmc
 if TYPE_CHECKING:  # pragma: no cover
     from .requirements import Requirements
 
-__all__ = ["map_unit_to_bounds", "candidate_chunks", "candidate_chunk", "chunk_count", "sobol_from",
-           "variables_of"]
+__all__ = ["map_unit_to_bounds", "candidate_chunks", "candidate_chunk", "chunk_count", "sobol_from", "variables_of"]
 
 
 def map_unit_to_bounds(u, bounds, free):
@@ -87,8 +86,14 @@ def chunk_count(req: "Requirements", samples: int | None = None, chunk: int | No
     return 1 if not req.free_variables else -(-samples // chunk)
 
 
-def candidate_chunk(req: "Requirements", index: int, samples: int | None = None, chunk: int | None = None,
-                    seed: int | None = None, sampling: str | None = None) -> dict:
+def candidate_chunk(
+    req: "Requirements",
+    index: int,
+    samples: int | None = None,
+    chunk: int | None = None,
+    seed: int | None = None,
+    sampling: str | None = None,
+) -> dict:
     """Chunk ``index`` of :func:`candidate_chunks`, made from the seed and the index alone (no earlier chunk).
 
     So a worker of a parallel sweep makes its own chunk and only the index travels.  Sobol': the scrambled
@@ -153,9 +158,9 @@ def sobol_from(d: int, seed: int, start: int) -> qmc.Sobol:
     sobol = qmc.Sobol(d, scramble=True, seed=np.random.default_rng(seed))
     if start == 0:
         return sobol
-    if not all(hasattr(sobol, a) for a in ("_shift", "_sv", "_quasi")):   # pragma: no cover - another scipy
+    if not all(hasattr(sobol, a) for a in ("_shift", "_sv", "_quasi")):  # pragma: no cover - another scipy
         return sobol.fast_forward(start)
-    k = start - 1                                      # the engine holds the last point drawn
+    k = start - 1  # the engine holds the last point drawn
     gray = k ^ (k >> 1)
     quasi = sobol._shift.copy()
     for bit in range(int(gray).bit_length()):
@@ -166,8 +171,13 @@ def sobol_from(d: int, seed: int, start: int) -> qmc.Sobol:
     return sobol
 
 
-def candidate_chunks(req: "Requirements", samples: int | None = None, chunk: int | None = None,
-                     seed: int | None = None, sampling: str | None = None) -> Iterator[dict]:
+def candidate_chunks(
+    req: "Requirements",
+    samples: int | None = None,
+    chunk: int | None = None,
+    seed: int | None = None,
+    sampling: str | None = None,
+) -> Iterator[dict]:
     """Yield candidate geometries (dicts of arrays, see :func:`map_unit_to_bounds`) in chunks.
 
     Parameters

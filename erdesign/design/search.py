@@ -50,8 +50,17 @@ from .requirements import COIL_VARIABLES, VARIABLES, Requirements
 from .result import DesignResult, design_record
 from .sampling import candidate_chunk, candidate_chunks, chunk_count
 
-__all__ = ["design", "sample_designs", "sweep", "SAFETY", "PARETO_LIMIT", "FRONT_STORE", "SECONDARY", "TIE",
-           "secondary_objective"]
+__all__ = [
+    "design",
+    "sample_designs",
+    "sweep",
+    "SAFETY",
+    "PARETO_LIMIT",
+    "FRONT_STORE",
+    "SECONDARY",
+    "TIE",
+    "secondary_objective",
+]
 
 #: The objective that breaks ties of each objective: a compact damper first, then a small fluid volume.
 SECONDARY = {
@@ -73,6 +82,7 @@ def secondary_objective(req: Requirements) -> str:
     """The objective that breaks ties: ``[design.search] secondary`` or :data:`SECONDARY` of the objective."""
     return req.search.secondary or SECONDARY[req.objective]
 
+
 #: Margin every refined design keeps on each constraint (relative): 1e-4, so that rounding the geometry to six
 #: significant figures (a relative change of at most 5e-6 in each dimension, up to about 4e-5 in a force) cannot
 #: push a design over a limit.
@@ -86,9 +96,9 @@ PARETO_LIMIT = 100
 #: archive, so that memory stays bounded even when every feasible design is non-dominated.
 FRONT_STORE = 8192
 
-_KEEP_FACTOR = 4     # keep this many times ``designs`` best samples as refinement starts
-_NEAREST = 4         # samples kept as starts for the nearest infeasible design
-_MAX_STARTS = 8      # SLSQP runs at most (fewer for mixed, whose evaluation is slower)
+_KEEP_FACTOR = 4  # keep this many times ``designs`` best samples as refinement starts
+_NEAREST = 4  # samples kept as starts for the nearest infeasible design
+_MAX_STARTS = 8  # SLSQP runs at most (fewer for mixed, whose evaluation is slower)
 
 
 def sample_designs(req: Requirements, samples: int | None = None, seed: int | None = None) -> CandidateFigures:
@@ -114,8 +124,17 @@ sweep = renamed(sample_designs, "erdesign.design.search.sweep")
 
 def _evaluate(req: Requirements, x: dict, constraints=None) -> CandidateFigures:
     coil = {k: x[k] for k in COIL_VARIABLES} if req.coil is not None else None
-    return evaluate_candidates(req, x["gap"], x["duct_length"], x["duct_mean_diameter"], x["piston_diameter"],
-                               x["rod_diameter"], x["ducts"], constraints=constraints, coil=coil)
+    return evaluate_candidates(
+        req,
+        x["gap"],
+        x["duct_length"],
+        x["duct_mean_diameter"],
+        x["piston_diameter"],
+        x["rod_diameter"],
+        x["ducts"],
+        constraints=constraints,
+        coil=coil,
+    )
 
 
 # ------------------------------------------------------------------------------------------- running summaries
@@ -186,15 +205,16 @@ class _Summary:
         self.pair = np.zeros((c, c), dtype=np.int64)
 
     @classmethod
-    def of_chunk(cls, fig: CandidateFigures, objective: str, pareto: tuple[str, ...], keep: int,
-                 variables: tuple) -> _Summary:
+    def of_chunk(
+        cls, fig: CandidateFigures, objective: str, pareto: tuple[str, ...], keep: int, variables: tuple
+    ) -> _Summary:
         """The summary of the candidates of one chunk (its whole Pareto front: the merge thins it)."""
         self = cls(fig.margins.shape[0], keep, variables)
         self.evaluated = len(fig)
         valid = fig.valid
         self.valid = int(np.count_nonzero(valid))
         margins = fig.margins
-        broken = margins < 0.0                               # NaN (invalid) compares False
+        broken = margins < 0.0  # NaN (invalid) compares False
         feasible = valid & ~np.any(broken, axis=0)
         self.feasible = int(np.count_nonzero(feasible))
         if self.feasible:
@@ -269,7 +289,7 @@ def _smallest(key: np.ndarray, k: int) -> np.ndarray:
     groups the keys were split into and merged from, when each group keeps its rows in order."""
     if key.size > k:
         kth = np.partition(key, k - 1)[k - 1]
-        candidates = np.flatnonzero(~(key > kth))            # those tied with the k-th too, and NaN
+        candidates = np.flatnonzero(~(key > kth))  # those tied with the k-th too, and NaN
         return candidates[np.argsort(key[candidates], kind="stable")[:k]]
     return np.argsort(key, kind="stable")
 
@@ -322,7 +342,7 @@ class _LocalProblem:
         self._z = z.copy()
         self.f, self.c = f[0], cons[:, 0]
         self.df = (f[1:] - f[0]) / self.STEP
-        self.dc = ((cons[:, 1:] - cons[:, :1]) / self.STEP)
+        self.dc = (cons[:, 1:] - cons[:, :1]) / self.STEP
 
     def fun(self, z):
         self._update(z)
@@ -346,9 +366,15 @@ def _refine(req, constraints, x0: np.ndarray, mode: str) -> np.ndarray:
     lo = np.log([req.bounds[req.variables[j]][0] for j in free])
     hi = np.log([req.bounds[req.variables[j]][1] for j in free])
     z0 = np.clip(np.log(x0[free]), lo, hi)
-    res = minimize(prob.fun, z0, jac=True, method="SLSQP", bounds=list(zip(lo, hi)),
-                   constraints=[{"type": "ineq", "fun": prob.cons, "jac": prob.cons_jac}],
-                   options={"maxiter": 100, "ftol": 1e-9})
+    res = minimize(
+        prob.fun,
+        z0,
+        jac=True,
+        method="SLSQP",
+        bounds=list(zip(lo, hi)),
+        constraints=[{"type": "ineq", "fun": prob.cons, "jac": prob.cons_jac}],
+        options={"maxiter": 100, "ftol": 1e-9},
+    )
     x1 = prob.point(np.clip(res.x, lo, hi))
     f0, _ = prob._values(x0[None, :])
     f1, c1 = prob._values(x1[None, :])
@@ -385,8 +411,12 @@ def _geometry_table(req: Requirements, x: np.ndarray, digits: int | None = None)
         table["ducts"] = round(x[5])
     if req.coil is not None:
         coil = {"turns": int(round(x[6])), "wire_diameter": mm(x[7], g)}
-        coil.update(core_diameter=mm(x[8], L), pole_length=mm(x[9], L), housing_outer_diameter=mm(x[10], L),
-                    steel=req.coil.steel)
+        coil.update(
+            core_diameter=mm(x[8], L),
+            pole_length=mm(x[9], L),
+            housing_outer_diameter=mm(x[10], L),
+            steel=req.coil.steel,
+        )
         if req.coil.supply_voltage is not None:
             coil["supply_voltage"] = f"{req.coil.supply_voltage:.6g} V"
         table["coil"] = coil
@@ -426,12 +456,11 @@ def _rounded(req, constraints, X: np.ndarray, need_feasible: bool):
     s = req.search
     if s.gap_tolerance == 0 or s.length_tolerance == 0:
         return _rounded_digits(req, constraints, X, need_feasible)
-    grid = np.array([s.gap_tolerance, s.length_tolerance, s.length_tolerance, s.length_tolerance,
-                     s.length_tolerance])
+    grid = np.array([s.gap_tolerance, s.length_tolerance, s.length_tolerance, s.length_tolerance, s.length_tolerance])
     mixed = req.configuration == "mixed"
-    free = [0, 1, 3, 4] if mixed else [0, 1, 2, 3, 4]          # mixed: d = Dp + h follows
-    rounded = list(range(5))                                   # columns on a grid (ducts are whole already)
-    if req.coil is not None:   # turns whole, the wire on the gap's grid, the other coil lengths on the length grid
+    free = [0, 1, 3, 4] if mixed else [0, 1, 2, 3, 4]  # mixed: d = Dp + h follows
+    rounded = list(range(5))  # columns on a grid (ducts are whole already)
+    if req.coil is not None:  # turns whole, the wire on the gap's grid, the other coil lengths on the length grid
         grid = np.concatenate([grid, [0.0, 1.0, s.gap_tolerance] + [s.length_tolerance] * 3])
         free = free + [6, 7, 8, 9, 10]
         rounded = rounded + [6, 7, 8, 9, 10]
@@ -521,8 +550,7 @@ def _ranked(req: Requirements, fig: CandidateFigures) -> np.ndarray:
 
 
 # ----------------------------------------------------------------------------------------------------- design
-def design(req: Requirements, progress=None, *, executor=None, jobs: int | None = None,
-           scheduler=None) -> DesignResult:
+def design(req: Requirements, progress=None, *, executor=None, jobs: int | None = None, scheduler=None) -> DesignResult:
     """Feasible designs ranked by the objective, the Pareto front, or the conflicts when nothing is feasible.
 
     Parameters
@@ -556,7 +584,7 @@ def design(req: Requirements, progress=None, *, executor=None, jobs: int | None 
     try:
         return _design(req, ex, progress)
     finally:
-        if ex is not executor:          # ours, not the caller's
+        if ex is not executor:  # ours, not the caller's
             ex.close()
 
 
@@ -582,8 +610,9 @@ def _design(req: Requirements, ex: Executor, progress) -> DesignResult:
     s = req.search
     summary = _sweep(req, ex, max(_KEEP_FACTOR * s.designs, _MAX_STARTS), progress)
     tol = s.active_tolerance
-    result = DesignResult(requirements=req, constraints=constraints, evaluated=summary.evaluated,
-                          feasible_count=summary.feasible)
+    result = DesignResult(
+        requirements=req, constraints=constraints, evaluated=summary.evaluated, feasible_count=summary.feasible
+    )
     if summary.feasible:
         X = summary.best_X
         if s.refine:
@@ -633,8 +662,12 @@ def _explain(req, constraints, summary: _Summary, tol: float, ex: Executor):
     """Nearest design and the list of conflicts, for a sweep with no feasible sample."""
     conflicts: list[str] = []
     if summary.valid == 0:
-        return None, [("no sampled geometry is buildable: check that rod_diameter < piston_diameter and gap < "
-                       "duct_mean_diameter can hold within design.bounds")]
+        return None, [
+            (
+                "no sampled geometry is buildable: check that rod_diameter < piston_diameter and gap < "
+                "duct_mean_diameter can hold within design.bounds"
+            )
+        ]
     X = summary.near_X[np.isfinite(summary.near_v)]
     if req.search.refine:
         X = np.vstack([np.array(ex.map(functools.partial(_refine_task, req, "violation"), list(X[:3]))), X])
@@ -654,11 +687,13 @@ def _explain(req, constraints, summary: _Summary, tol: float, ex: Executor):
             conflicts.append(f"relaxing {name} alone would admit {count} of {summary.evaluated} sampled designs")
     else:
         i, j = np.nonzero(summary.pair)
-        pairs = sorted(((int(summary.pair[a, b]), constraints[a].name, constraints[b].name) for a, b in zip(i, j)),
-                       reverse=True)
+        pairs = sorted(
+            ((int(summary.pair[a, b]), constraints[a].name, constraints[b].name) for a, b in zip(i, j)), reverse=True
+        )
         for count, a, b in pairs[:3]:
-            conflicts.append(f"relaxing {a} and {b} together would admit {count} of {summary.evaluated} sampled "
-                             "designs")
+            conflicts.append(
+                f"relaxing {a} and {b} together would admit {count} of {summary.evaluated} sampled designs"
+            )
         if not pairs:
             conflicts.append("every sampled design violates three or more constraints")
     record["violations"] = {constraints[j].name: float(-margins[j]) for j in np.flatnonzero(margins < 0)}
@@ -673,5 +708,7 @@ def _shortfall_text(c: Constraint, fig: CandidateFigures, margin: float) -> str:
     def show(x: float) -> str:
         return f"{x / c.scale:.4g}{unit}"
 
-    return (f"{c.name}: the nearest design reaches {show(value)}, the requirement is {sign} {show(c.limit)} "
-            f"(off by {100 * abs(margin):.3g} % of the limit)")
+    return (
+        f"{c.name}: the nearest design reaches {show(value)}, the requirement is {sign} {show(c.limit)} "
+        f"(off by {100 * abs(margin):.3g} % of the limit)"
+    )

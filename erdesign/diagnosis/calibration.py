@@ -38,13 +38,19 @@ def _finite_or_none(x):
 def _free_parameters(model: PhysicsDamper, record: Measurement) -> list[str]:
     free = list(model.parameter_names)
     if not np.any(np.abs(record.control) > 0) or model.damper.fluid.yield_stress == 0:
-        free.remove("yield_stress_factor")        # no field: the yield stress cannot be seen
+        free.remove("yield_stress_factor")  # no field: the yield stress cannot be seen
     return free
 
 
-def calibrate(damper: Damper, record: Measurement | Sequence[Measurement], effects: Sequence[str] | str = (), *,
-              start: Mapping[str, float] | None = None, exclude_clipped: bool | None = None,
-              max_samples: int = MAX_SAMPLES) -> FitResult:
+def calibrate(
+    damper: Damper,
+    record: Measurement | Sequence[Measurement],
+    effects: Sequence[str] | str = (),
+    *,
+    start: Mapping[str, float] | None = None,
+    exclude_clipped: bool | None = None,
+    max_samples: int = MAX_SAMPLES,
+) -> FitResult:
     """Fit the baseline (two calibration factors) plus ``effects`` to one record or several records of one damper.
 
     The fit runs on the samples :func:`diagnose` judges (:mod:`erdesign.diagnosis.records`: transients kept at full
@@ -61,8 +67,11 @@ def calibrate(damper: Damper, record: Measurement | Sequence[Measurement], effec
         _check_record(r, to_judge=False)
     _check_effects_seen(model, records, damper)
     findings = data_findings(records, exclude_clipped=exclude_clipped)
-    prep = prepare(records, [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r))
-                             for i, r in enumerate(records)], max_samples=max_samples)
+    prep = prepare(
+        records,
+        [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r)) for i, r in enumerate(records)],
+        max_samples=max_samples,
+    )
     result = _fit(model, prep.work, start, mask=prep.mask())
     result.findings = findings
     result.records = _record_esrs(model, result.values, prep.work, prep)
@@ -81,9 +90,11 @@ def _check_effects_seen(model: PhysicsDamper, records: Sequence[Measurement], da
     for e in model.effects:
         why = unseen_reason(e, records, damper)
         if why:
-            raise EffectError(f"{e.name}: cannot be judged from {records[0].name or 'this record'}"
-                              + (f" or the other {len(records) - 1} records" if len(records) > 1 else "")
-                              + f": {why}")
+            raise EffectError(
+                f"{e.name}: cannot be judged from {records[0].name or 'this record'}"
+                + (f" or the other {len(records) - 1} records" if len(records) > 1 else "")
+                + f": {why}"
+            )
 
 
 def data_findings(records: Sequence[Measurement], *, exclude_clipped: bool | None = None) -> list:
@@ -98,8 +109,7 @@ def data_findings(records: Sequence[Measurement], *, exclude_clipped: bool | Non
 
 def _fit(model: PhysicsDamper, record: Measurement, start=None, mask=None) -> FitResult:
     free = _free_parameters(model, record)
-    guess = {**model.initial_guess(record), **{k: v for k, v in (start or {}).items()
-                                                if k in model.parameter_names}}
+    guess = {**model.initial_guess(record), **{k: v for k, v in (start or {}).items() if k in model.parameter_names}}
     fixed = {} if "yield_stress_factor" in free else {"yield_stress_factor": guess.get("yield_stress_factor", 1.0)}
     return fit(model, record, free=free, fixed=fixed, start=guess, max_nfev=200, mask=mask)
 
@@ -128,11 +138,15 @@ def _implausible_record(record: Measurement, damper: Damper) -> list[str]:
     Dp = damper.geometry.piston_diameter
     unit = lambda col: record.units.get(col, "SI")  # noqa: E731
     if stroke > 50 * Dp:
-        out.append(f"the stroke is {stroke:.3g} m, {stroke / Dp:.3g} x the piston diameter: is the displacement "
-                   f"column's unit [{unit('displacement')}] right?")
+        out.append(
+            f"the stroke is {stroke:.3g} m, {stroke / Dp:.3g} x the piston diameter: is the displacement "
+            f"column's unit [{unit('displacement')}] right?"
+        )
     if speed > 20.0:
-        out.append(f"the piston speed reaches {speed:.3g} m/s, beyond any damper test: is the displacement or time "
-                   "column's unit right?")
+        out.append(
+            f"the piston speed reaches {speed:.3g} m/s, beyond any damper test: is the displacement or time "
+            "column's unit right?"
+        )
     F = record.force
     if F is not None:
         Fy = float(np.max(np.abs(damper.yield_force_si(record.control)))) + damper.seal_friction
@@ -141,8 +155,10 @@ def _implausible_record(record: Measurement, damper: Damper) -> list[str]:
         ref = max(Fpred, Fy, 1e-9)
         # (300, not 1000: a force column off by exactly a unit prefix must be caught with the model's own error)
         if Fmax > 300 * ref or Fmax < ref / 300:
-            out.append(f"the measured force peaks at {Fmax:.3g} N where the damper file predicts about {ref:.3g} N: "
-                       f"is the force column's unit [{unit('force')}] right?")
+            out.append(
+                f"the measured force peaks at {Fmax:.3g} N where the damper file predicts about {ref:.3g} N: "
+                f"is the force column's unit [{unit('force')}] right?"
+            )
     return out
 
 
@@ -157,11 +173,15 @@ def _check_record(record: Measurement, *, to_judge: bool = True) -> None:
     if not to_judge:
         return
     if len(record) < 50:
-        raise DiagnosisError(f"{record.name or 'record'}: {len(record)} samples are too few to judge any effect "
-                             "(need at least 50, over at least one cycle)")
+        raise DiagnosisError(
+            f"{record.name or 'record'}: {len(record)} samples are too few to judge any effect "
+            "(need at least 50, over at least one cycle)"
+        )
     if reversal_count(record.velocity) < 2:
-        raise DiagnosisError(f"{record.name or 'record'}: the piston reverses fewer than twice; at least one full "
-                             "cycle is needed to judge any effect")
+        raise DiagnosisError(
+            f"{record.name or 'record'}: the piston reverses fewer than twice; at least one full "
+            "cycle is needed to judge any effect"
+        )
 
 
 def _name(record: Measurement, i: int) -> str:

@@ -19,8 +19,17 @@ from ..identification.engine import at_bound
 from ..identification.fit import FitResult
 from .calibration import _finite_or_none, _fit, fitted_model, unseen_reason
 
-__all__ = ["Candidate", "rank_candidates", "parameters_at_bounds", "MIN_GAIN", "BIC_THRESHOLD", "HELD_OUT_GAIN", "RECORD_BOUNDS", "CLOSE_RIVALS",
-           "CLEARLY_WHITER"]
+__all__ = [
+    "Candidate",
+    "rank_candidates",
+    "parameters_at_bounds",
+    "MIN_GAIN",
+    "BIC_THRESHOLD",
+    "HELD_OUT_GAIN",
+    "RECORD_BOUNDS",
+    "CLOSE_RIVALS",
+    "CLEARLY_WHITER",
+]
 
 
 #: A candidate must lower the residual sum of squares by at least this fraction ...
@@ -148,8 +157,7 @@ def rank_candidates(ranking: list, base: FitResult) -> None:
     if evaluated:
         n_common = min(_effective_n(c.result.residual) for c in evaluated)
         for c in evaluated:
-            c.rank_bic = (_bic(c.result.rss, base.n, c.result.k, n_common)
-                          - _bic(base.rss, base.n, base.k, n_common))
+            c.rank_bic = _bic(c.result.rss, base.n, c.result.k, n_common) - _bic(base.rss, base.n, base.k, n_common)
     ranking.sort(key=lambda c: (not c.evaluated, c.rank_bic if c.evaluated else math.inf))
     if len(evaluated) > 1 and ranking[0].rank_bic < 0:
         best_rss = ranking[0].result.rss
@@ -173,7 +181,7 @@ def parameters_at_bounds(result: FitResult, names=None) -> list[str]:
     bound, as text: ``"slug_mass at its lower bound 0 kg"``.  A value at a bound is not an estimate: the data
     pushed it there (a missing effect, a unit mistake, or a parameter the record cannot tell)."""
     out = []
-    for name in (result.free if names is None else names):
+    for name in result.free if names is None else names:
         if name not in result.free:
             continue
         p = result.model.parameter(name)
@@ -183,8 +191,16 @@ def parameters_at_bounds(result: FitResult, names=None) -> list[str]:
     return out
 
 
-def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, effects: tuple, added: tuple,
-              damper: Damper, start=None, mask=None) -> Candidate:
+def _evaluate(
+    base_model: PhysicsDamper,
+    base: FitResult,
+    work: Measurement,
+    effects: tuple,
+    added: tuple,
+    damper: Damper,
+    start=None,
+    mask=None,
+) -> Candidate:
     """Fit the model with ``added`` effects; a candidate that cannot be evaluated says why (never raises)."""
     name = added[0] if len(added) == 1 else " + ".join(added)
     model = base_model.with_effects(effects + added)
@@ -205,8 +221,9 @@ def _evaluate(base_model: PhysicsDamper, base: FitResult, work: Measurement, eff
         if res.rss <= base.rss:
             break
     if res is None:
-        return Candidate(name, None, None, reason="could not be evaluated: " + (errors[0] if errors else "no fit"),
-                         effects=added)
+        return Candidate(
+            name, None, None, reason="could not be evaluated: " + (errors[0] if errors else "no fit"), effects=added
+        )
     n_eff = _effective_n(res.residual)
     delta_bic = _bic(res.rss, base.n, res.k, n_eff) - _bic(base.rss, base.n, base.k, n_eff)
     cand = Candidate(name, res, res.esr, delta_bic, 1 - res.rss / base.rss if base.rss > 0 else 0.0, effects=added)
@@ -225,11 +242,20 @@ def _evaluate_task(fixed: tuple, task: tuple) -> Candidate:
     return _evaluate(base_model, base, work, effects, added, damper, start=start, mask=mask)
 
 
-def evaluate_candidates(base_model: PhysicsDamper, base: FitResult, work: Measurement, effects: tuple,
-                        tasks: list[tuple[tuple, dict | None]], damper: Damper, mask=None, executor=None) -> list:
+def evaluate_candidates(
+    base_model: PhysicsDamper,
+    base: FitResult,
+    work: Measurement,
+    effects: tuple,
+    tasks: list[tuple[tuple, dict | None]],
+    damper: Damper,
+    mask=None,
+    executor=None,
+) -> list:
     """:func:`_evaluate` for each ``(added effects, start)`` of ``tasks``, each an independent fit on the executor
     (:mod:`erdesign.executor`; default in this process), in the order of ``tasks``."""
     from ..executor import SerialExecutor
+
     ex = executor if executor is not None else SerialExecutor()
     return ex.map(partial(_evaluate_task, (base_model, base, work, effects, damper, mask)), tasks)
 
@@ -255,11 +281,14 @@ def _beyond_record(cand: Candidate, work: Measurement, mask) -> list[str]:
         force = abs(value) * size(work)
         text = fitted_model(cand.result).parameter(name).format(value).strip()
         if not low and force > 2.0 * F_max:
-            out.append(f"{name} = {text} {what} about {force:.3g} N, more than twice the largest measured force "
-                       f"{F_max:.3g} N")
+            out.append(
+                f"{name} = {text} {what} about {force:.3g} N, more than twice the largest measured force {F_max:.3g} N"
+            )
         elif low and force < 0.5 * F_max:
-            out.append(f"{name} = {text} {what} about {force:.3g} N, less than half the largest measured force "
-                       f"{F_max:.3g} N: the bypass would relieve the pressure the record shows")
+            out.append(
+                f"{name} = {text} {what} about {force:.3g} N, less than half the largest measured force "
+                f"{F_max:.3g} N: the bypass would relieve the pressure the record shows"
+            )
     return out
 
 
@@ -268,8 +297,11 @@ def _beyond_record(cand: Candidate, work: Measurement, mask) -> list[str]:
 #: can never exceed the bypass damping times the speed: a bypass whose whole-flow force at the peak speed lies well
 #: below the measured force is impossible; one far above it only leaks a little (creep below yield), as a bypass does.
 RECORD_BOUNDS = {
-    "bypass_damping": (lambda r: float(np.max(np.abs(r.velocity))),
-                       "would carry the whole flow at the peak speed with", True),
+    "bypass_damping": (
+        lambda r: float(np.max(np.abs(r.velocity))),
+        "would carry the whole flow at the peak speed with",
+        True,
+    ),
     "slug_mass": (lambda r: float(np.max(np.abs(r.acceleration))), "would need at the peak acceleration", False),
     "gas_stiffness": (lambda r: 0.5 * float(np.ptp(r.displacement)), "would push over half the stroke with", False),
     "friction_force": (lambda r: 1.0, "is a friction force of", False),
@@ -287,8 +319,9 @@ def _held_out(prep) -> np.ndarray:
     return _held_out_mask(prep.work)
 
 
-def _held_out_gain(base_model: PhysicsDamper, cand: Candidate, record: Measurement, mask=None,
-                   held: np.ndarray | None = None) -> float:
+def _held_out_gain(
+    base_model: PhysicsDamper, cand: Candidate, record: Measurement, mask=None, held: np.ndarray | None = None
+) -> float:
     """Fraction of the held-out RSS the candidate removes, both models fitted on the training samples only (both
     sets restricted to ``mask``, the samples judged).  ``held``: the held-out samples (default: every third of
     twelve time blocks, :func:`_held_out_mask`)."""

@@ -83,10 +83,31 @@ from .verdict import (
     named_effects,
 )
 
-__all__ = ["Diagnosis", "Candidate", "ResidualAnalysis", "History", "calibrate", "residual_analysis", "diagnose",
-           "improve", "fitted_model", "parameters_at_bounds", "DiagnosisError", "MIN_GAIN", "BIC_THRESHOLD",
-           "HELD_OUT_GAIN", "MAX_SAMPLES", "VERDICTS", "AT_FLOOR", "WELL_ABOVE", "ABSOLUTE_SLACK", "EXPLAINS",
-           "PAIR_SEARCH_BELOW", "data_findings", "named_effects"]
+__all__ = [
+    "Diagnosis",
+    "Candidate",
+    "ResidualAnalysis",
+    "History",
+    "calibrate",
+    "residual_analysis",
+    "diagnose",
+    "improve",
+    "fitted_model",
+    "parameters_at_bounds",
+    "DiagnosisError",
+    "MIN_GAIN",
+    "BIC_THRESHOLD",
+    "HELD_OUT_GAIN",
+    "MAX_SAMPLES",
+    "VERDICTS",
+    "AT_FLOOR",
+    "WELL_ABOVE",
+    "ABSOLUTE_SLACK",
+    "EXPLAINS",
+    "PAIR_SEARCH_BELOW",
+    "data_findings",
+    "named_effects",
+]
 
 
 @dataclass
@@ -137,33 +158,45 @@ class Diagnosis:
 
     def as_json(self) -> dict:
         """The keys of ``erdesign diagnose --json`` (docs/cli.md); no value is NaN or infinite."""
-        out = {"baseline_esr": _finite_or_none(self.baseline_esr),
-               "ranking": [c.as_json() for c in self.ranking],
-               "missing_effect": self.missing_effect,
-               "verdict": self.verdict,
-               "noise_floor_esr": _finite_or_none(self.noise_floor_esr),
-               "noise_floor_method": self.noise_floor_method,
-               "missing_effects": self.missing_effects,
-               "findings": [f.as_json() for f in self.findings],
-               "records": [dict(r) for r in self.records]}
+        out = {
+            "baseline_esr": _finite_or_none(self.baseline_esr),
+            "ranking": [c.as_json() for c in self.ranking],
+            "missing_effect": self.missing_effect,
+            "verdict": self.verdict,
+            "noise_floor_esr": _finite_or_none(self.noise_floor_esr),
+            "noise_floor_method": self.noise_floor_method,
+            "missing_effects": self.missing_effects,
+            "findings": [f.as_json() for f in self.findings],
+            "records": [dict(r) for r in self.records],
+        }
         return out
 
     def report(self) -> str:
         """A readable report: calibration, where it fails, the ranking with parameters and plausibility, verdict."""
         model = "baseline" + (f" + {', '.join(self.effects)}" if self.effects else "")
-        lines = [f"Diagnosis of {self.record_name or 'the record'} ({self.samples[0]} samples"
-                 + (f", analysed on {self.samples[1]}" if self.samples[1] != self.samples[0] else "") + ")"]
+        lines = [
+            f"Diagnosis of {self.record_name or 'the record'} ({self.samples[0]} samples"
+            + (f", analysed on {self.samples[1]}" if self.samples[1] != self.samples[0] else "")
+            + ")"
+        ]
         if self.findings:
             lines.append("data findings (before any fit):")
-            lines.extend(f"  - {f.kind}: {f.record}: {f.message}" + (f" ({f.where})" if f.where else "")
-                         for f in self.findings)
-        lines.append(f"model: {model}; calibrated ESR {self.baseline_esr:.4g}; noise floor ESR "
-                     f"{self.noise_floor_esr:.3g} ({self.noise_floor_method or 'estimated'}); both judged on the "
-                     f"{100 * self.judged_share:.0f} % of the analysed samples where the sign of the velocity is known "
-                     "and no finding excludes them")
+            lines.extend(
+                f"  - {f.kind}: {f.record}: {f.message}" + (f" ({f.where})" if f.where else "") for f in self.findings
+            )
+        lines.append(
+            f"model: {model}; calibrated ESR {self.baseline_esr:.4g}; noise floor ESR "
+            f"{self.noise_floor_esr:.3g} ({self.noise_floor_method or 'estimated'}); both judged on the "
+            f"{100 * self.judged_share:.0f} % of the analysed samples where the sign of the velocity is known "
+            "and no finding excludes them"
+        )
         if len(self.records) > 1:
-            lines.append("ESR per record: " + ", ".join(
-                f"{r['name']} {r['esr']:.4g}" if r["esr"] is not None else f"{r['name']} -" for r in self.records))
+            lines.append(
+                "ESR per record: "
+                + ", ".join(
+                    f"{r['name']} {r['esr']:.4g}" if r["esr"] is not None else f"{r['name']} -" for r in self.records
+                )
+            )
         for name in self.baseline.model.parameter_names:
             p = self.baseline.model.parameter(name)
             se = self.baseline.stderr.get(name)
@@ -173,8 +206,10 @@ class Diagnosis:
             lines.append(f"  warning: {w}")
         lines.append("where the model fails:")
         lines.append(self.analysis.report())
-        lines.append("candidate effects (best first; ESR after adding it, effective-BIC change, share of the excess "
-                     "over the noise floor it explains):")
+        lines.append(
+            "candidate effects (best first; ESR after adding it, effective-BIC change, share of the excess "
+            "over the noise floor it explains):"
+        )
         for i, c in enumerate(self.ranking, 1):
             mark = "*" if c.significant else " "
             if not c.evaluated:
@@ -182,8 +217,10 @@ class Diagnosis:
                 continue
             held = "" if c.held_out_gain is None else f", held-out gain {100 * c.held_out_gain:.1f} %"
             name = " + ".join(c.effects)
-            lines.append(f" {mark}{i}. {name:<20} ESR {c.esr:.4g}  dBIC {c.delta_bic:+.1f}  "
-                         f"explains {100 * c.explained:.0f} %{held}")
+            lines.append(
+                f" {mark}{i}. {name:<20} ESR {c.esr:.4g}  dBIC {c.delta_bic:+.1f}  "
+                f"explains {100 * c.explained:.0f} %{held}"
+            )
             unc = c.uncertainties()
             for n, v in c.parameters().items():
                 lines.append(f"      {n} = {v} ± {unc.get(n, '?')}")
@@ -198,8 +235,10 @@ class Diagnosis:
         if self.verdict == "missing_effect":
             c = next(c for c in self.ranking if c.significant)
             what = " and ".join(f"{e} ({EFFECTS[e].mechanism})" for e in (self.pair or (self.missing_effect,)))
-            lines.append(f"verdict: missing effect: {what} ESR {self.baseline_esr:.4g} -> {c.esr:.4g} "
-                         f"(noise floor {self.noise_floor_esr:.3g})")
+            lines.append(
+                f"verdict: missing effect: {what} ESR {self.baseline_esr:.4g} -> {c.esr:.4g} "
+                f"(noise floor {self.noise_floor_esr:.3g})"
+            )
         elif self.verdict == "unexplained":
             lines.append("verdict: unexplained: " + self.reason)
         else:
@@ -214,10 +253,20 @@ MIMICS = ("channel_skew", "smoothed", "force_offset_drift")
 SIGN_WIDTHS = (0.0, 0.5, 1.0, 2.0)
 
 
-def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effects: Sequence[str] | str = (), *,
-             candidates: Sequence[str] | None = None, max_samples: int = MAX_SAMPLES, pairs: bool = True,
-             exclude_clipped: bool | None = None, force_noise=None, executor=None, jobs: int | None = None,
-             scheduler=None) -> Diagnosis:
+def diagnose(
+    damper: Damper,
+    record: Measurement | Sequence[Measurement],
+    effects: Sequence[str] | str = (),
+    *,
+    candidates: Sequence[str] | None = None,
+    max_samples: int = MAX_SAMPLES,
+    pairs: bool = True,
+    exclude_clipped: bool | None = None,
+    force_noise=None,
+    executor=None,
+    jobs: int | None = None,
+    scheduler=None,
+) -> Diagnosis:
     """Calibrate the baseline (+ ``effects``), analyse the residual, rank every other effect, give a verdict.
 
     Parameters
@@ -252,12 +301,22 @@ def diagnose(damper: Damper, record: Measurement | Sequence[Measurement], effect
         residual looks like).  Every ESR it states is judged on the same samples (:attr:`Diagnosis.judged_share`).
     """
     with executor_scope(executor, jobs=jobs, scheduler=scheduler) as ex:
-        return _diagnose(damper, record, effects, candidates=candidates, max_samples=max_samples, pairs=pairs,
-                         exclude_clipped=exclude_clipped, force_noise=force_noise, executor=ex)
+        return _diagnose(
+            damper,
+            record,
+            effects,
+            candidates=candidates,
+            max_samples=max_samples,
+            pairs=pairs,
+            exclude_clipped=exclude_clipped,
+            force_noise=force_noise,
+            executor=ex,
+        )
 
 
-def _diagnose(damper, record, effects, *, candidates, max_samples, pairs, exclude_clipped, force_noise,
-              executor) -> Diagnosis:
+def _diagnose(
+    damper, record, effects, *, candidates, max_samples, pairs, exclude_clipped, force_noise, executor
+) -> Diagnosis:
     """:func:`diagnose` on a given executor."""
     effects = parse_effect_names(effects)
     records = _as_records(record)
@@ -267,8 +326,11 @@ def _diagnose(damper, record, effects, *, candidates, max_samples, pairs, exclud
     base_model = PhysicsDamper(damper, effects)
     _check_effects_seen(base_model, records, damper)
     findings = data_findings(records, exclude_clipped=exclude_clipped)
-    prep = prepare(records, [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r))
-                             for i, r in enumerate(records)], max_samples=max_samples)
+    prep = prepare(
+        records,
+        [excluded_mask([f for f in findings if f.record == _name(r, i)], len(r)) for i, r in enumerate(records)],
+        max_samples=max_samples,
+    )
     work, mask = prep.work, prep.mask()
     known = prep.judged
     # Models are fitted and judged on the samples where the sign of the velocity is known (noise.sign_known) and
@@ -294,16 +356,24 @@ def _diagnose(damper, record, effects, *, candidates, max_samples, pairs, exclud
     suspicious = [s for r in records for s in _implausible_record(r, damper)]
     warnings_ += suspicious
     warnings_ += [f"{f.record}: {f.message}" for f in findings if f.unsafe_for]
-    names = [c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES)
-             if c not in effects]
+    names = [
+        c for c in (parse_effect_names(candidates) if candidates is not None else EFFECT_NAMES) if c not in effects
+    ]
     not_judged: dict[str, str] = {}
     for name in names:
         why = _cannot_judge(name, records, work, damper)
         if why:
             not_judged[name] = why
     ranking: list[Candidate] = evaluate_candidates(
-        base_model, base, work, effects, [((n,), None) for n in names if n not in not_judged], damper, mask=mask,
-        executor=executor)
+        base_model,
+        base,
+        work,
+        effects,
+        [((n,), None) for n in names if n not in not_judged],
+        damper,
+        mask=mask,
+        executor=executor,
+    )
     excess = base.esr - floor
     mimicked = {e: f for f in findings if f.kind in MIMICS for e in f.unsafe_for}
     for c in ranking:
@@ -312,8 +382,10 @@ def _diagnose(damper, record, effects, *, candidates, max_samples, pairs, exclud
             c.implausible += _beyond_record(c, work, mask)
         hit = [mimicked[e] for e in c.effects if e in mimicked]
         if hit:
-            c.blocked = (f"the data finding '{hit[0].kind}' ({hit[0].record}) makes the force lag the motion as "
-                         f"{c.effect} would; it is an artefact of the record, not a mechanism")
+            c.blocked = (
+                f"the data finding '{hit[0].kind}' ({hit[0].record}) makes the force lag the motion as "
+                f"{c.effect} would; it is an artefact of the record, not a mechanism"
+            )
     # ranked by the BIC with one effective sample count for all (the smallest any candidate leaves): each
     # candidate's own count (its significance against the baseline) would rank a worse fit first when the better one
     # leaves a smoother residual
@@ -321,76 +393,115 @@ def _diagnose(damper, record, effects, *, candidates, max_samples, pairs, exclud
     at_floor = base.esr <= AT_FLOOR * floor + ABSOLUTE_SLACK
     well_above = base.esr > WELL_ABOVE * floor + ABSOLUTE_SLACK
     if not base.esr < 1.0:
-        warnings_.append(f"the calibrated baseline leaves {100 * base.esr:.0f} % of the force variance: the damper "
-                         "file does not describe this record (a unit in the header, the wrong damper, or a mechanism "
-                         "far outside the model)")
+        warnings_.append(
+            f"the calibrated baseline leaves {100 * base.esr:.0f} % of the force variance: the damper "
+            "file does not describe this record (a unit in the header, the wrong damper, or a mechanism "
+            "far outside the model)"
+        )
     held = _held_out(prep)
     missing, pair, verdict, reason, one_sided = None, (), "nothing_missing", "", None
     if suspicious:
         verdict = "unexplained"
-        reason = ("the record is implausible for this damper, so no effect is named: " + "; ".join(suspicious))
+        reason = "the record is implausible for this damper, so no effect is named: " + "; ".join(suspicious)
     else:
         # at the (estimated) noise floor an effect must be overwhelming - or clearly better on held-out data
         named = _judge_singles(base_model, base, work, ranking, strict=at_floor, mask=mask, held=held)
         if named is None and pairs and well_above:
             best_share = max((c.explained for c in ranking if c.evaluated), default=0.0)
             if best_share < PAIR_SEARCH_BELOW:
-                named = _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=mask, held=held,
-                                     executor=executor)
+                named = _judge_pairs(
+                    base_model, base, work, effects, ranking, damper, excess, mask=mask, held=held, executor=executor
+                )
         if named is None:
             # never "nothing missing" while a plausible effect clearly improves the held-out data; far above the
             # floor, an effect that clearly improves the held-out data is a step of the loop even when more is
             # missing (the residual of the model with it is judged again, one-sidedness included)
-            named = _held_out_winner(base_model, work, ranking, mask, held,
-                                     partial=well_above)
+            named = _held_out_winner(base_model, work, ranking, mask, held, partial=well_above)
         one_sided = None if named is None else _one_sided(named, work, mask, floor)
         if one_sided is not None:
             named.significant = False
             named.note = "not named: " + one_sided
             verdict = "unexplained"
-            reason = (f"{named.effect} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} (noise floor "
-                      f"{floor:.3g}), but what it leaves is one-sided: {one_sided}. No effect of the library acts in "
-                      "one direction only: a blow-off or check valve, the unequal areas of a single-ended rod or "
-                      "cavitation may be at work.")
+            reason = (
+                f"{named.effect} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} (noise floor "
+                f"{floor:.3g}), but what it leaves is one-sided: {one_sided}. No effect of the library acts in "
+                "one direction only: a blow-off or check valve, the unequal areas of a single-ended rod or "
+                "cavitation may be at work."
+            )
             named = None
         if named is not None:
             missing, pair = named.effects[0], (named.effects if len(named.effects) > 1 else ())
             verdict = "missing_effect"
-            held_txt = ("" if named.held_out_gain is None else
-                        f", {100 * named.held_out_gain:.0f} % less error on held-out "
-                        f"{'records' if len(records) > 1 else 'cycles'}")
-            reason = (f"adding {' and '.join(named.effects)} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} "
-                      f"(noise floor {floor:.3g}), {100 * max(named.explained, 0):.0f} % of the excess, with "
-                      f"plausible values{held_txt}"
-                      + ("; more is missing: diagnose again with it" if named.explained < EXPLAINS else ""))
+            held_txt = (
+                ""
+                if named.held_out_gain is None
+                else f", {100 * named.held_out_gain:.0f} % less error on held-out "
+                f"{'records' if len(records) > 1 else 'cycles'}"
+            )
+            reason = (
+                f"adding {' and '.join(named.effects)} lowers the ESR from {base.esr:.3g} to {named.esr:.3g} "
+                f"(noise floor {floor:.3g}), {100 * max(named.explained, 0):.0f} % of the excess, with "
+                f"plausible values{held_txt}"
+                + ("; more is missing: diagnose again with it" if named.explained < EXPLAINS else "")
+            )
     if verdict == "missing_effect" or suspicious or one_sided:
         pass
     elif at_floor:
-        reason = (f"the calibrated baseline's ESR {base.esr:.3g} is at the noise floor {floor:.3g}: what is left "
-                  "is noise")
+        reason = (
+            f"the calibrated baseline's ESR {base.esr:.3g} is at the noise floor {floor:.3g}: what is left is noise"
+        )
     else:
         if not well_above:
-            reason = (f"the calibrated baseline's ESR {base.esr:.3g} is within {WELL_ABOVE:g} x the noise floor "
-                      f"{floor:.3g} and no effect removes a significant part of the rest")
+            reason = (
+                f"the calibrated baseline's ESR {base.esr:.3g} is within {WELL_ABOVE:g} x the noise floor "
+                f"{floor:.3g} and no effect removes a significant part of the rest"
+            )
         else:
             verdict = "unexplained"
             reason = _unexplained_reason(base.esr, floor, ranking, analysis)
             if warnings_:
                 reason += " Check first: " + "; ".join(warnings_) + "."
-    unsafe = sorted({f.kind for f in findings if f.unsafe_for and (
-        verdict != "missing_effect" or set(f.unsafe_for) & set(named_effects(missing, pair)))})
+    unsafe = sorted(
+        {
+            f.kind
+            for f in findings
+            if f.unsafe_for and (verdict != "missing_effect" or set(f.unsafe_for) & set(named_effects(missing, pair)))
+        }
+    )
     if unsafe:
-        reason += (f" Unsafe: the data finding(s) {', '.join(unsafe)} (see findings) can mimic or hide a "
-                   "mechanism; judge this verdict with them in mind.")
+        reason += (
+            f" Unsafe: the data finding(s) {', '.join(unsafe)} (see findings) can mimic or hide a "
+            "mechanism; judge this verdict with them in mind."
+        )
     if reason and not suspicious:
-        reason += (f" (judged on {100 * known.mean():.0f} % of the analysed samples: where the sign of the velocity "
-                   "is known" + (" and no data finding excludes them" if any(prep.excluded) else "") + ")")
+        reason += (
+            f" (judged on {100 * known.mean():.0f} % of the analysed samples: where the sign of the velocity "
+            "is known" + (" and no data finding excludes them" if any(prep.excluded) else "") + ")"
+        )
     ranking.sort(key=lambda c: (not c.significant, not c.evaluated, c.delta_bic))
     per_record = _record_esrs(base_model, base.values, work, prep)
-    return Diagnosis(effects, base, base.esr, analysis, ranking, missing, not_judged, work.name,
-                     (sum(prep.full_samples), len(work)), verdict, floor, reason, pair, warnings_,
-                     float(known.mean()), base.esr, floor, findings=findings, records=per_record,
-                     noise_floor_method=floor_info.method)
+    return Diagnosis(
+        effects,
+        base,
+        base.esr,
+        analysis,
+        ranking,
+        missing,
+        not_judged,
+        work.name,
+        (sum(prep.full_samples), len(work)),
+        verdict,
+        floor,
+        reason,
+        pair,
+        warnings_,
+        float(known.mean()),
+        base.esr,
+        floor,
+        findings=findings,
+        records=per_record,
+        noise_floor_method=floor_info.method,
+    )
 
 
 @dataclass
@@ -411,9 +522,16 @@ class History:
         return "\n".join(lines)
 
 
-def improve(damper: Damper, record: Measurement | Sequence[Measurement], effects: Sequence[str] | str = (), *,
-            max_rounds: int = 3, max_samples: int = MAX_SAMPLES, exclude_clipped: bool | None = None,
-            force_noise=None) -> History:
+def improve(
+    damper: Damper,
+    record: Measurement | Sequence[Measurement],
+    effects: Sequence[str] | str = (),
+    *,
+    max_rounds: int = 3,
+    max_samples: int = MAX_SAMPLES,
+    exclude_clipped: bool | None = None,
+    force_noise=None,
+) -> History:
     """Diagnose, add the missing effect(s), refit, re-rank - until no significant effect is missing.
 
     The noise floor is the same in every round (:mod:`erdesign.diagnosis.floor`: it depends on no model).
@@ -432,8 +550,9 @@ def improve(damper: Damper, record: Measurement | Sequence[Measurement], effects
     effects = parse_effect_names(effects)
     history = History()
     for _ in range(max_rounds + 1):
-        d = diagnose(damper, record, effects, max_samples=max_samples, exclude_clipped=exclude_clipped,
-                     force_noise=force_noise)
+        d = diagnose(
+            damper, record, effects, max_samples=max_samples, exclude_clipped=exclude_clipped, force_noise=force_noise
+        )
         history.diagnoses.append(d)
         history.steps.append((effects, d.baseline_esr))
         if d.verdict != "missing_effect":

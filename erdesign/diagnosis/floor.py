@@ -85,6 +85,9 @@ def noise_floor(records: Sequence[Measurement], prep, force_noise=None, damper: 
     ss = float(np.sum((F - F.mean()) ** 2)) if F.size else 0.0
     esr = min((force_part + motion_part) / ss, 1.0) if ss > 0 else 0.0
     motion = min(motion_part / ss, 1.0) if ss > 0 else 0.0
-    method = methods[0] if len(set(methods)) == 1 else "; ".join(
-        f"{name}: {m}" for (name, _), m in zip(prep.segments, methods))
+    method = (
+        methods[0]
+        if len(set(methods)) == 1
+        else "; ".join(f"{name}: {m}" for (name, _), m in zip(prep.segments, methods))
+    )
     return Floor(float(esr), method, tuple(sigmas), float(motion))

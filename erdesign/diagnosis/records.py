@@ -30,8 +30,19 @@ from ..data.measurement import Measurement
 from ..data.noise import displacement_noise, sign_known, velocity_noise
 from ..data.noise_floor import still_samples
 
-__all__ = ["Prepared", "prepare", "join_records", "analysis_samples", "velocity_bias", "sign_known_widened", "MAX_SAMPLES", "AFTER_FIELD_CHANGE", "JOIN_PAUSE",
-           "REVERSAL_RATE_FACTOR", "FIELD_CHANGE"]
+__all__ = [
+    "Prepared",
+    "prepare",
+    "join_records",
+    "analysis_samples",
+    "velocity_bias",
+    "sign_known_widened",
+    "MAX_SAMPLES",
+    "AFTER_FIELD_CHANGE",
+    "JOIN_PAUSE",
+    "REVERSAL_RATE_FACTOR",
+    "FIELD_CHANGE",
+]
 
 #: Records longer than this are thinned for the analysis (the kept transients come on top, up to twice as many).
 MAX_SAMPLES = 4000
@@ -134,7 +145,7 @@ def velocity_bias(record: Measurement) -> float:
     t, x = record.time, np.asarray(record.displacement, dtype=float)
     dt = float(np.median(np.diff(t)))
     e = np.asarray(record.velocity, dtype=float) - np.gradient(x, t)
-    inner = e[len(e) // 100 + 1:len(e) - len(e) // 100 - 1]         # the filter's edges are sign-unknown anyway
+    inner = e[len(e) // 100 + 1 : len(e) - len(e) // 100 - 1]  # the filter's edges are sign-unknown anyway
     cd_noise = displacement_noise(record) / (math.sqrt(2.0) * dt)
     return math.sqrt(max(float(np.mean(inner**2)) - cd_noise**2, 0.0))
 
@@ -150,6 +161,7 @@ def sign_known_widened(record: Measurement, sigma_v: float) -> np.ndarray:
         return sign_known(record, sigma_v)
     known = sign_known(record, math.hypot(sigma_v, b))
     from scipy.ndimage import binary_erosion
+
     return binary_erosion(known, iterations=2, border_value=0)
 
 
@@ -175,19 +187,31 @@ def join_records(records: Sequence[Measurement], pause: float = JOIN_PAUSE) -> t
         t0 = float(r.time[-1]) + shift + pause
         i0 += len(r)
     cat = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
-    temperature = (np.concatenate([p.temperature for p in parts])
-                   if all(p.temperature is not None for p in parts) else None)
+    temperature = (
+        np.concatenate([p.temperature for p in parts]) if all(p.temperature is not None for p in parts) else None
+    )
     first = records[0]
-    joined = replace(first, time=cat("time"), displacement=cat("displacement"), force=cat("force"),
-                     velocity=cat("velocity"), acceleration=cat("acceleration"), control=cat("control"),
-                     temperature=temperature, name=" + ".join(r.name or f"record {i + 1}" for i, r in
-                                                               enumerate(records)),
-                     velocity_noise=max(velocity_noise(r) for r in records))
+    joined = replace(
+        first,
+        time=cat("time"),
+        displacement=cat("displacement"),
+        force=cat("force"),
+        velocity=cat("velocity"),
+        acceleration=cat("acceleration"),
+        control=cat("control"),
+        temperature=temperature,
+        name=" + ".join(r.name or f"record {i + 1}" for i, r in enumerate(records)),
+        velocity_noise=max(velocity_noise(r) for r in records),
+    )
     return joined, segs
 
 
-def prepare(records: Sequence[Measurement], excluded: Sequence[np.ndarray | None] | None = None, *,
-            max_samples: int = MAX_SAMPLES) -> Prepared:
+def prepare(
+    records: Sequence[Measurement],
+    excluded: Sequence[np.ndarray | None] | None = None,
+    *,
+    max_samples: int = MAX_SAMPLES,
+) -> Prepared:
     """Thin each record (:func:`analysis_samples`), mark its judged samples (sign of the velocity known, not
     excluded) and join them (:func:`join_records`).  ``excluded``: per record, True where a data finding leaves
     the sample out (or None)."""

@@ -71,8 +71,9 @@ def _regions(record: Measurement, weight: np.ndarray | None = None) -> dict[str,
     return regions
 
 
-def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measurement,
-                      mask: np.ndarray | None = None) -> ResidualAnalysis:
+def residual_analysis(
+    model: PhysicsDamper, result: FitResult, record: Measurement, mask: np.ndarray | None = None
+) -> ResidualAnalysis:
     """Locate the residual of ``result`` in the cycle and project it on the signatures of the effects (on the
     samples of ``mask`` only, when given: diagnosis leaves out those where the velocity's sign is unknown).
 
@@ -112,49 +113,69 @@ def residual_analysis(model: PhysicsDamper, result: FitResult, record: Measureme
         shares[name] = float(c**2 * denom / (var if name != "offset" else float(np.sum(r**2)) or 1e-300))
     findings = []
     words = {
-        "coulomb": lambda c: (f"residual is odd in velocity and flat in magnitude: Coulomb-like, about {abs(c):.3g} N"
-                              f"{'' if c > 0 else ' (negative: less friction than assumed)'}: seal friction"),
-        "acceleration": lambda c: (f"residual follows the acceleration: an extra mass of about {c:.3g} kg: fluid "
-                                   f"inertia (prior {EFFECTS['fluid_inertia'].prior(model.damper)['slug_mass']:.3g} kg)"
-                                   if c > 0 else
-                                   "residual follows minus the acceleration: the measured force leads the model's "
-                                   "(no mass is negative: a phase error, such as a skewed or filtered channel, or a "
-                                   "lag in the model that the record does not have)"),
-        "displacement": lambda c: (f"residual grows with the displacement: a spring of about {c:.3g} N/m: gas spring"
-                                   if c > 0 else
-                                   "residual falls as the displacement grows: not a spring (no stiffness is "
-                                   "negative): an offset or drift of the displacement channel, or a one-sided "
-                                   "mechanism"),
-        "offset": lambda c: f"residual has a constant offset of about {c:.3g} N: gas-spring preload (or load-cell zero)",
-        "drift": lambda c: (f"the model force is {'too high' if c < 0 else 'too low'} late in the test "
-                            f"(by about {abs(c) * 100:.2g} % of the fluid force over the record): "
-                            f"{'viscous heating' if c < 0 else 'a drift (cooling, warm-up of the rig?)'}"),
+        "coulomb": lambda c: (
+            f"residual is odd in velocity and flat in magnitude: Coulomb-like, about {abs(c):.3g} N"
+            f"{'' if c > 0 else ' (negative: less friction than assumed)'}: seal friction"
+        ),
+        "acceleration": lambda c: (
+            f"residual follows the acceleration: an extra mass of about {c:.3g} kg: fluid "
+            f"inertia (prior {EFFECTS['fluid_inertia'].prior(model.damper)['slug_mass']:.3g} kg)"
+            if c > 0
+            else "residual follows minus the acceleration: the measured force leads the model's "
+            "(no mass is negative: a phase error, such as a skewed or filtered channel, or a "
+            "lag in the model that the record does not have)"
+        ),
+        "displacement": lambda c: (
+            f"residual grows with the displacement: a spring of about {c:.3g} N/m: gas spring"
+            if c > 0
+            else "residual falls as the displacement grows: not a spring (no stiffness is "
+            "negative): an offset or drift of the displacement channel, or a one-sided "
+            "mechanism"
+        ),
+        "offset": lambda c: (
+            f"residual has a constant offset of about {c:.3g} N: gas-spring preload (or load-cell zero)"
+        ),
+        "drift": lambda c: (
+            f"the model force is {'too high' if c < 0 else 'too low'} late in the test "
+            f"(by about {abs(c) * 100:.2g} % of the fluid force over the record): "
+            f"{'viscous heating' if c < 0 else 'a drift (cooling, warm-up of the rig?)'}"
+        ),
     }
     for name in sorted(shares, key=shares.get, reverse=True):
         if shares[name] > 0.1:
             findings.append(f"{words[name](sizes[name])} [explains {100 * shares[name]:.0f} % of the residual]")
     rev = regions.get("reversals (|v| < 15 %)")
     if rev and rev[1] > 1.5:
-        findings.append(f"the error is concentrated at the reversals ({rev[1]:.2g} x the overall RMS there): "
-                        "the force does not jump as the rigid-plastic model does: pre-yield elasticity, "
-                        "compressibility (zero field too) or leakage (creep below yield)")
+        findings.append(
+            f"the error is concentrated at the reversals ({rev[1]:.2g} x the overall RMS there): "
+            "the force does not jump as the rigid-plastic model does: pre-yield elasticity, "
+            "compressibility (zero field too) or leakage (creep below yield)"
+        )
     after = regions.get("30 ms after field changes")
     if after and after[1] > 1.5:
-        findings.append(f"the error is concentrated right after field changes ({after[1]:.2g} x the overall RMS): "
-                        "the fluid follows the field late: field lag")
+        findings.append(
+            f"the error is concentrated right after field changes ({after[1]:.2g} x the overall RMS): "
+            "the fluid follows the field late: field lag"
+        )
     high = regions.get("high velocity (> 70 %)")
     if high and high[1] > 1.5:
-        findings.append(f"the error is largest at high speed ({high[1]:.2g} x the overall RMS): the force-velocity "
-                        "curve bends (shear thinning) or lags (compressibility)")
+        findings.append(
+            f"the error is largest at high speed ({high[1]:.2g} x the overall RMS): the force-velocity "
+            "curve bends (shear thinning) or lags (compressibility)"
+        )
     plus, minus = regions.get("moving in + (v > 0)"), regions.get("moving in - (v < 0)")
     if plus and minus and max(plus[1], minus[1]) > 1.5 * max(min(plus[1], minus[1]), 1e-12):
         big = "+" if plus[1] > minus[1] else "-"
-        findings.append(f"the residual is asymmetric: {max(plus[1], minus[1]) / max(min(plus[1], minus[1]), 1e-12):.2g} "
-                        f"x larger moving in {big} than in the other direction: something acts one way only (a "
-                        "blow-off or check valve, the unequal areas of a single-ended rod, cavitation); no effect of "
-                        "the library is one-sided")
+        findings.append(
+            f"the residual is asymmetric: {max(plus[1], minus[1]) / max(min(plus[1], minus[1]), 1e-12):.2g} "
+            f"x larger moving in {big} than in the other direction: something acts one way only (a "
+            "blow-off or check valve, the unequal areas of a single-ended rod, cavitation); no effect of "
+            "the library is one-sided"
+        )
     late, first = regions.get("late in the test"), regions.get("first third")
     if late and first and late[1] > 1.5 * first[1]:
-        findings.append(f"the error grows over the test (late / early RMS {late[1] / max(first[1], 1e-12):.2g}): "
-                        "something changes with time: viscous heating")
+        findings.append(
+            f"the error grows over the test (late / early RMS {late[1] / max(first[1], 1e-12):.2g}): "
+            "something changes with time: viscous heating"
+        )
     return ResidualAnalysis(rms, regions, sizes, shares, findings)

@@ -20,8 +20,23 @@ from .candidates import (
     evaluate_candidates,
 )
 
-__all__ = ["VERDICTS", "AT_FLOOR", "WELL_ABOVE", "ABSOLUTE_SLACK", "EXPLAINS", "PAIR_SEARCH_BELOW", "STRICT_BIC",
-           "STRICT_HELD_OUT", "PAIR_POOL", "HELD_OUT_CLEAR", "PARTIAL_SHARE", "PARTIAL_TIE", "ONE_SIDED", "ONE_SIDED_SHARE", "named_effects"]
+__all__ = [
+    "VERDICTS",
+    "AT_FLOOR",
+    "WELL_ABOVE",
+    "ABSOLUTE_SLACK",
+    "EXPLAINS",
+    "PAIR_SEARCH_BELOW",
+    "STRICT_BIC",
+    "STRICT_HELD_OUT",
+    "PAIR_POOL",
+    "HELD_OUT_CLEAR",
+    "PARTIAL_SHARE",
+    "PARTIAL_TIE",
+    "ONE_SIDED",
+    "ONE_SIDED_SHARE",
+    "named_effects",
+]
 
 
 VERDICTS = ("missing_effect", "nothing_missing", "unexplained")
@@ -96,10 +111,11 @@ def _held_out_winner(base_model, work, ranking, mask, held, partial: bool = Fals
             best = c
     if best is not None:
         best.significant = True
-        best.note = (f"named on held-out data: it removes {100 * best.held_out_gain:.0f} % of the error there"
-                     + (f" and {100 * best.explained:.0f} % of the excess over the floor; more is missing: diagnose "
-                        "again with it" if partial else
-                        " although the calibrated model looked close to the noise floor"))
+        best.note = f"named on held-out data: it removes {100 * best.held_out_gain:.0f} % of the error there" + (
+            f" and {100 * best.explained:.0f} % of the excess over the floor; more is missing: diagnose again with it"
+            if partial
+            else " although the calibrated model looked close to the noise floor"
+        )
     return best
 
 
@@ -118,16 +134,17 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=N
             blocked_by = blocked_by or c
             continue
         if blocked_by is not None and c.explained < blocked_by.explained - 0.1:
-            c.note = (f"not named: {blocked_by.effect} fits much better ({100 * blocked_by.explained:.0f} % of the "
-                      f"excess against {100 * c.explained:.0f} %) but with an implausible size, so neither is the "
-                      "answer")
+            c.note = (
+                f"not named: {blocked_by.effect} fits much better ({100 * blocked_by.explained:.0f} % of the "
+                f"excess against {100 * c.explained:.0f} %) but with an implausible size, so neither is the "
+                "answer"
+            )
             continue
         if not c.esr < 0.5:
             c.note = "not named: the model with it still leaves half the force variance unexplained"
             continue
         if c.explained < EXPLAINS:
-            c.note = (f"not named alone: it explains only {100 * c.explained:.0f} % of the excess over the noise "
-                      "floor")
+            c.note = f"not named alone: it explains only {100 * c.explained:.0f} % of the excess over the noise floor"
             continue
         c.held_out_gain = _held_out_gain(base_model, c, work, mask, held)
         if c.held_out_gain > (STRICT_HELD_OUT if strict else HELD_OUT_GAIN):
@@ -137,26 +154,38 @@ def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=N
     return None
 
 
-def _judge_pairs(base_model, base, work, effects, ranking, damper, excess, mask=None, held=None,
-                 executor=None) -> Candidate | None:
+def _judge_pairs(
+    base_model, base, work, effects, ranking, damper, excess, mask=None, held=None, executor=None
+) -> Candidate | None:
     """Pairs of the best single candidates fitted jointly (not greedily); the best significant, plausible pair
     that explains enough of the excess, or None.  The pairs' fits are independent tasks on ``executor``."""
     pool = [c for c in ranking if c.evaluated and c.gain > 0 and not c.blocked][:PAIR_POOL]
     couples = [(pool[i], pool[j]) for i in range(len(pool)) for j in range(i + 1, len(pool))]
     # each effect starts from its own single fit, the calibration from the first
-    tasks = [((a.effect, b.effect), {**b.result.values, **a.result.values,
-                                     **{p.name: b.result.values[p.name] for p in EFFECTS[b.effect].parameters(damper)}})
-             for a, b in couples]
+    tasks = [
+        (
+            (a.effect, b.effect),
+            {
+                **b.result.values,
+                **a.result.values,
+                **{p.name: b.result.values[p.name] for p in EFFECTS[b.effect].parameters(damper)},
+            },
+        )
+        for a, b in couples
+    ]
     found = []
-    for (a, b), c in zip(couples, evaluate_candidates(base_model, base, work, effects, tasks, damper, mask=mask,
-                                                      executor=executor)):
+    for (a, b), c in zip(
+        couples, evaluate_candidates(base_model, base, work, effects, tasks, damper, mask=mask, executor=executor)
+    ):
         if not c.evaluated:
             continue
         c.explained = (base.esr - c.esr) / excess if excess > 0 else 0.0
         best_single = min(a.result.rss, b.result.rss)
         n_eff = _effective_n(c.result.residual)
-        better = _bic(c.result.rss, base.n, c.result.k, n_eff) < _bic(best_single, base.n, c.result.k - 1,
-                                                                       n_eff) - BIC_THRESHOLD
+        better = (
+            _bic(c.result.rss, base.n, c.result.k, n_eff)
+            < _bic(best_single, base.n, c.result.k - 1, n_eff) - BIC_THRESHOLD
+        )
         if better and not c.implausible and c.explained >= EXPLAINS and c.delta_bic < -BIC_THRESHOLD:
             found.append(c)
     if not found:
@@ -207,19 +236,23 @@ def _one_sided(cand: Candidate, work: Measurement, mask, floor: float) -> str | 
     if not (hh > 0 and ss > 0):
         return None
     c = float(np.dot(h, r0)) / hh
-    drop = c * c * hh / ss                         # ESR the one-sided term removes
-    left = float(np.sum(r**2)) / ss - floor        # what the named model leaves above the floor
+    drop = c * c * hh / ss  # ESR the one-sided term removes
+    left = float(np.sum(r**2)) / ss - floor  # what the named model leaves above the floor
     if drop * F.size > ONE_SIDED * floor and drop > ONE_SIDED_SHARE * left:
         side = "+" if c > 0 else "-"
-        return (f"the force is {100 * abs(c):.2g} % of the fluid force larger moving in {side} than the model "
-                f"allows (this removes {drop / max(left, 1e-300) * 100:.0f} % of what it leaves above the floor)")
+        return (
+            f"the force is {100 * abs(c):.2g} % of the fluid force larger moving in {side} than the model "
+            f"allows (this removes {drop / max(left, 1e-300) * 100:.0f} % of what it leaves above the floor)"
+        )
     return None
 
 
 def _unexplained_reason(base_esr, floor, ranking, analysis) -> str:
     """What the residual looks like and where it lives, and why no effect of the library explains it."""
-    parts = [f"the calibrated baseline's ESR {base_esr:.3g} is {base_esr / max(floor, 1e-12):.3g} x the noise floor "
-             f"{floor:.3g}"]
+    parts = [
+        f"the calibrated baseline's ESR {base_esr:.3g} is {base_esr / max(floor, 1e-12):.3g} x the noise floor "
+        f"{floor:.3g}"
+    ]
     ev = [c for c in ranking if c.evaluated]
     if ev:
         c = max(ev, key=lambda c: c.explained)
@@ -239,5 +272,7 @@ def _unexplained_reason(base_esr, floor, ranking, analysis) -> str:
     if where:
         name, (frac, ratio) = where[0]
         parts.append(f"it is largest {name} ({ratio:.2g} x the overall RMS on {100 * frac:.0f} % of the samples)")
-    return "; ".join(parts) + ". A mechanism outside the effect library (a blow-off valve, asymmetric areas, " \
+    return (
+        "; ".join(parts) + ". A mechanism outside the effect library (a blow-off valve, asymmetric areas, "
         "cavitation, free play, a clipped or filtered signal) or a wrong damper file may be at work."
+    )

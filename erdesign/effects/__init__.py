@@ -22,8 +22,17 @@ from .seal_friction import SealFriction
 from .shear_thinning import ShearThinning
 from .viscous_heating import ViscousHeating
 
-__all__ = ["Effect", "EffectError", "EFFECTS", "EFFECT_NAMES", "get_effect", "parse_effect_names",
-           "register_effect", "unregister_effect", "relaxation_filter"]
+__all__ = [
+    "Effect",
+    "EffectError",
+    "EFFECTS",
+    "EFFECT_NAMES",
+    "get_effect",
+    "parse_effect_names",
+    "register_effect",
+    "unregister_effect",
+    "relaxation_filter",
+]
 
 #: name -> Effect (the registry).
 EFFECTS: dict[str, Effect] = {}
@@ -40,8 +49,9 @@ def register_effect(effect: Effect) -> Effect:
     if not effect.name or effect.name in EFFECTS:
         raise EffectError(f"register_effect: the name {effect.name!r} is empty or already registered")
     if effect.stage not in STAGES:
-        raise EffectError(f"register_effect: {effect.name}: stage must be one of {', '.join(STAGES)}, "
-                          f"got {effect.stage!r}")
+        raise EffectError(
+            f"register_effect: {effect.name}: stage must be one of {', '.join(STAGES)}, got {effect.stage!r}"
+        )
     EFFECTS[effect.name] = effect
     return effect
 

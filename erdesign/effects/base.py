@@ -44,7 +44,16 @@ from ..errors import ErdesignError
 from ..numerics import affine_recurrence
 from ..parameters import Parameter
 
-__all__ = ["DuctLaw", "Effect", "EffectError", "GapLaw", "STAGES", "relaxation_filter", "reversal_count", "sign_expectation"]
+__all__ = [
+    "DuctLaw",
+    "Effect",
+    "EffectError",
+    "GapLaw",
+    "STAGES",
+    "relaxation_filter",
+    "reversal_count",
+    "sign_expectation",
+]
 
 #: The stages of the force chain, in the order the chain runs them (:mod:`erdesign.effects.chain`).
 STAGES = ("state", "constitutive", "parallel", "thermal", "series", "constitutive-in-time", "additive")
@@ -209,8 +218,15 @@ class Effect:
         """Constitutive: the law of the gap flow, from the law so far (a :class:`GapLaw`)."""
         return law
 
-    def split_flow(self, v, gap_pressure_drop: Callable, args: tuple, quasi_steady_drop, damper: Damper,
-                   values: Mapping[str, float]):
+    def split_flow(
+        self,
+        v,
+        gap_pressure_drop: Callable,
+        args: tuple,
+        quasi_steady_drop,
+        damper: Damper,
+        values: Mapping[str, float],
+    ):
         """Parallel: ``(dp, u)`` when part of the displaced flow bypasses the ducts.
 
         ``gap_pressure_drop(u, *args)`` is the ducts' pressure drop [Pa] for the flow of a piston at ``u`` [m/s]
@@ -247,16 +263,24 @@ class Effect:
         control held over each interval; None where it equals ``fluid_force``)."""
         return fluid_force
 
-    def additive_forces(self, record: Measurement, sign, damper: Damper,
-                        values: Mapping[str, float]) -> dict[str, np.ndarray]:
+    def additive_forces(
+        self, record: Measurement, sign, damper: Damper, values: Mapping[str, float]
+    ) -> dict[str, np.ndarray]:
         """Additive: named force components [N] added to the fluid force; ``sign`` is the expected sign of the
         velocity over its noise band (:func:`sign_expectation`).  A name the baseline already has (``friction``:
         the damper file's seal friction) replaces the baseline's component."""
         return {}
 
     def describe(self) -> dict:
-        return {"name": self.name, "title": self.title, "mechanism": self.mechanism, "signature": self.signature,
-                "stage": self.stage, "composition": self.stage, "source": self.source}
+        return {
+            "name": self.name,
+            "title": self.title,
+            "mechanism": self.mechanism,
+            "signature": self.signature,
+            "stage": self.stage,
+            "composition": self.stage,
+            "source": self.source,
+        }
 
     def __repr__(self) -> str:
         return f"<Effect {self.name!r}>"

@@ -100,7 +100,8 @@ def check_control(damper: Damper, record: Measurement) -> None:
             f"but "
             f"the damper file's reference_field is {_article(damper.fluid.control)} {damper.fluid.control} "
             f"({damper.fluid.field_unit}); the control column must have the dimension of the fluid's reference_field "
-            f"(e.g. kV/mm data need an ER fluid with reference_field in kV/mm)")
+            f"(e.g. kV/mm data need an ER fluid with reference_field in kV/mm)"
+        )
 
 
 def _article(word: str) -> str:
@@ -144,8 +145,10 @@ class PhysicsDamper(Model):
         self.stages = {s: tuple(e for e in self.effects if e.stage == s) for s in STAGES}
         for s in SINGLE_STAGES:
             if len(self.stages[s]) > 1:
-                raise EffectError(f"{', '.join(e.name for e in self.stages[s])}: the physics damper takes one "
-                                  f"effect of the {s} stage at a time")
+                raise EffectError(
+                    f"{', '.join(e.name for e in self.stages[s])}: the physics damper takes one "
+                    f"effect of the {s} stage at a time"
+                )
         params = list(BASE_PARAMETERS)
         for e in self.effects:
             params.extend(e.parameters(damper))
@@ -176,8 +179,9 @@ class PhysicsDamper(Model):
             if m != 1.0:
                 K = law.consistency(eta)
                 return herschel_bulkley_pressure_drop(Q, tau_y, K, m, g.duct_length, g.duct_mean_diameter, g.gap)
-            return valve_pressure_drop(Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap,
-                                       self.damper.uses_exact_annulus)
+            return valve_pressure_drop(
+                Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap, self.damper.uses_exact_annulus
+            )
         return self._mixed(u, v_wall, tau_y, eta, law)[0]
 
     def _mixed(self, u, v_wall, tau_y, eta, law: GapLaw):
@@ -211,8 +215,9 @@ class PhysicsDamper(Model):
         tau_y = np.broadcast_to(np.asarray(tau_y, dtype=float), (n,))
         if g.configuration == "valve":
             K = law.consistency(eta)
-            return DuctLaw(0, tau_y, K, law.flow_index, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area,
-                           g.ducts, bypass)
+            return DuctLaw(
+                0, tau_y, K, law.flow_index, g.duct_length, g.duct_mean_diameter, g.gap, g.piston_area, g.ducts, bypass
+            )
         # mixed gap: the flow from the pressure and the head's speed (the piston's), the Couette-Poiseuille law of
         # the compiled loop; a flow index (if any) is left at Bingham with the plastic viscosity here (a series
         # element only needs the gap law near its yield point)

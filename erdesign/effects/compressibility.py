@@ -36,8 +36,17 @@ from .._compile import njit
 from ..parameters import Parameter
 from .base import DuctLaw, Effect
 
-__all__ = ["Compressibility", "hydraulic_stiffness", "compliant_pressure_force", "compliant_gap_forces",
-           "moving_wall_gap_flow", "DuctLaw", "BULK_MODULUS", "SUBSTEPS", "MAX_SUBSTEP"]
+__all__ = [
+    "Compressibility",
+    "hydraulic_stiffness",
+    "compliant_pressure_force",
+    "compliant_gap_forces",
+    "moving_wall_gap_flow",
+    "DuctLaw",
+    "BULK_MODULUS",
+    "SUBSTEPS",
+    "MAX_SUBSTEP",
+]
 
 #: Effective bulk modulus used for the prior, [Pa]: silicone oil is 1-1.5 GPa, less with entrained air.
 BULK_MODULUS = 1.0e9
@@ -138,28 +147,28 @@ def moving_wall_gap_flow(g, U, tau_y, eta, h):
     R = -eta * U * g
     E = H - 2.0 * tau_y
     # sheared layers: 'hi' = tau(h) - tau_y at the fixed wall, 'j' = -tau_y - tau_0 at the moving wall (stress units)
-    if R >= 0.5 * H * H:                       # the whole gap above the band: m = tau_0 - tau_y >= 0
+    if R >= 0.5 * H * H:  # the whole gap above the band: m = tau_0 - tau_y >= 0
         m = -eta * U / h - 0.5 * H
         t0 = tau_y + m
         I = H * H * (H / 3.0 + 0.5 * m)
-    elif R <= -0.5 * H * H:                    # the whole gap below the band: j >= H
+    elif R <= -0.5 * H * H:  # the whole gap below the band: j >= H
         j = 0.5 * H + eta * U / h
         t0 = -tau_y - j
         I = H * H * (H / 3.0 - 0.5 * j)
-    elif E > 0.0 and abs(R) < 0.5 * E * E:     # the band straddled: a layer at each wall, hi + j = E
+    elif E > 0.0 and abs(R) < 0.5 * E * E:  # the band straddled: a layer at each wall, hi + j = E
         hi = 0.5 * (E + 2.0 * R / E)
         j = 0.5 * (E - 2.0 * R / E)
         t0 = -tau_y - j
         I = hi * hi * (hi / 3.0 + 0.5 * (H - hi)) - j * j * j / 6.0
-    elif R > 0.0:                              # one layer, at the fixed wall
+    elif R > 0.0:  # one layer, at the fixed wall
         hi = math.sqrt(2.0 * R)
         t0 = tau_y - H + hi
         I = hi * hi * (hi / 3.0 + 0.5 * (H - hi))
-    elif R < 0.0:                              # one layer, at the moving wall
+    elif R < 0.0:  # one layer, at the moving wall
         j = math.sqrt(-2.0 * R)
         t0 = -tau_y - j
         I = -j * j * j / 6.0
-    else:                                      # blocked: any tau_0 in the band holds; the centred plug
+    else:  # blocked: any tau_0 in the band holds; the centred plug
         t0 = -0.5 * H
         I = 0.0
     q = -I / (g * g * eta)
@@ -230,7 +239,7 @@ def _series_root(p, T, c, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass):
         if gx < 0.0:
             lo, glo = x, gx
             if side == -1:
-                ghi *= 0.5          # Illinois: keep the stale end from stalling the iteration
+                ghi *= 0.5  # Illinois: keep the stale end from stalling the iteration
             side = -1
         else:
             hi, ghi = x, gx
@@ -361,18 +370,37 @@ def compliant_gap_forces(t, v, stiffness, law: DuctLaw, initial: float, substeps
         counts = np.maximum(SUBSTEPS, np.ceil(np.diff(t) / MAX_SUBSTEP * (1 - 1e-9))).astype(np.int64)
     else:
         counts = np.full(max(n - 1, 0), int(substeps), dtype=np.int64)
-    return _integrate(t, v, float(initial), float(stiffness), int(law.kind), tau_y, K, float(law.m), float(law.L),
-                      float(law.d), float(law.h), float(law.Ap), int(law.ducts), float(law.bypass), counts)
+    return _integrate(
+        t,
+        v,
+        float(initial),
+        float(stiffness),
+        int(law.kind),
+        tau_y,
+        K,
+        float(law.m),
+        float(law.L),
+        float(law.d),
+        float(law.h),
+        float(law.Ap),
+        int(law.ducts),
+        float(law.bypass),
+        counts,
+    )
 
 
 class Compressibility(Effect):
     name = "compressibility"
     title = "Compressibility (fluid and accumulator compliance)"
-    mechanism = ("The fluid in the chambers is compressed before it flows: a spring k_h = 2 beta A_p^2 / V in series "
-                 "with the ducts, so after each reversal the force ramps over 2 F_y / k_h of stroke until the ducts "
-                 "yield again, and lags the motion by C/k_h after that.")
-    signature = ("residual in phase with the displacement at high speed (the loop leans and rounds off at the ends "
-                 "of the stroke, force lags velocity), present at zero field too")
+    mechanism = (
+        "The fluid in the chambers is compressed before it flows: a spring k_h = 2 beta A_p^2 / V in series "
+        "with the ducts, so after each reversal the force ramps over 2 F_y / k_h of stroke until the ducts "
+        "yield again, and lags the motion by C/k_h after that."
+    )
+    signature = (
+        "residual in phase with the displacement at high speed (the loop leans and rounds off at the ends "
+        "of the stroke, force lags velocity), present at zero field too"
+    )
     stage = "series"
     continuous_at_reversal = True
     neutral = {"hydraulic_stiffness": "upper"}
@@ -382,8 +410,17 @@ class Compressibility(Effect):
 
     def parameters(self, damper):
         k = self.prior(damper)["hydraulic_stiffness"]
-        return (Parameter("hydraulic_stiffness", "N/m", k, 1e2, 1e12,
-                          "stiffness of the fluid column, 2 beta A_p^2 / V", log_scale=True),)
+        return (
+            Parameter(
+                "hydraulic_stiffness",
+                "N/m",
+                k,
+                1e2,
+                1e12,
+                "stiffness of the fluid column, 2 beta A_p^2 / V",
+                log_scale=True,
+            ),
+        )
 
     def prior(self, damper):
         g = damper.geometry

@@ -66,10 +66,14 @@ def lagged_control(t, control, time_constant):
 class FieldLag(Effect):
     name = "field_lag"
     title = "Field lag"
-    mechanism = ("The particle chains that carry the yield stress take time to form and break (and a coil's "
-                 "current takes time to rise): the yield stress follows a field change with a time constant T_f.")
-    signature = ("residual right after each change of the field, decaying over a few milliseconds: the model "
-                 "switches the force at once, the measurement follows late")
+    mechanism = (
+        "The particle chains that carry the yield stress take time to form and break (and a coil's "
+        "current takes time to rise): the yield stress follows a field change with a time constant T_f."
+    )
+    signature = (
+        "residual right after each change of the field, decaying over a few milliseconds: the model "
+        "switches the force at once, the measurement follows late"
+    )
     stage = "state"
     neutral = {"field_time_constant": "lower"}
     source = "Butz and von Stryk (2002) eq 16"
@@ -78,14 +82,17 @@ class FieldLag(Effect):
 
     def prior(self, damper):
         law = damper.fluid.field_law
-        if law is None or not hasattr(law, "response_time"):   # a CoilLaw: the control is the coil current
+        if law is None or not hasattr(law, "response_time"):  # a CoilLaw: the control is the coil current
             return {}
         return {"field_time_constant": float(law.response_time())}
 
     def parameters(self, damper):
         start = self.prior(damper).get("field_time_constant", 0.005)
-        return (Parameter("field_time_constant", "s", start, 1e-5, 10.0, "time constant of the field response",
-                          log_scale=True),)
+        return (
+            Parameter(
+                "field_time_constant", "s", start, 1e-5, 10.0, "time constant of the field response", log_scale=True
+            ),
+        )
 
     def check(self, record, damper):
         u = np.abs(record.control)

@@ -69,10 +69,14 @@ def slug_mass(rho, L, Ap, d, h, ducts=1):
 class FluidInertia(Effect):
     name = "fluid_inertia"
     title = "Fluid inertia"
-    mechanism = ("The fluid in the ducts moves A_p/(pi d h) times faster than the piston; accelerating it takes a "
-                 "force m_f a with m_f = rho L A_p^2 / (n pi d h).")
-    signature = ("residual in phase with the acceleration (against the displacement for a sine), growing with the "
-                 "square of the frequency, the same at every field")
+    mechanism = (
+        "The fluid in the ducts moves A_p/(pi d h) times faster than the piston; accelerating it takes a "
+        "force m_f a with m_f = rho L A_p^2 / (n pi d h)."
+    )
+    signature = (
+        "residual in phase with the acceleration (against the displacement for a sine), growing with the "
+        "square of the frequency, the same at every field"
+    )
     stage = "additive"
     neutral = {"slug_mass": "lower"}
     # the chamber fluid, fittings and the moving parts between load cell and piston add to the duct slug
@@ -85,8 +89,11 @@ class FluidInertia(Effect):
 
     def prior(self, damper):
         g = damper.geometry
-        return {"slug_mass": slug_mass(damper.fluid.density, g.duct_length, g.piston_area,
-                                       g.duct_mean_diameter, g.gap, g.ducts)}
+        return {
+            "slug_mass": slug_mass(
+                damper.fluid.density, g.duct_length, g.piston_area, g.duct_mean_diameter, g.gap, g.ducts
+            )
+        }
 
     def check(self, record, damper):
         if np.ptp(record.acceleration) == 0:

@@ -69,10 +69,13 @@ def gas_spring_force(x, preload, stiffness):
 class GasSpring(Effect):
     name = "gas_spring"
     title = "Gas spring (accumulator)"
-    mechanism = ("A gas-charged accumulator pushes on the rod with its charge pressure (a constant preload) and "
-                 "stiffens as the rod enters (a spring).")
-    signature = ("residual with a constant offset and a part proportional to the displacement, the same at every "
-                 "speed and field")
+    mechanism = (
+        "A gas-charged accumulator pushes on the rod with its charge pressure (a constant preload) and "
+        "stiffens as the rod enters (a spring)."
+    )
+    signature = (
+        "residual with a constant offset and a part proportional to the displacement, the same at every speed and field"
+    )
     stage = "additive"
     neutral = {"gas_preload": 0.0, "gas_stiffness": "lower"}
     # without an [accumulator] in the damper file the prior is a guide, not a test
@@ -91,8 +94,10 @@ class GasSpring(Effect):
             # beyond it is not the gas (on Dyke's ransim_u a free fit wanders to 27 x the accumulator's k for
             # 3 % of the error: docs/equivalent_damper.md)
             k_low, k_high = (r * prior["gas_stiffness"] for r in self.ACCUMULATOR_RATIO)
-        return (Parameter("gas_preload", "N", 0.0, -10 * scale, 10 * scale, "accumulator preload f_0"),
-                Parameter("gas_stiffness", "N/m", prior["gas_stiffness"], k_low, k_high, "accumulator stiffness k"))
+        return (
+            Parameter("gas_preload", "N", 0.0, -10 * scale, 10 * scale, "accumulator preload f_0"),
+            Parameter("gas_stiffness", "N/m", prior["gas_stiffness"], k_low, k_high, "accumulator stiffness k"),
+        )
 
     def prior(self, damper):
         if getattr(damper, "accumulator", None) is not None:
@@ -102,8 +107,10 @@ class GasSpring(Effect):
         g = damper.geometry
         Ar = math.pi / 4 * g.rod_diameter**2
         Vg = g.piston_area * g.piston_diameter
-        return {"gas_preload": ACCUMULATOR_PRESSURE * Ar,
-                "gas_stiffness": POLYTROPIC_INDEX * ACCUMULATOR_PRESSURE * Ar**2 / Vg}
+        return {
+            "gas_preload": ACCUMULATOR_PRESSURE * Ar,
+            "gas_stiffness": POLYTROPIC_INDEX * ACCUMULATOR_PRESSURE * Ar**2 / Vg,
+        }
 
     def implausible(self, damper, values):
         """Fitted values against the accumulator of the damper file (nothing to test without one)."""
@@ -118,8 +125,10 @@ class GasSpring(Effect):
             ratio = abs(v) / prior if name == "gas_preload" else v / prior
             if not lo <= ratio <= hi:
                 what = "|gas_preload|" if name == "gas_preload" else name
-                notes.append(f"{what} is {ratio:.3g} x the accumulator's {prior:.4g} "
-                             f"{'N' if name == 'gas_preload' else 'N/m'} (plausible: {lo:g} to {hi:g} x)")
+                notes.append(
+                    f"{what} is {ratio:.3g} x the accumulator's {prior:.4g} "
+                    f"{'N' if name == 'gas_preload' else 'N/m'} (plausible: {lo:g} to {hi:g} x)"
+                )
         return notes
 
     def check(self, record, damper):

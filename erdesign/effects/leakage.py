@@ -81,19 +81,28 @@ def leaky_pressure_drop(v, Ap, bypass_damping, gap_pressure_drop, args=(), quasi
 
     same = hi == lo
     scale = float(np.max(np.abs(dp0))) + 1.0 if dp0.size else 1.0
-    res = find_root(residual, (np.where(same, lo - 1.0, lo), np.where(same, hi + 1.0, hi)), args=(v, *args),
-                    tolerances={"xatol": 1e-10 * scale, "xrtol": 1e-12}, maxiter=200)
+    res = find_root(
+        residual,
+        (np.where(same, lo - 1.0, lo), np.where(same, hi + 1.0, hi)),
+        args=(v, *args),
+        tolerances={"xatol": 1e-10 * scale, "xrtol": 1e-12},
+        maxiter=200,
+    )
     return np.where(same, dp0, res.x)
 
 
 class Leakage(Effect):
     name = "leakage"
     title = "Leakage (laminar bypass)"
-    mechanism = ("Part of the flow bypasses the ducts through a laminar clearance (piston head, worn seal) that "
-                 "no field controls: below yield the piston creeps through the bypass instead of stopping.")
-    signature = ("residual at low speed with the field on: the measured force near a reversal is smaller than "
-                 "the yield force and grows with speed (creep below yield); the loss of force is largest where "
-                 "the model is blocked")
+    mechanism = (
+        "Part of the flow bypasses the ducts through a laminar clearance (piston head, worn seal) that "
+        "no field controls: below yield the piston creeps through the bypass instead of stopping."
+    )
+    signature = (
+        "residual at low speed with the field on: the measured force near a reversal is smaller than "
+        "the yield force and grows with speed (creep below yield); the loss of force is largest where "
+        "the model is blocked"
+    )
     stage = "parallel"
     continuous_at_reversal = True
     neutral = {"bypass_damping": "upper"}
@@ -101,13 +110,24 @@ class Leakage(Effect):
 
     def parameters(self, damper):
         C = damper.damping_constant_si()
-        return (Parameter("bypass_damping", "N*s/m", 10.0 * C, 1e-3 * C, 1e6 * C,
-                          "damping constant of the bypass alone", log_scale=True),)
+        return (
+            Parameter(
+                "bypass_damping",
+                "N*s/m",
+                10.0 * C,
+                1e-3 * C,
+                1e6 * C,
+                "damping constant of the bypass alone",
+                log_scale=True,
+            ),
+        )
 
     def check(self, record, damper):
         if not np.any(np.abs(record.control) > 0):
-            return ("the record has no field: without a yield stress a bypass only lowers the damping, which the "
-                    "viscosity factor already does")
+            return (
+                "the record has no field: without a yield stress a bypass only lowers the damping, which the "
+                "viscosity factor already does"
+            )
         return None
 
     def split_flow(self, v, gap_pressure_drop, args, quasi_steady_drop, damper, values):

@@ -105,10 +105,14 @@ def elastic_viscoplastic_force(t, v, quasi_steady_force, stiffness, initial=0.0,
 class PreyieldElasticity(Effect):
     name = "preyield_elasticity"
     title = "Pre-yield elasticity (Makris eq 8)"
-    mechanism = ("Below yield the field-structured fluid deforms elastically (shear modulus G) instead of being "
-                 "rigid: the damper is a spring of stiffness k_G = G C / eta until the fluid yields.")
-    signature = ("residual at the reversals (pre-yield): the measured force changes gradually with displacement "
-                 "where the model jumps by twice the yield force; grows with the field, absent at zero field")
+    mechanism = (
+        "Below yield the field-structured fluid deforms elastically (shear modulus G) instead of being "
+        "rigid: the damper is a spring of stiffness k_G = G C / eta until the fluid yields."
+    )
+    signature = (
+        "residual at the reversals (pre-yield): the measured force changes gradually with displacement "
+        "where the model jumps by twice the yield force; grows with the field, absent at zero field"
+    )
     stage = "constitutive-in-time"
     continuous_at_reversal = True
     neutral = {"shear_modulus": "upper"}
@@ -118,8 +122,7 @@ class PreyieldElasticity(Effect):
 
     def parameters(self, damper):
         G = self.prior(damper).get("shear_modulus", 1e4)
-        return (Parameter("shear_modulus", "Pa", G, 1e-2, 1e9, "pre-yield shear modulus of the fluid",
-                          log_scale=True),)
+        return (Parameter("shear_modulus", "Pa", G, 1e-2, 1e9, "pre-yield shear modulus of the fluid", log_scale=True),)
 
     def prior(self, damper):
         G = damper.fluid.shear_modulus
@@ -135,11 +138,19 @@ class PreyieldElasticity(Effect):
 
     def check(self, record, damper):
         if not np.any(np.abs(record.control) > 0):
-            return ("the record has no field: without a yield stress the fluid has no pre-yield regime "
-                    "(measure with the field on)")
+            return (
+                "the record has no field: without a yield stress the fluid has no pre-yield regime "
+                "(measure with the field on)"
+            )
         return None
 
     def filter_fluid_force(self, t, v, fluid_force, damper, values, held_force=None):
         # relaxes onto the quasi-steady force from its value at the first sample (settled)
-        return elastic_viscoplastic_force(t, v, fluid_force, elastic_stiffness(values["shear_modulus"], damper),
-                                          initial=fluid_force[0], held_force=held_force)
+        return elastic_viscoplastic_force(
+            t,
+            v,
+            fluid_force,
+            elastic_stiffness(values["shear_modulus"], damper),
+            initial=fluid_force[0],
+            held_force=held_force,
+        )

@@ -63,10 +63,14 @@ def coulomb_friction(v, friction_force, smoothing_speed):
 class SealFriction(Effect):
     name = "seal_friction"
     title = "Seal friction"
-    mechanism = ("Coulomb friction of the rod seals and bearings: a force of constant size opposing the motion, "
-                 "independent of the field and of the speed.")
-    signature = ("residual odd in velocity and flat in magnitude (a step at each reversal), the same at every "
-                 "field: Coulomb-like")
+    mechanism = (
+        "Coulomb friction of the rod seals and bearings: a force of constant size opposing the motion, "
+        "independent of the field and of the speed."
+    )
+    signature = (
+        "residual odd in velocity and flat in magnitude (a step at each reversal), the same at every "
+        "field: Coulomb-like"
+    )
     stage = "additive"
     neutral = {"friction_force": "lower"}
     # the file's value is the seals alone, new; bearings, rig fixtures and worn or dry seals add several times it
@@ -74,10 +78,12 @@ class SealFriction(Effect):
     source = "Makris et al. (1996) eq 14; Kamath and Wereley (1997) eq 7"
 
     def parameters(self, damper):
-        prior = self.prior(damper).get("friction_force", 0.02 * max(damper.yield_force_si(
-            damper.fluid.reference_field), 1.0))
-        return (Parameter("friction_force", "N", float(prior), 0.0, 1e6,
-                          "Coulomb friction of seals and bearings, F_c"),)
+        prior = self.prior(damper).get(
+            "friction_force", 0.02 * max(damper.yield_force_si(damper.fluid.reference_field), 1.0)
+        )
+        return (
+            Parameter("friction_force", "N", float(prior), 0.0, 1e6, "Coulomb friction of seals and bearings, F_c"),
+        )
 
     def prior(self, damper):
         # the damper file's seal_friction (Makris: 112 N) is the only prior there is
@@ -88,8 +94,10 @@ class SealFriction(Effect):
             return "the piston reverses fewer than twice, so a force that flips with the motion cannot be seen"
         u = np.abs(record.control)
         if damper.fluid.yield_stress > 0 and u.min() > 0 and np.ptp(u) < 0.1 * u.max():
-            return ("the field is on and the same throughout, so a friction that flips with the motion cannot be "
-                    "told from the yield stress (measure at two fields, e.g. zero and on)")
+            return (
+                "the field is on and the same throughout, so a friction that flips with the motion cannot be "
+                "told from the yield stress (measure at two fields, e.g. zero and on)"
+            )
         return None
 
     def additive_forces(self, record, sign, damper, values):

@@ -19,8 +19,7 @@ from ..flow.herschel_bulkley import herschel_bulkley_pressure_drop, herschel_bul
 from ..parameters import Parameter
 from .base import Effect, peak_speed
 
-__all__ = ["ShearThinning", "herschel_bulkley_slit_flow_rate", "herschel_bulkley_pressure_drop",
-           "REFERENCE_SHEAR_RATE"]
+__all__ = ["ShearThinning", "herschel_bulkley_slit_flow_rate", "herschel_bulkley_pressure_drop", "REFERENCE_SHEAR_RATE"]
 
 #: Shear rate at which the Herschel-Bulkley consistency matches the plastic viscosity, [1/s].
 REFERENCE_SHEAR_RATE = 1000.0
@@ -29,10 +28,14 @@ REFERENCE_SHEAR_RATE = 1000.0
 class ShearThinning(Effect):
     name = "shear_thinning"
     title = "Shear thinning (Herschel-Bulkley)"
-    mechanism = ("After yield the stress grows slower than linearly with the shear rate (flow index m < 1): the "
-                 "damper is stiffer than Bingham at low speed and softer at high speed.")
-    signature = ("residual even-odd pattern in speed: the model is too low at moderate post-yield speeds and too "
-                 "high at the highest speeds (the force-velocity curve bends over)")
+    mechanism = (
+        "After yield the stress grows slower than linearly with the shear rate (flow index m < 1): the "
+        "damper is stiffer than Bingham at low speed and softer at high speed."
+    )
+    signature = (
+        "residual even-odd pattern in speed: the model is too low at moderate post-yield speeds and too "
+        "high at the highest speeds (the force-velocity curve bends over)"
+    )
     stage = "constitutive"
     neutral = {"flow_index": 1.0}
     source = "Herschel-Bulkley law; the MR-model review (c0 falling with speed: shear thinning)"

@@ -20,8 +20,7 @@ import numpy as np
 from ..parameters import Parameter
 from .base import Effect, relaxation_filter, reversal_count
 
-__all__ = ["ViscousHeating", "temperature_rise", "heated_viscosity_factor", "TEMPERATURE_COEFFICIENT",
-           "SPECIFIC_HEAT"]
+__all__ = ["ViscousHeating", "temperature_rise", "heated_viscosity_factor", "TEMPERATURE_COEFFICIENT", "SPECIFIC_HEAT"]
 
 #: alpha: fractional fall of viscosity per kelvin, [1/K] (silicone oils: 0.015-0.03 /K).
 TEMPERATURE_COEFFICIENT = 0.02
@@ -69,17 +68,24 @@ def heated_viscosity_factor(temperature_rise, coefficient=TEMPERATURE_COEFFICIEN
     >>> round(heated_viscosity_factor(10.0, 0.02), 4)
     0.8187
     """
-    return np.exp(-coefficient * np.asarray(temperature_rise, dtype=float)) if np.ndim(temperature_rise) \
+    return (
+        np.exp(-coefficient * np.asarray(temperature_rise, dtype=float))
+        if np.ndim(temperature_rise)
         else float(np.exp(-coefficient * temperature_rise))
+    )
 
 
 class ViscousHeating(Effect):
     name = "viscous_heating"
     title = "Viscous heating"
-    mechanism = ("The damper turns work into heat; the fluid warms and its viscosity falls (about 2 % per kelvin), "
-                 "so the force drifts down over the test.")
-    signature = ("residual that grows late in the test: the measured force falls below the model more and more, "
-                 "most at high speed where the viscous force dominates")
+    mechanism = (
+        "The damper turns work into heat; the fluid warms and its viscosity falls (about 2 % per kelvin), "
+        "so the force drifts down over the test."
+    )
+    signature = (
+        "residual that grows late in the test: the measured force falls below the model more and more, "
+        "most at high speed where the viscous force dominates"
+    )
     stage = "thermal"
     neutral = {"thermal_mass": "upper", "cooling_time": 600.0}
     # how much of the cylinder warms with the fluid is not known: a wide window; the cooling time has no prior
@@ -88,10 +94,26 @@ class ViscousHeating(Effect):
 
     def parameters(self, damper):
         prior = self.prior(damper)
-        return (Parameter("thermal_mass", "J/K", prior["thermal_mass"], 1e-2, 1e7,
-                          "heat capacity of the fluid and cylinder that warm", log_scale=True),
-                Parameter("cooling_time", "s", prior["cooling_time"], 1.0, 1e6,
-                          "time constant of cooling to the surroundings", log_scale=True))
+        return (
+            Parameter(
+                "thermal_mass",
+                "J/K",
+                prior["thermal_mass"],
+                1e-2,
+                1e7,
+                "heat capacity of the fluid and cylinder that warm",
+                log_scale=True,
+            ),
+            Parameter(
+                "cooling_time",
+                "s",
+                prior["cooling_time"],
+                1.0,
+                1e6,
+                "time constant of cooling to the surroundings",
+                log_scale=True,
+            ),
+        )
 
     def prior(self, damper):
         g = damper.geometry
@@ -100,8 +122,10 @@ class ViscousHeating(Effect):
 
     def check(self, record, damper):
         if reversal_count(record.velocity) < 6:
-            return ("the record has fewer than three cycles, so early and late cycles cannot be compared to tell "
-                    "heating from a lower viscosity")
+            return (
+                "the record has fewer than three cycles, so early and late cycles cannot be compared to tell "
+                "heating from a lower viscosity"
+            )
         return None
 
     def viscosity_factor(self, t, power, values):

@@ -28,8 +28,16 @@ import numpy as np
 
 from .._compile import guvectorize, njit
 
-__all__ = ["annulus_plug_fraction", "annulus_shape_offset", "annulus_velocity", "couette_poiseuille", "find_root",
-           "mixed_gap_state", "slit_flow", "slit_flow_one_duct"]
+__all__ = [
+    "annulus_plug_fraction",
+    "annulus_shape_offset",
+    "annulus_velocity",
+    "couette_poiseuille",
+    "find_root",
+    "mixed_gap_state",
+    "slit_flow",
+    "slit_flow_one_duct",
+]
 
 _jit = njit(cache=True, nogil=True, error_model="numpy")
 
@@ -103,11 +111,11 @@ def _offsets_pos(G, m, eps):
 
     Solves  mean of D over [t0, t0 + G] = m  for t0 in closed form, zone by zone.  The mean is non-decreasing in
     t0; it equals c = max(G - 2 eps, 0)^2 / (2 G) at t0 = -eps and G/2 at t0 = +eps."""
-    excess = G - 2.0 * eps                       # how far the stress span exceeds the band (straddle if > 0)
+    excess = G - 2.0 * eps  # how far the stress span exceeds the band (straddle if > 0)
     two = 2.0 * eps
-    if m == 0.0 and excess <= 0.0:               # D = 0 on the span: any t0 in the band; take the centre
+    if m == 0.0 and excess <= 0.0:  # D = 0 on the span: any t0 in the band; take the centre
         return eps - G / 2.0, -eps - G / 2.0, eps + G / 2.0, G / 2.0 - eps
-    if m >= G / 2.0:                             # the whole span above the band
+    if m >= G / 2.0:  # the whole span above the band
         return m - G / 2.0 + two, m - G / 2.0, m + G / 2.0 + two, m + G / 2.0
     c = max(excess, 0.0) ** 2 / (2.0 * G)
     if m > c:
@@ -129,7 +137,7 @@ def _offsets_pos(G, m, eps):
 def mixed_state(G, U_bar, eps):
     """Oriented state (s, |G|, lo0, hi0, lo1, hi1) satisfying no slip, for a dimensionless gradient G of any sign."""
     s = -1.0 if G < 0.0 else 1.0
-    Gp, mp = s * G, -s * U_bar                   # the mean of D over the gap is -U_bar
+    Gp, mp = s * G, -s * U_bar  # the mean of D over the gap is -U_bar
     lo0, hi0, lo1, hi1 = _offsets_pos(Gp, abs(mp), eps)
     if mp < 0.0:
         # the mean of D is odd under t0 -> -t0 - G (then t1 -> -t0), which maps the offsets so
@@ -201,13 +209,13 @@ def _mixed_gradient(U_bar, q_bar, eps):
     which remains the fallback should the iteration stall or end on an end of the bracket it has not checked."""
     if not (math.isfinite(U_bar) and math.isfinite(q_bar) and math.isfinite(eps)):
         return math.nan
-    G_newton = 12.0 * (U_bar / 2.0 - q_bar)      # exact for tau_y = 0
+    G_newton = 12.0 * (U_bar / 2.0 - q_bar)  # exact for tau_y = 0
     if eps == 0.0:
         return G_newton
-    if U_bar == 0.0 and q_bar == 0.0:            # blocked: the break-away value with the sign bit of q
+    if U_bar == 0.0 and q_bar == 0.0:  # blocked: the break-away value with the sign bit of q
         return -math.copysign(2.0 * eps, q_bar)
     half = 3.0 * eps + 1e-3
-    lo, hi = G_newton - half, G_newton + half    # residual >= 0 at lo, <= 0 at hi, until checked
+    lo, hi = G_newton - half, G_newton + half  # residual >= 0 at lo, <= 0 at hi, until checked
     lo_checked = hi_checked = False
     q_valve = q_bar - 0.5 * U_bar
     N = 6.0 * abs(q_valve) / eps
@@ -217,7 +225,7 @@ def _mixed_gradient(U_bar, q_bar, eps):
         m = math.sqrt(1.0 + (2.0 / 3.0) * N)
         phi = 2.0 * m * math.sin(math.asin(m**-3) / 3.0)
         x0 = -math.copysign(2.0 * eps / phi, q_valve)
-        slope = -(1.0 - phi) ** 2 * (1.0 + 2.0 * phi) / 12.0
+        slope = -((1.0 - phi) ** 2) * (1.0 + 2.0 * phi) / 12.0
     x0 = min(max(x0, lo), hi)
     f0 = _mixed_residual(x0, U_bar, q_bar, eps)
     if f0 == 0.0:
@@ -232,7 +240,7 @@ def _mixed_gradient(U_bar, q_bar, eps):
             x = min(max(x1, lo), hi)
             tol = 8.0 * _EPS * abs(x) + 8.0 * _TINY
             if (abs(x - lo) <= tol and not lo_checked) or (abs(x - hi) <= tol and not hi_checked):
-                break                            # ended on an end never evaluated: the root may lie beyond
+                break  # ended on an end never evaluated: the root may lie beyond
             return x
         if not (lo < x1 < hi):
             x1 = 0.5 * (lo + hi)
@@ -252,9 +260,9 @@ def _mixed_gradient(U_bar, q_bar, eps):
 def _mixed_solution(U, q, tau_y, eta, h):
     """(tau_s, eps, U_bar, G, s, lo0, hi0, lo1, hi1) of one element, in SI input (mixed_mode, module notes)."""
     scale = tau_y + eta * (abs(U) / h + abs(q) / h**2)
-    if scale == 0.0:                             # tau_y = U = q = 0: nothing moves, no stress
+    if scale == 0.0:  # tau_y = U = q = 0: nothing moves, no stress
         scale = 1.0
-    eps = tau_y / scale                          # inf/inf for infinite inputs: NaN out
+    eps = tau_y / scale  # inf/inf for infinite inputs: NaN out
     U_bar = eta * U / (scale * h)
     q_bar = eta * q / (scale * h**2)
     G = _mixed_gradient(U_bar, q_bar, eps)
@@ -289,7 +297,7 @@ def couette_poiseuille(U, q, tau_y, eta, h, out):
             y2 = 0.0 if hi0 > 0.0 else 1.0
         plug = y2 > y1 and eps > 0.0
         if not plug:
-            y2 = y1                              # no plug: a single point (the Newtonian fluid at rest too)
+            y2 = y1  # no plug: a single point (the Newtonian fluid at rest too)
         at_moving = plug and lo0 >= 0.0
         at_fixed = plug and hi1 <= 0.0
         # wall stresses in the oriented frame, each from its nearer band edge, then back to the sign of G
@@ -384,7 +392,7 @@ def _continuity(t1, phi, R1):
     p = _p_log_of(x, log1p_x)
     y = t2 / r_b
     q = _q_log(y)
-    value = (0.5 * t1 * t1 + r_b * R1 * p) - (0.5 * t2 * t2 + r_a * r_b * q)   # the two plug speeds
+    value = (0.5 * t1 * t1 + r_b * R1 * p) - (0.5 * t2 * t2 + r_a * r_b * q)  # the two plug speeds
     slope = (t1 + R1 * p + r_b * log1p_x) - (-t2 + (r_a + r_b) * q - r_a * y)
     return value, slope
 
@@ -395,7 +403,7 @@ def _plug_offset(phi, R1, start):
     where a step would leave it), to a few ulp; ``start`` is the first guess."""
     lo, hi = 0.0, 1.0 - phi
     if hi <= 0.0:
-        return 0.0                                # the plug fills the gap
+        return 0.0  # the plug fills the gap
     t = min(max(start, lo), hi)
     for _ in range(100):
         f, slope = _continuity(t, phi, R1)
@@ -448,7 +456,7 @@ def _layer_integrals(t1, phi, R1, eps):
 @_jit
 def _annulus_shape(phi, eps, start):
     """(S, t1): shape factor Q/Q_N and plug offset for plug fraction phi in [0, 1] and eps = h/d."""
-    if not phi < 1.0:                            # blocked (and NaN, as the numpy kernel did)
+    if not phi < 1.0:  # blocked (and NaN, as the numpy kernel did)
         return 0.0, 0.0
     R1 = 0.5 * (1.0 / eps - 1.0)
     t1 = _plug_offset(phi, R1, start)
@@ -489,7 +497,7 @@ def _annulus_phi(N, eps):
     x1 = x0 - f0 / (-1.5 * (1.0 - x0 * x0) - N)
     for _ in range(200):
         if abs(x1 - x0) <= 4.0 * _EPS * abs(x1):
-            x1 = min(max(x1, lo), hi)            # converged (the step may round onto an end of the bracket)
+            x1 = min(max(x1, lo), hi)  # converged (the step may round onto an end of the bracket)
             return x1, _plug_offset(x1, R1, t + 0.5 * (x0 - x1))
         if not (lo < x1 < hi):
             x1 = 0.5 * (lo + hi)
@@ -552,7 +560,7 @@ def _slit_plug_fraction(N):
     """phi in (0, 1] of phi^3 - (3 + 2N) phi + 2 = 0: the trigonometric root, and below N = 0.5 six Newton steps
     on the cubic written for the sheared fraction 1 - phi (bingham._plug_and_sheared_fractions, element-wise)."""
     if N == 0.0:
-        return 1.0                               # the blocked gap exactly (no 0/0 in the Newton step)
+        return 1.0  # the blocked gap exactly (no 0/0 in the Newton step)
     if N < 0.5:
         e = math.sqrt(2.0 * N / 3.0)
         for _ in range(6):
@@ -565,8 +573,12 @@ def _slit_plug_fraction(N):
     return 2.0 * m * math.sin(math.asin(m**-3) / 3.0)
 
 
-@guvectorize(["void(float64, float64, float64, float64, float64, float64, float64[:], float64[:])"],
-                   "(),(),(),(),(),()->(),()", nopython=True, cache=True)
+@guvectorize(
+    ["void(float64, float64, float64, float64, float64, float64, float64[:], float64[:])"],
+    "(),(),(),(),(),()->(),()",
+    nopython=True,
+    cache=True,
+)
 def slit_flow(Q, tau_y, eta, L, d, h, dp, phi):  # pragma: no cover - compiled; run by tests/test_flow_compiled.py
     """(dp, phi): pressure drop (sign of Q) and plug fraction, the fields of
     :func:`erdesign.flow.bingham.bingham_slit_flow`; a generalised ufunc, so the arguments broadcast without

@@ -72,16 +72,18 @@ __all__ = [
     "thin_gap_error_bingham",
 ]
 
+
 def _compiled():
     """The numba loops (:mod:`erdesign.flow._compiled`), imported on first use."""
     from . import _compiled as compiled
+
     return compiled
 
 
 def _flat(*arrays):
     """Broadcast float arrays, their common shape and their contiguous 1-D views (for the compiled loops)."""
     arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in arrays))
-    return arrays[0].shape, [np.array(a, order="C").ravel() for a in arrays]   # copies: the views are not writeable
+    return arrays[0].shape, [np.array(a, order="C").ravel() for a in arrays]  # copies: the views are not writeable
 
 
 def _shape_and_offset(phi, eps):
@@ -278,8 +280,8 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     moving = Q_abs > 0.0
     solve = plastic & moving
     phi = np.where(plastic, 1.0, 0.0)  # blocked gap (Q = 0) or Newtonian, overwritten where a root is needed
-    t1 = np.zeros_like(phi)            # plug offset / h: 0 for a blocked gap
-    shape = np.ones_like(phi)          # S, needed for the Newtonian fluid only
+    t1 = np.zeros_like(phi)  # plug offset / h: 0 for a blocked gap
+    shape = np.ones_like(phi)  # S, needed for the Newtonian fluid only
     if np.any(solve):
         ratio = 6.0 * eta[solve] * Q_abs[solve] / (np.pi * d[solve] * h[solve] ** 2 * tau_y[solve])
         phi[solve], t1[solve] = _compiled().annulus_plug_fraction(ratio, eps[solve], np.empty((2, ratio.size)))

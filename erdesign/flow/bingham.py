@@ -188,7 +188,7 @@ def _plug_and_sheared_fractions(N):
     eps = 1.0 - phi
     small = N < 0.5
     if np.any(small):
-        phi, eps = np.array(phi, dtype=float), np.array(eps, dtype=float)   # writable copies (0-d for a scalar)
+        phi, eps = np.array(phi, dtype=float), np.array(eps, dtype=float)  # writable copies (0-d for a scalar)
         Ns = N[small]
         e = np.sqrt(2.0 * Ns / 3.0)
         for _ in range(6):
@@ -276,12 +276,17 @@ def _slit_flow(Q, tau_y, eta, L, d, h, plug):
     if np.broadcast(Q, tau_y, eta, L, d, h).size >= COMPILED_MIN_SIZE:
         # numba, imported here: small calls (one velocity) do not pay for it
         from . import _compiled
-        if all(np.ndim(a) == 0 for a in (tau_y, eta, L, d, h)):        # many flows through one duct
+
+        if all(np.ndim(a) == 0 for a in (tau_y, eta, L, d, h)):  # many flows through one duct
             Q = np.asarray(Q, dtype=float)
             dp = np.empty(Q.shape)
             phi = np.empty(Q.shape if plug else 0)
-            _compiled.slit_flow_one_duct(np.ascontiguousarray(Q).ravel(), *(float(a) for a in (tau_y, eta, L, d, h)),
-                                         dp.reshape(-1), phi.reshape(-1))
+            _compiled.slit_flow_one_duct(
+                np.ascontiguousarray(Q).ravel(),
+                *(float(a) for a in (tau_y, eta, L, d, h)),
+                dp.reshape(-1),
+                phi.reshape(-1),
+            )
         else:
             dp, phi = _compiled.slit_flow(Q, tau_y, eta, L, d, h)
         return BinghamSlitFlow(dp, phi if plug else None)

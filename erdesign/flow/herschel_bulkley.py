@@ -64,8 +64,14 @@ def herschel_bulkley_slit_flow_rate(dp, tau_y, K, m, L, d, h):
     tau_w = np.abs(dp) * h / (2.0 * L)
     S = np.maximum(tau_w - tau_y, 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        q = 2.0 * H**2 / np.where(tau_w > 0, tau_w, 1.0) ** 2 * K ** (-p) * S ** (p + 1) * (
-            S / (p + 2) + tau_y / (p + 1))
+        q = (
+            2.0
+            * H**2
+            / np.where(tau_w > 0, tau_w, 1.0) ** 2
+            * K ** (-p)
+            * S ** (p + 1)
+            * (S / (p + 2) + tau_y / (p + 1))
+        )
     return np.sign(dp) * np.pi * d * q
 
 

@@ -127,6 +127,7 @@ def _compiled():
     """The numba loops (:mod:`erdesign.flow._compiled`), imported on first use: numba costs about a second of
     start-up, which commands that solve no mixed-mode gap should not pay."""
     from . import _compiled as compiled
+
     return compiled
 
 
@@ -147,11 +148,11 @@ def _velocity_pos(Y, G, lo0, hi0, lo1, hi1):
         rest = 1.0 - Y
         w = hi1 / G
         d = np.minimum(rest, w)
-        above = np.where(hi0 >= 0.0, rest * (hi0 + G * (1.0 + Y) / 2.0),
-                         np.where(hi1 > 0.0, G * d * (2.0 * w - d) / 2.0, 0.0))
-        e = np.maximum(-lo0 / G - Y, 0.0)           # distance from Y up to the lower edge of the band
-        below = np.where(lo1 <= 0.0, rest * (lo1 - G * rest / 2.0),
-                         np.where(lo0 < 0.0, -G * e**2 / 2.0, 0.0))
+        above = np.where(
+            hi0 >= 0.0, rest * (hi0 + G * (1.0 + Y) / 2.0), np.where(hi1 > 0.0, G * d * (2.0 * w - d) / 2.0, 0.0)
+        )
+        e = np.maximum(-lo0 / G - Y, 0.0)  # distance from Y up to the lower edge of the band
+        below = np.where(lo1 <= 0.0, rest * (lo1 - G * rest / 2.0), np.where(lo0 < 0.0, -G * e**2 / 2.0, 0.0))
     return -(above + below)
 
 
@@ -167,7 +168,7 @@ def _flat_inputs(U, q, tau_y, eta, h):
     if np.any(tau_y < 0.0):
         raise ErdesignError(f"tau_y: must be >= 0, got {tau_y!r}")
     _check_positive(eta=eta, h=h)
-    return U.shape, [np.array(a, order="C").ravel() for a in (U, q, tau_y, eta, h)]   # copies, not broadcast views
+    return U.shape, [np.array(a, order="C").ravel() for a in (U, q, tau_y, eta, h)]  # copies, not broadcast views
 
 
 def _out(x):

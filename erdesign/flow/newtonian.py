@@ -83,29 +83,29 @@ def slit_flow_rate(dp, eta, L, d, h):
 def annulus_conductance_ratio(d, h):
     r"""Ratio of the exact annulus flow rate to the thin-gap flow rate at the same pressure drop.
 
-    .. math::
-        \frac{Q_\text{exact}}{Q_\text{slit}} =
-        \frac{3}{2 d h^3}\left[R_2^4 - R_1^4 - \frac{(R_2^2 - R_1^2)^2}{\ln(R_2/R_1)}\right],
-        \qquad R_{1,2} = \frac{d \mp h}{2}
+        .. math::
+            \frac{Q_\text{exact}}{Q_\text{slit}} =
+            \frac{3}{2 d h^3}\left[R_2^4 - R_1^4 - \frac{(R_2^2 - R_1^2)^2}{\ln(R_2/R_1)}\right],
+            \qquad R_{1,2} = \frac{d \mp h}{2}
 
-    Parameters
-    ----------
-    d : float or array
-        Mean diameter, [m].
-    h : float or array
-        Gap, [m]; ``0 < h < d``.
+        Parameters
+        ----------
+        d : float or array
+            Mean diameter, [m].
+        h : float or array
+            Gap, [m]; ``0 < h < d``.
 
-    Returns
-    -------
-    float or array
-        The ratio (dimensionless); ``1 + e^2/15 + 11 e^4/315 + O(e^6)`` with ``e = h/d`` (series derived with
-        sympy in tests/test_flow_newtonian.py).
+        Returns
+        -------
+        float or array
+            The ratio (dimensionless); ``1 + e^2/15 + 11 e^4/315 + O(e^6)`` with ``e = h/d`` (series derived with
+            sympy in tests/test_flow_newtonian.py).
 
-    Notes
-    -----
-    Written in the ratio ``e = h/d`` with ``log1p`` so that it stays accurate as ``h/d -> 0``, where the bracket
-    is a difference of nearly equal terms.  Below ``h/d = 1e-2`` the series is used (its first omitted term,
-``107 e^6/4725``, is below 3e-14 there).
+        Notes
+        -----
+        Written in the ratio ``e = h/d`` with ``log1p`` so that it stays accurate as ``h/d -> 0``, where the bracket
+        is a difference of nearly equal terms.  Below ``h/d = 1e-2`` the series is used (its first omitted term,
+    ``107 e^6/4725``, is below 3e-14 there).
     """
     check_flow_args(annulus=True, d=d, h=h)
     e = np.asarray(h, dtype=float) / np.asarray(d, dtype=float)

@@ -174,6 +174,7 @@ def _shear_rate(tau, bi, M):
     s = np.abs(tau)
     excess = s - bi_p
     from scipy.special import wrightomega  # imported here, not at start-up
+
     gamma = np.maximum(excess + wrightomega(np.log(M) - k * excess) / k, s / (1.0 + M))
     for _ in range(30):  # quadratic convergence: 2 or 3 steps; rounding then leaves relative steps ~1e-14
         f = gamma - bi_p * np.expm1(-k * gamma) - s
@@ -218,6 +219,7 @@ def _solve_mixed(compliance, disc, rhs):
     ab[2, :, 1::2] = -1.0  # row 2e, column 2e - 1 (velocity of node e)
     ab[2, :, 0:-1:2] = -disc.w[:, :-1]  # row 2i - 1, column 2i - 2 (stress of element i - 1)
     from scipy.linalg import solve_banded  # imported here, not at start-up
+
     x = solve_banded((1, 1), ab.reshape(3, -1), rhs.reshape(ncase * size, -1), check_finite=False)
     return x.reshape(rhs.shape)
 
@@ -274,8 +276,9 @@ def _newton(u, tau, g, q_target, bi, M, disc, tol, max_iter):
         alpha = np.ones(ncase)
         pending = moving.copy()
         for _ in range(40):
-            trial = _residuals(u + alpha[:, None] * du, tau + alpha[:, None] * dtau, g + alpha * dg, q_target,
-                               bi, M, disc)
+            trial = _residuals(
+                u + alpha[:, None] * du, tau + alpha[:, None] * dtau, g + alpha * dg, q_target, bi, M, disc
+            )
             accept = pending & (_merit(*trial[:3], bi) <= (1.0 - 1e-4 * alpha) * merit0)
             kin[accept], bal[accept], compliance[accept] = trial[0][accept], trial[1][accept], trial[3][accept]
             if bordered:
@@ -289,9 +292,11 @@ def _newton(u, tau, g, q_target, bi, M, disc, tol, max_iter):
         tau = tau + alpha[:, None] * dtau
         g = g + alpha * dg
         # No decrease possible, or an update at the level of rounding: nothing more to gain for that case.
-        tiny = (alpha * np.max(np.abs(du), axis=1) <= 4 * eps * np.max(np.abs(u), axis=1)) & (
-            alpha * np.max(np.abs(dtau), axis=1) <= 4 * eps * np.max(np.abs(tau), axis=1)) & (
-            alpha * np.abs(dg) <= 4 * eps * np.abs(g))
+        tiny = (
+            (alpha * np.max(np.abs(du), axis=1) <= 4 * eps * np.max(np.abs(u), axis=1))
+            & (alpha * np.max(np.abs(dtau), axis=1) <= 4 * eps * np.max(np.abs(tau), axis=1))
+            & (alpha * np.abs(dg) <= 4 * eps * np.abs(g))
+        )
         stalled |= moving & (pending | tiny)
     failed = active & (size > 1e3 * tol)
     if np.any(failed):
@@ -321,8 +326,21 @@ def _plug_extent(xi_points, tau, tau_y):
     return np.where(found, start, np.nan), np.where(found, end, np.nan)
 
 
-def solve_gap_flow(*, h, tau_y, eta, pressure_gradient=None, flow_rate=None, wall_velocity=0.0, geometry="slit",
-                   mean_diameter=None, n=801, grading=0.5, regularisation=1e8, tol=1e-10):
+def solve_gap_flow(
+    *,
+    h,
+    tau_y,
+    eta,
+    pressure_gradient=None,
+    flow_rate=None,
+    wall_velocity=0.0,
+    geometry="slit",
+    mean_diameter=None,
+    n=801,
+    grading=0.5,
+    regularisation=1e8,
+    tol=1e-10,
+):
     r"""Steady, fully developed flow of a Bingham fluid across a gap, solved numerically (finite elements + Newton).
 
     Solves, for the velocity :math:`u(y)` with :math:`u(0) = U`, :math:`u(h) = 0`,

@@ -57,8 +57,13 @@ CONTROL_UNITS = {
 #: coil currents
 #: and driver voltages of damper drives stay within tens of A and hundreds of V.  Beyond it erdesign warns; beyond
 #: :data:`IMPOSSIBLE_CONTROL_FACTOR` times it, it refuses the value (a unit mistake, not a control).
-PLAUSIBLE_CONTROL = {"electric field": 2e7, "magnetic field": 2e6, "magnetic flux density": 3.0, "current": 50.0,
-                     "voltage": 1e3}
+PLAUSIBLE_CONTROL = {
+    "electric field": 2e7,
+    "magnetic field": 2e6,
+    "magnetic flux density": 3.0,
+    "current": 50.0,
+    "voltage": 1e3,
+}
 IMPOSSIBLE_CONTROL_FACTOR = 1e3
 
 #: Possible (error outside) and plausible (warning outside) ranges of the fluid's values, SI.
@@ -81,14 +86,15 @@ def control_kind(value: Any, name: str = "reference_field") -> str:
     shown = f"{q:~P}" if hasattr(q, "units") else repr(value)
     raise UnitError(
         f"{name}: expected an electric field (V/m, kV/mm), a magnetic field (A/m, kA/m, T), a coil current (A) or "
-        f"a driver voltage (V); got '{shown}'"
-        + (f" ({dimension_name(dim)})" if dim is not None else "")
+        f"a driver voltage (V); got '{shown}'" + (f" ({dimension_name(dim)})" if dim is not None else "")
     )
 
 
 #: Kinds of control that drive each kind of fluid ("voltage", a driver's command, may drive either).
-FLUID_CONTROLS = {"ER": ("electric field", "voltage"),
-                  "MR": ("magnetic field", "magnetic flux density", "current", "voltage")}
+FLUID_CONTROLS = {
+    "ER": ("electric field", "voltage"),
+    "MR": ("magnetic field", "magnetic flux density", "current", "voltage"),
+}
 
 
 def _check_material_control(material: str, kind: str, reference_field: Any) -> None:
@@ -96,19 +102,25 @@ def _check_material_control(material: str, kind: str, reference_field: Any) -> N
     a magnetic field or a coil current, an MR fluid given an electric field (a unit slip: kA/m for kV/mm)."""
     if not material:
         return
-    from .. import materials    # imported on use: the materials database imports this package
+    from .. import materials  # imported on use: the materials database imports this package
 
     try:
         fluid_kind = materials.load(material).get("kind")
-    except ErdesignError:       # not a material of the database: nothing to compare with
+    except ErdesignError:  # not a material of the database: nothing to compare with
         return
     if fluid_kind in FLUID_CONTROLS and kind not in FLUID_CONTROLS[fluid_kind]:
         shown = reference_field if isinstance(reference_field, str) else f"{reference_field:~P}"
-        expected = "an electric field such as '3 kV/mm'" if fluid_kind == "ER" else "a magnetic field such as " \
-            "'100 kA/m' (or a coil current in A)"
-        warnings.warn(f"fluid.reference_field: '{shown}' is {'an' if kind[0] in 'aeiou' else 'a'} {kind}, but "
-                      f"material '{material}' is an {fluid_kind} fluid, driven by {expected}; is the unit right?",
-                      PlausibilityWarning, stacklevel=3)
+        expected = (
+            "an electric field such as '3 kV/mm'"
+            if fluid_kind == "ER"
+            else "a magnetic field such as '100 kA/m' (or a coil current in A)"
+        )
+        warnings.warn(
+            f"fluid.reference_field: '{shown}' is {'an' if kind[0] in 'aeiou' else 'a'} {kind}, but "
+            f"material '{material}' is an {fluid_kind} fluid, driven by {expected}; is the unit right?",
+            PlausibilityWarning,
+            stacklevel=3,
+        )
 
 
 def _unit_text(value: Any) -> str:
@@ -172,8 +184,11 @@ class Fluid:
             ("viscosity", self.viscosity > 0, "must be positive"),
             ("yield_stress", self.yield_stress >= 0, "must not be negative"),
             ("reference_field", self.reference_field > 0, "must be positive"),
-            ("yield_exponent", 0 < self.yield_exponent <= 5,
-             "must lie in (0, 5] (Butz and von Stryk 2002 report 1.2 to 2.5)"),
+            (
+                "yield_exponent",
+                0 < self.yield_exponent <= 5,
+                "must lie in (0, 5] (Butz and von Stryk 2002 report 1.2 to 2.5)",
+            ),
             ("density", self.density > 0, "must be positive"),
         ]
         if self.viscosity_at_reference_field is not None:
@@ -186,32 +201,49 @@ class Fluid:
         for key, ((lo, hi), _, unit) in FLUID_RANGES.items():
             value = getattr(self, key)
             if value is not None and not lo <= value <= hi:
-                raise UnitError(f"fluid.{key}: {value:.4g} {unit} is outside the possible range {lo:g} to {hi:g} "
-                                f"{unit} (a unit mistake?)")
-        if self.control in PLAUSIBLE_CONTROL and \
-                self.reference_field > IMPOSSIBLE_CONTROL_FACTOR * PLAUSIBLE_CONTROL[self.control]:
-            raise UnitError(f"fluid.reference_field: {self.reference_field:.4g} {CONTROL_UNITS[self.control]} is "
-                            f"beyond any {self.control} a fluid takes (a unit mistake?)")
+                raise UnitError(
+                    f"fluid.{key}: {value:.4g} {unit} is outside the possible range {lo:g} to {hi:g} "
+                    f"{unit} (a unit mistake?)"
+                )
+        if (
+            self.control in PLAUSIBLE_CONTROL
+            and self.reference_field > IMPOSSIBLE_CONTROL_FACTOR * PLAUSIBLE_CONTROL[self.control]
+        ):
+            raise UnitError(
+                f"fluid.reference_field: {self.reference_field:.4g} {CONTROL_UNITS[self.control]} is "
+                f"beyond any {self.control} a fluid takes (a unit mistake?)"
+            )
         if self.control not in CONTROL_UNITS:
             raise UnitError(f"fluid.control: unknown kind of control {self.control!r}")
         if self.field_law is not None:
             if not isinstance(self.field_law, FieldLaw):
-                raise UnitError(f"fluid.field_law: expected a FieldLaw (erdesign.fluid.field_laws), got "
-                                f"{self.field_law!r}")
+                raise UnitError(
+                    f"fluid.field_law: expected a FieldLaw (erdesign.fluid.field_laws), got {self.field_law!r}"
+                )
             if self.field_law.control_unit != self.control_unit:
-                raise UnitError(f"fluid.field_law: its control is in {self.field_law.control_unit}, the reference "
-                                f"field in {self.control_unit}; both must be of the same kind")
+                raise UnitError(
+                    f"fluid.field_law: its control is in {self.field_law.control_unit}, the reference "
+                    f"field in {self.control_unit}; both must be of the same kind"
+                )
             if not float(self.field_law.yield_stress(self.reference_field)) > 0:
                 raise UnitError("fluid.field_law: the yield stress at the reference field must be positive")
-        law = self.field_law if self.field_law is not None else PowerLaw(
-            self.control_unit, yield_stress_ref=self.yield_stress, reference_field=self.reference_field,
-            exponent=self.yield_exponent)
+        law = (
+            self.field_law
+            if self.field_law is not None
+            else PowerLaw(
+                self.control_unit,
+                yield_stress_ref=self.yield_stress,
+                reference_field=self.reference_field,
+                exponent=self.yield_exponent,
+            )
+        )
         object.__setattr__(self, "_law", law)
         if self.field_range is not None:
             lo, hi = self.field_range
             if not (0 <= lo < hi and np.isfinite(hi)):
-                raise UnitError(f"fluid.field_range: need 0 <= low < high, got {self.field_range!r} "
-                                f"({self.control_unit})")
+                raise UnitError(
+                    f"fluid.field_range: need 0 <= low < high, got {self.field_range!r} ({self.control_unit})"
+                )
 
     @classmethod
     def create(
@@ -277,12 +309,16 @@ class Fluid:
         for key, (_, (lo, hi), unit) in FLUID_RANGES.items():
             value = getattr(self, key)
             if value is not None and not lo <= value <= hi:
-                messages.append(f"fluid.{key}: {value:.4g} {unit} is outside the plausible range {lo:g} to {hi:g} "
-                                f"{unit}; check the value and its unit")
+                messages.append(
+                    f"fluid.{key}: {value:.4g} {unit} is outside the plausible range {lo:g} to {hi:g} "
+                    f"{unit}; check the value and its unit"
+                )
         limit = PLAUSIBLE_CONTROL.get(self.control)
         if limit is not None and self.reference_field > limit:
-            messages.append(f"fluid.reference_field: {self._shown(self.reference_field)} is beyond the largest "
-                            f"{self.control} a fluid plausibly takes ({self._shown(limit)}); check the unit")
+            messages.append(
+                f"fluid.reference_field: {self._shown(self.reference_field)} is beyond the largest "
+                f"{self.control} a fluid plausibly takes ({self._shown(limit)}); check the unit"
+            )
         for m in messages:
             warnings.warn(m, PlausibilityWarning, stacklevel=3)
         return messages
@@ -330,12 +366,17 @@ class Fluid:
             return
         worst = float(np.max(np.abs(np.asarray(field, dtype=float)), initial=0.0))
         if worst > IMPOSSIBLE_CONTROL_FACTOR * limit:
-            raise UnitError(f"{name}: {self._shown(worst)} is beyond any {self.control} a fluid takes (the "
-                            f"plausible largest is {self._shown(limit)}); check the value and its unit")
+            raise UnitError(
+                f"{name}: {self._shown(worst)} is beyond any {self.control} a fluid takes (the "
+                f"plausible largest is {self._shown(limit)}); check the value and its unit"
+            )
         if worst > limit:
-            warnings.warn(f"{name}: {self._shown(worst)} is beyond the largest {self.control} a fluid plausibly "
-                          f"takes ({self._shown(limit)}); check the value and its unit", PlausibilityWarning,
-                          stacklevel=3)
+            warnings.warn(
+                f"{name}: {self._shown(worst)} is beyond the largest {self.control} a fluid plausibly "
+                f"takes ({self._shown(limit)}); check the value and its unit",
+                PlausibilityWarning,
+                stacklevel=3,
+            )
 
     def check_field(self, field, name: str = "field") -> bool:
         """True when every |control| (SI) lies in :attr:`field_range` (or no range is known); warns otherwise.
@@ -357,7 +398,10 @@ class Fluid:
         owner = f"material '{self.material}'" if self.material else "this fluid"
         warnings.warn(
             f"{name}: {shown:.4g} {unit} is outside the range {lo_u:.4g} to {hi_u:.4g} {unit} on which {owner} is "
-            "characterised; the yield stress there is extrapolated", ValidityWarning, stacklevel=3)
+            "characterised; the yield stress there is extrapolated",
+            ValidityWarning,
+            stacklevel=3,
+        )
         return False
 
     def _yield_ratio(self, field):
@@ -378,8 +422,9 @@ class Fluid:
         """
         if self.viscosity_at_reference_field is None:
             return scalar_or_array(self.viscosity + 0.0 * np.asarray(field, dtype=float))
-        return scalar_or_array(plastic_viscosity(self.viscosity, self.viscosity_at_reference_field,
-                                                 self._yield_ratio(field)))
+        return scalar_or_array(
+            plastic_viscosity(self.viscosity, self.viscosity_at_reference_field, self._yield_ratio(field))
+        )
 
     def with_changes(self, **changes: Any) -> "Fluid":
         """Copy with some SI fields replaced (``fluid.with_changes(viscosity=9.0)``)."""

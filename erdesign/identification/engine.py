@@ -122,16 +122,25 @@ class Residual:
     non-finite entries replaced by :data:`PENALTY`.  Counts simulations, keeps the best point, reports progress and
     raises :class:`_OutOfTime` past ``deadline`` (:func:`time.monotonic`).  Picklable without ``progress``."""
 
-    def __init__(self, model: Model, records: Sequence[Measurement], values: ValueMap,
-                 masks: Sequence[np.ndarray | None] | None = None, weights: Sequence[float] | None = None,
-                 deadline: float | None = None, progress=None):
+    def __init__(
+        self,
+        model: Model,
+        records: Sequence[Measurement],
+        values: ValueMap,
+        masks: Sequence[np.ndarray | None] | None = None,
+        weights: Sequence[float] | None = None,
+        deadline: float | None = None,
+        progress=None,
+    ):
         self.model, self.records, self.values = model, tuple(records), values
         self.masks = tuple(masks) if masks is not None else (None,) * len(self.records)
         self.weights, self.deadline, self.progress = weights, deadline, progress
         self.forces = [r.require_force() for r in self.records]
         self.total = sum(len(r) if m is None else int(m.sum()) for r, m in zip(self.records, self.masks))
-        compared = [(1.0 if weights is None else w) * (F if m is None else F[m])
-                    for F, m, w in zip(self.forces, self.masks, weights or [None] * len(self.forces))]
+        compared = [
+            (1.0 if weights is None else w) * (F if m is None else F[m])
+            for F, m, w in zip(self.forces, self.masks, weights or [None] * len(self.forces))
+        ]
         self.spread = float(sum(np.sum((c - c.mean()) ** 2) for c in compared))
         """Sum of squares of the compared (weighted) forces about their mean: the ESR's denominator."""
         self.calls, self.best_cost, self.best_z, self.last_report = 0, math.inf, None, _time.monotonic()
@@ -153,8 +162,10 @@ class Residual:
         now = _time.monotonic()
         if self.progress is not None and now - self.last_report > 2.0:
             self.last_report = now
-            self.progress(f"joint fit of {len(self.records)} records: {self.calls} simulations of all, "
-                          f"mean weighted sum of squares {self.best_cost / self.total:.4g}")
+            self.progress(
+                f"joint fit of {len(self.records)} records: {self.calls} simulations of all, "
+                f"mean weighted sum of squares {self.best_cost / self.total:.4g}"
+            )
         return out
 
 
@@ -173,12 +184,18 @@ def local_fit(residual, lo: np.ndarray, hi: np.ndarray, max_nfev: int | None, z:
     """One local start: bounded trust-region-reflective least squares (:func:`scipy.optimize.least_squares`) of
     ``residual`` from z, with the one :data:`FTOL`.  A module-level function: a task for an executor."""
     from scipy.optimize import least_squares  # imported on use: not at start-up
-    return least_squares(residual, np.clip(z, lo, hi), bounds=(lo, hi), method="trf", x_scale="jac",
-                         max_nfev=max_nfev, ftol=FTOL)
+
+    return least_squares(
+        residual, np.clip(z, lo, hi), bounds=(lo, hi), method="trf", x_scale="jac", max_nfev=max_nfev, ftol=FTOL
+    )
 
 
-def resolve_free(model: Model, records: Sequence[Measurement], free: Sequence[str] | None = None,
-                 fixed: Mapping[str, float] | None = None) -> tuple[tuple[str, ...], dict[str, float]]:
+def resolve_free(
+    model: Model,
+    records: Sequence[Measurement],
+    free: Sequence[str] | None = None,
+    fixed: Mapping[str, float] | None = None,
+) -> tuple[tuple[str, ...], dict[str, float]]:
     """The free parameters and the held values (SI) of a fit of ``model`` to ``records``.
 
     Held, unless the caller names them in ``free``: the parameters chosen a priori (not ``fitted``) and the control
@@ -225,10 +242,18 @@ class Problem:
         return ValueMap(self.base, self.free, self.transform)
 
 
-def problem(model: Model, records: Sequence[Measurement], *, free: Sequence[str] | None = None,
-            fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None,
-            masks: Sequence[np.ndarray | None] | None = None, control_reference: bool = True,
-            samples: int | None = None, label: str = "record") -> Problem:
+def problem(
+    model: Model,
+    records: Sequence[Measurement],
+    *,
+    free: Sequence[str] | None = None,
+    fixed: Mapping[str, float] | None = None,
+    start: Mapping[str, float] | None = None,
+    masks: Sequence[np.ndarray | None] | None = None,
+    control_reference: bool = True,
+    samples: int | None = None,
+    label: str = "record",
+) -> Problem:
     """Set up a fit of ``model`` to ``records``: the free parameters (:func:`resolve_free`), the start values (the
     model's guess from the first record, then ``start``, then ``fixed``; checked within bounds), the search space.
     With ``control_reference`` the fit works on a copy of the model with the records' reference
@@ -248,8 +273,9 @@ def problem(model: Model, records: Sequence[Measurement], *, free: Sequence[str]
     tr = Transform(model, free)
     lo, hi = tr.bounds()
     z0 = np.clip(tr.to_search([base[n] for n in free]), lo, hi)
-    return Problem(model, records, tuple(masks) if masks is not None else (None,) * len(records), free, fixed,
-                   base, tr, lo, hi, z0)
+    return Problem(
+        model, records, tuple(masks) if masks is not None else (None,) * len(records), free, fixed, base, tr, lo, hi, z0
+    )
 
 
 def control_reference_for(records: Sequence[Measurement]) -> float:
@@ -301,8 +327,9 @@ def uncertainty(jac: np.ndarray, z: np.ndarray, tr: Transform, rss: float, n: in
     return se, corr
 
 
-def strong_correlations(free: Sequence[str], correlation: np.ndarray,
-                        threshold: float = CORRELATION_THRESHOLD) -> list[tuple[str, str, float]]:
+def strong_correlations(
+    free: Sequence[str], correlation: np.ndarray, threshold: float = CORRELATION_THRESHOLD
+) -> list[tuple[str, str, float]]:
     """Pairs of free parameters whose correlation exceeds ``threshold`` in magnitude, strongest first."""
     pairs = []
     for i in range(len(free)):
@@ -320,7 +347,7 @@ AT_BOUND_RTOL = 1e-6
 
 
 def at_bound(parameter, value: float, stderr: float | None = None) -> str | None:
-    """"lower" / "upper" when ``value`` of ``parameter`` (a :class:`~erdesign.parameters.Parameter`) sits on a
+    """ "lower" / "upper" when ``value`` of ``parameter`` (a :class:`~erdesign.parameters.Parameter`) sits on a
     bound, else None: within :data:`AT_BOUND_RTOL` of its range (log space for log-scale parameters; a wide linear
     range, a stiffness from 0 to 1e9 N/m, must not call 259 N/m "at 0": there the tolerance follows the parameter's
     own scale, its default or value, times 1e3), or within one standard error ``stderr`` when one is given.  The one
@@ -375,6 +402,7 @@ def baseline_esr(record: Measurement, F: np.ndarray, mask: np.ndarray | None) ->
     """ESR of the reference fit: the Bingham model (``bingham``: c0 v + f_c sgn v + f0, its control terms being
     collinear with these on a record of one control) by linear least squares on the fitted samples."""
     from ..data.metrics import esr
+
     v = record.velocity
     A = np.column_stack([v, np.sign(v), np.ones_like(v)])
     if mask is not None:
@@ -440,8 +468,9 @@ class _Tracker:
         self.steps = steps
         self.best_cost, self.best_z, self.calls = math.inf, None, 0
         self.history: list[float] = []
-        self.spread = float(np.sum((F[mask] - F[mask].mean()) ** 2)) if mask is not None else \
-            float(np.sum((F - F.mean()) ** 2))
+        self.spread = (
+            float(np.sum((F[mask] - F[mask].mean()) ** 2)) if mask is not None else float(np.sum((F - F.mean()) ** 2))
+        )
         self.last_report = _time.monotonic()
         self.last = None
 
@@ -460,8 +489,9 @@ class _Tracker:
             self.best_cost, self.best_z = cost, np.array(z, dtype=float)
         self.history.append(self.best_cost)
         window = STALL_JACOBIANS * (len(z) + 1)
-        if len(self.history) > window + 2 * (len(z) + 1) and \
-                self.history[-window - 1] <= self.best_cost * (1.0 + self.stall_rtol):
+        if len(self.history) > window + 2 * (len(z) + 1) and self.history[-window - 1] <= self.best_cost * (
+            1.0 + self.stall_rtol
+        ):
             raise _Stalled
         now = _time.monotonic()
         if self.progress is not None and now - self.last_report > 2.0:
@@ -522,6 +552,7 @@ class _Projection:
         free = np.ones(theta.size, dtype=bool)
         if np.any(theta < self.lo) or np.any(theta > self.hi):
             from scipy.optimize import lsq_linear
+
             sol = lsq_linear(Bs, y, bounds=(self.lo * scale, self.hi * scale), method="bvls")
             theta = np.clip(sol.x / scale, self.lo, self.hi)
             free = sol.active_mask == 0
@@ -535,8 +566,7 @@ class _ProjectedTracker(_Tracker):
     parameters are not at a bound - P+1 simulations less the number of linear parameters, and no second-order
     term (Golub and Pereyra 2003, section 3)."""
 
-    def __init__(self, model, record, F, mask, full_values, deadline, progress, label, stall_rtol, steps,
-                 projection):
+    def __init__(self, model, record, F, mask, full_values, deadline, progress, label, stall_rtol, steps, projection):
         super().__init__(model, record, F, mask, full_values, deadline, progress, label, stall_rtol, steps)
         self.projection = projection
         self.best_theta = None
@@ -582,8 +612,9 @@ class _ProjectedTracker(_Tracker):
             Bf = B[:, free]
             # an orthonormal basis of the columns' range by SVD, not QR: columns may be dependent (a control slope
             # on a record of constant control), and QR's Q would then remove directions outside the range
-            U, sv, _ = np.linalg.svd(Bf / np.where(np.linalg.norm(Bf, axis=0) > 0, np.linalg.norm(Bf, axis=0), 1.0),
-                                     full_matrices=False)
+            U, sv, _ = np.linalg.svd(
+                Bf / np.where(np.linalg.norm(Bf, axis=0) > 0, np.linalg.norm(Bf, axis=0), 1.0), full_matrices=False
+            )
             U = U[:, sv > 1e-10 * sv.max()] if sv.size and sv.max() > 0 else U[:, :0]
             J -= U @ (U.T @ J)
         return J
@@ -623,8 +654,10 @@ def fd_jacobian(fun, z, steps):
 
 
 def _stalled_message() -> str:
-    return (f"converged: the sum of squares improved by less than {100 * STALL_RTOL:g} % over the last "
-            f"{STALL_JACOBIANS} Jacobians")
+    return (
+        f"converged: the sum of squares improved by less than {100 * STALL_RTOL:g} % over the last "
+        f"{STALL_JACOBIANS} Jacobians"
+    )
 
 
 def _stages(pb: Problem, st: Strategy):
@@ -643,8 +676,7 @@ def _stages(pb: Problem, st: Strategy):
         coarse = record.select(slice(None, None, k))
         stages.append((coarse, coarse.force, None if mask is None else mask[::k], f"every {k}th sample"))
         stall = {0: 1e-3}  # the warm start needs no more than three digits
-    stages.append((fit_rec, fit_rec.force, fit_mask, "all samples" if decimate == 1 else
-                   f"every {decimate}th sample"))
+    stages.append((fit_rec, fit_rec.force, fit_mask, "all samples" if decimate == 1 else f"every {decimate}th sample"))
     return stages, stall
 
 
@@ -658,6 +690,7 @@ def _tracked_start(pb: Problem, st: Strategy, deadline, progress, label, z_start
     from scipy.optimize import least_squares
 
     from ..models._kernels import coarse_steps
+
     model, free, base, tr, lo, hi = pb.model, pb.free, pb.base, pb.transform, pb.lo, pb.hi
     stages, stall = _stages(pb, st)
     linear = _linear_free(pb, st)
@@ -678,21 +711,48 @@ def _tracked_start(pb: Problem, st: Strategy, deadline, progress, label, z_start
         steps = fd_steps(trn, names, model, zn, lon, hin)
         rtol = stall.get(k, STALL_RTOL if st.stall_rtol is None else st.stall_rtol)
         if linear:
-            tracker = _ProjectedTracker(model, rec, F, m, run_values, deadline, progress, f"{label}, {stage}",
-                                        rtol, steps, _Projection(model, rec, F, m, linear))
+            tracker = _ProjectedTracker(
+                model,
+                rec,
+                F,
+                m,
+                run_values,
+                deadline,
+                progress,
+                f"{label}, {stage}",
+                rtol,
+                steps,
+                _Projection(model, rec, F, m, linear),
+            )
         else:
             tracker = _Tracker(model, rec, F, m, run_values, deadline, progress, f"{label}, {stage}", rtol, steps)
         try:
             if linear and not nl:  # every free parameter enters linearly: one linear solve
                 tracker(zn)
-                res = Outcome(np.empty(0), tracker.best_cost, True, 1, "linear least squares: every free parameter "
-                              "enters the force linearly", tracker.calls)
+                res = Outcome(
+                    np.empty(0),
+                    tracker.best_cost,
+                    True,
+                    1,
+                    "linear least squares: every free parameter enters the force linearly",
+                    tracker.calls,
+                )
             else:
                 with coarse_steps() if st.coarse_steps else nullcontext():
-                    sol = least_squares(tracker, zn, jac=tracker.jacobian, bounds=(lon, hin), method="trf",
-                                        x_scale="jac", max_nfev=st.max_nfev, ftol=FTOL, xtol=1e-8)
-                res = Outcome(sol.x, 2.0 * sol.cost, bool(sol.success), int(sol.status), str(sol.message),
-                              int(sol.nfev), sol.jac)
+                    sol = least_squares(
+                        tracker,
+                        zn,
+                        jac=tracker.jacobian,
+                        bounds=(lon, hin),
+                        method="trf",
+                        x_scale="jac",
+                        max_nfev=st.max_nfev,
+                        ftol=FTOL,
+                        xtol=1e-8,
+                    )
+                res = Outcome(
+                    sol.x, 2.0 * sol.cost, bool(sol.success), int(sol.status), str(sol.message), int(sol.nfev), sol.jac
+                )
                 zn = sol.x
                 if linear and not np.array_equal(tracker.last[0], zn):
                     tracker(zn)
@@ -717,12 +777,23 @@ def _tracked_start(pb: Problem, st: Strategy, deadline, progress, label, z_start
     else:
         z = zn
     if res is None:
-        return Outcome(z, tracker.best_cost, False, 0, "stopped by max_time: the best point found so far",
-                       0, None, tracker.calls, tracker.spread, out_of_time)
+        return Outcome(
+            z,
+            tracker.best_cost,
+            False,
+            0,
+            "stopped by max_time: the best point found so far",
+            0,
+            None,
+            tracker.calls,
+            tracker.spread,
+            out_of_time,
+        )
     full_samples = stages[-1][0] is pb.records[0]
     jac = res.jac if res.jac is not None and full_samples and np.array_equal(res.x, z) else None
-    return Outcome(z, res.cost, res.success, res.status, res.message, res.nfev, jac, tracker.calls,
-                   tracker.spread, out_of_time)
+    return Outcome(
+        z, res.cost, res.success, res.status, res.message, res.nfev, jac, tracker.calls, tracker.spread, out_of_time
+    )
 
 
 def _plain_start(residual, lo, hi, max_nfev, z) -> Outcome:
@@ -731,10 +802,29 @@ def _plain_start(residual, lo, hi, max_nfev, z) -> Outcome:
         res = local_fit(residual, lo, hi, max_nfev, z)
     except _OutOfTime:
         x = np.clip(z, lo, hi) if residual.best_z is None else residual.best_z
-        return Outcome(x, residual.best_cost, False, 0, "stopped by max_time: the best point found so far",
-                       0, None, residual.calls, residual.spread, out_of_time=True)
-    return Outcome(res.x, 2.0 * res.cost, bool(res.success), int(res.status), str(res.message), int(res.nfev),
-                   res.jac, residual.calls, residual.spread)
+        return Outcome(
+            x,
+            residual.best_cost,
+            False,
+            0,
+            "stopped by max_time: the best point found so far",
+            0,
+            None,
+            residual.calls,
+            residual.spread,
+            out_of_time=True,
+        )
+    return Outcome(
+        res.x,
+        2.0 * res.cost,
+        bool(res.success),
+        int(res.status),
+        str(res.message),
+        int(res.nfev),
+        res.jac,
+        residual.calls,
+        residual.spread,
+    )
 
 
 def _start_task(pb: Problem, st: Strategy, deadline, progress, residual, item) -> Outcome:
@@ -751,6 +841,7 @@ def _candidates(pb: Problem, st: Strategy, deadline, progress) -> list[np.ndarra
     """Start points: the problem's start, the model's own guess (with ``rescue``, more than one start and a start
     elsewhere), a differential-evolution point (``global_search``), ``starts - 1`` Latin-hypercube points."""
     from scipy.stats import qmc
+
     free, tr, lo, hi, z0 = pb.free, pb.transform, pb.lo, pb.hi, pb.z0
     out = [z0]
     if st.rescue and st.starts > 1:
@@ -765,14 +856,23 @@ def _candidates(pb: Problem, st: Strategy, deadline, progress) -> list[np.ndarra
                 out.append(zr)
     if st.global_search:
         from scipy.optimize import differential_evolution
+
         box_lo, box_hi = start_box(lo, hi, z0, None)
         if st.tracked:
             probe = _Tracker(pb.model, *_stages(pb, st)[0][-1][:3], pb.values, deadline, progress, "global search")
         else:
             probe = Residual(pb.model, pb.records, pb.values, pb.masks, pb.weights, deadline, progress)
         try:
-            de = differential_evolution(SumOfSquares(probe), list(zip(box_lo, box_hi)), seed=st.seed, tol=1e-8,
-                                        polish=False, maxiter=200, popsize=15, init="sobol")
+            de = differential_evolution(
+                SumOfSquares(probe),
+                list(zip(box_lo, box_hi)),
+                seed=st.seed,
+                tol=1e-8,
+                polish=False,
+                maxiter=200,
+                popsize=15,
+                init="sobol",
+            )
             out.append(de.x)
         except _OutOfTime:
             if probe.best_z is not None:
@@ -786,8 +886,12 @@ def _candidates(pb: Problem, st: Strategy, deadline, progress) -> list[np.ndarra
 def _failed(pb: Problem, out: Outcome, baseline: float) -> bool:
     """A start that did not converge, stopped on time, is no better than the reference fit or sits mostly at
     bounds (:data:`FAIL_RATIO`)."""
-    return out.out_of_time or out.status <= 0 or out.cost / out.spread > FAIL_RATIO * baseline or \
-        mostly_at_bounds(pb.model, pb.free, pb.values(out.x))
+    return (
+        out.out_of_time
+        or out.status <= 0
+        or out.cost / out.spread > FAIL_RATIO * baseline
+        or mostly_at_bounds(pb.model, pb.free, pb.values(out.x))
+    )
 
 
 def solve(pb: Problem, st: Strategy, progress=None):
@@ -796,6 +900,7 @@ def solve(pb: Problem, st: Strategy, progress=None):
     fit), where a second thread only contends - 10 x slower on a loaded two-core machine.  Worker processes of an
     executor run one thread anyway; this keeps a library call from the caller's own process equally lean."""
     from threadpoolctl import threadpool_limits
+
     with threadpool_limits(limits=1, user_api="blas"):
         return _solve(pb, st, progress)
 
@@ -814,6 +919,7 @@ def _solve(pb: Problem, st: Strategy, progress=None):
     from ..data.metrics import esr
     from ..executor import SerialExecutor, executor_for
     from .result import FitResult
+
     t_start = _time.monotonic()
     deadline = None if st.max_time is None else t_start + float(st.max_time)
     if st.tracked and len(pb.records) > 1:
@@ -824,8 +930,11 @@ def _solve(pb: Problem, st: Strategy, progress=None):
     runner = executor_for(st.executor)
     try:
         here = isinstance(runner, SerialExecutor)
-        residual = None if st.tracked else Residual(model, pb.records, pb.values, pb.masks, pb.weights, deadline,
-                                                    progress if here else None)
+        residual = (
+            None
+            if st.tracked
+            else Residual(model, pb.records, pb.values, pb.masks, pb.weights, deadline, progress if here else None)
+        )
         candidates = _candidates(pb, st, deadline, progress)
         items = [(i, len(candidates), z) for i, z in enumerate(candidates)]
         # the tasks carry the strategy without its executor (a pool or a client is not sent to its own workers)
@@ -835,8 +944,10 @@ def _solve(pb: Problem, st: Strategy, progress=None):
             first = outcomes[0]
             if len(items) > 1 and not first.out_of_time and _failed(pb, first, baseline):
                 if progress is not None:
-                    progress(f"start 1 failed (ESR {first.cost / first.spread:.4g}; reference Bingham fit "
-                             f"{baseline:.4g}): trying {len(items) - 1} more starts")
+                    progress(
+                        f"start 1 failed (ESR {first.cost / first.spread:.4g}; reference Bingham fit "
+                        f"{baseline:.4g}): trying {len(items) - 1} more starts"
+                    )
                 outcomes += runner.map(task, items[1:])
         else:
             outcomes = runner.map(task, items)
@@ -868,13 +979,32 @@ def _solve(pb: Problem, st: Strategy, progress=None):
     force = np.concatenate(forces) if len(forces) > 1 else forces[0]
     measured = np.concatenate([r.require_force() for r in pb.records]) if len(forces) > 1 else record.force
     return FitResult(
-        model=model, values=values, free=free, stderr=dict(zip(free, stderr)), correlation=corr, force=force,
-        residual=measured - force, esr=scores[0] if len(scores) == 1 else float(np.mean(scores)), rss=rss, n=n,
-        aic=n * math.log(rss_n) + 2 * k, bic=n * math.log(rss_n) + k * math.log(n),
-        success=bool(best.success and not best.out_of_time), message=best.message, record_name=record.name,
-        initial=dict(pb.base), starts_tried=sum(o.calls > 0 for o in outcomes), simulations=best.calls,
-        nfev=best.nfev, seconds=_time.monotonic() - t_start,
-        projected=list(_linear_free(pb, st)) if st.tracked else [], baseline_esr=baseline,
-        records=[] if len(scores) == 1 else
-        [{"name": r.name, "samples": int(p.size), "esr": e} for r, p, e in zip(pb.records, parts, scores)],
-        search=np.array(z, dtype=float), jacobian=J, out_of_time=best.out_of_time)
+        model=model,
+        values=values,
+        free=free,
+        stderr=dict(zip(free, stderr)),
+        correlation=corr,
+        force=force,
+        residual=measured - force,
+        esr=scores[0] if len(scores) == 1 else float(np.mean(scores)),
+        rss=rss,
+        n=n,
+        aic=n * math.log(rss_n) + 2 * k,
+        bic=n * math.log(rss_n) + k * math.log(n),
+        success=bool(best.success and not best.out_of_time),
+        message=best.message,
+        record_name=record.name,
+        initial=dict(pb.base),
+        starts_tried=sum(o.calls > 0 for o in outcomes),
+        simulations=best.calls,
+        nfev=best.nfev,
+        seconds=_time.monotonic() - t_start,
+        projected=list(_linear_free(pb, st)) if st.tracked else [],
+        baseline_esr=baseline,
+        records=[]
+        if len(scores) == 1
+        else [{"name": r.name, "samples": int(p.size), "esr": e} for r, p, e in zip(pb.records, parts, scores)],
+        search=np.array(z, dtype=float),
+        jacobian=J,
+        out_of_time=best.out_of_time,
+    )

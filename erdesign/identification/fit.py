@@ -30,10 +30,20 @@ from .result import FitResult
 __all__ = ["FitError", "FitResult", "evaluate", "fit"]
 
 
-def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
-        fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None, starts: int = 1,
-        global_search: bool = False, seed: int = 0, max_nfev: int | None = None, executor=None,
-        mask: np.ndarray | None = None) -> FitResult:
+def fit(
+    model: Model,
+    record: Measurement,
+    *,
+    free: Sequence[str] | None = None,
+    fixed: Mapping[str, float] | None = None,
+    start: Mapping[str, float] | None = None,
+    starts: int = 1,
+    global_search: bool = False,
+    seed: int = 0,
+    max_nfev: int | None = None,
+    executor=None,
+    mask: np.ndarray | None = None,
+) -> FitResult:
     """Fit ``model`` to the force of ``record`` by bounded least squares.
 
     Parameters
@@ -71,12 +81,22 @@ def fit(model: Model, record: Measurement, *, free: Sequence[str] | None = None,
     check = getattr(model, "check_record", None)
     if check is not None:
         check(record)
-    pb = problem(model, [record], free=free, fixed=fixed, start=start, masks=[mask], control_reference=False,
-                 samples=len(F), label=record.name or "record")
+    pb = problem(
+        model,
+        [record],
+        free=free,
+        fixed=fixed,
+        start=start,
+        masks=[mask],
+        control_reference=False,
+        samples=len(F),
+        label=record.name or "record",
+    )
     if not np.all(np.isfinite(model.force(record, pb.values(pb.z0)))):
         raise FitError(f"{model.name}: the model gives non-finite forces at the starting values")
-    result = solve(pb, Strategy(starts=starts, global_search=global_search, seed=seed, max_nfev=max_nfev,
-                                executor=executor))
+    result = solve(
+        pb, Strategy(starts=starts, global_search=global_search, seed=seed, max_nfev=max_nfev, executor=executor)
+    )
     if mask is not None:  # force and residual of the compared samples
         result.force, result.residual = result.force[mask], result.residual[mask]
     return result

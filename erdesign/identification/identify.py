@@ -72,6 +72,7 @@ def control_reference_text(model: Model, control_kind: str | None) -> str | None
     |control|)."""
     from ..fluid import CONTROL_UNITS
     from ..units import Q_, format_quantity
+
     if not model.uses_control or control_kind is None or model.name == "physics":
         return None
     return format_quantity(Q_(model.control_reference, CONTROL_UNITS[control_kind]).to_compact())
@@ -97,8 +98,9 @@ def _null_parameters(J, z, tr, names, prefer=()):
         share = np.abs(v)
         order = [live[i] for i in np.argsort(-share)]
         top = share.max()
-        pick = next((i for i in order if names[i] in prefer and share[live.index(i)] > 0.3 * top
-                     and names[i] not in held), None)
+        pick = next(
+            (i for i in order if names[i] in prefer and share[live.index(i)] > 0.3 * top and names[i] not in held), None
+        )
         if pick is None:
             pick = next((i for i in order if names[i] not in held), None)
         if pick is not None:
@@ -111,12 +113,26 @@ def _null_parameters(J, z, tr, names, prefer=()):
 HELD_RTOL = 1e-3
 
 
-def identify(model: Model, record: Measurement, *, starts: int = 4, global_search: bool = False,
-             max_time: float | None = None, decimate: int = 1, exclude_clipped: bool = False, progress=None,
-             free: Sequence[str] | None = None, fixed: Mapping[str, float] | None = None,
-             start: Mapping[str, float] | None = None, seed: int = 0, max_nfev: int | None = None,
-             fix_unidentifiable: bool = True, warm_start: bool = False, projection: bool | None = None,
-             executor=None) -> FitResult:
+def identify(
+    model: Model,
+    record: Measurement,
+    *,
+    starts: int = 4,
+    global_search: bool = False,
+    max_time: float | None = None,
+    decimate: int = 1,
+    exclude_clipped: bool = False,
+    progress=None,
+    free: Sequence[str] | None = None,
+    fixed: Mapping[str, float] | None = None,
+    start: Mapping[str, float] | None = None,
+    seed: int = 0,
+    max_nfev: int | None = None,
+    fix_unidentifiable: bool = True,
+    warm_start: bool = False,
+    projection: bool | None = None,
+    executor=None,
+) -> FitResult:
     """Identify ``model`` on ``record`` by bounded least squares, at the scale of real records.
 
     * The fit works on a copy of the model with the control reference chosen from the record
@@ -160,6 +176,7 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     values, parameters not identifiable, warnings, the reference fit's ESR, poor fit; :func:`fit_report`).
     """
     from ..data.measurement import clipped_samples
+
     t_start = _time.monotonic()
     say = progress or (lambda msg: None)
     F_all = record.require_force()
@@ -168,37 +185,71 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
         check(record)
     notes: list[str] = []
     if record.control_kind is not None and np.ptp(record.control) > 0 and not model.uses_control:
-        notes.append(f"{model.name} has no control dependence, but the record's {record.control_kind} varies "
-                     f"({np.min(record.control):.4g} to {np.max(record.control):.4g} SI): the fit averages over it")
+        notes.append(
+            f"{model.name} has no control dependence, but the record's {record.control_kind} varies "
+            f"({np.min(record.control):.4g} to {np.max(record.control):.4g} SI): the fit averages over it"
+        )
     clipped = clipped_samples(F_all)
     mask = ~clipped if exclude_clipped and clipped.any() else None
     if clipped.any() and not exclude_clipped:
-        notes.append(f"{int(clipped.sum())} force samples sit at a flat top or bottom ({F_all[clipped][0]:.6g} N): "
-                     "a load cell at its limit? exclude_clipped=True leaves them out")
+        notes.append(
+            f"{int(clipped.sum())} force samples sit at a flat top or bottom ({F_all[clipped][0]:.6g} N): "
+            "a load cell at its limit? exclude_clipped=True leaves them out"
+        )
     n_scored = int(F_all.size if mask is None else mask.sum())
-    pb = problem(model, [record], free=free, fixed=fixed, start=start, masks=[mask], samples=n_scored,
-                 label=record.name or "record")
+    pb = problem(
+        model,
+        [record],
+        free=free,
+        fixed=fixed,
+        start=start,
+        masks=[mask],
+        samples=n_scored,
+        label=record.name or "record",
+    )
     model, free_names, fixed, initial = pb.model, pb.free, pb.fixed, dict(pb.base)  # model: a copy
     if projection is None:
         projection = getattr(model, "projection_default", True)
     decimate = max(1, int(decimate))
-    strategy = Strategy(starts=starts, global_search=global_search, seed=seed, max_nfev=max_nfev, rescue=True,
-                        tracked=True, projection=bool(projection), warm_start=warm_start, decimate=decimate,
-                        max_time=max_time, executor=executor)
+    strategy = Strategy(
+        starts=starts,
+        global_search=global_search,
+        seed=seed,
+        max_nfev=max_nfev,
+        rescue=True,
+        tracked=True,
+        projection=bool(projection),
+        warm_start=warm_start,
+        decimate=decimate,
+        max_time=max_time,
+        executor=executor,
+    )
     result = solve(pb, strategy, progress)
     baseline, out_of_time = result.baseline_esr, result.out_of_time
     k = len(free_names)
-    not_identifiable = _null_parameters(result.jacobian, result.search, pb.transform, free_names,
-                                        model.control_parameters)
+    not_identifiable = _null_parameters(
+        result.jacobian, result.search, pb.transform, free_names, model.control_parameters
+    )
     if not_identifiable and fix_unidentifiable and k > len(not_identifiable) and not out_of_time:
         say(f"not identifiable from this record: {', '.join(not_identifiable)}; held at their start values")
         held = {n: initial[n] for n in not_identifiable}
-        refit = identify(model, record, starts=1, max_time=None if max_time is None else
-                         max(1.0, t_start + float(max_time) - _time.monotonic()), decimate=decimate,
-                         exclude_clipped=exclude_clipped, progress=progress,
-                         free=[n for n in free_names if n not in held], fixed={**fixed, **held},
-                         start={**result.values, **held}, seed=seed, max_nfev=max_nfev, fix_unidentifiable=False,
-                         warm_start=warm_start, projection=projection)
+        refit = identify(
+            model,
+            record,
+            starts=1,
+            max_time=None if max_time is None else max(1.0, t_start + float(max_time) - _time.monotonic()),
+            decimate=decimate,
+            exclude_clipped=exclude_clipped,
+            progress=progress,
+            free=[n for n in free_names if n not in held],
+            fixed={**fixed, **held},
+            start={**result.values, **held},
+            seed=seed,
+            max_nfev=max_nfev,
+            fix_unidentifiable=False,
+            warm_start=warm_start,
+            projection=projection,
+        )
         # Held at their start values, directions the data do not see should leave the fit as good; when the fit
         # gets worse (on a Quiroz record ESR 0.019 -> 7.0: the start values were zeros the found optimum needs),
         # the free fit is kept and the parameters are only reported.
@@ -208,12 +259,15 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
             refit.warnings = [*notes, *[w for w in refit.warnings if w not in notes]]
             refit.seconds = _time.monotonic() - t_start
             return refit
-        notes.append(f"not identifiable from this record: {', '.join(not_identifiable)}; held at their start "
-                     f"values the fit got worse (ESR {refit.esr:.4g} against {result.esr:.4g}), so they are left "
-                     "at the fitted values")
+        notes.append(
+            f"not identifiable from this record: {', '.join(not_identifiable)}; held at their start "
+            f"values the fit got worse (ESR {refit.esr:.4g} against {result.esr:.4g}), so they are left "
+            "at the fitted values"
+        )
     if out_of_time:
-        notes.append(f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best "
-                     "found so far")
+        notes.append(
+            f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best found so far"
+        )
     result.not_identifiable, result.warnings = not_identifiable, notes
     result.seconds, result.clipped_samples = _time.monotonic() - t_start, int(clipped.sum())
     result.excluded_samples, result.decimate, result.mask = 0 if mask is None else int(clipped.sum()), decimate, mask
@@ -229,10 +283,12 @@ def identify(model: Model, record: Measurement, *, starts: int = 4, global_searc
     result.poor_fit = poor
     if poor:
         result.success = False
-        notes.append(f"poor fit: ESR {result.esr:.4g} after {result.starts_tried} start(s), against "
-                     f"{baseline:.4g} for the reference Bingham fit (c0 v + f_c sgn v + f0)"
-                     + (" with most parameters at a bound" if bounded else "")
-                     + ": try more starts, other fixed parameters or another model")
+        notes.append(
+            f"poor fit: ESR {result.esr:.4g} after {result.starts_tried} start(s), against "
+            f"{baseline:.4g} for the reference Bingham fit (c0 v + f_c sgn v + f0)"
+            + (" with most parameters at a bound" if bounded else "")
+            + ": try more starts, other fixed parameters or another model"
+        )
     return result
 
 
@@ -256,10 +312,18 @@ class JointResult(FitResult):
         return self.esr
 
 
-def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequence[str] | None = None,
-                   fixed: Mapping[str, float] | None = None, start: Mapping[str, float] | None = None,
-                   max_nfev: int | None = None, max_time: float | None = None, exclude_clipped: bool = False,
-                   progress=None) -> JointResult:
+def identify_joint(
+    model: Model,
+    records: Sequence[Measurement],
+    *,
+    free: Sequence[str] | None = None,
+    fixed: Mapping[str, float] | None = None,
+    start: Mapping[str, float] | None = None,
+    max_nfev: int | None = None,
+    max_time: float | None = None,
+    exclude_clipped: bool = False,
+    progress=None,
+) -> JointResult:
     """One parameter set for several records (each simulated from rest), by least squares on all residuals.
 
     Each record's residual is weighted by 1 / its force standard deviation, so that a record with small forces
@@ -282,18 +346,23 @@ def identify_joint(model: Model, records: Sequence[Measurement], *, free: Sequen
         clipped = clipped_samples(r.force)
         masks.append(~clipped if exclude_clipped and clipped.any() else None)
         if clipped.any() and not exclude_clipped:
-            notes.append(f"{r.name or 'a record'}: {int(clipped.sum())} force samples sit at a flat top or bottom; "
-                         "exclude_clipped=True leaves them out")
+            notes.append(
+                f"{r.name or 'a record'}: {int(clipped.sum())} force samples sit at a flat top or bottom; "
+                "exclude_clipped=True leaves them out"
+            )
     total = sum(len(r) if m is None else int(m.sum()) for r, m in zip(records, masks))
-    pb = problem(model, records, free=free, fixed=fixed, start=start, masks=masks, samples=total,
-                 label="identify_joint")
-    weights = tuple(1.0 / max(float(np.std(r.force if m is None else r.force[m])), 1e-12)
-                    for r, m in zip(records, masks))
+    pb = problem(
+        model, records, free=free, fixed=fixed, start=start, masks=masks, samples=total, label="identify_joint"
+    )
+    weights = tuple(
+        1.0 / max(float(np.std(r.force if m is None else r.force[m])), 1e-12) for r, m in zip(records, masks)
+    )
     pb = dataclasses.replace(pb, weights=weights)
     result = solve(pb, Strategy(max_nfev=max_nfev, max_time=max_time), progress)
     if result.out_of_time:
-        notes.append(f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best "
-                     "found so far")
+        notes.append(
+            f"stopped at max_time {max_time:g} s before the optimiser converged: the values are the best found so far"
+        )
     result.excluded_samples = [0 if m is None else int((~m).sum()) for m in masks]
     result.warnings, result.initial = notes, {n: pb.base[n] for n in pb.free}
     if len(records) == 1:  # the per-record list of one record
@@ -305,13 +374,17 @@ def joint_report(result: JointResult, validation: Sequence[tuple[str, dict]] = (
     """The report of a joint identification: per-record ESR, the shared parameters, validation, warnings."""
     model = result.model
     width = max(len(n or "") for n in result.names)
-    lines = [f"[[Joint fit]] {model.title or model.name} on {len(result.names)} records, one parameter set",
-             f"  free parameters {len(result.free)}, simulations of all records {'?' if result.simulations is None else result.simulations}, "
-             f"{result.seconds:.1f} s" + ("" if result.success else f"  - {result.message}"),
-             f"[[ESR per record]] (mean {result.mean_esr:.4g})"]
+    lines = [
+        f"[[Joint fit]] {model.title or model.name} on {len(result.names)} records, one parameter set",
+        f"  free parameters {len(result.free)}, simulations of all records {'?' if result.simulations is None else result.simulations}, "
+        f"{result.seconds:.1f} s" + ("" if result.success else f"  - {result.message}"),
+        f"[[ESR per record]] (mean {result.mean_esr:.4g})",
+    ]
     excluded = result.excluded_samples or [0] * len(result.names)
-    lines += [f"  {name or 'record':<{width}}  {e:.4g}" + (f"  ({k} clipped left out)" if k else "")
-              for name, e, k in zip(result.names, result.record_esr, excluded)]
+    lines += [
+        f"  {name or 'record':<{width}}  {e:.4g}" + (f"  ({k} clipped left out)" if k else "")
+        for name, e, k in zip(result.names, result.record_esr, excluded)
+    ]
     lines.append("[[Parameters]]")
     pw = max(len(n) for n in model.parameter_names)
     for name in model.parameter_names:
@@ -326,30 +399,48 @@ def joint_report(result: JointResult, validation: Sequence[tuple[str, dict]] = (
     return "\n".join(lines)
 
 
-def joint_json(result: JointResult, model_name: str, control_reference: str | None,
-               validation: Sequence[tuple[str, dict]] = ()) -> dict:
+def joint_json(
+    result: JointResult, model_name: str, control_reference: str | None, validation: Sequence[tuple[str, dict]] = ()
+) -> dict:
     """The ``identify --joint --json`` object: ``model``, ``esr`` (the mean of the per-record ESRs), ``records``
     (name, esr, excluded_samples), ``parameters`` (strings with units), ``parameters_si`` (value, unit, status
     "free" or "fixed", initial), ``control_reference``, ``success``, ``message``, ``warnings``, ``validation``."""
+
     def num(x):
         return None if x is None or not math.isfinite(x) else float(x)
 
     model = result.model
     excluded = result.excluded_samples or [0] * len(result.names)
     initial = result.initial
-    return {"model": model_name, "joint": True, "esr": num(result.mean_esr),
-            "records": [{"record": n, "esr": num(e), "excluded_samples": k}
-                        for n, e, k in zip(result.names, result.record_esr, excluded)],
-            "parameters": {n: model.parameter(n).format(v) for n, v in result.values.items()},
-            "parameters_si": {n: {"value": float(v), "unit": model.parameter(n).unit,
-                                  "status": "free" if n in result.free else "fixed",
-                                  "initial": None if n not in initial else float(initial[n])}
-                              for n, v in result.values.items()},
-            "control_reference": control_reference, "success": bool(result.success), "message": result.message,
-            "simulations": result.simulations, "seconds": num(result.seconds),
-            "warnings": list(result.warnings),
-            "validation": [{"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
-                           for name, m in validation]}
+    return {
+        "model": model_name,
+        "joint": True,
+        "esr": num(result.mean_esr),
+        "records": [
+            {"record": n, "esr": num(e), "excluded_samples": k}
+            for n, e, k in zip(result.names, result.record_esr, excluded)
+        ],
+        "parameters": {n: model.parameter(n).format(v) for n, v in result.values.items()},
+        "parameters_si": {
+            n: {
+                "value": float(v),
+                "unit": model.parameter(n).unit,
+                "status": "free" if n in result.free else "fixed",
+                "initial": None if n not in initial else float(initial[n]),
+            }
+            for n, v in result.values.items()
+        },
+        "control_reference": control_reference,
+        "success": bool(result.success),
+        "message": result.message,
+        "simulations": result.simulations,
+        "seconds": num(result.seconds),
+        "warnings": list(result.warnings),
+        "validation": [
+            {"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
+            for name, m in validation
+        ],
+    }
 
 
 @dataclass
@@ -375,12 +466,13 @@ class CrossValidation:
 def _cross_validation_column(model_factory, records: Sequence[Measurement], fit_options: dict, j: int) -> list:
     """ESR on every record of the model identified on record j (one column of the table; a task)."""
     r = identify(model_factory(), records[j], **fit_options)
-    return [r.esr if i == j else esr(other.require_force(), r.model.simulate(other, r.values))
-            for i, other in enumerate(records)]
+    return [
+        r.esr if i == j else esr(other.require_force(), r.model.simulate(other, r.values))
+        for i, other in enumerate(records)
+    ]
 
 
-def cross_validation(model_factory, records: Sequence[Measurement], *, executor=None,
-                     **fit_options) -> CrossValidation:
+def cross_validation(model_factory, records: Sequence[Measurement], *, executor=None, **fit_options) -> CrossValidation:
     """Identify a fresh model (``model_factory()``) on each record and score it on every record.
 
     The identifications run on ``executor`` (:func:`erdesign.executor.executor_for`; default one after the other in
@@ -389,11 +481,13 @@ def cross_validation(model_factory, records: Sequence[Measurement], *, executor=
     from functools import partial
 
     from ..executor import executor_for
+
     records = list(records)
     runner = executor_for(executor)
     try:
-        columns = runner.map(partial(_cross_validation_column, model_factory, records, fit_options),
-                             range(len(records)))
+        columns = runner.map(
+            partial(_cross_validation_column, model_factory, records, fit_options), range(len(records))
+        )
     finally:
         if runner is not executor:
             runner.close()
@@ -414,8 +508,13 @@ def score(force, model_force, mask=None) -> dict:
         F, M = F[mask], M[mask]
     e = esr(F, M)
     d = F - M
-    return {"esr": e, "r_squared": 1.0 - e, "rms_residual_N": float(np.sqrt(np.mean(d**2))),
-            "peak_residual_N": float(np.max(np.abs(d))), "samples_scored": int(F.size)}
+    return {
+        "esr": e,
+        "r_squared": 1.0 - e,
+        "rms_residual_N": float(np.sqrt(np.mean(d**2))),
+        "peak_residual_N": float(np.max(np.abs(d))),
+        "samples_scored": int(F.size),
+    }
 
 
 @dataclass
@@ -448,17 +547,19 @@ class Simulation:
 def _control_reference_from_text(text: str, record: Measurement, where: str) -> float:
     from ..fluid import CONTROL_UNITS
     from ..units import parse_quantity
+
     q = parse_quantity(text, f"{where}: control_reference")
     try:
         return float(q.to(CONTROL_UNITS[record.control_kind]).magnitude)
     except Exception:
-        raise ErdesignError(f"{where}: control_reference {text!r} is not a {record.control_kind} "
-                            f"(the record's control)") from None
+        raise ErdesignError(
+            f"{where}: control_reference {text!r} is not a {record.control_kind} (the record's control)"
+        ) from None
 
 
-def resolve_parameters(model: Model, spec: str, record: Measurement, *,
-                       control_reference: str | None = None,
-                       where: str = "params") -> tuple[dict[str, float], ParameterSource, list[str]]:
+def resolve_parameters(
+    model: Model, spec: str, record: Measurement, *, control_reference: str | None = None, where: str = "params"
+) -> tuple[dict[str, float], ParameterSource, list[str]]:
     """SI values of ``model`` from a parameter specification, and the control reference set on the model.
 
     ``spec`` is one of: a JSON file written by ``erdesign identify --json`` (its ``parameters_si`` when present,
@@ -474,11 +575,13 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
         parse_parameter_values,
         published_set,
     )
+
     notes: list[str] = []
     kind = record.control_kind
     path = Path(spec)
     if spec.lower().endswith(".json") or path.is_file():
         from ..limits import MAX_TOML_BYTES, nested_too_deeply, read_input_bytes
+
         try:
             data = json.loads(read_input_bytes(path, MAX_TOML_BYTES, "a JSON file of parameters", spec).decode())
         except FileNotFoundError:
@@ -492,8 +595,9 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
         except ErdesignError as exc:
             raise ErdesignError(f"{where}: {exc}") from None
         if not isinstance(data, dict) or not isinstance(data.get("parameters"), dict):
-            raise ErdesignError(f"{where}: {spec} has no 'parameters' object (expected the output of "
-                                "'erdesign identify --json')")
+            raise ErdesignError(
+                f"{where}: {spec} has no 'parameters' object (expected the output of 'erdesign identify --json')"
+            )
         if data.get("model") not in (None, model.name):
             raise ErdesignError(f"{where}: {spec} holds parameters of model {data['model']}, not {model.name}")
         ref_text = control_reference or data.get("control_reference")
@@ -502,23 +606,25 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
                 model.control_reference = _control_reference_from_text(ref_text, record, where)
             else:
                 ref = choose_control_reference(model, [record])
-                notes.append(f"{spec} gives no control_reference: u = {kind} / {ref:g} (SI), the rule identify "
-                             "uses on this record")
+                notes.append(
+                    f"{spec} gives no control_reference: u = {kind} / {ref:g} (SI), the rule identify "
+                    "uses on this record"
+                )
         si = data.get("parameters_si")
         if isinstance(si, dict) and si:
             values = {k: float(v["value"] if isinstance(v, dict) else v) for k, v in si.items()}
             for k in values:
                 model.parameter(k)
         else:
-            values = parse_parameter_values(model, data["parameters"], control_kind=kind,
-                                            control_reference=model.control_reference, where=spec)
+            values = parse_parameter_values(
+                model, data["parameters"], control_kind=kind, control_reference=model.control_reference, where=spec
+            )
         return values, ParameterSource("json", spec), notes
     if "=" in spec:
         texts = parse_parameter_list(spec)
         if model.uses_control and kind is not None:
             if control_reference:
-                model.control_reference = _control_reference_from_text(control_reference, record,
-                                                                       "control_reference")
+                model.control_reference = _control_reference_from_text(control_reference, record, "control_reference")
             else:
                 choose_control_reference(model, [record])
         values = parse_parameter_values(model, texts, control_kind=kind, control_reference=model.control_reference)
@@ -526,31 +632,46 @@ def resolve_parameters(model: Model, spec: str, record: Measurement, *,
     pub = published_set(model.name, spec)
     if pub.control_kind is not None:
         if kind is None:
-            notes.append(f"{spec} is for a record with a {pub.control_kind} column; {record.name or 'the record'} "
-                         "has none: the control is taken as zero")
+            notes.append(
+                f"{spec} is for a record with a {pub.control_kind} column; {record.name or 'the record'} "
+                "has none: the control is taken as zero"
+            )
         elif kind != pub.control_kind:
-            raise ErdesignError(f"{where}: {spec} is for a {pub.control_kind} control (its coefficients are per "
-                                f"unit {pub.control_kind}); the record's control is a {kind}")
+            raise ErdesignError(
+                f"{where}: {spec} is for a {pub.control_kind} control (its coefficients are per "
+                f"unit {pub.control_kind}); the record's control is a {kind}"
+            )
         model.control_reference = pub.control_reference
     elif model.uses_control and kind is not None and np.ptp(record.control) > 0:
-        notes.append(f"{spec} describes one fixed field; the record's {kind} varies and is ignored by its "
-                     "coefficients")
+        notes.append(f"{spec} describes one fixed field; the record's {kind} varies and is ignored by its coefficients")
     return dict(pub.values), ParameterSource("published", spec, pub.source, pub.note), notes
 
 
-def simulate(model: Model, record: Measurement, values: Mapping[str, float], *, exclude_clipped: bool = False,
-             source: ParameterSource | None = None) -> Simulation:
+def simulate(
+    model: Model,
+    record: Measurement,
+    values: Mapping[str, float],
+    *,
+    exclude_clipped: bool = False,
+    source: ParameterSource | None = None,
+) -> Simulation:
     """Run ``model`` with ``values`` on the record's motion and control (from rest at the first sample) and score
     it against the record's force (all samples, or without the clipped ones when ``exclude_clipped``).  A record
     without force (a test plan of ``erdesign doe``) is run and not scored: its metrics are None."""
     from ..data.measurement import clipped_samples
+
     F = record.force
     force = model.simulate(record, values)
     if F is None:
         if not np.all(np.isfinite(force)):
             raise ErdesignError(f"{model.name}: the parameters give non-finite forces on {record.name or 'the record'}")
-        unscored = {"esr": None, "r_squared": None, "rms_residual_N": None, "peak_residual_N": None,
-                    "samples_scored": 0}
+        unscored = {
+            "esr": None,
+            "r_squared": None,
+            "rms_residual_N": None,
+            "peak_residual_N": None,
+            "samples_scored": 0,
+        }
         return Simulation(model, model.check_values(values), force, unscored, 0, 0, source, [])
     clipped = clipped_samples(F)
     mask = ~clipped if exclude_clipped and clipped.any() else None
@@ -560,8 +681,18 @@ def simulate(model: Model, record: Measurement, values: Mapping[str, float], *, 
         raise ErdesignError(f"{model.name}: the parameters give non-finite forces on {record.name or 'the record'}")
     if clipped.any() and not exclude_clipped:
         level = F[clipped]
-        notes.append(f"{int(clipped.sum())} force samples sit at a flat {'top' if level[0] > 0 else 'bottom'} "
-                     f"({level[0]:.6g} N): a load cell or amplifier at its limit; exclude_clipped=True scores without "
-                     f"them")
-    return Simulation(model, model.check_values(values), force, metrics, int(clipped.sum()),
-                      int(clipped.sum()) if mask is not None else 0, source, notes)
+        notes.append(
+            f"{int(clipped.sum())} force samples sit at a flat {'top' if level[0] > 0 else 'bottom'} "
+            f"({level[0]:.6g} N): a load cell or amplifier at its limit; exclude_clipped=True scores without "
+            f"them"
+        )
+    return Simulation(
+        model,
+        model.check_values(values),
+        force,
+        metrics,
+        int(clipped.sum()),
+        int(clipped.sum()) if mask is not None else 0,
+        source,
+        notes,
+    )

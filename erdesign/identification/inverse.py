@@ -46,8 +46,15 @@ class InverseResult:
         return int(np.count_nonzero(self.unreachable))
 
 
-def inverse_control(model: Model, record: Measurement, force, values: Mapping[str, float], *,
-                    control_range=(0.0, 1.0), control_kind: str = "current") -> InverseResult:
+def inverse_control(
+    model: Model,
+    record: Measurement,
+    force,
+    values: Mapping[str, float],
+    *,
+    control_range=(0.0, 1.0),
+    control_kind: str = "current",
+) -> InverseResult:
     """Control needed for ``force`` [N] along the motion of ``record``.
 
     Parameters
@@ -78,9 +85,11 @@ def inverse_control(model: Model, record: Measurement, force, values: Mapping[st
     if not model.uses_control:
         raise InverseError(f"{model.name}: the force does not depend on the control, so it has no inverse")
     if not (model.invertible or model.name == "physics"):
-        raise InverseError(f"{model.name}: no inverse (its state depends on the control history in a way that has "
-                           f"no explicit inverse); the models with one are those `erdesign models --json` marks "
-                           f"invertible")
+        raise InverseError(
+            f"{model.name}: no inverse (its state depends on the control history in a way that has "
+            f"no explicit inverse); the models with one are those `erdesign models --json` marks "
+            f"invertible"
+        )
     values = model.check_values(values)
     Fd = np.broadcast_to(np.asarray(force, dtype=float), record.time.shape)
     lo, hi = (c / model.control_reference for c in control_range)
@@ -107,8 +116,9 @@ def _result(model, record, u, unreachable, values, kind):
 
 def _invert_by_root(model, record, Fd, values, lo, hi, kind):
     def force_at(u):
-        rec = replace(record, control=np.broadcast_to(u, record.time.shape) * model.control_reference,
-                      control_kind=kind)
+        rec = replace(
+            record, control=np.broadcast_to(u, record.time.shape) * model.control_reference, control_kind=kind
+        )
         return model.force(rec, values)
 
     F_lo, F_hi = force_at(lo), force_at(hi)
@@ -146,5 +156,5 @@ def _invert_lugre(model, record, Fd, values, lo, hi):
         u[i] = min(max(raw, lo), hi)
         unreachable[i] = u[i] != raw
         if i + 1 < n:
-            z = float(lugre_state(x[i:i + 2], max(k0 * (1 + values["a1"] * u[i]), 0.0), z)[-1])
+            z = float(lugre_state(x[i : i + 2], max(k0 * (1 + values["a1"] * u[i]), 0.0), z)[-1])
     return u, unreachable

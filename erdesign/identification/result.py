@@ -99,8 +99,12 @@ class FitResult:
         reached, parameters not identifiable, strong correlations, validation scores, warnings."""
         return fit_report(self, validation)
 
-    def to_dict(self, model_name: str | None = None, control_reference: str | None = None,
-                validation: Sequence[tuple[str, dict]] = ()) -> dict:
+    def to_dict(
+        self,
+        model_name: str | None = None,
+        control_reference: str | None = None,
+        validation: Sequence[tuple[str, dict]] = (),
+    ) -> dict:
         """The JSON object of ``erdesign identify --json`` (:func:`result_json`)."""
         return result_json(self, model_name or self.model.name, control_reference, validation)
 
@@ -122,9 +126,13 @@ def parameter_table(result: FitResult) -> dict[str, dict]:
         else:
             bound = at_bound(model.parameter(name), v, se)
             status = f"at {bound} bound" if bound else "free"
-        out[name] = {"value": v, "unit": model.parameter(name).unit,
-                     "stderr": None if se is None or not math.isfinite(se) or status.startswith("at ") else float(se),
-                     "initial": None if name not in initial else float(initial[name]), "status": status}
+        out[name] = {
+            "value": v,
+            "unit": model.parameter(name).unit,
+            "stderr": None if se is None or not math.isfinite(se) or status.startswith("at ") else float(se),
+            "initial": None if name not in initial else float(initial[name]),
+            "status": status,
+        }
     return out
 
 
@@ -136,9 +144,16 @@ def strong_correlations(result: FitResult, threshold: float = CORRELATION_THRESH
 def fit_statistics(result: FitResult) -> dict:
     """ESR, R^2, RMS residual, reduced chi-square (RSS / (n - k), N^2: no measurement error is known), AIC, BIC."""
     n, k = result.n, result.k
-    return {"esr": result.esr, "r_squared": 1.0 - result.esr, "rms_residual_N": math.sqrt(result.rss / n),
-            "reduced_chi_square_N2": result.rss / max(n - k, 1), "aic": result.aic, "bic": result.bic,
-            "samples": n, "free_parameters": k}
+    return {
+        "esr": result.esr,
+        "r_squared": 1.0 - result.esr,
+        "rms_residual_N": math.sqrt(result.rss / n),
+        "reduced_chi_square_N2": result.rss / max(n - k, 1),
+        "aic": result.aic,
+        "bic": result.bic,
+        "samples": n,
+        "free_parameters": k,
+    }
 
 
 def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -> str:
@@ -146,18 +161,19 @@ def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -
     initial values, parameters at a bound or not identifiable said so, strong correlations, warnings."""
     model = result.model
     st = fit_statistics(result)
-    lines = [f"[[Fit]] {model.title or model.name} on {result.record_name or 'record'}",
-             f"  samples {st['samples']}" + (f" ({result.excluded_samples} clipped left out)"
-                                            if result.excluded_samples else "")
-             + f", free parameters {st['free_parameters']}, simulations {'?' if result.simulations is None else result.simulations}, "
-             f"{result.seconds:.1f} s" + ("" if result.success else f"  - {result.message}"),
-             "[[Statistics]]",
-             f"  ESR {st['esr']:.4g}   R^2 {st['r_squared']:.4g}   RMS residual {st['rms_residual_N']:.4g} N   "
-             f"reduced chi-square {st['reduced_chi_square_N2']:.4g} N^2",
-             f"  AIC {st['aic']:.1f}   BIC {st['bic']:.1f}"
-             + (f"   (reference Bingham fit: ESR {result.baseline_esr:.4g})" if result.baseline_esr is not None
-                else ""),
-             "[[Parameters]]"]
+    lines = [
+        f"[[Fit]] {model.title or model.name} on {result.record_name or 'record'}",
+        f"  samples {st['samples']}"
+        + (f" ({result.excluded_samples} clipped left out)" if result.excluded_samples else "")
+        + f", free parameters {st['free_parameters']}, simulations {'?' if result.simulations is None else result.simulations}, "
+        f"{result.seconds:.1f} s" + ("" if result.success else f"  - {result.message}"),
+        "[[Statistics]]",
+        f"  ESR {st['esr']:.4g}   R^2 {st['r_squared']:.4g}   RMS residual {st['rms_residual_N']:.4g} N   "
+        f"reduced chi-square {st['reduced_chi_square_N2']:.4g} N^2",
+        f"  AIC {st['aic']:.1f}   BIC {st['bic']:.1f}"
+        + (f"   (reference Bingham fit: ESR {result.baseline_esr:.4g})" if result.baseline_esr is not None else ""),
+        "[[Parameters]]",
+    ]
     table = parameter_table(result)
     width = max(len(n) for n in table)
     for name, row in table.items():
@@ -167,8 +183,10 @@ def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -
             rel = abs(row["stderr"] / row["value"]) if row["value"] else math.inf
             text += f" +/- {p.format(row['stderr'], 2)}" + (f" ({100 * rel:.2g} %)" if math.isfinite(rel) else "")
         elif row["status"] == "not identifiable":
-            text = (f"not identifiable from this record ({'fitted' if name in result.free else 'held at'} "
-                    f"{p.format(row['value'])})")
+            text = (
+                f"not identifiable from this record ({'fitted' if name in result.free else 'held at'} "
+                f"{p.format(row['value'])})"
+            )
         elif row["status"] == "fixed":
             text += " (fixed)"
         else:
@@ -178,7 +196,9 @@ def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -
         lines.append(f"  {name:<{width}}  {text}")
     corr = strong_correlations(result)
     if corr:
-        lines.append(f"[[Correlations]] (|r| > {CORRELATION_THRESHOLD:g}: these combinations, not the single values, are what the data fix)")
+        lines.append(
+            f"[[Correlations]] (|r| > {CORRELATION_THRESHOLD:g}: these combinations, not the single values, are what the data fix)"
+        )
         lines += [f"  {a}, {b}: {c:+.3f}" for a, b, c in corr]
     if validation:
         lines.append("[[Validation]] (the identified set on other records)")
@@ -190,24 +210,38 @@ def fit_report(result: FitResult, validation: Sequence[tuple[str, dict]] = ()) -
     return "\n".join(lines)
 
 
-def result_json(result: FitResult, model_name: str, control_reference: str | None,
-                validation: Sequence[tuple[str, dict]] = ()) -> dict:
+def result_json(
+    result: FitResult, model_name: str, control_reference: str | None, validation: Sequence[tuple[str, dict]] = ()
+) -> dict:
     """The ``identify --json`` object: the contract's ``model``, ``esr``, ``parameters`` (strings) and, in SI,
     ``parameters_si`` (value, unit, stderr, initial, status), ``statistics``, ``correlations``,
     ``not_identifiable``, ``at_bounds``, ``warnings``, ``control_reference`` and ``validation``.  No NaN or inf."""
+
     def num(x):
         return None if x is None or not math.isfinite(x) else float(x)
 
     table = parameter_table(result)
     st = {k: (num(v) if isinstance(v, float) else v) for k, v in fit_statistics(result).items()}
-    return {"model": model_name, "esr": num(result.esr), "parameters": result.parameters_with_units(),
-            "parameters_si": table, "statistics": st, "control_reference": control_reference,
-            "correlations": [{"a": a, "b": b, "r": c} for a, b, c in strong_correlations(result)],
-            "not_identifiable": [n for n, r in table.items() if r["status"] == "not identifiable"],
-            "at_bounds": [n for n, r in table.items() if r["status"].startswith("at ")],
-            "success": bool(result.success), "poor_fit": bool(result.poor_fit), "message": result.message,
-            "simulations": result.simulations, "seconds": num(result.seconds),
-            "clipped_samples": result.clipped_samples, "excluded_samples": result.excluded_samples,
-            "warnings": list(result.warnings),
-            "validation": [{"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
-                           for name, m in validation]}
+    return {
+        "model": model_name,
+        "esr": num(result.esr),
+        "parameters": result.parameters_with_units(),
+        "parameters_si": table,
+        "statistics": st,
+        "control_reference": control_reference,
+        "correlations": [{"a": a, "b": b, "r": c} for a, b, c in strong_correlations(result)],
+        "not_identifiable": [n for n, r in table.items() if r["status"] == "not identifiable"],
+        "at_bounds": [n for n, r in table.items() if r["status"].startswith("at ")],
+        "success": bool(result.success),
+        "poor_fit": bool(result.poor_fit),
+        "message": result.message,
+        "simulations": result.simulations,
+        "seconds": num(result.seconds),
+        "clipped_samples": result.clipped_samples,
+        "excluded_samples": result.excluded_samples,
+        "warnings": list(result.warnings),
+        "validation": [
+            {"record": name, **{k: num(v) if isinstance(v, float) else v for k, v in m.items()}}
+            for name, m in validation
+        ],
+    }

@@ -19,6 +19,24 @@ from .circuit import PARTS, MagneticCircuit, PistonHead, piston_head
 from .coil import COIL_KEYS, Coil, coil_from_table, coil_resistance, current_rise_time
 from .law import CoilLaw, coil_law
 
-__all__ = ["CircuitReport", "build_circuit", "circuit_from_damper_dict", "CoilLaw", "coil_law", "current_rise_time",
-           "load_magnetic_circuit", "MU0", "BHCurve", "carlson_curve", "carlson_flux_density", "PARTS",
-           "MagneticCircuit", "PistonHead", "piston_head", "COIL_KEYS", "Coil", "coil_from_table", "coil_resistance"]
+__all__ = [
+    "CircuitReport",
+    "build_circuit",
+    "circuit_from_damper_dict",
+    "CoilLaw",
+    "coil_law",
+    "current_rise_time",
+    "load_magnetic_circuit",
+    "MU0",
+    "BHCurve",
+    "carlson_curve",
+    "carlson_flux_density",
+    "PARTS",
+    "MagneticCircuit",
+    "PistonHead",
+    "piston_head",
+    "COIL_KEYS",
+    "Coil",
+    "coil_from_table",
+    "coil_resistance",
+]

@@ -26,8 +26,7 @@ from ..units import Q_, to_si
 from .circuit import MagneticCircuit, piston_head
 from .coil import Coil, coil_from_table
 
-__all__ = ["CircuitReport", "build_circuit", "circuit_from_damper_dict", "load_magnetic_circuit",
-           "MagneticCircuit"]
+__all__ = ["CircuitReport", "build_circuit", "circuit_from_damper_dict", "load_magnetic_circuit", "MagneticCircuit"]
 
 
 @dataclass(frozen=True)
@@ -55,6 +54,7 @@ class CircuitReport:
     def as_json(self) -> dict:
         """The JSON of ``erdesign magnetics --json`` (docs/file_formats.md, [coil]): SI numbers; lists when the
         report holds several currents (then with ``current_A``)."""
+
         def si(q, unit):
             m = np.asarray(q.to(unit).magnitude, dtype=float)
             return m.tolist() if m.ndim else float(m)
@@ -86,14 +86,19 @@ def check_current_density(current: float, wire_area: float, name: str = "current
     """Refuse a coil current [A] whose density in the wire of cross-section ``wire_area`` [m^2] no coil survives,
     warn beyond what it carries for more than seconds (:data:`PLAUSIBLE_CURRENT_DENSITY`)."""
     J = float(current) / wire_area
-    text = (f"{name}: {float(current):.4g} A is {J / 1e6:.4g} A/mm^2 in the coil's {1e6 * wire_area:.3g} mm^2 "
-            "wire")
+    text = f"{name}: {float(current):.4g} A is {J / 1e6:.4g} A/mm^2 in the coil's {1e6 * wire_area:.3g} mm^2 wire"
     if J > POSSIBLE_CURRENT_DENSITY:
-        raise ErdesignError(f"{text}, beyond {POSSIBLE_CURRENT_DENSITY / 1e6:g} A/mm^2 where copper melts within "
-                            "milliseconds; check the value and its unit")
+        raise ErdesignError(
+            f"{text}, beyond {POSSIBLE_CURRENT_DENSITY / 1e6:g} A/mm^2 where copper melts within "
+            "milliseconds; check the value and its unit"
+        )
     if J > PLAUSIBLE_CURRENT_DENSITY:
-        warnings.warn(f"{text}, beyond the {PLAUSIBLE_CURRENT_DENSITY / 1e6:g} A/mm^2 a coil carries for more than "
-                      "seconds: it overheats", PlausibilityWarning, stacklevel=3)
+        warnings.warn(
+            f"{text}, beyond the {PLAUSIBLE_CURRENT_DENSITY / 1e6:g} A/mm^2 a coil carries for more than "
+            "seconds: it overheats",
+            PlausibilityWarning,
+            stacklevel=3,
+        )
 
 
 class _Circuit(MagneticCircuit):
@@ -102,14 +107,14 @@ class _Circuit(MagneticCircuit):
     def at(self, current: Any) -> CircuitReport:
         """The circuit at coil current(s) ``current`` (``"2 A"``, a quantity, or a number/array in A)."""
         if isinstance(current, (list, tuple, np.ndarray, int, float)) and not isinstance(current, bool):
-            I = np.asarray(current, dtype=float)   # plain numbers: amperes
+            I = np.asarray(current, dtype=float)  # plain numbers: amperes
         else:
             I = to_si(current, "A", "current")
         scalar = np.ndim(I) == 0
         Ia = np.atleast_1d(np.asarray(I, dtype=float))
         if not np.all(np.isfinite(Ia)):
             raise ErdesignError(f"current: must be finite, got {current!r}")
-        wire_area = math.pi * self.head.wire_diameter ** 2 / 4.0
+        wire_area = math.pi * self.head.wire_diameter**2 / 4.0
         check_current_density(np.max(np.abs(Ia)), wire_area)
         st = self.state(Ia)
         R = self.resistance
@@ -126,7 +131,7 @@ class _Circuit(MagneticCircuit):
             inductance=Q_(pick(L), "H"),
             incremental_inductance=Q_(pick(Ld), "H"),
             time_constant=Q_(pick(L / R), "s"),
-            power=Q_(pick(Ia ** 2 * R), "W"),
+            power=Q_(pick(Ia**2 * R), "W"),
             voltage=Q_(pick(np.abs(Ia) * R), "V"),
             current_density=Q_(pick(np.abs(Ia) / wire_area), "A/m^2"),
             flux_linkage=Q_(pick(np.abs(st.flux_linkage)), "Wb"),
@@ -138,8 +143,9 @@ class _Circuit(MagneticCircuit):
         )
 
 
-def build_circuit(geometry: Any, coil: Coil, fluid_material: str, *, temperature: float = 20.0,
-                  name: str = "", where: str = "coil") -> _Circuit:
+def build_circuit(
+    geometry: Any, coil: Coil, fluid_material: str, *, temperature: float = 20.0, name: str = "", where: str = "coil"
+) -> _Circuit:
     """The circuit of a damper geometry, its coil and the fluid of the materials database (by name)."""
     head = piston_head(geometry, coil, where=where)
     steel = materials.steel_curve(coil.steel)
@@ -149,8 +155,10 @@ def build_circuit(geometry: Any, coil: Coil, fluid_material: str, *, temperature
         raise DamperFileError(f"fluid.material: {exc}") from None
     law = materials.material_fluid(fluid_material).yield_curve
     if law is None or law.control_unit != "A/m":
-        raise DamperFileError(f"fluid.material: {fluid_material!r} has no yield curve against field strength "
-                              "(A/m); the magnetic circuit needs one")
+        raise DamperFileError(
+            f"fluid.material: {fluid_material!r} has no yield curve against field strength "
+            "(A/m); the magnetic circuit needs one"
+        )
     return _Circuit(head, steel, fluid, law, temperature=temperature, name=name)
 
 
@@ -159,8 +167,9 @@ def circuit_from_damper_dict(data: Mapping[str, Any]) -> _Circuit:
     from ..geometry import Geometry
 
     if "coil" not in data:
-        raise DamperFileError("[coil]: missing table (the magnetic circuit needs the coil; "
-                              "docs/file_formats.md, [coil])")
+        raise DamperFileError(
+            "[coil]: missing table (the magnetic circuit needs the coil; docs/file_formats.md, [coil])"
+        )
     coil = coil_from_table(data["coil"])
     geo = data.get("geometry")
     if not isinstance(geo, Mapping):
@@ -168,9 +177,11 @@ def circuit_from_damper_dict(data: Mapping[str, Any]) -> _Circuit:
     geometry = Geometry.create(**geo)
     fluid = data.get("fluid")
     if not isinstance(fluid, Mapping) or "material" not in fluid:
-        raise DamperFileError("fluid.material: a damper with a [coil] takes its fluid's B-H and yield curves from "
-                              "the materials database; name it (materials with one: "
-                              f"{', '.join(n for n in materials.names() if 'magnetization' in materials.load(n))})")
+        raise DamperFileError(
+            "fluid.material: a damper with a [coil] takes its fluid's B-H and yield curves from "
+            "the materials database; name it (materials with one: "
+            f"{', '.join(n for n in materials.names() if 'magnetization' in materials.load(n))})"
+        )
     return build_circuit(geometry, coil, fluid["material"], name=str(data.get("name", "")))
 
 

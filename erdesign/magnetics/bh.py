@@ -36,8 +36,16 @@ from scipy.interpolate import PchipInterpolator
 
 from ..errors import ErdesignError
 
-__all__ = ["MU0", "BHCurve", "carlson_flux_density", "carlson_curve", "bh_curve_from_dict",
-           "CARLSON_B_COEFFICIENT", "CARLSON_B_EXPONENT", "CARLSON_B_FIELD_COEFFICIENT"]
+__all__ = [
+    "MU0",
+    "BHCurve",
+    "carlson_flux_density",
+    "carlson_curve",
+    "bh_curve_from_dict",
+    "CARLSON_B_COEFFICIENT",
+    "CARLSON_B_EXPONENT",
+    "CARLSON_B_FIELD_COEFFICIENT",
+]
 
 #: Magnetic constant [H/m] (CODATA 2018 value, as scipy.constants.mu_0; 4 pi 1e-7 to 1e-9 relative).
 MU0 = 1.25663706212e-6
@@ -107,8 +115,7 @@ class BHCurve:
         if not (np.all(np.isfinite(B)) and np.all(np.isfinite(H))):
             raise ErdesignError(f"B-H curve {self.name!r}: values must be finite")
         if B[0] != 0.0 or H[0] != 0.0:
-            raise ErdesignError(f"B-H curve {self.name!r}: must start at B = 0 T, H = 0 A/m, got "
-                                f"({B[0]!r}, {H[0]!r})")
+            raise ErdesignError(f"B-H curve {self.name!r}: must start at B = 0 T, H = 0 A/m, got ({B[0]!r}, {H[0]!r})")
         if not (np.all(np.diff(B) > 0) and np.all(np.diff(H) > 0)):
             raise ErdesignError(f"B-H curve {self.name!r}: B and H must both increase strictly")
         if np.any(B[1:] - MU0 * H[1:] < -1e-9):
@@ -169,7 +176,7 @@ class BHCurve:
         B = np.abs(np.asarray(B, dtype=float))
         tiny = B < 1e-6
         safe = np.where(tiny, 1e-6, B)
-        d = (self.dH_dB(safe) * safe - self.H_of_B(safe)) / safe ** 2 / (2.0 * safe)
+        d = (self.dH_dB(safe) * safe - self.H_of_B(safe)) / safe**2 / (2.0 * safe)
         return np.where(tiny, 0.0, d)
 
     # ------------------------------------------------------------------ characteristics
@@ -209,12 +216,14 @@ def carlson_curve(phi: float, name: str = "", source: str = "") -> BHCurve:
         raise ErdesignError(f"carlson B-H law: need 0 < volume_fraction < 1, got {phi!r}")
     H = np.concatenate([[0.0], np.geomspace(1.0, 1e7, 1200)])
     B = carlson_flux_density(H, phi)
-    return BHCurve(name or f"carlson phi={phi:g}", tuple(B.tolist()), tuple(H.tolist()),
-                   source or "Carlson 2005 B-H law")
+    return BHCurve(
+        name or f"carlson phi={phi:g}", tuple(B.tolist()), tuple(H.tolist()), source or "Carlson 2005 B-H law"
+    )
 
 
 def _column(values: Any, unit: str, si: str, where: str) -> np.ndarray:
     from ..units import Q_, to_si
+
     if not isinstance(values, list) or not values:
         raise ErdesignError(f"{where}: expected a list of numbers")
     out = []
@@ -225,8 +234,9 @@ def _column(values: Any, unit: str, si: str, where: str) -> np.ndarray:
     return np.asarray(out, dtype=float)
 
 
-def bh_curve_from_dict(table: Mapping[str, Any], *, name: str, where: str = "magnetization",
-                       source: str = "") -> BHCurve:
+def bh_curve_from_dict(
+    table: Mapping[str, Any], *, name: str, where: str = "magnetization", source: str = ""
+) -> BHCurve:
     """A :class:`BHCurve` from the ``[magnetization]`` table of a material file (docs/materials.md).
 
     * ``law = "carlson"``: ``volume_fraction`` (Carlson's MR-fluid law);
@@ -239,15 +249,16 @@ def bh_curve_from_dict(table: Mapping[str, Any], *, name: str, where: str = "mag
     """
     if not isinstance(table, Mapping):
         raise ErdesignError(f"{where}: expected a table, got {table!r}")
-    keys = {"carlson": ("law", "volume_fraction"),
-            "table": ("law", "flux_density", "field", "flux_density_unit", "field_unit")}
+    keys = {
+        "carlson": ("law", "volume_fraction"),
+        "table": ("law", "flux_density", "field", "flux_density_unit", "field_unit"),
+    }
     law = table.get("law")
     if law not in keys:
-        raise ErdesignError(f"{where}.law: expected \"carlson\" or \"table\", got {law!r}")
+        raise ErdesignError(f'{where}.law: expected "carlson" or "table", got {law!r}')
     for key in table:
         if key not in keys[law]:
-            raise ErdesignError(f"{where}.{key}: unknown key for law = {law!r}; allowed keys: "
-                                f"{', '.join(keys[law])}")
+            raise ErdesignError(f"{where}.{key}: unknown key for law = {law!r}; allowed keys: {', '.join(keys[law])}")
     for key in keys[law]:
         if key not in table:
             raise ErdesignError(f"{where}.{key}: missing (law = {law!r} needs {', '.join(keys[law][1:])})")
@@ -264,4 +275,3 @@ def bh_curve_from_dict(table: Mapping[str, Any], *, name: str, where: str = "mag
         return BHCurve(name, tuple(B.tolist()), tuple(H.tolist()), source)
     except ErdesignError as exc:
         raise ErdesignError(f"{where}: {exc}") from None
-

@@ -88,19 +88,25 @@ def fringe_length(gap: float, extent: float) -> float:
 class PistonHead:
     """Geometry and winding of the head in SI units (m); see the module docstring for the symbols."""
 
-    core_radius: float          # r_c
-    pole_radius: float          # R_p
-    gap: float                  # h
+    core_radius: float  # r_c
+    pole_radius: float  # R_p
+    gap: float  # h
     housing_outer_radius: float  # R_o
-    pole_length: float          # L_p
-    coil_length: float          # L_c
-    turns: int                  # N
-    wire_diameter: float        # d_w
+    pole_length: float  # L_p
+    coil_length: float  # L_c
+    turns: int  # N
+    wire_diameter: float  # d_w
 
     def __post_init__(self) -> None:
-        if not (0 < self.core_radius < self.pole_radius and self.gap > 0 and self.pole_length > 0
-                and self.coil_length > 0 and self.housing_outer_radius > self.pole_radius + self.gap
-                and self.turns >= 1 and self.wire_diameter > 0):
+        if not (
+            0 < self.core_radius < self.pole_radius
+            and self.gap > 0
+            and self.pole_length > 0
+            and self.coil_length > 0
+            and self.housing_outer_radius > self.pole_radius + self.gap
+            and self.turns >= 1
+            and self.wire_diameter > 0
+        ):
             raise ErdesignError(f"piston head: inconsistent geometry {self!r}")
 
     @property
@@ -121,7 +127,7 @@ class PistonHead:
     @property
     def fill_factor(self) -> float:
         """Copper fill factor N pi d_w^2/4 / window area, [-]."""
-        return self.turns * math.pi * self.wire_diameter ** 2 / 4.0 / self.window_area
+        return self.turns * math.pi * self.wire_diameter**2 / 4.0 / self.window_area
 
     @property
     def head_length(self) -> float:
@@ -154,38 +160,65 @@ def piston_head(geometry: Any, coil: Coil, *, where: str = "coil") -> PistonHead
     import warnings
 
     if getattr(geometry, "ducts", 1) != 1:
-        raise DamperFileError(f"{where}: a coil needs one annular duct around the head, got geometry.ducts = "
-                              f"{geometry.ducts}")
+        raise DamperFileError(
+            f"{where}: a coil needs one annular duct around the head, got geometry.ducts = {geometry.ducts}"
+        )
     h = geometry.gap
     R_p = 0.5 * (geometry.duct_mean_diameter - h)
     r_c = 0.5 * coil.core_diameter
     R_o = 0.5 * coil.housing_outer_diameter
     L_c = geometry.duct_length - 2.0 * coil.pole_length
     if not r_c < R_p:
-        raise DamperFileError(f"{where}.core_diameter: {coil.core_diameter * 1e3:.4g} mm leaves no room for the "
-                              f"winding inside the head of diameter {2e3 * R_p:.4g} mm")
+        raise DamperFileError(
+            f"{where}.core_diameter: {coil.core_diameter * 1e3:.4g} mm leaves no room for the "
+            f"winding inside the head of diameter {2e3 * R_p:.4g} mm"
+        )
     if not L_c > 0:
-        raise DamperFileError(f"{where}.pole_length: two poles of {coil.pole_length * 1e3:.4g} mm fill the head "
-                              f"length {geometry.duct_length * 1e3:.4g} mm (geometry.duct_length); no room for the coil")
+        raise DamperFileError(
+            f"{where}.pole_length: two poles of {coil.pole_length * 1e3:.4g} mm fill the head "
+            f"length {geometry.duct_length * 1e3:.4g} mm (geometry.duct_length); no room for the coil"
+        )
     if not R_o > R_p + h:
-        raise DamperFileError(f"{where}.housing_outer_diameter: {coil.housing_outer_diameter * 1e3:.4g} mm is not "
-                              f"larger than the bore {2e3 * (R_p + h):.4g} mm")
-    head = PistonHead(core_radius=r_c, pole_radius=R_p, gap=h, housing_outer_radius=R_o,
-                      pole_length=coil.pole_length, coil_length=L_c, turns=coil.turns,
-                      wire_diameter=coil.wire_diameter)
+        raise DamperFileError(
+            f"{where}.housing_outer_diameter: {coil.housing_outer_diameter * 1e3:.4g} mm is not "
+            f"larger than the bore {2e3 * (R_p + h):.4g} mm"
+        )
+    head = PistonHead(
+        core_radius=r_c,
+        pole_radius=R_p,
+        gap=h,
+        housing_outer_radius=R_o,
+        pole_length=coil.pole_length,
+        coil_length=L_c,
+        turns=coil.turns,
+        wire_diameter=coil.wire_diameter,
+    )
     if head.fill_factor > MAX_FILL_FACTOR:
-        raise DamperFileError(f"{where}.turns: {coil.turns} turns of {coil.wire_diameter * 1e3:.4g} mm wire need a "
-                              f"copper fill factor of {head.fill_factor:.2f}, above the {MAX_FILL_FACTOR:.3f} of "
-                              f"hexagonally packed bare wire; the window is {1e6 * head.window_area:.4g} mm^2")
+        raise DamperFileError(
+            f"{where}.turns: {coil.turns} turns of {coil.wire_diameter * 1e3:.4g} mm wire need a "
+            f"copper fill factor of {head.fill_factor:.2f}, above the {MAX_FILL_FACTOR:.3f} of "
+            f"hexagonally packed bare wire; the window is {1e6 * head.window_area:.4g} mm^2"
+        )
     if head.fill_factor > 0.7:
-        warnings.warn(f"{where}.turns: copper fill factor {head.fill_factor:.2f} is above the 0.5-0.7 a round-wire "
-                      "coil with enamel reaches in practice", ValidityWarning, stacklevel=2)
+        warnings.warn(
+            f"{where}.turns: copper fill factor {head.fill_factor:.2f} is above the 0.5-0.7 a round-wire "
+            "coil with enamel reaches in practice",
+            ValidityWarning,
+            stacklevel=2,
+        )
     if R_o - (R_p + h) < 1e-3:
-        warnings.warn(f"{where}.housing_outer_diameter: housing wall {1e3 * (R_o - R_p - h):.3g} mm thick is "
-                      "implausibly thin", ValidityWarning, stacklevel=2)
+        warnings.warn(
+            f"{where}.housing_outer_diameter: housing wall {1e3 * (R_o - R_p - h):.3g} mm thick is implausibly thin",
+            ValidityWarning,
+            stacklevel=2,
+        )
     if h > 0.25 * R_p:
-        warnings.warn(f"{where}: the gap ({h * 1e3:.3g} mm) is not thin compared with the head radius; the "
-                      "reluctance network assumes a thin gap", ValidityWarning, stacklevel=2)
+        warnings.warn(
+            f"{where}: the gap ({h * 1e3:.3g} mm) is not thin compared with the head radius; the "
+            "reluctance network assumes a thin gap",
+            ValidityWarning,
+            stacklevel=2,
+        )
     return head
 
 
@@ -193,17 +226,17 @@ def piston_head(geometry: Any, coil: Coil, *, where: str = "coil") -> PistonHead
 class CircuitState:
     """The solved circuit at an array of currents (SI floats / arrays; one entry per current)."""
 
-    current: np.ndarray              #: I, [A]
-    gap_field: np.ndarray            #: H_g at the mean gap radius, [A/m]
-    gap_flux_density: np.ndarray     #: B_g at the mean gap radius, [T]
-    yield_stress: np.ndarray         #: tau_y(H_g), [Pa]
-    flux_linkage: np.ndarray         #: lambda, [Wb]
-    core_flux: np.ndarray            #: Phi_c, [Wb]
-    gap_flux: np.ndarray             #: flux crossing one gap under the pole face, [Wb]
-    leakage_fraction: np.ndarray     #: 1 - gap flux / core flux, [-]
-    part_flux_density: dict          #: part -> |B| [T] (the largest in the part)
-    part_field: dict                 #: part -> |H| [A/m]
-    saturated: np.ndarray            #: bool: some part past the knee of its curve
+    current: np.ndarray  #: I, [A]
+    gap_field: np.ndarray  #: H_g at the mean gap radius, [A/m]
+    gap_flux_density: np.ndarray  #: B_g at the mean gap radius, [T]
+    yield_stress: np.ndarray  #: tau_y(H_g), [Pa]
+    flux_linkage: np.ndarray  #: lambda, [Wb]
+    core_flux: np.ndarray  #: Phi_c, [Wb]
+    gap_flux: np.ndarray  #: flux crossing one gap under the pole face, [Wb]
+    leakage_fraction: np.ndarray  #: 1 - gap flux / core flux, [-]
+    part_flux_density: dict  #: part -> |B| [T] (the largest in the part)
+    part_field: dict  #: part -> |H| [A/m]
+    saturated: np.ndarray  #: bool: some part past the knee of its curve
     mmf_drops: dict = field(default_factory=dict)  #: element -> MMF [A] (core, poles, gaps, housing)
 
 
@@ -223,11 +256,21 @@ class MagneticCircuit:
         Copper temperature for the resistance, [degC].
     """
 
-    def __init__(self, head: PistonHead, steel: BHCurve, fluid: BHCurve, yield_law: FieldLaw, *,
-                 temperature: float = 20.0, name: str = "") -> None:
+    def __init__(
+        self,
+        head: PistonHead,
+        steel: BHCurve,
+        fluid: BHCurve,
+        yield_law: FieldLaw,
+        *,
+        temperature: float = 20.0,
+        name: str = "",
+    ) -> None:
         if yield_law.control_unit != "A/m":
-            raise ErdesignError(f"magnetic circuit: the fluid's yield curve must be against field strength (A/m), "
-                                f"got a control in {yield_law.control_unit}")
+            raise ErdesignError(
+                f"magnetic circuit: the fluid's yield curve must be against field strength (A/m), "
+                f"got a control in {yield_law.control_unit}"
+            )
         self.head = head
         self.steel = steel
         self.fluid = fluid
@@ -235,9 +278,9 @@ class MagneticCircuit:
         self.temperature = float(temperature)
         self.name = name
         r = head
-        self._A_core = math.pi * r.core_radius ** 2
-        self._A_wall = math.pi * (r.housing_outer_radius ** 2 - r.housing_inner_radius ** 2)
-        self._A_annulus = math.pi * (r.housing_inner_radius ** 2 - r.pole_radius ** 2)
+        self._A_core = math.pi * r.core_radius**2
+        self._A_wall = math.pi * (r.housing_outer_radius**2 - r.housing_inner_radius**2)
+        self._A_annulus = math.pi * (r.housing_inner_radius**2 - r.pole_radius**2)
         a, b = r.core_radius, r.pole_radius
         # integrals of 2 pi r f and 2 pi r f^2 over the window, f = (r - a)/(b - a)
         self._W1 = 2 * math.pi * (b - a) * (a / 2 + (b - a) / 3)
@@ -256,8 +299,13 @@ class MagneticCircuit:
         r = self.head
         Hg = np.asarray(Hg, dtype=float)
         Lp, Lc, h = r.pole_length, r.coil_length, r.gap
-        Ri, Ro, Rp, rc, rm = r.housing_inner_radius, r.housing_outer_radius, r.pole_radius, r.core_radius, \
-            r.mean_gap_radius
+        Ri, Ro, Rp, rc, rm = (
+            r.housing_inner_radius,
+            r.housing_outer_radius,
+            r.pole_radius,
+            r.core_radius,
+            r.mean_gap_radius,
+        )
         Hs, Hf = self.steel.H_of_B, self.fluid.H_of_B
         # columns of the geometry for the integrands (a batch of heads: one row per head)
         Lp_, h_, Ro_, Ri_, rc_ = _col(Lp), _col(h), _col(Ro), _col(Ri), _col(rc)
@@ -265,15 +313,20 @@ class MagneticCircuit:
         Phi_g = 2 * math.pi * rm * Lp * Bg
         F_gap = self._quad(Rp, Ri, lambda rr, P: Hf(P / (2 * math.pi * rr * Lp_)), Phi_g)
         # fringing at the outer end: fluid paths h + pi s / 2 from the end face (depth s <= R_p) to the housing
-        Phi_fo = 2 * math.pi * rm * self._quad(0.0, Rp, lambda ss, F: self.fluid.B_of_H(F / (h_ + 0.5 * math.pi * ss)),
-                                               F_gap)
+        Phi_fo = (
+            2
+            * math.pi
+            * rm
+            * self._quad(0.0, Rp, lambda ss, F: self.fluid.B_of_H(F / (h_ + 0.5 * math.pi * ss)), F_gap)
+        )
         # fringing on the coil side: a quarter circle through the winding (mu0) and the gap (fluid, chord mu)
         mu_g = np.where(Hg > 0, Bg / np.where(Hg > 0, Hg, 1.0), MU0 * self.fluid.initial_relative_permeability())
         x_c = np.minimum(0.5 * Lc, Rp - rc)
         Phi_fc = 2 * math.pi * rm * F_gap * (2 * MU0 / math.pi) * np.log1p(math.pi * x_c / (2 * MU0 * h / mu_g))
         Phi_e = Phi_g + Phi_fo + Phi_fc
-        F_hp = self._quad(Ri, Ro, lambda rr, P: Hs(P * (Ro_ ** 2 - rr ** 2) / (Ro_ ** 2 - Ri_ ** 2)
-                                                    / (2 * math.pi * rr * Lp_)), Phi_e)
+        F_hp = self._quad(
+            Ri, Ro, lambda rr, P: Hs(P * (Ro_**2 - rr**2) / (Ro_**2 - Ri_**2) / (2 * math.pi * rr * Lp_)), Phi_e
+        )
         B_wall = Phi_e / self._A_wall
         F_wall = Hs(B_wall) * (Lc + Lp)
         F_e = 2 * (F_gap + F_hp) + F_wall
@@ -282,8 +335,9 @@ class MagneticCircuit:
         Phi_c = Phi_e + Phi_ax + Phi_w
         B_core = Phi_c / self._A_core
         F_core = Hs(B_core) * (Lc + Lp)
-        F_pole = (self._quad(0.0, rc, lambda rr, P: Hs(P * rr / (2 * math.pi * rc_ ** 2 * Lp_)), Phi_c)
-                  + self._quad(rc, Rp, lambda rr, P: Hs(P / (2 * math.pi * rr * Lp_)), Phi_c))
+        F_pole = self._quad(0.0, rc, lambda rr, P: Hs(P * rr / (2 * math.pi * rc_**2 * Lp_)), Phi_c) + self._quad(
+            rc, Rp, lambda rr, P: Hs(P / (2 * math.pi * rr * Lp_)), Phi_c
+        )
         NI = F_core + 2 * F_pole + F_e
         linkage = r.turns * (Phi_e + Phi_ax + MU0 * F_e / Lc * self._W2)
         parts_B = {
@@ -293,9 +347,16 @@ class MagneticCircuit:
             "housing_at_pole": np.abs(Phi_e / (2 * math.pi * Ri * Lp)),
             "housing_wall": np.abs(B_wall),
         }
-        return dict(NI=NI, Bg=Bg, Phi_g=Phi_g, Phi_e=Phi_e, Phi_c=Phi_c, linkage=linkage, parts_B=parts_B,
-                    mmf={"core": F_core, "poles": 2 * F_pole, "gaps": 2 * F_gap,
-                         "housing": 2 * F_hp + F_wall})
+        return dict(
+            NI=NI,
+            Bg=Bg,
+            Phi_g=Phi_g,
+            Phi_e=Phi_e,
+            Phi_c=Phi_c,
+            linkage=linkage,
+            parts_B=parts_B,
+            mmf={"core": F_core, "poles": 2 * F_pole, "gaps": 2 * F_gap, "housing": 2 * F_hp + F_wall},
+        )
 
     def _part_fields(self, parts_B: dict) -> dict:
         return {k: np.abs(self.fluid.H_of_B(B) if k == "gap" else self.steel.H_of_B(B)) for k, B in parts_B.items()}
@@ -314,13 +375,14 @@ class MagneticCircuit:
         on = NI > 0
         if np.any(on):
             target = NI[on]
-            hi = target / (2 * self.head.gap)            # all the MMF across the two gaps: NI(hi) >= target
+            hi = target / (2 * self.head.gap)  # all the MMF across the two gaps: NI(hi) >= target
 
             def f(Hg, t):  # relative residual: one tolerance fits every current of the batch
                 return self._network(Hg)["NI"] / t - 1.0
 
-            res = elementwise.find_root(f, (np.zeros_like(target), hi), args=(target,),
-                                        tolerances={"xrtol": 1e-12, "fatol": 1e-11})
+            res = elementwise.find_root(
+                f, (np.zeros_like(target), hi), args=(target,), tolerances={"xrtol": 1e-12, "fatol": 1e-11}
+            )
             if not np.all(res.success):  # pragma: no cover - the bracket is valid by construction
                 raise ErdesignError("magnetic circuit: the operating point did not converge")
             out[on] = res.x
@@ -344,9 +406,13 @@ class MagneticCircuit:
             fx = self._network(x)["NI"] / target - 1.0
             if np.max(np.abs(fx)) < 1e-11:
                 break
-            left = fx < 0          # the root lies above x
-            lo, f_lo, hi, f_hi = (np.where(left, x, lo), np.where(left, fx, f_lo),
-                                  np.where(left, hi, x), np.where(left, f_hi, fx))
+            left = fx < 0  # the root lies above x
+            lo, f_lo, hi, f_hi = (
+                np.where(left, x, lo),
+                np.where(left, fx, f_lo),
+                np.where(left, hi, x),
+                np.where(left, f_hi, fx),
+            )
             # Illinois: halve the value kept at the end that stays twice running
             f_hi = np.where(left & (side == 1), 0.5 * f_hi, f_hi)
             f_lo = np.where(~left & (side == -1), 0.5 * f_lo, f_lo)
@@ -366,11 +432,21 @@ class MagneticCircuit:
         tau = np.asarray(self.yield_law.yield_stress(Hg), dtype=float)
         flux_linkage = np.sign(I) * net["linkage"]
         return CircuitState(
-            current=I, gap_field=np.sign(I) * Hg, gap_flux_density=np.sign(I) * net["Bg"], yield_stress=tau,
-            flux_linkage=flux_linkage, core_flux=np.sign(I) * net["Phi_c"], gap_flux=np.sign(I) * net["Phi_g"],
-            leakage_fraction=np.where(net["Phi_c"] > 0, 1.0 - net["Phi_g"] / np.where(net["Phi_c"] > 0,
-                                                                                      net["Phi_c"], 1.0), 0.0),
-            part_flux_density=net["parts_B"], part_field=parts_H, saturated=saturated, mmf_drops=net["mmf"])
+            current=I,
+            gap_field=np.sign(I) * Hg,
+            gap_flux_density=np.sign(I) * net["Bg"],
+            yield_stress=tau,
+            flux_linkage=flux_linkage,
+            core_flux=np.sign(I) * net["Phi_c"],
+            gap_flux=np.sign(I) * net["Phi_g"],
+            leakage_fraction=np.where(
+                net["Phi_c"] > 0, 1.0 - net["Phi_g"] / np.where(net["Phi_c"] > 0, net["Phi_c"], 1.0), 0.0
+            ),
+            part_flux_density=net["parts_B"],
+            part_field=parts_H,
+            saturated=saturated,
+            mmf_drops=net["mmf"],
+        )
 
     # ------------------------------------------------------------------ coil
     @property

@@ -32,9 +32,18 @@ from ..errors import DamperFileError, ErdesignError, ValidityWarning
 from ..schema import Table, checked, field, validate
 from ..units import to_si
 
-__all__ = ["Coil", "CoilTable", "coil_from_table", "coil_resistance", "current_rise_time", "COIL_KEYS", "OPTIONAL_COIL_KEYS",
-           "COPPER_RESISTIVITY_20C",
-           "COPPER_TEMPERATURE_COEFFICIENT", "MAX_FILL_FACTOR"]
+__all__ = [
+    "Coil",
+    "CoilTable",
+    "coil_from_table",
+    "coil_resistance",
+    "current_rise_time",
+    "COIL_KEYS",
+    "OPTIONAL_COIL_KEYS",
+    "COPPER_RESISTIVITY_20C",
+    "COPPER_TEMPERATURE_COEFFICIENT",
+    "MAX_FILL_FACTOR",
+]
 
 
 #: Resistivity of annealed copper at 20 degC [ohm m]: 100 % IACS = 58 MS/m (Circular 31, 1914; IEC 60028).
@@ -81,7 +90,7 @@ def coil_resistance(turns, wire_diameter, inner_radius, outer_radius, temperatur
     US Bureau of Standards, Copper wire tables, Circular 31 (1914): 0.15328 ohm (m, g) at 20 degC, 58 MS/m.
     """
     rho = COPPER_RESISTIVITY_20C * (1.0 + COPPER_TEMPERATURE_COEFFICIENT * (temperature - 20.0))
-    return rho * turns * math.pi * (inner_radius + outer_radius) / (math.pi * wire_diameter ** 2 / 4.0)
+    return rho * turns * math.pi * (inner_radius + outer_radius) / (math.pi * wire_diameter**2 / 4.0)
 
 
 def current_rise_time(inductance, resistance, current, supply_voltage=None, fraction=1.0 - math.exp(-1.0)):
@@ -130,8 +139,10 @@ def current_rise_time(inductance, resistance, current, supply_voltage=None, frac
     V = current * resistance if supply_voltage is None else float(supply_voltage)
     x = fraction * current * resistance / V
     if not x < 1.0:
-        raise ErdesignError(f"coil.supply_voltage: {V:.4g} V cannot drive {current:.4g} A through "
-                            f"{resistance:.4g} ohm (needs more than {fraction * current * resistance:.4g} V)")
+        raise ErdesignError(
+            f"coil.supply_voltage: {V:.4g} V cannot drive {current:.4g} A through "
+            f"{resistance:.4g} ohm (needs more than {fraction * current * resistance:.4g} V)"
+        )
     return -tau * math.log1p(-x)
 
 
@@ -150,10 +161,14 @@ class Coil:
 
     def as_table(self) -> dict[str, Any]:
         """The ``[coil]`` table of a damper file (strings with units)."""
-        table = {"turns": self.turns, "wire_diameter": f"{self.wire_diameter * 1e3:.6g} mm",
-                 "core_diameter": f"{self.core_diameter * 1e3:.6g} mm",
-                 "pole_length": f"{self.pole_length * 1e3:.6g} mm",
-                 "housing_outer_diameter": f"{self.housing_outer_diameter * 1e3:.6g} mm", "steel": self.steel}
+        table = {
+            "turns": self.turns,
+            "wire_diameter": f"{self.wire_diameter * 1e3:.6g} mm",
+            "core_diameter": f"{self.core_diameter * 1e3:.6g} mm",
+            "pole_length": f"{self.pole_length * 1e3:.6g} mm",
+            "housing_outer_diameter": f"{self.housing_outer_diameter * 1e3:.6g} mm",
+            "steel": self.steel,
+        }
         if self.supply_voltage is not None:
             table["supply_voltage"] = f"{self.supply_voltage:.6g} V"
         return table
@@ -163,8 +178,9 @@ def _turns(value: Any, name: str) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < 1:
         raise DamperFileError(f"{name}: expected a positive whole number of turns, got {value!r}")
     if value > 20000:
-        warnings.warn(f"{name}: {value} turns is implausibly many for a damper piston coil", ValidityWarning,
-                      stacklevel=2)
+        warnings.warn(
+            f"{name}: {value} turns is implausibly many for a damper piston coil", ValidityWarning, stacklevel=2
+        )
     return value
 
 
@@ -174,6 +190,7 @@ def _positive(unit: str, what: str):
         if not (isinstance(si, float) and si > 0 and math.isfinite(si)):
             raise DamperFileError(f"{name}: must be a positive {what}, got {value!r}")
         return value
+
     return check
 
 
@@ -190,16 +207,19 @@ class CoilTable(Table):
 
     turns: checked(_turns, "whole number >= 1") = field("turns of the coil")
     wire_diameter: checked(_positive("m", "length"), "length > 0, with a unit") = field(
-        "copper wire diameter; the resistance follows from the mean turn length")
-    core_diameter: checked(_positive("m", "length"), "length > 0, with a unit") = field(
-        "steel core under the winding")
+        "copper wire diameter; the resistance follows from the mean turn length"
+    )
+    core_diameter: checked(_positive("m", "length"), "length > 0, with a unit") = field("steel core under the winding")
     pole_length: checked(_positive("m", "length"), "length > 0, with a unit") = field(
-        "axial length of each of the two poles (the field acts over 2 x pole_length)")
+        "axial length of each of the two poles (the field acts over 2 x pole_length)"
+    )
     housing_outer_diameter: checked(_positive("m", "length"), "length > 0, with a unit") = field(
-        "outer diameter of the steel cylinder (the return path)")
+        "outer diameter of the steel cylinder (the return path)"
+    )
     steel: checked(_steel, "name of a steel of the materials database") = field("B-H curve of the steel parts")
     supply_voltage: checked(_positive("V", "voltage"), "voltage > 0, with a unit") = field(
-        "the driver's supply (I R at the rated current must stay below it)", default=None)
+        "the driver's supply (I R at the rated current must stay below it)", default=None
+    )
 
 
 #: Keys of a damper file's ``[coil]`` table (docs/file_formats.md, [coil]).
@@ -221,13 +241,18 @@ def coil_from_table(table: Any, where: str = "coil") -> Coil:
     400
     """
     spec = validate(CoilTable, table, where, error=DamperFileError)
-    lengths = {k: float(to_si(getattr(spec, k), "m", f"{where}.{k}"))
-               for k in ("wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter")}
+    lengths = {
+        k: float(to_si(getattr(spec, k), "m", f"{where}.{k}"))
+        for k in ("wire_diameter", "core_diameter", "pole_length", "housing_outer_diameter")
+    }
     d_w = lengths["wire_diameter"]
     if not 0.05e-3 <= d_w <= 3e-3:
-        warnings.warn(f"{where}.wire_diameter: {d_w * 1e3:.4g} mm is outside the usual magnet-wire range "
-                      "0.05-3 mm; check the unit", ValidityWarning, stacklevel=2)
+        warnings.warn(
+            f"{where}.wire_diameter: {d_w * 1e3:.4g} mm is outside the usual magnet-wire range "
+            "0.05-3 mm; check the unit",
+            ValidityWarning,
+            stacklevel=2,
+        )
     turns, steel = spec.turns, spec.steel
-    supply = None if spec.supply_voltage is None else float(to_si(spec.supply_voltage, "V",
-                                                                  f"{where}.supply_voltage"))
+    supply = None if spec.supply_voltage is None else float(to_si(spec.supply_voltage, "V", f"{where}.supply_voltage"))
     return Coil(turns=turns, steel=steel, supply_voltage=supply, **lengths)

@@ -46,15 +46,15 @@ _STEEL, _FLUID, _AIR = 0, 1, 2  # material codes (coil and air: mu0)
 class FemResult:
     """Finite-element solution at an array of currents (SI)."""
 
-    current: np.ndarray              #: I, [A]
-    gap_flux_density: np.ndarray     #: mean B_r over the pole face at the mean gap radius, [T]
-    flux_linkage: np.ndarray         #: lambda, [Wb]
+    current: np.ndarray  #: I, [A]
+    gap_flux_density: np.ndarray  #: mean B_r over the pole face at the mean gap radius, [T]
+    flux_linkage: np.ndarray  #: lambda, [Wb]
     max_core_flux_density: np.ndarray  #: |B| at the core's axis at the midplane, [T]
-    nodes: int                       #: number of mesh nodes
-    newton_iterations: tuple         #: per current
-    psi: np.ndarray                  #: flux function at the nodes of the last current, [Wb/rad]
-    mesh: object                     #: the skfem mesh
-    B_magnitude: np.ndarray          #: |B| per element of the last current, [T]
+    nodes: int  #: number of mesh nodes
+    newton_iterations: tuple  #: per current
+    psi: np.ndarray  #: flux function at the nodes of the last current, [Wb/rad]
+    mesh: object  #: the skfem mesh
+    B_magnitude: np.ndarray  #: |B| per element of the last current, [T]
 
 
 def _segment(a: float, b: float, n: int) -> np.ndarray:
@@ -73,20 +73,40 @@ def fem_mesh_lines(head: PistonHead, refine: float = 1.0) -> tuple[np.ndarray, n
     k = refine
     el = 0.5e-3 / k  # target element size in the head, [m]
     ng = max(2, int(round(3 * k)))  # elements across half the gap
-    r = np.unique(np.concatenate([
-        _segment(0, rc, math.ceil(rc / el)), _segment(rc, Rp, math.ceil((Rp - rc) / el)),
-        _segment(Rp, rm, ng), _segment(rm, Ri, ng), _segment(Ri, Ro, math.ceil((Ro - Ri) / el)),
-        Ro + (R_dom - Ro) * (np.geomspace(1, 31, max(4, int(12 * k))) - 1) / 30,
-    ]))
-    z = np.unique(np.concatenate([
-        _segment(0, z1, math.ceil(z1 / el)), _segment(z1, z2, math.ceil(h.pole_length / el)),
-        z2 + (Z_dom - z2) * (np.geomspace(1, 61, max(6, int(24 * k))) - 1) / 60,
-    ]))
+    r = np.unique(
+        np.concatenate(
+            [
+                _segment(0, rc, math.ceil(rc / el)),
+                _segment(rc, Rp, math.ceil((Rp - rc) / el)),
+                _segment(Rp, rm, ng),
+                _segment(rm, Ri, ng),
+                _segment(Ri, Ro, math.ceil((Ro - Ri) / el)),
+                Ro + (R_dom - Ro) * (np.geomspace(1, 31, max(4, int(12 * k))) - 1) / 30,
+            ]
+        )
+    )
+    z = np.unique(
+        np.concatenate(
+            [
+                _segment(0, z1, math.ceil(z1 / el)),
+                _segment(z1, z2, math.ceil(h.pole_length / el)),
+                z2 + (Z_dom - z2) * (np.geomspace(1, 61, max(6, int(24 * k))) - 1) / 60,
+            ]
+        )
+    )
     return r, z, dict(rc=rc, Rp=Rp, Ri=Ri, Ro=Ro, rm=rm, z1=z1, z2=z2, R_dom=R_dom, Z_dom=Z_dom)
 
 
-def solve_fem(head: PistonHead, steel: BHCurve, fluid: BHCurve, currents, *, refine: float = 1.0,
-              tol: float = 1e-9, max_newton: int = 60) -> FemResult:
+def solve_fem(
+    head: PistonHead,
+    steel: BHCurve,
+    fluid: BHCurve,
+    currents,
+    *,
+    refine: float = 1.0,
+    tol: float = 1e-9,
+    max_newton: int = 60,
+) -> FemResult:
     """Solve the head at each current (increasing order is fastest: each solve starts from the previous one).
 
     ``refine`` scales the mesh (1: 0.5 mm elements in the head, 3 elements across each half of the gap).
@@ -132,8 +152,7 @@ def solve_fem(head: PistonHead, steel: BHCurve, fluid: BHCurve, currents, *, ref
     def jacobian(u, v, w):
         r = w.x[0]
         gp = w["psi"].grad
-        return (w["nu"] / r * dot(grad(u), grad(v))
-                + 2.0 * w["dnu"] / r ** 3 * dot(gp, grad(u)) * dot(gp, grad(v)))
+        return w["nu"] / r * dot(grad(u), grad(v)) + 2.0 * w["dnu"] / r**3 * dot(gp, grad(u)) * dot(gp, grad(v))
 
     @LinearForm
     def residual(v, w):
@@ -144,8 +163,9 @@ def solve_fem(head: PistonHead, steel: BHCurve, fluid: BHCurve, currents, *, ref
     def coil_integral(w):
         return w["psi"] * w["coil"]
 
-    dofs = basis.get_dofs(lambda x: (np.isclose(x[0], 0.0)) | np.isclose(x[0], g["R_dom"])
-                          | np.isclose(x[1], g["Z_dom"]))
+    dofs = basis.get_dofs(
+        lambda x: (np.isclose(x[0], 0.0)) | np.isclose(x[0], g["R_dom"]) | np.isclose(x[1], g["Z_dom"])
+    )
     D = dofs.all() if hasattr(dofs, "all") else dofs
     psi = basis.zeros()
     A_w = head.window_area
@@ -178,12 +198,21 @@ def solve_fem(head: PistonHead, steel: BHCurve, fluid: BHCurve, currents, *, ref
         lam.append(abs(head.turns / A_w * 2.0 * 2.0 * math.pi * integral))
         pi = basis.interpolate(psi)
         Bq = np.sqrt(pi.grad[0] ** 2 + pi.grad[1] ** 2) / rq
-        Bcore.append(float(np.max(Bq[core & (cz < 0.25 * g["z1"])])) if np.any(core & (cz < 0.25 * g["z1"]))
-                     else float("nan"))
+        Bcore.append(
+            float(np.max(Bq[core & (cz < 0.25 * g["z1"])])) if np.any(core & (cz < 0.25 * g["z1"])) else float("nan")
+        )
         Bmag = Bq
-    return FemResult(current=currents, gap_flux_density=np.array(Bg), flux_linkage=np.array(lam),
-                     max_core_flux_density=np.array(Bcore), nodes=mesh.p.shape[1], newton_iterations=tuple(iters),
-                     psi=psi, mesh=mesh, B_magnitude=Bmag.mean(axis=1))
+    return FemResult(
+        current=currents,
+        gap_flux_density=np.array(Bg),
+        flux_linkage=np.array(lam),
+        max_core_flux_density=np.array(Bcore),
+        nodes=mesh.p.shape[1],
+        newton_iterations=tuple(iters),
+        psi=psi,
+        mesh=mesh,
+        B_magnitude=Bmag.mean(axis=1),
+    )
 
 
 def _qp_r(basis) -> np.ndarray:

@@ -39,11 +39,18 @@ def coil_curves_figure(curves, rated_current: float | None = None):
     if np.isfinite(knee) and knee <= I[-1]:
         fig.add_vline(x=knee, line={"dash": "dot", "color": "grey"}, annotation_text=f"knee {knee:.3g} A")
     if rated_current is not None:
-        fig.add_vline(x=rated_current, line={"color": "grey"}, annotation_text=f"rated {rated_current:.3g} A",
-                      annotation_position="bottom right")
-    fig.update_layout(title="Magnetic circuit: gap flux density and yield stress against coil current",
-                      xaxis_title="coil current I [A]", legend={"orientation": "h", "y": -0.2},
-                      margin={"l": 60, "r": 60, "t": 60, "b": 60})
+        fig.add_vline(
+            x=rated_current,
+            line={"color": "grey"},
+            annotation_text=f"rated {rated_current:.3g} A",
+            annotation_position="bottom right",
+        )
+    fig.update_layout(
+        title="Magnetic circuit: gap flux density and yield stress against coil current",
+        xaxis_title="coil current I [A]",
+        legend={"orientation": "h", "y": -0.2},
+        margin={"l": 60, "r": 60, "t": 60, "b": 60},
+    )
     fig.update_yaxes(title_text="B_g [T]", rangemode="tozero", secondary_y=False)
     fig.update_yaxes(title_text="τ_y [kPa]", rangemode="tozero", secondary_y=True)
     return fig

@@ -69,8 +69,10 @@ class CoilLaw(FieldLaw):
     law: ClassVar[str] = "coil"
     equation: ClassVar[str] = r"\tau_y = \tau_y^\text{fluid}\left(H_g(I)\right)"
     equation_text: ClassVar[str] = "τ_y = τ_y,fluid(H_g(I)), H_g from the reluctance network"
-    reference: ClassVar[str] = ("Gavin, Hoagg and Dobossy, Optimal design of MR dampers (2001): reluctance network "
-                                "of the piston head with nonlinear B-H curves; docs/magnetics.md")
+    reference: ClassVar[str] = (
+        "Gavin, Hoagg and Dobossy, Optimal design of MR dampers (2001): reluctance network "
+        "of the piston head with nonlinear B-H curves; docs/magnetics.md"
+    )
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -78,8 +80,15 @@ class CoilLaw(FieldLaw):
             raise ErdesignError(f"coil law: the control is the coil current (A), got {self.control_unit}")
         I = np.asarray(self.currents, dtype=float)
         H = np.asarray(self.gap_fields, dtype=float)
-        if not (I.ndim == 1 and I.size >= 2 and I.shape == H.shape and I[0] == 0 and np.all(np.diff(I) > 0)
-                and np.all(np.diff(H) >= 0) and np.all(np.isfinite(H))):
+        if not (
+            I.ndim == 1
+            and I.size >= 2
+            and I.shape == H.shape
+            and I[0] == 0
+            and np.all(np.diff(I) > 0)
+            and np.all(np.diff(H) >= 0)
+            and np.all(np.isfinite(H))
+        ):
             raise ErdesignError("coil law: needs increasing currents from 0 and non-decreasing gap fields")
         if self.fluid_law is None or self.fluid_law.control_unit != "A/m":
             raise ErdesignError("coil law: the fluid's yield curve must be against field strength (A/m)")
@@ -107,8 +116,10 @@ class CoilLaw(FieldLaw):
         above = I > self.max_current
         if np.any(above):
             if self.circuit is None:
-                raise ErdesignError(f"coil law: current {float(np.max(I)):.4g} A above the table "
-                                    f"({self.max_current:.4g} A) and no circuit to solve")
+                raise ErdesignError(
+                    f"coil law: current {float(np.max(I)):.4g} A above the table "
+                    f"({self.max_current:.4g} A) and no circuit to solve"
+                )
             H = np.where(above, 0.0, H)
             H[above] = self.circuit.solve_gap_field(I[above])
         return scalar_or_array(H)
@@ -120,8 +131,9 @@ class CoilLaw(FieldLaw):
         return scalar_or_array(self.circuit.fluid.B_of_H(np.asarray(self.gap_field(current), dtype=float)))
 
     def yield_stress(self, E):
-        return scalar_or_array(np.asarray(self.fluid_law.yield_stress(np.asarray(self.gap_field(E), dtype=float)),
-                                          dtype=float))
+        return scalar_or_array(
+            np.asarray(self.fluid_law.yield_stress(np.asarray(self.gap_field(E), dtype=float)), dtype=float)
+        )
 
     def time_constant(self, current: float | None = None) -> float:
         """The coil's L/R [s] at ``current`` (default the rated current), secant inductance."""
@@ -142,13 +154,21 @@ class CoilLaw(FieldLaw):
 
     def describe(self, field_unit: str | None = None) -> str:
         name = getattr(self.circuit, "name", "") or "coil"
-        return (f"through the magnetic circuit ({name}): tau_y(H_g(I)), H_g tabulated on {len(self.currents)} "
-                f"currents up to {self._show(self.max_current, field_unit)}, fluid "
-                f"{self.fluid_law.describe('kA/m')}")
+        return (
+            f"through the magnetic circuit ({name}): tau_y(H_g(I)), H_g tabulated on {len(self.currents)} "
+            f"currents up to {self._show(self.max_current, field_unit)}, fluid "
+            f"{self.fluid_law.describe('kA/m')}"
+        )
 
 
-def coil_law(circuit, max_current: float, rated_current: float | None = None, *,
-             supply_voltage: float | None = None, points: int = TABLE_POINTS) -> CoilLaw:
+def coil_law(
+    circuit,
+    max_current: float,
+    rated_current: float | None = None,
+    *,
+    supply_voltage: float | None = None,
+    points: int = TABLE_POINTS,
+) -> CoilLaw:
     """The :class:`CoilLaw` of a circuit, tabulated on ``points`` currents over [0, ``max_current``] [A]."""
     if not max_current > 0:
         raise ErdesignError(f"coil law: max_current must be positive, got {max_current!r}")
@@ -156,7 +176,13 @@ def coil_law(circuit, max_current: float, rated_current: float | None = None, *,
     H = np.maximum.accumulate(np.abs(circuit.solve_gap_field(I)))
     tiny = 1e-6 * float(max_current)
     gain0 = float(circuit.solve_gap_field(np.array([tiny]))[0]) / tiny
-    return CoilLaw("A", currents=tuple(I.tolist()), gap_fields=tuple(H.tolist()), fluid_law=circuit.yield_law,
-                   small_current_gain=gain0,
-                   circuit=circuit, rated_current=float(max_current if rated_current is None else rated_current),
-                   supply_voltage=supply_voltage)
+    return CoilLaw(
+        "A",
+        currents=tuple(I.tolist()),
+        gap_fields=tuple(H.tolist()),
+        fluid_law=circuit.yield_law,
+        small_current_gain=gain0,
+        circuit=circuit,
+        rated_current=float(max_current if rated_current is None else rated_current),
+        supply_voltage=supply_voltage,
+    )

@@ -59,12 +59,40 @@ from ..errors import ErdesignError
 from ..fluid.field_laws import FieldLaw, control_unit_of, field_law_from_dict
 from ..units import Q_, parse_quantity, to_si
 
-__all__ = ["names", "load", "fluid_values", "steel_names", "load_steel", "steel_curve", "magnetization_curve", "material_fluid", "MaterialFluid", "summary", "check_record",
-           "read_material_file", "parse_quantity", "MATERIAL_KEYS", "MATERIAL_FLUID_KEYS", "RANGE_KEYS",
-           "VERIFICATION_STATUSES", "VERIFICATION_KEYS"]
+__all__ = [
+    "names",
+    "load",
+    "fluid_values",
+    "steel_names",
+    "load_steel",
+    "steel_curve",
+    "magnetization_curve",
+    "material_fluid",
+    "MaterialFluid",
+    "summary",
+    "check_record",
+    "read_material_file",
+    "parse_quantity",
+    "MATERIAL_KEYS",
+    "MATERIAL_FLUID_KEYS",
+    "RANGE_KEYS",
+    "VERIFICATION_STATUSES",
+    "VERIFICATION_KEYS",
+]
 
-MATERIAL_KEYS = ("name", "kind", "description", "fluid", "yield_curve", "magnetization", "range", "spread", "sources",
-                 "references", "verification")
+MATERIAL_KEYS = (
+    "name",
+    "kind",
+    "description",
+    "fluid",
+    "yield_curve",
+    "magnetization",
+    "range",
+    "spread",
+    "sources",
+    "references",
+    "verification",
+)
 STEEL_KEYS = ("name", "kind", "description", "magnetization", "sources", "references", "verification")
 _STEEL_REQUIRED = ("name", "kind", "description", "magnetization", "sources", "references")
 #: Outcomes of checking a value against its source: "verified" (it matches a citable source that was read),
@@ -73,11 +101,23 @@ VERIFICATION_STATUSES = ("verified", "replaced", "not verified")
 #: Keys of one ``[verification.<key>]`` table.
 VERIFICATION_KEYS = ("status", "source", "location", "found_at", "agrees_with", "searched", "note")
 _STEEL_PREFIX = "steel-"
-MATERIAL_FLUID_KEYS = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density",
-                       "viscosity_at_reference_field", "shear_modulus")
+MATERIAL_FLUID_KEYS = (
+    "viscosity",
+    "yield_stress",
+    "reference_field",
+    "yield_exponent",
+    "density",
+    "viscosity_at_reference_field",
+    "shear_modulus",
+)
 _REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density")
-_FLUID_SI = {"viscosity": "Pa*s", "yield_stress": "Pa", "density": "kg/m^3", "viscosity_at_reference_field": "Pa*s",
-             "shear_modulus": "Pa"}
+_FLUID_SI = {
+    "viscosity": "Pa*s",
+    "yield_stress": "Pa",
+    "density": "kg/m^3",
+    "viscosity_at_reference_field": "Pa*s",
+    "shear_modulus": "Pa",
+}
 #: Validity ranges a material may state, with the SI unit of each ("field" takes the unit of the control).
 RANGE_KEYS = {"field": None, "temperature": "K", "shear_rate": "1/s"}
 _REFERENCE_KEYS = ("key", "citation", "date", "note")
@@ -97,21 +137,31 @@ class MaterialFluid(NamedTuple):
 
 def names() -> list[str]:
     """Names of the fluids in the database (the steels are listed by :func:`steel_names`)."""
-    return sorted(p.name[:-5] for p in resources.files(__name__).iterdir()
-                  if p.name.endswith(".toml") and not p.name.startswith(_STEEL_PREFIX))
+    return sorted(
+        p.name[:-5]
+        for p in resources.files(__name__).iterdir()
+        if p.name.endswith(".toml") and not p.name.startswith(_STEEL_PREFIX)
+    )
 
 
 def steel_names() -> list[str]:
     """Names of the steels in the database (``steel-1018``, ...)."""
-    return sorted(p.name[:-5] for p in resources.files(__name__).iterdir()
-                  if p.name.endswith(".toml") and p.name.startswith(_STEEL_PREFIX))
+    return sorted(
+        p.name[:-5]
+        for p in resources.files(__name__).iterdir()
+        if p.name.endswith(".toml") and p.name.startswith(_STEEL_PREFIX)
+    )
 
 
 def _pair(value: Any, name: str, si_unit: str) -> tuple[float, float]:
     if not (isinstance(value, list) and len(value) == 2):
         raise ErdesignError(f"{name}: expected [low, high], got {value!r}")
-    lo, hi = (Q_(float(v), "") if isinstance(v, (int, float)) and not isinstance(v, bool)
-              else parse_quantity(v, f"{name}[{i}]") for i, v in enumerate(value))
+    lo, hi = (
+        Q_(float(v), "")
+        if isinstance(v, (int, float)) and not isinstance(v, bool)
+        else parse_quantity(v, f"{name}[{i}]")
+        for i, v in enumerate(value)
+    )
     try:
         lo_si, hi_si = lo.to(si_unit).magnitude, hi.to(si_unit).magnitude
     except pint.errors.DimensionalityError:
@@ -119,8 +169,9 @@ def _pair(value: Any, name: str, si_unit: str) -> tuple[float, float]:
     if not lo_si <= hi_si:
         raise ErdesignError(f"{name}: low must not exceed high, got {value!r}")
     if si_unit == "K" and not lo_si >= 0:
-        raise ErdesignError(f"{name}: {value[0]!r} is below absolute zero ({lo_si:.6g} K); a temperature in degC "
-                            "or degF needs its unit")
+        raise ErdesignError(
+            f"{name}: {value[0]!r} is below absolute zero ({lo_si:.6g} K); a temperature in degC or degF needs its unit"
+        )
     return float(lo_si), float(hi_si)
 
 
@@ -133,7 +184,7 @@ def check_record(record: Mapping[str, Any], where: str) -> None:
         if key not in record:
             raise ErdesignError(f"{where}: {key}: missing")
     if record["kind"] not in ("ER", "MR"):
-        raise ErdesignError(f"{where}: kind: expected \"ER\" or \"MR\", got {record['kind']!r}")
+        raise ErdesignError(f'{where}: kind: expected "ER" or "MR", got {record["kind"]!r}')
     fluid = record["fluid"]
     for key in fluid:
         if key not in MATERIAL_FLUID_KEYS:
@@ -155,6 +206,7 @@ def check_record(record: Mapping[str, Any], where: str) -> None:
             if record["kind"] != "MR":
                 raise ErdesignError("magnetization: only MR fluids have a magnetisation curve")
             from ..magnetics.bh import bh_curve_from_dict
+
             bh_curve_from_dict(record["magnetization"], name=record["name"])
         for key, value in record.get("range", {}).items():
             if key not in RANGE_KEYS:
@@ -213,8 +265,9 @@ def material_fluid(name: str) -> MaterialFluid:
     values = dict(record["fluid"])
     curve = None
     if "yield_curve" in record:
-        curve = field_law_from_dict(record["yield_curve"],
-                                    control_unit=control_unit_of(values["reference_field"], "fluid.reference_field"))
+        curve = field_law_from_dict(
+            record["yield_curve"], control_unit=control_unit_of(values["reference_field"], "fluid.reference_field")
+        )
     field = record.get("range", {}).get("field")
     return MaterialFluid(name, values, curve, None if field is None else (field[0], field[1]))
 
@@ -249,7 +302,6 @@ def summary(name: str) -> dict[str, Any]:
     return out
 
 
-
 def _check_references(record: Mapping[str, Any], where: str) -> None:
     refs = record["references"]
     if not (isinstance(refs, list) and refs):
@@ -257,8 +309,10 @@ def _check_references(record: Mapping[str, Any], where: str) -> None:
     for i, ref in enumerate(refs):
         bad = [k for k in ref if k not in _REFERENCE_KEYS]
         if bad or not all(k in ref for k in ("key", "citation", "date")):
-            raise ErdesignError(f"{where}: references[{i}]: needs key, citation and date (optional note)"
-                                + (f"; unknown key {bad[0]!r}" if bad else ""))
+            raise ErdesignError(
+                f"{where}: references[{i}]: needs key, citation and date (optional note)"
+                + (f"; unknown key {bad[0]!r}" if bad else "")
+            )
 
 
 def _check_verification(record: Mapping[str, Any], where: str) -> None:
@@ -284,11 +338,13 @@ def _check_verification(record: Mapping[str, Any], where: str) -> None:
             raise ErdesignError(f"{at}.{bad[0]}: unknown key; allowed keys: {', '.join(VERIFICATION_KEYS)}")
         status = entry.get("status")
         if status not in VERIFICATION_STATUSES:
-            raise ErdesignError(f"{at}.status: expected one of {', '.join(map(repr, VERIFICATION_STATUSES))}, "
-                                f"got {status!r}")
+            raise ErdesignError(
+                f"{at}.status: expected one of {', '.join(map(repr, VERIFICATION_STATUSES))}, got {status!r}"
+            )
         if entry.get("source") not in refs:
-            raise ErdesignError(f"{at}.source: expected a reference key ({', '.join(sorted(refs))}), "
-                                f"got {entry.get('source')!r}")
+            raise ErdesignError(
+                f"{at}.source: expected a reference key ({', '.join(sorted(refs))}), got {entry.get('source')!r}"
+            )
         needed = ("searched",) if status == "not verified" else ("location", "found_at")
         for k in needed:
             if not (isinstance(entry.get(k), str) and entry[k].strip()):
@@ -313,12 +369,13 @@ def load_steel(name: str) -> dict[str, Any]:
         if key not in record:
             raise ErdesignError(f"{where}: {key}: missing")
     if record["kind"] != "steel" or record["name"] != name:
-        raise ErdesignError(f"{where}: kind must be \"steel\" and name {name!r}")
+        raise ErdesignError(f'{where}: kind must be "steel" and name {name!r}')
     if "magnetization" not in record["sources"]:
         raise ErdesignError(f"{where}: sources.magnetization: missing (every value needs its source)")
     _check_references(record, where)
     _check_verification(record, where)
     from ..magnetics.bh import bh_curve_from_dict
+
     try:
         bh_curve_from_dict(record["magnetization"], name=name)
     except ErdesignError as exc:
@@ -329,6 +386,7 @@ def load_steel(name: str) -> dict[str, Any]:
 def steel_curve(name: str):
     """The :class:`~erdesign.magnetics.bh.BHCurve` of a steel of the database."""
     from ..magnetics.bh import bh_curve_from_dict
+
     record = load_steel(name)
     return bh_curve_from_dict(record["magnetization"], name=name, source=record["sources"]["magnetization"])
 
@@ -337,9 +395,12 @@ def magnetization_curve(name: str):
     """The :class:`~erdesign.magnetics.bh.BHCurve` of an MR fluid of the database; an error naming the material when
     its record has no ``[magnetization]``."""
     from ..magnetics.bh import bh_curve_from_dict
+
     record = load(name)
     if "magnetization" not in record:
-        raise ErdesignError(f"material {name!r}: no [magnetization] (B-H curve) in materials/{name}.toml; the "
-                            f"magnetic circuit needs one (materials with one: "
-                            f"{', '.join(n for n in names() if 'magnetization' in load(n))})")
+        raise ErdesignError(
+            f"material {name!r}: no [magnetization] (B-H curve) in materials/{name}.toml; the "
+            f"magnetic circuit needs one (materials with one: "
+            f"{', '.join(n for n in names() if 'magnetization' in load(n))})"
+        )
     return bh_curve_from_dict(record["magnetization"], name=name, source=record["sources"]["magnetization"])

@@ -12,5 +12,16 @@ Fitting is :func:`erdesign.identification.fit.fit`; identification workflows are
 from .base import ControlAffineModel, Model, ModelInputError, Parameter, ParameterError
 from .registry import INVERTIBLE, MODELS, UnknownModelError, describe_models, get_model, model_names
 
-__all__ = ["ControlAffineModel", "Model", "ModelInputError", "Parameter", "ParameterError", "INVERTIBLE", "MODELS", "UnknownModelError",
-           "describe_models", "get_model", "model_names"]
+__all__ = [
+    "ControlAffineModel",
+    "Model",
+    "ModelInputError",
+    "Parameter",
+    "ParameterError",
+    "INVERTIBLE",
+    "MODELS",
+    "UnknownModelError",
+    "describe_models",
+    "get_model",
+    "model_names",
+]

@@ -26,8 +26,17 @@ import numpy as np
 
 from .._compile import njit
 
-__all__ = ["riccati_step", "bouc_wen_state", "modified_bouc_wen", "extended_bingham_force", "affine_recurrence",
-           "stop_operator", "series_viscoplastic", "mass_on_damper", "bouc_wen_state_varying"]
+__all__ = [
+    "riccati_step",
+    "bouc_wen_state",
+    "modified_bouc_wen",
+    "extended_bingham_force",
+    "affine_recurrence",
+    "stop_operator",
+    "series_viscoplastic",
+    "mass_on_damper",
+    "bouc_wen_state_varying",
+]
 
 _jit = njit(cache=True, nogil=True)
 
@@ -243,9 +252,32 @@ def _zt(z, dw, C, beta, gamma, delta, r1, k1, r2, k2):
 
 
 @_jit
-def modified_bouc_wen(t, x, u, eta, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0, beta, gamma, delta, n,
-                      theta, max_sub,
-                      plan):
+def modified_bouc_wen(
+    t,
+    x,
+    u,
+    eta,
+    aa,
+    ab,
+    ac,
+    ad,
+    c0a,
+    c0b,
+    c0c,
+    c0d,
+    c1a,
+    c1b,
+    c1c,
+    c1d,
+    k0,
+    beta,
+    gamma,
+    delta,
+    n,
+    theta,
+    max_sub,
+    plan,
+):
     r"""States (u_f, w, z) of Spencer's modified Bouc-Wen model at the samples.
 
     Input: displacement and dimensionless control linear between samples.  On each step:
@@ -298,8 +330,7 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b
         lam = 0.0
         for uf in (y, y1):
             al = aa + (ab + (ac + ad * uf) * uf) * uf
-            cc = c0a + (c0b + (c0c + c0d * uf) * uf) * uf \
-                + c1a + (c1b + (c1c + c1d * uf) * uf) * uf
+            cc = c0a + (c0b + (c0c + c0d * uf) * uf) * uf + c1a + (c1b + (c1c + c1d * uf) * uf) * uf
             lam = max(lam, (abs(al) * dz + abs(k0)) / abs(cc))
         if planned and plan[i] > 0:
             m = plan[i]
@@ -331,28 +362,146 @@ def modified_bouc_wen(t, x, u, eta, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b
                 C[4] = 0.0
                 k1 = _rate2(ua, xd, w, 0.0, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0)
                 d = 0.5 * H * k1
-                k2 = _rate2(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
-                            aa, ab, ac, ad, c0a, c0b, c0c, c0d,
-                            c1a, c1b, c1c, c1d, k0)
+                k2 = _rate2(
+                    um,
+                    xd,
+                    w,
+                    d,
+                    _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
+                    aa,
+                    ab,
+                    ac,
+                    ad,
+                    c0a,
+                    c0b,
+                    c0c,
+                    c0d,
+                    c1a,
+                    c1b,
+                    c1c,
+                    c1d,
+                    k0,
+                )
                 d = 0.5 * H * k2
-                k3 = _rate2(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
-                            aa, ab, ac, ad, c0a, c0b, c0c, c0d,
-                            c1a, c1b, c1c, c1d, k0)
+                k3 = _rate2(
+                    um,
+                    xd,
+                    w,
+                    d,
+                    _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
+                    aa,
+                    ab,
+                    ac,
+                    ad,
+                    c0a,
+                    c0b,
+                    c0c,
+                    c0d,
+                    c1a,
+                    c1b,
+                    c1c,
+                    c1d,
+                    k0,
+                )
                 d = H * k3
-                k4 = _rate2(ub, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
-                            aa, ab, ac, ad, c0a, c0b, c0c, c0d,
-                            c1a, c1b, c1c, c1d, k0)
+                k4 = _rate2(
+                    ub,
+                    xd,
+                    w,
+                    d,
+                    _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
+                    aa,
+                    ab,
+                    ac,
+                    ad,
+                    c0a,
+                    c0b,
+                    c0c,
+                    c0d,
+                    c1a,
+                    c1b,
+                    c1c,
+                    c1d,
+                    k0,
+                )
                 dw = H / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
                 z = _zt(z, dw, C, beta, gamma, delta, r1, k1c, r2, k2c)
             else:
-                k1 = _rate(ua, xd, w, 0.0, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0,
-                           beta, gamma, delta, n)
-                k2 = _rate(um, xd, w, 0.5 * H * k1, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0,
-                           beta, gamma, delta, n)
-                k3 = _rate(um, xd, w, 0.5 * H * k2, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0,
-                           beta, gamma, delta, n)
-                k4 = _rate(ub, xd, w, H * k3, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0,
-                           beta, gamma, delta, n)
+                k1 = _rate(
+                    ua, xd, w, 0.0, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0, beta, gamma, delta, n
+                )
+                k2 = _rate(
+                    um,
+                    xd,
+                    w,
+                    0.5 * H * k1,
+                    z,
+                    aa,
+                    ab,
+                    ac,
+                    ad,
+                    c0a,
+                    c0b,
+                    c0c,
+                    c0d,
+                    c1a,
+                    c1b,
+                    c1c,
+                    c1d,
+                    k0,
+                    beta,
+                    gamma,
+                    delta,
+                    n,
+                )
+                k3 = _rate(
+                    um,
+                    xd,
+                    w,
+                    0.5 * H * k2,
+                    z,
+                    aa,
+                    ab,
+                    ac,
+                    ad,
+                    c0a,
+                    c0b,
+                    c0c,
+                    c0d,
+                    c1a,
+                    c1b,
+                    c1c,
+                    c1d,
+                    k0,
+                    beta,
+                    gamma,
+                    delta,
+                    n,
+                )
+                k4 = _rate(
+                    ub,
+                    xd,
+                    w,
+                    H * k3,
+                    z,
+                    aa,
+                    ab,
+                    ac,
+                    ad,
+                    c0a,
+                    c0b,
+                    c0c,
+                    c0d,
+                    c1a,
+                    c1b,
+                    c1c,
+                    c1d,
+                    k0,
+                    beta,
+                    gamma,
+                    delta,
+                    n,
+                )
                 dw = H / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
                 z = _travel(z, dw, beta, gamma, delta, n)
             w += dw
@@ -579,18 +728,27 @@ def mass_on_damper(t, x, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y, s
             lo = -span
             hi = span
             for _ in range(200):
-                if _mass_residual(lo, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i],
-                                  F_y[i]) < 0.0:
+                if (
+                    _mass_residual(
+                        lo, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i], F_y[i]
+                    )
+                    < 0.0
+                ):
                     break
                 lo *= 2.0
             for _ in range(200):
-                if _mass_residual(hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i],
-                                  F_y[i]) > 0.0:
+                if (
+                    _mass_residual(
+                        hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i], F_y[i]
+                    )
+                    > 0.0
+                ):
                     break
                 hi *= 2.0
             # the root of the increasing residual = the root of its negative, decreasing: the same solver
-            vmid = _illinois_mass(lo, hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i],
-                                  C_post[i], F_y[i])
+            vmid = _illinois_mass(
+                lo, hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i], F_y[i]
+            )
             X += h * vmid
             V = 2.0 * vmid - V if m > 0.0 else vmid
         xm[i + 1] = X

@@ -24,8 +24,19 @@ import numpy as np
 
 from ..numerics import affine_recurrence
 
-__all__ = ["first_order_lag", "dahl_state", "bouc_wen_state", "riccati_step", "modified_bouc_wen", "is_uniform",
-           "stop_operator", "series_viscoplastic", "mass_on_damper", "per_sample", "bouc_wen_state_varying"]
+__all__ = [
+    "first_order_lag",
+    "dahl_state",
+    "bouc_wen_state",
+    "riccati_step",
+    "modified_bouc_wen",
+    "is_uniform",
+    "stop_operator",
+    "series_viscoplastic",
+    "mass_on_damper",
+    "per_sample",
+    "bouc_wen_state_varying",
+]
 
 
 def is_uniform(t: np.ndarray, rtol: float = 1e-6) -> bool:
@@ -57,6 +68,7 @@ def first_order_lag(t, u, tau, y0=0.0):
         # Initial condition of the direct-form II transposed filter for y[0] = y0 with u[-1] = u[0].
         zi = np.array([y0 - b[0] * u[0]])
         from scipy.signal import lfilter  # imported on use: scipy.signal costs start-up time
+
         y, _ = lfilter(b, a, u, zi=zi)
         return y
     h = np.diff(t)
@@ -85,6 +97,7 @@ def _compiled():
     """The numba kernels (:mod:`erdesign.models._compiled`), imported on first use: numba costs about a second
     of start-up, which commands that simulate no hysteretic model should not pay."""
     from . import _compiled as compiled
+
     return compiled
 
 
@@ -234,9 +247,23 @@ def modified_bouc_wen(t, x, u, eta, alpha, c0, c1, k0, beta, gamma, delta, n):
     eta = float(eta) if math.isfinite(eta) else 1e300
     alpha, c0, c1 = (tuple(float(c) for c in coeffs) + (0.0,) * (4 - len(coeffs)) for coeffs in (alpha, c0, c1))
     steps = _STEPS.get()
-    return _compiled().modified_bouc_wen(t, x, u, eta, *alpha, *c0, *c1, float(k0), float(beta), float(gamma),
-                                         float(delta), float(n),
-                                         steps.theta, steps.max_substeps, _plan(steps, t, x))
+    return _compiled().modified_bouc_wen(
+        t,
+        x,
+        u,
+        eta,
+        *alpha,
+        *c0,
+        *c1,
+        float(k0),
+        float(beta),
+        float(gamma),
+        float(delta),
+        float(n),
+        steps.theta,
+        steps.max_substeps,
+        _plan(steps, t, x),
+    )
 
 
 def per_sample(value, n: int) -> np.ndarray:
@@ -263,22 +290,58 @@ def series_viscoplastic(t, x, k0, c, A, alpha, *, q=0.0, n=1.0, rho=0.0, d=0.0, 
     be per-sample arrays (current laws).  Implicit midpoint sub-steps (second order), compiled."""
     t = np.ascontiguousarray(t, dtype=float)
     N = t.size
-    return _compiled().series_viscoplastic(t, np.ascontiguousarray(x, dtype=float), per_sample(k0, N), float(q),
-                                           float(n), float(rho), float(d), per_sample(c, N), per_sample(A, N),
-                                           per_sample(alpha, N), int(substeps))
+    return _compiled().series_viscoplastic(
+        t,
+        np.ascontiguousarray(x, dtype=float),
+        per_sample(k0, N),
+        float(q),
+        float(n),
+        float(rho),
+        float(d),
+        per_sample(c, N),
+        per_sample(A, N),
+        per_sample(alpha, N),
+        int(substeps),
+    )
 
 
-def mass_on_damper(t, x, *, m=0.0, k1=0.0, c1=0.0, k0=0.0, c=0.0, f_t=0.0, v_ref=1.0, C_pre=0.0, C_post=0.0,
-                   F_y=0.0, substeps=MIDPOINT_SUBSTEPS):
+def mass_on_damper(
+    t,
+    x,
+    *,
+    m=0.0,
+    k1=0.0,
+    c1=0.0,
+    k0=0.0,
+    c=0.0,
+    f_t=0.0,
+    v_ref=1.0,
+    C_pre=0.0,
+    C_post=0.0,
+    F_y=0.0,
+    substeps=MIDPOINT_SUBSTEPS,
+):
     r"""Displacement [m] and velocity [m/s] of an internal mass driven by the piston displacement x:
     :math:`m\ddot x_m = k_1(x - x_m) + c_1(\dot x - \dot x_m) - k_0x_m - D(\dot x_m)`,
     :math:`D(v) = cv + f_t\tanh(v/v_{ref}) + \operatorname{sgn}v\min(C_{pre}|v|, C_{post}|v| + F_y)` (Bass, Sims;
     :func:`erdesign.models._compiled.mass_on_damper`).  f_t, C_pre, C_post, F_y may be per-sample arrays."""
     t = np.ascontiguousarray(t, dtype=float)
     N = t.size
-    return _compiled().mass_on_damper(t, np.ascontiguousarray(x, dtype=float), float(m), float(k1), float(c1),
-                                      float(k0), float(c), per_sample(f_t, N), float(v_ref), per_sample(C_pre, N),
-                                      per_sample(C_post, N), per_sample(F_y, N), int(substeps))
+    return _compiled().mass_on_damper(
+        t,
+        np.ascontiguousarray(x, dtype=float),
+        float(m),
+        float(k1),
+        float(c1),
+        float(k0),
+        float(c),
+        per_sample(f_t, N),
+        float(v_ref),
+        per_sample(C_pre, N),
+        per_sample(C_post, N),
+        per_sample(F_y, N),
+        int(substeps),
+    )
 
 
 def bouc_wen_state_varying(x, beta, gamma, delta, n, z0=0.0):
@@ -286,5 +349,6 @@ def bouc_wen_state_varying(x, beta, gamma, delta, n, z0=0.0):
     each step is exact with the values at its start."""
     x = np.ascontiguousarray(x, dtype=float)
     N = x.size
-    return _compiled().bouc_wen_state_varying(x, per_sample(beta, N), per_sample(gamma, N), per_sample(delta, N),
-                                              per_sample(n, N), float(z0))
+    return _compiled().bouc_wen_state_varying(
+        x, per_sample(beta, N), per_sample(gamma, N), per_sample(delta, N), per_sample(n, N), float(z0)
+    )

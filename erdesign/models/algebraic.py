@@ -12,8 +12,17 @@ import numpy as np
 
 from .base import ControlAffineModel, Model, Parameter
 
-__all__ = ["EyringPlastic", "WengArctan", "KwokTanh", "MagicFormula", "ChengTanh", "YangArctan", "YangExponential",
-           "Metered", "Balamurugan"]
+__all__ = [
+    "EyringPlastic",
+    "WengArctan",
+    "KwokTanh",
+    "MagicFormula",
+    "ChengTanh",
+    "YangArctan",
+    "YangExponential",
+    "Metered",
+    "Balamurugan",
+]
 
 
 def _fit_sign_viscous(record):
@@ -72,9 +81,14 @@ class EyringPlastic(Model):
     def force(self, record, values):
         v, x = record.velocity, record.displacement
         Fa = values["F_alpha"] + values["F_alpha_u"] * self.control(record)
-        return Fa * np.arcsinh(values["lambda1"] * v - values["lambda2"] * x) * (
-            1.0 + values["beta1"] * np.exp(-values["beta2"] * np.abs(v))) + values["c1"] * v + values["c3"] * v**3 \
+        return (
+            Fa
+            * np.arcsinh(values["lambda1"] * v - values["lambda2"] * x)
+            * (1.0 + values["beta1"] * np.exp(-values["beta2"] * np.abs(v)))
+            + values["c1"] * v
+            + values["c3"] * v**3
             + values["f0"]
+        )
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -131,7 +145,6 @@ class WengArctan(ControlAffineModel):
         P = values["f0"] + values["c_b"] * v + values["f_y"] * shape + values["m"] * a
         Q = values["c_b_u"] * v + values["f_y_u"] * shape
         return P, Q
-
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -192,7 +205,6 @@ class KwokTanh(ControlAffineModel):
         P = values["k"] * x + values["c"] * v + values["alpha"] * z + values["f0"]
         Q = values["c_u"] * v + values["alpha_u"] * z
         return P, Q
-
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -261,7 +273,6 @@ class MagicFormula(ControlAffineModel):
         P = values["D"] * shape + values["k_c"] * v + values["k"] * x + values["f0"]
         Q = values["D_u"] * shape
         return P, Q
-
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -375,22 +386,29 @@ class YangArctan(Model):
         Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
         Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop"),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
-        *(Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
-          for p, unit in (("k", "N/m"), ("c", "N*s/m"), ("alpha", "N"), ("beta", "s/m"), ("delta", ""))
-          for s in ("", "2")),
+        *(
+            Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
+            for p, unit in (("k", "N/m"), ("c", "N*s/m"), ("alpha", "N"), ("beta", "s/m"), ("delta", ""))
+            for s in ("", "2")
+        ),
     )
 
     def _law(self, values, p, u):
         return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
 
     def _shape(self, record, values, u):
-        return np.arctan(self._law(values, "beta", u) * record.velocity) \
-            + self._law(values, "delta", u) * np.sign(record.displacement)
+        return np.arctan(self._law(values, "beta", u) * record.velocity) + self._law(values, "delta", u) * np.sign(
+            record.displacement
+        )
 
     def force(self, record, values):
         u = self.control(record)
-        return self._law(values, "k", u) * record.displacement + self._law(values, "c", u) * record.velocity \
-            + self._law(values, "alpha", u) * self._shape(record, values, u) + values["f0"]
+        return (
+            self._law(values, "k", u) * record.displacement
+            + self._law(values, "c", u) * record.velocity
+            + self._law(values, "alpha", u) * self._shape(record, values, u)
+            + values["f0"]
+        )
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -447,8 +465,11 @@ class YangExponential(Model):
         Parameter("beta", "", 0.5, -50.0, 50.0, "width of the loop"),
         Parameter("gamma", "", 1.0, 1e-6, 1e3, "shape of the hysteresis term", log_scale=True),
         Parameter("f0", "N", 400.0, -1e7, 1e7, "force offset"),
-        *(Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
-          for p, unit in (("k", "N/m"), ("c0", "N*s/m"), ("f_b", "N")) for s in ("", "2")),
+        *(
+            Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
+            for p, unit in (("k", "N/m"), ("c0", "N*s/m"), ("f_b", "N"))
+            for s in ("", "2")
+        ),
     )
 
     def force(self, record, values):
@@ -456,10 +477,16 @@ class YangExponential(Model):
 
         def law(p):
             return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
-        e = np.exp(np.clip(values["alpha"] * record.velocity + values["beta"] * np.sign(record.displacement),
-                           -700.0, 700.0))
-        return law("k") * record.displacement + law("c0") * record.velocity + law("f_b") / (e + values["gamma"]) \
+
+        e = np.exp(
+            np.clip(values["alpha"] * record.velocity + values["beta"] * np.sign(record.displacement), -700.0, 700.0)
+        )
+        return (
+            law("k") * record.displacement
+            + law("c0") * record.velocity
+            + law("f_b") / (e + values["gamma"])
             + values["f0"]
+        )
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -503,8 +530,7 @@ class Metered(WengArctan):
     )
 
     def _scale(self, values):
-        return (values["A1"] * values["amplitude"] + values["A2"]) * (values["F1"] * values["frequency"]
-                                                                       + values["F2"])
+        return (values["A1"] * values["amplitude"] + values["A2"]) * (values["F1"] * values["frequency"] + values["F2"])
 
     def control_affine(self, record, values):
         s = self._scale(values)
@@ -512,8 +538,13 @@ class Metered(WengArctan):
 
     def initial_guess(self, record):
         from .excitation import record_amplitude, record_frequency
-        return {**self.defaults(), **super().initial_guess(record), "amplitude": record_amplitude(record),
-                "frequency": record_frequency(record)}
+
+        return {
+            **self.defaults(),
+            **super().initial_guess(record),
+            "amplitude": record_amplitude(record),
+            "frequency": record_frequency(record),
+        }
 
 
 class Balamurugan(Model):
@@ -561,9 +592,12 @@ class Balamurugan(Model):
 
     def force(self, record, values):
         from .bouc_wen_variants import sigmoid_gain
+
         hyst = WengArctan().force(record, {**values, "m": 0.0, "f_y_u": 0.0, "c_b_u": 0.0})
         return hyst * sigmoid_gain(self.control(record) / values["u0"], values["k2"], values["a2"], values["I0"])
 
     def initial_guess(self, record):
-        return {**self.defaults(), **{k: v for k, v in WengArctan().initial_guess(record).items()
-                                      if k in self.parameter_names}}
+        return {
+            **self.defaults(),
+            **{k: v for k, v in WengArctan().initial_guess(record).items() if k in self.parameter_names},
+        }

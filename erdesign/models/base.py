@@ -71,36 +71,43 @@ class Model:
         from the data where one exists (e.g. a damping constant from the force-velocity slope)."""
         return self.defaults()
 
-    def linear_terms(self, record: Measurement, values: Mapping[str, float]) -> tuple[dict[str, np.ndarray],
-                                                                                  np.ndarray]:
+    def linear_terms(
+        self, record: Measurement, values: Mapping[str, float]
+    ) -> tuple[dict[str, np.ndarray], np.ndarray]:
         """The basis columns b_j [N per unit of the parameter] of the :attr:`linear_parameters` and the rest r [N]
         at ``values``: the force is r + sum_j values[j] b_j.  This default simulates the model once with the
         linear parameters at zero and once per parameter at one; models whose simulation is costly override it
         with one pass."""
         zero = {**values, **{k: 0.0 for k in self.linear_parameters}}
         rest = np.asarray(self.force(record, zero), dtype=float)
-        return {k: np.asarray(self.force(record, {**zero, k: 1.0}), dtype=float) - rest
-                for k in self.linear_parameters}, rest
+        return {
+            k: np.asarray(self.force(record, {**zero, k: 1.0}), dtype=float) - rest for k in self.linear_parameters
+        }, rest
 
     # ------------------------------------------------------------------ provided
     def check_record(self, record: Measurement) -> None:
         """Raise :class:`ModelInputError` naming the problem when ``record`` cannot drive this model."""
         n = len(record)
         if n < self.min_samples:
-            raise ModelInputError(f"{self.name}: the record {record.name or ''} has {n} samples; this model needs at "
-                                  f"least {self.min_samples}".replace("  ", " "))
+            raise ModelInputError(
+                f"{self.name}: the record {record.name or ''} has {n} samples; this model needs at "
+                f"least {self.min_samples}".replace("  ", " ")
+            )
         if self.requires_control and record.control_kind is None:
-            raise ModelInputError(f"{self.name}: the force depends on the field / current / voltage, but the record "
-                                  f"{record.name or ''} has no control column (field, current or voltage)"
-                                  .replace("  ", " "))
+            raise ModelInputError(
+                f"{self.name}: the force depends on the field / current / voltage, but the record "
+                f"{record.name or ''} has no control column (field, current or voltage)".replace("  ", " ")
+            )
         if self.needs_uniform_time:
             dt = np.diff(record.time)
             mean = (record.time[-1] - record.time[0]) / (n - 1)
             worst = float(np.max(np.abs(dt - mean)) / mean)
             if worst > 0.01:
-                raise ModelInputError(f"{self.name}: needs evenly spaced time samples (its filters are exact for one "
-                                      f"step size); the steps of {record.name or 'the record'} vary by "
-                                      f"{100 * worst:.3g} % - resample it first")
+                raise ModelInputError(
+                    f"{self.name}: needs evenly spaced time samples (its filters are exact for one "
+                    f"step size); the steps of {record.name or 'the record'} vary by "
+                    f"{100 * worst:.3g} % - resample it first"
+                )
 
     def control(self, record: Measurement) -> np.ndarray:
         """Dimensionless control u = control / :attr:`control_reference` (zeros when the record has none)."""
@@ -134,14 +141,16 @@ class Model:
         """All parameter values (defaults filled in), checked: names known, finite, within bounds."""
         unknown = [k for k in values if k not in self.parameter_names]
         if unknown:
-            raise ParameterError(f"{self.name}: unknown parameter {unknown[0]!r}; "
-                                 f"parameters: {', '.join(self.parameter_names)}")
+            raise ParameterError(
+                f"{self.name}: unknown parameter {unknown[0]!r}; parameters: {', '.join(self.parameter_names)}"
+            )
         full = {**self.defaults(), **values}
         for p in self.parameters:
             v = full[p.name]
             if not (np.isfinite(v) and p.lower <= v <= p.upper):
-                raise ParameterError(f"{self.name}: {p.name} = {v!r} {p.unit} is outside its bounds "
-                                     f"[{p.lower:g}, {p.upper:g}] {p.unit}")
+                raise ParameterError(
+                    f"{self.name}: {p.name} = {v!r} {p.unit} is outside its bounds [{p.lower:g}, {p.upper:g}] {p.unit}"
+                )
         return full
 
     def simulate(self, record: Measurement, values: Mapping[str, float] | None = None) -> np.ndarray:
@@ -158,8 +167,12 @@ class Model:
 
     def describe(self) -> dict:
         """The registry entry of ``erdesign models --json``."""
-        return {"name": self.name, "source": self.source, "invertible": self.invertible,
-                "parameters": [{"name": p.name, "unit": p.unit, "default": p.default} for p in self.parameters]}
+        return {
+            "name": self.name,
+            "source": self.source,
+            "invertible": self.invertible,
+            "parameters": [{"name": p.name, "unit": p.unit, "default": p.default} for p in self.parameters],
+        }
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.name!r}: {', '.join(self.parameter_names)}>"

@@ -15,8 +15,15 @@ import numpy as np
 
 from .base import Model, Parameter
 
-__all__ = ["Bingham", "BinghamExtended", "extended_bingham_force", "BinghamModified", "BinghamImproved",
-           "BinghamRegularized", "BinghamHysteretic"]
+__all__ = [
+    "Bingham",
+    "BinghamExtended",
+    "extended_bingham_force",
+    "BinghamModified",
+    "BinghamImproved",
+    "BinghamRegularized",
+    "BinghamHysteretic",
+]
 
 
 class Bingham(Model):
@@ -64,8 +71,9 @@ class Bingham(Model):
     def force(self, record, values):
         u = self.control(record)
         v = record.velocity
-        return (values["f_c"] + values["f_c_u"] * u) * np.sign(v) + (values["c0"] + values["c0_u"] * u) * v \
-            + values["f0"]
+        return (
+            (values["f_c"] + values["f_c_u"] * u) * np.sign(v) + (values["c0"] + values["c0_u"] * u) * v + values["f0"]
+        )
 
     def linear_terms(self, record, values):
         u, v = self.control(record), record.velocity
@@ -100,8 +108,17 @@ def extended_bingham_force(t, x, c0, f_c, k1, c1, k2, substeps=64):
     (:func:`erdesign.models._compiled.extended_bingham_force`): some 10 ns per sub-step.
     """
     from . import _compiled
-    return _compiled.extended_bingham_force(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(x, dtype=float),
-                                            float(c0), float(f_c), float(k1), float(c1), float(k2), int(substeps))
+
+    return _compiled.extended_bingham_force(
+        np.ascontiguousarray(t, dtype=float),
+        np.ascontiguousarray(x, dtype=float),
+        float(c0),
+        float(f_c),
+        float(k1),
+        float(c1),
+        float(k2),
+        int(substeps),
+    )
 
 
 class BinghamExtended(Model):
@@ -154,8 +171,9 @@ class BinghamExtended(Model):
         return {"f0": np.ones_like(rest)}, rest
 
     def force(self, record, values):
-        F = extended_bingham_force(record.time, record.displacement, values["c0"], values["f_c"], values["k1"],
-                                   values["c1"], values["k2"])
+        F = extended_bingham_force(
+            record.time, record.displacement, values["c0"], values["f_c"], values["k1"], values["c1"], values["k2"]
+        )
         return F + values["f0"]
 
 
@@ -198,8 +216,12 @@ class BinghamModified(Model):
     )
 
     def force(self, record, values):
-        return extended_bingham_force(record.time, record.displacement, values["c0"], values["f_c"], 1e300, 1.0,
-                                      values["k1"]) + values["f0"]
+        return (
+            extended_bingham_force(
+                record.time, record.displacement, values["c0"], values["f_c"], 1e300, 1.0, values["k1"]
+            )
+            + values["f0"]
+        )
 
     def initial_guess(self, record):
         g = Bingham().initial_guess(record)
@@ -261,8 +283,9 @@ class BinghamImproved(Model):
         u = self.control(record)
         v = record.velocity
         a = np.clip(values["a"] + values["a_u"] * u, 0.05, 3.0)
-        return ((values["c"] + values["c_u"] * u) * np.abs(v) ** a + values["F_y_min"] + values["F_y_u"] * u) \
-            * np.sign(v) + values["f0"]
+        return ((values["c"] + values["c_u"] * u) * np.abs(v) ** a + values["F_y_min"] + values["F_y_u"] * u) * np.sign(
+            v
+        ) + values["f0"]
 
     def initial_guess(self, record):
         g = Bingham().initial_guess(record)
@@ -382,6 +405,7 @@ class BinghamHysteretic(Model):
 
     def force(self, record, values):
         from ._kernels import stop_operator
+
         v = record.velocity
         Fy = np.maximum(values["F_y"] + values["F_y_u"] * self.control(record), 0.0)
         s = stop_operator(record.displacement, values["k"], Fy)

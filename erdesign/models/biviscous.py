@@ -99,8 +99,12 @@ class Biviscous(Model):
 
     def force(self, record, values):
         Fy = np.maximum(values["F_y"] + values["F_y_u"] * self.control(record), 0.0)
-        return biviscous_force(record.velocity, record.acceleration, values["C_pre"], values["C_post"], Fy,
-                               self._v0(values)) + values["f0"]
+        return (
+            biviscous_force(
+                record.velocity, record.acceleration, values["C_pre"], values["C_post"], Fy, self._v0(values)
+            )
+            + values["f0"]
+        )
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -109,8 +113,12 @@ class Biviscous(Model):
             A = np.column_stack([np.sign(v), v, np.ones_like(v)])
             (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
             vmax = float(np.max(np.abs(v))) or 1.0
-            g.update(F_y=float(max(fy, 1.0)), C_post=float(max(c, 0.0)), f0=float(f0),
-                     C_pre=float(max(fy, 1.0)) / (0.05 * vmax) + max(c, 0.0))
+            g.update(
+                F_y=float(max(fy, 1.0)),
+                C_post=float(max(c, 0.0)),
+                f0=float(f0),
+                C_pre=float(max(fy, 1.0)) / (0.05 * vmax) + max(c, 0.0),
+            )
         return g
 
 
@@ -140,7 +148,8 @@ class BiviscousHysteretic(Biviscous):
     title = "nonlinear hysteretic biviscous (Wereley)"
     source = "the MR-model review eq 61"
     parameters = Biviscous.parameters + (
-        Parameter("v0", "m/s", 0.002, 0.0, 10.0, "zero-force velocity of the pre-yield branch"),)
+        Parameter("v0", "m/s", 0.002, 0.0, 10.0, "zero-force velocity of the pre-yield branch"),
+    )
 
     def _v0(self, values):
         return values["v0"]

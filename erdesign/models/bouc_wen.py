@@ -25,16 +25,25 @@ __all__ = ["BoucWen", "BoucWenModified", "BoucWenNormalized", "SPENCER_PASSIVE"]
 
 #: Modified Bouc-Wen parameters of the passive MR damper simulated by Butz and von Stryk (2002, section 4.3),
 #: from Spencer et al.: SI units.
-SPENCER_PASSIVE = {"c0a": 5300.0, "c1a": 93000.0, "k0": 1400.0, "k1": 540.0, "alpha_a": 96300.0, "beta": 2.0e6,
-                   "gamma": 2.0e6, "n": 2.0, "delta": 207.0, "x0": 0.0}
+SPENCER_PASSIVE = {
+    "c0a": 5300.0,
+    "c1a": 93000.0,
+    "k0": 1400.0,
+    "k1": 540.0,
+    "alpha_a": 96300.0,
+    "beta": 2.0e6,
+    "gamma": 2.0e6,
+    "n": 2.0,
+    "delta": 207.0,
+    "x0": 0.0,
+}
 
 
 def _hysteresis_parameters(beta=2e6, gamma=2e6, delta=207.0, n=2.0):
     return (
         Parameter("beta", "1/m^2", beta, -1e12, 1e12, "Bouc-Wen shape parameter beta (units 1/m^n; shown for n = 2)"),
         Parameter("gamma", "1/m^2", gamma, -1e12, 1e12, "Bouc-Wen shape parameter gamma (units 1/m^n)"),
-        Parameter("delta", "", delta, 1e-6, 1e9, "Bouc-Wen scale A (redundant with alpha: held fixed)",
-                  fitted=False),
+        Parameter("delta", "", delta, 1e-6, 1e9, "Bouc-Wen scale A (redundant with alpha: held fixed)", fitted=False),
         Parameter("n", "", n, 1.0, 10.0, "Bouc-Wen exponent (held fixed by default)", fitted=False),
     )
 
@@ -95,14 +104,22 @@ class BoucWen(Model):
     def force(self, record, values):
         u = self.control(record)
         z = bouc_wen_state(record.displacement, values["beta"], values["gamma"], values["delta"], values["n"])
-        return (values["c0a"] + values["c0b"] * u) * record.velocity + values["k0"] * (
-            record.displacement - values["x0"]) + (values["alpha_a"] + values["alpha_b"] * u) * z
+        return (
+            (values["c0a"] + values["c0b"] * u) * record.velocity
+            + values["k0"] * (record.displacement - values["x0"])
+            + (values["alpha_a"] + values["alpha_b"] * u) * z
+        )
 
     def linear_terms(self, record, values):
         u, v = self.control(record), record.velocity
         z = bouc_wen_state(record.displacement, values["beta"], values["gamma"], values["delta"], values["n"])
-        return {"c0a": v, "k0": record.displacement - values["x0"], "alpha_a": z, "c0b": u * v,
-                "alpha_b": u * z}, np.zeros_like(v)
+        return {
+            "c0a": v,
+            "k0": record.displacement - values["x0"],
+            "alpha_a": z,
+            "c0b": u * v,
+            "alpha_b": u * z,
+        }, np.zeros_like(v)
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -114,8 +131,9 @@ class BoucWen(Model):
             # z saturates at about X / 10 so that the loop is yielded over most of the stroke
             zs = X / 10.0
             d = g["delta"]
-            g.update(c0a=float(max(c0, 0.0)), alpha_a=float(max(fy, 1.0) / zs), beta=0.5 * d / zs**2,
-                     gamma=0.5 * d / zs**2)
+            g.update(
+                c0a=float(max(c0, 0.0)), alpha_a=float(max(fy, 1.0) / zs), beta=0.5 * d / zs**2, gamma=0.5 * d / zs**2
+            )
         return g
 
 
@@ -185,10 +203,20 @@ class BoucWenModified(Model):
 
     def states(self, record, values):
         """(filtered control u_f, w = x - y, z) on the record."""
-        return modified_bouc_wen(record.time, record.displacement, self.control(record), values["eta"],
-                                 (values["alpha_a"], values["alpha_b"], values["alpha_c"]),
-                                 (values["c0a"], values["c0b"]), (values["c1a"], values["c1b"]), values["k0"],
-                                 values["beta"], values["gamma"], values["delta"], values["n"])
+        return modified_bouc_wen(
+            record.time,
+            record.displacement,
+            self.control(record),
+            values["eta"],
+            (values["alpha_a"], values["alpha_b"], values["alpha_c"]),
+            (values["c0a"], values["c0b"]),
+            (values["c1a"], values["c1b"]),
+            values["k0"],
+            values["beta"],
+            values["gamma"],
+            values["delta"],
+            values["n"],
+        )
 
     def force(self, record, values):
         uf, w, z = self.states(record, values)
@@ -211,8 +239,15 @@ class BoucWenModified(Model):
             (fy, c0), *_ = np.linalg.lstsq(A, record.force - record.force.mean(), rcond=None)
             zs = X / 10.0
             d = g["delta"]
-            g.update(c0a=float(max(c0, 10.0)), c1a=float(max(c0, 10.0)) * 15, alpha_a=float(max(fy, 1.0) / zs),
-                     beta=0.5 * d / zs**2, gamma=0.5 * d / zs**2, k0=0.0, k1=0.0)
+            g.update(
+                c0a=float(max(c0, 10.0)),
+                c1a=float(max(c0, 10.0)) * 15,
+                alpha_a=float(max(fy, 1.0) / zs),
+                beta=0.5 * d / zs**2,
+                gamma=0.5 * d / zs**2,
+                k0=0.0,
+                k1=0.0,
+            )
         return g
 
 
@@ -286,9 +321,14 @@ class BoucWenNormalized(ControlAffineModel):
     def linear_terms(self, record, values):
         w = self.hysteretic_state(record, values)
         u, v = self.control(record), record.velocity
-        return {"k_x": record.displacement, "k_v": v, "k_w": w, "f0": np.ones_like(v), "k_v_u": u * v,
-                "k_w_u": u * w}, np.zeros_like(v)
-
+        return {
+            "k_x": record.displacement,
+            "k_v": v,
+            "k_w": w,
+            "f0": np.ones_like(v),
+            "k_v_u": u * v,
+            "k_w_u": u * w,
+        }, np.zeros_like(v)
 
     def initial_guess(self, record):
         g = self.defaults()

@@ -58,8 +58,7 @@ def sign_time_integral(t, x):
     s0, s1 = np.sign(x[:-1]), np.sign(x[1:])
     with np.errstate(divide="ignore", invalid="ignore"):
         frac = np.where(s0 * s1 < 0, x[:-1] / (x[:-1] - x[1:]), 0.5)
-    step = np.where(s0 == s1, s0 * h, np.where(s0 * s1 < 0, (s0 * frac + s1 * (1.0 - frac)) * h,
-                                                0.5 * (s0 + s1) * h))
+    step = np.where(s0 == s1, s0 * h, np.where(s0 * s1 < 0, (s0 * frac + s1 * (1.0 - frac)) * h, 0.5 * (s0 + s1) * h))
     return np.concatenate([[0.0], np.cumsum(step)])
 
 
@@ -151,14 +150,19 @@ class BoucWenMass(Model):
     def damping(self, record, values):
         """The shear-thinning damping coefficient c0(v) [N s/m] per sample (eq 24)."""
         a1 = values["a1"] + values["a1_u"] * self.control(record)
-        return a1 * np.exp(-(values["a2"] * np.abs(record.velocity)) ** values["p"])
+        return a1 * np.exp(-((values["a2"] * np.abs(record.velocity)) ** values["p"]))
 
     def linear_terms(self, record, values):
         z = bouc_wen_state(record.displacement, values["beta"], values["gamma"], values["delta"], values["n"])
         u = self.control(record)
         rest = self.damping(record, values) * record.velocity
-        return {"m": record.acceleration, "k": record.displacement, "alpha": z, "f0": np.ones_like(z),
-                "alpha_u": u * z}, rest
+        return {
+            "m": record.acceleration,
+            "k": record.displacement,
+            "alpha": z,
+            "f0": np.ones_like(z),
+            "alpha_u": u * z,
+        }, rest
 
     def force(self, record, values):
         cols, rest = self.linear_terms(record, values)
@@ -194,8 +198,7 @@ class BoucWenModifiedMass(BoucWenModified):
     title = "modified Bouc-Wen with mass element (Yang)"
     source = "the MR-model review eq 26 (Yang et al.)"
     linear_parameters = ("k1", "m")
-    parameters = BoucWenModified.parameters + (
-        Parameter("m", "kg", 0.0, -1e5, 1e5, "equivalent mass (fluid inertia)"),)
+    parameters = BoucWenModified.parameters + (Parameter("m", "kg", 0.0, -1e5, 1e5, "equivalent mass (fluid inertia)"),)
 
     def force(self, record, values):
         return super().force(record, values) + values["m"] * record.acceleration
@@ -262,8 +265,14 @@ class BoucWenNonsymmetric(Model):
     def linear_terms(self, record, values):
         z = self.hysteretic_state(record, values)
         u, v = self.control(record), record.velocity
-        return {"c0": v, "k0": record.displacement, "alpha": z, "f0": np.ones_like(v), "c0_u": u * v,
-                "alpha_u": u * z}, np.zeros_like(v)
+        return {
+            "c0": v,
+            "k0": record.displacement,
+            "alpha": z,
+            "f0": np.ones_like(v),
+            "c0_u": u * v,
+            "alpha_u": u * z,
+        }, np.zeros_like(v)
 
     def force(self, record, values):
         cols, rest = self.linear_terms(record, values)
@@ -306,14 +315,19 @@ class BoucWenAmplitude(BoucWen):
     control_parameters = ("c4", "c5", "c6", "k4", "k5", "k6", "alpha4", "alpha5", "alpha6")
     linear_parameters = ("c1", "c2", "c3", "k1", "k2", "k3", "alpha1", "alpha2", "alpha3") + control_parameters
     parameters = (
-        *(Parameter(f"c{j}", "N*s/m", 5300.0 if j == 1 else 0.0, -1e12, 1e12,
-                    f"viscous damping law, coefficient {j}") for j in range(1, 7)),
+        *(
+            Parameter(f"c{j}", "N*s/m", 5300.0 if j == 1 else 0.0, -1e12, 1e12, f"viscous damping law, coefficient {j}")
+            for j in range(1, 7)
+        ),
         *(Parameter(f"k{j}", "N/m", 0.0, -1e12, 1e12, f"stiffness law, coefficient {j}") for j in range(1, 7)),
-        *(Parameter(f"alpha{j}", "N/m", 96300.0 if j == 1 else 0.0, -1e14, 1e14,
-                    f"hysteretic scale law, coefficient {j}") for j in range(1, 7)),
+        *(
+            Parameter(
+                f"alpha{j}", "N/m", 96300.0 if j == 1 else 0.0, -1e14, 1e14, f"hysteretic scale law, coefficient {j}"
+            )
+            for j in range(1, 7)
+        ),
         *_hysteresis_parameters(),
-        Parameter("x_a", "m", 0.01, 0.0, 10.0, "stroke amplitude of the test (a priori: the record's)",
-                  fitted=False),
+        Parameter("x_a", "m", 0.01, 0.0, 10.0, "stroke amplitude of the test (a priori: the record's)", fitted=False),
     )
 
     def standard(self, values):
@@ -322,8 +336,16 @@ class BoucWenAmplitude(BoucWen):
 
         def law(p, j0):
             return values[f"{p}{j0}"] + values[f"{p}{j0 + 1}"] * xa + values[f"{p}{j0 + 2}"] * xa**2
-        return {"c0a": law("c", 1), "c0b": law("c", 4), "k0": law("k", 1), "alpha_a": law("alpha", 1),
-                "alpha_b": law("alpha", 4), "x0": 0.0, **{k: values[k] for k in ("beta", "gamma", "delta", "n")}}
+
+        return {
+            "c0a": law("c", 1),
+            "c0b": law("c", 4),
+            "k0": law("k", 1),
+            "alpha_a": law("alpha", 1),
+            "alpha_b": law("alpha", 4),
+            "x0": 0.0,
+            **{k: values[k] for k in ("beta", "gamma", "delta", "n")},
+        }
 
     def force(self, record, values):
         std = self.standard(values)
@@ -343,8 +365,12 @@ class BoucWenAmplitude(BoucWen):
 
     def initial_guess(self, record):
         g = super().initial_guess(record)
-        out = {**self.defaults(), **{k: g[k] for k in ("beta", "gamma", "delta", "n")},
-               "c1": g["c0a"], "alpha1": g["alpha_a"]}
+        out = {
+            **self.defaults(),
+            **{k: g[k] for k in ("beta", "gamma", "delta", "n")},
+            "c1": g["c0a"],
+            "alpha1": g["alpha_a"],
+        }
         out["x_a"] = record_amplitude(record)
         return out
 
@@ -488,8 +514,7 @@ class BoucWenDominguezCFA(BoucWenDominguez):
         Parameter("d2", "", 0.0, -5.0, 5.0, "frequency exponent"),
         Parameter("d3", "", 1.0, 1e-9, 1e9, "amplitude factor (redundant with d1: held)", fitted=False),
         Parameter("d4", "", 0.0, -5.0, 5.0, "amplitude exponent"),
-        Parameter("frequency", "Hz", 1.0, 1e-6, 1e4, "excitation frequency (a priori: the record's)",
-                  fitted=False),
+        Parameter("frequency", "Hz", 1.0, 1e-6, 1e4, "excitation frequency (a priori: the record's)", fitted=False),
         Parameter("x_max", "m", 0.01, 1e-9, 10.0, "excitation amplitude (a priori: the record's)", fitted=False),
     )
 
@@ -502,6 +527,7 @@ class BoucWenDominguezCFA(BoucWenDominguez):
             lo = values[f"{p}4"] + (values[f"{p}1"] - values[f"{p}4"]) * u / uc
             hi = _saturating(values[f"{p}1"], values[f"{p}2"], values[f"{p}3"], u - uc)
             return np.where(high, hi, lo)
+
         c0 = piecewise("c")
         al = np.maximum(piecewise("alpha"), 1e-12)
         Fz0 = values["F_z04"] + (values["F_z01"] - values["F_z04"]) * u / uc
@@ -510,14 +536,23 @@ class BoucWenDominguezCFA(BoucWenDominguez):
         return c0, values["k1"] + values["k2"] * u, al, ga, Fz0
 
     def force(self, record, values):
-        scale = values["d1"] * (2 * np.pi * values["frequency"]) ** values["d2"] * values["d3"] \
+        scale = (
+            values["d1"]
+            * (2 * np.pi * values["frequency"]) ** values["d2"]
+            * values["d3"]
             * values["x_max"] ** values["d4"]
+        )
         return scale * super().force(record, values)
 
     def initial_guess(self, record):
         g = {**self.defaults(), **super().initial_guess(record)}
-        g.update(c4=g["c1"], alpha4=g["alpha1"], F_z04=g["F_z01"], frequency=max(record_frequency(record), 1e-6),
-                 x_max=max(record_amplitude(record), 1e-9))
+        g.update(
+            c4=g["c1"],
+            alpha4=g["alpha1"],
+            F_z04=g["F_z01"],
+            frequency=max(record_frequency(record), 1e-6),
+            x_max=max(record_amplitude(record), 1e-9),
+        )
         return g
 
 
@@ -548,8 +583,9 @@ class BoucWenAsymmetricSigmoid(BoucWenModified):
     source = "the MR-model review eqs 17, 34-35 (Table 1: eqs 17, 33; Ma et al.)"
     control_parameters = ("k2", "a2", "I0")
     linear_parameters = ()
-    parameters = tuple(p for p in BoucWenModified.parameters
-                       if p.name not in ("c0b", "c1b", "alpha_b", "alpha_c", "eta")) + (
+    parameters = tuple(
+        p for p in BoucWenModified.parameters if p.name not in ("c0b", "c1b", "alpha_b", "alpha_c", "eta")
+    ) + (
         Parameter("k2", "", 0.0, 0.0, 1e4, "gain of the sigmoid current function"),
         Parameter("a2", "", 1.0, 1e-6, 1e4, "slope of the sigmoid current function"),
         Parameter("I0", "", 0.0, -1e3, 1e3, "bias of the sigmoid current function"),
@@ -603,8 +639,10 @@ class BoucWenModifiedNormalized(BoucWenModified):
     name = "bouc_wen_modified_normalized"
     title = "normalised phenomenological model (Bai)"
     source = "the MR-model review eqs 17, 55 (Table 1: eqs 17, 51; Bai et al.)"
-    parameters = tuple(p for p in BoucWenModified.parameters if p.name not in ("beta", "gamma", "delta", "n")) \
+    parameters = (
+        tuple(p for p in BoucWenModified.parameters if p.name not in ("beta", "gamma", "delta", "n"))
         + _NORMALIZED_SHAPE
+    )
 
     def states(self, record, values):
         beta, gamma, delta = _normalized_shape(values)
@@ -615,8 +653,7 @@ class BoucWenModifiedNormalized(BoucWenModified):
         if record.force is not None:
             fy, c0, _, X = _bw_guess(record, g)
             # z saturates at 1 after a travel of about X / 10
-            g.update(c0a=max(c0, 10.0), c1a=15.0 * max(c0, 10.0), alpha_a=fy, rho=10.0 / X, sigma=1.0, k0=0.0,
-                     k1=0.0)
+            g.update(c0a=max(c0, 10.0), c1a=15.0 * max(c0, 10.0), alpha_a=fy, rho=10.0 / X, sigma=1.0, k0=0.0, k1=0.0)
         return g
 
 
@@ -657,15 +694,25 @@ class BoucWenRestructured(Model):
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
         Parameter("alpha_u", "N", 0.0, -1e7, 1e7, "hysteretic amplitude per unit control"),
         Parameter("c0_u", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
-        Parameter("eta", "1/s", 1e6, 1e-3, 1e9, "rate of the first-order control filter (fast: none)",
-                  log_scale=True),
+        Parameter("eta", "1/s", 1e6, 1e-3, 1e9, "rate of the first-order control filter (fast: none)", log_scale=True),
     )
 
     def states(self, record, values):
         beta, gamma, delta = _normalized_shape(values)
-        return modified_bouc_wen(record.time, record.displacement, self.control(record), values["eta"],
-                                 (values["alpha"], values["alpha_u"], 0.0), (0.0, 0.0), (values["c1"], 0.0), 0.0,
-                                 beta, gamma, delta, values["n"])
+        return modified_bouc_wen(
+            record.time,
+            record.displacement,
+            self.control(record),
+            values["eta"],
+            (values["alpha"], values["alpha_u"], 0.0),
+            (0.0, 0.0),
+            (values["c1"], 0.0),
+            0.0,
+            beta,
+            gamma,
+            delta,
+            values["n"],
+        )
 
     def linear_terms(self, record, values):
         uf, _w, z = self.states(record, values)
@@ -731,8 +778,16 @@ class BoucWenNormalizedII(Model):
         z = bouc_wen_state(record.displacement, 0.0, g, g, 2.0)
         s = np.sqrt(np.abs(self.control(record)))
         x, v = record.displacement, record.velocity
-        return {"c1": v, "c2": s * v, "k1": x, "k2": s * x, "rho1": z, "rho2": s * z,
-                "rho3": np.sqrt(np.abs(v)) * z, "f0": np.ones_like(v)}, np.zeros_like(v)
+        return {
+            "c1": v,
+            "c2": s * v,
+            "k1": x,
+            "k2": s * x,
+            "rho1": z,
+            "rho2": s * z,
+            "rho3": np.sqrt(np.abs(v)) * z,
+            "f0": np.ones_like(v),
+        }, np.zeros_like(v)
 
     def force(self, record, values):
         cols, rest = self.linear_terms(record, values)
@@ -774,19 +829,32 @@ class BoucWenModifiedPolynomial(BoucWenModified):
     _laws = (("alpha", "alpha_a", "N/m", 1e10), ("c0", "c0a", "N*s/m", 1e8), ("c1", "c1a", "N*s/m", 1e9))
     control_parameters = tuple(f"{p}_{j}" for p, *_ in _laws for j in (1, 2, 3)) + ("eta",)
     linear_parameters = ("k1",)
-    parameters = tuple(p for p in BoucWenModified.parameters
-                       if p.name not in ("c0b", "c1b", "alpha_b", "alpha_c")) + tuple(
+    parameters = tuple(
+        p for p in BoucWenModified.parameters if p.name not in ("c0b", "c1b", "alpha_b", "alpha_c")
+    ) + tuple(
         Parameter(f"{p}_{j}", unit, 0.0, -bound, bound, f"{p} per unit control to the power {j}")
-        for p, _, unit, bound in _laws for j in (1, 2, 3))
+        for p, _, unit, bound in _laws
+        for j in (1, 2, 3)
+    )
 
     def _coefficients(self, values, p, const):
         return (values[const],) + tuple(values[f"{p}_{j}"] for j in (1, 2, 3))
 
     def states(self, record, values):
-        return modified_bouc_wen(record.time, record.displacement, self.control(record), values["eta"],
-                                 self._coefficients(values, "alpha", "alpha_a"),
-                                 self._coefficients(values, "c0", "c0a"), self._coefficients(values, "c1", "c1a"),
-                                 values["k0"], values["beta"], values["gamma"], values["delta"], values["n"])
+        return modified_bouc_wen(
+            record.time,
+            record.displacement,
+            self.control(record),
+            values["eta"],
+            self._coefficients(values, "alpha", "alpha_a"),
+            self._coefficients(values, "c0", "c0a"),
+            self._coefficients(values, "c1", "c1a"),
+            values["k0"],
+            values["beta"],
+            values["gamma"],
+            values["delta"],
+            values["n"],
+        )
 
     def force(self, record, values):
         uf, w, z = self.states(record, values)
@@ -794,6 +862,7 @@ class BoucWenModifiedPolynomial(BoucWenModified):
         def poly(p, const):
             a0, a1, a2, a3 = self._coefficients(values, p, const)
             return a0 + (a1 + (a2 + a3 * uf) * uf) * uf
+
         al, c0, c1 = poly("alpha", "alpha_a"), poly("c0", "c0a"), poly("c1", "c1a")
         ydot = (al * z + c0 * record.velocity + values["k0"] * w) / (c0 + c1)
         return c1 * ydot + values["k1"] * (record.displacement - values["x0"])
@@ -849,8 +918,10 @@ class BoucWenNormalizedBahar(Model):
         Parameter("rho_b", "1/m", 0.0, -1e7, 1e7, "rate change at 0 V (decays as exp(-14 v))"),
         Parameter("sigma_a", "", 1.0, 0.5, 50.0, "loop shape at high voltage"),
         Parameter("sigma_b", "", 0.0, -0.5, 50.0, "loop shape change at 0 V (decays as exp(-14 v))"),
-        *(Parameter(f"k_w{j}", "N", 500.0 if j in (1, 3, 6) else 0.0, -1e7, 1e7, f"hysteretic force law, term {j}")
-          for j in range(1, 10)),
+        *(
+            Parameter(f"k_w{j}", "N", 500.0 if j in (1, 3, 6) else 0.0, -1e7, 1e7, f"hysteretic force law, term {j}")
+            for j in range(1, 10)
+        ),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
     )
 
@@ -875,8 +946,17 @@ class BoucWenNormalizedBahar(Model):
         low, mid, high = v <= 0.3, (v > 0.3) & (v <= 0.7), v > 0.7
         s1 = np.sin(np.pi * (v - 0.3) / 0.8)
         s3 = np.sin(3.0 * np.pi * (v - 0.3) / 0.8)
-        return {"k_w1": 1.0 * low, "k_w2": low * v**1.13, "k_w3": 1.0 * mid, "k_w4": mid * s1, "k_w5": mid * s3,
-                "k_w6": 1.0 * high, "k_w7": high * v, "k_w8": high * v**3, "k_w9": high * v**5}
+        return {
+            "k_w1": 1.0 * low,
+            "k_w2": low * v**1.13,
+            "k_w3": 1.0 * mid,
+            "k_w4": mid * s1,
+            "k_w5": mid * s3,
+            "k_w6": 1.0 * high,
+            "k_w7": high * v,
+            "k_w8": high * v**3,
+            "k_w9": high * v**5,
+        }
 
     def linear_terms(self, record, values):
         v = np.maximum(self.control(record), 0.0)

@@ -57,13 +57,17 @@ class Chebyshev(Model):
 
     def __init__(self, degree: int = 3, control_degree: int = 1):
         if int(degree) < 1 or int(control_degree) < 0:
-            raise ErdesignError(f"Chebyshev: degree must be >= 1 and control_degree >= 0, got {degree}, "
-                                f"{control_degree}")
+            raise ErdesignError(
+                f"Chebyshev: degree must be >= 1 and control_degree >= 0, got {degree}, {control_degree}"
+            )
         self.degree = int(degree)
         self.control_degree = int(control_degree)
-        coeffs = tuple(Parameter(f"C_{i}_{j}_{k}", "N", 0.0, -1e9, 1e9, f"coefficient of T{i}(x') T{j}(v') T{k}(u')")
-                       for k in range(self.control_degree + 1) for i in range(self.degree + 1)
-                       for j in range(self.degree + 1))
+        coeffs = tuple(
+            Parameter(f"C_{i}_{j}_{k}", "N", 0.0, -1e9, 1e9, f"coefficient of T{i}(x') T{j}(v') T{k}(u')")
+            for k in range(self.control_degree + 1)
+            for i in range(self.degree + 1)
+            for j in range(self.degree + 1)
+        )
         scales = (
             Parameter("x_c", "m", 0.0, -10.0, 10.0, "centre of the displacement range", fitted=False),
             Parameter("x_s", "m", 0.01, 1e-12, 10.0, "half range of the displacement", fitted=False),

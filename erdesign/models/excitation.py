@@ -58,6 +58,9 @@ def warn_if_multi_amplitude(record, what: str, quantity: str = "velocity", toler
     peaks = cycle_peaks(y, ref)
     inner = peaks[1:-1] if peaks.size > 3 else peaks  # the first and last half cycles are usually partial
     if inner.size >= 2 and inner.max() > 0 and (inner.max() - inner.min()) / inner.max() > tolerance:
-        warnings.warn(f"{what}: the record's {quantity} peaks range from {inner.min():.3g} to {inner.max():.3g} "
-                      f"(SI) - it is not one harmonic test, so the single {quantity} scale this model takes "
-                      f"describes only part of it; give the scale explicitly or split the record", stacklevel=3)
+        warnings.warn(
+            f"{what}: the record's {quantity} peaks range from {inner.min():.3g} to {inner.max():.3g} "
+            f"(SI) - it is not one harmonic test, so the single {quantity} scale this model takes "
+            f"describes only part of it; give the scale explicitly or split the record",
+            stacklevel=3,
+        )

@@ -100,8 +100,13 @@ class Dahl(Model):
     def linear_terms(self, record, values):
         z = dahl_state(record.displacement, values["rho"])
         v = record.velocity
-        return {"k0": record.displacement, "c0": v, "f_d": z, "f0": np.ones_like(v),
-                "f_d_u": self.control(record) * z}, np.zeros_like(v)
+        return {
+            "k0": record.displacement,
+            "c0": v,
+            "f_d": z,
+            "f0": np.ones_like(v),
+            "f_d_u": self.control(record) * z,
+        }, np.zeros_like(v)
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -150,7 +155,6 @@ class DahlViscous(ControlAffineModel):
         w = dahl_state(record.displacement, values["rho"])
         v = record.velocity
         return values["k_x"] * v + values["k_w"] * w + values["f0"], values["k_x_u"] * v + values["k_w_u"] * w
-
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -256,8 +260,7 @@ class LuGreModified(ControlAffineModel):
     requires_control = True
     linear_parameters = ("sigma1", "sigma2", "sigma_a", "sigma_b", "f0")
     parameters = (
-        Parameter("sigma0", "N/m", 1e6, 1.0, 1e11, "bristle stiffness (per unit control in the force)",
-                  log_scale=True),
+        Parameter("sigma0", "N/m", 1e6, 1.0, 1e11, "bristle stiffness (per unit control in the force)", log_scale=True),
         Parameter("sigma1", "N*s/m", 0.0, 0.0, 1e8, "bristle damping"),
         Parameter("sigma2", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
         Parameter("sigma_a", "N/m", 0.0, -1e11, 1e11, "control-independent bristle stiffness"),
@@ -350,8 +353,15 @@ class DahlAsymmetric(ControlAffineModel):
         w = dahl_state(record.displacement, values["rho"])
         pos_v, pos_w = v >= 0, w >= 0
         u = self.control(record)
-        return {"k_x1": v * pos_v, "k_x2": v * ~pos_v, "k_w1": w * pos_w, "k_w2": w * ~pos_w,
-                "f0": np.ones_like(v), "k_x_u": u * v, "k_w_u": u * w}, np.zeros_like(v)
+        return {
+            "k_x1": v * pos_v,
+            "k_x2": v * ~pos_v,
+            "k_w1": w * pos_w,
+            "k_w2": w * ~pos_w,
+            "f0": np.ones_like(v),
+            "k_x_u": u * v,
+            "k_w_u": u * w,
+        }, np.zeros_like(v)
 
     def control_affine(self, record, values):
         cols, _ = self.linear_terms(record, values)
@@ -362,5 +372,12 @@ class DahlAsymmetric(ControlAffineModel):
 
     def initial_guess(self, record):
         g = DahlViscous().initial_guess(record)
-        return {**self.defaults(), "k_x1": g["k_x"], "k_x2": g["k_x"], "k_w1": g["k_w"], "k_w2": g["k_w"],
-                "rho": g["rho"], "f0": g["f0"]}
+        return {
+            **self.defaults(),
+            "k_x1": g["k_x"],
+            "k_x2": g["k_x"],
+            "k_w1": g["k_w"],
+            "k_w2": g["k_w"],
+            "rho": g["rho"],
+            "f0": g["f0"],
+        }

@@ -65,8 +65,9 @@ class ZhaoDeadZone(Model):
     )
 
     def force(self, record, values):
-        eta = extended_bingham_force(record.time, record.displacement, 1.0 / values["k"], values["x0"], 1e300, 1.0,
-                                     values["k_i"])
+        eta = extended_bingham_force(
+            record.time, record.displacement, 1.0 / values["k"], values["x0"], 1e300, 1.0, values["k_i"]
+        )
         return eta - values["a"] * record.velocity + values["b"]
 
     def initial_guess(self, record):
@@ -136,8 +137,13 @@ class ZhaoXuSigmoid(Model):
         v = record.velocity
         s = values["delta"] * (v - values["v_n"] * np.sign(record.acceleration))
         Fys = values["F_ys"] + values["F_ys_u"] * self.control(record)
-        return Fys * np.tanh(0.5 * s) + np.sign(v) * values["F_sc"] * (1.0 - np.exp(-np.abs(v / values["v_s"]))) \
-            + values["k0"] * record.displacement + values["c0"] * v + values["f0"]
+        return (
+            Fys * np.tanh(0.5 * s)
+            + np.sign(v) * values["F_sc"] * (1.0 - np.exp(-np.abs(v / values["v_s"])))
+            + values["k0"] * record.displacement
+            + values["c0"] * v
+            + values["f0"]
+        )
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -188,9 +194,12 @@ class YuanTanh(Model):
     def force(self, record, values):
         v, x = record.velocity, record.displacement
         T = values["T"] + values["T_u"] * self.control(record)
-        return values["c"] * np.exp(-values["A"] * np.abs(v)) * v + T * np.tanh(values["alpha"] * v
-                                                                               + values["beta"] * x) \
-            + values["K"] * x + values["F0"]
+        return (
+            values["c"] * np.exp(-values["A"] * np.abs(v)) * v
+            + T * np.tanh(values["alpha"] * v + values["beta"] * x)
+            + values["K"] * x
+            + values["F0"]
+        )
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -248,7 +257,7 @@ class YuDivision(Model):
         s = np.abs(v)
         a = values["a"] + values["a_u"] * self.control(record)
         backbone = a * (1.0 - np.exp(-values["b"] * s)) / (1.0 + np.exp(-values["c"] * s)) * np.sign(v)
-        branch = values["d"] * np.exp(-((s - values["e"]) / values["f"]) ** 2)
+        branch = values["d"] * np.exp(-(((s - values["e"]) / values["f"]) ** 2))
         return backbone + np.where(record.acceleration >= 0, 1.0, -1.0) * branch + values["f0"]
 
     def initial_guess(self, record):
@@ -310,8 +319,13 @@ class HeUnified(Model):
         B, E = values["B_b"], values["E_b"]
         Db = values["D_b"] + values["D_b_u"] * self.control(record)
         shear = Db * np.sin(values["C_b"] * np.arctan(B * (1.0 - E) * v + E * np.arctan(B * v)))
-        return values["A"] * np.where(record.acceleration > 0, 1.0, -1.0) + values["k"] * (
-            record.displacement - values["x0"]) + values["c"] * v + values["n"] * record.acceleration + shear
+        return (
+            values["A"] * np.where(record.acceleration > 0, 1.0, -1.0)
+            + values["k"] * (record.displacement - values["x0"])
+            + values["c"] * v
+            + values["n"] * record.acceleration
+            + shear
+        )
 
     def initial_guess(self, record):
         g = self.defaults()

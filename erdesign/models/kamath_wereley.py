@@ -22,8 +22,17 @@ from .excitation import warn_if_multi_amplitude
 __all__ = ["KamathWereley4", "KamathWereley6", "jeffreys_force", "KAMATH_WERELEY_TABLE1", "ViscoelasticPlasticPang"]
 
 #: Kamath and Wereley (1997) Table 1, case 2 (E = 3 kV/mm, X0 = 1.0 mm), augmented model, SI units.
-KAMATH_WERELEY_TABLE1 = {"C1": 0.978e4, "C2": 1.253e4, "K1": 1.453e5, "Cv": 1.914e3, "R": 5.292, "F_c": 4.810,
-                         "alpha_y": 0.40, "eps_y": 0.10, "eps_c": 0.30}
+KAMATH_WERELEY_TABLE1 = {
+    "C1": 0.978e4,
+    "C2": 1.253e4,
+    "K1": 1.453e5,
+    "Cv": 1.914e3,
+    "R": 5.292,
+    "F_c": 4.810,
+    "alpha_y": 0.40,
+    "eps_y": 0.10,
+    "eps_c": 0.30,
+}
 
 
 def jeffreys_force(t, v, C1, C2, K1):
@@ -122,8 +131,15 @@ class KamathWereley6(Model):
         Parameter("eps_y", "", 0.10, 1e-3, 1.0, "width of the yield transition", fitted=False),
         Parameter("eps_c", "", 0.30, 1e-3, 1.0, "width of the stiction transition", fitted=False),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
-        Parameter("v_ref", "m/s", 0.0, 0.0, 1e3, "velocity amplitude that scales alpha and S_c (0: the record's "
-                  "peak speed)", fitted=False),
+        Parameter(
+            "v_ref",
+            "m/s",
+            0.0,
+            0.0,
+            1e3,
+            "velocity amplitude that scales alpha and S_c (0: the record's peak speed)",
+            fitted=False,
+        ),
     )
 
     def force(self, record, values):
@@ -139,7 +155,7 @@ class KamathWereley6(Model):
 
     def initial_guess(self, record):
         g = self.defaults()
-        g["v_ref"] = float(np.max(np.abs(record.velocity)))   # explicit: identification reports the scale it used
+        g["v_ref"] = float(np.max(np.abs(record.velocity)))  # explicit: identification reports the scale it used
         if record.force is not None:
             v = record.velocity
             c = float(np.dot(v, record.force - record.force.mean()) / max(np.dot(v, v), 1e-300))
@@ -184,8 +200,15 @@ class KamathWereley4(KamathWereley6):
         Parameter("alpha_y", "", 0.40, 0.0, 1.0, "yield point, dimensionless velocity", fitted=False),
         Parameter("eps_y", "", 0.10, 1e-3, 1.0, "width of the yield transition", fitted=False),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
-        Parameter("v_ref", "m/s", 0.0, 0.0, 1e3, "velocity amplitude that scales alpha (0: the record's peak speed)",
-                  fitted=False),
+        Parameter(
+            "v_ref",
+            "m/s",
+            0.0,
+            0.0,
+            1e3,
+            "velocity amplitude that scales alpha (0: the record's peak speed)",
+            fitted=False,
+        ),
     )
 
     def force(self, record, values):
@@ -257,8 +280,12 @@ class ViscoelasticPlasticPang(Model):
         s_ve = 0.5 * (1.0 - np.tanh((np.abs(v) - values["v_y"]) / (4.0 * values["eps_y"])))
         s_c = np.tanh(v / (4.0 * values["eps_y"]))
         Fc = values["F_c"] + values["F_c_u"] * self.control(record)
-        return s_ve * (values["c_ve"] * v + values["k_ve"] * x) + (1.0 - s_ve) * values["c_vi"] * v + s_c * Fc \
+        return (
+            s_ve * (values["c_ve"] * v + values["k_ve"] * x)
+            + (1.0 - s_ve) * values["c_vi"] * v
+            + s_c * Fc
             + values["f0"]
+        )
 
     def initial_guess(self, record):
         g = self.defaults()
@@ -267,6 +294,13 @@ class ViscoelasticPlasticPang(Model):
             A = np.column_stack([np.sign(v), v, np.ones_like(v)])
             (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
             vmax = float(np.max(np.abs(v))) or 1.0
-            g.update(F_c=float(max(fy, 0.0)), c_vi=float(max(c, 0.0)), f0=float(f0), v_y=0.1 * vmax,
-                     eps_y=0.02 * vmax, c_ve=float(max(fy, 1.0)) / (0.1 * vmax), k_ve=0.0)
+            g.update(
+                F_c=float(max(fy, 0.0)),
+                c_vi=float(max(c, 0.0)),
+                f0=float(f0),
+                v_y=0.1 * vmax,
+                eps_y=0.02 * vmax,
+                c_ve=float(max(fy, 1.0)) / (0.1 * vmax),
+                k_ve=0.0,
+            )
         return g

@@ -81,6 +81,7 @@ class SimsLumped(Model):
 
         def law(p):
             return values[f"{p}_a"] + values[f"{p}_b"] * np.tanh(values[f"{p}_c"] * u)
+
         C_post = np.maximum(law("C_post"), 0.0)
         return np.maximum(law("C_pre"), C_post + 1e-9), C_post, np.maximum(law("F_y"), 0.0)
 
@@ -151,8 +152,17 @@ class Bass(Model):
         u = self.control(record)
         fy = values["f_y"] + values["f_y_u"] * u
         x = record.displacement - record.displacement[0]
-        return mass_on_damper(record.time, x, m=values["m0"], k1=values["k1"], c1=values["c1"], k0=values["k0"],
-                              c=values["c0"], f_t=np.maximum(fy, 0.0), v_ref=values["v_ref"])
+        return mass_on_damper(
+            record.time,
+            x,
+            m=values["m0"],
+            k1=values["k1"],
+            c1=values["c1"],
+            k0=values["k0"],
+            c=values["c0"],
+            f_t=np.maximum(fy, 0.0),
+            v_ref=values["v_ref"],
+        )
 
     def force(self, record, values):
         x0, v0 = self.states(record, values)

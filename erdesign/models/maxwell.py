@@ -280,18 +280,18 @@ class MaxwellNeural(Maxwell):
 def _mlp(w, q, hidden):
     """Single hidden layer tanh network; w = [W (hidden x k), b (hidden), out (hidden), out_bias]."""
     k = q.shape[1]
-    W = w[:hidden * k].reshape(hidden, k)
-    b = w[hidden * k:hidden * (k + 1)]
-    out = w[hidden * (k + 1):hidden * (k + 2)]
+    W = w[: hidden * k].reshape(hidden, k)
+    b = w[hidden * k : hidden * (k + 1)]
+    out = w[hidden * (k + 1) : hidden * (k + 2)]
     return np.tanh(q @ W.T + b) @ out + w[-1]
 
 
 def _mlp_jacobian(w, q, hidden):
     """d output / d weights of :func:`_mlp`, shape (samples, weights)."""
     n, k = q.shape
-    W = w[:hidden * k].reshape(hidden, k)
-    b = w[hidden * k:hidden * (k + 1)]
-    out = w[hidden * (k + 1):hidden * (k + 2)]
+    W = w[: hidden * k].reshape(hidden, k)
+    b = w[hidden * k : hidden * (k + 1)]
+    out = w[hidden * (k + 1) : hidden * (k + 2)]
     h = np.tanh(q @ W.T + b)
     g = (1.0 - h**2) * out  # d output / d pre-activation
     dW = (g[:, :, None] * q[:, None, :]).reshape(n, hidden * k)

@@ -59,6 +59,9 @@ class Powell(Model):
         v, a, z = record.velocity, record.acceleration, record.displacement
         sm = np.tanh(values["e"] * v)
         speeding = v * a >= 0
-        fc = np.where(speeding, (values["f_cs"] + values["f_cd"] * np.exp(-values["a"] * np.abs(v))) * sm,
-                      values["f_cd"] * (1.0 - np.exp(-values["b"] * np.abs(v))) * sm)
+        fc = np.where(
+            speeding,
+            (values["f_cs"] + values["f_cd"] * np.exp(-values["a"] * np.abs(v))) * sm,
+            values["f_cd"] * (1.0 - np.exp(-values["b"] * np.abs(v))) * sm,
+        )
         return fc + values["k"] * np.tanh(values["d"] * z) + values["c"] * v + values["f0"]

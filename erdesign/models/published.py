@@ -25,8 +25,14 @@ from typing import Mapping
 
 from .base import Model, ParameterError
 
-__all__ = ["PublishedSet", "published_set", "published_sets", "parse_parameter_values", "parse_parameter_list",
-           "PUBLISHED_FILE"]
+__all__ = [
+    "PublishedSet",
+    "published_set",
+    "published_sets",
+    "parse_parameter_values",
+    "parse_parameter_list",
+    "PUBLISHED_FILE",
+]
 
 PUBLISHED_FILE = Path(__file__).with_name("published.toml")
 
@@ -63,24 +69,35 @@ def published_sets(model_name: str | None = None) -> list[tuple[str, str]]:
 def published_set(model_name: str, set_name: str) -> PublishedSet:
     """The published set ``set_name`` of the model ``model_name``, in SI (raises naming the known sets)."""
     from .registry import get_model
+
     sets = _table().get(model_name, {})
     if set_name not in sets:
         known = ", ".join(f"{s} ({m})" for m, s in published_sets()) or "none"
-        raise ParameterError(f"--params: no published set {set_name!r} for model {model_name}; published sets: "
-                             f"{known}")
+        raise ParameterError(f"--params: no published set {set_name!r} for model {model_name}; published sets: {known}")
     entry = sets[set_name]
     kind = entry.get("control")
     reference = 1.0
     if kind is not None:
         from ..fluid import CONTROL_UNITS
         from ..units import Q_
+
         reference = float(Q_(entry["control_reference"]).to(CONTROL_UNITS[kind]).magnitude)
     printed = {k: v["value"] for k, v in entry["parameters"].items()}
     model = get_model(model_name)
-    values = parse_parameter_values(model, printed, control_kind=kind, control_reference=reference,
-                                    where=f"{model_name}.{set_name}")
-    return PublishedSet(set_name, model_name, entry["source"], values, kind, reference, entry.get("note", ""),
-                        {k: v.get("source", "") for k, v in entry["parameters"].items()}, printed)
+    values = parse_parameter_values(
+        model, printed, control_kind=kind, control_reference=reference, where=f"{model_name}.{set_name}"
+    )
+    return PublishedSet(
+        set_name,
+        model_name,
+        entry["source"],
+        values,
+        kind,
+        reference,
+        entry.get("note", ""),
+        {k: v.get("source", "") for k, v in entry["parameters"].items()},
+        printed,
+    )
 
 
 def parse_parameter_list(text: str, where: str = "--params") -> dict[str, str]:
@@ -101,8 +118,14 @@ def parse_parameter_list(text: str, where: str = "--params") -> dict[str, str]:
     return out
 
 
-def parse_parameter_values(model: Model, texts: Mapping[str, str | float], *, control_kind: str | None = None,
-                           control_reference: float = 1.0, where: str = "--params") -> dict[str, float]:
+def parse_parameter_values(
+    model: Model,
+    texts: Mapping[str, str | float],
+    *,
+    control_kind: str | None = None,
+    control_reference: float = 1.0,
+    where: str = "--params",
+) -> dict[str, float]:
     """SI values of ``model``'s parameters from values with units.
 
     A value whose dimension is the parameter's is converted to the parameter's SI unit.  A coefficient per unit
@@ -112,6 +135,7 @@ def parse_parameter_values(model: Model, texts: Mapping[str, str | float], *, co
     """
     from ..errors import ErdesignError
     from ..units import Q_, parse_quantity
+
     out: dict[str, float] = {}
     for name, text in texts.items():
         p = model.parameter(name)  # unknown names are errors naming the known ones
@@ -130,6 +154,7 @@ def parse_parameter_values(model: Model, texts: Mapping[str, str | float], *, co
             value = float(q.to(target.units).magnitude)
         elif control_kind is not None:
             from ..fluid import CONTROL_UNITS
+
             ref = Q_(control_reference, CONTROL_UNITS[control_kind])
             for power in (1, 2):
                 scaled = q * ref**power
@@ -138,8 +163,9 @@ def parse_parameter_values(model: Model, texts: Mapping[str, str | float], *, co
                     break
         if value is None:
             per = "" if control_kind is None else f" (or per unit {control_kind})"
-            raise ParameterError(f"{where}: {name} = {text!r} does not have the unit of {name}: {p.unit or 'none'}"
-                                 f"{per}")
+            raise ParameterError(
+                f"{where}: {name} = {text!r} does not have the unit of {name}: {p.unit or 'none'}{per}"
+            )
         out[name] = _finite(value, name, text, where)
     return out
 
@@ -152,4 +178,5 @@ def _finite(value: float, name: str, text, where: str) -> float:
 
 def _plain_number(text: str) -> bool:
     from ..units import plain_number
+
     return plain_number(text) is not None

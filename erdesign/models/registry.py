@@ -10,17 +10,36 @@ from __future__ import annotations
 from typing import Callable
 
 from ..errors import ErdesignError
-from .algebraic import (Balamurugan, ChengTanh, EyringPlastic, KwokTanh, MagicFormula, Metered, WengArctan, YangArctan,
-                        YangExponential)
+from .algebraic import (
+    Balamurugan,
+    ChengTanh,
+    EyringPlastic,
+    KwokTanh,
+    MagicFormula,
+    Metered,
+    WengArctan,
+    YangArctan,
+    YangExponential,
+)
 from .base import Model
-from .bingham import (Bingham, BinghamExtended, BinghamHysteretic, BinghamImproved, BinghamModified,
-                      BinghamRegularized)
+from .bingham import Bingham, BinghamExtended, BinghamHysteretic, BinghamImproved, BinghamModified, BinghamRegularized
 from .biviscous import ArctanHysteretic, Biviscous, BiviscousHysteretic
 from .bouc_wen import BoucWen, BoucWenModified, BoucWenNormalized
-from .bouc_wen_variants import (BoucWenAmplitude, BoucWenAsymmetricSigmoid, BoucWenDominguez, BoucWenDominguezCFA,
-                                BoucWenMass, BoucWenModifiedMass, BoucWenModifiedNormalized, BoucWenNonsymmetric,
-                                BoucWenModifiedPolynomial, BoucWenNormalizedBahar, BoucWenNormalizedII,
-                                BoucWenRestructured, BoucWenShear)
+from .bouc_wen_variants import (
+    BoucWenAmplitude,
+    BoucWenAsymmetricSigmoid,
+    BoucWenDominguez,
+    BoucWenDominguezCFA,
+    BoucWenMass,
+    BoucWenModifiedMass,
+    BoucWenModifiedNormalized,
+    BoucWenNonsymmetric,
+    BoucWenModifiedPolynomial,
+    BoucWenNormalizedBahar,
+    BoucWenNormalizedII,
+    BoucWenRestructured,
+    BoucWenShear,
+)
 from .chebyshev import Chebyshev
 from .friction import Dahl, DahlAsymmetric, DahlViscous, LuGre, LuGreModified
 from .general import HeUnified, YuanTanh, YuDivision, ZhaoDeadZone, ZhaoXuSigmoid
@@ -48,6 +67,7 @@ def _physics(damper=None, effects=(), **options) -> Model:
         raise UnknownModelError("physics: needs the damper (--damper DAMPER.toml on the command line)")
     if isinstance(damper, str) or hasattr(damper, "__fspath__"):
         from ..damper.files import load_damper
+
         damper = load_damper(damper)
     model = PhysicsDamper(damper, effects=tuple(effects), **options)
     if "yield_stress_factor" in model.parameter_names and not model.control_parameters:
@@ -126,8 +146,15 @@ MODELS: dict[str, Callable[..., Model]] = {
 #: normalised Bouc-Wen, Li's viscoelastic-plastic and Cheng's models), plus the physics damper.  Which models
 #: :mod:`erdesign.identification.inverse` inverts is :attr:`erdesign.models.base.Model.invertible` (a superset:
 #: every memoryless model with a control is inverted by a bracketed root).
-INVERTIBLE = ("kwok_tanh", "magic_formula", "lugre_modified", "bouc_wen_normalized", "li_viscoelastic_plastic",
-              "cheng_tanh", "physics")
+INVERTIBLE = (
+    "kwok_tanh",
+    "magic_formula",
+    "lugre_modified",
+    "bouc_wen_normalized",
+    "li_viscoelastic_plastic",
+    "cheng_tanh",
+    "physics",
+)
 
 
 def model_names() -> list[str]:
@@ -155,9 +182,15 @@ def describe_models(include_physics: bool = True) -> list[dict]:
     for name in MODELS:
         if name == "physics":
             if include_physics:
-                out.append({"name": "physics", "source": "the damper of a damper file with effects "
-                            "(erdesign.effects.chain; Makris eqs 1-16, Kamath-Wereley mixed mode)",
-                            "invertible": True, "parameters": []})
+                out.append(
+                    {
+                        "name": "physics",
+                        "source": "the damper of a damper file with effects "
+                        "(erdesign.effects.chain; Makris eqs 1-16, Kamath-Wereley mixed mode)",
+                        "invertible": True,
+                        "parameters": [],
+                    }
+                )
             continue
         out.append(get_model(name).describe())
     return out

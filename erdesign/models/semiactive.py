@@ -31,8 +31,15 @@ def _guess(defaults: dict, record) -> dict:
     vmax = float(np.max(np.abs(v))) or 1.0
     A = np.column_stack([np.sign(v), v, np.ones_like(v)])
     (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-    guess = {"f_f": float(fy), "c_p": float(max(c, 0.0)), "f0": float(f0), "v_f": 20.0 / vmax, "v_hz": 20.0 / vmax,
-             "v_hv": 20.0 / vmax, "v_py": 20.0 / vmax}
+    guess = {
+        "f_f": float(fy),
+        "c_p": float(max(c, 0.0)),
+        "f0": float(f0),
+        "v_f": 20.0 / vmax,
+        "v_hz": 20.0 / vmax,
+        "v_hv": 20.0 / vmax,
+        "v_py": 20.0 / vmax,
+    }
     for name in g:
         key = name.removesuffix("_pos").removesuffix("_neg")
         if key in guess:
@@ -118,9 +125,15 @@ class SemiactiveGeneral(Model):
 #: The terms of the general model (Vivas-López et al. eqs 3-5) -> their coefficients, in the order of eq 3 and 4;
 #: each is a model term of the paper's Table 2.
 TERMS: dict[str, tuple[str, ...]] = {
-    "offset": ("f0",), "viscous": ("c_p",), "stiffness": ("k_p",), "inertia": ("m_D",),
-    "friction": ("f_f", "v_f", "x_f"), "hysteresis_z": ("F_hz", "v_hz", "x_hz"),
-    "hysteresis_v": ("F_hv", "v_hv", "x_hv"), "gain": ("c_sa",), "preyield": ("v_py", "x_py"),
+    "offset": ("f0",),
+    "viscous": ("c_p",),
+    "stiffness": ("k_p",),
+    "inertia": ("m_D",),
+    "friction": ("f_f", "v_f", "x_f"),
+    "hysteresis_z": ("F_hz", "v_hz", "x_hz"),
+    "hysteresis_v": ("F_hv", "v_hv", "x_hv"),
+    "gain": ("c_sa",),
+    "preyield": ("v_py", "x_py"),
 }
 #: The customized model of Vivas-López et al. eq 6: every term but the two hysteresis terms.
 PAPER_TERMS = ("offset", "viscous", "stiffness", "inertia", "friction", "gain", "preyield")
@@ -131,9 +144,14 @@ _CONTROL = ("c_sa", "v_py", "x_py")
 def _bounded(p: Parameter, scales) -> Parameter:
     """``p`` with bounds from the records' peak force, speed and stroke (:class:`SemiactiveCustomized`)."""
     import dataclasses
-    limit = {"N": 10.0 * scales["force"], "s/m": 1000.0 / scales["speed"], "1/m": 100.0 / scales["stroke"],
-             "N*s/m": 100.0 * scales["force"] / scales["speed"], "N/m": 100.0 * scales["force"] / scales["stroke"]
-             }.get(p.unit)
+
+    limit = {
+        "N": 10.0 * scales["force"],
+        "s/m": 1000.0 / scales["speed"],
+        "1/m": 100.0 / scales["stroke"],
+        "N*s/m": 100.0 * scales["force"] / scales["speed"],
+        "N/m": 100.0 * scales["force"] / scales["stroke"],
+    }.get(p.unit)
     if limit is None:
         return p
     lower, upper = max(p.lower, -limit), min(p.upper, limit)
@@ -233,7 +251,9 @@ class SemiactiveCustomized(Model):
         else:
             bad = [n for n in asymmetric if n not in names]
             if bad:
-                raise ParameterError(f"asymmetric: {bad[0]!r} is not a coefficient of the terms {', '.join(self.terms)}")
+                raise ParameterError(
+                    f"asymmetric: {bad[0]!r} is not a coefficient of the terms {', '.join(self.terms)}"
+                )
             self.asymmetric = tuple(asymmetric)
         base = {p.name.removesuffix("_pos"): p for p in SemiactiveGeneral.parameters if not p.name.endswith("_neg")}
         if scales is not None:
@@ -247,11 +267,14 @@ class SemiactiveCustomized(Model):
                     what = p.description.removesuffix(", extension")
                     params.append(Parameter(n + side, p.unit, p.default, p.lower, p.upper, f"{what}, {word}"))
             else:
-                params.append(Parameter(n, p.unit, p.default, p.lower, p.upper,
-                                        p.description.removesuffix(", extension")))
+                params.append(
+                    Parameter(n, p.unit, p.default, p.lower, p.upper, p.description.removesuffix(", extension"))
+                )
         self.parameters = tuple(params)
+
         def base_name(n):
-            return (n.removesuffix("_pos").removesuffix("_neg"))
+            return n.removesuffix("_pos").removesuffix("_neg")
+
         self.linear_parameters = tuple(p.name for p in params if base_name(p.name) in _LINEAR)
         self.control_parameters = tuple(p.name for p in params if base_name(p.name) in _CONTROL)
 

@@ -242,15 +242,27 @@ class NonlinearStiffnessVEP(ContinuousVEP):
     )
 
     def _element(self, record, values, k, c, A, alpha):
-        return series_viscoplastic(record.time, record.displacement - record.displacement[0], k, c, A, alpha,
-                                   q=values["q"], n=values["n"], rho=values["rho"], d=values["d_opf"])
+        return series_viscoplastic(
+            record.time,
+            record.displacement - record.displacement[0],
+            k,
+            c,
+            A,
+            alpha,
+            q=values["q"],
+            n=values["n"],
+            rho=values["rho"],
+            d=values["d_opf"],
+        )
 
     def force(self, record, values):
         k0, c, A, alpha = self.laws(record, values)
         y, yd = self._element(record, values, k0, c, A, alpha)
         w = record.displacement - record.displacement[0] - y
-        k = values["q"] * np.abs(w - np.tanh(values["rho"] * (record.velocity - yd)) * values["d_opf"]) \
-            ** values["n"] + k0
+        k = (
+            values["q"] * np.abs(w - np.tanh(values["rho"] * (record.velocity - yd)) * values["d_opf"]) ** values["n"]
+            + k0
+        )
         return k * w + values["f0"]
 
 
@@ -309,8 +321,12 @@ class SVES(Model):
         return stop_operator(record.displacement, values["k2"], N)
 
     def force(self, record, values):
-        return values["k1"] * record.displacement + values["c"] * record.velocity \
-            + self.elasto_slide(record, values) + values["f0"]
+        return (
+            values["k1"] * record.displacement
+            + values["c"] * record.velocity
+            + self.elasto_slide(record, values)
+            + values["f0"]
+        )
 
     def initial_guess(self, record):
         g = self.defaults()

@@ -13,8 +13,14 @@ report contains), :mod:`~erdesign.report.formatting` (the one unit helper every 
 :mod:`~erdesign.report.render` (jinja2 templates in ``templates/``).
 """
 
-from ..damper.curves import (ForceVelocityCurves, SineLoops, VelocitySweep, force_velocity_curves, sine_loops,
-                              velocity_sweep)
+from ..damper.curves import (
+    ForceVelocityCurves,
+    SineLoops,
+    VelocitySweep,
+    force_velocity_curves,
+    sine_loops,
+    velocity_sweep,
+)
 from .builder import (
     Check,
     ErrorHistoryStep,
@@ -29,8 +35,24 @@ from .formatting import Shown, pick_unit, show
 from .render import render_html, render_markdown, write_report
 
 __all__ = [
-    "build_report", "render_html", "render_markdown", "write_report",
-    "Report", "Row", "InputRow", "Check", "Table", "MeasurementComparison", "ErrorHistoryStep",
-    "Shown", "show", "pick_unit",
-    "ForceVelocityCurves", "force_velocity_curves", "SineLoops", "sine_loops", "VelocitySweep", "velocity_sweep",
+    "build_report",
+    "render_html",
+    "render_markdown",
+    "write_report",
+    "Report",
+    "Row",
+    "InputRow",
+    "Check",
+    "Table",
+    "MeasurementComparison",
+    "ErrorHistoryStep",
+    "Shown",
+    "show",
+    "pick_unit",
+    "ForceVelocityCurves",
+    "force_velocity_curves",
+    "SineLoops",
+    "sine_loops",
+    "VelocitySweep",
+    "velocity_sweep",
 ]

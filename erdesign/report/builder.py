@@ -47,9 +47,29 @@ from ..units import Q_, parse_quantity, positive_si, to_si
 from .equations import Equation, equations_for
 from .formatting import Shown, pick_unit, show
 
-__all__ = ["Report", "Row", "InputRow", "Check", "Table", "FigureSpec", "MeasurementComparison", "tolerance_figures",
-           "ErrorHistoryStep", "build_report", "design_point_rows", "validity_checks", "report_grid",
-           "default_velocity_max", "report_units", "compare_designs", "relative_change", "with_baseline", "PLUG_FRACTION_LIMIT", "SEAL_SHARE_LIMIT", "DEFAULT_AMPLITUDE"]
+__all__ = [
+    "Report",
+    "Row",
+    "InputRow",
+    "Check",
+    "Table",
+    "FigureSpec",
+    "MeasurementComparison",
+    "tolerance_figures",
+    "ErrorHistoryStep",
+    "build_report",
+    "design_point_rows",
+    "validity_checks",
+    "report_grid",
+    "default_velocity_max",
+    "report_units",
+    "compare_designs",
+    "relative_change",
+    "with_baseline",
+    "PLUG_FRACTION_LIMIT",
+    "SEAL_SHARE_LIMIT",
+    "DEFAULT_AMPLITUDE",
+]
 
 #: Sine amplitude of the loops when none is given.
 DEFAULT_AMPLITUDE = "10 mm"
@@ -57,10 +77,15 @@ _VELOCITY_POINTS = 81
 _TABLE_POINTS = 11
 
 # Display of the SI units of each input key of a damper file.
-_GEOMETRY_SI = {"duct_length": "m", "duct_mean_diameter": "m", "gap": "m", "piston_diameter": "m",
-                "rod_diameter": "m"}
-_FLUID_SI = {"viscosity": "Pa*s", "yield_stress": "Pa", "density": "kg/m^3", "viscosity_at_reference_field": "Pa*s",
-             "shear_modulus": "Pa", "seal_friction": "N"}
+_GEOMETRY_SI = {"duct_length": "m", "duct_mean_diameter": "m", "gap": "m", "piston_diameter": "m", "rod_diameter": "m"}
+_FLUID_SI = {
+    "viscosity": "Pa*s",
+    "yield_stress": "Pa",
+    "density": "kg/m^3",
+    "viscosity_at_reference_field": "Pa*s",
+    "shear_modulus": "Pa",
+    "seal_friction": "N",
+}
 
 
 @dataclass(frozen=True)
@@ -224,7 +249,7 @@ def default_velocity_max(damper: Damper) -> float:
     C = damper.damping_constant_si()
     v_yield = float(damper.yield_force_si(fluid.reference_field)) / C
     s = damper.state(1.0, 0.0)
-    v_laminar = 0.1 * CRITICAL_REYNOLDS / float(s.reynolds)   # Re is proportional to v at zero field
+    v_laminar = 0.1 * CRITICAL_REYNOLDS / float(s.reynolds)  # Re is proportional to v at zero field
     return _nice_ceiling(min(30.0 * v_yield, v_laminar))
 
 
@@ -240,21 +265,32 @@ def _as_history(history: Iterable[Any] | None) -> tuple[ErrorHistoryStep, ...]:
     return tuple(out)
 
 
-def _inputs(data: Mapping[str, Any] | None, damper: Damper,
-            origin: str = "damper file") -> tuple[tuple[InputRow, ...], dict | None]:
+def _inputs(
+    data: Mapping[str, Any] | None, damper: Damper, origin: str = "damper file"
+) -> tuple[tuple[InputRow, ...], dict | None]:
     """Input rows from a damper file's content (as given, in SI, origin); the material record if one is named."""
     rows: list[InputRow] = []
     fluid = damper.fluid
     control = fluid.control_unit
-    if data is None:   # a Damper built in Python: show its SI values
+    if data is None:  # a Damper built in Python: show its SI values
         g = damper.geometry
         for key, unit in _GEOMETRY_SI.items():
             rows.append(InputRow("geometry", key, "", show(Q_(getattr(g, key), unit), unit, name=key), "Python"))
         for key in ("viscosity", "yield_stress", "density"):
-            rows.append(InputRow("fluid", key, "", show(Q_(getattr(fluid, key), _FLUID_SI[key]), _FLUID_SI[key],
-                                                        name=key), "Python"))
-        rows.append(InputRow("fluid", "reference_field", "", show(Q_(fluid.reference_field, control), control,
-                                                                  name="reference_field"), "Python"))
+            rows.append(
+                InputRow(
+                    "fluid", key, "", show(Q_(getattr(fluid, key), _FLUID_SI[key]), _FLUID_SI[key], name=key), "Python"
+                )
+            )
+        rows.append(
+            InputRow(
+                "fluid",
+                "reference_field",
+                "",
+                show(Q_(fluid.reference_field, control), control, name="reference_field"),
+                "Python",
+            )
+        )
         return tuple(rows), None
     geometry = data.get("geometry", {})
     for key, value in geometry.items():
@@ -295,16 +331,30 @@ def _material_section(record: Mapping[str, Any] | None, damper: Damper) -> dict 
         "kind": record["kind"],
         "description": record["description"],
         "law": fluid.yield_law.describe(fluid.field_unit),
-        "law_in_use": ("the material's yield curve" if fluid.field_law is not None
-                       else "the power law of [fluid] (the damper file sets yield_stress, reference_field or "
-                            "yield_exponent)" if "yield_curve" in record else "the power law of [fluid]"),
+        "law_in_use": (
+            "the material's yield curve"
+            if fluid.field_law is not None
+            else "the power law of [fluid] (the damper file sets yield_stress, reference_field or yield_exponent)"
+            if "yield_curve" in record
+            else "the power law of [fluid]"
+        ),
         "range": {k: " to ".join(v) for k, v in record.get("range", {}).items()},
         "references": [f"{r['key']}: {r['citation']} ({r['date']})" for r in record["references"]],
     }
 
 
-def _field_table(key: str, x_label: str, x: np.ndarray, x_si: str, x_kind: str, curves: ForceVelocityCurves,
-                 values: np.ndarray, si_unit: str, kind: str, skip_zero: bool = False) -> Table:
+def _field_table(
+    key: str,
+    x_label: str,
+    x: np.ndarray,
+    x_si: str,
+    x_kind: str,
+    curves: ForceVelocityCurves,
+    values: np.ndarray,
+    si_unit: str,
+    kind: str,
+    skip_zero: bool = False,
+) -> Table:
     """A table of a figure's values at up to 11 of its points: x column, one column per control."""
     idx = np.unique(np.linspace(0, x.size - 1, min(_TABLE_POINTS, x.size)).round().astype(int))
     x_unit = pick_unit(Q_(x, x_si), x_kind)
@@ -334,17 +384,26 @@ def _loop_table(loops: SineLoops) -> Table:
     f_unit = pick_unit(F_all, "force")
     fu = f"{Q_(1.0, f_unit).units:~P}"
     columns = (f"displacement x [{Q_(1.0, x_unit).units:~P}]", f"velocity v [{Q_(1.0, v_unit).units:~P}]") + tuple(
-        f"{label} [{fu}]" for label in loops.field_labels())
+        f"{label} [{fu}]" for label in loops.field_labels()
+    )
     rows = tuple(
-        (show(Q_(r0.displacement[j], "m"), x_unit, name="displacement"),
-         show(Q_(r0.velocity[j], "m/s"), v_unit, name="velocity"))
+        (
+            show(Q_(r0.displacement[j], "m"), x_unit, name="displacement"),
+            show(Q_(r0.velocity[j], "m/s"), v_unit, name="velocity"),
+        )
         + tuple(show(Q_(r.force[j], "N"), f_unit, name="force") for r in loops.responses)
-        for j in idx)
+        for j in idx
+    )
     return Table("sine_loops", columns, rows)
 
 
-def report_grid(damper: Damper, velocity_range: Sequence[Any] | None, fields: Sequence[Any] | None,
-                design_velocity: Any = None, design_field: Any = None) -> tuple[np.ndarray, np.ndarray, float, float]:
+def report_grid(
+    damper: Damper,
+    velocity_range: Sequence[Any] | None,
+    fields: Sequence[Any] | None,
+    design_velocity: Any = None,
+    design_field: Any = None,
+) -> tuple[np.ndarray, np.ndarray, float, float]:
     """The velocities and controls a report (and the app's Size page) evaluates, and the design point.
 
     Returns ``(v, E, v_design, E_design)``, SI: ``v`` the sweep velocities (the range, widened to contain the design
@@ -357,8 +416,9 @@ def report_grid(damper: Damper, velocity_range: Sequence[Any] | None, fields: Se
         E = fluid.reference_field * np.array([0.0, 1 / 3, 2 / 3, 1.0])
     else:
         E = np.array([to_si(f, control, f"field[{i}]") for i, f in enumerate(fields)], dtype=float)
-    E_design = float(np.max(np.abs(E))) if design_field is None else abs(float(to_si(design_field, control,
-                                                                                   "design field")))
+    E_design = (
+        float(np.max(np.abs(E))) if design_field is None else abs(float(to_si(design_field, control, "design field")))
+    )
     E = np.unique(np.concatenate([[0.0], np.abs(E), [E_design]]))
     if fields is not None or design_field is not None:
         fluid.check_field(E, "field")
@@ -381,8 +441,9 @@ def report_grid(damper: Damper, velocity_range: Sequence[Any] | None, fields: Se
     return v, E, v_design, E_design
 
 
-def design_point_rows(damper: Damper, velocity: float, field: float,
-                      units: Mapping[str, str] | None = None) -> tuple[Row, ...]:
+def design_point_rows(
+    damper: Damper, velocity: float, field: float, units: Mapping[str, str] | None = None
+) -> tuple[Row, ...]:
     """The design point as the app's Size page shows it and the report prints it: :meth:`Damper.size` at
     ``velocity`` [m/s] and ``field`` (SI unit of the control), each figure in the unit of the current unit system.
 
@@ -405,17 +466,30 @@ def design_point_rows(damper: Damper, velocity: float, field: float,
     return (
         q("velocity", "design velocity v", r.velocity, "velocity"),
         Row("field", control_label(fluid.control, "design"), show(r.field, fluid.field_unit, name="design control")),
-        q("force", "force F", r.force, "force", "quasi-steady force at the design velocity and control, with the "
-                                                "seal friction (Makris eq 14)"),
+        q(
+            "force",
+            "force F",
+            r.force,
+            "force",
+            "quasi-steady force at the design velocity and control, with the seal friction (Makris eq 14)",
+        ),
         q("zero_field_force", "zero-field force F(0)", r.zero_field_force, "force"),
         Row("dynamic_range", "dynamic range F(E)/F(0)", show(dyn, "", name="dynamic range")),
         q("pressure_drop", "pressure drop Δp", r.pressure_drop, "pressure"),
         q("yield_force", "yield force Fy", r.yield_force, "force", "controllable force of the fluid"),
         q("damping_constant", "damping constant C", r.damping_constant, "damping", c_note),
-        Row("reynolds", "Reynolds number Re", show(r.reynolds, "", name="Reynolds number"),
-            "Makris eq 1; laminar below 2300"),
-        Row("plug_fraction", "plug fraction", show(r.plug_fraction, "", name="plug fraction"),
-            "plug thickness over gap: 1 = blocked"),
+        Row(
+            "reynolds",
+            "Reynolds number Re",
+            show(r.reynolds, "", name="Reynolds number"),
+            "Makris eq 1; laminar below 2300",
+        ),
+        Row(
+            "plug_fraction",
+            "plug fraction",
+            show(r.plug_fraction, "", name="plug fraction"),
+            "plug thickness over gap: 1 = blocked",
+        ),
         q("flow_rate", "flow rate Q", r.flow_rate, "flow", "volume the piston displaces per second"),
         q("piston_area", "piston area A_p", r.piston_area, "area"),
     )
@@ -431,8 +505,10 @@ def report_units(curves: ForceVelocityCurves) -> dict[str, str]:
     >>> report_units(force_velocity_curves(load_example("makris"), np.linspace(0, 0.05, 11), [0.0, 3e6]))
     {'force': 'kN', 'pressure': 'MPa'}
     """
-    return {"force": pick_unit(Q_(np.asarray(curves.force), "N"), "force"),
-            "pressure": pick_unit(Q_(np.asarray(curves.pressure_drop), "Pa"), "pressure")}
+    return {
+        "force": pick_unit(Q_(np.asarray(curves.force), "N"), "force"),
+        "pressure": pick_unit(Q_(np.asarray(curves.pressure_drop), "Pa"), "pressure"),
+    }
 
 
 def magnetic_section(damper: Damper, currents: np.ndarray) -> dict | None:
@@ -450,55 +526,101 @@ def magnetic_section(damper: Damper, currents: np.ndarray) -> dict | None:
     rows = [
         Row("coil_turns", "turns N", show(float(head.turns), "", name="turns")),
         Row("wire_diameter", "wire diameter (bare copper)", show(Q_(head.wire_diameter, "m"), "mm", name="wire")),
-        Row("fill_factor", "copper fill factor", show(head.fill_factor, "", name="fill factor"),
-            "round wire: 0.5-0.7 in practice, 0.907 at most"),
-        Row("coil_resistance", "coil resistance R (20 °C)", show(r.coil_resistance, "ohm", name="resistance"),
-            "IACS copper, mean turn length"),
+        Row(
+            "fill_factor",
+            "copper fill factor",
+            show(head.fill_factor, "", name="fill factor"),
+            "round wire: 0.5-0.7 in practice, 0.907 at most",
+        ),
+        Row(
+            "coil_resistance",
+            "coil resistance R (20 °C)",
+            show(r.coil_resistance, "ohm", name="resistance"),
+            "IACS copper, mean turn length",
+        ),
         Row("rated_current", "rated current I (reference field)", show(r.current, "A", name="rated current")),
         Row("gap_flux_density", "gap flux density B_g at I", show(r.gap_flux_density, "T", name="B_g")),
         Row("gap_field", "gap field H_g at I", show(r.gap_field, "kA/m", name="H_g")),
-        Row("yield_stress_rated", "yield stress τ_y at I", show(r.yield_stress, "kPa", name="yield stress"),
-            "the fluid's yield curve at H_g"),
+        Row(
+            "yield_stress_rated",
+            "yield stress τ_y at I",
+            show(r.yield_stress, "kPa", name="yield stress"),
+            "the fluid's yield curve at H_g",
+        ),
         Row("inductance", "inductance L = λ/I at I", show(r.inductance, "mH", name="inductance")),
-        Row("time_constant", "time constant L/R at I", show(r.time_constant, "ms", name="time constant"),
-            "prior of the field_lag effect"),
-        Row("response_time", "current rise time to 63 % (driver)", show(Q_(law.response_time(), "s"), "ms",
-                                                                       name="rise time"),
-            "L/R without a driver; with coil.supply_voltage, the forced rise"),
+        Row(
+            "time_constant",
+            "time constant L/R at I",
+            show(r.time_constant, "ms", name="time constant"),
+            "prior of the field_lag effect",
+        ),
+        Row(
+            "response_time",
+            "current rise time to 63 % (driver)",
+            show(Q_(law.response_time(), "s"), "ms", name="rise time"),
+            "L/R without a driver; with coil.supply_voltage, the forced rise",
+        ),
         Row("power", "coil power I²R at I", show(r.power, "W", name="power")),
         Row("voltage", "coil voltage IR at I", show(r.voltage, "V", name="voltage")),
-        Row("current_density", "current density at I", show(r.current_density, "A/mm^2", name="current density"),
-            "a coil without forced cooling: about 5 A/mm² or less"),
+        Row(
+            "current_density",
+            "current density at I",
+            show(r.current_density, "A/mm^2", name="current density"),
+            "a coil without forced cooling: about 5 A/mm² or less",
+        ),
         Row("knee_current", "knee of B_g(I) (slope halved)", show(r.knee_current, "A", name="knee")),
     ]
     if first is not None:
-        rows.append(Row("limiting_part", f"current at which the {first.replace('_', ' ')} saturates first",
-                        show(knees[first], "A", name="knee of the part"),
-                        f"{first}: the part that reaches the knee of its B-H curve at the lowest current"))
+        rows.append(
+            Row(
+                "limiting_part",
+                f"current at which the {first.replace('_', ' ')} saturates first",
+                show(knees[first], "A", name="knee of the part"),
+                f"{first}: the part that reaches the knee of its B-H curve at the lowest current",
+            )
+        )
     rows += [
-        Row("leakage_fraction", "leakage: core flux not crossing the gap at I",
-            show(float(r.leakage_fraction), "percent", name="leakage")),
+        Row(
+            "leakage_fraction",
+            "leakage: core flux not crossing the gap at I",
+            show(float(r.leakage_fraction), "percent", name="leakage"),
+        ),
     ]
     at = circuit.at(np.asarray(currents, dtype=float))
-    columns = ("current I [A]", "B_g [T]", "H_g [kA/m]", "τ_y [kPa]", "L [mH]", "L/R [ms]", "power [W]",
-               "saturated")
+    columns = ("current I [A]", "B_g [T]", "H_g [kA/m]", "τ_y [kPa]", "L [mH]", "L/R [ms]", "power [W]", "saturated")
     table_rows = []
     for i in range(np.size(at.current.magnitude)):
-        table_rows.append((
-            show(at.current[i], "A", name="current"), show(at.gap_flux_density[i], "T", name="B_g"),
-            show(at.gap_field[i], "kA/m", name="H_g"), show(at.yield_stress[i], "kPa", name="yield stress"),
-            show(at.inductance[i], "mH", name="inductance"), show(at.time_constant[i], "ms", name="L/R"),
-            show(at.power[i], "W", name="power"),
-            Shown("yes" if at.saturated[i] else "no", "yes" if at.saturated[i] else "no", "", float(at.saturated[i]),
-                  "dimensionless"),
-        ))
-    return {"rows": tuple(rows), "table": Table("magnetics", columns, tuple(table_rows)),
-            "saturated": bool(r.saturated), "limiting_part": first,
-            "steel": getattr(circuit.steel, "name", ""), "fluid": getattr(circuit.fluid, "name", "")}
+        table_rows.append(
+            (
+                show(at.current[i], "A", name="current"),
+                show(at.gap_flux_density[i], "T", name="B_g"),
+                show(at.gap_field[i], "kA/m", name="H_g"),
+                show(at.yield_stress[i], "kPa", name="yield stress"),
+                show(at.inductance[i], "mH", name="inductance"),
+                show(at.time_constant[i], "ms", name="L/R"),
+                show(at.power[i], "W", name="power"),
+                Shown(
+                    "yes" if at.saturated[i] else "no",
+                    "yes" if at.saturated[i] else "no",
+                    "",
+                    float(at.saturated[i]),
+                    "dimensionless",
+                ),
+            )
+        )
+    return {
+        "rows": tuple(rows),
+        "table": Table("magnetics", columns, tuple(table_rows)),
+        "saturated": bool(r.saturated),
+        "limiting_part": first,
+        "steel": getattr(circuit.steel, "name", ""),
+        "fluid": getattr(circuit.fluid, "name", ""),
+    }
 
 
-def tolerance_figures(damper: Damper, tolerances: Sequence[Any], velocity: float, field: float,
-                      samples: int = 10000) -> list[FigureSpec]:
+def tolerance_figures(
+    damper: Damper, tolerances: Sequence[Any], velocity: float, field: float, samples: int = 10000
+) -> list[FigureSpec]:
     """The histogram of the force and the tornado chart of its Sobol indices under ``tolerances`` at a design point
     (:func:`erdesign.campaign.tolerance.tolerance_study`, seed 0), with the quantiles of every output as the
     table."""
@@ -506,36 +628,78 @@ def tolerance_figures(damper: Damper, tolerances: Sequence[Any], velocity: float
     from . import plots
 
     r = tolerance_study(damper, tolerances, velocity=float(velocity), field=float(field), samples=int(samples))
-    caption = (f"{r.count} samples, " + "; ".join(v.describe() for v in r.study.variations)
-               + (f"; {r.rejected} non-physical draws drawn again" if r.rejected else ""))
+    caption = (
+        f"{r.count} samples, "
+        + "; ".join(v.describe() for v in r.study.variations)
+        + (f"; {r.rejected} non-physical draws drawn again" if r.rejected else "")
+    )
     columns, units = ["quantile [%]"], {}
     for key in OUTPUTS:
         name, _, si_unit, kind = plots.TOLERANCE_OUTPUTS[key]
         values = Q_(np.array([r.quantiles[key][q] for q in ("1", "99")]), si_unit)
         units[key] = pick_unit(values, kind) if kind else ""
         columns.append(f"{name} [{Q_(1.0, units[key]).units:~P}]" if units[key] else name)
-    table = Table("tolerance", tuple(columns), tuple(
-        (show(float(q), "", name="quantile"),
-         *(show(Q_(r.quantiles[key][q], plots.TOLERANCE_OUTPUTS[key][2]), units[key], name=key) for key in OUTPUTS))
-        for q in ("1", "5", "50", "95", "99")))
+    table = Table(
+        "tolerance",
+        tuple(columns),
+        tuple(
+            (
+                show(float(q), "", name="quantile"),
+                *(
+                    show(Q_(r.quantiles[key][q], plots.TOLERANCE_OUTPUTS[key][2]), units[key], name=key)
+                    for key in OUTPUTS
+                ),
+            )
+            for q in ("1", "5", "50", "95", "99")
+        ),
+    )
     force = {k: s for k, s in r.sensitivity["force_N"].items() if s["first"] is not None}
-    sobol = Table("tornado", tuple(f"{index} {name}" for name in force for index in ("S1", "ST")), (tuple(
-        show(float(s[index]), "", name=f"{index} {name}") for name, s in force.items()
-        for index in ("first", "total")),)) if force else None
-    return [FigureSpec("tolerance", "Spread of the force under tolerances", plots.tolerance_histogram_figure(r),
-                       table, caption),
-            FigureSpec("tornado", "What drives the spread of the force (Sobol indices)",
-                       plots.sensitivity_tornado_figure(r), sobol,
-                       f"first-order and total Sobol indices of the force, {r.sobol_base} base samples "
-                       "(docs/tolerance.md)")]
+    sobol = (
+        Table(
+            "tornado",
+            tuple(f"{index} {name}" for name in force for index in ("S1", "ST")),
+            (
+                tuple(
+                    show(float(s[index]), "", name=f"{index} {name}")
+                    for name, s in force.items()
+                    for index in ("first", "total")
+                ),
+            ),
+        )
+        if force
+        else None
+    )
+    return [
+        FigureSpec(
+            "tolerance", "Spread of the force under tolerances", plots.tolerance_histogram_figure(r), table, caption
+        ),
+        FigureSpec(
+            "tornado",
+            "What drives the spread of the force (Sobol indices)",
+            plots.sensitivity_tornado_figure(r),
+            sobol,
+            f"first-order and total Sobol indices of the force, {r.sobol_base} base samples (docs/tolerance.md)",
+        ),
+    ]
 
 
-def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_range: Sequence[Any] | None = None,
-                 fields: Sequence[Any] | None = None, amplitude: Any = None, frequency: Any = None,
-                 comparison: MeasurementComparison | None = None, history: Iterable[Any] | None = None,
-                 title: str | None = None, design_velocity: Any = None, design_field: Any = None,
-                 origin: str | None = None, baseline: Report | None = None, tolerances: Sequence[Any] = (),
-                 tolerance_samples: int = 10000) -> Report:
+def build_report(
+    source: str | Path | Damper | Mapping[str, Any],
+    *,
+    velocity_range: Sequence[Any] | None = None,
+    fields: Sequence[Any] | None = None,
+    amplitude: Any = None,
+    frequency: Any = None,
+    comparison: MeasurementComparison | None = None,
+    history: Iterable[Any] | None = None,
+    title: str | None = None,
+    design_velocity: Any = None,
+    design_field: Any = None,
+    origin: str | None = None,
+    baseline: Report | None = None,
+    tolerances: Sequence[Any] = (),
+    tolerance_samples: int = 10000,
+) -> Report:
     """The content of an engineering report on a damper.
 
     Parameters
@@ -593,21 +757,24 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
         # --- settings
         v, E, v_design, E_design = report_grid(damper, velocity_range, fields, design_velocity, design_field)
         design_point = design_point_rows(damper, v_design, E_design)
-    messages = tuple(dict.fromkeys(" ".join(str(w.message).split()) for w in seen
-                                   if issubclass(w.category, ValidityWarning)))
-    for w in seen:      # hand the warnings on to the caller, as before
+    messages = tuple(
+        dict.fromkeys(" ".join(str(w.message).split()) for w in seen if issubclass(w.category, ValidityWarning))
+    )
+    for w in seen:  # hand the warnings on to the caller, as before
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     v_lo, v_hi = float(v[0]), float(v[-1])
     X0 = positive_si(amplitude if amplitude is not None else DEFAULT_AMPLITUDE, "m", "amplitude")
     f = positive_si(frequency, "Hz", "frequency") if frequency is not None else v_hi / (2 * math.pi * X0)
     if not f > 0:
-        raise ErdesignError("frequency: the default makes the peak velocity of the loops the top of the velocity "
-                            f"range, which is {v_hi:g} m/s; give a positive top velocity or a frequency")
+        raise ErdesignError(
+            "frequency: the default makes the peak velocity of the loops the top of the velocity "
+            f"range, which is {v_hi:g} m/s; give a positive top velocity or a frequency"
+        )
 
     sweep = force_velocity_curves(damper, v, E)
     loops = sine_loops(damper, X0, f, E)
     units_of = report_units(sweep)
-    with warnings.catch_warnings():      # the same design point again, its warnings already taken above
+    with warnings.catch_warnings():  # the same design point again, its warnings already taken above
         warnings.simplefilter("ignore")
         design_point = design_point_rows(damper, v_design, E_design, units_of)
 
@@ -616,11 +783,13 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     dv_unit = pick_unit(Q_(v_design, "m/s"), "velocity")
     settings = [
         Row("velocity_design", "design velocity v", show(Q_(v_design, "m/s"), dv_unit, name="design velocity")),
-        Row("field_design", control_label(fluid.control, "design"), show(Q_(E_design, control), e_unit,
-                                                                     name="design control")),
+        Row(
+            "field_design",
+            control_label(fluid.control, "design"),
+            show(Q_(E_design, control), e_unit, name="design control"),
+        ),
         Row("velocity_min", "lowest velocity of the curves", show(Q_(v_lo, "m/s"), v_unit, name="lowest velocity")),
-        Row("velocity_max", "highest velocity of the curves", show(Q_(v_hi, "m/s"), v_unit,
-                                                                    name="highest velocity")),
+        Row("velocity_max", "highest velocity of the curves", show(Q_(v_hi, "m/s"), v_unit, name="highest velocity")),
         Row("amplitude", "sine amplitude X0", show(Q_(X0, "m"), pick_unit(Q_(X0, "m"), "length"), name="amplitude")),
         Row("frequency", "sine frequency f", show(Q_(f, "Hz"), pick_unit(Q_(f, "Hz"), "frequency"), name="frequency")),
     ] + [Row(f"field_{i}", f"control {i + 1}", show(Q_(e, control), e_unit, name="control")) for i, e in enumerate(E)]
@@ -633,45 +802,77 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     derived = [
         Row("piston_area", "piston area A_p", show(Ap, pick_unit(Ap, "area"), name="piston area"), "geometry"),
         Row("gap_ratio", "gap over mean diameter h/d", show(g.gap_ratio, "", name="h/d")),
-        Row("thin_gap_error", "thin-gap error of the Newtonian pressure drop",
-            show(Q_(g.thin_gap_error, ""), "percent", name="thin-gap error"), "Bird, Stewart and Lightfoot eq 2.4-17"),
-        Row("active_volume", "fluid volume between the electrodes",
-            show(Q_(g.active_fluid_volume, "m^3"), pick_unit(Q_(g.active_fluid_volume, "m^3"), "volume"),
-                 name="active volume"), "Kamath and Wereley (1997), section III.C"),
-        Row("damping_constant", "damping constant C (zero field)", show(C, pick_unit(C, "damping"), name="C"),
-            "Makris eq 15" if g.configuration == "valve" else "Newtonian mixed mode"),
-        Row("seal_friction", "seal friction F_s", show(Q_(damper.seal_friction, "N"), units_of["force"],
-                                                       name="seal friction"), "Makris eq 14"),
+        Row(
+            "thin_gap_error",
+            "thin-gap error of the Newtonian pressure drop",
+            show(Q_(g.thin_gap_error, ""), "percent", name="thin-gap error"),
+            "Bird, Stewart and Lightfoot eq 2.4-17",
+        ),
+        Row(
+            "active_volume",
+            "fluid volume between the electrodes",
+            show(
+                Q_(g.active_fluid_volume, "m^3"),
+                pick_unit(Q_(g.active_fluid_volume, "m^3"), "volume"),
+                name="active volume",
+            ),
+            "Kamath and Wereley (1997), section III.C",
+        ),
+        Row(
+            "damping_constant",
+            "damping constant C (zero field)",
+            show(C, pick_unit(C, "damping"), name="C"),
+            "Makris eq 15" if g.configuration == "valve" else "Newtonian mixed mode",
+        ),
+        Row(
+            "seal_friction",
+            "seal friction F_s",
+            show(Q_(damper.seal_friction, "N"), units_of["force"], name="seal friction"),
+            "Makris eq 14",
+        ),
     ]
 
     # --- design table: the state at the design velocity, one row per control
     s = damper.state(np.full(E.shape, v_design), E)
     s0 = damper.state(v_design, 0.0)
     Fy = np.asarray(damper.yield_force_si(E), dtype=float) * np.ones_like(E)
-    units = dict(tau=pick_unit(Q_(np.asarray(s.yield_stress), "Pa"), "pressure"),
-                 eta=pick_unit(Q_(np.asarray(s.viscosity), "Pa*s"), "viscosity"),
-                 dp=units_of["pressure"], F=units_of["force"])
+    units = dict(
+        tau=pick_unit(Q_(np.asarray(s.yield_stress), "Pa"), "pressure"),
+        eta=pick_unit(Q_(np.asarray(s.viscosity), "Pa*s"), "viscosity"),
+        dp=units_of["pressure"],
+        F=units_of["force"],
+    )
 
     def u(unit: str) -> str:
         return f"{Q_(1.0, unit).units:~P}"
 
-    columns = (f"control [{u(e_unit)}]", f"yield stress τ_y [{u(units['tau'])}]", f"viscosity η [{u(units['eta'])}]",
-               f"pressure drop Δp [{u(units['dp'])}]", f"force F [{u(units['F'])}]", "dynamic range F/F(0) [-]",
-               "Reynolds number Re [-]", "plug fraction φ [-]", f"yield force F_y [{u(units['F'])}]")
+    columns = (
+        f"control [{u(e_unit)}]",
+        f"yield stress τ_y [{u(units['tau'])}]",
+        f"viscosity η [{u(units['eta'])}]",
+        f"pressure drop Δp [{u(units['dp'])}]",
+        f"force F [{u(units['F'])}]",
+        "dynamic range F/F(0) [-]",
+        "Reynolds number Re [-]",
+        "plug fraction φ [-]",
+        f"yield force F_y [{u(units['F'])}]",
+    )
     design_rows = []
     for i, e in enumerate(E):
         dyn = float(s.force[i] / s0.force) if s0.force != 0 else float("nan")
-        design_rows.append((
-            show(Q_(e, control), e_unit, name="control"),
-            show(Q_(s.yield_stress[i], "Pa"), units["tau"], name="yield stress"),
-            show(Q_(s.viscosity[i], "Pa*s"), units["eta"], name="viscosity"),
-            show(Q_(s.pressure_drop[i], "Pa"), units["dp"], name="pressure drop"),
-            show(Q_(s.force[i], "N"), units["F"], name="force"),
-            show(dyn, "", name="dynamic range"),
-            show(float(s.reynolds[i]), "", name="Reynolds number"),
-            show(float(s.plug_fraction[i]), "", name="plug fraction"),
-            show(Q_(Fy[i], "N"), units["F"], name="yield force"),
-        ))
+        design_rows.append(
+            (
+                show(Q_(e, control), e_unit, name="control"),
+                show(Q_(s.yield_stress[i], "Pa"), units["tau"], name="yield stress"),
+                show(Q_(s.viscosity[i], "Pa*s"), units["eta"], name="viscosity"),
+                show(Q_(s.pressure_drop[i], "Pa"), units["dp"], name="pressure drop"),
+                show(Q_(s.force[i], "N"), units["F"], name="force"),
+                show(dyn, "", name="dynamic range"),
+                show(float(s.reynolds[i]), "", name="Reynolds number"),
+                show(float(s.plug_fraction[i]), "", name="plug fraction"),
+                show(Q_(Fy[i], "N"), units["F"], name="yield force"),
+            )
+        )
     design_table = Table("design", columns, tuple(design_rows))
 
     # --- sine table: energy per cycle and equivalent damping per control
@@ -679,25 +880,56 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     U = Q_(np.array([r.energy_per_cycle for r in loops.responses]), "J")
     Ceq = Q_(np.array([r.equivalent_damping for r in loops.responses]), "N*s/m")
     fu, uu, cu = units_of["force"], pick_unit(U, "energy"), pick_unit(Ceq, "damping")
-    sine_table = Table("sine", (f"control [{u(e_unit)}]", f"peak force [{u(fu)}]", f"energy per cycle U [{u(uu)}]",
-                                f"equivalent damping C_eqv [{u(cu)}]"),
-                       tuple((show(Q_(e, control), e_unit, name="control"), show(F_peak[i], fu, name="peak force"),
-                              show(U[i], uu, name="energy per cycle"), show(Ceq[i], cu, name="C_eqv"))
-                             for i, e in enumerate(E)))
+    sine_table = Table(
+        "sine",
+        (
+            f"control [{u(e_unit)}]",
+            f"peak force [{u(fu)}]",
+            f"energy per cycle U [{u(uu)}]",
+            f"equivalent damping C_eqv [{u(cu)}]",
+        ),
+        tuple(
+            (
+                show(Q_(e, control), e_unit, name="control"),
+                show(F_peak[i], fu, name="peak force"),
+                show(U[i], uu, name="energy per cycle"),
+                show(Ceq[i], cu, name="C_eqv"),
+            )
+            for i, e in enumerate(E)
+        ),
+    )
 
     # --- figures
     figures = [
-        FigureSpec("pressure_drop", "Pressure drop versus velocity", plots.pressure_drop_figure(sweep),
-                   _field_table("pressure_drop", "velocity v", v, "m/s", "velocity", sweep, sweep.pressure_drop,
-                                "Pa", "pressure")),
-        FigureSpec("force", "Force versus velocity", plots.force_velocity_figure(sweep),
-                   _field_table("force", "velocity v", v, "m/s", "velocity", sweep, sweep.force, "N", "force")),
-        FigureSpec("dynamic_range", "Dynamic range versus velocity", plots.dynamic_range_figure(sweep),
-                   _field_table("dynamic_range", "velocity v", v, "m/s", "velocity", sweep, sweep.dynamic_range,
-                                "", "", skip_zero=True)),
-        FigureSpec("sine_loops", "Force-displacement and force-velocity loops", plots.sine_loops_figure(loops),
-                   _loop_table(loops), "quasi-steady response to the sine of the settings (energy and C_eqv in "
-                                       "the table of section 3)"),
+        FigureSpec(
+            "pressure_drop",
+            "Pressure drop versus velocity",
+            plots.pressure_drop_figure(sweep),
+            _field_table(
+                "pressure_drop", "velocity v", v, "m/s", "velocity", sweep, sweep.pressure_drop, "Pa", "pressure"
+            ),
+        ),
+        FigureSpec(
+            "force",
+            "Force versus velocity",
+            plots.force_velocity_figure(sweep),
+            _field_table("force", "velocity v", v, "m/s", "velocity", sweep, sweep.force, "N", "force"),
+        ),
+        FigureSpec(
+            "dynamic_range",
+            "Dynamic range versus velocity",
+            plots.dynamic_range_figure(sweep),
+            _field_table(
+                "dynamic_range", "velocity v", v, "m/s", "velocity", sweep, sweep.dynamic_range, "", "", skip_zero=True
+            ),
+        ),
+        FigureSpec(
+            "sine_loops",
+            "Force-displacement and force-velocity loops",
+            plots.sine_loops_figure(loops),
+            _loop_table(loops),
+            "quasi-steady response to the sine of the settings (energy and C_eqv in the table of section 3)",
+        ),
     ]
 
     if tolerances:
@@ -708,41 +940,81 @@ def build_report(source: str | Path | Damper | Mapping[str, Any], *, velocity_ra
     if comparison is not None:
         comparison_data = _comparison(comparison, units_of["force"])
         if comparison_data.pop("has_loops"):
-            figures.append(FigureSpec("measurement", "Measurement and model", plots.measured_loops_figure(
-                comparison.displacement, comparison.velocity, comparison.force_measured, comparison.force_model),
-                None))
+            figures.append(
+                FigureSpec(
+                    "measurement",
+                    "Measurement and model",
+                    plots.measured_loops_figure(
+                        comparison.displacement, comparison.velocity, comparison.force_measured, comparison.force_model
+                    ),
+                    None,
+                )
+            )
     if steps:
         floor = None if comparison_data is None else comparison_data["noise_floor"]
-        figures.append(FigureSpec("history", "Error history", plots.error_history_figure(steps, noise_floor=floor),
-                                  None))
+        figures.append(
+            FigureSpec("history", "Error history", plots.error_history_figure(steps, noise_floor=floor), None)
+        )
     magnetics = magnetic_section(damper, E) if control == "A" else None
     if magnetics is not None:
         from ..magnetics.figures import circuit_curves, coil_curves_figure
 
         rated = fluid.field_law.rated_current
         curves = circuit_curves(damper, points=31)
-        figures.insert(0, FigureSpec(
-            "magnetics", "Gap flux density and yield stress against coil current",
-            coil_curves_figure(curves, rated),
-            Table("magnetics_curve", ("current I [A]", "B_g [T]", "τ_y [kPa]"), tuple(
-                (show(curves.current[i], "A", name="current"), show(curves.gap_flux_density[i], "T", name="B_g"),
-                 show(curves.yield_stress[i], "kPa", name="yield stress"))
-                for i in range(0, np.size(curves.current.magnitude), 3))),
-            "the reluctance network of the piston head (docs/magnetics.md)"))
+        figures.insert(
+            0,
+            FigureSpec(
+                "magnetics",
+                "Gap flux density and yield stress against coil current",
+                coil_curves_figure(curves, rated),
+                Table(
+                    "magnetics_curve",
+                    ("current I [A]", "B_g [T]", "τ_y [kPa]"),
+                    tuple(
+                        (
+                            show(curves.current[i], "A", name="current"),
+                            show(curves.gap_flux_density[i], "T", name="B_g"),
+                            show(curves.yield_stress[i], "kPa", name="yield stress"),
+                        )
+                        for i in range(0, np.size(curves.current.magnitude), 3)
+                    ),
+                ),
+                "the reluctance network of the piston head (docs/magnetics.md)",
+            ),
+        )
 
-    notes = [(f"flow model: {'exact annulus' if damper.uses_exact_annulus else 'thin gap'} "
-             f"({g.configuration} configuration{'' if g.ducts == 1 else f', {g.ducts} ducts'})"),
-             f"field law: {fluid.yield_law.describe(fluid.field_unit)}",
-             "quasi-steady: no fluid inertia, compressibility or pre-yield elasticity"]
+    notes = [
+        (
+            f"flow model: {'exact annulus' if damper.uses_exact_annulus else 'thin gap'} "
+            f"({g.configuration} configuration{'' if g.ducts == 1 else f', {g.ducts} ducts'})"
+        ),
+        f"field law: {fluid.yield_law.describe(fluid.field_unit)}",
+        "quasi-steady: no fluid inertia, compressibility or pre-yield elasticity",
+    ]
     report = Report(
         title=title or f"Damper report: {damper.name or Path(where).stem}",
-        source=where, generated=datetime.date.today().isoformat(), version=__version__,
-        configuration=g.configuration, notes=tuple(notes), settings=tuple(settings), inputs=inputs,
-        material=_material_section(record, damper), derived=tuple(derived), design_table=design_table,
-        sine_table=sine_table, equations=tuple(equations_for(damper)),
-        checks=validity_checks(damper, sweep, E, v_design, E_design), figures=tuple(figures), comparison=comparison_data,
-        history=steps, sweep=sweep, loops=loops, design_point=design_point, validity_messages=messages,
-        magnetics=magnetics)
+        source=where,
+        generated=datetime.date.today().isoformat(),
+        version=__version__,
+        configuration=g.configuration,
+        notes=tuple(notes),
+        settings=tuple(settings),
+        inputs=inputs,
+        material=_material_section(record, damper),
+        derived=tuple(derived),
+        design_table=design_table,
+        sine_table=sine_table,
+        equations=tuple(equations_for(damper)),
+        checks=validity_checks(damper, sweep, E, v_design, E_design),
+        figures=tuple(figures),
+        comparison=comparison_data,
+        history=steps,
+        sweep=sweep,
+        loops=loops,
+        design_point=design_point,
+        validity_messages=messages,
+        magnetics=magnetics,
+    )
     return report if baseline is None else with_baseline(report, baseline)
 
 
@@ -753,8 +1025,14 @@ def relative_change(new: Shown | None, old: Shown | None) -> str:
     >>> relative_change(show(Q_(6.6, "kN"), "kN", name="F"), show(Q_(6.0, "kN"), "kN", name="F"))
     '+10.0 %'
     """
-    if (new is None or old is None or new.si_unit != old.si_unit or not math.isfinite(new.si)
-            or not math.isfinite(old.si) or old.si == 0):
+    if (
+        new is None
+        or old is None
+        or new.si_unit != old.si_unit
+        or not math.isfinite(new.si)
+        or not math.isfinite(old.si)
+        or old.si == 0
+    ):
         return ""
     return f"{100 * (new.si / old.si - 1):+.1f} %"
 
@@ -766,6 +1044,7 @@ def compare_designs(report: Report, baseline: Report) -> dict:
 
     Both reports' numbers are shown as they are (each :func:`show` of the library's values); nothing is recomputed.
     """
+
     def key(row: InputRow) -> str:
         return f"{row.section}.{row.key}"
 
@@ -775,17 +1054,31 @@ def compare_designs(report: Report, baseline: Report) -> dict:
     def given(rows: dict, k: str) -> str:
         return rows[k].given if k in rows else ""
 
-    inputs = tuple({"key": k, "baseline": given(before, k), "this": given(now, k),
-                    "change": relative_change(now[k].si if k in now else None, before[k].si if k in before else None)}
-                   for k in dict.fromkeys([*before, *now]) if given(before, k) != given(now, k))
+    inputs = tuple(
+        {
+            "key": k,
+            "baseline": given(before, k),
+            "this": given(now, k),
+            "change": relative_change(now[k].si if k in now else None, before[k].si if k in before else None),
+        }
+        for k in dict.fromkeys([*before, *now])
+        if given(before, k) != given(now, k)
+    )
     rows = []
     old = {r.key: r for r in baseline.design_point}
     for b in report.design_point:
         a = old.get(b.key)
         if a is None:
             continue
-        rows.append({"key": b.key, "label": b.label, "baseline": a.value, "this": b.value,
-                     "change": relative_change(b.value, a.value)})
+        rows.append(
+            {
+                "key": b.key,
+                "label": b.label,
+                "baseline": a.value,
+                "this": b.value,
+                "change": relative_change(b.value, a.value),
+            }
+        )
     name = baseline.title.removeprefix("Damper report: ")
     return {"name": name, "inputs": inputs, "rows": tuple(rows)}
 
@@ -796,13 +1089,14 @@ def with_baseline(report: Report, baseline: Report) -> Report:
     from . import plots
 
     b = baseline.sweep
-    figure = FigureSpec("baseline", "Force versus velocity: this design and the baseline",
-                        plots.force_velocity_figure(report.sweep, baseline=b),
-                        _field_table("baseline", "velocity v", b.velocity, "m/s", "velocity", b, b.force, "N",
-                                     "force"),
-                        "the baseline's curves in the table; this design's in the figure 'Force versus velocity'")
-    return dataclasses.replace(report, baseline=compare_designs(report, baseline),
-                               figures=report.figures + (figure,))
+    figure = FigureSpec(
+        "baseline",
+        "Force versus velocity: this design and the baseline",
+        plots.force_velocity_figure(report.sweep, baseline=b),
+        _field_table("baseline", "velocity v", b.velocity, "m/s", "velocity", b, b.force, "N", "force"),
+        "the baseline's curves in the table; this design's in the figure 'Force versus velocity'",
+    )
+    return dataclasses.replace(report, baseline=compare_designs(report, baseline), figures=report.figures + (figure,))
 
 
 def _comparison(c: MeasurementComparison, force_unit: str | None = None) -> dict:
@@ -811,14 +1105,20 @@ def _comparison(c: MeasurementComparison, force_unit: str | None = None) -> dict
         raise ErdesignError(f"comparison.esr: expected a finite number >= 0, got {c.esr!r}")
     rows = [Row("esr", "ESR (Vivas-López et al., eq 7)", esr_shown(c.esr, name="comparison.esr"))]
     if c.noise_floor_esr is not None:
-        rows.append(Row("noise_floor_esr", "noise floor ESR (the same samples)",
-                        esr_shown(c.noise_floor_esr, name="comparison.noise_floor_esr")))
+        rows.append(
+            Row(
+                "noise_floor_esr",
+                "noise floor ESR (the same samples)",
+                esr_shown(c.noise_floor_esr, name="comparison.noise_floor_esr"),
+            )
+        )
     if c.samples is not None:
-        rows.append(Row("samples", "samples judged (ESR and RMS on these)", show(float(c.samples), "",
-                                                                                 name="samples")))
-    for key, label, value in (("rms_error", "RMS force error", c.rms_error),
-                              ("peak_force_measured", "peak force, measured", c.peak_force_measured),
-                              ("peak_force_model", "peak force, model", c.peak_force_model)):
+        rows.append(Row("samples", "samples judged (ESR and RMS on these)", show(float(c.samples), "", name="samples")))
+    for key, label, value in (
+        ("rms_error", "RMS force error", c.rms_error),
+        ("peak_force_measured", "peak force, measured", c.peak_force_measured),
+        ("peak_force_model", "peak force, model", c.peak_force_model),
+    ):
         if value is not None:
             q = parse_quantity(value, f"comparison.{key}") if isinstance(value, str) else value
             rows.append(Row(key, label, show(q, force_unit or pick_unit(q, "force"), name=f"comparison.{key}")))
@@ -827,13 +1127,23 @@ def _comparison(c: MeasurementComparison, force_unit: str | None = None) -> dict
         raise ErdesignError("comparison: give displacement, velocity, force_measured and force_model together")
     if c.verdict and c.verdict not in VERDICTS:
         raise ErdesignError(f"comparison.verdict: expected one of {', '.join(VERDICTS)}, got {c.verdict!r}")
-    return {"label": c.label, "rows": tuple(rows), "notes": c.notes, "has_loops": all(a is not None for a in arrays),
-            "verdict": VERDICTS.get(c.verdict, ""), "reason": c.reason, "parameters": tuple(c.parameters),
-            "statistics": tuple(c.statistics), "correlations": tuple(c.correlations),
-            "noise_floor": c.noise_floor_esr}
+    return {
+        "label": c.label,
+        "rows": tuple(rows),
+        "notes": c.notes,
+        "has_loops": all(a is not None for a in arrays),
+        "verdict": VERDICTS.get(c.verdict, ""),
+        "reason": c.reason,
+        "parameters": tuple(c.parameters),
+        "statistics": tuple(c.statistics),
+        "correlations": tuple(c.correlations),
+        "noise_floor": c.noise_floor_esr,
+    }
 
 
 #: The diagnosis' verdicts (docs/cli.md) as the report words them.
-VERDICTS = {"missing_effect": "a missing effect", "nothing_missing": "nothing missing (the residual is at the "
-            "noise floor)", "unexplained": "unexplained (the residual stays above the noise floor and no effect of "
-            "the library explains it)"}
+VERDICTS = {
+    "missing_effect": "a missing effect",
+    "nothing_missing": "nothing missing (the residual is at the noise floor)",
+    "unexplained": "unexplained (the residual stays above the noise floor and no effect of the library explains it)",
+}

@@ -35,10 +35,11 @@ from typing import Any
 
 import numpy as np
 
-from ..damper.writer import damper_toml       # the damper file's writer lives with the damper files
+from ..damper.writer import damper_toml  # the damper file's writer lives with the damper files
 from ..errors import ErdesignError
 
 __all__ = ["damper_toml", "csv_text", "rows_csv", "figure_images", "figure_pages", "images_zip", "IMAGES_NEED"]
+
 
 def _number(x: float) -> str:
     return "" if not math.isfinite(x) else f"{x:.10g}"
@@ -79,10 +80,12 @@ def rows_csv(rows: Sequence[Mapping[str, Any]], *, comment: str = "") -> str:
 
 
 #: What static figure images need, said when they cannot be made.
-IMAGES_NEED = ("static figure images need the optional package kaleido (>= 1, `pip install \"erdesign[docs]\"`) "
-               "and a Chrome or Chromium already on the machine (e.g. `apt-get install chromium`); erdesign never "
-               "downloads a browser. Without them, save each figure with the camera button of its toolbar in the "
-               "app or in the HTML report")
+IMAGES_NEED = (
+    'static figure images need the optional package kaleido (>= 1, `pip install "erdesign[docs]"`) '
+    "and a Chrome or Chromium already on the machine (e.g. `apt-get install chromium`); erdesign never "
+    "downloads a browser. Without them, save each figure with the camera button of its toolbar in the "
+    "app or in the HTML report"
+)
 
 
 def figure_images(figures: Sequence[Any], image_format: str = "png", *, timeout: float = 120.0) -> dict[str, bytes]:
@@ -113,15 +116,18 @@ def figure_images(figures: Sequence[Any], image_format: str = "png", *, timeout:
     async def draw() -> list[bytes]:
         # one browser for all the figures; mathjax=False: kaleido would otherwise load MathJax from a CDN
         async with kaleido.Kaleido(n=1, mathjax=False, timeout=timeout) as k:
-            return [await k.calc_fig(f.figure, opts=dict(opts, width=f.figure.layout.width or 900,
-                                                         height=f.figure.layout.height or 450))
-                    for f in figures]
+            return [
+                await k.calc_fig(
+                    f.figure, opts=dict(opts, width=f.figure.layout.width or 900, height=f.figure.layout.height or 450)
+                )
+                for f in figures
+            ]
 
     try:
         # a thread of its own: asyncio.run needs a thread without a running event loop (Streamlit, Jupyter)
         with concurrent.futures.ThreadPoolExecutor(max_workers=1) as pool:
             images = pool.submit(asyncio.run, draw()).result()
-    except Exception as exc:    # ChromeNotFoundError, a browser that dies, a timeout: say what is needed
+    except Exception as exc:  # ChromeNotFoundError, a browser that dies, a timeout: say what is needed
         first = " ".join(str(exc).split())[:200] or type(exc).__name__
         raise ErdesignError(f"figure images: {type(exc).__name__}: {first}; {IMAGES_NEED}") from None
     return {f"{f.key}.{image_format}": bytes(b) for f, b in zip(figures, images)}
@@ -139,8 +145,9 @@ def figure_pages(figures: Sequence[Any], image_format: str = "png") -> dict[str,
 
     pages = {"plotly.min.js": get_plotlyjs().encode()}
     for f in figures:
-        html = f.figure.to_html(include_plotlyjs="plotly.min.js", full_html=True,
-                                config=export_config(f.key, image_format))
+        html = f.figure.to_html(
+            include_plotlyjs="plotly.min.js", full_html=True, config=export_config(f.key, image_format)
+        )
         pages[f"{f.key}.html"] = html.encode()
     return pages
 

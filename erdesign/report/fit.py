@@ -25,8 +25,15 @@ from typing import Any
 
 from ..formatting import SIGNIFICANT_DIGITS, round_significant, show_in_system
 
-__all__ = ["value_text", "error_text", "parameter_rows", "statistics_rows", "correlation_rows", "parameters_csv",
-           "EXPORT_UNITS"]
+__all__ = [
+    "value_text",
+    "error_text",
+    "parameter_rows",
+    "statistics_rows",
+    "correlation_rows",
+    "parameters_csv",
+    "EXPORT_UNITS",
+]
 
 #: The unit system of every CSV file erdesign writes for a user (numbers in the cells, units in the headers).
 EXPORT_UNITS = "SI"
@@ -54,8 +61,14 @@ def value_text(parameter, value: float, *, like: Any = None, digits: int = SIGNI
     scale = abs(parameter.default) or 1.0
     if value != 0 and abs(value) < _ZERO * scale:
         value = 0.0
-    return _compact(show_in_system(parameter.quantity(value), name=parameter.name, digits=digits,
-                                   like=None if like is None else parameter.quantity(like)))
+    return _compact(
+        show_in_system(
+            parameter.quantity(value),
+            name=parameter.name,
+            digits=digits,
+            like=None if like is None else parameter.quantity(like),
+        )
+    )
 
 
 def error_text(parameter, value: float, stderr: float | None, status: str) -> tuple[str, str]:
@@ -82,9 +95,18 @@ def parameter_rows(result) -> list[dict]:
         error, share = error_text(p, row["value"], row["stderr"], row["status"])
         lo = value_text(p, p.lower) if math.isfinite(p.lower) else "-∞"
         hi = value_text(p, p.upper) if math.isfinite(p.upper) else "∞"
-        rows.append({"parameter": name, "value": value_text(p, row["value"]), "± 1σ": error, "±": share,
-                     "initial": "" if row["initial"] is None else value_text(p, row["initial"]),
-                     "bounds": f"{lo} to {hi}", "status": row["status"], "description": p.description})
+        rows.append(
+            {
+                "parameter": name,
+                "value": value_text(p, row["value"]),
+                "± 1σ": error,
+                "±": share,
+                "initial": "" if row["initial"] is None else value_text(p, row["initial"]),
+                "bounds": f"{lo} to {hi}",
+                "status": row["status"],
+                "description": p.description,
+            }
+        )
     return rows
 
 
@@ -94,12 +116,15 @@ def statistics_rows(result) -> list[dict]:
     from ..units import Q_
 
     s = fit_statistics(result)
-    return [{"quantity": "ESR (Vivas-López et al., eq 7)", "value": round_significant(s["esr"], 3)},
-            {"quantity": "R²", "value": round_significant(s["r_squared"])},
-            {"quantity": "RMS residual", "value": show_in_system(Q_(s["rms_residual_N"], "N"), name="RMS").text},
-            {"quantity": "AIC", "value": f"{s['aic']:.1f}"}, {"quantity": "BIC", "value": f"{s['bic']:.1f}"},
-            {"quantity": "samples fitted", "value": f"{s['samples']}"},
-            {"quantity": "free parameters", "value": f"{s['free_parameters']}"}]
+    return [
+        {"quantity": "ESR (Vivas-López et al., eq 7)", "value": round_significant(s["esr"], 3)},
+        {"quantity": "R²", "value": round_significant(s["r_squared"])},
+        {"quantity": "RMS residual", "value": show_in_system(Q_(s["rms_residual_N"], "N"), name="RMS").text},
+        {"quantity": "AIC", "value": f"{s['aic']:.1f}"},
+        {"quantity": "BIC", "value": f"{s['bic']:.1f}"},
+        {"quantity": "samples fitted", "value": f"{s['samples']}"},
+        {"quantity": "free parameters", "value": f"{s['free_parameters']}"},
+    ]
 
 
 def correlation_rows(result) -> list[dict]:
@@ -132,10 +157,12 @@ def parameters_csv(result, *, comment: str = "") -> str:
     def cell(x) -> str:
         return "" if x is None or not math.isfinite(x) else f"{x:.10g}"
 
-    for label, get in (("value", lambda n: table[n]["value"]), ("stderr", lambda n: table[n]["stderr"]),
-                       ("initial", lambda n: table[n]["initial"]),
-                       ("lower bound", lambda n: model.parameter(n).lower),
-                       ("upper bound", lambda n: model.parameter(n).upper)):
+    for label, get in (
+        ("value", lambda n: table[n]["value"]),
+        ("stderr", lambda n: table[n]["stderr"]),
+        ("initial", lambda n: table[n]["initial"]),
+        ("lower bound", lambda n: model.parameter(n).lower),
+        ("upper bound", lambda n: model.parameter(n).upper),
+    ):
         writer.writerow([label, *(cell(get(n)) for n in names)])
     return out.getvalue()
-

@@ -23,6 +23,19 @@ from ..formatting import (
     use_unit_system,
 )
 
-__all__ = ["Shown", "show", "shown_list", "pick_unit", "round_significant", "SIGNIFICANT_DIGITS", "UNIT_CHOICES",
-           "UNIT_SYSTEMS", "unit_system", "use_unit_system", "field_text", "kind_of", "show_in_system",
-           "control_label"]
+__all__ = [
+    "Shown",
+    "show",
+    "shown_list",
+    "pick_unit",
+    "round_significant",
+    "SIGNIFICANT_DIGITS",
+    "UNIT_CHOICES",
+    "UNIT_SYSTEMS",
+    "unit_system",
+    "use_unit_system",
+    "field_text",
+    "kind_of",
+    "show_in_system",
+    "control_label",
+]

@@ -49,8 +49,12 @@ __all__ = [
 
 # The legend sits to the right of the plot area, outside it and below the title, so that it never covers the
 # title or the data.
-LAYOUT = dict(template="plotly_white", height=420, margin=dict(l=70, r=20, t=60, b=60),
-              legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"))
+LAYOUT = dict(
+    template="plotly_white",
+    height=420,
+    margin=dict(l=70, r=20, t=60, b=60),
+    legend=dict(x=1.02, xanchor="left", y=1.0, yanchor="top"),
+)
 _LAYOUT = LAYOUT
 
 #: Measured data: light markers without a line, drawn first, so that the model line over them stays readable and
@@ -79,7 +83,7 @@ def log_ticks(values: Any) -> dict:
     lo, hi = math.floor(math.log10(v.min())), math.ceil(math.log10(v.max()))
     hi = max(hi, lo + 1)
     steps = (1.0,) if hi - lo > 3 else (1.0, 2.0, 5.0)
-    ticks = [m * 10.0 ** k for k in range(lo, hi + 1) for m in steps if m * 10.0 ** k <= 10.0 ** hi]
+    ticks = [m * 10.0**k for k in range(lo, hi + 1) for m in steps if m * 10.0**k <= 10.0**hi]
     return {"type": "log", "tickmode": "array", "tickvals": ticks, "ticktext": [f"{t:.4g}" for t in ticks]}
 
 
@@ -114,9 +118,15 @@ def export_config(filename: str, image_format: str = "png") -> dict:
     """
     if image_format not in IMAGE_FORMATS:
         raise ValueError(f"image format: expected one of {', '.join(IMAGE_FORMATS)}, got {image_format!r}")
-    return {"displaylogo": False, "displayModeBar": True,
-            "toImageButtonOptions": {"format": image_format, "filename": filename,
-                                     "scale": 2 if image_format == "png" else 1}}
+    return {
+        "displaylogo": False,
+        "displayModeBar": True,
+        "toImageButtonOptions": {
+            "format": image_format,
+            "filename": filename,
+            "scale": 2 if image_format == "png" else 1,
+        },
+    }
 
 
 def spans_decades(values: Any, decades: float = 1.0) -> bool:
@@ -138,8 +148,17 @@ def _unit_label(unit: str) -> str:
     return f"{Q_(1.0, unit).units:~P}" if unit else "-"
 
 
-def _by_field(sweep, values: np.ndarray, si_unit: str, kind: str, title: str, y_label: str,
-              skip_zero: bool = False, baseline=None, baseline_values=None) -> go.Figure:
+def _by_field(
+    sweep,
+    values: np.ndarray,
+    si_unit: str,
+    kind: str,
+    title: str,
+    y_label: str,
+    skip_zero: bool = False,
+    baseline=None,
+    baseline_values=None,
+) -> go.Figure:
     both = values if baseline is None else np.concatenate([np.ravel(values), np.ravel(baseline_values)])
     speeds = sweep.velocity if baseline is None else np.concatenate([sweep.velocity, baseline.velocity])
     v_unit = pick_unit(Q_(speeds, "m/s"), "velocity")
@@ -154,31 +173,51 @@ def _by_field(sweep, values: np.ndarray, si_unit: str, kind: str, title: str, y_
             if skip_zero and E == 0:
                 continue
             y = _convert(row, si_unit, y_unit) if kind else np.asarray(row)
-            fig.add_trace(go.Scatter(x=x, y=y, mode="lines", name=prefix + label,
-                                     line=dict(color=_colour(i), dash=dash, width=2.5 if not prefix else 1.5)))
-    fig.update_layout(title=title, xaxis_title=f"piston velocity v [{_unit_label(v_unit)}]",
-                      yaxis_title=f"{y_label} [{_unit_label(y_unit)}]", **_LAYOUT)
+            fig.add_trace(
+                go.Scatter(
+                    x=x,
+                    y=y,
+                    mode="lines",
+                    name=prefix + label,
+                    line=dict(color=_colour(i), dash=dash, width=2.5 if not prefix else 1.5),
+                )
+            )
+    fig.update_layout(
+        title=title,
+        xaxis_title=f"piston velocity v [{_unit_label(v_unit)}]",
+        yaxis_title=f"{y_label} [{_unit_label(y_unit)}]",
+        **_LAYOUT,
+    )
     return fig
 
 
 def pressure_drop_figure(sweep) -> go.Figure:
     """Pressure drop across the piston versus velocity, one line per control."""
-    return _by_field(sweep, sweep.pressure_drop, "Pa", "pressure", "Pressure drop versus velocity",
-                     "pressure drop Δp")
+    return _by_field(sweep, sweep.pressure_drop, "Pa", "pressure", "Pressure drop versus velocity", "pressure drop Δp")
 
 
 def force_velocity_figure(sweep, baseline=None) -> go.Figure:
     """Quasi-steady damper force versus velocity, one line per control; with ``baseline`` (another sweep), its
     curves dashed beside them (the comparison of two designs)."""
-    return _by_field(sweep, sweep.force, "N", "force", "Force versus velocity" if baseline is None else
-                     "Force versus velocity: this design (solid) and the baseline (dashed)", "force F",
-                     baseline=baseline, baseline_values=None if baseline is None else baseline.force)
+    return _by_field(
+        sweep,
+        sweep.force,
+        "N",
+        "force",
+        "Force versus velocity"
+        if baseline is None
+        else "Force versus velocity: this design (solid) and the baseline (dashed)",
+        "force F",
+        baseline=baseline,
+        baseline_values=None if baseline is None else baseline.force,
+    )
 
 
 def dynamic_range_figure(sweep) -> go.Figure:
     """Dynamic range F(v, E) / F(v, 0) versus velocity, one line per nonzero control."""
-    return _by_field(sweep, sweep.dynamic_range, "", "", "Dynamic range versus velocity",
-                     "dynamic range F(E)/F(0)", skip_zero=True)
+    return _by_field(
+        sweep, sweep.dynamic_range, "", "", "Dynamic range versus velocity", "dynamic range F(E)/F(0)", skip_zero=True
+    )
 
 
 def sine_loops_figure(loops) -> go.Figure:
@@ -191,11 +230,11 @@ def sine_loops_figure(loops) -> go.Figure:
         F = _convert(r.force, "N", f_unit)
         common = dict(mode="lines", name=label, legendgroup=label, line=dict(color=_colour(i)))
         fig.add_trace(go.Scatter(x=_convert(r.displacement, "m", x_unit), y=F, **common), row=1, col=1)
-        fig.add_trace(go.Scatter(x=_convert(r.velocity, "m/s", v_unit), y=F, showlegend=False, **common),
-                      row=1, col=2)
+        fig.add_trace(go.Scatter(x=_convert(r.velocity, "m/s", v_unit), y=F, showlegend=False, **common), row=1, col=2)
     amp = Q_(loops.amplitude, "m").to(x_unit).magnitude
-    fig.update_layout(title=f"Sine loops: X0 = {amp:.4g} {_unit_label(x_unit)}, f = {loops.frequency:.4g} Hz",
-                      **_LAYOUT)
+    fig.update_layout(
+        title=f"Sine loops: X0 = {amp:.4g} {_unit_label(x_unit)}, f = {loops.frequency:.4g} Hz", **_LAYOUT
+    )
     fig.update_xaxes(title_text=f"displacement x [{_unit_label(x_unit)}]", row=1, col=1)
     fig.update_xaxes(title_text=f"velocity v [{_unit_label(v_unit)}]", row=1, col=2)
     fig.update_yaxes(title_text=f"force F [{_unit_label(f_unit)}]", row=1, col=1)
@@ -208,22 +247,43 @@ def error_history_figure(history: Sequence[Any], noise_floor: float | None = Non
     The ESR axis is logarithmic: each added effect typically divides the error by a factor, and a linear axis would
     hide every step after the first.
     """
-    fig = go.Figure(go.Bar(x=[f"{h.step}: {h.effect}" for h in history], y=[h.esr for h in history],
-                           text=[f"{h.esr:.3g}" for h in history], textposition="outside", name="ESR",
-                           marker_color="#1f77b4", cliponaxis=False))
+    fig = go.Figure(
+        go.Bar(
+            x=[f"{h.step}: {h.effect}" for h in history],
+            y=[h.esr for h in history],
+            text=[f"{h.esr:.3g}" for h in history],
+            textposition="outside",
+            name="ESR",
+            marker_color="#1f77b4",
+            cliponaxis=False,
+        )
+    )
     esr = [h.esr for h in history if h.esr > 0]
     lows = esr + ([noise_floor] if noise_floor is not None and noise_floor > 0 else [])
     if noise_floor is not None and noise_floor > 0:
         fig.add_hline(y=noise_floor, line=dict(color="#2ca02c", dash="dash"))
         # plotly places a line's own annotation wrongly on a log axis: annotate at log10(y) instead
-        fig.add_annotation(x=1, xref="paper", xanchor="right", y=float(np.log10(noise_floor)), yref="y",
-                           yanchor="top", text=f"noise floor {noise_floor:.3g}", showarrow=False,
-                           font=dict(color="#1e7b1e"), bgcolor="rgba(255, 255, 255, 0.85)")
-    fig.update_layout(title="Error history", xaxis_title="step: effect added", yaxis_title="ESR [-]",
-                      **{**_LAYOUT, "showlegend": False})
-    if lows:      # the range holds the bars, their labels and the noise floor
+        fig.add_annotation(
+            x=1,
+            xref="paper",
+            xanchor="right",
+            y=float(np.log10(noise_floor)),
+            yref="y",
+            yanchor="top",
+            text=f"noise floor {noise_floor:.3g}",
+            showarrow=False,
+            font=dict(color="#1e7b1e"),
+            bgcolor="rgba(255, 255, 255, 0.85)",
+        )
+    fig.update_layout(
+        title="Error history",
+        xaxis_title="step: effect added",
+        yaxis_title="ESR [-]",
+        **{**_LAYOUT, "showlegend": False},
+    )
+    if lows:  # the range holds the bars, their labels and the noise floor
         lo, hi = float(np.log10(min(lows))) - 0.5, float(np.log10(max(esr or lows))) + 0.6
-        fig.update_yaxes(range=[lo, hi], **log_ticks([10 ** lo, 10 ** hi]))
+        fig.update_yaxes(range=[lo, hi], **log_ticks([10**lo, 10**hi]))
     else:
         fig.update_yaxes(type="log")
     return fig
@@ -235,8 +295,15 @@ def measured_loops_figure(displacement, velocity, force_measured, force_model) -
     x_unit = pick_unit(Q_(displacement, "m"), "length")
     v_unit = pick_unit(Q_(velocity, "m/s"), "velocity")
     f_unit = pick_unit(Q_(np.concatenate([np.ravel(force_measured), np.ravel(force_model)]), "N"), "force")
-    fig = make_subplots(rows=2, cols=2, shared_xaxes=True, row_heights=[0.72, 0.28], vertical_spacing=0.06,
-                        horizontal_spacing=0.1, subplot_titles=("force - displacement", "force - velocity", "", ""))
+    fig = make_subplots(
+        rows=2,
+        cols=2,
+        shared_xaxes=True,
+        row_heights=[0.72, 0.28],
+        vertical_spacing=0.06,
+        horizontal_spacing=0.1,
+        subplot_titles=("force - displacement", "force - velocity", "", ""),
+    )
     x, v = _convert(displacement, "m", x_unit), _convert(velocity, "m/s", v_unit)
     for name, F, style in (("measured", force_measured, MEASURED_STYLE), ("model", force_model, MODEL_STYLE)):
         y = _convert(F, "N", f_unit)
@@ -255,10 +322,12 @@ def measured_loops_figure(displacement, velocity, force_measured, force_model) -
 
 
 #: Outputs of a tolerance study (:mod:`erdesign.campaign.tolerance`): label, SI unit and unit kind for the axes.
-TOLERANCE_OUTPUTS = {"force_N": ("force", "force F", "N", "force"),
-                     "zero_field_force_N": ("zero-field force", "zero-field force F(0)", "N", "force"),
-                     "dynamic_range": ("dynamic range", "dynamic range F(E)/F(0)", "", ""),
-                     "damping_constant_N_s_per_m": ("damping constant", "damping constant C", "N*s/m", "damping")}
+TOLERANCE_OUTPUTS = {
+    "force_N": ("force", "force F", "N", "force"),
+    "zero_field_force_N": ("zero-field force", "zero-field force F(0)", "N", "force"),
+    "dynamic_range": ("dynamic range", "dynamic range F(E)/F(0)", "", ""),
+    "damping_constant_N_s_per_m": ("damping constant", "damping constant C", "N*s/m", "damping"),
+}
 
 
 def tolerance_histogram_figure(result, output: str = "force_N") -> go.Figure:
@@ -278,19 +347,37 @@ def tolerance_histogram_figure(result, output: str = "force_N") -> go.Figure:
     unit = pick_unit(Q_(edges, si_unit), kind) if kind else ""
     x = _convert(edges, si_unit, unit) if kind else np.asarray(edges)
     centres, widths = (x[1:] + x[:-1]) / 2, np.diff(x)
-    fig = go.Figure(go.Bar(x=centres, y=counts / max(1, result.count), width=widths, name="samples",
-                           marker=dict(color="rgba(31, 119, 180, 0.6)")))
+    fig = go.Figure(
+        go.Bar(
+            x=centres,
+            y=counts / max(1, result.count),
+            width=widths,
+            name="samples",
+            marker=dict(color="rgba(31, 119, 180, 0.6)"),
+        )
+    )
     marks = [(f"{q} %", result.quantiles[output][q], "dash") for q in ("5", "50", "95")]
     marks.append(("nominal", result.nominal[output], "solid"))
     for i, (mark, value, dash) in enumerate(marks):
         if value is None or not np.isfinite(value):
             continue
         xv = float(_convert(value, si_unit, unit)) if kind else float(value)
-        fig.add_trace(go.Scatter(x=[xv, xv], y=[0, float(counts.max()) / max(1, result.count)], mode="lines",
-                                 name=mark, line=dict(color=_colour(i + 1), dash=dash, width=2)))
-    fig.update_layout(title=f"Spread of the {name} ({result.count} samples)",
-                      xaxis_title=f"{label} [{_unit_label(unit)}]", yaxis_title="fraction of samples per bin",
-                      bargap=0.02, **_LAYOUT)
+        fig.add_trace(
+            go.Scatter(
+                x=[xv, xv],
+                y=[0, float(counts.max()) / max(1, result.count)],
+                mode="lines",
+                name=mark,
+                line=dict(color=_colour(i + 1), dash=dash, width=2),
+            )
+        )
+    fig.update_layout(
+        title=f"Spread of the {name} ({result.count} samples)",
+        xaxis_title=f"{label} [{_unit_label(unit)}]",
+        yaxis_title="fraction of samples per bin",
+        bargap=0.02,
+        **_LAYOUT,
+    )
     return fig
 
 
@@ -303,15 +390,25 @@ def sensitivity_tornado_figure(result, output: str = "force_N") -> go.Figure:
     inputs = [key for key, _ in rows]
     fig = go.Figure()
     for key, legend, colour in (("total", "total", _colour(0)), ("first", "first-order", _colour(1))):
-        fig.add_trace(go.Bar(y=inputs, x=[s[key] for _, s in rows], orientation="h", name=legend,
-                             marker=dict(color=colour),
-                             error_x=dict(type="data", array=[s[key + "_conf"] or 0.0 for _, s in rows])))
-    fig.update_layout(title=f"What drives the spread of the {name}",
-                      xaxis_title="Sobol index (share of the variance)", barmode="group",
-                      xaxis=dict(range=[0, 1.05]), **_LAYOUT)
+        fig.add_trace(
+            go.Bar(
+                y=inputs,
+                x=[s[key] for _, s in rows],
+                orientation="h",
+                name=legend,
+                marker=dict(color=colour),
+                error_x=dict(type="data", array=[s[key + "_conf"] or 0.0 for _, s in rows]),
+            )
+        )
+    fig.update_layout(
+        title=f"What drives the spread of the {name}",
+        xaxis_title="Sobol index (share of the variance)",
+        barmode="group",
+        xaxis=dict(range=[0, 1.05]),
+        **_LAYOUT,
+    )
     if not rows:
-        fig.add_annotation(text="this output does not vary", showarrow=False, x=0.5, y=0.5, xref="paper",
-                           yref="paper")
+        fig.add_annotation(text="this output does not vary", showarrow=False, x=0.5, y=0.5, xref="paper", yref="paper")
     return fig
 
 

@@ -66,20 +66,30 @@ def markdown_code(value: Any, table: bool = False) -> Markup:
 
 def _environment(autoescape: bool) -> jinja2.Environment:
     if autoescape:
-        env = jinja2.Environment(loader=jinja2.PackageLoader("erdesign.report", "templates"),
-                                 undefined=jinja2.StrictUndefined, autoescape=True, keep_trailing_newline=True)
-    else:           # Markdown: user text escaped as Markdown (the counterpart of the HTML's autoescape)
-        env = jinja2.Environment(loader=jinja2.PackageLoader("erdesign.report", "templates"),
-                                 undefined=jinja2.StrictUndefined, autoescape=False, keep_trailing_newline=True,
-                                 finalize=markdown_text)
+        env = jinja2.Environment(
+            loader=jinja2.PackageLoader("erdesign.report", "templates"),
+            undefined=jinja2.StrictUndefined,
+            autoescape=True,
+            keep_trailing_newline=True,
+        )
+    else:  # Markdown: user text escaped as Markdown (the counterpart of the HTML's autoescape)
+        env = jinja2.Environment(
+            loader=jinja2.PackageLoader("erdesign.report", "templates"),
+            undefined=jinja2.StrictUndefined,
+            autoescape=False,
+            keep_trailing_newline=True,
+            finalize=markdown_text,
+        )
         env.filters["code"] = markdown_code
         env.filters["md"] = markdown_text
     return env
 
 
 def _history(report: Report) -> list[dict[str, Any]]:
-    return [{"step": h.step, "effect": h.effect, "esr": esr_shown(h.esr, name=f"history[{i}].esr")}
-            for i, h in enumerate(report.history)]
+    return [
+        {"step": h.step, "effect": h.effect, "esr": esr_shown(h.esr, name=f"history[{i}].esr")}
+        for i, h in enumerate(report.history)
+    ]
 
 
 def _stem(report: Report) -> str:
@@ -99,8 +109,9 @@ def render_html(report: Report, image_format: str = "png") -> str:
     figures = []
     for i, f in enumerate(report.figures):
         config = {**export_config(f"{_stem(report)}-{f.key}", image_format), "responsive": True}
-        html = f.figure.to_html(full_html=False, include_plotlyjs=(i == 0), include_mathjax=False,
-                                config=config, div_id=f"plot-{f.key}")
+        html = f.figure.to_html(
+            full_html=False, include_plotlyjs=(i == 0), include_mathjax=False, config=config, div_id=f"plot-{f.key}"
+        )
         figures.append({"key": f.key, "title": f.title, "caption": f.caption, "html": Markup(html)})
     template = _environment(autoescape=True).get_template("report.html.j2")
     return template.render(r=report, figures=figures, history=_history(report), image_format=image_format)
@@ -112,8 +123,9 @@ def render_markdown(report: Report) -> str:
     return template.render(r=report, history=_history(report))
 
 
-def write_report(report: Report, path: str | Path, format: str | None = None, *, overwrite: bool = False,
-                 option: str = "path") -> Path:
+def write_report(
+    report: Report, path: str | Path, format: str | None = None, *, overwrite: bool = False, option: str = "path"
+) -> Path:
     """Write the report to ``path``: ``format`` ``"html"`` or ``"md"``, default from the suffix (``.md`` -> md).
 
     Written whole or not at all, and an existing ``path`` only with ``overwrite`` (:mod:`erdesign.output`; ``option``

@@ -78,7 +78,7 @@ def lqr_gains(car, q_t: float = LQR_WEIGHTS["q_t"], q_d: float = LQR_WEIGHTS["q_
 
     A = np.array([[0, 1, 0, 0], [-K / m1, -C / m1, k / m1, 0], [0, -1, 0, 1], [0, 0, -k / m2, 0]], dtype=float)
     B = np.array([[0.0], [1 / m1], [0.0], [-1 / m2]])
-    c_a, d_a = np.array([[0.0, 0.0, -k / m2, 0.0]]), -1 / m2          # body acceleration = c_a s + d_a F
+    c_a, d_a = np.array([[0.0, 0.0, -k / m2, 0.0]]), -1 / m2  # body acceleration = c_a s + d_a F
     Q = c_a.T @ c_a + np.diag([q_d, 0.0, q_t, 0.0])
     N = c_a.T * d_a
     R = np.array([[d_a**2]])
@@ -103,10 +103,13 @@ def _optimal(car, gain):
 CONTROLLERS: dict[str, ControlLaw] = {
     "passive": ControlLaw("passive", None, description="constant control"),
     "skyhook": ControlLaw("skyhook", _skyhook, uses_gain=True, description="F_d = c_sky v2 (Karnopp 1974)"),
-    "groundhook": ControlLaw("groundhook", _groundhook, uses_gain=True,
-                             description="F_d = -c_gnd v1 (Valasek 1997)"),
-    "clipped-optimal": ControlLaw("clipped-optimal", _optimal, on_off=True,
-                                  description="full control when (F_d - F) F > 0, F_d the LQR force (Dyke 1996)"),
+    "groundhook": ControlLaw("groundhook", _groundhook, uses_gain=True, description="F_d = -c_gnd v1 (Valasek 1997)"),
+    "clipped-optimal": ControlLaw(
+        "clipped-optimal",
+        _optimal,
+        on_off=True,
+        description="full control when (F_d - F) F > 0, F_d the LQR force (Dyke 1996)",
+    ),
 }
 
 

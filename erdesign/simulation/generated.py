@@ -29,8 +29,11 @@ __all__ = ["parse_motion", "SineMotion", "MotionRun", "run_on_motion", "SAMPLES_
 
 #: Samples per cycle of a generated sine (the energy integral's error is ~1e-4 at 400).
 SAMPLES_PER_CYCLE = 400
-_SINE = re.compile(r"^\s*sine\s+(?P<amp>.+?\S)\s+(?P<freq>[-+0-9.eE]+\s*\S*Hz)"
-                   r"(?:\s+(?P<cycles>[0-9.]+)\s*cycles?)?\s*$", re.IGNORECASE)
+_SINE = re.compile(
+    r"^\s*sine\s+(?P<amp>.+?\S)\s+(?P<freq>[-+0-9.eE]+\s*\S*Hz)"
+    r"(?:\s+(?P<cycles>[0-9.]+)\s*cycles?)?\s*$",
+    re.IGNORECASE,
+)
 
 
 @dataclass(frozen=True)
@@ -54,15 +57,17 @@ def parse_motion(text: str, field: float = 0.0, control_unit: str | None = None)
 
     match = _SINE.match(str(text))
     if match is None:
-        raise ErdesignError(f"motion: expected \"sine AMPLITUDE FREQUENCY [N cycles]\" with units, e.g. \"sine 10 mm "
-                            f"2 Hz\", got {text!r}")
+        raise ErdesignError(
+            f'motion: expected "sine AMPLITUDE FREQUENCY [N cycles]" with units, e.g. "sine 10 mm 2 Hz", got {text!r}'
+        )
     amplitude = float(to_si(match["amp"], "m", "motion amplitude"))
     frequency = float(to_si(match["freq"], "Hz", "motion frequency"))
     cycles = float(match["cycles"]) if match["cycles"] else 3.0
     if not (cycles >= 1 and cycles == int(cycles) and cycles <= 1000):
         raise ErdesignError(f"motion: the number of cycles must be a whole number from 1 to 1000, got {cycles:g}")
-    motion = sine(amplitude, frequency, field, cycles=cycles, rate=SAMPLES_PER_CYCLE * frequency,
-                  control_unit=control_unit)
+    motion = sine(
+        amplitude, frequency, field, cycles=cycles, rate=SAMPLES_PER_CYCLE * frequency, control_unit=control_unit
+    )
     return SineMotion(motion, amplitude, frequency)
 
 
@@ -81,8 +86,14 @@ class MotionRun:
     peak_force: float
 
 
-def run_on_motion(model: Model, values, sine_motion: SineMotion, *, control_kind: str | None = None,
-                  active_volume: float | None = None) -> MotionRun:
+def run_on_motion(
+    model: Model,
+    values,
+    sine_motion: SineMotion,
+    *,
+    control_kind: str | None = None,
+    active_volume: float | None = None,
+) -> MotionRun:
     """Run ``model`` with SI ``values`` on the generated sine (from rest) and compute the figures of its last
     cycle; ``active_volume`` [m^3] (the physics damper's is its geometry's) gives the energy per unit active fluid
     volume.
@@ -95,8 +106,17 @@ def run_on_motion(model: Model, values, sine_motion: SineMotion, *, control_kind
     1000
     """
     motion = sine_motion.motion
-    record = Measurement(motion.time, motion.displacement, None, motion.velocity, motion.acceleration,
-                         motion.control, control_kind, name=motion.description, velocity_noise=0.0)
+    record = Measurement(
+        motion.time,
+        motion.displacement,
+        None,
+        motion.velocity,
+        motion.acceleration,
+        motion.control,
+        control_kind,
+        name=motion.description,
+        velocity_noise=0.0,
+    )
     force = model.simulate(record, values)
     if not np.all(np.isfinite(force)):
         raise ErdesignError(f"{model.name}: the parameters give non-finite forces on {motion.description}")
@@ -107,6 +127,6 @@ def run_on_motion(model: Model, values, sine_motion: SineMotion, *, control_kind
     if active_volume is not None and not (np.isfinite(active_volume) and active_volume > 0):
         raise ErdesignError(f"active_volume: must be a positive volume, got {active_volume!r} m^3")
     per_volume = None if active_volume is None else U / active_volume
-    return MotionRun(record.with_force(force), X0, f, float(U), float(Ceq), active_volume, per_volume,
-                     float(np.max(np.abs(force))))
-
+    return MotionRun(
+        record.with_force(force), X0, f, float(U), float(Ceq), active_volume, per_volume, float(np.max(np.abs(force)))
+    )

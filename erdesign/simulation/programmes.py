@@ -66,8 +66,14 @@ class ProgrammeError(ErdesignError):
 
 
 # ------------------------------------------------------------------------------------------ displacement signals
-def dsfs(amplitude_range: tuple[float, float] = (0.008, 0.001), frequency_range: tuple[float, float] = (0.5, 14.5),
-         *, frequency_step: float = 1.0, cycles: float = 4, rate: float = 500.0) -> Motion:
+def dsfs(
+    amplitude_range: tuple[float, float] = (0.008, 0.001),
+    frequency_range: tuple[float, float] = (0.5, 14.5),
+    *,
+    frequency_step: float = 1.0,
+    cycles: float = 4,
+    rate: float = 500.0,
+) -> Motion:
     r"""Decreasing-amplitude stepped-frequency sine (DSFS) of Vivas-López et al. (n.d.), Table 1.
 
     Step k runs ``cycles`` cycles at :math:`f_k = f_0 + k\,\Delta f` up to ``frequency_range[1]``, with amplitude
@@ -96,18 +102,30 @@ def dsfs(amplitude_range: tuple[float, float] = (0.008, 0.001), frequency_range:
     """
     f0, f1 = (float(f) for f in frequency_range)
     if not (0 < f0 <= f1 and frequency_step > 0 and cycles > 0):
-        raise ProgrammeError(f"frequency_range: need 0 < first <= last and a positive step and cycles, got "
-                             f"{f0:g}-{f1:g} Hz step {frequency_step:g} Hz, {cycles:g} cycles")
+        raise ProgrammeError(
+            f"frequency_range: need 0 < first <= last and a positive step and cycles, got "
+            f"{f0:g}-{f1:g} Hz step {frequency_step:g} Hz, {cycles:g} cycles"
+        )
     f = np.arange(f0, f1 + 1e-9 * f1, frequency_step)
     A = np.linspace(float(amplitude_range[0]), float(amplitude_range[1]), f.size)
     _check(A, f, rate)
     m = stepped_sine(A, f, [0.0], cycles=cycles, rate=rate)
-    return replace(m, description=f"DSFS: {f.size} steps {f0:g}-{f[-1]:g} Hz, amplitude {A[0] * 1e3:g} to "
-                                  f"{A[-1] * 1e3:g} mm, {cycles:g} cycles each")
+    return replace(
+        m,
+        description=f"DSFS: {f.size} steps {f0:g}-{f[-1]:g} Hz, amplitude {A[0] * 1e3:g} to "
+        f"{A[-1] * 1e3:g} mm, {cycles:g} cycles each",
+    )
 
 
-def road_profile(amplitudes: Sequence[float] = (0.008,), band: tuple[float, float] = (0.1, 3.0), *,
-                 duration: float = 20.0, rate: float = 500.0, seed: int = 0, ramp: float = 0.5) -> Motion:
+def road_profile(
+    amplitudes: Sequence[float] = (0.008,),
+    band: tuple[float, float] = (0.1, 3.0),
+    *,
+    duration: float = 20.0,
+    rate: float = 500.0,
+    seed: int = 0,
+    ramp: float = 0.5,
+) -> Motion:
     r"""Road-profile (RP) stroke of Vivas-López et al. (n.d.), Table 1: band-limited random displacement.
 
     White Gaussian noise shaped in frequency to the spectrum of an ISO 8608 road seen at constant speed
@@ -139,8 +157,10 @@ def road_profile(amplitudes: Sequence[float] = (0.008,), band: tuple[float, floa
         raise ProgrammeError(f"band: need 0 < low < high, got {lo:g}-{hi:g} Hz")
     _check(A, np.array([hi]), rate)
     if not (math.isfinite(duration) and duration >= 4 * ramp and duration * lo >= 1.0):
-        raise ProgrammeError(f"duration: {duration:g} s is too short for a road profile down to {lo:g} Hz (need at "
-                             f"least one period of the lowest frequency and the {ramp:g} s fades)")
+        raise ProgrammeError(
+            f"duration: {duration:g} s is too short for a road profile down to {lo:g} Hz (need at "
+            f"least one period of the lowest frequency and the {ramp:g} s fades)"
+        )
     t, _ = _fine(duration, rate)
     dt = t[1] - t[0]
     rng = np.random.default_rng(seed)
@@ -168,8 +188,9 @@ def road_profile(amplitudes: Sequence[float] = (0.008,), band: tuple[float, floa
         level *= A / peak
     x = shaped
     shown = ", ".join(f"{a * 1e3:g}" for a in A)
-    return _finish(t, x, np.zeros(t.size), f"RP: road profile {lo:g}-{hi:g} Hz over {duration:g} s, peaks {shown} mm "
-                                           f"(seed {seed})")
+    return _finish(
+        t, x, np.zeros(t.size), f"RP: road profile {lo:g}-{hi:g} Hz over {duration:g} s, peaks {shown} mm (seed {seed})"
+    )
 
 
 def _check(A: np.ndarray, f: np.ndarray, rate: float) -> None:
@@ -194,8 +215,7 @@ def stepped_control(t, low: float, high: float, *, steps: int = 8, hold: float =
     return low + (high - low) * k / (steps - 1)
 
 
-def icps(t, low: float, high: float, *, period_range: tuple[float, float] = (0.05, 2.0), seed: int = 0
-         ) -> np.ndarray:
+def icps(t, low: float, high: float, *, period_range: tuple[float, float] = (0.05, 2.0), seed: int = 0) -> np.ndarray:
     """Increasing clock period signal (ICPS): a level drawn uniformly from [low, high] at each clock tick, the clock
     period growing geometrically from ``period_range[0]`` at the start to ``period_range[1]`` at the end of ``t``
     (Vivas-López et al., Table 1, E3 and E4: "covers the whole force range").
@@ -219,9 +239,23 @@ def icps(t, low: float, high: float, *, period_range: tuple[float, float] = (0.0
 
 
 #: Feedback taps (1-based, Fibonacci form) of a maximal-length shift register of each order (period 2^n - 1).
-PRBS_TAPS = {2: (2, 1), 3: (3, 2), 4: (4, 3), 5: (5, 3), 6: (6, 5), 7: (7, 6), 8: (8, 6, 5, 4), 9: (9, 5),
-             10: (10, 7), 11: (11, 9), 12: (12, 11, 10, 4), 13: (13, 12, 11, 8), 14: (14, 13, 12, 2), 15: (15, 14),
-             16: (16, 15, 13, 4)}
+PRBS_TAPS = {
+    2: (2, 1),
+    3: (3, 2),
+    4: (4, 3),
+    5: (5, 3),
+    6: (6, 5),
+    7: (7, 6),
+    8: (8, 6, 5, 4),
+    9: (9, 5),
+    10: (10, 7),
+    11: (11, 9),
+    12: (12, 11, 10, 4),
+    13: (13, 12, 11, 8),
+    14: (14, 13, 12, 2),
+    15: (15, 14),
+    16: (16, 15, 13, 4),
+}
 
 
 def prbs_bits(order: int, count: int | None = None, *, seed: int = 1) -> np.ndarray:
@@ -291,9 +325,15 @@ EXPERIMENTS: Mapping[str, Experiment] = {
 }
 
 
-def programme(name: str, *, control_range: tuple[float, float] | None = None, rate: float = 500.0, seed: int = 0,
-              displacement_options: Mapping[str, object] | None = None,
-              actuation_options: Mapping[str, object] | None = None) -> Motion:
+def programme(
+    name: str,
+    *,
+    control_range: tuple[float, float] | None = None,
+    rate: float = 500.0,
+    seed: int = 0,
+    displacement_options: Mapping[str, object] | None = None,
+    actuation_options: Mapping[str, object] | None = None,
+) -> Motion:
     """The test programme ``name``: an experiment of Table 1 (``"E1"`` ... ``"E5"``), a displacement signal alone
     (``"rp"``, ``"dsfs"``: control zero) or a pair ``"DISPLACEMENT+ACTUATION"`` (``"dsfs+prbs"``).
 
@@ -325,12 +365,16 @@ def programme(name: str, *, control_range: tuple[float, float] | None = None, ra
         disp, _, act = key.partition("+")
         own = {}
         if disp in ACTUATIONS and not act:
-            raise ProgrammeError(f"programme: {name!r} is an actuation signal; pair it with a displacement signal, "
-                                 f"e.g. 'dsfs+{disp}' (or one of E1-E5)")
+            raise ProgrammeError(
+                f"programme: {name!r} is an actuation signal; pair it with a displacement signal, "
+                f"e.g. 'dsfs+{disp}' (or one of E1-E5)"
+            )
         if disp not in DISPLACEMENTS or (act and act not in ACTUATIONS):
-            raise ProgrammeError(f"programme: unknown {name!r}; one of {', '.join(k.upper() for k in EXPERIMENTS)}, "
-                                 f"{', '.join(DISPLACEMENTS)} or DISPLACEMENT+ACTUATION with the actuation one of "
-                                 f"{', '.join(ACTUATIONS)}")
+            raise ProgrammeError(
+                f"programme: unknown {name!r}; one of {', '.join(k.upper() for k in EXPERIMENTS)}, "
+                f"{', '.join(DISPLACEMENTS)} or DISPLACEMENT+ACTUATION with the actuation one of "
+                f"{', '.join(ACTUATIONS)}"
+            )
     options = {**own, **dict(displacement_options or {})}
     if disp == "rp":
         options.setdefault("seed", seed)
@@ -342,19 +386,25 @@ def programme(name: str, *, control_range: tuple[float, float] | None = None, ra
     if not act:
         for given, what in ((control_range, "control_range"), (actuation_options, "actuation_options")):
             if given is not None:
-                raise ProgrammeError(f"{what}: {name!r} has no actuation signal (the control is zero); pair it, "
-                                     f"e.g. '{disp}+prbs'")
+                raise ProgrammeError(
+                    f"{what}: {name!r} has no actuation signal (the control is zero); pair it, e.g. '{disp}+prbs'"
+                )
         return replace(motion, description=f"{label}: {motion.description}")
     if control_range is None:
         raise ProgrammeError(f"control_range: the actuation signal {act.upper()} needs a low and a high control")
     low, high = (float(c) for c in control_range)
     if not (math.isfinite(low) and math.isfinite(high) and low < high):
         raise ProgrammeError(f"control_range: need a finite low below the high, got {low:g}, {high:g}")
-    act_options = {**({"seed": seed + 1} if act == "prbs" else {"seed": seed} if act == "icps" else {}),
-                   **dict(actuation_options or {})}
+    act_options = {
+        **({"seed": seed + 1} if act == "prbs" else {"seed": seed} if act == "icps" else {}),
+        **dict(actuation_options or {}),
+    }
     try:
         u = ACTUATIONS[act](motion.time, low, high, **act_options)
     except TypeError as exc:
         raise ProgrammeError(f"actuation_options: {exc}") from None
-    return replace(motion, control=u, description=f"{label}: {motion.description}; {act.upper()} control "
-                                                  "between the low and the high level")
+    return replace(
+        motion,
+        control=u,
+        description=f"{label}: {motion.description}; {act.upper()} control between the low and the high level",
+    )

@@ -30,8 +30,17 @@ from ..effects.chain import PhysicsDamper
 from ..errors import ErdesignError
 from ..units import Q_
 
-__all__ = ["Motion", "RigRecord", "sine", "stepped_sine", "field_steps", "random_motion", "earthquake_motion",
-           "run_rig", "OVERSAMPLING"]
+__all__ = [
+    "Motion",
+    "RigRecord",
+    "sine",
+    "stepped_sine",
+    "field_steps",
+    "random_motion",
+    "earthquake_motion",
+    "run_rig",
+    "OVERSAMPLING",
+]
 
 #: Fine-grid factor for the exact kinematics.
 OVERSAMPLING = 8
@@ -78,8 +87,15 @@ def _control_text(value: float, unit: str | None) -> str:
     return f"{q.magnitude:.4g} {q.units:~P}"
 
 
-def sine(amplitude: float, frequency: float, field: float = 0.0, *, cycles: float = 3, rate: float = 500.0,
-         control_unit: str | None = None) -> Motion:
+def sine(
+    amplitude: float,
+    frequency: float,
+    field: float = 0.0,
+    *,
+    cycles: float = 3,
+    rate: float = 500.0,
+    control_unit: str | None = None,
+) -> Motion:
     """x = X0 sin(2 pi f t) at a constant control, ``cycles`` cycles sampled at ``rate`` [Hz].
 
     ``control_unit`` is the unit the description prints the control in (the fluid's ``field_unit``, ``"kV/mm"``);
@@ -94,8 +110,15 @@ def sine(amplitude: float, frequency: float, field: float = 0.0, *, cycles: floa
     return stepped_sine([amplitude], [frequency], [field], cycles=cycles, rate=rate, control_unit=control_unit)
 
 
-def stepped_sine(amplitudes: Sequence[float], frequencies: Sequence[float], fields: Sequence[float], *,
-                 cycles: float = 2, rate: float = 500.0, control_unit: str | None = None) -> Motion:
+def stepped_sine(
+    amplitudes: Sequence[float],
+    frequencies: Sequence[float],
+    fields: Sequence[float],
+    *,
+    cycles: float = 2,
+    rate: float = 500.0,
+    control_unit: str | None = None,
+) -> Motion:
     """Segments of ``cycles`` sine cycles, one per (amplitude, frequency, field) triple, joined smoothly.
 
     The amplitude and frequency blend over the first quarter cycle of each segment (half-cosine), the phase is
@@ -117,8 +140,9 @@ def stepped_sine(amplitudes: Sequence[float], frequencies: Sequence[float], fiel
     amp = A[prev] + (A[seg] - A[prev]) * w
     freq = f[prev] + (f[seg] - f[prev]) * w
     phase = 2 * np.pi * np.concatenate([[0.0], np.cumsum(0.5 * (freq[1:] + freq[:-1]) * np.diff(t))])
-    desc = "; ".join(f"{a * 1e3:g} mm at {fr:g} Hz, control {_control_text(e, control_unit)}"
-                     for a, fr, e in zip(A, f, E))
+    desc = "; ".join(
+        f"{a * 1e3:g} mm at {fr:g} Hz, control {_control_text(e, control_unit)}" for a, fr, e in zip(A, f, E)
+    )
     # (one segment is a plain sine; several keep the words "sine sweep" of the record files already written)
     what = f"sine ({cycles:g} cycles)" if n_seg == 1 else f"sine sweep ({cycles:g} cycles each)"
     return _finish(t, amp * np.sin(phase), E[seg], f"{what}: {desc}")
@@ -144,20 +168,35 @@ def _check_motion(amplitudes: np.ndarray, frequencies: np.ndarray, rate: float) 
         if bad.size:
             raise ErdesignError(f"{name}: must be positive and finite, got {bad[0]:g}")
     if np.max(amplitudes) > MAX_AMPLITUDE:
-        raise ErdesignError(f"amplitude: {np.max(amplitudes):g} m is beyond any damper's stroke (at most "
-                            f"{MAX_AMPLITUDE:g} m); check the value and its unit")
+        raise ErdesignError(
+            f"amplitude: {np.max(amplitudes):g} m is beyond any damper's stroke (at most "
+            f"{MAX_AMPLITUDE:g} m); check the value and its unit"
+        )
     speed = float(np.max(2 * np.pi * amplitudes * frequencies))
     if speed > MAX_SPEED:
-        raise ErdesignError(f"frequency: {np.max(frequencies):g} Hz at {np.max(amplitudes) * 1e3:g} mm gives a peak "
-                            f"speed of {speed:.3g} m/s, beyond any damper test (at most {MAX_SPEED:g} m/s); check the "
-                            "frequency, the amplitude and their units")
+        raise ErdesignError(
+            f"frequency: {np.max(frequencies):g} Hz at {np.max(amplitudes) * 1e3:g} mm gives a peak "
+            f"speed of {speed:.3g} m/s, beyond any damper test (at most {MAX_SPEED:g} m/s); check the "
+            "frequency, the amplitude and their units"
+        )
     if np.max(frequencies) * MIN_SAMPLES_PER_PERIOD > rate:
-        raise ErdesignError(f"frequency: {np.max(frequencies):g} Hz cannot be resolved at {rate:g} samples per second "
-                            f"(at least {MIN_SAMPLES_PER_PERIOD} per period); lower it or raise the sampling rate")
+        raise ErdesignError(
+            f"frequency: {np.max(frequencies):g} Hz cannot be resolved at {rate:g} samples per second "
+            f"(at least {MIN_SAMPLES_PER_PERIOD} per period); lower it or raise the sampling rate"
+        )
 
 
-def field_steps(amplitude: float, frequency: float, field: float, *, cycles: float = 4, step_period: float = 0.5,
-                rate: float = 1000.0, phase: float = 0.3, control_unit: str | None = None) -> Motion:
+def field_steps(
+    amplitude: float,
+    frequency: float,
+    field: float,
+    *,
+    cycles: float = 4,
+    step_period: float = 0.5,
+    rate: float = 1000.0,
+    phase: float = 0.3,
+    control_unit: str | None = None,
+) -> Motion:
     """A sine with the control switched between 0 and ``field`` every ``step_period`` [s]; the steps fall at
     ``phase`` (fraction of a period) into the stroke so that they happen at speed.  ``control_unit``: the unit the
     description prints the control in (as :func:`sine`)."""
@@ -165,8 +204,13 @@ def field_steps(amplitude: float, frequency: float, field: float, *, cycles: flo
     t, _ = _fine(cycles / frequency, rate)
     x = amplitude * np.sin(2 * np.pi * frequency * t)
     on = np.floor((t - phase / frequency) / step_period) % 2 == 1
-    return _finish(t, x, np.where(on, field, 0.0), f"sine {amplitude * 1e3:g} mm at {frequency:g} Hz with the "
-                                                   f"control switched 0 / {_control_text(field, control_unit)} every {step_period:g} s")
+    return _finish(
+        t,
+        x,
+        np.where(on, field, 0.0),
+        f"sine {amplitude * 1e3:g} mm at {frequency:g} Hz with the "
+        f"control switched 0 / {_control_text(field, control_unit)} every {step_period:g} s",
+    )
 
 
 def _shaped_noise(n: int, dt: float, gain, seed: int) -> np.ndarray:
@@ -176,8 +220,15 @@ def _shaped_noise(n: int, dt: float, gain, seed: int) -> np.ndarray:
     return np.fft.irfft(spectrum * gain(f), n)
 
 
-def random_motion(rms: float, band: tuple[float, float], field: float = 0.0, *, duration: float = 4.0,
-                  rate: float = 500.0, seed: int = 0) -> Motion:
+def random_motion(
+    rms: float,
+    band: tuple[float, float],
+    field: float = 0.0,
+    *,
+    duration: float = 4.0,
+    rate: float = 500.0,
+    seed: int = 0,
+) -> Motion:
     """Band-limited Gaussian displacement (flat between ``band`` [Hz], smooth roll-off), RMS ``rms`` [m]."""
     t, _ = _fine(duration, rate)
     lo, hi = band
@@ -189,8 +240,16 @@ def random_motion(rms: float, band: tuple[float, float], field: float = 0.0, *, 
     return _finish(t, x, np.full(t.size, float(field)), f"random motion, RMS {rms * 1e3:g} mm, {lo:g}-{hi:g} Hz")
 
 
-def earthquake_motion(peak: float, field: float = 0.0, *, duration: float = 8.0, rate: float = 500.0,
-                      ground_frequency: float = 2.5, ground_damping: float = 0.6, seed: int = 0) -> Motion:
+def earthquake_motion(
+    peak: float,
+    field: float = 0.0,
+    *,
+    duration: float = 8.0,
+    rate: float = 500.0,
+    ground_frequency: float = 2.5,
+    ground_damping: float = 0.6,
+    seed: int = 0,
+) -> Motion:
     """Earthquake-like displacement: Kanai-Tajimi filtered noise (ground frequency and damping, band-limited to
     about 25 Hz) under an envelope that builds up over 15 % of the record and decays exponentially, scaled to the
     peak displacement ``peak``."""
@@ -233,9 +292,18 @@ class RigRecord:
     extra: dict = field(default_factory=dict)
 
 
-def run_rig(damper: Damper, motion: Motion, *, hidden: Mapping[str, Mapping[str, float]] | Sequence[str] = (),
-            viscosity_factor: float = 1.0, yield_stress_factor: float = 1.0, force_noise: float = 0.005,
-            displacement_noise: float = 1e-4, seed: int = 0, name: str = "rig") -> RigRecord:
+def run_rig(
+    damper: Damper,
+    motion: Motion,
+    *,
+    hidden: Mapping[str, Mapping[str, float]] | Sequence[str] = (),
+    viscosity_factor: float = 1.0,
+    yield_stress_factor: float = 1.0,
+    force_noise: float = 0.005,
+    displacement_noise: float = 1e-4,
+    seed: int = 0,
+    name: str = "rig",
+) -> RigRecord:
     """Measure ``damper`` on the virtual rig.
 
     Parameters
@@ -277,9 +345,16 @@ def run_rig(damper: Damper, motion: Motion, *, hidden: Mapping[str, Mapping[str,
         names = parse_effect_names(hidden)
         settings = {}
     model = PhysicsDamper(damper, names)
-    exact = Measurement(time=motion.time, displacement=motion.displacement, force=None, velocity=motion.velocity,
-                        acceleration=motion.acceleration, control=motion.control,
-                        control_kind=damper.fluid.control, name=name)
+    exact = Measurement(
+        time=motion.time,
+        displacement=motion.displacement,
+        force=None,
+        velocity=motion.velocity,
+        acceleration=motion.acceleration,
+        control=motion.control,
+        control_kind=damper.fluid.control,
+        name=name,
+    )
     values = model.defaults()
     values.update(viscosity_factor=viscosity_factor, yield_stress_factor=yield_stress_factor)
     for e in names:
@@ -289,15 +364,19 @@ def run_rig(damper: Damper, motion: Motion, *, hidden: Mapping[str, Mapping[str,
     rng = np.random.default_rng(seed)
     F = F_true + force_noise * np.sqrt(np.mean(F_true**2)) * rng.standard_normal(F_true.size)
     x = motion.displacement + displacement_noise * np.max(np.abs(motion.displacement)) * rng.standard_normal(
-        F_true.size)
-    record = Measurement.from_arrays(motion.time, x, F, control=motion.control, control_kind=damper.fluid.control,
-                                     name=name)
+        F_true.size
+    )
+    record = Measurement.from_arrays(
+        motion.time, x, F, control=motion.control, control_kind=damper.fluid.control, name=name
+    )
     parts = []
     for e in names:
         pars = ", ".join(f"{p.name} = {p.format(values[p.name])}" for p in EFFECTS[e].parameters(damper))
         parts.append(f"{e} ({pars})")
     hidden_text = ", ".join(parts) or "nothing"
-    comment = (f"virtual rig: {damper.name or 'damper'}; {motion.description}; hidden: {hidden_text}; true fluid: "
-               f"viscosity x {viscosity_factor:g}, yield stress x {yield_stress_factor:g}; noise: force "
-               f"{force_noise:g} of RMS, displacement {displacement_noise:g} of peak; seed {seed}")
+    comment = (
+        f"virtual rig: {damper.name or 'damper'}; {motion.description}; hidden: {hidden_text}; true fluid: "
+        f"viscosity x {viscosity_factor:g}, yield stress x {yield_stress_factor:g}; noise: force "
+        f"{force_noise:g} of RMS, displacement {displacement_noise:g} of peak; seed {seed}"
+    )
     return RigRecord(record, F_true, names, values, motion, comment)

@@ -56,8 +56,14 @@ def step_road(height: float = 0.1) -> Road:
     """Road step of ``height`` [m] at t = 0 (Butz and von Stryk 2002, section 4.4: 0.1 m)."""
     _positive(height, "height", allow_zero=False, signed=True)
     _plausible(abs(height), PLAUSIBLE_HEIGHT, "height", "m", "road step")
-    return Road("step", lambda t: np.full(np.shape(t), float(height)), lambda t: np.zeros(np.shape(t)),
-                step=float(height), description=f"step of {height:g} m at t = 0", settles_to=float(height))
+    return Road(
+        "step",
+        lambda t: np.full(np.shape(t), float(height)),
+        lambda t: np.zeros(np.shape(t)),
+        step=float(height),
+        description=f"step of {height:g} m at t = 0",
+        settles_to=float(height),
+    )
 
 
 def bump_road(height: float = 0.1, duration: float = 0.5, start: float = 0.0) -> Road:
@@ -82,8 +88,9 @@ def bump_road(height: float = 0.1, duration: float = 0.5, start: float = 0.0) ->
         on, t = inside(t)
         return np.where(on, 0.5 * height * w * np.sin(w * (t - start)), 0.0)
 
-    return Road("bump", profile, rate, description=f"(1 - cos) bump of {height:g} m over {duration:g} s",
-                settles_to=0.0)
+    return Road(
+        "bump", profile, rate, description=f"(1 - cos) bump of {height:g} m over {duration:g} s", settles_to=0.0
+    )
 
 
 def iso8608_psd(n, road_class: str) -> np.ndarray:
@@ -119,8 +126,9 @@ def iso8608_road(road_class: str = "C", speed: float = 20.0, *, seed: int = 0, c
         t = np.asarray(t, dtype=float)
         return -np.sin(np.multiply.outer(t, omega) + phase) @ (amplitude * omega)
 
-    return Road("random", profile, rate,
-                description=f"ISO 8608 class {road_class.upper()} road at {speed:g} m/s (seed {seed})")
+    return Road(
+        "random", profile, rate, description=f"ISO 8608 class {road_class.upper()} road at {speed:g} m/s (seed {seed})"
+    )
 
 
 def _class_value(road_class: str) -> float:
@@ -132,8 +140,11 @@ def _class_value(road_class: str) -> float:
 
 def _plausible(value, limit, name, unit, what):
     if value > limit:
-        warnings.warn(f"{name}: {value:g} {unit} is beyond any plausible {what} ({limit:g} {unit}); check the value "
-                      "and its unit", PlausibilityWarning, stacklevel=3)
+        warnings.warn(
+            f"{name}: {value:g} {unit} is beyond any plausible {what} ({limit:g} {unit}); check the value and its unit",
+            PlausibilityWarning,
+            stacklevel=3,
+        )
 
 
 def _positive(value, name, *, allow_zero=True, signed=False):

@@ -42,8 +42,17 @@ from .control import VehicleState, get_controller
 from .ride import rms, weighted_rms
 from .roads import Road
 
-__all__ = ["QUARTER_CAR", "CONVENTIONAL_DAMPING", "QuarterCar", "VehicleDamper", "VehicleResponse",
-           "simulate_vehicle", "settling_time", "default_gain", "write_history"]
+__all__ = [
+    "QUARTER_CAR",
+    "CONVENTIONAL_DAMPING",
+    "QuarterCar",
+    "VehicleDamper",
+    "VehicleResponse",
+    "simulate_vehicle",
+    "settling_time",
+    "default_gain",
+    "write_history",
+]
 
 #: Butz and von Stryk (2002) section 4.1: axle and body mass [kg], tyre stiffness [N/m] and damping [N s/m],
 #: suspension stiffness [N/m].
@@ -167,15 +176,31 @@ class VehicleResponse:
 
     def history(self) -> dict[str, tuple[np.ndarray, str]]:
         """Columns of the history file: name -> (values, unit)."""
-        return {"time": (self.time, "s"), "road": (self.u0, "m"), "axle_displacement": (self.u1, "m"),
-                "body_displacement": (self.u2, "m"), "axle_velocity": (self.v1, "m/s"),
-                "body_velocity": (self.v2, "m/s"), "body_acceleration": (self.a2, "m/s^2"),
-                "suspension_travel": (self.travel, "m"), "damper_force": (self.force, "N"),
-                "tyre_load": (self.tyre_load, "N"), "control": (self.control, "SI")}
+        return {
+            "time": (self.time, "s"),
+            "road": (self.u0, "m"),
+            "axle_displacement": (self.u1, "m"),
+            "body_displacement": (self.u2, "m"),
+            "axle_velocity": (self.v1, "m/s"),
+            "body_velocity": (self.v2, "m/s"),
+            "body_acceleration": (self.a2, "m/s^2"),
+            "suspension_travel": (self.travel, "m"),
+            "damper_force": (self.force, "N"),
+            "tyre_load": (self.tyre_load, "N"),
+            "control": (self.control, "SI"),
+        }
 
 
-def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive", *, gain: float | None = None,
-                     car: QuarterCar | None = None, duration: float = 3.0, dt: float | None = None) -> VehicleResponse:
+def simulate_vehicle(
+    damper: VehicleDamper,
+    road: Road,
+    control: str = "passive",
+    *,
+    gain: float | None = None,
+    car: QuarterCar | None = None,
+    duration: float = 3.0,
+    dt: float | None = None,
+) -> VehicleResponse:
     """Simulate the quarter vehicle over ``road`` with ``damper`` under the control law ``control``.
 
     Parameters
@@ -217,9 +242,14 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
     if dt > 2e-3:
         raise ErdesignError(f"dt: at most 2 ms (the tyre mode near 9 Hz and the damper need it), got {dt!r} s")
     if gain is not None and not law.uses_gain:
-        raise ErdesignError(f"gain: applies to skyhook and groundhook; {law.name} has no gain"
-                            + (" (its desired force is the LQR force of the vehicle, docs/vehicle.md)"
-                               if law.primary is not None else ""))
+        raise ErdesignError(
+            f"gain: applies to skyhook and groundhook; {law.name} has no gain"
+            + (
+                " (its desired force is the LQR force of the vehicle, docs/vehicle.md)"
+                if law.primary is not None
+                else ""
+            )
+        )
     gain = default_gain(car) if gain is None else float(gain)
     desired = None
     if law.primary is not None:
@@ -229,17 +259,38 @@ def simulate_vehicle(damper: VehicleDamper, road: Road, control: str = "passive"
         desired = law.primary(car, gain)
     n = int(round(duration / dt)) + 1
     if n > _LONG_HISTORY and not damper.memoryless:
-        warnings.warn(f"{damper.label}: {n} steps of a model with internal states: each window runs the model on "
-                      "the whole history, so this run takes long (minutes); a shorter duration or a larger dt is "
-                      "quicker", ErdesignWarning, stacklevel=2)
+        warnings.warn(
+            f"{damper.label}: {n} steps of a model with internal states: each window runs the model on "
+            "the whole history, so this run takes long (minutes); a shorter duration or a larger dt is "
+            "quicker",
+            ErdesignWarning,
+            stacklevel=2,
+        )
     run = _CoSimulation(damper, road, car, np.arange(n) * dt, desired, law.on_off)
     run.solve()
     u1, v1, u2, v2 = run.S.T
     a2 = (-car.k * (u2 - u1) - run.F) / car.m2
     tyre = car.K * (run.u0 - u1) + car.C * (run.du0 - v1)
-    return VehicleResponse(run.t, run.u0, u1, u2, v1, v2, a2, run.F, run.u, tyre, run.unreachable, car, road,
-                           law.name, damper.label, damper.control_kind, gain if law.uses_gain else None,
-                           list(damper.notes))
+    return VehicleResponse(
+        run.t,
+        run.u0,
+        u1,
+        u2,
+        v1,
+        v2,
+        a2,
+        run.F,
+        run.u,
+        tyre,
+        run.unreachable,
+        car,
+        road,
+        law.name,
+        damper.label,
+        damper.control_kind,
+        gain if law.uses_gain else None,
+        list(damper.notes),
+    )
 
 
 class _CoSimulation:
@@ -250,23 +301,32 @@ class _CoSimulation:
         self.damper, self.car, self.t, self.desired, self.on_off = damper, car, t, desired, on_off
         n, dt = t.size, t[1] - t[0]
         self.u0, self.du0 = road.profile(t), road.rate(t)
-        self.A, self.B, self.R = _discrete_vehicle(car, dt, self.u0, self.du0, road.profile(t + dt / 2),
-                                                   road.rate(t + dt / 2))
+        self.A, self.B, self.R = _discrete_vehicle(
+            car, dt, self.u0, self.du0, road.profile(t + dt / 2), road.rate(t + dt / 2)
+        )
         self.BE = np.outer(self.B, _REL_VELOCITY)
-        self.c_limit = 0.5 / (dt * (1 / car.m1 + 1 / car.m2))     # explicit step stays stable below this damping
+        self.c_limit = 0.5 / (dt * (1 / car.m1 + 1 / car.m2))  # explicit step stays stable below this damping
         self.c = _slope(damper, self.c_limit)
         self.x, self.v, self.a, self.u, self.F = (np.zeros(n) for _ in range(5))
         self.unreachable = np.zeros(n, bool)
         self.S = np.zeros((n, 4))
-        self.S[0, 1] = car.C * road.step / car.m1                 # the step's tyre-damper impulse
+        self.S[0, 1] = car.C * road.step / car.m1  # the step's tyre-damper impulse
         self.w_max = max(1, int(round(_WINDOW / dt)))
 
     def record(self, i0: int, i1: int) -> Measurement:
         """What the model sees for samples i0..i1-1: those samples (memoryless) or the history up to them, with an
         exact velocity (no noise band for the sign of a yield force: velocity_noise 0)."""
         sl = slice(i0, i1) if self.damper.memoryless else slice(0, i1)
-        return Measurement(self.t[sl], self.x[sl], None, self.v[sl], self.a[sl], self.u[sl],
-                           self.damper.control_kind, velocity_noise=0.0)
+        return Measurement(
+            self.t[sl],
+            self.x[sl],
+            None,
+            self.v[sl],
+            self.a[sl],
+            self.u[sl],
+            self.damper.control_kind,
+            velocity_noise=0.0,
+        )
 
     def sweep(self, i0: int, i1: int, g: np.ndarray, cj: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Advance the vehicle over samples i0..i1-1 with the force g + cj (v2 - v1) held over each step; return the
@@ -316,21 +376,23 @@ class _CoSimulation:
                 self.choose_control(i0, i1, F_used, F_last)
                 F_new = np.asarray(d.model.force(self.record(i0, i1), d.values), dtype=float)[-m:]
                 if not np.all(np.isfinite(F_new)):
-                    raise ErdesignError(f"{d.label}: the damper force is not finite near t = {self.t[i0]:.4g} s "
-                                        "(the parameters or the step dt make the model unstable)")
-                if m == 1:                    # one step: the force follows from the known state (explicit step)
+                    raise ErdesignError(
+                        f"{d.label}: the damper force is not finite near t = {self.t[i0]:.4g} s "
+                        "(the parameters or the step dt make the model unstable)"
+                    )
+                if m == 1:  # one step: the force follows from the known state (explicit step)
                     if i1 < n:
                         s = self.A @ self.S[i0] + self.B * F_new[0] + self.R[i0]
                     break
                 if np.max(np.abs(F_new - F_used)) <= 1e-3 + 1e-7 * np.max(np.abs(F_new)):
                     break
-                if F_model is not None:       # secant slope of the model in the relative velocity, per sample
+                if F_model is not None:  # secant slope of the model in the relative velocity, per sample
                     dv = self.v[i0:i1] - vg
                     moved = np.abs(dv) > 1e-9
                     cj[moved] = np.clip((F_new - F_model)[moved] / dv[moved], 0.0, self.c_limit)
                 F_model, Fg, vg = F_new, F_new, self.v[i0:i1].copy()
             else:
-                w = max(1, w // 8)            # not settled: a smaller window (one step always settles)
+                w = max(1, w // 8)  # not settled: a smaller window (one step always settles)
                 continue
             self.F[i0:i1] = F_new
             if i1 < n:
@@ -378,8 +440,16 @@ def _slope(damper: VehicleDamper, limit: float) -> float:
     t = np.linspace(0.0, 0.2, 41)
     forces = []
     for speed in (0.05, 0.1):
-        rec = Measurement(t, speed * t, None, np.full(t.size, speed), np.zeros(t.size), np.full(t.size, level),
-                          damper.control_kind, velocity_noise=0.0)
+        rec = Measurement(
+            t,
+            speed * t,
+            None,
+            np.full(t.size, speed),
+            np.zeros(t.size),
+            np.full(t.size, level),
+            damper.control_kind,
+            velocity_noise=0.0,
+        )
         forces.append(float(damper.model.force(rec, damper.values)[-1]))
     c = (forces[1] - forces[0]) / 0.05
     return float(np.clip(c, 0.0, limit)) if np.isfinite(c) else 0.0
@@ -389,11 +459,13 @@ def _realise(damper: VehicleDamper, rec: Measurement, Fd, kind: str | None) -> t
     """Control for the desired forces ``Fd`` at the last ``len(Fd)`` samples of ``rec`` (the inverse model), and
     where they were out of reach."""
     from ..identification.inverse import inverse_control
+
     m = np.size(Fd)
     desired = np.zeros(len(rec))
     desired[-m:] = Fd
-    r = inverse_control(damper.model, rec, desired, damper.values, control_range=damper.control_range,
-                        control_kind=kind or "current")
+    r = inverse_control(
+        damper.model, rec, desired, damper.values, control_range=damper.control_range, control_kind=kind or "current"
+    )
     return r.control[-m:], r.unreachable[-m:]
 
 
@@ -401,29 +473,44 @@ def _check_controllable(damper: VehicleDamper, *, needs_inverse: bool) -> None:
     """Refuse, with a message naming the way out, a damper whose force the control cannot change or that has no
     inverse for a law that needs one."""
     from ..models.friction import LuGreModified
+
     model, name = damper.model, damper.label
     lo, hi = damper.control_range
     if not model.uses_control or hi <= lo:
-        raise ErdesignError(f"{name}: semi-active control needs a damper whose force depends on the control and a "
-                            f"control range (max_field above 0); got range {damper.control_range}")
+        raise ErdesignError(
+            f"{name}: semi-active control needs a damper whose force depends on the control and a "
+            f"control range (max_field above 0); got range {damper.control_range}"
+        )
     if damper.control_kind is None:
         raise ErdesignError(f"{name}: semi-active control needs the kind of control (give max_field with its unit)")
     probe_t = np.linspace(0.0, 0.02, 21)
     forces = []
     for c in (lo, hi):
-        rec = Measurement(probe_t, 0.1 * probe_t, None, np.full(21, 0.1), np.zeros(21), np.full(21, c),
-                          damper.control_kind, velocity_noise=0.0)
+        rec = Measurement(
+            probe_t,
+            0.1 * probe_t,
+            None,
+            np.full(21, 0.1),
+            np.zeros(21),
+            np.full(21, c),
+            damper.control_kind,
+            velocity_noise=0.0,
+        )
         forces.append(float(model.force(rec, damper.values)[-1]))
     if not abs(forces[1] - forces[0]) > 1e-9 * max(1.0, abs(forces[0])):
-        raise ErdesignError(f"{name}: with these parameters the force does not change with the control (its "
-                            "control coefficients are zero), so there is nothing to control; use passive")
+        raise ErdesignError(
+            f"{name}: with these parameters the force does not change with the control (its "
+            "control coefficients are zero), so there is nothing to control; use passive"
+        )
     if needs_inverse:
         affine = isinstance(model, ControlAffineModel) and not isinstance(model, LuGreModified)
         if not (damper.memoryless or affine):
-            raise ErdesignError(f"{name}: this control law needs the damper's inverse model and {model.name} has "
-                                "none usable step by step (memoryless models, the physics damper without effects, "
-                                "kwok_tanh, magic_formula, bouc_wen_normalized, dahl_viscous, weng_arctan have); "
-                                "use clipped-optimal, which switches the control without an inverse")
+            raise ErdesignError(
+                f"{name}: this control law needs the damper's inverse model and {model.name} has "
+                "none usable step by step (memoryless models, the physics damper without effects, "
+                "kwok_tanh, magic_formula, bouc_wen_normalized, dahl_viscous, weng_arctan have); "
+                "use clipped-optimal, which switches the control without an inverse"
+            )
 
 
 def settling_time(t, u, final, band):

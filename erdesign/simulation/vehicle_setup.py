@@ -22,16 +22,22 @@ PRESET_DAMPERS = {
     "conventional (Butz and von Stryk eq 33)": {"model": "bingham", "params": "c0=6000 N*s/m, f_c=0 N"},
     "MR, Bingham (Butz and von Stryk 4.2)": {"model": "bingham", "params": "c0=5000 N*s/m, f_c=670 N"},
     "MR, modified Bouc-Wen (Butz and von Stryk 4.3)": {"model": "bouc_wen_modified", "params": "butz_vonstryk2002"},
-    "MR, Spencer et al. 1997, 0-2.25 V": {"model": "bouc_wen_modified", "params": "spencer1997",
-                                          "max_field": "2.25 V"},
+    "MR, Spencer et al. 1997, 0-2.25 V": {"model": "bouc_wen_modified", "params": "spencer1997", "max_field": "2.25 V"},
 }
 
 #: Units of the vehicle keys (Butz and von Stryk 2002 section 4.1 names).
 CAR_UNITS = {"m1": "kg", "m2": "kg", "K": "N/m", "C": "N*s/m", "k": "N/m"}
 
 
-def vehicle_damper(*, damper: Any = None, effects=(), model: str | None = None, params: str | None = None,
-                   field: Any = None, max_field: Any = None) -> VehicleDamper:
+def vehicle_damper(
+    *,
+    damper: Any = None,
+    effects=(),
+    model: str | None = None,
+    params: str | None = None,
+    field: Any = None,
+    max_field: Any = None,
+) -> VehicleDamper:
     """The damper of a vehicle run.
 
     Parameters
@@ -54,20 +60,25 @@ def vehicle_damper(*, damper: Any = None, effects=(), model: str | None = None, 
         raise ErdesignError("damper, model: give one of them (a damper file, or a model with its parameters)")
     if damper is not None:
         if params is not None and str(params).strip():
-            raise ErdesignError("params: applies to --model; a damper file's physics damper runs at its nominal "
-                                "fluid (calibrate it with 'erdesign fit' and write the fitted fluid to the file)")
+            raise ErdesignError(
+                "params: applies to --model; a damper file's physics damper runs at its nominal "
+                "fluid (calibrate it with 'erdesign fit' and write the fitted fluid to the file)"
+            )
         m = get_model("physics", damper=damper, effects=tuple(effects))
         fluid = m.damper.fluid
         kind = fluid.control
         top = fluid.reference_field if max_field is None else fluid.field_si(max_field, "max_field")
         hold = fluid.field_si(field, "field")
-        return VehicleDamper(m, m.defaults(), kind, (0.0, float(top)), float(hold),
-                             label=m.damper.name or "physics damper")
+        return VehicleDamper(
+            m, m.defaults(), kind, (0.0, float(top)), float(hold), label=m.damper.name or "physics damper"
+        )
     if effects:
         raise ErdesignError("effects: apply to a damper file (the physics damper) only")
     if params is None:
-        raise ErdesignError(f"params: --model {model} needs its parameters (a published set, \"name=value unit, "
-                            "...\" or an identify --json file)")
+        raise ErdesignError(
+            f'params: --model {model} needs its parameters (a published set, "name=value unit, '
+            '..." or an identify --json file)'
+        )
     m = get_model(model)
     kinds = {control_kind(q, name) for q, name in ((field, "field"), (max_field, "max_field")) if q is not None}
     if len(kinds) > 1:
@@ -89,8 +100,13 @@ def _resolve(model, params, kind, level):
     from ..identification.identify import resolve_parameters
 
     t = np.linspace(0.0, 1.0, 101)
-    probe = Measurement.from_arrays(t, 0.01 * np.sin(2 * np.pi * t), control=level if kind else None,
-                                    control_kind=kind, name="the vehicle's control")
+    probe = Measurement.from_arrays(
+        t,
+        0.01 * np.sin(2 * np.pi * t),
+        control=level if kind else None,
+        control_kind=kind,
+        name="the vehicle's control",
+    )
     return resolve_parameters(model, params, probe, where="params")
 
 

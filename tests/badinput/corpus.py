@@ -26,13 +26,26 @@ def damper_with(key: str, value: str | None) -> str:
 
 
 # ------------------------------------------------------------------------------------------ damper files
-_BAD_LENGTHS = ['"0 mm"', '"-1 mm"', '"1e-300 m"', '"1e300 m"', '"abc"', '"3 kg"', '"nan mm"', '"inf mm"', "5",
-                '""', "true", '"1 mm mm"', '"1e400 m"']
+_BAD_LENGTHS = [
+    '"0 mm"',
+    '"-1 mm"',
+    '"1e-300 m"',
+    '"1e300 m"',
+    '"abc"',
+    '"3 kg"',
+    '"nan mm"',
+    '"inf mm"',
+    "5",
+    '""',
+    "true",
+    '"1 mm mm"',
+    '"1e400 m"',
+]
 DAMPER_CASES = []
 for key in ("duct_length", "duct_mean_diameter", "gap", "piston_diameter", "rod_diameter"):
     for value in _BAD_LENGTHS:
         if key == "rod_diameter" and value in ('"0 mm"', '"1e-300 m"'):
-            continue                                    # no rod (or a vanishing one) is allowed
+            continue  # no rod (or a vanishing one) is allowed
         DAMPER_CASES.append((f"{key}={value}", damper_with(key, value), f"geometry.{key}", "error"))
     DAMPER_CASES.append((f"{key} missing", damper_with(key, None), f"geometry.{key}", "error"))
 DAMPER_CASES += [
@@ -50,7 +63,7 @@ DAMPER_CASES += [
     ("configuration pump", damper_with("configuration", '"pump"'), "geometry.configuration", "error"),
     ("configuration number", damper_with("configuration", "3"), "geometry.configuration", "error"),
     ("configuration missing", damper_with("configuration", None), "geometry.configuration", "error"),
-    ("unknown geometry key", MAKRIS.replace("ducts = 1", "ducts = 1\nstroke = \"5 mm\""), "geometry.stroke", "error"),
+    ("unknown geometry key", MAKRIS.replace("ducts = 1", 'ducts = 1\nstroke = "5 mm"'), "geometry.stroke", "error"),
     ("misspelt key", MAKRIS.replace("gap =", "gapp ="), "geometry.gapp", "error"),
     ("no [geometry]", MAKRIS.replace("[geometry]", "[geometri]"), "geometri", "error"),
     ("name a number", MAKRIS.replace('name = "makris-1996"', "name = 3"), "name", "error"),
@@ -79,9 +92,9 @@ DAMPER_CASES += [
 
 # ------------------------------------------------------------------------------------------ measurement files
 _t = np.arange(0, 2.0, 0.002)
-_x = 4 * np.sin(2 * np.pi * _t)                                     # mm
-_v = 8 * np.pi * np.cos(2 * np.pi * _t) * 1e-3                      # m/s
-_F = 112 * np.sign(_v) + 1.2e5 * _v + 800 * np.sign(_v)             # N, about what the Makris damper makes at 0 field
+_x = 4 * np.sin(2 * np.pi * _t)  # mm
+_v = 8 * np.pi * np.cos(2 * np.pi * _t) * 1e-3  # m/s
+_F = 112 * np.sign(_v) + 1.2e5 * _v + 800 * np.sign(_v)  # N, about what the Makris damper makes at 0 field
 
 
 def record(columns: str = "time [s],displacement [mm],force [N]", t=_t, x=_x, F=_F, extra=None, sep=",") -> str:
@@ -100,8 +113,12 @@ def _swap_line(i: int, text: str) -> str:
 
 
 MEASUREMENT_CASES = [
-    ("no units", GOOD_RECORD.replace("time [s],displacement [mm],force [N]", "time,displacement,force"),
-     "column 1", "error"),
+    (
+        "no units",
+        GOOD_RECORD.replace("time [s],displacement [mm],force [N]", "time,displacement,force"),
+        "column 1",
+        "error",
+    ),
     ("unknown unit", GOOD_RECORD.replace("force [N]", "force [Nn]"), "force", "error"),
     ("force in kg", GOOD_RECORD.replace("force [N]", "force [kg]"), "force", "error"),
     ("displacement in s", GOOD_RECORD.replace("displacement [mm]", "displacement [s]"), "displacement", "error"),
@@ -109,12 +126,27 @@ MEASUREMENT_CASES = [
     ("unknown column", GOOD_RECORD.replace("force [N]", "forse [N]"), "forse", "error"),
     ("missing force", record("time [s],displacement [mm],velocity [m/s]"), "force", "error"),
     ("twice a column", GOOD_RECORD.replace("force [N]", "time [s]"), "time", "error"),
-    ("two controls", record("time [s],displacement [mm],force [N],field [kV/mm],current [A]",
-                            extra=[np.zeros_like(_t), np.zeros_like(_t)]), "control column", "error"),
-    ("field in kg", record("time [s],displacement [mm],force [N],field [kg]", extra=[np.zeros_like(_t)]),
-     "field", "error"),
-    ("field of the wrong kind", record("time [s],displacement [mm],force [N],field [kA/m]",
-                                      extra=[np.ones_like(_t)]), "field", "error"),
+    (
+        "two controls",
+        record(
+            "time [s],displacement [mm],force [N],field [kV/mm],current [A]",
+            extra=[np.zeros_like(_t), np.zeros_like(_t)],
+        ),
+        "control column",
+        "error",
+    ),
+    (
+        "field in kg",
+        record("time [s],displacement [mm],force [N],field [kg]", extra=[np.zeros_like(_t)]),
+        "field",
+        "error",
+    ),
+    (
+        "field of the wrong kind",
+        record("time [s],displacement [mm],force [N],field [kA/m]", extra=[np.ones_like(_t)]),
+        "field",
+        "error",
+    ),
     ("tab separated", record(sep="\t"), "tabs", "error"),
     ("semicolon separated", record(sep=";"), "semicolons", "error"),
     ("empty file", "", "empty file", "error"),
@@ -132,21 +164,28 @@ MEASUREMENT_CASES = [
     ("displacement in km", GOOD_RECORD.replace("displacement [mm]", "displacement [km]"), "displacement", "error"),
     ("constant displacement", record(x=np.ones_like(_t)), "displacement", "error"),
     ("zero displacement", record(x=np.zeros_like(_t)), "displacement", "error"),
-    ("field x1e12", record("time [s],displacement [mm],force [N],field [kV/mm]", extra=[np.full_like(_t, 3e12)]),
-     "field", "error"),
+    (
+        "field x1e12",
+        record("time [s],displacement [mm],force [N],field [kV/mm]", extra=[np.full_like(_t, 3e12)]),
+        "field",
+        "error",
+    ),
     ("binary", b"\xff\xfe\x00\x01\x02", "UTF-8", "error"),
     # warnings: the record is possible but something looks wrong (a unit mistake is named when likely)
     ("force in mN", GOOD_RECORD.replace("force [N]", "force [mN]"), "force", "warning"),
     ("force in kN", GOOD_RECORD.replace("force [N]", "force [kN]"), "force", "warning"),
     ("displacement in m", GOOD_RECORD.replace("displacement [mm]", "displacement [m]"), "displacement", "warning"),
-    ("displacement in um", GOOD_RECORD.replace("displacement [mm]", "displacement [um]"), "displacement",
-     "warning"),
+    ("displacement in um", GOOD_RECORD.replace("displacement [mm]", "displacement [um]"), "displacement", "warning"),
     ("time in ms", GOOD_RECORD.replace("time [s]", "time [ms]"), "velocity", "warning"),
     ("time x1e-12", record(t=_t * 1e-12), "time", "warning"),
     ("few samples", record(t=_t[::50], x=_x[::50], F=_F[::50]), "time", "warning"),
     ("half a cycle", record(t=_t[:300], x=_x[:300], F=_F[:300]), "displacement", "warning"),
-    ("velocity column contradicts", record("time [s],displacement [mm],force [N],velocity [m/s]",
-                                           extra=[-3 * _v]), "velocity", "warning"),
+    (
+        "velocity column contradicts",
+        record("time [s],displacement [mm],force [N],velocity [m/s]", extra=[-3 * _v]),
+        "velocity",
+        "warning",
+    ),
 ]
 #: The cases whose message must name the likely factor-1000 unit mistake (issue 15, "Done when").
 UNIT_MISTAKES = ("force in mN", "force in kN", "displacement in m", "displacement in um")
@@ -174,25 +213,39 @@ REQUIREMENTS_CASES = [
     ("pareto unknown", search_with('pareto = ["beauty", "fluid_volume"]'), "design.search.pareto", "error"),
     ("unknown search key", search_with("speed = 3"), "design.search.speed", "error"),
     ("gap bound zero", requirements_with(r"^gap = .*$", 'gap = ["0 mm", "2 mm"]'), "design.bounds.gap", "error"),
-    ("gap bound reversed", requirements_with(r"^gap = .*$", 'gap = ["2 mm", "0.5 mm"]'), "design.bounds.gap",
-     "error"),
+    ("gap bound reversed", requirements_with(r"^gap = .*$", 'gap = ["2 mm", "0.5 mm"]'), "design.bounds.gap", "error"),
     ("gap bound unitless", requirements_with(r"^gap = .*$", "gap = [0.5, 2]"), "design.bounds.gap", "error"),
     ("gap bound mass", requirements_with(r"^gap = .*$", 'gap = ["0.5 kg", "2 kg"]'), "design.bounds.gap", "error"),
     ("ducts bound zero", requirements_with(r"^ducts = .*$", "ducts = [0, 4]"), "design.bounds.ducts", "error"),
     ("velocity negative", requirements_with(r"^velocity = .*$", 'velocity = "-1 in/s"'), "velocity", "error"),
-    ("velocity unknown unit", requirements_with(r"^velocity = .*$", 'velocity = "1 blorp/s"'), "velocity",
-     "error"),
+    ("velocity unknown unit", requirements_with(r"^velocity = .*$", 'velocity = "1 blorp/s"'), "velocity", "error"),
     ("min_force mass", requirements_with(r"^min_force = .*$", 'min_force = "6 kg"'), "min_force", "error"),
     ("field impossible", requirements_with(r"^field = .*$", 'field = "1e9 kV/mm"'), "field", "error"),
-    ("objective unknown", requirements_with(r"^objective = .*$", 'objective = "cheapest"'), "design.objective",
-     "error"),
-    ("configuration unknown", requirements_with(r"^configuration = .*$", 'configuration = "pump"'),
-     "design.configuration", "error"),
+    (
+        "objective unknown",
+        requirements_with(r"^objective = .*$", 'objective = "cheapest"'),
+        "design.objective",
+        "error",
+    ),
+    (
+        "configuration unknown",
+        requirements_with(r"^configuration = .*$", 'configuration = "pump"'),
+        "design.configuration",
+        "error",
+    ),
     ("laminar text", requirements_with(r"^laminar = .*$", 'laminar = "yes"'), "design.limits.laminar", "error"),
-    ("max_pressure negative", requirements_with(r"^max_pressure = .*$", 'max_pressure = "-1 MPa"'),
-     "design.limits.max_pressure", "error"),
-    ("fluid density impossible", requirements_with(r"^\[fluid\]$", '[fluid]\ndensity = "1e30 kg/m^3"'),
-     "fluid.density", "error"),
+    (
+        "max_pressure negative",
+        requirements_with(r"^max_pressure = .*$", 'max_pressure = "-1 MPa"'),
+        "design.limits.max_pressure",
+        "error",
+    ),
+    (
+        "fluid density impossible",
+        requirements_with(r"^\[fluid\]$", '[fluid]\ndensity = "1e30 kg/m^3"'),
+        "fluid.density",
+        "error",
+    ),
 ]
 
 # ------------------------------------------------------------------------------------------ command-line values
@@ -206,39 +259,59 @@ OPTION_CASES = [
     ("size velocity bare", ["size", "{damper}", "--velocity", "0.0254"], "--velocity", "warning"),
     ("size field text", ["size", "{damper}", "--velocity", "1 in/s", "--field", "strong"], "field", "error"),
     ("size field kind", ["size", "{damper}", "--velocity", "1 in/s", "--field", "3 kA/m"], "field", "error"),
-    ("size field 1e9 kV/mm", ["size", "{damper}", "--velocity", "1 in/s", "--field", "1e9 kV/mm"], "field",
-     "error"),
-    ("size field 50 kV/mm", ["size", "{damper}", "--velocity", "1 in/s", "--field", "50 kV/mm"], "field",
-     "warning"),
+    ("size field 1e9 kV/mm", ["size", "{damper}", "--velocity", "1 in/s", "--field", "1e9 kV/mm"], "field", "error"),
+    ("size field 50 kV/mm", ["size", "{damper}", "--velocity", "1 in/s", "--field", "50 kV/mm"], "field", "warning"),
     ("size no file", ["size", "{tmp}/nothing.toml", "--velocity", "1 in/s"], "nothing.toml", "error"),
     ("size folder", ["size", "{tmp}", "--velocity", "1 in/s"], "directory", "error"),
     ("report out pdf", ["report", "{damper}", "--out", "{tmp}/r.pdf"], "--out", "error"),
     ("report out no suffix", ["report", "{damper}", "--out", "{tmp}/report"], "--out", "error"),
     ("report out the damper", ["report", "{damper}", "--out", "{damper}", "--force"], "--out", "error"),
-    ("report out md as html", ["report", "{damper}", "--out", "{tmp}/r.md", "--format", "html"], "--format",
-     "error"),
+    ("report out md as html", ["report", "{damper}", "--out", "{tmp}/r.md", "--format", "html"], "--format", "error"),
     ("report out exists", ["report", "{damper}", "--out", "{tmp}/keep.html"], "--force", "error"),
     ("report out folder", ["report", "{damper}", "--out", "{tmp}/sub.html"], "folder", "error"),
     ("report out missing folder", ["report", "{damper}", "--out", "{tmp}/no/such/r.html"], "--out", "error"),
-    ("report velocity range text", ["report", "{damper}", "--out", "{tmp}/v.html", "--velocity-range", "a", "b"],
-     "velocity", "error"),
+    (
+        "report velocity range text",
+        ["report", "{damper}", "--out", "{tmp}/v.html", "--velocity-range", "a", "b"],
+        "velocity",
+        "error",
+    ),
     ("report field mass", ["report", "{damper}", "--out", "{tmp}/f.html", "--field", "3 kg"], "field", "error"),
     ("design out the requirements", ["design", "{req}", "--out", "{req}", "--force"], "--out", "error"),
     ("design out exists", ["design", "{req}", "--out", "{tmp}/keep.csv"], "--force", "error"),
     ("design out txt", ["design", "{req}", "--out", "{tmp}/d.txt"], "--out", "error"),
-    ("simulate out the record", ["simulate", "{record}", "--model", "bingham", "--params", "f_y=100 N",
-                                 "--out", "{record}", "--force"], "--out", "error"),
-    ("simulate out exists", ["simulate", "{record}", "--model", "bingham", "--params", "f_y=100 N",
-                             "--out", "{tmp}/keep.csv"], "--force", "error"),
-    ("simulate out pdf", ["simulate", "{record}", "--model", "bingham", "--params", "f_y=100 N",
-                          "--out", "{tmp}/s.pdf"], "--out", "error"),
+    (
+        "simulate out the record",
+        ["simulate", "{record}", "--model", "bingham", "--params", "f_y=100 N", "--out", "{record}", "--force"],
+        "--out",
+        "error",
+    ),
+    (
+        "simulate out exists",
+        ["simulate", "{record}", "--model", "bingham", "--params", "f_y=100 N", "--out", "{tmp}/keep.csv"],
+        "--force",
+        "error",
+    ),
+    (
+        "simulate out pdf",
+        ["simulate", "{record}", "--model", "bingham", "--params", "f_y=100 N", "--out", "{tmp}/s.pdf"],
+        "--out",
+        "error",
+    ),
     ("fit effects ,,", ["fit", "{record}", "--damper", "{damper}", "--effects", ",,"], "--effects", "error"),
-    ("fit effects a,,b", ["fit", "{record}", "--damper", "{damper}", "--effects", "seal_friction,,fluid_inertia"],
-     "--effects", "error"),
-    ("fit effects twice", ["fit", "{record}", "--damper", "{damper}", "--effects", "seal_friction,seal_friction"],
-     "--effects", "error"),
-    ("diagnose effects ,,", ["diagnose", "{record}", "--damper", "{damper}", "--effects", ",,"], "--effects",
-     "error"),
+    (
+        "fit effects a,,b",
+        ["fit", "{record}", "--damper", "{damper}", "--effects", "seal_friction,,fluid_inertia"],
+        "--effects",
+        "error",
+    ),
+    (
+        "fit effects twice",
+        ["fit", "{record}", "--damper", "{damper}", "--effects", "seal_friction,seal_friction"],
+        "--effects",
+        "error",
+    ),
+    ("diagnose effects ,,", ["diagnose", "{record}", "--damper", "{damper}", "--effects", ",,"], "--effects", "error"),
     ("fit record folder", ["fit", "{tmp}", "--damper", "{damper}"], "folder", "error"),
     ("fit damper missing", ["fit", "{record}", "--damper", "{tmp}/none.toml"], "none.toml", "error"),
     ("magnetics current text", ["magnetics", "{mr_coil}", "--current", "lots"], "--current", "error"),

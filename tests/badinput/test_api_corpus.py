@@ -14,10 +14,17 @@ from erdesign.errors import ErdesignError, PlausibilityWarning
 from erdesign.fluid import Fluid
 from erdesign.geometry import Geometry
 
-GEO = dict(configuration="valve", duct_length="54.6 mm", duct_mean_diameter="14.3 mm", gap="0.8 mm",
-           piston_diameter="33.4 mm", rod_diameter="11.25 mm")
-FLUID = dict(viscosity="7 Pa*s", yield_stress="1.8 kPa", reference_field="3 kV/mm", yield_exponent=2.0,
-             density="1290 kg/m^3")
+GEO = dict(
+    configuration="valve",
+    duct_length="54.6 mm",
+    duct_mean_diameter="14.3 mm",
+    gap="0.8 mm",
+    piston_diameter="33.4 mm",
+    rod_diameter="11.25 mm",
+)
+FLUID = dict(
+    viscosity="7 Pa*s", yield_stress="1.8 kPa", reference_field="3 kV/mm", yield_exponent=2.0, density="1290 kg/m^3"
+)
 DUCT = ("1 mL/s", "1.8 kPa", "13 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm")
 
 
@@ -46,34 +53,87 @@ def _size(**kwargs):
 
 API_CASES = [
     # flow functions of the top-level namespace (pint quantities or strings)
-    *[(f"bingham_pressure_drop {k}={v}", lambda k=k, v=v: _duct(**{k: v})(erdesign.bingham_pressure_drop), k)
-      for k, v in [("h", "0 mm"), ("h", "-0.8 mm"), ("tau_y", "-1.8 kPa"), ("eta", "0 Pa*s"),
-                   ("eta", "-13 Pa*s"), ("L", "0 mm"), ("d", "-14.3 mm"), ("h", "abc"), ("h", "3 kg"),
-                   ("Q", "1 kg"), ("tau_y", "nan Pa"), ("h", 0.8)]],
+    *[
+        (f"bingham_pressure_drop {k}={v}", lambda k=k, v=v: _duct(**{k: v})(erdesign.bingham_pressure_drop), k)
+        for k, v in [
+            ("h", "0 mm"),
+            ("h", "-0.8 mm"),
+            ("tau_y", "-1.8 kPa"),
+            ("eta", "0 Pa*s"),
+            ("eta", "-13 Pa*s"),
+            ("L", "0 mm"),
+            ("d", "-14.3 mm"),
+            ("h", "abc"),
+            ("h", "3 kg"),
+            ("Q", "1 kg"),
+            ("tau_y", "nan Pa"),
+            ("h", 0.8),
+        ]
+    ],
     ("bingham_plug_fraction h=0", lambda: _duct(h="0 mm")(erdesign.bingham_plug_fraction), "h"),
-    ("bingham_flow_rate eta=0",
-     lambda: erdesign.bingham_flow_rate("1 MPa", "1.8 kPa", "0 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm"), "eta"),
+    (
+        "bingham_flow_rate eta=0",
+        lambda: erdesign.bingham_flow_rate("1 MPa", "1.8 kPa", "0 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm"),
+        "eta",
+    ),
     ("annulus_bingham_pressure_drop h=0", lambda: _duct(h="0 mm")(erdesign.annulus_bingham_pressure_drop), "h"),
-    ("annulus_bingham_pressure_drop tau_y<0",
-     lambda: _duct(tau_y="-1 kPa")(erdesign.annulus_bingham_pressure_drop), "tau_y"),
-    ("slit_pressure_drop eta<0", lambda: erdesign.slit_pressure_drop("1 mL/s", "-1 Pa*s", "50 mm", "14 mm", "1 mm"),
-     "eta"),
+    (
+        "annulus_bingham_pressure_drop tau_y<0",
+        lambda: _duct(tau_y="-1 kPa")(erdesign.annulus_bingham_pressure_drop),
+        "tau_y",
+    ),
+    (
+        "slit_pressure_drop eta<0",
+        lambda: erdesign.slit_pressure_drop("1 mL/s", "-1 Pa*s", "50 mm", "14 mm", "1 mm"),
+        "eta",
+    ),
     ("yield_pressure_drop h=0", lambda: erdesign.yield_pressure_drop("1 kPa", "50 mm", "0 mm"), "h"),
     # Geometry, through create and through the constructor (strings are accepted by both)
-    *[(f"Geometry.create {k}={v}", _geometry(**{k: v}), f"geometry.{k}")
-      for k, v in [("gap", "0 mm"), ("gap", "1e-300 m"), ("gap", "abc"), ("gap", "3 kg"), ("gap", 0.0008),
-                   ("duct_length", "1e300 m"), ("piston_diameter", "1e308 m"), ("rod_diameter", "-1 mm"),
-                   ("rod_diameter", "40 mm"), ("ducts", 0), ("ducts", 1.5), ("ducts", 10**12),
-                   ("configuration", "pump")]],
-    *[(f"Geometry() {k}={v!r}", _geometry_init(**{k: v}), f"geometry.{k}")
-      for k, v in [("gap", "0 mm"), ("gap", "abc"), ("gap", None), ("gap", float("nan")), ("gap", -1e-3),
-                   ("ducts", True)]],
+    *[
+        (f"Geometry.create {k}={v}", _geometry(**{k: v}), f"geometry.{k}")
+        for k, v in [
+            ("gap", "0 mm"),
+            ("gap", "1e-300 m"),
+            ("gap", "abc"),
+            ("gap", "3 kg"),
+            ("gap", 0.0008),
+            ("duct_length", "1e300 m"),
+            ("piston_diameter", "1e308 m"),
+            ("rod_diameter", "-1 mm"),
+            ("rod_diameter", "40 mm"),
+            ("ducts", 0),
+            ("ducts", 1.5),
+            ("ducts", 10**12),
+            ("configuration", "pump"),
+        ]
+    ],
+    *[
+        (f"Geometry() {k}={v!r}", _geometry_init(**{k: v}), f"geometry.{k}")
+        for k, v in [
+            ("gap", "0 mm"),
+            ("gap", "abc"),
+            ("gap", None),
+            ("gap", float("nan")),
+            ("gap", -1e-3),
+            ("ducts", True),
+        ]
+    ],
     # Fluid
-    *[(f"Fluid.create {k}={v!r}", _fluid(**{k: v}), f"fluid.{k}")
-      for k, v in [("viscosity", "0 Pa*s"), ("viscosity", "1e30 Pa*s"), ("yield_stress", "-1 kPa"),
-                   ("density", "1e30 kg/m^3"), ("reference_field", "abc"), ("reference_field", "1e9 kV/mm"),
-                   ("reference_field", "3 kg"), ("yield_exponent", -1.0), ("yield_exponent", "two"),
-                   ("yield_exponent", [1, 2])]],
+    *[
+        (f"Fluid.create {k}={v!r}", _fluid(**{k: v}), f"fluid.{k}")
+        for k, v in [
+            ("viscosity", "0 Pa*s"),
+            ("viscosity", "1e30 Pa*s"),
+            ("yield_stress", "-1 kPa"),
+            ("density", "1e30 kg/m^3"),
+            ("reference_field", "abc"),
+            ("reference_field", "1e9 kV/mm"),
+            ("reference_field", "3 kg"),
+            ("yield_exponent", -1.0),
+            ("yield_exponent", "two"),
+            ("yield_exponent", [1, 2]),
+        ]
+    ],
     # sizing
     ("size velocity text", _size(velocity="fast"), "velocity"),
     ("size velocity mass", _size(velocity="3 kg"), "velocity"),
@@ -82,13 +142,15 @@ API_CASES = [
     # measurements
     ("read_measurement folder", lambda: read_measurement(erdesign.__path__[0]), "folder"),
     ("read_measurement missing", lambda: read_measurement("no/such/file.csv"), "no such file"),
-    ("from_arrays nan", lambda: Measurement.from_arrays([0, 1, 2, 3, 4], [0, 1, np.nan, 1, 0], [0] * 5),
-     "displacement"),
+    (
+        "from_arrays nan",
+        lambda: Measurement.from_arrays([0, 1, 2, 3, 4], [0, 1, np.nan, 1, 0], [0] * 5),
+        "displacement",
+    ),
     ("from_arrays short", lambda: Measurement.from_arrays([0, 1, 2], [0, 1, 0], [0] * 3), "time"),
     ("from_arrays 2-D", lambda: Measurement.from_arrays(np.zeros((5, 2)), [0] * 5, [0] * 5), "time"),
     ("from_arrays lengths", lambda: Measurement.from_arrays([0, 1, 2, 3, 4], [0, 1, 0], [0] * 5), "displacement"),
-    ("from_arrays time backwards", lambda: Measurement.from_arrays([0, 1, 3, 2, 4], [0, 1, 0, 1, 0], [0] * 5),
-     "time"),
+    ("from_arrays time backwards", lambda: Measurement.from_arrays([0, 1, 3, 2, 4], [0, 1, 0, 1, 0], [0] * 5), "time"),
 ]
 
 
@@ -109,17 +171,27 @@ def test_geometry_accepts_strings_in_the_constructor():
     assert g == Geometry.create(**GEO) and g.gap == pytest.approx(8e-4)
 
 
-@pytest.mark.parametrize("change, field", [({"gap": "0.02 mm"}, "geometry.gap"),
-                                           ({"duct_length": "5 m"}, "geometry.duct_length"),
-                                           ({"ducts": 100}, "geometry.ducts")])
+@pytest.mark.parametrize(
+    "change, field",
+    [
+        ({"gap": "0.02 mm"}, "geometry.gap"),
+        ({"duct_length": "5 m"}, "geometry.duct_length"),
+        ({"ducts": 100}, "geometry.ducts"),
+    ],
+)
 def test_geometry_warns_outside_the_plausible_range(change, field):
     with pytest.warns(PlausibilityWarning, match=field):
         Geometry.create(**{**GEO, **change})
 
 
-@pytest.mark.parametrize("change, field", [({"density": "20000 kg/m^3"}, "fluid.density"),
-                                           ({"viscosity": "5000 Pa*s"}, "fluid.viscosity"),
-                                           ({"reference_field": "50 kV/mm"}, "fluid.reference_field")])
+@pytest.mark.parametrize(
+    "change, field",
+    [
+        ({"density": "20000 kg/m^3"}, "fluid.density"),
+        ({"viscosity": "5000 Pa*s"}, "fluid.viscosity"),
+        ({"reference_field": "50 kV/mm"}, "fluid.reference_field"),
+    ],
+)
 def test_fluid_warns_outside_the_plausible_range(change, field):
     with pytest.warns(PlausibilityWarning, match=field):
         Fluid.create(**{**FLUID, **change})

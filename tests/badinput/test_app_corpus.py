@@ -43,11 +43,19 @@ SIZE_UPLOADS = [
 COMPARE_UPLOADS = [
     ("compare tab separated", "tab.csv", GOOD_RECORD.replace(",", "\t"), "tabs"),
     ("compare empty", "empty.csv", "", "empty file"),
-    ("compare force x1e300", "big.csv",
-     GOOD_RECORD.splitlines()[0] + "\n" + "".join(f"{i * 0.01},{i % 7},1e300\n" for i in range(50)), "force"),
+    (
+        "compare force x1e300",
+        "big.csv",
+        GOOD_RECORD.splitlines()[0] + "\n" + "".join(f"{i * 0.01},{i % 7},1e300\n" for i in range(50)),
+        "force",
+    ),
     ("compare binary", "bin.csv", b"\xff\xfe\x00\x01", "UTF-8"),
-    ("compare constant displacement", "c.csv",
-     GOOD_RECORD.splitlines()[0] + "\n" + "".join(f"{i * 0.01},1,{i}\n" for i in range(50)), "displacement"),
+    (
+        "compare constant displacement",
+        "c.csv",
+        GOOD_RECORD.splitlines()[0] + "\n" + "".join(f"{i * 0.01},1,{i}\n" for i in range(50)),
+        "displacement",
+    ),
 ]
 #: Simulate page, sine excitation: (id, widget key, bad value, text the message must contain)
 SIMULATE_INPUTS = [
@@ -90,7 +98,7 @@ def test_size_input(app, case):
     good = app.text_input(key=key).value
     app.text_input(key=key).set_value(value).run()
     _clean(app, field)
-    assert [m.value for m in app.metric if m.label == "force F"] == force     # the last good design stays
+    assert [m.value for m in app.metric if m.label == "force F"] == force  # the last good design stays
     assert any("last valid design" in e.value for e in app.error)
     app.text_input(key=key).set_value(good).run()
     assert not app.exception and not app.error
@@ -103,7 +111,7 @@ def test_size_upload(app, case):
     before = app.text_input(key="size.geo.gap").value
     app.file_uploader(key="size.upload").set_value((name, data, "application/toml")).run()
     _clean(app, field)
-    assert app.text_input(key="size.geo.gap").value == before                # nothing typed is lost
+    assert app.text_input(key="size.geo.gap").value == before  # nothing typed is lost
 
 
 @pytest.mark.parametrize("case", COMPARE_UPLOADS, ids=[c[0] for c in COMPARE_UPLOADS])

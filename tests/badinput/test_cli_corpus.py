@@ -13,8 +13,16 @@ import pytest
 
 from erdesign.cli.main import main
 
-from .corpus import (DAMPER_CASES, EXAMPLES, GOOD_RECORD, MAKRIS, MEASUREMENT_CASES, OPTION_CASES,
-                     REQUIREMENTS_CASES, UNIT_MISTAKES)
+from .corpus import (
+    DAMPER_CASES,
+    EXAMPLES,
+    GOOD_RECORD,
+    MAKRIS,
+    MEASUREMENT_CASES,
+    OPTION_CASES,
+    REQUIREMENTS_CASES,
+    UNIT_MISTAKES,
+)
 
 
 def _run(capsys, args):
@@ -31,7 +39,7 @@ def _judge(code, out, err, field, expect):
     if expect == "error":
         assert code in (1, 2), (code, out, err)
         failures = [line for line in lines if not line.startswith("warning:")]
-        assert len(failures) == 1, err                    # one line, no traceback
+        assert len(failures) == 1, err  # one line, no traceback
         assert field in failures[0], (field, failures[0])
     else:
         assert code == 0, (code, err)
@@ -63,7 +71,7 @@ def test_measurement_file(case, tmp_path, capsys):
     _judge(code, out, err, field, expect)
     if expect == "warning":
         assert '"esr": null' not in out
-    if name in UNIT_MISTAKES:      # issue 15, "Done when": a factor 1000 in force or displacement is named
+    if name in UNIT_MISTAKES:  # issue 15, "Done when": a factor 1000 in force or displacement is named
         assert "1000" in err and "unit mistake" in err, err
 
 
@@ -79,16 +87,21 @@ def test_requirements_file(case, tmp_path, capsys):
 def test_command_line_value(case, tmp_path, capsys):
     _, args, field, expect = case
     damper = shutil.copy(EXAMPLES / "makris.toml", tmp_path / "d.toml")
-    req = _write(tmp_path / "r.toml", (EXAMPLES / "requirements" / "makris_requirements.toml").read_text()
-                 + "\n")
+    req = _write(tmp_path / "r.toml", (EXAMPLES / "requirements" / "makris_requirements.toml").read_text() + "\n")
     record = _write(tmp_path / "m.csv", GOOD_RECORD)
     (tmp_path / "keep.html").write_text("keep")
     (tmp_path / "keep.csv").write_text("keep")
     (tmp_path / "sub.html").mkdir()
-    inputs = {p: p.read_bytes() for p in (tmp_path / "d.toml", req, record, tmp_path / "keep.html",
-                                           tmp_path / "keep.csv")}
-    subs = {"{damper}": str(damper), "{req}": str(req), "{record}": str(record), "{tmp}": str(tmp_path),
-            "{mr_coil}": str(EXAMPLES / "mr_coil.toml")}
+    inputs = {
+        p: p.read_bytes() for p in (tmp_path / "d.toml", req, record, tmp_path / "keep.html", tmp_path / "keep.csv")
+    }
+    subs = {
+        "{damper}": str(damper),
+        "{req}": str(req),
+        "{record}": str(record),
+        "{tmp}": str(tmp_path),
+        "{mr_coil}": str(EXAMPLES / "mr_coil.toml"),
+    }
     argv = []
     for a in args:
         for k, v in subs.items():
@@ -96,7 +109,7 @@ def test_command_line_value(case, tmp_path, capsys):
         argv.append(a)
     code, out, err = _run(capsys, argv)
     _judge(code, out, err, field, expect)
-    for path, before in inputs.items():                     # never overwritten, never deleted
+    for path, before in inputs.items():  # never overwritten, never deleted
         assert path.read_bytes() == before, path
 
 
@@ -111,7 +124,14 @@ def test_corpus_size():
     """Issue 15 asks for at least 150 malformed files and values across commands, the API and the app."""
     from .test_api_corpus import API_CASES
     from .test_app_corpus import APP_CASES
-    total = (len(DAMPER_CASES) + len(MEASUREMENT_CASES) + len(REQUIREMENTS_CASES) + len(OPTION_CASES)
-             + len(API_CASES) + len(APP_CASES))
+
+    total = (
+        len(DAMPER_CASES)
+        + len(MEASUREMENT_CASES)
+        + len(REQUIREMENTS_CASES)
+        + len(OPTION_CASES)
+        + len(API_CASES)
+        + len(APP_CASES)
+    )
     assert total >= 150, total
     assert MAKRIS.startswith("#")

@@ -10,12 +10,12 @@ from hypothesis import strategies as st
 
 from erdesign.flow import bingham_pressure_drop, slit_pressure_drop
 
-Q = st.floats(1e-9, 1e-3)                  # m^3/s
-TAU = st.floats(0.0, 1e5)                  # Pa
-ETA = st.floats(1e-2, 1e2)                 # Pa s
-L = st.floats(1e-3, 0.5)                   # m
-D = st.floats(5e-3, 0.1)                   # m
-RATIO = st.floats(0.005, 0.08)             # h/d, thin gap
+Q = st.floats(1e-9, 1e-3)  # m^3/s
+TAU = st.floats(0.0, 1e5)  # Pa
+ETA = st.floats(1e-2, 1e2)  # Pa s
+L = st.floats(1e-3, 0.5)  # m
+D = st.floats(5e-3, 0.1)  # m
+RATIO = st.floats(0.005, 0.08)  # h/d, thin gap
 FAST = settings(max_examples=60, deadline=None, database=None)
 
 
@@ -24,8 +24,9 @@ FAST = settings(max_examples=60, deadline=None, database=None)
 def test_pressure_drop_rises_with_flow_rate(q1, q2, tau, eta, length, d, ratio):
     lo, hi = sorted((q1, q2))
     h = ratio * d
-    assert bingham_pressure_drop(hi, tau, eta, length, d, h) >= bingham_pressure_drop(lo, tau, eta, length, d, h) \
-        * (1 - 1e-12)
+    assert bingham_pressure_drop(hi, tau, eta, length, d, h) >= bingham_pressure_drop(lo, tau, eta, length, d, h) * (
+        1 - 1e-12
+    )
 
 
 @FAST
@@ -33,8 +34,9 @@ def test_pressure_drop_rises_with_flow_rate(q1, q2, tau, eta, length, d, ratio):
 def test_pressure_drop_rises_with_yield_stress(q, t1, t2, eta, length, d, ratio):
     lo, hi = sorted((t1, t2))
     h = ratio * d
-    assert bingham_pressure_drop(q, hi, eta, length, d, h) >= bingham_pressure_drop(q, lo, eta, length, d, h) \
-        * (1 - 1e-12)
+    assert bingham_pressure_drop(q, hi, eta, length, d, h) >= bingham_pressure_drop(q, lo, eta, length, d, h) * (
+        1 - 1e-12
+    )
 
 
 @FAST
@@ -54,11 +56,13 @@ def test_bingham_tends_to_newtonian(q, eta, length, d, ratio):
     newtonian = slit_pressure_drop(q, eta, length, d, h)
     tau = 1e-9 * newtonian * h / (2 * length)
     assert abs(bingham_pressure_drop(q, tau, eta, length, d, h) / newtonian - 1) < 1e-6
-    assert bingham_pressure_drop(q, 0.0, eta, length, d, h) == np.float64(newtonian) or \
-        abs(bingham_pressure_drop(q, 0.0, eta, length, d, h) / newtonian - 1) < 1e-12
+    assert (
+        bingham_pressure_drop(q, 0.0, eta, length, d, h) == np.float64(newtonian)
+        or abs(bingham_pressure_drop(q, 0.0, eta, length, d, h) / newtonian - 1) < 1e-12
+    )
 
 
-WIDE = st.floats(0.1, 0.6)                 # h/d where the damper uses the exact annulus
+WIDE = st.floats(0.1, 0.6)  # h/d where the damper uses the exact annulus
 FEW = settings(max_examples=6, deadline=None, database=None)
 
 
@@ -66,6 +70,7 @@ FEW = settings(max_examples=6, deadline=None, database=None)
 @given(Q, Q, TAU, ETA, L, D, WIDE)
 def test_annulus_pressure_drop_is_odd_and_rises_with_flow_rate(q1, q2, tau, eta, length, d, ratio):
     from erdesign.flow.annulus_bingham import annulus_bingham_pressure_drop
+
     lo, hi = sorted((q1, q2))
     h = ratio * d
     p_lo = annulus_bingham_pressure_drop(lo, tau, eta, length, d, h)

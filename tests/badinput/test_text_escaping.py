@@ -62,11 +62,15 @@ def test_a_lone_surrogate_is_a_one_line_error_naming_the_field():
 def test_the_app_download_of_a_design_with_a_hostile_name_loads_again():
     from erdesign.app.size import design_comment
 
-    design = {"spec": {**damper_spec(MAKRIS), "name": 'x"\x7f\n[fluid]\nviscosity = "1 Pa*s"'},
-              "velocity": "25 mm/s", "field": "3 kV/mm", "v_top": "50 mm/s"}
+    design = {
+        "spec": {**damper_spec(MAKRIS), "name": 'x"\x7f\n[fluid]\nviscosity = "1 Pa*s"'},
+        "velocity": "25 mm/s",
+        "field": "3 kV/mm",
+        "v_top": "50 mm/s",
+    }
     data = tomllib.loads(damper_toml(design["spec"], comment=design_comment(design)))
     assert damper_from_dict(data).name == design["spec"]["name"]
-    assert data["fluid"]["viscosity"] == damper_spec(MAKRIS)["fluid"]["viscosity"]     # nothing injected
+    assert data["fluid"]["viscosity"] == damper_spec(MAKRIS)["fluid"]["viscosity"]  # nothing injected
 
 
 # ----------------------------------------------------------------------------------------------- Markdown
@@ -90,11 +94,13 @@ def _cells(line: str) -> list[str]:
 
 def test_a_hostile_name_injects_no_html_into_the_markdown_report(hostile_markdown):
     md, html = hostile_markdown
-    assert not re.search(r"(?<!\\)</?script", md)          # every "<" of the name is escaped: "\<script"
-    assert "<script>alert" not in html                   # the HTML report escaped it already
+    assert not re.search(r"(?<!\\)</?script", md)  # every "<" of the name is escaped: "\<script"
+    assert "<script>alert" not in html  # the HTML report escaped it already
     title = md.splitlines()[0]
-    assert title == ("# Damper report: \\<script>alert(1)\\</script> \\| \\*bold\\* \\`tick\\` \\_u\\_ "
-                     "[link\\](http://x) \\# h new line")
+    assert title == (
+        "# Damper report: \\<script>alert(1)\\</script> \\| \\*bold\\* \\`tick\\` \\_u\\_ "
+        "[link\\](http://x) \\# h new line"
+    )
 
 
 def test_a_hostile_name_breaks_no_table_of_the_markdown_report(hostile_markdown):
@@ -109,7 +115,7 @@ def test_a_hostile_name_breaks_no_table_of_the_markdown_report(hostile_markdown)
                 assert len(_cells(lines[j])) == width, (line, lines[j])
                 j += 1
     assert tables >= 5
-    assert HOSTILE.split("\n")[0] not in md               # the name is never printed raw
+    assert HOSTILE.split("\n")[0] not in md  # the name is never printed raw
 
 
 def test_markdown_code_spans_hold_any_backticks():
@@ -139,4 +145,4 @@ def test_any_user_text_is_one_markdown_line_with_every_active_character_escaped(
         shown.append(out[i])
         i += 1
     one_line = re.sub(r"[\x00-\x1f\x7f-\x9f\u2028\u2029]+", " ", text)
-    assert "".join(shown) == one_line                       # what the reader sees is what the user wrote
+    assert "".join(shown) == one_line  # what the reader sees is what the user wrote

@@ -50,10 +50,10 @@ def test_an_existing_file_is_refused_and_left_as_it_was(tmp_path):
 def test_a_file_made_after_the_check_is_not_overwritten(tmp_path):
     """The check before a long run passes; another program makes the file meanwhile; the write refuses it."""
     target = tmp_path / "report.html"
-    check_output_path(target)                           # the early check: nothing there yet
+    check_output_path(target)  # the early check: nothing there yet
     with pytest.raises(OutputPathError, match="exists"), atomic_output(target, option="--out") as tmp:
         tmp.write_text("mine, complete")
-        target.write_text("someone else's")             # made while this write ran
+        target.write_text("someone else's")  # made while this write ran
     assert target.read_text() == "someone else's"
     assert leftovers(tmp_path) == []
 
@@ -74,7 +74,7 @@ def test_a_new_file_gets_the_usual_permissions_not_those_of_a_private_temporary_
         write_output(tmp_path / "a.txt", "x")
     finally:
         os.umask(umask)
-    assert ((tmp_path / "a.txt").stat().st_mode & 0o777) == 0o644      # 0o666 less the umask, not mkstemp's 0o600
+    assert ((tmp_path / "a.txt").stat().st_mode & 0o777) == 0o644  # 0o666 less the umask, not mkstemp's 0o600
 
 
 def test_an_error_while_writing_leaves_nothing(tmp_path):
@@ -94,10 +94,13 @@ def test_keyboard_interrupt_while_writing_keeps_the_old_file(tmp_path):
     assert target.read_text() == "old, complete" and leftovers(tmp_path) == []
 
 
-@pytest.mark.parametrize("where, message", [
-    ("missing/out.csv", "the folder .*missing does not exist"),
-    ("", "empty file name"),
-])
+@pytest.mark.parametrize(
+    "where, message",
+    [
+        ("missing/out.csv", "the folder .*missing does not exist"),
+        ("", "empty file name"),
+    ],
+)
 def test_bad_places_are_one_line_errors(tmp_path, where, message):
     target = (tmp_path / where) if where else ""
     with pytest.raises(OutputPathError, match=message) as info:
@@ -144,11 +147,11 @@ def test_a_symbolic_link_at_the_output_is_refused_without_force(tmp_path, kind):
     link, target = _links(tmp_path)[kind]
     before = None if target is None or not target.exists() else target.read_text()
     with pytest.raises(OutputPathError, match=r"^--out .*: is a symbolic link \(to .*\).*give --force"):
-        check_output_path(link)                                  # the early check of every command
+        check_output_path(link)  # the early check of every command
     with pytest.raises(OutputPathError, match="is a symbolic link"):
         write_output(link, "written through the link?", option="--out")
     assert link.is_symlink()
-    if target is not None:                                       # nothing written where the link points
+    if target is not None:  # nothing written where the link points
         assert (target.read_text() if target.exists() else None) == before
     assert leftovers(tmp_path) == [] and leftovers(tmp_path / "elsewhere") == []
 
@@ -192,8 +195,9 @@ WRITER = textwrap.dedent("""
 
 def _child(*args: str, script: str = WRITER) -> subprocess.Popen:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.Popen([sys.executable, "-c", script, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, env=env)
+    return subprocess.Popen(
+        [sys.executable, "-c", script, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+    )
 
 
 @pytest.mark.parametrize("sig, code", [(signal.SIGTERM, SIGTERM_EXIT), (signal.SIGINT, -signal.SIGINT)])
@@ -237,7 +241,7 @@ def test_two_processes_writing_one_new_file_exactly_one_wins(tmp_path):
     target, go = tmp_path / "same.html", tmp_path / "go"
     children = {me: _child(str(target), me, str(go), script=RACER) for me in ("a", "b")}
     deadline = time.monotonic() + 60
-    while not all(go.with_suffix("." + me).exists() for me in children):   # both past any check, both written
+    while not all(go.with_suffix("." + me).exists() for me in children):  # both past any check, both written
         assert time.monotonic() < deadline and all(c.poll() is None for c in children.values())
         time.sleep(0.01)
     go.touch()
@@ -246,7 +250,7 @@ def test_two_processes_writing_one_new_file_exactly_one_wins(tmp_path):
     assert codes == [0, 1], results
     winner = next(me for me, (code, _) in results.items() if code == 0)
     loser_err = next(err for code, err in results.values() if code == 1)
-    assert target.read_text() == winner * 10000                 # the winner's file, whole
+    assert target.read_text() == winner * 10000  # the winner's file, whole
     assert loser_err.strip().endswith("same.html: exists; give --force to replace it, or choose another name")
     assert loser_err.count("\n") == 1
     assert leftovers(tmp_path) == []
@@ -307,10 +311,19 @@ def test_an_interrupt_during_simulate_out_leaves_no_half_written_csv(tmp_path, s
     record = Measurement.from_arrays(t, 0.01 * np.sin(4 * np.pi * t), 500.0 * np.cos(4 * np.pi * t))
     write_measurement(tmp_path / "m.csv", record)
     script = "import sys; from erdesign.cli import main; sys.exit(main(sys.argv[1:]))"
-    child = _child("simulate", str(tmp_path / "m.csv"), "--model", "bingham", "--params",
-                   "f_c=100 N, c0=1000 N*s/m, f0=0 N", "--out", str(tmp_path / "forces.csv"), script=script)
+    child = _child(
+        "simulate",
+        str(tmp_path / "m.csv"),
+        "--model",
+        "bingham",
+        "--params",
+        "f_c=100 N, c0=1000 N*s/m, f0=0 N",
+        "--out",
+        str(tmp_path / "forces.csv"),
+        script=script,
+    )
     deadline = time.monotonic() + 300
-    while not leftovers(tmp_path):                      # the write has begun
+    while not leftovers(tmp_path):  # the write has begun
         assert child.poll() is None, child.communicate()
         assert time.monotonic() < deadline
         time.sleep(0.005)

@@ -27,8 +27,15 @@ A or V, as the fluid's reference field (:data:`erdesign.fluid.CONTROL_UNITS`).
 from __future__ import annotations
 
 from .fitting import PowerLawFit, fit_power_law
-from .kernels import (CARLSON_FIELD_COEFFICIENT, CARLSON_STRESS_COEFFICIENT, CARLSON_VOLUME_EXPONENT,
-                      carlson_yield_stress, control_unit_of, power_law_yield_stress, saturating_yield_stress)
+from .kernels import (
+    CARLSON_FIELD_COEFFICIENT,
+    CARLSON_STRESS_COEFFICIENT,
+    CARLSON_VOLUME_EXPONENT,
+    carlson_yield_stress,
+    control_unit_of,
+    power_law_yield_stress,
+    saturating_yield_stress,
+)
 from .laws import FIELD_LAWS, FieldLaw, PowerLaw, SaturatingLaw, TabulatedLaw
 from .tables import field_law_from_dict
 

@@ -104,8 +104,12 @@ def fit_power_law(E, tau_y, *, anchor=None) -> PowerLawFit:
         stderr = float(math.sqrt(np.sum((y - n * x) ** 2) / dof / np.sum(x * x)))
     fitted = tau_ref * (E / E_ref) ** n
     return PowerLawFit(
-        yield_stress=float(tau_ref), reference_field=float(E_ref), yield_exponent=n, exponent_stderr=stderr,
-        field_min=float(E.min()), field_max=float(E.max()),
-        max_relative_error=float(np.max(np.abs(fitted / tau - 1.0))), points=int(E.size))
-
-
+        yield_stress=float(tau_ref),
+        reference_field=float(E_ref),
+        yield_exponent=n,
+        exponent_stderr=stderr,
+        field_min=float(E.min()),
+        field_max=float(E.max()),
+        max_relative_error=float(np.max(np.abs(fitted / tau - 1.0))),
+        points=int(E.size),
+    )

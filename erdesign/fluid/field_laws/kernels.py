@@ -13,8 +13,16 @@ from ..._util import scalar_or_array
 from ...errors import UnitError
 from ...units import parse_quantity, ureg
 
-__all__ = ["power_law_yield_stress", "saturating_yield_stress", "carlson_yield_stress", "CARLSON_STRESS_COEFFICIENT",
-           "CARLSON_VOLUME_EXPONENT", "CARLSON_FIELD_COEFFICIENT", "control_unit_of", "CONTROL_SI"]
+__all__ = [
+    "power_law_yield_stress",
+    "saturating_yield_stress",
+    "carlson_yield_stress",
+    "CARLSON_STRESS_COEFFICIENT",
+    "CARLSON_VOLUME_EXPONENT",
+    "CARLSON_FIELD_COEFFICIENT",
+    "control_unit_of",
+    "CONTROL_SI",
+]
 
 #: Constants of Carlson's yield-stress law for LORD MR fluids (:func:`carlson_yield_stress`): stress coefficient
 #: [Pa], exponent of the iron volume fraction [-], field coefficient [m/A].
@@ -33,9 +41,10 @@ def control_unit_of(value: Any, name: str) -> str:
     for unit in CONTROL_SI:
         if dim == ureg.Unit(unit).dimensionality:
             return unit
-    raise UnitError(f"{name}: expected an electric field (V/m), a magnetic field (A/m, T), a current (A) or a "
-                    f"voltage (V) with its unit, got {value!r}")
-
+    raise UnitError(
+        f"{name}: expected an electric field (V/m), a magnetic field (A/m, T), a current (A) or a "
+        f"voltage (V) with its unit, got {value!r}"
+    )
 
 
 def power_law_yield_stress(E, tau_ref, E_ref, n):
@@ -154,5 +163,3 @@ def carlson_yield_stress(H, phi, carrier_factor=1.0):
     """
     tau_sat = carrier_factor * CARLSON_STRESS_COEFFICIENT * np.asarray(phi, dtype=float) ** CARLSON_VOLUME_EXPONENT
     return saturating_yield_stress(H, tau_sat, 1.0 / CARLSON_FIELD_COEFFICIENT)
-
-

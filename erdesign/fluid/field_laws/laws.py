@@ -34,8 +34,9 @@ class FieldLaw:
 
     def __post_init__(self) -> None:
         if self.control_unit not in CONTROL_SI:
-            raise UnitError(f"field law: unknown control unit {self.control_unit!r}; expected one of "
-                            f"{', '.join(CONTROL_SI)}")
+            raise UnitError(
+                f"field law: unknown control unit {self.control_unit!r}; expected one of {', '.join(CONTROL_SI)}"
+            )
 
     def yield_stress(self, E):  # pragma: no cover - abstract
         """Yield stress [Pa] at the control ``E`` (SI magnitude, float or array)."""
@@ -51,8 +52,9 @@ class FieldLaw:
         at_ref = float(self.yield_stress(reference_field))
         return np.asarray(self.yield_stress(E), dtype=float) / at_ref
 
-    def fit(self, field_max: float, field_min: float = 0.0, samples: int = 25, *,
-            reference_field: float | None = None) -> PowerLawFit:
+    def fit(
+        self, field_max: float, field_min: float = 0.0, samples: int = 25, *, reference_field: float | None = None
+    ) -> PowerLawFit:
         """Power-law summary of this law over a control range (SI), with its error.
 
         The law is sampled at ``samples`` controls spaced evenly over ``(field_min, field_max]`` (the zero field is
@@ -97,7 +99,8 @@ class PowerLaw(FieldLaw):
         if not (self.yield_stress_ref >= 0 and self.reference_field > 0 and 0 < self.exponent <= 5):
             raise ErdesignError(
                 f"power law: need tau_ref >= 0, E_ref > 0 and 0 < n <= 5, got {self.yield_stress_ref!r} Pa, "
-                f"{self.reference_field!r} {self.control_unit}, {self.exponent!r}")
+                f"{self.reference_field!r} {self.control_unit}, {self.exponent!r}"
+            )
 
     def yield_stress(self, E):
         return power_law_yield_stress(E, self.yield_stress_ref, self.reference_field, self.exponent)
@@ -109,8 +112,10 @@ class PowerLaw(FieldLaw):
         return super().ratio(E, reference_field)
 
     def describe(self, field_unit: str | None = None) -> str:
-        return (f"power law: tau_y = {self.yield_stress_ref:.4g} Pa (|E| / "
-                f"{self._show(self.reference_field, field_unit)})^{self.exponent:.4g}")
+        return (
+            f"power law: tau_y = {self.yield_stress_ref:.4g} Pa (|E| / "
+            f"{self._show(self.reference_field, field_unit)})^{self.exponent:.4g}"
+        )
 
 
 @dataclass(frozen=True)
@@ -129,21 +134,27 @@ class SaturatingLaw(FieldLaw):
 
     law: ClassVar[str] = "saturating"
     equation: ClassVar[str] = r"\tau_y = \tau_\text{sat}\tanh\left(|E|/E_\text{sat}\right)"
-    reference: ClassVar[str] = ("Carlson, MR fluids and devices in the real world, Int. J. Mod. Phys. B 19 (2005) "
-                                "1463-1470 (tanh law of LORD MR fluids)")
+    reference: ClassVar[str] = (
+        "Carlson, MR fluids and devices in the real world, Int. J. Mod. Phys. B 19 (2005) "
+        "1463-1470 (tanh law of LORD MR fluids)"
+    )
 
     def __post_init__(self) -> None:
         super().__post_init__()
         if not (self.saturation_stress >= 0 and self.saturation_field > 0):
-            raise ErdesignError(f"saturating law: need tau_sat >= 0 and E_sat > 0, got {self.saturation_stress!r} "
-                                f"Pa and {self.saturation_field!r} {self.control_unit}")
+            raise ErdesignError(
+                f"saturating law: need tau_sat >= 0 and E_sat > 0, got {self.saturation_stress!r} "
+                f"Pa and {self.saturation_field!r} {self.control_unit}"
+            )
 
     def yield_stress(self, E):
         return saturating_yield_stress(E, self.saturation_stress, self.saturation_field)
 
     def describe(self, field_unit: str | None = None) -> str:
-        return (f"saturating law: tau_y = {self.saturation_stress:.4g} Pa tanh(|E| / "
-                f"{self._show(self.saturation_field, field_unit)})")
+        return (
+            f"saturating law: tau_y = {self.saturation_stress:.4g} Pa tanh(|E| / "
+            f"{self._show(self.saturation_field, field_unit)})"
+        )
 
 
 @dataclass(frozen=True)
@@ -164,15 +175,20 @@ class TabulatedLaw(FieldLaw):
 
     law: ClassVar[str] = "table"
     equation: ClassVar[str] = r"\tau_y = \mathrm{PCHIP}\{(E_i, \tau_i)\}(|E|)"
-    reference: ClassVar[str] = ("Fritsch and Carlson, Monotone piecewise cubic interpolation, SIAM J. Numer. Anal. "
-                                "17 (1980) 238-246 (scipy.interpolate.PchipInterpolator)")
+    reference: ClassVar[str] = (
+        "Fritsch and Carlson, Monotone piecewise cubic interpolation, SIAM J. Numer. Anal. "
+        "17 (1980) 238-246 (scipy.interpolate.PchipInterpolator)"
+    )
 
     def __post_init__(self) -> None:
         super().__post_init__()
         E = np.asarray(self.fields, dtype=float)
         tau = np.asarray(self.stresses, dtype=float)
         problems = [
-            (E.ndim == 1 and E.size >= 2 and E.shape == tau.shape, "needs at least two points, as many stresses as fields"),
+            (
+                E.ndim == 1 and E.size >= 2 and E.shape == tau.shape,
+                "needs at least two points, as many stresses as fields",
+            ),
             (np.all(np.isfinite(E)) and np.all(np.isfinite(tau)), "values must be finite"),
             (E.size == 0 or E[0] == 0.0, "the first point must be at zero field (the off-state yield stress, often 0)"),
             (np.all(np.diff(E) > 0), "fields must increase strictly"),
@@ -193,11 +209,11 @@ class TabulatedLaw(FieldLaw):
         return scalar_or_array(self._interpolant(E))
 
     def describe(self, field_unit: str | None = None) -> str:
-        return (f"tabulated curve, {len(self.fields)} points up to {self._show(self.fields[-1], field_unit)} "
-                f"({self.stresses[-1]:.4g} Pa), monotone cubic interpolation")
+        return (
+            f"tabulated curve, {len(self.fields)} points up to {self._show(self.fields[-1], field_unit)} "
+            f"({self.stresses[-1]:.4g} Pa), monotone cubic interpolation"
+        )
 
 
 FIELD_LAWS: dict[str, type[FieldLaw]] = {cls.law: cls for cls in (PowerLaw, SaturatingLaw, TabulatedLaw)}
 """The field laws by the name a material file's ``[yield_curve] law`` uses (``"carlson"`` builds a saturating law)."""
-
-

@@ -34,13 +34,15 @@ def _column(values: Any, unit: str | None, si_unit: str, name: str) -> np.ndarra
     if not isinstance(values, list) or not values:
         raise ErdesignError(f"{name}: expected a list of values")
     if unit is not None:
-        return np.array([to_si(Q_(_number(v, f"{name}[{i}]"), unit), si_unit, f"{name}[{i}]")
-                         for i, v in enumerate(values)])
+        return np.array(
+            [to_si(Q_(_number(v, f"{name}[{i}]"), unit), si_unit, f"{name}[{i}]") for i, v in enumerate(values)]
+        )
     return np.array([to_si(v, si_unit, f"{name}[{i}]") for i, v in enumerate(values)])
 
 
-def field_law_from_dict(table: Mapping[str, Any], *, where: str = "yield_curve",
-                        control_unit: str | None = None) -> FieldLaw:
+def field_law_from_dict(
+    table: Mapping[str, Any], *, where: str = "yield_curve", control_unit: str | None = None
+) -> FieldLaw:
     """A :class:`FieldLaw` from the ``[yield_curve]`` table of a material file (docs/materials.md).
 
     ``law`` selects the form; each form has its keys (values are strings with units, pint-parsed):
@@ -83,27 +85,38 @@ def field_law_from_dict(table: Mapping[str, Any], *, where: str = "yield_curve",
 
 def _power(table: Mapping[str, Any], where: str, control_unit: str | None) -> FieldLaw:
     unit = _control_unit_checked(table["reference_field"], f"{where}.reference_field", control_unit)
-    return PowerLaw(unit, yield_stress_ref=to_si(table["yield_stress"], "Pa", f"{where}.yield_stress"),
-                    reference_field=to_si(table["reference_field"], unit, f"{where}.reference_field"),
-                    exponent=_number(table["yield_exponent"], f"{where}.yield_exponent"))
+    return PowerLaw(
+        unit,
+        yield_stress_ref=to_si(table["yield_stress"], "Pa", f"{where}.yield_stress"),
+        reference_field=to_si(table["reference_field"], unit, f"{where}.reference_field"),
+        exponent=_number(table["yield_exponent"], f"{where}.yield_exponent"),
+    )
 
 
 def _saturating(table: Mapping[str, Any], where: str, control_unit: str | None) -> FieldLaw:
     unit = _control_unit_checked(table["saturation_field"], f"{where}.saturation_field", control_unit)
-    return SaturatingLaw(unit, saturation_stress=to_si(table["saturation_stress"], "Pa", f"{where}.saturation_stress"),
-                         saturation_field=to_si(table["saturation_field"], unit, f"{where}.saturation_field"))
+    return SaturatingLaw(
+        unit,
+        saturation_stress=to_si(table["saturation_stress"], "Pa", f"{where}.saturation_stress"),
+        saturation_field=to_si(table["saturation_field"], unit, f"{where}.saturation_field"),
+    )
 
 
 def _carlson(table: Mapping[str, Any], where: str, control_unit: str | None) -> FieldLaw:
     if control_unit not in (None, "A/m"):
-        raise UnitError(f"{where}.law: Carlson's law takes a magnetic field in A/m, but the fluid's reference "
-                        f"field is in {control_unit}")
+        raise UnitError(
+            f"{where}.law: Carlson's law takes a magnetic field in A/m, but the fluid's reference "
+            f"field is in {control_unit}"
+        )
     phi = _number(table["volume_fraction"], f"{where}.volume_fraction")
     factor = _number(table.get("carrier_factor", 1.0), f"{where}.carrier_factor")
     if not (0 < phi < 1 and factor > 0):
         raise ErdesignError(f"{where}: need 0 < volume_fraction < 1 and carrier_factor > 0")
-    return SaturatingLaw("A/m", saturation_stress=factor * CARLSON_STRESS_COEFFICIENT * phi ** CARLSON_VOLUME_EXPONENT,
-                         saturation_field=1.0 / CARLSON_FIELD_COEFFICIENT)
+    return SaturatingLaw(
+        "A/m",
+        saturation_stress=factor * CARLSON_STRESS_COEFFICIENT * phi**CARLSON_VOLUME_EXPONENT,
+        saturation_field=1.0 / CARLSON_FIELD_COEFFICIENT,
+    )
 
 
 def _table(table: Mapping[str, Any], where: str, control_unit: str | None) -> FieldLaw:
@@ -126,7 +139,8 @@ def _control_unit_checked(value: Any, name: str, control_unit: str | None) -> st
     """SI control unit of ``value``, checked against the fluid's ``control_unit`` when given."""
     unit = control_unit_of(value, name)
     if control_unit is not None and unit != control_unit:
-        raise UnitError(f"{name}: the control of the yield curve ({unit}) is not of the kind of the fluid's "
-                        f"reference field ({control_unit})")
+        raise UnitError(
+            f"{name}: the control of the yield curve ({unit}) is not of the kind of the fluid's "
+            f"reference field ({control_unit})"
+        )
     return unit
-

@@ -18,5 +18,14 @@ from .mechanisms import MECHANISMS, Mechanism, mechanism_names
 from .simulate import TruthDamper, TruthRecord, simulate_truth
 from .valve import bingham_valve_flow, herschel_bulkley_valve_flow, mixed_gap_flow
 
-__all__ = ["MECHANISMS", "Mechanism", "mechanism_names", "TruthDamper", "TruthRecord", "simulate_truth",
-           "bingham_valve_flow", "herschel_bulkley_valve_flow", "mixed_gap_flow"]
+__all__ = [
+    "MECHANISMS",
+    "Mechanism",
+    "mechanism_names",
+    "TruthDamper",
+    "TruthRecord",
+    "simulate_truth",
+    "bingham_valve_flow",
+    "herschel_bulkley_valve_flow",
+    "mixed_gap_flow",
+]

@@ -35,8 +35,16 @@ from scipy.interpolate import CubicSpline
 
 from ...data.measurement import Measurement
 
-__all__ = ["clip_force", "saturate_displacement", "moving_average", "skew_force", "cut_time_gap",
-           "offset_and_drift", "quantize_displacement", "shuffle_time"]
+__all__ = [
+    "clip_force",
+    "saturate_displacement",
+    "moving_average",
+    "skew_force",
+    "cut_time_gap",
+    "offset_and_drift",
+    "quantize_displacement",
+    "shuffle_time",
+]
 
 
 def _rebuild(m: Measurement, time=None, displacement=None, force=None, keep=None) -> Measurement:
@@ -45,8 +53,15 @@ def _rebuild(m: Measurement, time=None, displacement=None, force=None, keep=None
     t = pick(m.time) if time is None else time
     x = pick(m.displacement) if displacement is None else displacement
     F = pick(m.force) if force is None else force
-    out = Measurement.from_arrays(t, x, F, control=pick(m.control) if m.control_kind else None,
-                                  control_kind=m.control_kind, temperature=pick(m.temperature), name=m.name)
+    out = Measurement.from_arrays(
+        t,
+        x,
+        F,
+        control=pick(m.control) if m.control_kind else None,
+        control_kind=m.control_kind,
+        temperature=pick(m.temperature),
+        name=m.name,
+    )
     return replace(out, units=dict(m.units))
 
 
@@ -72,7 +87,7 @@ def saturate_displacement(m: Measurement, level: float) -> Measurement:
 
 
 def _causal_average(y: np.ndarray, N: int) -> np.ndarray:
-    padded = np.r_[np.full(N - 1, y[0]), y]          # the channel at rest before the record: no start transient
+    padded = np.r_[np.full(N - 1, y[0]), y]  # the channel at rest before the record: no start transient
     c = np.cumsum(np.r_[0.0, padded])
     return (c[N:] - c[:-N]) / N
 
@@ -100,8 +115,9 @@ def cut_time_gap(m: Measurement, start: float, length: float) -> Measurement:
     """The samples with ``start <= t < start + length`` [s] removed (a logger that stopped)."""
     keep = ~((m.time >= start) & (m.time < start + length))
     if keep.sum() < 5 or keep.all():
-        raise ValueError(f"start, length: the span {start:g}-{start + length:g} s must remove some samples and keep "
-                         "at least 5")
+        raise ValueError(
+            f"start, length: the span {start:g}-{start + length:g} s must remove some samples and keep at least 5"
+        )
     return _rebuild(m, keep=keep)
 
 
@@ -122,5 +138,5 @@ def shuffle_time(m: Measurement, at: int, rows: int = 2) -> dict[str, np.ndarray
     """Arrays ``time``, ``displacement``, ``force`` with ``rows`` rows from sample ``at`` on written in reverse
     order (time goes back): what a caller might hand to the API; no record can hold it."""
     idx = np.arange(len(m))
-    idx[at:at + rows] = idx[at:at + rows][::-1]
+    idx[at : at + rows] = idx[at : at + rows][::-1]
     return {"time": m.time[idx], "displacement": m.displacement[idx], "force": _force(m)[idx]}

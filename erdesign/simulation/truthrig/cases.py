@@ -87,15 +87,43 @@ import numpy as np
 from ...damper import Damper
 from ...damper.files import load_example
 from ..rig import Motion, earthquake_motion, random_motion, stepped_sine
-from .motions import (filtered_gaussian_motion, ornstein_uhlenbeck_motion, random_phase_multisine, sine_programme,
-                      swept_sine)
+from .motions import (
+    filtered_gaussian_motion,
+    ornstein_uhlenbeck_motion,
+    random_phase_multisine,
+    sine_programme,
+    swept_sine,
+)
 from .simulate import MIXED_MECHANISMS, UNSUPPORTED, UNSUPPORTED_MIXED
 
-__all__ = ["Case", "benchmark_cases", "mechanism_parameters", "effect_size_over_noise", "build_motion",
-           "control_staircase", "LIBRARY_MECHANISMS", "OUT_OF_LIBRARY", "DAMPERS", "EXCITATIONS", "NOISES",
-           "SIZES", "STEP_PERIOD", "UNDETECTABLE", "SUBSETS", "supported", "unsupported_pairs", "NOT_VISIBLE_ON",
-           "EXCITATIONS_OF", "ISSUE23_GROUPS", "ISSUE23_EXCITATIONS", "ALL_DAMPERS", "ANTI_ALIAS_ORDER",
-           "ANTI_ALIAS_CORNER", "HEATING_TARGET", "ARTEFACTS"]
+__all__ = [
+    "Case",
+    "benchmark_cases",
+    "mechanism_parameters",
+    "effect_size_over_noise",
+    "build_motion",
+    "control_staircase",
+    "LIBRARY_MECHANISMS",
+    "OUT_OF_LIBRARY",
+    "DAMPERS",
+    "EXCITATIONS",
+    "NOISES",
+    "SIZES",
+    "STEP_PERIOD",
+    "UNDETECTABLE",
+    "SUBSETS",
+    "supported",
+    "unsupported_pairs",
+    "NOT_VISIBLE_ON",
+    "EXCITATIONS_OF",
+    "ISSUE23_GROUPS",
+    "ISSUE23_EXCITATIONS",
+    "ALL_DAMPERS",
+    "ANTI_ALIAS_ORDER",
+    "ANTI_ALIAS_CORNER",
+    "HEATING_TARGET",
+    "ARTEFACTS",
+]
 
 #: Library effect -> the truth rig's mechanism that produces it.
 LIBRARY_MECHANISMS = {
@@ -134,8 +162,15 @@ UNDETECTABLE = 3.0
 #: ``fast``: seven short cases for the test suite.
 SUBSETS = ("full", "core", "issue23", "fast")
 #: The classes of issue 23 (:attr:`Case.group`), in the order the benchmark reports them.
-ISSUE23_GROUPS = ("long_field_steps", "band_limited_3khz", "heating_long", "series_springs_mixed",
-                  "clean_every_kind", "other_generator", "artefacts")
+ISSUE23_GROUPS = (
+    "long_field_steps",
+    "band_limited_3khz",
+    "heating_long",
+    "series_springs_mixed",
+    "clean_every_kind",
+    "other_generator",
+    "artefacts",
+)
 #: Corner of the anti-alias low-pass of the 3 kHz band-limited records, [Hz]; 0: none.  Dyke's ransim_u record
 #: (3004.8 Hz) has a white force spectrum up to the Nyquist frequency (erdesign.data.noise_floor finds its plateau at
 #: 1.0-1.5 kHz): no conditioner's roll-off shows in it, so the band-limited records, like it, have none.  (Through a
@@ -166,8 +201,8 @@ _SCALES = {
     "mr_mixed": _Scale(0.25, 2.5),
     "kamath_wereley": _Scale(0.1, 2.0),
     "mr_coil": _Scale(0.25, 2.5),
-    "spencer1997": _Scale(0.3, 2.5),         # Dyke's tests: up to 1 m/s; Spencer's sines at 2.5 Hz
-    "quiroz2022": _Scale(0.1, 1.0),          # the Quiroz sines: 39-117 mm/s
+    "spencer1997": _Scale(0.3, 2.5),  # Dyke's tests: up to 1 m/s; Spencer's sines at 2.5 Hz
+    "quiroz2022": _Scale(0.1, 1.0),  # the Quiroz sines: 39-117 mm/s
 }
 
 
@@ -181,12 +216,19 @@ def _scales(damper: Damper, speed: float) -> dict[str, float]:
     C0 = 12 * f.viscosity * g.duct_length * Ap**2 / (n * math.pi * g.duct_mean_diameter * g.gap**3)
     Fy = 2 * f.yield_stress * g.duct_length / g.gap * Ap
     slug = f.density * g.duct_length * Ap**2 / (n * math.pi * g.duct_mean_diameter * g.gap)
-    return {"Ap": Ap, "C0": C0, "Fy": Fy, "slug": slug, "force": Fy + C0 * speed,
-            "volume": 2 * Ap * 0.08 + n * math.pi * g.duct_mean_diameter * g.gap * g.duct_length}
+    return {
+        "Ap": Ap,
+        "C0": C0,
+        "Fy": Fy,
+        "slug": slug,
+        "force": Fy + C0 * speed,
+        "volume": 2 * Ap * 0.08 + n * math.pi * g.duct_mean_diameter * g.gap * g.duct_length,
+    }
 
 
-def mechanism_parameters(mechanism: str, size: str, damper: Damper, speed: float,
-                         frequency: float = 1.0) -> dict[str, float]:
+def mechanism_parameters(
+    mechanism: str, size: str, damper: Damper, speed: float, frequency: float = 1.0
+) -> dict[str, float]:
     """Parameters (SI) of a truth-rig mechanism at a ``"moderate"`` or ``"large"`` size for ``damper`` driven at
     peak speed ``speed`` [m/s] around ``frequency`` [Hz].
 
@@ -226,8 +268,11 @@ def mechanism_parameters(mechanism: str, size: str, damper: Damper, speed: float
     if mechanism == "bypass":
         return {"bypass_damping": (3.0 if big else 10.0) * max(s["Fy"] / speed, s["C0"])}
     if mechanism == "accumulator":
-        return {"charge_pressure": 4e6 if big else 2e6, "gas_volume": 10e-6 if big else 20e-6,
-                "polytropic_index": 1.4 if big else 1.2}
+        return {
+            "charge_pressure": 4e6 if big else 2e6,
+            "gas_volume": 10e-6 if big else 20e-6,
+            "polytropic_index": 1.4 if big else 1.2,
+        }
     if mechanism == "stribeck_friction":
         Fc = (0.15 if big else 0.07) * s["force"]
         return {"coulomb_force": Fc, "static_force": 1.5 * Fc, "stribeck_speed": 0.02 * speed}
@@ -236,9 +281,12 @@ def mechanism_parameters(mechanism: str, size: str, damper: Damper, speed: float
     if mechanism == "coil_lag":
         return {"time_constant": 0.04 if big else 0.015}
     if mechanism == "thermal":
-        C = 1800.0 * s["volume"] * f.density    # J/K: fluid specific heat ~1.5-2 kJ/(kg K)
-        return {"heat_capacity": C / 10 if big else C / 4, "cooling_time": 300.0,
-                "temperature_coefficient": 0.03 if big else 0.025}
+        C = 1800.0 * s["volume"] * f.density  # J/K: fluid specific heat ~1.5-2 kJ/(kg K)
+        return {
+            "heat_capacity": C / 10 if big else C / 4,
+            "cooling_time": 300.0,
+            "temperature_coefficient": 0.03 if big else 0.025,
+        }
     if mechanism == "preyield":
         return {"shear_modulus": f.yield_stress / (0.4 if big else 0.15)}
     share = 0.5 if big else 0.8
@@ -254,8 +302,9 @@ def mechanism_parameters(mechanism: str, size: str, damper: Damper, speed: float
 
 
 # ---------------------------------------------------------------------------------------------------- motions
-def control_staircase(time: np.ndarray, velocity: np.ndarray, reference: float, *,
-                      step_period: float = STEP_PERIOD, levels=STEP_LEVELS) -> np.ndarray:
+def control_staircase(
+    time: np.ndarray, velocity: np.ndarray, reference: float, *, step_period: float = STEP_PERIOD, levels=STEP_LEVELS
+) -> np.ndarray:
     """The control: ``levels`` x ``reference``, one step every ``step_period`` [s], each step moved to the speed
     peak within a third of a period of its nominal time (a lagging field is then seen at speed)."""
     t = np.asarray(time)
@@ -275,19 +324,29 @@ def control_staircase(time: np.ndarray, velocity: np.ndarray, reference: float, 
 
 
 def _scaled(m: Motion, factor: float) -> Motion:
-    return replace(m, displacement=m.displacement * factor, velocity=m.velocity * factor,
-                   acceleration=m.acceleration * factor)
+    return replace(
+        m, displacement=m.displacement * factor, velocity=m.velocity * factor, acceleration=m.acceleration * factor
+    )
 
 
 #: The DoE grid of the ``doe_sine`` programme: (frequency, speed) multiples of the case's frequency and peak speed,
 #: in a scrambled run order (a DoE is run in random order so that drifts do not line up with a factor).
-_DOE_RUNS = ((1.0, 0.7), (0.5, 1.0), (2.0, 0.4), (1.0, 1.0), (2.0, 0.7), (0.5, 0.4), (2.0, 1.0), (0.5, 0.7),
-             (1.0, 0.4))
+_DOE_RUNS = ((1.0, 0.7), (0.5, 1.0), (2.0, 0.4), (1.0, 1.0), (2.0, 0.7), (0.5, 0.4), (2.0, 1.0), (0.5, 0.7), (1.0, 0.4))
 
 
-def build_motion(excitation: str, damper: Damper, *, duration: float, rate: float, seed: int,
-                 speed: float, frequency: float, control_scale: float = 1.0, step_period: float = STEP_PERIOD,
-                 levels=STEP_LEVELS) -> Motion:
+def build_motion(
+    excitation: str,
+    damper: Damper,
+    *,
+    duration: float,
+    rate: float,
+    seed: int,
+    speed: float,
+    frequency: float,
+    control_scale: float = 1.0,
+    step_period: float = STEP_PERIOD,
+    levels=STEP_LEVELS,
+) -> Motion:
     """The motion of a case: ``excitation`` at peak piston speed ``speed`` [m/s] around ``frequency`` [Hz], with
     the control staircase of :func:`control_staircase` (``levels`` x ``control_scale`` x the reference field, one
     step every ``step_period`` [s]; one level: a constant control).
@@ -307,15 +366,18 @@ def build_motion(excitation: str, damper: Damper, *, duration: float, rate: floa
     elif excitation == "swept_sine":
         m = swept_sine(speed, 0.4 * frequency, 4 * frequency, duration=duration, rate=rate)
     elif excitation == "ou":
-        m = ornstein_uhlenbeck_motion(1.0, 1 / (2 * np.pi * frequency), 4 * frequency, duration=duration, rate=rate,
-                                      seed=seed)
+        m = ornstein_uhlenbeck_motion(
+            1.0, 1 / (2 * np.pi * frequency), 4 * frequency, duration=duration, rate=rate, seed=seed
+        )
         m = _scaled(m, speed / np.max(np.abs(m.velocity)))
     elif excitation == "multisine":
-        m = random_phase_multisine(speed, (0.4 * frequency, 4 * frequency), duration / 3, duration=duration,
-                                   rate=rate, seed=seed)
+        m = random_phase_multisine(
+            speed, (0.4 * frequency, 4 * frequency), duration / 3, duration=duration, rate=rate, seed=seed
+        )
     elif excitation == "filtered_gaussian":
-        m = filtered_gaussian_motion(1.0, (0.4 * frequency, 4 * frequency), duration=duration, rate=rate, seed=seed,
-                                     order=4)
+        m = filtered_gaussian_motion(
+            1.0, (0.4 * frequency, 4 * frequency), duration=duration, rate=rate, seed=seed, order=4
+        )
         m = _scaled(m, speed / np.max(np.abs(m.velocity)))
     elif excitation == "sine":
         # four segments over frequency and speed (amplitude): the viscous and yield parts apart, and the rate effects
@@ -329,16 +391,20 @@ def build_motion(excitation: str, damper: Damper, *, duration: float, rate: floa
         m = earthquake_motion(1.0, duration=duration, rate=rate, ground_frequency=1.5 * frequency, seed=seed)
         m = _scaled(m, speed / np.max(np.abs(m.velocity)))
     else:
-        raise ValueError(f"excitation: must be one of {', '.join(EXCITATIONS + ISSUE23_EXCITATIONS)}, "
-                         f"got {excitation!r}")
+        raise ValueError(
+            f"excitation: must be one of {', '.join(EXCITATIONS + ISSUE23_EXCITATIONS)}, got {excitation!r}"
+        )
     levels = tuple(levels)
-    control = control_staircase(m.time, m.velocity, control_scale * damper.fluid.reference_field,
-                                step_period=step_period, levels=levels)
+    control = control_staircase(
+        m.time, m.velocity, control_scale * damper.fluid.reference_field, step_period=step_period, levels=levels
+    )
     if len(levels) == 1:
         text = f"control constant at {levels[0] * control_scale:g} x reference"
     else:
-        text = (f"control staircase {' / '.join(f'{x:g}' for x in levels)} x {control_scale:g} x reference every "
-                f"{step_period:g} s, steps at speed")
+        text = (
+            f"control staircase {' / '.join(f'{x:g}' for x in levels)} x {control_scale:g} x reference every "
+            f"{step_period:g} s, steps at speed"
+        )
     return replace(m, control=control, description=f"{m.description}; {text}")
 
 
@@ -411,32 +477,54 @@ class Case:
         return load_example(self.damper)
 
     def motion(self, damper: Damper | None = None) -> Motion:
-        return build_motion(self.excitation, damper or self.load_damper(), duration=self.duration, rate=self.rate,
-                            seed=self.seed, speed=self.speed, frequency=self.frequency,
-                            control_scale=self.control_scale, step_period=self.step_period,
-                            levels=self.step_levels)
+        return build_motion(
+            self.excitation,
+            damper or self.load_damper(),
+            duration=self.duration,
+            rate=self.rate,
+            seed=self.seed,
+            speed=self.speed,
+            frequency=self.frequency,
+            control_scale=self.control_scale,
+            step_period=self.step_period,
+            levels=self.step_levels,
+        )
 
     def truth(self, damper: Damper | None = None, mechanisms: Mapping | None = None):
         """The true damper (:class:`erdesign.simulation.truthrig.TruthDamper`)."""
         from . import TruthDamper
+
         mech = self.mechanisms if mechanisms is None else mechanisms
-        return TruthDamper(damper or self.load_damper(), mechanisms={k: dict(v) for k, v in mech.items()},
-                           viscosity_factor=self.viscosity_factor, yield_stress_factor=self.yield_stress_factor)
+        return TruthDamper(
+            damper or self.load_damper(),
+            mechanisms={k: dict(v) for k, v in mech.items()},
+            viscosity_factor=self.viscosity_factor,
+            yield_stress_factor=self.yield_stress_factor,
+        )
 
     def make(self, rng_seed: int | None = None):
         """Simulate the case on the truth rig: a :class:`erdesign.simulation.truthrig.TruthRecord` (noise seed
         ``rng_seed``, default :attr:`seed`)."""
         from . import simulate_truth
+
         damper = self.load_damper()
         seed = self.seed if rng_seed is None else rng_seed
-        rec = simulate_truth(self.truth(damper), self.motion(damper),
-                             force_noise=0.0 if self.anti_alias else self.noise,
-                             displacement_noise=self.displacement_noise, seed=seed, name=self.name)
+        rec = simulate_truth(
+            self.truth(damper),
+            self.motion(damper),
+            force_noise=0.0 if self.anti_alias else self.noise,
+            displacement_noise=self.displacement_noise,
+            seed=seed,
+            name=self.name,
+        )
         if self.anti_alias or self.displacement_resolution:
             rec = self._instrumented(rec, seed)
         for name, size in self.artefacts:
-            rec = replace(rec, measured=ARTEFACTS[name](rec.measured, size),
-                          description=f"{rec.description}; artefact {name} {size:g}")
+            rec = replace(
+                rec,
+                measured=ARTEFACTS[name](rec.measured, size),
+                description=f"{rec.description}; artefact {name} {size:g}",
+            )
         return rec
 
     def _instrumented(self, rec, seed: int):
@@ -449,6 +537,7 @@ class Case:
         from scipy import signal
 
         from ...data.measurement import Measurement
+
         m = rec.measured
         t, x = np.asarray(m.time), np.array(m.displacement, float)
         F = np.array(rec.true_force if self.anti_alias else m.force, float)
@@ -462,8 +551,10 @@ class Case:
             noise *= self.noise * np.sqrt(np.mean(F**2)) / np.std(noise)
             F = low(F) + noise
             x = low(x)
-            notes.append(f"force and displacement through a causal order-{ANTI_ALIAS_ORDER} Butterworth low-pass at "
-                         f"{self.anti_alias:g} Hz, force noise {self.noise:g} of RMS after the filter")
+            notes.append(
+                f"force and displacement through a causal order-{ANTI_ALIAS_ORDER} Butterworth low-pass at "
+                f"{self.anti_alias:g} Hz, force noise {self.noise:g} of RMS after the filter"
+            )
         if self.displacement_resolution:
             q = self.displacement_resolution
             x = np.round(x / q) * q
@@ -500,6 +591,7 @@ def effect_size_over_noise(case: Case, recalibrate: bool = True) -> dict[str, fl
     from scipy.optimize import least_squares
 
     from . import simulate_truth
+
     damper = case.load_damper()
     motion = case.motion(damper)
 
@@ -514,13 +606,24 @@ def effect_size_over_noise(case: Case, recalibrate: bool = True) -> dict[str, fl
     var = float(np.sum((without - without.mean()) ** 2))
     effect = float(np.sum((with_ - without) ** 2)) / var
     noise = with_.size * (case.noise * float(np.sqrt(np.mean(with_**2)))) ** 2 / var
-    out = {"effect_esr": effect, "noise_esr": noise, "effect_size_over_noise": effect / noise,
-           "visible_esr": None, "visible_over_noise": None}
+    out = {
+        "effect_esr": effect,
+        "noise_esr": noise,
+        "effect_size_over_noise": effect / noise,
+        "visible_esr": None,
+        "visible_over_noise": None,
+    }
     if recalibrate:
         keep = np.abs(motion.velocity) > 0.01 * np.max(np.abs(motion.velocity))
         k0 = np.array([case.viscosity_factor, case.yield_stress_factor])
-        fit = least_squares(lambda k: (with_ - run({}, k[0], k[1]))[keep], k0, bounds=([0.05, 0.05], [20.0, 20.0]),
-                            x_scale=k0, diff_step=1e-4, max_nfev=60)
+        fit = least_squares(
+            lambda k: (with_ - run({}, k[0], k[1]))[keep],
+            k0,
+            bounds=([0.05, 0.05], [20.0, 20.0]),
+            x_scale=k0,
+            diff_step=1e-4,
+            max_nfev=60,
+        )
         visible = float(np.sum(fit.fun**2)) / var
         noise_kept = noise * keep.mean()
         out["visible_esr"] = visible
@@ -565,8 +668,9 @@ def _example(name: str) -> Damper:
     return _DAMPER_CACHE[name]
 
 
-def _case(name, damper_name, excitation, noise, mechanisms, expected, accepted, seed, size="", duration=None,
-          rate=None) -> Case:
+def _case(
+    name, damper_name, excitation, noise, mechanisms, expected, accepted, seed, size="", duration=None, rate=None
+) -> Case:
     damper = _example(damper_name)
     scale = _SCALES[damper_name]
     boost = max([_FREQUENCY_BOOST.get(m, 1.0) for m in mechanisms] or [1.0])
@@ -581,12 +685,37 @@ def _case(name, damper_name, excitation, noise, mechanisms, expected, accepted, 
     if "accumulator" in params:
         # the rod must not fill the gas: at least twice the largest volume it pushes in (long earthquake strokes)
         from .simulate import rod_area
-        x = build_motion(excitation, damper, duration=dur, rate=rt, seed=seed, speed=speed,
-                         frequency=scale.frequency * boost, control_scale=control).displacement
+
+        x = build_motion(
+            excitation,
+            damper,
+            duration=dur,
+            rate=rt,
+            seed=seed,
+            speed=speed,
+            frequency=scale.frequency * boost,
+            control_scale=control,
+        ).displacement
         need = 2.0 * rod_area(damper) * float(np.max(np.abs(x)))
         params["accumulator"]["gas_volume"] = max(params["accumulator"]["gas_volume"], need)
-    return Case(name, damper_name, excitation, noise, params, expected, frozenset(accepted), seed, size, dur, rt,
-                speed, scale.frequency * boost, kv, ky, control)
+    return Case(
+        name,
+        damper_name,
+        excitation,
+        noise,
+        params,
+        expected,
+        frozenset(accepted),
+        seed,
+        size,
+        dur,
+        rt,
+        speed,
+        scale.frequency * boost,
+        kv,
+        ky,
+        control,
+    )
 
 
 def supported(mechanisms, damper_name: str) -> bool:
@@ -603,8 +732,11 @@ def supported(mechanisms, damper_name: str) -> bool:
 
 def unsupported_pairs() -> list[tuple[str, str]]:
     """Pairs of library effects the truth rig cannot simulate together on any damper (left out of the catalogue)."""
-    return [(a, b) for a, b in combinations(LIBRARY_MECHANISMS, 2)
-            if not any(supported({LIBRARY_MECHANISMS[a], LIBRARY_MECHANISMS[b]}, d) for d in DAMPERS)]
+    return [
+        (a, b)
+        for a, b in combinations(LIBRARY_MECHANISMS, 2)
+        if not any(supported({LIBRARY_MECHANISMS[a], LIBRARY_MECHANISMS[b]}, d) for d in DAMPERS)
+    ]
 
 
 def _full() -> list[Case]:
@@ -625,7 +757,7 @@ def _full() -> list[Case]:
                 noise = NOISES[0] if mech in QUIET_ON_MR and dname in _MR_DAMPERS else NOISES[(k + isz) % 2]
                 seed += 1
                 name = f"{effect}-{size}-{dname}-{exc}-{round(100 * noise)}pct"
-                if any(c.name == name for c in cases):     # the same conditions again (another noise seed)
+                if any(c.name == name for c in cases):  # the same conditions again (another noise seed)
                     name += f"-{k}"
                 cases.append(_case(name, dname, exc, noise, {mech: size}, effect, {effect}, seed, size))
     # every pair of library effects once, both large, that the truth rig can simulate together
@@ -634,29 +766,56 @@ def _full() -> list[Case]:
         if (a, b) in impossible:
             continue
         pair = {LIBRARY_MECHANISMS[a], LIBRARY_MECHANISMS[b]}
-        dname = next(DAMPERS[(ip + j) % len(DAMPERS)] for j in range(len(DAMPERS))
-                     if supported(pair, DAMPERS[(ip + j) % len(DAMPERS)]))
+        dname = next(
+            DAMPERS[(ip + j) % len(DAMPERS)]
+            for j in range(len(DAMPERS))
+            if supported(pair, DAMPERS[(ip + j) % len(DAMPERS)])
+        )
         exc = EXCITATIONS[ip % 3]
         noise = NOISES[(ip // 3) % 2]
         seed += 1
-        cases.append(_case(f"pair-{a}+{b}-{dname}-{exc}-{round(100 * noise)}pct", dname, exc, noise,
-                           {LIBRARY_MECHANISMS[a]: "large", LIBRARY_MECHANISMS[b]: "large"}, a, {a, b}, seed,
-                           "large"))
+        cases.append(
+            _case(
+                f"pair-{a}+{b}-{dname}-{exc}-{round(100 * noise)}pct",
+                dname,
+                exc,
+                noise,
+                {LIBRARY_MECHANISMS[a]: "large", LIBRARY_MECHANISMS[b]: "large"},
+                a,
+                {a, b},
+                seed,
+                "large",
+            )
+        )
     # clean: exactly Bingham with perturbed calibration factors
     for ic in range(15):
         dname = DAMPERS[ic % len(DAMPERS)]
         exc = EXCITATIONS[ic % 3]
         noise = NOISES[(ic // 5) % 2]
         seed += 1
-        cases.append(_case(f"clean-{dname}-{exc}-{round(100 * noise)}pct-{ic}", dname, exc, noise, {},
-                           "nothing_missing", (), seed))
+        cases.append(
+            _case(
+                f"clean-{dname}-{exc}-{round(100 * noise)}pct-{ic}", dname, exc, noise, {}, "nothing_missing", (), seed
+            )
+        )
     # outside the library
     for io, (mech, dname) in enumerate((m, d) for m in OUT_OF_LIBRARY for d in DAMPERS[:3]):
         exc = EXCITATIONS[io % 3]
         noise = NOISES[io % 2]
         seed += 1
-        cases.append(_case(f"outside-{mech}-{dname}-{exc}-{round(100 * noise)}pct", dname, exc, noise,
-                           {mech: "large"}, "unexplained", (), seed, "large"))
+        cases.append(
+            _case(
+                f"outside-{mech}-{dname}-{exc}-{round(100 * noise)}pct",
+                dname,
+                exc,
+                noise,
+                {mech: "large"},
+                "unexplained",
+                (),
+                seed,
+                "large",
+            )
+        )
     return cases
 
 
@@ -673,8 +832,20 @@ def _fast() -> list[Case]:
     ]
     cases = []
     for i, (label, dname, exc, mech, expected, accepted) in enumerate(specs):
-        cases.append(_case(f"fast-{label}-{dname}-{exc}", dname, exc, 0.01, mech, expected, accepted, 100 + i,
-                           "large" if mech else "", duration=4.0))
+        cases.append(
+            _case(
+                f"fast-{label}-{dname}-{exc}",
+                dname,
+                exc,
+                0.01,
+                mech,
+                expected,
+                accepted,
+                100 + i,
+                "large" if mech else "",
+                duration=4.0,
+            )
+        )
     return cases
 
 
@@ -683,12 +854,17 @@ def _fast() -> list[Case]:
 # 1800 J/(kg K)), by damper and speed over its working speed: sized so that the record warms the fluid by about
 # HEATING_TARGET (measured on the truth rig; tests/test_diagnosis_benchmark.py holds each record to 25-35 K).  The
 # factor is the share of the fluid and its steel that heats with the fluid in the ducts within a minute or so.
-_HEATING_SHARE = {("makris", 2.0): 0.8, ("mr_valve", 2.0): 0.88, ("mr_valve_current", 2.0): 0.7,
-                  ("mr_valve", 1.0): 0.47}
+_HEATING_SHARE = {
+    ("makris", 2.0): 0.8,
+    ("mr_valve", 2.0): 0.88,
+    ("mr_valve_current", 2.0): 0.7,
+    ("mr_valve", 1.0): 0.47,
+}
 
 
 def _artefact(name: str):
     from . import artefacts
+
     return getattr(artefacts, name)
 
 
@@ -706,17 +882,33 @@ ARTEFACTS = {
     # a hole of ``size`` seconds in the middle of the record
     "gap": lambda m, s: _artefact("cut_time_gap")(m, float(m.time[len(m) // 2]), s),
     # a load-cell offset and drift, each ``size`` x the RMS force
-    "drift": lambda m, f: _artefact("offset_and_drift")(m, f * float(np.sqrt(np.mean(m.force ** 2))),
-                                                        f * float(np.sqrt(np.mean(m.force ** 2)))),
+    "drift": lambda m, f: _artefact("offset_and_drift")(
+        m, f * float(np.sqrt(np.mean(m.force**2))), f * float(np.sqrt(np.mean(m.force**2)))
+    ),
     # a displacement readout in steps of ``size`` metres
     "quantize": lambda m, q: _artefact("quantize_displacement")(m, q),
 }
 
 
-def _issue_case(group: str, label: str, dname: str, excitation: str, mechanisms: Mapping, expected: str,
-                accepted, seed: int, *, duration: float, rate: float, noise: float = NOISES[0],
-                speed: float | None = None, frequency: float | None = None, control_scale: float = 1.0,
-                size: str = "", **fields) -> Case:
+def _issue_case(
+    group: str,
+    label: str,
+    dname: str,
+    excitation: str,
+    mechanisms: Mapping,
+    expected: str,
+    accepted,
+    seed: int,
+    *,
+    duration: float,
+    rate: float,
+    noise: float = NOISES[0],
+    speed: float | None = None,
+    frequency: float | None = None,
+    control_scale: float = 1.0,
+    size: str = "",
+    **fields,
+) -> Case:
     """A case of an issue-23 class: mechanisms given as ``{name: size}`` (sized by :func:`mechanism_parameters`)
     or ``{name: {parameter: value}}`` (sized here, explicitly); ``fields`` set the other :class:`Case` fields."""
     damper = _example(dname)
@@ -725,19 +917,40 @@ def _issue_case(group: str, label: str, dname: str, excitation: str, mechanisms:
     frequency = scale.frequency if frequency is None else frequency
     params = {}
     for mech, how in mechanisms.items():
-        params[mech] = (dict(how) if isinstance(how, Mapping)
-                        else mechanism_parameters(mech, how, damper, speed, frequency))
+        params[mech] = (
+            dict(how) if isinstance(how, Mapping) else mechanism_parameters(mech, how, damper, speed, frequency)
+        )
     if "accumulator" in params:
         # the rod must not fill the gas (as in the core catalogue)
         from .simulate import rod_area
-        x = build_motion(excitation, damper, duration=duration, rate=rate, seed=seed, speed=speed,
-                         frequency=frequency).displacement
+
+        x = build_motion(
+            excitation, damper, duration=duration, rate=rate, seed=seed, speed=speed, frequency=frequency
+        ).displacement
         need = 2.0 * rod_area(damper) * float(np.max(np.abs(x)))
         params["accumulator"]["gas_volume"] = max(params["accumulator"]["gas_volume"], need)
     kv, ky = _FACTORS[seed % len(_FACTORS)]
     name = f"{group}-{label}-{dname}-{excitation}-{100 * noise:g}pct"
-    return Case(name, dname, excitation, noise, params, expected, frozenset(accepted), seed, size, duration, rate,
-                speed, frequency, kv, ky, control_scale, group=group, **fields)
+    return Case(
+        name,
+        dname,
+        excitation,
+        noise,
+        params,
+        expected,
+        frozenset(accepted),
+        seed,
+        size,
+        duration,
+        rate,
+        speed,
+        frequency,
+        kv,
+        ky,
+        control_scale,
+        group=group,
+        **fields,
+    )
 
 
 def _heating(dname: str, boost: float) -> dict[str, float]:
@@ -746,8 +959,9 @@ def _heating(dname: str, boost: float) -> dict[str, float]:
     damper = _example(dname)
     speed = boost * _SCALES[dname].speed
     out = mechanism_parameters("thermal", "large", damper, speed)
-    out["heat_capacity"] = (_HEATING_SHARE[dname, boost] * 1800.0 * _scales(damper, speed)["volume"]
-                            * damper.fluid.density)
+    out["heat_capacity"] = (
+        _HEATING_SHARE[dname, boost] * 1800.0 * _scales(damper, speed)["volume"] * damper.fluid.density
+    )
     return out
 
 
@@ -766,11 +980,20 @@ def _issue23() -> list[Case]:
     lag = lambda T, T2=0.0: {"coil_lag": {"time_constant": T, "second_time_constant": T2}}  # noqa: E731
     long_ = dict(rate=1000.0, step_period=2.0)
     add(g, "lag20ms", "mr_valve", "doe_sine", lag(0.02), "field_lag", {"field_lag"}, duration=70.0, **long_)
-    add(g, "lag15+8ms", "mr_coil", "swept_sine", lag(0.015, 0.008), "field_lag", {"field_lag"}, duration=63.0,
-        **long_)
+    add(g, "lag15+8ms", "mr_coil", "swept_sine", lag(0.015, 0.008), "field_lag", {"field_lag"}, duration=63.0, **long_)
     add(g, "lag10ms", "mr_valve_current", "doe_sine", lag(0.01), "field_lag", {"field_lag"}, duration=60.0, **long_)
-    add(g, "lag40ms", "mr_mixed", "swept_sine", lag(0.04), "field_lag", {"field_lag"}, duration=80.0, noise=0.03,
-        **long_)
+    add(
+        g,
+        "lag40ms",
+        "mr_mixed",
+        "swept_sine",
+        lag(0.04),
+        "field_lag",
+        {"field_lag"},
+        duration=80.0,
+        noise=0.03,
+        **long_,
+    )
     add(g, "clean", "mr_valve", "doe_sine", {}, "nothing_missing", (), duration=60.0, **long_)
     add(g, "clean", "mr_valve_current", "swept_sine", {}, "nothing_missing", (), duration=66.0, noise=0.03, **long_)
 
@@ -778,115 +1001,459 @@ def _issue23() -> list[Case]:
     g = "band_limited_3khz"
     dyke = dict(duration=20.0, rate=3000.0, speed=1.0, frequency=6.0, anti_alias=ANTI_ALIAS_CORNER)
     add(g, "clean", "mr_valve", "filtered_gaussian", {}, "nothing_missing", (), **dyke)
-    add(g, "lag15ms", "mr_valve_current", "filtered_gaussian", {"coil_lag": "moderate"}, "field_lag", {"field_lag"},
-        size="moderate", **dyke)
-    add(g, "compressibility", "mr_valve", "filtered_gaussian", {"compliance": "large"}, "compressibility",
-        {"compressibility"}, size="large", **dyke)
-    add(g, "gas_spring", "mr_valve_current", "filtered_gaussian", {"accumulator": "large"}, "gas_spring",
-        {"gas_spring"}, size="large", **dyke)
+    add(
+        g,
+        "lag15ms",
+        "mr_valve_current",
+        "filtered_gaussian",
+        {"coil_lag": "moderate"},
+        "field_lag",
+        {"field_lag"},
+        size="moderate",
+        **dyke,
+    )
+    add(
+        g,
+        "compressibility",
+        "mr_valve",
+        "filtered_gaussian",
+        {"compliance": "large"},
+        "compressibility",
+        {"compressibility"},
+        size="large",
+        **dyke,
+    )
+    add(
+        g,
+        "gas_spring",
+        "mr_valve_current",
+        "filtered_gaussian",
+        {"accumulator": "large"},
+        "gas_spring",
+        {"gas_spring"},
+        size="large",
+        **dyke,
+    )
 
     # 3. long tests that warm the fluid by about 30 K (valve dampers: their viscous force is seen)
     g = "heating_long"
-    for dname, duration, rate in (("makris", 75.0, 500.0), ("mr_valve", 80.0, 1000.0),
-                                  ("mr_valve_current", 60.0, 1000.0)):
-        add(g, "30K", dname, "sine", {"thermal": _heating(dname, 2.0)}, "viscous_heating", {"viscous_heating"},
-            duration=duration, rate=rate, speed=2.0 * _SCALES[dname].speed, size="large")
+    for dname, duration, rate in (
+        ("makris", 75.0, 500.0),
+        ("mr_valve", 80.0, 1000.0),
+        ("mr_valve_current", 60.0, 1000.0),
+    ):
+        add(
+            g,
+            "30K",
+            dname,
+            "sine",
+            {"thermal": _heating(dname, 2.0)},
+            "viscous_heating",
+            {"viscous_heating"},
+            duration=duration,
+            rate=rate,
+            speed=2.0 * _SCALES[dname].speed,
+            size="large",
+        )
 
     # 4. springs in series on mixed heads: an aerated column, pre-yield elasticity alone, and gas + column
     g = "series_springs_mixed"
     fast = {d: 1.5 * _SCALES[d].frequency for d in ("kamath_wereley", "mr_mixed", "makris", "mr_valve")}
-    add(g, "aerated", "kamath_wereley", "random", {"compliance": "large"}, "compressibility", {"compressibility"},
-        duration=6.0, rate=1000.0, frequency=fast["kamath_wereley"], size="large")
-    add(g, "aerated", "mr_mixed", "sine", {"compliance": "moderate"}, "compressibility", {"compressibility"},
-        duration=6.0, rate=1000.0, frequency=fast["mr_mixed"], size="moderate")
-    add(g, "preyield", "kamath_wereley", "sine", {"preyield": "large"}, "preyield_elasticity",
-        {"preyield_elasticity"}, duration=6.0, rate=1000.0, size="large")
-    add(g, "preyield", "mr_mixed", "random", {"preyield": "large"}, "preyield_elasticity", {"preyield_elasticity"},
-        duration=6.0, rate=1000.0, size="large")
-    add(g, "gas+column", "makris", "sine", {"accumulator": "large", "compliance": "large"}, "gas_spring",
-        {"gas_spring", "compressibility"}, duration=6.0, rate=1000.0, frequency=fast["makris"], size="large")
-    add(g, "gas+column", "mr_valve", "random", {"accumulator": "large", "compliance": "moderate"}, "gas_spring",
-        {"gas_spring", "compressibility"}, duration=6.0, rate=1000.0, frequency=fast["mr_valve"], noise=0.03,
-        size="large")
+    add(
+        g,
+        "aerated",
+        "kamath_wereley",
+        "random",
+        {"compliance": "large"},
+        "compressibility",
+        {"compressibility"},
+        duration=6.0,
+        rate=1000.0,
+        frequency=fast["kamath_wereley"],
+        size="large",
+    )
+    add(
+        g,
+        "aerated",
+        "mr_mixed",
+        "sine",
+        {"compliance": "moderate"},
+        "compressibility",
+        {"compressibility"},
+        duration=6.0,
+        rate=1000.0,
+        frequency=fast["mr_mixed"],
+        size="moderate",
+    )
+    add(
+        g,
+        "preyield",
+        "kamath_wereley",
+        "sine",
+        {"preyield": "large"},
+        "preyield_elasticity",
+        {"preyield_elasticity"},
+        duration=6.0,
+        rate=1000.0,
+        size="large",
+    )
+    add(
+        g,
+        "preyield",
+        "mr_mixed",
+        "random",
+        {"preyield": "large"},
+        "preyield_elasticity",
+        {"preyield_elasticity"},
+        duration=6.0,
+        rate=1000.0,
+        size="large",
+    )
+    add(
+        g,
+        "gas+column",
+        "makris",
+        "sine",
+        {"accumulator": "large", "compliance": "large"},
+        "gas_spring",
+        {"gas_spring", "compressibility"},
+        duration=6.0,
+        rate=1000.0,
+        frequency=fast["makris"],
+        size="large",
+    )
+    add(
+        g,
+        "gas+column",
+        "mr_valve",
+        "random",
+        {"accumulator": "large", "compliance": "moderate"},
+        "gas_spring",
+        {"gas_spring", "compressibility"},
+        duration=6.0,
+        rate=1000.0,
+        frequency=fast["mr_valve"],
+        noise=0.03,
+        size="large",
+    )
 
     # 5. clean records (exact Bingham, perturbed calibration factors) of every example damper, a 100 Hz record with
     #    a 5 um displacement readout and a 3 kHz band-limited record
     g = "clean_every_kind"
     for i, dname in enumerate(ALL_DAMPERS[:6]):
-        add(g, "clean", dname, EXCITATIONS[i % 3], {}, "nothing_missing", (), duration=8.0, rate=500.0,
-            noise=NOISES[i % 2])
-    add(g, "100Hz-5um", "mr_mixed", "sine", {}, "nothing_missing", (), duration=30.0, rate=100.0, speed=0.1,
-        frequency=1.0, step_levels=(0.6,), displacement_resolution=5e-6)
+        add(
+            g,
+            "clean",
+            dname,
+            EXCITATIONS[i % 3],
+            {},
+            "nothing_missing",
+            (),
+            duration=8.0,
+            rate=500.0,
+            noise=NOISES[i % 2],
+        )
+    add(
+        g,
+        "100Hz-5um",
+        "mr_mixed",
+        "sine",
+        {},
+        "nothing_missing",
+        (),
+        duration=30.0,
+        rate=100.0,
+        speed=0.1,
+        frequency=1.0,
+        step_levels=(0.6,),
+        displacement_resolution=5e-6,
+    )
     add(g, "3kHz-band-limited", "mr_coil", "filtered_gaussian", {}, "nothing_missing", (), **dyke)
 
     # 6. random motion from other generators than the team's random_motion
     g = "other_generator"
-    add(g, "leakage", "mr_valve", "ou", {"bypass": "large"}, "leakage", {"leakage"}, duration=8.0, rate=500.0,
-        size="large")
+    add(
+        g,
+        "leakage",
+        "mr_valve",
+        "ou",
+        {"bypass": "large"},
+        "leakage",
+        {"leakage"},
+        duration=8.0,
+        rate=500.0,
+        size="large",
+    )
     add(g, "clean", "kamath_wereley", "ou", {}, "nothing_missing", (), duration=8.0, rate=500.0)
-    add(g, "seal_friction", "makris", "multisine", {"stribeck_friction": "large"}, "seal_friction",
-        {"seal_friction"}, duration=9.0, rate=500.0, noise=0.03, size="large")
-    add(g, "shear_thinning", "mr_valve_current", "multisine", {"herschel_bulkley": "large"}, "shear_thinning",
-        {"shear_thinning"}, duration=9.0, rate=500.0, control_scale=0.25, size="large")
-    add(g, "gas_spring", "mr_mixed", "filtered_gaussian", {"accumulator": "moderate"}, "gas_spring", {"gas_spring"},
-        duration=8.0, rate=500.0, size="moderate")
-    add(g, "compressibility", "mr_valve", "filtered_gaussian", {"compliance": "large"}, "compressibility",
-        {"compressibility"}, duration=6.0, rate=1000.0, frequency=fast["mr_valve"], noise=0.03, size="large")
+    add(
+        g,
+        "seal_friction",
+        "makris",
+        "multisine",
+        {"stribeck_friction": "large"},
+        "seal_friction",
+        {"seal_friction"},
+        duration=9.0,
+        rate=500.0,
+        noise=0.03,
+        size="large",
+    )
+    add(
+        g,
+        "shear_thinning",
+        "mr_valve_current",
+        "multisine",
+        {"herschel_bulkley": "large"},
+        "shear_thinning",
+        {"shear_thinning"},
+        duration=9.0,
+        rate=500.0,
+        control_scale=0.25,
+        size="large",
+    )
+    add(
+        g,
+        "gas_spring",
+        "mr_mixed",
+        "filtered_gaussian",
+        {"accumulator": "moderate"},
+        "gas_spring",
+        {"gas_spring"},
+        duration=8.0,
+        rate=500.0,
+        size="moderate",
+    )
+    add(
+        g,
+        "compressibility",
+        "mr_valve",
+        "filtered_gaussian",
+        {"compliance": "large"},
+        "compressibility",
+        {"compressibility"},
+        duration=6.0,
+        rate=1000.0,
+        frequency=fast["mr_valve"],
+        noise=0.03,
+        size="large",
+    )
 
     # 5 (continued; last, so that the seeds above stay those of the first run): a shaking-table record, strokes of
     # 2.5-6 mm and a quiet load cell (0.2 %), so that the error the 5 um steps put into the derived velocity, not
     # the load cell, sets the floor
     g = "clean_every_kind"
-    add(g, "100Hz-5um-quiet", "mr_coil", "sine", {}, "nothing_missing", (), duration=30.0, rate=100.0, speed=0.06,
-        frequency=1.0, step_levels=(0.5,), displacement_resolution=5e-6, noise=0.002)
+    add(
+        g,
+        "100Hz-5um-quiet",
+        "mr_coil",
+        "sine",
+        {},
+        "nothing_missing",
+        (),
+        duration=30.0,
+        rate=100.0,
+        speed=0.06,
+        frequency=1.0,
+        step_levels=(0.5,),
+        displacement_resolution=5e-6,
+        noise=0.002,
+    )
 
     # harder variants, shaped as the independent testers' records that failed (issue 23): a heavily aerated column
     # on the mixed ER head (0.05 GPa: 1.7e6 N/m, the testers' 1.6e6), a gas spring with a column at moderate sizes
     # on a sine programme, and heating at the damper's working speed over 83 s
     g = "series_springs_mixed"
     column = {"bulk_modulus": 5e7, "chamber_volume": 0.06 * _example("kamath_wereley").geometry.piston_area}
-    add(g, "aerated-soft", "kamath_wereley", "sine", {"compliance": column}, "compressibility", {"compressibility"},
-        duration=6.0, rate=1000.0, frequency=fast["kamath_wereley"], size="large")
-    add(g, "gas+column-moderate", "mr_valve_current", "sine", {"accumulator": "moderate", "compliance": "moderate"},
-        "gas_spring", {"gas_spring", "compressibility"}, duration=6.0, rate=1000.0,
-        frequency=1.5 * _SCALES["mr_valve_current"].frequency, size="moderate")
+    add(
+        g,
+        "aerated-soft",
+        "kamath_wereley",
+        "sine",
+        {"compliance": column},
+        "compressibility",
+        {"compressibility"},
+        duration=6.0,
+        rate=1000.0,
+        frequency=fast["kamath_wereley"],
+        size="large",
+    )
+    add(
+        g,
+        "gas+column-moderate",
+        "mr_valve_current",
+        "sine",
+        {"accumulator": "moderate", "compliance": "moderate"},
+        "gas_spring",
+        {"gas_spring", "compressibility"},
+        duration=6.0,
+        rate=1000.0,
+        frequency=1.5 * _SCALES["mr_valve_current"].frequency,
+        size="moderate",
+    )
     g = "heating_long"
-    add(g, "30K-working-speed", "mr_valve", "sine", {"thermal": _heating("mr_valve", 1.0)}, "viscous_heating",
-        {"viscous_heating"}, duration=83.0, rate=1000.0, size="large")
+    add(
+        g,
+        "30K-working-speed",
+        "mr_valve",
+        "sine",
+        {"thermal": _heating("mr_valve", 1.0)},
+        "viscous_heating",
+        {"viscous_heating"},
+        duration=83.0,
+        rate=1000.0,
+        size="large",
+    )
 
     # 7. lab artefacts (erdesign/simulation/truthrig/artefacts.py) on records with and without a hidden mechanism: the
     #    finding must be reported, the artefact never named as a mechanism, and a hidden mechanism still found
     g = "artefacts"
     art = dict(duration=8.0, rate=1000.0)
     either = ("unexplained",)
-    add(g, "clipped", "mr_valve", "sine", {"stribeck_friction": "large"}, "seal_friction", {"seal_friction"},
-        size="large", artefacts=(("clip", 0.85),), finding="clipped", **art)
-    add(g, "clipped", "mr_mixed", "random", {}, "nothing_missing", (), artefacts=(("clip", 0.8),), finding="clipped",
-        **art)
-    add(g, "saturated", "mr_valve_current", "sine", {}, "nothing_missing", (), artefacts=(("saturate", 0.9),),
-        finding="saturated_displacement", **art)
-    add(g, "smoothed", "mr_valve", "sine", {}, "nothing_missing", (), artefacts=(("average", 8),),
-        finding="smoothed", also_accepted=either, **art)
-    add(g, "skew0.8ms", "mr_valve_current", "sine", {}, "nothing_missing", (), artefacts=(("skew", 8e-4),),
-        finding="channel_skew", also_accepted=either, **art)
+    add(
+        g,
+        "clipped",
+        "mr_valve",
+        "sine",
+        {"stribeck_friction": "large"},
+        "seal_friction",
+        {"seal_friction"},
+        size="large",
+        artefacts=(("clip", 0.85),),
+        finding="clipped",
+        **art,
+    )
+    add(
+        g,
+        "clipped",
+        "mr_mixed",
+        "random",
+        {},
+        "nothing_missing",
+        (),
+        artefacts=(("clip", 0.8),),
+        finding="clipped",
+        **art,
+    )
+    add(
+        g,
+        "saturated",
+        "mr_valve_current",
+        "sine",
+        {},
+        "nothing_missing",
+        (),
+        artefacts=(("saturate", 0.9),),
+        finding="saturated_displacement",
+        **art,
+    )
+    add(
+        g,
+        "smoothed",
+        "mr_valve",
+        "sine",
+        {},
+        "nothing_missing",
+        (),
+        artefacts=(("average", 8),),
+        finding="smoothed",
+        also_accepted=either,
+        **art,
+    )
+    add(
+        g,
+        "skew0.8ms",
+        "mr_valve_current",
+        "sine",
+        {},
+        "nothing_missing",
+        (),
+        artefacts=(("skew", 8e-4),),
+        finding="channel_skew",
+        also_accepted=either,
+        **art,
+    )
     # (a skew shows where the force jumps at reversals: on Makris's viscous ER damper 0.8 ms moves the force by less
     #  than its noise, so the skew case of the random motion is on the mixed MR head)
-    add(g, "skew0.8ms", "mr_mixed", "random", {}, "nothing_missing", (), artefacts=(("skew", 8e-4),),
-        finding="channel_skew", also_accepted=either, **art)
-    add(g, "gap", "mr_valve_current", "sine", {"coil_lag": "large"}, "field_lag", {"field_lag"}, size="large",
-        artefacts=(("gap", 1.0),), finding="time_gap", **art)
-    add(g, "drift", "mr_valve", "random", {}, "nothing_missing", (), artefacts=(("drift", 0.08),),
-        finding="force_offset_drift", also_accepted=either, **art)
-    add(g, "quantized5um", "mr_valve", "sine", {}, "nothing_missing", (), artefacts=(("quantize", 5e-6),),
-        finding="quantized_displacement", **art)
-    add(g, "quantized5um", "mr_mixed", "sine", {"compliance": "large"}, "compressibility", {"compressibility"},
-        size="large", artefacts=(("quantize", 5e-6),), finding="quantized_displacement", **art)
+    add(
+        g,
+        "skew0.8ms",
+        "mr_mixed",
+        "random",
+        {},
+        "nothing_missing",
+        (),
+        artefacts=(("skew", 8e-4),),
+        finding="channel_skew",
+        also_accepted=either,
+        **art,
+    )
+    add(
+        g,
+        "gap",
+        "mr_valve_current",
+        "sine",
+        {"coil_lag": "large"},
+        "field_lag",
+        {"field_lag"},
+        size="large",
+        artefacts=(("gap", 1.0),),
+        finding="time_gap",
+        **art,
+    )
+    add(
+        g,
+        "drift",
+        "mr_valve",
+        "random",
+        {},
+        "nothing_missing",
+        (),
+        artefacts=(("drift", 0.08),),
+        finding="force_offset_drift",
+        also_accepted=either,
+        **art,
+    )
+    add(
+        g,
+        "quantized5um",
+        "mr_valve",
+        "sine",
+        {},
+        "nothing_missing",
+        (),
+        artefacts=(("quantize", 5e-6),),
+        finding="quantized_displacement",
+        **art,
+    )
+    add(
+        g,
+        "quantized5um",
+        "mr_mixed",
+        "sine",
+        {"compliance": "large"},
+        "compressibility",
+        {"compressibility"},
+        size="large",
+        artefacts=(("quantize", 5e-6),),
+        finding="quantized_displacement",
+        **art,
+    )
 
     # 5 (continued, last so that the seeds above stay): the example dampers added with issue 23, clean
     g = "clean_every_kind"
     for i, dname in enumerate(ALL_DAMPERS[6:], start=6):
-        add(g, "clean", dname, EXCITATIONS[i % 3], {}, "nothing_missing", (), duration=8.0, rate=500.0,
-            noise=NOISES[i % 2])
+        add(
+            g,
+            "clean",
+            dname,
+            EXCITATIONS[i % 3],
+            {},
+            "nothing_missing",
+            (),
+            duration=8.0,
+            rate=500.0,
+            noise=NOISES[i % 2],
+        )
     return cases
 
 

@@ -66,17 +66,29 @@ import numpy as np
 from ..._compile import njit
 from .valve import moving_wall_flow_from, slit_flow, slit_flow_slope
 
-__all__ = ["N_PARAMETERS", "passed_speed", "steady_force", "monotone_root", "mixed_flow", "mixed_pressure",
-           "mixed_steady_force", "any_steady_force", "series_step", "run", "first_order_lag",
-           "two_stage_lag", "play_operator"]
+__all__ = [
+    "N_PARAMETERS",
+    "passed_speed",
+    "steady_force",
+    "monotone_root",
+    "mixed_flow",
+    "mixed_pressure",
+    "mixed_steady_force",
+    "any_steady_force",
+    "series_step",
+    "run",
+    "first_order_lag",
+    "two_stage_lag",
+    "play_operator",
+]
 
 # Indices into the parameter vector of the kernels (SI).
 I_L, I_B, I_H, I_DUCTS, I_M, I_GAMMA_REF = 0, 1, 2, 3, 4, 5
-I_GL, I_GB, I_PC = 6, 7, 8                  # bypass conductance, blow-off conductance, cracking pressure
-I_AC, I_AR, I_CAP = 9, 10, 11               # compression area, rebound area, rebound force cap (inf: none)
-I_KC, I_MSLUG, I_KPRE = 12, 13, 14          # compliance stiffness, slug mass, pre-yield stiffness (0: off)
-I_HEAT_CAPACITY, I_COOLING_TIME, I_ALPHA = 15, 16, 17   # heat capacity 0: no thermal state
-I_MIXED, I_AWALL = 18, 19                   # 1: moving-electrode head (0: valve); area of the head's wall
+I_GL, I_GB, I_PC = 6, 7, 8  # bypass conductance, blow-off conductance, cracking pressure
+I_AC, I_AR, I_CAP = 9, 10, 11  # compression area, rebound area, rebound force cap (inf: none)
+I_KC, I_MSLUG, I_KPRE = 12, 13, 14  # compliance stiffness, slug mass, pre-yield stiffness (0: off)
+I_HEAT_CAPACITY, I_COOLING_TIME, I_ALPHA = 15, 16, 17  # heat capacity 0: no thermal state
+I_MIXED, I_AWALL = 18, 19  # 1: moving-electrode head (0: valve); area of the head's wall
 N_PARAMETERS = 20
 
 
@@ -344,13 +356,13 @@ def run(v, dx, h, tau_y, eta, p):
     heat_capacity, cooling_time, alpha = p[I_HEAT_CAPACITY], p[I_COOLING_TIME], p[I_ALPHA]
     cap = p[I_CAP]
     mixed = p[I_MIXED] > 0.0
-    last = math.nan     # the mixed head's previous pressure drop, where its next root is sought first
+    last = math.nan  # the mixed head's previous pressure drop, where its next root is sought first
     P, w, T = 0.0, 0.0, 0.0  # stateful elements start unloaded and at rest, at the ambient temperature
     if kc == 0.0 and kpre == 0.0:
         force[0] = any_steady_force(v[0], tau_y[0], eta[0], 1.0, p)
         valve[0] = force[0]
     elif mixed and kpre == 0.0:
-        force[0] = mixed_flow(0.0, v[0], tau_y[0], eta[0], 1.0, p)[1] * p[I_AWALL]   # the wall's drag, unloaded
+        force[0] = mixed_flow(0.0, v[0], tau_y[0], eta[0], 1.0, p)[1] * p[I_AWALL]  # the wall's drag, unloaded
     for i in range(1, n):
         thermal = math.exp(-alpha * T) if heat_capacity > 0.0 else 1.0
         eta_i = eta[i] * thermal

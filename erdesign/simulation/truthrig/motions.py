@@ -29,8 +29,13 @@ from scipy import signal
 from ...errors import ErdesignError
 from ..rig import OVERSAMPLING, Motion
 
-__all__ = ["swept_sine", "sine_programme", "ornstein_uhlenbeck_motion", "random_phase_multisine",
-           "filtered_gaussian_motion"]
+__all__ = [
+    "swept_sine",
+    "sine_programme",
+    "ornstein_uhlenbeck_motion",
+    "random_phase_multisine",
+    "filtered_gaussian_motion",
+]
 
 
 def _grid(duration: float, rate: float) -> np.ndarray:
@@ -77,8 +82,9 @@ def swept_sine(speed: float, f_start: float, f_end: float, *, duration: float, r
     phase = 2 * np.pi * f_start * np.expm1(k * t) / k if k != 0 else 2 * np.pi * f_start * t
     x = _at_rest_ends(t, speed / (2 * np.pi * f) * np.sin(phase), 0.5)
     x *= speed / np.max(np.abs(np.gradient(x, t)))
-    return _sampled(t, x, f"swept sine {f_start:g}-{f_end:g} Hz (logarithmic) over {duration:g} s at "
-                          f"{speed:g} m/s peak")
+    return _sampled(
+        t, x, f"swept sine {f_start:g}-{f_end:g} Hz (logarithmic) over {duration:g} s at {speed:g} m/s peak"
+    )
 
 
 def sine_programme(amplitudes, frequencies, *, duration: float, rate: float, rest: float = 0.25) -> Motion:
@@ -96,8 +102,10 @@ def sine_programme(amplitudes, frequencies, *, duration: float, rate: float, res
     A = np.asarray(amplitudes, dtype=float)
     f = np.asarray(frequencies, dtype=float)
     if A.shape != f.shape or A.size == 0 or np.any(A <= 0) or np.any(f <= 0) or 8 * f.max() > rate:
-        raise ErdesignError("amplitudes, frequencies: need as many positive amplitudes as frequencies, each "
-                            "resolved by 8 samples a period at the rate")
+        raise ErdesignError(
+            "amplitudes, frequencies: need as many positive amplitudes as frequencies, each "
+            "resolved by 8 samples a period at the rate"
+        )
     cycles = max(3, int((duration - rest * A.size) / float(np.sum(1 / f))))
     t = _grid(rest * A.size + cycles * float(np.sum(1 / f)), rate)
     x = np.zeros(t.size)
@@ -113,8 +121,9 @@ def sine_programme(amplitudes, frequencies, *, duration: float, rate: float, res
     return _sampled(t, x, f"sine programme of {A.size} runs, {cycles} cycles each ({runs}), {rest:g} s rest between")
 
 
-def ornstein_uhlenbeck_motion(rms: float, correlation_time: float, actuator_bandwidth: float, *, duration: float,
-                              rate: float, seed: int) -> Motion:
+def ornstein_uhlenbeck_motion(
+    rms: float, correlation_time: float, actuator_bandwidth: float, *, duration: float, rate: float, seed: int
+) -> Motion:
     r"""An Ornstein-Uhlenbeck displacement command of RMS ``rms`` [m] followed by a servo actuator.
 
     The command is the stationary Ornstein-Uhlenbeck process :math:`dc = -c/\tau\,dt + \sigma\sqrt{2/\tau}\,dW`,
@@ -137,18 +146,23 @@ def ornstein_uhlenbeck_motion(rms: float, correlation_time: float, actuator_band
     rng = np.random.default_rng(seed)
     e = math.exp(-dt / correlation_time)
     xi = rng.standard_normal(t.size) * math.sqrt(1 - e * e)
-    c = signal.lfilter([1.0], [1.0, -e], xi, zi=[e * rng.standard_normal()])[0]   # c_k = e c_{k-1} + xi_k
+    c = signal.lfilter([1.0], [1.0, -e], xi, zi=[e * rng.standard_normal()])[0]  # c_k = e c_{k-1} + xi_k
     w = 2 * np.pi * actuator_bandwidth
     b, a = signal.bilinear([w * w], [1.0, 2 * w, w * w], fs=1.0 / dt)
     x = signal.lfilter(b, a, c - c[0])
     x = _at_rest_ends(t, x, 0.1 * duration)
     x *= rms / np.sqrt(np.mean(x**2))
-    return _sampled(t, x, f"Ornstein-Uhlenbeck command (correlation time {correlation_time:g} s) through a "
-                          f"{actuator_bandwidth:g} Hz servo, RMS {rms * 1e3:g} mm")
+    return _sampled(
+        t,
+        x,
+        f"Ornstein-Uhlenbeck command (correlation time {correlation_time:g} s) through a "
+        f"{actuator_bandwidth:g} Hz servo, RMS {rms * 1e3:g} mm",
+    )
 
 
-def random_phase_multisine(speed: float, band: tuple[float, float], period: float, *, duration: float, rate: float,
-                           seed: int) -> Motion:
+def random_phase_multisine(
+    speed: float, band: tuple[float, float], period: float, *, duration: float, rate: float, seed: int
+) -> Motion:
     r"""A periodic multi-sine: every multiple of 1 / ``period`` within ``band`` [Hz] at a random phase, amplitude
     :math:`\propto 1/f` (every line the same velocity amplitude), scaled to peak speed ``speed`` [m/s].
 
@@ -175,12 +189,14 @@ def random_phase_multisine(speed: float, band: tuple[float, float], period: floa
         x += np.sin(2 * np.pi * fk * t + pk) / (2 * np.pi * fk)
     x = _at_rest_ends(t, x, 0.5 * period)
     x *= speed / np.max(np.abs(np.gradient(x, t)))
-    return _sampled(t, x, f"random-phase multi-sine, {f.size} lines {f[0]:g}-{f[-1]:g} Hz, period {period:g} s, "
-                          f"{speed:g} m/s peak")
+    return _sampled(
+        t, x, f"random-phase multi-sine, {f.size} lines {f[0]:g}-{f[-1]:g} Hz, period {period:g} s, {speed:g} m/s peak"
+    )
 
 
-def filtered_gaussian_motion(peak: float, band: tuple[float, float], *, duration: float, rate: float, seed: int,
-                             order: int = 2) -> Motion:
+def filtered_gaussian_motion(
+    peak: float, band: tuple[float, float], *, duration: float, rate: float, seed: int, order: int = 2
+) -> Motion:
     r"""White Gaussian noise through a causal Butterworth band-pass of ``order`` [-] between ``band`` [Hz],
     scaled to the peak displacement ``peak`` [m]: a band-limited random displacement command.
 
@@ -199,5 +215,9 @@ def filtered_gaussian_motion(peak: float, band: tuple[float, float], *, duration
     x = signal.sosfilt(sos, rng.standard_normal(t.size + settle))[settle:]
     x = _at_rest_ends(t, x, 0.05 * duration)
     x *= peak / np.max(np.abs(x))
-    return _sampled(t, x, f"Gaussian noise through a causal order-{order} Butterworth band-pass {band[0]:g}-"
-                          f"{band[1]:g} Hz, peak {peak * 1e3:g} mm")
+    return _sampled(
+        t,
+        x,
+        f"Gaussian noise through a causal order-{order} Butterworth band-pass {band[0]:g}-"
+        f"{band[1]:g} Hz, peak {peak * 1e3:g} mm",
+    )

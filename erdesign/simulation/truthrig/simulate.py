@@ -51,8 +51,16 @@ from . import kernels as K
 from .mechanisms import ATMOSPHERIC_PRESSURE, MECHANISMS, rod_area
 from .valve import REFERENCE_SHEAR_RATE
 
-__all__ = ["TruthDamper", "TruthRecord", "simulate_truth", "SUBSTEPS", "UNSUPPORTED", "MIXED_MECHANISMS",
-           "UNSUPPORTED_MIXED", "FILE_UNITS"]
+__all__ = [
+    "TruthDamper",
+    "TruthRecord",
+    "simulate_truth",
+    "SUBSTEPS",
+    "UNSUPPORTED",
+    "MIXED_MECHANISMS",
+    "UNSUPPORTED_MIXED",
+    "FILE_UNITS",
+]
 
 #: Default substeps per sample for the time-stepped states.
 SUBSTEPS = 10
@@ -60,23 +68,33 @@ SUBSTEPS = 10
 #: Pairs of mechanisms the rig does not combine, with the reason.
 UNSUPPORTED = {
     frozenset({"compliance", "preyield", "slug_inertia"}): "the column in series with the elastic fluid is "
-                                                           "integrated without the slug inside it",
+    "integrated without the slug inside it",
     frozenset({"free_play", "compliance"}): "a compliant column stores force across the gap, so the piston no "
-                                            "longer follows the play operator",
+    "longer follows the play operator",
     frozenset({"free_play", "preyield"}): "pre-yield elasticity stores force across the gap, so the piston no "
-                                          "longer follows the play operator",
+    "longer follows the play operator",
     frozenset({"free_play", "accumulator"}): "the gas force would push the free piston across the gap",
     frozenset({"single_rod", "compliance"}): "the compliance is written for two equal chambers",
 }
 
 #: Mechanisms available for the mixed-mode (moving-electrode) damper (no blow-off valve, single rod or cavitation:
 #: they are written for the valve's chambers).
-MIXED_MECHANISMS = ("compliance", "herschel_bulkley", "bypass", "thermal", "preyield", "stribeck_friction",
-                    "accumulator", "slug_inertia", "coil_lag", "free_play")
+MIXED_MECHANISMS = (
+    "compliance",
+    "herschel_bulkley",
+    "bypass",
+    "thermal",
+    "preyield",
+    "stribeck_friction",
+    "accumulator",
+    "slug_inertia",
+    "coil_lag",
+    "free_play",
+)
 #: Sets of mechanisms the rig does not combine on the mixed-mode damper, with the reason.
 UNSUPPORTED_MIXED = {
     frozenset({"compliance", "preyield"}): "the column carries the pressure force only, the elastic fluid also the "
-                                           "wall's shear drag",
+    "wall's shear drag",
 }
 
 #: Units of the CSV columns :meth:`TruthRecord.write` uses for each kind of control.
@@ -151,24 +169,30 @@ class TruthDamper:
         names = set(settings)
         for group, why in UNSUPPORTED.items():
             if group <= names:
-                raise ErdesignError(f"mechanisms: {' and '.join(sorted(group))} cannot be combined in the truth "
-                                    f"rig: {why}")
+                raise ErdesignError(
+                    f"mechanisms: {' and '.join(sorted(group))} cannot be combined in the truth rig: {why}"
+                )
         if self.damper.geometry.configuration == "mixed":
             bad = sorted(names - set(MIXED_MECHANISMS))
             if bad:
-                raise ErdesignError(f"mechanisms: {', '.join(bad)} need the valve's chambers and are not available "
-                                    f"for the mixed-mode damper; available: {', '.join(MIXED_MECHANISMS)}")
+                raise ErdesignError(
+                    f"mechanisms: {', '.join(bad)} need the valve's chambers and are not available "
+                    f"for the mixed-mode damper; available: {', '.join(MIXED_MECHANISMS)}"
+                )
             for group, why in UNSUPPORTED_MIXED.items():
                 if group <= names:
-                    raise ErdesignError(f"mechanisms: {' and '.join(sorted(group))} cannot be combined on the "
-                                        f"mixed-mode damper in the truth rig: {why}")
+                    raise ErdesignError(
+                        f"mechanisms: {' and '.join(sorted(group))} cannot be combined on the "
+                        f"mixed-mode damper in the truth rig: {why}"
+                    )
         values = {}
         for name, given in settings.items():
             defaults = MECHANISMS[name].parameters(self.damper)
             unknown = sorted(set(given) - set(defaults))
             if unknown:
-                raise ErdesignError(f"mechanisms.{name}: unknown parameter {unknown[0]!r}; known: "
-                                    f"{', '.join(defaults) or 'none'}")
+                raise ErdesignError(
+                    f"mechanisms.{name}: unknown parameter {unknown[0]!r}; known: {', '.join(defaults) or 'none'}"
+                )
             merged = {**defaults, **{k: float(v) for k, v in given.items()}}
             for key, value in merged.items():
                 ok = math.isfinite(value) and (value >= 0 if key in _NON_NEGATIVE else value > 0)
@@ -220,8 +244,7 @@ class TruthDamper:
         g = self.damper.geometry
         G = self.values["preyield"]["shear_modulus"]
         if not self.mixed:
-            return 12.0 * G * g.duct_length * g.piston_area**2 / (
-                g.ducts * math.pi * g.duct_mean_diameter * g.gap**3)
+            return 12.0 * G * g.duct_length * g.piston_area**2 / (g.ducts * math.pi * g.duct_mean_diameter * g.gap**3)
         p = self._geometry_vector()
         p[K.I_M] = 1.0
         return float(K.mixed_steady_force(1.0, 0.0, G, 1.0, p))
@@ -271,11 +294,14 @@ class TruthDamper:
         parts = []
         for name, vals in self.values.items():
             units = MECHANISMS[name].units
-            text = ", ".join(f"{k} = {x:.4g} {units[k]}" for k, x in vals.items()
-                             if not (k == "second_time_constant" and x == 0))
+            text = ", ".join(
+                f"{k} = {x:.4g} {units[k]}" for k, x in vals.items() if not (k == "second_time_constant" and x == 0)
+            )
             parts.append(f"{name} ({text})" if text else name)
-        return (f"mechanisms: {'; '.join(parts) or 'none'}; true fluid: viscosity x {self.viscosity_factor:g}, "
-                f"yield stress x {self.yield_stress_factor:g}")
+        return (
+            f"mechanisms: {'; '.join(parts) or 'none'}; true fluid: viscosity x {self.viscosity_factor:g}, "
+            f"yield stress x {self.yield_stress_factor:g}"
+        )
 
 
 @dataclass(frozen=True)
@@ -324,9 +350,10 @@ class TruthRecord:
         """Write the measurement as a CSV file (:func:`erdesign.data.measurement.write_measurement`), with the
         description as a comment line; ``units`` overrides :meth:`file_units` by column.  Never overwrites."""
         path = Path(path)
-        try:        # exclusive: an existing file, even one made while this runs, is never replaced
-            write_measurement(path, self.measured, units={**self.file_units(), **(units or {})},
-                              comment=self.description)
+        try:  # exclusive: an existing file, even one made while this runs, is never replaced
+            write_measurement(
+                path, self.measured, units={**self.file_units(), **(units or {})}, comment=self.description
+            )
         except OutputPathError:
             if not path.exists():
                 raise
@@ -369,7 +396,7 @@ def _control_seen(truth: TruthDamper, command: np.ndarray, h: np.ndarray, subste
     if not truth.has("coil_lag"):
         return held
     lag = truth.values["coil_lag"]
-    if lag["second_time_constant"] > 0:     # two stages in cascade (coil L/R, then eddy currents)
+    if lag["second_time_constant"] > 0:  # two stages in cascade (coil L/R, then eddy currents)
         return K.two_stage_lag(held, h, lag["time_constant"], lag["second_time_constant"], float(command[0]))
     return K.first_order_lag(held, h, lag["time_constant"], float(command[0]))
 
@@ -377,7 +404,9 @@ def _control_seen(truth: TruthDamper, command: np.ndarray, h: np.ndarray, subste
 def _friction(truth: TruthDamper, v):
     if truth.has("stribeck_friction"):
         s = truth.values["stribeck_friction"]
-        level = s["coulomb_force"] + (s["static_force"] - s["coulomb_force"]) * np.exp(-(v / s["stribeck_speed"])**2)
+        level = s["coulomb_force"] + (s["static_force"] - s["coulomb_force"]) * np.exp(
+            -((v / s["stribeck_speed"]) ** 2)
+        )
         return np.sign(v) * level + s["viscous_friction"] * v
     return np.sign(v) * truth.damper.seal_friction
 
@@ -388,14 +417,25 @@ def _gas(truth: TruthDamper, x):
     acc, A_rod = truth.values["accumulator"], rod_area(truth.damper)
     volume = acc["gas_volume"] - A_rod * x
     if np.any(volume <= 0):
-        raise ErdesignError("mechanisms.accumulator: the rod would fill the whole gas volume; give a larger "
-                            "gas_volume or a smaller stroke")
-    return (acc["charge_pressure"] * (acc["gas_volume"] / volume) ** acc["polytropic_index"]
-            - ATMOSPHERIC_PRESSURE) * A_rod
+        raise ErdesignError(
+            "mechanisms.accumulator: the rod would fill the whole gas volume; give a larger "
+            "gas_volume or a smaller stroke"
+        )
+    return (
+        acc["charge_pressure"] * (acc["gas_volume"] / volume) ** acc["polytropic_index"] - ATMOSPHERIC_PRESSURE
+    ) * A_rod
 
 
-def simulate_truth(truth: TruthDamper, motion: Motion, *, force_noise: float = 0.01, displacement_noise: float = 1e-4,
-                   seed: int = 0, name: str = "truth", substeps: int = SUBSTEPS) -> TruthRecord:
+def simulate_truth(
+    truth: TruthDamper,
+    motion: Motion,
+    *,
+    force_noise: float = 0.01,
+    displacement_noise: float = 1e-4,
+    seed: int = 0,
+    name: str = "truth",
+    substeps: int = SUBSTEPS,
+) -> TruthRecord:
     """Measure a :class:`TruthDamper` on the truth rig under an imposed motion.
 
     Parameters
@@ -463,15 +503,16 @@ def simulate_truth(truth: TruthDamper, motion: Motion, *, force_noise: float = 0
     fluid = force[::S]
     per_sample = np.concatenate([[0.0], np.add.reduceat(dissipated[1:], np.arange(0, dissipated.size - 1, S))])
     states.update(valve_force=valve[::S], temperature_rise=theta[::S], dissipated=per_sample)
-    components = {"fluid": fluid, "inertia": inertia, "friction": _friction(truth, vp),
-                  "gas_spring": _gas(truth, xp)}
+    components = {"fluid": fluid, "inertia": inertia, "friction": _friction(truth, vp), "gas_spring": _gas(truth, xp)}
     true_force = sum(components.values())
 
     rng = np.random.default_rng(seed)
     F = true_force + force_noise * np.sqrt(np.mean(true_force**2)) * rng.standard_normal(t.size)
     x = motion.displacement + displacement_noise * np.max(np.abs(motion.displacement)) * rng.standard_normal(t.size)
     measured = Measurement.from_arrays(t, x, F, control=command, control_kind=fl.control, name=name)
-    description = (f"truth rig: {damper.name or 'damper'} ({damper.geometry.configuration}); {motion.description}; "
-                   f"{truth.describe()}; noise: force {force_noise:g} of RMS, displacement {displacement_noise:g} "
-                   f"of peak; seed {seed}")
+    description = (
+        f"truth rig: {damper.name or 'damper'} ({damper.geometry.configuration}); {motion.description}; "
+        f"{truth.describe()}; noise: force {force_noise:g} of RMS, displacement {displacement_noise:g} "
+        f"of peak; seed {seed}"
+    )
     return TruthRecord(name, true_force, measured, components, states, description, truth, motion)

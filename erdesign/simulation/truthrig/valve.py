@@ -189,8 +189,15 @@ def herschel_bulkley_valve_flow(dp, tau_y, eta, flow_index, L, d, h):
     """
     dp = np.asarray(dp, dtype=float)
     K = consistency(eta, flow_index)
-    q = _slit_flow_ufunc(np.abs(dp), np.asarray(tau_y, dtype=float), K, np.asarray(flow_index, dtype=float),
-                         float(L), math.pi * float(d), float(h))
+    q = _slit_flow_ufunc(
+        np.abs(dp),
+        np.asarray(tau_y, dtype=float),
+        K,
+        np.asarray(flow_index, dtype=float),
+        float(L),
+        math.pi * float(d),
+        float(h),
+    )
     return _out(np.copysign(q, dp))
 
 
@@ -256,8 +263,10 @@ def _wall_speed(tau0, g, h, tau_y, Kn, n):
     if abs(d) <= _SMALL_GRADIENT * (abs(tau0) + tau_y) or d == 0.0:
         tm = tau0 + 0.5 * d
         return h * _hb_rate(tm, tau_y, Kn, n), h * _hb_rate_slope(tm, tau_y, Kn, n)
-    return ((_hb_phi(tau0 + d, tau_y, Kn, n) - _hb_phi(tau0, tau_y, Kn, n)) / g,
-            (_hb_rate(tau0 + d, tau_y, Kn, n) - _hb_rate(tau0, tau_y, Kn, n)) / g)
+    return (
+        (_hb_phi(tau0 + d, tau_y, Kn, n) - _hb_phi(tau0, tau_y, Kn, n)) / g,
+        (_hb_rate(tau0 + d, tau_y, Kn, n) - _hb_rate(tau0, tau_y, Kn, n)) / g,
+    )
 
 
 @njit(cache=True)
@@ -292,7 +301,7 @@ def moving_wall_flow_from(dp, U, tau_y, K, m, L, h, guess):
             hi = tau0
         new = tau0 - f / slope if slope > 0.0 else 0.5 * (lo + hi)
         if abs(new - tau0) <= 1e-14 * (abs(tau0) + tau_y + abs(g) * h) or hi - lo <= 1e-15 * A:
-            tau0 = new     # converged (a last step may touch the bracket's end: round-off)
+            tau0 = new  # converged (a last step may touch the bracket's end: round-off)
             break
         if not (lo < new < hi):
             new = 0.5 * (lo + hi)
@@ -309,14 +318,20 @@ def moving_wall_flow_from(dp, U, tau_y, K, m, L, h, guess):
     return q, tau0 + d, tau0
 
 
-@guvectorize(["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
-                   "(),(),(),(),(),(),()->()", cache=True)
+@guvectorize(
+    ["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
+    "(),(),(),(),(),(),()->()",
+    cache=True,
+)
 def _moving_wall_flow_ufunc(dp, U, tau_y, K, m, L, h, out):
     out[0] = moving_wall_flow(dp, U, tau_y, K, m, L, h)[0]
 
 
-@guvectorize(["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
-                   "(),(),(),(),(),(),()->()", cache=True)
+@guvectorize(
+    ["void(float64, float64, float64, float64, float64, float64, float64, float64[:])"],
+    "(),(),(),(),(),(),()->()",
+    cache=True,
+)
 def _moving_wall_stress_ufunc(dp, U, tau_y, K, m, L, h, out):
     out[0] = moving_wall_flow(dp, U, tau_y, K, m, L, h)[1]
 
