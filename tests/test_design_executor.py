@@ -133,11 +133,17 @@ def test_chunk_outside_the_sweep_is_an_error():
 
 
 # ------------------------------------------------------------------------------------------------ merge algebra
-def _same_summary(a: _Summary, b: _Summary) -> None:
+def _same_summary(a: _Summary, b: _Summary, figures_rtol: float = 0.0) -> None:
+    """Same counts, same designs (their variables bit for bit) and the same figures: bit for bit, or within
+    ``figures_rtol`` where the two were evaluated in chunks of different sizes (flow arrays of at least
+    erdesign.flow.bingham.COMPILED_MIN_SIZE elements go through the compiled loop, smaller ones through numpy:
+    the same arithmetic, equal to a few ulp)."""
     for name in ("evaluated", "valid", "feasible"):
         assert getattr(a, name) == getattr(b, name), name
-    for name in ("best_X", "best_key", "front_X", "front_Y", "near_X", "near_v", "violated", "single", "pair"):
+    for name in ("best_X", "front_X", "near_X", "violated", "single", "pair"):
         assert np.array_equal(getattr(a, name), getattr(b, name)), name
+    for name in ("best_key", "front_Y", "near_v"):
+        assert np.allclose(getattr(a, name), getattr(b, name), rtol=figures_rtol, atol=0.0, equal_nan=True), name
 
 
 def _chunk_parts(name, chunks=8, chunk=1024):
@@ -170,7 +176,8 @@ def test_merged_chunk_summaries_are_the_summary_of_the_whole_sample(chunk_parts)
             keep,
             req.variables,
         )
-        _same_summary(_fold(req, keep, parts), _fold(req, keep, [one]))
+        # the whole sample is one chunk of 8192 (compiled flow loop), the parts chunks of 1024 (numpy)
+        _same_summary(_fold(req, keep, parts), _fold(req, keep, [one]), figures_rtol=1e-13)
 
 
 @settings(max_examples=25, deadline=None)
