@@ -78,15 +78,21 @@ def refuse_symlink(path: str | Path, *, overwrite: bool = False, option: str = "
     )
 
 
-def _temporary(path: Path, option: str) -> tuple[Path, int]:
-    """A new empty file beside ``path``, created exclusively with the usual permissions (0o666 less the umask)."""
+def _temporary(path: Path, option: str, made: list) -> tuple[Path, int]:
+    """A new empty file beside ``path``, created exclusively with the usual permissions (0o666 less the umask).
+
+    Its name goes into ``made`` *before* the file is created, so that an interrupt that lands between the creation
+    and the caller's ``try`` still leaves the caller a name to remove (the window the interrupt tests of
+    tests/badinput/test_writes.py hit now and then on a loaded machine)."""
     folder = path.parent if str(path.parent) else Path(".")
     stem = path.name[: _NAME_MAX - 15]
     for _ in range(100):
         tmp = folder / f".{stem}.{secrets.token_hex(4)}.tmp"
+        made.append(tmp)
         try:
             return tmp, os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o666)
-        except FileExistsError:  # pragma: no cover - 1 in 4e9
+        except FileExistsError:  # pragma: no cover - 1 in 4e9: another writer's file, not ours to remove
+            made.remove(tmp)
             continue
         except FileNotFoundError:
             raise OutputPathError(f"{option} {path}: the folder {folder} does not exist") from None
@@ -200,8 +206,9 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
     if path.is_dir() and not path.is_symlink():
         raise OutputPathError(f"{option} {path}: is a folder; give a file name")
     with _terminate_as_exit():
-        tmp, fd = _temporary(path, option)
+        made: list[Path] = []
         try:
+            tmp, fd = _temporary(path, option, made)
             os.close(fd)
             yield tmp
             _fsync_file(tmp)
@@ -222,8 +229,9 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
                 _link_exclusively(tmp, path, option)
             _fsync_folder(path.parent if str(path.parent) else Path("."))
         finally:
-            with contextlib.suppress(FileNotFoundError):
-                os.unlink(tmp)
+            for tmp in made:
+                with contextlib.suppress(FileNotFoundError):
+                    os.unlink(tmp)
 
 
 @contextlib.contextmanager
