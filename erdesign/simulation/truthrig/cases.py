@@ -146,7 +146,7 @@ EXCITATIONS = ("sine", "random", "earthquake")
 #: generators other than the team's ``random_motion`` (:mod:`erdesign.simulation.truthrig.motions`).
 ISSUE23_EXCITATIONS = ("doe_sine", "swept_sine", "ou", "multisine", "filtered_gaussian")
 #: Every example damper of ``examples/``, the coil-current mixed head ``mr_coil`` included.
-ALL_DAMPERS = (*DAMPERS, "mr_coil", "spencer1997", "quiroz2022")
+ALL_DAMPERS = (*DAMPERS, "mr_coil", "spencer1997", "quiroz2022", "kamath_wereley1997")
 #: Force noise, standard deviation as a fraction of the RMS force.
 NOISES = (0.01, 0.03)
 #: Displacement noise, standard deviation as a fraction of the peak displacement.
@@ -203,6 +203,7 @@ _SCALES = {
     "mr_coil": _Scale(0.25, 2.5),
     "spencer1997": _Scale(0.3, 2.5),  # Dyke's tests: up to 1 m/s; Spencer's sines at 2.5 Hz
     "quiroz2022": _Scale(0.1, 1.0),  # the Quiroz sines: 39-117 mm/s
+    "kamath_wereley1997": _Scale(0.06, 10.0),  # the paper's tests: 1 mm at 10 Hz (docs/seeds.md)
 }
 
 
@@ -1467,7 +1468,7 @@ def benchmark_cases(subset: str = "full") -> list[Case]:
     (153, 15, 36)
     >>> len(new), sum(c.kind == "clean" for c in new), [c.name for c in benchmark_cases()] == [
     ...     c.name for c in core + new]
-    (49, 22, True)
+    (50, 23, True)
     """
     if subset == "full":
         return _full() + _issue23()
