@@ -26,7 +26,7 @@ Example
 >>> try:
 ...     write_output(path, "two\\n")
 ... except OutputPathError as exc:
-...     print(str(exc).endswith("a.txt: exists; give --force to replace it, or choose another name"))
+...     print(str(exc).endswith("a.txt: exists; pass overwrite=True to replace it, or choose another name"))
 True
 >>> _ = write_output(path, "two\\n", overwrite=True); path.read_text()
 'two\\n'

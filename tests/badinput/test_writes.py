@@ -193,10 +193,25 @@ WRITER = textwrap.dedent("""
 """)
 
 
+def _default_signals() -> None:
+    """In the child before it starts: Ctrl-C and SIGTERM at their defaults and not blocked.  Both are inherited
+    through exec: a shell that starts the suite in the background (``cmd &``) gives it SIGINT ignored, and a library
+    of an earlier test may leave it blocked; either way the child's Python never raises KeyboardInterrupt and the
+    test sends a Ctrl-C nobody hears (seen in a full clean-clone run: the child wrote on and exited 0)."""
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
 def _child(*args: str, script: str = WRITER) -> subprocess.Popen:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     return subprocess.Popen(
-        [sys.executable, "-c", script, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+        [sys.executable, "-c", script, *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+        preexec_fn=_default_signals,
     )
 
 
