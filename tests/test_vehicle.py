@@ -497,3 +497,20 @@ def test_the_independent_check_sees_a_wrong_skyhook_sign(monkeypatch):
     road = bump_road(BUMP_HEIGHT, BUMP_DURATION)
     r = simulate_vehicle(checked_damper("kwok_tanh"), road, "skyhook", duration=RUN, dt=DT)
     assert _max_relative_difference(r.ride(), controlled_reference("kwok_tanh", "skyhook")[0]) > 0.1
+
+
+@pytest.mark.parametrize("control", list(REFERENCE_LAWS))
+def test_the_vehicle_command_reports_the_independent_figures(control, capsys):
+    """``erdesign vehicle --json`` (what a user runs) gives the figures of the reference, to the same 2e-3."""
+    import json
+
+    from erdesign.cli import main
+
+    params = "k=0 N/m, c=2000 N*s/m, alpha=600 N, beta=200 s/m, delta=0, f0=0 N, alpha_u=800 N"
+    field = "1 A" if control == "passive" else "0 A"
+    args = ["--model", "kwok_tanh", "--params", params, "--max-field", "2 A", "--field", field, "--control", control]
+    args += ["--road", "bump", "--height", "5 cm", "--bump-duration", "0.5 s", "--duration", "1.5 s", "--dt", "0.25 ms"]
+    assert main(["vehicle", *args, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    for key, value in controlled_reference("kwok_tanh", control)[0].items():
+        assert data[key] == pytest.approx(value, rel=2e-3), key
