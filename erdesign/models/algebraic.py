@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import force_scales
 from .base import ControlAffineModel, Model, Parameter
 
 __all__ = [
@@ -23,13 +24,6 @@ __all__ = [
     "Metered",
     "Balamurugan",
 ]
-
-
-def _fit_sign_viscous(record):
-    v, F = record.velocity, record.force
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-    return float(max(fy, 1.0)), float(max(c, 0.0)), float(f0), float(np.max(np.abs(v))) or 1.0
 
 
 class EyringPlastic(Model):
@@ -90,12 +84,9 @@ class EyringPlastic(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(F_alpha=fy / 3.0, lambda1=100.0 / vmax, c1=c, f0=f0, beta2=1.0 / vmax)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(F_alpha=fy / 3.0, lambda1=100.0 / vmax, c1=c, f0=f0, beta2=1.0 / vmax)
 
 
 class WengArctan(ControlAffineModel):
@@ -146,12 +137,9 @@ class WengArctan(ControlAffineModel):
         Q = values["c_b_u"] * v + values["f_y_u"] * shape
         return P, Q
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(f_y=fy, c_b=c, f0=f0, k=20.0 / vmax, v0=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(f_y=fy, c_b=c, f0=f0, k=20.0 / vmax, v0=0.0)
 
 
 class KwokTanh(ControlAffineModel):
@@ -206,12 +194,9 @@ class KwokTanh(ControlAffineModel):
         Q = values["c_u"] * v + values["alpha_u"] * z
         return P, Q
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(alpha=fy, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(alpha=fy, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
 
 
 class MagicFormula(ControlAffineModel):
@@ -274,12 +259,9 @@ class MagicFormula(ControlAffineModel):
         Q = values["D_u"] * shape
         return P, Q
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(D=fy, k_c=c, f0=f0, B=10.0 / vmax, A=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(D=fy, k_c=c, f0=f0, B=10.0 / vmax, A=0.0)
 
 
 class ChengTanh(ControlAffineModel):
@@ -332,12 +314,9 @@ class ChengTanh(ControlAffineModel):
         z = np.tanh(values["beta"] * v + values["delta"] * np.sign(x))
         return values["c"] * v + values["alpha"] * z, values["c_u"] * v + values["alpha_u"] * z
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(alpha=fy, c=c, beta=10.0 / vmax, delta=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(alpha=fy, c=c, beta=10.0 / vmax, delta=0.0)
 
 
 class YangArctan(Model):
@@ -410,12 +389,9 @@ class YangArctan(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(alpha=fy / 1.5, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(alpha=fy / 1.5, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
 
 
 class YangExponential(Model):
@@ -488,12 +464,9 @@ class YangExponential(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(f_b=-2.0 * fy, f0=f0 + fy, c0=c, alpha=20.0 / vmax, beta=0.0, gamma=1.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(f_b=-2.0 * fy, f0=f0 + fy, c0=c, alpha=20.0 / vmax, beta=0.0, gamma=1.0)
 
 
 class Metered(WengArctan):
@@ -540,7 +513,6 @@ class Metered(WengArctan):
         from .excitation import record_amplitude, record_frequency
 
         return {
-            **self.defaults(),
             **super().initial_guess(record),
             "amplitude": record_amplitude(record),
             "frequency": record_frequency(record),
@@ -596,8 +568,5 @@ class Balamurugan(Model):
         hyst = WengArctan().force(record, {**values, "m": 0.0, "f_y_u": 0.0, "c_b_u": 0.0})
         return hyst * sigmoid_gain(self.control(record) / values["u0"], values["k2"], values["a2"], values["I0"])
 
-    def initial_guess(self, record):
-        return {
-            **self.defaults(),
-            **{k: v for k, v in WengArctan().initial_guess(record).items() if k in self.parameter_names},
-        }
+    def guess_from_force(self, record):
+        return WengArctan().guess_from_force(record)

@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import force_scales
 from ._kernels import bouc_wen_state, bouc_wen_state_varying, modified_bouc_wen
-from .base import Model, Parameter
+from .base import LinearTermsModel, Model, Parameter
 from .bouc_wen import BoucWen, BoucWenModified, _hysteresis_parameters
 from .excitation import record_amplitude, record_frequency
 
@@ -62,15 +63,6 @@ def sign_time_integral(t, x):
     return np.concatenate([[0.0], np.cumsum(step)])
 
 
-def _bw_guess(record, g):
-    """Viscous and hysteretic scales from a sign-plus-viscous fit (the guesses of the Bouc-Wen family)."""
-    X = float(np.max(np.abs(record.displacement - np.mean(record.displacement)))) or 1.0
-    v = record.velocity
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c0, f0), *_ = np.linalg.lstsq(A, record.force, rcond=None)
-    return float(max(fy, 1.0)), float(max(c0, 0.0)), float(f0), X
-
-
 class BoucWenShear(BoucWen):
     r"""Bouc-Wen model of a shear-mode damper (Yi et al.): a dashpot and a Bouc-Wen element, no spring.
 
@@ -100,12 +92,8 @@ class BoucWenShear(BoucWen):
         cols, rest = super().linear_terms(record, {**values, "k0": 0.0, "x0": 0.0})
         return {k: cols[k] for k in self.linear_parameters}, rest
 
-    def initial_guess(self, record):
-        g = super().initial_guess(record)
-        return {k: v for k, v in g.items() if k in self.parameter_names}
 
-
-class BoucWenMass(Model):
+class BoucWenMass(LinearTermsModel):
     r"""Bouc-Wen model with a mass element and shear-thinning post-yield damping (Yang et al.).
 
     .. math::
@@ -164,18 +152,11 @@ class BoucWenMass(Model):
             "alpha_u": u * z,
         }, rest
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, f0, X = _bw_guess(record, g)
-            zs = X / 10.0
-            d = g["delta"]
-            g.update(a1=c0, a2=0.0, f0=f0, alpha=fy / zs, beta=0.5 * d / zs**2, gamma=0.5 * d / zs**2)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0, X, _ = force_scales(record)
+        zs = X / 10.0
+        d = self.parameter("delta").default
+        return dict(a1=c0, a2=0.0, f0=f0, alpha=fy / zs, beta=0.5 * d / zs**2, gamma=0.5 * d / zs**2)
 
 
 class BoucWenModifiedMass(BoucWenModified):
@@ -207,11 +188,8 @@ class BoucWenModifiedMass(BoucWenModified):
         rest = super().force(record, {**values, "k1": 0.0})
         return {"k1": record.displacement - values["x0"], "m": record.acceleration}, rest
 
-    def initial_guess(self, record):
-        return {**super().initial_guess(record), "m": 0.0}
 
-
-class BoucWenNonsymmetric(Model):
+class BoucWenNonsymmetric(LinearTermsModel):
     r"""Kwok's nonsymmetrical Bouc-Wen model: the Bouc-Wen operator driven by a shifted velocity.
 
     .. math::
@@ -274,13 +252,9 @@ class BoucWenNonsymmetric(Model):
             "alpha_u": u * z,
         }, np.zeros_like(v)
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = BoucWen().initial_guess(record)
-        return {**self.defaults(), "c0": g["c0a"], "alpha": g["alpha_a"], "beta": g["beta"], "gamma": g["gamma"]}
+    def guess_from_force(self, record):
+        g = BoucWen().guess_from_force(record)
+        return {"c0": g["c0a"], "alpha": g["alpha_a"], "beta": g["beta"], "gamma": g["gamma"]}
 
 
 class BoucWenAmplitude(BoucWen):
@@ -364,15 +338,11 @@ class BoucWenAmplitude(BoucWen):
         return cols, np.zeros_like(v)
 
     def initial_guess(self, record):
-        g = super().initial_guess(record)
-        out = {
-            **self.defaults(),
-            **{k: g[k] for k in ("beta", "gamma", "delta", "n")},
-            "c1": g["c0a"],
-            "alpha1": g["alpha_a"],
-        }
-        out["x_a"] = record_amplitude(record)
-        return out
+        return {**super().initial_guess(record), "x_a": record_amplitude(record)}
+
+    def guess_from_force(self, record):
+        g = super().guess_from_force(record)
+        return {"beta": g["beta"], "gamma": g["gamma"], "c1": g["c0a"], "alpha1": g["alpha_a"]}
 
 
 def _saturating(a1, a2, a3, u):
@@ -464,13 +434,10 @@ class BoucWenDominguez(Model):
         x, v = record.displacement, record.velocity
         return c0 * v + k0 * x + self.hysteretic_force(x, v, al, ga, Fz0)
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, _f0, X = _bw_guess(record, g)
-            zs = X / 10.0
-            g.update(c1=c0, gamma1=1.0 / zs**2, alpha1=fy / zs, F_z01=0.9 * fy)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, _f0, X, _ = force_scales(record)
+        zs = X / 10.0
+        return dict(c1=c0, gamma1=1.0 / zs**2, alpha1=fy / zs, F_z01=0.9 * fy)
 
 
 class BoucWenDominguezCFA(BoucWenDominguez):
@@ -545,7 +512,7 @@ class BoucWenDominguezCFA(BoucWenDominguez):
         return scale * super().force(record, values)
 
     def initial_guess(self, record):
-        g = {**self.defaults(), **super().initial_guess(record)}
+        g = super().initial_guess(record)
         g.update(
             c4=g["c1"],
             alpha4=g["alpha1"],
@@ -599,10 +566,6 @@ class BoucWenAsymmetricSigmoid(BoucWenModified):
     def linear_terms(self, record, values):  # no linear parameters: the gain multiplies the whole force
         return {}, self.force(record, values)
 
-    def initial_guess(self, record):
-        g = super().initial_guess(record)
-        return {**{k: v for k, v in g.items() if k in self.parameter_names}, "k2": 0.0, "a2": 1.0, "I0": 0.0}
-
 
 def _normalized_shape(values):
     """(beta, gamma, delta) of the Bouc-Wen equation for the normalised form rho (1 - sigma), rho sigma, rho."""
@@ -648,16 +611,13 @@ class BoucWenModifiedNormalized(BoucWenModified):
         beta, gamma, delta = _normalized_shape(values)
         return super().states(record, {**values, "beta": beta, "gamma": gamma, "delta": delta})
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, _, X = _bw_guess(record, g)
-            # z saturates at 1 after a travel of about X / 10
-            g.update(c0a=max(c0, 10.0), c1a=15.0 * max(c0, 10.0), alpha_a=fy, rho=10.0 / X, sigma=1.0, k0=0.0, k1=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, _, X, _ = force_scales(record)
+        # z saturates at 1 after a travel of about X / 10
+        return dict(c0a=max(c0, 10.0), c1a=15.0 * max(c0, 10.0), alpha_a=fy, rho=10.0 / X, sigma=1.0, k0=0.0, k1=0.0)
 
 
-class BoucWenRestructured(Model):
+class BoucWenRestructured(LinearTermsModel):
     r"""Restructured model of Bai et al.: a spring, a dashpot and a normalised Bouc-Wen element whose input is
     relieved by a dashpot c1 in series.
 
@@ -720,19 +680,12 @@ class BoucWenRestructured(Model):
         rest = (values["alpha"] + values["alpha_u"] * uf) * z
         return {"k1": record.displacement, "c0": v, "f0": np.ones_like(v), "c0_u": self.control(record) * v}, rest
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, f0, X = _bw_guess(record, g)
-            g.update(c0=c0, alpha=fy, f0=f0, rho=10.0 / X, c1=100.0 * max(c0, 1.0))
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0, X, _ = force_scales(record)
+        return dict(c0=c0, alpha=fy, f0=f0, rho=10.0 / X, c1=100.0 * max(c0, 1.0))
 
 
-class BoucWenNormalizedII(Model):
+class BoucWenNormalizedII(LinearTermsModel):
     r"""Normalised Bouc-Wen model II of Dominguez et al.: a normalised operator and square-root current laws.
 
     .. math::
@@ -789,16 +742,9 @@ class BoucWenNormalizedII(Model):
             "f0": np.ones_like(v),
         }, np.zeros_like(v)
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, f0, X = _bw_guess(record, g)
-            g.update(c1=c0, rho1=fy, f0=f0, gamma=10.0 / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0, X, _ = force_scales(record)
+        return dict(c1=c0, rho1=fy, f0=f0, gamma=10.0 / X)
 
 
 class BoucWenModifiedPolynomial(BoucWenModified):
@@ -867,12 +813,8 @@ class BoucWenModifiedPolynomial(BoucWenModified):
         ydot = (al * z + c0 * record.velocity + values["k0"] * w) / (c0 + c1)
         return c1 * ydot + values["k1"] * (record.displacement - values["x0"])
 
-    def initial_guess(self, record):
-        g = super().initial_guess(record)
-        return {**self.defaults(), **{k: v for k, v in g.items() if k in self.parameter_names}}
 
-
-class BoucWenNormalizedBahar(Model):
+class BoucWenNormalizedBahar(LinearTermsModel):
     r"""Normalised Bouc-Wen model with Bahar's nonlinear voltage laws.
 
     .. math::
@@ -966,13 +908,6 @@ class BoucWenNormalizedBahar(Model):
         cols.update(k_x=record.displacement, k_v_a=xd, k_v_b=v * xd, f0=np.ones_like(xd))
         return cols, np.zeros_like(xd)
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, f0, X = _bw_guess(record, g)
-            g.update(k_v_a=c0, f0=f0, rho_a=10.0 / X, k_w1=fy, k_w3=fy, k_w6=fy)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0, X, _ = force_scales(record)
+        return dict(k_v_a=c0, f0=f0, rho_a=10.0 / X, k_w1=fy, k_w3=fy, k_w6=fy)

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import peak_speed, sign_viscous_fit, stroke, viscous_slope
 from ._kernels import first_order_lag
 from .base import Model, Parameter
 from .excitation import warn_if_multi_amplitude
@@ -157,11 +158,9 @@ class KamathWereley6(Model):
         g = self.defaults()
         g["v_ref"] = float(np.max(np.abs(record.velocity)))  # explicit: identification reports the scale it used
         if record.force is not None:
-            v = record.velocity
-            c = float(np.dot(v, record.force - record.force.mean()) / max(np.dot(v, v), 1e-300))
+            c = viscous_slope(record)
             if c > 1.0:
-                X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
-                w = float(np.max(np.abs(v))) / X
+                w = peak_speed(record) / stroke(record)
                 g.update(C1=c, C2=c, Cv=c, K1=c * w, R=0.0, F_c=0.0)
         return g
 
@@ -287,20 +286,15 @@ class ViscoelasticPlasticPang(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v, F = record.velocity, record.force
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-            vmax = float(np.max(np.abs(v))) or 1.0
-            g.update(
-                F_c=float(max(fy, 0.0)),
-                c_vi=float(max(c, 0.0)),
-                f0=float(f0),
-                v_y=0.1 * vmax,
-                eps_y=0.02 * vmax,
-                c_ve=float(max(fy, 1.0)) / (0.1 * vmax),
-                k_ve=0.0,
-            )
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0 = sign_viscous_fit(record)
+        vmax = peak_speed(record)
+        return dict(
+            F_c=max(fy, 0.0),
+            c_vi=max(c, 0.0),
+            f0=f0,
+            v_y=0.1 * vmax,
+            eps_y=0.02 * vmax,
+            c_ve=max(fy, 1.0) / (0.1 * vmax),
+            k_ve=0.0,
+        )
