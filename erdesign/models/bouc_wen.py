@@ -60,6 +60,14 @@ def _bouc_wen_scales(record, delta):
     return float(c0), {"alpha_a": float(max(fy, 1.0) / zs), "beta": 0.5 * delta / zs**2, "gamma": 0.5 * delta / zs**2}
 
 
+def _polynomial(coefficients, u):
+    """c_0 + c_1 u + c_2 u^2 + ... (coefficients constant first), by Horner's rule."""
+    *lower, value = coefficients
+    for c in reversed(lower):
+        value = c + value * u
+    return value
+
+
 class BoucWen(Model):
     r"""Bouc-Wen damper model (Spencer): dashpot, spring and a Bouc-Wen hysteretic element in parallel.
 
@@ -202,6 +210,14 @@ class BoucWenModified(Model):
         Parameter("eta", "1/s", 190.0, 1e-3, 1e6, "rate of the first-order control filter", log_scale=True),
     )
 
+    def control_laws(self, values):
+        """The coefficients (constant first) of alpha, c0 and c1 as polynomials in the filtered control u_f."""
+        return (
+            (values["alpha_a"], values["alpha_b"], values["alpha_c"]),
+            (values["c0a"], values["c0b"]),
+            (values["c1a"], values["c1b"]),
+        )
+
     def states(self, record, values):
         """(filtered control u_f, w = x - y, z) on the record."""
         return modified_bouc_wen(
@@ -209,9 +225,7 @@ class BoucWenModified(Model):
             record.displacement,
             self.control(record),
             values["eta"],
-            (values["alpha_a"], values["alpha_b"], values["alpha_c"]),
-            (values["c0a"], values["c0b"]),
-            (values["c1a"], values["c1b"]),
+            *self.control_laws(values),
             values["k0"],
             values["beta"],
             values["gamma"],
@@ -221,12 +235,9 @@ class BoucWenModified(Model):
 
     def force(self, record, values):
         uf, w, z = self.states(record, values)
-        al = values["alpha_a"] + (values["alpha_b"] + values["alpha_c"] * uf) * uf
-        c0 = values["c0a"] + values["c0b"] * uf
-        c1 = values["c1a"] + values["c1b"] * uf
-        x = record.displacement
+        al, c0, c1 = (_polynomial(coefficients, uf) for coefficients in self.control_laws(values))
         ydot = (al * z + c0 * record.velocity + values["k0"] * w) / (c0 + c1)
-        return c1 * ydot + values["k1"] * (x - values["x0"])
+        return c1 * ydot + values["k1"] * (record.displacement - values["x0"])
 
     def linear_terms(self, record, values):
         return {"k1": record.displacement - values["x0"]}, self.force(record, {**values, "k1": 0.0})

@@ -783,35 +783,8 @@ class BoucWenModifiedPolynomial(BoucWenModified):
         for j in (1, 2, 3)
     )
 
-    def _coefficients(self, values, p, const):
-        return (values[const],) + tuple(values[f"{p}_{j}"] for j in (1, 2, 3))
-
-    def states(self, record, values):
-        return modified_bouc_wen(
-            record.time,
-            record.displacement,
-            self.control(record),
-            values["eta"],
-            self._coefficients(values, "alpha", "alpha_a"),
-            self._coefficients(values, "c0", "c0a"),
-            self._coefficients(values, "c1", "c1a"),
-            values["k0"],
-            values["beta"],
-            values["gamma"],
-            values["delta"],
-            values["n"],
-        )
-
-    def force(self, record, values):
-        uf, w, z = self.states(record, values)
-
-        def poly(p, const):
-            a0, a1, a2, a3 = self._coefficients(values, p, const)
-            return a0 + (a1 + (a2 + a3 * uf) * uf) * uf
-
-        al, c0, c1 = poly("alpha", "alpha_a"), poly("c0", "c0a"), poly("c1", "c1a")
-        ydot = (al * z + c0 * record.velocity + values["k0"] * w) / (c0 + c1)
-        return c1 * ydot + values["k1"] * (record.displacement - values["x0"])
+    def control_laws(self, values):
+        return tuple((values[const], *(values[f"{p}_{j}"] for j in (1, 2, 3))) for p, const, *_ in self._laws)
 
 
 class BoucWenNormalizedBahar(LinearTermsModel):
