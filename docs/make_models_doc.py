@@ -250,15 +250,15 @@ def _table1() -> list[str]:
         "`erdesign.identification.inverse.inverse_control` inverts (every memoryless model with a control, by a "
         "bracketed root, besides the review's six).",
         "",
-        "| # | group | model / parameters | Table 1 eqs | review: invertible | in erdesign |",
-        "|---|---|---|---|---|---|",
     ]
+    rows = []
     for i, (group, model, eqs, inv, where) in enumerate(TABLE1, 1):
         for cited in re.findall(r"`([a-z0-9_]+)`", where):
             if cited not in names:
                 raise SystemExit(f"docs/make_models_doc.py: Table 1 row {i} cites {cited!r}, not in the registry")
-        lines.append(f"| {i} | {group} | {model} | {eqs} | {inv or '-'} | {where} |")
-    return lines + [""]
+        rows.append((str(i), group, model, eqs, inv or "-", where))
+    columns = ("#", "group", "model / parameters", "Table 1 eqs", "review: invertible", "in erdesign")
+    return lines + _table(columns, rows) + [""]
 
 
 MISPRINTS = """\
@@ -337,6 +337,30 @@ def _number(v: float) -> str:
     return f"{v:.6g}"
 
 
+def _table(columns, rows) -> list[str]:
+    """A Markdown table: the header of ``columns``, the rule, a line per row of cells."""
+
+    def line(cells):
+        return "|" + "|".join(f" {c} " if c else " " for c in cells) + "|"
+
+    return [line(columns), "|" + "---|" * len(columns), *(line(r) for r in rows)]
+
+
+def _parameter_row(model, p) -> tuple[str, ...]:
+    """A parameter's cells: name, unit, default, bounds, description with its tags."""
+    tags = [
+        t
+        for t, on in (
+            ("a priori", not p.fitted),
+            ("control", p.name in model.control_parameters),
+            ("log scale", p.log_scale),
+        )
+        if on
+    ]
+    desc = p.description + (f" ({', '.join(tags)})" if tags else "")
+    return f"`{p.name}`", p.unit or "-", _number(p.default), f"[{_number(p.lower)}, {_number(p.upper)}]", desc
+
+
 def _invertibility(model) -> str:
     if not model.uses_control:
         return "no control input (passive model): no inverse"
@@ -403,22 +427,9 @@ def render() -> str:
         lines += [f"## `{name}`: {model.title}", "", summary, "", f"Source: {model.source}.", ""]
         for block in eq:
             lines += ["$$", block, "$$", ""]
-        lines += ["| parameter | unit | default | bounds | |", "|---|---|---|---|---|"]
-        for p in model.parameters:
-            tags = [
-                t
-                for t, on in (
-                    ("a priori", not p.fitted),
-                    ("control", p.name in model.control_parameters),
-                    ("log scale", p.log_scale),
-                )
-                if on
-            ]
-            desc = p.description + (f" ({', '.join(tags)})" if tags else "")
-            lines.append(
-                f"| `{p.name}` | {p.unit or '-'} | {_number(p.default)} | "
-                f"[{_number(p.lower)}, {_number(p.upper)}] | {desc} |"
-            )
+        lines += _table(
+            ("parameter", "unit", "default", "bounds", ""), [_parameter_row(model, p) for p in model.parameters]
+        )
         lines += ["", f"Integration: {INTEGRATION[name]}.", "", f"Invertibility: {_invertibility(model)}.", ""]
         if model.requires_control:
             lines += ["Needs a control column (a record without one is an error).", ""]
