@@ -39,3 +39,9 @@ def test_every_answer_names_the_effects_of_the_hidden_mechanisms(cases):
             assert (c.expected, c.accepted) == ("unexplained", frozenset()), c.name
         else:
             assert c.accepted == {effect_of[m] for m in c.mechanisms} and c.expected in c.accepted, c.name
+
+
+def test_every_named_excitation_has_a_motion():
+    from erdesign.simulation.truthrig.cases import _MOTIONS, EXCITATIONS, ISSUE23_EXCITATIONS
+
+    assert list(_MOTIONS) == [*EXCITATIONS, *ISSUE23_EXCITATIONS]

@@ -324,7 +324,9 @@ def control_staircase(
     return control
 
 
-def _scaled(m: Motion, factor: float) -> Motion:
+def _to_speed(m: Motion, speed: float) -> Motion:
+    """The motion scaled so that its peak speed is ``speed``."""
+    factor = speed / np.max(np.abs(m.velocity))
     return replace(
         m, displacement=m.displacement * factor, velocity=m.velocity * factor, acceleration=m.acceleration * factor
     )
@@ -333,6 +335,66 @@ def _scaled(m: Motion, factor: float) -> Motion:
 #: The DoE grid of the ``doe_sine`` programme: (frequency, speed) multiples of the case's frequency and peak speed,
 #: in a scrambled run order (a DoE is run in random order so that drifts do not line up with a factor).
 _DOE_RUNS = ((1.0, 0.7), (0.5, 1.0), (2.0, 0.4), (1.0, 1.0), (2.0, 0.7), (0.5, 0.4), (2.0, 1.0), (0.5, 0.7), (1.0, 0.4))
+
+
+# The excitations of build_motion: each makes the motion at peak piston speed ``speed`` [m/s] around ``frequency``
+# [Hz] (duration [s], sampling rate [Hz], seed of the random ones).
+def _sine(speed, frequency, duration, rate, seed):
+    # four segments over frequency and speed (amplitude): the viscous and yield parts apart, and the rate effects
+    f = frequency * np.array([1.0, 2.0, 1.5, 3.0])
+    v = speed * np.array([0.6, 1.0, 0.4, 0.8])
+    return stepped_sine(v / (2 * np.pi * f), f, [0.0], cycles=duration / float(np.sum(1 / f)), rate=rate)
+
+
+def _random(speed, frequency, duration, rate, seed):
+    band = (0.4 * frequency, 4 * frequency)
+    return _to_speed(random_motion(1.0, band, duration=duration, rate=rate, seed=seed), speed)
+
+
+def _earthquake(speed, frequency, duration, rate, seed):
+    m = earthquake_motion(1.0, duration=duration, rate=rate, ground_frequency=1.5 * frequency, seed=seed)
+    return _to_speed(m, speed)
+
+
+def _doe_sine(speed, frequency, duration, rate, seed):
+    f = frequency * np.array([r[0] for r in _DOE_RUNS])
+    v = speed * np.array([r[1] for r in _DOE_RUNS])
+    return sine_programme(v / (2 * np.pi * f), f, duration=duration, rate=rate)
+
+
+def _swept_sine(speed, frequency, duration, rate, seed):
+    return swept_sine(speed, 0.4 * frequency, 4 * frequency, duration=duration, rate=rate)
+
+
+def _ou(speed, frequency, duration, rate, seed):
+    m = ornstein_uhlenbeck_motion(
+        1.0, 1 / (2 * np.pi * frequency), 4 * frequency, duration=duration, rate=rate, seed=seed
+    )
+    return _to_speed(m, speed)
+
+
+def _multisine(speed, frequency, duration, rate, seed):
+    band = (0.4 * frequency, 4 * frequency)
+    return random_phase_multisine(speed, band, duration / 3, duration=duration, rate=rate, seed=seed)
+
+
+def _filtered_gaussian(speed, frequency, duration, rate, seed):
+    band = (0.4 * frequency, 4 * frequency)
+    return _to_speed(filtered_gaussian_motion(1.0, band, duration=duration, rate=rate, seed=seed, order=4), speed)
+
+
+#: Excitation name -> its motion (the generators above), the order of :data:`EXCITATIONS` then
+#: :data:`ISSUE23_EXCITATIONS`.
+_MOTIONS = {
+    "sine": _sine,
+    "random": _random,
+    "earthquake": _earthquake,
+    "doe_sine": _doe_sine,
+    "swept_sine": _swept_sine,
+    "ou": _ou,
+    "multisine": _multisine,
+    "filtered_gaussian": _filtered_gaussian,
+}
 
 
 def build_motion(
@@ -360,41 +422,9 @@ def build_motion(
     phases, 0.4-4 x ``frequency``, a period of a third of the record) and ``filtered_gaussian`` (causal order-4
     Butterworth band-pass 0.4-4 x ``frequency``), the last three scaled to the peak speed.
     """
-    if excitation == "doe_sine":
-        f = frequency * np.array([r[0] for r in _DOE_RUNS])
-        v = speed * np.array([r[1] for r in _DOE_RUNS])
-        m = sine_programme(v / (2 * np.pi * f), f, duration=duration, rate=rate)
-    elif excitation == "swept_sine":
-        m = swept_sine(speed, 0.4 * frequency, 4 * frequency, duration=duration, rate=rate)
-    elif excitation == "ou":
-        m = ornstein_uhlenbeck_motion(
-            1.0, 1 / (2 * np.pi * frequency), 4 * frequency, duration=duration, rate=rate, seed=seed
-        )
-        m = _scaled(m, speed / np.max(np.abs(m.velocity)))
-    elif excitation == "multisine":
-        m = random_phase_multisine(
-            speed, (0.4 * frequency, 4 * frequency), duration / 3, duration=duration, rate=rate, seed=seed
-        )
-    elif excitation == "filtered_gaussian":
-        m = filtered_gaussian_motion(
-            1.0, (0.4 * frequency, 4 * frequency), duration=duration, rate=rate, seed=seed, order=4
-        )
-        m = _scaled(m, speed / np.max(np.abs(m.velocity)))
-    elif excitation == "sine":
-        # four segments over frequency and speed (amplitude): the viscous and yield parts apart, and the rate effects
-        f = frequency * np.array([1.0, 2.0, 1.5, 3.0])
-        v = speed * np.array([0.6, 1.0, 0.4, 0.8])
-        m = stepped_sine(v / (2 * np.pi * f), f, [0.0], cycles=duration / float(np.sum(1 / f)), rate=rate)
-    elif excitation == "random":
-        m = random_motion(1.0, (0.4 * frequency, 4 * frequency), duration=duration, rate=rate, seed=seed)
-        m = _scaled(m, speed / np.max(np.abs(m.velocity)))
-    elif excitation == "earthquake":
-        m = earthquake_motion(1.0, duration=duration, rate=rate, ground_frequency=1.5 * frequency, seed=seed)
-        m = _scaled(m, speed / np.max(np.abs(m.velocity)))
-    else:
-        raise ValueError(
-            f"excitation: must be one of {', '.join(EXCITATIONS + ISSUE23_EXCITATIONS)}, got {excitation!r}"
-        )
+    if excitation not in _MOTIONS:
+        raise ValueError(f"excitation: must be one of {', '.join(_MOTIONS)}, got {excitation!r}")
+    m = _MOTIONS[excitation](speed, frequency, duration, rate, seed)
     levels = tuple(levels)
     control = control_staircase(
         m.time, m.velocity, control_scale * damper.fluid.reference_field, step_period=step_period, levels=levels
