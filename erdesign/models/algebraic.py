@@ -26,6 +26,21 @@ __all__ = [
 ]
 
 
+def _control_law(values, p, u):
+    """p + p_u u + p_u2 u^2: the coefficient ``p`` at the dimensionless control u (Yang's linear or quadratic laws
+    in the current)."""
+    return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
+
+
+def _control_law_slopes(laws):
+    """The parameters p_u, p_u2 of :func:`_control_law` for the coefficients ``laws``, (name, unit) pairs."""
+    return tuple(
+        Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
+        for p, unit in laws
+        for s in ("", "2")
+    )
+
+
 class EyringPlastic(Model):
     r"""Eyring-plastic model (Bitman et al.; Vivas-López et al. (n.d.) eq 8).
 
@@ -355,8 +370,8 @@ class YangArctan(Model):
     source = "the MR-model review eq 96 (Table 1: eq 90; Yang et al.)"
     uses_control = True
     memoryless = True
-    _laws = ("k", "c", "alpha", "beta", "delta")
-    control_parameters = tuple(f"{p}_u{s}" for p in _laws for s in ("", "2"))
+    _slopes = _control_law_slopes((("k", "N/m"), ("c", "N*s/m"), ("alpha", "N"), ("beta", "s/m"), ("delta", "")))
+    control_parameters = tuple(p.name for p in _slopes)
     linear_parameters = ("k", "c", "alpha", "f0", "k_u", "k_u2", "c_u", "c_u2", "alpha_u", "alpha_u2")
     parameters = (
         Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
@@ -365,27 +380,19 @@ class YangArctan(Model):
         Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
         Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop"),
         Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
-        *(
-            Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
-            for p, unit in (("k", "N/m"), ("c", "N*s/m"), ("alpha", "N"), ("beta", "s/m"), ("delta", ""))
-            for s in ("", "2")
-        ),
+        *_slopes,
     )
 
-    def _law(self, values, p, u):
-        return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
-
     def _shape(self, record, values, u):
-        return np.arctan(self._law(values, "beta", u) * record.velocity) + self._law(values, "delta", u) * np.sign(
-            record.displacement
-        )
+        beta, delta = _control_law(values, "beta", u), _control_law(values, "delta", u)
+        return np.arctan(beta * record.velocity) + delta * np.sign(record.displacement)
 
     def force(self, record, values):
         u = self.control(record)
         return (
-            self._law(values, "k", u) * record.displacement
-            + self._law(values, "c", u) * record.velocity
-            + self._law(values, "alpha", u) * self._shape(record, values, u)
+            _control_law(values, "k", u) * record.displacement
+            + _control_law(values, "c", u) * record.velocity
+            + _control_law(values, "alpha", u) * self._shape(record, values, u)
             + values["f0"]
         )
 
@@ -431,7 +438,8 @@ class YangExponential(Model):
     source = "the MR-model review eq 97 (Table 1: eq 91; Yang et al.)"
     uses_control = True
     memoryless = True
-    control_parameters = ("k_u", "k_u2", "c0_u", "c0_u2", "f_b_u", "f_b_u2")
+    _slopes = _control_law_slopes((("k", "N/m"), ("c0", "N*s/m"), ("f_b", "N")))
+    control_parameters = tuple(p.name for p in _slopes)
     linear_parameters = ("k", "c0", "f_b", "f0") + control_parameters
     parameters = (
         Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
@@ -441,26 +449,18 @@ class YangExponential(Model):
         Parameter("beta", "", 0.5, -50.0, 50.0, "width of the loop"),
         Parameter("gamma", "", 1.0, 1e-6, 1e3, "shape of the hysteresis term", log_scale=True),
         Parameter("f0", "N", 400.0, -1e7, 1e7, "force offset"),
-        *(
-            Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
-            for p, unit in (("k", "N/m"), ("c0", "N*s/m"), ("f_b", "N"))
-            for s in ("", "2")
-        ),
+        *_slopes,
     )
 
     def force(self, record, values):
         u = self.control(record)
-
-        def law(p):
-            return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
-
         e = np.exp(
             np.clip(values["alpha"] * record.velocity + values["beta"] * np.sign(record.displacement), -700.0, 700.0)
         )
         return (
-            law("k") * record.displacement
-            + law("c0") * record.velocity
-            + law("f_b") / (e + values["gamma"])
+            _control_law(values, "k", u) * record.displacement
+            + _control_law(values, "c0", u) * record.velocity
+            + _control_law(values, "f_b", u) / (e + values["gamma"])
             + values["f0"]
         )
 

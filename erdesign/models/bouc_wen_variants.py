@@ -304,27 +304,27 @@ class BoucWenAmplitude(BoucWen):
         Parameter("x_a", "m", 0.01, 0.0, 10.0, "stroke amplitude of the test (a priori: the record's)", fitted=False),
     )
 
+    @staticmethod
+    def _law(values, p, j0):
+        """p_j0 + p_(j0+1) x_a + p_(j0+2) x_a^2: a coefficient of the standard model at the amplitude x_a."""
+        xa = values["x_a"]
+        return values[f"{p}{j0}"] + values[f"{p}{j0 + 1}"] * xa + values[f"{p}{j0 + 2}"] * xa**2
+
     def standard(self, values):
         """The standard Bouc-Wen parameters at the amplitude x_a."""
-        xa = values["x_a"]
-
-        def law(p, j0):
-            return values[f"{p}{j0}"] + values[f"{p}{j0 + 1}"] * xa + values[f"{p}{j0 + 2}"] * xa**2
-
         return {
-            "c0a": law("c", 1),
-            "c0b": law("c", 4),
-            "k0": law("k", 1),
-            "alpha_a": law("alpha", 1),
-            "alpha_b": law("alpha", 4),
+            "c0a": self._law(values, "c", 1),
+            "c0b": self._law(values, "c", 4),
+            "k0": self._law(values, "k", 1),
+            "alpha_a": self._law(values, "alpha", 1),
+            "alpha_b": self._law(values, "alpha", 4),
             "x0": 0.0,
             **{k: values[k] for k in ("beta", "gamma", "delta", "n")},
         }
 
     def force(self, record, values):
-        std = self.standard(values)
-        k0b = values["k4"] + values["k5"] * values["x_a"] + values["k6"] * values["x_a"] ** 2
-        return super().force(record, std) + k0b * self.control(record) * record.displacement
+        k0b = self._law(values, "k", 4)  # the stiffness per unit control, which the standard model does not have
+        return super().force(record, self.standard(values)) + k0b * self.control(record) * record.displacement
 
     def linear_terms(self, record, values):
         u, v, x = self.control(record), record.velocity, record.displacement
