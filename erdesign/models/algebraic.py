@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._guess import force_scales
-from .base import ControlAffineModel, Model, Parameter
+from .base import FORCE_OFFSET, ControlAffineModel, Model, Parameter
 
 __all__ = [
     "EyringPlastic",
@@ -83,7 +83,7 @@ class EyringPlastic(Model):
         Parameter("beta2", "s/m", 10.0, 0.0, 1e6, "yield force correction rate"),
         Parameter("c1", "N*s/m", 1000.0, -1e8, 1e8, "post-yield damping"),
         Parameter("c3", "N*s^3/m^3", 0.0, -1e12, 1e12, "cubic post-yield damping"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_alpha_u", "N", 0.0, -1e7, 1e7, "yield amplitude per unit control"),
     )
 
@@ -197,7 +197,7 @@ class KwokTanh(ControlAffineModel):
         Parameter("alpha", "N", 600.0, 0.0, 1e7, "hysteresis scale (height of the loop)"),
         Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
         Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("alpha_u", "N", 0.0, -1e7, 1e7, "hysteresis scale per unit control"),
         Parameter("c_u", "N*s/m", 0.0, -1e8, 1e8, "damping per unit control"),
     )
@@ -261,7 +261,7 @@ class MagicFormula(ControlAffineModel):
         Parameter("A", "1/s", 1.0, -1e4, 1e4, "hysteretic factor"),
         Parameter("k_c", "N*s/m", 2000.0, -1e8, 1e8, "viscous damping"),
         Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("D_u", "N", 0.0, -1e7, 1e7, "peak factor per unit control"),
     )
 
@@ -379,7 +379,7 @@ class YangArctan(Model):
         Parameter("alpha", "N", 400.0, 0.0, 1e7, "hysteretic factor"),
         Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
         Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         *_slopes,
     )
 

@@ -16,7 +16,18 @@ from ..data.measurement import Measurement
 from ..errors import ErdesignError
 from ..parameters import Parameter, ParameterError
 
-__all__ = ["ControlAffineModel", "LinearTermsModel", "Parameter", "Model", "ParameterError", "ModelInputError"]
+__all__ = [
+    "ControlAffineModel",
+    "FORCE_OFFSET",
+    "LinearTermsModel",
+    "Parameter",
+    "Model",
+    "ParameterError",
+    "ModelInputError",
+]
+
+#: The force offset f0 [N] (seals, bias) of the models that have one, written once.
+FORCE_OFFSET = Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset")
 
 
 class ModelInputError(ErdesignError):

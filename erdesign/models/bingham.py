@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._guess import sign_viscous_fit, stroke
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = [
     "Bingham",
@@ -264,7 +264,7 @@ class BinghamImproved(Model):
         Parameter("c", "N*s/m", 5000.0, 0.0, 1e9, "viscous coefficient of the power law"),
         Parameter("a", "", 1.0, 0.05, 3.0, "velocity exponent of the power law"),
         Parameter("F_y_min", "N", 500.0, 0.0, 1e7, "yield force at zero current"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "yield force per unit control ((F_y_max - F_y_min) / i_max)"),
         Parameter("c_u", "N*s/m", 0.0, -1e9, 1e9, "viscous coefficient per unit control"),
         Parameter("a_u", "", 0.0, -2.0, 2.0, "exponent per unit control"),

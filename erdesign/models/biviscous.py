@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._guess import force_scales, peak_speed
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["Biviscous", "BiviscousHysteretic", "biviscous_force", "ArctanHysteretic"]
 
@@ -91,7 +91,7 @@ class Biviscous(Model):
         Parameter("C_pre", "N*s/m", 1e6, 1.0, 1e10, "pre-yield damping", log_scale=True),
         Parameter("C_post", "N*s/m", 5000.0, 0.0, 1e9, "post-yield damping"),
         Parameter("F_y", "N", 1000.0, 0.0, 1e7, "yield force"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
     )
 
@@ -187,7 +187,7 @@ class ArctanHysteretic(Model):
         Parameter("v0", "m/s", 0.002, 0.0, 10.0, "zero-force velocity of the pre-yield branch"),
         Parameter("C_post", "N*s/m", 5000.0, 0.0, 1e9, "post-yield damping"),
         Parameter("F_y", "N", 1000.0, 0.0, 1e7, "yield force"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
     )
 

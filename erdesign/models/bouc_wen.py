@@ -20,7 +20,7 @@ import numpy as np
 
 from ._guess import sign_viscous_fit, stroke
 from ._kernels import bouc_wen_state, modified_bouc_wen
-from .base import ControlAffineModel, Model, Parameter
+from .base import FORCE_OFFSET, ControlAffineModel, Model, Parameter
 
 __all__ = ["BoucWen", "BoucWenModified", "BoucWenNormalized", "SPENCER_PASSIVE"]
 
@@ -297,7 +297,7 @@ class BoucWenNormalized(ControlAffineModel):
         Parameter("rho", "1/m", 1000.0, 1e-3, 1e7, "rate of the normalised state", log_scale=True),
         Parameter("sigma", "", 1.0, 0.5, 50.0, "shape of the loop (>= 1/2)"),
         Parameter("n", "", 1.0, 1.0, 10.0, "exponent (held fixed by default)", fitted=False),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("k_v_u", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
         Parameter("k_w_u", "N", 0.0, -1e7, 1e7, "hysteretic amplitude per unit control"),
     )

@@ -13,7 +13,7 @@ import numpy as np
 
 from ._guess import force_scales
 from ._kernels import bouc_wen_state, bouc_wen_state_varying, modified_bouc_wen
-from .base import LinearTermsModel, Model, Parameter
+from .base import FORCE_OFFSET, LinearTermsModel, Model, Parameter
 from .bouc_wen import BoucWen, BoucWenModified, _hysteresis_parameters
 from .excitation import record_amplitude, record_frequency
 
@@ -230,7 +230,7 @@ class BoucWenNonsymmetric(LinearTermsModel):
         Parameter("alpha", "N/m", 96300.0, 0.0, 1e10, "scale of the hysteretic force"),
         *_hysteresis_parameters(),
         Parameter("mu", "m/s", 0.0, -10.0, 10.0, "velocity shift of the hysteresis switching"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("c0_u", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
         Parameter("alpha_u", "N/m", 0.0, -1e10, 1e10, "hysteretic scale per unit control"),
     )
@@ -651,7 +651,7 @@ class BoucWenRestructured(LinearTermsModel):
         Parameter("alpha", "N", 500.0, 0.0, 1e7, "hysteretic force amplitude"),
         Parameter("c1", "N*s/m", 1e5, 1.0, 1e10, "series dashpot of the hysteretic element", log_scale=True),
         *_NORMALIZED_SHAPE,
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("alpha_u", "N", 0.0, -1e7, 1e7, "hysteretic amplitude per unit control"),
         Parameter("c0_u", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
         Parameter("eta", "1/s", 1e6, 1e-3, 1e9, "rate of the first-order control filter (fast: none)", log_scale=True),
@@ -720,7 +720,7 @@ class BoucWenNormalizedII(LinearTermsModel):
         Parameter("rho1", "N", 500.0, -1e7, 1e7, "hysteretic force at zero control"),
         Parameter("rho3", "N*s^0.5/m^0.5", 0.0, -1e8, 1e8, "hysteretic force per square root of the speed"),
         Parameter("gamma", "1/m", 1000.0, 1e-3, 1e8, "rate of the normalised state", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("c2", "N*s/m", 0.0, -1e8, 1e8, "damping per square root of the control"),
         Parameter("k2", "N/m", 0.0, -1e8, 1e8, "stiffness per square root of the control"),
         Parameter("rho2", "N", 0.0, -1e7, 1e7, "hysteretic force per square root of the control"),
@@ -837,7 +837,7 @@ class BoucWenNormalizedBahar(LinearTermsModel):
             Parameter(f"k_w{j}", "N", 500.0 if j in (1, 3, 6) else 0.0, -1e7, 1e7, f"hysteretic force law, term {j}")
             for j in range(1, 10)
         ),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
     )
 
     @property

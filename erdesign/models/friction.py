@@ -12,7 +12,7 @@ import numpy as np
 from ..numerics import affine_recurrence
 from ._guess import force_scales
 from ._kernels import dahl_state
-from .base import ControlAffineModel, Model, Parameter
+from .base import FORCE_OFFSET, ControlAffineModel, Model, Parameter
 
 __all__ = ["Dahl", "DahlViscous", "LuGre", "LuGreModified", "lugre_state", "DahlAsymmetric"]
 
@@ -136,7 +136,7 @@ class DahlViscous(ControlAffineModel):
         Parameter("k_x", "N*s/m", 2000.0, 0.0, 1e8, "viscous coefficient"),
         Parameter("k_w", "N", 500.0, 0.0, 1e7, "friction coefficient"),
         Parameter("rho", "1/m", 1000.0, 1e-2, 1e8, "Dahl rate", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("k_x_u", "N*s/m", 0.0, -1e8, 1e8, "viscous coefficient per unit control"),
         Parameter("k_w_u", "N", 0.0, -1e7, 1e7, "friction coefficient per unit control"),
     )
@@ -187,7 +187,7 @@ class LuGre(Model):
         Parameter("sigma1", "N*s/m", 0.0, 0.0, 1e8, "bristle damping"),
         Parameter("sigma2", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
         Parameter("a0", "1/N", 2e-3, 1e-9, 1.0, "inverse of the sliding friction force", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
     )
 
     def force(self, record, values):
@@ -251,7 +251,7 @@ class LuGreModified(ControlAffineModel):
         Parameter("sigma_b", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
         Parameter("a0", "1/N", 2e-3, 1e-9, 1.0, "inverse friction force scale", log_scale=True),
         Parameter("a1", "", 0.0, -0.99, 1e3, "control dependence of the saturation"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
     )
 
     def state(self, record, values, u=None):
@@ -324,7 +324,7 @@ class DahlAsymmetric(ControlAffineModel):
         Parameter("k_w1", "N", 500.0, 0.0, 1e7, "friction coefficient, positive state"),
         Parameter("k_w2", "N", 400.0, 0.0, 1e7, "friction coefficient, negative state"),
         Parameter("rho", "1/m", 1000.0, 1e-2, 1e8, "Dahl rate", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("k_x_u", "N*s/m", 0.0, -1e8, 1e8, "viscous coefficient per unit control"),
         Parameter("k_w_u", "N", 0.0, -1e7, 1e7, "friction coefficient per unit control"),
     )

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._guess import force_scales
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 from .bingham import extended_bingham_force
 
 __all__ = ["ZhaoDeadZone", "ZhaoXuSigmoid", "YuanTanh", "YuDivision", "HeUnified"]
@@ -119,7 +119,7 @@ class ZhaoXuSigmoid(Model):
         Parameter("v_s", "m/s", 0.005, 1e-7, 10.0, "Stribeck velocity", log_scale=True),
         Parameter("k0", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("c0", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_ys_u", "N", 0.0, -1e7, 1e7, "sigmoid yield force per unit control"),
     )
 
@@ -232,7 +232,7 @@ class YuDivision(Model):
         Parameter("d", "N", 100.0, -1e7, 1e7, "height of the branch curve"),
         Parameter("e", "m/s", 0.01, 0.0, 10.0, "speed at the peak of the branch curve"),
         Parameter("f", "m/s", 0.01, 1e-7, 10.0, "width of the branch curve", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("a_u", "N", 0.0, -1e7, 1e7, "backbone saturation per unit control"),
     )
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from ._guess import peak_speed, sign_viscous_fit, stroke, viscous_slope
 from ._kernels import first_order_lag
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 from .excitation import warn_if_multi_amplitude
 
 __all__ = ["KamathWereley4", "KamathWereley6", "jeffreys_force", "KAMATH_WERELEY_TABLE1", "ViscoelasticPlasticPang"]
@@ -131,7 +131,7 @@ class KamathWereley6(Model):
         Parameter("alpha_y", "", 0.40, 0.0, 1.0, "yield point, dimensionless velocity", fitted=False),
         Parameter("eps_y", "", 0.10, 1e-3, 1.0, "width of the yield transition", fitted=False),
         Parameter("eps_c", "", 0.30, 1e-3, 1.0, "width of the stiction transition", fitted=False),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter(
             "v_ref",
             "m/s",
@@ -198,7 +198,7 @@ class KamathWereley4(KamathWereley6):
         Parameter("Cv", "N*s/m", 1.928e3, 0.0, 1e9, "post-yield viscous damping"),
         Parameter("alpha_y", "", 0.40, 0.0, 1.0, "yield point, dimensionless velocity", fitted=False),
         Parameter("eps_y", "", 0.10, 1e-3, 1.0, "width of the yield transition", fitted=False),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter(
             "v_ref",
             "m/s",
@@ -270,7 +270,7 @@ class ViscoelasticPlasticPang(Model):
         Parameter("v_y", "m/s", 0.02, 0.0, 10.0, "yield velocity"),
         Parameter("eps_y", "m/s", 0.005, 1e-7, 10.0, "smoothing of the transitions", log_scale=True),
         Parameter("F_c", "N", 100.0, 0.0, 1e7, "yield (Coulomb) force"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_c_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
     )
 

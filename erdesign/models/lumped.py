@@ -12,7 +12,7 @@ import numpy as np
 
 from ._guess import force_scales
 from ._kernels import mass_on_damper
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["SimsLumped", "Bass"]
 
@@ -59,7 +59,7 @@ class SimsLumped(Model):
         Parameter("C_pre_a", "N*s/m", 1e6, 1.0, 1e10, "pre-yield damping at zero control", log_scale=True),
         Parameter("C_post_a", "N*s/m", 5000.0, 0.0, 1e9, "post-yield damping at zero control"),
         Parameter("F_y_a", "N", 500.0, 0.0, 1e7, "yield force at zero control"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("C_pre_b", "N*s/m", 0.0, -1e10, 1e10, "saturating change of the pre-yield damping"),
         Parameter("C_pre_c", "", 1.0, 0.0, 1e3, "rate of the pre-yield damping law"),
         Parameter("C_post_b", "N*s/m", 0.0, -1e9, 1e9, "saturating change of the post-yield damping"),

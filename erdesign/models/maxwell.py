@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import ErdesignError
 from ._guess import sign_viscous_fit, viscous_slope
 from ._kernels import first_order_lag
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["Maxwell", "BingMax", "MaxwellNeural", "maxwell_force"]
 
@@ -100,7 +100,7 @@ class Maxwell(Model):
     parameters = (
         Parameter("C", "N*s/m", 1.2e5, 1.0, 1e9, "dashpot constant", log_scale=True),
         Parameter("K", "N/m", 1e7, 1.0, 1e12, "series spring stiffness", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("C_u", "N*s/m", 0.0, -1e9, 1e9, "dashpot constant per unit control"),
     )
 
@@ -162,7 +162,7 @@ class BingMax(Model):
         Parameter("C", "N*s/m", 1.2e5, 1.0, 1e9, "dashpot constant", log_scale=True),
         Parameter("K", "N/m", 1e7, 1.0, 1e12, "series spring stiffness", log_scale=True),
         Parameter("F_y", "N", 500.0, 0.0, 1e7, "friction (yield) force"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "friction force per unit control"),
     )
 

@@ -14,7 +14,7 @@ import numpy as np
 
 from ._guess import force_scales
 from ._kernels import first_order_lag, series_viscoplastic, stop_operator
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["SVES", "ContinuousVEP", "LiViscoelasticPlastic", "NonlinearStiffnessVEP", "zener_force"]
 
@@ -151,7 +151,7 @@ class ContinuousVEP(Model):
         Parameter("c_b", "N*s/m", 2000.0, 0.0, 1e8, "post-yield viscous damping"),
         Parameter("A_b", "N", 500.0, 0.0, 1e7, "yield force"),
         Parameter("alpha_b", "s/m", 200.0, 0.0, 1e7, "restoring factor (sharpness of yield)"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("k_a", "N/m", 0.0, -1e11, 1e11, "stiffness change at saturating control"),
         Parameter("b", "", 1.0, 0.0, 1e3, "saturation rate of the stiffness with control"),
         Parameter("c_a", "N*s/m", 0.0, -1e8, 1e8, "damping per unit control"),
@@ -298,7 +298,7 @@ class SVES(Model):
         Parameter("c", "N*s/m", 2000.0, 0.0, 1e8, "linear viscous damping"),
         Parameter("k2", "N/m", 2e5, 1.0, 1e11, "elasto-slide stiffness", log_scale=True),
         Parameter("x_s", "m", 0.002, 1e-9, 1.0, "yielding displacement of the elasto-slide", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("N_u", "N", 0.0, -1e7, 1e7, "slider force per unit control"),
     )
 
