@@ -102,141 +102,72 @@ INTEGRATION = {
     "he_unified": "algebraic (no state)",
     "sves": "exact stop operator for the elasto-slide element (compiled); spring and dashpot algebraic",
 }
-#: The MR-model review's Table 1, row by row: (group, model / number of parameters, Table 1 formula numbers,
-#: invertible in the review, where it is in the registry or why not).  The review's text numbers its equations
-#: differently from its table (the table is some four to six behind from section 3.4 on); the notes give the text's.
-TABLE1 = [
-    ("Bingham", "Bingham standard model / 3", "(2)", "", "`bingham`"),
-    ("Bingham", "Gamota and Filisko / 6", "(3)", "", "`bingham_extended`"),
-    ("Bingham", "Bingham plastic / 2", "(5)", "", "`bingham` with f0 = 0 (eq 5 is eq 2 without the offset)"),
-    ("Bingham", "Modified Bingham / 4", "(6)", "", "`bingham_modified`"),
-    ("Bingham", "Improved Bingham / 4", "(9)", "", "`bingham_improved`"),
-    ("Bingham", "Nonlinear Bingham hysteretic / 6", "(10)", "", "`bingham_hysteretic`"),
-    (
-        "Bingham",
-        "Hysteresis regularized Bingham / 5",
-        "(13)",
-        "",
-        "`bingham_regularized` (branch by the sign of the acceleration; see the notes)",
-    ),
-    ("Bingham", "Standard Bouc-Wen / 7", "(15), (16)", "", "`bouc_wen`"),
-    (
-        "Bingham",
-        "Modified Bouc-Wen (phenomenological) / 9",
-        "(17)",
-        "",
-        "`bouc_wen_modified` (Spencer's linear laws, "
-        "eqs 18-19; the quadratic law of alpha, eq 21, with alpha_c); the cubic laws of Yang (eq 20) and the "
-        "quadratic laws of c0, c1 (eq 21): `bouc_wen_modified_polynomial`",
-    ),
-    ("Bingham", "Bouc-Wen in shear mode / 6", "(15), (22)", "", "`bouc_wen_shear`"),
-    (
-        "Bingham",
-        "Mass included Bouc-Wen / 11, 8, 3",
-        "(23), (25) or (26)",
-        "",
-        "`bouc_wen_mass` (eqs 23-24; a2 = 0 is eq 25), `bouc_wen_modified_mass` (eq 26)",
-    ),
-    ("Bingham", "Amplitude-dependent Bouc-Wen / 22", "(16), (27)", "", "`bouc_wen_amplitude` (amplitude explicit)"),
-    ("Bingham", "Current-dependent Bouc-Wen / 13", "(28), (30)", "", "`bouc_wen_dominguez` (eqs 28-31)"),
-    (
-        "Bingham",
-        "Current-frequency-amplitude-dependent / 34",
-        "(31)",
-        "",
-        "`bouc_wen_dominguez_cfa` (eqs 32-33; frequency and amplitude explicit)",
-    ),
-    (
-        "Bouc-Wen",
-        "Asymmetric sigmoid modified Bouc-Wen / 12",
-        "(17), (33)",
-        "",
-        "`bouc_wen_asymmetric_sigmoid` (eqs 34-35)",
-    ),
-    ("Bouc-Wen", "Nonsymmetrical Bouc-Wen / 8", "(35), (36)", "", "`bouc_wen_nonsymmetric` (eqs 36-38)"),
-    (
-        "Bouc-Wen",
-        "Normalized Bouc-Wen I / 11",
-        "(40), (41)",
-        "",
-        "`bouc_wen_normalized` with k_v = 0 (eqs 41-43: the normalised form of eqs 39-40)",
-    ),
-    (
-        "Bouc-Wen",
-        "Modified normalized Bouc-Wen / 27",
-        "(43)-(45)",
-        "yes",
-        "`bouc_wen_normalized` (eqs 45-46 with linear voltage laws: invertible); Bahar's nonlinear voltage laws "
-        "(eqs 47-48): `bouc_wen_normalized_bahar`",
-    ),
-    (
-        "Bouc-Wen",
-        "Normalized Bouc-Wen II / 11",
-        "(49), (48) or (50)",
-        "",
-        "`bouc_wen_normalized_dominguez` (eqs 49-53; the approximations of eqs 51 and 54 are not separate models)",
-    ),
-    ("Bouc-Wen", "Normalized phenomenological / 8", "(17), (51)", "", "`bouc_wen_modified_normalized` (eq 55)"),
-    ("Bouc-Wen", "Bai restructured / 8", "(52)", "", "`bouc_wen_restructured` (eq 56)"),
-    ("LuGre", "Original LuGre / 4", "(53)", "", "`lugre` (eq 57)"),
-    ("LuGre", "Modified LuGre / 4", "(54), (55)", "yes", "`lugre_modified` (eqs 58-59)"),
-    ("Biviscous", "Nonlinear biviscous / 3", "(56)", "", "`biviscous` (eq 60)"),
-    ("Biviscous", "Nonlinear hysteretic biviscous / 3", "(57)", "", "`biviscous_hysteretic` (eq 61)"),
-    ("Biviscous", "Nonlinear hysteretic arctangent / 4", "(58)", "", "`arctan_hysteretic` (eq 62)"),
-    ("Biviscous", "Lumped-parameter fluid-flow / 9", "(59)", "", "`sims_lumped` (eqs 63-65)"),
-    (
-        "Viscoelastic-plastic",
-        "Nonlinear viscoelastic-plastic / 6",
-        "(69)",
-        "",
-        "`viscoelastic_plastic_pang` (eqs 66-74); Kamath and Wereley's own form: `kamath_wereley_6`",
-    ),
-    (
-        "Viscoelastic-plastic",
-        "Wereley viscoelastic-plastic / 5",
-        "(70)",
-        "",
-        "`viscoelastic_plastic_pang` with F_c = 0 (eq 75); the four-parameter model: `kamath_wereley_4`",
-    ),
-    (
-        "Viscoelastic-plastic",
-        "Li viscoelastic-plastic / 6",
-        "(73), (74)",
-        "yes",
-        "`li_viscoelastic_plastic` (eqs 76-79)",
-    ),
-    ("Viscoelastic-plastic", "Continuous viscoelastic-plastic (VEP) / 5", "(77)", "", "`vep_continuous` (eqs 80-82)"),
-    (
-        "Viscoelastic-plastic",
-        "Nonlinear stiffness VEP (nkVEP) / 15",
-        "(78), (79)",
-        "",
-        "`vep_nonlinear_stiffness` (eqs 83-85)",
-    ),
-    ("Viscoelastic-plastic", "Stiffness-viscosity-elasto-slide (SVES) / 6", "(80), (81)", "", "`sves` (eqs 86-87)"),
-    ("Algebraic", "Weng / 5", "(82)", "", "`weng_arctan` with m = 0 (eq 88)"),
-    ("Algebraic", "Cesmeci and Engin / 6", "(83)", "", "`weng_arctan` (eq 89)"),
-    ("Algebraic", "Metered / 9", "(84)", "", "`metered` (eq 90; amplitude and frequency explicit)"),
-    ("Algebraic", "Balamurgan / 11", "(86)", "", "`balamurugan` (eqs 91-92)"),
-    ("Hyperbolic tangent", "Bass / 7", "(87), (88)", "", "`bass` (eqs 93-94)"),
-    ("Hyperbolic tangent", "Kwok / 7", "(89)", "yes", "`kwok_tanh` (eq 95)"),
-    ("Hyperbolic tangent", "Yang / 5, 6", "(90) or (91)", "", "`yang_arctan` (eq 96), `yang_exponential` (eq 97)"),
-    ("Hyperbolic tangent", "Cheng / 4", "(92)", "yes", "`cheng_tanh` (eq 98)"),
-    ("Hyperbolic tangent", "Magic formula / 8", "(94)", "yes", "`magic_formula` (eqs 99-100)"),
-    ("Dahl", "Dahl / 2", "(97)", "", "`dahl` with k0 = c0 = f0 = 0 (eq 103)"),
-    ("Dahl", "Modified Dahl / 5", "(98)", "", "`dahl` (eq 104)"),
-    ("Dahl", "Viscous Dahl / 5", "(99), (41)", "", "`dahl_viscous` (eq 105)"),
-    ("Dahl", "Asymmetric Dahl / 7", "(99), (100)", "", "`dahl_asymmetric` (eqs 105-106)"),
-    (
-        "Dahl",
-        "General dynamic models / 5-11",
-        "(101)-(106)",
-        "",
-        "`zhao_dead_zone` (eq 107), `zhao_xu_sigmoid` (eq 108), `yuan_tanh` (eq 109), `yu_division` (eq 110), "
-        "`he_unified` (eq 111); not Bui's quasi-static magic-formula model (eq 112): the review does not give its "
-        "quasi-static force F_QS = F_eta + F_tau + F_f",
-    ),
-]
+#: The MR-model review's Table 1, row by row: group | model / number of parameters | Table 1 formula numbers |
+#: invertible in the review ("-": not marked) | where it is in the registry or why not; a line that starts with four
+#: spaces continues the row above.  The review's text numbers its equations differently from its table (the table is
+#: some four to six behind from section 3.4 on); the notes give the text's.
+TABLE1_TEXT = """\
+Bingham | Bingham standard model / 3 | (2) | - | `bingham`
+Bingham | Gamota and Filisko / 6 | (3) | - | `bingham_extended`
+Bingham | Bingham plastic / 2 | (5) | - | `bingham` with f0 = 0 (eq 5 is eq 2 without the offset)
+Bingham | Modified Bingham / 4 | (6) | - | `bingham_modified`
+Bingham | Improved Bingham / 4 | (9) | - | `bingham_improved`
+Bingham | Nonlinear Bingham hysteretic / 6 | (10) | - | `bingham_hysteretic`
+Bingham | Hysteresis regularized Bingham / 5 | (13) | - | `bingham_regularized` (branch by the sign of the
+    acceleration; see the notes)
+Bingham | Standard Bouc-Wen / 7 | (15), (16) | - | `bouc_wen`
+Bingham | Modified Bouc-Wen (phenomenological) / 9 | (17) | - | `bouc_wen_modified` (Spencer's linear laws, eqs
+    18-19; the quadratic law of alpha, eq 21, with alpha_c); the cubic laws of Yang (eq 20) and the quadratic laws
+    of c0, c1 (eq 21): `bouc_wen_modified_polynomial`
+Bingham | Bouc-Wen in shear mode / 6 | (15), (22) | - | `bouc_wen_shear`
+Bingham | Mass included Bouc-Wen / 11, 8, 3 | (23), (25) or (26) | - | `bouc_wen_mass` (eqs 23-24; a2 = 0 is eq 25),
+    `bouc_wen_modified_mass` (eq 26)
+Bingham | Amplitude-dependent Bouc-Wen / 22 | (16), (27) | - | `bouc_wen_amplitude` (amplitude explicit)
+Bingham | Current-dependent Bouc-Wen / 13 | (28), (30) | - | `bouc_wen_dominguez` (eqs 28-31)
+Bingham | Current-frequency-amplitude-dependent / 34 | (31) | - | `bouc_wen_dominguez_cfa` (eqs 32-33; frequency and
+    amplitude explicit)
+Bouc-Wen | Asymmetric sigmoid modified Bouc-Wen / 12 | (17), (33) | - | `bouc_wen_asymmetric_sigmoid` (eqs 34-35)
+Bouc-Wen | Nonsymmetrical Bouc-Wen / 8 | (35), (36) | - | `bouc_wen_nonsymmetric` (eqs 36-38)
+Bouc-Wen | Normalized Bouc-Wen I / 11 | (40), (41) | - | `bouc_wen_normalized` with k_v = 0 (eqs 41-43: the
+    normalised form of eqs 39-40)
+Bouc-Wen | Modified normalized Bouc-Wen / 27 | (43)-(45) | yes | `bouc_wen_normalized` (eqs 45-46 with linear
+    voltage laws: invertible); Bahar's nonlinear voltage laws (eqs 47-48): `bouc_wen_normalized_bahar`
+Bouc-Wen | Normalized Bouc-Wen II / 11 | (49), (48) or (50) | - | `bouc_wen_normalized_dominguez` (eqs 49-53; the
+    approximations of eqs 51 and 54 are not separate models)
+Bouc-Wen | Normalized phenomenological / 8 | (17), (51) | - | `bouc_wen_modified_normalized` (eq 55)
+Bouc-Wen | Bai restructured / 8 | (52) | - | `bouc_wen_restructured` (eq 56)
+LuGre | Original LuGre / 4 | (53) | - | `lugre` (eq 57)
+LuGre | Modified LuGre / 4 | (54), (55) | yes | `lugre_modified` (eqs 58-59)
+Biviscous | Nonlinear biviscous / 3 | (56) | - | `biviscous` (eq 60)
+Biviscous | Nonlinear hysteretic biviscous / 3 | (57) | - | `biviscous_hysteretic` (eq 61)
+Biviscous | Nonlinear hysteretic arctangent / 4 | (58) | - | `arctan_hysteretic` (eq 62)
+Biviscous | Lumped-parameter fluid-flow / 9 | (59) | - | `sims_lumped` (eqs 63-65)
+Viscoelastic-plastic | Nonlinear viscoelastic-plastic / 6 | (69) | - | `viscoelastic_plastic_pang` (eqs 66-74);
+    Kamath and Wereley's own form: `kamath_wereley_6`
+Viscoelastic-plastic | Wereley viscoelastic-plastic / 5 | (70) | - | `viscoelastic_plastic_pang` with F_c = 0 (eq
+    75); the four-parameter model: `kamath_wereley_4`
+Viscoelastic-plastic | Li viscoelastic-plastic / 6 | (73), (74) | yes | `li_viscoelastic_plastic` (eqs 76-79)
+Viscoelastic-plastic | Continuous viscoelastic-plastic (VEP) / 5 | (77) | - | `vep_continuous` (eqs 80-82)
+Viscoelastic-plastic | Nonlinear stiffness VEP (nkVEP) / 15 | (78), (79) | - | `vep_nonlinear_stiffness` (eqs 83-85)
+Viscoelastic-plastic | Stiffness-viscosity-elasto-slide (SVES) / 6 | (80), (81) | - | `sves` (eqs 86-87)
+Algebraic | Weng / 5 | (82) | - | `weng_arctan` with m = 0 (eq 88)
+Algebraic | Cesmeci and Engin / 6 | (83) | - | `weng_arctan` (eq 89)
+Algebraic | Metered / 9 | (84) | - | `metered` (eq 90; amplitude and frequency explicit)
+Algebraic | Balamurgan / 11 | (86) | - | `balamurugan` (eqs 91-92)
+Hyperbolic tangent | Bass / 7 | (87), (88) | - | `bass` (eqs 93-94)
+Hyperbolic tangent | Kwok / 7 | (89) | yes | `kwok_tanh` (eq 95)
+Hyperbolic tangent | Yang / 5, 6 | (90) or (91) | - | `yang_arctan` (eq 96), `yang_exponential` (eq 97)
+Hyperbolic tangent | Cheng / 4 | (92) | yes | `cheng_tanh` (eq 98)
+Hyperbolic tangent | Magic formula / 8 | (94) | yes | `magic_formula` (eqs 99-100)
+Dahl | Dahl / 2 | (97) | - | `dahl` with k0 = c0 = f0 = 0 (eq 103)
+Dahl | Modified Dahl / 5 | (98) | - | `dahl` (eq 104)
+Dahl | Viscous Dahl / 5 | (99), (41) | - | `dahl_viscous` (eq 105)
+Dahl | Asymmetric Dahl / 7 | (99), (100) | - | `dahl_asymmetric` (eqs 105-106)
+Dahl | General dynamic models / 5-11 | (101)-(106) | - | `zhao_dead_zone` (eq 107), `zhao_xu_sigmoid` (eq 108),
+    `yuan_tanh` (eq 109), `yu_division` (eq 110), `he_unified` (eq 111); not Bui's quasi-static magic-formula model
+    (eq 112): the review does not give its quasi-static force F_QS = F_eta + F_tau + F_f
+"""
+TABLE1 = [tuple(cell.strip() for cell in row.split("|")) for row in re.sub(r"\n {4}", " ", TABLE1_TEXT).splitlines()]
 
 
 def _table1() -> list[str]:
@@ -250,15 +181,15 @@ def _table1() -> list[str]:
         "`erdesign.identification.inverse.inverse_control` inverts (every memoryless model with a control, by a "
         "bracketed root, besides the review's six).",
         "",
-        "| # | group | model / parameters | Table 1 eqs | review: invertible | in erdesign |",
-        "|---|---|---|---|---|---|",
     ]
+    rows = []
     for i, (group, model, eqs, inv, where) in enumerate(TABLE1, 1):
         for cited in re.findall(r"`([a-z0-9_]+)`", where):
             if cited not in names:
                 raise SystemExit(f"docs/make_models_doc.py: Table 1 row {i} cites {cited!r}, not in the registry")
-        lines.append(f"| {i} | {group} | {model} | {eqs} | {inv or '-'} | {where} |")
-    return lines + [""]
+        rows.append((str(i), group, model, eqs, inv or "-", where))
+    columns = ("#", "group", "model / parameters", "Table 1 eqs", "review: invertible", "in erdesign")
+    return lines + _table(columns, rows) + [""]
 
 
 MISPRINTS = """\
@@ -337,6 +268,30 @@ def _number(v: float) -> str:
     return f"{v:.6g}"
 
 
+def _table(columns, rows) -> list[str]:
+    """A Markdown table: the header of ``columns``, the rule, a line per row of cells."""
+
+    def line(cells):
+        return "|" + "|".join(f" {c} " if c else " " for c in cells) + "|"
+
+    return [line(columns), "|" + "---|" * len(columns), *(line(r) for r in rows)]
+
+
+def _parameter_row(model, p) -> tuple[str, ...]:
+    """A parameter's cells: name, unit, default, bounds, description with its tags."""
+    tags = [
+        t
+        for t, on in (
+            ("a priori", not p.fitted),
+            ("control", p.name in model.control_parameters),
+            ("log scale", p.log_scale),
+        )
+        if on
+    ]
+    desc = p.description + (f" ({', '.join(tags)})" if tags else "")
+    return f"`{p.name}`", p.unit or "-", _number(p.default), f"[{_number(p.lower)}, {_number(p.upper)}]", desc
+
+
 def _invertibility(model) -> str:
     if not model.uses_control:
         return "no control input (passive model): no inverse"
@@ -403,22 +358,9 @@ def render() -> str:
         lines += [f"## `{name}`: {model.title}", "", summary, "", f"Source: {model.source}.", ""]
         for block in eq:
             lines += ["$$", block, "$$", ""]
-        lines += ["| parameter | unit | default | bounds | |", "|---|---|---|---|---|"]
-        for p in model.parameters:
-            tags = [
-                t
-                for t, on in (
-                    ("a priori", not p.fitted),
-                    ("control", p.name in model.control_parameters),
-                    ("log scale", p.log_scale),
-                )
-                if on
-            ]
-            desc = p.description + (f" ({', '.join(tags)})" if tags else "")
-            lines.append(
-                f"| `{p.name}` | {p.unit or '-'} | {_number(p.default)} | "
-                f"[{_number(p.lower)}, {_number(p.upper)}] | {desc} |"
-            )
+        lines += _table(
+            ("parameter", "unit", "default", "bounds", ""), [_parameter_row(model, p) for p in model.parameters]
+        )
         lines += ["", f"Integration: {INTEGRATION[name]}.", "", f"Invertibility: {_invertibility(model)}.", ""]
         if model.requires_control:
             lines += ["Needs a control column (a record without one is an error).", ""]

@@ -169,16 +169,6 @@ def _lagged(u0, r, C, tau, s):
 
 
 @_jit
-def _rate(uf, xd, w, dw, z0, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0, beta, gamma, delta, n):
-    """dw/dt at control uf, w = w0 + dw, with z carried exactly from z0 along the travel dw."""
-    al = aa + (ab + (ac + ad * uf) * uf) * uf
-    c0 = c0a + (c0b + (c0c + c0d * uf) * uf) * uf
-    c1 = c1a + (c1b + (c1c + c1d * uf) * uf) * uf
-    z = _travel(z0, dw, beta, gamma, delta, n)
-    return (c1 * xd - al * z - k0 * (w + dw)) / (c0 + c1)
-
-
-@_jit
 def _setup2(q0, beta, gamma, delta, r1, k1, r2, k2):
     """Constants of the n = 2 travel from q0 in one direction (see :func:`riccati_step`): the distance L0 to
     q = 0 (0 when q0 >= 0, inf when never reached) and the tanh phases c1 (q < 0) and c2 (q >= 0); a NaN phase
@@ -228,8 +218,10 @@ def _eval2(q0, L, L0, c1, c2, beta, gamma, delta, r1, k1, r2, k2):
 
 
 @_jit
-def _rate2(uf, xd, w, dw, zz, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0):
-    """dw/dt at control uf, w + dw, with the Bouc-Wen variable zz there (n = 2: :func:`_zt`)."""
+def _rate(uf, xd, w, dw, zz, laws):
+    """dw/dt at control uf, w + dw, with the Bouc-Wen variable zz there; ``laws`` = (the coefficients of alpha, c0
+    and c1 in uf, four each, constant first; k0)."""
+    aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0 = laws
     al = aa + (ab + (ac + ad * uf) * uf) * uf
     c0 = c0a + (c0b + (c0c + c0d * uf) * uf) * uf
     c1 = c1a + (c1b + (c1c + c1d * uf) * uf) * uf
@@ -249,6 +241,15 @@ def _zt(z, dw, C, beta, gamma, delta, r1, k1, r2, k2):
         C[5], C[6], C[7] = _setup2(-z, beta, gamma, delta, r1, k1, r2, k2)
         C[4] = 1.0
     return -_eval2(-z, -dw, C[5], C[6], C[7], beta, gamma, delta, r1, k1, r2, k2)
+
+
+@_jit
+def _z_after(z, dw, two, C, beta, gamma, delta, n, r1, k1, r2, k2):
+    """z after a travel dw from z: by the travel constants kept in C for n = 2 (:func:`_zt`), else
+    :func:`_travel`."""
+    if two:
+        return _zt(z, dw, C, beta, gamma, delta, r1, k1, r2, k2)
+    return _travel(z, dw, beta, gamma, delta, n)
 
 
 @_jit
@@ -317,6 +318,7 @@ def modified_bouc_wen(
     k2c = a2 * r2 if a2 > 0.0 else 0.0
     planned = plan.size == N - 1
     C = np.zeros(8)  # travel constants of the current sub-step (_zt)
+    laws = (aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0)
     for i in range(N - 1):
         h = t[i + 1] - t[i]
         xd = (x[i + 1] - x[i]) / h
@@ -360,148 +362,23 @@ def modified_bouc_wen(
             if two:
                 C[0] = 0.0
                 C[4] = 0.0
-                k1 = _rate2(ua, xd, w, 0.0, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0)
+                k1 = _rate(ua, xd, w, 0.0, z, laws)
                 d = 0.5 * H * k1
-                k2 = _rate2(
-                    um,
-                    xd,
-                    w,
-                    d,
-                    _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
-                    aa,
-                    ab,
-                    ac,
-                    ad,
-                    c0a,
-                    c0b,
-                    c0c,
-                    c0d,
-                    c1a,
-                    c1b,
-                    c1c,
-                    c1d,
-                    k0,
-                )
+                k2 = _rate(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), laws)
                 d = 0.5 * H * k2
-                k3 = _rate2(
-                    um,
-                    xd,
-                    w,
-                    d,
-                    _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
-                    aa,
-                    ab,
-                    ac,
-                    ad,
-                    c0a,
-                    c0b,
-                    c0c,
-                    c0d,
-                    c1a,
-                    c1b,
-                    c1c,
-                    c1d,
-                    k0,
-                )
+                k3 = _rate(um, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), laws)
                 d = H * k3
-                k4 = _rate2(
-                    ub,
-                    xd,
-                    w,
-                    d,
-                    _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c),
-                    aa,
-                    ab,
-                    ac,
-                    ad,
-                    c0a,
-                    c0b,
-                    c0c,
-                    c0d,
-                    c1a,
-                    c1b,
-                    c1c,
-                    c1d,
-                    k0,
-                )
+                k4 = _rate(ub, xd, w, d, _zt(z, d, C, beta, gamma, delta, r1, k1c, r2, k2c), laws)
                 dw = H / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
                 z = _zt(z, dw, C, beta, gamma, delta, r1, k1c, r2, k2c)
             else:
-                k1 = _rate(
-                    ua, xd, w, 0.0, z, aa, ab, ac, ad, c0a, c0b, c0c, c0d, c1a, c1b, c1c, c1d, k0, beta, gamma, delta, n
-                )
-                k2 = _rate(
-                    um,
-                    xd,
-                    w,
-                    0.5 * H * k1,
-                    z,
-                    aa,
-                    ab,
-                    ac,
-                    ad,
-                    c0a,
-                    c0b,
-                    c0c,
-                    c0d,
-                    c1a,
-                    c1b,
-                    c1c,
-                    c1d,
-                    k0,
-                    beta,
-                    gamma,
-                    delta,
-                    n,
-                )
-                k3 = _rate(
-                    um,
-                    xd,
-                    w,
-                    0.5 * H * k2,
-                    z,
-                    aa,
-                    ab,
-                    ac,
-                    ad,
-                    c0a,
-                    c0b,
-                    c0c,
-                    c0d,
-                    c1a,
-                    c1b,
-                    c1c,
-                    c1d,
-                    k0,
-                    beta,
-                    gamma,
-                    delta,
-                    n,
-                )
-                k4 = _rate(
-                    ub,
-                    xd,
-                    w,
-                    H * k3,
-                    z,
-                    aa,
-                    ab,
-                    ac,
-                    ad,
-                    c0a,
-                    c0b,
-                    c0c,
-                    c0d,
-                    c1a,
-                    c1b,
-                    c1c,
-                    c1d,
-                    k0,
-                    beta,
-                    gamma,
-                    delta,
-                    n,
-                )
+                k1 = _rate(ua, xd, w, 0.0, z, laws)
+                d = 0.5 * H * k1
+                k2 = _rate(um, xd, w, d, _travel(z, d, beta, gamma, delta, n), laws)
+                d = 0.5 * H * k2
+                k3 = _rate(um, xd, w, d, _travel(z, d, beta, gamma, delta, n), laws)
+                d = H * k3
+                k4 = _rate(ub, xd, w, d, _travel(z, d, beta, gamma, delta, n), laws)
                 dw = H / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
                 z = _travel(z, dw, beta, gamma, delta, n)
             w += dw
@@ -598,6 +475,24 @@ def _vep_residual(s, xm, y, h, xd, k0, q, nexp, rho, d, c, A, alpha):
 
 
 @_jit
+def _illinois_update(x, fx, lo, hi, f_lo, f_hi, side):
+    """One bracket update of the Illinois false-position method for a residual that falls through zero in
+    [lo, hi] (f_lo > 0 > f_hi) and is fx at x: the new (lo, hi, f_lo, f_hi, side); the end kept twice in a row
+    has its value halved, which keeps the convergence superlinear."""
+    if fx > 0.0:
+        lo, f_lo = x, fx
+        if side == -1:
+            f_hi *= 0.5
+        side = -1
+    else:
+        hi, f_hi = x, fx
+        if side == 1:
+            f_lo *= 0.5
+        side = 1
+    return lo, hi, f_lo, f_hi, side
+
+
+@_jit
 def _illinois_vep(lo, hi, f_lo, f_hi, xm, y, h, xd, k0, q, nexp, rho, d, c, A, alpha):
     """Root of the (decreasing) VEP residual in [lo, hi] (f_lo > 0 > f_hi) by the Illinois false-position method,
     which keeps the bracket and converges superlinearly."""
@@ -608,16 +503,7 @@ def _illinois_vep(lo, hi, f_lo, f_hi, xm, y, h, xd, k0, q, nexp, rho, d, c, A, a
         fx = _vep_residual(x, xm, y, h, xd, k0, q, nexp, rho, d, c, A, alpha)
         if fx == 0.0 or hi - lo <= 1e-13 * (abs(x) + 1e-12):
             return x
-        if fx > 0.0:
-            lo, f_lo = x, fx
-            if side == -1:
-                f_hi *= 0.5
-            side = -1
-        else:
-            hi, f_hi = x, fx
-            if side == 1:
-                f_lo *= 0.5
-            side = 1
+        lo, hi, f_lo, f_hi, side = _illinois_update(x, fx, lo, hi, f_lo, f_hi, side)
         if abs(fx) <= 1e-13 * (abs(f_lo) + abs(f_hi)):
             return x
     return x
@@ -625,26 +511,18 @@ def _illinois_vep(lo, hi, f_lo, f_hi, xm, y, h, xd, k0, q, nexp, rho, d, c, A, a
 
 @_jit
 def _illinois_mass(lo, hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y):
-    """Root of the (increasing) mass residual in [lo, hi] by the Illinois false-position method."""
-    f_lo = _mass_residual(lo, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
-    f_hi = _mass_residual(hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
+    """Root of the (increasing) mass residual in [lo, hi] by the Illinois false-position method, on its negative
+    (which falls through zero; negation is exact, so the iterates are those of the increasing form)."""
+    f_lo = -_mass_residual(lo, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
+    f_hi = -_mass_residual(hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
     side = 0
     x = 0.5 * (lo + hi)
     for _ in range(200):
         x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-        fx = _mass_residual(x, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
+        fx = -_mass_residual(x, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y)
         if fx == 0.0 or hi - lo <= 1e-13 * (abs(x) + 1e-12):
             return x
-        if fx < 0.0:
-            lo, f_lo = x, fx
-            if side == -1:
-                f_hi *= 0.5
-            side = -1
-        else:
-            hi, f_hi = x, fx
-            if side == 1:
-                f_lo *= 0.5
-            side = 1
+        lo, hi, f_lo, f_hi, side = _illinois_update(x, fx, lo, hi, f_lo, f_hi, side)
         if abs(fx) <= 1e-13 * (abs(f_lo) + abs(f_hi)):
             return x
     return x
@@ -669,23 +547,22 @@ def series_viscoplastic(t, x, k0, q, nexp, rho, d, c, A, alpha, substeps):
             # the residual decreases with s for large |s| (it may not be monotone near the root when q != 0): the
             # bracket grows from the previous rate, so the root found is the one the rate continues to (the
             # element's rate does not jump between roots from one sub-step to the next)
+            args = (xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
             span = 1e-6 * (abs(sd) + abs(xd)) + 1e-12
             lo = sd - span
             hi = sd + span
             for _ in range(400):
-                if _vep_residual(lo, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) > 0.0:
+                if _vep_residual(lo, *args) > 0.0:
                     break
                 span *= 2.0
                 lo = sd - span
             span = 1e-6 * (abs(sd) + abs(xd)) + 1e-12
             for _ in range(400):
-                if _vep_residual(hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i]) < 0.0:
+                if _vep_residual(hi, *args) < 0.0:
                     break
                 span *= 2.0
                 hi = sd + span
-            f_lo = _vep_residual(lo, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
-            f_hi = _vep_residual(hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
-            sd = _illinois_vep(lo, hi, f_lo, f_hi, xm, cur, h, xd, k0[i], q, nexp, rho, d, c[i], A[i], alpha[i])
+            sd = _illinois_vep(lo, hi, _vep_residual(lo, *args), _vep_residual(hi, *args), *args)
             cur += h * sd
         y[i + 1] = cur
         yd[i + 1] = sd
@@ -724,31 +601,19 @@ def mass_on_damper(t, x, m, k1, c1, k0, c_lin, f_t, v_ref, C_pre, C_post, F_y, s
         xd = (x[i + 1] - x[i]) / H if H > 0.0 else 0.0
         for j in range(substeps):
             xmid = x[i] + xd * h * (j + 0.5)
+            args = (X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i], F_y[i])
             span = abs(V) + abs(xd) + 1e-9
             lo = -span
             hi = span
             for _ in range(200):
-                if (
-                    _mass_residual(
-                        lo, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i], F_y[i]
-                    )
-                    < 0.0
-                ):
+                if _mass_residual(lo, *args) < 0.0:
                     break
                 lo *= 2.0
             for _ in range(200):
-                if (
-                    _mass_residual(
-                        hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i], F_y[i]
-                    )
-                    > 0.0
-                ):
+                if _mass_residual(hi, *args) > 0.0:
                     break
                 hi *= 2.0
-            # the root of the increasing residual = the root of its negative, decreasing: the same solver
-            vmid = _illinois_mass(
-                lo, hi, X, V, h, xmid, xd, m, k1, c1, k0, c_lin, f_t[i], v_ref, C_pre[i], C_post[i], F_y[i]
-            )
+            vmid = _illinois_mass(lo, hi, *args)
             X += h * vmid
             V = 2.0 * vmid - V if m > 0.0 else vmid
         xm[i + 1] = X

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import ControlAffineModel, Model, Parameter
+from ._guess import force_scales
+from .base import FORCE_OFFSET, ControlAffineModel, Model, Parameter
 
 __all__ = [
     "EyringPlastic",
@@ -25,11 +26,19 @@ __all__ = [
 ]
 
 
-def _fit_sign_viscous(record):
-    v, F = record.velocity, record.force
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-    return float(max(fy, 1.0)), float(max(c, 0.0)), float(f0), float(np.max(np.abs(v))) or 1.0
+def _control_law(values, p, u):
+    """p + p_u u + p_u2 u^2: the coefficient ``p`` at the dimensionless control u (Yang's linear or quadratic laws
+    in the current)."""
+    return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
+
+
+def _control_law_slopes(laws):
+    """The parameters p_u, p_u2 of :func:`_control_law` for the coefficients ``laws``, (name, unit) pairs."""
+    return tuple(
+        Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
+        for p, unit in laws
+        for s in ("", "2")
+    )
 
 
 class EyringPlastic(Model):
@@ -74,7 +83,7 @@ class EyringPlastic(Model):
         Parameter("beta2", "s/m", 10.0, 0.0, 1e6, "yield force correction rate"),
         Parameter("c1", "N*s/m", 1000.0, -1e8, 1e8, "post-yield damping"),
         Parameter("c3", "N*s^3/m^3", 0.0, -1e12, 1e12, "cubic post-yield damping"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_alpha_u", "N", 0.0, -1e7, 1e7, "yield amplitude per unit control"),
     )
 
@@ -90,12 +99,9 @@ class EyringPlastic(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(F_alpha=fy / 3.0, lambda1=100.0 / vmax, c1=c, f0=f0, beta2=1.0 / vmax)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(F_alpha=fy / 3.0, lambda1=100.0 / vmax, c1=c, f0=f0, beta2=1.0 / vmax)
 
 
 class WengArctan(ControlAffineModel):
@@ -146,12 +152,9 @@ class WengArctan(ControlAffineModel):
         Q = values["c_b_u"] * v + values["f_y_u"] * shape
         return P, Q
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(f_y=fy, c_b=c, f0=f0, k=20.0 / vmax, v0=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(f_y=fy, c_b=c, f0=f0, k=20.0 / vmax, v0=0.0)
 
 
 class KwokTanh(ControlAffineModel):
@@ -194,7 +197,7 @@ class KwokTanh(ControlAffineModel):
         Parameter("alpha", "N", 600.0, 0.0, 1e7, "hysteresis scale (height of the loop)"),
         Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
         Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("alpha_u", "N", 0.0, -1e7, 1e7, "hysteresis scale per unit control"),
         Parameter("c_u", "N*s/m", 0.0, -1e8, 1e8, "damping per unit control"),
     )
@@ -206,12 +209,9 @@ class KwokTanh(ControlAffineModel):
         Q = values["c_u"] * v + values["alpha_u"] * z
         return P, Q
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(alpha=fy, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(alpha=fy, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
 
 
 class MagicFormula(ControlAffineModel):
@@ -261,7 +261,7 @@ class MagicFormula(ControlAffineModel):
         Parameter("A", "1/s", 1.0, -1e4, 1e4, "hysteretic factor"),
         Parameter("k_c", "N*s/m", 2000.0, -1e8, 1e8, "viscous damping"),
         Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("D_u", "N", 0.0, -1e7, 1e7, "peak factor per unit control"),
     )
 
@@ -274,12 +274,9 @@ class MagicFormula(ControlAffineModel):
         Q = values["D_u"] * shape
         return P, Q
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(D=fy, k_c=c, f0=f0, B=10.0 / vmax, A=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(D=fy, k_c=c, f0=f0, B=10.0 / vmax, A=0.0)
 
 
 class ChengTanh(ControlAffineModel):
@@ -332,12 +329,9 @@ class ChengTanh(ControlAffineModel):
         z = np.tanh(values["beta"] * v + values["delta"] * np.sign(x))
         return values["c"] * v + values["alpha"] * z, values["c_u"] * v + values["alpha_u"] * z
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(alpha=fy, c=c, beta=10.0 / vmax, delta=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(alpha=fy, c=c, beta=10.0 / vmax, delta=0.0)
 
 
 class YangArctan(Model):
@@ -376,8 +370,8 @@ class YangArctan(Model):
     source = "the MR-model review eq 96 (Table 1: eq 90; Yang et al.)"
     uses_control = True
     memoryless = True
-    _laws = ("k", "c", "alpha", "beta", "delta")
-    control_parameters = tuple(f"{p}_u{s}" for p in _laws for s in ("", "2"))
+    _slopes = _control_law_slopes((("k", "N/m"), ("c", "N*s/m"), ("alpha", "N"), ("beta", "s/m"), ("delta", "")))
+    control_parameters = tuple(p.name for p in _slopes)
     linear_parameters = ("k", "c", "alpha", "f0", "k_u", "k_u2", "c_u", "c_u2", "alpha_u", "alpha_u2")
     parameters = (
         Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
@@ -385,37 +379,26 @@ class YangArctan(Model):
         Parameter("alpha", "N", 400.0, 0.0, 1e7, "hysteretic factor"),
         Parameter("beta", "s/m", 200.0, 0.0, 1e7, "slope of the loop"),
         Parameter("delta", "", 0.2, -10.0, 10.0, "width of the loop"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
-        *(
-            Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
-            for p, unit in (("k", "N/m"), ("c", "N*s/m"), ("alpha", "N"), ("beta", "s/m"), ("delta", ""))
-            for s in ("", "2")
-        ),
+        FORCE_OFFSET,
+        *_slopes,
     )
 
-    def _law(self, values, p, u):
-        return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
-
     def _shape(self, record, values, u):
-        return np.arctan(self._law(values, "beta", u) * record.velocity) + self._law(values, "delta", u) * np.sign(
-            record.displacement
-        )
+        beta, delta = _control_law(values, "beta", u), _control_law(values, "delta", u)
+        return np.arctan(beta * record.velocity) + delta * np.sign(record.displacement)
 
     def force(self, record, values):
         u = self.control(record)
         return (
-            self._law(values, "k", u) * record.displacement
-            + self._law(values, "c", u) * record.velocity
-            + self._law(values, "alpha", u) * self._shape(record, values, u)
+            _control_law(values, "k", u) * record.displacement
+            + _control_law(values, "c", u) * record.velocity
+            + _control_law(values, "alpha", u) * self._shape(record, values, u)
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(alpha=fy / 1.5, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(alpha=fy / 1.5, c=c, f0=f0, beta=10.0 / vmax, delta=0.0)
 
 
 class YangExponential(Model):
@@ -455,7 +438,8 @@ class YangExponential(Model):
     source = "the MR-model review eq 97 (Table 1: eq 91; Yang et al.)"
     uses_control = True
     memoryless = True
-    control_parameters = ("k_u", "k_u2", "c0_u", "c0_u2", "f_b_u", "f_b_u2")
+    _slopes = _control_law_slopes((("k", "N/m"), ("c0", "N*s/m"), ("f_b", "N")))
+    control_parameters = tuple(p.name for p in _slopes)
     linear_parameters = ("k", "c0", "f_b", "f0") + control_parameters
     parameters = (
         Parameter("k", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
@@ -465,35 +449,24 @@ class YangExponential(Model):
         Parameter("beta", "", 0.5, -50.0, 50.0, "width of the loop"),
         Parameter("gamma", "", 1.0, 1e-6, 1e3, "shape of the hysteresis term", log_scale=True),
         Parameter("f0", "N", 400.0, -1e7, 1e7, "force offset"),
-        *(
-            Parameter(f"{p}_u{s}", unit, 0.0, -1e10, 1e10, f"{p} per unit control{' squared' if s else ''}")
-            for p, unit in (("k", "N/m"), ("c0", "N*s/m"), ("f_b", "N"))
-            for s in ("", "2")
-        ),
+        *_slopes,
     )
 
     def force(self, record, values):
         u = self.control(record)
-
-        def law(p):
-            return values[p] + (values[f"{p}_u"] + values[f"{p}_u2"] * u) * u
-
         e = np.exp(
             np.clip(values["alpha"] * record.velocity + values["beta"] * np.sign(record.displacement), -700.0, 700.0)
         )
         return (
-            law("k") * record.displacement
-            + law("c0") * record.velocity
-            + law("f_b") / (e + values["gamma"])
+            _control_law(values, "k", u) * record.displacement
+            + _control_law(values, "c0", u) * record.velocity
+            + _control_law(values, "f_b", u) / (e + values["gamma"])
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _fit_sign_viscous(record)
-            g.update(f_b=-2.0 * fy, f0=f0 + fy, c0=c, alpha=20.0 / vmax, beta=0.0, gamma=1.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(f_b=-2.0 * fy, f0=f0 + fy, c0=c, alpha=20.0 / vmax, beta=0.0, gamma=1.0)
 
 
 class Metered(WengArctan):
@@ -540,7 +513,6 @@ class Metered(WengArctan):
         from .excitation import record_amplitude, record_frequency
 
         return {
-            **self.defaults(),
             **super().initial_guess(record),
             "amplitude": record_amplitude(record),
             "frequency": record_frequency(record),
@@ -596,8 +568,5 @@ class Balamurugan(Model):
         hyst = WengArctan().force(record, {**values, "m": 0.0, "f_y_u": 0.0, "c_b_u": 0.0})
         return hyst * sigmoid_gain(self.control(record) / values["u0"], values["k2"], values["a2"], values["I0"])
 
-    def initial_guess(self, record):
-        return {
-            **self.defaults(),
-            **{k: v for k, v in WengArctan().initial_guess(record).items() if k in self.parameter_names},
-        }
+    def guess_from_force(self, record):
+        return WengArctan().guess_from_force(record)

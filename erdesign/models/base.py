@@ -16,7 +16,18 @@ from ..data.measurement import Measurement
 from ..errors import ErdesignError
 from ..parameters import Parameter, ParameterError
 
-__all__ = ["ControlAffineModel", "Parameter", "Model", "ParameterError", "ModelInputError"]
+__all__ = [
+    "ControlAffineModel",
+    "FORCE_OFFSET",
+    "LinearTermsModel",
+    "Parameter",
+    "Model",
+    "ParameterError",
+    "ModelInputError",
+]
+
+#: The force offset f0 [N] (seals, bias) of the models that have one, written once.
+FORCE_OFFSET = Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset")
 
 
 class ModelInputError(ErdesignError):
@@ -67,9 +78,18 @@ class Model:
         raise NotImplementedError
 
     def initial_guess(self, record: Measurement) -> dict[str, float]:
-        """Starting values for fitting ``record`` (SI).  Default: the parameters' defaults; override with a guess
-        from the data where one exists (e.g. a damping constant from the force-velocity slope)."""
-        return self.defaults()
+        """Starting values for fitting ``record`` (SI): the parameters' defaults, updated by
+        :meth:`guess_from_force` when the record has a force."""
+        g = self.defaults()
+        if record.force is not None:
+            g.update(self.guess_from_force(record))
+        return g
+
+    def guess_from_force(self, record: Measurement) -> dict[str, float]:
+        """Starting values read from the force of ``record`` (SI; only called for a record with a force).  Default:
+        none; override with a guess from the data where one exists (e.g. a damping constant from the
+        force-velocity slope, :mod:`erdesign.models._guess`)."""
+        return {}
 
     def linear_terms(
         self, record: Measurement, values: Mapping[str, float]
@@ -176,6 +196,15 @@ class Model:
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.name!r}: {', '.join(self.parameter_names)}>"
+
+
+class LinearTermsModel(Model):
+    """A model written as its :meth:`~Model.linear_terms`: the force is r + sum_j values[j] b_j, computed from the
+    one pass that gives the basis and the rest."""
+
+    def force(self, record: Measurement, values: Mapping[str, float]) -> np.ndarray:
+        cols, rest = self.linear_terms(record, values)
+        return rest + sum(values[k] * c for k, c in cols.items())
 
 
 def values_from_vector(names: Sequence[str], vector: Sequence[float]) -> dict[str, float]:

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Parameter
+from ._guess import sign_viscous_fit, stroke
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = [
     "Bingham",
@@ -80,14 +81,9 @@ class Bingham(Model):
         s = np.sign(v)
         return {"c0": v, "f_c": s, "f0": np.ones_like(v), "f_c_u": u * s, "c0_u": u * v}, np.zeros_like(v)
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v, F = record.velocity, record.force
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fc, c0, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-            g.update(f_c=float(max(fc, 0.0)), c0=float(max(c0, 0.0)), f0=float(f0))
-        return g
+    def guess_from_force(self, record):
+        fc, c0, f0 = sign_viscous_fit(record)
+        return dict(f_c=max(fc, 0.0), c0=max(c0, 0.0), f0=f0)
 
 
 def extended_bingham_force(t, x, c0, f_c, k1, c1, k2, substeps=64):
@@ -223,14 +219,9 @@ class BinghamModified(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = Bingham().initial_guess(record)
-        out = {**self.defaults(), **{k: g[k] for k in ("c0", "f_c", "f0")}}
-        out["c0"] = max(out["c0"], 1.0)
-        if record.force is not None:
-            X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
-            out["k1"] = 20.0 * max(out["f_c"], 1.0) / X
-        return out
+    def guess_from_force(self, record):
+        g = Bingham().guess_from_force(record)
+        return dict(c0=max(g["c0"], 1.0), f_c=g["f_c"], f0=g["f0"], k1=20.0 * max(g["f_c"], 1.0) / stroke(record))
 
 
 class BinghamImproved(Model):
@@ -273,7 +264,7 @@ class BinghamImproved(Model):
         Parameter("c", "N*s/m", 5000.0, 0.0, 1e9, "viscous coefficient of the power law"),
         Parameter("a", "", 1.0, 0.05, 3.0, "velocity exponent of the power law"),
         Parameter("F_y_min", "N", 500.0, 0.0, 1e7, "yield force at zero current"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "yield force per unit control ((F_y_max - F_y_min) / i_max)"),
         Parameter("c_u", "N*s/m", 0.0, -1e9, 1e9, "viscous coefficient per unit control"),
         Parameter("a_u", "", 0.0, -2.0, 2.0, "exponent per unit control"),
@@ -287,9 +278,9 @@ class BinghamImproved(Model):
             v
         ) + values["f0"]
 
-    def initial_guess(self, record):
-        g = Bingham().initial_guess(record)
-        return {**self.defaults(), "c": g["c0"], "F_y_min": g["f_c"], "f0": g["f0"]}
+    def guess_from_force(self, record):
+        g = Bingham().guess_from_force(record)
+        return {"c": g["c0"], "F_y_min": g["f_c"], "f0": g["f0"]}
 
 
 class BinghamRegularized(Model):
@@ -343,13 +334,10 @@ class BinghamRegularized(Model):
         Fy = values["F_y"] + values["F_y_u"] * self.control(record)
         return values["F0"] + values["c_v"] * ve + Fy * (1.0 - np.exp(-np.abs(ve) / values["v_0"])) * np.sign(ve)
 
-    def initial_guess(self, record):
-        g = Bingham().initial_guess(record)
-        out = {**self.defaults(), "c_v": g["c0"], "F_y": g["f_c"], "F0": g["f0"]}
-        if record.force is not None:
-            out["v_0"] = max(float(np.max(np.abs(record.velocity))) / 20.0, 1e-7)
-            out["v_h"] = 0.0
-        return out
+    def guess_from_force(self, record):
+        g = Bingham().guess_from_force(record)
+        v_0 = max(float(np.max(np.abs(record.velocity))) / 20.0, 1e-7)
+        return {"c_v": g["c0"], "F_y": g["f_c"], "F0": g["f0"], "v_0": v_0, "v_h": 0.0}
 
 
 class BinghamHysteretic(Model):
@@ -412,10 +400,6 @@ class BinghamHysteretic(Model):
         sliding = (np.abs(s) >= Fy * (1.0 - 1e-12)) & (s * v > 0)
         return s + (values["c1"] * np.abs(v) + values["c2"] * v**2) * v + values["c0"] * v * sliding + values["f0"]
 
-    def initial_guess(self, record):
-        g = Bingham().initial_guess(record)
-        out = {**self.defaults(), "c0": g["c0"], "F_y": g["f_c"], "f0": g["f0"]}
-        if record.force is not None:
-            X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
-            out["k"] = 20.0 * max(out["F_y"], 1.0) / X
-        return out
+    def guess_from_force(self, record):
+        g = Bingham().guess_from_force(record)
+        return {"c0": g["c0"], "F_y": g["f_c"], "f0": g["f0"], "k": 20.0 * max(g["f_c"], 1.0) / stroke(record)}

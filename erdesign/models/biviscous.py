@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Parameter
+from ._guess import force_scales, peak_speed
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["Biviscous", "BiviscousHysteretic", "biviscous_force", "ArctanHysteretic"]
 
@@ -90,7 +91,7 @@ class Biviscous(Model):
         Parameter("C_pre", "N*s/m", 1e6, 1.0, 1e10, "pre-yield damping", log_scale=True),
         Parameter("C_post", "N*s/m", 5000.0, 0.0, 1e9, "post-yield damping"),
         Parameter("F_y", "N", 1000.0, 0.0, 1e7, "yield force"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
     )
 
@@ -106,20 +107,9 @@ class Biviscous(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v, F = record.velocity, record.force
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-            vmax = float(np.max(np.abs(v))) or 1.0
-            g.update(
-                F_y=float(max(fy, 1.0)),
-                C_post=float(max(c, 0.0)),
-                f0=float(f0),
-                C_pre=float(max(fy, 1.0)) / (0.05 * vmax) + max(c, 0.0),
-            )
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(F_y=fy, C_post=c, f0=f0, C_pre=fy / (0.05 * vmax) + c)
 
 
 class BiviscousHysteretic(Biviscous):
@@ -197,7 +187,7 @@ class ArctanHysteretic(Model):
         Parameter("v0", "m/s", 0.002, 0.0, 10.0, "zero-force velocity of the pre-yield branch"),
         Parameter("C_post", "N*s/m", 5000.0, 0.0, 1e9, "post-yield damping"),
         Parameter("F_y", "N", 1000.0, 0.0, 1e7, "yield force"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
     )
 
@@ -207,10 +197,8 @@ class ArctanHysteretic(Model):
         pre = values["alpha"] * np.arctan(values["beta"] * (v - values["v0"] * np.sign(record.acceleration)))
         return np.clip(pre, values["C_post"] * v - Fy, values["C_post"] * v + Fy) + values["f0"]
 
-    def initial_guess(self, record):
-        g = Biviscous().initial_guess(record)
-        out = {**self.defaults(), "C_post": g["C_post"], "F_y": g["F_y"], "f0": g["f0"]}
-        if record.force is not None:
-            vmax = float(np.max(np.abs(record.velocity))) or 1.0
-            out.update(alpha=g["F_y"], beta=20.0 / vmax, v0=0.0)
-        return out
+    def guess_from_force(self, record):
+        g = Biviscous().guess_from_force(record)
+        return dict(
+            C_post=g["C_post"], F_y=g["F_y"], f0=g["f0"], alpha=g["F_y"], beta=20.0 / peak_speed(record), v0=0.0
+        )

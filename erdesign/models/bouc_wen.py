@@ -18,8 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import sign_viscous_fit, stroke
 from ._kernels import bouc_wen_state, modified_bouc_wen
-from .base import ControlAffineModel, Model, Parameter
+from .base import FORCE_OFFSET, ControlAffineModel, Model, Parameter
 
 __all__ = ["BoucWen", "BoucWenModified", "BoucWenNormalized", "SPENCER_PASSIVE"]
 
@@ -46,6 +47,25 @@ def _hysteresis_parameters(beta=2e6, gamma=2e6, delta=207.0, n=2.0):
         Parameter("delta", "", delta, 1e-6, 1e9, "Bouc-Wen scale A (redundant with alpha: held fixed)", fitted=False),
         Parameter("n", "", n, 1.0, 10.0, "Bouc-Wen exponent (held fixed by default)", fitted=False),
     )
+
+
+def _bouc_wen_scales(record, delta):
+    """The Bouc-Wen family's starting scales: the damping c0 [N s/m] of the fit F - mean F = f_y sgn v + c0 v, and
+    the hysteretic ``alpha_a``, ``beta``, ``gamma`` that make z saturate at about a tenth of the stroke (so that the
+    loop is yielded over most of it) with the force f_y."""
+    v = record.velocity
+    A = np.column_stack([np.sign(v), v])
+    (fy, c0), *_ = np.linalg.lstsq(A, record.force - record.force.mean(), rcond=None)
+    zs = stroke(record) / 10.0
+    return float(c0), {"alpha_a": float(max(fy, 1.0) / zs), "beta": 0.5 * delta / zs**2, "gamma": 0.5 * delta / zs**2}
+
+
+def _polynomial(coefficients, u):
+    """c_0 + c_1 u + c_2 u^2 + ... (coefficients constant first), by Horner's rule."""
+    *lower, value = coefficients
+    for c in reversed(lower):
+        value = c + value * u
+    return value
 
 
 class BoucWen(Model):
@@ -121,20 +141,9 @@ class BoucWen(Model):
             "alpha_b": u * z,
         }, np.zeros_like(v)
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            X = float(np.max(np.abs(record.displacement - np.mean(record.displacement)))) or 1.0
-            v = record.velocity
-            A = np.column_stack([np.sign(v), v])
-            (fy, c0), *_ = np.linalg.lstsq(A, record.force - record.force.mean(), rcond=None)
-            # z saturates at about X / 10 so that the loop is yielded over most of the stroke
-            zs = X / 10.0
-            d = g["delta"]
-            g.update(
-                c0a=float(max(c0, 0.0)), alpha_a=float(max(fy, 1.0) / zs), beta=0.5 * d / zs**2, gamma=0.5 * d / zs**2
-            )
-        return g
+    def guess_from_force(self, record):
+        c0, hysteresis = _bouc_wen_scales(record, self.parameter("delta").default)
+        return {"c0a": max(c0, 0.0), **hysteresis}
 
 
 class BoucWenModified(Model):
@@ -201,6 +210,14 @@ class BoucWenModified(Model):
         Parameter("eta", "1/s", 190.0, 1e-3, 1e6, "rate of the first-order control filter", log_scale=True),
     )
 
+    def control_laws(self, values):
+        """The coefficients (constant first) of alpha, c0 and c1 as polynomials in the filtered control u_f."""
+        return (
+            (values["alpha_a"], values["alpha_b"], values["alpha_c"]),
+            (values["c0a"], values["c0b"]),
+            (values["c1a"], values["c1b"]),
+        )
+
     def states(self, record, values):
         """(filtered control u_f, w = x - y, z) on the record."""
         return modified_bouc_wen(
@@ -208,9 +225,7 @@ class BoucWenModified(Model):
             record.displacement,
             self.control(record),
             values["eta"],
-            (values["alpha_a"], values["alpha_b"], values["alpha_c"]),
-            (values["c0a"], values["c0b"]),
-            (values["c1a"], values["c1b"]),
+            *self.control_laws(values),
             values["k0"],
             values["beta"],
             values["gamma"],
@@ -220,35 +235,17 @@ class BoucWenModified(Model):
 
     def force(self, record, values):
         uf, w, z = self.states(record, values)
-        al = values["alpha_a"] + (values["alpha_b"] + values["alpha_c"] * uf) * uf
-        c0 = values["c0a"] + values["c0b"] * uf
-        c1 = values["c1a"] + values["c1b"] * uf
-        x = record.displacement
+        al, c0, c1 = (_polynomial(coefficients, uf) for coefficients in self.control_laws(values))
         ydot = (al * z + c0 * record.velocity + values["k0"] * w) / (c0 + c1)
-        return c1 * ydot + values["k1"] * (x - values["x0"])
+        return c1 * ydot + values["k1"] * (record.displacement - values["x0"])
 
     def linear_terms(self, record, values):
         return {"k1": record.displacement - values["x0"]}, self.force(record, {**values, "k1": 0.0})
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            X = float(np.max(np.abs(record.displacement - np.mean(record.displacement)))) or 1.0
-            v = record.velocity
-            A = np.column_stack([np.sign(v), v])
-            (fy, c0), *_ = np.linalg.lstsq(A, record.force - record.force.mean(), rcond=None)
-            zs = X / 10.0
-            d = g["delta"]
-            g.update(
-                c0a=float(max(c0, 10.0)),
-                c1a=float(max(c0, 10.0)) * 15,
-                alpha_a=float(max(fy, 1.0) / zs),
-                beta=0.5 * d / zs**2,
-                gamma=0.5 * d / zs**2,
-                k0=0.0,
-                k1=0.0,
-            )
-        return g
+    def guess_from_force(self, record):
+        c0, hysteresis = _bouc_wen_scales(record, self.parameter("delta").default)
+        c0 = max(c0, 10.0)
+        return {"c0a": c0, "c1a": c0 * 15, **hysteresis, "k0": 0.0, "k1": 0.0}
 
 
 class BoucWenNormalized(ControlAffineModel):
@@ -300,7 +297,7 @@ class BoucWenNormalized(ControlAffineModel):
         Parameter("rho", "1/m", 1000.0, 1e-3, 1e7, "rate of the normalised state", log_scale=True),
         Parameter("sigma", "", 1.0, 0.5, 50.0, "shape of the loop (>= 1/2)"),
         Parameter("n", "", 1.0, 1.0, 10.0, "exponent (held fixed by default)", fitted=False),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("k_v_u", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
         Parameter("k_w_u", "N", 0.0, -1e7, 1e7, "hysteretic amplitude per unit control"),
     )
@@ -330,12 +327,6 @@ class BoucWenNormalized(ControlAffineModel):
             "k_w_u": u * w,
         }, np.zeros_like(v)
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            X = float(np.max(np.abs(record.displacement - np.mean(record.displacement)))) or 1.0
-            v = record.velocity
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fy, c0, f0), *_ = np.linalg.lstsq(A, record.force, rcond=None)
-            g.update(k_v=float(max(c0, 0.0)), k_w=float(max(fy, 0.0)), f0=float(f0), rho=10.0 / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0 = sign_viscous_fit(record)
+        return {"k_v": max(c0, 0.0), "k_w": max(fy, 0.0), "f0": f0, "rho": 10.0 / stroke(record)}

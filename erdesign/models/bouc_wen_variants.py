@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import force_scales
 from ._kernels import bouc_wen_state, bouc_wen_state_varying, modified_bouc_wen
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, LinearTermsModel, Model, Parameter
 from .bouc_wen import BoucWen, BoucWenModified, _hysteresis_parameters
 from .excitation import record_amplitude, record_frequency
 
@@ -62,15 +63,6 @@ def sign_time_integral(t, x):
     return np.concatenate([[0.0], np.cumsum(step)])
 
 
-def _bw_guess(record, g):
-    """Viscous and hysteretic scales from a sign-plus-viscous fit (the guesses of the Bouc-Wen family)."""
-    X = float(np.max(np.abs(record.displacement - np.mean(record.displacement)))) or 1.0
-    v = record.velocity
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c0, f0), *_ = np.linalg.lstsq(A, record.force, rcond=None)
-    return float(max(fy, 1.0)), float(max(c0, 0.0)), float(f0), X
-
-
 class BoucWenShear(BoucWen):
     r"""Bouc-Wen model of a shear-mode damper (Yi et al.): a dashpot and a Bouc-Wen element, no spring.
 
@@ -100,12 +92,8 @@ class BoucWenShear(BoucWen):
         cols, rest = super().linear_terms(record, {**values, "k0": 0.0, "x0": 0.0})
         return {k: cols[k] for k in self.linear_parameters}, rest
 
-    def initial_guess(self, record):
-        g = super().initial_guess(record)
-        return {k: v for k, v in g.items() if k in self.parameter_names}
 
-
-class BoucWenMass(Model):
+class BoucWenMass(LinearTermsModel):
     r"""Bouc-Wen model with a mass element and shear-thinning post-yield damping (Yang et al.).
 
     .. math::
@@ -164,18 +152,11 @@ class BoucWenMass(Model):
             "alpha_u": u * z,
         }, rest
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, f0, X = _bw_guess(record, g)
-            zs = X / 10.0
-            d = g["delta"]
-            g.update(a1=c0, a2=0.0, f0=f0, alpha=fy / zs, beta=0.5 * d / zs**2, gamma=0.5 * d / zs**2)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0, X, _ = force_scales(record)
+        zs = X / 10.0
+        d = self.parameter("delta").default
+        return dict(a1=c0, a2=0.0, f0=f0, alpha=fy / zs, beta=0.5 * d / zs**2, gamma=0.5 * d / zs**2)
 
 
 class BoucWenModifiedMass(BoucWenModified):
@@ -207,11 +188,8 @@ class BoucWenModifiedMass(BoucWenModified):
         rest = super().force(record, {**values, "k1": 0.0})
         return {"k1": record.displacement - values["x0"], "m": record.acceleration}, rest
 
-    def initial_guess(self, record):
-        return {**super().initial_guess(record), "m": 0.0}
 
-
-class BoucWenNonsymmetric(Model):
+class BoucWenNonsymmetric(LinearTermsModel):
     r"""Kwok's nonsymmetrical Bouc-Wen model: the Bouc-Wen operator driven by a shifted velocity.
 
     .. math::
@@ -252,7 +230,7 @@ class BoucWenNonsymmetric(Model):
         Parameter("alpha", "N/m", 96300.0, 0.0, 1e10, "scale of the hysteretic force"),
         *_hysteresis_parameters(),
         Parameter("mu", "m/s", 0.0, -10.0, 10.0, "velocity shift of the hysteresis switching"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("c0_u", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
         Parameter("alpha_u", "N/m", 0.0, -1e10, 1e10, "hysteretic scale per unit control"),
     )
@@ -274,13 +252,9 @@ class BoucWenNonsymmetric(Model):
             "alpha_u": u * z,
         }, np.zeros_like(v)
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = BoucWen().initial_guess(record)
-        return {**self.defaults(), "c0": g["c0a"], "alpha": g["alpha_a"], "beta": g["beta"], "gamma": g["gamma"]}
+    def guess_from_force(self, record):
+        g = BoucWen().guess_from_force(record)
+        return {"c0": g["c0a"], "alpha": g["alpha_a"], "beta": g["beta"], "gamma": g["gamma"]}
 
 
 class BoucWenAmplitude(BoucWen):
@@ -330,27 +304,27 @@ class BoucWenAmplitude(BoucWen):
         Parameter("x_a", "m", 0.01, 0.0, 10.0, "stroke amplitude of the test (a priori: the record's)", fitted=False),
     )
 
+    @staticmethod
+    def _law(values, p, j0):
+        """p_j0 + p_(j0+1) x_a + p_(j0+2) x_a^2: a coefficient of the standard model at the amplitude x_a."""
+        xa = values["x_a"]
+        return values[f"{p}{j0}"] + values[f"{p}{j0 + 1}"] * xa + values[f"{p}{j0 + 2}"] * xa**2
+
     def standard(self, values):
         """The standard Bouc-Wen parameters at the amplitude x_a."""
-        xa = values["x_a"]
-
-        def law(p, j0):
-            return values[f"{p}{j0}"] + values[f"{p}{j0 + 1}"] * xa + values[f"{p}{j0 + 2}"] * xa**2
-
         return {
-            "c0a": law("c", 1),
-            "c0b": law("c", 4),
-            "k0": law("k", 1),
-            "alpha_a": law("alpha", 1),
-            "alpha_b": law("alpha", 4),
+            "c0a": self._law(values, "c", 1),
+            "c0b": self._law(values, "c", 4),
+            "k0": self._law(values, "k", 1),
+            "alpha_a": self._law(values, "alpha", 1),
+            "alpha_b": self._law(values, "alpha", 4),
             "x0": 0.0,
             **{k: values[k] for k in ("beta", "gamma", "delta", "n")},
         }
 
     def force(self, record, values):
-        std = self.standard(values)
-        k0b = values["k4"] + values["k5"] * values["x_a"] + values["k6"] * values["x_a"] ** 2
-        return super().force(record, std) + k0b * self.control(record) * record.displacement
+        k0b = self._law(values, "k", 4)  # the stiffness per unit control, which the standard model does not have
+        return super().force(record, self.standard(values)) + k0b * self.control(record) * record.displacement
 
     def linear_terms(self, record, values):
         u, v, x = self.control(record), record.velocity, record.displacement
@@ -364,15 +338,11 @@ class BoucWenAmplitude(BoucWen):
         return cols, np.zeros_like(v)
 
     def initial_guess(self, record):
-        g = super().initial_guess(record)
-        out = {
-            **self.defaults(),
-            **{k: g[k] for k in ("beta", "gamma", "delta", "n")},
-            "c1": g["c0a"],
-            "alpha1": g["alpha_a"],
-        }
-        out["x_a"] = record_amplitude(record)
-        return out
+        return {**super().initial_guess(record), "x_a": record_amplitude(record)}
+
+    def guess_from_force(self, record):
+        g = super().guess_from_force(record)
+        return {"beta": g["beta"], "gamma": g["gamma"], "c1": g["c0a"], "alpha1": g["alpha_a"]}
 
 
 def _saturating(a1, a2, a3, u):
@@ -464,13 +434,10 @@ class BoucWenDominguez(Model):
         x, v = record.displacement, record.velocity
         return c0 * v + k0 * x + self.hysteretic_force(x, v, al, ga, Fz0)
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, _f0, X = _bw_guess(record, g)
-            zs = X / 10.0
-            g.update(c1=c0, gamma1=1.0 / zs**2, alpha1=fy / zs, F_z01=0.9 * fy)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, _f0, X, _ = force_scales(record)
+        zs = X / 10.0
+        return dict(c1=c0, gamma1=1.0 / zs**2, alpha1=fy / zs, F_z01=0.9 * fy)
 
 
 class BoucWenDominguezCFA(BoucWenDominguez):
@@ -545,7 +512,7 @@ class BoucWenDominguezCFA(BoucWenDominguez):
         return scale * super().force(record, values)
 
     def initial_guess(self, record):
-        g = {**self.defaults(), **super().initial_guess(record)}
+        g = super().initial_guess(record)
         g.update(
             c4=g["c1"],
             alpha4=g["alpha1"],
@@ -599,10 +566,6 @@ class BoucWenAsymmetricSigmoid(BoucWenModified):
     def linear_terms(self, record, values):  # no linear parameters: the gain multiplies the whole force
         return {}, self.force(record, values)
 
-    def initial_guess(self, record):
-        g = super().initial_guess(record)
-        return {**{k: v for k, v in g.items() if k in self.parameter_names}, "k2": 0.0, "a2": 1.0, "I0": 0.0}
-
 
 def _normalized_shape(values):
     """(beta, gamma, delta) of the Bouc-Wen equation for the normalised form rho (1 - sigma), rho sigma, rho."""
@@ -648,16 +611,13 @@ class BoucWenModifiedNormalized(BoucWenModified):
         beta, gamma, delta = _normalized_shape(values)
         return super().states(record, {**values, "beta": beta, "gamma": gamma, "delta": delta})
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, _, X = _bw_guess(record, g)
-            # z saturates at 1 after a travel of about X / 10
-            g.update(c0a=max(c0, 10.0), c1a=15.0 * max(c0, 10.0), alpha_a=fy, rho=10.0 / X, sigma=1.0, k0=0.0, k1=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, _, X, _ = force_scales(record)
+        # z saturates at 1 after a travel of about X / 10
+        return dict(c0a=max(c0, 10.0), c1a=15.0 * max(c0, 10.0), alpha_a=fy, rho=10.0 / X, sigma=1.0, k0=0.0, k1=0.0)
 
 
-class BoucWenRestructured(Model):
+class BoucWenRestructured(LinearTermsModel):
     r"""Restructured model of Bai et al.: a spring, a dashpot and a normalised Bouc-Wen element whose input is
     relieved by a dashpot c1 in series.
 
@@ -691,7 +651,7 @@ class BoucWenRestructured(Model):
         Parameter("alpha", "N", 500.0, 0.0, 1e7, "hysteretic force amplitude"),
         Parameter("c1", "N*s/m", 1e5, 1.0, 1e10, "series dashpot of the hysteretic element", log_scale=True),
         *_NORMALIZED_SHAPE,
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("alpha_u", "N", 0.0, -1e7, 1e7, "hysteretic amplitude per unit control"),
         Parameter("c0_u", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
         Parameter("eta", "1/s", 1e6, 1e-3, 1e9, "rate of the first-order control filter (fast: none)", log_scale=True),
@@ -720,19 +680,12 @@ class BoucWenRestructured(Model):
         rest = (values["alpha"] + values["alpha_u"] * uf) * z
         return {"k1": record.displacement, "c0": v, "f0": np.ones_like(v), "c0_u": self.control(record) * v}, rest
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, f0, X = _bw_guess(record, g)
-            g.update(c0=c0, alpha=fy, f0=f0, rho=10.0 / X, c1=100.0 * max(c0, 1.0))
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0, X, _ = force_scales(record)
+        return dict(c0=c0, alpha=fy, f0=f0, rho=10.0 / X, c1=100.0 * max(c0, 1.0))
 
 
-class BoucWenNormalizedII(Model):
+class BoucWenNormalizedII(LinearTermsModel):
     r"""Normalised Bouc-Wen model II of Dominguez et al.: a normalised operator and square-root current laws.
 
     .. math::
@@ -767,7 +720,7 @@ class BoucWenNormalizedII(Model):
         Parameter("rho1", "N", 500.0, -1e7, 1e7, "hysteretic force at zero control"),
         Parameter("rho3", "N*s^0.5/m^0.5", 0.0, -1e8, 1e8, "hysteretic force per square root of the speed"),
         Parameter("gamma", "1/m", 1000.0, 1e-3, 1e8, "rate of the normalised state", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("c2", "N*s/m", 0.0, -1e8, 1e8, "damping per square root of the control"),
         Parameter("k2", "N/m", 0.0, -1e8, 1e8, "stiffness per square root of the control"),
         Parameter("rho2", "N", 0.0, -1e7, 1e7, "hysteretic force per square root of the control"),
@@ -789,16 +742,9 @@ class BoucWenNormalizedII(Model):
             "f0": np.ones_like(v),
         }, np.zeros_like(v)
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, f0, X = _bw_guess(record, g)
-            g.update(c1=c0, rho1=fy, f0=f0, gamma=10.0 / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0, X, _ = force_scales(record)
+        return dict(c1=c0, rho1=fy, f0=f0, gamma=10.0 / X)
 
 
 class BoucWenModifiedPolynomial(BoucWenModified):
@@ -837,42 +783,11 @@ class BoucWenModifiedPolynomial(BoucWenModified):
         for j in (1, 2, 3)
     )
 
-    def _coefficients(self, values, p, const):
-        return (values[const],) + tuple(values[f"{p}_{j}"] for j in (1, 2, 3))
-
-    def states(self, record, values):
-        return modified_bouc_wen(
-            record.time,
-            record.displacement,
-            self.control(record),
-            values["eta"],
-            self._coefficients(values, "alpha", "alpha_a"),
-            self._coefficients(values, "c0", "c0a"),
-            self._coefficients(values, "c1", "c1a"),
-            values["k0"],
-            values["beta"],
-            values["gamma"],
-            values["delta"],
-            values["n"],
-        )
-
-    def force(self, record, values):
-        uf, w, z = self.states(record, values)
-
-        def poly(p, const):
-            a0, a1, a2, a3 = self._coefficients(values, p, const)
-            return a0 + (a1 + (a2 + a3 * uf) * uf) * uf
-
-        al, c0, c1 = poly("alpha", "alpha_a"), poly("c0", "c0a"), poly("c1", "c1a")
-        ydot = (al * z + c0 * record.velocity + values["k0"] * w) / (c0 + c1)
-        return c1 * ydot + values["k1"] * (record.displacement - values["x0"])
-
-    def initial_guess(self, record):
-        g = super().initial_guess(record)
-        return {**self.defaults(), **{k: v for k, v in g.items() if k in self.parameter_names}}
+    def control_laws(self, values):
+        return tuple((values[const], *(values[f"{p}_{j}"] for j in (1, 2, 3))) for p, const, *_ in self._laws)
 
 
-class BoucWenNormalizedBahar(Model):
+class BoucWenNormalizedBahar(LinearTermsModel):
     r"""Normalised Bouc-Wen model with Bahar's nonlinear voltage laws.
 
     .. math::
@@ -922,7 +837,7 @@ class BoucWenNormalizedBahar(Model):
             Parameter(f"k_w{j}", "N", 500.0 if j in (1, 3, 6) else 0.0, -1e7, 1e7, f"hysteretic force law, term {j}")
             for j in range(1, 10)
         ),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
     )
 
     @property
@@ -966,13 +881,6 @@ class BoucWenNormalizedBahar(Model):
         cols.update(k_x=record.displacement, k_v_a=xd, k_v_b=v * xd, f0=np.ones_like(xd))
         return cols, np.zeros_like(xd)
 
-    def force(self, record, values):
-        cols, rest = self.linear_terms(record, values)
-        return rest + sum(values[k] * c for k, c in cols.items())
-
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c0, f0, X = _bw_guess(record, g)
-            g.update(k_v_a=c0, f0=f0, rho_a=10.0 / X, k_w1=fy, k_w3=fy, k_w6=fy)
-        return g
+    def guess_from_force(self, record):
+        fy, c0, f0, X, _ = force_scales(record)
+        return dict(k_v_a=c0, f0=f0, rho_a=10.0 / X, k_w1=fy, k_w3=fy, k_w6=fy)

@@ -10,8 +10,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..numerics import affine_recurrence
+from ._guess import force_scales
 from ._kernels import dahl_state
-from .base import ControlAffineModel, Model, Parameter
+from .base import FORCE_OFFSET, ControlAffineModel, Model, Parameter
 
 __all__ = ["Dahl", "DahlViscous", "LuGre", "LuGreModified", "lugre_state", "DahlAsymmetric"]
 
@@ -40,14 +41,6 @@ def lugre_state(x, kappa, z0=0.0):
     with np.errstate(invalid="ignore", divide="ignore"):
         gain = np.where(kappa * L > 1e-12, -np.expm1(-kappa * L) / np.where(kappa == 0, 1.0, kappa), L)
     return affine_recurrence(e, np.sign(dx) * gain, z0)
-
-
-def _viscous_guess(record):
-    v, F = record.velocity, record.force
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-    X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
-    return float(max(fy, 1.0)), float(max(c, 0.0)), float(f0), X
 
 
 class Dahl(Model):
@@ -108,12 +101,9 @@ class Dahl(Model):
             "f_d_u": self.control(record) * z,
         }, np.zeros_like(v)
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, X = _viscous_guess(record)
-            g.update(f_d=fy, c0=c, f0=f0, rho=20.0 / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, _ = force_scales(record)
+        return dict(f_d=fy, c0=c, f0=f0, rho=20.0 / X)
 
 
 class DahlViscous(ControlAffineModel):
@@ -146,7 +136,7 @@ class DahlViscous(ControlAffineModel):
         Parameter("k_x", "N*s/m", 2000.0, 0.0, 1e8, "viscous coefficient"),
         Parameter("k_w", "N", 500.0, 0.0, 1e7, "friction coefficient"),
         Parameter("rho", "1/m", 1000.0, 1e-2, 1e8, "Dahl rate", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("k_x_u", "N*s/m", 0.0, -1e8, 1e8, "viscous coefficient per unit control"),
         Parameter("k_w_u", "N", 0.0, -1e7, 1e7, "friction coefficient per unit control"),
     )
@@ -156,12 +146,9 @@ class DahlViscous(ControlAffineModel):
         v = record.velocity
         return values["k_x"] * v + values["k_w"] * w + values["f0"], values["k_x_u"] * v + values["k_w_u"] * w
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, X = _viscous_guess(record)
-            g.update(k_w=fy, k_x=c, f0=f0, rho=20.0 / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, _ = force_scales(record)
+        return dict(k_w=fy, k_x=c, f0=f0, rho=20.0 / X)
 
 
 class LuGre(Model):
@@ -200,7 +187,7 @@ class LuGre(Model):
         Parameter("sigma1", "N*s/m", 0.0, 0.0, 1e8, "bristle damping"),
         Parameter("sigma2", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
         Parameter("a0", "1/N", 2e-3, 1e-9, 1.0, "inverse of the sliding friction force", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
     )
 
     def force(self, record, values):
@@ -216,12 +203,9 @@ class LuGre(Model):
         v = record.velocity
         return ({"sigma1": v - kappa * np.abs(v) * z, "sigma2": v, "f0": np.ones_like(v)}, values["sigma0"] * z)
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, X = _viscous_guess(record)
-            g.update(a0=1.0 / fy, sigma2=c, f0=f0, sigma0=fy * 20.0 / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, _ = force_scales(record)
+        return dict(a0=1.0 / fy, sigma2=c, f0=f0, sigma0=fy * 20.0 / X)
 
 
 class LuGreModified(ControlAffineModel):
@@ -267,7 +251,7 @@ class LuGreModified(ControlAffineModel):
         Parameter("sigma_b", "N*s/m", 0.0, -1e8, 1e8, "viscous damping per unit control"),
         Parameter("a0", "1/N", 2e-3, 1e-9, 1.0, "inverse friction force scale", log_scale=True),
         Parameter("a1", "", 0.0, -0.99, 1e3, "control dependence of the saturation"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
     )
 
     def state(self, record, values, u=None):
@@ -289,13 +273,10 @@ class LuGreModified(ControlAffineModel):
         P, Q = self.control_affine(record, values, z)
         return P + Q * u
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, X = _viscous_guess(record)
-            umax = float(np.max(np.abs(self.control(record)))) or 1.0
-            g.update(a0=1.0 / fy, sigma2=c, f0=f0, sigma0=fy * 20.0 / X / umax)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, _ = force_scales(record)
+        umax = float(np.max(np.abs(self.control(record)))) or 1.0
+        return dict(a0=1.0 / fy, sigma2=c, f0=f0, sigma0=fy * 20.0 / X / umax)
 
 
 class DahlAsymmetric(ControlAffineModel):
@@ -343,7 +324,7 @@ class DahlAsymmetric(ControlAffineModel):
         Parameter("k_w1", "N", 500.0, 0.0, 1e7, "friction coefficient, positive state"),
         Parameter("k_w2", "N", 400.0, 0.0, 1e7, "friction coefficient, negative state"),
         Parameter("rho", "1/m", 1000.0, 1e-2, 1e8, "Dahl rate", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("k_x_u", "N*s/m", 0.0, -1e8, 1e8, "viscous coefficient per unit control"),
         Parameter("k_w_u", "N", 0.0, -1e7, 1e7, "friction coefficient per unit control"),
     )
@@ -370,14 +351,6 @@ class DahlAsymmetric(ControlAffineModel):
         w = cols["k_w1"] + cols["k_w2"]
         return P, values["k_x_u"] * v + values["k_w_u"] * w
 
-    def initial_guess(self, record):
-        g = DahlViscous().initial_guess(record)
-        return {
-            **self.defaults(),
-            "k_x1": g["k_x"],
-            "k_x2": g["k_x"],
-            "k_w1": g["k_w"],
-            "k_w2": g["k_w"],
-            "rho": g["rho"],
-            "f0": g["f0"],
-        }
+    def guess_from_force(self, record):
+        g = DahlViscous().guess_from_force(record)
+        return dict(k_x1=g["k_x"], k_x2=g["k_x"], k_w1=g["k_w"], k_w2=g["k_w"], rho=g["rho"], f0=g["f0"])

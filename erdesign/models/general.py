@@ -8,17 +8,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Parameter
+from ._guess import force_scales
+from .base import FORCE_OFFSET, Model, Parameter
 from .bingham import extended_bingham_force
 
 __all__ = ["ZhaoDeadZone", "ZhaoXuSigmoid", "YuanTanh", "YuDivision", "HeUnified"]
-
-
-def _sign_viscous(record):
-    v, F = record.velocity, record.force
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-    return float(max(fy, 1.0)), float(max(c, 0.0)), float(f0), float(np.max(np.abs(v))) or 1.0
 
 
 class ZhaoDeadZone(Model):
@@ -70,13 +64,9 @@ class ZhaoDeadZone(Model):
         )
         return eta - values["a"] * record.velocity + values["b"]
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, _ = _sign_viscous(record)
-            X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
-            g.update(x0=fy, k=1.0 / max(c, 1.0), b=f0, k_i=20.0 * fy / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, _ = force_scales(record)
+        return dict(x0=fy, k=1.0 / max(c, 1.0), b=f0, k_i=20.0 * fy / X)
 
 
 class ZhaoXuSigmoid(Model):
@@ -129,7 +119,7 @@ class ZhaoXuSigmoid(Model):
         Parameter("v_s", "m/s", 0.005, 1e-7, 10.0, "Stribeck velocity", log_scale=True),
         Parameter("k0", "N/m", 0.0, 0.0, 1e8, "stiffness (a spring: not negative)"),
         Parameter("c0", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_ys_u", "N", 0.0, -1e7, 1e7, "sigmoid yield force per unit control"),
     )
 
@@ -145,12 +135,9 @@ class ZhaoXuSigmoid(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _sign_viscous(record)
-            g.update(F_ys=fy, c0=c, f0=f0, delta=40.0 / vmax, v_n=0.0, F_sc=0.0, v_s=vmax / 20.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(F_ys=fy, c0=c, f0=f0, delta=40.0 / vmax, v_n=0.0, F_sc=0.0, v_s=vmax / 20.0)
 
 
 class YuanTanh(Model):
@@ -201,12 +188,9 @@ class YuanTanh(Model):
             + values["F0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _sign_viscous(record)
-            g.update(T=fy, c=c, F0=f0, alpha=20.0 / vmax)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(T=fy, c=c, F0=f0, alpha=20.0 / vmax)
 
 
 class YuDivision(Model):
@@ -248,7 +232,7 @@ class YuDivision(Model):
         Parameter("d", "N", 100.0, -1e7, 1e7, "height of the branch curve"),
         Parameter("e", "m/s", 0.01, 0.0, 10.0, "speed at the peak of the branch curve"),
         Parameter("f", "m/s", 0.01, 1e-7, 10.0, "width of the branch curve", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("a_u", "N", 0.0, -1e7, 1e7, "backbone saturation per unit control"),
     )
 
@@ -260,12 +244,9 @@ class YuDivision(Model):
         branch = values["d"] * np.exp(-(((s - values["e"]) / values["f"]) ** 2))
         return backbone + np.where(record.acceleration >= 0, 1.0, -1.0) * branch + values["f0"]
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, vmax = _sign_viscous(record)
-            g.update(a=fy + c * vmax, b=20.0 / vmax, c=20.0 / vmax, d=0.0, e=0.2 * vmax, f=0.2 * vmax, f0=f0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, _, vmax = force_scales(record)
+        return dict(a=fy + c * vmax, b=20.0 / vmax, c=20.0 / vmax, d=0.0, e=0.2 * vmax, f=0.2 * vmax, f0=f0)
 
 
 class HeUnified(Model):
@@ -327,9 +308,6 @@ class HeUnified(Model):
             + shear
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, _, vmax = _sign_viscous(record)
-            g.update(D_b=fy, c=c, B_b=10.0 / vmax, A=0.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, _, _, vmax = force_scales(record)
+        return dict(D_b=fy, c=c, B_b=10.0 / vmax, A=0.0)

@@ -15,8 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import peak_speed, sign_viscous_fit, stroke, viscous_slope
 from ._kernels import first_order_lag
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 from .excitation import warn_if_multi_amplitude
 
 __all__ = ["KamathWereley4", "KamathWereley6", "jeffreys_force", "KAMATH_WERELEY_TABLE1", "ViscoelasticPlasticPang"]
@@ -130,7 +131,7 @@ class KamathWereley6(Model):
         Parameter("alpha_y", "", 0.40, 0.0, 1.0, "yield point, dimensionless velocity", fitted=False),
         Parameter("eps_y", "", 0.10, 1e-3, 1.0, "width of the yield transition", fitted=False),
         Parameter("eps_c", "", 0.30, 1e-3, 1.0, "width of the stiction transition", fitted=False),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter(
             "v_ref",
             "m/s",
@@ -157,11 +158,9 @@ class KamathWereley6(Model):
         g = self.defaults()
         g["v_ref"] = float(np.max(np.abs(record.velocity)))  # explicit: identification reports the scale it used
         if record.force is not None:
-            v = record.velocity
-            c = float(np.dot(v, record.force - record.force.mean()) / max(np.dot(v, v), 1e-300))
+            c = viscous_slope(record)
             if c > 1.0:
-                X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
-                w = float(np.max(np.abs(v))) / X
+                w = peak_speed(record) / stroke(record)
                 g.update(C1=c, C2=c, Cv=c, K1=c * w, R=0.0, F_c=0.0)
         return g
 
@@ -199,7 +198,7 @@ class KamathWereley4(KamathWereley6):
         Parameter("Cv", "N*s/m", 1.928e3, 0.0, 1e9, "post-yield viscous damping"),
         Parameter("alpha_y", "", 0.40, 0.0, 1.0, "yield point, dimensionless velocity", fitted=False),
         Parameter("eps_y", "", 0.10, 1e-3, 1.0, "width of the yield transition", fitted=False),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter(
             "v_ref",
             "m/s",
@@ -271,7 +270,7 @@ class ViscoelasticPlasticPang(Model):
         Parameter("v_y", "m/s", 0.02, 0.0, 10.0, "yield velocity"),
         Parameter("eps_y", "m/s", 0.005, 1e-7, 10.0, "smoothing of the transitions", log_scale=True),
         Parameter("F_c", "N", 100.0, 0.0, 1e7, "yield (Coulomb) force"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_c_u", "N", 0.0, -1e7, 1e7, "yield force per unit control"),
     )
 
@@ -287,20 +286,15 @@ class ViscoelasticPlasticPang(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v, F = record.velocity, record.force
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-            vmax = float(np.max(np.abs(v))) or 1.0
-            g.update(
-                F_c=float(max(fy, 0.0)),
-                c_vi=float(max(c, 0.0)),
-                f0=float(f0),
-                v_y=0.1 * vmax,
-                eps_y=0.02 * vmax,
-                c_ve=float(max(fy, 1.0)) / (0.1 * vmax),
-                k_ve=0.0,
-            )
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0 = sign_viscous_fit(record)
+        vmax = peak_speed(record)
+        return dict(
+            F_c=max(fy, 0.0),
+            c_vi=max(c, 0.0),
+            f0=f0,
+            v_y=0.1 * vmax,
+            eps_y=0.02 * vmax,
+            c_ve=max(fy, 1.0) / (0.1 * vmax),
+            k_ve=0.0,
+        )

@@ -10,18 +10,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import force_scales
 from ._kernels import mass_on_damper
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["SimsLumped", "Bass"]
-
-
-def _scales(record):
-    v, F = record.velocity, record.force
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-    X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
-    return float(max(fy, 1.0)), float(max(c, 1.0)), float(f0), X, float(np.max(np.abs(v))) or 1.0
 
 
 class SimsLumped(Model):
@@ -66,7 +59,7 @@ class SimsLumped(Model):
         Parameter("C_pre_a", "N*s/m", 1e6, 1.0, 1e10, "pre-yield damping at zero control", log_scale=True),
         Parameter("C_post_a", "N*s/m", 5000.0, 0.0, 1e9, "post-yield damping at zero control"),
         Parameter("F_y_a", "N", 500.0, 0.0, 1e7, "yield force at zero control"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("C_pre_b", "N*s/m", 0.0, -1e10, 1e10, "saturating change of the pre-yield damping"),
         Parameter("C_pre_c", "", 1.0, 0.0, 1e3, "rate of the pre-yield damping law"),
         Parameter("C_post_b", "N*s/m", 0.0, -1e9, 1e9, "saturating change of the post-yield damping"),
@@ -95,12 +88,9 @@ class SimsLumped(Model):
         cols, rest = self.linear_terms(record, values)
         return rest + values["m2"] * cols["m2"] + values["f0"]
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, X, vmax = _scales(record)
-            g.update(F_y_a=fy, C_post_a=c, f0=f0, C_pre_a=fy / (0.05 * vmax) + c, k=50.0 * fy / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, vmax = force_scales(record, min_damping=1.0)
+        return dict(F_y_a=fy, C_post_a=c, f0=f0, C_pre_a=fy / (0.05 * vmax) + c, k=50.0 * fy / X)
 
 
 class Bass(Model):
@@ -169,9 +159,6 @@ class Bass(Model):
         x = record.displacement - record.displacement[0]
         return values["k1"] * (x - x0) + values["c1"] * (record.velocity - v0)
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, _, X, vmax = _scales(record)
-            g.update(f_y=fy, c0=c, k1=20.0 * fy / X, c1=5.0 * c, v_ref=vmax / 50.0)
-        return g
+    def guess_from_force(self, record):
+        fy, c, _, X, vmax = force_scales(record, min_damping=1.0)
+        return dict(f_y=fy, c0=c, k1=20.0 * fy / X, c1=5.0 * c, v_ref=vmax / 50.0)

@@ -14,8 +14,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ErdesignError
+from ._guess import sign_viscous_fit, viscous_slope
 from ._kernels import first_order_lag
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["Maxwell", "BingMax", "MaxwellNeural", "maxwell_force"]
 
@@ -99,7 +100,7 @@ class Maxwell(Model):
     parameters = (
         Parameter("C", "N*s/m", 1.2e5, 1.0, 1e9, "dashpot constant", log_scale=True),
         Parameter("K", "N/m", 1e7, 1.0, 1e12, "series spring stiffness", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("C_u", "N*s/m", 0.0, -1e9, 1e9, "dashpot constant per unit control"),
     )
 
@@ -108,15 +109,10 @@ class Maxwell(Model):
         # C may vary with the control: filter C v (the dashpot force) through the spring's relaxation
         return _maxwell_of(record.time, C * record.velocity, values["C"] / values["K"]) + values["f0"]
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v = record.velocity
-            C = float(np.dot(v, record.force - record.force.mean()) / max(np.dot(v, v), 1e-300))
-            if C > 1.0:
-                g["C"] = C
-                g["K"] = C * 2 * np.pi * 20  # relaxation time well below the period of 20 Hz
-        return g
+    def guess_from_force(self, record):
+        C = viscous_slope(record)
+        # relaxation time well below the period of 20 Hz
+        return {"C": C, "K": C * 2 * np.pi * 20} if C > 1.0 else {}
 
 
 def _maxwell_of(t, Fd, lam):
@@ -166,7 +162,7 @@ class BingMax(Model):
         Parameter("C", "N*s/m", 1.2e5, 1.0, 1e9, "dashpot constant", log_scale=True),
         Parameter("K", "N/m", 1e7, 1.0, 1e12, "series spring stiffness", log_scale=True),
         Parameter("F_y", "N", 500.0, 0.0, 1e7, "friction (yield) force"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("F_y_u", "N", 0.0, -1e7, 1e7, "friction force per unit control"),
     )
 
@@ -175,15 +171,11 @@ class BingMax(Model):
         Fy = values["F_y"] + values["F_y_u"] * self.control(record)
         return maxwell_force(record.time, v, values["C"], values["K"]) + Fy * np.sign(v) + values["f0"]
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            v, F = record.velocity, record.force
-            A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-            (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-            g.update(F_y=float(max(fy, 0.0)), f0=float(f0))
-            if c > 1.0:
-                g.update(C=float(c), K=float(c) * 2 * np.pi * 20)
+    def guess_from_force(self, record):
+        fy, c, f0 = sign_viscous_fit(record)
+        g = {"F_y": max(fy, 0.0), "f0": f0}
+        if c > 1.0:
+            g.update(C=c, K=c * 2 * np.pi * 20)
         return g
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["Powell"]
 
@@ -52,7 +52,7 @@ class Powell(Model):
         Parameter("c", "N*s/m", 2000.0, 0.0, 1e8, "viscous damping"),
         Parameter("k", "N", 0.0, -1e7, 1e7, "force of the softening spring"),
         Parameter("d", "1/m", 100.0, 0.0, 1e6, "softening of the spring"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
     )
 
     def force(self, record, values):

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import peak_speed, sign_viscous_fit
 from .base import Model, Parameter, ParameterError
 
 __all__ = ["PAPER_TERMS", "TERMS", "SemiactiveCustomized", "SemiactiveGeneral", "general_force", "sigmoid_ratio"]
@@ -27,14 +28,12 @@ def _guess(defaults: dict, record) -> dict:
     g = dict(defaults)
     if record.force is None:
         return g
-    v, F = record.velocity, record.force
-    vmax = float(np.max(np.abs(v))) or 1.0
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
+    vmax = peak_speed(record)
+    fy, c, f0 = sign_viscous_fit(record)
     guess = {
-        "f_f": float(fy),
-        "c_p": float(max(c, 0.0)),
-        "f0": float(f0),
+        "f_f": fy,
+        "c_p": max(c, 0.0),
+        "f0": f0,
         "v_f": 20.0 / vmax,
         "v_hz": 20.0 / vmax,
         "v_hv": 20.0 / vmax,

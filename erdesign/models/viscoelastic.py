@@ -12,18 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._guess import force_scales
 from ._kernels import first_order_lag, series_viscoplastic, stop_operator
-from .base import Model, Parameter
+from .base import FORCE_OFFSET, Model, Parameter
 
 __all__ = ["SVES", "ContinuousVEP", "LiViscoelasticPlastic", "NonlinearStiffnessVEP", "zener_force"]
-
-
-def _sign_viscous_guess(record):
-    v, F = record.velocity, record.force
-    A = np.column_stack([np.sign(v), v, np.ones_like(v)])
-    (fy, c, f0), *_ = np.linalg.lstsq(A, F, rcond=None)
-    X = float(np.max(np.abs(record.displacement - record.displacement.mean()))) or 1.0
-    return float(max(fy, 1.0)), float(max(c, 1.0)), float(f0), X, float(np.max(np.abs(v))) or 1.0
 
 
 def zener_force(t, x, k1, c1, k2):
@@ -110,12 +103,9 @@ class LiViscoelasticPlastic(Model):
         P, Q = self.control_affine(record, values)
         return np.where(np.abs(pre) <= Fc, pre, P + Q * self.control(record))
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, X, vmax = _sign_viscous_guess(record)
-            g.update(F_c=fy, c_v=c, F_s=f0, k2=10.0 * fy / X, k1=fy / X, c1=fy / vmax)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, vmax = force_scales(record, min_damping=1.0)
+        return dict(F_c=fy, c_v=c, F_s=f0, k2=10.0 * fy / X, k1=fy / X, c1=fy / vmax)
 
 
 class ContinuousVEP(Model):
@@ -161,7 +151,7 @@ class ContinuousVEP(Model):
         Parameter("c_b", "N*s/m", 2000.0, 0.0, 1e8, "post-yield viscous damping"),
         Parameter("A_b", "N", 500.0, 0.0, 1e7, "yield force"),
         Parameter("alpha_b", "s/m", 200.0, 0.0, 1e7, "restoring factor (sharpness of yield)"),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("k_a", "N/m", 0.0, -1e11, 1e11, "stiffness change at saturating control"),
         Parameter("b", "", 1.0, 0.0, 1e3, "saturation rate of the stiffness with control"),
         Parameter("c_a", "N*s/m", 0.0, -1e8, 1e8, "damping per unit control"),
@@ -186,12 +176,9 @@ class ContinuousVEP(Model):
         y, _ = self._element(record, values, k, c, A, alpha)
         return k * (record.displacement - record.displacement[0] - y) + values["f0"]
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, X, vmax = _sign_viscous_guess(record)
-            g.update(A_b=fy, c_b=c, f0=f0, k_b=20.0 * fy / X, alpha_b=20.0 / vmax)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, vmax = force_scales(record, min_damping=1.0)
+        return dict(A_b=fy, c_b=c, f0=f0, k_b=20.0 * fy / X, alpha_b=20.0 / vmax)
 
 
 class NonlinearStiffnessVEP(ContinuousVEP):
@@ -311,7 +298,7 @@ class SVES(Model):
         Parameter("c", "N*s/m", 2000.0, 0.0, 1e8, "linear viscous damping"),
         Parameter("k2", "N/m", 2e5, 1.0, 1e11, "elasto-slide stiffness", log_scale=True),
         Parameter("x_s", "m", 0.002, 1e-9, 1.0, "yielding displacement of the elasto-slide", log_scale=True),
-        Parameter("f0", "N", 0.0, -1e7, 1e7, "force offset"),
+        FORCE_OFFSET,
         Parameter("N_u", "N", 0.0, -1e7, 1e7, "slider force per unit control"),
     )
 
@@ -328,9 +315,6 @@ class SVES(Model):
             + values["f0"]
         )
 
-    def initial_guess(self, record):
-        g = self.defaults()
-        if record.force is not None:
-            fy, c, f0, X, _vmax = _sign_viscous_guess(record)
-            g.update(c=c, f0=f0, x_s=X / 10.0, k2=10.0 * fy / X)
-        return g
+    def guess_from_force(self, record):
+        fy, c, f0, X, _vmax = force_scales(record, min_damping=1.0)
+        return dict(c=c, f0=f0, x_s=X / 10.0, k2=10.0 * fy / X)
