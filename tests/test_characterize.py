@@ -215,7 +215,11 @@ def test_detectors_on_the_truth_rig(name, mechanisms):
 @pytest.mark.slow
 def test_characterize_truth_rig_records(tmp_path, capsys):
     # issue 25, done when: characterize on truth-rig records with known characteristics finds them and builds a
-    # model that beats Eyring-plastic in cross-validation
+    # model that beats Eyring-plastic in cross-validation.  It finds them; it does not beat an Eyring-plastic fit
+    # with dissipative post-yield damping (c1, c3 >= 0).  Measured 2026-11-26 (docs/characterize.md): mean
+    # cross-validation ESR 0.0117 customized against 0.0085 Eyring-plastic.  The earlier "0.0117 against 0.606"
+    # came from an Eyring fit on E3 with c1 = -2.5e4 N s/m and c3 = 4.8e6 N s^3/m^3 that predicted E4 and E5 with
+    # ESR 5.0 and 4.5: a broken baseline, not a better model.
     from erdesign.cli import main
 
     records = demo_records()  # Stribeck friction, gas accumulator, single-ended rod; E2-E5
@@ -229,9 +233,16 @@ def test_characterize_truth_rig_records(tmp_path, capsys):
     doc = json.loads(capsys.readouterr().out)
     assert {"viscous_damping", "stiffness", "friction", "asymmetry", "gain"} <= set(doc["found"])
     assert not {"hysteresis", "frequency_dependent_loop"} & set(doc["found"])
-    assert doc["comparison"]["customized_better"]
+    # the baseline predicts every record it was not identified on (the unbounded fit's worst was 5.0)
+    assert np.max(doc["cross_validation"]["eyring_plastic"]["table"]) < 0.02
     c = doc["comparison"]["cross_validation"]
-    assert c["customized_mean_esr"] < c["eyring_plastic_mean_esr"]
+    assert c["customized_mean_esr"] == pytest.approx(0.0117, abs=0.001)
+    assert c["eyring_plastic_mean_esr"] == pytest.approx(0.0085, abs=0.001)
+    assert not doc["comparison"]["customized_better"]
+    # on the identification records (Table 6) the two are level: 0.0030-0.0104 against 0.0035-0.0103
+    ident = doc["comparison"]["identification"]
+    np.testing.assert_allclose(ident["customized"], [0.0030, 0.0104, 0.0040, 0.0055], atol=5e-4)
+    np.testing.assert_allclose(ident["eyring_plastic"], [0.0036, 0.0103, 0.0042, 0.0035], atol=5e-4)
     text = out.read_text()
     assert "Cross-validation" in text and "plotly" in text
 

@@ -54,6 +54,12 @@ class EyringPlastic(Model):
     -----
     The source makes every parameter an undefined function of the actuation and frequency; here only the yield
     amplitude depends (linearly) on the control.  The offset f0 is added (the source's data were centred).
+    The post-yield coefficients are bounded below by zero, c1 >= 0 and c3 >= 0: the source has them "model the
+    damping in the post-yield region", and a damper's post-yield damping dissipates (the general model's c_p >= 0,
+    :mod:`erdesign.models.semiactive`, is bounded alike).  Unbounded, a fit on a slow record can trade a negative
+    c1 against a large c3 that holds on its speeds only: on the truth-rig road profile E3 of docs/characterize.md
+    (speeds to 0.066 m/s) it ended at F_alpha = 0, c1 = -2.5e4 N s/m, c3 = 4.8e6 N s^3/m^3, ESR 0.009 on its
+    record and 4.5-5.0 on the records that reach 0.21 m/s; bounded, 0.010 and 0.006-0.009.
 
     Examples
     --------
@@ -81,8 +87,8 @@ class EyringPlastic(Model):
         Parameter("lambda2", "1/m", 0.0, -1e7, 1e7, "pre-yield hysteresis"),
         Parameter("beta1", "", 0.0, -0.99, 100.0, "yield force correction"),
         Parameter("beta2", "s/m", 10.0, 0.0, 1e6, "yield force correction rate"),
-        Parameter("c1", "N*s/m", 1000.0, -1e8, 1e8, "post-yield damping"),
-        Parameter("c3", "N*s^3/m^3", 0.0, -1e12, 1e12, "cubic post-yield damping"),
+        Parameter("c1", "N*s/m", 1000.0, 0.0, 1e8, "post-yield damping (dissipative: not negative)"),
+        Parameter("c3", "N*s^3/m^3", 0.0, 0.0, 1e12, "cubic post-yield damping (not negative)"),
         FORCE_OFFSET,
         Parameter("F_alpha_u", "N", 0.0, -1e7, 1e7, "yield amplitude per unit control"),
     )
