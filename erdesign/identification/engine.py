@@ -874,7 +874,9 @@ def _candidates(pb: Problem, st: Strategy, deadline, progress) -> list[np.ndarra
                 init="sobol",
             )
             out.append(de.x)
-        except _OutOfTime:
+        except (_OutOfTime, _Stalled):
+            # out of time, or the tracker's stall rule (meant for a local optimiser polishing digits) fired inside
+            # the evolution: the best point it met is the start
             if probe.best_z is not None:
                 out.append(probe.best_z)
     if st.starts > 1:
