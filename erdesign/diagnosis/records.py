@@ -72,6 +72,9 @@ class Prepared:
     """Samples of each full record left out by a data finding (clipped, saturated)."""
     kept: list = field(default_factory=list)
     """Per full record: True on the samples no data finding leaves out (None: all)."""
+    analysed: np.ndarray | None = None
+    """True on the samples no data finding leaves out and where the piston moves: :attr:`judged` plus the samples
+    near reversals, where only an effect that makes the force continuous there can be judged (None: as judged)."""
 
     @property
     def names(self) -> list[str]:
@@ -217,23 +220,27 @@ def prepare(
     the sample out (or None)."""
     excluded = list(excluded) if excluded is not None else [None] * len(records)
     per_record = max(max_samples // len(records), 400) if len(records) > 1 else max_samples
-    thinned, judged, counts, n_full, kept = [], [], [], [], []
+    thinned, judged, analysed, counts, n_full, kept = [], [], [], [], [], []
     for r, ex in zip(records, excluded):
         sigma_v = velocity_noise(r)
         # the sign of the velocity is unknown near reversals and wherever the piston rests (a derivative filter rings
         # after the motion stops)
-        known = sign_known_widened(r, sigma_v) & ~still_samples(r)
+        moving = ~still_samples(r)
         if ex is not None:
-            known = known & ~ex
+            moving = moving & ~ex
+        known = sign_known_widened(r, sigma_v) & moving
         keep = analysis_samples(r, per_record)
         if len(keep) == len(r):
             thinned.append(replace(r, velocity_noise=sigma_v))
         else:
             thinned.append(replace(r.select(keep), velocity_noise=sigma_v))
         judged.append(known[keep])
+        analysed.append(moving[keep])
         counts.append(0 if ex is None else int(ex.sum()))
         kept.append(None if ex is None or not ex.any() else ~ex)
         n_full.append(len(r))
     work, segs = join_records(thinned)
     names = [r.name or f"record {i + 1}" for i, r in enumerate(records)]
-    return Prepared(work, np.concatenate(judged), list(zip(names, segs)), n_full, counts, kept)
+    return Prepared(
+        work, np.concatenate(judged), list(zip(names, segs)), n_full, counts, kept, np.concatenate(analysed)
+    )
