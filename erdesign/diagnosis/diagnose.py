@@ -459,11 +459,11 @@ def _diagnose(
                             f"named where it acts, on the samples near reversals too: ESR {reversals.esr:.3g} -> "
                             f"{named.esr:.3g} there, {100 * named.held_out_gain:.0f} % less error on held-out cycles"
                         )
-                reason += (
-                    f"; judged where it acts, on the samples near reversals too ({100 * prep.analysed.mean():.0f} % "
-                    "of the analysed samples: all where the piston moves and no data finding excludes them). On the "
-                    f"{100 * known.mean():.0f} % where the sign of the velocity is known, the model without it has "
-                    f"ESR {base.esr:.3g} and no effect explains enough there"
+                reason = (
+                    f"on the {100 * known.mean():.0f} % of the analysed samples where the sign of the velocity is "
+                    f"known, no effect explains enough of the excess (ESR {base.esr:.3g}); judged where it acts, with "
+                    f"the samples near reversals ({100 * prep.analysed.mean():.0f} %: all where the piston moves and "
+                    f"no data finding excludes them), {reason}"
                 )
     if verdict == "missing_effect" or suspicious or one_sided:
         pass
