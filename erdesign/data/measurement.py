@@ -141,6 +141,7 @@ class Measurement:
         temperature=None,
         name: str = "",
         window: int | None = None,
+        units: dict[str, str] | None = None,
     ) -> "Measurement":
         """A record from SI arrays; velocity and acceleration are derived when not given.
 
@@ -160,6 +161,8 @@ class Measurement:
             [K].
         window : int, optional
             Savitzky-Golay window (samples) for the derivatives; default from the dominant period.
+        units : dict, optional
+            Units the columns were given in (column name -> unit; for display and for writing back).
         """
         t = _as_1d(time, "time", unit="s")
         n = t.size
@@ -187,7 +190,7 @@ class Measurement:
         v = v_derived if velocity is None else _as_1d(velocity, "velocity", n, unit="m/s")
         if velocity is not None:
             _check_velocity(v, v_derived, name)
-        record = cls(t, x, F, v, a, u, control_kind if control is not None else None, T, name)
+        record = cls(t, x, F, v, a, u, control_kind if control is not None else None, T, name, dict(units or {}))
         if f0 is not None:  # found by the derivatives from the same arrays: kept, not computed again
             record.__dict__["dominant_frequency"] = f0
         return record
@@ -484,7 +487,7 @@ def _harmonic_columns(
     return out
 
 
-def _harmonic_fit(t: np.ndarray, x: np.ndarray, f: float, harmonics: int):
+def _harmonic_fit(t: np.ndarray, x: np.ndarray, f: float, harmonics: int, even: bool | None = None):
     """Least-squares fit of a trend line plus ``harmonics`` harmonics of f; returns (coefficients of 1,
     t - t[0], cos(k w), sin(k w) for k = 1..harmonics; the design matrix, whose columns 2k and 2k + 1 are
     cos(k w) and sin(k w) with w = 2 pi f (t - t[0]); the residual).
@@ -492,12 +495,13 @@ def _harmonic_fit(t: np.ndarray, x: np.ndarray, f: float, harmonics: int):
     The trend column is centred and scaled to [-1, 1], orthogonal to the constant, and the harmonics of a record
     of at least 1.5 periods are nearly orthogonal, so the normal equations are well conditioned; one step of
     iterative refinement brings the coefficients to the accuracy of an SVD (numpy.linalg.lstsq, used before, and
-    measured within 1e-15 of it) at a tenth of its cost.  The harmonics come from :func:`_harmonic_columns`."""
+    measured within 1e-15 of it) at a tenth of its cost.  The harmonics come from :func:`_harmonic_columns`
+    (``even``: whether t is evenly sampled, if known)."""
     T = t[-1] - t[0]
     A = np.empty((t.size, 2 + 2 * harmonics))
     A[:, 0] = 1.0
     A[:, 1] = (2.0 / T) * (t - t[0]) - 1.0
-    _harmonic_columns(t, f, harmonics, out=A[:, 2:])
+    _harmonic_columns(t, f, harmonics, out=A[:, 2:], even=even)
     gram = A.T @ A
     coef = np.linalg.solve(gram, A.T @ x)
     r = x - A @ coef
@@ -556,7 +560,7 @@ def _harmonic_derivatives(t, x, f0, sigma, T, fs, limit, even):
     ts = t[: nb * stride].reshape(nb, stride).mean(axis=1) if stride > 1 else t
     xs = x[: nb * stride].reshape(nb, stride).mean(axis=1) if stride > 1 else x
     res = minimize_scalar(
-        lambda f: float(np.sum(_harmonic_fit(ts, xs, f, 1)[2] ** 2)),
+        lambda f: float(np.sum(_harmonic_fit(ts, xs, f, 1, even)[2] ** 2)),
         bounds=(f0 - 0.5 / T, f0 + 0.5 / T),
         method="bounded",
         options={"xatol": 1e-10 * f0},
@@ -567,10 +571,10 @@ def _harmonic_derivatives(t, x, f0, sigma, T, fs, limit, even):
         # The least-squares residual over every 8th sample is a lower bound of the one over all samples (a subset of
         # the terms of the sum, each minimised on its own): when it already exceeds the limit the full fit would be
         # rejected too, and the large fit (most of the cost on long random records) is skipped.
-        *_, r_sub = _harmonic_fit(ts[::8], xs[::8], f, K)
+        *_, r_sub = _harmonic_fit(ts[::8], xs[::8], f, K, even)
         if stride * np.sum(r_sub**2) > n * limit**2:
             return None
-    coef, A, r = _harmonic_fit(ts, xs, f, K)
+    coef, A, r = _harmonic_fit(ts, xs, f, K, even)
     if stride * np.sum(r**2) > n * limit**2:
         return None
     # keep only harmonics that stand above the noise (amplitude > 4 standard errors; the means' noise is sigma /
@@ -850,7 +854,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     path = bundled_file(path) or path  # the documented examples/measurements/... from any folder
     try:
         raw = read_input_bytes(path, MAX_RECORD_BYTES, "a measurement CSV file")
-        text = raw.decode("utf-8-sig")
+        text = None if raw.isascii() else raw.decode("utf-8-sig")  # checked; decoded when needed
     except ErdesignError as exc:
         raise MeasurementError(str(exc)) from None
     except FileNotFoundError:
@@ -862,7 +866,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     except OSError as exc:
         raise MeasurementError(f"{label}: cannot be read ({exc.strerror or exc})") from None
     # a line takes at least one byte: a file of fewer bytes cannot hold too many (the count is a pass over the text)
-    rows_given = text.count("\n") if len(raw) > MAX_RECORD_ROWS else 0
+    rows_given = raw.count(b"\n") if len(raw) > MAX_RECORD_ROWS else 0
     if rows_given > MAX_RECORD_ROWS:
         raise MeasurementError(
             f"{label}: {rows_given:,} lines, more than the {MAX_RECORD_ROWS:,} rows erdesign reads "
@@ -872,7 +876,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     if fast is not None:
         columns, data = fast
         return _measurement_from_table(path, label, columns, data, None, window)
-    lines = _csv_lines(text, label)
+    lines = _csv_lines(raw.decode("utf-8-sig") if text is None else text, label)
     rows = [
         (i, r)
         for i, r in enumerate(lines, start=1)
@@ -986,20 +990,7 @@ def _read_fast(raw: bytes, label: str, require_force: bool):
     except MeasurementError:
         return None
     try:
-        if "pandas" in sys.modules:
-            # already loaded (the app): its C parser is twice as fast as numpy's; not imported for this alone
-            # (importing pandas costs ten times what it saves on a 60k-row file).  The stream starts at the data
-            # (no copy of the bytes); an empty one is an EmptyDataError, a ValueError.
-            stream = io.BytesIO(raw)
-            stream.seek(pos)
-            data = (
-                sys.modules["pandas"]
-                .read_csv(stream, header=None, dtype=float, engine="c", skip_blank_lines=True, na_filter=False)
-                .to_numpy()
-            )
-        else:
-            text = raw[pos:].decode("utf-8")
-            data = np.loadtxt(io.StringIO(text), delimiter=",", comments=None, ndmin=2, dtype=float)
+        data = _parse_table(raw, pos, len(columns))
     except (ValueError, TypeError):
         return None
     if data.shape[0] < 5 or data.shape[1] != len(columns) or not np.all(np.isfinite(data)):
@@ -1008,6 +999,36 @@ def _read_fast(raw: bytes, label: str, require_force: bool):
     if np.any(np.diff(t) <= 0):
         return None
     return columns, data
+
+
+def _parse_table(raw: bytes, pos: int, columns: int) -> np.ndarray:
+    """The numbers of a comma-separated table (``raw`` from ``pos`` on) by the fastest parser already loaded, none
+    imported for this alone (importing pyarrow or pandas costs ten times what it saves on a 60k-row file): pyarrow's
+    (loaded with pandas; one thread: 0.8 x the time of pandas' own C parser, and correctly rounded, as Python's
+    float), pandas' C parser (numpy's is four times slower).  Any irregular cell or row raises a ValueError (pyarrow's
+    ArrowInvalid is one)."""
+    stream = io.BytesIO(raw)  # no copy of the bytes
+    stream.seek(pos)
+    if "pyarrow" in sys.modules:
+        import pyarrow
+        import pyarrow.csv
+
+        table = pyarrow.csv.read_csv(
+            stream,
+            read_options=pyarrow.csv.ReadOptions(autogenerate_column_names=True, use_threads=False),
+            convert_options=pyarrow.csv.ConvertOptions(
+                column_types={f"f{i}": pyarrow.float64() for i in range(columns)}
+            ),
+        )
+        data = np.empty((table.num_rows, columns), order="F")  # columns contiguous, as pandas gives them
+        for i, column in enumerate(table.columns):
+            data[:, i] = column.to_numpy()
+        return data
+    if "pandas" in sys.modules:
+        reader = sys.modules["pandas"].read_csv
+        return reader(stream, header=None, dtype=float, engine="c", skip_blank_lines=True, na_filter=False).to_numpy()
+    text = raw[pos:].decode("utf-8")
+    return np.loadtxt(io.StringIO(text), delimiter=",", comments=None, ndmin=2, dtype=float)
 
 
 def _measurement_from_table(path: Path, label: str, columns, data: np.ndarray, line_of, window) -> Measurement:
@@ -1042,8 +1063,8 @@ def _measurement_from_table(path: Path, label: str, columns, data: np.ndarray, l
         temperature=si.get("temperature"),
         name=path.name,
         window=window,
+        units=units,
     )
-    m = replace(m, units=units)
     check_record(m)
     return m
 
