@@ -16,8 +16,9 @@ column                 unit (any pint unit of the right dimension)
 ``temperature``        optional, a temperature (degC, K, degF)
 =====================  ===========================================================================
 
-At most one control column; none means zero field.  Every problem is a :class:`MeasurementError` naming the line
-and the column.
+At most one control column; none means zero field.  Cells are separated by ',' or, when the header line has ';'
+between its cells, by ';' (a spreadsheet's "CSV" in a decimal-comma locale), whose numbers may then have decimal
+commas.  Every problem is a :class:`MeasurementError` naming the line and the column.
 
 Derivatives (:func:`derivatives`): Fourier filtering of the significant harmonics for records periodic in their
 dominant frequency (Kamath and Wereley 1997, section II, differentiated analytically), an adaptive zero-phase
@@ -769,12 +770,10 @@ def _derivatives(t, x, window: int | None, polyorder: int):
 def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool = True) -> list[tuple[str, str, Any]]:
     columns = []
     seen: dict[str, int] = {}
-    if len(cells) == 1 and ("\t" in cells[0] or ";" in cells[0]):
-        sep = "tabs" if "\t" in cells[0] else "semicolons"
+    if len(cells) == 1 and "\t" in cells[0]:  # (a ';'-separated file is made comma-separated before)
         raise MeasurementError(
-            f"{path}: line {lineno}: the columns are separated by {sep}; erdesign reads "
-            "comma-separated files (save as CSV with ',' between columns and '.' as the decimal "
-            "point)"
+            f"{path}: line {lineno}: the columns are separated by tabs; erdesign reads files with ',' or ';' "
+            "between the columns (save as CSV)"
         )
     for col, cell in enumerate(cells, start=1):
         if len(cell) > MAX_CELL_CHARS:
@@ -791,9 +790,9 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
             )
         name, unit = m[1].lower(), m[2].strip()
         where = f"{path}: line {lineno}, column {col} ({name})"
-        if "\t" in unit or ";" in unit:
+        if "\t" in unit:
             raise MeasurementError(
-                f"{where}: a tab or ';' inside the header: erdesign reads comma-separated files (',' between columns)"
+                f"{where}: a tab inside the header: erdesign reads files with ',' or ';' between the columns"
             )
         if name not in COLUMNS and name not in CONTROL_COLUMNS:
             raise MeasurementError(f"{where}: unknown column; known: {', '.join([*COLUMNS, *CONTROL_COLUMNS])}")
@@ -872,6 +871,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
             f"{label}: {rows_given:,} lines, more than the {MAX_RECORD_ROWS:,} rows erdesign reads "
             "in one record; thin or split the file"
         )
+    raw = _as_comma_separated(raw, label)
     fast = _read_fast(raw, label, require_force)
     if fast is not None:
         columns, data = fast
@@ -892,7 +892,8 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     for r, (lineno, cells) in enumerate(rows[1:]):
         if len(cells) != len(columns):
             hint = (
-                "; a decimal comma? erdesign reads '.' as the decimal point and ',' between columns"
+                "; a decimal comma? with ',' between columns the decimal mark is '.' (a file with ';' between columns "
+                "may use decimal commas)"
                 if len(cells) > len(columns) and any(re.fullmatch(r"\s*-?\d+", c) for c in cells[1:])
                 else ""
             )
@@ -954,6 +955,71 @@ def _cell_number(cell: str, where) -> float:
     raise MeasurementError(f"{where()}: {stripped[:40]!r} is not a number{hint}")
 
 
+def _header_line(raw: bytes) -> tuple[int, int, int] | None:
+    """(start, end, start of the next line) of the header, the first line that is neither blank nor a comment;
+    None if there is none."""
+    pos = 0
+    while pos < len(raw):
+        start = pos
+        end = raw.find(b"\n", pos)
+        end = len(raw) if end == -1 else end
+        k = raw.find(b"\r", pos, end)  # within the line only: a search of the whole file costs a pass over it
+        end = end if k == -1 else k
+        pos = end + (2 if raw[end : end + 2] == b"\r\n" else 1)
+        stripped = raw[start:end].strip()
+        if stripped and not stripped.startswith(b"#") and stripped.replace(b",", b"").replace(b";", b"").strip():
+            return start, end, pos
+    return None
+
+
+def _line_number(raw: bytes, offset: int) -> int:
+    """The line (from 1) that byte ``offset`` is on (lines end with LF, CRLF or CR, as the csv module counts)."""
+    return len(raw[:offset].splitlines()) + (1 if offset == 0 or raw[offset - 1 : offset] in (b"\n", b"\r") else 0)
+
+
+def _as_comma_separated(raw: bytes, label: str) -> bytes:
+    """The file with ',' between cells and '.' as the decimal mark, as the readers take it.
+
+    A header with ';' between its cells is a ';'-separated file: what a spreadsheet in a locale whose decimal mark is
+    ',' saves as "CSV" (European Excel).  Its ';' become ',' and, when its numbers have decimal commas, those become
+    '.'.  Refused as ambiguous, naming the line: a header with both ';' and ',' (which separates the columns?), and a
+    ';'-separated file whose numbers hold both ',' and '.' (a '.' there is a thousands separator or a number written
+    the other way: '1.234,5').  Every other file is returned as it is; lines keep their numbers."""
+    span = _header_line(raw)
+    if span is None or b";" not in raw[span[0] : span[1]]:
+        return raw
+    start, end, _ = span
+    if b"," in raw[start:end]:
+        raise MeasurementError(
+            f"{label}: line {_line_number(raw, start)}: both ';' and ',' between the header's cells: which one "
+            "separates the columns? use one ('time [s];displacement [mm];force [N]')"
+        )
+    body = raw[end:]
+    rows = body  # the data rows, without comment lines
+    if b"#" in body:
+        rows = b"\n".join(line for _, line in _lines_with_offsets(body) if not line.lstrip().startswith(b"#"))
+    if b"," in rows:  # decimal commas
+        if b"." in rows:
+            for offset, line in _lines_with_offsets(body):
+                if b"." in line and not line.lstrip().startswith(b"#"):
+                    cell = next(c for c in line.split(b";") if b"." in c).strip().decode("utf-8", "replace")
+                    raise MeasurementError(
+                        f"{label}: line {_line_number(raw, end + offset)}: {cell[:40]!r} in a ';'-separated file "
+                        "whose numbers have decimal commas: is the '.' a thousands separator? save the numbers "
+                        "with one decimal mark and no digit grouping"
+                    )
+        body = body.replace(b",", b".")
+    return raw[:end].replace(b";", b",") + body.replace(b";", b",")
+
+
+def _lines_with_offsets(text: bytes):
+    """(offset, line) of each line of ``text`` (LF, CRLF or CR ends)."""
+    offset = 0
+    for line in text.splitlines(keepends=True):
+        yield offset, line.rstrip(b"\r\n")
+        offset += len(line)
+
+
 def _read_fast(raw: bytes, label: str, require_force: bool):
     """(columns, data) of a well-formed file (its bytes, UTF-8 already checked) by pandas' C parser when pandas is
     loaded, else numpy's, or None to let the line-by-line reader find and name the problem (any irregular cell, row
@@ -963,24 +1029,11 @@ def _read_fast(raw: bytes, label: str, require_force: bool):
         raw = raw[len(codecs.BOM_UTF8) :]
     if b'"' in raw:
         return None
-    # the header: the first line that is neither blank nor a comment
-    pos = 0
-    header = None
-    while pos < len(raw):
-        end = raw.find(b"\n", pos)
-        end = len(raw) if end == -1 else end
-        k = raw.find(b"\r", pos, end)  # within the line only: a search of the whole file costs a pass over it
-        end = end if k == -1 else k
-        line = raw[pos:end]
-        pos = end + 1
-        if raw[end : end + 2] == b"\r\n":
-            pos += 1
-        stripped = line.strip()
-        if stripped and not stripped.startswith(b"#") and stripped.replace(b",", b"").strip():
-            header = line.decode("utf-8")
-            break
-    if header is None:
+    span = _header_line(raw)
+    if span is None:
         return None
+    start, end, pos = span
+    header = raw[start:end].decode("utf-8")
     if raw.find(b"\r", pos) != -1 or raw.find(b"#", pos) != -1:
         body = raw[pos:].replace(b"\r\n", b"\n").replace(b"\r", b"\n")
         # comment lines among the data: keep the others
