@@ -61,6 +61,7 @@ __all__ = [
     "check_against_damper",
     "COLUMNS",
     "CONTROL_COLUMNS",
+    "WARNED_AT_READ",
 ]
 
 
@@ -1162,6 +1163,10 @@ def _check_magnitude(values: np.ndarray, name: str, where: str) -> None:
             )
 
 
+#: Kinds of data finding (:data:`erdesign.data.findings.FINDING_KINDS`) that :func:`check_record` warns about when a
+#: record is read: a command that reads records and then lists their findings leaves these out (said once).
+WARNED_AT_READ = ("time_gap",)
+
 #: Temperatures [K] of any damper test (-73 to 227 degC): outside them a warning names the likely unit mistake.
 PLAUSIBLE_TEMPERATURE = (200.0, 500.0)
 
@@ -1223,7 +1228,7 @@ def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> li
         )
     from .findings import find_time_problems  # the one detector of holes in the time column
 
-    out += [f"{name}: time: {f.message} (at {f.where})" for f in find_time_problems(t) if f.kind == "time_gap"]
+    out += [f"{name}: time: {f.message} (at {f.where})" for f in find_time_problems(t) if f.kind in WARNED_AT_READ]
     T = record.temperature
     if T is not None and (float(T.min()) < PLAUSIBLE_TEMPERATURE[0] or float(T.max()) > PLAUSIBLE_TEMPERATURE[1]):
         lo, hi = PLAUSIBLE_TEMPERATURE
