@@ -99,3 +99,45 @@ def test_block_mean_fits_reject_what_the_full_fit_rejects(monkeypatch):
     assert m._periodic_derivatives(t, x, f0, sigma) is None
     monkeypatch.setattr(m, "FIT_SAMPLES", 10**9)
     assert m._periodic_derivatives(t, x, f0, sigma) is None
+
+
+@pytest.mark.parametrize("parser", ["pyarrow", "pandas", "numpy"])
+@pytest.mark.parametrize("variant", ["plain", "crlf", "comments and blank lines", "spaces", "';' and decimal commas"])
+def test_each_parser_gives_the_line_by_line_result(tmp_path, monkeypatch, parser, variant):
+    """The reader parses a well-formed file with the fastest parser already loaded (pyarrow, pandas, numpy) and
+    anything irregular line by line (forced here by quoted cells in one row): the same arrays whichever ran, to the
+    bit (17 significant digits: a parser that rounds a number wrongly shows in its last bit)."""
+    import sys
+    import warnings
+
+    pytest.importorskip(parser)
+    if parser != "pyarrow":
+        monkeypatch.delitem(sys.modules, "pyarrow", raising=False)
+    if parser == "numpy":
+        monkeypatch.delitem(sys.modules, "pandas", raising=False)
+    rng = np.random.default_rng(2)
+    rows = [
+        [f"{i / 1000:.6f}", f"{x:.17g}", f"{f:.17g}"]
+        for i, (x, f) in enumerate(zip(rng.normal(0, 5, 300), rng.normal(0, 300, 300)))
+    ]
+    sep = ";" if variant.startswith("';'") else ","
+
+    def text(quoted_row: int | None) -> str:
+        lines = ["# rig 3", sep.join(["time [s]", "displacement [mm]", "force [N]"])]
+        for i, cells in enumerate(rows):
+            cells = [c.replace(".", ",") for c in cells] if sep == ";" else cells
+            cells = [f'"{c}"' for c in cells] if i == quoted_row else cells
+            # (spaces before a quote would make it a character of the cell, as csv reads it)
+            lines.append((" " + sep + " " if variant == "spaces" and i != quoted_row else sep).join(cells))
+        if variant == "comments and blank lines":
+            lines[100:100] = ["", "# calibration changed", "   "]
+        return ("\r\n" if variant == "crlf" else "\n").join(lines) + "\n"
+
+    (tmp_path / "fast.csv").write_bytes(text(None).encode())
+    (tmp_path / "slow.csv").write_bytes(text(7).encode())
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a random walk of 0.3 s: few cycles, as intended
+        fast, slow = m.read_measurement(tmp_path / "fast.csv"), m.read_measurement(tmp_path / "slow.csv")
+    for column in ("time", "displacement", "force", "velocity"):
+        assert np.array_equal(getattr(fast, column), getattr(slow, column)), column
+    assert len(fast) == 300
