@@ -257,10 +257,17 @@ def _as_1d(values, name: str, n: int | None = None, unit: str | None = None) -> 
         raise MeasurementError(f"{name}: expected a 1-D array, got shape {arr.shape}")
     if n is not None and arr.size != n:
         raise MeasurementError(f"{name}: expected {n} samples (as many as time), got {arr.size}")
-    bad = np.flatnonzero(~np.isfinite(arr))
+    bad = np.empty(0, dtype=int) if _all_finite(arr) else np.flatnonzero(~np.isfinite(arr))
     if bad.size:
         raise MeasurementError(f"{name}: sample {bad[0]} is not finite ({arr[bad[0]]})")
     return arr
+
+
+def _all_finite(a: np.ndarray) -> bool:
+    """True when every element is finite: their sum is finite then, and only then (an infinity or NaN makes it
+    infinite or NaN), unless finite values overflow it, which the element-wise test then settles.  One pass over the
+    array instead of two (and no array of booleans)."""
+    return bool(np.isfinite(np.sum(a))) or bool(np.isfinite(a).all())
 
 
 def _as_1d_any(values, name: str) -> np.ndarray:
@@ -324,6 +331,8 @@ def _check_time(t: np.ndarray, where) -> None:
     if t.size < 5:
         raise MeasurementError(f"time: a record needs at least 5 samples, got {t.size}")
     steps = np.diff(t)
+    if steps.min() > 0:  # (NaN is refused before)
+        return
     bad = np.flatnonzero(steps <= 0)
     if bad.size:
         raise MeasurementError(
@@ -1047,7 +1056,7 @@ def _read_fast(raw: bytes, label: str, require_force: bool):
         data = _parse_table(raw, pos, len(columns))
     except (ValueError, TypeError):
         return None
-    if data.shape[0] < 5 or data.shape[1] != len(columns) or not np.all(np.isfinite(data)):
+    if data.shape[0] < 5 or data.shape[1] != len(columns) or not _all_finite(data):
         return None
     t = data[:, [c[0] for c in columns].index("time")]
     if np.any(np.diff(t) <= 0):
@@ -1133,7 +1142,7 @@ SHORTEST_TIME_STEP = 1e-18
 
 def _check_possible(values: np.ndarray, name: str, unit: str, label: str, col: int) -> None:
     where = f"{label}: column {col} ({name} [{unit}])"
-    if not np.all(np.isfinite(values)):
+    if not _all_finite(values):
         raise MeasurementError(f"{where}: a value is not finite in SI units")
     if name == "temperature" and values.size and float(values.min()) < 0.0:
         raise MeasurementError(
@@ -1147,7 +1156,7 @@ def _check_magnitude(values: np.ndarray, name: str, where: str) -> None:
     time steps below :data:`SHORTEST_TIME_STEP` (so small that differences lose every digit)."""
     limit = POSSIBLE_MAGNITUDE.get(name)
     if limit is not None and values.size:
-        peak = float(np.max(np.abs(values)))
+        peak = max(float(values.max()), -float(values.min()))  # max |values|, without an array of them
         if peak > limit:
             si = COLUMNS[name]
             raise MeasurementError(
