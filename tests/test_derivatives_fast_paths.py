@@ -141,3 +141,22 @@ def test_each_parser_gives_the_line_by_line_result(tmp_path, monkeypatch, parser
     for column in ("time", "displacement", "force", "velocity"):
         assert np.array_equal(getattr(fast, column), getattr(slow, column)), column
     assert len(fast) == 300
+
+
+def test_a_large_table_imports_pyarrow_for_its_parser(tmp_path):
+    """Without pandas, a table of IMPORT_PARSER_BYTES or more imports pyarrow (when installed) rather than take
+    numpy's parser, five times slower; a smaller one does not (the import would cost more than it saves)."""
+    import subprocess
+    import sys
+
+    pytest.importorskip("pyarrow")
+    path = tmp_path / "m.csv"
+    t = np.arange(2000) / 1000.0
+    path.write_text("time [s],displacement [m],force [N]\n" + "\n".join(f"{a},{np.sin(a)},{np.cos(a)}" for a in t))
+    code = (
+        "import sys; import erdesign.data.measurement as m; m.IMPORT_PARSER_BYTES = int(sys.argv[2]); "
+        "m.read_measurement(sys.argv[1]); print('pyarrow' in sys.modules, 'pandas' in sys.modules)"
+    )
+    for limit, imported in ((1000, "True"), (10**9, "False")):
+        out = subprocess.run([sys.executable, "-c", code, str(path), str(limit)], capture_output=True, text=True)
+        assert out.stdout.split() == [imported, "False"], out.stderr

@@ -1064,16 +1064,29 @@ def _read_fast(raw: bytes, label: str, require_force: bool):
     return columns, data
 
 
+#: Size of a table [bytes] from which pyarrow's parser is imported to read it when no faster parser than numpy's is
+#: loaded: numpy's takes 16 ms a MB (60k rows of 3 columns: 2.1 MB, 34 ms), importing pyarrow.csv 30-36 ms once,
+#: pyarrow's parse a fifth of numpy's.  From 1 MB (30k rows) on, the import costs at most twice numpy's parse of that
+#: one file (tens of ms in a command that takes seconds), breaks even at 2.5 MB, and every later file is parsed five
+#: times faster (the app, a batch).
+IMPORT_PARSER_BYTES = 2**20
+
+
 def _parse_table(raw: bytes, pos: int, columns: int) -> np.ndarray:
-    """The numbers of a comma-separated table (``raw`` from ``pos`` on) by the fastest parser already loaded, none
-    imported for this alone (importing pyarrow or pandas costs ten times what it saves on a 60k-row file): pyarrow's
-    (loaded with pandas; one thread: 0.8 x the time of pandas' own C parser, and correctly rounded, as Python's
-    float), pandas' C parser (numpy's is four times slower).  Any irregular cell or row raises a ValueError (pyarrow's
-    ArrowInvalid is one)."""
+    """The numbers of a comma-separated table (``raw`` from ``pos`` on) by the fastest parser at hand: pyarrow's
+    when it is loaded (pandas loads it) or the table is :data:`IMPORT_PARSER_BYTES` or more and it is installed (one
+    thread: 0.8 x the time of pandas' C parser, and correctly rounded, as Python's float); else pandas' C parser
+    when loaded (importing pandas costs ten times what it saves on a 60k-row file); else numpy's, five times
+    slower.  Any irregular cell or row raises a ValueError (pyarrow's ArrowInvalid is one)."""
     stream = io.BytesIO(raw)  # no copy of the bytes
     stream.seek(pos)
-    if "pyarrow" in sys.modules:
-        import pyarrow
+    pyarrow = sys.modules.get("pyarrow")
+    if pyarrow is None and len(raw) - pos >= IMPORT_PARSER_BYTES:
+        try:
+            import pyarrow
+        except ImportError:  # not installed: numpy's parser (or pandas')
+            pyarrow = None
+    if pyarrow is not None:
         import pyarrow.csv
 
         table = pyarrow.csv.read_csv(
@@ -1085,7 +1098,15 @@ def _parse_table(raw: bytes, pos: int, columns: int) -> np.ndarray:
         )
         data = np.empty((table.num_rows, columns), order="F")  # columns contiguous, as pandas gives them
         for i, column in enumerate(table.columns):
-            data[:, i] = column.to_numpy()
+            if column.null_count:
+                raise ValueError("an empty cell")  # the line-by-line reader names it
+            # the values buffer of each chunk (Arrow's layout of a float64 array: validity bitmap, values); not
+            # to_numpy(), which imports pandas (300 ms)
+            row = 0
+            for chunk in column.chunks:
+                values = np.frombuffer(chunk.buffers()[1], dtype=np.float64, count=len(chunk), offset=8 * chunk.offset)
+                data[row : row + len(chunk), i] = values
+                row += len(chunk)
         return data
     if "pandas" in sys.modules:
         reader = sys.modules["pandas"].read_csv
