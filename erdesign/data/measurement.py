@@ -364,7 +364,9 @@ def _hann(n: int) -> np.ndarray:
 def _step_spread(t: np.ndarray) -> float:
     """Largest difference of a time step from the mean step, as a fraction of the mean step."""
     dt = (t[-1] - t[0]) / (t.size - 1)
-    return float(np.max(np.abs(np.diff(t) - dt))) / dt
+    deviation = np.diff(t)
+    deviation -= dt
+    return float(np.abs(deviation, out=deviation).max()) / dt
 
 
 #: Largest :func:`_step_spread` of an evenly sampled record (written with rounded times): the steps' differences
@@ -439,10 +441,16 @@ def _noise_level(x: np.ndarray) -> float:
 
     The fourth difference of white noise has variance 70 sigma^2, while that of a signal sampled many times per
     period is negligible (X0 (omega dt)^4); the median absolute deviation makes the estimate robust to steps."""
-    d4 = np.diff(x, 4)
-    if d4.size < 5:
+    x = np.asarray(x, dtype=float)
+    if x.size < 9:
         return 0.0
-    return float(_median(np.abs(d4 - _median(d4))) / 0.6745 / math.sqrt(70.0))
+    # numpy.diff(x, 4) in two arrays instead of four (each new array of a long record is a pass over cold memory)
+    a = np.subtract(x[1:], x[:-1])
+    b = np.subtract(a[1:], a[:-1])
+    np.subtract(b[1:], b[:-1], out=a[:-2])
+    d4 = np.subtract(a[1:-2], a[:-3], out=b[:-2])
+    d4 -= _median(d4)
+    return float(_median(np.abs(d4, out=d4)) / 0.6745 / math.sqrt(70.0))
 
 
 def _median(a: np.ndarray) -> float:
@@ -607,7 +615,11 @@ def _harmonic_derivatives(t, x, f0, sigma, T, fs, limit, even):
             kept.append(k)
     # the model at every sample (phases and trend from ts[0], the first block's mean time)
     columns = A[:, 2:] if stride == 1 else _harmonic_columns(t, f, max(kept, default=0), origin=ts[0], even=True)
-    model = None if stride == 1 else c[0] + c[1] * (t - ts[0])
+    model = None  # of every sample, to check against the noise: c[0] + c[1] (t - ts[0]) + the harmonics
+    if stride > 1:
+        model = np.subtract(t, ts[0])
+        model *= c[1]
+        model += c[0]
     w = 2 * np.pi * f
     v = np.full_like(t, c[1])
     a = np.zeros_like(t)
@@ -1258,8 +1270,8 @@ def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> li
             f"{name}: time: a sampling rate of {record.sample_rate:.3g} Hz is beyond any damper test rig; "
             f"is the time column's unit [{unit('time', 's')}] right?"
         )
-    if float(np.max(np.abs(v))) > 20.0:
-        speed = float(np.max(np.abs(v)))
+    if max(float(v.max()), -float(v.min())) > 20.0:
+        speed = max(float(v.max()), -float(v.min()))
         out.append(
             f"{name}: velocity: the piston speed reaches {speed:.3g} m/s, beyond any damper test; is the unit "
             f"of the displacement [{unit('displacement', 'm')}] or time [{unit('time', 's')}] column right?"
@@ -1315,11 +1327,11 @@ def check_against_damper(record: "Measurement", damper, *, warn: bool = True) ->
 
 def _reversals(v: np.ndarray) -> int:
     """Sign changes of the velocity outside the noise band below 5 % of the peak speed (two per cycle)."""
-    peak = float(np.max(np.abs(v))) if v.size else 0.0
+    peak = max(float(v.max()), -float(v.min())) if v.size else 0.0
     if peak == 0.0:
         return 0
     s = np.sign(v[np.abs(v) > 0.05 * peak])
-    return int(np.count_nonzero(np.diff(s) != 0))
+    return int(np.count_nonzero(s[1:] != s[:-1]))
 
 
 def _factor_hint(ratio: float) -> str:
