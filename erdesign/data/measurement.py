@@ -567,7 +567,7 @@ def _harmonic_derivatives(t, x, f0, sigma, T, fs, limit, even):
     of a block of an even record is the trend line at the block's mean time plus each harmonic there times the
     Dirichlet gain D_k = sin(s theta) / (s sin theta), theta = pi k f dt, so the fit of the means gives the
     coefficients times D_k (divided out below), with the noise's variance divided by s: the same information on the
-    harmonics as a fit of every sample (tests/test_derivatives_periodicity.py: the same accuracy), at 1/s of the cost
+    harmonics as a fit of every sample (tests/test_derivatives_fast_paths.py: the same accuracy), at 1/s of the cost
     a fit.  The sum of squares of the means' residual, times s, is at most that of every sample's (the deviations
     within the blocks are left out), so it rejects only records the full fit would; the model must then leave no more
     than noise at every sample.
