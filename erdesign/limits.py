@@ -74,7 +74,7 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
         if chunk.startswith(b"PK\x03\x04"):
             advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
             raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
-        if b"\x00" in chunk:
+        if chunk.find(b"\x00", 0, _CHUNK) != -1:  # in the first chunk, whatever was read (no copy of it)
             raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
         while chunk:
             total += len(chunk)
