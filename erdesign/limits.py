@@ -58,23 +58,25 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
     """The bytes of an input file, refused with a :class:`~erdesign.errors.ErdesignError` naming the file when it
     is larger than ``limit`` or holds NUL bytes (a binary file: a spreadsheet, an archive, ``/dev/zero``).
 
-    The file is read in chunks and never past ``limit``, so an endless device or a huge file stops at once; the
-    first chunk is checked for NUL bytes before any more is read.  ``what`` says what the file should be (``"a
+    A regular file within ``limit`` is read in one piece; anything else (a pipe, a device, a larger file) in chunks
+    and never past ``limit``, so an endless device or a huge file stops at once, and its first chunk is checked for
+    NUL bytes before any more is read.  ``what`` says what the file should be (``"a
     measurement CSV file"``) and ``label`` is how the message names the file (default: the path).
     OS errors (no such file, a folder, no permission) propagate for the caller to phrase.
     """
     label = str(path) if label is None else label
     chunks, total = [], 0
     with open(path, "rb") as fh:
-        while True:
-            chunk = fh.read(_CHUNK)
-            if not chunk:
-                break
-            if not chunks and chunk.startswith(b"PK\x03\x04"):
-                advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
-                raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
-            if not chunks and b"\x00" in chunk:
-                raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
+        size = os.fstat(fh.fileno()).st_size  # 0 for a pipe or a device
+        # a regular file within the limit in one read (reading it by chunks and joining them cost 20 x more);
+        # anything else by chunks, never past the limit
+        chunk = fh.read(size + 1 if 0 < size <= limit else _CHUNK)
+        if chunk.startswith(b"PK\x03\x04"):
+            advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
+            raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
+        if chunk.find(b"\x00", 0, _CHUNK) != -1:  # in the first chunk, whatever was read (no copy of it)
+            raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
+        while chunk:
             total += len(chunk)
             if total > limit:
                 raise ErdesignError(
@@ -82,7 +84,8 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
                     "thin or split the file"
                 )
             chunks.append(chunk)
-    return b"".join(chunks)
+            chunk = fh.read(min(_CHUNK, limit + 1 - total))
+    return chunks[0] if len(chunks) == 1 else b"".join(chunks)
 
 
 def nested_too_deeply(label: str) -> str:

@@ -7,7 +7,7 @@ import click
 
 from ..damper.files import load_damper
 from ..diagnosis.diagnose import calibrate, parameters_at_bounds
-from ..data.measurement import read_for_damper
+from ..data.measurement import WARNED_AT_READ, read_for_damper
 from .diagnose import force_noise_option
 from .main import cli, emit_json, json_number
 
@@ -56,7 +56,8 @@ def fit(
     force_noise_option(force_noise)
     result = calibrate(damper, records, effects, exclude_clipped=True if exclude_clipped else None)
     for f in result.findings:
-        click.echo(f"note: {f.kind}: {f.record}: {f.message}", err=True)
+        if f.kind not in WARNED_AT_READ:  # those were warned about as the records were read
+            click.echo(f"note: {f.kind}: {f.record}: {f.message}", err=True)
     if len(result.records) > 1:
         click.echo(
             "ESR per record: "

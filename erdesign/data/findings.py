@@ -225,9 +225,7 @@ def _correlation_length(r: np.ndarray) -> float:
 
 def _dominant_period(record: Measurement) -> float:
     """Period of the displacement's largest Fourier component, [s] (the record's length if none)."""
-    from .measurement import _dominant_frequency
-
-    f = _dominant_frequency(record.time, record.displacement)
+    f = record.dominant_frequency
     return 1.0 / f if f > 0 else record.duration
 
 
@@ -792,9 +790,11 @@ def find_time_problems(time, *, record: str = "") -> list[Finding]:
         out.append(
             Finding("non_monotonic_time", msg, record, f"sample {first} (t = {t[first]:.4g} s), {bad.size} samples")
         )
-    positive = steps[steps > 0]
+    positive = steps[steps > 0] if bad.size else steps
     if positive.size == 0:
         return out
+    if float(positive.max()) <= GAP_FACTOR * float(positive.min()):
+        return out  # no step beyond GAP_FACTOR x the least, so none beyond it x the median (found without sorting)
     dt = float(np.median(positive))
     gaps = np.flatnonzero(steps > GAP_FACTOR * dt)
     if gaps.size:

@@ -14,7 +14,7 @@ from ..errors import ErdesignError
 
 __all__ = ["check_flow_args"]
 
-_POSITIVE = ("eta", "L", "d", "h", "Dp")
+_POSITIVE = ("eta", "L", "d", "h", "Dp", "K", "m")
 _NONNEGATIVE = ("tau_y", "dr")
 
 
@@ -24,9 +24,10 @@ def _first(arr: np.ndarray, bad: np.ndarray) -> float:
 
 def check_flow_args(*, annulus: bool = False, **values) -> None:
     """Raise :class:`~erdesign.errors.ErdesignError` naming the first argument outside its domain: ``eta``, ``L``,
-    ``d``, ``h``, ``Dp`` positive; ``tau_y``, ``dr`` not negative; array arguments of shapes that do not broadcast
-    together named in pairs; for an ``annulus``, ``h < d`` (the slit
-    formulas are also used in dimensionless form, with h = d = 1)."""
+    ``d``, ``h``, ``Dp``, ``K``, ``m`` positive; ``tau_y``, ``dr`` not negative; any other (a flow rate ``Q``, a
+    pressure drop ``dp``, a velocity) numbers of any sign; array arguments of shapes that do not broadcast together
+    named in pairs (the flow arrays too: a kernel given Q of 3 flows and tau_y of 4 names them, not numpy); for an
+    ``annulus``, ``h < d`` (the slit formulas are also used in dimensionless form, with h = d = 1)."""
     for name, value in values.items():
         if value is None:
             continue

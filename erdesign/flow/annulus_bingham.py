@@ -139,6 +139,7 @@ def annulus_bingham_shape(plug_fraction, h_over_d):
     ----------
     Fredrickson and Bird (1958); Bird, Stewart and Lightfoot (2002), problem 2B.7 and eq 8.3-2.
     """
+    check_flow_args(plug_fraction=plug_fraction, h_over_d=h_over_d)
     shape, _ = _shape_and_offset(plug_fraction, h_over_d)
     return shape if shape.ndim else float(shape)
 
@@ -188,7 +189,7 @@ def annulus_bingham_flow_rate(dp, tau_y, eta, L, d, h):
     ----------
     Fredrickson and Bird (1958); Makris et al. (1996), eq 6 (its thin-gap limit, printed with h^2 for h^3).
     """
-    check_flow_args(annulus=True, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
+    check_flow_args(annulus=True, dp=dp, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     dp = np.asarray(dp, dtype=float)
     dp_abs = np.abs(dp)
     dp_y = 2.0 * tau_y * L / h
@@ -269,7 +270,7 @@ def annulus_bingham_flow(Q, tau_y, eta, L, d, h):
     ----------
     Fredrickson and Bird (1958); Makris et al. (1996), eq 7 (thin-gap limit, printed with h^2 for h^3).
     """
-    check_flow_args(annulus=True, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
+    check_flow_args(annulus=True, Q=Q, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     Q, tau_y, eta, L, d, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (Q, tau_y, eta, L, d, h)))
     eps = h / d
     Q_abs = np.abs(Q)
@@ -365,7 +366,7 @@ def annulus_bingham_velocity(r, dp, tau_y, eta, L, d, h):
     ----------
     Fredrickson and Bird (1958); Bird, Stewart and Lightfoot (2002), problem 2B.7.
     """
-    check_flow_args(annulus=True, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
+    check_flow_args(annulus=True, r=r, dp=dp, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     r, dp, tau_y, eta, L, d, h = np.broadcast_arrays(
         *(np.asarray(a, dtype=float) for a in (r, dp, tau_y, eta, L, d, h))
     )
@@ -416,6 +417,7 @@ def thin_gap_error_bingham(h_over_d, bingham_number):
     ----------
     Fredrickson and Bird (1958) for the exact annulus; Makris et al. (1996), eqs 5-7 for the thin gap.
     """
+    check_flow_args(h_over_d=h_over_d, bingham_number=bingham_number)
     eps, bi = np.broadcast_arrays(np.asarray(h_over_d, dtype=float), np.asarray(bingham_number, dtype=float))
     # Unit mean velocity, viscosity, length and diameter; tau_y from Bi (infinite Bi is a blocked gap: Q = 0).
     blocked = np.isinf(bi)

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._checks import check_flow_args
+
 __all__ = ["piston_area"]
 
 
@@ -28,4 +30,5 @@ def piston_area(Dp, dr):
     >>> round(piston_area(0.0334, 0.01125) * 1e4, 4)   # cm^2, Makris et al. (1996)
     7.7676
     """
+    check_flow_args(Dp=Dp, dr=dr)
     return np.pi / 4.0 * (Dp**2 - dr**2)

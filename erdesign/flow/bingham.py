@@ -119,7 +119,7 @@ def bingham_number(Q, tau_y, eta, d, h):
         Bi [-]; 0 for a Newtonian fluid, infinite for a blocked gap (Q = 0).  It relates to the ratio used in
         :func:`bingham_pressure_drop` by :math:`\Delta p_N / \Delta p_y = 6/\mathrm{Bi}`.
     """
-    check_flow_args(tau_y=tau_y, eta=eta, d=d, h=h)
+    check_flow_args(Q=Q, tau_y=tau_y, eta=eta, d=d, h=h)
     with np.errstate(divide="ignore"):
         return tau_y * h * np.pi * d * h / (eta * np.abs(Q))
 
@@ -162,7 +162,7 @@ def bingham_flow_rate(dp, tau_y, eta, L, d, h):
     ----------
     Makris et al., eq 6 (printed with h^2; h^3 is dimensionally right).  Phillips (1969) for the derivation.
     """
-    check_flow_args(tau_y=tau_y, eta=eta, L=L, d=d, h=h)
+    check_flow_args(dp=dp, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     dp_abs = np.abs(dp)
     dp_y = yield_pressure_drop(tau_y, L, h)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -272,7 +272,7 @@ def bingham_slit_flow(Q, tau_y, eta, L, d, h):
 def _slit_flow(Q, tau_y, eta, L, d, h, plug):
     """:func:`bingham_slit_flow`; with ``plug=False`` the compiled loop skips writing the plug fraction (None),
     which :func:`bingham_pressure_drop` does not need."""
-    check_flow_args(tau_y=tau_y, eta=eta, L=L, d=d, h=h)
+    check_flow_args(Q=Q, tau_y=tau_y, eta=eta, L=L, d=d, h=h)
     if np.broadcast(Q, tau_y, eta, L, d, h).size >= COMPILED_MIN_SIZE:
         # numba, imported here: small calls (one velocity) do not pay for it
         from . import _compiled

@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._checks import check_flow_args
+
 __all__ = ["herschel_bulkley_slit_flow_rate", "herschel_bulkley_pressure_drop"]
 
 
@@ -59,6 +61,13 @@ def herschel_bulkley_slit_flow_rate(dp, tau_y, K, m, L, d, h):
     >>> round(float(q1 / bingham_flow_rate(5e5, 1800.0, 13.0, 0.0546, 0.0143, 0.0008)), 12)
     1.0
     """
+    check_flow_args(dp=dp, tau_y=tau_y, K=K, m=m, L=L, d=d, h=h)
+    return _slit_flow_rate(dp, tau_y, K, m, L, d, h)
+
+
+def _slit_flow_rate(dp, tau_y, K, m, L, d, h):
+    """:func:`herschel_bulkley_slit_flow_rate` without the checks (called in the root finding of
+    :func:`herschel_bulkley_pressure_drop`, whose arguments are checked once)."""
     p = 1.0 / m
     H = 0.5 * h
     tau_w = np.abs(dp) * h / (2.0 * L)
@@ -102,6 +111,7 @@ def herschel_bulkley_pressure_drop(Q, tau_y, K, m, L, d, h):
     # imported here: scipy.optimize doubles the start-up time of every command that imports erdesign.flow
     from scipy.optimize.elementwise import bracket_root, find_root
 
+    check_flow_args(Q=Q, tau_y=tau_y, K=K, m=m, L=L, d=d, h=h)
     Q = np.asarray(Q, dtype=float)
     tau_y, K = np.broadcast_arrays(np.asarray(tau_y, dtype=float) + 0 * Q, np.asarray(K, dtype=float) + 0 * Q)
     Qa = np.abs(Q)
@@ -116,7 +126,7 @@ def herschel_bulkley_pressure_drop(Q, tau_y, K, m, L, d, h):
     x0 = np.log(np.maximum(dp_y + dp_pl, floor * (1 + 1e-12)) + 1e-300)
 
     def f(logdp, Qa, tau_y, K):
-        return herschel_bulkley_slit_flow_rate(np.exp(logdp), tau_y, K, m, L, d, h) - Qa
+        return _slit_flow_rate(np.exp(logdp), tau_y, K, m, L, d, h) - Qa
 
     flowing = Qa > 0
     out = np.array(dp_y, dtype=float)

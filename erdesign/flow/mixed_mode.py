@@ -56,6 +56,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..errors import ErdesignError
+from ._checks import check_flow_args
 from .areas import piston_area
 
 __all__ = [
@@ -164,10 +165,8 @@ def _check_positive(**values):
 
 def _flat_inputs(U, q, tau_y, eta, h):
     """Checked inputs broadcast to one shape: (shape, five contiguous 1-D float arrays) for the compiled loops."""
+    check_flow_args(U=U, q=q, tau_y=tau_y, eta=eta, h=h)
     U, q, tau_y, eta, h = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (U, q, tau_y, eta, h)))
-    if np.any(tau_y < 0.0):
-        raise ErdesignError(f"tau_y: must be >= 0, got {tau_y!r}")
-    _check_positive(eta=eta, h=h)
     return U.shape, [np.array(a, order="C").ravel() for a in (U, q, tau_y, eta, h)]  # copies, not broadcast views
 
 
@@ -287,6 +286,7 @@ def couette_poiseuille_bingham_velocity(y, U, q, tau_y, eta, h):
     ----------
     As :func:`couette_poiseuille_bingham`.
     """
+    check_flow_args(y=y, U=U, q=q, h=h)  # y against the others (their own checks follow)
     shape, flat = _flat_inputs(U, q, tau_y, eta, h)
     scale, G, sign, *offsets = _compiled().mixed_gap_state(*flat, np.empty((7, flat[0].size))).reshape((7,) + shape)
     Y = np.asarray(y, dtype=float) / np.asarray(h, dtype=float)
@@ -350,6 +350,7 @@ def mixed_mode_damper_force(v, tau_y, eta, L, Dp, dr, h):
     the relative motion between the electrodes and the pressure drag force"; derivation in
     docs/theory/mixed_mode.md.
     """
+    check_flow_args(v=v, tau_y=tau_y, eta=eta, L=L, Dp=Dp, dr=dr, h=h)
     Ap = piston_area(Dp, dr)
     _check_positive(Ap=Ap)
     b = np.pi * (Dp + h)
@@ -408,4 +409,5 @@ def mixed_mode_yield_force(tau_y, L, Dp, dr, h):
     Kamath and Wereley, section II (pressure drag plus shear drag); their Fig. 4 reads an idealised yield force
     from the measured force-velocity loops (about 50 N at 3 kV/mm, seal friction included).
     """
+    check_flow_args(tau_y=tau_y, L=L, Dp=Dp, dr=dr, h=h)
     return tau_y * (2.0 * L * piston_area(Dp, dr) / h + np.pi * Dp * L)

@@ -66,7 +66,7 @@ def slit_pressure_drop(Q, eta, L, d, h):
     ----------
     Makris, Burton, Hill and Jordan, ER damper with annular ducts for seismic protection applications, eq 4.
     """
-    check_flow_args(eta=eta, L=L, d=d, h=h)
+    check_flow_args(Q=Q, eta=eta, L=L, d=d, h=h)
     return 12.0 * eta * L * Q / (np.pi * d * h**3)
 
 
@@ -76,7 +76,7 @@ def slit_flow_rate(dp, eta, L, d, h):
     The inverse of :func:`slit_pressure_drop`: :math:`Q = \pi d h^3 \Delta p / (12 \eta L)`.
     Parameters as in :func:`slit_pressure_drop`, with ``dp`` the pressure drop [Pa].
     """
-    check_flow_args(eta=eta, L=L, d=d, h=h)
+    check_flow_args(dp=dp, eta=eta, L=L, d=d, h=h)
     return np.pi * d * h**3 * dp / (12.0 * eta * L)
 
 

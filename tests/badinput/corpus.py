@@ -148,7 +148,7 @@ MEASUREMENT_CASES = [
         "error",
     ),
     ("tab separated", record(sep="\t"), "tabs", "error"),
-    ("semicolon separated", record(sep=";"), "semicolons", "error"),
+    ("';' and ',' in the header", GOOD_RECORD.replace("time [s],", "time [s];", 1), "both ';' and ','", "error"),
     ("empty file", "", "empty file", "error"),
     ("header only", "time [s],displacement [mm],force [N]\n", "data rows", "error"),
     ("four rows", "\n".join(_lines[:5]) + "\n", "at least 5", "error"),

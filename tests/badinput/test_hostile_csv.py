@@ -45,6 +45,11 @@ def _refused(path, *needles):
 
 
 # ------------------------------------------------------------------------------------------ read as meant
+def _semicolon_export(text: str) -> str:
+    """The record as a spreadsheet in a decimal-comma locale saves "CSV": ';' between cells, ',' as decimal mark."""
+    return text.replace(",", ";").replace(".", ",")
+
+
 def _same_as_good(path):
     with warnings.catch_warnings():
         warnings.simplefilter("error", PlausibilityWarning)
@@ -66,6 +71,13 @@ def _same_as_good(path):
         ("blank lines", lambda text: text.replace("\n", "\n\n", 20)),
         ("spaces around cells", lambda text: text.replace(",", " , ")),
         ("unicode minus in cells", lambda text: text.replace("-", "\u2212")),
+        ("';' export with decimal commas (European Excel 'CSV')", _semicolon_export),
+        ("';' export, Excel's BOM and CRLF", lambda text: "\ufeff" + _semicolon_export(text).replace("\n", "\r\n")),
+        ("';' export with '.' decimals", lambda text: text.replace(",", ";")),
+        (
+            "';' export with decimal commas and comment lines holding '.' and ','",
+            lambda text: "# exported 26.11.2026, rig 3\n" + _semicolon_export(text),
+        ),
         (
             "quoted cells",
             lambda text: (
@@ -91,7 +103,20 @@ def test_header_units_in_other_forms(tmp_path):
 # ------------------------------------------------------------------------------------------ refused, one line each
 CASES = [
     # (id, content, texts the message must hold)
-    ("semicolon export (Excel, decimal comma)", record(sep=";").replace(".", ","), ["line 1", "semicolons"]),
+    (
+        "';' and ',' in the header",
+        GOOD_RECORD.replace("time [s],", "time [s];", 1),
+        ["line 1", "both ';' and ','", "which one separates the columns"],
+    ),
+    (
+        "';' export with decimal commas and a '.' (a thousands separator?)",
+        "\n".join(
+            line if not line.startswith("0,02;") else "0,02;1.234,5;100"
+            for line in _semicolon_export(GOOD_RECORD).splitlines()
+        )
+        + "\n",
+        ["line 12", "'1.234,5'", "thousands separator"],
+    ),
     ("decimal comma in a comma file", GOOD_RECORD.replace("\n0.02,", "\n0,02,", 1), ["line 12", "decimal comma"]),
     (
         "quoted decimal comma",
