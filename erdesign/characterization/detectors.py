@@ -5,6 +5,13 @@ the ESR (eq 7) of the linear fit of its diagram by more than a threshold when it
 drop-one test: the others cannot stand in for it).  Passive characteristics are judged on the samples at the
 passive control (the passive FV and FD diagrams), the semi-active ones on the semi-active force of eq 1 at the other
 samples (the SA FV and FM diagrams).  :data:`CHARACTERISTICS` is the registry; :func:`detect` runs it.
+
+Two rows go beyond the paper's Table 2, each where its own damper showed the opposite ("the average force gain ...
+has a linear pattern"; "in the post-yield region the force is almost independent of the piston velocity"):
+``nonlinear_gain`` (the FM diagram is a power of the control, as an ER fluid's yield stress goes as E^n with
+n = 1.2-2.5, Butz and von Stryk 2002: the customized model's manipulation becomes V = u^n) and
+``speed_dependent_force`` (the semi-active force keeps growing with speed, as a plastic valve's does while its plug
+thins: carried by the one term of eq 4 that varies with speed, the saturation f_pre-y,ż,V of eq 5d).
 """
 
 from __future__ import annotations
@@ -75,9 +82,12 @@ class Characteristic:
     threshold_scale: float = 1.0
     """Its threshold over the common one (:data:`THRESHOLD`, 0.001: a term that carries about 3 % of the RMS force);
     0.5 for asymmetry, whose even part of relative amplitude e adds an ESR of about e^2 (0.0005: about 2 %); 3 for
-    the pre-yield zone, because a velocity derived from a sampled displacement rounds an ideal plastic step over a
-    few samples (on truth-rig records of a Bingham valve without pre-yield elasticity, 250 Hz, this alone reads as
-    0.002); 2 for hysteresis, whose columns live at the reversals, where a spring and a mass act at their largest:
+    the steep pre-yield zone, which is read without the wide speed columns and so also takes the onset of a plastic
+    valve's rise with speed (square-root-like at low flow) and the rounding of its step by a velocity derived from
+    sampled displacement: on truth-rig records of the Bingham valve without pre-yield elasticity (E2, E5) it reads
+    0.0014 with the exact velocity (the same at 1 kHz) and 0.0021 with the derived one at 250 Hz, against
+    0.006-0.008 with pre-yield elasticity.  The rise with speed itself is ``speed_dependent_force``, at the common
+    threshold; 2 for hysteresis, whose columns live at the reversals, where a spring and a mass act at their largest:
     what their linear columns miss of them leaks into the hysteresis columns (up to 0.001 on closed-form records
     with stiffness, mass and friction and no hysteresis)."""
 
@@ -301,7 +311,9 @@ def _judge(c: Characteristic, columns, F, F_D, groups, V, Z, threshold, diagram_
     e_with, e_without = full.esr(F_D), without.esr(F_D)
     delta = e_without - e_with
     found = bool(delta > threshold)
-    value = c.value(full, V, Z) + (f": it grows as the control to the power n = {n:.3g} (linear: 1)" if c.exponent else "")
+    value = c.value(full, V, Z) + (
+        f": it grows as the control to the power n = {n:.3g} (linear: 1)" if c.exponent else ""
+    )
     evidence = (
         f"{'found' if found else 'not found'} in the {diagram_text}: {value}; without the "
         f"term the ESR of the fit rises from {e_with:.4f} to {e_without:.4f} (+{delta:.4f}, threshold "
