@@ -399,7 +399,7 @@ def test_nonlinear_gain_reads_the_exponent():
     power = _found(_icps(exponent=1.5))
     f = power["nonlinear_gain"]
     assert f.found and f.value == pytest.approx(1.5, abs=0.03), f.evidence
-    assert "power n = 1.5" in f.evidence and "FM diagram" in f.evidence
+    assert "n = 1.5" in f.evidence and "FM diagram" in f.evidence
     from erdesign.characterization.detectors import control_exponent
 
     assert control_exponent(list(power.values())) == f.value and control_exponent(list(linear.values())) == 1.0

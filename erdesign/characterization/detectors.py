@@ -149,7 +149,7 @@ def _s(fit: LinearFit, V: float, Z: float) -> str:
 
 
 def _n(fit: LinearFit, V: float, Z: float) -> str:
-    return "the force gain is not linear in the control (FM diagram)"
+    return "the mean force gain fitted as a power of the control"
 
 
 #: The registry: name -> characteristic (Vivas-López et al. Table 2).
@@ -311,9 +311,7 @@ def _judge(c: Characteristic, columns, F, F_D, groups, V, Z, threshold, diagram_
     e_with, e_without = full.esr(F_D), without.esr(F_D)
     delta = e_without - e_with
     found = bool(delta > threshold)
-    value = c.value(full, V, Z) + (
-        f": it grows as the control to the power n = {n:.3g} (linear: 1)" if c.exponent else ""
-    )
+    value = c.value(full, V, Z) + (f", n = {n:.3g} (a straight line: n = 1)" if c.exponent else "")
     evidence = (
         f"{'found' if found else 'not found'} in the {diagram_text}: {value}; without the "
         f"term the ESR of the fit rises from {e_with:.4f} to {e_without:.4f} (+{delta:.4f}, threshold "
@@ -371,10 +369,10 @@ def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Find
     readable = controlled.sum() >= MIN_SAMPLES and passive_ok
     n = _best_exponent(sa, sa.F - F_P[controlled], V, Z) if observable and readable else 1.0
     sa_linear = semiactive_features(sa, V, Z)
-    gain = next((c for c in CHARACTERISTICS.values() if c.exponent), None)
-    if gain is not None and observable and readable:
+    exponent_row = next((c for c in CHARACTERISTICS.values() if c.exponent), None)
+    if exponent_row is not None and observable and readable:
         nonlinear = _judge(
-            gain,
+            exponent_row,
             semiactive_features(sa, V, Z, n),
             sa.F - F_P[controlled],
             sa.F,
