@@ -110,6 +110,7 @@ def render() -> None:
     st.subheader("Customized model")
     st.write(
         f"Terms: {', '.join(m['terms'])}; {'asymmetric' if m['asymmetric'] else 'symmetric'} coefficients; "
+        f"manipulation V = u^{m['control_exponent']:.3g}; "
         f"{m['parameter_count']} parameters, identified on {m['identified_on']} (ESR {m['esr']:.4f})."
     )
     st.dataframe(

@@ -5,6 +5,13 @@ the ESR (eq 7) of the linear fit of its diagram by more than a threshold when it
 drop-one test: the others cannot stand in for it).  Passive characteristics are judged on the samples at the
 passive control (the passive FV and FD diagrams), the semi-active ones on the semi-active force of eq 1 at the other
 samples (the SA FV and FM diagrams).  :data:`CHARACTERISTICS` is the registry; :func:`detect` runs it.
+
+Two rows go beyond the paper's Table 2, each where its own damper showed the opposite ("the average force gain ...
+has a linear pattern"; "in the post-yield region the force is almost independent of the piston velocity"):
+``nonlinear_gain`` (the FM diagram is a power of the control, as an ER fluid's yield stress goes as E^n with
+n = 1.2-2.5, Butz and von Stryk 2002: the customized model's manipulation becomes V = u^n) and
+``speed_dependent_force`` (the semi-active force keeps growing with speed, as a plastic valve's does while its plug
+thins: carried by the one term of eq 4 that varies with speed, the saturation f_pre-y,ż,V of eq 5d).
 """
 
 from __future__ import annotations
@@ -13,6 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 from .split import (
     PASSIVE_GROUPS,
@@ -25,12 +33,24 @@ from .split import (
     semiactive_features,
 )
 
-__all__ = ["CHARACTERISTICS", "MIN_SAMPLES", "THRESHOLD", "Characteristic", "Finding", "detect"]
+__all__ = [
+    "CHARACTERISTICS",
+    "EXPONENT_RANGE",
+    "MIN_SAMPLES",
+    "THRESHOLD",
+    "Characteristic",
+    "Finding",
+    "control_exponent",
+    "detect",
+]
 
 #: Rise of the ESR (a fraction of the force variance) that a characteristic's group must account for to be found.
 THRESHOLD = 0.001
 #: Fewest samples a diagram needs to be read.
 MIN_SAMPLES = 50
+#: Range searched for the exponent n of a force gain that grows as the control to the power n (FM diagram): ER
+#: yield stress grows as E^n with n = 1.2-2.5 (Butz and von Stryk 2002, Table 1); a saturating MR coil below 1.
+EXPONENT_RANGE = (0.25, 4.0)
 
 
 @dataclass(frozen=True)
@@ -62,11 +82,20 @@ class Characteristic:
     threshold_scale: float = 1.0
     """Its threshold over the common one (:data:`THRESHOLD`, 0.001: a term that carries about 3 % of the RMS force);
     0.5 for asymmetry, whose even part of relative amplitude e adds an ESR of about e^2 (0.0005: about 2 %); 3 for
-    the pre-yield zone, because a velocity derived from a sampled displacement rounds an ideal plastic step over a
-    few samples (on truth-rig records of a Bingham valve without pre-yield elasticity, 250 Hz, this alone reads as
-    0.002); 2 for hysteresis, whose columns live at the reversals, where a spring and a mass act at their largest:
+    the steep pre-yield zone, which is read without the wide speed columns and so also takes the onset of a plastic
+    valve's rise with speed (square-root-like at low flow) and the rounding of its step by a velocity derived from
+    sampled displacement: on truth-rig records of the Bingham valve without pre-yield elasticity (E2, E5) it reads
+    0.0014 with the exact velocity (the same at 1 kHz) and 0.0021 with the derived one at 250 Hz, against
+    0.006-0.008 with pre-yield elasticity.  The rise with speed itself is ``speed_dependent_force``, at the common
+    threshold; 2 for hysteresis, whose columns live at the reversals, where a spring and a mass act at their largest:
     what their linear columns miss of them leaks into the hysteresis columns (up to 0.001 on closed-form records
     with stiffness, mass and friction and no hysteresis)."""
+
+    ignores: tuple[str, ...] = ()
+    """Groups left out of both of its fits: the dictionary it is read on is the others."""
+    exponent: bool = False
+    """Judged not by leaving out a group but by fixing the exponent of the force gain at 1 (a linear FM diagram)
+    in the fit with every group; found, its exponent becomes the customized model's control exponent."""
 
     @property
     def left_out(self) -> tuple[str, ...]:
@@ -113,6 +142,14 @@ def _g(fit: LinearFit, V: float, Z: float) -> str:
 def _p(fit: LinearFit, V: float, Z: float) -> str:
     cf = fit.coefficients["preyield"]
     return f"a force that grows with speed before it saturates: {float(np.sum(cf[:-1])):.4g} N over the control span"
+
+
+def _s(fit: LinearFit, V: float, Z: float) -> str:
+    return "the force the control adds changes with the speed across the diagram, not only at its sign"
+
+
+def _n(fit: LinearFit, V: float, Z: float) -> str:
+    return "the mean force gain fitted as a power of the control"
 
 
 #: The registry: name -> characteristic (Vivas-López et al. Table 2).
@@ -172,6 +209,18 @@ CHARACTERISTICS: dict[str, Characteristic] = {
             SEMIACTIVE_GROUPS,
         ),
         Characteristic(
+            "nonlinear_gain",
+            "Force gain not linear in the control",
+            "SA FM",
+            "V^n in c_SA V (Butz and von Stryk: tau_y ~ E^n)",
+            (),
+            "semiactive",
+            "gain",
+            _n,
+            (),
+            exponent=True,
+        ),
+        Characteristic(
             "preyield",
             "Pre-yield zone",
             "SA FV",
@@ -183,6 +232,18 @@ CHARACTERISTICS: dict[str, Characteristic] = {
             (),
             False,
             3.0,
+            ignores=("speed",),
+        ),
+        Characteristic(
+            "speed_dependent_force",
+            "Semi-active force growing with speed",
+            "SA FV",
+            "f_pre-y,ż,V (a wide saturation)",
+            ("preyield",),
+            "semiactive",
+            "speed",
+            _s,
+            ("preyield", "speed"),
         ),
         Characteristic(
             "asymmetry_semiactive",
@@ -213,6 +274,8 @@ class Finding:
     esr_with: float | None
     esr_without: float | None
     threshold: float
+    value: float | None = None
+    """The number the customized model takes from it (the control exponent n of ``nonlinear_gain``), else None."""
 
     @property
     def delta_esr(self) -> float | None:
@@ -231,22 +294,50 @@ class Finding:
             "esr_without": self.esr_without,
             "delta_esr": self.delta_esr,
             "threshold": self.threshold,
+            "value": self.value,
         }
 
 
-def _judge(c: Characteristic, columns, F, F_D, groups, V, Z, threshold, diagram_text) -> Finding:
+def _judge(c: Characteristic, columns, F, F_D, groups, V, Z, threshold, diagram_text, linear=None, n=1.0) -> Finding:
+    """The drop-one test of ``c``: the fit of ``F`` on ``groups`` against the fit without ``c``'s groups (or, for the
+    exponent of the force gain, against the fit on the ``linear`` columns: exponent 1); ESRs over ``F_D``."""
     threshold = threshold * c.threshold_scale
+    groups = [g for g in groups if g not in c.ignores]
     full = fit_groups(columns, F, groups)
-    without = fit_groups(columns, F, [g for g in groups if g not in c.left_out])
+    if c.exponent:
+        without = fit_groups(linear, F, groups)
+    else:
+        without = fit_groups(columns, F, [g for g in groups if g not in c.left_out])
     e_with, e_without = full.esr(F_D), without.esr(F_D)
     delta = e_without - e_with
     found = bool(delta > threshold)
+    value = c.value(full, V, Z) + (f", n = {n:.3g} (a straight line: n = 1)" if c.exponent else "")
     evidence = (
-        f"{'found' if found else 'not found'} in the {diagram_text}: {c.value(full, V, Z)}; without the "
+        f"{'found' if found else 'not found'} in the {diagram_text}: {value}; without the "
         f"term the ESR of the fit rises from {e_with:.4f} to {e_without:.4f} (+{delta:.4f}, threshold "
         f"+{threshold:g})"
     )
-    return Finding(c, found, evidence, e_with, e_without, threshold)
+    return Finding(c, found, evidence, e_with, e_without, threshold, n if c.exponent else None)
+
+
+def _best_exponent(sa: Samples, F, V, Z) -> float:
+    """The exponent n of the force gain w = (u^n - u_p^n) / (u_max^n - u_p^n) that fits the semi-active force ``F``
+    best with every semi-active group (a one-dimensional least squares over :data:`EXPONENT_RANGE`); 1 when the
+    control is negative or takes fewer than three levels (two levels, as PRBS, cannot tell a curve from a line)."""
+    if sa.u_passive is None or sa.u_passive < 0 or np.unique(np.round(sa.du, 6)).size < 3:
+        return 1.0
+
+    def rss(n):
+        return fit_groups(semiactive_features(sa, V, Z, n), F, SEMIACTIVE_GROUPS).rss
+
+    lo, hi = np.log(EXPONENT_RANGE[0]), np.log(EXPONENT_RANGE[1])
+    best = minimize_scalar(lambda q: rss(np.exp(q)), bounds=(lo, hi), method="bounded", options={"xatol": 1e-3})
+    return float(np.exp(best.x))
+
+
+def control_exponent(findings) -> float:
+    """The control exponent of the customized model: that of a found ``nonlinear_gain``, else 1 (linear)."""
+    return next((f.value for f in findings if f.found and f.characteristic.exponent), 1.0)
 
 
 def _unobservable(c: Characteristic, why: str, threshold: float) -> Finding:
@@ -255,7 +346,10 @@ def _unobservable(c: Characteristic, why: str, threshold: float) -> Finding:
 
 def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Finding], np.ndarray]:
     """Every characteristic of :data:`CHARACTERISTICS` judged on the pooled ``samples``, and the passive force
-    :math:`F_P` [N] at every sample (eq 1: the semi-active force is ``samples.F - F_P``)."""
+    :math:`F_P` [N] at every sample (eq 1: the semi-active force is ``samples.F - F_P``).
+
+    The exponent of the force gain is read first (``nonlinear_gain``, FM diagram); the other semi-active
+    characteristics are judged with the gain it finds (exponent 1 when it is not found)."""
     V, Z = robust_peak(samples.v), robust_peak(samples.z)
     passive = samples.passive
     ps = samples.select(passive)
@@ -271,7 +365,28 @@ def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Find
         passive_ok = True
     controlled = ~passive
     sa = samples.select(controlled)
-    columns_damper = {**columns_all, **semiactive_features(samples, V, Z)}
+    observable = samples.u_passive is not None and samples.u_span > 0
+    readable = controlled.sum() >= MIN_SAMPLES and passive_ok
+    n = _best_exponent(sa, sa.F - F_P[controlled], V, Z) if observable and readable else 1.0
+    sa_linear = semiactive_features(sa, V, Z)
+    exponent_row = next((c for c in CHARACTERISTICS.values() if c.exponent), None)
+    if exponent_row is not None and observable and readable:
+        nonlinear = _judge(
+            exponent_row,
+            semiactive_features(sa, V, Z, n),
+            sa.F - F_P[controlled],
+            sa.F,
+            SEMIACTIVE_GROUPS,
+            V,
+            Z,
+            threshold,
+            "semi-active FM diagram",
+            sa_linear,
+            n,
+        )
+        n = n if nonlinear.found else 1.0
+    sa_columns = semiactive_features(sa, V, Z, n)
+    columns_damper = {**columns_all, **semiactive_features(samples, V, Z, n)}
     for c in CHARACTERISTICS.values():
         if c.stage == "damper":
             findings.append(
@@ -301,10 +416,10 @@ def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Find
                 )
             )
         else:
-            if samples.u_passive is None or samples.u_span == 0:
+            if not observable:
                 findings.append(_unobservable(c, "the control never varies (no semi-active force to read)", threshold))
                 continue
-            if controlled.sum() < MIN_SAMPLES or not passive_ok:
+            if not readable:
                 findings.append(
                     _unobservable(
                         c,
@@ -314,11 +429,14 @@ def detect(samples: Samples, *, threshold: float = THRESHOLD) -> tuple[list[Find
                     )
                 )
                 continue
+            if c.exponent:
+                findings.append(nonlinear)
+                continue
             # the semi-active fit explains F_SA (eq 1); its ESR is over the damper force F_D (eq 7)
             findings.append(
                 _judge(
                     c,
-                    semiactive_features(sa, V, Z),
+                    sa_columns,
                     sa.F - F_P[controlled],
                     sa.F,
                     SEMIACTIVE_GROUPS,

@@ -24,7 +24,7 @@ from ..errors import ErdesignError
 from ..identification.identify import CrossValidation, cross_validation, identify
 from ..models.registry import get_model
 from ..models.semiactive import TERMS, SemiactiveCustomized
-from .detectors import THRESHOLD, Finding, detect
+from .detectors import THRESHOLD, Finding, control_exponent, detect
 from .split import Samples, robust_peak
 
 __all__ = [
@@ -107,6 +107,8 @@ class Characterization:
     terms, asymmetric, scales
         The customized model's terms, whether its coefficients differ in extension and compression, and the peak
         force, speed and stroke of the records that bound its parameters.
+    control_exponent : float
+        The exponent n of its manipulation V = u^n (the FM diagram's; 1 when the force gain is linear).
     customized, eyring
         Cross-validation tables (Table 4) of the customized and of the Eyring-plastic model (None with one record).
     fits : dict
@@ -127,6 +129,7 @@ class Characterization:
     identified_on: int = 0
     characterized: list = field(default_factory=list)
     """The records the characteristics were read from (the paper's E1; by default the records themselves)."""
+    control_exponent: float = 1.0
 
     @property
     def read_from(self) -> list:
@@ -134,7 +137,7 @@ class Characterization:
 
     @property
     def model(self) -> SemiactiveCustomized:
-        return SemiactiveCustomized(self.terms, self.asymmetric, self.scales)
+        return SemiactiveCustomized(self.terms, self.asymmetric, self.scales, self.control_exponent)
 
     def comparison(self) -> dict:
         """The customized model against the Eyring-plastic model.
@@ -231,6 +234,7 @@ class Characterization:
                 "model": {
                     "terms": list(self.terms),
                     "asymmetric": self.asymmetric,
+                    "control_exponent": self.control_exponent,
                     "parameter_count": len(model.parameters),
                     "model_terms": [f.characteristic.model_term for f in self.findings if f.found],
                     "identified_on": self.records[self.identified_on].name,
@@ -308,6 +312,7 @@ def characterize(
     samples = Samples.pool(read_from)
     findings, F_P = detect(samples, threshold=threshold)
     terms, asymmetric = customized_terms(findings)
+    exponent = control_exponent(findings)
     options = {"starts": 1, **dict(identify_options or {})}
 
     def every(name):
@@ -319,7 +324,7 @@ def characterize(
         "stroke": robust_peak(every("displacement")),
     }
     factories = {
-        "customized": partial(SemiactiveCustomized, terms, asymmetric, scales),
+        "customized": partial(SemiactiveCustomized, terms, asymmetric, scales, exponent),
         "eyring_plastic": partial(get_model, "eyring_plastic"),
     }
     tables = {name: cross_validation(f, records, executor=executor, **options) for name, f in factories.items()}
@@ -344,6 +349,7 @@ def characterize(
         fits,
         best,
         list(characterize_on),
+        exponent,
     )
 
 

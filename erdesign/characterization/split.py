@@ -5,8 +5,8 @@ The passive force :math:`F_P` is what the damper gives at its lowest control (th
 cycle): a linear least-squares fit, on the samples at that control, over a dictionary of features of the motion
 (:func:`passive_features`: an offset, viscous, stiffness, friction, hysteresis, inertia and asymmetry groups, each
 the columns a term of the paper's Table 2 can produce), evaluated at every sample.  The semi-active force is the
-rest (eq 1); its own dictionary (:func:`semiactive_features`) holds the force gain of the control and the pre-yield
-zone.  Each group is a set of fixed columns (saturations :math:`S(s) = s/(1+|s|)` at a few speed scales, as eqs 5a-5e
+rest (eq 1); its own dictionary (:func:`semiactive_features`) holds the force gain of the control, the pre-yield
+zone and the rise of the force with the speed.  Each group is a set of fixed columns (saturations :math:`S(s) = s/(1+|s|)` at a few speed scales, as eqs 5a-5e
 use), so every fit is one linear solve and a characteristic is judged by what its group adds (drop-one, in the
 spirit of sparse regression over a library of candidate terms).
 """
@@ -34,6 +34,10 @@ __all__ = [
 #: Speed scales of the saturating columns, as fractions of the record's peak speed: friction is a step at v = 0
 #: smoothed over a few percent of the peak speed at most (a wider saturation would stand in for viscous damping).
 SPEED_SCALES = (0.01, 0.03)
+#: Speed scales of the wide saturations of the semi-active force (fractions of the peak speed): a force that rises
+#: across the whole FV diagram, as the pressure drop of a plastic valve does while its plug thins (Buckingham-Reiner:
+#: from 2 to 3 tau_y L / h; at low flow the rise goes as the square root of the flow rate).
+WIDE_SPEED_SCALES = (0.1, 0.3, 1.0)
 
 
 @dataclass(frozen=True)
@@ -87,9 +91,18 @@ class Samples:
     @property
     def du(self) -> np.ndarray:
         """Control above the passive level over the control span, [-] (0 to 1)."""
+        return self.gain_shape(1.0)
+
+    def gain_shape(self, exponent: float) -> np.ndarray:
+        """The force gain of the control over its value at the highest control, [-] (0 to 1), when the gain grows
+        as the control to the power ``exponent``: (u^n - u_p^n) / (u_max^n - u_p^n), u_p the passive level; with
+        n = 1 it is :attr:`du`.  Zeros when the control never varies."""
         if self.u_passive is None or self.u_span == 0:
             return np.zeros(self.v.size)
-        return (self.u - self.u_passive) / self.u_span
+        if exponent == 1.0:
+            return (self.u - self.u_passive) / self.u_span
+        lo, hi = self.u_passive**exponent, (self.u_passive + self.u_span) ** exponent
+        return (np.clip(self.u, 0.0, None) ** exponent - lo) / (hi - lo)
 
     def select(self, mask) -> Samples:
         return Samples(
@@ -150,26 +163,39 @@ def _branch(v, z, V):
     return np.column_stack([S(v / (k * V) + sz) - S(v / (k * V)) for k in (0.01, 0.03, 0.1)])
 
 
-def semiactive_features(s: Samples, V: float, Z: float) -> dict[str, np.ndarray]:
-    r"""Columns of each semi-active group (eq 4 without its coefficients): ``gain`` du sgn v (the force the
-    control adds, post-yield: independent of the speed), ``preyield`` du S(v / (s V)) for the scales of
-    :data:`SPEED_SCALES` and du S(z / (0.3 Z)) (a force that grows with the speed or the stroke before it saturates,
-    eqs 5d-5e), ``asymmetry_sa`` du and du |S(v / (0.1 V))| (the gain and
-    pre-yield force differ in extension and compression: a part even in v), ``hysteresis_sa`` du times the
-    hysteresis columns of :func:`passive_features`; du is the control above the passive level over the
-    control span."""
-    du, v, z = s.du, s.v, s.z
+def semiactive_features(s: Samples, V: float, Z: float, exponent: float = 1.0) -> dict[str, np.ndarray]:
+    r"""Columns of each semi-active group (eq 4 without its coefficients), with w the force gain of the control
+    (:meth:`Samples.gain_shape`: the control above the passive level over the control span, to the power
+    ``exponent`` when the FM diagram is not linear):
+
+    ================  ===========================================================================  ==============
+    group             columns                                                                      Table 2 term
+    ================  ===========================================================================  ==============
+    ``gain``          w sgn v: the force the control adds, independent of the speed                c_SA
+    ``preyield``      w S(v / (s V)), s in :data:`SPEED_SCALES`, and w S(z / (0.3 Z)): a force     eqs 5d, 5e
+                      that grows with the speed or the stroke and saturates within a few
+                      percent of the peak speed (a steep pre-yield zone)
+    ``speed``         w S(v / (s V)), s in :data:`WIDE_SPEED_SCALES`: a force that keeps growing   eq 5d, wide
+                      with the speed across the diagram (the post-yield force is not independent
+                      of the speed)
+    ``asymmetry_sa``  w, w \|S(v / (0.1 V))\|: the gain and pre-yield force differ in extension     c_SA _pos/_neg
+                      and compression (a part even in v)
+    ``hysteresis_sa`` w times the hysteresis columns of :func:`passive_features`                    f_h,z
+    ================  ===========================================================================  ==============
+    """
+    w, v, z = s.gain_shape(exponent), s.v, s.z
     return {
-        "gain": (du * np.sign(v))[:, None],
-        "preyield": np.column_stack([du * S(v / (k * V)) for k in SPEED_SCALES] + [du * S(z / (0.3 * Z))]),
-        "asymmetry_sa": np.column_stack([du, du * np.abs(S(v / (0.1 * V)))]),
-        "hysteresis_sa": du[:, None] * _branch(v, z, V),
+        "gain": (w * np.sign(v))[:, None],
+        "preyield": np.column_stack([w * S(v / (k * V)) for k in SPEED_SCALES] + [w * S(z / (0.3 * Z))]),
+        "speed": np.column_stack([w * S(v / (k * V)) for k in WIDE_SPEED_SCALES]),
+        "asymmetry_sa": np.column_stack([w, w * np.abs(S(v / (0.1 * V)))]),
+        "hysteresis_sa": w[:, None] * _branch(v, z, V),
     }
 
 
 #: The groups in the order they are listed.
 PASSIVE_GROUPS = ("offset", "viscous", "stiffness", "friction", "hysteresis", "inertia", "asymmetry")
-SEMIACTIVE_GROUPS = ("gain", "preyield", "asymmetry_sa", "hysteresis_sa")
+SEMIACTIVE_GROUPS = ("gain", "preyield", "speed", "asymmetry_sa", "hysteresis_sa")
 
 
 @dataclass(frozen=True)

@@ -117,8 +117,8 @@ def _text(doc: dict) -> str:
     m = doc["model"]
     lines.append(
         f"Customized model: terms {', '.join(m['terms'])}; "
-        f"{'asymmetric' if m['asymmetric'] else 'symmetric'} coefficients; {m['parameter_count']} "
-        f"parameters; identified on {m['identified_on']} (ESR {m['esr']:.4f})"
+        f"{'asymmetric' if m['asymmetric'] else 'symmetric'} coefficients; manipulation V = u^"
+        f"{m['control_exponent']:.3g}; {m['parameter_count']} parameters; identified on {m['identified_on']} (ESR {m['esr']:.4f})"
     )
     width = max(len(k) for k in m["parameters"])
     lines += [f"  {k:<{width}}  {v}" for k, v in m["parameters"].items()]

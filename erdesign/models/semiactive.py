@@ -221,6 +221,13 @@ class SemiactiveCustomized(Model):
         no sample resolves) and 100 / ``stroke``.  Without bounds a friction term with a gain at its limit becomes
         a sign function of a line in (z, ż) whose amplitude an opposite offset cancels: a fit that holds on its
         record and fails on every other (seen on truth-rig road-profile records).
+    control_exponent : float
+        n > 0: the manipulation V of eqs 4-5d is the dimensionless control to the power n, V = u^n (default 1, the
+        paper's linear force gain).  The characterization reads n from the FM diagram when the force gain is not
+        linear in the control (:mod:`erdesign.characterization.detectors`, ``nonlinear_gain``), as the yield stress
+        of an ER fluid grows as E^n with n = 1.2-2.5 (Butz and von Stryk 2002) and an MR valve's as a power of the
+        coil current.  It is structure, not a fitted parameter: a record with two control levels (PRBS) cannot
+        tell it.
 
     Examples
     --------
@@ -237,7 +244,10 @@ class SemiactiveCustomized(Model):
     source = "Vivas-López et al. (n.d.) eqs 2-6"
     uses_control = True
 
-    def __init__(self, terms=PAPER_TERMS, asymmetric=True, scales=None):
+    def __init__(self, terms=PAPER_TERMS, asymmetric=True, scales=None, control_exponent=1.0):
+        if not (isinstance(control_exponent, (int, float)) and np.isfinite(control_exponent) and control_exponent > 0):
+            raise ParameterError(f"control_exponent: must be a finite number > 0, got {control_exponent!r}")
+        self.control_exponent = float(control_exponent)
         unknown = [t for t in terms if t not in TERMS]
         if unknown:
             raise ParameterError(f"terms: unknown {unknown[0]!r}; terms: {', '.join(TERMS)}")
@@ -277,6 +287,18 @@ class SemiactiveCustomized(Model):
         self.linear_parameters = tuple(p.name for p in params if base_name(p.name) in _LINEAR)
         self.control_parameters = tuple(p.name for p in params if base_name(p.name) in _CONTROL)
 
+    def control(self, record):
+        """The manipulation V = u^n of eqs 4-5d (u the dimensionless control, n :attr:`control_exponent`)."""
+        u = super().control(record)
+        if self.control_exponent == 1.0:
+            return u
+        if np.any(u < 0):
+            raise ParameterError(
+                f"{record.name or 'record'}: control below zero; a control exponent "
+                f"{self.control_exponent:g} needs a control that is not negative"
+            )
+        return u**self.control_exponent
+
     def force(self, record, values):
         return general_force(record, values, self.terms, self.control(record))
 
@@ -285,4 +307,4 @@ class SemiactiveCustomized(Model):
         return {n: min(max(x, self.parameter(n).lower), self.parameter(n).upper) for n, x in g.items()}
 
     def describe(self) -> dict:
-        return {**super().describe(), "terms": list(self.terms)}
+        return {**super().describe(), "terms": list(self.terms), "control_exponent": self.control_exponent}

@@ -152,7 +152,8 @@ def render_characterization(result) -> str:
     parts += [
         (
             f"<h2>Customized model</h2><p>Terms: {e(', '.join(m['terms']))}; "
-            f"{'asymmetric' if m['asymmetric'] else 'symmetric'} coefficients; {m['parameter_count']} parameters, "
+            f"{'asymmetric' if m['asymmetric'] else 'symmetric'} coefficients; manipulation V = u^"
+            f"{m['control_exponent']:.3g}; {m['parameter_count']} parameters, "
             f"identified on {e(m['identified_on'])} (ESR {m['esr']:.4f}).</p>"
         ),
         _table(["parameter", "value"], list(m["parameters"].items())),
