@@ -212,7 +212,7 @@ CHARACTERISTICS: dict[str, Characteristic] = {
             "nonlinear_gain",
             "Force gain not linear in the control",
             "SA FM",
-            "V^n in c_SA V (Butz and von Stryk: tau_y ~ E^n)",
+            "c_SA V with V = u^n",
             (),
             "semiactive",
             "gain",
