@@ -38,3 +38,21 @@ def test_markdown_has_the_section_and_a_damper_without_coil_has_none(report):
     assert "| time constant L/R at I | 46.03 ms |" in text
     makris = build_report(str(resources.files("erdesign.examples") / "makris.toml"))
     assert makris.magnetics is None and "Magnetic circuit" not in render_markdown(makris)
+
+
+@pytest.mark.parametrize("system, unit", [("SI", "kPa"), ("mm-kN-s", "MPa"), ("in-lbf-s", "psi")])
+def test_yield_stress_follows_the_unit_system(system, unit):
+    """Issue 26 leftover: the circuit's tau_y read in kPa whatever the unit system; now in the system's pressure unit
+    (the rated row, the table and the curve table alike), the same stress in each."""
+    from erdesign.formatting import use_unit_system
+
+    c = load_magnetic_circuit(MR_COIL)
+    with use_unit_system(system):
+        r = build_report(MR_COIL)
+    table = r.magnetics["table"]
+    assert table.columns[3] == f"τ_y [{unit}]"
+    assert table.rows[-1][3].text.endswith(f" {unit}")
+    assert table.rows[-1][3].si == pytest.approx(float(c.state(2.0).yield_stress[0]), rel=5e-4)
+    rated = {row.key: row.value for row in r.magnetics["rows"]}["yield_stress_rated"]
+    assert rated.text.endswith(f" {unit}")
+    assert r.figures[0].table.columns[2] == f"τ_y [{unit}]"

@@ -544,7 +544,7 @@ def magnetic_section(damper: Damper, currents: np.ndarray) -> dict | None:
         Row(
             "yield_stress_rated",
             "yield stress τ_y at I",
-            show(r.yield_stress, "kPa", name="yield stress"),
+            show(r.yield_stress, pick_unit(r.yield_stress, "pressure"), name="yield stress"),
             "the fluid's yield curve at H_g",
         ),
         Row("inductance", "inductance L = λ/I at I", show(r.inductance, "mH", name="inductance")),
@@ -587,7 +587,17 @@ def magnetic_section(damper: Damper, currents: np.ndarray) -> dict | None:
         ),
     ]
     at = circuit.at(np.asarray(currents, dtype=float))
-    columns = ("current I [A]", "B_g [T]", "H_g [kA/m]", "τ_y [kPa]", "L [mH]", "L/R [ms]", "power [W]", "saturated")
+    tau_unit = pick_unit(at.yield_stress, "pressure")  # one unit for the column, the unit system's
+    columns = (
+        "current I [A]",
+        "B_g [T]",
+        "H_g [kA/m]",
+        f"τ_y [{tau_unit}]",
+        "L [mH]",
+        "L/R [ms]",
+        "power [W]",
+        "saturated",
+    )
     table_rows = []
     for i in range(np.size(at.current.magnitude)):
         table_rows.append(
@@ -595,7 +605,7 @@ def magnetic_section(damper: Damper, currents: np.ndarray) -> dict | None:
                 show(at.current[i], "A", name="current"),
                 show(at.gap_flux_density[i], "T", name="B_g"),
                 show(at.gap_field[i], "kA/m", name="H_g"),
-                show(at.yield_stress[i], "kPa", name="yield stress"),
+                show(at.yield_stress[i], tau_unit, name="yield stress"),
                 show(at.inductance[i], "mH", name="inductance"),
                 show(at.time_constant[i], "ms", name="L/R"),
                 show(at.power[i], "W", name="power"),
@@ -969,12 +979,14 @@ def build_report(
                 coil_curves_figure(curves, rated),
                 Table(
                     "magnetics_curve",
-                    ("current I [A]", "B_g [T]", "τ_y [kPa]"),
+                    ("current I [A]", "B_g [T]", f"τ_y [{pick_unit(curves.yield_stress, 'pressure')}]"),
                     tuple(
                         (
                             show(curves.current[i], "A", name="current"),
                             show(curves.gap_flux_density[i], "T", name="B_g"),
-                            show(curves.yield_stress[i], "kPa", name="yield stress"),
+                            show(
+                                curves.yield_stress[i], pick_unit(curves.yield_stress, "pressure"), name="yield stress"
+                            ),
                         )
                         for i in range(0, np.size(curves.current.magnitude), 3)
                     ),
