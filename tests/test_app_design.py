@@ -67,6 +67,8 @@ def test_search_open_and_size_shows_the_design(page):
     page.switch_page("size.py").run()
     no_error(page)
     assert page.text_input(key="size.geo.gap").value == best["geometry"]["gap"]
+    # the example box no longer names the example the session started from (it said "makris")
+    assert page.selectbox(key="size.example").value == "(the current design)"
     # makris_requirements' point: 1 in/s and 3 kV/mm; Size computes the force of the opened file itself
     assert metric(page, "force F").to("N").magnitude == pytest.approx(best["force_N"], rel=5e-4)
     assert metric(page, "force F").to("N").magnitude >= 6000.0  # the requirement min_force = 6 kN

@@ -47,6 +47,10 @@ __all__ = [
 #: Material choice meaning "the values of the damper file".
 FILE_VALUES = "(values of the damper file)"
 UPLOADED = "(uploaded damper file)"
+#: The example box's entry while the current design is none of the examples (opened on the Design page).
+CURRENT = "(the current design)"
+#: Entries of the example box that are not examples (choosing one loads nothing).
+NOT_EXAMPLES = (UPLOADED, CURRENT)
 
 GEOMETRY_FIELDS = {
     "duct_length": ("duct length L", "Length of each annular duct (mixed: of the piston head)."),
@@ -122,10 +126,15 @@ def _load(spec: dict, source: str, point: dict | None = None) -> None:
     state.forget("size.sweep.")
 
 
+def _example_of(spec: dict) -> str:
+    """The example whose damper file ``spec`` is, else :data:`CURRENT` (a design opened on the Design page)."""
+    return next((name for name in example_names() if state.example_spec(name) == spec), CURRENT)
+
+
 def _on_example() -> None:
     name = st.session_state["size.example"]
     st.session_state.pop(_ERROR, None)
-    if name != UPLOADED:
+    if name not in NOT_EXAMPLES:
         _load(state.example_spec(name), f"examples/{name}.toml")
 
 
@@ -646,9 +655,10 @@ def render() -> None:
     if "size.configuration" not in st.session_state and "_keep.size.configuration" not in st.session_state:
         design = state.current_design()
         _load(design["spec"], "design", {k: design[k] for k in ("velocity", "field", "v_top", "levels")})
-        st.session_state.setdefault("_keep.size.example", state.DEFAULT_EXAMPLE)
+        st.session_state.setdefault("_keep.size.example", _example_of(design["spec"]))
     top = st.columns([2, 3])
-    examples = example_names() + ([UPLOADED] if st.session_state.get("_keep.size.example") == UPLOADED else [])
+    kept = st.session_state.get("_keep.size.example")
+    examples = example_names() + ([kept] if kept in NOT_EXAMPLES else [])
     state.widget(
         top[0].selectbox,
         "start from an example",
