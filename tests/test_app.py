@@ -217,7 +217,7 @@ def test_pin_a_baseline_and_compare(app):
     assert change == pytest.approx(100 * (F0 / F1 - 1).to("").magnitude, abs=0.1)
     fig = figure(app, "size.fig.compare")
     names = [t["name"] for t in fig["data"]]
-    assert "E = 3 kV/mm" in names and "baseline, E = 3 kV/mm" in names
+    assert "E = 3 kV/mm" in names and "pinned 1, E = 3 kV/mm" in names
 
 
 def test_state_survives_page_switches(app):

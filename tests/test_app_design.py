@@ -143,6 +143,14 @@ def test_several_pinned_designs_side_by_side_with_changes_against_this_design():
         assert Q_(rows["force F"][name]).m_as("N") == pytest.approx(force[h], rel=5e-4)
         shown = float(rows["force F"][f"{name} vs this"].split()[0])
         assert shown == pytest.approx(100 * (force[h] / force[0.7] - 1), abs=0.06)
+    # the force-velocity comparison draws every pinned design, each in its own dash (only pinned 1 was drawn)
+    fig = figure(at, "size.fig.compare")
+    dash = {t["name"]: t["line"]["dash"] for t in fig["data"]}
+    assert dash["E = 3 kV/mm"] == "solid"
+    assert dash["pinned 1, E = 3 kV/mm"] == "dash" and dash["pinned 2, E = 3 kV/mm"] == "dot"
+    # pinned 2 (gap 0.6 mm) lies above this design (0.7 mm) at every speed: the narrower gap carries more force
+    this, two = (values(t["y"]) for t in fig["data"] if t["name"] in ("E = 3 kV/mm", "pinned 2, E = 3 kV/mm"))
+    assert (two >= this).all() and two[-1] > this[-1]
     # the first pinned is the baseline of Simulate and Report; unpinning it makes the next one the baseline
     assert at.session_state[state.BASELINE]["spec"]["geometry"]["gap"] == "0.8 mm"
     at.selectbox(key="size.unpin.which").set_value(0).run()

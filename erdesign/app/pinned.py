@@ -153,8 +153,9 @@ def render(design: dict, report, labels: Mapping[str, str]) -> None:
     )
     st.table(comparison_rows(report, reports, labels))
     st.plotly_chart(
-        plots.force_velocity_figure(report.sweep, baseline=reports[0][1].sweep),
+        plots.force_velocity_figure(report.sweep, pinned=[(label, r.sweep) for label, r in reports]),
         key="size.fig.compare",
         config=state.chart_config("size.fig.compare"),
     )
-    st.caption("Dashed: pinned 1, the baseline.")
+    styles = ("dashed", "dotted", "dash-dotted", "long-dashed")
+    st.caption("; ".join(f"{styles[i % len(styles)]}: {label}" for i, (label, _) in enumerate(reports)) + ".")

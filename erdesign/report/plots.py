@@ -148,6 +148,10 @@ def _unit_label(unit: str) -> str:
     return f"{Q_(1.0, unit).units:~P}" if unit else "-"
 
 
+#: Line styles of the designs drawn beside the current one (the first is the baseline's).
+_DASHES = ("dash", "dot", "dashdot", "longdash")
+
+
 def _by_field(
     sweep,
     values: np.ndarray,
@@ -156,17 +160,18 @@ def _by_field(
     title: str,
     y_label: str,
     skip_zero: bool = False,
-    baseline=None,
-    baseline_values=None,
+    others=(),
 ) -> go.Figure:
-    both = values if baseline is None else np.concatenate([np.ravel(values), np.ravel(baseline_values)])
-    speeds = sweep.velocity if baseline is None else np.concatenate([sweep.velocity, baseline.velocity])
+    """One line per control of ``sweep``; ``others``: ``(label, sweep, values)`` of further designs, each in its own
+    dash (:data:`_DASHES`), in one unit with the first."""
+    both = np.concatenate([np.ravel(values), *(np.ravel(vals) for _, _, vals in others)])
+    speeds = np.concatenate([sweep.velocity, *(sw.velocity for _, sw, _ in others)])
     v_unit = pick_unit(Q_(speeds, "m/s"), "velocity")
     y_unit = pick_unit(Q_(both, si_unit), kind) if kind else ""
     fig = go.Figure()
-    sets = [("", sweep, values, "solid")]
-    if baseline is not None:
-        sets.append(("baseline, ", baseline, baseline_values, "dash"))
+    sets = [("", sweep, values, "solid")] + [
+        (f"{label}, ", sw, vals, _DASHES[j % len(_DASHES)]) for j, (label, sw, vals) in enumerate(others)
+    ]
     for prefix, sw, vals, dash in sets:
         x = _convert(sw.velocity, "m/s", v_unit)
         for i, (label, E, row) in enumerate(zip(sw.field_labels(), sw.field, vals)):
@@ -196,20 +201,20 @@ def pressure_drop_figure(sweep) -> go.Figure:
     return _by_field(sweep, sweep.pressure_drop, "Pa", "pressure", "Pressure drop versus velocity", "pressure drop Δp")
 
 
-def force_velocity_figure(sweep, baseline=None) -> go.Figure:
+def force_velocity_figure(sweep, baseline=None, pinned=()) -> go.Figure:
     """Quasi-steady damper force versus velocity, one line per control; with ``baseline`` (another sweep), its
-    curves dashed beside them (the comparison of two designs)."""
+    curves dashed beside them (the comparison of two designs); ``pinned``: ``(label, sweep)`` of several designs,
+    each in its own dash (dashed, dotted, dash-dotted, long-dashed)."""
+    others = [("baseline", baseline)] if baseline is not None else []
+    others += list(pinned)
+    if not others:
+        title = "Force versus velocity"
+    elif len(others) == 1:
+        title = f"Force versus velocity: this design (solid) and the {others[0][0]} (dashed)"
+    else:
+        title = "Force versus velocity: this design (solid) and the pinned designs (dashed, dotted, ...)"
     return _by_field(
-        sweep,
-        sweep.force,
-        "N",
-        "force",
-        "Force versus velocity"
-        if baseline is None
-        else "Force versus velocity: this design (solid) and the baseline (dashed)",
-        "force F",
-        baseline=baseline,
-        baseline_values=None if baseline is None else baseline.force,
+        sweep, sweep.force, "N", "force", title, "force F", others=[(label, sw, sw.force) for label, sw in others]
     )
 
 
