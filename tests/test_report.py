@@ -603,3 +603,20 @@ def test_cli_figures_with_kaleido_and_chromium(tmp_path, capsys):
         ]
     )
     assert code == 0 and (figs / "makris-1996-force.svg").read_bytes().lstrip().startswith(b"<svg")
+
+
+def test_the_error_historys_noise_floor_label_is_beside_the_plot_not_over_a_bar():
+    """Issue 26 leftover: the label sat inside the plot at the right end of the floor line, over the last bar (a
+    bar always reaches above the floor).  Now it is in the right margin, at the floor's height on the log axis."""
+    import math
+    from types import SimpleNamespace
+
+    from erdesign.report.plots import error_history_figure
+
+    steps = [SimpleNamespace(step=0, effect="baseline", esr=0.158), SimpleNamespace(step=1, effect="lag", esr=0.05)]
+    fig = error_history_figure(steps, noise_floor=4.6e-5)
+    (label,) = fig.layout.annotations
+    assert label.xref == "paper" and label.x > 1 and label.xanchor == "left"
+    assert label.y == pytest.approx(math.log10(4.6e-5))
+    assert "4.6e-05" in label.text
+    assert fig.layout.margin.r >= 90  # room for it

@@ -267,15 +267,17 @@ def error_history_figure(history: Sequence[Any], noise_floor: float | None = Non
     lows = esr + ([noise_floor] if noise_floor is not None and noise_floor > 0 else [])
     if noise_floor is not None and noise_floor > 0:
         fig.add_hline(y=noise_floor, line=dict(color="#2ca02c", dash="dash"))
-        # plotly places a line's own annotation wrongly on a log axis: annotate at log10(y) instead
+        # plotly places a line's own annotation wrongly on a log axis: annotate at log10(y) instead, in the right
+        # margin at the line's end (inside the plot it sat over the last bar, which always reaches above the floor)
         fig.add_annotation(
-            x=1,
+            x=1.01,
             xref="paper",
-            xanchor="right",
+            xanchor="left",
             y=float(np.log10(noise_floor)),
             yref="y",
-            yanchor="top",
-            text=f"noise floor {noise_floor:.3g}",
+            yanchor="middle",
+            align="left",
+            text=f"noise floor<br>{noise_floor:.3g}",
             showarrow=False,
             font=dict(color="#1e7b1e"),
             bgcolor="rgba(255, 255, 255, 0.85)",
@@ -284,7 +286,7 @@ def error_history_figure(history: Sequence[Any], noise_floor: float | None = Non
         title="Error history",
         xaxis_title="step: effect added",
         yaxis_title="ESR [-]",
-        **{**_LAYOUT, "showlegend": False},
+        **{**_LAYOUT, "showlegend": False, "margin": {**_LAYOUT["margin"], "r": 100}},
     )
     if lows:  # the range holds the bars, their labels and the noise floor
         lo, hi = float(np.log10(min(lows))) - 0.5, float(np.log10(max(esr or lows))) + 0.6
