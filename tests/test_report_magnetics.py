@@ -56,3 +56,8 @@ def test_yield_stress_follows_the_unit_system(system, unit):
     rated = {row.key: row.value for row in r.magnetics["rows"]}["yield_stress_rated"]
     assert rated.text.endswith(f" {unit}")
     assert r.figures[0].table.columns[2] == f"τ_y [{unit}]"
+    fig = r.figures[0].figure  # the figure's axis too, and its curve in that unit
+    assert fig.layout.yaxis2.title.text == f"τ_y [{unit}]"
+    (tau,) = [t for t in fig.data if t.name == "yield stress τ_y"]
+    last = r.figures[0].table.rows[-1][2]  # the curve table's last row is the curve's last point (31 points, every 3rd)
+    assert float(last.text.split()[0]) == pytest.approx(tau.y[-1], rel=5e-4)

@@ -29,9 +29,12 @@ def coil_curves_figure(curves, rated_current: float | None = None):
     """
     from plotly.subplots import make_subplots
 
+    from ..formatting import pick_unit
+
+    tau_unit = pick_unit(curves.yield_stress, "pressure")  # the unit system's (kPa in SI, MPa, psi)
     I = np.asarray(curves.current.m_as("A"), dtype=float)
     B = np.asarray(curves.gap_flux_density.m_as("T"), dtype=float)
-    tau = np.asarray(curves.yield_stress.m_as("kPa"), dtype=float)
+    tau = np.asarray(curves.yield_stress.m_as(tau_unit), dtype=float)
     fig = make_subplots(specs=[[{"secondary_y": True}]])
     fig.add_scatter(x=I, y=B, name="gap flux density B_g", mode="lines", secondary_y=False)
     fig.add_scatter(x=I, y=tau, name="yield stress τ_y", mode="lines", line={"dash": "dash"}, secondary_y=True)
@@ -52,5 +55,5 @@ def coil_curves_figure(curves, rated_current: float | None = None):
         margin={"l": 60, "r": 60, "t": 60, "b": 60},
     )
     fig.update_yaxes(title_text="B_g [T]", rangemode="tozero", secondary_y=False)
-    fig.update_yaxes(title_text="τ_y [kPa]", rangemode="tozero", secondary_y=True)
+    fig.update_yaxes(title_text=f"τ_y [{tau_unit}]", rangemode="tozero", secondary_y=True)
     return fig
