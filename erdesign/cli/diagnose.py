@@ -11,7 +11,7 @@ import click
 from ..damper.files import load_damper
 from ..data.measurement import read_for_damper
 from ..diagnosis.diagnose import diagnose as run_diagnosis
-from .main import cli, emit_json, executor_options
+from .main import cli, emit_json, exclude_clipped_option, executor_options
 
 __all__ = ["diagnose", "next_command", "force_noise_option"]
 
@@ -75,12 +75,7 @@ def next_command(
 @click.argument("measurements", metavar="MEASUREMENT.csv...", nargs=-1, required=True)
 @click.option("--damper", "damper_file", required=True, metavar="DAMPER.toml", help="Damper file (geometry, fluid).")
 @click.option("--effects", default="", help="Effects already in the model, comma separated.")
-@click.option(
-    "--exclude-clipped",
-    is_flag=True,
-    help="Leave force samples at a flat top or bottom out even where the detector is unsure "
-    "(clipped samples it is sure of are left out anyway).",
-)
+@exclude_clipped_option
 @click.option(
     "--force-noise",
     default=None,

@@ -9,7 +9,7 @@ from ..damper.files import load_damper
 from ..diagnosis.diagnose import calibrate, parameters_at_bounds
 from ..data.measurement import WARNED_AT_READ, read_for_damper
 from .diagnose import force_noise_option
-from .main import cli, emit_json, json_number
+from .main import cli, emit_json, exclude_clipped_option, json_number
 
 __all__ = ["fit"]
 
@@ -26,12 +26,7 @@ Examples:
 @click.argument("measurements", metavar="MEASUREMENT.csv...", nargs=-1, required=True)
 @click.option("--damper", "damper_file", required=True, metavar="DAMPER.toml", help="Damper file (geometry, fluid).")
 @click.option("--effects", default="", help="Effects to add to the baseline, comma separated (e.g. seal_friction).")
-@click.option(
-    "--exclude-clipped",
-    is_flag=True,
-    help="Leave force samples at a flat top or bottom out even where the detector is unsure "
-    "(clipped samples it is sure of are left out anyway).",
-)
+@exclude_clipped_option
 @click.option(
     "--force-noise",
     default=None,

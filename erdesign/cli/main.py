@@ -144,6 +144,15 @@ def install_option_checks(group: click.Group) -> None:
                 param.callback = check_effects_option
 
 
+#: ``--exclude-clipped`` of the commands that fit or diagnose a measurement (fit, diagnose): one definition.
+exclude_clipped_option = click.option(
+    "--exclude-clipped",
+    is_flag=True,
+    help="Leave force samples at a flat top or bottom out even where the detector is unsure "
+    "(clipped samples it is sure of are left out anyway).",
+)
+
+
 def executor_options(default_jobs: str):
     """The ``--jobs N`` and ``--scheduler ADDRESS`` options of a command whose independent tasks run on an executor
     (:mod:`erdesign.executor`).  ``default_jobs`` is ``"all"`` (all cores) or ``"1"`` (in this process: for
