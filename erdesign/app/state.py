@@ -532,16 +532,7 @@ def simulate(
             "earthquake": rig.earthquake_motion,
             "programme": programme,
         }[kind](**ex)
-        record = Measurement(
-            time=motion.time,
-            displacement=motion.displacement,
-            force=None,
-            velocity=motion.velocity,
-            acceleration=motion.acceleration,
-            control=motion.control,
-            control_kind=damper.fluid.control,
-            name=kind,
-        )
+        record = motion.record(damper.fluid.control, kind)
         description = motion.description
     damper.fluid.check_plausible_field(record.control, "field")  # a unit mistake is an error, not a result
     if model_name == "physics":

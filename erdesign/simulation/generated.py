@@ -106,17 +106,7 @@ def run_on_motion(
     1000
     """
     motion = sine_motion.motion
-    record = Measurement(
-        motion.time,
-        motion.displacement,
-        None,
-        motion.velocity,
-        motion.acceleration,
-        motion.control,
-        control_kind,
-        name=motion.description,
-        velocity_noise=0.0,
-    )
+    record = motion.record(control_kind, velocity_noise=0.0)
     force = model.simulate(record, values)
     if not np.all(np.isfinite(force)):
         raise ErdesignError(f"{model.name}: the parameters give non-finite forces on {motion.description}")

@@ -57,6 +57,22 @@ class Motion:
     control: np.ndarray
     description: str = ""
 
+    def record(self, control_kind: str, name: str | None = None, **extra) -> Measurement:
+        """The motion as a record without a force (exact velocity and acceleration), to run a model on;
+        ``control_kind`` is the fluid's ("electric field" ...), ``name`` defaults to the description, ``extra`` goes
+        to :class:`~erdesign.data.measurement.Measurement` (e.g. ``velocity_noise=0.0``)."""
+        return Measurement(
+            time=self.time,
+            displacement=self.displacement,
+            force=None,
+            velocity=self.velocity,
+            acceleration=self.acceleration,
+            control=self.control,
+            control_kind=control_kind,
+            name=self.description if name is None else name,
+            **extra,
+        )
+
 
 def _fine(duration: float, rate: float):
     n = int(round(duration * rate))
@@ -345,16 +361,7 @@ def run_rig(
         names = parse_effect_names(hidden)
         settings = {}
     model = PhysicsDamper(damper, names)
-    exact = Measurement(
-        time=motion.time,
-        displacement=motion.displacement,
-        force=None,
-        velocity=motion.velocity,
-        acceleration=motion.acceleration,
-        control=motion.control,
-        control_kind=damper.fluid.control,
-        name=name,
-    )
+    exact = motion.record(damper.fluid.control, name)
     values = model.defaults()
     values.update(viscosity_factor=viscosity_factor, yield_stress_factor=yield_stress_factor)
     for e in names:
