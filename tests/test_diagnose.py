@@ -245,3 +245,66 @@ def test_close_rivals_are_ordered_by_the_whiteness_of_what_they_leave():
     )
     # equally structured residuals: the smaller sum of squares first
     assert ranked(cand("a", smooth, 1.0), cand("b", smooth[::-1].copy(), 1.1))[0] == "a"
+
+
+def test_why_not_a_step_names_the_rule_the_partial_step_fails():
+    """The reason a verdict gives for an effect judged near reversals and not named agrees with the rule that
+    judged it (verdict._held_out_winner with ``partial``): for every candidate that rule rejects, why_not_a_step
+    names one of its conditions; for one it names, there is no such condition.  Each condition is met or missed on
+    both sides of its threshold."""
+    from itertools import product
+
+    from erdesign.diagnosis.candidates import Candidate
+    from erdesign.diagnosis.verdict import (
+        HELD_OUT_CLEAR,
+        PARTIAL_SHARE,
+        PARTIAL_TIE,
+        STRICT_BIC,
+        _held_out_winner,
+        why_not_a_step,
+    )
+
+    fit = object()  # a candidate counts as evaluated when it has a fit and an ESR
+    cases = product(
+        (PARTIAL_SHARE - 0.01, PARTIAL_SHARE + 0.15),  # explained
+        (-STRICT_BIC + 5.0, -STRICT_BIC - 5.0),  # effective-BIC change
+        (HELD_OUT_CLEAR - 0.01, HELD_OUT_CLEAR + 0.01),  # held-out gain
+        (False, True),  # a plausible rival explains about as much
+        ([], ["too large"]),  # implausible
+    )
+    seen = set()
+    for explained, dbic, held, rival, implausible in cases:
+        c = Candidate(
+            "leakage",
+            fit,
+            0.01,
+            delta_bic=dbic,
+            gain=0.5,
+            held_out_gain=held,
+            explained=explained,
+            implausible=list(implausible),
+            effects=("leakage",),
+        )
+        others = []
+        if rival:
+            others = [
+                Candidate(
+                    "compressibility",
+                    fit,
+                    0.01,
+                    delta_bic=-10.0,
+                    gain=0.1,
+                    held_out_gain=0.0,
+                    explained=explained + PARTIAL_TIE / 2,
+                    effects=("compressibility",),
+                )
+            ]
+        ranking = [c, *others]
+        named = _held_out_winner(None, None, ranking, None, None, partial=True)
+        why = why_not_a_step(c, ranking)
+        if named is c:
+            assert why == "another effect is a clearer step"
+        else:
+            assert why != "another effect is a clearer step", (explained, dbic, held, rival, implausible)
+            seen.add(why.split(" ")[1])
+    assert len(seen) == 5  # implausible, share, evidence, rival, held-out gain: each the reason somewhere

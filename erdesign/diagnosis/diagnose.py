@@ -82,6 +82,7 @@ from .verdict import (
     _one_sided,
     _unexplained_reason,
     named_effects,
+    why_not_a_step,
 )
 
 __all__ = [
@@ -387,7 +388,7 @@ def _diagnose(
         )
     held = _held_out(prep)
     missing, pair, verdict, reason, one_sided = None, (), "nothing_missing", "", None
-    reversals = None
+    reversals = looked = None
     if suspicious:
         verdict = "unexplained"
         reason = "the record is implausible for this damper, so no effect is named: " + "; ".join(suspicious)
@@ -409,7 +410,7 @@ def _diagnose(
             # far above the floor with nothing named: the effects that act where the judged samples do not reach
             # (only those the judged samples cannot see: one that explains a share there was judged already)
             unseen = {c.effect for c in ranking if c.evaluated and len(c.effects) == 1 and c.explained < PARTIAL_SHARE}
-            named, reversals = _judge_at_reversals(
+            named, reversals, looked = _judge_at_reversals(
                 base_model,
                 work,
                 effects,
@@ -480,6 +481,14 @@ def _diagnose(
         else:
             verdict = "unexplained"
             reason = _unexplained_reason(base.esr, floor, ranking, analysis)
+            if looked is not None:
+                c, why = looked
+                reason += (
+                    f" Judged with the samples near reversals too (the other {100 * (1 - known.sum() / prep.analysed.sum()):.0f} "
+                    f"% of the analysed samples), where a compliance or a bypass acts, the best such effect, "
+                    f"{c.effect}, explains {100 * max(c.explained, 0):.0f} % of the excess there but is not named: "
+                    f"{why}."
+                )
             if warnings_:
                 reason += " Check first: " + "; ".join(warnings_) + "."
     unsafe = sorted(
@@ -552,9 +561,11 @@ REVERSAL_SHARE = 0.05
 
 
 def _judge_at_reversals(base_model, work, effects, names, damper, prep, floor, findings, held, executor):
-    """``(candidate, baseline)``: the effect among ``names`` that makes the force continuous through a reversal
-    (:attr:`erdesign.effects.base.Effect.continuous_at_reversal`: a compliance below yield, a compliant column, a
-    bypass), judged on the samples where it acts, or ``(None, None)``.
+    """``(candidate, baseline, None)``: the effect among ``names`` that makes the force continuous through a
+    reversal (:attr:`erdesign.effects.base.Effect.continuous_at_reversal`: a compliance below yield, a compliant
+    column, a bypass), judged on the samples where it acts; ``(None, None, (looked, why))`` when none is named
+    (``looked``: the one that explains most there, ``why``: why it is not a step, for the verdict's reason; None when
+    no second look ran).
 
     The verdict is judged where the sign of the velocity is known, because a rigid yield-stress force jumps at a
     reversal and no model can place the jump inside the velocity's noise.  An effect of this kind acts mostly on
@@ -570,14 +581,19 @@ def _judge_at_reversals(base_model, work, effects, names, damper, prep, floor, f
     wide = prep.analysed
     names = [n for n in names if EFFECTS[n].continuous_at_reversal]
     if wide is None or not names or wide.sum() < (1.0 + REVERSAL_SHARE) * prep.judged.sum():
-        return None, None
+        return None, None, None
     base = _fit(base_model, work, mask=wide)
     ranking = evaluate_candidates(
         base_model, base, work, effects, [((n,), None) for n in names], damper, mask=wide, executor=executor
     )
     _score(ranking, base, floor, work, wide, findings)
     named = _held_out_winner(base_model, work, ranking, wide, held, partial=True)
-    return (named, base) if named is not None else (None, None)
+    if named is not None:
+        return named, base, None
+    looked = max((c for c in ranking if c.evaluated), key=lambda c: c.explained, default=None)
+    if looked is None:
+        return None, None, None
+    return None, None, (looked, why_not_a_step(looked, ranking, base_model, work, wide, held))
 
 
 @dataclass

@@ -36,6 +36,7 @@ __all__ = [
     "ONE_SIDED",
     "ONE_SIDED_SHARE",
     "named_effects",
+    "why_not_a_step",
 ]
 
 
@@ -117,6 +118,34 @@ def _held_out_winner(base_model, work, ranking, mask, held, partial: bool = Fals
             else " although the calibrated model looked close to the noise floor"
         )
     return best
+
+
+def why_not_a_step(c: Candidate, ranking, base_model=None, work=None, mask=None, held=None) -> str:
+    """Why :func:`_held_out_winner` (``partial``) did not name candidate ``c``: the first rule it fails, in the
+    order they are checked (for a verdict's reason)."""
+    if c.implausible:
+        return "its fitted size is implausible (" + "; ".join(c.implausible) + ")"
+    if c.at_bounds:
+        return "its fit ends at a bound"
+    if not (c.delta_bic < -BIC_THRESHOLD and c.gain > MIN_GAIN) or c.explained < PARTIAL_SHARE:
+        return f"a step needs {100 * PARTIAL_SHARE:.0f} % of the excess"
+    if c.delta_bic >= -STRICT_BIC:
+        return f"the evidence is weak (effective-BIC change {c.delta_bic:+.0f}; a step needs below {-STRICT_BIC:+.0f})"
+    plausible = [o for o in ranking if o.evaluated and not o.blocked and not o.implausible and not o.at_bounds]
+    rival = [o for o in plausible if o is not c and abs(o.explained - c.explained) < PARTIAL_TIE]
+    if rival:
+        return (
+            f"{rival[0].effect} explains about as much ({100 * rival[0].explained:.0f} %), so the record points at "
+            "neither"
+        )
+    if c.held_out_gain is None and base_model is not None:
+        c.held_out_gain = _held_out_gain(base_model, c, work, mask, held)
+    if c.held_out_gain is not None and c.held_out_gain < HELD_OUT_CLEAR:
+        return (
+            f"it removes only {100 * c.held_out_gain:.0f} % of the error on held-out cycles (a step needs "
+            f"{100 * HELD_OUT_CLEAR:.0f} %)"
+        )
+    return "another effect is a clearer step"
 
 
 def _judge_singles(base_model, base, work, ranking, strict: bool = False, mask=None, held=None) -> Candidate | None:
