@@ -9,7 +9,7 @@ from typing import Sequence
 import click
 
 from ..damper.files import load_damper
-from ..data.measurement import read_for_damper
+from ..data.measurement import WARNED_AT_READ, read_for_damper
 from ..diagnosis.diagnose import diagnose as run_diagnosis
 from .main import cli, emit_json, exclude_clipped_option, executor_options
 
@@ -112,7 +112,7 @@ def diagnose(
     if as_json:
         emit_json(result.as_json())
         return
-    click.echo(result.report())
+    click.echo(result.report(said=WARNED_AT_READ))
     named = tuple(result.missing_effects)
     given = [e.strip() for e in effects.split(",") if e.strip()]
     options = (["--exclude-clipped"] if exclude_clipped else []) + (

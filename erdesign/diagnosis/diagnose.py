@@ -173,19 +173,26 @@ class Diagnosis:
         }
         return out
 
-    def report(self) -> str:
-        """A readable report: calibration, where it fails, the ranking with parameters and plausibility, verdict."""
+    def report(self, said: Sequence[str] = ()) -> str:
+        """A readable report: calibration, where it fails, the ranking with parameters and plausibility, verdict.
+
+        ``said``: kinds of data finding the reader has warned about already (the command line's
+        :data:`erdesign.data.measurement.WARNED_AT_READ`), counted but not listed again."""
         model = "baseline" + (f" + {', '.join(self.effects)}" if self.effects else "")
         lines = [
             f"Diagnosis of {self.record_name or 'the record'} ({self.samples[0]} samples"
             + (f", analysed on {self.samples[1]}" if self.samples[1] != self.samples[0] else "")
             + ")"
         ]
+        listed = [f for f in self.findings if f.kind not in said]
         if self.findings:
             lines.append("data findings (before any fit):")
             lines.extend(
-                f"  - {f.kind}: {f.record}: {f.message}" + (f" ({f.where})" if f.where else "") for f in self.findings
+                f"  - {f.kind}: {f.record}: {f.message}" + (f" ({f.where})" if f.where else "") for f in listed
             )
+            if len(listed) < len(self.findings):
+                kinds = sorted({f.kind for f in self.findings if f.kind in said})
+                lines.append(f"  - {', '.join(kinds)}: warned above as the record was read")
         lines.append(
             f"model: {model}; calibrated ESR {self.baseline_esr:.4g}; noise floor ESR "
             f"{self.noise_floor_esr:.3g} ({self.noise_floor_method or 'estimated'}); both judged on the "
