@@ -1,6 +1,6 @@
 """Benchmark: the kernels of issue 27's table, each against a baseline timed in the same process.
 
-Run:  python benchmarks/bench_kernels_speed.py [--quick]
+Run:  python benchmarks/bench_kernels_speed.py [--quick] [--only {annulus,mixed,dp,reading}]
 
 One row per line of the table, each printing "now", the baseline and their ratio:
 
@@ -244,12 +244,18 @@ def reading_rows(n: int, repeat: int) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="smaller sizes (a smoke run)")
+    parser.add_argument("--only", choices=("annulus", "mixed", "dp", "reading"), help="run one row of the table")
     args = parser.parse_args()
     repeat = 2 if args.quick else 7
-    annulus_row(2_000 if args.quick else 20_000, repeat)
-    mixed_rows(2_000 if args.quick else 20_000, 20_000 if args.quick else 200_000, repeat)
-    dp_row(10**6 if args.quick else 10**7, repeat)
-    reading_rows(60_000, repeat)
+    rows = {
+        "annulus": lambda: annulus_row(2_000 if args.quick else 20_000, repeat),
+        "mixed": lambda: mixed_rows(2_000 if args.quick else 20_000, 20_000 if args.quick else 200_000, repeat),
+        "dp": lambda: dp_row(10**6 if args.quick else 10**7, repeat),
+        "reading": lambda: reading_rows(60_000, repeat),
+    }
+    for name, run in rows.items():
+        if args.only in (None, name):
+            run()
 
 
 if __name__ == "__main__":
