@@ -490,23 +490,34 @@ def _harmonic_columns(
     those at the starts of blocks of sqrt(n) samples times those at the offsets within a block (2 sqrt(n)
     transcendental evaluations instead of 2n, and an error of 2 ulp; ``even``: whether it is, if known)."""
     n = t.size
-    origin = t[0] if origin is None else origin
     out = np.empty((n, 2 * harmonics)) if out is None else out
-    block = math.isqrt(n) + 1
-    if n >= 1024 and (_evenly_sampled(t) if even is None else even):
-        starts = np.exp(2j * np.pi * f * (t[::block] - origin))
-        offsets = np.exp(2j * np.pi * f * (t[:block] - t[0]))
-        z = np.multiply.outer(starts, offsets).ravel()[:n]
-        c1, s1 = z.real, z.imag
-    else:
-        w = 2 * np.pi * f * (t - origin)
-        c1, s1 = np.cos(w), np.sin(w)
-    out[:, 0], out[:, 1] = c1, s1
+    out[:, 0], out[:, 1] = _fundamental(t, f, origin, even)
+    c1, s1 = out[:, 0], out[:, 1]
     for k in range(2, harmonics + 1):
         ck, sk = out[:, 2 * k - 4], out[:, 2 * k - 3]
         out[:, 2 * k - 2] = c1 * ck - s1 * sk
         out[:, 2 * k - 1] = s1 * ck + c1 * sk
     return out
+
+
+def _fundamental(t: np.ndarray, f: float, origin: float | None = None, even: bool | None = None):
+    """(cos w, sin w), w = 2 pi f (t - origin), as :func:`_harmonic_columns` computes them (its first two
+    columns)."""
+    n = t.size
+    origin = t[0] if origin is None else origin
+    if n >= 1024 and (_evenly_sampled(t) if even is None else even):
+        starts, offsets = _phasors(t, f, origin)
+        z = np.multiply.outer(starts, offsets).ravel()[:n]
+        return z.real, z.imag
+    w = 2 * np.pi * f * (t - origin)
+    return np.cos(w), np.sin(w)
+
+
+def _phasors(t: np.ndarray, f: float, origin: float):
+    """exp(i w) of an evenly sampled record at the starts of its blocks of isqrt(n) + 1 samples and at the offsets
+    within a block: their outer product, raveled, is exp(i w) at every sample (:func:`_fundamental`)."""
+    block = math.isqrt(t.size) + 1
+    return np.exp(2j * np.pi * f * (t[::block] - origin)), np.exp(2j * np.pi * f * (t[:block] - t[0]))
 
 
 def _harmonic_fit(t: np.ndarray, x: np.ndarray, f: float, harmonics: int, even: bool | None = None):
@@ -613,28 +624,67 @@ def _harmonic_derivatives(t, x, f0, sigma, T, fs, limit, even):
             kept.append(k)
         else:
             kept.append(k)
-    # the model at every sample (phases and trend from ts[0], the first block's mean time)
-    columns = A[:, 2:] if stride == 1 else _harmonic_columns(t, f, max(kept, default=0), origin=ts[0], even=True)
-    model = None  # of every sample, to check against the noise: c[0] + c[1] (t - ts[0]) + the harmonics
-    if stride > 1:
-        model = np.subtract(t, ts[0])
-        model *= c[1]
-        model += c[0]
+    return _harmonic_series(t, x, f, c, kept, A if stride == 1 else None, ts[0], limit)
+
+
+#: Samples a block of :func:`_harmonic_series`: its arrays then stay in the processor's cache.
+SERIES_BLOCK = 8192
+
+
+def _harmonic_series(t, x, f, c, kept, A, origin, limit):
+    """Velocity and acceleration of the trend line and harmonics ``kept`` of f (coefficients ``c`` as
+    :func:`_harmonic_fit` gives them), differentiated analytically; None when the model leaves more than ``limit``
+    (rms) at the samples.  ``A``: the design matrix of a fit of every sample (whose residual was checked before),
+    else None: the harmonics are computed from ``origin`` (the first block mean's time) and the model checked.
+
+    Block by block of :data:`SERIES_BLOCK` samples, the cosines and sines of each block by angle addition as
+    :func:`_harmonic_columns` (the same values): arrays of the record's length only for the fundamental and the
+    results (the whole model in one piece took 4.6 MB, which the allocator gave back to the system after each read
+    and took again, page by page, in the next)."""
+    n = t.size
     w = 2 * np.pi * f
     v = np.full_like(t, c[1])
     a = np.zeros_like(t)
-    for k in kept:
-        ck, sk = c[2 * k], c[2 * k + 1]
-        cos, sin = columns[:, 2 * k - 2], columns[:, 2 * k - 1]
-        h = ck * cos + sk * sin  # the harmonic; its derivative is k w (sk cos - ck sin)
-        v += (k * w) * (sk * cos - ck * sin)
-        a -= (k * w) ** 2 * h
+    K = max(kept, default=0)
+    if A is None:  # blocks of whole rows of the phasors' outer product (a record fitted by means is even and long)
+        starts, offsets = _phasors(t, f, origin)
+        size = offsets.size * max(1, SERIES_BLOCK // offsets.size)
+    else:
+        size = SERIES_BLOCK
+    squares = 0.0  # of the model's residual
+    for lo in range(0, n, size):
+        block = slice(lo, min(n, lo + size))
+        vb, ab = v[block], a[block]
+        if A is None and K:
+            rows = slice(lo // offsets.size, -(-block.stop // offsets.size))
+            z = np.multiply.outer(starts[rows], offsets).ravel()[: block.stop - lo]
+            c1, s1 = z.real, z.imag
+        model = None  # c[0] + c[1] (t - origin) + the harmonics
+        if A is None:
+            model = np.subtract(t[block], origin)
+            model *= c[1]
+            model += c[0]
+        cos = sin = None
+        for k in range(1, K + 1):
+            if A is not None:
+                cos, sin = A[block, 2 * k], A[block, 2 * k + 1]
+            elif k == 1:
+                cos, sin = c1, s1
+            else:
+                cos, sin = c1 * cos - s1 * sin, s1 * cos + c1 * sin
+            if k not in kept:
+                continue
+            ck, sk = c[2 * k], c[2 * k + 1]
+            h = ck * cos + sk * sin  # the harmonic; its derivative is k w (sk cos - ck sin)
+            vb += (k * w) * (sk * cos - ck * sin)
+            ab -= (k * w) ** 2 * h
+            if model is not None:
+                model += h
         if model is not None:
-            model += h
-    if model is not None:
-        r = x - model
-        if math.sqrt(float(np.sum(r * r)) / n) > limit:  # not np.dot: BLAS threads cost more than it
-            return None
+            r = np.subtract(x[block], model, out=model)
+            squares += float(np.sum(r * r))  # not np.dot: BLAS threads cost more than it
+    if A is None and math.sqrt(squares / n) > limit:
+        return None
     return v, a
 
 
