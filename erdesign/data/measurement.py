@@ -704,22 +704,63 @@ def _central4(y: np.ndarray, dt: float) -> np.ndarray:
     return d
 
 
-def _moving_mean(P: np.ndarray, k: int) -> np.ndarray:
-    """numpy.convolve(P, ones(2k + 1) / (2k + 1), "same") of non-negative P in O(n): the window of 2k + 1 samples
-    always spans two consecutive blocks of that length, so each mean is the sum of a block's suffix and of the next
-    block's prefix (cumulative sums within blocks: each term is summed with its window's own, so the mean keeps the
-    relative accuracy of the convolution, ~1e-15, however widely P ranges)."""
+def _moving_mean(P: np.ndarray, k: int, lo: int = 0, hi: int | None = None) -> np.ndarray:
+    """numpy.convolve(P, ones(2k + 1) / (2k + 1), "same")[lo:hi] of non-negative P in O(n): the window of 2k + 1
+    samples always spans two consecutive blocks of that length, so each mean is the sum of a block's suffix and of
+    the next block's prefix (cumulative sums within blocks: each term is summed with its window's own, so the mean
+    keeps the relative accuracy of the convolution, ~1e-15, however widely P ranges).  The blocks are those of the
+    whole of P whatever ``lo`` and ``hi``, so a part has the values of the whole (only its blocks are summed)."""
     B = 2 * k + 1
     n = P.size
-    m = -(-(n + 2 * k) // B) + 1
-    Q = np.zeros((m, B))
-    Q.ravel()[k : k + n] = P
+    hi = n if hi is None else hi
+    first, last = lo // B, (hi - 1) // B + 1  # the blocks of the means lo..hi - 1 and the blocks after them
+    Q = np.zeros((last - first + 1, B))  # block r holds P[r B - k : (r + 1) B - k], zero beyond P
+    start = first * B - k
+    Q.ravel()[max(0, -start) : max(0, min(n, start + Q.size) - start)] = P[max(0, start) : start + Q.size]
     suffix = np.ascontiguousarray(Q[:, ::-1])
     np.cumsum(suffix, axis=1, out=suffix)
-    prefix = np.empty((m, B))
+    prefix = np.empty(Q.shape)
     prefix[:, 0] = 0.0
     np.cumsum(Q[:, :-1], axis=1, out=prefix[:, 1:])
-    return (suffix[:, ::-1].ravel()[:n] + prefix.ravel()[B : B + n]) / B
+    offset = lo - first * B
+    return (suffix[:, ::-1].ravel()[offset : offset + hi - lo] + prefix.ravel()[B + offset : B + offset + hi - lo]) / B
+
+
+#: Means a step of :func:`_last_mean_above` computes.
+MEANS_A_STEP = 2048
+
+
+def _last_mean_above(P: np.ndarray, k: int, level: float) -> int:
+    """The last index at which :func:`_moving_mean` (P, k) exceeds ``level`` (-1 if none), with the same means,
+    computed only where one can exceed it: within k of a term above ``level`` (a mean is at most its window's
+    largest term), from the last such term down, :data:`MEANS_A_STEP` at a time.  The periodogram of a long
+    record stands above the level at a few hundred bins out of tens of thousands: the smoothing of all of them
+    cost a tenth of the low-pass."""
+    big = np.flatnonzero(P > level)
+    n = P.size
+    hi = min(n, int(big[-1]) + k + 1) if big.size else 0
+    while hi > 0:
+        lo = max(0, hi - MEANS_A_STEP)
+        above = np.flatnonzero(_moving_mean(P, k, lo, hi) > level)
+        if above.size:
+            return lo + int(above[-1])
+        below = big[: np.searchsorted(big, lo + k)]  # the terms whose windows reach below lo
+        hi = min(lo, int(below[-1]) + k + 1) if below.size else 0
+    return -1
+
+
+@functools.lru_cache(maxsize=64)
+def _butterworth(order: int, cutoff: float) -> np.ndarray:
+    """Second-order sections of the digital Butterworth low-pass of ``order`` and ``cutoff`` (a fraction of the
+    Nyquist frequency): ``scipy.signal.butter(order, cutoff, output="sos")``, the same array as
+    ``butter(order, fc, fs=fs, ...)`` with cutoff = 2 fc / fs, read-only and kept: its design (0.3 ms, most of it in
+    ``zpk2sos``) costs a quarter of the filtering of a 60,000-sample record, and records of one length and rate
+    often meet the same cut-off (a bin frequency of their spectra times 1.5, or a fifth of the rate)."""
+    from scipy.signal import butter
+
+    sos = butter(order, cutoff, output="sos")
+    sos.flags.writeable = False
+    return sos
 
 
 def _lowpass_derivatives(x, dt, f0, sigma, spectrum):
@@ -728,7 +769,7 @@ def _lowpass_derivatives(x, dt, f0, sigma, spectrum):
     Cut-off: the frequency below which the signal power stands out of the white-noise floor (1.5 x the last frequency
     whose smoothed periodogram exceeds 10 x the noise power per bin), at least 3 x the dominant frequency and at
     most a fifth of the sampling rate.  ``spectrum``: :func:`_spectrum` of the (evenly sampled) record."""
-    from scipy.signal import butter, sosfiltfilt
+    from scipy.signal import sosfiltfilt
 
     n = x.size
     fs = 1.0 / dt
@@ -736,14 +777,13 @@ def _lowpass_derivatives(x, dt, f0, sigma, spectrum):
     P = magnitude**2
     floor = sigma**2 * np.sum(_hann(n) ** 2)
     k = max(1, n // 400)
-    Ps = _moving_mean(P, k)
-    above = np.flatnonzero(Ps > 10 * floor)
-    fc = 1.5 * f[above[-1]] if above.size else 3 * f0
+    last = _last_mean_above(P, k, 10 * floor)
+    fc = 1.5 * f[last] if last >= 0 else 3 * f0
     fc = float(np.clip(max(fc, 3 * f0), 2 * fs / n, 0.2 * fs))
     if fc >= 0.2 * fs * 0.999 and sigma == 0:
         xs = x
     else:
-        sos = butter(4, fc, fs=fs, output="sos")
+        sos = _butterworth(4, 2 * fc / fs).copy()  # (scipy's sosfilt takes a writable array only)
         xs = np.ascontiguousarray(sosfiltfilt(sos, x))  # (a reversed view: slower to difference)
     v = _central4(xs, dt)
     return v, _central4(v, dt)
@@ -991,7 +1031,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
                     f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): {cell.strip()!r} is not a finite number"
                 )
             data[r, c] = value
-    return _measurement_from_table(path, label, columns, data, [lineno for lineno, _ in rows[1:]], window)
+    return _measurement_from_table(path, label, columns, list(data.T), [lineno for lineno, _ in rows[1:]], window)
 
 
 def _csv_lines(text: str, label: str) -> list[list[str]]:
@@ -1130,9 +1170,9 @@ def _read_fast(raw: bytes, label: str, require_force: bool):
         data = _parse_table(raw, pos, len(columns))
     except (ValueError, TypeError):
         return None
-    if data.shape[0] < 5 or data.shape[1] != len(columns) or not _all_finite(data):
+    if len(data) != len(columns) or data[0].size < 5 or not all(_all_finite(values) for values in data):
         return None
-    t = data[:, [c[0] for c in columns].index("time")]
+    t = data[[c[0] for c in columns].index("time")]
     if np.any(np.diff(t) <= 0):
         return None
     return columns, data
@@ -1146,8 +1186,8 @@ def _read_fast(raw: bytes, label: str, require_force: bool):
 IMPORT_PARSER_BYTES = 2**20
 
 
-def _parse_table(raw: bytes, pos: int, columns: int) -> np.ndarray:
-    """The numbers of a comma-separated table (``raw`` from ``pos`` on) by the fastest parser at hand: pyarrow's
+def _parse_table(raw: bytes, pos: int, columns: int) -> list[np.ndarray]:
+    """The columns of numbers of a comma-separated table (``raw`` from ``pos`` on) by the fastest parser at hand: pyarrow's
     when it is loaded (pandas loads it) or the table is :data:`IMPORT_PARSER_BYTES` or more and it is installed (one
     thread: 0.8 x the time of pandas' C parser, and correctly rounded, as Python's float); else pandas' C parser
     when loaded (importing pandas costs ten times what it saves on a 60k-row file); else numpy's, five times
@@ -1164,12 +1204,13 @@ def _parse_table(raw: bytes, pos: int, columns: int) -> np.ndarray:
     stream.seek(pos)
     if "pandas" in sys.modules:
         reader = sys.modules["pandas"].read_csv
-        return reader(stream, header=None, dtype=float, engine="c", skip_blank_lines=True, na_filter=False).to_numpy()
+        table = reader(stream, header=None, dtype=float, engine="c", skip_blank_lines=True, na_filter=False)
+        return list(table.to_numpy().T)
     text = raw[pos:].decode("utf-8")
-    return np.loadtxt(io.StringIO(text), delimiter=",", comments=None, ndmin=2, dtype=float)
+    return list(np.loadtxt(io.StringIO(text), delimiter=",", comments=None, ndmin=2, dtype=float).T)
 
 
-def _parse_table_arrow(pyarrow, raw: bytes, pos: int, columns: int) -> np.ndarray:
+def _parse_table_arrow(pyarrow, raw: bytes, pos: int, columns: int) -> list[np.ndarray]:
     """:func:`_parse_table` by pyarrow's parser: the bytes from ``pos`` on, read in place (a zero-copy buffer; a
     file object made pyarrow copy them into blocks of 1 MB), as one block (one chunk a column), by the streaming
     reader (``read_csv`` starts a thread for every call, even with ``use_threads=False``), with no quoting and no
@@ -1193,32 +1234,36 @@ def _parse_table_arrow(pyarrow, raw: bytes, pos: int, columns: int) -> np.ndarra
         ),
     )
     table = reader.read_all()
-    data = np.empty((table.num_rows, columns), order="F")  # columns contiguous, as pandas gives them
-    for i, column in enumerate(table.columns):
+    data = []
+    for column in table.columns:
         if column.null_count:
             raise ValueError("an empty cell")  # the line-by-line reader names it
-        # the values buffer of each chunk (Arrow's layout of a float64 array: validity bitmap, values); not
-        # to_numpy(), which imports pandas (300 ms)
+        # the values buffer of each chunk (Arrow's layout of a float64 array: validity bitmap, values), copied into
+        # an array of its own (one array of the table took fresh pages from the system at every read when its
+        # size was above the allocator's threshold for them); not to_numpy(), which imports pandas (300 ms)
+        values = np.empty(table.num_rows)
         row = 0
         for chunk in column.chunks:
-            values = np.frombuffer(chunk.buffers()[1], dtype=np.float64, count=len(chunk), offset=8 * chunk.offset)
-            data[row : row + len(chunk), i] = values
+            values[row : row + len(chunk)] = np.frombuffer(
+                chunk.buffers()[1], dtype=np.float64, count=len(chunk), offset=8 * chunk.offset
+            )
             row += len(chunk)
+        data.append(values)
     return data
 
 
-def _measurement_from_table(path: Path, label: str, columns, data: np.ndarray, line_of, window) -> Measurement:
-    """The record of a parsed table (``line_of``: file line of each row, for messages; None on the fast path,
-    whose tables have already passed the checks that need it)."""
-    if data.shape[0] < 5:
-        raise MeasurementError(f"{label}: {data.shape[0]} data rows; a record needs at least 5")
+def _measurement_from_table(path: Path, label: str, columns, data: list[np.ndarray], line_of, window) -> Measurement:
+    """The record of a parsed table (``data``: its columns; ``line_of``: file line of each row, for messages; None on
+    the fast path, whose tables have already passed the checks that need it)."""
+    if data[0].size < 5:
+        raise MeasurementError(f"{label}: {data[0].size} data rows; a record needs at least 5")
     si: dict[str, np.ndarray] = {}
     kind = None
     units = {}
     for c, (name, unit, col_kind) in enumerate(columns):
         target = COLUMNS.get(name) or CONTROL_UNITS[col_kind]
         with np.errstate(all="ignore"):
-            si[name] = np.asarray(Q_(data[:, c], unit).to(target).magnitude, dtype=float)
+            si[name] = np.asarray(Q_(data[c], unit).to(target).magnitude, dtype=float)
         units[name] = unit
         if col_kind:
             kind = col_kind
