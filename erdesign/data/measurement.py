@@ -188,11 +188,20 @@ class Measurement:
             if values is not None:
                 _check_magnitude(np.asarray(values, dtype=float), column, column)
         _check_time(t, lambda i: f"time: sample {i}")
+        v = None if velocity is None else _as_1d(velocity, "velocity", n, unit="m/s")
+        kind = control_kind if control is not None else None
+        return cls._from_checked(t, x, F, u, kind, v, T, name, window, units)
+
+    @classmethod
+    def _from_checked(cls, t, x, F, u, control_kind, velocity, T, name, window, units) -> "Measurement":
+        """:meth:`from_arrays` after its checks: float arrays of one length, finite, within
+        :data:`POSSIBLE_MAGNITUDE`, time increasing (the reader of files checks them itself, naming lines and
+        columns; again here they were passes over every column)."""
         v_derived, a, f0 = _derivatives(t, x, window, 3)
-        v = v_derived if velocity is None else _as_1d(velocity, "velocity", n, unit="m/s")
+        v = v_derived if velocity is None else velocity
         if velocity is not None:
             _check_velocity(v, v_derived, name)
-        record = cls(t, x, F, v, a, u, control_kind if control is not None else None, T, name, dict(units or {}))
+        record = cls(t, x, F, v, a, u, control_kind, T, name, dict(units or {}))
         if f0 is not None:  # found by the derivatives from the same arrays: kept, not computed again
             record.__dict__["dominant_frequency"] = f0
         return record
@@ -751,14 +760,26 @@ def _last_mean_above(P: np.ndarray, k: int, level: float) -> int:
 
 @functools.lru_cache(maxsize=64)
 def _butterworth(order: int, cutoff: float) -> np.ndarray:
-    """Second-order sections of the digital Butterworth low-pass of ``order`` and ``cutoff`` (a fraction of the
-    Nyquist frequency): ``scipy.signal.butter(order, cutoff, output="sos")``, the same array as
-    ``butter(order, fc, fs=fs, ...)`` with cutoff = 2 fc / fs, read-only and kept: its design (0.3 ms, most of it in
-    ``zpk2sos``) costs a quarter of the filtering of a 60,000-sample record, and records of one length and rate
-    often meet the same cut-off (a bin frequency of their spectra times 1.5, or a fifth of the rate)."""
+    """Second-order sections of the digital Butterworth low-pass of even ``order`` and ``cutoff`` (a fraction of the
+    Nyquist frequency): the array of ``scipy.signal.butter(order, cutoff, output="sos")`` (and of ``butter(order,
+    fc, fs=fs, ...)`` with cutoff = 2 fc / fs), read-only, kept for the next record of that cut-off.
+
+    Built from butter's poles as ``scipy.signal.zpk2sos`` builds it, with the same operations (its zeros all at -1:
+    each section's numerator 1, 2, 1; its denominator the polynomial of a pole and its conjugate, by numpy.convolve
+    as scipy's ``poly``; the pole nearest the unit circle in the last section; the gain in the first): 60 us
+    instead of 260, zpk2sos's general pairing being most of butter's time (tests/test_derivatives_fast_paths.py
+    checks the arrays are equal, bit for bit, over orders 2-8 and cut-offs 1e-6-0.99: a last ulp moves the gain of
+    a low cut-off's sections by far more)."""
     from scipy.signal import butter
 
-    sos = butter(order, cutoff, output="sos")
+    _, p, k = butter(order, cutoff, output="zpk")
+    upper = p[p.imag > 0]  # one pole of each conjugate pair (an even order has no real pole)
+    upper = upper[np.argsort(-np.abs(1 - np.abs(upper)), kind="stable")]
+    sos = np.zeros((upper.size, 6))
+    sos[:, :3] = (1.0, 2.0, 1.0)
+    for i, pole in enumerate(upper):
+        sos[i, 3:] = np.convolve(np.convolve(np.ones(1, complex), [1, -pole]), [1, -np.conj(pole)]).real
+    sos[0, :3] *= k
     sos.flags.writeable = False
     return sos
 
@@ -1267,24 +1288,26 @@ def _measurement_from_table(path: Path, label: str, columns, data: list[np.ndarr
         units[name] = unit
         if col_kind:
             kind = col_kind
-        _check_possible(si[name], name, unit, label, c + 1)
+        # the parsed numbers are finite (checked as they were read): in SI units too unless converted
+        _check_possible(si[name], name, unit, label, c + 1, finite=si[name] is data[c])
     t = si["time"]
+    col = [c[0] for c in columns].index("time")
     if line_of is not None:
-        _check_time(
-            t, lambda i: f"{label}: line {line_of[i]}, column {[c[0] for c in columns].index('time') + 1} (time)"
-        )
+        _check_time(t, lambda i: f"{label}: line {line_of[i]}, column {col + 1} (time)")
+    elif t is not data[col]:  # converted: steps of a few ulp may have rounded to nothing
+        _check_time(t, lambda i: f"{label}: column {col + 1} (time), data row {i + 1}")
     control_name = next((c for c in si if c in CONTROL_COLUMNS), None)
-    m = Measurement.from_arrays(
+    m = Measurement._from_checked(
         t,
         si["displacement"],
         si.get("force"),
-        control=si.get(control_name) if control_name else None,
-        control_kind=kind,
-        velocity=si.get("velocity"),
-        temperature=si.get("temperature"),
-        name=path.name,
-        window=window,
-        units=units,
+        si[control_name] if control_name else np.zeros(t.size),
+        kind,
+        si.get("velocity"),
+        si.get("temperature"),
+        path.name,
+        window,
+        units,
     )
     check_record(m)
     return m
@@ -1298,9 +1321,10 @@ POSSIBLE_MAGNITUDE = {"displacement": 100.0, "force": 1e9, "velocity": 1e3, "tim
 SHORTEST_TIME_STEP = 1e-18
 
 
-def _check_possible(values: np.ndarray, name: str, unit: str, label: str, col: int) -> None:
+def _check_possible(values: np.ndarray, name: str, unit: str, label: str, col: int, finite: bool = False) -> None:
+    """Refuse a column of a file whose SI values cannot be (``finite``: they are known to be finite)."""
     where = f"{label}: column {col} ({name} [{unit}])"
-    if not _all_finite(values):
+    if not finite and not _all_finite(values):
         raise MeasurementError(f"{where}: a value is not finite in SI units")
     if name == "temperature" and values.size and float(values.min()) < 0.0:
         raise MeasurementError(
