@@ -500,12 +500,20 @@ def _harmonic_columns(
     transcendental evaluations instead of 2n, and an error of 2 ulp; ``even``: whether it is, if known)."""
     n = t.size
     out = np.empty((n, 2 * harmonics)) if out is None else out
-    out[:, 0], out[:, 1] = _fundamental(t, f, origin, even)
-    c1, s1 = out[:, 0], out[:, 1]
+    if harmonics == 1:
+        out[:, 0], out[:, 1] = _fundamental(t, f, origin, even)
+        return out
+    # by rows of their transpose, each contiguous (by the columns of ``out`` the additions took 4 x longer)
+    rows = np.empty((2 * harmonics, n))
+    rows[0], rows[1] = _fundamental(t, f, origin, even)
+    c1, s1 = rows[0], rows[1]
     for k in range(2, harmonics + 1):
-        ck, sk = out[:, 2 * k - 4], out[:, 2 * k - 3]
-        out[:, 2 * k - 2] = c1 * ck - s1 * sk
-        out[:, 2 * k - 1] = s1 * ck + c1 * sk
+        ck, sk, ck1, sk1 = rows[2 * k - 4 : 2 * k]
+        np.multiply(c1, ck, out=ck1)
+        ck1 -= s1 * sk
+        np.multiply(s1, ck, out=sk1)
+        sk1 += c1 * sk
+    out[...] = rows.T
     return out
 
 
@@ -637,7 +645,7 @@ def _harmonic_derivatives(t, x, f0, sigma, T, fs, limit, even):
 
 
 #: Samples a block of :func:`_harmonic_series`: its arrays then stay in the processor's cache.
-SERIES_BLOCK = 8192
+SERIES_BLOCK = 16384
 
 
 def _harmonic_series(t, x, f, c, kept, A, origin, limit):
