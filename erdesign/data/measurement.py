@@ -775,7 +775,7 @@ def _butterworth(order: int, cutoff: float) -> np.ndarray:
     Built from butter's poles as ``scipy.signal.zpk2sos`` builds it, with the same operations (its zeros all at -1:
     each section's numerator 1, 2, 1; its denominator the polynomial of a pole and its conjugate, by numpy.convolve
     as scipy's ``poly``; the pole nearest the unit circle in the last section; the gain in the first): 60 us
-    instead of 260, zpk2sos's general pairing being most of butter's time (tests/test_derivatives_fast_paths.py
+    instead of 260, zpk2sos's general pairing being most of butter's time (tests/test_reading_fast_paths.py
     checks the arrays are equal, bit for bit, over orders 2-8 and cut-offs 1e-6-0.99: a last ulp moves the gain of
     a low cut-off's sections by far more)."""
     from scipy.signal import butter
