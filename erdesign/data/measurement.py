@@ -675,7 +675,7 @@ def _harmonic_series(t, x, f, c, kept, A, origin, limit):
         if A is None and K:
             rows = slice(lo // offsets.size, -(-block.stop // offsets.size))
             z = np.multiply.outer(starts[rows], offsets).ravel()[: block.stop - lo]
-            c1, s1 = z.real, z.imag
+            c1, s1 = np.ascontiguousarray(z.real), np.ascontiguousarray(z.imag)
         model = None  # c[0] + c[1] (t - origin) + the harmonics
         if A is None:
             model = np.subtract(t[block], origin)
