@@ -37,6 +37,18 @@ def test_identify_round_trip_single_record():
     assert r.esr == pytest.approx(25.0 / np.var(rec.force), rel=0.2)
 
 
+def test_the_reference_model_is_not_a_poor_fit_of_itself():
+    """Bingham without a control input is the reference fit (c0 v + f_c sgn v + f0) that decides a poor fit: the two
+    solutions agree to rounding only, and equal ESRs must not read as "worse than the reference"."""
+    from erdesign.identification.engine import worse_than_reference
+
+    for seed in range(6):
+        r = identify(get_model("bingham"), record(seed=seed, noise_n=0.5), starts=4)
+        assert r.esr == pytest.approx(r.baseline_esr, rel=1e-6)
+        assert r.success and not r.poor_fit and not any("poor fit" in w for w in r.warnings), seed
+    assert worse_than_reference(1.0 + 1e-6, 1.0) and not worse_than_reference(1.0 + 1e-12, 1.0)
+
+
 def test_identify_joint_recovers_current_dependence():
     recs = [record(current=i, seed=k) for k, i in enumerate((0.0, 0.5, 1.0))]
     res = identify_joint(get_model("bingham"), recs)

@@ -30,6 +30,7 @@ __all__ = [
     "AT_BOUND_RTOL",
     "CORRELATION_THRESHOLD",
     "FAIL_RATIO",
+    "worse_than_reference",
     "FTOL",
     "PENALTY",
     "STALL_RTOL",
@@ -378,6 +379,17 @@ def mostly_at_bounds(model: Model, free: Sequence[str], values: Mapping[str, flo
 #: reference Bingham fit leaves (:func:`baseline_esr`), or ends with most free parameters at a bound: with
 #: ``Strategy.rescue`` the other starts are then run, and a best fit above it is a poor fit.
 FAIL_RATIO = 1.0
+
+#: ESRs closer than this (relative) are the same number: the same least-squares problem solved two ways (a Bingham
+#: model identified against the reference Bingham fit) agrees to the last few digits only (7.581952112373274e-05
+#: against 7.581952112373271e-05), which must not make the fit "worse" than the reference.
+SAME_ESR_RTOL = 1e-9
+
+
+def worse_than_reference(esr_value: float, baseline: float) -> bool:
+    """An ESR above :data:`FAIL_RATIO` times the reference fit's, beyond rounding (:data:`SAME_ESR_RTOL`)."""
+    return bool(esr_value > FAIL_RATIO * baseline * (1.0 + SAME_ESR_RTOL))
+
 
 #: Records longer than this get a warm start on a decimated copy (at least 1 kHz kept) before all samples.
 WARM_START_SAMPLES = 20_000
@@ -891,7 +903,7 @@ def _failed(pb: Problem, out: Outcome, baseline: float) -> bool:
     return (
         out.out_of_time
         or out.status <= 0
-        or out.cost / out.spread > FAIL_RATIO * baseline
+        or worse_than_reference(out.cost / out.spread, baseline)
         or mostly_at_bounds(pb.model, pb.free, pb.values(out.x))
     )
 

@@ -17,13 +17,13 @@ from ..data.metrics import esr
 from ..errors import ErdesignError
 from ..models.base import Model
 from .engine import (
-    FAIL_RATIO,
     FitError,
     Strategy,
     control_reference_for,
     mostly_at_bounds,
     problem,
     solve,
+    worse_than_reference,
 )
 from .result import (
     FitResult,
@@ -279,7 +279,7 @@ def identify(
     # A fit no better than the reference (a Bingham model: viscous plus friction plus offset, by linear least
     # squares on the same samples) or set by the bounds is not a success, whatever the optimiser's message says.
     bounded = mostly_at_bounds(model, free_names, result.values)
-    poor = bool(result.esr > FAIL_RATIO * baseline or bounded)
+    poor = worse_than_reference(result.esr, baseline) or bounded
     result.poor_fit = poor
     if poor:
         result.success = False
