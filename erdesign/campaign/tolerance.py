@@ -38,7 +38,7 @@ import numpy as np
 
 from ..damper.damper import Damper, exact_annulus_for
 from ..damper.quasi_steady import damping_constant, quasi_steady_state
-from ..errors import ErdesignError
+from ..errors import ErdesignError, did_you_mean
 from ..executor import Executor, chunks, executor_for
 from ..fluid.fluid import plastic_viscosity
 from ..units import Q_, dimension_name, parse_quantity
@@ -189,7 +189,9 @@ def parse_variation(spec: str, damper: Damper) -> Variation:
         )
     key = m["key"]
     if key not in VARIABLES:
-        raise ToleranceError(f"{where}: {key!r} is not a value a study can vary; keys: {', '.join(VARIABLES)}")
+        raise ToleranceError(
+            f"{where}: {key!r} is not a value a study can vary{did_you_mean(key, VARIABLES)}; keys: {', '.join(VARIABLES)}"
+        )
     var = VARIABLES[key]
     if key == "geometry.duct_mean_diameter" and damper.geometry.configuration == "mixed":
         raise ToleranceError(f"{where}: a mixed damper's duct_mean_diameter is piston_diameter + gap; vary those")

@@ -1,0 +1,96 @@
+"""Hostile input, third round: cases of the classes of issue 27 that the team had not written - expressions in
+values, misspelt keys and names (a did-you-mean hint naming the closest one is expected), a BOM before a TOML
+file, absurd speeds, strokes and sample counts.  Each ends in one readable line naming the argument, key or file
+(exit 1 or 2) or, when the value is possible but implausible, in a warning naming it; inputs are never changed.
+The commands run in-process, as in test_hostile_cli.py.
+"""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from .corpus import EXAMPLES, GOOD_RECORD, MAKRIS, REQUIREMENTS
+from .test_hostile_cli import _argv, _one_line_error, _run
+
+#: (id, what the file holds, name of the file) for the files fixture
+_FILES = {
+    "gap_expression": MAKRIS.replace('gap = "0.8 mm"', 'gap = "0.8 mm * 2"'),  # read as 1.6 mm
+    "gap_two_numbers": MAKRIS.replace('gap = "0.8 mm"', 'gap = "0.8 mm 2"'),  # read as 1.6 mm
+    "gap_fraction": MAKRIS.replace('gap = "0.8 mm"', 'gap = "1/2 mm"'),  # read as 0.5 mm
+    "misspelt_viscosity": MAKRIS.replace("viscosity =", "viscosty ="),
+    "misspelt_table": MAKRIS.replace("[geometry]", "[geomtry]"),
+    "key_case": MAKRIS.replace("gap =", "Gap ="),
+    "configuration_case": MAKRIS.replace('configuration = "valve"', 'configuration = "Valve"'),
+    "material_case": MAKRIS.replace("[fluid]", '[fluid]\nmaterial = "Lord-MRF-132DG"'),
+    "req_misspelt": REQUIREMENTS.replace("max_length =", "max_lenght ="),
+    "req_placement": REQUIREMENTS.replace('duct_placement = "beside"', 'duct_placement = "besid"'),
+}
+
+
+@pytest.fixture
+def files(tmp_path):
+    made = {"damper": shutil.copy(EXAMPLES / "makris.toml", tmp_path / "d.toml"), "record": tmp_path / "m.csv"}
+    made["record"].write_text(GOOD_RECORD)
+    for name, text in _FILES.items():
+        made[name] = tmp_path / f"{name}.toml"
+        made[name].write_text(text, encoding="utf-8")
+    return tmp_path, made
+
+
+_SIZE = ["--velocity", "1 in/s"]
+#: (id, arguments with {name} placeholders for the files fixture, texts the error line must hold)
+ERROR_CASES = [
+    # a value is one number, then its unit: pint evaluated the rest
+    ("size velocity two numbers", ["size", "{damper}", "--velocity", "1 in/s 2"], ["velocity", "after the unit"]),
+    ("size velocity times zero", ["size", "{damper}", "--velocity", "1 in/s * 0"], ["velocity", "after the unit"]),
+    ("size velocity 2**1000", ["size", "{damper}", "--velocity", "2**1000 m/s"], ["velocity", "expression"]),
+    ("size velocity brackets", ["size", "{damper}", "--velocity", "[1] m/s"], ["velocity", "one number"]),
+    ("size gap expression", ["size", "{gap_expression}", *_SIZE], ["geometry.gap", "after the unit"]),
+    ("size gap two numbers", ["size", "{gap_two_numbers}", *_SIZE], ["geometry.gap", "after the unit"]),
+    ("size gap fraction", ["size", "{gap_fraction}", *_SIZE], ["geometry.gap", "a fraction as a decimal"]),
+    # a misspelt key or name: the closest known one is named first
+    ("size misspelt key", ["size", "{misspelt_viscosity}", *_SIZE], ["fluid.viscosty", "did you mean 'viscosity'?"]),
+    ("size misspelt table", ["size", "{misspelt_table}", *_SIZE], ["geomtry", "did you mean 'geometry'?"]),
+    ("size key in capitals", ["size", "{key_case}", *_SIZE], ["geometry.Gap", "did you mean 'gap'?"]),
+    ("size choice in capitals", ["size", "{configuration_case}", *_SIZE], ["configuration", "did you mean 'valve'?"]),
+    ("size material case", ["size", "{material_case}", *_SIZE], ["fluid.material", "did you mean 'lord-mrf-132dg'?"]),
+    (
+        "design misspelt limit",
+        ["design", "{req_misspelt}", "--out", "{tmp}/o.csv"],
+        ["design.limits.max_lenght", "did you mean 'max_length'?"],
+    ),
+    (
+        "design misspelt choice",
+        ["design", "{req_placement}", "--out", "{tmp}/o.csv"],
+        ["design.envelope.duct_placement", "did you mean 'beside'?"],
+    ),
+    ("identify misspelt model", ["identify", "{record}", "--model", "bingam"], ["'bingam'", "did you mean 'bingham'?"]),
+    (
+        "simulate misspelt parameter",
+        ["simulate", "{record}", "--model", "bingham", "--params", "f_cc=100 N"],
+        ["'f_cc'", "did you mean 'f_c'?"],
+    ),
+    (
+        "diagnose misspelt effect",
+        ["diagnose", "{record}", "--damper", "{damper}", "--effects", "seal_frction"],
+        ["'seal_frction'", "did you mean 'seal_friction'?"],
+    ),
+    (
+        "tolerance misspelt key",
+        ["tolerance", "{damper}", "--vary", "fluid.yeild_stress=+-5 %", *_SIZE, "--samples", "100"],
+        ["--vary", "did you mean 'fluid.yield_stress'?"],
+    ),
+]
+
+
+@pytest.mark.parametrize("case", ERROR_CASES, ids=[c[0] for c in ERROR_CASES])
+def test_round3_command_lines_end_in_one_line(case, files, capsys):
+    _, args, needles = case
+    tmp, made = files
+    before = {p: p.read_bytes() for p in made.values()}
+    code, out, err = _run(capsys, _argv(args, tmp, made))
+    _one_line_error(code, out, err, *needles)
+    assert {p: p.read_bytes() for p in made.values()} == before
+    assert not (tmp / "o.csv").exists()
