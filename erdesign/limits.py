@@ -31,6 +31,7 @@ __all__ = [
     "MAX_RECORD_ROWS",
     "MAX_TOML_BYTES",
     "MAX_VALUE_CHARS",
+    "decode_text",
     "is_path_like",
     "nested_too_deeply",
     "read_input_bytes",
@@ -74,6 +75,7 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
         if chunk.startswith(b"PK\x03\x04"):
             advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
             raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
+        _refuse_utf16(chunk, label, what)
         if chunk.find(b"\x00", 0, _CHUNK) != -1:  # in the first chunk, whatever was read (no copy of it)
             raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
         while chunk:
@@ -88,6 +90,13 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
     return chunks[0] if len(chunks) == 1 else b"".join(chunks)
 
 
+def _refuse_utf16(head: bytes, label: str, what: str) -> None:
+    if head.startswith((b"\xff\xfe", b"\xfe\xff")):  # a byte-order mark of UTF-16 (or UTF-32)
+        raise ErdesignError(
+            f"{label}: UTF-16 text (Excel's 'Unicode Text', Notepad's 'Unicode'), not {what} in UTF-8; save it as UTF-8"
+        )
+
+
 def nested_too_deeply(label: str) -> str:
     """The message for a file whose nesting exceeds the parser's recursion limit."""
     return f"{label}: nested too deeply to read (arrays or tables inside one another hundreds of levels deep)"
@@ -96,3 +105,27 @@ def nested_too_deeply(label: str) -> str:
 def is_path_like(value) -> bool:
     """True for a str or os.PathLike (what the loaders take as a file name)."""
     return isinstance(value, (str, os.PathLike)) and not isinstance(value, bytes)
+
+
+def decode_text(raw: bytes, label: str, what: str) -> str:
+    """The text of an input file's bytes (UTF-8; a byte-order mark, as Notepad and Excel write it, is dropped), or
+    an :class:`~erdesign.errors.ErdesignError` naming the file and the line of the first byte that is not UTF-8
+    (a file saved as Latin-1 or Windows-1252: an accented letter, a micro sign).
+
+    >>> decode_text(b"\\xef\\xbb\\xbfname = 1", "d.toml", "a TOML file")
+    'name = 1'
+    >>> decode_text(b"a = 1\\nname = 'D\\xe4mpfer'", "d.toml", "a TOML file")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.ErdesignError: d.toml: line 2: byte 0xe4 is not UTF-8 (the file was saved as Latin-1 or Windows-1252?); save it as UTF-8 text, not a TOML file in another encoding
+    """
+    _refuse_utf16(raw, label, what)
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        hint = " (the file was saved as Latin-1 or Windows-1252?)" if raw[exc.start] >= 0xA0 else ""
+        raise ErdesignError(
+            f"{label}: line {line}: byte 0x{raw[exc.start]:02x} is not UTF-8{hint}; save it as UTF-8 text, not "
+            f"{what} in another encoding"
+        ) from None

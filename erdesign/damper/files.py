@@ -30,7 +30,7 @@ from pydantic import BeforeValidator
 from .. import materials
 from ..errors import DamperFileError, ErdesignError
 from ..examples import bundled_file
-from ..limits import MAX_TOML_BYTES, is_path_like, nested_too_deeply, read_input_bytes
+from ..limits import MAX_TOML_BYTES, decode_text, is_path_like, nested_too_deeply, read_input_bytes
 from ..fluid import Fluid
 from ..fluid.fluid import control_kind
 from ..geometry import CONFIGURATIONS, Geometry
@@ -149,7 +149,7 @@ def read_toml(path: str | Path) -> dict:
         )
     path = Path(path)
     try:
-        text = read_input_bytes(path, MAX_TOML_BYTES, "a TOML file").decode("utf-8")
+        text = decode_text(read_input_bytes(path, MAX_TOML_BYTES, "a TOML file"), str(path), "a TOML file")
         return tomllib.loads(text)
     except RecursionError:
         raise DamperFileError(nested_too_deeply(str(path))) from None

@@ -47,7 +47,7 @@ import numpy as np
 from ..errors import ErdesignError, ErdesignWarning
 from ..examples import bundled_file
 from ..fluid import CONTROL_UNITS
-from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, is_path_like, read_input_bytes
+from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, decode_text, is_path_like, read_input_bytes
 from ..units import Q_, dimension_name, parse_unit, ureg
 
 __all__ = [
@@ -1002,7 +1002,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     path = bundled_file(path) or path  # the documented examples/measurements/... from any folder
     try:
         raw = read_input_bytes(path, MAX_RECORD_BYTES, "a measurement CSV file")
-        text = None if raw.isascii() else raw.decode("utf-8-sig")  # checked; decoded when needed
+        text = None if raw.isascii() else decode_text(raw, label, "a measurement CSV file")  # decoded when needed
     except ErdesignError as exc:
         raise MeasurementError(str(exc)) from None
     except FileNotFoundError:

@@ -27,6 +27,14 @@ _FILES = {
     "req_misspelt": REQUIREMENTS.replace("max_length =", "max_lenght ="),
     "req_placement": REQUIREMENTS.replace('duct_placement = "beside"', 'duct_placement = "besid"'),
 }
+#: files in another encoding than UTF-8 (bytes)
+_BYTES = {
+    "latin1": MAKRIS.replace('name = "makris-1996"', 'name = "D\u00e4mpfer"').encode("latin-1"),
+    "utf16": MAKRIS.encode("utf-16"),
+    "latin1_csv": GOOD_RECORD.replace("displacement [mm]", "displacement [\u00b5m]").encode("latin-1"),
+    "bom_damper": "\ufeff".encode() + MAKRIS.encode(),
+    "bom_requirements": "\ufeff".encode() + REQUIREMENTS.encode(),
+}
 
 
 @pytest.fixture
@@ -36,6 +44,9 @@ def files(tmp_path):
     for name, text in _FILES.items():
         made[name] = tmp_path / f"{name}.toml"
         made[name].write_text(text, encoding="utf-8")
+    for name, data in _BYTES.items():
+        made[name] = tmp_path / f"{name}.{'csv' if name.endswith('csv') else 'toml'}"
+        made[name].write_bytes(data)
     return tmp_path, made
 
 
@@ -82,6 +93,10 @@ ERROR_CASES = [
         ["tolerance", "{damper}", "--vary", "fluid.yeild_stress=+-5 %", *_SIZE, "--samples", "100"],
         ["--vary", "did you mean 'fluid.yield_stress'?"],
     ),
+    # encodings: the line of the first byte that is not UTF-8, and UTF-16 named as such (it was 'a binary file')
+    ("size Latin-1 file", ["size", "{latin1}", *_SIZE], ["latin1.toml: line 4: byte 0xe4 is not UTF-8", "Latin-1"]),
+    ("size UTF-16 file", ["size", "{utf16}", *_SIZE], ["utf16.toml", "UTF-16", "save it as UTF-8"]),
+    ("fit Latin-1 header", ["fit", "{latin1_csv}", "--damper", "{damper}"], ["latin1_csv.csv: line 1", "0xb5"]),
 ]
 
 
@@ -94,3 +109,21 @@ def test_round3_command_lines_end_in_one_line(case, files, capsys):
     _one_line_error(code, out, err, *needles)
     assert {p: p.read_bytes() for p in made.values()} == before
     assert not (tmp / "o.csv").exists()
+
+
+def test_a_damper_file_with_a_bom_reads_as_without(files, capsys):
+    """Notepad saves UTF-8 with a byte-order mark: it was 'invalid TOML: Invalid statement (at line 1, column 1)'."""
+    tmp, made = files
+    results = []
+    for name in ("damper", "bom_damper"):
+        code, out, err = _run(capsys, ["size", made[name], *_SIZE, "--json"])
+        assert code == 0, err
+        results.append(out)
+    assert results[0] == results[1]
+
+
+def test_a_requirements_file_with_a_bom_is_read(files, capsys):
+    tmp, made = files
+    code, out, err = _run(capsys, ["design", made["bom_requirements"], "--out", tmp / "o.csv", "--json"])
+    assert code == 0, err
+    assert (tmp / "o.csv").exists()
