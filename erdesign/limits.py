@@ -9,7 +9,8 @@ any damper file or damper test record:
 limit                       value         what it bounds
 ==========================  ============  =====================================================================
 :data:`MAX_RECORD_BYTES`    256 MB        a measurement file (60,000 rows of 4 columns take about 3 MB)
-:data:`MAX_RECORD_ROWS`     10,000,000    the rows of a measurement (about 3 hours at 1 kHz)
+:data:`MAX_RECORD_ROWS`     10,000,000    the rows of a measurement (about 3 hours at 1 kHz), and the samples or time
+                                          steps of a record or run erdesign makes (:func:`check_sample_count`)
 :data:`MAX_CELL_CHARS`      1,000         one cell of a measurement (a number or a header ``name [unit]``)
 :data:`MAX_TOML_BYTES`      1 MB          a damper or requirements file (the examples take about 2 kB)
 :data:`MAX_VALUE_CHARS`     200           a value with a unit (``"0.8 mm"``)
@@ -31,6 +32,7 @@ __all__ = [
     "MAX_RECORD_ROWS",
     "MAX_TOML_BYTES",
     "MAX_VALUE_CHARS",
+    "check_sample_count",
     "decode_text",
     "is_path_like",
     "nested_too_deeply",
@@ -95,6 +97,25 @@ def _refuse_utf16(head: bytes, label: str, what: str) -> None:
         raise ErdesignError(
             f"{label}: UTF-16 text (Excel's 'Unicode Text', Notepad's 'Unicode'), not {what} in UTF-8; save it as UTF-8"
         )
+
+
+def check_sample_count(n: float, what: str, advice: str, most: int = MAX_RECORD_ROWS) -> int:
+    """``n`` (the samples or time steps a duration and a rate or step make) as an int, or an
+    :class:`~erdesign.errors.ErdesignError` starting with ``what`` when it exceeds ``most`` (default
+    :data:`MAX_RECORD_ROWS`; less for a record that is computed on a finer grid first): ``doe
+    --rate "1e9 Hz"`` or ``vehicle --duration "1e6 s"`` asked for terabytes and ended in a MemoryError.
+
+    >>> check_sample_count(4e9, "duration, rate", "shorten the duration or lower the rate")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.ErdesignError: duration, rate: 4,000,000,000 samples, more than the 10,000,000 erdesign makes in one record (a unit mistake?); shorten the duration or lower the rate
+    """
+    if not n <= most:
+        shown = f"{n:,.0f}" if n < 1e30 else f"{n:.3g}"
+        raise ErdesignError(
+            f"{what}: {shown} samples, more than the {most:,} erdesign makes in one record (a unit mistake?); {advice}"
+        )
+    return int(n)
 
 
 def nested_too_deeply(label: str) -> str:

@@ -36,6 +36,7 @@ import numpy as np
 from .._util import broadcast_named, scalar_or_array, si_array
 from ..data.metrics import energy_per_cycle, equivalent_damping
 from ..errors import ErdesignError, ValidityWarning
+from ..limits import check_sample_count
 from ..flow.bingham import yield_pressure_drop
 from ..fluid import Fluid
 from ..geometry import THIN_GAP_LIMIT, Geometry
@@ -363,6 +364,7 @@ class Damper:
             isinstance(cycles, int) and cycles >= 1 and isinstance(samples_per_cycle, int) and samples_per_cycle >= 16
         ):
             raise ErdesignError("cycles must be a whole number >= 1 and samples_per_cycle >= 16")
+        check_sample_count(cycles * samples_per_cycle + 1, "cycles, samples_per_cycle", "take fewer")
         E = self.fluid.field_si(field)
         omega = 2 * math.pi * f
         t = np.linspace(0.0, cycles / f, cycles * samples_per_cycle + 1)

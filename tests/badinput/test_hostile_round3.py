@@ -97,6 +97,31 @@ ERROR_CASES = [
     ("size Latin-1 file", ["size", "{latin1}", *_SIZE], ["latin1.toml: line 4: byte 0xe4 is not UTF-8", "Latin-1"]),
     ("size UTF-16 file", ["size", "{utf16}", *_SIZE], ["utf16.toml", "UTF-16", "save it as UTF-8"]),
     ("fit Latin-1 header", ["fit", "{latin1_csv}", "--damper", "{damper}"], ["latin1_csv.csv: line 1", "0xb5"]),
+    # sizes that asked for terabytes (MemoryError, an internal error) or filled the memory until the system killed
+    # the process: a limit, said at once
+    ("doe rate 1e9 Hz", ["doe", "--programme", "E5", "--rate", "1e9 Hz", "--out", "{tmp}/o.csv"], ["rate", "samples"]),
+    (
+        "doe duration 1e6 s",
+        ["doe", "--programme", "rp", "--duration", "1e6 s", "--out", "{tmp}/o.csv"],
+        ["duration, rate: 500,000,000 samples", "1,250,000"],
+    ),
+    (
+        "vehicle duration 1e6 s",
+        ["vehicle", "--damper", "{damper}", "--duration", "1e6 s"],
+        ["duration, dt: 4,000,000,001 samples"],
+    ),
+    ("vehicle dt 1e-12 s", ["vehicle", "--damper", "{damper}", "--dt", "1e-12 s"], ["duration, dt", "larger dt"]),
+    (
+        "tolerance 1e9 samples",
+        ["tolerance", "{damper}", "--vary", "fluid.yield_stress=+-15 %", *_SIZE, "--samples", "1000000000"],
+        ["samples: 1,000,000,000", "16,777,216"],
+    ),
+    (
+        "report 1e9 tolerance samples",
+        ["report", "{damper}", "--out", "{tmp}/o.html", "--vary", "geometry.gap=+-1 %"]
+        + ["--tolerance-samples", "1000000000"],
+        ["samples: 1,000,000,000"],
+    ),
 ]
 
 
@@ -108,7 +133,7 @@ def test_round3_command_lines_end_in_one_line(case, files, capsys):
     code, out, err = _run(capsys, _argv(args, tmp, made))
     _one_line_error(code, out, err, *needles)
     assert {p: p.read_bytes() for p in made.values()} == before
-    assert not (tmp / "o.csv").exists()
+    assert not (tmp / "o.csv").exists() and not (tmp / "o.html").exists()
 
 
 def test_a_damper_file_with_a_bom_reads_as_without(files, capsys):
@@ -127,3 +152,11 @@ def test_a_requirements_file_with_a_bom_is_read(files, capsys):
     code, out, err = _run(capsys, ["design", made["bom_requirements"], "--out", tmp / "o.csv", "--json"])
     assert code == 0, err
     assert (tmp / "o.csv").exists()
+
+
+def test_a_sine_response_of_a_billion_cycles_is_refused():
+    from erdesign import load_example
+    from erdesign.errors import ErdesignError
+
+    with pytest.raises(ErdesignError, match=r"^cycles, samples_per_cycle: 64,000,000,001 samples"):
+        load_example("makris").sine_response("1 mm", "1 Hz", cycles=10**9, samples_per_cycle=64)
