@@ -60,7 +60,7 @@ Example
 >>> requirements_from_dict({"fluid": {}, "desing": {}})
 Traceback (most recent call last):
 ...
-erdesign.design.requirements.RequirementsError: requirements: desing: unknown key; allowed keys: name, fluid, design
+erdesign.design.requirements.RequirementsError: requirements: desing: unknown key (did you mean 'design'?); allowed keys: name, fluid, design
 """
 
 from __future__ import annotations
@@ -77,6 +77,7 @@ from typing import Annotated
 
 from pydantic import BeforeValidator
 
+from ..damper.damper import check_piston_velocity
 from ..damper.files import Control, FluidTable, parse_fluid_table, read_toml
 from ..errors import ErdesignError
 from ..examples import bundled_file
@@ -611,7 +612,7 @@ def _parse_points(tables: list[PointTable], fluid: Fluid) -> tuple[DesignPoint, 
             if field_value < 0:
                 raise RequirementsError(f"{where}.field: must not be negative, got {table.field!r}")
         point = DesignPoint(
-            velocity=_si(table.velocity, "m/s", f"{where}.velocity"),
+            velocity=check_piston_velocity(_si(table.velocity, "m/s", f"{where}.velocity"), f"{where}.velocity"),
             field=field_value,
             min_force=_si(table.min_force, "N", f"{where}.min_force"),
             min_dynamic_range=None if table.min_dynamic_range is None else float(table.min_dynamic_range),

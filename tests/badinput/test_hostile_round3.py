@@ -97,6 +97,9 @@ ERROR_CASES = [
     ("size Latin-1 file", ["size", "{latin1}", *_SIZE], ["latin1.toml: line 4: byte 0xe4 is not UTF-8", "Latin-1"]),
     ("size UTF-16 file", ["size", "{utf16}", *_SIZE], ["utf16.toml", "UTF-16", "save it as UTF-8"]),
     ("fit Latin-1 header", ["fit", "{latin1_csv}", "--damper", "{damper}"], ["latin1_csv.csv: line 1", "0xb5"]),
+    # a piston speed beyond any damper's: a unit mistake
+    ("size velocity 1e5 m/s", ["size", "{damper}", "--velocity", "1e5 m/s"], ["velocity: 1e+05 m/s", "1000 m/s"]),
+    ("size velocity speed of light", ["size", "{damper}", "--velocity", "1 c"], ["velocity", "beyond any piston"]),
     # sizes that asked for terabytes (MemoryError, an internal error) or filled the memory until the system killed
     # the process: a limit, said at once
     ("doe rate 1e9 Hz", ["doe", "--programme", "E5", "--rate", "1e9 Hz", "--out", "{tmp}/o.csv"], ["rate", "samples"]),
@@ -160,3 +163,30 @@ def test_a_sine_response_of_a_billion_cycles_is_refused():
 
     with pytest.raises(ErdesignError, match=r"^cycles, samples_per_cycle: 64,000,000,001 samples"):
         load_example("makris").sine_response("1 mm", "1 Hz", cycles=10**9, samples_per_cycle=64)
+
+
+#: (id, arguments, the warning line's start): possible but implausible values, warned naming the value
+WARNING_CASES = [
+    ("size 500 m/s", ["size", "{damper}", "--velocity", "500 m/s", "--json"], "warning: velocity: 500 m/s is beyond"),
+    (
+        "design point 500 m/s",
+        ["design", "{req_fast}", "--out", "{tmp}/o.csv", "--json"],
+        "warning: design.point[1].velocity: 500 m/s is beyond",
+    ),
+    (
+        "report velocity range to 500 m/s",
+        ["report", "{damper}", "--velocity-range", "0 m/s", "500 m/s", "--out", "{tmp}/o.html", "--json"],
+        "warning: velocity_range[1]: 500 m/s is beyond",
+    ),
+]
+
+
+@pytest.mark.parametrize("case", WARNING_CASES, ids=[c[0] for c in WARNING_CASES])
+def test_round3_implausible_values_are_warned(case, files, capsys):
+    _, args, start = case
+    tmp, made = files
+    made["req_fast"] = tmp / "fast.toml"
+    made["req_fast"].write_text(REQUIREMENTS.replace('velocity = "1 in/s"', 'velocity = "500 m/s"'))
+    code, out, err = _run(capsys, _argv(args, tmp, made))
+    assert code == 0, err
+    assert any(line.startswith(start) and "unit" in line for line in err.splitlines()), err
