@@ -26,6 +26,9 @@ _FILES = {
     "material_case": MAKRIS.replace("[fluid]", '[fluid]\nmaterial = "Lord-MRF-132DG"'),
     "req_misspelt": REQUIREMENTS.replace("max_length =", "max_lenght ="),
     "req_placement": REQUIREMENTS.replace('duct_placement = "beside"', 'duct_placement = "besid"'),
+    "req_stroke0": REQUIREMENTS.replace('stroke = "50 mm"', 'stroke = "0 mm"'),
+    "req_stroke10": REQUIREMENTS.replace('stroke = "50 mm"', 'stroke = "10 m"'),
+    "req_ducts": REQUIREMENTS.replace("ducts = [1, 4]", "ducts = [1, 100000000]"),
 }
 #: files in another encoding than UTF-8 (bytes)
 _BYTES = {
@@ -100,6 +103,17 @@ ERROR_CASES = [
     # a piston speed beyond any damper's: a unit mistake
     ("size velocity 1e5 m/s", ["size", "{damper}", "--velocity", "1e5 m/s"], ["velocity: 1e+05 m/s", "1000 m/s"]),
     ("size velocity speed of light", ["size", "{damper}", "--velocity", "1 c"], ["velocity", "beyond any piston"]),
+    # requirements the search took without a word
+    (
+        "design stroke 0",
+        ["design", "{req_stroke0}", "--out", "{tmp}/o.csv"],
+        ["design.envelope.stroke: must be positive"],
+    ),
+    (
+        "design 1e8 ducts",
+        ["design", "{req_ducts}", "--out", "{tmp}/o.csv"],
+        ["design.bounds.ducts: at most 10000 parallel ducts"],
+    ),
     # sizes that asked for terabytes (MemoryError, an internal error) or filled the memory until the system killed
     # the process: a limit, said at once
     ("doe rate 1e9 Hz", ["doe", "--programme", "E5", "--rate", "1e9 Hz", "--out", "{tmp}/o.csv"], ["rate", "samples"]),
@@ -172,6 +186,11 @@ WARNING_CASES = [
         "design point 500 m/s",
         ["design", "{req_fast}", "--out", "{tmp}/o.csv", "--json"],
         "warning: design.point[1].velocity: 500 m/s is beyond",
+    ),
+    (
+        "design stroke 10 m",
+        ["design", "{req_stroke10}", "--out", "{tmp}/o.csv", "--json"],
+        "warning: design.envelope.stroke: 10 m is beyond",
     ),
     (
         "report velocity range to 500 m/s",
