@@ -11,7 +11,7 @@ import shutil
 
 import pytest
 
-from .corpus import EXAMPLES, GOOD_RECORD, MAKRIS, REQUIREMENTS
+from .corpus import _F, EXAMPLES, GOOD_RECORD, MAKRIS, REQUIREMENTS, _x, record
 from .test_hostile_cli import _argv, _one_line_error, _run
 
 #: (id, what the file holds, name of the file) for the files fixture
@@ -30,6 +30,14 @@ _FILES = {
     "req_stroke10": REQUIREMENTS.replace('stroke = "50 mm"', 'stroke = "10 m"'),
     "req_ducts": REQUIREMENTS.replace("ducts = [1, 4]", "ducts = [1, 100000000]"),
 }
+_HEADER = "time [s],displacement [mm],force [N]"
+_CSV = {
+    "tiny_force": record(F=_F * 1e-320),  # identify: ZeroDivisionError (an internal error)
+    "tiny_stroke": record(x=_x * 1e-300),  # "in a unit 1000 x larger it would be 8e-297 mm, a plausible stroke"
+    "spaces": GOOD_RECORD.replace(",", " "),  # "unknown unit 's] displacement [mm] force [N'"
+    "forse": GOOD_RECORD.replace("force [N]", "forse [N]"),
+    "comment_only": _HEADER + "\n# no data\n",  # numpy's "input contained no data: <_io.StringIO ...>" leaked
+}
 #: files in another encoding than UTF-8 (bytes)
 _BYTES = {
     "latin1": MAKRIS.replace('name = "makris-1996"', 'name = "D\u00e4mpfer"').encode("latin-1"),
@@ -47,6 +55,9 @@ def files(tmp_path):
     for name, text in _FILES.items():
         made[name] = tmp_path / f"{name}.toml"
         made[name].write_text(text, encoding="utf-8")
+    for name, text in _CSV.items():
+        made[name] = tmp_path / f"{name}.csv"
+        made[name].write_text(text)
     for name, data in _BYTES.items():
         made[name] = tmp_path / f"{name}.{'csv' if name.endswith('csv') else 'toml'}"
         made[name].write_bytes(data)
@@ -100,6 +111,19 @@ ERROR_CASES = [
     ("size Latin-1 file", ["size", "{latin1}", *_SIZE], ["latin1.toml: line 4: byte 0xe4 is not UTF-8", "Latin-1"]),
     ("size UTF-16 file", ["size", "{utf16}", *_SIZE], ["utf16.toml", "UTF-16", "save it as UTF-8"]),
     ("fit Latin-1 header", ["fit", "{latin1_csv}", "--damper", "{damper}"], ["latin1_csv.csv: line 1", "0xb5"]),
+    # measurement files
+    (
+        "identify a subnormal force",
+        ["identify", "{tiny_force}", "--model", "bingham", "--quiet"],
+        ["tiny_force.csv: force: the force spans 7.86e-317 N", "[N]"],
+    ),
+    (
+        "fit a subnormal stroke",
+        ["fit", "{tiny_stroke}", "--damper", "{damper}"],
+        ["tiny_stroke.csv: displacement: the piston moves 8e-303 m", "[mm]"],
+    ),
+    ("fit space separated", ["fit", "{spaces}", "--damper", "{damper}"], ["spaces.csv: line 1", "spaces"]),
+    ("fit misspelt column", ["fit", "{forse}", "--damper", "{damper}"], ["column 3 (forse)", "did you mean 'force'?"]),
     # a piston speed beyond any damper's: a unit mistake
     ("size velocity 1e5 m/s", ["size", "{damper}", "--velocity", "1e5 m/s"], ["velocity: 1e+05 m/s", "1000 m/s"]),
     ("size velocity speed of light", ["size", "{damper}", "--velocity", "1 c"], ["velocity", "beyond any piston"]),
@@ -209,3 +233,9 @@ def test_round3_implausible_values_are_warned(case, files, capsys):
     code, out, err = _run(capsys, _argv(args, tmp, made))
     assert code == 0, err
     assert any(line.startswith(start) and "unit" in line for line in err.splitlines()), err
+
+
+def test_a_record_of_a_header_and_a_comment_says_so_in_one_line(files, capsys):
+    tmp, made = files
+    code, out, err = _run(capsys, ["fit", made["comment_only"], "--damper", made["damper"]])
+    assert code == 1 and err.strip() == f"error: {made['comment_only']}: 0 data rows; a record needs at least 5", err
