@@ -351,8 +351,13 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
             )
         magnitude = value.to(target).magnitude
     else:
-        if isinstance(value, (bool, np.bool_)):
+        if isinstance(value, (bool, np.bool_)) or value is None:
             raise UnitError(f"{name}: expected {dimension_name(target.dimensionality)}, got {value!r}")
+        if _holds_text(value):  # ["1 mL/s", "2 mL/s"]: the example showed '['1 mL/s', '2 mL/s'] m^3/s'
+            raise UnitError(
+                f"{name}: a sequence of texts; give one quantity array, e.g. Q_([1.0, 2.0], '{unit}'), or one "
+                "value per call"
+            )
         if target.dimensionality:
             raise UnitError(
                 f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
@@ -367,6 +372,13 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
         shown = _shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value)
         raise UnitError(f"{name}: value must be finite, got {shown}")
     return float(magnitude) if magnitude.ndim == 0 else magnitude
+
+
+def _holds_text(value: Any) -> bool:
+    """True for a list, tuple or array holding strings (or quantities) rather than numbers."""
+    if isinstance(value, np.ndarray):
+        return value.dtype.kind in "USO" and any(isinstance(v, (str, pint.Quantity)) for v in value.ravel()[:100])
+    return isinstance(value, (list, tuple)) and any(isinstance(v, (str, pint.Quantity)) for v in value[:100])
 
 
 def _shown_quantity(q: pint.Quantity) -> str:
@@ -428,7 +440,12 @@ def unit_aware(returns: str | tuple[str, ...] | Mapping[str, str], **units: str)
         def wrapper(*args, **kwargs):
             bound = signature.bind(*args, **kwargs)  # the kernel's own defaults (SI) apply to omitted arguments
             si = {
-                key: (to_si(val, units[key], key) if key in units and val is not None else val)
+                # None only where the kernel's default is None (an optional argument); else it is named
+                key: (
+                    to_si(val, units[key], key)
+                    if key in units and (val is not None or signature.parameters[key].default is not None)
+                    else val
+                )
                 for key, val in bound.arguments.items()
             }
             arrays = {key: val for key, val in si.items() if isinstance(val, np.ndarray) and val.ndim}

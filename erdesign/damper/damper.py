@@ -387,7 +387,12 @@ class Damper:
         X0 = positive_si(amplitude, "m", "amplitude")
         f = positive_si(frequency, "Hz", "frequency")
         if not (
-            isinstance(cycles, int) and cycles >= 1 and isinstance(samples_per_cycle, int) and samples_per_cycle >= 16
+            isinstance(cycles, int)
+            and not isinstance(cycles, bool)  # True was taken as one cycle
+            and cycles >= 1
+            and isinstance(samples_per_cycle, int)
+            and not isinstance(samples_per_cycle, bool)
+            and samples_per_cycle >= 16
         ):
             raise ErdesignError("cycles must be a whole number >= 1 and samples_per_cycle >= 16")
         check_sample_count(cycles * samples_per_cycle + 1, "cycles, samples_per_cycle", "take fewer")

@@ -239,3 +239,50 @@ def test_a_record_of_a_header_and_a_comment_says_so_in_one_line(files, capsys):
     tmp, made = files
     code, out, err = _run(capsys, ["fit", made["comment_only"], "--damper", made["damper"]])
     assert code == 1 and err.strip() == f"error: {made['comment_only']}: 0 data rows; a record needs at least 5", err
+
+
+# ------------------------------------------------------------------------------------------ the Python API
+def _api_cases():
+    import math
+
+    import numpy as np
+
+    import erdesign
+    from erdesign.data.metrics import equivalent_damping
+
+    flow = ("1.8 kPa", "13 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm")
+    makris = erdesign.load_example("makris")
+    return [
+        # (id, call, the message's start): raw TypeErrors and unclear messages before
+        ("flow rate None", lambda: erdesign.bingham_pressure_drop(None, *flow), "Q: expected a volumetric flow"),
+        ("flow rate texts", lambda: erdesign.bingham_pressure_drop(["1 mL/s", "2 mL/s"], *flow), "Q: a sequence"),
+        ("velocity None", lambda: makris.force(None), "velocity: expected a velocity, got None"),
+        ("velocity texts", lambda: makris.size(["1 in/s"]), "velocity: a sequence of texts"),
+        ("equivalent damping text", lambda: equivalent_damping("1 J", 1.0, 0.01), "energy: expected a number"),
+        ("equivalent damping 0 Hz", lambda: equivalent_damping(1.0, 0.0, 0.01), "omega: must be positive"),
+        ("equivalent damping nan", lambda: equivalent_damping(math.nan, 1.0, 0.01), "energy: it is nan"),
+        ("programme rate text", lambda: erdesign.programme("rp", rate="fast"), "rate: cannot read 'fast'"),
+        ("programme rate nan", lambda: erdesign.programme("rp", rate=math.nan), "rate: must be one positive"),
+        ("programme rate array", lambda: erdesign.programme("rp", rate=np.ones(2)), "rate: must be one positive"),
+        ("sine cycles True", lambda: makris.sine_response("1 mm", "1 Hz", cycles=True), "cycles must be a whole"),
+    ]
+
+
+_API = _api_cases()
+
+
+@pytest.mark.parametrize("case", _API, ids=[c[0] for c in _API])
+def test_round3_api_names_the_argument(case):
+    from erdesign.errors import ErdesignError
+
+    _, call, start = case
+    with pytest.raises(ErdesignError) as info:
+        call()
+    assert str(info.value).startswith(start), str(info.value)
+
+
+def test_a_rate_with_its_unit_is_read():
+    import erdesign
+
+    a, b = erdesign.programme("rp", rate="1 kHz"), erdesign.programme("rp", rate=1000.0)
+    assert a.time.size == b.time.size and a.time[1] == pytest.approx(1e-3)
