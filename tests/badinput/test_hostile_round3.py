@@ -124,6 +124,13 @@ ERROR_CASES = [
     ),
     ("fit space separated", ["fit", "{spaces}", "--damper", "{damper}"], ["spaces.csv: line 1", "spaces"]),
     ("fit misspelt column", ["fit", "{forse}", "--damper", "{damper}"], ["column 3 (forse)", "did you mean 'force'?"]),
+    # NaN passed click's FloatRange (every comparison with NaN is false) and meant no time limit
+    ("identify max-time nan", ["identify", "{record}", "--model", "bingham", "--max-time", "nan"], ["--max-time"]),
+    (
+        "batch save-every nan",
+        ["batch", "fit", "{record}", "--damper", "{damper}", "--save-every", "nan"] + ["--out", "{tmp}/o.csv"],
+        ["--save-every", "'nan' is not a number"],
+    ),
     # a piston speed beyond any damper's: a unit mistake
     ("size velocity 1e5 m/s", ["size", "{damper}", "--velocity", "1e5 m/s"], ["velocity: 1e+05 m/s", "1000 m/s"]),
     ("size velocity speed of light", ["size", "{damper}", "--velocity", "1 c"], ["velocity", "beyond any piston"]),
