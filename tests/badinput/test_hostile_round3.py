@@ -293,3 +293,17 @@ def test_a_rate_with_its_unit_is_read():
 
     a, b = erdesign.programme("rp", rate="1 kHz"), erdesign.programme("rp", rate=1000.0)
     assert a.time.size == b.time.size and a.time[1] == pytest.approx(1e-3)
+
+
+@pytest.mark.parametrize("command", ["size", "tolerance"])
+def test_a_name_with_control_characters_never_reaches_the_terminal_raw(command, tmp_path, capsys):
+    """A damper named 'a<ESC>[2J<NUL>x<RIGHT-TO-LEFT OVERRIDE>evil' was printed raw at the head of the table: the
+    terminal cleared, the line reversed."""
+    path = tmp_path / "esc.toml"
+    path.write_text(MAKRIS.replace('name = "makris-1996"', 'name = "a\\u001b[2J\\u0000x\\u202eevil"'))
+    extra = ["--vary", "geometry.gap=+-1 %", "--samples", "100"] if command == "tolerance" else []
+    code, out, err = _run(capsys, [command, path, *_SIZE, *extra])
+    assert code == 0, err
+    head = out.splitlines()[0]
+    assert head.startswith("a\\x1b[2J\\x00x\\u202eevil") and head.isprintable(), head
+    assert all(line.isprintable() for line in out.splitlines())
