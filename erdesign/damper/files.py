@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import sys
 from importlib import resources
+import warnings
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -28,7 +29,7 @@ from typing import Annotated
 from pydantic import BeforeValidator
 
 from .. import materials
-from ..errors import DamperFileError, ErdesignError
+from ..errors import DamperFileError, ErdesignError, PlausibilityWarning
 from ..examples import bundled_file
 from ..limits import MAX_TOML_BYTES, decode_text, is_path_like, nested_too_deeply, read_input_bytes
 from ..fluid import Fluid
@@ -168,6 +169,10 @@ def read_toml(path: str | Path) -> dict:
         raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
 
 
+#: Largest seal friction [N] taken without a warning: the seals of large seismic dampers rub a few kN (Makris et
+#: al. 1996: 112 N).
+PLAUSIBLE_SEAL_FRICTION = 1e5
+
 #: Keys of a damper file's [fluid] table that define the power law; giving any of them replaces a material's curve.
 POWER_LAW_KEYS = ("yield_stress", "reference_field", "yield_exponent")
 
@@ -207,6 +212,13 @@ def parse_fluid_table(table: Mapping[str, Any], where: str = "fluid") -> tuple[F
     exponent = table["yield_exponent"]
     seal = table.get("seal_friction")
     seal_friction = 0.0 if seal is None else to_si(seal, "N", f"{where}.seal_friction")
+    if seal_friction > PLAUSIBLE_SEAL_FRICTION:  # '1e9 N' was taken without a word
+        warnings.warn(
+            f"{where}.seal_friction: {seal_friction:.4g} N is beyond the seal friction of any damper "
+            f"({PLAUSIBLE_SEAL_FRICTION:g} N); check the value and its unit",
+            PlausibilityWarning,
+            stacklevel=3,
+        )
     fluid = Fluid.create(
         viscosity=table["viscosity"],
         yield_stress=table["yield_stress"],

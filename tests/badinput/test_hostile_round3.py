@@ -29,6 +29,7 @@ _FILES = {
     "req_stroke0": REQUIREMENTS.replace('stroke = "50 mm"', 'stroke = "0 mm"'),
     "req_stroke10": REQUIREMENTS.replace('stroke = "50 mm"', 'stroke = "10 m"'),
     "req_ducts": REQUIREMENTS.replace("ducts = [1, 4]", "ducts = [1, 100000000]"),
+    "seal_1e9": MAKRIS.replace('seal_friction = "112 N"', 'seal_friction = "1e9 N"'),
 }
 _HEADER = "time [s],displacement [mm],force [N]"
 _CSV = {
@@ -218,6 +219,7 @@ WARNING_CASES = [
         ["design", "{req_fast}", "--out", "{tmp}/o.csv", "--json"],
         "warning: design.point[1].velocity: 500 m/s is beyond",
     ),
+    ("seal friction 1e9 N", ["size", "{seal_1e9}", *_SIZE], "warning: fluid.seal_friction: 1e+09 N is beyond"),
     (
         "design stroke 10 m",
         ["design", "{req_stroke10}", "--out", "{tmp}/o.csv", "--json"],
