@@ -125,6 +125,9 @@ ERROR_CASES = [
     ),
     ("fit space separated", ["fit", "{spaces}", "--damper", "{damper}"], ["spaces.csv: line 1", "spaces"]),
     ("fit misspelt column", ["fit", "{forse}", "--damper", "{damper}"], ["column 3 (forse)", "did you mean 'force'?"]),
+    # hostile output names: a line break or an escape sequence in the name was written as given
+    ("report out with a newline", ["report", "{damper}", "--out", "{tmp}/a\nb.html"], ["--out", "'\\n'"]),
+    ("design out with ESC", ["design", "{req_stroke10}", "--out", "{tmp}/o\x1b[2J.csv"], ["--out", "'\\x1b'"]),
     # NaN passed click's FloatRange (every comparison with NaN is false) and meant no time limit
     ("identify max-time nan", ["identify", "{record}", "--model", "bingham", "--max-time", "nan"], ["--max-time"]),
     (
