@@ -167,6 +167,8 @@ def read_toml(path: str | Path) -> dict:
     except ValueError as exc:  # beyond the parser's limits: an integer of more than 4300 digits
         detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
         raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
+    except OSError as exc:  # a symbolic link loop, no permission: was "[Errno 40] Too many levels of ..."
+        raise DamperFileError(f"{path}: cannot be read ({exc.strerror or exc})") from None
 
 
 #: Largest seal friction [N] taken without a warning: the seals of large seismic dampers rub a few kN (Makris et

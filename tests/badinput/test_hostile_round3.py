@@ -312,3 +312,12 @@ def test_a_name_with_control_characters_never_reaches_the_terminal_raw(command, 
     head = out.splitlines()[0]
     assert head.startswith("a\\x1b[2J\\x00x\\u202eevil") and head.isprintable(), head
     assert all(line.isprintable() for line in out.splitlines())
+
+
+@pytest.mark.parametrize("command", [["size", "{loop}", *_SIZE], ["design", "{loop}", "--out", "{tmp}/o.csv"]])
+def test_a_symlink_loop_as_the_input_file_is_named(command, tmp_path, capsys):
+    """A TOML input that is a symbolic link to itself printed "[Errno 40] Too many levels of symbolic links"."""
+    loop = tmp_path / "loop.toml"
+    loop.symlink_to(loop.name)
+    code, out, err = _run(capsys, _argv(command, tmp_path, {"loop": loop}))
+    _one_line_error(code, out, err, f"{loop}: cannot be read (Too many levels of symbolic links)")
