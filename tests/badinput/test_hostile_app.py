@@ -46,6 +46,8 @@ SIZE_INPUTS = [
     ("gap unicode minus", "size.geo.gap", "\u22120.8 mm", "geometry.gap"),
     ("gap decimal comma", "size.geo.gap", "0,8 mm", "geometry.gap"),
     ("viscosity digit separator", "size.fluid.viscosity", "7_000 mPa*s", "fluid.viscosity"),
+    ("gap expression", "size.geo.gap", "0.8 mm * 2", "geometry.gap"),  # read as 1.6 mm before (round 3)
+    ("gap fraction", "size.geo.gap", "1/2 mm", "geometry.gap"),
 ]
 
 
