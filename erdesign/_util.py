@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import unicodedata
 from pathlib import Path
 from typing import Iterable, Mapping
 
@@ -125,6 +126,11 @@ def check_output_path(
     """
     if out is None or str(out).strip() == "":
         raise OutputPathError(f"{option}: empty file name")
+    bad = next((c for c in str(out) if unicodedata.category(c) == "Cc"), None)
+    if bad is not None:  # 'a\nb.html' was written: a name that breaks every script and listing that meets it
+        raise OutputPathError(
+            f"{option} {str(out)!r:.80}: the file name holds the control character {bad!r}; give a plain name"
+        )
     path = Path(out)
     refuse_symlink(path, overwrite=force, option=option)
     named = inputs.items() if isinstance(inputs, Mapping) else (("an input file of this command", p) for p in inputs)

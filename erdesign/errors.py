@@ -17,6 +17,7 @@ __all__ = [
     "ValidityWarning",
     "one_line",
     "MESSAGE_LIMIT",
+    "did_you_mean",
 ]
 
 
@@ -88,3 +89,26 @@ def one_line(message, limit: int = MESSAGE_LIMIT) -> str:
         note = f" [... {len(text) - head - tail} characters cut ...] "
         text = text[:head].rstrip() + note + text[len(text) - tail :].lstrip()
     return text
+
+
+def did_you_mean(given, options) -> str:
+    """``" (did you mean 'gap'?)"`` naming the option closest to ``given`` (a misspelt key, model, effect or
+    material), or "" when none is close: the hint a user needs first when a long list of names follows.
+
+    >>> did_you_mean("viscosty", ["viscosity", "yield_stress"])
+    " (did you mean 'viscosity'?)"
+    >>> did_you_mean("Gap", ["gap", "ducts"]), did_you_mean("colour", ["gap", "ducts"])
+    (" (did you mean 'gap'?)", '')
+    """
+    import difflib
+
+    if not isinstance(given, str) or not given.strip():
+        return ""
+    options = [str(o) for o in options]
+    folded = {o.casefold().replace("-", "_"): o for o in options}
+    key = given.strip().casefold().replace("-", "_")
+    match = folded.get(key) or next(iter(difflib.get_close_matches(given, options, n=1, cutoff=0.75)), None)
+    if match is None:
+        close = difflib.get_close_matches(key, list(folded), n=1, cutoff=0.75)
+        match = folded[close[0]] if close else None
+    return f" (did you mean {match!r}?)" if match is not None and match != given else ""

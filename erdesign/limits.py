@@ -9,7 +9,8 @@ any damper file or damper test record:
 limit                       value         what it bounds
 ==========================  ============  =====================================================================
 :data:`MAX_RECORD_BYTES`    256 MB        a measurement file (60,000 rows of 4 columns take about 3 MB)
-:data:`MAX_RECORD_ROWS`     10,000,000    the rows of a measurement (about 3 hours at 1 kHz)
+:data:`MAX_RECORD_ROWS`     10,000,000    the rows of a measurement (about 3 hours at 1 kHz), and the samples or time
+                                          steps of a record or run erdesign makes (:func:`check_sample_count`)
 :data:`MAX_CELL_CHARS`      1,000         one cell of a measurement (a number or a header ``name [unit]``)
 :data:`MAX_TOML_BYTES`      1 MB          a damper or requirements file (the examples take about 2 kB)
 :data:`MAX_VALUE_CHARS`     200           a value with a unit (``"0.8 mm"``)
@@ -31,6 +32,8 @@ __all__ = [
     "MAX_RECORD_ROWS",
     "MAX_TOML_BYTES",
     "MAX_VALUE_CHARS",
+    "check_sample_count",
+    "decode_text",
     "is_path_like",
     "nested_too_deeply",
     "read_input_bytes",
@@ -74,6 +77,7 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
         if chunk.startswith(b"PK\x03\x04"):
             advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
             raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
+        _refuse_utf16(chunk, label, what)
         if chunk.find(b"\x00", 0, _CHUNK) != -1:  # in the first chunk, whatever was read (no copy of it)
             raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
         while chunk:
@@ -88,6 +92,32 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
     return chunks[0] if len(chunks) == 1 else b"".join(chunks)
 
 
+def _refuse_utf16(head: bytes, label: str, what: str) -> None:
+    if head.startswith((b"\xff\xfe", b"\xfe\xff")):  # a byte-order mark of UTF-16 (or UTF-32)
+        raise ErdesignError(
+            f"{label}: UTF-16 text (Excel's 'Unicode Text', Notepad's 'Unicode'), not {what} in UTF-8; save it as UTF-8"
+        )
+
+
+def check_sample_count(n: float, what: str, advice: str, most: int = MAX_RECORD_ROWS) -> int:
+    """``n`` (the samples or time steps a duration and a rate or step make) as an int, or an
+    :class:`~erdesign.errors.ErdesignError` starting with ``what`` when it exceeds ``most`` (default
+    :data:`MAX_RECORD_ROWS`; less for a record that is computed on a finer grid first): ``doe
+    --rate "1e9 Hz"`` or ``vehicle --duration "1e6 s"`` asked for terabytes and ended in a MemoryError.
+
+    >>> check_sample_count(4e9, "duration, rate", "shorten the duration or lower the rate")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.ErdesignError: duration, rate: 4,000,000,000 samples, more than the 10,000,000 erdesign makes in one record (a unit mistake?); shorten the duration or lower the rate
+    """
+    if not n <= most:
+        shown = f"{n:,.0f}" if n < 1e30 else f"{n:.3g}"
+        raise ErdesignError(
+            f"{what}: {shown} samples, more than the {most:,} erdesign makes in one record (a unit mistake?); {advice}"
+        )
+    return int(n)
+
+
 def nested_too_deeply(label: str) -> str:
     """The message for a file whose nesting exceeds the parser's recursion limit."""
     return f"{label}: nested too deeply to read (arrays or tables inside one another hundreds of levels deep)"
@@ -96,3 +126,27 @@ def nested_too_deeply(label: str) -> str:
 def is_path_like(value) -> bool:
     """True for a str or os.PathLike (what the loaders take as a file name)."""
     return isinstance(value, (str, os.PathLike)) and not isinstance(value, bytes)
+
+
+def decode_text(raw: bytes, label: str, what: str) -> str:
+    """The text of an input file's bytes (UTF-8; a byte-order mark, as Notepad and Excel write it, is dropped), or
+    an :class:`~erdesign.errors.ErdesignError` naming the file and the line of the first byte that is not UTF-8
+    (a file saved as Latin-1 or Windows-1252: an accented letter, a micro sign).
+
+    >>> decode_text(b"\\xef\\xbb\\xbfname = 1", "d.toml", "a TOML file")
+    'name = 1'
+    >>> decode_text(b"a = 1\\nname = 'D\\xe4mpfer'", "d.toml", "a TOML file")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.ErdesignError: d.toml: line 2: byte 0xe4 is not UTF-8 (the file was saved as Latin-1 or Windows-1252?); save it as UTF-8 text, not a TOML file in another encoding
+    """
+    _refuse_utf16(raw, label, what)
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        hint = " (the file was saved as Latin-1 or Windows-1252?)" if raw[exc.start] >= 0xA0 else ""
+        raise ErdesignError(
+            f"{label}: line {line}: byte 0x{raw[exc.start]:02x} is not UTF-8{hint}; save it as UTF-8 text, not "
+            f"{what} in another encoding"
+        ) from None

@@ -42,7 +42,7 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
 
-from .errors import ErdesignError
+from .errors import ErdesignError, did_you_mean
 from .units import to_si
 
 __all__ = [
@@ -170,7 +170,8 @@ class _Choice:
 
     def check(self, value: Any) -> str:
         if value not in self.options:
-            raise _Refused(f"must be one of {', '.join(map(repr, self.options))}, got {value!r}")
+            hint = did_you_mean(value, self.options)
+            raise _Refused(f"must be one of {', '.join(map(repr, self.options))}, got {value!r}{hint}")
         return value
 
 
@@ -231,7 +232,8 @@ def _message(model: type[Table], where: str, error: Mapping[str, Any]) -> str:
         parent = _model_at(model, loc[:-1])
         allowed = ", ".join(parent.model_fields) if parent is not None else ""
         table = _dotted(where, loc[:-1])
-        return f"{name}: unknown key" + (f" in [{table}]" if table else "") + f"; allowed keys: {allowed}"
+        hint = did_you_mean(loc[-1], parent.model_fields) if parent is not None else ""
+        return f"{name}: unknown key" + (f" in [{table}]" if table else "") + f"{hint}; allowed keys: {allowed}"
     if kind == "missing":
         parent = _model_at(model, loc[:-1])
         info = parent.model_fields.get(loc[-1]) if parent is not None else None

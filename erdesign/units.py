@@ -218,34 +218,76 @@ def _is_unit(text: str) -> bool:
     return True
 
 
+#: A value as erdesign reads it: one number (ASCII, with an optional exponent; or nan, inf), then its unit.
+_QUANTITY_TEXT = re.compile(
+    r"\s*([-+]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|nan(?![a-z])|inf(?:inity)?(?![a-z])))\s*(.*?)\s*",
+    re.ASCII | re.IGNORECASE,
+)
+#: A power of a power (``m^2^3``, ``10**10**10``): pint evaluates it exactly, for minutes and gigabytes.
+_POWER_TOWER = re.compile(r"(?:\*\*|\^)\s*[-+(\s]*[\d.]+[\s)]*(?:\*\*|\^)")
+
+
+def _units(text: str, name: str, shown: str, what: str) -> Any:
+    """The pint unit of ``text`` (the unit part of a value, or a header's unit), or a
+    :class:`~erdesign.errors.UnitError` naming ``name``: an unknown unit, a garbled one, or a unit with a number in
+    it (``"mm * 2"``: pint would multiply the value by it) is refused."""
+    if what == "value" and text[:1] in "*/^":
+        raise UnitError(
+            f"{name}: cannot read {shown!r} as a value with a unit: an expression; give one number (a fraction as a "
+            "decimal), then its unit "
+            "(e.g. '0.5 mm')"
+        )
+    if _POWER_TOWER.search(text):
+        raise UnitError(f"{name}: {shown!r} has a power of a power; give the unit with one exponent, e.g. 'm^3'")
+    try:
+        return ureg.parse_units(text)
+    except pint.errors.UndefinedUnitError as exc:
+        raise UnitError(f"{name}: unknown unit {'in ' if what == 'value' else ''}{shown!r} ({exc})") from None
+    except ValueError as exc:
+        if "scaling factor" in str(exc) and what == "value":
+            raise UnitError(
+                f"{name}: {shown!r} has a number or an expression after the unit; give one number, then its unit "
+                "(e.g. '0.8 mm')"
+            ) from None
+        if "scaling factor" in str(exc):
+            raise UnitError(f"{name}: the unit {shown!r} holds a number; give the unit alone, e.g. 'mm'") from None
+        raise UnitError(
+            f"{name}: cannot read {shown!r} as {'a value with a unit' if what == 'value' else 'a unit'} ({exc})"
+        ) from None
+    except Exception as exc:  # noqa: BLE001 - pint raises assorted errors (AssertionError too) for garbled strings
+        detail = f" ({exc})" if str(exc) else ""
+        kind = "a value with a unit" if what == "value" else "a unit"
+        raise UnitError(f"{name}: cannot read {shown!r} as {kind}{detail}") from None
+
+
 def parse_quantity(text: str, name: str) -> pint.Quantity:
     """A quantity from a string such as ``"0.8 mm"`` or ``"-40 degC"``, or a :class:`~erdesign.errors.UnitError`
     naming ``name``: the one parser of values with units (:func:`clean_value_text` says what it refuses).
 
-    Offset units (degC, degF) are read as a number and a unit, which pint's string parser refuses.
+    A value is one number, then its unit.  Pint's own string parser evaluates expressions, so that ``"0.8 mm 2"``
+    or ``"0.8 mm * 2"`` (a slip) is read silently as 1.6 mm and ``"10**10**10 mm"`` runs for ever: text other than
+    a number followed by a unit is refused.
 
     >>> parse_quantity("\u22120.8 mm", "gap")
     <Quantity(-0.8, 'millimeter')>
+    >>> parse_quantity("0.8 mm * 2", "gap")
+    Traceback (most recent call last):
+    ...
+    erdesign.errors.UnitError: gap: '0.8 mm * 2' has a number or an expression after the unit; give one number, then its unit (e.g. '0.8 mm')
     """
     if not isinstance(text, str):
         raise UnitError(f"{name}: expected a value with a unit as a string, got {type(text).__name__} {text!r:.60}")
     clean = clean_value_text(text, name)
     shown = text if len(text) <= 60 else text[:57] + "..."
-    try:
-        q = Q_(clean)
-    except pint.errors.OffsetUnitCalculusError:
-        m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*)", clean)
-        if m is None:
-            raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit") from None
-        return parse_unit(m[2], name, value=float(m[1]))
-    except pint.errors.UndefinedUnitError as exc:
-        raise UnitError(f"{name}: unknown unit in {shown!r} ({exc})") from None
-    except Exception as exc:  # noqa: BLE001 - pint raises assorted errors (AssertionError too) for garbled strings
-        detail = f" ({exc})" if str(exc) else ""
-        raise UnitError(f"{name}: cannot read {shown!r} as a value with a unit{detail}") from None
-    if not isinstance(q, pint.Quantity):  # a bare number: pint returns a plain int or float
-        q = Q_(q)
-    return q
+    m = _QUANTITY_TEXT.fullmatch(clean)
+    if m is None:
+        raise UnitError(
+            f"{name}: cannot read {shown!r} as a value with a unit; give one number, then its unit (e.g. '0.8 mm')"
+        )
+    number, unit = m[1], m[2]
+    if not unit:
+        return Q_(float(number))
+    return Q_(float(number), _units(unit, name, shown, "value"))
 
 
 def parse_unit(text: str, name: str, *, value: float = 1.0) -> pint.Quantity:
@@ -257,13 +299,7 @@ def parse_unit(text: str, name: str, *, value: float = 1.0) -> pint.Quantity:
     shown = text if len(text) <= 60 else text[:57] + "..."
     if not clean.strip():
         raise UnitError(f"{name}: empty unit")
-    try:
-        return Q_(value, clean.strip())
-    except pint.errors.UndefinedUnitError as exc:
-        raise UnitError(f"{name}: unknown unit {shown!r} ({exc})") from None
-    except Exception as exc:  # noqa: BLE001 - as in parse_quantity
-        detail = f" ({exc})" if str(exc) else ""
-        raise UnitError(f"{name}: cannot read {shown!r} as a unit{detail}") from None
+    return Q_(value, _units(clean.strip(), name, shown, "unit"))
 
 
 def _parse(value: Any, name: str) -> Any:
@@ -315,8 +351,13 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
             )
         magnitude = value.to(target).magnitude
     else:
-        if isinstance(value, (bool, np.bool_)):
+        if isinstance(value, (bool, np.bool_)) or value is None:
             raise UnitError(f"{name}: expected {dimension_name(target.dimensionality)}, got {value!r}")
+        if _holds_text(value):  # ["1 mL/s", "2 mL/s"]: the example showed '['1 mL/s', '2 mL/s'] m^3/s'
+            raise UnitError(
+                f"{name}: a sequence of texts; give one quantity array, e.g. Q_([1.0, 2.0], '{unit}'), or one "
+                "value per call"
+            )
         if target.dimensionality:
             raise UnitError(
                 f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
@@ -331,6 +372,13 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
         shown = _shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value)
         raise UnitError(f"{name}: value must be finite, got {shown}")
     return float(magnitude) if magnitude.ndim == 0 else magnitude
+
+
+def _holds_text(value: Any) -> bool:
+    """True for a list, tuple or array holding strings (or quantities) rather than numbers."""
+    if isinstance(value, np.ndarray):
+        return value.dtype.kind in "USO" and any(isinstance(v, (str, pint.Quantity)) for v in value.ravel()[:100])
+    return isinstance(value, (list, tuple)) and any(isinstance(v, (str, pint.Quantity)) for v in value[:100])
 
 
 def _shown_quantity(q: pint.Quantity) -> str:
@@ -392,7 +440,12 @@ def unit_aware(returns: str | tuple[str, ...] | Mapping[str, str], **units: str)
         def wrapper(*args, **kwargs):
             bound = signature.bind(*args, **kwargs)  # the kernel's own defaults (SI) apply to omitted arguments
             si = {
-                key: (to_si(val, units[key], key) if key in units and val is not None else val)
+                # None only where the kernel's default is None (an optional argument); else it is named
+                key: (
+                    to_si(val, units[key], key)
+                    if key in units and (val is not None or signature.parameters[key].default is not None)
+                    else val
+                )
                 for key, val in bound.arguments.items()
             }
             arrays = {key: val for key, val in si.items() if isinstance(val, np.ndarray) and val.ndim}

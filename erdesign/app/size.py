@@ -25,7 +25,7 @@ else:  # pragma: no cover
 from erdesign.app import figures, pinned, state
 from erdesign.damper.files import damper_from_dict, example_names
 from erdesign.errors import ErdesignError
-from erdesign.limits import nested_too_deeply
+from erdesign.limits import decode_text, nested_too_deeply
 from erdesign.formatting import si_unit_text
 from erdesign.materials import fluid_values
 from erdesign.report import plots
@@ -145,7 +145,7 @@ def _on_upload() -> None:
         return
     name = Path(upload.name).name
     try:
-        text = upload.getvalue().decode("utf-8")
+        text = decode_text(upload.getvalue(), name, "a damper file (TOML)")
         data = tomllib.loads(text)
         damper_from_dict(data, source=name)  # check before taking it
     except UnicodeDecodeError:

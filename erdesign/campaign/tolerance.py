@@ -38,7 +38,8 @@ import numpy as np
 
 from ..damper.damper import Damper, exact_annulus_for
 from ..damper.quasi_steady import damping_constant, quasi_steady_state
-from ..errors import ErdesignError
+from ..errors import ErdesignError, did_you_mean
+from ..limits import size_text
 from ..executor import Executor, chunks, executor_for
 from ..fluid.fluid import plastic_viscosity
 from ..units import Q_, dimension_name, parse_quantity
@@ -74,6 +75,10 @@ OUTPUTS = ("force_N", "zero_field_force_N", "dynamic_range", "damping_constant_N
 HISTOGRAM_BINS = 60
 #: A chunk may reject at most this fraction of its draws before the study is refused (tolerances far too wide).
 MAX_REJECTED_FRACTION = 0.5
+#: Most Monte-Carlo samples of one study: the outputs take 32 bytes a sample (540 MB at the limit), the kept inputs
+#: more; 1e9 samples filled the memory until the system killed the process.  docs/tolerance.md says how many samples
+#: give which confidence (far fewer).
+MAX_SAMPLES = 2**24
 
 
 class ToleranceError(ErdesignError):
@@ -189,7 +194,9 @@ def parse_variation(spec: str, damper: Damper) -> Variation:
         )
     key = m["key"]
     if key not in VARIABLES:
-        raise ToleranceError(f"{where}: {key!r} is not a value a study can vary; keys: {', '.join(VARIABLES)}")
+        raise ToleranceError(
+            f"{where}: {key!r} is not a value a study can vary{did_you_mean(key, VARIABLES)}; keys: {', '.join(VARIABLES)}"
+        )
     var = VARIABLES[key]
     if key == "geometry.duct_mean_diameter" and damper.geometry.configuration == "mixed":
         raise ToleranceError(f"{where}: a mixed damper's duct_mean_diameter is piston_diameter + gap; vary those")
@@ -515,6 +522,11 @@ def tolerance_study(
     t0 = time.perf_counter()
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
         raise ToleranceError(f"samples: must be a whole number >= 1, got {samples!r}")
+    if samples > MAX_SAMPLES:
+        raise ToleranceError(
+            f"samples: {samples:,} is more than the {MAX_SAMPLES:,} one study takes (its outputs alone would take "
+            f"{size_text(32 * int(samples))}); docs/tolerance.md says how many samples give which confidence"
+        )
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ToleranceError(f"seed: must be a whole number >= 0, got {seed!r}")
     if isinstance(velocity, bool) or not (

@@ -9,7 +9,7 @@ import time
 
 import click
 
-from .main import cli, emit_json, executor_options, json_number
+from .main import NumberRange, cli, emit_json, executor_options, json_number
 
 __all__ = ["batch"]
 
@@ -82,7 +82,7 @@ class Progress:
 @click.option(
     "--max-time",
     default=None,
-    type=click.FloatRange(min=0.1),
+    type=NumberRange(min=0.1),
     metavar="SECONDS",
     help="Wall-time budget of each record's identification (identify).",
 )
@@ -104,7 +104,7 @@ class Progress:
     "--save-every",
     default=2.0,
     show_default=True,
-    type=click.FloatRange(min=0),
+    type=NumberRange(min=0),
     metavar="SECONDS",
     help="How often the table is rewritten while the batch runs (0: after every record).",
 )

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import click
 
-from .main import cli, emit_json, executor_options
+from .main import NumberRange, cli, emit_json, executor_options
 
 __all__ = ["characterize"]
 
@@ -37,7 +37,7 @@ Examples:
     "--threshold",
     default=0.001,
     show_default=True,
-    type=click.FloatRange(min=0.0, max=1.0),
+    type=NumberRange(min=0.0, max=1.0),
     help="Rise of the ESR (a fraction of the force variance) a characteristic must account for to be found.",
 )
 @click.option(
@@ -50,7 +50,7 @@ Examples:
 @click.option(
     "--max-time",
     default=None,
-    type=click.FloatRange(min=0.0, min_open=True),
+    type=NumberRange(min=0.0, min_open=True),
     metavar="SECONDS",
     help="Time limit of each identification.",
 )

@@ -10,7 +10,7 @@ from .._util import check_output_path
 from ..damper.writer import save_damper
 from ..design import design as run_design
 from ..design import read_requirements
-from ..errors import ErdesignError
+from ..errors import ErdesignError, one_line
 from .main import cli, emit_json, executor_options
 
 __all__ = ["design"]
@@ -190,7 +190,7 @@ def _table(result) -> str:
     req = result.requirements
     p = req.points[0]
     lines = [
-        f"{req.name or 'requirements'}: {req.configuration} damper, objective {req.objective}",
+        f"{one_line(req.name or 'requirements', 120)}: {req.configuration} damper, objective {req.objective}",
         (
             f"{result.evaluated} candidates evaluated, {result.feasible_count} feasible "
             f"(figures at point 1: v = {p.velocity * 1e3:.4g} mm/s)"

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import click
 
-from .main import as_flags, cli, emit_json
+from .main import NumberRange, as_flags, cli, emit_json
 
 __all__ = ["identify"]
 
@@ -55,7 +55,7 @@ Examples:
 @click.option(
     "--max-time",
     default=None,
-    type=click.FloatRange(min=0.1),
+    type=NumberRange(min=0.1),
     metavar="SECONDS",
     help="Stop after this wall time with the best point found so far.",
 )

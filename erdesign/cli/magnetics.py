@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import click
 
-from ..errors import ErdesignError
+from ..errors import ErdesignError, one_line
 from ..magnetics import load_magnetic_circuit
 from ..units import Q_, parse_quantity, plain_number
 from .main import cli, emit_json
@@ -69,7 +69,7 @@ def magnetics(damper_file: str, current: str, as_json: bool) -> None:
 def _table(circuit, r) -> str:
     head = circuit.head
     lines = [
-        f"{circuit.name or 'damper'}: {head.turns} turns of {head.wire_diameter * 1e3:.3g} mm copper, "
+        f"{one_line(circuit.name or 'damper', 120)}: {head.turns} turns of {head.wire_diameter * 1e3:.3g} mm copper, "
         f"R = {r.coil_resistance.to('ohm').magnitude:.4g} ohm (20 degC), fill factor {head.fill_factor:.2f}; "
         f"steel {circuit.steel.name}, fluid {circuit.fluid.name}",
         f"gap {head.gap * 1e3:.3g} mm over 2 x {head.pole_length * 1e3:.3g} mm poles; saturates first: "

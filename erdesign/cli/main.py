@@ -27,7 +27,29 @@ import click
 from .. import __version__
 from ..errors import ErdesignError, one_line
 
-__all__ = ["main", "run", "cli", "value_arg", "emit_json", "json_number", "check_effects_option", "COMMANDS"]
+__all__ = [
+    "main",
+    "run",
+    "cli",
+    "value_arg",
+    "emit_json",
+    "json_number",
+    "check_effects_option",
+    "COMMANDS",
+    "NumberRange",
+]
+
+
+class NumberRange(click.FloatRange):
+    """click's FloatRange without NaN: ``--max-time nan`` passed its bounds (every comparison with NaN is false)
+    and meant no limit at all."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if math.isnan(number):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        return number
+
 
 # Command name -> (module beside this one, one-line help shown by ``erdesign --help``).  The module registers the
 # command on :data:`cli` when it is imported; tests/test_cli_startup.py checks that the help lines here are the

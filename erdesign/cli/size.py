@@ -9,7 +9,7 @@ from typing import Any
 import click
 
 from ..damper.files import load_damper
-from ..errors import ErdesignWarning
+from ..errors import ErdesignWarning, one_line
 from ..units import Q_, format_quantity, plain_number
 from .main import cli, emit_json, json_number
 
@@ -104,7 +104,7 @@ def _size_table(damper, r) -> str:
     ]
     width = max(len(k) for k, _ in rows)
     head = (
-        f"{damper.name or 'damper'} ({config})\n"
+        f"{one_line(damper.name or 'damper', 120)} ({config})\n"
         f"at v = {format_quantity(r.velocity.to_compact())}, "
         f"control = {format_quantity(r.field.to(damper.fluid.field_unit))}"
     )

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import click
 
+from ..errors import one_line
 from .main import cli, emit_json, executor_options, json_number
 from .size import quantity_option
 
@@ -129,7 +130,7 @@ def tolerance_table(result, out: str | None = None) -> str:
     study = result.study
     lines = [
         (
-            f"{study.damper.name or 'damper'} at {study.velocity:.4g} m/s, control {study.field:.4g} "
+            f"{one_line(study.damper.name or 'damper', 120)} at {study.velocity:.4g} m/s, control {study.field:.4g} "
             f"{study.damper.fluid.control_unit}: {result.count} samples (seed {study.seed}, {result.executor}, "
             f"{result.seconds:.1f} s)"
         )

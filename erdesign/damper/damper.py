@@ -35,7 +35,8 @@ import numpy as np
 
 from .._util import broadcast_named, scalar_or_array, si_array
 from ..data.metrics import energy_per_cycle, equivalent_damping
-from ..errors import ErdesignError, ValidityWarning
+from ..errors import ErdesignError, PlausibilityWarning, ValidityWarning
+from ..limits import check_sample_count
 from ..flow.bingham import yield_pressure_drop
 from ..fluid import Fluid
 from ..geometry import THIN_GAP_LIMIT, Geometry
@@ -51,9 +52,35 @@ __all__ = [
     "SineResponse",
     "CRITICAL_REYNOLDS",
     "FLOW_MODELS",
+    "PLAUSIBLE_PISTON_SPEED",
+    "MAX_PISTON_SPEED",
+    "check_piston_velocity",
 ]
 
 FLOW_MODELS = ("auto", "thin_gap", "annulus")
+#: Fastest piston speed [m/s] taken without a warning (car dampers stay below 2 m/s, landing gear and impact tests
+#: reach a few m/s), and the fastest taken at all: beyond them a unit mistake is likely (mm/s given as m/s).
+PLAUSIBLE_PISTON_SPEED, MAX_PISTON_SPEED = 10.0, 1000.0
+
+
+def check_piston_velocity(v: Any, name: str = "velocity") -> Any:
+    """``v`` (SI, float or array), or an :class:`~erdesign.errors.ErdesignError` naming ``name`` when a speed is
+    beyond :data:`MAX_PISTON_SPEED`; a :class:`~erdesign.errors.PlausibilityWarning` beyond
+    :data:`PLAUSIBLE_PISTON_SPEED` (``--velocity "500 m/s"`` was sized without a word)."""
+    speed = float(np.max(np.abs(v))) if np.size(v) else 0.0
+    if speed > MAX_PISTON_SPEED:
+        raise ErdesignError(
+            f"{name}: {speed:.4g} m/s is beyond any piston's speed (at most {MAX_PISTON_SPEED:g} m/s); check the "
+            "value and its unit"
+        )
+    if speed > PLAUSIBLE_PISTON_SPEED:
+        warnings.warn(
+            f"{name}: {speed:.4g} m/s is beyond the piston speed of any damper ({PLAUSIBLE_PISTON_SPEED:g} m/s); "
+            "check the value and its unit (mm/s given as m/s?)",
+            PlausibilityWarning,
+            stacklevel=3,
+        )
+    return v
 
 
 def exact_annulus_for(configuration: str, flow_model: str, gap_ratio):
@@ -265,7 +292,7 @@ class Damper:
 
     # ------------------------------------------------------------------ unit-aware layer
     def _velocity(self, velocity, name="velocity"):
-        return to_si(velocity, "m/s", name)
+        return check_piston_velocity(to_si(velocity, "m/s", name), name)
 
     def force(self, velocity: Any, field: Any = None):
         """Quasi-steady force at a velocity (quantity or string, may be an array) and a control, as a quantity."""
@@ -360,9 +387,15 @@ class Damper:
         X0 = positive_si(amplitude, "m", "amplitude")
         f = positive_si(frequency, "Hz", "frequency")
         if not (
-            isinstance(cycles, int) and cycles >= 1 and isinstance(samples_per_cycle, int) and samples_per_cycle >= 16
+            isinstance(cycles, int)
+            and not isinstance(cycles, bool)  # True was taken as one cycle
+            and cycles >= 1
+            and isinstance(samples_per_cycle, int)
+            and not isinstance(samples_per_cycle, bool)
+            and samples_per_cycle >= 16
         ):
             raise ErdesignError("cycles must be a whole number >= 1 and samples_per_cycle >= 16")
+        check_sample_count(cycles * samples_per_cycle + 1, "cycles, samples_per_cycle", "take fewer")
         E = self.fluid.field_si(field)
         omega = 2 * math.pi * f
         t = np.linspace(0.0, cycles / f, cycles * samples_per_cycle + 1)

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import sys
 from importlib import resources
+import warnings
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -28,9 +29,9 @@ from typing import Annotated
 from pydantic import BeforeValidator
 
 from .. import materials
-from ..errors import DamperFileError, ErdesignError
+from ..errors import DamperFileError, ErdesignError, PlausibilityWarning
 from ..examples import bundled_file
-from ..limits import MAX_TOML_BYTES, is_path_like, nested_too_deeply, read_input_bytes
+from ..limits import MAX_TOML_BYTES, decode_text, is_path_like, nested_too_deeply, read_input_bytes
 from ..fluid import Fluid
 from ..fluid.fluid import control_kind
 from ..geometry import CONFIGURATIONS, Geometry
@@ -149,7 +150,7 @@ def read_toml(path: str | Path) -> dict:
         )
     path = Path(path)
     try:
-        text = read_input_bytes(path, MAX_TOML_BYTES, "a TOML file").decode("utf-8")
+        text = decode_text(read_input_bytes(path, MAX_TOML_BYTES, "a TOML file"), str(path), "a TOML file")
         return tomllib.loads(text)
     except RecursionError:
         raise DamperFileError(nested_too_deeply(str(path))) from None
@@ -166,7 +167,13 @@ def read_toml(path: str | Path) -> dict:
     except ValueError as exc:  # beyond the parser's limits: an integer of more than 4300 digits
         detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
         raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
+    except OSError as exc:  # a symbolic link loop, no permission: was "[Errno 40] Too many levels of ..."
+        raise DamperFileError(f"{path}: cannot be read ({exc.strerror or exc})") from None
 
+
+#: Largest seal friction [N] taken without a warning: the seals of large seismic dampers rub a few kN (Makris et
+#: al. 1996: 112 N).
+PLAUSIBLE_SEAL_FRICTION = 1e5
 
 #: Keys of a damper file's [fluid] table that define the power law; giving any of them replaces a material's curve.
 POWER_LAW_KEYS = ("yield_stress", "reference_field", "yield_exponent")
@@ -207,6 +214,13 @@ def parse_fluid_table(table: Mapping[str, Any], where: str = "fluid") -> tuple[F
     exponent = table["yield_exponent"]
     seal = table.get("seal_friction")
     seal_friction = 0.0 if seal is None else to_si(seal, "N", f"{where}.seal_friction")
+    if seal_friction > PLAUSIBLE_SEAL_FRICTION:  # '1e9 N' was taken without a word
+        warnings.warn(
+            f"{where}.seal_friction: {seal_friction:.4g} N is beyond the seal friction of any damper "
+            f"({PLAUSIBLE_SEAL_FRICTION:g} N); check the value and its unit",
+            PlausibilityWarning,
+            stacklevel=3,
+        )
     fluid = Fluid.create(
         viscosity=table["viscosity"],
         yield_stress=table["yield_stress"],

@@ -44,10 +44,10 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ErdesignError, ErdesignWarning
+from ..errors import ErdesignError, ErdesignWarning, did_you_mean
 from ..examples import bundled_file
 from ..fluid import CONTROL_UNITS
-from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, is_path_like, read_input_bytes
+from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, decode_text, is_path_like, read_input_bytes
 from ..units import Q_, dimension_name, parse_unit, ureg
 
 __all__ = [
@@ -924,6 +924,11 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
             f"{path}: line {lineno}: the columns are separated by tabs; erdesign reads files with ',' or ';' "
             "between the columns (save as CSV)"
         )
+    if len(cells) == 1 and re.search(r"\]\s+\S", cells[0]):  # 'time [s] displacement [mm] force [N]'
+        raise MeasurementError(
+            f"{path}: line {lineno}: the columns are separated by spaces; erdesign reads files with ',' or ';' "
+            "between the columns (save as CSV)"
+        )
     for col, cell in enumerate(cells, start=1):
         if len(cell) > MAX_CELL_CHARS:
             raise MeasurementError(
@@ -944,7 +949,8 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
                 f"{where}: a tab inside the header: erdesign reads files with ',' or ';' between the columns"
             )
         if name not in COLUMNS and name not in CONTROL_COLUMNS:
-            raise MeasurementError(f"{where}: unknown column; known: {', '.join([*COLUMNS, *CONTROL_COLUMNS])}")
+            known = [*COLUMNS, *CONTROL_COLUMNS]
+            raise MeasurementError(f"{where}: unknown column{did_you_mean(name, known)}; known: {', '.join(known)}")
         if name in seen:
             raise MeasurementError(f"{where}: column '{name}' appears twice (also column {seen[name]})")
         seen[name] = col
@@ -1002,7 +1008,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     path = bundled_file(path) or path  # the documented examples/measurements/... from any folder
     try:
         raw = read_input_bytes(path, MAX_RECORD_BYTES, "a measurement CSV file")
-        text = None if raw.isascii() else raw.decode("utf-8-sig")  # checked; decoded when needed
+        text = None if raw.isascii() else decode_text(raw, label, "a measurement CSV file")  # decoded when needed
     except ErdesignError as exc:
         raise MeasurementError(str(exc)) from None
     except FileNotFoundError:
@@ -1236,7 +1242,9 @@ def _parse_table(raw: bytes, pos: int, columns: int) -> list[np.ndarray]:
         table = reader(stream, header=None, dtype=float, engine="c", skip_blank_lines=True, na_filter=False)
         return list(table.to_numpy().T)
     text = raw[pos:].decode("utf-8")
-    return list(np.loadtxt(io.StringIO(text), delimiter=",", comments=None, ndmin=2, dtype=float).T)
+    with warnings.catch_warnings():  # no rows: "input contained no data: <_io.StringIO ...>"; the caller says it
+        warnings.simplefilter("ignore", UserWarning)
+        return list(np.loadtxt(io.StringIO(text), delimiter=",", comments=None, ndmin=2, dtype=float).T)
 
 
 def _parse_table_arrow(pyarrow, raw: bytes, pos: int, columns: int) -> list[np.ndarray]:
@@ -1373,6 +1381,10 @@ PLAUSIBLE_TEMPERATURE = (200.0, 500.0)
 FEW_SAMPLES, SAMPLES_PER_CYCLE = 100, 10
 
 
+#: Smallest stroke [m] and force span [N] a record may have: below them no sensor resolves the motion or the force.
+TINY_STROKE, TINY_FORCE = 1e-12, 1e-6
+
+
 def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> list[str]:  # noqa: C901
     """What looks wrong in a record, alone and (with ``damper``) against the damper it is said to come from.
 
@@ -1397,6 +1409,20 @@ def check_record(record: "Measurement", damper=None, *, warn: bool = True) -> li
         raise MeasurementError(
             f"{name}: displacement: constant ({x[0]:g} m): the record has no motion, so there "
             "is nothing to fit or judge"
+        )
+    # spans no sensor resolves (8e-300 mm, 8e-317 N: values scaled by a unit mistake or underflowed) reached the
+    # fits, which divided by them (an internal error of erdesign identify)
+    if stroke < TINY_STROKE:
+        raise MeasurementError(
+            f"{name}: displacement: the piston moves {stroke:.3g} m, less than any displacement sensor resolves "
+            f"({TINY_STROKE:g} m); is the column's unit [{unit('displacement', 'm')}] right?"
+        )
+    F = record.force
+    force_span = float(np.ptp(F)) if F is not None else 0.0
+    if 0.0 < force_span < TINY_FORCE:
+        raise MeasurementError(
+            f"{name}: force: the force spans {force_span:.3g} N, less than any load cell resolves "
+            f"({TINY_FORCE:g} N); is the column's unit [{unit('force', 'N')}] right?"
         )
     n = len(record)
     f0 = record.dominant_frequency
@@ -1519,7 +1545,7 @@ def _check_against_damper(record: "Measurement", damper) -> list[str]:
         hint = (
             f"; in a unit 1000 x larger it would be {stroke * 1e6:.3g} mm, a plausible stroke: a likely unit "
             "mistake (values in mm given as um?)"
-            if stroke * 1e3 <= 30 * Dp
+            if stroke * 1e3 >= 1e-3 * Dp  # the stroke in a unit 1000 x larger is plausible (8e-297 mm was not)
             else ""
         )
         out.append(

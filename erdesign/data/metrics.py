@@ -18,7 +18,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy import trapezoid
 
-from .._util import si_array
+from .._util import broadcast_named, scalar_or_array, si_array
 from ..errors import ErdesignError
 
 __all__ = ["energy_per_cycle", "equivalent_damping", "esr", "objective_j", "difference_signal", "loops", "Loops"]
@@ -83,11 +83,23 @@ def equivalent_damping(energy, omega, amplitude):
     amplitude : float
         Displacement amplitude X0, [m].
 
+    Arguments are SI numbers or arrays (of shapes that broadcast); text, quantities, NaN, a frequency or amplitude
+    that is not positive are an :class:`~erdesign.errors.ErdesignError` naming the argument (``"1 J"`` was a raw
+    ``TypeError``, a zero frequency an infinite constant).
+
+    >>> round(equivalent_damping(2.0, 2 * math.pi, 0.01), 3)
+    1013.212
+
     References
     ----------
     Kamath and Wereley (1997), eq 2.
     """
-    return energy / (math.pi * omega * amplitude**2)
+    U, w, X = si_array(energy, "energy"), si_array(omega, "omega"), si_array(amplitude, "amplitude")
+    for arr, name in ((w, "omega"), (X, "amplitude")):
+        if not np.all(arr > 0):
+            raise ErdesignError(f"{name}: must be positive, got {float(np.min(arr)):g} (SI)")
+    broadcast_named(energy=U, omega=w, amplitude=X)
+    return scalar_or_array(U / (math.pi * w * X**2))
 
 
 def esr(F_measured, F_model):

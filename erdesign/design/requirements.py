@@ -60,7 +60,7 @@ Example
 >>> requirements_from_dict({"fluid": {}, "desing": {}})
 Traceback (most recent call last):
 ...
-erdesign.design.requirements.RequirementsError: requirements: desing: unknown key; allowed keys: name, fluid, design
+erdesign.design.requirements.RequirementsError: requirements: desing: unknown key (did you mean 'design'?); allowed keys: name, fluid, design
 """
 
 from __future__ import annotations
@@ -77,11 +77,12 @@ from typing import Annotated
 
 from pydantic import BeforeValidator
 
+from ..damper.damper import check_piston_velocity
 from ..damper.files import Control, FluidTable, parse_fluid_table, read_toml
 from ..errors import ErdesignError
 from ..examples import bundled_file
 from ..fluid import Fluid
-from ..geometry import CONFIGURATIONS
+from ..geometry import CONFIGURATIONS, MAX_DUCTS
 from ..schema import Flag, Number, Table, Text, checked, choice, quantity, validate, whole_number
 from ..schema import field as key
 from ..units import to_si
@@ -134,6 +135,8 @@ SAMPLINGS = ("sobol", "lhs")
 #: Most candidates a search may sample (about a minute per 2**20 on one core; the Sobol sampler stops at 2**30),
 #: the most it takes without a warning, and the largest chunk evaluated at once (memory: ~1 kB per candidate).
 MAX_SAMPLES, PLAUSIBLE_SAMPLES, MAX_CHUNK = 2**24, 2**21, 2**20
+#: Longest stroke [m] of the envelope taken without a warning (car dampers 0.1-0.3 m, large seismic dampers ~1 m).
+PLAUSIBLE_STROKE = 2.0
 
 
 @dataclass(frozen=True)
@@ -407,7 +410,7 @@ class LimitsTable(Table):
 class EnvelopeTable(Table):
     """``[design.envelope]``: the envelope model of :mod:`erdesign.design.envelope` (all optional)."""
 
-    stroke: _q("m", "non-negative") = key("full piston stroke (default 50 mm)", default=None)
+    stroke: _q("m", "positive") = key("full piston stroke (default 50 mm)", default=None)
     wall: _q("m", "non-negative") = key("wall allowance of the cylinder (default 5 mm)", default=None)
     head_length: _q("m", "non-negative") = key("valve piston head length (default 20 mm)", default=None)
     end_allowance: _q("m", "non-negative") = key("each end cap with seal and bearing (default 25 mm)", default=None)
@@ -611,7 +614,7 @@ def _parse_points(tables: list[PointTable], fluid: Fluid) -> tuple[DesignPoint, 
             if field_value < 0:
                 raise RequirementsError(f"{where}.field: must not be negative, got {table.field!r}")
         point = DesignPoint(
-            velocity=_si(table.velocity, "m/s", f"{where}.velocity"),
+            velocity=check_piston_velocity(_si(table.velocity, "m/s", f"{where}.velocity"), f"{where}.velocity"),
             field=field_value,
             min_force=_si(table.min_force, "N", f"{where}.min_force"),
             min_dynamic_range=None if table.min_dynamic_range is None else float(table.min_dynamic_range),
@@ -658,6 +661,17 @@ def _parse_envelope(table: EnvelopeTable, configuration: str) -> Envelope:
     }
     if "duct_placement" in table.model_fields_set and configuration != "valve":
         raise RequirementsError(f"{where}.duct_placement: applies to the valve configuration only")
+    if values["stroke"] > PLAUSIBLE_STROKE:
+        import warnings
+
+        from ..errors import PlausibilityWarning
+
+        warnings.warn(
+            f"{where}.stroke: {values['stroke']:g} m is beyond the stroke of any damper ({PLAUSIBLE_STROKE:g} m); "
+            "check the value and its unit",
+            PlausibilityWarning,
+            stacklevel=4,
+        )
     return Envelope(duct_placement=table.duct_placement, **values)
 
 
@@ -674,6 +688,8 @@ def _parse_bounds(table: BoundsTable, configuration: str, envelope: Envelope) ->
         raise RequirementsError(f"{where}.duct_mean_diameter: missing ([low, high] or a single value)")
     ducts = table.ducts if "ducts" in table.model_fields_set else (1.0, 1.0)
     lo, hi = int(ducts[0]), int(ducts[1])
+    if hi > MAX_DUCTS:
+        raise RequirementsError(f"{where}.ducts: at most {MAX_DUCTS} parallel ducts, got {[lo, hi]!r}")
     if configuration == "mixed" and hi != 1:
         raise RequirementsError(f"{where}.ducts: a mixed damper has one gap (ducts must be 1), got {[lo, hi]!r}")
     if envelope.duct_placement == "around" and hi != 1:

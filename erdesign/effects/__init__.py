@@ -11,6 +11,7 @@ True
 
 from __future__ import annotations
 
+from ..errors import did_you_mean
 from .base import STAGES, Effect, EffectError, relaxation_filter
 from .compressibility import Compressibility
 from .field_lag import FieldLag
@@ -87,7 +88,9 @@ def get_effect(name: str) -> Effect:
     try:
         return EFFECTS[name]
     except KeyError:
-        raise EffectError(f"unknown effect {name!r}; known effects: {', '.join(EFFECTS)}") from None
+        raise EffectError(
+            f"unknown effect {name!r}{did_you_mean(name, EFFECTS)}; known effects: {', '.join(EFFECTS)}"
+        ) from None
 
 
 def parse_effect_names(text) -> tuple[str, ...]:

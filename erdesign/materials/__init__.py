@@ -55,7 +55,7 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 from .._pint import pint  # not `import pint`: erdesign/_pint.py
-from ..errors import ErdesignError
+from ..errors import ErdesignError, did_you_mean
 from ..fluid.field_laws import FieldLaw, control_unit_of, field_law_from_dict
 from ..units import Q_, parse_quantity, to_si
 
@@ -249,7 +249,9 @@ def read_material_file(path: str | Path, *, where: str | None = None) -> dict[st
 def load(name: str) -> dict[str, Any]:
     """The whole record of a material (its TOML file as a dictionary), checked."""
     if name not in names():
-        raise ErdesignError(f"unknown material {name!r}; known materials: {', '.join(names())}")
+        raise ErdesignError(
+            f"unknown material {name!r}{did_you_mean(name, names())}; known materials: {', '.join(names())}"
+        )
     with resources.as_file(resources.files(__name__) / f"{name}.toml") as path:
         return read_material_file(path, where=f"materials/{name}.toml")
 

@@ -13,7 +13,7 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from ..data.measurement import Measurement
-from ..errors import ErdesignError
+from ..errors import ErdesignError, did_you_mean
 from ..parameters import Parameter, ParameterError
 
 __all__ = [
@@ -152,7 +152,10 @@ class Model:
         for p in self.parameters:
             if p.name == name:
                 return p
-        raise ParameterError(f"{self.name}: no parameter {name!r}; parameters: {', '.join(self.parameter_names)}")
+        raise ParameterError(
+            f"{self.name}: no parameter {name!r}{did_you_mean(name, self.parameter_names)}; parameters: "
+            f"{', '.join(self.parameter_names)}"
+        )
 
     def defaults(self) -> dict[str, float]:
         return {p.name: p.default for p in self.parameters}

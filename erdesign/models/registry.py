@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Callable
 
-from ..errors import ErdesignError
+from ..errors import ErdesignError, did_you_mean
 from .algebraic import (
     Balamurugan,
     ChengTanh,
@@ -168,7 +168,9 @@ def get_model(name: str, **options) -> Model:
     try:
         factory = MODELS[name]
     except KeyError:
-        raise UnknownModelError(f"unknown model {name!r}; known: {', '.join(MODELS)}") from None
+        raise UnknownModelError(
+            f"unknown model {name!r}{did_you_mean(name, MODELS)}; known: {', '.join(MODELS)}"
+        ) from None
     try:
         return factory(**options)
     except TypeError as exc:

@@ -38,6 +38,7 @@ import numpy as np
 
 from .. import materials
 from ..damper import CRITICAL_REYNOLDS, Damper
+from ..damper.damper import check_piston_velocity
 from ..damper.curves import ForceVelocityCurves, SineLoops, force_velocity_curves, sine_loops
 from ..damper.files import damper_file_path, damper_from_dict, read_toml
 from ..damper.validity import PLUG_FRACTION_LIMIT, SEAL_SHARE_LIMIT, Check, validity_checks
@@ -427,7 +428,10 @@ def report_grid(
     else:
         if len(velocity_range) != 2:
             raise ErdesignError("velocity_range: expected two velocities (lowest, highest)")
-        v_lo, v_hi = (float(to_si(v, "m/s", f"velocity_range[{i}]")) for i, v in enumerate(velocity_range))
+        v_lo, v_hi = (
+            float(check_piston_velocity(to_si(v, "m/s", f"velocity_range[{i}]"), f"velocity_range[{i}]"))
+            for i, v in enumerate(velocity_range)
+        )
         if not (0 <= v_lo < v_hi):
             raise ErdesignError(f"velocity_range: need 0 <= lowest < highest, got {v_lo:g} m/s to {v_hi:g} m/s")
     if design_velocity is None:

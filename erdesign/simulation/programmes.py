@@ -43,6 +43,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import ErdesignError
+from ..units import to_si
 from .rig import Motion, _check_motion, _fine, _finish, stepped_sine
 
 __all__ = [
@@ -343,8 +344,8 @@ def programme(
         Case-insensitive.
     control_range : (float, float), optional
         Low and high control (SI: V/m, A/m, T, A or V); required with an actuation signal.
-    rate : float
-        Sampling rate, [Hz].
+    rate : float or quantity
+        Sampling rate, [Hz] (a number) or a quantity or text with its unit (``"1 kHz"``).
     seed : int
         Seed of the random signals (road profile, ICPS; the PRBS start state is ``seed + 1``).
     displacement_options, actuation_options : mapping, optional
@@ -375,6 +376,11 @@ def programme(
                 f"{', '.join(DISPLACEMENTS)} or DISPLACEMENT+ACTUATION with the actuation one of "
                 f"{', '.join(ACTUATIONS)}"
             )
+    # a rate as text or a quantity ("500 Hz") was a raw numpy message naming displacement_options
+    if isinstance(rate, str) or hasattr(rate, "units"):
+        rate = to_si(rate, "Hz", "rate")
+    if isinstance(rate, bool) or not isinstance(rate, (int, float, np.number)) or not 0 < rate < math.inf:
+        raise ProgrammeError(f"rate: must be one positive, finite sampling rate [Hz], got {rate!r:.60}")
     options = {**own, **dict(displacement_options or {})}
     if disp == "rp":
         options.setdefault("seed", seed)

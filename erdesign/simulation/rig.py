@@ -28,6 +28,7 @@ from ..data.measurement import Measurement
 from ..effects import EFFECTS, parse_effect_names
 from ..effects.chain import PhysicsDamper
 from ..errors import ErdesignError
+from ..limits import MAX_RECORD_ROWS, check_sample_count
 from ..units import Q_
 
 __all__ = [
@@ -75,6 +76,9 @@ class Motion:
 
 
 def _fine(duration: float, rate: float):
+    # the fine grid holds OVERSAMPLING x the record's samples
+    most = MAX_RECORD_ROWS // OVERSAMPLING
+    check_sample_count(duration * rate, "duration, rate", "shorten the record or lower the rate", most)
     n = int(round(duration * rate))
     if n < 8:
         raise ErdesignError(f"rig: {duration:g} s at {rate:g} Hz gives {n} samples; need at least 8")

@@ -38,6 +38,7 @@ import numpy as np
 
 from ..data.measurement import Measurement
 from ..errors import ErdesignError, ErdesignWarning
+from ..limits import check_sample_count
 from ..models.base import ControlAffineModel, Model
 from .control import VehicleState, get_controller
 from .ride import rms, weighted_rms
@@ -258,7 +259,7 @@ def simulate_vehicle(
             raise ErdesignError(f"gain: must be a finite positive damping [N s/m], got {gain!r}")
         _check_controllable(damper, needs_inverse=not law.on_off)
         desired = law.primary(car, gain)
-    n = int(round(duration / dt)) + 1
+    n = check_sample_count(round(duration / dt) + 1, "duration, dt", "shorten the duration or take a larger dt")
     if n > _LONG_HISTORY and not damper.memoryless:
         warnings.warn(
             f"{damper.label}: {n} steps of a model with internal states: each window runs the model on "

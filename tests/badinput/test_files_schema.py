@@ -72,7 +72,7 @@ def _changed(path: str, value, spec=SPENCER) -> dict:
         (
             "accumulator.volume",
             "1 l",
-            r"^accumulator.volume: unknown key in \[accumulator\]; allowed keys: precharge, ",
+            r"^accumulator.volume: unknown key in \[accumulator\] \(did you mean 'gas_volume'\?\); allowed keys: precharge, ",
         ),
         ("colour", "red", r"^colour: unknown key; allowed keys: name, geometry, fluid, coil, accumulator$"),
     ],
@@ -210,7 +210,7 @@ def _requirements(**design) -> dict:
         ({"search": {"chunk": 10}}, r"^design.search.chunk: must be >= 1024, got 10$"),
         (
             {"search": {"samplez": 10}},
-            r"^design.search.samplez: unknown key in \[design.search\]; allowed keys: samples, ",
+            r"^design.search.samplez: unknown key in \[design.search\] \(did you mean 'samples'\?\); allowed keys: samples, ",
         ),
         ({"search": {"pareto": "force"}}, r"^design.search.pareto: expected a list of two or three figure names"),
         ({"limits": {"laminar": 1}}, r"^design.limits.laminar: expected true or false, got 1$"),

@@ -39,11 +39,15 @@ SIZE_UPLOADS = [
         "nested too deeply",
     ),
     ("unicode minus gap", "m.toml", MAKRIS.replace('"0.8 mm"', '"\u22120.8 mm"'), "geometry.gap"),
+    ("Latin-1 file", "l.toml", MAKRIS.replace("makris-1996", "D\u00e4mpfer").encode("latin-1"), "line 4"),
+    ("UTF-16 file", "u.toml", MAKRIS.encode("utf-16"), "UTF-16"),
 ]
 SIZE_INPUTS = [
     ("gap unicode minus", "size.geo.gap", "\u22120.8 mm", "geometry.gap"),
     ("gap decimal comma", "size.geo.gap", "0,8 mm", "geometry.gap"),
     ("viscosity digit separator", "size.fluid.viscosity", "7_000 mPa*s", "fluid.viscosity"),
+    ("gap expression", "size.geo.gap", "0.8 mm * 2", "geometry.gap"),  # read as 1.6 mm before (round 3)
+    ("gap fraction", "size.geo.gap", "1/2 mm", "geometry.gap"),
 ]
 
 
@@ -80,7 +84,16 @@ def test_compare_upload(app, case):  # noqa: F811
 def test_size_upload(app, case):  # noqa: F811
     _, name, content, field = case
     before = app.text_input(key="size.geo.gap").value
-    app.file_uploader(key="size.upload").set_value((name, content.encode(), "application/toml")).run()
+    data = content if isinstance(content, bytes) else content.encode()
+    app.file_uploader(key="size.upload").set_value((name, data, "application/toml")).run()
     _clean(app, field)
     _short(app)
     assert app.text_input(key="size.geo.gap").value == before
+
+
+def test_size_upload_with_a_bom_is_taken(app):  # noqa: F811
+    """A damper file saved by Notepad (a BOM first) was 'invalid TOML' in the app too."""
+    text = MAKRIS.replace('gap = "0.8 mm"', 'gap = "0.9 mm"')
+    app.file_uploader(key="size.upload").set_value(("bom.toml", b"\xef\xbb\xbf" + text.encode(), "x")).run()
+    assert not app.exception and not app.error
+    assert app.text_input(key="size.geo.gap").value == "0.9 mm"

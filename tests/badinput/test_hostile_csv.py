@@ -168,7 +168,7 @@ CASES = [
         ["temperature", "below absolute zero"],
     ),
     ("binary junk", b"\x00\x01\x02\x03" * 100, ["binary", "NUL"]),
-    ("UTF-16 export", GOOD_RECORD.encode("utf-16"), ["binary"]),
+    ("UTF-16 export", GOOD_RECORD.encode("utf-16"), ["UTF-16", "save it as UTF-8"]),
     ("latin-1 bytes", GOOD_RECORD.replace("force [N]", "force [N]").encode("utf-8") + b"\xe9\xff", ["UTF-8"]),
 ]
 

@@ -71,6 +71,20 @@ REFUSED = [
     ("1e309 mm", "m", "finite"),
     ("nan mm", "m", "finite"),
     ("0.8 kg", "m", "a length"),
+    # hostile round 3: pint evaluates expressions, so these were read silently wrong (value after the arrow) or hung
+    ("0.8 mm 2", "m", "after the unit"),  # -> 1.6 mm
+    ("0.8 mm * 2", "m", "after the unit"),  # -> 1.6 mm
+    ("1 m/s; 2", "m/s", "after the unit"),  # -> 2 m/s
+    ("1 in/s * 0", "m/s", "after the unit"),  # -> 0 m/s
+    ("1/2 mm", "m", "a fraction as a decimal"),  # -> 0.5 mm
+    ("2**-10 m", "m", "an expression"),  # -> 0.98 mm
+    ("2**1000 m/s", "m/s", "an expression"),  # -> 1.07e301 m/s, then NaN in the results
+    ("[1] m/s", "m/s", "one number, then its unit"),  # -> 1 m/s
+    ("(0.8 mm)", "m", "one number, then its unit"),
+    ("mm 0.8", "m", "one number, then its unit"),  # -> 0.8 mm
+    ("nanometer", "m", "one number, then its unit"),  # 'nan' was taken for a number: -> 1 nm
+    ("10**10**10 m/s", "m/s", "an expression"),  # pint computed the 10-billion-digit integer (a hang)
+    ("1 m^2^3", "m", "power of a power"),
 ]
 
 
@@ -89,6 +103,19 @@ def test_the_issue_example_a_unicode_minus_gap_is_negative():
     assert clean_value_text("\u22120.8 mm", "gap") == "-0.8 mm"
 
 
+def test_a_power_tower_is_refused_at_once():
+    """``10**10**10`` in a value or a header's unit ran for ever (pint evaluates it exactly)."""
+    import time
+
+    start = time.perf_counter()
+    for text in ("10**10**10 m/s", "1 m^(10**10**10)"):
+        with pytest.raises(UnitError, match="power of a power|expression"):
+            to_si(text, "m/s", "velocity")
+    with pytest.raises(UnitError, match=r"^displacement \[unit\]: .*power of a power"):
+        parse_unit("mm**10**10**10", "displacement [unit]")
+    assert time.perf_counter() - start < 1.0
+
+
 def test_units_alone():
     assert parse_unit("kN", "unit").to("N").magnitude == 1000.0
     assert parse_unit("degC", "unit", value=25.0).to("K").magnitude == pytest.approx(298.15)
@@ -97,6 +124,8 @@ def test_units_alone():
         ("furlong2", "unknown unit"),
         ("m\u2013s", "not a minus sign"),
         ("kV/mm/", "cannot read"),
+        ("2*mm", "holds a number"),  # pint read the header unit '2*mm' as 2 mm
+        ("mm 2", "holds a number"),
     ]:
         with pytest.raises(UnitError, match=said):
             parse_unit(bad, "force [unit]")
