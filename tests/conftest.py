@@ -32,7 +32,7 @@ def pytest_collection_modifyitems(config, items):
 def pytest_collection_finish(session):
     """Fail loudly, not slowly, when pytest-xdist's groups are lost (pytest 9.2 drops them silently: pytest-xdist
     issue #1386; the test extra keeps pytest below 9.2): a worker's grouped test carries ``@group`` in its id."""
-    if session.config.getvalue("loadgroup"):
+    if getattr(session.config.option, "loadgroup", False):  # set on xdist workers only
         lost = [
             item.nodeid for item in session.items if item.get_closest_marker("xdist_group") and "@" not in item.nodeid
         ]
