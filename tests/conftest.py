@@ -1,5 +1,7 @@
 """Shared fixtures: the Makris damper and its geometry / fluid numbers (Makris et al. 1996, section 3)."""
 
+from __future__ import annotations
+
 import math
 
 import pytest
@@ -10,6 +12,52 @@ from erdesign.executor import dask_worker_environ
 # Makris et al. (1996), section 3: L = 2.15 in, d = 0.563 in, h = 0.0315 in, Dp = 1.315 in, dr = 0.443 in.
 MAKRIS = dict(L=0.0546, d=0.0143, h=0.0008, Dp=0.0334, dr=0.01125)
 MAKRIS_AP = math.pi / 4 * (MAKRIS["Dp"] ** 2 - MAKRIS["dr"] ** 2)
+
+
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist's own, which reads the groups into the test ids
+def pytest_collection_modifyitems(config, items):
+    """Under pytest-xdist (``-n auto --dist loadgroup``, pyproject's addopts), keep together the tests that share
+    an expensive fixture, so that it is built once rather than once per worker: the tests of a file that share one
+    of its module-scoped fixtures (a fit, a simulated record, a report, a server) on one worker, and every file
+    that uses the Dask cluster (``dask_client``, session-scoped) on one worker with its other shared fixtures.
+    Other tests are spread one by one."""
+    shared = {item.nodeid: _shared_fixtures(item) for item in items}
+    dask_files = {_file(item) for item in items if "dask_client" in shared[item.nodeid]}
+    for item in items:
+        if shared[item.nodeid]:
+            group = "dask_client" if _file(item) in dask_files else _file(item)
+            item.add_marker(pytest.mark.xdist_group(group))
+
+
+def pytest_collection_finish(session):
+    """Fail loudly, not slowly, when pytest-xdist's groups are lost (pytest 9.2 drops them silently: pytest-xdist
+    issue #1386; the test extra keeps pytest below 9.2): a worker's grouped test carries ``@group`` in its id."""
+    if getattr(session.config.option, "loadgroup", False):  # set on xdist workers only
+        lost = [
+            item.nodeid for item in session.items if item.get_closest_marker("xdist_group") and "@" not in item.nodeid
+        ]
+        if lost:
+            raise pytest.UsageError(
+                f"pytest-xdist --dist loadgroup did not group {len(lost)} tests (first: {lost[0]}); "
+                "this pytest and pytest-xdist do not work together: install the test extra's versions"
+            )
+
+
+def _file(item) -> str:
+    return item.nodeid.split("::")[0]
+
+
+def _shared_fixtures(item) -> set[str]:
+    """The module-, package- or session-scoped fixtures of the suite's own that ``item`` uses (pytest's built-in
+    ones, such as ``tmp_path_factory``, cost nothing and are left out; a doctest uses none)."""
+    info = getattr(item, "_fixtureinfo", None)
+    if info is None:
+        return set()
+    return {
+        name
+        for name, defs in info.name2fixturedefs.items()
+        if defs and defs[-1].scope in ("module", "package", "session") and defs[-1].baseid
+    }
 
 
 @pytest.fixture

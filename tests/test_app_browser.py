@@ -144,8 +144,24 @@ def _metric(page, label: str):
     return page.get_by_test_id("stMetric").filter(has_text=label).get_by_test_id("stMetricValue")
 
 
+#: True once every figure shown has been drawn by plotly (its ``main-svg``): the app's charts and the figures of a
+#: report opened in the browser; figures in a closed expander or a hidden tab are not drawn until shown, and are
+#: not waited for.
+_FIGURES_DRAWN = """() => [...document.querySelectorAll('[data-testid="stPlotlyChart"], .plotly-graph-div')]
+    .filter(c => c.offsetParent !== null).every(c => c.querySelector('.js-plotly-plot .main-svg'))"""
+#: Resolves after the browser has painted twice more (a layout started by the last change is on screen).
+_PAINTED = "() => new Promise(done => requestAnimationFrame(() => requestAnimationFrame(() => done(true))))"
+
+
+def _drawn(page) -> None:
+    """Wait until plotly has drawn every figure in view and the browser has painted it (instead of a fixed
+    sleep: as long as it takes and no longer)."""
+    page.wait_for_function(_FIGURES_DRAWN)
+    page.evaluate(_PAINTED)
+
+
 def _shoot(page, path: Path) -> Path:
-    page.wait_for_timeout(500)  # let plotly finish drawing
+    _drawn(page)
     page.screenshot(path=str(path), full_page=True)
     print(f"screenshot: {path}")
     return path
@@ -355,7 +371,6 @@ def _shoot_screens(page, stem: Path, screens: int = 4) -> None:
         if (!e) return 0; e.scrollTop = y * e.clientHeight; return e.scrollHeight / e.clientHeight; }"""
     for i in range(screens):
         pages = page.evaluate(scroll, i)
-        page.wait_for_timeout(300)
         _shoot(page, stem.with_name(f"{stem.name}-{i + 1}.png"))
         if i + 1 >= pages:
             break
@@ -405,7 +420,7 @@ def test_every_page_at_two_sizes_in_three_unit_systems(browser, app_url, tmp_pat
                         run.click()
                     sync_api.expect(metric.first).to_be_visible()
                 _idle(page)
-                page.wait_for_timeout(500)
+                _drawn(page)
                 where = f"{size} {system} {title}"
                 problems += _check_page(page, where)
                 _shoot_screens(page, folder / f"{title.split()[0].lower()}-{system}")
