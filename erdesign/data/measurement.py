@@ -1222,11 +1222,17 @@ IMPORT_PARSER_BYTES = 2**20
 
 
 def _parse_table(raw: bytes, pos: int, columns: int) -> list[np.ndarray]:
-    """The columns of numbers of a comma-separated table (``raw`` from ``pos`` on) by the fastest parser at hand: pyarrow's
-    when it is loaded (pandas loads it) or the table is :data:`IMPORT_PARSER_BYTES` or more and it is installed (one
-    thread: 0.8 x the time of pandas' C parser, and correctly rounded, as Python's float); else pandas' C parser
-    when loaded (importing pandas costs ten times what it saves on a 60k-row file); else numpy's, five times
-    slower.  Any irregular cell or row raises a ValueError (pyarrow's ArrowInvalid is one)."""
+    """The columns of numbers of a comma-separated table (``raw`` from ``pos`` on) by the fastest parser at hand:
+    pandas' C parser when pandas is loaded and converts by fast_float (:func:`_pandas_rounds_correctly`: 0.85 x the
+    time of pyarrow's parse); else pyarrow's when it is loaded (pandas loads it) or the table is
+    :data:`IMPORT_PARSER_BYTES` or more and it is installed (one thread: 0.8 x the time of an older pandas' C parser);
+    else an older pandas' C parser when loaded (importing pandas costs ten times what it saves on a 60k-row file);
+    else numpy's, five times slower.  Each is correctly rounded, as Python's float (tests/test_derivatives_fast_paths.py
+    compares every parser with the line-by-line reader to the bit).  Any irregular cell or row raises a ValueError
+    (pyarrow's ArrowInvalid and pandas' ParserError are ones)."""
+    pandas = sys.modules.get("pandas")
+    if pandas is not None and _pandas_rounds_correctly(pandas.__version__):
+        return _parse_table_pandas(pandas, raw, pos)
     pyarrow = sys.modules.get("pyarrow")
     if pyarrow is None and len(raw) - pos >= IMPORT_PARSER_BYTES:
         try:
@@ -1235,16 +1241,29 @@ def _parse_table(raw: bytes, pos: int, columns: int) -> list[np.ndarray]:
             pyarrow = None
     if pyarrow is not None:
         return _parse_table_arrow(pyarrow, raw, pos, columns)
-    stream = io.BytesIO(raw)  # no copy of the bytes
-    stream.seek(pos)
-    if "pandas" in sys.modules:
-        reader = sys.modules["pandas"].read_csv
-        table = reader(stream, header=None, dtype=float, engine="c", skip_blank_lines=True, na_filter=False)
-        return list(table.to_numpy().T)
+    if pandas is not None:
+        return _parse_table_pandas(pandas, raw, pos)
     text = raw[pos:].decode("utf-8")
     with warnings.catch_warnings():  # no rows: "input contained no data: <_io.StringIO ...>"; the caller says it
         warnings.simplefilter("ignore", UserWarning)
         return list(np.loadtxt(io.StringIO(text), delimiter=",", comments=None, ndmin=2, dtype=float).T)
+
+
+@functools.lru_cache(maxsize=4)
+def _pandas_rounds_correctly(version: str) -> bool:
+    """True when the pandas of ``version`` converts text to float by fast_float (pandas 3.1 on: pandas-dev/pandas
+    #64432), correctly rounded; the converters before it ("high", the default, and "legacy") could miss by an ulp
+    (pandas-dev/pandas #17154)."""
+    parts = re.match(r"(\d+)\.(\d+)", version)
+    return parts is not None and (int(parts[1]), int(parts[2])) >= (3, 1)
+
+
+def _parse_table_pandas(pandas, raw: bytes, pos: int) -> list[np.ndarray]:
+    """:func:`_parse_table` by pandas' C parser, on the bytes (no copy), every column as float, no NA strings."""
+    stream = io.BytesIO(raw)  # no copy of the bytes
+    stream.seek(pos)
+    table = pandas.read_csv(stream, header=None, dtype=float, engine="c", skip_blank_lines=True, na_filter=False)
+    return list(table.to_numpy().T)
 
 
 def _parse_table_arrow(pyarrow, raw: bytes, pos: int, columns: int) -> list[np.ndarray]:
