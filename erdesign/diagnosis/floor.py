@@ -27,7 +27,7 @@ from ..damper import Damper
 from ..data.measurement import Measurement
 from ..data.noise_floor import estimate_noise_floor, motion_noise
 
-__all__ = ["Floor", "noise_floor", "velocity_slope"]
+__all__ = ["Floor", "methods_said", "noise_floor", "velocity_slope"]
 
 
 @dataclass(frozen=True)
@@ -85,9 +85,29 @@ def noise_floor(records: Sequence[Measurement], prep, force_noise=None, damper: 
     ss = float(np.sum((F - F.mean()) ** 2)) if F.size else 0.0
     esr = min((force_part + motion_part) / ss, 1.0) if ss > 0 else 0.0
     motion = min(motion_part / ss, 1.0) if ss > 0 else 0.0
-    method = (
-        methods[0]
-        if len(set(methods)) == 1
-        else "; ".join(f"{name}: {m}" for (name, _), m in zip(prep.segments, methods))
-    )
-    return Floor(float(esr), method, tuple(sigmas), float(motion))
+    return Floor(float(esr), methods_said([name for name, _ in prep.segments], methods), tuple(sigmas), float(motion))
+
+
+#: Record names listed per method in :func:`methods_said` before "and N more".
+NAMES_SAID = 3
+
+
+def methods_said(names: Sequence[str], methods: Sequence[str]) -> str:
+    """How the floors of several records were found, in one short line: the method alone when all agree, else each
+    method with its number of records and the first :data:`NAMES_SAID` of their names (30 records made a line of
+    1,700 characters when every record was named).
+
+    >>> methods_said(["a", "b", "c", "d", "e"], ["repeated cycles"] * 4 + ["fourth differences"])
+    'repeated cycles (4 records: a, b, c and 1 more); fourth differences (1 record: e)'
+    """
+    groups: dict[str, list[str]] = {}
+    for name, m in zip(names, methods):
+        groups.setdefault(m, []).append(name)
+    if len(groups) == 1:
+        return methods[0]
+
+    def said(m: str, who: list[str]) -> str:
+        listed = ", ".join(who[:NAMES_SAID]) + (f" and {len(who) - NAMES_SAID} more" if len(who) > NAMES_SAID else "")
+        return f"{m} ({len(who)} record{'s' if len(who) > 1 else ''}: {listed})"
+
+    return "; ".join(said(m, who) for m, who in groups.items())
