@@ -167,11 +167,18 @@ def _shoot(page, path: Path) -> Path:
     return path
 
 
+#: The app's root once no script run is going on: Streamlit keeps the state of the session's script run in this
+#: attribute (what its own end-to-end tests wait on, ``wait_for_app_run``).
+_NOT_RUNNING = '[data-testid="stApp"][data-test-script-state="notRunning"]'
+
+
 def _idle(page) -> None:
-    """Wait until the script run triggered by the last interaction has finished (Streamlit shows its "Running"
-    status widget meanwhile); until then stale and new elements can coexist, and a locator can match both."""
+    """Wait until the script run triggered by the last interaction has finished; until then stale and new elements
+    can coexist, and a locator can match both.  The run starts after a round trip to the server (300 ms allowed);
+    its end is the app root's script state (the "Running" status widget is shown only after a delay and fades out
+    for 200 ms: waiting for it to hide let a short run pass unseen and polled up to a second past the end)."""
     page.wait_for_timeout(300)
-    sync_api.expect(page.get_by_test_id("stStatusWidget")).to_be_hidden()
+    page.wait_for_selector(_NOT_RUNNING, state="attached")
 
 
 def _go(page, title: str) -> None:
@@ -418,9 +425,9 @@ def test_every_page_at_two_sizes_in_three_unit_systems(browser, app_url, tmp_pat
                     sync_api.expect(run.or_(metric).first).to_be_visible()
                     if run.count():
                         run.click()
+                        _idle(page)
                     sync_api.expect(metric.first).to_be_visible()
-                _idle(page)
-                _drawn(page)
+                _drawn(page)  # _go waited for the page's run; only the click above starts another
                 where = f"{size} {system} {title}"
                 problems += _check_page(page, where)
                 _shoot_screens(page, folder / f"{title.split()[0].lower()}-{system}")

@@ -71,9 +71,17 @@ def three_records():
     return damper, records
 
 
-def test_several_records_one_parameter_set_and_one_esr(three_records):
+@pytest.fixture(scope="module")
+def improved(three_records):
+    """``improve`` on the three records, two rounds at most; its first round is ``diagnose(damper, records)`` (the
+    same call with the same defaults), shared by the tests of one diagnosis instead of run again (20 s here)."""
     damper, records = three_records
-    d = diagnose(damper, records)
+    return improve(damper, records, max_rounds=2)
+
+
+def test_several_records_one_parameter_set_and_one_esr(three_records, improved):
+    damper, records = three_records
+    d = improved.diagnoses[0]
     assert d.verdict == "missing_effect" and d.missing_effects == ["seal_friction"]
     assert [r["name"] for r in d.records] == ["r0", "r1", "r2"]
     assert [r["samples"] for r in d.records] == [len(r) for r in records]
@@ -97,9 +105,8 @@ def test_records_need_not_each_show_every_effect(three_records):
     assert calibrate(damper, records, "seal_friction").esr < 0.01
 
 
-def test_the_floor_is_fixed_across_rounds(three_records):
-    damper, records = three_records
-    h = improve(damper, records, max_rounds=2)
+def test_the_floor_is_fixed_across_rounds(improved):
+    h = improved
     floors = {d.noise_floor_esr for d in h.diagnoses}
     assert len(h.diagnoses) >= 2 and len(floors) == 1
 
