@@ -36,22 +36,47 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
             f"{name}: expected SI numbers, got a quantity in {value.units:~P}; pass "
             f"value.to(unit).magnitude or use the unit-aware function"
         )
+    shown = " ".join(repr(value).split())
+    shown = f"{type(value).__name__} {shown[:60]}{'...' if len(shown) > 60 else ''}"
+    if np.ma.isMaskedArray(value) and np.ma.getmaskarray(value).any():  # asarray drops the mask: hidden values
+        at = int(np.flatnonzero(np.ma.getmaskarray(value).ravel())[0])
+        raise ErdesignError(
+            f"{name}: element {at} is masked; give the values to use (numpy.ma.compressed() drops the masked ones)"
+        )
+    # numpy reads text ('0.1', b'0.1'), True, dates and complex numbers (dropping the imaginary part) as floats
     try:
-        if value is None:
-            raise TypeError
+        kind = "O" if value is None else np.asarray(value).dtype.kind
+    except (TypeError, ValueError):  # a ragged list
+        kind = "O"
+    if kind in "USObMmc" and (kind != "O" or value is None or _holds_non_numbers(value)):
+        what = {"b": "true/false", "M": "a date", "m": "a time span", "c": "complex numbers"}.get(kind)
+        raise ErdesignError(
+            f"{name}: expected a number or an array of numbers (SI), got {f'{what}: ' if what else ''}{shown}"
+        )
+    try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        shown = repr(value)
-        raise ErdesignError(
-            f"{name}: expected a number or an array of numbers (SI), got {type(value).__name__} "
-            f"{shown[:60]}{'...' if len(shown) > 60 else ''}"
-        ) from None
+        raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {shown}") from None
     if finite:
         bad = ~np.isfinite(arr)
         if np.any(bad):
             where = f"element {int(np.flatnonzero(bad.ravel())[0])} is" if arr.ndim else "it is"
             raise ErdesignError(f"{name}: {where} {arr.ravel()[bad.ravel()][0]}; give finite numbers (SI)")
     return arr
+
+
+def _holds_non_numbers(value) -> bool:
+    """True for an object array or sequence holding anything but real numbers (Decimal and Fraction are numbers)."""
+    import numbers
+    from decimal import Decimal
+
+    try:
+        items = np.asarray(value, dtype=object).ravel()[:1000]
+    except (TypeError, ValueError):  # a ragged list
+        return True
+    return any(
+        isinstance(v, (bool, np.bool_)) or not isinstance(v, (numbers.Real, Decimal)) or np.ndim(v) for v in items
+    )
 
 
 def broadcast_named(**arrays) -> tuple[int, ...]:
