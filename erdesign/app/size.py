@@ -10,20 +10,14 @@ the sweep explorer (one geometry value varied) from :func:`erdesign.app.state.ge
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import streamlit as st
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
 from erdesign.app import figures, pinned, state
-from erdesign.damper.files import damper_from_dict, example_names
+from erdesign.damper.files import damper_from_dict, example_names, parse_toml_bytes
 from erdesign.errors import ErdesignError
 from erdesign.limits import decode_text, nested_too_deeply
 from erdesign.formatting import si_unit_text
@@ -145,15 +139,9 @@ def _on_upload() -> None:
         return
     name = Path(upload.name).name
     try:
+        data = parse_toml_bytes(upload.getvalue(), name)  # the one TOML reader: limits, encodings, line ends
         text = decode_text(upload.getvalue(), name, "a damper file (TOML)")
-        data = tomllib.loads(text)
         damper_from_dict(data, source=name)  # check before taking it
-    except UnicodeDecodeError:
-        st.session_state[_ERROR] = f"{name}: not a text (UTF-8) file; expected a damper file (TOML)"
-        return
-    except tomllib.TOMLDecodeError as exc:
-        st.session_state[_ERROR] = f"{name}: invalid TOML: {exc}"
-        return
     except RecursionError:
         st.session_state[_ERROR] = nested_too_deeply(name)
         return

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import sys
 from importlib import resources
+import numbers
 import warnings
 from pathlib import Path
 from typing import Any, Mapping
@@ -31,11 +32,19 @@ from pydantic import BeforeValidator
 from .. import materials
 from ..errors import DamperFileError, ErdesignError, PlausibilityWarning
 from ..examples import bundled_file
-from ..limits import MAX_TOML_BYTES, decode_text, is_path_like, nested_too_deeply, read_input_bytes
+from ..limits import (
+    MAX_TOML_BYTES,
+    decode_text,
+    is_path_like,
+    nested_too_deeply,
+    read_input_bytes,
+    refuse_binary,
+    size_text,
+)
 from ..fluid import Fluid
-from ..fluid.fluid import control_kind
+from ..fluid.fluid import PLAUSIBLE_YIELD_EXPONENT, control_kind
 from ..geometry import CONFIGURATIONS, Geometry
-from ..schema import Length, Number, PositiveWholeNumber, Table, Text, choice, field, quantity, validate
+from ..schema import Length, PositiveWholeNumber, Table, Text, checked, choice, field, quantity, validate
 from ..units import Q_, same_dimension, to_si
 from .accumulator import ROD_KINDS, AccumulatorTable, accumulator_from_table, accumulator_table
 from .damper import Damper
@@ -45,6 +54,7 @@ __all__ = [
     "damper_file_path",
     "damper_from_dict",
     "read_toml",
+    "parse_toml_bytes",
     "load_example",
     "example_names",
     "parse_fluid_table",
@@ -100,6 +110,25 @@ class GeometryTable(Table):
     )
 
 
+def _yield_exponent(value: Any, name: str) -> Any:
+    """A file's yield exponent: a number (the range (0, 5] is the fluid's check), warned outside
+    :data:`~erdesign.fluid.fluid.PLAUSIBLE_YIELD_EXPONENT` (1e-300 made the yield stress a step, without a word)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise DamperFileError(f"{name}: expected a number, got {value!r}")
+    lo, hi = PLAUSIBLE_YIELD_EXPONENT
+    if 0 < value <= 5 and not lo <= value <= hi:
+        warnings.warn(
+            f"fluid.yield_exponent: {value:.4g} is outside the plausible range {lo:g} to {hi:g} (Butz and von Stryk "
+            "2002 report 1.2 to 2.5); check the value",
+            PlausibilityWarning,
+            stacklevel=2,
+        )
+    return value
+
+
+YieldExponent = checked(_yield_exponent, "number")
+
+
 class FluidTable(Table):
     """``[fluid]`` of a damper file (and of a requirements file)."""
 
@@ -111,7 +140,7 @@ class FluidTable(Table):
     viscosity: quantity("Pa*s") = field("eta_0, plastic viscosity at zero field", default=None)
     yield_stress: quantity("Pa") = field("tau_ref, yield stress at reference_field", default=None)
     reference_field: Control = field("control at which yield_stress holds", default=None)
-    yield_exponent: Number = field("n in tau_y = yield_stress * (E / reference_field) ** n", default=None)
+    yield_exponent: YieldExponent = field("n in tau_y = yield_stress * (E / reference_field) ** n", default=None)
     density: quantity("kg/m^3") = field("rho, density of the fluid", default=None)
     viscosity_at_reference_field: quantity("Pa*s") = field(
         "plastic viscosity at reference_field (default: viscosity)", default=None
@@ -142,6 +171,33 @@ COIL_CURRENT_SPAN = 3.0
 _REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density")
 
 
+def parse_toml_bytes(raw: bytes, label: str) -> dict:
+    """The table of a TOML file's bytes (a file's, an upload's), or a :class:`DamperFileError` naming ``label``: the
+    one parser of erdesign's TOML input.  Larger than :data:`~erdesign.limits.MAX_TOML_BYTES`, binary, UTF-16 or not
+    UTF-8, nested too deeply, a number of thousands of digits or invalid TOML is one line; line ends of a lone CR
+    (classic Mac OS) are read as line ends (TOML knows LF and CRLF only)."""
+    if len(raw) > MAX_TOML_BYTES:
+        raise DamperFileError(
+            f"{label}: larger than {size_text(MAX_TOML_BYTES)}, the most erdesign reads as a TOML file; thin or split "
+            "the file"
+        )
+    try:
+        refuse_binary(raw, label, "a TOML file")
+        text = decode_text(raw, label, "a TOML file")
+        if "\r" in text:
+            text = text.replace("\r\n", "\n").replace("\r", "\n")
+        return tomllib.loads(text)
+    except ErdesignError as exc:
+        raise DamperFileError(str(exc)) from None
+    except RecursionError:
+        raise DamperFileError(nested_too_deeply(label)) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise DamperFileError(f"{label}: invalid TOML: {exc}") from None
+    except ValueError as exc:  # beyond the parser's limits: an integer of more than 4300 digits
+        detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
+        raise DamperFileError(f"{label}: invalid TOML: {detail}") from None
+
+
 def read_toml(path: str | Path) -> dict:
     """Parse a TOML file; a missing file or a syntax error is a :class:`DamperFileError` naming the file."""
     if not is_path_like(path):
@@ -150,23 +206,13 @@ def read_toml(path: str | Path) -> dict:
         )
     path = Path(path)
     try:
-        text = decode_text(read_input_bytes(path, MAX_TOML_BYTES, "a TOML file"), str(path), "a TOML file")
-        return tomllib.loads(text)
-    except RecursionError:
-        raise DamperFileError(nested_too_deeply(str(path))) from None
+        return parse_toml_bytes(read_input_bytes(path, MAX_TOML_BYTES, "a TOML file"), str(path))
     except ErdesignError as exc:
         raise DamperFileError(str(exc)) from None
     except FileNotFoundError:
         raise DamperFileError(f"{path}: no such file") from None
     except IsADirectoryError:
         raise DamperFileError(f"{path}: is a directory, expected a TOML file") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise DamperFileError(f"{path}: invalid TOML: {exc}") from None
-    except UnicodeDecodeError:
-        raise DamperFileError(f"{path}: not a text (UTF-8) file") from None
-    except ValueError as exc:  # beyond the parser's limits: an integer of more than 4300 digits
-        detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
-        raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
     except OSError as exc:  # a symbolic link loop, no permission: was "[Errno 40] Too many levels of ..."
         raise DamperFileError(f"{path}: cannot be read ({exc.strerror or exc})") from None
 
@@ -309,7 +355,6 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
             f"fluid.reference_field: the rated current must be positive, got {table['reference_field']!r}"
         )
     if I_ref > 20.0:
-        import warnings
         from ..errors import ValidityWarning
 
         warnings.warn(
@@ -331,7 +376,9 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
     values = dict(table)
     values["yield_stress"] = f"{float(law.yield_stress(I_ref))!r} Pa"
     values["yield_exponent"] = float(fit.yield_exponent)
-    fluid, seal_friction = parse_fluid_table(values)
+    with warnings.catch_warnings():  # the exponent is fitted to the circuit's saturating law, not the user's
+        warnings.filterwarnings("ignore", r"fluid\.yield_exponent", PlausibilityWarning)
+        fluid, seal_friction = parse_fluid_table(values)
     fluid = fluid.with_changes(field_law=law, field_range=(0.0, COIL_CURRENT_SPAN * I_ref))
     return fluid, seal_friction
 

@@ -37,6 +37,7 @@ import io
 import math
 import re
 import sys
+import unicodedata
 import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -48,7 +49,7 @@ from ..errors import ErdesignError, ErdesignWarning, did_you_mean
 from ..examples import bundled_file
 from ..fluid import CONTROL_UNITS
 from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, decode_text, is_path_like, read_input_bytes
-from ..units import Q_, dimension_name, parse_unit, ureg
+from ..units import Q_, clean_value_text, dimension_name, parse_unit, ureg
 
 __all__ = [
     "Measurement",
@@ -83,7 +84,7 @@ CONTROL_COLUMNS = {
     "current": ("current",),
     "voltage": ("voltage",),
 }
-_HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*\[(.+)\]\s*$")
+_HEADER = re.compile(r"^\s*([^\[\]]*?)\s*\[(.+)\]\s*$")
 
 
 @dataclass(frozen=True)
@@ -937,12 +938,14 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
                 "'time [s]'"
             )
         m = _HEADER.match(cell)
-        if not m:
+        # invisible characters (a BOM or a zero-width space pasted mid-line) dropped from the name
+        name = "".join(ch for ch in m[1] if unicodedata.category(ch) != "Cf").strip().lower() if m else ""
+        if not name:
             raise MeasurementError(
                 f"{path}: line {lineno}, column {col} ({cell.strip()!r}): expected a name with "
                 f"its unit in square brackets, e.g. 'time [s]'"
             )
-        name, unit = m[1].lower(), m[2].strip()
+        unit = m[2].strip()
         where = f"{path}: line {lineno}, column {col} ({name})"
         if "\t" in unit:
             raise MeasurementError(
@@ -956,6 +959,7 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
         seen[name] = col
         try:
             q = parse_unit(unit, "unit")
+            unit = clean_value_text(unit, "unit", number=False).strip()  # as parsed ('\uff4bN' is 'kN')
         except ErdesignError as exc:
             raise MeasurementError(f"{where}: {str(exc).removeprefix('unit: ')}") from None
         if name in COLUMNS:
@@ -1034,7 +1038,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
         # every read and take it again, cleared, page by page, in the next: 2-3 ms of a 60k-row read)
         del raw, text
         columns, data = fast
-        return _measurement_from_table(path, label, columns, data, None, window)
+        return _measurement_from_table(path, label, columns, data, None, window, require_force)
     lines = _csv_lines(raw.decode("utf-8-sig") if text is None else text, label)
     rows = [
         (i, r)
@@ -1066,7 +1070,8 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
                     f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): {cell.strip()!r} is not a finite number"
                 )
             data[r, c] = value
-    return _measurement_from_table(path, label, columns, list(data.T), [lineno for lineno, _ in rows[1:]], window)
+    lines = [lineno for lineno, _ in rows[1:]]
+    return _measurement_from_table(path, label, columns, list(data.T), lines, window, require_force)
 
 
 def _csv_lines(text: str, label: str) -> list[list[str]]:
@@ -1289,7 +1294,9 @@ def _parse_table_arrow(pyarrow, raw: bytes, pos: int, columns: int) -> list[np.n
     return data
 
 
-def _measurement_from_table(path: Path, label: str, columns, data: list[np.ndarray], line_of, window) -> Measurement:
+def _measurement_from_table(
+    path: Path, label: str, columns, data: list[np.ndarray], line_of, window, require_force: bool = False
+) -> Measurement:
     """The record of a parsed table (``data``: its columns; ``line_of``: file line of each row, for messages; None on
     the fast path, whose tables have already passed the checks that need it)."""
     if data[0].size < 5:
@@ -1326,6 +1333,11 @@ def _measurement_from_table(path: Path, label: str, columns, data: list[np.ndarr
         units,
     )
     check_record(m)
+    if require_force and float(np.ptp(m.force)) == 0.0:  # an unplugged load cell: esr() failed, naming no file
+        raise MeasurementError(
+            f"{m.name}: force: constant ({m.force[0]:g} N): the force never changes, so there is nothing to fit or "
+            "judge (is the load cell connected, is it the right column?)"
+        )
     return m
 
 
