@@ -115,6 +115,12 @@ def _same_file(a: Path, b: Path) -> bool:
         return False
 
 
+#: Unicode's direction controls (embeddings, overrides, isolates, marks): invisible, they reorder what is shown.
+_BIDI_CONTROLS = frozenset("\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
+#: The longest name of one file or folder that Linux, macOS and Windows file systems take (bytes).
+_NAME_MAX = 255
+
+
 def check_output_path(
     out: str | Path,
     *,
@@ -151,12 +157,20 @@ def check_output_path(
     """
     if out is None or str(out).strip() == "":
         raise OutputPathError(f"{option}: empty file name")
-    bad = next((c for c in str(out) if unicodedata.category(c) == "Cc"), None)
-    if bad is not None:  # 'a\nb.html' was written: a name that breaks every script and listing that meets it
+    # 'a\nb.html' was written: a name that breaks every script and listing that meets it; a direction override
+    # ('a\u202ecsv.exe.csv') makes a listing show another name than the file's
+    bad = next((c for c in str(out) if unicodedata.category(c) == "Cc" or c in _BIDI_CONTROLS), None)
+    if bad is not None:
         raise OutputPathError(
             f"{option} {str(out)!r:.80}: the file name holds the control character {bad!r}; give a plain name"
         )
     path = Path(out)
+    longest = max((len(part.encode("utf-8", "surrogateescape")) for part in path.parts), default=0)
+    if longest > _NAME_MAX:  # was "[Errno 36] File name too long: '...'" (the whole path), naming no option
+        raise OutputPathError(
+            f"{option} {str(out)[:60]!r}...: a name of {longest} bytes, more than the {_NAME_MAX} a file system "
+            "takes; give a shorter name"
+        )
     refuse_symlink(path, overwrite=force, option=option)
     named = inputs.items() if isinstance(inputs, Mapping) else (("an input file of this command", p) for p in inputs)
     for label, given in named:
