@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import sys
 from importlib import resources
-import numbers
 import warnings
 from pathlib import Path
 from typing import Any, Mapping
@@ -42,9 +41,9 @@ from ..limits import (
     size_text,
 )
 from ..fluid import Fluid
-from ..fluid.fluid import PLAUSIBLE_YIELD_EXPONENT, control_kind
+from ..fluid.fluid import control_kind
 from ..geometry import CONFIGURATIONS, Geometry
-from ..schema import Length, PositiveWholeNumber, Table, Text, checked, choice, field, quantity, validate
+from ..schema import Length, Number, PositiveWholeNumber, Table, Text, choice, field, quantity, validate
 from ..units import Q_, same_dimension, to_si
 from .accumulator import ROD_KINDS, AccumulatorTable, accumulator_from_table, accumulator_table
 from .damper import Damper
@@ -110,25 +109,6 @@ class GeometryTable(Table):
     )
 
 
-def _yield_exponent(value: Any, name: str) -> Any:
-    """A file's yield exponent: a number (the range (0, 5] is the fluid's check), warned outside
-    :data:`~erdesign.fluid.fluid.PLAUSIBLE_YIELD_EXPONENT` (1e-300 made the yield stress a step, without a word)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise DamperFileError(f"{name}: expected a number, got {value!r}")
-    lo, hi = PLAUSIBLE_YIELD_EXPONENT
-    if 0 < value <= 5 and not lo <= value <= hi:
-        warnings.warn(
-            f"fluid.yield_exponent: {value:.4g} is outside the plausible range {lo:g} to {hi:g} (Butz and von Stryk "
-            "2002 report 1.2 to 2.5); check the value",
-            PlausibilityWarning,
-            stacklevel=2,
-        )
-    return value
-
-
-YieldExponent = checked(_yield_exponent, "number")
-
-
 class FluidTable(Table):
     """``[fluid]`` of a damper file (and of a requirements file)."""
 
@@ -140,7 +120,7 @@ class FluidTable(Table):
     viscosity: quantity("Pa*s") = field("eta_0, plastic viscosity at zero field", default=None)
     yield_stress: quantity("Pa") = field("tau_ref, yield stress at reference_field", default=None)
     reference_field: Control = field("control at which yield_stress holds", default=None)
-    yield_exponent: YieldExponent = field("n in tau_y = yield_stress * (E / reference_field) ** n", default=None)
+    yield_exponent: Number = field("n in tau_y = yield_stress * (E / reference_field) ** n", default=None)
     density: quantity("kg/m^3") = field("rho, density of the fluid", default=None)
     viscosity_at_reference_field: quantity("Pa*s") = field(
         "plastic viscosity at reference_field (default: viscosity)", default=None

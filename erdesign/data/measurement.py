@@ -930,6 +930,12 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
             f"{path}: line {lineno}: the columns are separated by spaces; erdesign reads files with ',' or ';' "
             "between the columns (save as CSV)"
         )
+    if len(cells) == 1 and re.search(r"\]\s*[|:]\s*\S", cells[0]):  # 'time [s]|displacement [mm]|force [N]'
+        sep = re.search(r"\]\s*([|:])", cells[0])[1]
+        raise MeasurementError(
+            f"{path}: line {lineno}: the columns are separated by {sep!r}; erdesign reads files with ',' or ';' "
+            "between the columns (save as CSV)"
+        )
     for col, cell in enumerate(cells, start=1):
         if len(cell) > MAX_CELL_CHARS:
             raise MeasurementError(

@@ -77,7 +77,7 @@ IMPOSSIBLE_CONTROL_FACTOR = 1e3
 #: stress is given at a control no fluid is characterised at (a unit mistake: "3 V/mm" for "3 kV/mm"), and the power
 #: law then overflows at any working control ("1e-300 kV/mm": an infinite force, NaN in the results).
 SMALL_CONTROL_FACTOR = 1e3
-#: Yield exponents (tau_y ~ E^n) a file may give without a warning: Butz and von Stryk (2002) report 1.2 to 2.5 for
+#: Yield exponents (tau_y ~ E^n) a file or Fluid.create may give without a warning: Butz and von Stryk (2002) report 1.2 to 2.5 for
 #: ER fluids, MR fluids saturate (fits give 0.7 to 1.5).  An exponent near 0 makes the yield stress a step at zero
 #: control.  (The power-law summary fitted to a coil's circuit may lie outside: it is not warned.)
 PLAUSIBLE_YIELD_EXPONENT = (0.3, 3.0)
@@ -342,6 +342,12 @@ class Fluid:
             messages.append(
                 f"fluid.reference_field: {self._shown(self.reference_field)} is beyond the largest "
                 f"{self.control} a fluid plausibly takes ({self._shown(limit)}); check the unit"
+            )
+        lo, hi = PLAUSIBLE_YIELD_EXPONENT
+        if self.field_law is None and not lo <= self.yield_exponent <= hi:
+            messages.append(
+                f"fluid.yield_exponent: {self.yield_exponent:.4g} is outside the plausible range {lo:g} to {hi:g} "
+                "(Butz and von Stryk 2002 report 1.2 to 2.5); check the value"
             )
         if limit is not None and self.reference_field < limit / SMALL_CONTROL_FACTOR:
             messages.append(
