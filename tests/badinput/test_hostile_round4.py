@@ -84,6 +84,8 @@ _FILES = {
     "x0.csv": "time [s],displacement [mm],force [N],x0 [m]\n" + "\n".join(r + ",0" for r in _RECORD_BODY) + "\n",
     "bom.csv": GOOD_RECORD.replace("displacement [mm]", "\ufeffdisplacement [mm]"),
     "const.csv": record(F=np.full_like(_F, 5.0)),  # "esr: the measured force is constant" naming no file
+    "pipes.csv": GOOD_RECORD.replace(",", "|"),  # was "unknown unit 's]|displacement [mm]|force [N'"
+    "req_inf.toml": REQUIREMENTS.replace("min_dynamic_range = 1.9", "min_dynamic_range = inf"),  # searched for
 }
 
 
@@ -164,6 +166,16 @@ ERROR_CASES = [
     ("fit fullwidth unit", ["fit", "{kN_csv}", "--damper", "{damper}"], []),  # only: no internal error
     ("fit unknown column x0", ["fit", "{x0_csv}", "--damper", "{damper}"], ["column 4 (x0): unknown column"]),
     ("fit constant force", ["fit", "{const_csv}", "--damper", "{damper}"], ["const.csv: force: constant (5 N)"]),
+    ("fit columns between '|'", ["fit", "{pipes_csv}", "--damper", "{damper}"], ["line 1", "separated by '|'"]),
+    (
+        "design min_dynamic_range inf",
+        ["design", "{req_inf_toml}", "--out", "{tmp}/o.csv"],
+        ["design.point[1].min_dynamic_range: expected a finite number, got inf"],
+    ),
+    # hostile output names: "[Errno 36] File name too long: '<the whole path>'", naming no option; a direction
+    # override was written (a listing shows 'acsv.exe.csv' as 'aexe.vsc.csv')
+    ("out name of 300 bytes", ["doe", "--programme", "E5", "--out", "{tmp}/" + "x" * 300 + ".csv"], ["--out", "304"]),
+    ("out direction override", ["doe", "--programme", "E5", "--out", "{tmp}/a\u202ecsv.exe.csv"], ["--out", "\\u202e"]),
 ]
 
 
@@ -310,6 +322,17 @@ def test_an_annulus_as_wide_as_its_diameter_is_still_the_slit_formulas_dimension
     from erdesign.flow.bingham import bingham_pressure_drop
 
     assert math.isfinite(bingham_pressure_drop(1.0, 1.0, 1.0, 1.0, 1.0, 1.0))
+
+
+def test_an_implausible_yield_exponent_is_warned_in_the_api():
+    with pytest.warns(PlausibilityWarning, match=r"^fluid\.yield_exponent: 1e-300 is outside"):
+        erdesign.Fluid.create(
+            viscosity="7 Pa*s",
+            yield_stress="1.8 kPa",
+            reference_field="3 kV/mm",
+            yield_exponent=1e-300,
+            density="1290 kg/m^3",
+        )
 
 
 def test_a_reference_field_below_any_fluid_is_refused_in_the_api():
