@@ -26,7 +26,7 @@ from erdesign.report import plots
 from erdesign.report.export import csv_text, damper_toml
 from erdesign.report.fit import EXPORT_UNITS
 from erdesign.report.formatting import control_label, field_text, pick_unit, show
-from erdesign.units import Q_, to_si
+from erdesign.units import Q_, plain_number, to_si
 
 __all__ = [
     "render",
@@ -208,10 +208,9 @@ def spec_from_widgets(values: dict) -> dict:
         if not text or (key in base and text == _text(base[key]).strip()):
             continue
         if key == "yield_exponent":
-            try:
-                fluid[key] = float(text)
-            except ValueError:
-                raise ErdesignError(f"fluid.yield_exponent: expected a plain number, got {text!r}") from None
+            fluid[key] = plain_number(text)  # float() read '1_5' as 15 and the ARABIC-INDIC digit three as 3
+            if fluid[key] is None:
+                raise ErdesignError(f"fluid.yield_exponent: expected a plain number, got {text!r}")
         else:
             fluid[key] = text
     kept = values.get("kept") or {}

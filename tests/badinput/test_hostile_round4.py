@@ -374,6 +374,22 @@ def test_app_uploads_and_inputs(app):  # noqa: F811
     app.text_input(key="size.fluid.reference_field").set_value("1e-300 kV/mm").run()  # "energy: it is nan"
     _clean(app, "fluid.reference_field")
     app.text_input(key="size.fluid.reference_field").set_value(good).run()
+    good = app.text_input(key="size.fluid.yield_exponent").value
+    for text in ("1_5", "\u0663"):  # float() read 15 and 3
+        app.text_input(key="size.fluid.yield_exponent").set_value(text).run()
+        _clean(app, "fluid.yield_exponent: expected a plain number")
+    app.text_input(key="size.fluid.yield_exponent").set_value(good).run()
+    assert not app.error
+
+    app.switch_page("design.py").run()  # the requirement form's numbers: int() and float() read other scripts too
+    for key, text, said in (
+        ("designer.req.design.point.0.min_dynamic_range", "\u0663", "min_dynamic_range: expected a float number"),
+        ("designer.req.design.bounds.ducts.1", "1_0", "ducts.1: expected a int number"),
+    ):
+        good = app.text_input(key=key).value
+        app.text_input(key=key).set_value(text).run()
+        _clean(app, said)
+        app.text_input(key=key).set_value(good).run()
 
     app.switch_page("compare.py").run()
     app.radio(key="cmp.source").set_value("upload a measurement CSV").run()
