@@ -259,10 +259,7 @@ def _as_1d(values, name: str, n: int | None = None, unit: str | None = None) -> 
         from ..units import to_si
 
         values = to_si(values, unit, name)
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise MeasurementError(f"{name}: not numeric") from None
+    arr = _numbers(values, name)
     if arr.ndim != 1:
         raise MeasurementError(f"{name}: expected a 1-D array, got shape {arr.shape}")
     if n is not None and arr.size != n:
@@ -282,10 +279,18 @@ def _all_finite(a: np.ndarray) -> bool:
 
 def _as_1d_any(values, name: str) -> np.ndarray:
     """A value or array of numbers (a control may be one value for the whole record)."""
+    return _numbers(values, name)
+
+
+def _numbers(values, name: str) -> np.ndarray:
+    """``values`` as a float array through the one check of SI arguments (:func:`erdesign._util.si_array`): text,
+    booleans, complex numbers, dates and masked values were taken as numbers."""
+    from .._util import si_array
+
     try:
-        return np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise MeasurementError(f"{name}: not numeric") from None
+        return si_array(values, name, finite=False)
+    except ErdesignError as exc:
+        raise MeasurementError(str(exc)) from None
 
 
 def _check_velocity(v: np.ndarray, v_derived: np.ndarray, name: str) -> None:
