@@ -10,6 +10,7 @@ from typing import Iterable, Mapping
 import numpy as np
 
 from .errors import ErdesignError, OutputPathError
+from .output import _NAME_MAX as NAME_MAX
 from .output import exists_message, refuse_symlink
 
 __all__ = ["scalar_or_array", "check_output_path", "si_array", "broadcast_named"]
@@ -117,8 +118,6 @@ def _same_file(a: Path, b: Path) -> bool:
 
 #: Unicode's direction controls (embeddings, overrides, isolates, marks): invisible, they reorder what is shown.
 _BIDI_CONTROLS = frozenset("\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
-#: The longest name of one file or folder that Linux, macOS and Windows file systems take (bytes).
-_NAME_MAX = 255
 
 
 def check_output_path(
@@ -166,9 +165,9 @@ def check_output_path(
         )
     path = Path(out)
     longest = max((len(part.encode("utf-8", "surrogateescape")) for part in path.parts), default=0)
-    if longest > _NAME_MAX:  # was "[Errno 36] File name too long: '...'" (the whole path), naming no option
+    if longest > NAME_MAX:  # was "[Errno 36] File name too long: '...'" (the whole path), naming no option
         raise OutputPathError(
-            f"{option} {str(out)[:60]!r}...: a name of {longest} bytes, more than the {_NAME_MAX} a file system "
+            f"{option} {str(out)[:60]!r}...: a name of {longest} bytes, more than the {NAME_MAX} a file system "
             "takes; give a shorter name"
         )
     refuse_symlink(path, overwrite=force, option=option)

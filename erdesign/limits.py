@@ -71,6 +71,8 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
     OS errors (no such file, a folder, no permission) propagate for the caller to phrase.
     """
     label = str(path) if label is None else label
+    if "\x00" in os.fspath(path):  # "embedded null byte", a ValueError from the system call
+        raise ErdesignError(f"{label!r:.80}: the file name holds a NUL character; no file is named so")
     kind = os.stat(path).st_mode
     if stat.S_ISFIFO(kind) or stat.S_ISSOCK(kind):  # opening a named pipe waits for a writer: for ever
         what_it_is = "a named pipe" if stat.S_ISFIFO(kind) else "a socket"

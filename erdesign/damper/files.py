@@ -427,8 +427,8 @@ def damper_file_path(path: str | Path) -> Path:
     >>> damper_file_path("makris").name, damper_file_path("no_such_damper.toml").name
     ('makris.toml', 'no_such_damper.toml')
     """
-    if isinstance(path, str) and not Path(path).exists() and path in example_names():
-        return Path(str(resources.files("erdesign.examples") / f"{path}.toml"))
+    if isinstance(path, str) and path in example_names() and not Path(path).exists():  # a name first: exists()
+        return Path(str(resources.files("erdesign.examples") / f"{path}.toml"))  # raises for a NUL or a long name
     return bundled_file(path) or Path(path)
 
 
@@ -440,7 +440,7 @@ def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
         raise DamperFileError(
             f"path: expected the name of a damper file (a str or Path), got {type(path).__name__} {path!r:.60}"
         )
-    by_name = isinstance(path, str) and not Path(path).exists() and path in example_names()
+    by_name = isinstance(path, str) and path in example_names() and not Path(path).exists()
     source = f"examples/{path}.toml" if by_name else str(path)
     return damper_from_dict(read_toml(damper_file_path(path)), source=source, flow_model=flow_model)
 
