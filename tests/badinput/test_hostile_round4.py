@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 import erdesign
-from erdesign import Q_
+from erdesign import Q_, Measurement
 from erdesign.errors import ErdesignError, PlausibilityWarning
 from erdesign.units import to_si
 
@@ -249,6 +249,8 @@ def test_round4_implausible_values_are_warned(case, files, capsys):
 
 # ------------------------------------------------------------------------------------------ the Python API
 MAKRIS_DAMPER = erdesign.load_example("makris")
+T = np.linspace(0.0, 2.0, 1000)
+X = 4e-3 * np.sin(2 * np.pi * T)
 DUCT = ("1 mL/s", "1.8 kPa", "13 Pa*s", "54.6 mm", "14.3 mm")
 
 
@@ -277,6 +279,21 @@ def _api_cases():
         # a gap wider than the annulus's mean diameter: a thin-gap pressure drop of 10 kPa, without a word
         ("thin gap h > d", lambda: erdesign.bingham_pressure_drop(*DUCT, "20 mm"), ["h: the gap (0.02 m)", "0.0143"]),
         ("programme seed -1", lambda: erdesign.programme("rp", seed=-1), ["seed: must be a whole number >= 0"]),
+        # Measurement.from_arrays took booleans, text, complex numbers, dates and masked values as numbers
+        ("from_arrays boolean force", lambda: Measurement.from_arrays(T, X, T > 1), ["force:", "true/false"]),
+        ("from_arrays text time", lambda: Measurement.from_arrays([str(v) for v in T], X), ["time: expected a number"]),
+        ("from_arrays complex", lambda: Measurement.from_arrays(T, X + 0j), ["displacement:", "complex numbers"]),
+        ("from_arrays masked", lambda: Measurement.from_arrays(T, np.ma.masked_less(X, 0)), ["displacement: element"]),
+        ("from_arrays dates", lambda: Measurement.from_arrays(T.astype("datetime64[s]"), X), ["time:", "a date"]),
+        # a NUL in a file name: "ValueError: embedded null byte"; a 300-byte name: "[Errno 36] File name too long"
+        ("load_damper NUL", lambda: erdesign.load_damper("d\x00.toml"), ["'d\\x00.toml'", "NUL"]),
+        ("read_measurement NUL", lambda: erdesign.read_measurement("m\x00.csv"), ["'m\\x00.csv'", "NUL"]),
+        ("load_damper long name", lambda: erdesign.load_damper("x" * 300 + ".toml"), ["cannot be read (File name"]),
+        ("save_damper NUL", lambda: erdesign.save_damper(m, "d\x00.toml"), ["path 'd\\x00.toml'", "NUL"]),
+        ("save_damper long name", lambda: erdesign.save_damper(m, "x" * 300 + ".toml"), ["path", "305 bytes"]),
+        # fit(damper, record): "'Damper' object has no attribute 'require_force'"
+        ("fit a damper", lambda: erdesign.fit(m, None), ["model: expected a model", "got Damper"]),
+        ("fit a list", lambda: erdesign.fit(erdesign.get_model("bingham"), [1.0]), ["record: expected a Measurement"]),
         (
             "sine samples_per_cycle 8",  # "cycles must be a whole number >= 1 and samples_per_cycle >= 16"
             lambda: m.sine_response("1 mm", "1 Hz", samples_per_cycle=8),
