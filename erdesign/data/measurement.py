@@ -1380,6 +1380,12 @@ def _check_magnitude(values: np.ndarray, name: str, where: str) -> None:
         peak = max(float(values.max()), -float(values.min()))  # max |values|, without an array of them
         if peak > limit:
             si = COLUMNS[name]
+            span = float(values.max() - values.min())
+            if name == "time" and span <= limit:  # a clock time (Unix time: 1.7e9 s), not a unit mistake
+                raise MeasurementError(
+                    f"{where}: starts at {float(values[0]):.4g} s, a clock time (Unix time?) rather than the time "
+                    f"since the record's start; subtract the first time (the record spans {span:.4g} s)"
+                )
             raise MeasurementError(
                 f"{where}: {peak:.3g} {si} is beyond any damper record (at most {limit:g} {si}); "
                 "check the column's unit"

@@ -84,7 +84,10 @@ _FILES = {
     "x0.csv": "time [s],displacement [mm],force [N],x0 [m]\n" + "\n".join(r + ",0" for r in _RECORD_BODY) + "\n",
     "bom.csv": GOOD_RECORD.replace("displacement [mm]", "\ufeffdisplacement [mm]"),
     "const.csv": record(F=np.full_like(_F, 5.0)),  # "esr: the measured force is constant" naming no file
-    "pipes.csv": GOOD_RECORD.replace(",", "|"),  # was "unknown unit 's]|displacement [mm]|force [N'"
+    "pipes.csv": GOOD_RECORD.replace(",", "|"),
+    "unix.csv": record(
+        t=np.arange(0, 2.0, 0.002) + 1.7e9
+    ),  # "beyond any damper record; check the column's unit"  # was "unknown unit 's]|displacement [mm]|force [N'"
     "req_inf.toml": REQUIREMENTS.replace("min_dynamic_range = 1.9", "min_dynamic_range = inf"),  # searched for
 }
 
@@ -166,6 +169,7 @@ ERROR_CASES = [
     ("fit fullwidth unit", ["fit", "{kN_csv}", "--damper", "{damper}"], []),  # only: no internal error
     ("fit unknown column x0", ["fit", "{x0_csv}", "--damper", "{damper}"], ["column 4 (x0): unknown column"]),
     ("fit constant force", ["fit", "{const_csv}", "--damper", "{damper}"], ["const.csv: force: constant (5 N)"]),
+    ("fit Unix time", ["fit", "{unix_csv}", "--damper", "{damper}"], ["column 1 (time [s]): starts at 1.7e+09 s"]),
     ("fit columns between '|'", ["fit", "{pipes_csv}", "--damper", "{damper}"], ["line 1", "separated by '|'"]),
     (
         "design min_dynamic_range inf",
