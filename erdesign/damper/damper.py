@@ -397,8 +397,17 @@ class Damper:
         samples_per_cycle : int
             Samples per cycle.
         """
+        from ..simulation.rig import MAX_AMPLITUDE  # the one bound of a test motion's amplitude
+
         X0 = positive_si(amplitude, "m", "amplitude")
         f = positive_si(frequency, "Hz", "frequency")
+        if X0 > MAX_AMPLITUDE:  # report --amplitude "1 km" drew loops of a kilometre without a word
+            raise ErdesignError(
+                f"amplitude: {X0:g} m is beyond any damper's stroke (at most {MAX_AMPLITUDE:g} m); check the value "
+                "and its unit"
+            )
+        # the peak piston speed, through the damper's one check of speeds (1e-300 Hz gave a period of 1e300 s)
+        check_piston_velocity(2 * math.pi * f * X0, "amplitude, frequency: the peak speed")
         for key, value, low in (("cycles", cycles, 1), ("samples_per_cycle", samples_per_cycle, 16)):
             # numbers.Integral: numpy's integers too; a bool is not a count (True was taken as one cycle)
             if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:

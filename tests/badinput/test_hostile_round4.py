@@ -158,6 +158,11 @@ ERROR_CASES = [
         ["report", "{damper}", "--amplitude", "1e-320 mm", "--out", "{tmp}/o.html"],
         ["amplitude", "too small"],
     ),
+    (
+        "report amplitude 1 km",
+        ["report", "{damper}", "--amplitude", "1 km", "--out", "{tmp}/o.html"],
+        ["amplitude: 1000 m"],
+    ),
     # a reference field of 1e-300 kV/mm: overflow warnings from numpy, NaN in the table, an internal error in --json
     (
         "size reference field 1e-300 kV/mm",
@@ -298,6 +303,7 @@ def _api_cases():
         # fit(damper, record): "'Damper' object has no attribute 'require_force'"
         ("fit a damper", lambda: erdesign.fit(m, None), ["model: expected a model", "got Damper"]),
         ("fit a list", lambda: erdesign.fit(erdesign.get_model("bingham"), [1.0]), ["record: expected a Measurement"]),
+        ("sine 1 m at 1 kHz", lambda: m.sine_response("1 m", "1 kHz"), ["amplitude, frequency: the peak speed: 6283"]),
         (
             "sine samples_per_cycle 8",  # "cycles must be a whole number >= 1 and samples_per_cycle >= 16"
             lambda: m.sine_response("1 mm", "1 Hz", samples_per_cycle=8),
@@ -329,6 +335,12 @@ def test_numbers_of_other_kinds_are_numbers():
     np.testing.assert_allclose(m.force_si(pd.Series([0.1, 0.2])), m.force_si(np.array([0.1, 0.2])))
     assert m.force_si(np.ma.masked_array([0.1, 0.2])).shape == (2,)  # nothing masked: taken
     assert erdesign.esr(np.array([1, 2, 3]), [1.0, 2.0, 3.0]) == 0.0
+
+
+def test_a_sine_of_1e_300_hz_is_warned():
+    """A period of 1e300 s was computed without a word."""
+    with pytest.warns(PlausibilityWarning, match=r"^amplitude, frequency: the peak speed: 6\.283e-303 m/s is below"):
+        MAKRIS_DAMPER.sine_response("1 mm", "1e-300 Hz")
 
 
 def test_a_numpy_integer_is_a_whole_number_of_cycles():
