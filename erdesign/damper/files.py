@@ -269,6 +269,10 @@ def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_mo
     The file is checked against its schema (:class:`DamperFile`: keys, types, units, signs) first; the relations
     between values (a rod thinner than the piston, a mixed damper's mean diameter) are the objects' own checks."""
     try:
+        if isinstance(data, Mapping) and "design" in data and "geometry" not in data:
+            raise DamperFileError(
+                "a requirements file ([design]), not a damper file ([geometry]); give it to erdesign design"
+            )
         spec = validate(DamperFile, data, error=DamperFileError)
         geo = spec.geometry.given()
         rod = geo.pop("rod", "double")

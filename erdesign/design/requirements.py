@@ -509,6 +509,10 @@ def _si(value: Any, unit: str, name: str) -> float | None:
 
 
 def _parse(data: Mapping[str, Any]) -> Requirements:
+    if isinstance(data, Mapping) and "geometry" in data and "design" not in data:
+        raise RequirementsError(
+            "a damper file ([geometry]), not a requirements file ([design]); give it to erdesign size, fit or report"
+        )
     spec = validate(RequirementsFile, data, error=RequirementsError)
     design = spec.design
     fluid_table = dict(data["fluid"])

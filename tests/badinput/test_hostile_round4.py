@@ -158,6 +158,9 @@ ERROR_CASES = [
         ["report", "{damper}", "--amplitude", "1e-320 mm", "--out", "{tmp}/o.html"],
         ["amplitude", "too small"],
     ),
+    # the other kind of TOML file: "design: unknown key; allowed keys: name, geometry, ..."
+    ("size a requirements file", ["size", "{req_range_toml}", *_SIZE], ["a requirements file ([design])"]),
+    ("design a damper file", ["design", "{damper}", "--out", "{tmp}/o.csv"], ["d.toml: a damper file ([geometry])"]),
     (
         "report amplitude 1 km",
         ["report", "{damper}", "--amplitude", "1 km", "--out", "{tmp}/o.html"],
