@@ -10,6 +10,7 @@ from typing import Iterable, Mapping
 import numpy as np
 
 from .errors import ErdesignError, OutputPathError
+from .output import _NAME_MAX as NAME_MAX
 from .output import exists_message, refuse_symlink
 
 __all__ = ["scalar_or_array", "check_output_path", "si_array", "broadcast_named"]
@@ -36,22 +37,47 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
             f"{name}: expected SI numbers, got a quantity in {value.units:~P}; pass "
             f"value.to(unit).magnitude or use the unit-aware function"
         )
+    shown = " ".join(repr(value).split())
+    shown = f"{type(value).__name__} {shown[:60]}{'...' if len(shown) > 60 else ''}"
+    if np.ma.isMaskedArray(value) and np.ma.getmaskarray(value).any():  # asarray drops the mask: hidden values
+        at = int(np.flatnonzero(np.ma.getmaskarray(value).ravel())[0])
+        raise ErdesignError(
+            f"{name}: element {at} is masked; give the values to use (numpy.ma.compressed() drops the masked ones)"
+        )
+    # numpy reads text ('0.1', b'0.1'), True, dates and complex numbers (dropping the imaginary part) as floats
     try:
-        if value is None:
-            raise TypeError
+        kind = "O" if value is None else np.asarray(value).dtype.kind
+    except (TypeError, ValueError):  # a ragged list
+        kind = "O"
+    if kind in "USObMmc" and (kind != "O" or value is None or _holds_non_numbers(value)):
+        what = {"b": "true/false", "M": "a date", "m": "a time span", "c": "complex numbers"}.get(kind)
+        raise ErdesignError(
+            f"{name}: expected a number or an array of numbers (SI), got {f'{what}: ' if what else ''}{shown}"
+        )
+    try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        shown = repr(value)
-        raise ErdesignError(
-            f"{name}: expected a number or an array of numbers (SI), got {type(value).__name__} "
-            f"{shown[:60]}{'...' if len(shown) > 60 else ''}"
-        ) from None
+        raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {shown}") from None
     if finite:
         bad = ~np.isfinite(arr)
         if np.any(bad):
             where = f"element {int(np.flatnonzero(bad.ravel())[0])} is" if arr.ndim else "it is"
             raise ErdesignError(f"{name}: {where} {arr.ravel()[bad.ravel()][0]}; give finite numbers (SI)")
     return arr
+
+
+def _holds_non_numbers(value) -> bool:
+    """True for an object array or sequence holding anything but real numbers (Decimal and Fraction are numbers)."""
+    import numbers
+    from decimal import Decimal
+
+    try:
+        items = np.asarray(value, dtype=object).ravel()[:1000]
+    except (TypeError, ValueError):  # a ragged list
+        return True
+    return any(
+        isinstance(v, (bool, np.bool_)) or not isinstance(v, (numbers.Real, Decimal)) or np.ndim(v) for v in items
+    )
 
 
 def broadcast_named(**arrays) -> tuple[int, ...]:
@@ -90,6 +116,10 @@ def _same_file(a: Path, b: Path) -> bool:
         return False
 
 
+#: Unicode's direction controls (embeddings, overrides, isolates, marks): invisible, they reorder what is shown.
+_BIDI_CONTROLS = frozenset("\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
+
+
 def check_output_path(
     out: str | Path,
     *,
@@ -126,12 +156,20 @@ def check_output_path(
     """
     if out is None or str(out).strip() == "":
         raise OutputPathError(f"{option}: empty file name")
-    bad = next((c for c in str(out) if unicodedata.category(c) == "Cc"), None)
-    if bad is not None:  # 'a\nb.html' was written: a name that breaks every script and listing that meets it
+    # 'a\nb.html' was written: a name that breaks every script and listing that meets it; a direction override
+    # ('a\u202ecsv.exe.csv') makes a listing show another name than the file's
+    bad = next((c for c in str(out) if unicodedata.category(c) == "Cc" or c in _BIDI_CONTROLS), None)
+    if bad is not None:
         raise OutputPathError(
             f"{option} {str(out)!r:.80}: the file name holds the control character {bad!r}; give a plain name"
         )
     path = Path(out)
+    longest = max((len(part.encode("utf-8", "surrogateescape")) for part in path.parts), default=0)
+    if longest > NAME_MAX:  # was "[Errno 36] File name too long: '...'" (the whole path), naming no option
+        raise OutputPathError(
+            f"{option} {str(out)[:60]!r}...: a name of {longest} bytes, more than the {NAME_MAX} a file system "
+            "takes; give a shorter name"
+        )
     refuse_symlink(path, overwrite=force, option=option)
     named = inputs.items() if isinstance(inputs, Mapping) else (("an input file of this command", p) for p in inputs)
     for label, given in named:

@@ -23,6 +23,7 @@ the loaders give instead of a ``RecursionError``.
 from __future__ import annotations
 
 import os
+import stat
 
 from .errors import ErdesignError
 
@@ -37,6 +38,7 @@ __all__ = [
     "is_path_like",
     "nested_too_deeply",
     "read_input_bytes",
+    "refuse_binary",
     "size_text",
 ]
 
@@ -61,25 +63,27 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
     """The bytes of an input file, refused with a :class:`~erdesign.errors.ErdesignError` naming the file when it
     is larger than ``limit`` or holds NUL bytes (a binary file: a spreadsheet, an archive, ``/dev/zero``).
 
-    A regular file within ``limit`` is read in one piece; anything else (a pipe, a device, a larger file) in chunks
+    A named pipe or a socket is refused before it is opened (opening a pipe waits for a writer, for ever).  A
+    regular file within ``limit`` is read in one piece; anything else (a device, a larger file) in chunks
     and never past ``limit``, so an endless device or a huge file stops at once, and its first chunk is checked for
     NUL bytes before any more is read.  ``what`` says what the file should be (``"a
     measurement CSV file"``) and ``label`` is how the message names the file (default: the path).
     OS errors (no such file, a folder, no permission) propagate for the caller to phrase.
     """
     label = str(path) if label is None else label
+    if "\x00" in os.fspath(path):  # "embedded null byte", a ValueError from the system call
+        raise ErdesignError(f"{label!r:.80}: the file name holds a NUL character; no file is named so")
+    kind = os.stat(path).st_mode
+    if stat.S_ISFIFO(kind) or stat.S_ISSOCK(kind):  # opening a named pipe waits for a writer: for ever
+        what_it_is = "a named pipe" if stat.S_ISFIFO(kind) else "a socket"
+        raise ErdesignError(f"{label}: not a regular file ({what_it_is}); save the data to a file and give its name")
     chunks, total = [], 0
     with open(path, "rb") as fh:
         size = os.fstat(fh.fileno()).st_size  # 0 for a pipe or a device
         # a regular file within the limit in one read (reading it by chunks and joining them cost 20 x more);
         # anything else by chunks, never past the limit
         chunk = fh.read(size + 1 if 0 < size <= limit else _CHUNK)
-        if chunk.startswith(b"PK\x03\x04"):
-            advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
-            raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
-        _refuse_utf16(chunk, label, what)
-        if chunk.find(b"\x00", 0, _CHUNK) != -1:  # in the first chunk, whatever was read (no copy of it)
-            raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
+        refuse_binary(chunk, label, what)
         while chunk:
             total += len(chunk)
             if total > limit:
@@ -90,6 +94,18 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
             chunks.append(chunk)
             chunk = fh.read(min(_CHUNK, limit + 1 - total))
     return chunks[0] if len(chunks) == 1 else b"".join(chunks)
+
+
+def refuse_binary(head: bytes, label: str, what: str) -> None:
+    """An :class:`~erdesign.errors.ErdesignError` naming ``label`` when the first bytes of an input (a file's, an
+    upload's) are a zip archive (a spreadsheet), UTF-16 text or hold NUL bytes (a binary file): ``what`` says what
+    the input should be."""
+    if head.startswith(b"PK\x03\x04"):
+        advice = "; save it as CSV (UTF-8)" if "CSV" in what else ""
+        raise ErdesignError(f"{label}: a zip archive (an .xlsx or .ods spreadsheet?), not {what}{advice}")
+    _refuse_utf16(head, label, what)
+    if head.find(b"\x00", 0, _CHUNK) != -1:  # in the first chunk, whatever was read (no copy of it)
+        raise ErdesignError(f"{label}: a binary file (it holds NUL bytes), not {what} (UTF-8 text)")
 
 
 def _refuse_utf16(head: bytes, label: str, what: str) -> None:

@@ -201,7 +201,15 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
     """
     if path is None or str(path).strip() == "":
         raise OutputPathError(f"{option}: empty file name")
+    if "\x00" in str(path):  # "embedded null byte", a ValueError from the first system call
+        raise OutputPathError(f"{option} {str(path)!r:.80}: the file name holds a NUL character; give a plain name")
     path = Path(path)
+    longest = max((len(part.encode("utf-8", "surrogateescape")) for part in path.parts), default=0)
+    if longest > _NAME_MAX:  # "[Errno 36] File name too long: '<the whole path>'"
+        raise OutputPathError(
+            f"{option} {str(path)[:60]!r}...: a name of {longest} bytes, more than the {_NAME_MAX} a file system "
+            "takes; give a shorter name"
+        )
     refuse_symlink(path, overwrite=overwrite, option=option)
     if path.is_dir() and not path.is_symlink():
         raise OutputPathError(f"{option} {path}: is a folder; give a file name")

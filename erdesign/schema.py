@@ -34,6 +34,7 @@ erdesign.errors.ErdesignError: pipe.colour: unknown key in [pipe]; allowed keys:
 
 from __future__ import annotations
 
+import math
 import numbers
 import typing
 from collections.abc import Mapping
@@ -122,6 +123,8 @@ def _number(value: Any) -> float:
     # numbers.Real: a dict built in Python may hold numpy numbers (a TOML file never does)
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise _Refused(f"expected a number, got {value!r}")
+    if not math.isfinite(value):  # TOML has nan and inf
+        raise _Refused(f"expected a finite number, got {value!r}")
     return value
 
 

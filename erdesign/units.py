@@ -27,6 +27,7 @@ import functools
 import inspect
 import math
 import re
+import sys
 import unicodedata
 import warnings
 from typing import Any, Callable, Mapping
@@ -90,6 +91,9 @@ _DIMENSION_NAMES = {
 }
 
 
+_VISCOSITY = ureg.Unit("Pa*s").dimensionality
+
+
 def dimension_name(dimensionality: Any) -> str:
     """Plain-language name of a pint dimensionality (``[length]`` -> ``"a length"``)."""
     return _DIMENSION_NAMES.get(dimensionality, f"a quantity of dimension {dimensionality}")
@@ -103,6 +107,11 @@ _MINUS_SIGNS = {"\u2212": "-", "\ufe63": "-", "\uff0d": "-"}
 _DASHES = "\u2010\u2011\u2012\u2013\u2014\u2015\u2043\u02d7\u2796"
 #: Characters outside ASCII that unit symbols use (micro, ohm, degree, middle dot, superscripts, angstrom).
 _UNIT_CHARACTERS = set("µμΩΩ°·⋅×²³¹⁰⁴⁵⁶⁷⁸⁹⁻Åℓ")
+#: Typed degree signs that are not U+00B0 (a masculine ordinal, a ring above): read as the degree sign.
+_DEGREE_SIGNS = {"\u00ba": "\u00b0", "\u02da": "\u00b0"}
+#: Blocks of compatibility characters that are units written as one character ('\u2103' DEGREE CELSIUS,
+#: '\u339c' SQUARE MM, '\u339b' SQUARE MU M): read as their letters (NFKC).
+_UNIT_SYMBOL_BLOCKS = (("\u2100", "\u214f"), ("\u3380", "\u33ff"))
 _DIGIT_SEPARATOR = re.compile(r"\d_\d|\d'\d")
 _DECIMAL_COMMA = re.compile(r"^\s*[-+]?\d+,\d+(\s|$)")
 
@@ -148,6 +157,10 @@ def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
                 raise UnitError(f"{name}: {shown!r} holds the control character {ch!r}")
         elif ch in _MINUS_SIGNS:
             out.append(_MINUS_SIGNS[ch])
+        elif ch in _DEGREE_SIGNS:
+            out.append(_DEGREE_SIGNS[ch])
+        elif any(lo <= ch <= hi for lo, hi in _UNIT_SYMBOL_BLOCKS) and unicodedata.normalize("NFKC", ch) != ch:
+            out.append(unicodedata.normalize("NFKC", ch))
         elif "\uff01" <= ch <= "\uff5e":  # fullwidth ASCII
             out.append(chr(ord(ch) - 0xFEE0))
         elif ch.isspace():
@@ -162,10 +175,11 @@ def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
         elif ch in _UNIT_CHARACTERS or (ch.isalpha() and not unicodedata.category(ch).startswith("N")):
             out.append(ch)
         else:
-            kind = "digit" if ch.isdigit() or ch.isnumeric() else "character"
+            digit = ch.isdigit() or ch.isnumeric()
             raise UnitError(
-                f"{name}: {shown!r} holds the {kind} {ch!r} ({unicodedata.name(ch, 'unnamed')}, "
-                f"U+{ord(ch):04X}); write the value in ASCII digits, e.g. '0.8 mm'"
+                f"{name}: {shown!r} holds the {'digit' if digit else 'character'} {ch!r} "
+                f"({unicodedata.name(ch, 'unnamed')}, U+{ord(ch):04X}); write the value "
+                f"{'in ASCII digits' if digit else 'and its unit in plain letters and digits'}, e.g. '0.8 mm'"
             )
     clean = "".join(out)
     if "," in clean:
@@ -223,6 +237,8 @@ _QUANTITY_TEXT = re.compile(
     r"\s*([-+]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|nan(?![a-z])|inf(?:inity)?(?![a-z])))\s*(.*?)\s*",
     re.ASCII | re.IGNORECASE,
 )
+#: The unit word 'mil' (or 'mils'): read as 'thou', a thousandth of an inch (see :func:`_units`).
+_MIL = re.compile(r"(?<![A-Za-z_])mils?(?![A-Za-z_])")
 #: A power of a power (``m^2^3``, ``10**10**10``): pint evaluates it exactly, for minutes and gigabytes.
 _POWER_TOWER = re.compile(r"(?:\*\*|\^)\s*[-+(\s]*[\d.]+[\s)]*(?:\*\*|\^)")
 
@@ -239,6 +255,8 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         )
     if _POWER_TOWER.search(text):
         raise UnitError(f"{name}: {shown!r} has a power of a power; give the unit with one exponent, e.g. 'm^3'")
+    # 'mil' is a thousandth of an inch on every drawing a damper comes from; pint's 'mil' is an angle (1/6400 turn)
+    text = _MIL.sub("thou", text)
     try:
         return ureg.parse_units(text)
     except pint.errors.UndefinedUnitError as exc:
@@ -255,7 +273,11 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
             f"{name}: cannot read {shown!r} as {'a value with a unit' if what == 'value' else 'a unit'} ({exc})"
         ) from None
     except Exception as exc:  # noqa: BLE001 - pint raises assorted errors (AssertionError too) for garbled strings
-        detail = f" ({exc})" if str(exc) else ""
+        # pint's own words when they say something ("missing unary operator"), never Python's about its internals
+        # ("unsupported operand type(s) for -: 'ParserHelper' and 'ParserHelper'")
+        detail = f" ({exc})" if str(exc) and not isinstance(exc, TypeError) else ""
+        if "-" in text.strip("-"):
+            detail = " (a '-' between units; write a product with '*' or a space, e.g. 'N*s/m')"
         kind = "a value with a unit" if what == "value" else "a unit"
         raise UnitError(f"{name}: cannot read {shown!r} as {kind}{detail}") from None
 
@@ -285,9 +307,17 @@ def parse_quantity(text: str, name: str) -> pint.Quantity:
             f"{name}: cannot read {shown!r} as a value with a unit; give one number, then its unit (e.g. '0.8 mm')"
         )
     number, unit = m[1], m[2]
+    magnitude = float(number)
+    mantissa = re.split("[eE]", number)[0]
+    if magnitude != 0.0 and abs(magnitude) < sys.float_info.min or magnitude == 0.0 and re.search("[1-9]", mantissa):
+        # 1e-400 was read as 0 (a seal friction of "1e-400 N" as none); 1e-320, a subnormal, loses its digits
+        raise UnitError(
+            f"{name}: {shown!r}: the number is too small to compute with (below {sys.float_info.min:.3g}); "
+            "check the value and its unit"
+        )
     if not unit:
-        return Q_(float(number))
-    return Q_(float(number), _units(unit, name, shown, "value"))
+        return Q_(magnitude)
+    return Q_(magnitude, _units(unit, name, shown, "value"))
 
 
 def parse_unit(text: str, name: str, *, value: float = 1.0) -> pint.Quantity:
@@ -345,9 +375,12 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     if isinstance(value, pint.Quantity):
         if value.dimensionality != target.dimensionality:
             shown = given if isinstance(given, str) else _shown_quantity(value)
+            hint = ""
+            if isinstance(given, str) and re.search(r"Pas\b", given) and target.dimensionality == _VISCOSITY:
+                hint = "; 'Pas' reads as pascals: write 'Pa*s' (or 'mPa*s')"  # '7000 mPas', German 'mPas'
             raise UnitError(
                 f"{name}: expected {dimension_name(target.dimensionality)} (a value with a unit such as "
-                f"'{unit}'), got '{shown}' ({dimension_name(value.dimensionality)})"
+                f"'{unit}'), got '{shown}' ({dimension_name(value.dimensionality)}){hint}"
             )
         magnitude = value.to(target).magnitude
     else:
@@ -364,6 +397,8 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
                 f"e.g. '{value} {unit}'"
             )
         magnitude = value
+    if np.ma.isMaskedArray(magnitude) and np.ma.getmaskarray(magnitude).any():  # asarray would use hidden values
+        raise UnitError(f"{name}: an array with masked elements; give the values to use (numpy.ma.compressed())")
     try:
         magnitude = np.asarray(magnitude, dtype=float)
     except (TypeError, ValueError):

@@ -12,6 +12,7 @@ physics here.
 from __future__ import annotations
 
 import copy
+import re
 from importlib import resources
 from typing import Any
 
@@ -26,7 +27,7 @@ from erdesign.design.figures import FIGURES
 from erdesign.design.result import figure_value
 from erdesign.errors import ErdesignError
 from erdesign.report.formatting import kind_of, pick_unit, round_significant
-from erdesign.units import Q_, to_si
+from erdesign.units import Q_, plain_number, to_si
 
 __all__ = ["DEFAULT_REQUIREMENTS", "render", "requirement_inputs", "requirements_data"]
 
@@ -122,10 +123,14 @@ def requirements_data(data: dict, texts: dict[str, str]) -> dict:
                 if text.lower() not in ("true", "false"):
                     raise ValueError
                 new: Any = text.lower() == "true"
-            elif isinstance(value, int):
+            elif isinstance(value, int):  # ASCII digits only: int() reads '\u0663' (ARABIC-INDIC THREE) and '1_0'
+                if not re.fullmatch(r"\s*[-+]?\d+\s*", text, re.ASCII):
+                    raise ValueError
                 new = int(text)
-            elif isinstance(value, float):
-                new = float(text)
+            elif isinstance(value, float):  # the one reader of plain numbers (float() reads other scripts' digits)
+                new = plain_number(text)
+                if new is None:
+                    raise ValueError
             else:
                 new = text
         except ValueError:

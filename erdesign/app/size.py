@@ -10,20 +10,14 @@ the sweep explorer (one geometry value varied) from :func:`erdesign.app.state.ge
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import streamlit as st
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
 from erdesign.app import figures, pinned, state
-from erdesign.damper.files import damper_from_dict, example_names
+from erdesign.damper.files import damper_from_dict, example_names, parse_toml_bytes
 from erdesign.errors import ErdesignError
 from erdesign.limits import decode_text, nested_too_deeply
 from erdesign.formatting import si_unit_text
@@ -32,7 +26,7 @@ from erdesign.report import plots
 from erdesign.report.export import csv_text, damper_toml
 from erdesign.report.fit import EXPORT_UNITS
 from erdesign.report.formatting import control_label, field_text, pick_unit, show
-from erdesign.units import Q_, to_si
+from erdesign.units import Q_, plain_number, to_si
 
 __all__ = [
     "render",
@@ -145,15 +139,9 @@ def _on_upload() -> None:
         return
     name = Path(upload.name).name
     try:
+        data = parse_toml_bytes(upload.getvalue(), name)  # the one TOML reader: limits, encodings, line ends
         text = decode_text(upload.getvalue(), name, "a damper file (TOML)")
-        data = tomllib.loads(text)
         damper_from_dict(data, source=name)  # check before taking it
-    except UnicodeDecodeError:
-        st.session_state[_ERROR] = f"{name}: not a text (UTF-8) file; expected a damper file (TOML)"
-        return
-    except tomllib.TOMLDecodeError as exc:
-        st.session_state[_ERROR] = f"{name}: invalid TOML: {exc}"
-        return
     except RecursionError:
         st.session_state[_ERROR] = nested_too_deeply(name)
         return
@@ -220,10 +208,9 @@ def spec_from_widgets(values: dict) -> dict:
         if not text or (key in base and text == _text(base[key]).strip()):
             continue
         if key == "yield_exponent":
-            try:
-                fluid[key] = float(text)
-            except ValueError:
-                raise ErdesignError(f"fluid.yield_exponent: expected a plain number, got {text!r}") from None
+            fluid[key] = plain_number(text)  # float() read '1_5' as 15 and the ARABIC-INDIC digit three as 3
+            if fluid[key] is None:
+                raise ErdesignError(f"fluid.yield_exponent: expected a plain number, got {text!r}")
         else:
             fluid[key] = text
     kept = values.get("kept") or {}

@@ -408,7 +408,11 @@ def read_record(data: bytes, name: str, require_force: bool = True) -> Measureme
     from ..data.measurement import MeasurementError
 
     with tempfile.TemporaryDirectory() as folder:
-        path = Path(folder) / (Path(name).name or "upload.csv")
+        base = Path(name).name or "upload.csv"
+        if len(base.encode()) > 200:  # a file system takes 255 bytes a name: "File name too long" was an internal error
+            suffix = Path(base).suffix if len(Path(base).suffix) <= 10 else ""
+            base = base.encode()[:150].decode("utf-8", "ignore") + "..." + suffix
+        path = Path(folder) / base
         path.write_bytes(data)
         try:
             record = read_measurement(path, require_force=require_force)

@@ -278,9 +278,15 @@ def _damper_reference(damper: str | None, folder: Path | None) -> str:
 def read_manifest(path: str | Path) -> list[dict[str, str]]:
     """The rows of a manifest CSV: ``record`` (required), ``damper`` and ``effects`` (optional); paths relative to
     the manifest's folder.  Returns ``[{"record", "path", "damper", "effects"}, ...]`` (``damper`` absolute)."""
+    import io
+
+    from ..limits import MAX_TOML_BYTES, decode_text, read_input_bytes
+
     path = Path(path)
     try:
-        with open(path, newline="", encoding="utf-8-sig") as fh:
+        # the one reader of input files: a size limit, binary and UTF-16 refused, a named pipe refused (not waited on)
+        text = decode_text(read_input_bytes(path, MAX_TOML_BYTES, "a manifest CSV file"), str(path), "a manifest CSV")
+        with io.StringIO(text, newline="") as fh:
             reader = csv.DictReader(fh)
             fields = [f.strip() for f in (reader.fieldnames or [])]
             if "record" not in fields:
@@ -308,6 +314,10 @@ def read_manifest(path: str | Path) -> list[dict[str, str]]:
                 )
     except FileNotFoundError:
         raise ErdesignError(f"--manifest: no such file {path}") from None
+    except ErdesignError as exc:
+        raise ErdesignError(f"--manifest: {_one_line(exc).removeprefix('--manifest: ')}") from None
+    except OSError as exc:  # a folder, no permission, a symbolic link loop
+        raise ErdesignError(f"--manifest: {path}: cannot be read ({exc.strerror or exc})") from None
     except (UnicodeDecodeError, csv.Error) as exc:
         raise ErdesignError(f"--manifest: {path} is not a CSV file ({_one_line(exc)})") from None
     if not rows:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import click
 
-from .main import cli, emit_json, json_number
+from .main import SEED, as_flags, cli, emit_json, json_number
 
 __all__ = ["doe"]
 
@@ -78,7 +78,7 @@ def _control_range(text: str) -> tuple[tuple[float, float], str, str]:
 )
 @click.option("--duration", default=None, help='RP: length of the record, e.g. "20 s".')
 @click.option("--rate", default="500 Hz", show_default=True, help="Sampling rate.")
-@click.option("--seed", default=0, show_default=True, type=int, help="Seed of the random signals (RP, ICPS, PRBS).")
+@click.option("--seed", default=0, show_default=True, type=SEED, help="Seed of the random signals (RP, ICPS, PRBS).")
 @click.option("--out", required=True, metavar="PLAN.csv", help="Measurement CSV to write (no force column).")
 @click.option("--force", "overwrite", is_flag=True, help="Let --out replace an existing file.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of a summary.")
@@ -98,6 +98,7 @@ def doe(
     import numpy as np
 
     from .._util import check_output_path
+    from ..errors import ErdesignError
     from ..data.measurement import CONTROL_COLUMNS, Measurement, write_measurement
     from ..simulation.programmes import EXPERIMENTS, ProgrammeError
     from ..simulation.programmes import programme as make_programme
@@ -126,13 +127,16 @@ def doe(
             raise ProgrammeError("--duration: applies to the road profile (rp); a DSFS lasts its steps' cycles")
         options["duration"] = to_si(duration, "s", "--duration")
     (low, high), kind, control_unit = _control_range(control_range) if has_control else ((None, None), None, None)
-    motion = make_programme(
-        programme,
-        control_range=(low, high) if has_control else None,
-        rate=to_si(rate, "Hz", "--rate"),
-        seed=seed,
-        displacement_options=options,
-    )
+    try:
+        motion = make_programme(
+            programme,
+            control_range=(low, high) if has_control else None,
+            rate=to_si(rate, "Hz", "--rate"),
+            seed=seed,
+            displacement_options=options,
+        )
+    except ErdesignError as exc:  # the library names its arguments; the message names the options
+        raise type(exc)(as_flags(str(exc))) from None
     record = Measurement.from_arrays(
         motion.time,
         motion.displacement,

@@ -227,11 +227,18 @@ def json_number(x: float | None) -> float | None:
     return None if x is None or not math.isfinite(x) else x
 
 
+#: The type of every --seed option: numpy's generators take a whole number >= 0 (-1 was an internal error).
+SEED = click.IntRange(min=0)
+
 #: Library argument names in messages -> the flags that set them (the library names its own arguments).
 LIBRARY_TO_FLAG = (
     ("exclude_clipped=True", "--exclude-clipped"),
     ("max_time", "--max-time"),
     ("control_reference: ", "--control-reference: "),
+    # the sample-count limit (erdesign.limits.check_sample_count) names the arguments that made the count
+    ("duration, rate: ", "--duration, --rate: "),
+    ("duration, dt: ", "--duration, --dt: "),
+    ("control_range: ", "--control-range: "),
 )
 
 

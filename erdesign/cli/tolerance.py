@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from ..errors import one_line
-from .main import cli, emit_json, executor_options, json_number
+from .main import SEED, cli, emit_json, executor_options, json_number
 from .size import quantity_option
 
 __all__ = ["tolerance"]
@@ -42,7 +42,7 @@ _LABELS = {
 @click.option("--velocity", required=True, help='Piston velocity with its unit, e.g. "1 in/s".')
 @click.option("--field", default=None, help='Control: field, current or voltage, e.g. "3 kV/mm" (default 0).')
 @click.option("--samples", default=100000, show_default=True, type=int, help="Monte-Carlo samples.")
-@click.option("--seed", default=0, show_default=True, type=int, help="Seed: same seed, same numbers anywhere.")
+@click.option("--seed", default=0, show_default=True, type=SEED, help="Seed: same seed, same numbers anywhere.")
 @click.option(
     "--sobol-samples",
     "sobol_base",
@@ -86,8 +86,6 @@ def tolerance(
 
     if samples < 1:
         raise click.BadParameter(f"must be a whole number >= 1, got {samples}", param_hint="--samples")
-    if seed < 0:
-        raise click.BadParameter(f"must be >= 0, got {seed}", param_hint="--seed")
     if sobol_base is not None and (sobol_base < 2 or sobol_base & (sobol_base - 1)):
         raise click.BadParameter(f"must be a power of two >= 2, got {sobol_base}", param_hint="--sobol-samples")
     fmt = None

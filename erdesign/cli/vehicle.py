@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import click
 
-from .main import cli, emit_json, json_number
+from .main import SEED, as_flags, cli, emit_json, json_number
 
 __all__ = ["vehicle"]
 
@@ -52,7 +52,7 @@ _CONTROLS = ("passive", "skyhook", "groundhook", "clipped-optimal")
 @click.option("--bump-duration", default="0.5 s", show_default=True, help="Time the wheel takes over the bump.")
 @click.option("--road-class", default="C", show_default=True, help="ISO 8608 class A-H of the random road.")
 @click.option("--speed", default="20 m/s", show_default=True, help="Vehicle speed on the random road.")
-@click.option("--seed", default=0, show_default=True, type=int, help="Seed of the random road's phases.")
+@click.option("--seed", default=0, show_default=True, type=SEED, help="Seed of the random road's phases.")
 @click.option(
     "--control",
     "control",
@@ -114,6 +114,7 @@ def vehicle(
     import warnings
 
     from .._util import check_output_path
+    from ..errors import ErdesignError
     from ..simulation.roads import make_road
     from ..simulation.vehicle import simulate_vehicle, write_history
     from ..simulation.vehicle_setup import quarter_car, vehicle_damper
@@ -157,7 +158,10 @@ def vehicle(
     )
     step = None if dt is None else to_si(quantity_option(dt, "s", "--dt"), "s", "--dt")
     c = None if gain is None else to_si(quantity_option(gain, "N*s/m", "--gain"), "N*s/m", "--gain")
-    r = simulate_vehicle(d, track, control, gain=c, car=car, duration=seconds, dt=step)
+    try:
+        r = simulate_vehicle(d, track, control, gain=c, car=car, duration=seconds, dt=step)
+    except ErdesignError as exc:  # the library names its arguments; the message names the options
+        raise type(exc)(as_flags(str(exc))) from None
     if out is not None:
         write_history(out, r, overwrite=overwrite, option="--out")
     figures = r.ride()

@@ -27,6 +27,7 @@ yield (controllable) force, dynamic range F(E)/F(0), energy per cycle and equiva
 from __future__ import annotations
 
 import math
+import numbers
 import warnings
 from dataclasses import dataclass
 from typing import Any
@@ -54,6 +55,7 @@ __all__ = [
     "FLOW_MODELS",
     "PLAUSIBLE_PISTON_SPEED",
     "MAX_PISTON_SPEED",
+    "SLOWEST_PISTON_SPEED",
     "check_piston_velocity",
 ]
 
@@ -61,12 +63,16 @@ FLOW_MODELS = ("auto", "thin_gap", "annulus")
 #: Fastest piston speed [m/s] taken without a warning (car dampers stay below 2 m/s, landing gear and impact tests
 #: reach a few m/s), and the fastest taken at all: beyond them a unit mistake is likely (mm/s given as m/s).
 PLAUSIBLE_PISTON_SPEED, MAX_PISTON_SPEED = 10.0, 1000.0
+#: Slowest piston speed [m/s] (other than 0) taken without a warning: creep tests run at tenths of a mm/s; below a
+#: micrometre per second a unit mistake is likely (mm/s given as km/s, or a value underflowed).
+SLOWEST_PISTON_SPEED = 1e-6
 
 
 def check_piston_velocity(v: Any, name: str = "velocity") -> Any:
     """``v`` (SI, float or array), or an :class:`~erdesign.errors.ErdesignError` naming ``name`` when a speed is
     beyond :data:`MAX_PISTON_SPEED`; a :class:`~erdesign.errors.PlausibilityWarning` beyond
-    :data:`PLAUSIBLE_PISTON_SPEED` (``--velocity "500 m/s"`` was sized without a word)."""
+    :data:`PLAUSIBLE_PISTON_SPEED` (``--velocity "500 m/s"`` was sized without a word) or below
+    :data:`SLOWEST_PISTON_SPEED` but not 0."""
     speed = float(np.max(np.abs(v))) if np.size(v) else 0.0
     if speed > MAX_PISTON_SPEED:
         raise ErdesignError(
@@ -77,6 +83,13 @@ def check_piston_velocity(v: Any, name: str = "velocity") -> Any:
         warnings.warn(
             f"{name}: {speed:.4g} m/s is beyond the piston speed of any damper ({PLAUSIBLE_PISTON_SPEED:g} m/s); "
             "check the value and its unit (mm/s given as m/s?)",
+            PlausibilityWarning,
+            stacklevel=3,
+        )
+    if 0.0 < speed < SLOWEST_PISTON_SPEED:
+        warnings.warn(
+            f"{name}: {speed:.4g} m/s is below the piston speed of any damper test ({SLOWEST_PISTON_SPEED:g} m/s); "
+            "check the value and its unit",
             PlausibilityWarning,
             stacklevel=3,
         )
@@ -384,17 +397,22 @@ class Damper:
         samples_per_cycle : int
             Samples per cycle.
         """
+        from ..simulation.rig import MAX_AMPLITUDE  # the one bound of a test motion's amplitude
+
         X0 = positive_si(amplitude, "m", "amplitude")
         f = positive_si(frequency, "Hz", "frequency")
-        if not (
-            isinstance(cycles, int)
-            and not isinstance(cycles, bool)  # True was taken as one cycle
-            and cycles >= 1
-            and isinstance(samples_per_cycle, int)
-            and not isinstance(samples_per_cycle, bool)
-            and samples_per_cycle >= 16
-        ):
-            raise ErdesignError("cycles must be a whole number >= 1 and samples_per_cycle >= 16")
+        if X0 > MAX_AMPLITUDE:  # report --amplitude "1 km" drew loops of a kilometre without a word
+            raise ErdesignError(
+                f"amplitude: {X0:g} m is beyond any damper's stroke (at most {MAX_AMPLITUDE:g} m); check the value "
+                "and its unit"
+            )
+        # the peak piston speed, through the damper's one check of speeds (1e-300 Hz gave a period of 1e300 s)
+        check_piston_velocity(2 * math.pi * f * X0, "amplitude, frequency: the peak speed")
+        for key, value, low in (("cycles", cycles, 1), ("samples_per_cycle", samples_per_cycle, 16)):
+            # numbers.Integral: numpy's integers too; a bool is not a count (True was taken as one cycle)
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
+                raise ErdesignError(f"{key}: must be a whole number >= {low}, got {value!r}")
+        cycles, samples_per_cycle = int(cycles), int(samples_per_cycle)
         check_sample_count(cycles * samples_per_cycle + 1, "cycles, samples_per_cycle", "take fewer")
         E = self.fluid.field_si(field)
         omega = 2 * math.pi * f

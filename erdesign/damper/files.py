@@ -31,7 +31,15 @@ from pydantic import BeforeValidator
 from .. import materials
 from ..errors import DamperFileError, ErdesignError, PlausibilityWarning
 from ..examples import bundled_file
-from ..limits import MAX_TOML_BYTES, decode_text, is_path_like, nested_too_deeply, read_input_bytes
+from ..limits import (
+    MAX_TOML_BYTES,
+    decode_text,
+    is_path_like,
+    nested_too_deeply,
+    read_input_bytes,
+    refuse_binary,
+    size_text,
+)
 from ..fluid import Fluid
 from ..fluid.fluid import control_kind
 from ..geometry import CONFIGURATIONS, Geometry
@@ -45,6 +53,7 @@ __all__ = [
     "damper_file_path",
     "damper_from_dict",
     "read_toml",
+    "parse_toml_bytes",
     "load_example",
     "example_names",
     "parse_fluid_table",
@@ -142,6 +151,33 @@ COIL_CURRENT_SPAN = 3.0
 _REQUIRED_FLUID = ("viscosity", "yield_stress", "reference_field", "yield_exponent", "density")
 
 
+def parse_toml_bytes(raw: bytes, label: str) -> dict:
+    """The table of a TOML file's bytes (a file's, an upload's), or a :class:`DamperFileError` naming ``label``: the
+    one parser of erdesign's TOML input.  Larger than :data:`~erdesign.limits.MAX_TOML_BYTES`, binary, UTF-16 or not
+    UTF-8, nested too deeply, a number of thousands of digits or invalid TOML is one line; line ends of a lone CR
+    (classic Mac OS) are read as line ends (TOML knows LF and CRLF only)."""
+    if len(raw) > MAX_TOML_BYTES:
+        raise DamperFileError(
+            f"{label}: larger than {size_text(MAX_TOML_BYTES)}, the most erdesign reads as a TOML file; thin or split "
+            "the file"
+        )
+    try:
+        refuse_binary(raw, label, "a TOML file")
+        text = decode_text(raw, label, "a TOML file")
+        if "\r" in text:
+            text = text.replace("\r\n", "\n").replace("\r", "\n")
+        return tomllib.loads(text)
+    except ErdesignError as exc:
+        raise DamperFileError(str(exc)) from None
+    except RecursionError:
+        raise DamperFileError(nested_too_deeply(label)) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise DamperFileError(f"{label}: invalid TOML: {exc}") from None
+    except ValueError as exc:  # beyond the parser's limits: an integer of more than 4300 digits
+        detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
+        raise DamperFileError(f"{label}: invalid TOML: {detail}") from None
+
+
 def read_toml(path: str | Path) -> dict:
     """Parse a TOML file; a missing file or a syntax error is a :class:`DamperFileError` naming the file."""
     if not is_path_like(path):
@@ -150,23 +186,13 @@ def read_toml(path: str | Path) -> dict:
         )
     path = Path(path)
     try:
-        text = decode_text(read_input_bytes(path, MAX_TOML_BYTES, "a TOML file"), str(path), "a TOML file")
-        return tomllib.loads(text)
-    except RecursionError:
-        raise DamperFileError(nested_too_deeply(str(path))) from None
+        return parse_toml_bytes(read_input_bytes(path, MAX_TOML_BYTES, "a TOML file"), str(path))
     except ErdesignError as exc:
         raise DamperFileError(str(exc)) from None
     except FileNotFoundError:
         raise DamperFileError(f"{path}: no such file") from None
     except IsADirectoryError:
         raise DamperFileError(f"{path}: is a directory, expected a TOML file") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise DamperFileError(f"{path}: invalid TOML: {exc}") from None
-    except UnicodeDecodeError:
-        raise DamperFileError(f"{path}: not a text (UTF-8) file") from None
-    except ValueError as exc:  # beyond the parser's limits: an integer of more than 4300 digits
-        detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
-        raise DamperFileError(f"{path}: invalid TOML: {detail}") from None
     except OSError as exc:  # a symbolic link loop, no permission: was "[Errno 40] Too many levels of ..."
         raise DamperFileError(f"{path}: cannot be read ({exc.strerror or exc})") from None
 
@@ -243,6 +269,10 @@ def damper_from_dict(data: Mapping[str, Any], *, source: str = "damper", flow_mo
     The file is checked against its schema (:class:`DamperFile`: keys, types, units, signs) first; the relations
     between values (a rod thinner than the piston, a mixed damper's mean diameter) are the objects' own checks."""
     try:
+        if isinstance(data, Mapping) and "design" in data and "geometry" not in data:
+            raise DamperFileError(
+                "a requirements file ([design]), not a damper file ([geometry]); give it to erdesign design"
+            )
         spec = validate(DamperFile, data, error=DamperFileError)
         geo = spec.geometry.given()
         rod = geo.pop("rod", "double")
@@ -309,7 +339,6 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
             f"fluid.reference_field: the rated current must be positive, got {table['reference_field']!r}"
         )
     if I_ref > 20.0:
-        import warnings
         from ..errors import ValidityWarning
 
         warnings.warn(
@@ -331,7 +360,9 @@ def coil_fluid(data: Mapping[str, Any], geometry: Geometry) -> tuple[Fluid, floa
     values = dict(table)
     values["yield_stress"] = f"{float(law.yield_stress(I_ref))!r} Pa"
     values["yield_exponent"] = float(fit.yield_exponent)
-    fluid, seal_friction = parse_fluid_table(values)
+    with warnings.catch_warnings():  # the exponent is fitted to the circuit's saturating law, not the user's
+        warnings.filterwarnings("ignore", r"fluid\.yield_exponent", PlausibilityWarning)
+        fluid, seal_friction = parse_fluid_table(values)
     fluid = fluid.with_changes(field_law=law, field_range=(0.0, COIL_CURRENT_SPAN * I_ref))
     return fluid, seal_friction
 
@@ -400,8 +431,8 @@ def damper_file_path(path: str | Path) -> Path:
     >>> damper_file_path("makris").name, damper_file_path("no_such_damper.toml").name
     ('makris.toml', 'no_such_damper.toml')
     """
-    if isinstance(path, str) and not Path(path).exists() and path in example_names():
-        return Path(str(resources.files("erdesign.examples") / f"{path}.toml"))
+    if isinstance(path, str) and path in example_names() and not Path(path).exists():  # a name first: exists()
+        return Path(str(resources.files("erdesign.examples") / f"{path}.toml"))  # raises for a NUL or a long name
     return bundled_file(path) or Path(path)
 
 
@@ -413,7 +444,7 @@ def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
         raise DamperFileError(
             f"path: expected the name of a damper file (a str or Path), got {type(path).__name__} {path!r:.60}"
         )
-    by_name = isinstance(path, str) and not Path(path).exists() and path in example_names()
+    by_name = isinstance(path, str) and path in example_names() and not Path(path).exists()
     source = f"examples/{path}.toml" if by_name else str(path)
     return damper_from_dict(read_toml(damper_file_path(path)), source=source, flow_model=flow_model)
 

@@ -37,6 +37,7 @@ import io
 import math
 import re
 import sys
+import unicodedata
 import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -48,7 +49,7 @@ from ..errors import ErdesignError, ErdesignWarning, did_you_mean
 from ..examples import bundled_file
 from ..fluid import CONTROL_UNITS
 from ..limits import MAX_CELL_CHARS, MAX_RECORD_BYTES, MAX_RECORD_ROWS, decode_text, is_path_like, read_input_bytes
-from ..units import Q_, dimension_name, parse_unit, ureg
+from ..units import Q_, clean_value_text, dimension_name, parse_unit, ureg
 
 __all__ = [
     "Measurement",
@@ -83,7 +84,7 @@ CONTROL_COLUMNS = {
     "current": ("current",),
     "voltage": ("voltage",),
 }
-_HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*\[(.+)\]\s*$")
+_HEADER = re.compile(r"^\s*([^\[\]]*?)\s*\[(.+)\]\s*$")
 
 
 @dataclass(frozen=True)
@@ -258,10 +259,7 @@ def _as_1d(values, name: str, n: int | None = None, unit: str | None = None) -> 
         from ..units import to_si
 
         values = to_si(values, unit, name)
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise MeasurementError(f"{name}: not numeric") from None
+    arr = _numbers(values, name)
     if arr.ndim != 1:
         raise MeasurementError(f"{name}: expected a 1-D array, got shape {arr.shape}")
     if n is not None and arr.size != n:
@@ -281,10 +279,18 @@ def _all_finite(a: np.ndarray) -> bool:
 
 def _as_1d_any(values, name: str) -> np.ndarray:
     """A value or array of numbers (a control may be one value for the whole record)."""
+    return _numbers(values, name)
+
+
+def _numbers(values, name: str) -> np.ndarray:
+    """``values`` as a float array through the one check of SI arguments (:func:`erdesign._util.si_array`): text,
+    booleans, complex numbers, dates and masked values were taken as numbers."""
+    from .._util import si_array
+
     try:
-        return np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise MeasurementError(f"{name}: not numeric") from None
+        return si_array(values, name, finite=False)
+    except ErdesignError as exc:
+        raise MeasurementError(str(exc)) from None
 
 
 def _check_velocity(v: np.ndarray, v_derived: np.ndarray, name: str) -> None:
@@ -929,6 +935,12 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
             f"{path}: line {lineno}: the columns are separated by spaces; erdesign reads files with ',' or ';' "
             "between the columns (save as CSV)"
         )
+    if len(cells) == 1 and re.search(r"\]\s*[|:]\s*\S", cells[0]):  # 'time [s]|displacement [mm]|force [N]'
+        sep = re.search(r"\]\s*([|:])", cells[0])[1]
+        raise MeasurementError(
+            f"{path}: line {lineno}: the columns are separated by {sep!r}; erdesign reads files with ',' or ';' "
+            "between the columns (save as CSV)"
+        )
     for col, cell in enumerate(cells, start=1):
         if len(cell) > MAX_CELL_CHARS:
             raise MeasurementError(
@@ -937,12 +949,14 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
                 "'time [s]'"
             )
         m = _HEADER.match(cell)
-        if not m:
+        # invisible characters (a BOM or a zero-width space pasted mid-line) dropped from the name
+        name = "".join(ch for ch in m[1] if unicodedata.category(ch) != "Cf").strip().lower() if m else ""
+        if not name:
             raise MeasurementError(
                 f"{path}: line {lineno}, column {col} ({cell.strip()!r}): expected a name with "
                 f"its unit in square brackets, e.g. 'time [s]'"
             )
-        name, unit = m[1].lower(), m[2].strip()
+        unit = m[2].strip()
         where = f"{path}: line {lineno}, column {col} ({name})"
         if "\t" in unit:
             raise MeasurementError(
@@ -956,6 +970,7 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
         seen[name] = col
         try:
             q = parse_unit(unit, "unit")
+            unit = clean_value_text(unit, "unit", number=False).strip()  # as parsed ('\uff4bN' is 'kN')
         except ErdesignError as exc:
             raise MeasurementError(f"{where}: {str(exc).removeprefix('unit: ')}") from None
         if name in COLUMNS:
@@ -1034,7 +1049,7 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
         # every read and take it again, cleared, page by page, in the next: 2-3 ms of a 60k-row read)
         del raw, text
         columns, data = fast
-        return _measurement_from_table(path, label, columns, data, None, window)
+        return _measurement_from_table(path, label, columns, data, None, window, require_force)
     lines = _csv_lines(raw.decode("utf-8-sig") if text is None else text, label)
     rows = [
         (i, r)
@@ -1066,7 +1081,8 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
                     f"{label}: line {lineno}, column {c + 1} ({columns[c][0]}): {cell.strip()!r} is not a finite number"
                 )
             data[r, c] = value
-    return _measurement_from_table(path, label, columns, list(data.T), [lineno for lineno, _ in rows[1:]], window)
+    lines = [lineno for lineno, _ in rows[1:]]
+    return _measurement_from_table(path, label, columns, list(data.T), lines, window, require_force)
 
 
 def _csv_lines(text: str, label: str) -> list[list[str]]:
@@ -1308,7 +1324,9 @@ def _parse_table_arrow(pyarrow, raw: bytes, pos: int, columns: int) -> list[np.n
     return data
 
 
-def _measurement_from_table(path: Path, label: str, columns, data: list[np.ndarray], line_of, window) -> Measurement:
+def _measurement_from_table(
+    path: Path, label: str, columns, data: list[np.ndarray], line_of, window, require_force: bool = False
+) -> Measurement:
     """The record of a parsed table (``data``: its columns; ``line_of``: file line of each row, for messages; None on
     the fast path, whose tables have already passed the checks that need it)."""
     if data[0].size < 5:
@@ -1345,6 +1363,11 @@ def _measurement_from_table(path: Path, label: str, columns, data: list[np.ndarr
         units,
     )
     check_record(m)
+    if require_force and float(np.ptp(m.force)) == 0.0:  # an unplugged load cell: esr() failed, naming no file
+        raise MeasurementError(
+            f"{m.name}: force: constant ({m.force[0]:g} N): the force never changes, so there is nothing to fit or "
+            "judge (is the load cell connected, is it the right column?)"
+        )
     return m
 
 
@@ -1376,6 +1399,12 @@ def _check_magnitude(values: np.ndarray, name: str, where: str) -> None:
         peak = max(float(values.max()), -float(values.min()))  # max |values|, without an array of them
         if peak > limit:
             si = COLUMNS[name]
+            span = float(values.max() - values.min())
+            if name == "time" and span <= limit:  # a clock time (Unix time: 1.7e9 s), not a unit mistake
+                raise MeasurementError(
+                    f"{where}: starts at {float(values[0]):.4g} s, a clock time (Unix time?) rather than the time "
+                    f"since the record's start; subtract the first time (the record spans {span:.4g} s)"
+                )
             raise MeasurementError(
                 f"{where}: {peak:.3g} {si} is beyond any damper record (at most {limit:g} {si}); "
                 "check the column's unit"

@@ -116,7 +116,9 @@ def esr(F_measured, F_model):
             f"F_measured and F_model: {F.size} and {M.size} samples (shapes {F.shape} and "
             f"{M.shape}); give one model force per measured force"
         )
-    scale = float(np.max(np.abs(F))) if F.size else 0.0
+    if F.size < 2:
+        raise ErdesignError(f"F_measured: {F.size} sample{'s' if F.size != 1 else ''}; the ESR needs at least 2")
+    scale = float(np.max(np.abs(F)))
     if scale > 0:  # the ratio is scale-free: scaled, sums of squares of huge forces stay finite
         F, M = F / scale, M / scale
     spread = np.sum((F - F.mean()) ** 2)

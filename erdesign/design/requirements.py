@@ -67,6 +67,7 @@ from __future__ import annotations
 
 import dataclasses
 import numbers
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from importlib import resources
@@ -79,7 +80,7 @@ from pydantic import BeforeValidator
 
 from ..damper.damper import check_piston_velocity
 from ..damper.files import Control, FluidTable, parse_fluid_table, read_toml
-from ..errors import ErdesignError
+from ..errors import ErdesignError, PlausibilityWarning
 from ..examples import bundled_file
 from ..fluid import Fluid
 from ..geometry import CONFIGURATIONS, MAX_DUCTS
@@ -363,6 +364,8 @@ def _positive(value: Any) -> float:
         raise ValueError(f"expected a number, got {value!r}")
     if not value > 0:
         raise ValueError(f"must be positive, got {value!r}")
+    if value == float("inf"):  # TOML's inf: a requirement no design meets, searched for all the same
+        raise ValueError(f"expected a finite number, got {value!r}")
     return value
 
 
@@ -506,6 +509,10 @@ def _si(value: Any, unit: str, name: str) -> float | None:
 
 
 def _parse(data: Mapping[str, Any]) -> Requirements:
+    if isinstance(data, Mapping) and "geometry" in data and "design" not in data:
+        raise RequirementsError(
+            "a damper file ([geometry]), not a requirements file ([design]); give it to erdesign size, fit or report"
+        )
     spec = validate(RequirementsFile, data, error=RequirementsError)
     design = spec.design
     fluid_table = dict(data["fluid"])
@@ -620,6 +627,14 @@ def _parse_points(tables: list[PointTable], fluid: Fluid) -> tuple[DesignPoint, 
             min_dynamic_range=None if table.min_dynamic_range is None else float(table.min_dynamic_range),
             max_zero_field_force=_si(table.max_zero_field_force, "N", f"{where}.max_zero_field_force"),
         )
+        if point.min_dynamic_range is not None and point.min_dynamic_range <= 1.0:
+            # the force at a control over the force at none is >= 1 for any fluid: the requirement asks nothing
+            warnings.warn(
+                f"{where}.min_dynamic_range: {point.min_dynamic_range:g} is met by every damper (the dynamic range, "
+                "the force at the control over the force at none, is at least 1); check the value",
+                PlausibilityWarning,
+                stacklevel=2,
+            )
         if point.min_force is None and point.min_dynamic_range is None and point.max_zero_field_force is None:
             raise RequirementsError(
                 f"{where}: states no requirement (give min_force, min_dynamic_range or max_zero_field_force)"

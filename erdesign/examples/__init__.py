@@ -28,7 +28,7 @@ def bundled_file(path: str | Path) -> Path | None:
     """
     given = PurePath(path)
     parts = given.parts
-    if Path(path).exists() or given.is_absolute() or len(parts) < 2 or parts[0] != "examples" or ".." in parts:
-        return None
+    if given.is_absolute() or len(parts) < 2 or parts[0] != "examples" or ".." in parts or Path(path).exists():
+        return None  # (exists() last: it raises for a name with a NUL or of more than 255 bytes, left to the reader)
     found = resources.files(__name__).joinpath(*parts[1:])
     return Path(str(found)) if found.is_file() else None

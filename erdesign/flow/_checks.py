@@ -26,8 +26,8 @@ def check_flow_args(*, annulus: bool = False, **values) -> None:
     """Raise :class:`~erdesign.errors.ErdesignError` naming the first argument outside its domain: ``eta``, ``L``,
     ``d``, ``h``, ``Dp``, ``K``, ``m`` positive; ``tau_y``, ``dr`` not negative; any other (a flow rate ``Q``, a
     pressure drop ``dp``, a velocity) numbers of any sign; array arguments of shapes that do not broadcast together
-    named in pairs (the flow arrays too: a kernel given Q of 3 flows and tau_y of 4 names them, not numpy); for an
-    ``annulus``, ``h < d`` (the slit formulas are also used in dimensionless form, with h = d = 1)."""
+    named in pairs (the flow arrays too: a kernel given Q of 3 flows and tau_y of 4 names them, not numpy); ``h <= d``
+    (the slit formulas are also used in dimensionless form, with h = d = 1), and ``h < d`` for an ``annulus``."""
     for name, value in values.items():
         if value is None:
             continue
@@ -46,7 +46,15 @@ def check_flow_args(*, annulus: bool = False, **values) -> None:
     arrays = {name: value for name, value in values.items() if np.ndim(value) > 0}
     if len(arrays) > 1:
         broadcast_named(**arrays)
-    if annulus and values.get("h") is not None and values.get("d") is not None:
+    if values.get("h") is not None and values.get("d") is not None:
         h, d = np.asarray(values["h"], dtype=float), np.asarray(values["d"], dtype=float)
-        if np.any(h >= d):
-            raise ErdesignError("h: the gap must be smaller than the mean diameter d of the annulus")
+        # a gap wider than the annulus's mean diameter leaves its inner wall a negative diameter: the thin-gap formulas
+        # gave a pressure drop for it without a word (h = d is the slit formulas' dimensionless form)
+        bad = h >= d if annulus else h > d
+        if np.any(bad):
+            i = np.flatnonzero(np.broadcast_to(bad, np.broadcast_shapes(h.shape, d.shape)).ravel())[0]
+            hv, dv = np.broadcast_to(h, bad.shape).ravel()[i], np.broadcast_to(d, bad.shape).ravel()[i]
+            raise ErdesignError(
+                f"h: the gap ({hv:g} m) must be smaller than the mean diameter d of the annulus ({dv:g} m); is the "
+                "gap's unit right?"
+            )

@@ -40,7 +40,15 @@ from ..errors import ErdesignError, PlausibilityWarning, UnitError, ValidityWarn
 from ..units import Q_, _parse, dimension_name, to_si, ureg
 from .field_laws import FieldLaw, PowerLaw
 
-__all__ = ["Fluid", "plastic_viscosity", "CONTROL_UNITS", "control_kind", "PLAUSIBLE_CONTROL", "FLUID_RANGES"]
+__all__ = [
+    "Fluid",
+    "plastic_viscosity",
+    "CONTROL_UNITS",
+    "control_kind",
+    "PLAUSIBLE_CONTROL",
+    "FLUID_RANGES",
+    "PLAUSIBLE_YIELD_EXPONENT",
+]
 
 # SI unit of each kind of control, and what it is called in messages.
 CONTROL_UNITS = {
@@ -65,6 +73,14 @@ PLAUSIBLE_CONTROL = {
     "voltage": 1e3,
 }
 IMPOSSIBLE_CONTROL_FACTOR = 1e3
+#: A reference control below PLAUSIBLE_CONTROL / this is warned, below PLAUSIBLE_CONTROL / this**2 refused: the yield
+#: stress is given at a control no fluid is characterised at (a unit mistake: "3 V/mm" for "3 kV/mm"), and the power
+#: law then overflows at any working control ("1e-300 kV/mm": an infinite force, NaN in the results).
+SMALL_CONTROL_FACTOR = 1e3
+#: Yield exponents (tau_y ~ E^n) a file or Fluid.create may give without a warning: Butz and von Stryk (2002) report 1.2 to 2.5 for
+#: ER fluids, MR fluids saturate (fits give 0.7 to 1.5).  An exponent near 0 makes the yield stress a step at zero
+#: control.  (The power-law summary fitted to a coil's circuit may lie outside: it is not warned.)
+PLAUSIBLE_YIELD_EXPONENT = (0.3, 3.0)
 
 #: Possible (error outside) and plausible (warning outside) ranges of the fluid's values, SI.
 FLUID_RANGES = {
@@ -213,6 +229,14 @@ class Fluid:
                 f"fluid.reference_field: {self.reference_field:.4g} {CONTROL_UNITS[self.control]} is "
                 f"beyond any {self.control} a fluid takes (a unit mistake?)"
             )
+        if (
+            self.control in PLAUSIBLE_CONTROL
+            and self.reference_field < PLAUSIBLE_CONTROL[self.control] / SMALL_CONTROL_FACTOR**2
+        ):
+            raise UnitError(
+                f"fluid.reference_field: {self._shown(self.reference_field)} is below any {self.control} a fluid "
+                f"is characterised at (a unit mistake?)"
+            )
         if self.control not in CONTROL_UNITS:
             raise UnitError(f"fluid.control: unknown kind of control {self.control!r}")
         if self.field_law is not None:
@@ -319,6 +343,18 @@ class Fluid:
                 f"fluid.reference_field: {self._shown(self.reference_field)} is beyond the largest "
                 f"{self.control} a fluid plausibly takes ({self._shown(limit)}); check the unit"
             )
+        lo, hi = PLAUSIBLE_YIELD_EXPONENT
+        if self.field_law is None and not lo <= self.yield_exponent <= hi:
+            messages.append(
+                f"fluid.yield_exponent: {self.yield_exponent:.4g} is outside the plausible range {lo:g} to {hi:g} "
+                "(Butz and von Stryk 2002 report 1.2 to 2.5); check the value"
+            )
+        if limit is not None and self.reference_field < limit / SMALL_CONTROL_FACTOR:
+            messages.append(
+                f"fluid.reference_field: {self._shown(self.reference_field)} is below the {self.control} fluids "
+                f"are characterised at (at least {self._shown(limit / SMALL_CONTROL_FACTOR)}); check the unit"
+            )
+
         for m in messages:
             warnings.warn(m, PlausibilityWarning, stacklevel=3)
         return messages

@@ -77,6 +77,16 @@ def fit(
     -------
     FitResult
     """
+    if not isinstance(model, Model):  # a Damper or a list: "'Damper' object has no attribute 'require_force'"
+        hint = (
+            " (a damper: use erdesign.calibrate, or a model of erdesign.get_model)" if hasattr(model, "fluid") else ""
+        )
+        raise FitError(f"model: expected a model (erdesign.get_model), got {type(model).__name__}{hint}")
+    if not isinstance(record, Measurement):
+        raise FitError(
+            f"record: expected a Measurement (erdesign.read_measurement or Measurement.from_arrays), got "
+            f"{type(record).__name__}"
+        )
     F = record.require_force() if mask is None else record.require_force()[mask]
     check = getattr(model, "check_record", None)
     if check is not None:

@@ -231,15 +231,14 @@ def read_material_file(path: str | Path, *, where: str | None = None) -> dict[st
 
     ``where`` names the file in error messages (default: the path).
     """
+    from ..damper.files import read_toml  # the one TOML reader: limits, encodings, a named pipe refused
+
     path = Path(path)
     where = where or str(path)
     try:
-        with open(path, "rb") as fh:
-            record = tomllib.load(fh)
-    except FileNotFoundError:
-        raise ErdesignError(f"{where}: no such file") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ErdesignError(f"{where}: invalid TOML: {exc}") from None
+        record = read_toml(path)
+    except ErdesignError as exc:
+        raise ErdesignError(str(exc).replace(str(path), where, 1)) from None
     check_record(record, where)
     if record["name"] != path.stem:
         raise ErdesignError(f"{where}: name: must equal the file name ({path.stem!r}), got {record['name']!r}")

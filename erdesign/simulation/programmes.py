@@ -381,6 +381,8 @@ def programme(
         rate = to_si(rate, "Hz", "rate")
     if isinstance(rate, bool) or not isinstance(rate, (int, float, np.number)) or not 0 < rate < math.inf:
         raise ProgrammeError(f"rate: must be one positive, finite sampling rate [Hz], got {rate!r:.60}")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:  # numpy's raw ValueError
+        raise ProgrammeError(f"seed: must be a whole number >= 0, got {seed!r:.60}")
     options = {**own, **dict(displacement_options or {})}
     if disp == "rp":
         options.setdefault("seed", seed)

@@ -155,14 +155,14 @@ ERROR_CASES = [
     (
         "doe duration 1e6 s",
         ["doe", "--programme", "rp", "--duration", "1e6 s", "--out", "{tmp}/o.csv"],
-        ["duration, rate: 500,000,000 samples", "1,250,000"],
+        ["--duration, --rate: 500,000,000 samples", "1,250,000"],
     ),
     (
         "vehicle duration 1e6 s",
         ["vehicle", "--damper", "{damper}", "--duration", "1e6 s"],
-        ["duration, dt: 4,000,000,001 samples"],
+        ["--duration, --dt: 4,000,000,001 samples"],
     ),
-    ("vehicle dt 1e-12 s", ["vehicle", "--damper", "{damper}", "--dt", "1e-12 s"], ["duration, dt", "larger dt"]),
+    ("vehicle dt 1e-12 s", ["vehicle", "--damper", "{damper}", "--dt", "1e-12 s"], ["--duration, --dt", "larger dt"]),
     (
         "tolerance 1e9 samples",
         ["tolerance", "{damper}", "--vary", "fluid.yield_stress=+-15 %", *_SIZE, "--samples", "1000000000"],
@@ -276,7 +276,7 @@ def _api_cases():
         ("programme rate text", lambda: erdesign.programme("rp", rate="fast"), "rate: cannot read 'fast'"),
         ("programme rate nan", lambda: erdesign.programme("rp", rate=math.nan), "rate: must be one positive"),
         ("programme rate array", lambda: erdesign.programme("rp", rate=np.ones(2)), "rate: must be one positive"),
-        ("sine cycles True", lambda: makris.sine_response("1 mm", "1 Hz", cycles=True), "cycles must be a whole"),
+        ("sine cycles True", lambda: makris.sine_response("1 mm", "1 Hz", cycles=True), "cycles: must be a whole"),
     ]
 
 
