@@ -63,7 +63,8 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
     """The bytes of an input file, refused with a :class:`~erdesign.errors.ErdesignError` naming the file when it
     is larger than ``limit`` or holds NUL bytes (a binary file: a spreadsheet, an archive, ``/dev/zero``).
 
-    A named pipe or a socket is refused before it is opened (opening a pipe waits for a writer, for ever).  A
+    A named pipe or a socket is refused before it is opened (opening a pipe waits for a writer, for ever); a pipe
+    handed over by the shell (``/dev/fd/N``: process substitution) is read.  A
     regular file within ``limit`` is read in one piece; anything else (a device, a larger file) in chunks
     and never past ``limit``, so an endless device or a huge file stops at once, and its first chunk is checked for
     NUL bytes before any more is read.  ``what`` says what the file should be (``"a
@@ -74,7 +75,10 @@ def read_input_bytes(path: str | os.PathLike, limit: int, what: str, label: str 
     if "\x00" in os.fspath(path):  # "embedded null byte", a ValueError from the system call
         raise ErdesignError(f"{label!r:.80}: the file name holds a NUL character; no file is named so")
     kind = os.stat(path).st_mode
-    if stat.S_ISFIFO(kind) or stat.S_ISSOCK(kind):  # opening a named pipe waits for a writer: for ever
+    # opening a named pipe waits for a writer, for ever; a pipe the shell hands over (process substitution,
+    # ``fit <(zcat rec.csv.gz)``: /dev/fd/N) has its writer already and is read as any stream
+    handed_over = os.fspath(path).startswith(("/dev/fd/", "/proc/self/fd/", "/dev/stdin"))
+    if (stat.S_ISFIFO(kind) and not handed_over) or stat.S_ISSOCK(kind):
         what_it_is = "a named pipe" if stat.S_ISFIFO(kind) else "a socket"
         raise ErdesignError(f"{label}: not a regular file ({what_it_is}); save the data to a file and give its name")
     chunks, total = [], 0

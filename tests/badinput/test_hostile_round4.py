@@ -445,3 +445,23 @@ def test_app_uploads_and_inputs(app):  # noqa: F811
 
 
 from .test_app_corpus import app  # noqa: E402, F401  (the module's AppTest fixture)
+
+
+@pytest.mark.skipif(not os.path.isdir("/dev/fd"), reason="no /dev/fd on this system")
+def test_a_pipe_handed_over_by_the_shell_is_read():
+    """Process substitution (``erdesign fit <(zcat rec.csv.gz)``) hands the command /dev/fd/N, a pipe whose writer
+    exists: it is read as a stream (only a named pipe in the file system, which waits for a writer, is refused)."""
+    from erdesign.limits import read_input_bytes
+
+    data = b"time [s],displacement [m],force [N]\n" + b"0,0,0\n" * 100
+    r, w = os.pipe()
+    try:
+        os.write(w, data)
+        os.close(w)
+        w = None
+        with _no_hang(10):
+            assert read_input_bytes(f"/dev/fd/{r}", 10**6, "a measurement CSV file") == data
+    finally:
+        os.close(r)
+        if w is not None:
+            os.close(w)
