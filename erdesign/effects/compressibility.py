@@ -199,29 +199,45 @@ def _piston_speed(P, v, kind, tau_y, K, m, L, d, h, Ap, ducts, bypass):
 
 
 @njit(cache=True)
-def _series_root(p, T, c, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass):
-    """The pressure force x with x + c u(x, vj) = T (increasing in x), safeguarded false position (Illinois)."""
+def _series_root(p, T, c, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass, dp_last):
+    """The pressure force x with x + c u(x, vj) = T (increasing in x), safeguarded false position (Illinois),
+    started from the previous substep's value p extrapolated by its last change ``dp_last``.
+
+    g(x) = x + c u(x, vj) - T has g' >= 1, so |x - root| <= |g(x)|: the iteration stops once |g| is below the
+    tolerance (1e-12 of the force), which bounds the error as the bracket's width would, in about half the
+    evaluations (4 per substep instead of 9 on 1 kHz records)."""
+    # widen a bracket around the extrapolated value until it holds the root.  For the stationary ducts u(0) = 0 and
+    # u has the sign of P, so the root also lies between 0 and T, which caps the widening.
     if kind == 0:
-        # u(0) = 0 and u has the sign of P: the root lies between 0 and T
-        lo, hi = min(0.0, T), max(0.0, T)
+        a, b = min(0.0, T), max(0.0, T)
     else:
-        # the moving head drags fluid at P = 0: widen a bracket around the previous value until it holds the root
-        step = abs(T - p) + 1e-9 * (abs(T) + abs(p)) + 1e-300
-        lo, hi = p, p
-        if p + c * _piston_speed(p, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T < 0.0:
-            hi = p + step
-            while hi + c * _piston_speed(hi, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T < 0.0:
-                lo = hi
-                step *= 2.0
-                hi = lo + step
-        else:
-            lo = p - step
-            while lo + c * _piston_speed(lo, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T > 0.0:
-                hi = lo
-                step *= 2.0
-                lo = hi - step
-    glo = lo + c * _piston_speed(lo, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T
-    ghi = hi + c * _piston_speed(hi, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T
+        a, b = -math.inf, math.inf
+    # the first step: twice the previous substep's change (a few doublings at most when that was tiny), never more
+    # than |T - p|, the change were the ducts closed
+    step = abs(T - p) + 1e-9 * (abs(T) + abs(p)) + 1e-300
+    step = min(step, max(2.0 * abs(dp_last), 1e-6 * step))
+    x0 = min(max(p + dp_last, a), b)
+    g0 = x0 + c * _piston_speed(x0, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T
+    tol = 1e-12 * (abs(T) + abs(x0) + 1e-300)
+    if abs(g0) <= tol:
+        return x0  # g' >= 1, so |x0 - root| <= |g0|
+    lo, glo, hi, ghi = x0, g0, x0, g0
+    if g0 < 0.0:
+        while True:
+            hi = min(lo + step, b)
+            ghi = hi + c * _piston_speed(hi, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T
+            if ghi >= 0.0 or hi >= b:
+                break
+            lo, glo = hi, ghi
+            step *= 2.0
+    else:
+        while True:
+            lo = max(hi - step, a)
+            glo = lo + c * _piston_speed(lo, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T
+            if glo <= 0.0 or lo <= a:
+                break
+            hi, ghi = lo, glo
+            step *= 2.0
     if glo == 0.0:
         return lo
     if ghi == 0.0:
@@ -234,7 +250,7 @@ def _series_root(p, T, c, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass):
         if not (lo < x < hi):
             x = 0.5 * (lo + hi)
         gx = x + c * _piston_speed(x, vj, kind, ty, KK, m, L, d, h, Ap, ducts, bypass) - T
-        if gx == 0.0 or hi - lo < tol:
+        if abs(gx) <= tol or hi - lo < tol:
             break
         if gx < 0.0:
             lo, glo = x, gx
@@ -257,6 +273,7 @@ def _integrate(t, v, P0, k, kind, tau_y, K, m, L, d, h, Ap, ducts, bypass, count
     S = np.zeros(n)
     P[0] = P0
     p = P0
+    dp = 0.0
     for i in range(n - 1):
         substeps = counts[i]
         dt = (t[i + 1] - t[i]) / substeps
@@ -266,7 +283,9 @@ def _integrate(t, v, P0, k, kind, tau_y, K, m, L, d, h, Ap, ducts, bypass, count
             # from then on) and the sample's own control acts at the sample
             e = i + 1 if j == substeps - 1 else i
             c = k * dt
-            p = _series_root(p, p + c * vj, c, vj, kind, tau_y[e], K[e], m, L, d, h, Ap, ducts, bypass)
+            pn = _series_root(p, p + c * vj, c, vj, kind, tau_y[e], K[e], m, L, d, h, Ap, ducts, bypass, dp)
+            dp = pn - p
+            p = pn
         P[i + 1] = p
     if kind == 1:
         # the wall's drag at the pressure and speed of each sample (shear area pi Dp L, Dp = d - h)
