@@ -219,3 +219,37 @@ def test_annulus_flow_keeps_its_special_cases():
     assert annulus_bingham_flow(1e-3, 5e-324, 41.1, 0.21, 0.037, 0.017).pressure_drop == pytest.approx(
         newtonian, rel=1e-12
     )
+
+
+# ------------------------------------------------------------------------------------------------------------------
+# Herschel-Bulkley thin slit: the pressure drop of a flow (Newton on ln(tau_w - tau_y), one element at a time).
+# ------------------------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("m", [1.0, 0.6, 0.35, 1.4])
+def test_herschel_bulkley_pressure_drop_is_the_root_brentq_finds(m):
+    # Independent: brentq on the explicit flow rate q(dp) (scipy, to the last bit) from the yield pressure drop up,
+    # over flows from 1e-12 to 1e-3 m^3/s and yield stresses from 0 to 1e5 Pa (near yield and far above it).
+    from erdesign.flow.herschel_bulkley import herschel_bulkley_pressure_drop, herschel_bulkley_slit_flow_rate
+
+    rng = np.random.default_rng(7)
+    L, d, h = 0.0546, 0.0143, 0.0008
+    n = 60
+    Q = np.sign(rng.normal(size=n)) * 10 ** rng.uniform(-12, -3, n)
+    tau_y = np.where(np.arange(n) % 6 == 0, 0.0, 10 ** rng.uniform(-2, 5, n))
+    K = 13.0 * 1000 ** (1 - m) * np.exp(rng.normal(size=n))
+    got = herschel_bulkley_pressure_drop(Q, tau_y, K, m, L, d, h)
+    for q, ty, k, dp in zip(Q, tau_y, K, got):
+        flow = lambda x: herschel_bulkley_slit_flow_rate(x, ty, k, m, L, d, h) - abs(q)  # noqa: E731, B023
+        lo = 2 * ty * L / h
+        hi = max(lo, 1.0) * 2
+        while flow(hi) < 0:
+            hi *= 2
+        ref = brentq(flow, lo, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
+        assert dp == pytest.approx(math.copysign(ref, q), rel=2e-13)
+    # no flow: the break-away pressure drop, with the sign bit of the flow
+    assert herschel_bulkley_pressure_drop(-0.0, 100.0, 1.0, m, L, d, h) == -2 * 100.0 * L / h
+    # a scalar stays a scalar; arrays of any shape broadcast
+    assert isinstance(herschel_bulkley_pressure_drop(1e-6, 100.0, 1.0, m, L, d, h), float)
+    grid = herschel_bulkley_pressure_drop(np.full((2, 3), 1e-6), [0.0, 1e2, 1e4], 1.0, m, [[L], [2 * L]], d, h)
+    assert grid.shape == (2, 3) and grid[1, 0] == pytest.approx(2 * grid[0, 0], rel=1e-12)  # tau_y = 0: dp ~ L

@@ -13,7 +13,9 @@ at a time, so that a root is found per element from a good start instead of by w
 * :func:`annulus_shape_offset`, :func:`annulus_plug_fraction` - the exact Bingham annulus
   (:mod:`erdesign.flow.annulus_bingham`): plug position by safeguarded Newton, flow rate by Gauss-Legendre;
 * :func:`slit_flow`, :func:`slit_flow_one_duct` - the thin-gap Bingham pressure drop dp(Q) in one pass
-  (:func:`erdesign.flow.bingham.bingham_slit_flow`).
+  (:func:`erdesign.flow.bingham.bingham_slit_flow`);
+* :func:`hb_slit_pressure_drop` - the thin-gap Herschel-Bulkley pressure drop of a flow, by Newton on the log of
+  the stress above yield, per element (:func:`erdesign.flow.herschel_bulkley.herschel_bulkley_pressure_drop`).
 
 ``error_model="numpy"``: a division by zero gives inf or NaN as in numpy, never an exception, so the branches read
 as the ``np.where`` forms they replace.  tests/test_flow_compiled.py checks these loops against independent
@@ -34,6 +36,7 @@ __all__ = [
     "annulus_velocity",
     "couette_poiseuille",
     "find_root",
+    "hb_slit_pressure_drop",
     "mixed_gap_state",
     "slit_flow",
     "slit_flow_one_duct",
@@ -616,3 +619,69 @@ def slit_flow_one_duct(Q, tau_y, eta, L, d, h, dp, phi):
             if plug:
                 phi[i] = 0.0
     return dp, phi
+
+
+# ------------------------------------------------------------------------------------------------------------------
+# Herschel-Bulkley thin slit: the pressure drop of a flow (erdesign.flow.herschel_bulkley)
+# ------------------------------------------------------------------------------------------------------------------
+
+
+@_jit
+def _hb_log_flow_and_slope(S, ty, p, cK):
+    """ln q of the thin Herschel-Bulkley slit at the wall stress ty + S (q: flow per unit width [m^2/s]) and its
+    slope in ln S.  q = cK tw^-2 G, G = S^(p+2)/(p+2) + ty S^(p+1)/(p+1), tw = ty + S, so with G' = S^p tw:
+    d ln q / d ln S = S (S^p tw / G - 2 / tw)."""
+    tw = ty + S
+    Sp = S**p
+    G = S * Sp * (S / (p + 2.0) + ty / (p + 1.0))
+    return math.log(cK * G / (tw * tw)), S * (Sp * tw / G - 2.0 / tw)
+
+
+@_jit
+def hb_slit_pressure_drop(Qa, tau_y, K, m, L, d, h, out):
+    """Pressure drop [Pa] at which the thin Herschel-Bulkley slit passes the flows ``Qa`` >= 0 [m^3/s], per element
+    (every argument a 1-D array of the same length; ``out`` written and returned).
+
+    Newton on y = ln S (S = tw - tau_y, the wall stress above yield), where ln q is nearly linear: exactly so in
+    both limits, q -> cK S^p / (p + 2) far above yield (the power law) and q -> cK S^(p+1) / ((p+1) tau_y) near it.
+    q lies below both limits, so the larger of their two roots is a lower bound of S and the start; a step that
+    leaves the bracket is replaced by bisection.  Stops when the step or the bracket is below 1e-13 in ln S (at most
+    that in ln dp: the tolerance of scipy's find_root, which this loop replaces).  Qa = 0 gives the break-away
+    pressure drop dp_y."""
+    for i in range(Qa.size):
+        p = 1.0 / m[i]
+        H2 = 0.25 * h[i] * h[i]
+        to_tau = h[i] / (2.0 * L[i])
+        ty = tau_y[i]
+        if Qa[i] == 0.0:
+            out[i] = ty / to_tau
+            continue
+        target = Qa[i] / (math.pi * d[i])
+        cK = 2.0 * H2 * K[i] ** (-p)
+        S = (target * (p + 2.0) / cK) ** (1.0 / p)  # the power law's root: exact at ty = 0
+        if ty > 0.0:
+            S = max(S, ((p + 1.0) * ty * target / cK) ** (1.0 / (p + 1.0)))
+            lo, hi = math.log(S), math.inf
+            y = lo
+            goal = math.log(target)
+            for _ in range(200):
+                lq, slope = _hb_log_flow_and_slope(math.exp(y), ty, p, cK)
+                f = lq - goal
+                if f == 0.0:
+                    break
+                if f > 0.0:
+                    hi = y
+                else:
+                    lo = y
+                step = f / slope if slope > 0.0 else math.nan
+                if abs(step) <= 1e-13:
+                    y -= step  # converged (a step this small may round onto the bracket's end)
+                    break
+                y -= step
+                if not (lo < y < hi):
+                    y = 0.5 * (lo + hi) if hi < math.inf else lo + 1.0
+                if hi - lo <= 1e-13:
+                    break
+            S = math.exp(y)
+        out[i] = (ty + S) / to_tau
+    return out

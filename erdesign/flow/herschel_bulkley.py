@@ -87,9 +87,11 @@ def _slit_flow_rate(dp, tau_y, K, m, L, d, h):
 def herschel_bulkley_pressure_drop(Q, tau_y, K, m, L, d, h):
     r"""Pressure drop of Herschel-Bulkley flow through a thin annular gap for a flow rate (vectorised root).
 
-    Solves :func:`herschel_bulkley_slit_flow_rate` (dp) = Q for dp per element: bracket from the yield
-    pressure drop :math:`2\tau_y L/h` upwards (:func:`scipy.optimize.elementwise.bracket_root`), then
-    Chandrupatla's method (:func:`~scipy.optimize.elementwise.find_root`) on :math:`\ln(\Delta p)`.
+    Solves :func:`herschel_bulkley_slit_flow_rate` (dp) = Q for dp per element, in one compiled pass
+    (:func:`erdesign.flow._compiled.hb_slit_pressure_drop`): Newton's method on the logarithm of the wall stress
+    above yield, :math:`\ln(\tau_w - \tau_y)`, where the log of the flow is nearly linear (exactly so far above
+    yield and near it), started from the larger of the two limits' roots, which bounds the root from below; to
+    1e-13 in :math:`\ln(\Delta p)`.
 
     Parameters
     ----------
@@ -108,34 +110,13 @@ def herschel_bulkley_pressure_drop(Q, tau_y, K, m, L, d, h):
     >>> round(herschel_bulkley_pressure_drop(1e-5, 1800.0, 13.0, 1.0, 0.0546, 0.0143, 0.0008) / 1e6, 4)
     4.0712
     """
-    # imported here: scipy.optimize doubles the start-up time of every command that imports erdesign.flow
-    from scipy.optimize.elementwise import bracket_root, find_root
+    # numba, imported here: ``import erdesign.flow`` does not pay for it
+    from ._compiled import hb_slit_pressure_drop
 
     check_flow_args(Q=Q, tau_y=tau_y, K=K, m=m, L=L, d=d, h=h)
     Q = np.asarray(Q, dtype=float)
-    tau_y, K = np.broadcast_arrays(np.asarray(tau_y, dtype=float) + 0 * Q, np.asarray(K, dtype=float) + 0 * Q)
-    Qa = np.abs(Q)
-    dp_y = 2.0 * tau_y * L / h
-    # power-law (tau_y = 0) pressure drop of this flow: the viscous part; dp_y + it is a first guess
-    p = 1.0 / m
-    H = 0.5 * h
-    with np.errstate(divide="ignore"):
-        tau_pl = (Qa / (np.pi * d) * (p + 2) * K**p / (2 * H**2)) ** (1.0 / p)
-    dp_pl = tau_pl * 2.0 * L / h
-    floor = np.maximum(dp_y, 1e-300)
-    x0 = np.log(np.maximum(dp_y + dp_pl, floor * (1 + 1e-12)) + 1e-300)
-
-    def f(logdp, Qa, tau_y, K):
-        return _slit_flow_rate(np.exp(logdp), tau_y, K, m, L, d, h) - Qa
-
-    flowing = Qa > 0
-    out = np.array(dp_y, dtype=float)
-    if np.any(flowing):
-        a = (Qa[flowing], tau_y[flowing], K[flowing])
-        xf = x0[flowing]
-        xmin = np.where(dp_y[flowing] > 0, np.log(np.maximum(dp_y[flowing], 1e-300)), xf - 60.0)
-        br = bracket_root(f, np.maximum(xf - 0.5, xmin), xf + 0.5, xmin=xmin, args=a, maxiter=200)
-        res = find_root(f, (br.bracket[0], br.bracket[1]), args=a, tolerances={"xatol": 1e-13, "xrtol": 0})
-        out[flowing] = np.exp(res.x)
-    out = np.copysign(out, Q)
+    args = np.broadcast_arrays(Q, *(np.asarray(a, dtype=float) for a in (tau_y, K, m, L, d, h)))
+    Qb, rest = args[0], [np.ascontiguousarray(a).ravel() for a in args[1:]]
+    out = hb_slit_pressure_drop(np.abs(Qb).ravel(), *rest, np.empty(Qb.size)).reshape(Qb.shape)
+    out = np.copysign(out, Qb)
     return float(out) if out.ndim == 0 else out
