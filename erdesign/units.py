@@ -192,6 +192,10 @@ def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
     if _DIGIT_SEPARATOR.search(clean):
         plain = _DIGIT_SEPARATOR.sub(lambda m: m[0][0] + m[0][2], clean)
         raise UnitError(f"{name}: {shown!r} has a digit separator; write the number without it ({plain!r})")
+    if re.search(r"(?<![\w.])0[xX][0-9a-fA-F]", clean):  # '0x1p-10 m' was "a '-' between units"
+        raise UnitError(f"{name}: {shown!r} has a hexadecimal number; write the value in decimal, e.g. '0.8 mm'")
+    if '"' in clean or "''" in clean:  # 0.0315" (inches): "cannot read" without a reason
+        raise UnitError(f"{name}: {shown!r} has a '\"' (an inch mark?); write the unit as 'in'")
     if "#" in clean:
         raise UnitError(f"{name}: {shown!r} has a '#'; give the value and its unit only")
     if re.search(r"[-+]\s*[-+]", clean):
@@ -260,7 +264,9 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
     try:
         return ureg.parse_units(text)
     except pint.errors.UndefinedUnitError as exc:
-        raise UnitError(f"{name}: unknown unit {'in ' if what == 'value' else ''}{shown!r} ({exc})") from None
+        raise UnitError(
+            f"{name}: unknown unit {'in ' if what == 'value' else ''}{shown!r} ({exc}){_unit_hint(exc)}"
+        ) from None
     except ValueError as exc:
         if "scaling factor" in str(exc) and what == "value":
             raise UnitError(
@@ -282,6 +288,54 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         raise UnitError(f"{name}: cannot read {shown!r} as {kind}{detail}") from None
 
 
+#: A number times a power of ten as typeset or typed ('1 ×10³ N', '1.5·10⁻³ m', '2 x 10^3 N', '2*10**-3 m'): the power
+#: written with '^', '**' or superscript digits (pint read the superscripts as "missing unary operator").
+_TIMES_TEN = re.compile(
+    r"^\s*([-+]?(?:\d+\.?\d*|\.\d+))\s*[×xX*·⋅]\s*10\s*"
+    r"(?:(?:\^|\*\*)\s*\(?\s*([-+]?)\s*(\d+)\s*\)?|([⁻⁺]?)([⁰¹²³⁴⁵⁶⁷⁸⁹]+))(?![\d.])",
+    re.ASCII,
+)
+_SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789-+")
+
+
+def _as_exponent(m: re.Match) -> str:
+    sign = (m[2] or m[4] or "").translate(_SUPERSCRIPTS)
+    return f"{m[1]}e{sign}{(m[3] or m[5]).translate(_SUPERSCRIPTS)} "
+
+
+def _unit_hint(exc: pint.errors.UndefinedUnitError) -> str:
+    """What an unknown unit was likely meant as: a power written without '^' ('cm3'), or a unit in the wrong case
+    ('KPa', 'kv', 'MPA'): '; did you mean ...?'."""
+    names = exc.unit_names if isinstance(exc.unit_names, (list, tuple)) else [exc.unit_names]
+    for token in map(str, names):
+        power = re.fullmatch(r"([A-Za-zµμ]+?)([23])", token)
+        if power and _is_unit(power[1]):
+            return f"; write a power with '^', e.g. '{power[1]}^{power[2]}'"
+        variants = [token[:1].swapcase() + token[1:], token[:-1] + token[-1:].swapcase(), token.lower()]
+        variants += [token[:1].swapcase() + token[1:-1] + token[-1:].swapcase(), token[:1] + token[1:].lower()]
+        for v in dict.fromkeys(variants):
+            if v != token and _is_unit(v):
+                return f"; units are case-sensitive: did you mean {v!r}?"
+    return ""
+
+
+def _case_hint(text: str, target: Any) -> str:
+    """'; units are case-sensitive: did you mean ...?' when one unit word of ``text`` in another case gives the
+    dimension of ``target`` ('7 pa*s' -> 'Pa', '10 kn' -> 'kN'), else ""."""
+    words = re.findall(r"[A-Za-z]+", text)
+    for word in dict.fromkeys(words):
+        for v in dict.fromkeys([word[:1].swapcase() + word[1:], word[:-1] + word[-1:].swapcase()]):
+            if v == word or not _is_unit(v):
+                continue
+            fixed = re.sub(rf"(?<![A-Za-z]){word}(?![A-Za-z])", v, text)
+            try:
+                if parse_quantity(fixed, "").dimensionality == target.dimensionality:
+                    return f"; units are case-sensitive: did you mean {v!r}?"
+            except Exception:  # noqa: BLE001 - any failure: not the hint
+                continue
+    return ""
+
+
 def parse_quantity(text: str, name: str) -> pint.Quantity:
     """A quantity from a string such as ``"0.8 mm"`` or ``"-40 degC"``, or a :class:`~erdesign.errors.UnitError`
     naming ``name``: the one parser of values with units (:func:`clean_value_text` says what it refuses).
@@ -301,12 +355,15 @@ def parse_quantity(text: str, name: str) -> pint.Quantity:
         raise UnitError(f"{name}: expected a value with a unit as a string, got {type(text).__name__} {text!r:.60}")
     clean = clean_value_text(text, name)
     shown = text if len(text) <= 60 else text[:57] + "..."
+    clean = _TIMES_TEN.sub(_as_exponent, clean, count=1)  # '1 ×10³ N' (scientific notation as typeset): '1e3 N'
     m = _QUANTITY_TEXT.fullmatch(clean)
     if m is None:
         raise UnitError(
             f"{name}: cannot read {shown!r} as a value with a unit; give one number, then its unit (e.g. '0.8 mm')"
         )
     number, unit = m[1], m[2]
+    if re.fullmatch(r"\[[^\[\]]+\]", unit):  # '0.8 [mm]': a unit in a header's brackets
+        unit = unit[1:-1].strip()
     magnitude = float(number)
     mantissa = re.split("[eE]", number)[0]
     if magnitude != 0.0 and abs(magnitude) < sys.float_info.min or magnitude == 0.0 and re.search("[1-9]", mantissa):
@@ -378,6 +435,8 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
             hint = ""
             if isinstance(given, str) and re.search(r"Pas\b", given) and target.dimensionality == _VISCOSITY:
                 hint = "; 'Pas' reads as pascals: write 'Pa*s' (or 'mPa*s')"  # '7000 mPas', German 'mPas'
+            elif isinstance(given, str):
+                hint = _case_hint(given, target)  # '7 pa*s' is 7 peta-years squared, '10 kn' 10 knots
             raise UnitError(
                 f"{name}: expected {dimension_name(target.dimensionality)} (a value with a unit such as "
                 f"'{unit}'), got '{shown}' ({dimension_name(value.dimensionality)}){hint}"
