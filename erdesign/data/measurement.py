@@ -951,6 +951,20 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
         m = _HEADER.match(cell)
         # invisible characters (a BOM or a zero-width space pasted mid-line) dropped from the name
         name = "".join(ch for ch in m[1] if unicodedata.category(ch) != "Cf").strip().lower() if m else ""
+        if not cell.strip() and col == 1 and len(cells) > 1:  # df.to_csv('rec.csv') writes the index first
+            raise MeasurementError(
+                f"{path}: line {lineno}, column 1: no name; an index column, as pandas' to_csv writes by default? "
+                "write the file with to_csv(..., index=False)"
+            )
+        if not cell.strip() and col == len(cells):
+            raise MeasurementError(
+                f"{path}: line {lineno}, column {col}: no name; the header ends in a ',' (remove it, and any at the "
+                "ends of the rows)"
+            )
+        if col == 1 and re.fullmatch(r"\s*sep=.?\s*", cell, re.IGNORECASE):
+            raise MeasurementError(
+                f"{path}: line {lineno}: {cell.strip()!r} is Excel's separator line, not a header; remove the line"
+            )
         if not name:
             raise MeasurementError(
                 f"{path}: line {lineno}, column {col} ({cell.strip()!r}): expected a name with "
@@ -1015,8 +1029,14 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     non-increasing time, fewer than 5 samples.
     """
     if not is_path_like(path):
+        hint = (
+            "; for data in memory use Measurement.from_arrays(time, displacement, force)"
+            if hasattr(path, "shape")
+            else ""
+        )
         raise MeasurementError(
-            f"path: expected the name of a measurement file (a str or Path), got {type(path).__name__} {path!r:.60}"
+            f"path: expected the name of a measurement file (a str or Path), got {type(path).__name__} "
+            f"{' '.join(repr(path).split())[:60]}{hint}"
         )
     path = Path(path)
     label = str(path)
