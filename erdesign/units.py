@@ -259,6 +259,13 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         )
     if _POWER_TOWER.search(text):
         raise UnitError(f"{name}: {shown!r} has a power of a power; give the unit with one exponent, e.g. 'm^3'")
+    if text.count("(") != text.count(")"):  # was "(('EOF in multi-line statement', (2, 0)))"
+        raise UnitError(f"{name}: {shown!r} has unbalanced brackets; close each '(' with a ')'")
+    if text.rstrip()[-1:] in ("/", "*", "^", "-", "+"):
+        raise UnitError(f"{name}: {shown!r}: the unit ends in {text.rstrip()[-1]!r}; complete or remove it")
+    exponent = re.search(r"([A-Za-zµμ]+)-(\d)", text)
+    if exponent and exponent[1] not in ("e", "E"):  # 'N s m-1': "a '-' between units"
+        raise UnitError(f"{name}: {shown!r} has a power without '^'; write e.g. '{exponent[1]}^-{exponent[2]}'")
     # 'mil' is a thousandth of an inch on every drawing a damper comes from; pint's 'mil' is an angle (1/6400 turn)
     text = _MIL.sub("thou", text)
     try:
@@ -319,21 +326,33 @@ def _unit_hint(exc: pint.errors.UndefinedUnitError) -> str:
     return ""
 
 
-def _case_hint(text: str, target: Any) -> str:
-    """'; units are case-sensitive: did you mean ...?' when one unit word of ``text`` in another case gives the
-    dimension of ``target`` ('7 pa*s' -> 'Pa', '10 kn' -> 'kN'), else ""."""
-    words = re.findall(r"[A-Za-z]+", text)
-    for word in dict.fromkeys(words):
-        for v in dict.fromkeys([word[:1].swapcase() + word[1:], word[:-1] + word[-1:].swapcase()]):
-            if v == word or not _is_unit(v):
-                continue
+def _meant(text: str, target: Any, *, known_too: bool = False) -> str | None:
+    """``text`` with one unit word changed so that the value has the dimension of ``target``: the word in another
+    case ('KPa' -> 'kPa', '7 pa*s' -> '7 Pa*s') or two units written together ('Ns/m' -> 'N s/m'); only unknown
+    words unless ``known_too``; None when no change does."""
+    for word in dict.fromkeys(re.findall(r"[A-Za-z]+", text)):
+        if not known_too and _is_unit(word):
+            continue
+        variants = [word[:1].swapcase() + word[1:], word[:-1] + word[-1:].swapcase(), word.lower()]
+        if not _is_unit(word):  # two units written together ('Ns'), never a known one split ('mm' as 'm m')
+            variants += [
+                f"{word[:i]} {word[i:]}" for i in range(1, len(word)) if _is_unit(word[:i]) and _is_unit(word[i:])
+            ]
+        for v in dict.fromkeys(variants):
             fixed = re.sub(rf"(?<![A-Za-z]){word}(?![A-Za-z])", v, text)
             try:
                 if parse_quantity(fixed, "").dimensionality == target.dimensionality:
-                    return f"; units are case-sensitive: did you mean {v!r}?"
-            except Exception:  # noqa: BLE001 - any failure: not the hint
+                    return fixed
+            except Exception:  # noqa: BLE001 - any failure: not what was meant
                 continue
-    return ""
+    return None
+
+
+def _case_hint(text: str, target: Any) -> str:
+    """'; did you mean ...?' when one unit word of ``text`` changed (:func:`_meant`) gives the dimension of
+    ``target`` ('7 pa*s' is 7 peta-years squared, '10 kn' 10 knots, '1 Nm' a nanometre per ... ), else ""."""
+    fixed = _meant(text, target, known_too=True)
+    return "" if fixed is None else f"; did you mean {fixed!r}?"
 
 
 def parse_quantity(text: str, name: str) -> pint.Quantity:
@@ -362,8 +381,8 @@ def parse_quantity(text: str, name: str) -> pint.Quantity:
             f"{name}: cannot read {shown!r} as a value with a unit; give one number, then its unit (e.g. '0.8 mm')"
         )
     number, unit = m[1], m[2]
-    if re.fullmatch(r"\[[^\[\]]+\]", unit):  # '0.8 [mm]': a unit in a header's brackets
-        unit = unit[1:-1].strip()
+    if "[" in unit or "]" in unit:  # '0.8 [mm]' (a unit in a header's brackets), 'N/[m/s]': brackets
+        unit = unit.replace("[", "(").replace("]", ")")
     magnitude = float(number)
     mantissa = re.split("[eE]", number)[0]
     if magnitude != 0.0 and abs(magnitude) < sys.float_info.min or magnitude == 0.0 and re.search("[1-9]", mantissa):
@@ -401,7 +420,9 @@ def same_dimension(a: Any, b: Any) -> bool:
     return getattr(qa, "dimensionality", None) == getattr(qb, "dimensionality", None)
 
 
-def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) -> float | np.ndarray:
+def to_si(
+    value: Any, unit: str, name: str, *, allow_nonfinite: bool = False, scalar: bool = False
+) -> float | np.ndarray:
     """Magnitude of ``value`` in the SI unit ``unit``, checked.
 
     Parameters
@@ -415,6 +436,8 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
         Name of the argument or file key, used in error messages.
     allow_nonfinite : bool
         Let NaN and infinity through (default: such values are errors).
+    scalar : bool
+        Only one value (a geometry's length, a fluid's property): an array is an error naming ``name``.
 
     Returns
     -------
@@ -427,8 +450,19 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
         The value has another dimension, an unknown unit, no unit where one is needed, or is not finite.
     """
     given = value
-    value = _parse(value, name)
+    if isinstance(
+        value, (bytes, bytearray)
+    ):  # was "b'0.1 m/s' has no unit; expected a velocity, e.g. 'b'0.1 m/s' m/s'"
+        raise UnitError(f"{name}: expected text or a quantity, got bytes {value!r:.60}; decode it first")
     target = ureg.Unit(unit)
+    try:
+        value = _parse(value, name)
+    except UnitError as exc:
+        better = _meant(given, target) if "unknown unit" in str(exc) else None
+        if better is None:
+            raise
+        base = re.split(r"; (?:units are case-sensitive|write a power)", str(exc))[0]
+        raise UnitError(f"{base}; did you mean {better!r}?") from None
     if isinstance(value, pint.Quantity):
         if value.dimensionality != target.dimensionality:
             shown = given if isinstance(given, str) else _shown_quantity(value)
@@ -445,15 +479,22 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     else:
         if isinstance(value, (bool, np.bool_)) or value is None:
             raise UnitError(f"{name}: expected {dimension_name(target.dimensionality)}, got {value!r}")
-        if _holds_text(value):  # ["1 mL/s", "2 mL/s"]: the example showed '['1 mL/s', '2 mL/s'] m^3/s'
+        held = _holds_text(value)
+        if held:  # ["1 mL/s", "2 mL/s"]: the example showed '['1 mL/s', '2 mL/s'] m^3/s'
             raise UnitError(
-                f"{name}: a sequence of texts; give one quantity array, e.g. Q_([1.0, 2.0], '{unit}'), or one "
+                f"{name}: a sequence of {held}; give one quantity array, e.g. Q_([1.0, 2.0], '{unit}'), or one "
                 "value per call"
             )
         if target.dimensionality:
+            if np.ndim(value) == 0:
+                raise UnitError(
+                    f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
+                    f"e.g. '{value} {unit}'"
+                )
+            # a Series or an array: its repr ran over several lines into the example
             raise UnitError(
-                f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
-                f"e.g. '{value} {unit}'"
+                f"{name}: {type(value).__name__} of shape {np.shape(value)} has no unit; expected "
+                f"{dimension_name(target.dimensionality)}, e.g. Q_(values, '{unit}')"
             )
         magnitude = value
     if np.ma.isMaskedArray(magnitude) and np.ma.getmaskarray(magnitude).any():  # asarray would use hidden values
@@ -465,14 +506,23 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     if not allow_nonfinite and not np.all(np.isfinite(magnitude)):
         shown = _shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value)
         raise UnitError(f"{name}: value must be finite, got {shown}")
+    if scalar and magnitude.ndim != 0:  # an array where one value is meant: "truth value of an array ..." later
+        raise UnitError(f"{name}: expected one value, got an array of shape {magnitude.shape}")
     return float(magnitude) if magnitude.ndim == 0 else magnitude
 
 
-def _holds_text(value: Any) -> bool:
-    """True for a list, tuple or array holding strings (or quantities) rather than numbers."""
-    if isinstance(value, np.ndarray):
-        return value.dtype.kind in "USO" and any(isinstance(v, (str, pint.Quantity)) for v in value.ravel()[:100])
-    return isinstance(value, (list, tuple)) and any(isinstance(v, (str, pint.Quantity)) for v in value[:100])
+def _holds_text(value: Any) -> str:
+    """ "texts" or "quantities" for a list, tuple, array or pandas Series holding strings or quantities rather than
+    numbers; "" otherwise."""
+    if isinstance(value, (list, tuple)):
+        items = value[:100]
+    elif getattr(getattr(value, "dtype", None), "kind", "") in "USOT" and np.ndim(value) > 0:  # arrays, Series
+        items = list(np.asarray(value, dtype=object).ravel()[:100])
+    else:
+        return ""
+    if any(isinstance(v, str) for v in items):
+        return "texts"
+    return "quantities" if any(isinstance(v, pint.Quantity) for v in items) else ""
 
 
 def _shown_quantity(q: pint.Quantity) -> str:
