@@ -25,13 +25,17 @@ __all__ = [
 class ErdesignError(ValueError):
     """Bad input: the message says which argument, key or line is wrong and what was expected.
 
-    A message longer than :data:`MESSAGE_LIMIT` is cut as the command line cuts it (:func:`cut`): a 5,000-character
-    file name made a 5,000-character message for the API's caller.
+    The message is one line (a pandas object's repr in it ran over several) and one longer than
+    :data:`MESSAGE_LIMIT` is cut as the command line cuts it (:func:`cut`): a 5,000-character file name made a
+    5,000-character message for the API's caller.
     """
 
     def __init__(self, *args):
         if len(args) == 1 and isinstance(args[0], str):
-            args = (cut(args[0]),)
+            text = args[0]
+            if "\n" in text or "\r" in text:
+                text = " ".join(text.split())
+            args = (cut(text),)
         super().__init__(*args)
 
 
