@@ -67,6 +67,7 @@ from __future__ import annotations
 
 import dataclasses
 import numbers
+import re
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -139,6 +140,9 @@ SAMPLINGS = ("sobol", "lhs")
 MAX_SAMPLES, PLAUSIBLE_SAMPLES, MAX_CHUNK = 2**24, 2**21, 2**20
 #: Longest stroke [m] of the envelope taken without a warning (car dampers 0.1-0.3 m, large seismic dampers ~1 m).
 PLAUSIBLE_STROKE = 2.0
+#: Largest min_dynamic_range taken without a warning: ER and MR dampers reach 2 to about 100 (Butz and von Stryk
+#: 2002); a thousand is a unit or a typing slip.
+PLAUSIBLE_DYNAMIC_RANGE = 1e3
 
 
 @dataclass(frozen=True)
@@ -330,6 +334,12 @@ def _range(value: Any, name: str, whole: bool = False) -> tuple[float, float]:
         if not 1 <= len(items) <= 2 or not all(isinstance(v, str) for v in items):
             raise RequirementsError(
                 f'{name}: expected ["low unit", "high unit"] or one value with a unit, got {value!r}'
+            )
+        text = items[0] if len(items) == 1 else ""
+        ends = re.fullmatch(r"\s*([^-\u2013]+?)\s*(?:-|\u2013|\.\.|\bto\b)\s*([\d.].*)", text)
+        if ends and re.search(r"\d", ends[1]):  # '0.5 mm - 2 mm' was "a '-' between units"
+            raise RequirementsError(
+                f'{name}: {text!r} is a range as one text; write it as a list: ["{ends[1]}", "{ends[2]}"]'
             )
         lo, hi = (to_si(v, "m", name) for v in (items[0], items[-1]))
     if not lo > 0:
@@ -663,6 +673,13 @@ def _parse_points(tables: list[PointTable], fluid: Fluid) -> tuple[DesignPoint, 
             warnings.warn(
                 f"{where}.min_dynamic_range: {point.min_dynamic_range:g} is met by every damper (the dynamic range, "
                 "the force at the control over the force at none, is at least 1); check the value",
+                PlausibilityWarning,
+                stacklevel=2,
+            )
+        if point.min_dynamic_range is not None and point.min_dynamic_range > PLAUSIBLE_DYNAMIC_RANGE:
+            warnings.warn(
+                f"{where}.min_dynamic_range: {point.min_dynamic_range:g} is beyond the dynamic range of any damper "
+                f"(ER and MR dampers reach 2 to about 100; at most {PLAUSIBLE_DYNAMIC_RANGE:g} here); check the value",
                 PlausibilityWarning,
                 stacklevel=2,
             )
