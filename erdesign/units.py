@@ -333,7 +333,7 @@ def _meant(text: str, target: Any, *, known_too: bool = False) -> str | None:
     for word in dict.fromkeys(re.findall(r"[A-Za-z]+", text)):
         if not known_too and _is_unit(word):
             continue
-        variants = [word[:1].swapcase() + word[1:], word[:-1] + word[-1:].swapcase(), word.lower()]
+        variants = [word.lower(), word[:1].swapcase() + word[1:], word[:-1] + word[-1:].swapcase()]
         if not _is_unit(word):  # two units written together ('Ns'), never a known one split ('mm' as 'm m')
             variants += [
                 f"{word[:i]} {word[i:]}" for i in range(1, len(word)) if _is_unit(word[:i]) and _is_unit(word[i:])
