@@ -240,6 +240,8 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
         ``path`` exists (and not ``overwrite``), is a folder or a symbolic link, or its folder is missing or not
         writable; the message is one line naming ``option`` and ``path``.
     """
+    if path is not None and not isinstance(path, (str, os.PathLike)):  # a Series: "expected str, bytes or ..."
+        raise OutputPathError(f"{option}: expected a file name (a str or Path), got {type(path).__name__}")
     if path is None or str(path).strip() == "":
         raise OutputPathError(f"{option}: empty file name")
     if "\x00" in str(path):  # "embedded null byte", a ValueError from the first system call

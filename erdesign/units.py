@@ -334,10 +334,12 @@ def _meant(text: str, target: Any, *, known_too: bool = False) -> str | None:
         if not known_too and _is_unit(word):
             continue
         variants = [word.lower(), word[:1].swapcase() + word[1:], word[:-1] + word[-1:].swapcase()]
-        if not _is_unit(word):  # two units written together ('Ns'), never a known one split ('mm' as 'm m')
-            variants += [
-                f"{word[:i]} {word[i:]}" for i in range(1, len(word)) if _is_unit(word[:i]) and _is_unit(word[i:])
-            ]
+        # two units written together ('Ns', 'ms^-1' for m s^-1), never a unit split into itself twice ('mm')
+        variants += [
+            f"{word[:i]} {word[i:]}"
+            for i in range(1, len(word))
+            if word[:i] != word[i:] and _is_unit(word[:i]) and _is_unit(word[i:])
+        ]
         for v in dict.fromkeys(variants):
             fixed = re.sub(rf"(?<![A-Za-z]){word}(?![A-Za-z])", v, text)
             try:
@@ -352,6 +354,12 @@ def _case_hint(text: str, target: Any) -> str:
     """'; did you mean ...?' when one unit word of ``text`` changed (:func:`_meant`) gives the dimension of
     ``target`` ('7 pa*s' is 7 peta-years squared, '10 kn' 10 knots, '1 Nm' a nanometre per ... ), else ""."""
     fixed = _meant(text, target, known_too=True)
+    if fixed is None and text != text.lower():  # '0.1 M/S': every letter in capitals
+        try:
+            if parse_quantity(text.lower(), "").dimensionality == target.dimensionality:
+                fixed = text.lower()
+        except Exception:  # noqa: BLE001 - any failure: no hint
+            pass
     return "" if fixed is None else f"; did you mean {fixed!r}?"
 
 

@@ -41,6 +41,7 @@ import unicodedata
 import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -1672,6 +1673,11 @@ def write_measurement(
     ``overwrite`` (:mod:`erdesign.output`; ``option`` names the output in messages, e.g. ``--out``)."""
     from ..output import open_output
 
+    if not isinstance(m, Measurement):  # a DataFrame, or the arguments swapped: "'str' object has no attribute 'units'"
+        hint = " (the arguments are path, then record)" if isinstance(m, (str, Path)) else ""
+        raise MeasurementError(f"m: expected a Measurement, got {type(m).__name__}{hint}")
+    if units is not None and not isinstance(units, Mapping):
+        raise MeasurementError(f"units: expected a mapping of column -> unit, got {type(units).__name__} {units!r:.60}")
     units = {**m.units, **(units or {})}
     cols: list[tuple[str, np.ndarray, str]] = [("time", m.time, "s"), ("displacement", m.displacement, "m")]
     if m.force is not None:
@@ -1681,9 +1687,22 @@ def write_measurement(
         cols.append((name, m.control, CONTROL_UNITS[m.control_kind]))
     if m.temperature is not None:
         cols.append(("temperature", m.temperature, "K"))
+    unknown = sorted(set(units) - {c[0] for c in cols} - set(m.units))
+    if unknown:  # a unit for a column the record has not was dropped without a word
+        raise MeasurementError(
+            f"units: no column {unknown[0]!r} in this record{did_you_mean(unknown[0], [c[0] for c in cols])}; "
+            f"its columns: {', '.join(c[0] for c in cols)}"
+        )
     header, table = [], []
     for name, values, si_unit in cols:
         unit = units.get(name, si_unit)
+        if (
+            not isinstance(unit, str)
+            or parse_unit(unit, f"units[{name!r}]").dimensionality != Q_(1, si_unit).dimensionality
+        ):
+            raise MeasurementError(
+                f"units[{name!r}]: expected a unit of {dimension_name(Q_(1, si_unit).dimensionality)}, got {unit!r}"
+            )
         header.append(f"{name} [{unit}]")
         table.append(Q_(values, si_unit).to(unit).magnitude)
     with open_output(path, newline="", overwrite=overwrite, option=option) as fh:
