@@ -693,3 +693,39 @@ def test_a_protected_file_is_still_replaced_once_made_writable(out, capsys):
 
 def test_record_helper_is_what_the_cases_assume():
     assert record().splitlines()[0] == HEADER and len(BODY) == 1000
+
+
+# ------------------------------------------------------------------------------------ batch manifests
+MANIFEST_CASES = [
+    ("a column twice", "record,record\na.csv,b.csv\n", ["line 1: the column 'record' appears twice"]),  # took b.csv
+    (
+        "effects with an unquoted comma",  # the second effect was dropped without a word
+        "record,effects\na.csv,seal_friction,fluid_inertia\n",
+        ["line 2: 3 cells for 2 columns", "quote a cell"],
+    ),
+    ("the header again", "record,damper\na.csv,makris\nrecord,damper\nb.csv,makris\n", ["line 3: the header again"]),
+    ("an empty record after blank lines", 'record\n\n\na.csv\n\n\n\n"" \n', ["line 8: empty 'record'"]),  # 'line 3'
+    ("Record", "Record\na.csv\n", ["no 'record' column", "did you mean 'record'?"]),
+    ("separated by ';'", "record;damper\na.csv;makris\n", ["separated by ';'"]),
+]
+
+
+@pytest.mark.parametrize("case", MANIFEST_CASES, ids=[c[0] for c in MANIFEST_CASES])
+def test_hostile_manifests_name_the_line(case, tmp_path):
+    from erdesign.campaign.batch import read_manifest
+
+    _, text, needles = case
+    path = tmp_path / "m.csv"
+    path.write_text(text)
+    with pytest.raises(ErdesignError) as info:
+        read_manifest(path)
+    message = str(info.value)
+    assert message.startswith("--manifest: ") and all(n in message for n in needles), message
+
+
+def test_a_manifest_with_a_bom_and_spaces_is_read(tmp_path):
+    from erdesign.campaign.batch import read_manifest
+
+    path = tmp_path / "m.csv"
+    path.write_bytes(b"\xef\xbb\xbfrecord, damper\r\na.csv, makris\r\n")
+    assert [(r["record"], r["damper"]) for r in read_manifest(path)] == [("a.csv", "makris")]
