@@ -263,6 +263,12 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         raise UnitError(f"{name}: {shown!r} has unbalanced brackets; close each '(' with a ')'")
     if text.rstrip()[-1:] in ("/", "*", "^", "-", "+"):
         raise UnitError(f"{name}: {shown!r}: the unit ends in {text.rstrip()[-1]!r}; complete or remove it")
+    if what == "value" and re.match(r"[eE][-+]?\d", text):  # '5 e-3 m': "a '-' between units"
+        raise UnitError(f"{name}: {shown!r} has a space inside the number; write it without (e.g. '5e-3 m')")
+    for dash in re.finditer(r"\s-\s*[\d.]", f" {text}"):  # '0.8 mm - 0.9 mm': "a '-' between units"
+        before = f" {text}"[: dash.start()].rstrip()
+        if what == "value" and (not before or before[-1] not in "^*"):  # not an exponent ('m ^ -1')
+            raise UnitError(f"{name}: {shown!r} is a range (a '-' between two values); give one value with its unit")
     exponent = re.search(r"([A-Za-zµμ]+)-(\d)", text)
     if exponent and exponent[1] not in ("e", "E"):  # 'N s m-1': "a '-' between units"
         raise UnitError(f"{name}: {shown!r} has a power without '^'; write e.g. '{exponent[1]}^-{exponent[2]}'")

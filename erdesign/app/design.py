@@ -402,10 +402,14 @@ def render() -> None:
     try:
         values = requirements_data(data, texts)
         values.setdefault("design", {}).setdefault("search", {}).update(samples=int(samples), designs=int(keep))
-        req = requirements_from_dict(values, source="requirements")
+        # the requirements' plausibility warnings ("min_force: 1e+12 N is beyond the force of any damper") were
+        # printed to the server's log, not shown
+        req, warned = state.caught(lambda: requirements_from_dict(values, source="requirements"))
     except ErdesignError as exc:
         st.error(state.clean_message(str(exc)), icon="🚫")
         return
+    for message in warned:
+        st.warning(state.clean_message(message), icon="⚠️")
     if st.button("Search", key=_PREFIX + "search", type="primary", icon=":material/search:"):
         bar = st.progress(0.0, text="sampling the design space")
 

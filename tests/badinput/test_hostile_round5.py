@@ -264,6 +264,8 @@ def test_values_as_typed_are_read_as_meant(text, unit, expected):
         ("0.1 M/S", "m/s", "did you mean '0.1 m/s'?"),
         ("0.1 ms^-1", "m/s", "did you mean '0.1 m s^-1'?"),  # per millisecond
         ("1 Nm", "N*m", "did you mean '1 N m'?"),
+        ("0.8 mm - 0.9 mm", "m", "a range"),  # "a '-' between units"
+        ("5 e-3 m", "m", "a space inside the number"),
     ],
 )
 def test_slips_in_values_name_the_argument_and_the_fix(text, unit, said):
@@ -288,6 +290,26 @@ def test_the_requirements_form_names_keys_as_the_library_does():
         with pytest.raises(ErdesignError) as info:
             requirements_data(data, {keys[path]: text})
         assert str(info.value).startswith(said), str(info.value)
+
+
+def test_the_app_shows_the_requirements_plausibility_warnings():
+    """A requirement of 1e12 N was warned on the server's log only; the page showed nothing."""
+    from streamlit.testing.v1 import AppTest
+
+    from .test_app_corpus import MAIN
+
+    at = AppTest.from_file(MAIN, default_timeout=60).run()
+    at.switch_page("design.py").run()
+    for key, value, start in [
+        ("designer.req.design.point.0.min_force", "1e12 N", "design.point[1].min_force: 1e+12 N is beyond"),
+        ("designer.req.design.limits.max_voltage", "1e9 V", "design.limits.max_voltage: 1e+09 V is beyond"),
+    ]:
+        good = at.text_input(key=key).value
+        at.text_input(key=key).set_value(value).run()
+        assert not at.exception and not at.error, [e.value for e in at.error]
+        assert any(w.value.startswith(start) for w in at.warning), [w.value for w in at.warning]
+        at.text_input(key=key).set_value(good).run()
+        assert not any(w.value.startswith(start) for w in at.warning)
 
 
 # ------------------------------------------------------------------------------------ 5. the API's messages
