@@ -278,7 +278,7 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         return ureg.parse_units(text)
     except pint.errors.UndefinedUnitError as exc:
         raise UnitError(
-            f"{name}: unknown unit {'in ' if what == 'value' else ''}{shown!r} ({exc}){_unit_hint(exc)}"
+            f"{name}: unknown unit {'in ' if what == 'value' else ''}{shown!r} ({exc}){_unit_hint(exc, text)}"
         ) from None
     except ValueError as exc:
         if "scaling factor" in str(exc) and what == "value":
@@ -316,14 +316,19 @@ def _as_exponent(m: re.Match) -> str:
     return f"{m[1]}e{sign}{(m[3] or m[5]).translate(_SUPERSCRIPTS)} "
 
 
-def _unit_hint(exc: pint.errors.UndefinedUnitError) -> str:
-    """What an unknown unit was likely meant as: a power written without '^' ('cm3'), or a unit in the wrong case
-    ('KPa', 'kv', 'MPA'): '; did you mean ...?'."""
+def _unit_hint(exc: pint.errors.UndefinedUnitError, text: str = "") -> str:
+    """What an unknown unit was likely meant as: a power written without '^' ('cm3'), the unit ``text`` with a
+    word in another case or split in two that gives a quantity erdesign knows ('KPa' -> 'kPa', 'Ns/m' -> 'N s/m',
+    not 'ns/m'), or else a unit in another case: '; did you mean ...?'."""
     names = exc.unit_names if isinstance(exc.unit_names, (list, tuple)) else [exc.unit_names]
     for token in map(str, names):
         power = re.fullmatch(r"([A-Za-zµμ]+?)([23])", token)
         if power and _is_unit(power[1]):
             return f"; write a power with '^', e.g. '{power[1]}^{power[2]}'"
+    fixed = _meant(f"1 {text}", None) if text else None
+    if fixed is not None:
+        return f"; did you mean {fixed[2:]!r}?"
+    for token in map(str, names):
         variants = [token[:1].swapcase() + token[1:], token[:-1] + token[-1:].swapcase(), token.lower()]
         variants += [token[:1].swapcase() + token[1:-1] + token[-1:].swapcase(), token[:1] + token[1:].lower()]
         for v in dict.fromkeys(variants):
@@ -332,14 +337,24 @@ def _unit_hint(exc: pint.errors.UndefinedUnitError) -> str:
     return ""
 
 
+def _dimension_quietly(text: str) -> Any:
+    """The dimension of a value's text as pint reads it, without erdesign's checks and hints (the hints try
+    variants of a unit through it: through :func:`parse_quantity` they would try variants of the variants)."""
+    m = _QUANTITY_TEXT.fullmatch(text)
+    if m is None:
+        raise ValueError(text)
+    return ureg.parse_units(_MIL.sub("thou", m[2])).dimensionality if m[2] else ureg.Unit("").dimensionality
+
+
 def _meant(text: str, target: Any, *, known_too: bool = False) -> str | None:
-    """``text`` with one unit word changed so that the value has the dimension of ``target``: the word in another
-    case ('KPa' -> 'kPa', '7 pa*s' -> '7 Pa*s') or two units written together ('Ns/m' -> 'N s/m'); only unknown
-    words unless ``known_too``; None when no change does."""
+    """``text`` with one unit word changed so that the value has the dimension of ``target`` (None: any dimension
+    erdesign names, :func:`dimension_name`): the word in another case ('KPa' -> 'kPa', '7 pa*s' -> '7 Pa*s') or two
+    units written together ('Ns/m' -> 'N s/m'); only unknown words unless ``known_too``; None when no change does."""
     for word in dict.fromkeys(re.findall(r"[A-Za-z]+", text)):
         if not known_too and _is_unit(word):
             continue
-        variants = [word.lower(), word[:1].swapcase() + word[1:], word[:-1] + word[-1:].swapcase()]
+        # 'KN' -> 'kN' (not 'kn', knots), 'MM' -> 'mm' ('mM' is millimolar, 'Mm' a megametre), 'kv' -> 'kV'
+        variants = [word[:1].swapcase() + word[1:], word.lower(), word[:-1] + word[-1:].swapcase()]
         # two units written together ('Ns', 'ms^-1' for m s^-1), never a unit split into itself twice ('mm')
         variants += [
             f"{word[:i]} {word[i:]}"
@@ -349,7 +364,8 @@ def _meant(text: str, target: Any, *, known_too: bool = False) -> str | None:
         for v in dict.fromkeys(variants):
             fixed = re.sub(rf"(?<![A-Za-z]){word}(?![A-Za-z])", v, text)
             try:
-                if parse_quantity(fixed, "").dimensionality == target.dimensionality:
+                dim = _dimension_quietly(fixed)
+                if dim == target.dimensionality if target is not None else (dim in _DIMENSION_NAMES and dim):
                     return fixed
             except Exception:  # noqa: BLE001 - any failure: not what was meant
                 continue
@@ -362,7 +378,7 @@ def _case_hint(text: str, target: Any) -> str:
     fixed = _meant(text, target, known_too=True)
     if fixed is None and text != text.lower():  # '0.1 M/S': every letter in capitals
         try:
-            if parse_quantity(text.lower(), "").dimensionality == target.dimensionality:
+            if _dimension_quietly(text.lower()) == target.dimensionality:
                 fixed = text.lower()
         except Exception:  # noqa: BLE001 - any failure: no hint
             pass
@@ -475,7 +491,7 @@ def to_si(
         better = _meant(given, target) if "unknown unit" in str(exc) else None
         if better is None:
             raise
-        base = re.split(r"; (?:units are case-sensitive|write a power)", str(exc))[0]
+        base = re.split(r"; (?:units are case-sensitive|write a power|did you mean)", str(exc))[0]
         raise UnitError(f"{base}; did you mean {better!r}?") from None
     if isinstance(value, pint.Quantity):
         if value.dimensionality != target.dimensionality:

@@ -27,7 +27,7 @@ from erdesign.design.requirements import requirements_from_dict
 from erdesign.errors import MESSAGE_LIMIT, ErdesignError, PlausibilityWarning
 from erdesign.units import to_si
 
-from .corpus import _F, GOOD_RECORD, MAKRIS, REQUIREMENTS, record
+from .corpus import _F, EXAMPLES, GOOD_RECORD, MAKRIS, REQUIREMENTS, record
 from .test_hostile_cli import _one_line_error, _run
 
 import tomllib
@@ -72,6 +72,7 @@ def test_numeric_options_read_numbers_as_the_library_does(case, capsys):
     assert code == 2 and "e.g. '0.8 mm'" not in line, line
 
 
+_REC = str(EXAMPLES / "measurements" / "makris_hidden_seal_friction.csv")
 VALUE_OPTIONS = [
     (
         "field in capitals",
@@ -85,6 +86,9 @@ VALUE_OPTIONS = [
     ("rate separator", ["doe", "--programme", "E5", "--rate", "1_000 Hz"], ["--rate:", "digit separator"]),
     ("control range as a dash", ["doe", "--programme", "E5", "--control-range", "0.5 kV/mm - 4 kV/mm"], ["--control"]),
     ("field separator", ["vehicle", "--damper", "makris", "--field", "1_0 kV/mm"], ["field:", "digit separator"]),
+    ("params Ns/m", ["simulate", _REC, "--model", "bingham", "--params", "c0=1 Ns/m"], ["did you mean 'N s/m'?"]),
+    ("params separator", ["simulate", _REC, "--model", "bingham", "--params", "c0=1_000"], ["c0:", "digit sep"]),
+    ("fix hexadecimal", ["identify", _REC, "--model", "bingham", "--fix", "f_c=0x10 N"], ["f_c:", "hexadecimal"]),
 ]
 
 
@@ -436,7 +440,7 @@ TOML_CASES = [
     (
         "field kv/mm",
         _with('reference_field = "3 kV/mm"', 'reference_field = "3 kv/mm"'),
-        ["fluid.reference_field", "did you mean 'kV'?"],
+        ["fluid.reference_field", "did you mean 'kV/mm'?"],
     ),
     ("density g/cm3", _with('density = "1290 kg/m^3"', 'density = "1.29 g/cm3"'), ["fluid.density", "'cm^3'"]),
     ("density as specific gravity", _with('density = "1290 kg/m^3"', 'density = "1.29"'), ["fluid.density"]),
