@@ -11,7 +11,8 @@ import numpy as np
 
 from .errors import ErdesignError, OutputPathError
 from .output import _NAME_MAX as NAME_MAX
-from .output import exists_message, refuse_symlink
+from .output import _tilde_hint as tilde_hint
+from .output import exists_message, refuse_odd_name, refuse_read_only, refuse_symlink
 
 __all__ = ["scalar_or_array", "check_output_path", "si_array", "broadcast_named"]
 
@@ -36,6 +37,10 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
         raise ErdesignError(
             f"{name}: expected SI numbers, got a quantity in {value.units:~P}; pass "
             f"value.to(unit).magnitude or use the unit-aware function"
+        )
+    if type(value).__name__ == "DataFrame" and hasattr(value, "columns"):  # its columns were taken as more values
+        raise ErdesignError(
+            f"{name}: a DataFrame of {len(value.columns)} column(s); pass one column, e.g. df[{str(value.columns[0])!r}]"
         )
     shown = " ".join(repr(value).split())
     shown = f"{type(value).__name__} {shown[:60]}{'...' if len(shown) > 60 else ''}"
@@ -163,6 +168,7 @@ def check_output_path(
         raise OutputPathError(
             f"{option} {str(out)!r:.80}: the file name holds the control character {bad!r}; give a plain name"
         )
+    refuse_odd_name(out, option)
     path = Path(out)
     longest = max((len(part.encode("utf-8", "surrogateescape")) for part in path.parts), default=0)
     if longest > NAME_MAX:  # was "[Errno 36] File name too long: '...'" (the whole path), naming no option
@@ -171,6 +177,8 @@ def check_output_path(
             "takes; give a shorter name"
         )
     refuse_symlink(path, overwrite=force, option=option)
+    if path.is_dir() and not path.is_symlink():  # before the suffix: "cannot write a '(no suffix)' file"
+        raise OutputPathError(f"{option} {path}: is a folder; give a file name")
     named = inputs.items() if isinstance(inputs, Mapping) else (("an input file of this command", p) for p in inputs)
     for label, given in named:
         if given is not None and _same_file(path, Path(given)):
@@ -195,7 +203,9 @@ def check_output_path(
         raise OutputPathError(f"{option} {path}: is a folder; give a file name")
     if path.exists() and not force:
         raise OutputPathError(exists_message(path, option))
+    if force:
+        refuse_read_only(path, option)
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
-        raise OutputPathError(f"{option} {path}: the folder {parent} does not exist")
+        raise OutputPathError(f"{option} {path}: the folder {parent} does not exist{tilde_hint(parent)}")
     return path, kind

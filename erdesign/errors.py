@@ -16,13 +16,27 @@ __all__ = [
     "ErdesignWarning",
     "ValidityWarning",
     "one_line",
+    "cut",
     "MESSAGE_LIMIT",
     "did_you_mean",
 ]
 
 
 class ErdesignError(ValueError):
-    """Bad input: the message says which argument, key or line is wrong and what was expected."""
+    """Bad input: the message says which argument, key or line is wrong and what was expected.
+
+    The message is one line (a pandas object's repr in it ran over several) and one longer than
+    :data:`MESSAGE_LIMIT` is cut as the command line cuts it (:func:`cut`): a 5,000-character file name made a
+    5,000-character message for the API's caller.
+    """
+
+    def __init__(self, *args):
+        if len(args) == 1 and isinstance(args[0], str):
+            text = args[0]
+            if "\n" in text or "\r" in text:
+                text = " ".join(text.split())
+            args = (cut(text),)
+        super().__init__(*args)
 
 
 class UnitError(ErdesignError):
@@ -81,14 +95,24 @@ def one_line(message, limit: int = MESSAGE_LIMIT) -> str:
             parts.append(f"[{len(run)} binary characters]")
         else:
             parts.append(run.encode("unicode_escape", "backslashreplace").decode("ascii"))
-    text = " ".join("".join(parts).split())
-    if len(text) > limit:
-        tail = min(_TAIL, limit // 4)
-        note = f" [... {len(text) - limit + 40} characters cut ...] "  # 40: room for the note itself
-        head = limit - tail - len(note)
-        note = f" [... {len(text) - head - tail} characters cut ...] "
-        text = text[:head].rstrip() + note + text[len(text) - tail :].lstrip()
-    return text
+    return cut(" ".join("".join(parts).split()), limit)
+
+
+def cut(text: str, limit: int = MESSAGE_LIMIT) -> str:
+    """``text`` at most ``limit`` characters: a longer one keeps its start (which names the argument, key or line)
+    and its end (which says what to do) around a note of what was cut; the one cutter of messages (the command
+    line's and the app's through :func:`one_line`, the API's in :class:`ErdesignError`).
+
+    >>> cut("name: " + "x" * 1000 + " is too long", limit=60)
+    'name: xxxxxxxxx [... 988 characters cut ...] xxx is too long'
+    """
+    if len(text) <= limit:
+        return text
+    tail = min(_TAIL, limit // 4)
+    note = f" [... {len(text) - limit + 40} characters cut ...] "  # 40: room for the note itself
+    head = limit - tail - len(note)
+    note = f" [... {len(text) - head - tail} characters cut ...] "
+    return text[:head].rstrip() + note + text[len(text) - tail :].lstrip()
 
 
 def did_you_mean(given, options) -> str:

@@ -219,16 +219,16 @@ class Geometry:
             raise DamperFileError(
                 f"geometry.configuration: must be one of {', '.join(map(repr, CONFIGURATIONS))}, got {configuration!r}"
             )
-        L = to_si(duct_length, "m", "geometry.duct_length")
-        h = to_si(gap, "m", "geometry.gap")
-        Dp = to_si(piston_diameter, "m", "geometry.piston_diameter")
-        dr = to_si(rod_diameter, "m", "geometry.rod_diameter")
+        L = to_si(duct_length, "m", "geometry.duct_length", scalar=True)
+        h = to_si(gap, "m", "geometry.gap", scalar=True)
+        Dp = to_si(piston_diameter, "m", "geometry.piston_diameter", scalar=True)
+        dr = to_si(rod_diameter, "m", "geometry.rod_diameter", scalar=True)
         if duct_mean_diameter is None:
             if configuration == "valve":
                 raise DamperFileError("geometry.duct_mean_diameter: missing (required for a valve damper)")
             d = mixed_mean_diameter(Dp, h)
         else:
-            d = to_si(duct_mean_diameter, "m", "geometry.duct_mean_diameter")
+            d = to_si(duct_mean_diameter, "m", "geometry.duct_mean_diameter", scalar=True)
         if isinstance(ducts, bool) or not isinstance(ducts, (int, np.integer)):
             raise DamperFileError(f"geometry.ducts: must be a whole number >= 1, got {ducts!r}")
         return cls(configuration, L, d, h, Dp, dr, ducts)

@@ -49,7 +49,15 @@ from typing import IO
 
 from .errors import OutputPathError
 
-__all__ = ["atomic_output", "exists_message", "open_output", "refuse_symlink", "write_output"]
+__all__ = [
+    "atomic_output",
+    "exists_message",
+    "open_output",
+    "refuse_odd_name",
+    "refuse_read_only",
+    "refuse_symlink",
+    "write_output",
+]
 
 #: Exit code of a process stopped by SIGTERM while writing (the shell's 128 + signal number).
 SIGTERM_EXIT = 128 + signal.SIGTERM
@@ -78,6 +86,37 @@ def refuse_symlink(path: str | Path, *, overwrite: bool = False, option: str = "
     )
 
 
+def _tilde_hint(folder: Path) -> str:
+    """A hint for a '~' the shell did not expand (in quotes, or after '='): Python does not either."""
+    return (
+        " ('~' is your home folder only where the shell expands it: write $HOME)" if str(folder).startswith("~") else ""
+    )
+
+
+def refuse_odd_name(out: str | Path, option: str) -> None:
+    """An :class:`~erdesign.errors.OutputPathError` for a name that is not what the user meant to write: one
+    ending in '/' (a folder; Path() drops the slash and 'new.csv/' was written as the file new.csv) or in a space
+    ('x.csv ' was read as the suffix '.csv ')."""
+    text = str(out)
+    if text.endswith(("/", os.sep)) and text.strip("/" + os.sep):
+        raise OutputPathError(f"{option} {text}: ends in '/', a folder; give a file name (e.g. {text}out.csv)")
+    name = os.path.basename(text)
+    if name != name.strip():
+        raise OutputPathError(f"{option} {text!r}: the file name starts or ends in a space; remove it")
+
+
+def refuse_read_only(path: Path, option: str) -> None:
+    """An :class:`~erdesign.errors.OutputPathError` for an existing file nobody may write (chmod a-w): the rename
+    that replaces a file ignores its permissions, so --force would replace a file its owner protected."""
+    with contextlib.suppress(OSError):
+        st = os.stat(path, follow_symlinks=False)
+        if stat.S_ISREG(st.st_mode) and not st.st_mode & 0o222:
+            raise OutputPathError(
+                f"{option} {path}: the file is read-only; --force does not replace a protected file: make it "
+                f"writable (chmod u+w) or choose another name"
+            )
+
+
 def _temporary(path: Path, option: str, made: list) -> tuple[Path, int]:
     """A new empty file beside ``path``, created exclusively with the usual permissions (0o666 less the umask).
 
@@ -95,7 +134,9 @@ def _temporary(path: Path, option: str, made: list) -> tuple[Path, int]:
             made.remove(tmp)
             continue
         except FileNotFoundError:
-            raise OutputPathError(f"{option} {path}: the folder {folder} does not exist") from None
+            if folder.is_dir():  # /proc: a folder of the system that takes no new files
+                raise OutputPathError(f"{option} {path}: cannot create a file in the folder {folder}") from None
+            raise OutputPathError(f"{option} {path}: the folder {folder} does not exist{_tilde_hint(folder)}") from None
         except NotADirectoryError:
             raise OutputPathError(f"{option} {path}: {folder} is not a folder") from None
         except PermissionError:
@@ -199,10 +240,13 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
         ``path`` exists (and not ``overwrite``), is a folder or a symbolic link, or its folder is missing or not
         writable; the message is one line naming ``option`` and ``path``.
     """
+    if path is not None and not isinstance(path, (str, os.PathLike)):  # a Series: "expected str, bytes or ..."
+        raise OutputPathError(f"{option}: expected a file name (a str or Path), got {type(path).__name__}")
     if path is None or str(path).strip() == "":
         raise OutputPathError(f"{option}: empty file name")
     if "\x00" in str(path):  # "embedded null byte", a ValueError from the first system call
         raise OutputPathError(f"{option} {str(path)!r:.80}: the file name holds a NUL character; give a plain name")
+    refuse_odd_name(path, option)
     path = Path(path)
     longest = max((len(part.encode("utf-8", "surrogateescape")) for part in path.parts), default=0)
     if longest > _NAME_MAX:  # "[Errno 36] File name too long: '<the whole path>'"
@@ -213,6 +257,8 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
     refuse_symlink(path, overwrite=overwrite, option=option)
     if path.is_dir() and not path.is_symlink():
         raise OutputPathError(f"{option} {path}: is a folder; give a file name")
+    if overwrite:
+        refuse_read_only(path, option)
     with _terminate_as_exit():
         made: list[Path] = []
         try:

@@ -37,13 +37,14 @@ from __future__ import annotations
 import math
 import numbers
 import typing
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Annotated, Any
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, ValidationInfo
 
-from .errors import ErdesignError, did_you_mean
+from .errors import ErdesignError, PlausibilityWarning, did_you_mean
 from .units import to_si
 
 __all__ = [
@@ -62,6 +63,7 @@ __all__ = [
     "validate",
     "key_table",
     "QuantitySpec",
+    "implausible",
 ]
 
 
@@ -93,6 +95,9 @@ class QuantitySpec:
     sign: str = ""  # "", "positive" or "non-negative"
     dimension: str = ""  # what the docs call it ("length"); the unit's dimension by default
     text: bool = False  # only a string (a bare number is refused as such, not as a number without unit)
+    #: (low, high, why): the range real dampers take, SI; a value outside is warned (a unit mistake is likely),
+    #: the warning naming the key and ``why`` (whose range it is: "any damper's force")
+    plausible: tuple[float, float, str] | None = None
 
     def check(self, value: Any) -> Any:
         if (
@@ -112,10 +117,18 @@ class QuantitySpec:
         return value
 
 
-def quantity(unit: str, sign: str = "", dimension: str = "", *, text: bool = False) -> Any:
+def quantity(
+    unit: str,
+    sign: str = "",
+    dimension: str = "",
+    *,
+    text: bool = False,
+    plausible: tuple[float, float, str] | None = None,
+) -> Any:
     """The type of a key whose value is a quantity in a unit of ``unit``'s dimension (any unit pint knows);
-    ``sign`` "positive" or "non-negative"; ``text``: only strings (a bare number is refused as not text)."""
-    spec = QuantitySpec(unit, sign, dimension, text)
+    ``sign`` "positive" or "non-negative"; ``text``: only strings (a bare number is refused as not text);
+    ``plausible``: ``(low, high, why)`` in ``unit``, the range outside which :func:`validate` warns."""
+    spec = QuantitySpec(unit, sign, dimension, text, plausible)
     return Annotated[Any, BeforeValidator(spec.check), spec]
 
 
@@ -146,13 +159,23 @@ def checked(check: Any, kind: str) -> Any:
     :class:`~erdesign.errors.ErdesignError` whose message starts with ``name`` and returns the value to keep;
     ``kind`` says what the key takes (the docs' key table)."""
 
-    def run(value: Any) -> Any:
-        try:
-            return check(value, "\x00")
-        except ErdesignError as exc:
-            raise _Refused(str(exc).removeprefix("\x00: ")) from None
+    def run(value: Any, info: ValidationInfo) -> Any:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                kept = check(value, "\x00")
+            except ErdesignError as exc:
+                raise _Refused(str(exc).removeprefix("\x00: ")) from None
+        for w in caught:  # a warning of the check names the key as validate() will: "\x00" is not shown
+            text = str(w.message).replace("\x00", f"{_KEY}{info.field_name}")
+            warnings.warn(text, w.category, stacklevel=2)
+        return kept
 
     return Annotated[Any, BeforeValidator(run), kind]
+
+
+#: Where a check's warning names its key: validate() puts the dotted name of the table in front.
+_KEY = "\x00key:"
 
 
 def _text(value: Any) -> str:
@@ -259,13 +282,46 @@ def _message(model: type[Table], where: str, error: Mapping[str, Any]) -> str:
 def validate(model: type[Table], data: Any, where: str = "", *, error: type[ErdesignError] = ErdesignError) -> Table:
     """``data`` (a parsed TOML table) checked against ``model``; the first problem is an ``error`` whose one-line
     message names the dotted key (``where`` is the table's own dotted name, "" for a whole file)."""
+    prefix = f"{where}." if where else ""
     try:
-        return model.model_validate(data)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            table = model.model_validate(data)
     except ValidationError as exc:
         errors = exc.errors(include_url=False)
         # a misspelt key is an unknown key and a missing one: name the unknown one, the cause
         first = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
         raise error(" ".join(_message(model, where, first).split())) from None
+    for w in caught:
+        warnings.warn(str(w.message).replace(_KEY, prefix), w.category, stacklevel=3)
+    for message in implausible(table, where):
+        warnings.warn(message, PlausibilityWarning, stacklevel=3)
+    return table
+
+
+def implausible(table: Table, where: str = "") -> list[str]:
+    """The message of each value of ``table`` (and the tables in it) outside its declared plausible range
+    (:func:`quantity`'s ``plausible``), naming the dotted key: possible, but beyond any real damper (a unit mistake
+    is likely: "1e9 V" for an ER supply, "1e12 N" for a force)."""
+    messages = []
+    for key in table.model_fields_set:
+        info, value = type(table).model_fields[key], getattr(table, key)
+        name = f"{where}.{key}" if where else key
+        items = value if isinstance(value, list) else [value]
+        for i, item in enumerate(items, start=1):
+            if isinstance(item, Table):
+                messages += implausible(item, f"{name}[{i}]" if isinstance(value, list) else name)
+        spec = next((m for m in info.metadata if isinstance(m, QuantitySpec) and m.plausible), None)
+        if spec is None or value is None:
+            continue
+        lo, hi, why = spec.plausible
+        x = to_si(value, spec.unit, name)
+        if not lo <= x <= hi:
+            messages.append(
+                f"{name}: {x:.4g} {spec.unit} is {'below' if x < lo else 'beyond'} {why} ({lo:g} to {hi:g} "
+                f"{spec.unit}); check the value and its unit"
+            )
+    return messages
 
 
 # ------------------------------------------------------------------------------------------------- the docs
@@ -277,7 +333,10 @@ def _kind(info: Any) -> str:
             what = meta.dimension or dimension_name(ureg.Quantity(1, meta.unit).dimensionality)
             what = what.removeprefix("a ").removeprefix("an ")
             sign = {"positive": " > 0", "non-negative": " >= 0"}.get(meta.sign, "")
-            return f'{what}{sign}, with a unit ("1 {meta.unit}")'
+            warned = (
+                f"; warned outside {meta.plausible[0]:g} to {meta.plausible[1]:g} {meta.unit}" if meta.plausible else ""
+            )
+            return f'{what}{sign}, with a unit ("1 {meta.unit}"){warned}'
         if isinstance(meta, _Choice):
             return " or ".join(f'"{o}"' for o in meta.options)
         if isinstance(meta, str):

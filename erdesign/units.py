@@ -192,6 +192,10 @@ def clean_value_text(text: str, name: str, *, number: bool = True) -> str:
     if _DIGIT_SEPARATOR.search(clean):
         plain = _DIGIT_SEPARATOR.sub(lambda m: m[0][0] + m[0][2], clean)
         raise UnitError(f"{name}: {shown!r} has a digit separator; write the number without it ({plain!r})")
+    if re.search(r"(?<![\w.])0[xX][0-9a-fA-F]", clean):  # '0x1p-10 m' was "a '-' between units"
+        raise UnitError(f"{name}: {shown!r} has a hexadecimal number; write the value in decimal, e.g. '0.8 mm'")
+    if '"' in clean or "''" in clean:  # 0.0315" (inches): "cannot read" without a reason
+        raise UnitError(f"{name}: {shown!r} has a '\"' (an inch mark?); write the unit as 'in'")
     if "#" in clean:
         raise UnitError(f"{name}: {shown!r} has a '#'; give the value and its unit only")
     if re.search(r"[-+]\s*[-+]", clean):
@@ -255,12 +259,27 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         )
     if _POWER_TOWER.search(text):
         raise UnitError(f"{name}: {shown!r} has a power of a power; give the unit with one exponent, e.g. 'm^3'")
+    if text.count("(") != text.count(")"):  # was "(('EOF in multi-line statement', (2, 0)))"
+        raise UnitError(f"{name}: {shown!r} has unbalanced brackets; close each '(' with a ')'")
+    if text.rstrip()[-1:] in ("/", "*", "^", "-", "+"):
+        raise UnitError(f"{name}: {shown!r}: the unit ends in {text.rstrip()[-1]!r}; complete or remove it")
+    if what == "value" and re.match(r"[eE][-+]?\d", text):  # '5 e-3 m': "a '-' between units"
+        raise UnitError(f"{name}: {shown!r} has a space inside the number; write it without (e.g. '5e-3 m')")
+    for dash in re.finditer(r"\s-\s*[\d.]", f" {text}"):  # '0.8 mm - 0.9 mm': "a '-' between units"
+        before = f" {text}"[: dash.start()].rstrip()
+        if what == "value" and (not before or before[-1] not in "^*"):  # not an exponent ('m ^ -1')
+            raise UnitError(f"{name}: {shown!r} is a range (a '-' between two values); give one value with its unit")
+    exponent = re.search(r"([A-Za-zµμ]+)-(\d)", text)
+    if exponent and exponent[1] not in ("e", "E"):  # 'N s m-1': "a '-' between units"
+        raise UnitError(f"{name}: {shown!r} has a power without '^'; write e.g. '{exponent[1]}^-{exponent[2]}'")
     # 'mil' is a thousandth of an inch on every drawing a damper comes from; pint's 'mil' is an angle (1/6400 turn)
     text = _MIL.sub("thou", text)
     try:
         return ureg.parse_units(text)
     except pint.errors.UndefinedUnitError as exc:
-        raise UnitError(f"{name}: unknown unit {'in ' if what == 'value' else ''}{shown!r} ({exc})") from None
+        raise UnitError(
+            f"{name}: unknown unit {'in ' if what == 'value' else ''}{shown!r} ({exc}){_unit_hint(exc, text)}"
+        ) from None
     except ValueError as exc:
         if "scaling factor" in str(exc) and what == "value":
             raise UnitError(
@@ -282,6 +301,90 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         raise UnitError(f"{name}: cannot read {shown!r} as {kind}{detail}") from None
 
 
+#: A number times a power of ten as typeset or typed ('1 ×10³ N', '1.5·10⁻³ m', '2 x 10^3 N', '2*10**-3 m'): the power
+#: written with '^', '**' or superscript digits (pint read the superscripts as "missing unary operator").
+_TIMES_TEN = re.compile(
+    r"^\s*([-+]?(?:\d+\.?\d*|\.\d+))\s*[×xX*·⋅]\s*10\s*"
+    r"(?:(?:\^|\*\*)\s*\(?\s*([-+]?)\s*(\d+)\s*\)?|([⁻⁺]?)([⁰¹²³⁴⁵⁶⁷⁸⁹]+))(?![\d.])",
+    re.ASCII,
+)
+_SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789-+")
+
+
+def _as_exponent(m: re.Match) -> str:
+    sign = (m[2] or m[4] or "").translate(_SUPERSCRIPTS)
+    return f"{m[1]}e{sign}{(m[3] or m[5]).translate(_SUPERSCRIPTS)} "
+
+
+def _unit_hint(exc: pint.errors.UndefinedUnitError, text: str = "") -> str:
+    """What an unknown unit was likely meant as: a power written without '^' ('cm3'), the unit ``text`` with a
+    word in another case or split in two that gives a quantity erdesign knows ('KPa' -> 'kPa', 'Ns/m' -> 'N s/m',
+    not 'ns/m'), or else a unit in another case: '; did you mean ...?'."""
+    names = exc.unit_names if isinstance(exc.unit_names, (list, tuple)) else [exc.unit_names]
+    for token in map(str, names):
+        power = re.fullmatch(r"([A-Za-zµμ]+?)([23])", token)
+        if power and _is_unit(power[1]):
+            return f"; write a power with '^', e.g. '{power[1]}^{power[2]}'"
+    fixed = _meant(f"1 {text}", None) if text else None
+    if fixed is not None:
+        return f"; did you mean {fixed[2:]!r}?"
+    for token in map(str, names):
+        variants = [token[:1].swapcase() + token[1:], token[:-1] + token[-1:].swapcase(), token.lower()]
+        variants += [token[:1].swapcase() + token[1:-1] + token[-1:].swapcase(), token[:1] + token[1:].lower()]
+        for v in dict.fromkeys(variants):
+            if v != token and _is_unit(v):
+                return f"; units are case-sensitive: did you mean {v!r}?"
+    return ""
+
+
+def _dimension_quietly(text: str) -> Any:
+    """The dimension of a value's text as pint reads it, without erdesign's checks and hints (the hints try
+    variants of a unit through it: through :func:`parse_quantity` they would try variants of the variants)."""
+    m = _QUANTITY_TEXT.fullmatch(text)
+    if m is None:
+        raise ValueError(text)
+    return ureg.parse_units(_MIL.sub("thou", m[2])).dimensionality if m[2] else ureg.Unit("").dimensionality
+
+
+def _meant(text: str, target: Any, *, known_too: bool = False) -> str | None:
+    """``text`` with one unit word changed so that the value has the dimension of ``target`` (None: any dimension
+    erdesign names, :func:`dimension_name`): the word in another case ('KPa' -> 'kPa', '7 pa*s' -> '7 Pa*s') or two
+    units written together ('Ns/m' -> 'N s/m'); only unknown words unless ``known_too``; None when no change does."""
+    for word in dict.fromkeys(re.findall(r"[A-Za-z]+", text)):
+        if not known_too and _is_unit(word):
+            continue
+        # 'KN' -> 'kN' (not 'kn', knots), 'MM' -> 'mm' ('mM' is millimolar, 'Mm' a megametre), 'kv' -> 'kV'
+        variants = [word[:1].swapcase() + word[1:], word.lower(), word[:-1] + word[-1:].swapcase()]
+        # two units written together ('Ns', 'ms^-1' for m s^-1), never a unit split into itself twice ('mm')
+        variants += [
+            f"{word[:i]} {word[i:]}"
+            for i in range(1, len(word))
+            if word[:i] != word[i:] and _is_unit(word[:i]) and _is_unit(word[i:])
+        ]
+        for v in dict.fromkeys(variants):
+            fixed = re.sub(rf"(?<![A-Za-z]){word}(?![A-Za-z])", v, text)
+            try:
+                dim = _dimension_quietly(fixed)
+                if dim == target.dimensionality if target is not None else (dim in _DIMENSION_NAMES and dim):
+                    return fixed
+            except Exception:  # noqa: BLE001 - any failure: not what was meant
+                continue
+    return None
+
+
+def _case_hint(text: str, target: Any) -> str:
+    """'; did you mean ...?' when one unit word of ``text`` changed (:func:`_meant`) gives the dimension of
+    ``target`` ('7 pa*s' is 7 peta-years squared, '10 kn' 10 knots, '1 Nm' a nanometre per ... ), else ""."""
+    fixed = _meant(text, target, known_too=True)
+    if fixed is None and text != text.lower():  # '0.1 M/S': every letter in capitals
+        try:
+            if _dimension_quietly(text.lower()) == target.dimensionality:
+                fixed = text.lower()
+        except Exception:  # noqa: BLE001 - any failure: no hint
+            pass
+    return "" if fixed is None else f"; did you mean {fixed!r}?"
+
+
 def parse_quantity(text: str, name: str) -> pint.Quantity:
     """A quantity from a string such as ``"0.8 mm"`` or ``"-40 degC"``, or a :class:`~erdesign.errors.UnitError`
     naming ``name``: the one parser of values with units (:func:`clean_value_text` says what it refuses).
@@ -301,12 +404,15 @@ def parse_quantity(text: str, name: str) -> pint.Quantity:
         raise UnitError(f"{name}: expected a value with a unit as a string, got {type(text).__name__} {text!r:.60}")
     clean = clean_value_text(text, name)
     shown = text if len(text) <= 60 else text[:57] + "..."
+    clean = _TIMES_TEN.sub(_as_exponent, clean, count=1)  # '1 ×10³ N' (scientific notation as typeset): '1e3 N'
     m = _QUANTITY_TEXT.fullmatch(clean)
     if m is None:
         raise UnitError(
             f"{name}: cannot read {shown!r} as a value with a unit; give one number, then its unit (e.g. '0.8 mm')"
         )
     number, unit = m[1], m[2]
+    if "[" in unit or "]" in unit:  # '0.8 [mm]' (a unit in a header's brackets), 'N/[m/s]': brackets
+        unit = unit.replace("[", "(").replace("]", ")")
     magnitude = float(number)
     mantissa = re.split("[eE]", number)[0]
     if magnitude != 0.0 and abs(magnitude) < sys.float_info.min or magnitude == 0.0 and re.search("[1-9]", mantissa):
@@ -344,7 +450,9 @@ def same_dimension(a: Any, b: Any) -> bool:
     return getattr(qa, "dimensionality", None) == getattr(qb, "dimensionality", None)
 
 
-def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) -> float | np.ndarray:
+def to_si(
+    value: Any, unit: str, name: str, *, allow_nonfinite: bool = False, scalar: bool = False
+) -> float | np.ndarray:
     """Magnitude of ``value`` in the SI unit ``unit``, checked.
 
     Parameters
@@ -358,6 +466,8 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
         Name of the argument or file key, used in error messages.
     allow_nonfinite : bool
         Let NaN and infinity through (default: such values are errors).
+    scalar : bool
+        Only one value (a geometry's length, a fluid's property): an array is an error naming ``name``.
 
     Returns
     -------
@@ -370,14 +480,27 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
         The value has another dimension, an unknown unit, no unit where one is needed, or is not finite.
     """
     given = value
-    value = _parse(value, name)
+    if isinstance(
+        value, (bytes, bytearray)
+    ):  # was "b'0.1 m/s' has no unit; expected a velocity, e.g. 'b'0.1 m/s' m/s'"
+        raise UnitError(f"{name}: expected text or a quantity, got bytes {value!r:.60}; decode it first")
     target = ureg.Unit(unit)
+    try:
+        value = _parse(value, name)
+    except UnitError as exc:
+        better = _meant(given, target) if "unknown unit" in str(exc) else None
+        if better is None:
+            raise
+        base = re.split(r"; (?:units are case-sensitive|write a power|did you mean)", str(exc))[0]
+        raise UnitError(f"{base}; did you mean {better!r}?") from None
     if isinstance(value, pint.Quantity):
         if value.dimensionality != target.dimensionality:
             shown = given if isinstance(given, str) else _shown_quantity(value)
             hint = ""
             if isinstance(given, str) and re.search(r"Pas\b", given) and target.dimensionality == _VISCOSITY:
                 hint = "; 'Pas' reads as pascals: write 'Pa*s' (or 'mPa*s')"  # '7000 mPas', German 'mPas'
+            elif isinstance(given, str):
+                hint = _case_hint(given, target)  # '7 pa*s' is 7 peta-years squared, '10 kn' 10 knots
             raise UnitError(
                 f"{name}: expected {dimension_name(target.dimensionality)} (a value with a unit such as "
                 f"'{unit}'), got '{shown}' ({dimension_name(value.dimensionality)}){hint}"
@@ -386,15 +509,22 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     else:
         if isinstance(value, (bool, np.bool_)) or value is None:
             raise UnitError(f"{name}: expected {dimension_name(target.dimensionality)}, got {value!r}")
-        if _holds_text(value):  # ["1 mL/s", "2 mL/s"]: the example showed '['1 mL/s', '2 mL/s'] m^3/s'
+        held = _holds_text(value)
+        if held:  # ["1 mL/s", "2 mL/s"]: the example showed '['1 mL/s', '2 mL/s'] m^3/s'
             raise UnitError(
-                f"{name}: a sequence of texts; give one quantity array, e.g. Q_([1.0, 2.0], '{unit}'), or one "
+                f"{name}: a sequence of {held}; give one quantity array, e.g. Q_([1.0, 2.0], '{unit}'), or one "
                 "value per call"
             )
         if target.dimensionality:
+            if np.ndim(value) == 0:
+                raise UnitError(
+                    f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
+                    f"e.g. '{value} {unit}'"
+                )
+            # a Series or an array: its repr ran over several lines into the example
             raise UnitError(
-                f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
-                f"e.g. '{value} {unit}'"
+                f"{name}: {type(value).__name__} of shape {np.shape(value)} has no unit; expected "
+                f"{dimension_name(target.dimensionality)}, e.g. Q_(values, '{unit}')"
             )
         magnitude = value
     if np.ma.isMaskedArray(magnitude) and np.ma.getmaskarray(magnitude).any():  # asarray would use hidden values
@@ -406,14 +536,23 @@ def to_si(value: Any, unit: str, name: str, *, allow_nonfinite: bool = False) ->
     if not allow_nonfinite and not np.all(np.isfinite(magnitude)):
         shown = _shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value)
         raise UnitError(f"{name}: value must be finite, got {shown}")
+    if scalar and magnitude.ndim != 0:  # an array where one value is meant: "truth value of an array ..." later
+        raise UnitError(f"{name}: expected one value, got an array of shape {magnitude.shape}")
     return float(magnitude) if magnitude.ndim == 0 else magnitude
 
 
-def _holds_text(value: Any) -> bool:
-    """True for a list, tuple or array holding strings (or quantities) rather than numbers."""
-    if isinstance(value, np.ndarray):
-        return value.dtype.kind in "USO" and any(isinstance(v, (str, pint.Quantity)) for v in value.ravel()[:100])
-    return isinstance(value, (list, tuple)) and any(isinstance(v, (str, pint.Quantity)) for v in value[:100])
+def _holds_text(value: Any) -> str:
+    """ "texts" or "quantities" for a list, tuple, array or pandas Series holding strings or quantities rather than
+    numbers; "" otherwise."""
+    if isinstance(value, (list, tuple)):
+        items = value[:100]
+    elif getattr(getattr(value, "dtype", None), "kind", "") in "USOT" and np.ndim(value) > 0:  # arrays, Series
+        items = list(np.asarray(value, dtype=object).ravel()[:100])
+    else:
+        return ""
+    if any(isinstance(v, str) for v in items):
+        return "texts"
+    return "quantities" if any(isinstance(v, pint.Quantity) for v in items) else ""
 
 
 def _shown_quantity(q: pint.Quantity) -> str:

@@ -71,6 +71,18 @@ def _dotted(path: tuple) -> str:
     return ".".join(f"{p}" for p in path)
 
 
+def _where(path: tuple) -> str:
+    """The dotted key of a value as the library's messages name it, items counted from 1 as users count:
+    ``design.point[1].min_force``, ``design.bounds.ducts[2]`` (the high end of the range)."""
+    parts: list[str] = []
+    for p in path:
+        if isinstance(p, int) and parts:
+            parts[-1] += f"[{p + 1}]"
+        else:
+            parts.append(f"{p}")
+    return ".".join(parts)
+
+
 def _section(path: tuple) -> str:
     """The group a value is shown in: ``Design point 1``, ``Limits``, ``Bounds of the geometry``, ..."""
     if path[0] == "fluid":
@@ -117,7 +129,7 @@ def requirements_data(data: dict, texts: dict[str, str]) -> dict:
     out = copy.deepcopy(data)
     for path, value, key in requirement_inputs(data):
         text = texts.get(key, _in_system(value)).strip()
-        where = _dotted(path)
+        where = _where(path)
         try:
             if isinstance(value, bool):
                 if text.lower() not in ("true", "false"):
@@ -134,7 +146,9 @@ def requirements_data(data: dict, texts: dict[str, str]) -> dict:
             else:
                 new = text
         except ValueError:
-            kind = "true or false" if isinstance(value, bool) else f"a {type(value).__name__} number"
+            kind = (
+                "true or false" if isinstance(value, bool) else "an integer" if isinstance(value, int) else "a number"
+            )
             raise ErdesignError(f"{where}: expected {kind}, got {text!r}") from None
         target = out
         for p in path[:-1]:
@@ -177,7 +191,7 @@ def _inputs(data: dict) -> dict[str, str]:
                         _label(path),
                         key,
                         _in_system(value),
-                        help=f"{_dotted(path)} of the requirements file (docs/design.md)",
+                        help=f"{_where(path)} of the requirements file (docs/design.md)",
                     )
     return texts
 
@@ -388,10 +402,14 @@ def render() -> None:
     try:
         values = requirements_data(data, texts)
         values.setdefault("design", {}).setdefault("search", {}).update(samples=int(samples), designs=int(keep))
-        req = requirements_from_dict(values, source="requirements")
+        # the requirements' plausibility warnings ("min_force: 1e+12 N is beyond the force of any damper") were
+        # printed to the server's log, not shown
+        req, warned = state.caught(lambda: requirements_from_dict(values, source="requirements"))
     except ErdesignError as exc:
         st.error(state.clean_message(str(exc)), icon="🚫")
         return
+    for message in warned:
+        st.warning(state.clean_message(message), icon="⚠️")
     if st.button("Search", key=_PREFIX + "search", type="primary", icon=":material/search:"):
         bar = st.progress(0.0, text="sampling the design space")
 

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import ErdesignError
+from ..errors import ErdesignError, did_you_mean
 from ..executor import Executor, executor_for
 from ..output import atomic_output
 
@@ -290,9 +290,15 @@ def read_manifest(path: str | Path) -> list[dict[str, str]]:
             reader = csv.DictReader(fh)
             fields = [f.strip() for f in (reader.fieldnames or [])]
             if "record" not in fields:
+                hint = did_you_mean(fields[0] if fields else "", ["record"])
+                if len(fields) == 1 and ";" in fields[0]:
+                    hint = " (the columns are separated by ';': a manifest separates them by ',')"
                 raise ErdesignError(
-                    f"--manifest: {path} has no 'record' column (columns: {', '.join(fields) or 'none'})"
+                    f"--manifest: {path} has no 'record' column (columns: {', '.join(fields) or 'none'}){hint}"
                 )
+            twice = sorted({f for f in fields if fields.count(f) > 1})
+            if twice:  # 'record,record': the second was taken without a word
+                raise ErdesignError(f"--manifest: {path} line 1: the column {twice[0]!r} appears twice")
             unknown = sorted(set(fields) - {"record", "damper", "effects"})
             if unknown:
                 raise ErdesignError(
@@ -300,10 +306,18 @@ def read_manifest(path: str | Path) -> list[dict[str, str]]:
                     "'record' and optional 'damper' and 'effects'"
                 )
             rows = []
-            for line, raw in enumerate(reader, start=2):
+            for raw in reader:
+                line = reader.line_num  # the file's line (blank lines are skipped, not counted away)
+                if raw.get(None):  # 'a.csv,seal_friction,fluid_inertia': the last effect was dropped
+                    raise ErdesignError(
+                        f"--manifest: {path} line {line}: {len(fields) + len(raw[None])} cells for {len(fields)} "
+                        'columns; quote a cell that holds commas (effects: "seal_friction,fluid_inertia")'
+                    )
                 row = {k.strip(): (v or "").strip() for k, v in raw.items() if k is not None}
                 if not row.get("record"):
                     raise ErdesignError(f"--manifest: {path} line {line}: empty 'record'")
+                if [row.get(f, "") for f in fields] == fields:
+                    raise ErdesignError(f"--manifest: {path} line {line}: the header again; remove the line")
                 rows.append(
                     {
                         "record": row["record"],

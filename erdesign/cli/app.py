@@ -8,7 +8,7 @@ import sys
 import click
 
 from ..app import APP_FILE
-from .main import cli
+from .main import WholeNumber, cli
 
 __all__ = ["app", "streamlit_command"]
 
@@ -37,7 +37,7 @@ Examples:
 
 
 @cli.command(context_settings={"ignore_unknown_options": True}, epilog=_EXAMPLES)
-@click.option("--port", type=int, default=None, help="Port to serve on (default: Streamlit's, 8501).")
+@click.option("--port", type=WholeNumber(1, 65535), default=None, help="Port to serve on (default: Streamlit's, 8501).")
 @click.option("--headless", is_flag=True, help="Do not open a browser.")
 @click.argument("streamlit_args", nargs=-1, type=click.UNPROCESSED)
 def app(port: int | None, headless: bool, streamlit_args: tuple[str, ...]) -> None:

@@ -9,7 +9,7 @@ import time
 
 import click
 
-from .main import NumberRange, cli, emit_json, executor_options, json_number
+from .main import NumberRange, cli, emit_json, WholeNumber, executor_options, json_number
 
 __all__ = ["batch"]
 
@@ -78,7 +78,7 @@ class Progress:
 )
 @click.option("--force-noise", default=None, metavar="F", help='The load cell\'s noise, e.g. "5 N" (fit, diagnose).')
 @click.option("--model", "model_name", default=None, help="Registry name (identify; see 'erdesign models').")
-@click.option("--starts", default=None, type=click.IntRange(1, 100), help="Most local starts (identify; default 4).")
+@click.option("--starts", default=None, type=WholeNumber(1, 100), help="Most local starts (identify; default 4).")
 @click.option(
     "--max-time",
     default=None,
@@ -89,7 +89,7 @@ class Progress:
 @click.option(
     "--decimate",
     default=None,
-    type=click.IntRange(1, 1000),
+    type=WholeNumber(1, 1000),
     metavar="K",
     help="Fit on every K-th sample only (identify).",
 )

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import click
 
-from .main import NumberRange, cli, emit_json, executor_options
+from .main import NumberRange, cli, emit_json, WholeNumber, executor_options
 
 __all__ = ["characterize"]
 
@@ -44,7 +44,7 @@ Examples:
     "--starts",
     default=1,
     show_default=True,
-    type=click.IntRange(min=1),
+    type=WholeNumber(min=1),
     help="Starts of each identification (more only run when the first is no better than a Bingham fit).",
 )
 @click.option(

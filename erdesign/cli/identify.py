@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import click
 
-from .main import NumberRange, as_flags, cli, emit_json
+from .main import NumberRange, WholeNumber, as_flags, cli, emit_json
 
 __all__ = ["identify"]
 
@@ -49,7 +49,7 @@ Examples:
     "--starts",
     default=4,
     show_default=True,
-    type=click.IntRange(1, 100),
+    type=WholeNumber(1, 100),
     help="Most local starts; the extra ones run only when the first fails.",
 )
 @click.option(
@@ -63,7 +63,7 @@ Examples:
     "--decimate",
     default=1,
     show_default=True,
-    type=click.IntRange(1, 1000),
+    type=WholeNumber(1, 1000),
     metavar="K",
     help="Fit on every K-th sample only (scores on all samples).",
 )

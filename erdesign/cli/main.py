@@ -37,18 +37,53 @@ __all__ = [
     "check_effects_option",
     "COMMANDS",
     "NumberRange",
+    "WholeNumber",
 ]
 
 
+def _number_text(kind: click.ParamType, value: Any, param, ctx, *, whole: bool) -> Any:
+    """The text of a numeric option read as the library reads numbers (:func:`erdesign.units.plain_number`), or a
+    usage error naming the option.
+
+    click's own types use Python's ``int()`` and ``float()``, which read digit separators (``"1_000"``) and digits
+    of other scripts (``"\u0661\u0660"``) that no other number in erdesign is read from: refused here, with the
+    library's words.  A whole number may be written as a float that is one (``"1e5"``)."""
+    from ..errors import UnitError
+    from ..units import clean_value_text, plain_number
+
+    if not isinstance(value, str):
+        return value
+    number = plain_number(value)
+    if number is None:
+        try:  # says what is wrong with the text (a digit separator, an Arabic-Indic digit, a comma ...)
+            clean_value_text(value, "", number=False)
+        except UnitError as exc:
+            kind.fail(str(exc).removeprefix(": ").split(", e.g. ")[0], param, ctx)
+        kind.fail(f"{value!r} is not a {'whole number' if whole else 'number'}", param, ctx)
+    if math.isnan(number):
+        kind.fail(f"{value!r} is not a number", param, ctx)
+    if whole:
+        if not math.isfinite(number) or number != int(number):
+            kind.fail(f"{value!r} is not a whole number", param, ctx)
+        return int(number)
+    return number
+
+
 class NumberRange(click.FloatRange):
-    """click's FloatRange without NaN: ``--max-time nan`` passed its bounds (every comparison with NaN is false)
-    and meant no limit at all."""
+    """The type of every real-number option: click's FloatRange reading numbers as the rest of erdesign does
+    (:func:`_number_text`), and without NaN (``--max-time nan`` passed its bounds: every comparison with NaN is
+    false, and it meant no limit at all)."""
 
     def convert(self, value, param, ctx):
-        number = super().convert(value, param, ctx)
-        if math.isnan(number):
-            self.fail(f"{value!r} is not a number", param, ctx)
-        return number
+        return super().convert(_number_text(self, value, param, ctx, whole=False), param, ctx)
+
+
+class WholeNumber(click.IntRange):
+    """The type of every whole-number option (``--seed``, ``--jobs``, ``--samples`` ...): click's IntRange reading
+    numbers as the rest of erdesign does (:func:`_number_text`).  Without bounds it takes any whole number."""
+
+    def convert(self, value, param, ctx):
+        return super().convert(_number_text(self, value, param, ctx, whole=True), param, ctx)
 
 
 # Command name -> (module beside this one, one-line help shown by ``erdesign --help``).  The module registers the
@@ -209,7 +244,7 @@ def executor_options(default_jobs: str):
         return click.option(
             "--jobs",
             default=None,
-            type=click.IntRange(min=1),
+            type=WholeNumber(min=1),
             metavar="N",
             is_eager=True,
             help=f"Run the independent tasks on N local processes (default: {default_text}); the "
@@ -228,7 +263,7 @@ def json_number(x: float | None) -> float | None:
 
 
 #: The type of every --seed option: numpy's generators take a whole number >= 0 (-1 was an internal error).
-SEED = click.IntRange(min=0)
+SEED = WholeNumber(min=0)
 
 #: Library argument names in messages -> the flags that set them (the library names its own arguments).
 LIBRARY_TO_FLAG = (

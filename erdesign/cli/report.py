@@ -14,7 +14,7 @@ from ..damper.files import load_damper
 from ..errors import ErdesignError, OutputPathError
 from ..report import build_report, write_report
 from ..report.export import IMAGES_NEED
-from .main import cli, emit_json
+from .main import WholeNumber, cli, emit_json
 from .size import quantity_option
 
 __all__ = ["report", "default_report_path", "REPORT_SUFFIXES"]
@@ -119,7 +119,7 @@ def default_report_path(damper_name: str, damper_file: str, fmt: str) -> Path:
     "--tolerance-samples",
     default=10000,
     show_default=True,
-    type=click.IntRange(min=1),
+    type=WholeNumber(min=1),
     help="Monte-Carlo samples of the --vary study.",
 )
 @click.option("--force", is_flag=True, help="Overwrite the report file (and figure files) if they exist.")

@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from ..errors import one_line
-from .main import SEED, cli, emit_json, executor_options, json_number
+from .main import SEED, WholeNumber, cli, emit_json, executor_options, json_number
 from .size import quantity_option
 
 __all__ = ["tolerance"]
@@ -41,13 +41,13 @@ _LABELS = {
 )
 @click.option("--velocity", required=True, help='Piston velocity with its unit, e.g. "1 in/s".')
 @click.option("--field", default=None, help='Control: field, current or voltage, e.g. "3 kV/mm" (default 0).')
-@click.option("--samples", default=100000, show_default=True, type=int, help="Monte-Carlo samples.")
+@click.option("--samples", default=100000, show_default=True, type=WholeNumber(), help="Monte-Carlo samples.")
 @click.option("--seed", default=0, show_default=True, type=SEED, help="Seed: same seed, same numbers anywhere.")
 @click.option(
     "--sobol-samples",
     "sobol_base",
     default=None,
-    type=int,
+    type=WholeNumber(),
     metavar="N",
     help="Base samples of the Sobol design (default: a power of two near SAMPLES / (inputs + 2)).",
 )

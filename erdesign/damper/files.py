@@ -172,10 +172,41 @@ def parse_toml_bytes(raw: bytes, label: str) -> dict:
     except RecursionError:
         raise DamperFileError(nested_too_deeply(label)) from None
     except tomllib.TOMLDecodeError as exc:
-        raise DamperFileError(f"{label}: invalid TOML: {exc}") from None
+        raise DamperFileError(f"{label}: invalid TOML: {exc}{_toml_hint(text, str(exc))}") from None
     except ValueError as exc:  # beyond the parser's limits: an integer of more than 4300 digits
         detail = "a number of thousands of digits" if "digits" in str(exc) else str(exc)
         raise DamperFileError(f"{label}: invalid TOML: {detail}") from None
+
+
+_CURLY_QUOTES = "\u201c\u201d\u201e\u2018\u2019\u201a\u00ab\u00bb"
+
+
+def _toml_hint(text: str, message: str) -> str:
+    """What the parser's words ("Cannot overwrite a value", "Invalid value") mean on the line they name: a key given
+    twice, quotes a word processor curled, a key with a letter of another script or an invisible space."""
+    import re
+    import unicodedata
+
+    at = re.search(r"at line (\d+)", message)
+    lines = text.split("\n")
+    if at is None or not 1 <= int(at[1]) <= len(lines):
+        return ""
+    line = lines[int(at[1]) - 1]
+    key = line.split("=", 1)[0].strip(" \t")
+    if "Cannot declare" in message:
+        return "; a table given twice (a second [table] header, or a dotted key 'table.key' that made it already)"
+    if "Cannot overwrite a value" in message and "=" in line:
+        return f"; the key {key!r} is given twice (or a dotted key meets a value of that name): keep one"
+    curly = next((c for c in line if c in _CURLY_QUOTES), None)
+    if curly is not None:
+        return f"; the line has the curly quote {curly!r} (a word processor's): write straight quotes '\"'"
+    odd = next((c for c in key if not c.isascii()), None) if "=" in line else None
+    if odd is not None:
+        return (
+            f"; the key {key!r} holds {odd!r} ({unicodedata.name(odd, 'unnamed')}, U+{ord(odd):04X}): write keys in "
+            "ASCII letters, digits, '_' and '-'"
+        )
+    return ""
 
 
 def read_toml(path: str | Path) -> dict:

@@ -41,6 +41,7 @@ import unicodedata
 import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -951,6 +952,20 @@ def _parse_header(cells: list[str], lineno: int, path: str, require_force: bool 
         m = _HEADER.match(cell)
         # invisible characters (a BOM or a zero-width space pasted mid-line) dropped from the name
         name = "".join(ch for ch in m[1] if unicodedata.category(ch) != "Cf").strip().lower() if m else ""
+        if not cell.strip() and col == 1 and len(cells) > 1:  # df.to_csv('rec.csv') writes the index first
+            raise MeasurementError(
+                f"{path}: line {lineno}, column 1: no name; an index column, as pandas' to_csv writes by default? "
+                "write the file with to_csv(..., index=False)"
+            )
+        if not cell.strip() and col == len(cells):
+            raise MeasurementError(
+                f"{path}: line {lineno}, column {col}: no name; the header ends in a ',' (remove it, and any at the "
+                "ends of the rows)"
+            )
+        if col == 1 and re.fullmatch(r"\s*sep=.?\s*", cell, re.IGNORECASE):
+            raise MeasurementError(
+                f"{path}: line {lineno}: {cell.strip()!r} is Excel's separator line, not a header; remove the line"
+            )
         if not name:
             raise MeasurementError(
                 f"{path}: line {lineno}, column {col} ({cell.strip()!r}): expected a name with "
@@ -1015,8 +1030,14 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     non-increasing time, fewer than 5 samples.
     """
     if not is_path_like(path):
+        hint = (
+            "; for data in memory use Measurement.from_arrays(time, displacement, force)"
+            if hasattr(path, "shape")
+            else ""
+        )
         raise MeasurementError(
-            f"path: expected the name of a measurement file (a str or Path), got {type(path).__name__} {path!r:.60}"
+            f"path: expected the name of a measurement file (a str or Path), got {type(path).__name__} "
+            f"{' '.join(repr(path).split())[:60]}{hint}"
         )
     path = Path(path)
     label = str(path)
@@ -1246,6 +1267,11 @@ def _parse_table(raw: bytes, pos: int, columns: int) -> list[np.ndarray]:
     else numpy's, five times slower.  Each is correctly rounded, as Python's float (tests/test_derivatives_fast_paths.py
     compares every parser with the line-by-line reader to the bit).  Any irregular cell or row raises a ValueError
     (pyarrow's ArrowInvalid and pandas' ParserError are ones)."""
+    end = raw.find(b"\n", pos)
+    if raw.count(b",", pos, len(raw) if end < 0 else end) != columns - 1:
+        # the parsers take their column count from the first row: a row of 300,000 cells made pandas build a frame
+        # of 300,000 columns (15 s for a 600 kB file) before the line-by-line reader named the line
+        raise ValueError("the first row's cells are not the header's")
     pandas = sys.modules.get("pandas")
     if pandas is not None and _pandas_rounds_correctly(pandas.__version__):
         return _parse_table_pandas(pandas, raw, pos)
@@ -1647,6 +1673,11 @@ def write_measurement(
     ``overwrite`` (:mod:`erdesign.output`; ``option`` names the output in messages, e.g. ``--out``)."""
     from ..output import open_output
 
+    if not isinstance(m, Measurement):  # a DataFrame, or the arguments swapped: "'str' object has no attribute 'units'"
+        hint = " (the arguments are path, then record)" if isinstance(m, (str, Path)) else ""
+        raise MeasurementError(f"m: expected a Measurement, got {type(m).__name__}{hint}")
+    if units is not None and not isinstance(units, Mapping):
+        raise MeasurementError(f"units: expected a mapping of column -> unit, got {type(units).__name__} {units!r:.60}")
     units = {**m.units, **(units or {})}
     cols: list[tuple[str, np.ndarray, str]] = [("time", m.time, "s"), ("displacement", m.displacement, "m")]
     if m.force is not None:
@@ -1656,9 +1687,22 @@ def write_measurement(
         cols.append((name, m.control, CONTROL_UNITS[m.control_kind]))
     if m.temperature is not None:
         cols.append(("temperature", m.temperature, "K"))
+    unknown = sorted(set(units) - {c[0] for c in cols} - set(m.units))
+    if unknown:  # a unit for a column the record has not was dropped without a word
+        raise MeasurementError(
+            f"units: no column {unknown[0]!r} in this record{did_you_mean(unknown[0], [c[0] for c in cols])}; "
+            f"its columns: {', '.join(c[0] for c in cols)}"
+        )
     header, table = [], []
     for name, values, si_unit in cols:
         unit = units.get(name, si_unit)
+        if (
+            not isinstance(unit, str)
+            or parse_unit(unit, f"units[{name!r}]").dimensionality != Q_(1, si_unit).dimensionality
+        ):
+            raise MeasurementError(
+                f"units[{name!r}]: expected a unit of {dimension_name(Q_(1, si_unit).dimensionality)}, got {unit!r}"
+            )
         header.append(f"{name} [{unit}]")
         table.append(Q_(values, si_unit).to(unit).magnitude)
     with open_output(path, newline="", overwrite=overwrite, option=option) as fh:

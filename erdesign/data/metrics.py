@@ -62,10 +62,14 @@ def energy_per_cycle(t, x, F, frequency):
     ----------
     Kamath and Wereley (1997), eq 1.
     """
-    t, x, F = (np.asarray(a, dtype=float) for a in (t, x, F))
+    # texts, quantities and NaN were read by numpy (or "can't multiply sequence by non-int" for frequency="1 Hz")
+    t, x, F = (si_array(a, name) for a, name in ((t, "t"), (x, "x"), (F, "F")))
     if not (t.shape == x.shape == F.shape and t.ndim == 1 and t.size >= 3):
         raise ErdesignError("energy_per_cycle: t, x and F must be 1-D arrays of the same length (at least 3)")
-    n_cycles = frequency * (t[-1] - t[0])
+    frequency = si_array(frequency, "frequency")
+    if frequency.ndim or not frequency > 0:
+        raise ErdesignError(f"frequency: expected one positive frequency [Hz], got {frequency}")
+    n_cycles = float(frequency) * (t[-1] - t[0])
     if n_cycles <= 0:
         raise ErdesignError("energy_per_cycle: the record must span a positive time")
     return float(trapezoid(F, x) / n_cycles)

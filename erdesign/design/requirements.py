@@ -67,6 +67,7 @@ from __future__ import annotations
 
 import dataclasses
 import numbers
+import re
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -84,6 +85,7 @@ from ..errors import ErdesignError, PlausibilityWarning
 from ..examples import bundled_file
 from ..fluid import Fluid
 from ..geometry import CONFIGURATIONS, MAX_DUCTS
+from ..magnetics.coil import PLAUSIBLE_SUPPLY_VOLTAGE
 from ..schema import Flag, Number, Table, Text, checked, choice, quantity, validate, whole_number
 from ..schema import field as key
 from ..units import to_si
@@ -138,6 +140,9 @@ SAMPLINGS = ("sobol", "lhs")
 MAX_SAMPLES, PLAUSIBLE_SAMPLES, MAX_CHUNK = 2**24, 2**21, 2**20
 #: Longest stroke [m] of the envelope taken without a warning (car dampers 0.1-0.3 m, large seismic dampers ~1 m).
 PLAUSIBLE_STROKE = 2.0
+#: Largest min_dynamic_range taken without a warning: ER and MR dampers reach 2 to about 100 (Butz and von Stryk
+#: 2002); a thousand is a unit or a typing slip.
+PLAUSIBLE_DYNAMIC_RANGE = 1e3
 
 
 @dataclass(frozen=True)
@@ -330,6 +335,12 @@ def _range(value: Any, name: str, whole: bool = False) -> tuple[float, float]:
             raise RequirementsError(
                 f'{name}: expected ["low unit", "high unit"] or one value with a unit, got {value!r}'
             )
+        text = items[0] if len(items) == 1 else ""
+        ends = re.fullmatch(r"\s*([^-\u2013]+?)\s*(?:-|\u2013|\.\.|\bto\b)\s*([\d.].*)", text)
+        if ends and re.search(r"\d", ends[1]):  # '0.5 mm - 2 mm' was "a '-' between units"
+            raise RequirementsError(
+                f'{name}: {text!r} is a range as one text; write it as a list: ["{ends[1]}", "{ends[2]}"]'
+            )
         lo, hi = (to_si(v, "m", name) for v in (items[0], items[-1]))
     if not lo > 0:
         raise RequirementsError(f"{name}: must be positive, got {items[0]!r}")
@@ -347,9 +358,19 @@ def _tables(value: Any) -> Any:
 
 
 # ------------------------------------------------------------------------------------- the schema, declared once
-def _q(unit: str, sign: str = "", dimension: str = "") -> Any:
-    """A quantity of a requirements file: always text (a bare number is refused as such)."""
-    return quantity(unit, sign, dimension, text=True)
+def _q(unit: str, sign: str = "", dimension: str = "", plausible: tuple[float, float, str] | None = None) -> Any:
+    """A quantity of a requirements file: always text (a bare number is refused as such); outside ``plausible``
+    (low, high, whose range it is) it is warned (:func:`erdesign.schema.implausible`)."""
+    return quantity(unit, sign, dimension, text=True, plausible=plausible)
+
+
+# The ranges real dampers take (SI), outside which a requirement is warned as a likely unit mistake: forces from a
+# haptic knob's newton to the 400 kN of the largest seismic MR dampers; a body from a centimetre to a few metres;
+# hydraulic pressures up to 2000 bar; ER supplies up to 100 kV; a coil's supply, power and current density as
+# the drives of damper coils have them.
+_FORCE = (0.1, 1e6, "the force of any damper")
+_BODY = (5e-3, 5.0, "the size of any damper")
+_PRESSURE = (1e3, 2e8, "the pressure in any damper")
 
 
 Length = _q("m", "positive")
@@ -384,9 +405,11 @@ class PointTable(Table):
 
     velocity: _q("m/s", "positive") = key("piston velocity")
     field: Control = key("the control (with [design.coil]: the coil current), default 0", default=None)
-    min_force: _q("N", "positive") = key("least total force (with seal friction) at velocity and field", default=None)
+    min_force: _q("N", "positive", plausible=_FORCE) = key(
+        "least total force (with seal friction) at velocity and field", default=None
+    )
     min_dynamic_range: PositiveNumber = key("least force at field / force at zero field, at velocity", default=None)
-    max_zero_field_force: _q("N", "positive") = key(
+    max_zero_field_force: _q("N", "positive", plausible=_FORCE) = key(
         "largest force at velocity with no field (beyond the contract)", default=None
     )
 
@@ -394,29 +417,41 @@ class PointTable(Table):
 class LimitsTable(Table):
     """``[design.limits]``: what every design must respect (all optional)."""
 
-    max_outer_diameter: Length = key(
+    max_outer_diameter: _q("m", "positive", plausible=_BODY) = key(
         'cylinder outer diameter: piston diameter + 2 x wall (valve ducts "around": the outer tube)', default=None
     )
-    max_length: Length = key("body length of the envelope model (docs/design.md)", default=None)
-    max_pressure: _q("Pa", "positive") = key(
+    max_length: _q("m", "positive", plausible=_BODY) = key(
+        "body length of the envelope model (docs/design.md)", default=None
+    )
+    max_pressure: _q("Pa", "positive", plausible=_PRESSURE) = key(
         "pressure drop across the piston, at field and at zero field", default=None
     )
     laminar: Flag = key("Reynolds number (Makris et al. 1996, eq 1) below 2300 at every point", default=False)
-    min_gap: Length = key("manufacturable minimum gap (at most the largest gap of [design.bounds])", default=None)
+    min_gap: _q("m", "positive", plausible=(1e-6, 1e-2, "the gap of any damper")) = key(
+        "manufacturable minimum gap (at most the largest gap of [design.bounds])", default=None
+    )
     max_field: Control = key(
         "largest control the fluid takes (default: 4 kV/mm ER, 250 kA/m MR; Butz and von Stryk 2002, Table 1)",
         default=None,
     )
-    max_voltage: _q("V", "positive") = key("largest electrode voltage E h across the gap (ER only)", default=None)
+    max_voltage: _q("V", "positive", plausible=(1.0, 1e5, "the supply of any ER damper")) = key(
+        "largest electrode voltage E h across the gap (ER only)", default=None
+    )
 
 
 class EnvelopeTable(Table):
     """``[design.envelope]``: the envelope model of :mod:`erdesign.design.envelope` (all optional)."""
 
     stroke: _q("m", "positive") = key("full piston stroke (default 50 mm)", default=None)
-    wall: _q("m", "non-negative") = key("wall allowance of the cylinder (default 5 mm)", default=None)
-    head_length: _q("m", "non-negative") = key("valve piston head length (default 20 mm)", default=None)
-    end_allowance: _q("m", "non-negative") = key("each end cap with seal and bearing (default 25 mm)", default=None)
+    wall: _q("m", "non-negative", plausible=(0.0, 0.2, "the wall of any damper")) = key(
+        "wall allowance of the cylinder (default 5 mm)", default=None
+    )
+    head_length: _q("m", "non-negative", plausible=(0.0, 1.0, "the piston head of any damper")) = key(
+        "valve piston head length (default 20 mm)", default=None
+    )
+    end_allowance: _q("m", "non-negative", plausible=(0.0, 1.0, "the end cap of any damper")) = key(
+        "each end cap with seal and bearing (default 25 mm)", default=None
+    )
     duct_placement: choice(*DUCT_PLACEMENTS) = key(
         'valve: ducts "beside" the cylinder (Makris Fig 1) or one annulus "around" it', default="beside"
     )
@@ -462,14 +497,20 @@ class CoilTable(Table):
     pole_length: LengthRange = key("axial length of each pole")
     housing_outer_diameter: LengthRange = key("outer diameter of the steel cylinder")
     steel: Text = key("steel of the materials database", default="steel-1018")
-    supply_voltage: _q("V", "positive") = key("largest I R at every point", default=None)
-    max_current_density: _q("A/m^2", "positive", "current density") = key(
-        "current density limit (default 5 A/mm^2)", default=None
+    supply_voltage: _q("V", "positive", plausible=PLAUSIBLE_SUPPLY_VOLTAGE) = key(
+        "largest I R at every point", default=None
     )
+    max_current_density: _q(
+        "A/m^2", "positive", "current density", plausible=(1e4, 1e8, "any copper winding (0.01 to 100 A/mm^2)")
+    ) = key("current density limit (default 5 A/mm^2)", default=None)
     max_fill_factor: Number = key("copper fill factor limit, in (0, 0.9] (default 0.6)", default=None)
     allow_saturation: Flag = key("allow a part of the circuit past the knee of its B-H curve", default=False)
-    max_power: _q("W", "positive") = key("coil power at the first point's current", default=None)
-    max_time_constant: _q("s", "positive") = key("L/R at the first point's current", default=None)
+    max_power: _q("W", "positive", plausible=(1e-3, 1e5, "the power of any damper coil")) = key(
+        "coil power at the first point's current", default=None
+    )
+    max_time_constant: _q("s", "positive", plausible=(1e-6, 100.0, "the time constant of any damper coil")) = key(
+        "L/R at the first point's current", default=None
+    )
 
 
 class DesignTable(Table):
@@ -632,6 +673,13 @@ def _parse_points(tables: list[PointTable], fluid: Fluid) -> tuple[DesignPoint, 
             warnings.warn(
                 f"{where}.min_dynamic_range: {point.min_dynamic_range:g} is met by every damper (the dynamic range, "
                 "the force at the control over the force at none, is at least 1); check the value",
+                PlausibilityWarning,
+                stacklevel=2,
+            )
+        if point.min_dynamic_range is not None and point.min_dynamic_range > PLAUSIBLE_DYNAMIC_RANGE:
+            warnings.warn(
+                f"{where}.min_dynamic_range: {point.min_dynamic_range:g} is beyond the dynamic range of any damper "
+                f"(ER and MR dampers reach 2 to about 100; at most {PLAUSIBLE_DYNAMIC_RANGE:g} here); check the value",
                 PlausibilityWarning,
                 stacklevel=2,
             )

@@ -21,12 +21,14 @@ only, so that ``erdesign fit`` and ``erdesign diagnose`` state one ESR for one m
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field, replace
 from typing import Sequence
 
 import numpy as np
 
 from ..data.measurement import Measurement
+from ..errors import ErdesignError
 from ..data.noise import displacement_noise, sign_known, velocity_noise
 from ..data.noise_floor import still_samples
 
@@ -46,6 +48,8 @@ __all__ = [
 
 #: Records longer than this are thinned for the analysis (the kept transients come on top, up to twice as many).
 MAX_SAMPLES = 4000
+#: Fewest samples an analysis may be thinned to (max_samples): fewer cannot show a hysteresis loop.
+MIN_MAX_SAMPLES = 100
 #: After a change of the field every sample is kept this long, [s]: coil and driver lags are 5-40 ms.
 AFTER_FIELD_CHANGE = 0.06
 #: A change of the control between two samples larger than this share of its range counts as a field change.
@@ -218,6 +222,14 @@ def prepare(
     """Thin each record (:func:`analysis_samples`), mark its judged samples (sign of the velocity known, not
     excluded) and join them (:func:`join_records`).  ``excluded``: per record, True where a data finding leaves
     the sample out (or None)."""
+    if (
+        isinstance(max_samples, bool)
+        or not isinstance(max_samples, numbers.Real)
+        or not float(max_samples).is_integer()
+        or max_samples < MIN_MAX_SAMPLES
+    ):  # 0 was a ZeroDivisionError
+        raise ErdesignError(f"max_samples: must be a whole number >= {MIN_MAX_SAMPLES}, got {max_samples!r}")
+    max_samples = int(max_samples)
     excluded = list(excluded) if excluded is not None else [None] * len(records)
     per_record = max(max_samples // len(records), 400) if len(records) > 1 else max_samples
     thinned, judged, analysed, counts, n_full, kept = [], [], [], [], [], []

@@ -300,22 +300,24 @@ class Fluid:
         (450.0, 8.5)
         """
         kind = control_kind(reference_field, "fluid.reference_field")
-        exponent = to_si(yield_exponent, "", "fluid.yield_exponent")
+        exponent = to_si(yield_exponent, "", "fluid.yield_exponent", scalar=True)
         if not isinstance(exponent, float):
             raise UnitError(f"fluid.yield_exponent: expected one number, got {yield_exponent!r}")
         fluid = cls(
-            viscosity=to_si(viscosity, "Pa*s", "fluid.viscosity"),
-            yield_stress=to_si(yield_stress, "Pa", "fluid.yield_stress"),
-            reference_field=to_si(reference_field, CONTROL_UNITS[kind], "fluid.reference_field"),
+            viscosity=to_si(viscosity, "Pa*s", "fluid.viscosity", scalar=True),
+            yield_stress=to_si(yield_stress, "Pa", "fluid.yield_stress", scalar=True),
+            reference_field=to_si(reference_field, CONTROL_UNITS[kind], "fluid.reference_field", scalar=True),
             control=kind,
             yield_exponent=float(exponent),
-            density=to_si(density, "kg/m^3", "fluid.density"),
+            density=to_si(density, "kg/m^3", "fluid.density", scalar=True),
             viscosity_at_reference_field=(
                 None
                 if viscosity_at_reference_field is None
-                else to_si(viscosity_at_reference_field, "Pa*s", "fluid.viscosity_at_reference_field")
+                else to_si(viscosity_at_reference_field, "Pa*s", "fluid.viscosity_at_reference_field", scalar=True)
             ),
-            shear_modulus=None if shear_modulus is None else to_si(shear_modulus, "Pa", "fluid.shear_modulus"),
+            shear_modulus=None
+            if shear_modulus is None
+            else to_si(shear_modulus, "Pa", "fluid.shear_modulus", scalar=True),
             name=name,
             display_unit=_unit_text(reference_field),
             field_law=field_law,

@@ -14,13 +14,16 @@ from __future__ import annotations
 
 import copy
 import math
+import numbers
 import time as _time
 from collections.abc import Mapping, Sequence
 from contextlib import nullcontext
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
+from .._util import si_array
 from ..data.measurement import Measurement
 from ..errors import ErdesignError
 from ..models._kernels import frozen_substeps
@@ -262,6 +265,11 @@ def problem(
     ``start`` are errors; so are ``samples`` (the number compared) too few for the free parameters (the error
     names ``label``)."""
     records = tuple(records)
+    fixed, start = _values_arg(fixed, "fixed"), _values_arg(start, "start")
+    if isinstance(free, str):  # free="c0" was read letter by letter: "no parameter 'c'"
+        raise FitError(f"free: expected a list of parameter names, got the text {free!r} (write [{free!r}])")
+    if masks is not None:
+        masks = [_mask_arg(m, r) for m, r in zip(masks, records)]
     if control_reference:
         model = with_control_reference(model, records)
     free, fixed = resolve_free(model, records, free, fixed)
@@ -277,6 +285,35 @@ def problem(
     return Problem(
         model, records, tuple(masks) if masks is not None else (None,) * len(records), free, fixed, base, tr, lo, hi, z0
     )
+
+
+def _values_arg(values: Any, name: str) -> dict[str, float] | None:
+    """``fixed`` or ``start`` as a dict of name -> SI float, or a :class:`FitError` naming the argument and key: a
+    pandas Series was "The truth value of a Series is ambiguous", a text value "ufunc 'isfinite' not supported"."""
+    if values is None:
+        return None
+    if not isinstance(values, Mapping):
+        raise FitError(f"{name}: expected a mapping of parameter name -> value (a dict), got {type(values).__name__}")
+    out = {}
+    for k, v in values.items():
+        x = si_array(v, f"{name}[{k!r}]")
+        if x.ndim != 0:
+            raise FitError(f"{name}[{k!r}]: expected one value, got an array of shape {x.shape}")
+        out[k] = float(x)
+    return out
+
+
+def _mask_arg(mask: Any, record: Measurement) -> np.ndarray | None:
+    """A mask of the samples to compare: true/false, one per sample of ``record`` (a list of 10 for 1000 samples was
+    an IndexError; 0/1 integers were read as indices)."""
+    if mask is None:
+        return None
+    arr = np.asarray(mask)
+    if arr.dtype != bool or arr.shape != record.time.shape:
+        raise FitError(
+            f"mask: expected true/false for each of the {record.time.size} samples, got {arr.dtype} of shape {arr.shape}"
+        )
+    return arr
 
 
 def control_reference_for(records: Sequence[Measurement]) -> float:
@@ -450,6 +487,15 @@ class Strategy:
     decimate: int = 1
     max_time: float | None = None
     executor: object = None
+
+    def __post_init__(self):
+        # fit(starts=0) ran nothing and max_nfev=0 reached scipy ("`max_nfev` must be None or positive integer")
+        for name in ("starts", "max_nfev", "decimate"):
+            value = getattr(self, name)
+            if name == "max_nfev" and value is None:
+                continue
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+                raise FitError(f"{name}: must be a whole number >= 1, got {value!r}")
 
 
 @dataclass

@@ -24,7 +24,7 @@ import numpy as np
 from ..data.measurement import Measurement
 from ..data.metrics import esr
 from ..models.base import Model, ParameterError
-from .engine import FitError, Strategy, problem, solve
+from .engine import FitError, Strategy, _mask_arg, problem, solve
 from .result import FitResult
 
 __all__ = ["FitError", "FitResult", "evaluate", "fit"]
@@ -87,6 +87,7 @@ def fit(
             f"record: expected a Measurement (erdesign.read_measurement or Measurement.from_arrays), got "
             f"{type(record).__name__}"
         )
+    mask = _mask_arg(mask, record)
     F = record.require_force() if mask is None else record.require_force()[mask]
     check = getattr(model, "check_record", None)
     if check is not None:

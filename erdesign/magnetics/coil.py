@@ -28,7 +28,7 @@ import warnings
 from dataclasses import dataclass
 from typing import Any
 
-from ..errors import DamperFileError, ErdesignError, ValidityWarning
+from ..errors import DamperFileError, ErdesignError, PlausibilityWarning, ValidityWarning
 from ..schema import Table, checked, field, validate
 from ..units import to_si
 
@@ -184,11 +184,25 @@ def _turns(value: Any, name: str) -> int:
     return value
 
 
-def _positive(unit: str, what: str):
+#: The supply voltages of damper coil drivers (V), from a 0.1 V bench supply to a 1 kV drive: beyond, a warning
+#: (a unit mistake: "1e9 V"); a damper file's [coil] and a requirements file's [design.coil] share it.
+PLAUSIBLE_SUPPLY_VOLTAGE = (0.1, 1e3, "the supply of any damper coil")
+
+
+def _positive(unit: str, what: str, plausible: tuple[float, float, str] | None = None):
+    """A check of a positive quantity; outside ``plausible`` (low, high, whose range it is; SI) a warning."""
+
     def check(value: Any, name: str) -> Any:
         si = to_si(value, unit, name)
         if not (isinstance(si, float) and si > 0 and math.isfinite(si)):
             raise DamperFileError(f"{name}: must be a positive {what}, got {value!r}")
+        if plausible is not None and not plausible[0] <= si <= plausible[1]:
+            warnings.warn(
+                f"{name}: {si:.4g} {unit} is {'below' if si < plausible[0] else 'beyond'} {plausible[2]} "
+                f"({plausible[0]:g} to {plausible[1]:g} {unit}); check the value and its unit",
+                PlausibilityWarning,
+                stacklevel=2,
+            )
         return value
 
     return check
@@ -217,7 +231,7 @@ class CoilTable(Table):
         "outer diameter of the steel cylinder (the return path)"
     )
     steel: checked(_steel, "name of a steel of the materials database") = field("B-H curve of the steel parts")
-    supply_voltage: checked(_positive("V", "voltage"), "voltage > 0, with a unit") = field(
+    supply_voltage: checked(_positive("V", "voltage", PLAUSIBLE_SUPPLY_VOLTAGE), "voltage > 0, with a unit") = field(
         "the driver's supply (I R at the rated current must stay below it)", default=None
     )
 

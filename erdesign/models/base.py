@@ -8,6 +8,7 @@ treat them alike.  A model is a description (name, source, parameters with units
 
 from __future__ import annotations
 
+import numbers
 from typing import Mapping, Sequence
 
 import numpy as np
@@ -170,6 +171,9 @@ class Model:
         full = {**self.defaults(), **values}
         for p in self.parameters:
             v = full[p.name]
+            if isinstance(v, (bool, np.bool_)) or not isinstance(v, (numbers.Real, np.number)) or np.ndim(v):
+                # '150 N' was "ufunc 'isfinite' not supported for the input types"
+                raise ParameterError(f"{self.name}: {p.name}: expected one number in {p.unit} (SI), got {v!r:.60}")
             if not (np.isfinite(v) and p.lower <= v <= p.upper):
                 raise ParameterError(
                     f"{self.name}: {p.name} = {v!r} {p.unit} is outside its bounds [{p.lower:g}, {p.upper:g}] {p.unit}"

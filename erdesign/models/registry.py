@@ -165,6 +165,8 @@ def model_names() -> list[str]:
 def get_model(name: str, **options) -> Model:
     """A fresh model by registry name; ``options`` go to its factory (``damper=`` for ``physics``,
     ``degree=`` for ``chebyshev``, ``hidden=`` for ``maxwell_neural``)."""
+    if not isinstance(name, str):  # a list was "TypeError: unhashable type: 'list'"
+        raise UnknownModelError(f"name: expected a model's name (text), got {type(name).__name__} {name!r:.60}")
     try:
         factory = MODELS[name]
     except KeyError:

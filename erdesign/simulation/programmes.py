@@ -42,6 +42,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .._util import si_array
 from ..errors import ErdesignError
 from ..units import to_si
 from .rig import Motion, _check_motion, _fine, _finish, stepped_sine
@@ -400,7 +401,14 @@ def programme(
         return replace(motion, description=f"{label}: {motion.description}")
     if control_range is None:
         raise ProgrammeError(f"control_range: the actuation signal {act.upper()} needs a low and a high control")
-    low, high = (float(c) for c in control_range)
+    if isinstance(control_range, (str, bytes)) or not hasattr(control_range, "__len__") or len(control_range) != 2:
+        # '0.5 A, 2 A' was "could not convert string to float: '.'"; three items "too many values to unpack"
+        raise ProgrammeError(f"control_range: expected (low, high) in SI units, got {control_range!r:.60}")
+    # a quantity (Q_(0.5, 'A')) was "Cannot convert from 'ampere' to 'dimensionless'": si_array names it
+    low, high = (si_array(c, "control_range") for c in control_range)
+    if low.ndim or high.ndim:
+        raise ProgrammeError(f"control_range: expected two numbers (low, high), got {control_range!r:.60}")
+    low, high = float(low), float(high)
     if not (math.isfinite(low) and math.isfinite(high) and low < high):
         raise ProgrammeError(f"control_range: need a finite low below the high, got {low:g}, {high:g}")
     act_options = {

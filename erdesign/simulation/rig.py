@@ -23,6 +23,7 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from .._deprecated import renamed
+from .._util import si_array
 from ..damper import Damper
 from ..data.measurement import Measurement
 from ..effects import EFFECTS, parse_effect_names
@@ -358,6 +359,23 @@ def run_rig(
     >>> rig.hidden, len(rig.record), rig.record.control_kind
     (('seal_friction',), 201, 'electric field')
     """
+    if not isinstance(motion, Motion):  # a Measurement: "'Measurement' object has no attribute 'record'"
+        raise ErdesignError(
+            f"motion: expected a Motion (erdesign.programme, sine, stepped_sine), got {type(motion).__name__}"
+        )
+    for key, value in (
+        ("force_noise", force_noise),
+        ("displacement_noise", displacement_noise),
+        ("viscosity_factor", viscosity_factor),
+        ("yield_stress_factor", yield_stress_factor),
+    ):  # '0.5 %' and -1 reached numpy ("scale < 0")
+        x = si_array(value, key)
+        if x.ndim or x < 0 or (key.endswith("factor") and not x > 0):
+            raise ErdesignError(
+                f"{key}: expected one {'positive' if key.endswith('factor') else 'non-negative'} number, got {value!r}"
+            )
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:  # numpy's raw ValueError
+        raise ErdesignError(f"seed: must be a whole number >= 0, got {seed!r:.60}")
     if isinstance(hidden, Mapping):
         names = parse_effect_names(list(hidden))
         settings = {k: dict(v) for k, v in hidden.items()}

@@ -58,8 +58,8 @@ def test_units_typed_on_other_keyboards_are_read_as_meant(text, unit, expected):
         ("7000 mPas", "Pa*s", "'Pas' reads as pascals: write 'Pa*s'"),  # German 'mPas', read as millipascals
         ("1 \u2032", "m", "its unit in plain letters"),  # PRIME: was "write the value in ASCII digits"
         ("\u0663 mm", "m", "in ASCII digits"),
-        ("0x10 mm", "m", "unknown unit"),
-        ("1 e3 N", "N", "unknown unit"),
+        ("0x10 mm", "m", "a hexadecimal number"),
+        ("1 e3 N", "N", "a space inside the number"),
     ],
 )
 def test_slips_in_values_are_refused_naming_the_argument(text, unit, said):
@@ -419,8 +419,12 @@ def test_app_uploads_and_inputs(app):  # noqa: F811
 
     app.switch_page("design.py").run()  # the requirement form's numbers: int() and float() read other scripts too
     for key, text, said in (
-        ("designer.req.design.point.0.min_dynamic_range", "\u0663", "min_dynamic_range: expected a float number"),
-        ("designer.req.design.bounds.ducts.1", "1_0", "ducts.1: expected a int number"),
+        (
+            "designer.req.design.point.0.min_dynamic_range",
+            "\u0663",
+            "design.point[1].min_dynamic_range: expected a number",
+        ),
+        ("designer.req.design.bounds.ducts.1", "1_0", "design.bounds.ducts[2]: expected an integer"),
     ):
         good = app.text_input(key=key).value
         app.text_input(key=key).set_value(text).run()
