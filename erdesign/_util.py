@@ -42,8 +42,6 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
         raise ErdesignError(
             f"{name}: a DataFrame of {len(value.columns)} column(s); pass one column, e.g. df[{str(value.columns[0])!r}]"
         )
-    shown = " ".join(repr(value).split())
-    shown = f"{type(value).__name__} {shown[:60]}{'...' if len(shown) > 60 else ''}"
     if np.ma.isMaskedArray(value) and np.ma.getmaskarray(value).any():  # asarray drops the mask: hidden values
         at = int(np.flatnonzero(np.ma.getmaskarray(value).ravel())[0])
         raise ErdesignError(
@@ -57,18 +55,25 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
     if kind in "USObMmc" and (kind != "O" or value is None or _holds_non_numbers(value)):
         what = {"b": "true/false", "M": "a date", "m": "a time span", "c": "complex numbers"}.get(kind)
         raise ErdesignError(
-            f"{name}: expected a number or an array of numbers (SI), got {f'{what}: ' if what else ''}{shown}"
+            f"{name}: expected a number or an array of numbers (SI), got {f'{what}: ' if what else ''}{_shown(value)}"
         )
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {shown}") from None
+        raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {_shown(value)}") from None
     if finite:
         bad = ~np.isfinite(arr)
         if np.any(bad):
             where = f"element {int(np.flatnonzero(bad.ravel())[0])} is" if arr.ndim else "it is"
             raise ErdesignError(f"{name}: {where} {arr.ravel()[bad.ravel()][0]}; give finite numbers (SI)")
     return arr
+
+
+def _shown(value) -> str:
+    """``value`` for an error message: its type and the first 60 characters of its repr on one line (made only when
+    a message needs it: the repr of an array of a few hundred numbers costs more than the check itself)."""
+    shown = " ".join(repr(value).split())
+    return f"{type(value).__name__} {shown[:60]}{'...' if len(shown) > 60 else ''}"
 
 
 def _holds_non_numbers(value) -> bool:
