@@ -14,8 +14,8 @@ the force no longer jumps at a reversal but rises with the creep speed.
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize.elementwise import find_root
 
+from ..numerics import find_root
 from ..parameters import Parameter
 from .base import Effect
 
@@ -53,7 +53,7 @@ def leaky_pressure_drop(v, Ap, bypass_damping, gap_pressure_drop, args=(), quasi
     -----
     The residual :math:`\Delta p - \Delta p_\text{gap}(v - \Delta p A_p/C_l)` increases with :math:`\Delta p`, is
     of the sign opposite to v at 0 and of the sign of v at the no-leak value, so that bracket always holds the
-    root (Chandrupatla's method, :func:`scipy.optimize.elementwise.find_root`).  Below yield the root sits on the
+    root (Chandrupatla's method, :func:`erdesign.numerics.find_root`: scipy's, without its framework).  Below yield the root sits on the
     break-away jump of the gap law, where the duct flow is zero: the creep solution
     :math:`\Delta p = C_l v / A_p`, taken exactly wherever it lies between the gap's pressure drops at a flow of
     -0 and +0 (a bracketed method would approach a root on a jump only by halving its bracket).
@@ -89,14 +89,15 @@ def leaky_pressure_drop(v, Ap, bypass_damping, gap_pressure_drop, args=(), quasi
     dp = np.where(same, dp0, v / k)
     solve = ~same & ~creep
     if np.any(solve):
-        res = find_root(
+        dp[solve] = find_root(
             residual,
-            (lo[solve], hi[solve]),
+            lo[solve],
+            hi[solve],
             args=(v[solve], *(a[solve] for a in args)),
-            tolerances={"xatol": 1e-10 * scale, "xrtol": 1e-12},
+            xatol=1e-10 * scale,
+            xrtol=1e-12,
             maxiter=200,
         )
-        dp[solve] = res.x
     return dp
 
 
