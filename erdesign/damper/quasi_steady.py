@@ -360,17 +360,20 @@ class MixedGapTable:
         for a in (self.w, self.pressure, self.shear):
             a.setflags(write=False)
 
-    def forces(self, u, tau_y, eta, L):
+    def forces(self, u, tau_y, eta, L, *, shear: bool = True):
         """(pressure drop [Pa], shear drag [N]) of the gap at flow speed ``u`` [m/s] (= the wall speed), yield
-        stress ``tau_y`` [Pa], plastic viscosity ``eta`` [Pa s] and head length ``L`` [m]; vectorised."""
+        stress ``tau_y`` [Pa], plastic viscosity ``eta`` [Pa s] and head length ``L`` [m]; vectorised.  With
+        ``shear=False`` the drag is None (not read from the table: a root in the pressure drop needs only that)."""
         h = self.h
         scale = eta * np.abs(u) + tau_y * h
         with np.errstate(divide="ignore", invalid="ignore"):
             w = np.sqrt(np.where(scale > 0, eta * np.abs(u) / scale, 1.0))
         sign = np.copysign(1.0, u)
         dp = sign * np.interp(w, self.w, self.pressure) * scale / h**2 * L
-        shear = -sign * np.interp(w, self.w, self.shear) * scale / h * np.pi * self.Dp * L
-        return dp, shear
+        if not shear:
+            return dp, None
+        drag = -sign * np.interp(w, self.w, self.shear) * scale / h * np.pi * self.Dp * L
+        return dp, drag
 
 
 @lru_cache(maxsize=64)

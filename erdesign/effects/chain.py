@@ -182,9 +182,9 @@ class PhysicsDamper(Model):
             return valve_pressure_drop(
                 Q, tau_y, eta, g.duct_length, g.duct_mean_diameter, g.gap, self.damper.uses_exact_annulus
             )
-        return self._mixed(u, v_wall, tau_y, eta, law)[0]
+        return self._mixed(u, v_wall, tau_y, eta, law, shear=False)[0]
 
-    def _mixed(self, u, v_wall, tau_y, eta, law: GapLaw):
+    def _mixed(self, u, v_wall, tau_y, eta, law: GapLaw, *, shear: bool = True):
         """Pressure drop [Pa] and shear drag [N] of the moving-electrode gap.
 
         The flow q = -u A_p / (pi d) and the wall speed are taken equal (u = v_wall, as without a bypass): the
@@ -192,7 +192,7 @@ class PhysicsDamper(Model):
         :class:`~erdesign.damper.quasi_steady.MixedGapTable` (relative error below 1e-5).  With a bypass
         (u < v_wall) the shear drag is taken at the flow speed too, which is good when the pressure drag dominates (by about
         D_p / 2h).  A flow index m != 1 enters as the apparent viscosity at the apparent shear rate
-        (:mod:`erdesign.effects.shear_thinning`)."""
+        (:mod:`erdesign.effects.shear_thinning`).  ``shear=False``: the drag is None (not computed)."""
         g = self.damper.geometry
         h = g.gap
         m, rate_ref = law
@@ -201,7 +201,7 @@ class PhysicsDamper(Model):
             rate = 6 * np.abs(q) / h**2 + np.abs(v_wall) / h
             rate = np.maximum(rate, 1e-3 * rate_ref)
             eta = eta * (rate / rate_ref) ** (m - 1.0)
-        return self._mixed_table().forces(u, tau_y, eta, g.duct_length)
+        return self._mixed_table().forces(u, tau_y, eta, g.duct_length, shear=shear)
 
     def _mixed_table(self):
         g = self.damper.geometry
