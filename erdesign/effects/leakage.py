@@ -53,10 +53,9 @@ def leaky_pressure_drop(v, Ap, bypass_damping, gap_pressure_drop, args=(), quasi
     -----
     The residual :math:`\Delta p - \Delta p_\text{gap}(v - \Delta p A_p/C_l)` increases with :math:`\Delta p`, is
     of the sign opposite to v at 0 and of the sign of v at the no-leak value, so that bracket always holds the
-    root (Chandrupatla's method, :func:`erdesign.numerics.find_root`: scipy's, without its framework).  Below yield the root sits on the
-    break-away jump of the gap law, where the duct flow is zero: the creep solution
-    :math:`\Delta p = C_l v / A_p`, taken exactly wherever it lies between the gap's pressure drops at a flow of
-    -0 and +0 (a bracketed method would approach a root on a jump only by halving its bracket).
+    root (Chandrupatla's method, :func:`erdesign.numerics.find_root`: scipy's, without its framework).  Below
+    yield the root sits on the break-away jump of the gap law, where the duct flow is zero: there it converges to
+    the creep solution :math:`\Delta p = C_l v / A_p`.
 
     Examples
     --------
@@ -82,32 +81,16 @@ def leaky_pressure_drop(v, Ap, bypass_damping, gap_pressure_drop, args=(), quasi
 
     same = hi == lo
     scale = float(np.max(np.abs(dp0))) + 1.0 if dp0.size else 1.0
-    # creep: the residual steps across zero where the duct flow stops (u = 0, dp = v / k) when the break-away values
-    # of the gap at u = -0 and u = +0 straddle that pressure drop; there it is the root exactly, which the bracketed
-    # method would only approach step by step (about 40 steps of bisection to its tolerance on the jump)
-    creep = _creeping(v / k, v, args, gap_pressure_drop)
-    dp = np.where(same, dp0, v / k)
-    solve = ~same & ~creep
-    if np.any(solve):
-        dp[solve] = find_root(
-            residual,
-            lo[solve],
-            hi[solve],
-            args=(v[solve], *(a[solve] for a in args)),
-            xatol=1e-10 * scale,
-            xrtol=1e-12,
-            maxiter=200,
-        )
-    return dp
-
-
-def _creeping(dp_creep, v, args, gap_pressure_drop):
-    """True where ``dp_creep`` (the pressure drop that drives the piston's whole flow through the bypass) lies between
-    the gap's pressure drops at a flow of -0 and +0: the residual of :func:`leaky_pressure_drop`, increasing in dp,
-    is at most 0 just below it (the ducts pass a little flow in the direction of +0) and at least 0 just above it, so
-    it is the root."""
-    zero = np.zeros(v.shape)
-    return (gap_pressure_drop(-zero, *args) <= dp_creep) & (dp_creep <= gap_pressure_drop(zero, *args))
+    res = find_root(
+        residual,
+        np.where(same, lo - 1.0, lo),
+        np.where(same, hi + 1.0, hi),
+        args=(v, *args),
+        xatol=1e-10 * scale,
+        xrtol=1e-12,
+        maxiter=200,
+    )
+    return np.where(same, dp0, res)
 
 
 class Leakage(Effect):
