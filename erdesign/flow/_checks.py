@@ -54,22 +54,26 @@ def check_flow_args(*, annulus: bool = False, **values) -> None:
     if all(type(value) in _PLAIN for value in values.values()):
         _check_plain(annulus, values)
         return
+    arrays = {}
     for name, value in values.items():
-        if value is None:
+        if type(value) in _PLAIN:  # a float among arrays: compared as such (None passes)
+            if value is not None and (value <= 0.0 if name in _POSITIVE else name in _NONNEGATIVE and value < 0.0):
+                _check_plain(annulus, {name: value})  # raises its message
             continue
         try:
             arr = np.asarray(value, dtype=float)
         except (TypeError, ValueError):
             raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {value!r}") from None
+        if arr.ndim:
+            arrays[name] = value
         if name in _POSITIVE:
             bad = arr <= 0.0
-            if np.any(bad):
+            if bad.any():
                 raise ErdesignError(f"{name}: must be positive, got {_first(arr, bad):g} (SI)")
         elif name in _NONNEGATIVE:
             bad = arr < 0.0
-            if np.any(bad):
+            if bad.any():
                 raise ErdesignError(f"{name}: must not be negative, got {_first(arr, bad):g} (SI)")
-    arrays = {name: value for name, value in values.items() if np.ndim(value) > 0}
     if len(arrays) > 1:
         broadcast_named(**arrays)
     if values.get("h") is not None and values.get("d") is not None:
