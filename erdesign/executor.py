@@ -163,6 +163,31 @@ class SerialExecutor(Executor):
             yield i, fn(item)
 
 
+def _start_fork_server_on_this_erdesign() -> None:
+    """Start the fork server (once per process) so that its preloaded erdesign is the one this process runs.
+
+    The server is a new interpreter started in the current folder, which puts that folder first on its path and
+    ignores this process's ``sys.path`` (CPython 3.11-3.12 take it but do not apply it).  Started from another
+    folder - a batch run from its records' folder, as users type record names - it imported whichever erdesign that
+    folder's path found first (an installed copy instead of the checkout under test), and every worker forked from
+    it ran that code.  So the server starts with the folder holding this erdesign first on ``PYTHONPATH`` and, from
+    Python 3.11 on, ``PYTHONSAFEPATH`` (the current folder not on its path).  A server already running is kept."""
+    from multiprocessing import forkserver
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    saved = {k: os.environ.get(k) for k in ("PYTHONPATH", "PYTHONSAFEPATH")}
+    os.environ["PYTHONPATH"] = root + (os.pathsep + saved["PYTHONPATH"] if saved["PYTHONPATH"] else "")
+    os.environ["PYTHONSAFEPATH"] = "1"
+    try:
+        forkserver.ensure_running()
+    finally:
+        for k, v in saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+
+
 class PoolExecutor(Executor):
     """A local pool of ``jobs`` worker processes.
 
@@ -183,6 +208,7 @@ class PoolExecutor(Executor):
             if sys.platform.startswith("linux") or sys.platform == "darwin":
                 ctx = multiprocessing.get_context("forkserver")
                 ctx.set_forkserver_preload(["erdesign", "numpy", "scipy.optimize"])
+                _start_fork_server_on_this_erdesign()
             else:  # Windows: spawn is the only method
                 ctx = multiprocessing.get_context("spawn")
             self._pool = concurrent.futures.ProcessPoolExecutor(
