@@ -18,6 +18,20 @@ MAKRIS = (EXAMPLES / "makris.toml").read_text()
 REQUIREMENTS = (EXAMPLES / "requirements" / "makris_requirements.toml").read_text()
 
 
+#: Makris's damper (erdesign/examples/makris.toml) as the API's keyword arguments, for the API cases
+MAKRIS_GEOMETRY = dict(
+    configuration="valve",
+    duct_length="54.6 mm",
+    duct_mean_diameter="14.3 mm",
+    gap="0.8 mm",
+    piston_diameter="33.4 mm",
+    rod_diameter="11.25 mm",
+)
+MAKRIS_FLUID = dict(
+    viscosity="7 Pa*s", yield_stress="1.8 kPa", reference_field="3 kV/mm", yield_exponent=2.0, density="1290 kg/m^3"
+)
+
+
 def damper_with(key: str, value: str | None) -> str:
     """The Makris damper file with ``key = value`` (``value`` as TOML text; None: the line removed)."""
     line = re.compile(rf"^{key} = .*$", re.M)

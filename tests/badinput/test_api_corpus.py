@@ -14,17 +14,10 @@ from erdesign.errors import ErdesignError, PlausibilityWarning
 from erdesign.fluid import Fluid
 from erdesign.geometry import Geometry
 
-GEO = dict(
-    configuration="valve",
-    duct_length="54.6 mm",
-    duct_mean_diameter="14.3 mm",
-    gap="0.8 mm",
-    piston_diameter="33.4 mm",
-    rod_diameter="11.25 mm",
-)
-FLUID = dict(
-    viscosity="7 Pa*s", yield_stress="1.8 kPa", reference_field="3 kV/mm", yield_exponent=2.0, density="1290 kg/m^3"
-)
+from .corpus import MAKRIS_FLUID, MAKRIS_GEOMETRY
+
+GEO = MAKRIS_GEOMETRY
+FLUID = MAKRIS_FLUID
 DUCT = ("1 mL/s", "1.8 kPa", "13 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm")
 
 

@@ -27,7 +27,7 @@ from erdesign.design.requirements import requirements_from_dict
 from erdesign.errors import MESSAGE_LIMIT, ErdesignError, PlausibilityWarning
 from erdesign.units import to_si
 
-from .corpus import _F, EXAMPLES, GOOD_RECORD, MAKRIS, REQUIREMENTS, record
+from .corpus import _F, EXAMPLES, GOOD_RECORD, MAKRIS, MAKRIS_FLUID, MAKRIS_GEOMETRY, REQUIREMENTS, record
 from .test_hostile_cli import _one_line_error, _run
 
 import tomllib
@@ -491,17 +491,8 @@ def test_damper_files_of_other_habits_give_the_same_damper(old, new, tmp_path):
 M = erdesign.load_example("makris")
 T = np.linspace(0.0, 2.0, 1000)
 X = 4e-3 * np.sin(2 * np.pi * T)
-GEOMETRY = dict(
-    configuration="valve",
-    duct_length="54.6 mm",
-    duct_mean_diameter="14.3 mm",
-    gap="0.8 mm",
-    piston_diameter="33.4 mm",
-    rod_diameter="11.25 mm",
-)
-FLUID = dict(
-    viscosity="7 Pa*s", yield_stress="1.8 kPa", reference_field="3 kV/mm", yield_exponent=2.0, density="1290 kg/m^3"
-)
+GEOMETRY = MAKRIS_GEOMETRY
+FLUID = MAKRIS_FLUID
 DUCT = ("1.8 kPa", "13 Pa*s", "54.6 mm", "14.3 mm", "0.8 mm")
 
 API_CASES = [
