@@ -19,6 +19,7 @@ from erdesign.effects.preyield_elasticity import elastic_viscoplastic_force
 from erdesign.flow.herschel_bulkley import herschel_bulkley_pressure_drop, herschel_bulkley_slit_flow_rate
 from erdesign.effects.viscous_heating import TEMPERATURE_COEFFICIENT
 from erdesign.flow.bingham import bingham_flow_rate, bingham_slit_flow
+from erdesign.damper.quasi_steady import mixed_state
 
 TIGHT = dict(rtol=1e-10, atol=1e-12, method="DOP853")
 
@@ -200,6 +201,64 @@ def test_leakage_flow_split_against_brentq_per_sample():
     slow = np.abs(rec.velocity) * C_l < 2 * tau_y * g.duct_length / g.gap * Ap
     assert slow.any()
     np.testing.assert_allclose(fluid[slow], C_l * rec.velocity[slow], rtol=1e-6, atol=1e-6)
+
+
+def test_leakage_on_a_mixed_head_against_brentq_per_sample():
+    # Independent: per sample, brentq on dp = dp_gap(v - dp Ap / C_l) with the exact Couette-Poiseuille solution
+    # of the head (mixed_state, wall speed = flow speed as the chain takes it), where the library reads the head's
+    # table in a compiled loop; and the creep solution F = C_l v below the break-away force.
+    d = load_example("spencer1997")
+    g = d.geometry
+    rec = _sine_record(d, X0=0.01, f=3.0, rate=1500.0)
+    C_l = 2.1e4  # N s/m: the bypass found on Dyke's record (docs/case_studies/dyke.md)
+    m = PhysicsDamper(d, ["leakage"])
+    vals = {"viscosity_factor": 1.0, "yield_stress_factor": 1.0, "bypass_damping": C_l}
+    fluid = m.components(rec, vals)["fluid"]
+    tau_y, eta = d.fluid.yield_stress_at(rec.control[0]), d.fluid.viscosity_at(rec.control[0])
+    Ap, h, L, Dp, dr = g.piston_area, g.gap, g.duct_length, g.piston_diameter, g.rod_diameter
+
+    def head(u):
+        return mixed_state(u, tau_y, eta, 0.0, 0.0, h, L, Dp + h, Dp, dr)
+
+    def gap(u):
+        return float(head(u).pressure_drop)
+
+    # at the break-away jump (u -> 0+): the drop, and the drag of the head's wall on a blocked gap
+    breakaway, drag0 = gap(1e-20), float(head(1e-20).shear_force)
+    creeping = np.abs(rec.velocity) * C_l < breakaway * Ap
+    assert creeping.any() and (~creeping).any()
+    # creeping, the bypass passes all the flow (F = C_l v) and the head drags on the blocked gap with the sign of
+    # its motion (the limit of the flowing branch, whatever the rounding of v - dp Ap / C_l)
+    v = rec.velocity[creeping]
+    np.testing.assert_allclose(fluid[creeping], C_l * v + np.sign(v) * drag0, rtol=2e-5, atol=1e-6)
+    for i in np.flatnonzero(~creeping)[::7]:
+        v = rec.velocity[i]
+        dp = brentq(lambda dp: dp - gap(v - dp * Ap / C_l), 0.0, gap(v), xtol=1e-6, rtol=1e-13)
+        drag = float(head(v - dp * Ap / C_l).shear_force)  # the chain's drag: at the duct's flow speed
+        assert fluid[i] == pytest.approx(dp * Ap + drag, rel=2e-5)  # the head's table: 1e-5 of the exact solution
+
+
+@pytest.mark.parametrize("example", ["makris", "spencer1997"])
+def test_leakage_compiled_root_equals_the_whole_array_root(example):
+    # The compiled loop (erdesign.flow._compiled.leaky_pressure_drop) against the generic path it short-cuts
+    # (erdesign.numerics.find_root on whole arrays, the numpy gap laws), on a valve and on a mixed head, from creep
+    # to full flow: the same root within the generic path's tolerance (1e-10 of the largest drop).
+    from erdesign.effects.base import GapLaw
+    from erdesign.effects.chain import _GapDrop
+    from erdesign.effects.leakage import leaky_pressure_drop
+
+    d = load_example(example)
+    rng = np.random.default_rng(5)
+    v = np.concatenate([rng.normal(0.0, 0.3, 2000), rng.normal(0.0, 1e-4, 2000), [0.0, -0.0]])
+    tau_y = rng.uniform(0.0, 40e3, v.size)
+    tau_y[:50] = 0.0
+    eta = np.full(v.size, 0.5)
+    gap = _GapDrop(PhysicsDamper(d, ["leakage"]), GapLaw())
+    for C_l in (1e3, 2e4, 1e6):
+        fast = leaky_pressure_drop(v, d.geometry.piston_area, C_l, gap, args=(v, tau_y, eta))
+        slow = leaky_pressure_drop(v, d.geometry.piston_area, C_l, lambda *a: gap(*a), args=(v, tau_y, eta))
+        assert np.all(np.isfinite(fast))
+        assert np.max(np.abs(fast - slow)) <= 3e-9 * np.max(np.abs(slow))
 
 
 def test_viscous_heating_against_the_coupled_ode():

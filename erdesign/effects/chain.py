@@ -243,9 +243,7 @@ class PhysicsDamper(Model):
             dp, shear = self._mixed(v, v, tau_y, eta, law)
             return dp * g.piston_area, shear
 
-        def gap(u, v_wall, tau_y, eta):
-            return self._gap_pressure_drop(u, v_wall, tau_y, eta, law)
-
+        gap = _GapDrop(self, law)
         dp0 = gap(v, v, tau_y, eta)
         dp, u = parallel[0].split_flow(v, gap, (v, tau_y, eta), dp0, self.damper, values)
         if valve:
@@ -368,3 +366,40 @@ class PhysicsDamper(Model):
             why = e.check(record, self.damper)
             if why:
                 raise EffectError(f"{e.name}: cannot be judged from {record.name or 'this record'}: {why}")
+
+
+class _GapDrop:
+    """The gap's pressure drop at the flow of a piston moving at ``u`` (wall speed ``v_wall``), the callable the
+    parallel stage solves with (:meth:`Effect.split_flow`), and, for the gap laws that have one (a mixed head,
+    Bingham; thin valve slits, Bingham), the same root with a bypass in compiled code (:meth:`with_bypass`)."""
+
+    def __init__(self, chain: "PhysicsDamper", law: GapLaw):
+        self.chain, self.law = chain, law
+
+    def __call__(self, u, v_wall, tau_y, eta):
+        return self.chain._gap_pressure_drop(u, v_wall, tau_y, eta, self.law)
+
+    def with_bypass(self, v, k, args, dp0, xatol, xrtol):
+        """dp = dp_gap(v - dp k) per sample (``args`` = (v_wall, tau_y, eta), ``dp0`` the no-leak drop) by the
+        compiled loop :func:`erdesign.flow._compiled.leaky_pressure_drop`, or None when this gap law has no
+        compiled form (exact annulus, a flow index other than 1): the caller then solves it on whole arrays."""
+        damper = self.chain.damper
+        g = damper.geometry
+        if self.law.flow_index != 1.0 or (g.configuration == "valve" and damper.uses_exact_annulus):
+            return None
+        from ..flow import _compiled
+
+        _, tau_y, eta = (np.ascontiguousarray(a, dtype=float).ravel() for a in args)
+        vv = np.ascontiguousarray(v, dtype=float).ravel()
+        d0 = np.ascontiguousarray(dp0, dtype=float).ravel()
+        if g.configuration == "valve":
+            kind, table = _compiled.LEAKY_SLIT, _compiled._NO_TABLE
+            d, per_speed = g.duct_mean_diameter, g.piston_area / g.ducts
+        else:
+            kind, table = _compiled.LEAKY_MIXED_HEAD, self.chain._mixed_table().pressure
+            d, per_speed = 0.0, 0.0
+        out = np.empty(vv.size)
+        _compiled.leaky_pressure_drop(
+            kind, vv, float(k), tau_y, eta, g.gap, g.duct_length, d, per_speed, table, d0, xatol, xrtol, out
+        )
+        return out.reshape(np.shape(v))

@@ -44,6 +44,10 @@ def leaky_pressure_drop(v, Ap, bypass_damping, gap_pressure_drop, args=(), quasi
     quasi_steady_drop : array, optional
         ``gap_pressure_drop(v)`` if already known (the no-leak value, one end of the bracket).
 
+    A ``gap_pressure_drop`` with a method ``with_bypass(v, k, args, dp0, xatol, xrtol)`` (k = A_p / C_l) that
+    returns the root (or None) is solved by it: the gap laws of the physics damper do so in compiled code
+    (:class:`erdesign.effects.chain._GapDrop`), with the same iteration and tolerances per element.
+
     Returns
     -------
     array
@@ -79,8 +83,13 @@ def leaky_pressure_drop(v, Ap, bypass_damping, gap_pressure_drop, args=(), quasi
     def residual(dp, v, *args):
         return dp - gap_pressure_drop(v - dp * k, *args)
 
-    same = hi == lo
     scale = float(np.max(np.abs(dp0))) + 1.0 if dp0.size else 1.0
+    compiled = getattr(gap_pressure_drop, "with_bypass", None)
+    if compiled is not None:
+        dp = compiled(v, k, args, dp0, 1e-10 * scale, 1e-12)
+        if dp is not None:
+            return dp
+    same = hi == lo
     res = find_root(
         residual,
         np.where(same, lo - 1.0, lo),
@@ -135,7 +144,12 @@ class Leakage(Effect):
     def split_flow(self, v, gap_pressure_drop, args, quasi_steady_drop, damper, values):
         Ap, C_l = damper.geometry.piston_area, values["bypass_damping"]
         dp = leaky_pressure_drop(v, Ap, C_l, gap_pressure_drop, args=args, quasi_steady_drop=quasi_steady_drop)
-        return dp, v - dp * Ap / C_l
+        u = v - dp * Ap / C_l
+        # creeping (the root on the break-away jump, dp = C_l v / Ap): the duct flow is zero up to rounding, whose
+        # sign would pick the side of the jump for what is read at it (a moving head's shear drag); take the side
+        # of the piston's motion, the limit of the flowing branch
+        creep = np.abs(u) <= 1e-9 * np.abs(v)
+        return dp, np.where(creep, np.copysign(0.0, v), u)
 
     def bypass_conductance(self, values):
         return 1.0 / values["bypass_damping"]

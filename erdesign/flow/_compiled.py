@@ -6,8 +6,8 @@ disk (``cache=True``).  Each loop runs the scalar form of the closed forms docum
 at a time, so that a root is found per element from a good start instead of by whole-array iterations:
 
 * :func:`find_root` - Chandrupatla's bracketed root finder with the tolerances of
-  :func:`scipy.optimize.elementwise.find_root` (which the numpy kernels used before), for one mixed-mode element
-  (the fallback of the faster iteration);
+  :func:`scipy.optimize.elementwise.find_root` (which the numpy kernels used before), for one element of the
+  residuals it knows (:data:`MIXED_FLOW`: the fallback of the mixed-mode iteration; the leaky gaps below);
 * :func:`couette_poiseuille`, :func:`mixed_gap_state` - Bingham Couette-Poiseuille flow in a slit with one moving
   wall (:func:`erdesign.flow.mixed_mode.couette_poiseuille_bingham`);
 * :func:`annulus_shape_offset`, :func:`annulus_plug_fraction` - the exact Bingham annulus
@@ -16,6 +16,9 @@ at a time, so that a root is found per element from a good start instead of by w
   (:func:`erdesign.flow.bingham.bingham_slit_flow`);
 * :func:`hb_slit_pressure_drop` - the thin-gap Herschel-Bulkley pressure drop of a flow, by Newton on the log of
   the stress above yield, per element (:func:`erdesign.flow.herschel_bulkley.herschel_bulkley_pressure_drop`).
+* :func:`leaky_pressure_drop` - the pressure drop of a damper whose flow splits between its gap (a moving-electrode
+  head read from its table, or thin valve slits) and a laminar bypass, by :func:`find_root` per element
+  (:func:`erdesign.effects.leakage.leaky_pressure_drop`, whose generic path runs the same iteration on whole arrays).
 
 ``error_model="numpy"``: a division by zero gives inf or NaN as in numpy, never an exception, so the branches read
 as the ``np.where`` forms they replace.  tests/test_flow_compiled.py checks these loops against independent
@@ -37,6 +40,7 @@ __all__ = [
     "couette_poiseuille",
     "find_root",
     "hb_slit_pressure_drop",
+    "leaky_pressure_drop",
     "mixed_gap_state",
     "slit_flow",
     "slit_flow_one_duct",
@@ -46,6 +50,7 @@ _jit = njit(cache=True, nogil=True, error_model="numpy")
 
 _EPS = float(np.finfo(float).eps)
 _TINY = float(np.finfo(float).tiny)
+_NO_TABLE = np.zeros(2)  # the table argument of a residual that reads none
 #: the codes of erdesign.flow.mixed_mode.GapFlowRegime (tests/test_flow_compiled.py checks they agree)
 FULLY_YIELDED, FLOATING_PLUG, PLUG_AT_MOVING_WALL, PLUG_AT_FIXED_WALL, BLOCKED = 0, 1, 2, 3, 4
 
@@ -55,16 +60,30 @@ FULLY_YIELDED, FLOATING_PLUG, PLUG_AT_MOVING_WALL, PLUG_AT_FIXED_WALL, BLOCKED =
 # ------------------------------------------------------------------------------------------------------------------
 
 
+#: The residuals :func:`find_root` solves (``kind``): the mixed-mode flow of one element (:func:`_mixed_residual`),
+#: and the pressure drop of a damper whose flow splits between its gap and a laminar bypass
+#: (:func:`_leaky_residual`: a moving-electrode head read from its table, or thin valve slits).
+MIXED_FLOW, LEAKY_MIXED_HEAD, LEAKY_SLIT = 0, 1, 2
+
+
 @_jit
-def find_root(x1, x2, U_bar, q_bar, eps, xatol, xrtol):
-    """Root G of the mixed-mode flow residual :func:`_mixed_residual` in the bracket [x1, x2] (ends of opposite
-    signs), by Chandrupatla's method (1997).
+def _residual(kind, x, p, table):
+    """The residual of ``kind`` at x, with its parameters ``p`` (a tuple of 8 floats) and a table (or a dummy)."""
+    if kind == MIXED_FLOW:
+        return _mixed_residual(x, p[0], p[1], p[2])
+    return _leaky_residual(kind, x, p, table)
+
+
+@_jit
+def find_root(kind, x1, x2, p, table, xatol, xrtol):
+    """Root of the residual ``kind`` (:func:`_residual`) in the bracket [x1, x2] (ends of opposite signs), by
+    Chandrupatla's method (1997).
 
     The iteration and the stopping rule of :func:`scipy.optimize.elementwise.find_root`: stop when
-    ``|f| <= tiny`` or the bracket is narrower than ``|x_min| xrtol + xatol``; returns (x, converged).
-    NaN where the bracket does not hold a sign change."""
-    f1 = _mixed_residual(x1, U_bar, q_bar, eps)
-    f2 = _mixed_residual(x2, U_bar, q_bar, eps)
+    ``|f| <= tiny`` or the bracket is narrower than ``|x_min| xrtol + xatol``; at most 200 steps; returns
+    (x, converged).  NaN where the bracket does not hold a sign change."""
+    f1 = _residual(kind, x1, p, table)
+    f2 = _residual(kind, x2, p, table)
     # scipy's first step: t = 1/2 between the ends, x3 the end that is dropped
     t = 0.5
     x3, f3 = x2, f2
@@ -90,7 +109,7 @@ def find_root(x1, x2, U_bar, q_bar, eps, xatol, xrtol):
             tl = 0.5 * tol / dx
             t = min(max(t, tl), 1.0 - tl)
         x = x1 + t * (x2 - x1)
-        fx = _mixed_residual(x, U_bar, q_bar, eps)
+        fx = _residual(kind, x, p, table)
         if (fx > 0.0) == (f1 > 0.0) and fx != 0.0 and f1 != 0.0 or (fx == 0.0 and f1 == 0.0):
             x3, f3 = x1, f1
         else:
@@ -195,7 +214,9 @@ def _mixed_gradient_bracketed(U_bar, q_bar, eps):
             break
         hi += half
         half *= 2.0
-    G, converged = find_root(lo, hi, U_bar, q_bar, eps, 4.0 * _TINY, 4.0 * _EPS)
+    G, converged = find_root(
+        MIXED_FLOW, lo, hi, (U_bar, q_bar, eps, 0.0, 0.0, 0.0, 0.0, 0.0), _NO_TABLE, 4.0 * _TINY, 4.0 * _EPS
+    )
     return G if converged else math.nan
 
 
@@ -576,6 +597,17 @@ def _slit_plug_fraction(N):
     return 2.0 * m * math.sin(math.asin(m**-3) / 3.0)
 
 
+@_jit
+def _slit_drop(dp_y, dp_n, Q):
+    """(pressure drop with the sign of Q, plug fraction) of a thin Bingham slit from its yield pressure drop
+    dp_y = 2 tau_y L / h and the Newtonian one dp_n = 12 eta L |Q| / (pi d h^3)."""
+    if dp_y > 1e-12 * dp_n:
+        p = _slit_plug_fraction(dp_n / dp_y)
+        return math.copysign(dp_y / p, Q), p
+    # a yield stress below 1e-12 of the viscous pressure drop: the large-ratio limit, exact to 1e-12
+    return math.copysign(dp_n + 1.5 * dp_y, Q), 0.0
+
+
 @guvectorize(
     ["void(float64, float64, float64, float64, float64, float64, float64[:], float64[:])"],
     "(),(),(),(),(),()->(),()",
@@ -588,14 +620,7 @@ def slit_flow(Q, tau_y, eta, L, d, h, dp, phi):  # pragma: no cover - compiled; 
     copies."""
     dp_y = 2.0 * tau_y * L / h
     dp_n = 12.0 * eta * L * abs(Q) / (math.pi * d * h**3)
-    if dp_y > 1e-12 * dp_n:
-        p = _slit_plug_fraction(dp_n / dp_y)
-        dp[0] = math.copysign(dp_y / p, Q)
-        phi[0] = p
-    else:
-        # a yield stress below 1e-12 of the viscous pressure drop: the large-ratio limit, exact to 1e-12
-        dp[0] = math.copysign(dp_n + 1.5 * dp_y, Q)
-        phi[0] = 0.0
+    dp[0], phi[0] = _slit_drop(dp_y, dp_n, Q)
 
 
 @_jit
@@ -607,17 +632,9 @@ def slit_flow_one_duct(Q, tau_y, eta, L, d, h, dp, phi):
     dp_y = 2.0 * tau_y * L / h
     per_flow = 12.0 * eta * L / (math.pi * d * h**3)
     for i in range(Q.size):
-        q = Q[i]
-        dp_n = per_flow * abs(q)
-        if dp_y > 1e-12 * dp_n:
-            p = _slit_plug_fraction(dp_n / dp_y)
-            dp[i] = math.copysign(dp_y / p, q)
-            if plug:
-                phi[i] = p
-        else:
-            dp[i] = math.copysign(dp_n + 1.5 * dp_y, q)
-            if plug:
-                phi[i] = 0.0
+        dp[i], p = _slit_drop(dp_y, per_flow * abs(Q[i]), Q[i])
+        if plug:
+            phi[i] = p
     return dp, phi
 
 
@@ -684,4 +701,63 @@ def hb_slit_pressure_drop(Qa, tau_y, K, m, L, d, h, out):
                     break
             S = math.exp(y)
         out[i] = (ty + S) / to_tau
+    return out
+
+
+# ------------------------------------------------------------------------------------------------------------------
+# A laminar bypass in parallel with the gap (erdesign.effects.leakage): dp = dp_gap(v - dp k), k = A_p / C_l
+# ------------------------------------------------------------------------------------------------------------------
+
+
+@_jit
+def _head_table_drop(u, tau_y, eta, h, L, table):
+    """Pressure drop [Pa] of a moving-electrode gap at flow speed u (= the head's speed), read from its table of
+    G_p on a uniform grid of w in [0, 1] (:class:`erdesign.damper.quasi_steady.MixedGapTable`, whose ``forces``
+    reads the same table with np.interp)."""
+    scale = eta * abs(u) + tau_y * h
+    w = math.sqrt(eta * abs(u) / scale) if scale > 0.0 else 1.0
+    n = table.size - 1
+    x = w * n
+    j = min(int(x), n - 1)
+    g = table[j] + (x - j) * (table[j + 1] - table[j])
+    return math.copysign(1.0, u) * g * scale / h**2 * L
+
+
+@_jit
+def _leaky_gap_drop(kind, u, p, table):
+    """dp_gap(u) of a head (``kind`` LEAKY_MIXED_HEAD, p = (v, k, tau_y, eta, h, L, ...)) or of n thin valve slits
+    (LEAKY_SLIT, p = (v, k, tau_y, eta, h, L, d, A_p/n)) passing the flow of a piston at speed u."""
+    tau_y, eta, h, L = p[2], p[3], p[4], p[5]
+    if kind == LEAKY_MIXED_HEAD:
+        return _head_table_drop(u, tau_y, eta, h, L, table)
+    Q = u * p[7]
+    dp, _ = _slit_drop(2.0 * tau_y * L / h, 12.0 * eta * L * abs(Q) / (math.pi * p[6] * h**3), Q)
+    return dp
+
+
+@_jit
+def _leaky_residual(kind, dp, p, table):
+    """dp - dp_gap(v - dp k), increasing in dp (p as in :func:`_leaky_gap_drop`)."""
+    return dp - _leaky_gap_drop(kind, p[0] - dp * p[1], p, table)
+
+
+@_jit
+def leaky_pressure_drop(kind, v, k, tau_y, eta, h, L, d, flow_per_speed, table, dp0, xatol, xrtol, out):
+    """out[i] = the root dp of dp = dp_gap(v_i - dp k) (``kind`` LEAKY_MIXED_HEAD or LEAKY_SLIT, 1-D arrays v,
+    tau_y, eta, dp0 of one size) in the bracket between 0 and the no-leak drop dp0 (dp0 itself where that is 0):
+    :func:`erdesign.effects.leakage.leaky_pressure_drop` element by element, with the same root finder and
+    tolerances.  ``d`` and ``flow_per_speed`` (A_p/n) are the slits'; ``table`` the head's (a dummy for slits)."""
+    for i in range(v.size):
+        lo, hi = min(0.0, dp0[i]), max(0.0, dp0[i])
+        if math.isnan(dp0[i]) or lo == hi:
+            out[i] = dp0[i]
+            continue
+        p = (v[i], k, tau_y[i], eta[i], h, L, d, flow_per_speed)
+        creep = v[i] / k
+        if abs(creep) <= _leaky_gap_drop(kind, 0.0, p, table):
+            # below the break-away pressure the gap is blocked (u = 0) and the bypass passes all the flow: the
+            # root on the jump of the gap law, where the bracketed iteration would end within its tolerance
+            out[i] = creep
+            continue
+        out[i], _ = find_root(kind, lo, hi, p, table, xatol, xrtol)
     return out
