@@ -409,10 +409,12 @@ The truth rig is the team's own; two measured sets test what it cannot:
 
 - **Dyke's `ransim_u`** (Spencer et al. 1997 prototype MR damper, 3 kHz band-limited random motion and command,
   `examples/spencer1997.toml`; [case_studies/dyke.md](case_studies/dyke.md)): the findings leave out 217 clipped
-  samples and a 0.38 s excursion of the displacement; following its own verdicts the loop names field lag + gas
-  spring (a pair), then leakage, then pre-yield elasticity, and ends `unexplained` at ESR 0.020 on the judged samples
-  with 7 free parameters (0.0996 on all unclipped samples; the modified Bouc-Wen, 13 parameters, 0.092 there); fitted
-  on the first half it predicts the second within 1.12-1.17 x on the judged samples.
+  samples and a 0.38 s excursion of the displacement; following its own verdicts the loop names field lag, then
+  gas spring + leakage (a pair), then pre-yield elasticity, and ends `unexplained` at ESR 0.0176 on the judged
+  samples with 7 free parameters.  On all unclipped samples that model has ESR 0.0994 when fitted on every sample
+  outside the excursion, 0.104 as `erdesign fit` fits it (the judged samples only); the modified Bouc-Wen, 13
+  parameters, 0.092 there; fitted on the first half it predicts the second within 1.19 x its own ESR outside the
+  excursion.
 - **Quiroz (2022)** (a small MR damper at five coil currents, `examples/quiroz2022.toml`;
   [case_studies/quiroz.md](case_studies/quiroz.md)): the 30 raw sinusoids are diagnosed together (one parameter
   set; the preprocessed files are found `smoothed`, a causal moving average over a tenth of a period): following
