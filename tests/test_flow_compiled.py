@@ -127,6 +127,18 @@ def test_mixed_gradient_is_the_root_brentq_finds():
         assert compiled._mixed_gradient_bracketed(U_bar, q_bar, eps) == pytest.approx(ref, rel=1e-13, abs=1e-16)
 
 
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e-100, 1e-40, 1e-31, 1e-25])
+def test_mixed_gradient_of_vanishing_flows_is_the_root_brentq_finds(scale):
+    # a head creeping at 1e-300 to 1e-25 of its speed scale (the flow of a piston head, q = -7.2 U, dimensionless):
+    # the root sits just outside the yield band, on the side the flow sets; the secant steps once returned the
+    # other side's break-away value below about 1e-40
+    for sign in (1.0, -1.0):
+        U_bar, q_bar, eps = sign * 1.47 * scale, -sign * 10.6 * scale, 1.0
+        ref = _brentq_decreasing(lambda g: compiled._mixed_residual(g, U_bar, q_bar, eps), 0.0, 1.0)
+        G = compiled._mixed_gradient(U_bar, q_bar, eps)
+        assert G == pytest.approx(ref, rel=1e-13) and ref == pytest.approx(2.0 * sign, rel=1e-9)
+
+
 def test_mixed_regime_codes_are_the_enum():
     assert [
         compiled.FULLY_YIELDED,

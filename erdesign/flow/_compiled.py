@@ -238,6 +238,11 @@ def _mixed_gradient(U_bar, q_bar, eps):
         return G_newton
     if U_bar == 0.0 and q_bar == 0.0:  # blocked: the break-away value with the sign bit of q
         return -math.copysign(2.0 * eps, q_bar)
+    if abs(U_bar) + abs(q_bar) < 1e-30 * eps:
+        # flows some 30 decades below the yield stress's scale: the residual is flat to 1e-30 across the band and
+        # the secant steps below lose its sign (a head creeping at 1e-100 m/s read the break-away drop with the
+        # wrong sign); the bracketed root does not
+        return _mixed_gradient_bracketed(U_bar, q_bar, eps)
     half = 3.0 * eps + 1e-3
     lo, hi = G_newton - half, G_newton + half  # residual >= 0 at lo, <= 0 at hi, until checked
     lo_checked = hi_checked = False
