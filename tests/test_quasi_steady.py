@@ -151,6 +151,33 @@ def test_mixed_gap_table_is_mixed_state_within_its_interpolation_error(row):
         np.testing.assert_allclose(shear, s.shear_force, rtol=1e-5, atol=1e-12 * np.max(np.abs(s.shear_force)))
 
 
+def test_mixed_gap_table_compiled_pass_reads_the_table_as_np_interp():
+    """MixedGapTable.forces runs one compiled pass over its uniform table: the values np.interp reads there, to a few
+    ulp, for every sign and size of the speed and for zero, non-finite and broadcast inputs."""
+    h, Dp, dr, L = 1e-3, 0.0381, 0.0127, 0.0254
+    t = mixed_gap_table(h, Dp, dr)
+    rng = np.random.default_rng(7)
+    u = np.concatenate([rng.normal(0, 0.3, 500), rng.normal(0, 1e-5, 500), [0.0, -0.0, np.inf, -np.inf, np.nan]])
+    tau_y = np.where(np.arange(u.size) % 5 == 0, 0.0, rng.uniform(0, 50e3, u.size))
+    eta = rng.uniform(0.05, 1.0, u.size)
+    eta[3] = np.inf
+    # the interpolation of the module notes, written out with np.interp
+    scale = eta * np.abs(u) + tau_y * h
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w = np.sqrt(np.where(scale > 0, eta * np.abs(u) / scale, 1.0))
+        sign = np.copysign(1.0, u)
+        dp_ref = sign * np.interp(w, t.w, t.pressure) * scale / h**2 * L
+        drag_ref = -sign * np.interp(w, t.w, t.shear) * scale / h * np.pi * Dp * L
+    dp, drag = t.forces(u, tau_y, eta, L)
+    np.testing.assert_allclose(dp, dp_ref, rtol=1e-13, atol=0, equal_nan=True)
+    np.testing.assert_allclose(drag, drag_ref, rtol=1e-13, atol=0, equal_nan=True)
+    assert t.forces(u, tau_y, eta, L, shear=False)[1] is None
+    # broadcasting: a scalar control and viscosity against an array of speeds, and a 2-D array
+    a, _ = t.forces(u[:10], 2e3, 0.3, L)
+    b, _ = t.forces(u[:10].reshape(2, 5), 2e3, 0.3, L)
+    assert a.shape == (10,) and b.shape == (2, 5) and np.array_equal(a, b.ravel())
+
+
 def test_valve_pressure_drop_follows_the_damper_flow_model():
     """valve_pressure_drop is the gap law of valve_state: thin gap or exact annulus, bit for bit."""
     for rows, exact in ((THIN, False), (WIDE, True)):

@@ -362,18 +362,20 @@ class MixedGapTable:
 
     def forces(self, u, tau_y, eta, L, *, shear: bool = True):
         """(pressure drop [Pa], shear drag [N]) of the gap at flow speed ``u`` [m/s] (= the wall speed), yield
-        stress ``tau_y`` [Pa], plastic viscosity ``eta`` [Pa s] and head length ``L`` [m]; vectorised.  With
+        stress ``tau_y`` [Pa], plastic viscosity ``eta`` [Pa s] and head length ``L`` [m]; vectorised (one compiled
+        pass, :func:`erdesign.flow._compiled.head_table_forces`: np.interp's values on the uniform grid).  With
         ``shear=False`` the drag is None (not read from the table: a root in the pressure drop needs only that)."""
-        h = self.h
-        scale = eta * np.abs(u) + tau_y * h
-        with np.errstate(divide="ignore", invalid="ignore"):
-            w = np.sqrt(np.where(scale > 0, eta * np.abs(u) / scale, 1.0))
-        sign = np.copysign(1.0, u)
-        dp = sign * np.interp(w, self.w, self.pressure) * scale / h**2 * L
-        if not shear:
-            return dp, None
-        drag = -sign * np.interp(w, self.w, self.shear) * scale / h * np.pi * self.Dp * L
-        return dp, drag
+        from ..flow import _compiled
+
+        u, tau_y, eta, L = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (u, tau_y, eta, L)))
+        shape = u.shape
+        args = [np.ascontiguousarray(a).ravel() for a in (u, tau_y, eta, L)]
+        dp = np.empty(args[0].size)
+        drag = np.empty(args[0].size if shear else 0)
+        _compiled.head_table_forces(*args, self.h, self.Dp, self.pressure, self.shear, dp, drag)
+        if not shape:
+            return float(dp[0]), (float(drag[0]) if shear else None)
+        return dp.reshape(shape), (drag.reshape(shape) if shear else None)
 
 
 @lru_cache(maxsize=64)

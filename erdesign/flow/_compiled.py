@@ -16,6 +16,8 @@ at a time, so that a root is found per element from a good start instead of by w
   (:func:`erdesign.flow.bingham.bingham_slit_flow`);
 * :func:`hb_slit_pressure_drop` - the thin-gap Herschel-Bulkley pressure drop of a flow, by Newton on the log of
   the stress above yield, per element (:func:`erdesign.flow.herschel_bulkley.herschel_bulkley_pressure_drop`).
+* :func:`head_table_forces` - the pressure drop and shear drag of a moving-electrode head read from its table
+  (:class:`erdesign.damper.quasi_steady.MixedGapTable`), one pass;
 * :func:`leaky_pressure_drop` - the pressure drop of a damper whose flow splits between its gap (a moving-electrode
   head read from its table, or thin valve slits) and a laminar bypass, by :func:`find_root` per element
   (:func:`erdesign.effects.leakage.leaky_pressure_drop`, whose generic path runs the same iteration on whole arrays).
@@ -40,6 +42,7 @@ __all__ = [
     "couette_poiseuille",
     "find_root",
     "hb_slit_pressure_drop",
+    "head_table_forces",
     "leaky_pressure_drop",
     "mixed_gap_state",
     "slit_flow",
@@ -715,17 +718,46 @@ def hb_slit_pressure_drop(Qa, tau_y, K, m, L, d, h, out):
 
 
 @_jit
-def _head_table_drop(u, tau_y, eta, h, L, table):
-    """Pressure drop [Pa] of a moving-electrode gap at flow speed u (= the head's speed), read from its table of
-    G_p on a uniform grid of w in [0, 1] (:class:`erdesign.damper.quasi_steady.MixedGapTable`, whose ``forces``
-    reads the same table with np.interp)."""
-    scale = eta * abs(u) + tau_y * h
-    w = math.sqrt(eta * abs(u) / scale) if scale > 0.0 else 1.0
+def _table_read(w, table):
+    """Linear interpolation in ``table``, given on a uniform grid of w in [0, 1] (np.interp's value, for w in
+    [0, 1]; NaN outside, e.g. for NaN)."""
+    if not 0.0 <= w <= 1.0:
+        return math.nan
     n = table.size - 1
     x = w * n
     j = min(int(x), n - 1)
-    g = table[j] + (x - j) * (table[j + 1] - table[j])
-    return math.copysign(1.0, u) * g * scale / h**2 * L
+    return table[j] + (x - j) * (table[j + 1] - table[j])
+
+
+@_jit
+def _head_w(u, tau_y, eta, h):
+    """(w, scale) of a moving-electrode gap at flow speed u: w = sqrt(eta |u| / scale), scale = eta |u| + tau_y h
+    (w = 1 where scale is not positive, as :meth:`MixedGapTable.forces`)."""
+    scale = eta * abs(u) + tau_y * h
+    return (math.sqrt(eta * abs(u) / scale) if scale > 0.0 else 1.0), scale
+
+
+@_jit
+def _head_table_drop(u, tau_y, eta, h, L, table):
+    """Pressure drop [Pa] of a moving-electrode gap at flow speed u (= the head's speed), read from its table of
+    G_p on a uniform grid of w in [0, 1] (:class:`erdesign.damper.quasi_steady.MixedGapTable`)."""
+    w, scale = _head_w(u, tau_y, eta, h)
+    return math.copysign(1.0, u) * _table_read(w, table) * scale / h**2 * L
+
+
+@_jit
+def head_table_forces(u, tau_y, eta, L, h, Dp, pressure, shear, dp, drag):
+    """dp[i], drag[i] = the pressure drop [Pa] and shear drag [N] of a moving-electrode gap at flow speed u[i]
+    (1-D arrays of one size; ``pressure``, ``shear``: the head's tables G_p, G_s on a uniform grid of w in [0, 1];
+    an empty ``drag``: the pressure drop alone), the loop of :meth:`erdesign.damper.quasi_steady.MixedGapTable.forces`."""
+    with_drag = drag.size > 0
+    for i in range(u.size):
+        w, scale = _head_w(u[i], tau_y[i], eta[i], h)
+        sign = math.copysign(1.0, u[i])
+        dp[i] = sign * _table_read(w, pressure) * scale / h**2 * L[i]
+        if with_drag:
+            drag[i] = -sign * _table_read(w, shear) * scale / h * math.pi * Dp * L[i]
+    return dp, drag
 
 
 @_jit
