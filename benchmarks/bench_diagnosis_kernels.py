@@ -1,11 +1,16 @@
-"""Benchmark: the two loops a diagnosis spends most in, each against a baseline run in the same process.
+"""Benchmark: the loops a diagnosis spends most in, each against a baseline run in the same process.
 
 * the compressible column (:func:`erdesign.effects.compressibility.compliant_pressure_force`, compiled backward
   Euler with a root per substep) against :func:`scipy.integrate.solve_ivp` (Radau, rtol 1e-8) on the same series
   ODE dP/dt = k (v - u(P)) of a Bingham valve; the largest difference is printed beside the ratio;
 * the Herschel-Bulkley pressure drop of a flow (:func:`erdesign.flow.herschel_bulkley.herschel_bulkley_pressure_drop`,
   compiled Newton) against scipy's elementwise ``bracket_root`` + ``find_root`` on the same equation (the code it
-  replaced), on 6,600 flows (a diagnosis-sized record).
+  replaced), on 6,600 flows (a diagnosis-sized record);
+* the pressure drop of a damper with a bypass in parallel (:func:`erdesign.effects.leakage.leaky_pressure_drop` with
+  the physics damper's gap, compiled per element) against the same equation solved on whole arrays
+  (:func:`erdesign.numerics.find_root`, the generic path), on a moving-electrode head (Spencer et al. 1997) and on a
+  valve (Makris 1996), 6,600 samples from creep to full flow; and the head's table read in one compiled pass
+  (:meth:`erdesign.damper.quasi_steady.MixedGapTable.forces`) against the same read by ``np.interp``.
 
 Run: ``python benchmarks/bench_diagnosis_kernels.py`` (with erdesign installed from this checkout, as the README's
 commands do; otherwise ``PYTHONPATH=.``) (CPU time, best of 7 interleaved runs, one BLAS thread).
@@ -115,6 +120,51 @@ def hb_row() -> None:
     )
 
 
+def leakage_rows() -> None:
+    from erdesign.damper.files import load_example
+    from erdesign.effects.base import GapLaw
+    from erdesign.effects.chain import PhysicsDamper, _GapDrop
+    from erdesign.effects.leakage import leaky_pressure_drop
+
+    n = 6600
+    t = np.linspace(0.0, 10.0, n)
+    v = 0.2 * np.sin(2 * np.pi * t) * (1 + 0.3 * np.sin(7 * t))
+    tau = np.where((t % 3) < 1.5, 2e4, 2e3)
+    eta = np.full(n, 0.3)
+    for name in ("spencer1997", "makris"):
+        d = load_example(name)
+        gap = _GapDrop(PhysicsDamper(d, ["leakage"]), GapLaw())
+        Ap, C_l = d.geometry.piston_area, 2e4
+        fast = lambda: leaky_pressure_drop(v, Ap, C_l, gap, args=(v, tau, eta))  # noqa: E731
+        slow = lambda: leaky_pressure_drop(v, Ap, C_l, lambda *a: gap(*a), args=(v, tau, eta))  # noqa: E731
+        fast()
+        t_now, t_base = paired(fast, slow)
+        diff = np.max(np.abs(fast() - slow())) / np.max(np.abs(slow()))
+        print(
+            f"bypass root, {d.geometry.configuration} ({name}), {n} samples: {t_now * 1e3:8.2f} ms  whole-array "
+            f"Chandrupatla {t_base * 1e3:8.2f} ms  ratio {t_now / t_base:6.3f}   (max difference {diff:.1e} of the "
+            "largest drop)"
+        )
+    table = PhysicsDamper(load_example("spencer1997"), [])._mixed_table()
+    L = 0.0254
+
+    def interp():
+        scale = eta * np.abs(v) + tau * table.h
+        w = np.sqrt(np.where(scale > 0, eta * np.abs(v) / scale, 1.0))
+        sign = np.copysign(1.0, v)
+        dp = sign * np.interp(w, table.w, table.pressure) * scale / table.h**2 * L
+        return dp, -sign * np.interp(w, table.w, table.shear) * scale / table.h * np.pi * table.Dp * L
+
+    table.forces(v, tau, eta, L)
+    t_now, t_base = paired(lambda: table.forces(v, tau, eta, L), interp, repeat=50)
+    diff = np.max(np.abs(table.forces(v, tau, eta, L)[0] / interp()[0] - 1))
+    print(
+        f"mixed head table, {n} samples: {t_now * 1e6:8.1f} us  np.interp {t_base * 1e6:8.1f} us  "
+        f"ratio {t_now / t_base:6.3f}   (max relative difference {diff:.1e})"
+    )
+
+
 if __name__ == "__main__":
     column_rows()
     hb_row()
+    leakage_rows()
