@@ -54,7 +54,66 @@ __all__ = [
 ]
 
 ureg = application_registry()  # pint's application registry, its definitions cached (erdesign/_pint.py)
-Q_ = ureg.Quantity
+
+#: Units pint lacks that damper rigs write: (definition for the registry, the name it defines).
+EXTRA_UNITS = (("inch_per_second = inch / second = ips", "ips"),)  # US rigs' controllers and data sheets
+
+
+def _define_extra_units(registry) -> None:
+    """Define :data:`EXTRA_UNITS` in ``registry`` unless it knows the name already (a user's own registry)."""
+    for definition, unit in EXTRA_UNITS:
+        try:
+            registry.parse_units(unit)
+        except pint.errors.UndefinedUnitError:
+            registry.define(definition)
+
+
+_define_extra_units(ureg)
+
+
+def _plain_magnitude(value: Any) -> Any:
+    """``value`` as pint can wrap it: a pandas Series (or an xarray DataArray) as a numpy array of its values, which
+    pint refuses to wrap ("PlainQuantity cannot wrap upcast type"); a DataFrame refused naming its columns."""
+    if not pint.compat.is_upcast_type(type(value)):
+        return value
+    kind = type(value).__name__
+    if kind in ("DataFrame", "Dataset"):
+        columns = [str(c) for c in getattr(value, "columns", getattr(value, "data_vars", []))]
+        first = columns[0] if columns else "v"
+        raise UnitError(
+            f"Q_: got a {kind} of {len(columns)} column(s) {', '.join(map(repr, columns[:4]))[:80]}; give one "
+            f"column, e.g. Q_(frame[{first!r}], 'm/s')"
+        )
+    if getattr(value.dtype, "kind", "O") in "iuf":  # pandas' nullable Float64 and Int64 too (pd.NA as NaN)
+        try:
+            return value.to_numpy(dtype=float, na_value=np.nan)
+        except TypeError:  # xarray's to_numpy() takes no arguments
+            pass
+    return value.to_numpy()  # texts, booleans, objects: as they are, for the argument's checks to name
+
+
+class _QuantityType(type):
+    """The type of :data:`Q_`: calling it makes pint's quantity of :data:`ureg` (:func:`_plain_magnitude` first);
+    ``isinstance(x, Q_)`` and its class attributes are pint's."""
+
+    def __call__(cls, value: Any, units: Any = None) -> Any:
+        return ureg.Quantity(_plain_magnitude(value), units)
+
+    def __instancecheck__(cls, obj: Any) -> bool:
+        return isinstance(obj, ureg.Quantity)
+
+    def __subclasscheck__(cls, sub: type) -> bool:
+        return issubclass(sub, ureg.Quantity)
+
+    def __getattr__(cls, name: str) -> Any:
+        return getattr(ureg.Quantity, name)
+
+
+class Q_(metaclass=_QuantityType):  # noqa: N801 - pint's customary name for a registry's Quantity
+    """A quantity of erdesign's unit registry: ``Q_(0.8, "mm")``, ``Q_("0.8 mm")``, ``Q_(series, "m/s")`` (a pandas
+    Series or xarray DataArray is taken as a numpy array of its values; a DataFrame is refused, naming its
+    columns).  Instances are pint's quantities of :data:`ureg` (``isinstance(q, Q_)`` holds for them)."""
+
 
 # Plain-language names of the dimensions erdesign deals with, for error messages.
 _DIMENSION_NAMES = {
@@ -269,9 +328,13 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         before = f" {text}"[: dash.start()].rstrip()
         if what == "value" and (not before or before[-1] not in "^*"):  # not an exponent ('m ^ -1')
             raise UnitError(f"{name}: {shown!r} is a range (a '-' between two values); give one value with its unit")
+    ranged = re.search(r"([A-Za-zµμ]+)-(\d*\.?\d+)\s*([A-Za-zµμ]+)", text)
+    if what == "value" and ranged and ("." in ranged[2] or ranged[1] == ranged[3]):  # '0.8 mm-0.9 mm'
+        raise UnitError(f"{name}: {shown!r} is a range (a '-' between two values); give one value with its unit")
     exponent = re.search(r"([A-Za-zµμ]+)-(\d)", text)
     if exponent and exponent[1] not in ("e", "E"):  # 'N s m-1': "a '-' between units"
         raise UnitError(f"{name}: {shown!r} has a power without '^'; write e.g. '{exponent[1]}^-{exponent[2]}'")
+    text = _hyphen_products(text, name, shown)
     # 'mil' is a thousandth of an inch on every drawing a damper comes from; pint's 'mil' is an angle (1/6400 turn)
     text = _MIL.sub("thou", text)
     try:
@@ -299,6 +362,29 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
             detail = " (a '-' between units; write a product with '*' or a space, e.g. 'N*s/m')"
         kind = "a value with a unit" if what == "value" else "a unit"
         raise UnitError(f"{name}: cannot read {shown!r} as {kind}{detail}") from None
+
+
+#: A hyphen between two unit words ('N-s/m', 'lbf-s/in', 'kN-m'): the product as US data sheets write it.
+_HYPHEN_PRODUCT = re.compile(r"(?<=[A-Za-zµμΩ°)])-(?=[A-Za-zµμΩ(])")
+
+
+def _hyphen_products(text: str, name: str, shown: str) -> str:
+    """``text`` with each hyphen between unit words read as a product ('N-s/m' is N*s/m) where that is unambiguous:
+    before any '/'.  After a '/' the writer may mean the product in the denominator ('W/m-K': W/(m*K)) or the
+    rule of '*' and '/' from left to right (W*K/m), so it is refused with both spellings."""
+    if "-" not in text or not _HYPHEN_PRODUCT.search(text):
+        return text
+    slash = text.find("/")
+    head, tail = (text, "") if slash < 0 else (text[:slash], text[slash:])
+    if _HYPHEN_PRODUCT.search(tail):
+        word = re.search(r"/\s*([^/]*?-[^/]*?)\s*(?:/|$)", tail)
+        group = word[1] if word else tail[1:]
+        product = _HYPHEN_PRODUCT.sub("*", group)
+        raise UnitError(
+            f"{name}: {shown!r} has a '-' after '/', which is ambiguous: for a product below the line write it in "
+            f"brackets, e.g. '{_HYPHEN_PRODUCT.sub('*', head)}/({product})'"
+        )
+    return _HYPHEN_PRODUCT.sub("*", head) + tail
 
 
 #: A number times a power of ten as typeset or typed ('1 ×10³ N', '1.5·10⁻³ m', '2 x 10^3 N', '2*10**-3 m'): the power

@@ -137,8 +137,47 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 
+class OneValueCommand(click.Command):
+    """A command whose options that take one value refuse to be given twice.
+
+    click keeps the last of ``--damper a.toml --damper b.toml`` without a word: the user meant one of the two, or
+    both (a record each?).  Flags (``--force --force``), counted options and options that take several values
+    (``multiple=True``) may repeat."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        if not ctx.resilient_parsing:
+            refuse_repeated_options(self, ctx, args)
+        return super().parse_args(ctx, args)
+
+
+def refuse_repeated_options(command: click.Command, ctx: click.Context, args: list[str]) -> None:
+    """A usage error naming the first option of ``command`` that takes one value and is given more than once in
+    ``args``; nothing when none is (or the arguments do not parse: click's own parse then says why)."""
+    try:
+        opts, _, order = command.make_parser(ctx).parse_args(args=list(args))
+    except click.UsageError:
+        return
+    seen: set[str] = set()
+    for param in order:
+        one_value = (
+            isinstance(param, click.Option) and not (param.multiple or param.count or param.is_flag) and param.name
+        )
+        if not one_value:
+            continue
+        if param.name in seen:
+            flag = max(param.opts, key=len)
+            raise click.UsageError(
+                f"{flag} is given more than once; it is read once (only the last would count): give it once, or "
+                "run the command once for each",
+                ctx,
+            )
+        seen.add(param.name)
+
+
 class LazyGroup(click.Group):
     """A click group that imports a command's module only when the command is looked up to run."""
+
+    command_class = OneValueCommand
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return sorted(set(COMMANDS) | set(self.commands))
