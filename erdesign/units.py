@@ -322,6 +322,10 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         raise UnitError(f"{name}: {shown!r} has unbalanced brackets; close each '(' with a ')'")
     if text.rstrip()[-1:] in ("/", "*", "^", "-", "+"):
         raise UnitError(f"{name}: {shown!r}: the unit ends in {text.rstrip()[-1]!r}; complete or remove it")
+    if what == "value" and re.match(r"\d[\d.]*(?:\s|$|[A-Za-zµμ])", text):  # '1 112 N': digits grouped by a space
+        raise UnitError(
+            f"{name}: {shown!r} has a space between digits (a digit group separator?); write the number without it"
+        )
     if what == "value" and re.match(r"[eE][-+]?\d", text):  # '5 e-3 m': "a '-' between units"
         raise UnitError(f"{name}: {shown!r} has a space inside the number; write it without (e.g. '5e-3 m')")
     for dash in re.finditer(r"\s-\s*[\d.]", f" {text}"):  # '0.8 mm - 0.9 mm': "a '-' between units"

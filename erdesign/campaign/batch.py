@@ -302,7 +302,7 @@ def read_manifest(path: str | Path) -> list[dict[str, str]]:
             unknown = sorted(set(fields) - {"record", "damper", "effects"})
             if unknown:
                 raise ErdesignError(
-                    f"--manifest: {path}: unknown column(s) {', '.join(unknown)}; a manifest has "
+                    f"--manifest: {path}: unknown column(s) {', '.join(map(repr, unknown))}; a manifest has "
                     "'record' and optional 'damper' and 'effects'"
                 )
             rows = []

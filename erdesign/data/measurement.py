@@ -35,6 +35,7 @@ import csv
 import functools
 import io
 import math
+import os
 import re
 import sys
 import unicodedata
@@ -1039,6 +1040,8 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
             f"path: expected the name of a measurement file (a str or Path), got {type(path).__name__} "
             f"{' '.join(repr(path).split())[:60]}{hint}"
         )
+    if not os.fspath(path).strip():  # Path("") is the current folder: ".: is a folder"
+        raise MeasurementError(f"path: an empty file name {os.fspath(path)!r}; give the name of a measurement file")
     path = Path(path)
     label = str(path)
     path = bundled_file(path) or path  # the documented examples/measurements/... from any folder
@@ -1048,7 +1051,12 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
     except ErdesignError as exc:
         raise MeasurementError(str(exc)) from None
     except FileNotFoundError:
-        raise MeasurementError(f"{label}: no such file") from None
+        pattern = (
+            "; a pattern ('*', '?') that matched no file? it is not expanded here"
+            if any(c in label for c in "*?")
+            else ""
+        )
+        raise MeasurementError(f"{label}: no such file{pattern}") from None
     except IsADirectoryError:
         raise MeasurementError(f"{label}: is a folder, expected a measurement CSV file") from None
     except UnicodeDecodeError:

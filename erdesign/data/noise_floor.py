@@ -80,12 +80,13 @@ uniform, variance :math:`q^2/12`, white while the signal crosses several steps b
 from __future__ import annotations
 
 import math
+import warnings
 import weakref
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ErdesignError
+from ..errors import ErdesignError, PlausibilityWarning
 from .measurement import Measurement, _noise_level, derivatives
 from .noise import _ACCELERATION_CACHE, EDGE_FRACTION, velocity_noise
 
@@ -784,6 +785,15 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
     note = ""
     if force_noise is not None:
         sigma, method = _given_force_noise(force_noise), "given"
+        spread = float(np.std(F[k])) if k.any() else 0.0
+        if sigma > spread:  # '5 kN' for '5 N': a floor above every residual, so nothing is ever missing
+            warnings.warn(
+                f"force_noise: {sigma:.4g} N is more than the spread of the force itself ({spread:.4g} N standard "
+                f"deviation) in {record.name or 'the record'}: no residual can rise above such a floor; is the unit "
+                "right?",
+                PlausibilityWarning,
+                stacklevel=2,
+            )
     else:
         found = force_noise_from_still_segment(record, k)
         method = "still segment"
