@@ -97,7 +97,10 @@ class _QuantityType(type):
     ``isinstance(x, Q_)`` and its class attributes are pint's."""
 
     def __call__(cls, value: Any, units: Any = None) -> Any:
-        return ureg.Quantity(_plain_magnitude(value), units)
+        try:
+            return ureg.Quantity(_plain_magnitude(value), units)
+        except TypeError as exc:  # pint's "Invalid magnitude for Quantity: True" (a bool, a dict ...)
+            raise UnitError(f"Q_: {' '.join(str(exc).split())[:200]}; give a number or an array of numbers") from None
 
     def __instancecheck__(cls, obj: Any) -> bool:
         return isinstance(obj, ureg.Quantity)
@@ -571,10 +574,13 @@ def to_si(
     """
     given = value
     if isinstance(
-        value, (bytes, bytearray)
+        value, (bytes, bytearray, memoryview)
     ):  # was "b'0.1 m/s' has no unit; expected a velocity, e.g. 'b'0.1 m/s' m/s'"
         raise UnitError(f"{name}: expected text or a quantity, got bytes {value!r:.60}; decode it first")
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind == "U":  # np.array("0.8 mm")
+        value = given = str(value)
     target = ureg.Unit(unit)
+    _refuse_odd_numbers(value, name, target)
     try:
         value = _parse(value, name)
     except UnitError as exc:
@@ -605,11 +611,17 @@ def to_si(
                 f"{name}: a sequence of {held}; give one quantity array, e.g. Q_([1.0, 2.0], '{unit}'), or one "
                 "value per call"
             )
+        try:
+            ndim = np.ndim(value)
+        except ValueError:  # a ragged list: numpy's "inhomogeneous shape after 1 dimensions"
+            raise UnitError(f"{name}: a ragged sequence (rows of different lengths); give a flat array") from None
         if target.dimensionality:
-            if np.ndim(value) == 0:
+            if ndim == 0:
+                shown = " ".join(repr(value).split())
+                example = f", e.g. '{value} {unit}'" if len(shown) <= 40 else ""
                 raise UnitError(
-                    f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
-                    f"e.g. '{value} {unit}'"
+                    f"{name}: {shown[:60]}{'...' if len(shown) > 60 else ''} has no unit; expected "
+                    f"{dimension_name(target.dimensionality)}{example}"
                 )
             # a Series or an array: its repr ran over several lines into the example
             raise UnitError(
@@ -621,14 +633,40 @@ def to_si(
         raise UnitError(f"{name}: an array with masked elements; give the values to use (numpy.ma.compressed())")
     try:
         magnitude = np.asarray(magnitude, dtype=float)
+    except OverflowError:  # an integer beyond any float (10**400)
+        raise UnitError(f"{name}: {' '.join(repr(value).split())[:60]} is beyond the largest float") from None
     except (TypeError, ValueError):
-        raise UnitError(f"{name}: {value!r} is not a number") from None
+        raise UnitError(f"{name}: {' '.join(repr(value).split())[:60]} is not a number") from None
     if not allow_nonfinite and not np.all(np.isfinite(magnitude)):
         shown = _shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value)
         raise UnitError(f"{name}: value must be finite, got {shown}")
     if scalar and magnitude.ndim != 0:  # an array where one value is meant: "truth value of an array ..." later
         raise UnitError(f"{name}: expected one value, got an array of shape {magnitude.shape}")
     return float(magnitude) if magnitude.ndim == 0 else magnitude
+
+
+def _refuse_odd_numbers(value: Any, name: str, target: Any) -> None:
+    """Refuse, naming ``name``, complex numbers, dates, time spans and true/false given as a value or a quantity's
+    magnitude: "has no unit; e.g. '(0.1+0j) m/s'" and "is not a number" told the user to add a unit that would
+    not help."""
+    magnitude = value.magnitude if isinstance(value, pint.Quantity) else value
+    if isinstance(magnitude, (str, bytes)) or magnitude is None:
+        return
+    if isinstance(magnitude, complex):
+        kind = "c"
+    else:
+        try:
+            kind = np.asarray(magnitude).dtype.kind if isinstance(magnitude, np.ndarray) or np.ndim(magnitude) else ""
+        except (TypeError, ValueError):  # a ragged list: said later
+            return
+        kind = kind or getattr(getattr(magnitude, "dtype", None), "kind", "")
+    what = {"c": "complex numbers", "M": "a date", "m": "a time span", "b": "true/false"}.get(kind)
+    if what is not None:
+        shown = " ".join(repr(value).split())
+        raise UnitError(
+            f"{name}: expected {dimension_name(target.dimensionality)} (real numbers), got {what}: "
+            f"{shown[:60]}{'...' if len(shown) > 60 else ''}"
+        )
 
 
 def _holds_text(value: Any) -> str:

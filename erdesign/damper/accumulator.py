@@ -84,7 +84,7 @@ PLAUSIBLE_PRECHARGE = (1.0e5, 1.0e7)
 PLAUSIBLE_GAS_VOLUME = (1.0e-6, 1.0e-2)
 #: Possible charge pressure [Pa] and gas volume [m^3]: beyond them the value is refused, not warned (a gas at
 #: 1e30 Pa or in 1e-30 m^3 is a unit mistake or a typo, and its spring would swamp every force of the record).
-POSSIBLE_PRECHARGE = (1.0e3, 1.0e9)
+POSSIBLE_PRECHARGE = (1.0e2, 1.0e9)
 POSSIBLE_GAS_VOLUME = (1.0e-9, 1.0)
 #: Possible polytropic index: isothermal (1) to adiabatic monatomic gas (5/3).
 POLYTROPIC_RANGE = (1.0, 5.0 / 3.0)

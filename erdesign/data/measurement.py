@@ -1070,7 +1070,9 @@ def read_measurement(path: str | Path, *, window: int | None = None, require_for
             f"{label}: {rows_given:,} lines, more than the {MAX_RECORD_ROWS:,} rows erdesign reads "
             "in one record; thin or split the file"
         )
-    raw = _as_comma_separated(raw, label)
+    converted = _as_comma_separated(raw, label)
+    if converted is not raw:  # a ';' file made ',': the text decoded before is not the one to read line by line
+        raw, text = converted, None
     fast = _read_fast(raw, label, require_force)
     if fast is not None:
         # the file's bytes freed before the derivatives: their memory then holds the derivatives' arrays (kept, they

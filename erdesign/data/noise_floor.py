@@ -700,6 +700,8 @@ def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float,
 
 
 def _given_force_noise(value) -> float:
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":  # np.array(5.0): 5 N
+        value = value.item()
     if isinstance(value, (bool, np.bool_)):
         raise ErdesignError(f"force_noise: must be a force (e.g. '5 N') or a number of newtons, got {value!r}")
     if isinstance(value, (int, float, np.integer, np.floating)):

@@ -192,6 +192,15 @@ def _name(record: Measurement, i: int) -> str:
 def _as_records(record) -> list[Measurement]:
     if isinstance(record, Measurement):
         return [record]
+    if isinstance(record, (str, bytes)) or hasattr(record, "columns") or not hasattr(record, "__iter__"):
+        # a DataFrame's iteration gave its column names: "record 1: expected a Measurement, got str"
+        hint = (
+            "; make one with Measurement.from_arrays(time, displacement, force)" if hasattr(record, "columns") else ""
+        )
+        raise DiagnosisError(
+            f"record: expected a Measurement or a list of them, got {type(record).__name__} "
+            f"{' '.join(repr(record).split())[:60]}{hint}"
+        )
     records = list(record)
     if not records:
         raise DiagnosisError("no record given")
