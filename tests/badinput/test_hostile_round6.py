@@ -587,6 +587,36 @@ def test_batch_arguments_are_named(args, needles, batch_dir, capsys):
     _one_line_error(code, stdout, err, *needles)
 
 
+def _run_batch(*args, **kw):
+    from erdesign.campaign.batch import run_batch
+
+    return run_batch(*args, **kw)
+
+
+@pytest.mark.parametrize(
+    "kw, said",
+    [
+        # a text was a batch of its characters: records 'A', '.', 'c', 's', 'v', each "no such file"
+        (dict(records="A.csv"), "records: expected a list of record files, got str 'A.csv'; for one, give ['A.csv']"),
+        (dict(records=[None]), "records[0]: expected the name of a record file (a str or Path), got NoneType None"),
+        (dict(records=["A.csv", Measurement.from_arrays(_t, _x, _F)]), "records[1]: expected the name"),
+        (dict(records=["A.csv", ""]), "records[1]: expected the name of a record file"),
+        (dict(records=["A.csv"], damper=M), "damper: expected the name of a damper file or of a bundled example"),
+        (dict(records=["A.csv"], effects=True), "effects: expected effect names separated by commas"),
+        (dict(records=["A.csv"], options=["exclude_clipped"]), "options: expected a mapping"),
+        (dict(records=["A.csv"], jobs=True), "jobs must be a whole number >= 1, got True"),
+    ],
+    ids=["a text", "None", "a Measurement", "an empty name", "a Damper", "effects True", "options a list", "jobs True"],
+)
+def test_run_batch_names_its_arguments(kw, said, batch_dir):
+    """Raw TypeErrors and AttributeErrors from inside Python before ("expected str, bytes or os.PathLike object")."""
+    kw = {"damper": "makris", **kw}
+    with pytest.raises(ErdesignError) as info:
+        _run_batch("fit", **kw)
+    message = _one_line(str(info.value))
+    assert message.startswith(said), message
+
+
 # ------------------------------------------------------------------ NUL bytes and very long lines in every input
 def _requirements(text: str) -> str:
     return text
