@@ -1261,8 +1261,15 @@ def _read_fast(raw: bytes, label: str, require_force: bool):
         return None
     if len(data) != len(columns) or data[0].size < 5 or not all(_all_finite(values) for values in data):
         return None
-    if any(np.count_nonzero(values) < values.size for values in data) and _may_underflow(raw, pos):
-        return None  # a zero that may be a number too small for a float ('1e-400'): the line-by-line reader names it
+    # a zero that may be a number too small for a float ('1e-400'): the line-by-line reader names it.  A zero in the
+    # first row only (a time column from 0) needs a look at that row alone, not a scan of the file
+    if any(np.count_nonzero(values[1:]) < values.size - 1 for values in data):
+        if _may_underflow(raw, pos):
+            return None
+    elif any(values[0] == 0.0 for values in data):
+        first_end = raw.find(b"\n", pos)
+        if _may_underflow(raw[pos : len(raw) if first_end < 0 else first_end], 0):
+            return None
     t = data[[c[0] for c in columns].index("time")]
     if np.any(np.diff(t) <= 0):
         return None
