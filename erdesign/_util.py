@@ -47,6 +47,8 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
         raise ErdesignError(
             f"{name}: element {at} is masked; give the values to use (numpy.ma.compressed() drops the masked ones)"
         )
+    if isinstance(value, (bytes, bytearray, memoryview)):  # a bytearray was read as its bytes' codes (97 for 'a')
+        raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {_shown(value)}")
     # numpy reads text ('0.1', b'0.1'), True, dates and complex numbers (dropping the imaginary part) as floats
     try:
         kind = "O" if value is None else np.asarray(value).dtype.kind
@@ -59,6 +61,8 @@ def si_array(value, name: str, *, finite: bool = True) -> np.ndarray:
         )
     try:
         arr = np.asarray(value, dtype=float)
+    except OverflowError:  # an integer beyond any float (10**400)
+        raise ErdesignError(f"{name}: {_shown(value)} is beyond the largest float; give finite numbers (SI)") from None
     except (TypeError, ValueError):
         raise ErdesignError(f"{name}: expected a number or an array of numbers (SI), got {_shown(value)}") from None
     if finite:

@@ -303,6 +303,8 @@ def executor_for(
     """
     if isinstance(executor, Executor):
         return executor
+    if isinstance(jobs, bool):  # True was one job, False an error deep in the pool
+        raise ExecutorError(f"jobs must be a whole number >= 1, got {jobs!r}")
     if executor is not None:
         scheduler = executor
     if scheduler is not None and scheduler != "":

@@ -54,7 +54,69 @@ __all__ = [
 ]
 
 ureg = application_registry()  # pint's application registry, its definitions cached (erdesign/_pint.py)
-Q_ = ureg.Quantity
+
+#: Units pint lacks that damper rigs write: (definition for the registry, the name it defines).
+EXTRA_UNITS = (("inch_per_second = inch / second = ips", "ips"),)  # US rigs' controllers and data sheets
+
+
+def _define_extra_units(registry) -> None:
+    """Define :data:`EXTRA_UNITS` in ``registry`` unless it knows the name already (a user's own registry)."""
+    for definition, unit in EXTRA_UNITS:
+        try:
+            registry.parse_units(unit)
+        except pint.errors.UndefinedUnitError:
+            registry.define(definition)
+
+
+_define_extra_units(ureg)
+
+
+def _plain_magnitude(value: Any) -> Any:
+    """``value`` as pint can wrap it: a pandas Series (or an xarray DataArray) as a numpy array of its values, which
+    pint refuses to wrap ("PlainQuantity cannot wrap upcast type"); a DataFrame refused naming its columns."""
+    if not pint.compat.is_upcast_type(type(value)):
+        return value
+    kind = type(value).__name__
+    if kind in ("DataFrame", "Dataset"):
+        columns = [str(c) for c in getattr(value, "columns", getattr(value, "data_vars", []))]
+        first = columns[0] if columns else "v"
+        raise UnitError(
+            f"Q_: got a {kind} of {len(columns)} column(s) {', '.join(map(repr, columns[:4]))[:80]}; give one "
+            f"column, e.g. Q_(frame[{first!r}], 'm/s')"
+        )
+    if getattr(value.dtype, "kind", "O") in "iuf":  # pandas' nullable Float64 and Int64 too (pd.NA as NaN)
+        try:
+            return value.to_numpy(dtype=float, na_value=np.nan)
+        except TypeError:  # xarray's to_numpy() takes no arguments
+            pass
+    return value.to_numpy()  # texts, booleans, objects: as they are, for the argument's checks to name
+
+
+class _QuantityType(type):
+    """The type of :data:`Q_`: calling it makes pint's quantity of :data:`ureg` (:func:`_plain_magnitude` first);
+    ``isinstance(x, Q_)`` and its class attributes are pint's."""
+
+    def __call__(cls, value: Any, units: Any = None) -> Any:
+        try:
+            return ureg.Quantity(_plain_magnitude(value), units)
+        except TypeError as exc:  # pint's "Invalid magnitude for Quantity: True" (a bool, a dict ...)
+            raise UnitError(f"Q_: {' '.join(str(exc).split())[:200]}; give a number or an array of numbers") from None
+
+    def __instancecheck__(cls, obj: Any) -> bool:
+        return isinstance(obj, ureg.Quantity)
+
+    def __subclasscheck__(cls, sub: type) -> bool:
+        return issubclass(sub, ureg.Quantity)
+
+    def __getattr__(cls, name: str) -> Any:
+        return getattr(ureg.Quantity, name)
+
+
+class Q_(metaclass=_QuantityType):  # noqa: N801 - pint's customary name for a registry's Quantity
+    """A quantity of erdesign's unit registry: ``Q_(0.8, "mm")``, ``Q_("0.8 mm")``, ``Q_(series, "m/s")`` (a pandas
+    Series or xarray DataArray is taken as a numpy array of its values; a DataFrame is refused, naming its
+    columns).  Instances are pint's quantities of :data:`ureg` (``isinstance(q, Q_)`` holds for them)."""
+
 
 # Plain-language names of the dimensions erdesign deals with, for error messages.
 _DIMENSION_NAMES = {
@@ -263,15 +325,23 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
         raise UnitError(f"{name}: {shown!r} has unbalanced brackets; close each '(' with a ')'")
     if text.rstrip()[-1:] in ("/", "*", "^", "-", "+"):
         raise UnitError(f"{name}: {shown!r}: the unit ends in {text.rstrip()[-1]!r}; complete or remove it")
+    if what == "value" and re.match(r"\d[\d.]*(?:\s|$|[A-Za-zµμ])", text):  # '1 112 N': digits grouped by a space
+        raise UnitError(
+            f"{name}: {shown!r} has a space between digits (a digit group separator?); write the number without it"
+        )
     if what == "value" and re.match(r"[eE][-+]?\d", text):  # '5 e-3 m': "a '-' between units"
         raise UnitError(f"{name}: {shown!r} has a space inside the number; write it without (e.g. '5e-3 m')")
     for dash in re.finditer(r"\s-\s*[\d.]", f" {text}"):  # '0.8 mm - 0.9 mm': "a '-' between units"
         before = f" {text}"[: dash.start()].rstrip()
         if what == "value" and (not before or before[-1] not in "^*"):  # not an exponent ('m ^ -1')
             raise UnitError(f"{name}: {shown!r} is a range (a '-' between two values); give one value with its unit")
+    ranged = re.search(r"([A-Za-zµμ]+)-(\d*\.?\d+)\s*([A-Za-zµμ]+)", text)
+    if what == "value" and ranged and ("." in ranged[2] or ranged[1] == ranged[3]):  # '0.8 mm-0.9 mm'
+        raise UnitError(f"{name}: {shown!r} is a range (a '-' between two values); give one value with its unit")
     exponent = re.search(r"([A-Za-zµμ]+)-(\d)", text)
     if exponent and exponent[1] not in ("e", "E"):  # 'N s m-1': "a '-' between units"
         raise UnitError(f"{name}: {shown!r} has a power without '^'; write e.g. '{exponent[1]}^-{exponent[2]}'")
+    text = _hyphen_products(text, name, shown)
     # 'mil' is a thousandth of an inch on every drawing a damper comes from; pint's 'mil' is an angle (1/6400 turn)
     text = _MIL.sub("thou", text)
     try:
@@ -299,6 +369,29 @@ def _units(text: str, name: str, shown: str, what: str) -> Any:
             detail = " (a '-' between units; write a product with '*' or a space, e.g. 'N*s/m')"
         kind = "a value with a unit" if what == "value" else "a unit"
         raise UnitError(f"{name}: cannot read {shown!r} as {kind}{detail}") from None
+
+
+#: A hyphen between two unit words ('N-s/m', 'lbf-s/in', 'kN-m'): the product as US data sheets write it.
+_HYPHEN_PRODUCT = re.compile(r"(?<=[A-Za-zµμΩ°)])-(?=[A-Za-zµμΩ(])")
+
+
+def _hyphen_products(text: str, name: str, shown: str) -> str:
+    """``text`` with each hyphen between unit words read as a product ('N-s/m' is N*s/m) where that is unambiguous:
+    before any '/'.  After a '/' the writer may mean the product in the denominator ('W/m-K': W/(m*K)) or the
+    rule of '*' and '/' from left to right (W*K/m), so it is refused with both spellings."""
+    if "-" not in text or not _HYPHEN_PRODUCT.search(text):
+        return text
+    slash = text.find("/")
+    head, tail = (text, "") if slash < 0 else (text[:slash], text[slash:])
+    if _HYPHEN_PRODUCT.search(tail):
+        word = re.search(r"/\s*([^/]*?-[^/]*?)\s*(?:/|$)", tail)
+        group = word[1] if word else tail[1:]
+        product = _HYPHEN_PRODUCT.sub("*", group)
+        raise UnitError(
+            f"{name}: {shown!r} has a '-' after '/', which is ambiguous: for a product below the line write it in "
+            f"brackets, e.g. '{_HYPHEN_PRODUCT.sub('*', head)}/({product})'"
+        )
+    return _HYPHEN_PRODUCT.sub("*", head) + tail
 
 
 #: A number times a power of ten as typeset or typed ('1 ×10³ N', '1.5·10⁻³ m', '2 x 10^3 N', '2*10**-3 m'): the power
@@ -481,10 +574,13 @@ def to_si(
     """
     given = value
     if isinstance(
-        value, (bytes, bytearray)
+        value, (bytes, bytearray, memoryview)
     ):  # was "b'0.1 m/s' has no unit; expected a velocity, e.g. 'b'0.1 m/s' m/s'"
         raise UnitError(f"{name}: expected text or a quantity, got bytes {value!r:.60}; decode it first")
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind == "U":  # np.array("0.8 mm")
+        value = given = str(value)
     target = ureg.Unit(unit)
+    _refuse_odd_numbers(value, name, target)
     try:
         value = _parse(value, name)
     except UnitError as exc:
@@ -515,11 +611,17 @@ def to_si(
                 f"{name}: a sequence of {held}; give one quantity array, e.g. Q_([1.0, 2.0], '{unit}'), or one "
                 "value per call"
             )
+        try:
+            ndim = np.ndim(value)
+        except ValueError:  # a ragged list: numpy's "inhomogeneous shape after 1 dimensions"
+            raise UnitError(f"{name}: a ragged sequence (rows of different lengths); give a flat array") from None
         if target.dimensionality:
-            if np.ndim(value) == 0:
+            if ndim == 0:
+                shown = " ".join(repr(value).split())
+                example = f", e.g. '{value} {unit}'" if len(shown) <= 40 else ""
                 raise UnitError(
-                    f"{name}: {value!r} has no unit; expected {dimension_name(target.dimensionality)}, "
-                    f"e.g. '{value} {unit}'"
+                    f"{name}: {shown[:60]}{'...' if len(shown) > 60 else ''} has no unit; expected "
+                    f"{dimension_name(target.dimensionality)}{example}"
                 )
             # a Series or an array: its repr ran over several lines into the example
             raise UnitError(
@@ -531,14 +633,40 @@ def to_si(
         raise UnitError(f"{name}: an array with masked elements; give the values to use (numpy.ma.compressed())")
     try:
         magnitude = np.asarray(magnitude, dtype=float)
+    except OverflowError:  # an integer beyond any float (10**400)
+        raise UnitError(f"{name}: {' '.join(repr(value).split())[:60]} is beyond the largest float") from None
     except (TypeError, ValueError):
-        raise UnitError(f"{name}: {value!r} is not a number") from None
+        raise UnitError(f"{name}: {' '.join(repr(value).split())[:60]} is not a number") from None
     if not allow_nonfinite and not np.all(np.isfinite(magnitude)):
         shown = _shown_quantity(value) if isinstance(value, pint.Quantity) else repr(value)
         raise UnitError(f"{name}: value must be finite, got {shown}")
     if scalar and magnitude.ndim != 0:  # an array where one value is meant: "truth value of an array ..." later
         raise UnitError(f"{name}: expected one value, got an array of shape {magnitude.shape}")
     return float(magnitude) if magnitude.ndim == 0 else magnitude
+
+
+def _refuse_odd_numbers(value: Any, name: str, target: Any) -> None:
+    """Refuse, naming ``name``, complex numbers, dates, time spans and true/false given as a value or a quantity's
+    magnitude: "has no unit; e.g. '(0.1+0j) m/s'" and "is not a number" told the user to add a unit that would
+    not help."""
+    magnitude = value.magnitude if isinstance(value, pint.Quantity) else value
+    if isinstance(magnitude, (str, bytes)) or magnitude is None:
+        return
+    if isinstance(magnitude, complex):
+        kind = "c"
+    else:
+        try:
+            kind = np.asarray(magnitude).dtype.kind if isinstance(magnitude, np.ndarray) or np.ndim(magnitude) else ""
+        except (TypeError, ValueError):  # a ragged list: said later
+            return
+        kind = kind or getattr(getattr(magnitude, "dtype", None), "kind", "")
+    what = {"c": "complex numbers", "M": "a date", "m": "a time span", "b": "true/false"}.get(kind)
+    if what is not None:
+        shown = " ".join(repr(value).split())
+        raise UnitError(
+            f"{name}: expected {dimension_name(target.dimensionality)} (real numbers), got {what}: "
+            f"{shown[:60]}{'...' if len(shown) > 60 else ''}"
+        )
 
 
 def _holds_text(value: Any) -> str:

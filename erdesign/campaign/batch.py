@@ -26,6 +26,7 @@ from __future__ import annotations
 import csv
 import hashlib
 import math
+import os
 import time
 import warnings
 from collections.abc import Callable, Mapping, Sequence
@@ -302,7 +303,7 @@ def read_manifest(path: str | Path) -> list[dict[str, str]]:
             unknown = sorted(set(fields) - {"record", "damper", "effects"})
             if unknown:
                 raise ErdesignError(
-                    f"--manifest: {path}: unknown column(s) {', '.join(unknown)}; a manifest has "
+                    f"--manifest: {path}: unknown column(s) {', '.join(map(repr, unknown))}; a manifest has "
                     "'record' and optional 'damper' and 'effects'"
                 )
             rows = []
@@ -339,6 +340,31 @@ def read_manifest(path: str | Path) -> list[dict[str, str]]:
     return rows
 
 
+def _shown(value: Any) -> str:
+    return f"{type(value).__name__} {' '.join(repr(value).split())[:60]}"
+
+
+def _check_batch_arguments(records, damper, effects, options) -> None:
+    """The arguments of :func:`make_tasks` of the right kinds, or an error naming the argument: a text as
+    ``records`` was a batch of its characters ('A.csv': records 'A', '.', 'c', ...), and a None, a Measurement, a
+    Damper or a list of options failed inside Python ("expected str, bytes or os.PathLike object")."""
+    if isinstance(records, (str, bytes, os.PathLike)):
+        raise ErdesignError(
+            f"records: expected a list of record files, got {_shown(records)}; for one, give [{records!r}]"
+        )
+    for i, r in enumerate(records or ()):
+        if not isinstance(r, (str, os.PathLike)) or not str(r).strip():
+            raise ErdesignError(f"records[{i}]: expected the name of a record file (a str or Path), got {_shown(r)}")
+    if damper is not None and not isinstance(damper, (str, os.PathLike)):
+        raise ErdesignError(
+            f"damper: expected the name of a damper file or of a bundled example (a str or Path), got {_shown(damper)}"
+        )
+    if not isinstance(effects, str):
+        raise ErdesignError(f"effects: expected effect names separated by commas (a str), got {_shown(effects)}")
+    if options is not None and not isinstance(options, Mapping):
+        raise ErdesignError(f"options: expected a mapping of option names to values, got {_shown(options)}")
+
+
 def make_tasks(
     command: str,
     records: Sequence[str] = (),
@@ -353,6 +379,7 @@ def make_tasks(
     if command not in COMMANDS:
         raise ErdesignError(f"batch: unknown command {command!r}; one of {', '.join(COMMANDS)}")
     spec = COMMANDS[command]
+    _check_batch_arguments(records, damper, effects, options)
     options = {k: v for k, v in (options or {}).items() if v is not None}
     misplaced = sorted(set(options) - set(spec.options))
     if misplaced:

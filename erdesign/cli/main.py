@@ -14,11 +14,14 @@ is read in SI units (m/s; the field in the SI unit of the damper's control: V/m,
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import json
 import math
 import os
+import signal
 import sys
+import threading
 import warnings
 from typing import Any
 
@@ -137,8 +140,47 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 
+class OneValueCommand(click.Command):
+    """A command whose options that take one value refuse to be given twice.
+
+    click keeps the last of ``--damper a.toml --damper b.toml`` without a word: the user meant one of the two, or
+    both (a record each?).  Flags (``--force --force``), counted options and options that take several values
+    (``multiple=True``) may repeat."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        if not ctx.resilient_parsing:
+            refuse_repeated_options(self, ctx, args)
+        return super().parse_args(ctx, args)
+
+
+def refuse_repeated_options(command: click.Command, ctx: click.Context, args: list[str]) -> None:
+    """A usage error naming the first option of ``command`` that takes one value and is given more than once in
+    ``args``; nothing when none is (or the arguments do not parse: click's own parse then says why)."""
+    try:
+        opts, _, order = command.make_parser(ctx).parse_args(args=list(args))
+    except click.UsageError:
+        return
+    seen: set[str] = set()
+    for param in order:
+        one_value = (
+            isinstance(param, click.Option) and not (param.multiple or param.count or param.is_flag) and param.name
+        )
+        if not one_value:
+            continue
+        if param.name in seen:
+            flag = max(param.opts, key=len)
+            raise click.UsageError(
+                f"{flag} is given more than once; it is read once (only the last would count): give it once, or "
+                "run the command once for each",
+                ctx,
+            )
+        seen.add(param.name)
+
+
 class LazyGroup(click.Group):
     """A click group that imports a command's module only when the command is looked up to run."""
+
+    command_class = OneValueCommand
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return sorted(set(COMMANDS) | set(self.commands))
@@ -308,7 +350,18 @@ def main(argv: list[str] | None = None) -> int:
 
     warnings.showwarning = show_warning
     try:
-        cli.main(args=args, prog_name="erdesign", standalone_mode=False)
+        with _sigterm_as_exit():
+            cli.main(args=args, prog_name="erdesign", standalone_mode=False)
+            sys.stdout.flush()  # a reader that stopped (``| head``) is met here, not at the interpreter's exit
+    except SystemExit as exc:
+        if _reader_gone(exc):
+            return _closed_pipe()
+        if exc.code == SIGTERM_EXIT:
+            click.echo("erdesign: stopped (SIGTERM); no output file was left half-written", err=True)
+            return SIGTERM_EXIT
+        raise
+    except BrokenPipeError:
+        return _closed_pipe()
     except click.exceptions.Abort:
         click.echo("erdesign: aborted", err=True)
         return 1
@@ -336,6 +389,65 @@ def main(argv: list[str] | None = None) -> int:
         )
         return 3
     return 0
+
+
+#: Exit codes of a command stopped by SIGTERM and of one whose reader closed the pipe (the shell's 128 + signal).
+SIGTERM_EXIT = 128 + signal.SIGTERM
+CLOSED_PIPE_EXIT = 128 + getattr(signal, "SIGPIPE", 13)
+
+
+@contextlib.contextmanager
+def _sigterm_as_exit():
+    """While a command runs: SIGTERM stops the worker processes it started and raises SystemExit, so that its
+    ``finally`` blocks run (a batch saves the records it finished, temporary files are removed, the pool is shut
+    down).  SIGTERM's default ended the process at once: a batch's pool workers and fork server were left running,
+    holding the terminal's pipes open.  Nothing changes off the main thread or under a program's own handler."""
+    try:
+        previous = signal.getsignal(signal.SIGTERM)
+    except (ValueError, OSError, AttributeError):  # pragma: no cover
+        previous = None
+    if previous is not signal.SIG_DFL or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum, frame):
+        caller = frame
+        while caller is not None:  # starting a worker: stopped there, it would run on, unseen (and fail loudly)
+            if caller.f_code.co_name == "start" and "multiprocessing" in caller.f_code.co_filename:
+                timer = threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGTERM))
+                timer.daemon = True
+                timer.start()  # the signal again once the worker is started and known
+                return
+            caller = caller.f_back
+        multiprocessing = sys.modules.get("multiprocessing")
+        if multiprocessing is not None:
+            for child in multiprocessing.active_children():
+                child.terminate()
+        raise SystemExit(SIGTERM_EXIT)
+
+    signal.signal(signal.SIGTERM, stop)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _reader_gone(exc: SystemExit) -> bool:
+    """True for click's exit after a write to a closed pipe (it catches the EPIPE and exits 1 without a word)."""
+    return exc.code == 1 and type(sys.stdout).__name__ == "_PacifyFlushWrapper"
+
+
+def _closed_pipe() -> int:
+    """The exit of a command whose reader closed its output (``erdesign ... --json | head -c 10``): no message
+    and no traceback, as any Unix tool, and the code of a process ended by SIGPIPE (141), never 1 (bad input).
+    Standard output is pointed at the null device so that the interpreter's last flush cannot fail again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.__stdout__.fileno())
+        os.close(devnull)
+    except (OSError, AttributeError, ValueError):  # pragma: no cover - no real stdout (in-process)
+        pass
+    return CLOSED_PIPE_EXIT
 
 
 if __name__ == "__main__":  # pragma: no cover

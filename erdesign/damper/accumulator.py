@@ -54,6 +54,8 @@ __all__ = [
     "ROD_KINDS",
     "PLAUSIBLE_PRECHARGE",
     "PLAUSIBLE_GAS_VOLUME",
+    "POSSIBLE_PRECHARGE",
+    "POSSIBLE_GAS_VOLUME",
 ]
 
 #: Values of ``[geometry] rod``: a rod on both sides of the piston (the default) or on one side only.
@@ -80,6 +82,10 @@ ACCUMULATOR_KEYS = tuple(AccumulatorTable.model_fields)
 PLAUSIBLE_PRECHARGE = (1.0e5, 1.0e7)
 #: Plausible gas volume [m^3]: 1 cm^3 to 10 litres.
 PLAUSIBLE_GAS_VOLUME = (1.0e-6, 1.0e-2)
+#: Possible charge pressure [Pa] and gas volume [m^3]: beyond them the value is refused, not warned (a gas at
+#: 1e30 Pa or in 1e-30 m^3 is a unit mistake or a typo, and its spring would swamp every force of the record).
+POSSIBLE_PRECHARGE = (1.0e2, 1.0e9)
+POSSIBLE_GAS_VOLUME = (1.0e-9, 1.0)
 #: Possible polytropic index: isothermal (1) to adiabatic monatomic gas (5/3).
 POLYTROPIC_RANGE = (1.0, 5.0 / 3.0)
 
@@ -176,6 +182,16 @@ class Accumulator:
             ):
                 raise DamperFileError(f"accumulator.{key}: must be a positive finite number, got {value!r}")
             object.__setattr__(self, key, float(value))
+        for key, (lo, hi), unit, scale in (
+            ("precharge", POSSIBLE_PRECHARGE, "MPa", 1e-6),
+            ("gas_volume", POSSIBLE_GAS_VOLUME, "cm^3", 1e6),
+        ):
+            value = getattr(self, key)
+            if not lo <= value <= hi:
+                raise DamperFileError(
+                    f"accumulator.{key}: {value * scale:.4g} {unit} is outside the possible range {lo * scale:g} to "
+                    f"{hi * scale:g} {unit} of a damper's accumulator (a unit mistake?)"
+                )
         lo, hi = POLYTROPIC_RANGE
         if not lo <= self.polytropic_index <= hi:
             raise DamperFileError(

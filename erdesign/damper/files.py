@@ -13,6 +13,8 @@ Example
 
 from __future__ import annotations
 
+import os
+
 import sys
 from importlib import resources
 import warnings
@@ -215,6 +217,8 @@ def read_toml(path: str | Path) -> dict:
         raise DamperFileError(
             f"path: expected the name of a TOML file (a str or Path), got {type(path).__name__} {path!r:.60}"
         )
+    if not os.fspath(path).strip():  # Path("") is the current folder: ".: is a directory"
+        raise DamperFileError(f"path: an empty file name {os.fspath(path)!r}; give the name of a TOML file")
     path = Path(path)
     try:
         return parse_toml_bytes(read_input_bytes(path, MAX_TOML_BYTES, "a TOML file"), str(path))
@@ -475,6 +479,8 @@ def load_damper(path: str | Path, *, flow_model: str = "auto") -> Damper:
         raise DamperFileError(
             f"path: expected the name of a damper file (a str or Path), got {type(path).__name__} {path!r:.60}"
         )
+    if not os.fspath(path).strip():
+        raise DamperFileError(f"path: an empty file name {os.fspath(path)!r}; give the name of a damper file")
     by_name = isinstance(path, str) and path in example_names() and not Path(path).exists()
     source = f"examples/{path}.toml" if by_name else str(path)
     return damper_from_dict(read_toml(damper_file_path(path)), source=source, flow_model=flow_model)

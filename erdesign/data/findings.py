@@ -44,6 +44,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..errors import ErdesignError
 from .measurement import Measurement, _noise_level, clipped_samples
 
 __all__ = [
@@ -832,9 +833,11 @@ def find_data_problems(
     list of Finding
     """
     if not isinstance(record, Measurement):
-        raise TypeError(f"record: expected a Measurement, got {type(record).__name__}")
-    if exclude_clipped not in (None, True, False):
-        raise ValueError(f"exclude_clipped: must be None, True or False, got {exclude_clipped!r}")
+        raise ErdesignError(f"record: expected a Measurement, got {type(record).__name__}")
+    if not (exclude_clipped is None or isinstance(exclude_clipped, (bool, np.bool_))):  # 'yes', 1: a ValueError
+        raise ErdesignError(
+            f"exclude_clipped: must be None, True or False, got {' '.join(repr(exclude_clipped).split())[:60]}"
+        )
     opt = _Options(exclude_clipped, None if expected_mean_force is None else float(expected_mean_force))
     out: list[Finding] = []
     for kind in FINDING_KINDS:

@@ -80,12 +80,13 @@ uniform, variance :math:`q^2/12`, white while the signal crosses several steps b
 from __future__ import annotations
 
 import math
+import warnings
 import weakref
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ErdesignError
+from ..errors import ErdesignError, PlausibilityWarning
 from .measurement import Measurement, _noise_level, derivatives
 from .noise import _ACCELERATION_CACHE, EDGE_FRACTION, velocity_noise
 
@@ -699,6 +700,8 @@ def force_noise_from_spectrum(record: Measurement) -> tuple[float | None, float,
 
 
 def _given_force_noise(value) -> float:
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":  # np.array(5.0): 5 N
+        value = value.item()
     if isinstance(value, (bool, np.bool_)):
         raise ErdesignError(f"force_noise: must be a force (e.g. '5 N') or a number of newtons, got {value!r}")
     if isinstance(value, (int, float, np.integer, np.floating)):
@@ -784,6 +787,15 @@ def estimate_noise_floor(record: Measurement, mask=None, *, force_noise=None, se
     note = ""
     if force_noise is not None:
         sigma, method = _given_force_noise(force_noise), "given"
+        spread = float(np.std(F[k])) if k.any() else 0.0
+        if sigma > spread:  # '5 kN' for '5 N': a floor above every residual, so nothing is ever missing
+            warnings.warn(
+                f"force_noise: {sigma:.4g} N is more than the spread of the force itself ({spread:.4g} N standard "
+                f"deviation) in {record.name or 'the record'}: no residual can rise above such a floor; is the unit "
+                "right?",
+                PlausibilityWarning,
+                stacklevel=2,
+            )
     else:
         found = force_noise_from_still_segment(record, k)
         method = "still segment"

@@ -8,6 +8,7 @@ through :func:`_fit` on the same samples (:mod:`erdesign.diagnosis.records`), so
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import replace
 from typing import Mapping, Sequence
 
@@ -20,7 +21,7 @@ from ..data.metrics import esr
 from ..effects import EffectError
 from ..effects.base import reversal_count
 from ..effects.chain import PhysicsDamper, check_control
-from ..errors import ErdesignError
+from ..errors import ErdesignError, PlausibilityWarning
 from ..identification.fit import FitResult, fit
 from .records import MAX_SAMPLES, prepare
 
@@ -191,6 +192,15 @@ def _name(record: Measurement, i: int) -> str:
 def _as_records(record) -> list[Measurement]:
     if isinstance(record, Measurement):
         return [record]
+    if isinstance(record, (str, bytes)) or hasattr(record, "columns") or not hasattr(record, "__iter__"):
+        # a DataFrame's iteration gave its column names: "record 1: expected a Measurement, got str"
+        hint = (
+            "; make one with Measurement.from_arrays(time, displacement, force)" if hasattr(record, "columns") else ""
+        )
+        raise DiagnosisError(
+            f"record: expected a Measurement or a list of them, got {type(record).__name__} "
+            f"{' '.join(repr(record).split())[:60]}{hint}"
+        )
     records = list(record)
     if not records:
         raise DiagnosisError("no record given")
@@ -200,7 +210,25 @@ def _as_records(record) -> list[Measurement]:
     names = [_name(r, i) for i, r in enumerate(records)]
     if len(set(names)) < len(names):
         records = [replace(r, name=f"{_name(r, i)} ({i + 1})") for i, r in enumerate(records)]
+    _warn_repeated(records)
     return records
+
+
+def _warn_repeated(records: Sequence[Measurement]) -> None:
+    """Warn, naming both, of a record whose samples are those of an earlier one (the same file given twice, or a
+    copy under another name): it counts twice in the calibration and in the judged samples, without a word."""
+    for j, b in enumerate(records):
+        for i, a in enumerate(records[:j]):
+            if len(a) == len(b) and all(
+                np.array_equal(getattr(a, key), getattr(b, key)) for key in ("time", "displacement", "force")
+            ):
+                warnings.warn(
+                    f"{_name(b, j)}: the same samples as {_name(a, i)}: the record counts twice in the calibration; "
+                    "give each record once",
+                    PlausibilityWarning,
+                    stacklevel=4,
+                )
+                break
 
 
 def _record_esrs(model: PhysicsDamper, values, work: Measurement, prep) -> list[dict]:

@@ -101,7 +101,15 @@ def parse_effect_names(text) -> tuple[str, ...]:
     """
     if text is None:
         return ()
-    items = text.split(",") if isinstance(text, str) else list(text)
+    if isinstance(text, str):
+        items = text.split(",")
+    elif isinstance(text, (bytes, bytearray, dict)) or not hasattr(text, "__iter__"):  # True: "not iterable"
+        raise EffectError(
+            f"effects: expected effect names ('seal_friction,fluid_inertia' or a list of names), got "
+            f"{type(text).__name__} {' '.join(repr(text).split())[:60]}"
+        )
+    else:
+        items = list(text)
     names: list[str] = []
     for item in items:
         name = str(item).strip()
