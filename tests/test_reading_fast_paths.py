@@ -170,3 +170,26 @@ def test_read_records_own_writable_columns(tmp_path):
     for column in (record.time, record.displacement, record.force):
         assert column.flags.writeable and column.flags.c_contiguous
     assert not np.shares_memory(record.time, record.displacement)
+
+
+def test_three_digit_exponents_with_a_zero_stay_on_the_fast_path(tmp_path, monkeypatch):
+    """A column written with three-digit exponents (3.3e-005, as the C runtime of Windows and MATLAB write them) beside
+    a zero (a command at 0 V) is read by the fast parser, exactly as the line-by-line reader reads it; an exponent of
+    100 or more in size ('5e-150', '1E-0400') sends the file to the line-by-line reader, which names an underflow."""
+    t = np.arange(400) / 1000.0
+    rows = [
+        f"{ti:.4f},{0.002 * np.sin(20 * ti):.4e},{300 * np.cos(20 * ti):.6g},{0 if i % 7 else 2}"
+        for i, ti in enumerate(t)
+    ]
+    text = "time [s],displacement [m],force [N],voltage [V]\n" + "\n".join(rows) + "\n"
+    text = text.replace("e-0", "e-00")  # 2.0000e-03 -> 2.0000e-003
+    assert "e-003" in text
+    path = tmp_path / "windows.csv"
+    path.write_text(text)
+    fast = m.read_measurement(path)
+    assert m._read_fast(path.read_bytes(), "windows.csv", False) is not None  # the fast parser read it
+    monkeypatch.setattr(m, "_read_fast", lambda *a: None)  # the line-by-line reader alone
+    slow = m.read_measurement(path)
+    assert np.array_equal(fast.displacement, slow.displacement) and np.array_equal(fast.control, slow.control)
+    for number in ("5e-150", "1E-0400"):
+        assert m._may_underflow(text.replace("2\n", number + "\n", 1).encode(), 0) is True
