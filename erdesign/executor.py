@@ -188,12 +188,29 @@ def _start_fork_server_on_this_erdesign() -> None:
                 os.environ[k] = v
 
 
+#: Imported once by the fork server, so that its workers start with them: ``import erdesign`` alone loads little
+#: (its modules are imported when first used), and a worker importing units, pint, the fluids, the effects' loops,
+#: the fitting engine and the record reader (scipy.signal, 0.9 s alone) itself spent about 1.8 s of CPU before its
+#: first task (a batch fit of six one-cycle records: 1.9 -> 0.3 s of CPU a worker; the server's start 0.6 -> 1.8 s,
+#: once per process).
+FORK_SERVER_PRELOAD = [
+    "erdesign",
+    "numpy",
+    "scipy.optimize",
+    "scipy.signal",
+    "erdesign.damper",
+    "erdesign.effects",
+    "erdesign.identification.engine",
+    "erdesign.data.measurement",
+]
+
+
 class PoolExecutor(Executor):
     """A local pool of ``jobs`` worker processes.
 
-    Workers are started by a fork server that has imported erdesign once (``forkserver`` start method, with
-    erdesign preloaded), so a worker is ready in milliseconds and never inherits the threads of its parent (a
-    Streamlit server, a Dask client) the way a plain ``fork`` would.  The pool starts on first use and is shut
+    Workers are started by a fork server that has imported erdesign's common modules once (``forkserver`` start
+    method, :data:`FORK_SERVER_PRELOAD`), so a worker is ready in milliseconds and never inherits the threads of its
+    parent (a Streamlit server, a Dask client) the way a plain ``fork`` would.  The pool starts on first use and is shut
     down by :meth:`close` (or the ``with`` block)."""
 
     def __init__(self, jobs: int):
@@ -207,7 +224,7 @@ class PoolExecutor(Executor):
         if self._pool is None:
             if sys.platform.startswith("linux") or sys.platform == "darwin":
                 ctx = multiprocessing.get_context("forkserver")
-                ctx.set_forkserver_preload(["erdesign", "numpy", "scipy.optimize"])
+                ctx.set_forkserver_preload(FORK_SERVER_PRELOAD)
                 _start_fork_server_on_this_erdesign()
             else:  # Windows: spawn is the only method
                 ctx = multiprocessing.get_context("spawn")

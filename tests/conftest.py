@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import functools
 import math
+import sys
 
 import pytest
 
@@ -27,6 +29,20 @@ def pytest_collection_modifyitems(config, items):
         if shared[item.nodeid]:
             group = "dask_client" if _file(item) in dask_files else _file(item)
             item.add_marker(pytest.mark.xdist_group(group))
+
+
+def pytest_runtest_setup(item):
+    """Streamlit's AppTest scans every installed distribution's metadata for Streamlit components each time an
+    AppTest first runs (0.13-0.3 s of CPU, a few hundred times in the suite); the installed packages do not change
+    during a test session, so the scan is made once per process, once a test module has imported AppTest."""
+    if "streamlit.testing.v1" in sys.modules:
+        from streamlit.components.v2 import manifest_scanner
+
+        scan = manifest_scanner.scan_component_manifests
+        if not hasattr(scan, "cache_info"):
+            cached = functools.cache(scan)
+            manifest_scanner.scan_component_manifests = lambda max_workers=None: list(cached(max_workers))
+            manifest_scanner.scan_component_manifests.cache_info = cached.cache_info
 
 
 def pytest_collection_finish(session):

@@ -73,6 +73,47 @@ def no_error(at: AppTest) -> None:
     assert not at.error, [e.value for e in at.error]
 
 
+def page_content(at: AppTest) -> list:
+    """What the page shows, element by element: each element's message to the browser, for a widget with the
+    value it shows instead of how the value was set (AppTest's first run sets a widget's default, later runs its
+    state), and with the random id pandas gives a styled table (``Styler.uuid``, in its CSS too) taken out."""
+    from streamlit.testing.v1.element_tree import Widget
+
+    content = []
+    for element in at.main:
+        proto = getattr(element, "proto", None)
+        if proto is None:
+            content.append(repr(element))
+            continue
+        if isinstance(element, Widget):
+            proto = type(proto)()
+            proto.CopyFrom(element.proto)
+            for field in ("value", "default", "set_value", "raw_value"):
+                if field in proto.DESCRIPTOR.fields_by_name:
+                    proto.ClearField(field)
+            content.append((proto.SerializeToString(), repr(element.value)))
+            continue
+        data = proto.SerializeToString()
+        uuid = proto.arrow_data.styler.uuid if "arrow_data" in proto.DESCRIPTOR.fields_by_name else ""
+        content.append(data.replace(uuid.encode(), b"") if uuid else data)
+    return content
+
+
+def same_in_every_unit_system(at: AppTest) -> None:
+    """The page in view shows the same in SI, mm-kN-s and in-lbf-s (tests/test_app_browser.py then checks its
+    layout in one unit system only: add the page to its walk in all three if this fails)."""
+    from erdesign.report.formatting import UNIT_SYSTEMS
+
+    shown = {}
+    for system in UNIT_SYSTEMS:
+        at.radio(key=state.UNITS).set_value(system).run()
+        no_error(at)
+        shown[system] = page_content(at)
+    first, *others = UNIT_SYSTEMS
+    for system in others:
+        assert shown[system] == shown[first], f"the page differs in {system} from {first}"
+
+
 # ------------------------------------------------------------------------------------------------ Size
 def test_opens_on_the_makris_damper(app):
     no_error(app)

@@ -124,7 +124,7 @@ def browser():
 
 @pytest.fixture
 def page(browser, app_url):
-    context = browser.new_context(viewport={"width": 1500, "height": 1800})
+    context = _new_context(browser, 1500, 1800)
     pg = context.new_page()
     pg.set_default_timeout(REACT_TIMEOUT_MS)
     sync_api.expect.set_options(timeout=REACT_TIMEOUT_MS)
@@ -133,10 +133,9 @@ def page(browser, app_url):
 
 
 def _commit(page, label: str, value: str) -> None:
-    """Type into the text input called ``label`` and press Enter (Streamlit reruns on commit)."""
+    """Type into the text input called ``label``, press Enter (Streamlit reruns on commit) and wait for the run."""
     box = page.get_by_label(label, exact=True)
-    box.fill(value)
-    box.press("Enter")
+    _act(page, lambda: (box.fill(value), box.press("Enter")))
 
 
 def _metric(page, label: str):
@@ -170,28 +169,68 @@ def _shoot(page, path: Path) -> Path:
 #: The app's root once no script run is going on: Streamlit keeps the state of the session's script run in this
 #: attribute (what its own end-to-end tests wait on, ``wait_for_app_run``).
 _NOT_RUNNING = '[data-testid="stApp"][data-test-script-state="notRunning"]'
+#: Counts the changes of that attribute in every document of a browser context: a change after an interaction,
+#: with the state back at notRunning, is the run the interaction started, finished.
+_COUNT_RUNS = """window.__scriptStateChanges = 0;
+new MutationObserver(changes => { window.__scriptStateChanges += changes.length; })
+    .observe(document, {attributes: true, attributeFilter: ['data-test-script-state'], subtree: true});"""
+#: True once the script state has changed since ``[changes, time]`` and is back at notRunning; or, for an
+#: interaction that starts no run (a radio clicked on its own value), once it has stayed at notRunning for the
+#: 300 ms a run takes at most to start (a round trip to the server).
+_RUN_FINISHED = (
+    """([changes, since]) => document.querySelector('%s') !== null
+    && (window.__scriptStateChanges > changes || performance.now() - since > 300)"""
+    % _NOT_RUNNING
+)
+
+
+def _new_context(browser, width: int, height: int):
+    context = browser.new_context(viewport={"width": width, "height": height})
+    context.add_init_script(_COUNT_RUNS)
+    return context
 
 
 def _idle(page) -> None:
-    """Wait until the script run triggered by the last interaction has finished; until then stale and new elements
-    can coexist, and a locator can match both.  The run starts after a round trip to the server (300 ms allowed);
-    its end is the app root's script state (the "Running" status widget is shown only after a delay and fades out
-    for 200 ms: waiting for it to hide let a short run pass unseen and polled up to a second past the end)."""
-    page.wait_for_timeout(300)
+    """Wait until no script run is going on (every interaction below waits for the run it started: see _act)."""
     page.wait_for_selector(_NOT_RUNNING, state="attached")
+
+
+def _act(page, action) -> None:
+    """Do ``action`` (a click, a commit, an upload) and wait until the script run it started has finished: until
+    then stale and new elements can coexist, and a locator can match both.  The run is seen by the changes of the
+    app root's script state (:data:`_COUNT_RUNS`), not by a fixed wait for it to start: the "Running" status
+    widget is shown only after a delay and fades out for 200 ms, and waiting for it to hide let a short run pass
+    unseen and polled up to a second past the end."""
+    _idle(page)
+    before = page.evaluate("() => [window.__scriptStateChanges, performance.now()]")
+    action()
+    page.wait_for_function(_RUN_FINISHED, arg=before)
+
+
+def _open(page, url: str) -> None:
+    """Open the app at ``url`` and wait for its first run."""
+    page.goto(url)
+    page.wait_for_function(
+        "() => window.__scriptStateChanges > 0 && document.querySelector('%s') !== null" % _NOT_RUNNING
+    )
 
 
 def _go(page, title: str) -> None:
     """Switch page through the sidebar navigation (same session: state must survive)."""
-    _idle(page)
-    page.get_by_test_id("stSidebarNav").get_by_text(title, exact=True).click()
-    _idle(page)
+    _act(page, page.get_by_test_id("stSidebarNav").get_by_text(title, exact=True).click)
+
+
+def _upload(page, path: Path) -> None:
+    """Give ``path`` to the page's first file uploader and wait for the run it starts."""
+    _act(
+        page, lambda: page.get_by_test_id("stFileUploader").first.locator("input[type=file]").set_input_files(str(path))
+    )
 
 
 def _download(page, button_name, folder: Path) -> Path:
     """Click the download button called ``button_name``; the downloaded file, saved in ``folder``."""
     with page.expect_download() as info:
-        page.get_by_role("button", name=button_name).first.click()
+        _act(page, page.get_by_role("button", name=button_name).first.click)  # a download button reruns
     download = info.value
     path = folder / download.suggested_filename
     download.save_as(str(path))
@@ -226,20 +265,18 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     """Issue 14: size -> save the damper file -> reload it -> simulate -> upload a measurement -> diagnose -> add
     the effect -> download the report; the downloaded files are checked, a screenshot is taken of each page."""
     expect = sync_api.expect
-    page.goto(app_url)
+    _open(page, app_url)
 
     # Size: opens on the built-in Makris damper (Makris et al. 1996).
     expect(page.get_by_role("heading", name="Size a damper")).to_be_visible()
     expect(page.get_by_label("gap h", exact=True)).to_have_value("0.8 mm")
     expect(_metric(page, "force F").first).to_be_visible()
-    _idle(page)
     before = _metric(page, "force F").first.inner_text()
     # 1 in/s: the design point of `erdesign size` in the library's doctest (Damper.size): 6.07 kN.
     _commit(page, "design velocity v", "1 in/s")
     expect(_metric(page, "force F").first).to_have_text(SIX_KN)
     assert not SIX_KN.match(before)
     _commit(page, "seal friction Fs", "25 lbf")  # Makris's P_y in his unit (eq 14)
-    _idle(page)
     expect(page.locator(".js-plotly-plot").first).to_be_visible()
     _shoot(page, tmp_path / "size.png")
 
@@ -255,9 +292,7 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     # Reload it after changing the page: the upload puts back the inputs and the design point.
     _commit(page, "gap h", "0.6 mm")
     _commit(page, "design velocity v", "50 mm/s")
-    _idle(page)
-    page.get_by_test_id("stFileUploader").first.locator("input[type=file]").set_input_files(str(toml))
-    _idle(page)
+    _upload(page, toml)
     expect(page.get_by_label("gap h", exact=True)).to_have_value("0.8 mm")
     expect(page.get_by_label("design velocity v", exact=True)).to_have_value("1 in/s")
     expect(_metric(page, "force F").first).to_have_text(SIX_KN)
@@ -272,7 +307,6 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     expect(page.get_by_text(re.compile(r"10 mm at 1 Hz, control 3 kV/mm"))).to_be_visible()
     _commit(page, "amplitude X0", "20 mm")
     expect(peak).not_to_have_text(first)
-    _idle(page)
     _shoot(page, tmp_path / "simulate.png")
     simulated = _download(page, "Simulated time history (CSV)", tmp_path)
     from erdesign.data.measurement import read_measurement
@@ -283,23 +317,19 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     # Compare and diagnose: upload the measurement; the diagnosis names the hidden seal friction.
     _go(page, "Compare and diagnose")
     expect(page.get_by_role("heading", name="Compare and diagnose")).to_be_visible()
-    page.get_by_text("upload a measurement CSV").click()
-    _idle(page)
-    page.get_by_test_id("stFileUploader").first.locator("input[type=file]").set_input_files(str(friction_csv))
-    _idle(page)
+    _act(page, page.get_by_text("upload a measurement CSV").click)
+    _upload(page, friction_csv)
     expect(page.get_by_text("friction-test.csv:")).to_be_visible()
-    page.get_by_role("button", name="Diagnose").click()
+    _act(page, page.get_by_role("button", name="Diagnose").click)
     verdict = page.get_by_test_id("stAlertContentSuccess").filter(has_text="Missing effect")
     expect(verdict.first).to_be_visible()
-    _idle(page)
     effect = re.search(r"Missing effect: (\w+)", verdict.first.inner_text()).group(1)
     assert effect == "seal_friction"
     esr0 = float(_metric(page, "ESR of the calibrated model").first.inner_text())
     _shoot(page, tmp_path / "compare.png")
     # the verdict box carries the button: add the effect and refit; the error history (in view) gets a 2nd bar
-    page.get_by_role("button", name=f"Add {effect} and refit").click()
+    _act(page, page.get_by_role("button", name=f"Add {effect} and refit").click)
     expect(page.get_by_text(f"Model: baseline + {effect}")).to_be_visible()
-    _idle(page)
     esr1 = float(_metric(page, "ESR of the calibrated model").first.inner_text())
     assert esr1 < esr0 / 3
     _shoot(page, tmp_path / "compare_refit.png")
@@ -331,14 +361,16 @@ def test_app_end_to_end(page, app_url, tmp_path, friction_csv):
     assert image.name == "makris-1996-force.png" and image.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
     # Back in the app, on Size: the design survived the page switches (session state).
-    page.goto(app_url)
-    _idle(page)
+    _open(page, app_url)
 
 
 #: Screen sizes every page is checked at (issue 26): a laptop and a desktop screen.
 VIEWPORTS = {"1280x800": (1280, 800), "1920x1080": (1920, 1080)}
 #: Pages of the walk, by their title in the navigation.
 PAGE_TITLES = ("Size", "Design", "Simulate", "Compare and diagnose", "Report", "Characterize", "Vehicle")
+#: The pages that show numbers in the unit system, walked in each; the others show the same in every unit system
+#: (tests/test_app_characterize.py and tests/test_app_vehicle.py check it) and are walked in the first only.
+UNIT_PAGES = ("Size", "Design", "Simulate", "Compare and diagnose", "Report")
 
 #: Visible elements whose text the browser cuts with an ellipsis (text-overflow: ellipsis and wider than shown).
 _CUT = """() => [...document.querySelectorAll('body *')].filter(e => {
@@ -393,9 +425,10 @@ def _check_page(page, where: str) -> list[str]:
 
 @pytest.mark.parametrize("size", list(VIEWPORTS))
 def test_every_page_at_two_sizes_in_three_unit_systems(browser, app_url, tmp_path_factory, size):
-    """Issue 26: each page at 1280 x 800 and 1920 x 1080 in SI, mm-kN-s and in-lbf-s, with a diagnosis on the
-    Compare page; screenshots saved (paths printed: look at them), no text cut with an ellipsis, no figure text over
-    another, no legend over a plot."""
+    """Issue 26: each page at 1280 x 800 and 1920 x 1080 in SI, mm-kN-s and in-lbf-s (Characterize and Vehicle,
+    which show the same in every unit system, in SI: :data:`UNIT_PAGES`), with a diagnosis on the Compare page;
+    screenshots saved (paths printed: look at them), no text cut with an ellipsis, no figure text over another, no
+    legend over a plot."""
     from erdesign.formatting import UNIT_SYSTEMS
 
     # ERDESIGN_SCREENSHOTS keeps them where pytest's rotation of its tmp dirs does not remove them
@@ -404,18 +437,17 @@ def test_every_page_at_two_sizes_in_three_unit_systems(browser, app_url, tmp_pat
     folder.mkdir(parents=True, exist_ok=True)
     print(f"screenshots in {folder}")
     width, height = VIEWPORTS[size]
-    context = browser.new_context(viewport={"width": width, "height": height})
+    context = _new_context(browser, width, height)
     page = context.new_page()
     page.set_default_timeout(REACT_TIMEOUT_MS)
     sync_api.expect.set_options(timeout=REACT_TIMEOUT_MS)
     problems: list[str] = []
     try:
-        page.goto(app_url)
+        _open(page, app_url)
         sync_api.expect(page.get_by_role("heading", name="Size a damper")).to_be_visible()
         for system in UNIT_SYSTEMS:
-            _idle(page)
-            page.get_by_test_id("stSidebar").get_by_text(system, exact=True).click()
-            for title in PAGE_TITLES:
+            _act(page, page.get_by_test_id("stSidebar").get_by_text(system, exact=True).click)
+            for title in PAGE_TITLES if system == next(iter(UNIT_SYSTEMS)) else UNIT_PAGES:
                 _go(page, title)
                 if title == "Compare and diagnose":  # the diagnosis runs once; later visits show it
                     run, metric = (
@@ -424,8 +456,7 @@ def test_every_page_at_two_sizes_in_three_unit_systems(browser, app_url, tmp_pat
                     )
                     sync_api.expect(run.or_(metric).first).to_be_visible()
                     if run.count():
-                        run.click()
-                        _idle(page)
+                        _act(page, run.click)
                     sync_api.expect(metric.first).to_be_visible()
                 _drawn(page)  # _go waited for the page's run; only the click above starts another
                 where = f"{size} {system} {title}"
@@ -434,14 +465,12 @@ def test_every_page_at_two_sizes_in_three_unit_systems(browser, app_url, tmp_pat
         # an MR damper with a coil: the control is the coil current on every page, τ_y from the magnetic circuit
         _go(page, "Size")
         page.get_by_test_id("stSelectbox").filter(has_text="start from an example").click()
-        page.get_by_role("option", name="mr_coil", exact=True).click()
-        _idle(page)
+        _act(page, page.get_by_role("option", name="mr_coil", exact=True).click)
         sync_api.expect(page.get_by_label("design coil current I", exact=True)).to_have_value("2 A")
         problems += _check_page(page, f"{size} mr_coil Size")
         _shoot_screens(page, folder / "size-mr_coil")
         _go(page, "Simulate")
         sync_api.expect(page.get_by_label("coil current I", exact=True)).to_have_value("2 A")
-        _idle(page)
         problems += _check_page(page, f"{size} mr_coil Simulate")
         _shoot_screens(page, folder / "simulate-mr_coil", screens=2)
     finally:

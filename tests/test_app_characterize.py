@@ -8,6 +8,7 @@ import streamlit as st
 from streamlit.testing.v1 import AppTest
 
 from erdesign.app import state
+from tests.test_app import same_in_every_unit_system
 
 MAIN = str(Path(state.__file__).with_name("main.py"))
 TIMEOUT = 120
@@ -40,6 +41,7 @@ def test_characterize_page_on_the_example_records(app):
     assert {"Friction", "Stiffness", "Gain in force due to manipulation"} <= found
     assert len(parameters) >= 5
     assert list(cv.index)[-1] == "average" and np.allclose(cv.iloc[:-1].mean(axis=0), cv.iloc[-1])
+    same_in_every_unit_system(app)  # (the browser walk shows this page in one unit system)
     # bad upload: one line naming the file, no traceback
     app.radio(key="chr.source").set_value("upload").run()
     app.file_uploader(key="chr.upload").set_value(

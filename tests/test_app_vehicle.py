@@ -15,6 +15,7 @@ from erdesign.simulation.roads import bump_road
 from erdesign.simulation.vehicle import simulate_vehicle
 from erdesign.app.vehicle import short
 from erdesign.simulation.vehicle_setup import PRESET_DAMPERS, vehicle_damper
+from tests.test_app import same_in_every_unit_system
 
 MAIN = str(Path(state.__file__).with_name("main.py"))
 
@@ -39,6 +40,7 @@ def test_vehicle_page_compares_the_default_dampers_with_the_library_numbers():
         r = simulate_vehicle(vehicle_damper(**PRESET_DAMPERS[name]), bump_road(0.1, 0.5), duration=2.0)
         # the page shows the library's number for the same run (no physics in the page)
         assert bars[f"{short(name)}, passive"] == pytest.approx(r.ride()["body_acceleration_weighted_rms_m_per_s2"])
+    same_in_every_unit_system(at)  # (the browser walk shows this page in one unit system)
 
 
 def test_a_run_that_cannot_be_made_is_a_warning_not_a_traceback():

@@ -319,7 +319,9 @@ def test_the_papers_averages():
 
 def test_split_force_gain_is_linear_in_the_control():
     # closed form: F_SA = CSA u sgn v, so the FM diagram's mean gain is CSA per unit control, on a straight line
-    result = characterize(_closed_form(noise=0.0)[:1])
+    # the split is read from the records and the passive part the detection fits, before any identification: the
+    # customized and Eyring-plastic models are identified on every 50th sample only (5.4 -> 0.7 s; the same split)
+    result = characterize(_closed_form(noise=0.0)[:1], identify_options={"decimate": 50})
     gain = result.split()["force_gain"]
     assert gain["slope_N_per_control_unit"] == pytest.approx(CSA, rel=0.02) and gain["r_squared"] > 0.999
 
