@@ -43,9 +43,9 @@ import secrets
 import signal
 import stat
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import IO
+from typing import IO, Any
 
 from .errors import OutputPathError
 
@@ -191,16 +191,18 @@ def _link_exclusively(tmp: Path, path: Path, option: str) -> None:
 
 
 @contextlib.contextmanager
-def _terminate_as_exit() -> Iterator[None]:
-    """While a file is written: SIGTERM raises SystemExit (so ``finally`` blocks remove the temporary file) instead
-    of ending the process at once.  Only the main thread can set a handler; elsewhere, and when the program has its
-    own handler, nothing changes."""
+def terminate_as_exit(before_exit: Callable[[Any], bool] | None = None) -> Iterator[None]:
+    """While the block runs: SIGTERM raises ``SystemExit(SIGTERM_EXIT)`` (so ``finally`` blocks run: a temporary
+    file is removed, a pool shut down) instead of ending the process at once.  ``before_exit(frame)`` runs first and
+    may put the exit off by returning False (the command line stops its worker processes there,
+    :func:`erdesign.cli.main._stop_workers`).  Only the main thread can set a handler; elsewhere, and when the
+    program has its own handler (or an outer block set this one), nothing changes."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     try:
         previous = signal.getsignal(signal.SIGTERM)
-    except (ValueError, OSError):  # pragma: no cover
+    except (ValueError, OSError, AttributeError):  # pragma: no cover
         yield
         return
     if previous not in (signal.SIG_DFL, None):
@@ -208,6 +210,8 @@ def _terminate_as_exit() -> Iterator[None]:
         return
 
     def stop(signum, frame):
+        if before_exit is not None and before_exit(frame) is False:
+            return
         raise SystemExit(SIGTERM_EXIT)
 
     signal.signal(signal.SIGTERM, stop)
@@ -259,7 +263,7 @@ def atomic_output(path: str | Path, *, overwrite: bool = False, option: str = "p
         raise OutputPathError(f"{option} {path}: is a folder; give a file name")
     if overwrite:
         refuse_read_only(path, option)
-    with _terminate_as_exit():
+    with terminate_as_exit():
         made: list[Path] = []
         try:
             tmp, fd = _temporary(path, option, made)

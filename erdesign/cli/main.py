@@ -14,7 +14,6 @@ is read in SI units (m/s; the field in the SI unit of the damper's control: V/m,
 
 from __future__ import annotations
 
-import contextlib
 import importlib
 import json
 import math
@@ -29,6 +28,7 @@ import click
 
 from .. import __version__
 from ..errors import ErdesignError, one_line
+from ..output import SIGTERM_EXIT, terminate_as_exit
 
 __all__ = [
     "main",
@@ -391,45 +391,36 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-#: Exit codes of a command stopped by SIGTERM and of one whose reader closed the pipe (the shell's 128 + signal).
-SIGTERM_EXIT = 128 + signal.SIGTERM
+#: Exit code of a command whose reader closed the pipe (the shell's 128 + signal; SIGTERM's is
+#: :data:`erdesign.output.SIGTERM_EXIT`).
 CLOSED_PIPE_EXIT = 128 + getattr(signal, "SIGPIPE", 13)
 
 
-@contextlib.contextmanager
+def _stop_workers(frame) -> bool:
+    """SIGTERM during a command (:func:`_sigterm_as_exit`): stop the worker processes it started, then exit (True);
+    False, with the signal sent again 50 ms on, while a worker is being started: stopped there, it would run on,
+    unseen (and fail loudly)."""
+    caller = frame
+    while caller is not None:
+        if caller.f_code.co_name == "start" and "multiprocessing" in caller.f_code.co_filename:
+            timer = threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGTERM))
+            timer.daemon = True
+            timer.start()  # the signal again once the worker is started and known
+            return False
+        caller = caller.f_back
+    multiprocessing = sys.modules.get("multiprocessing")
+    if multiprocessing is not None:
+        for child in multiprocessing.active_children():
+            child.terminate()
+    return True
+
+
 def _sigterm_as_exit():
     """While a command runs: SIGTERM stops the worker processes it started and raises SystemExit, so that its
     ``finally`` blocks run (a batch saves the records it finished, temporary files are removed, the pool is shut
     down).  SIGTERM's default ended the process at once: a batch's pool workers and fork server were left running,
-    holding the terminal's pipes open.  Nothing changes off the main thread or under a program's own handler."""
-    try:
-        previous = signal.getsignal(signal.SIGTERM)
-    except (ValueError, OSError, AttributeError):  # pragma: no cover
-        previous = None
-    if previous is not signal.SIG_DFL or threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def stop(signum, frame):
-        caller = frame
-        while caller is not None:  # starting a worker: stopped there, it would run on, unseen (and fail loudly)
-            if caller.f_code.co_name == "start" and "multiprocessing" in caller.f_code.co_filename:
-                timer = threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGTERM))
-                timer.daemon = True
-                timer.start()  # the signal again once the worker is started and known
-                return
-            caller = caller.f_back
-        multiprocessing = sys.modules.get("multiprocessing")
-        if multiprocessing is not None:
-            for child in multiprocessing.active_children():
-                child.terminate()
-        raise SystemExit(SIGTERM_EXIT)
-
-    signal.signal(signal.SIGTERM, stop)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
+    holding the terminal's pipes open.  :func:`erdesign.output.terminate_as_exit` with :func:`_stop_workers`."""
+    return terminate_as_exit(_stop_workers)
 
 
 def _reader_gone(exc: SystemExit) -> bool:
