@@ -12,6 +12,7 @@ from erdesign.errors import ValidityWarning
 from erdesign.units import Q_
 
 from .conftest import MAKRIS_AP
+from tests.badinput.corpus import MAKRIS_GEOMETRY
 
 
 def test_makris_damping_constant_eq15(makris):
@@ -65,14 +66,7 @@ def test_field_law_scales_the_yield_force_as_E_to_the_n(makris):
 
 
 def _plain_valve(tau_y="1.8 kPa", eta="7 Pa*s", seal="0 N"):
-    g = Geometry.create(
-        configuration="valve",
-        duct_length="54.6 mm",
-        duct_mean_diameter="14.3 mm",
-        gap="0.8 mm",
-        piston_diameter="33.4 mm",
-        rod_diameter="11.25 mm",
-    )
+    g = Geometry.create(**MAKRIS_GEOMETRY)
     f = Fluid.create(
         viscosity=eta, yield_stress=tau_y, reference_field="3 kV/mm", yield_exponent=2.0, density="1100 kg/m^3"
     )
